@@ -1,0 +1,48 @@
+/* cli.h - the `banyan` command line tool: shared job description and the
+ * per-generator command table. Each generator adds one cmd_<name>.c with a
+ * cli_command and lists it in commands.c. */
+#ifndef BANYAN_CLI_H
+#define BANYAN_CLI_H
+
+#include <stdio.h>
+
+#include "banyan.h"
+
+/* What the command line asked for, after the preset was read. */
+typedef struct cli_job {
+    const char *preset_path;     /* NULL when none */
+    const char *preset_text;     /* file contents, NULL when none */
+    size_t preset_len;
+    banyan_box hosts[BANYAN_MAX_HOSTS];
+    uint32_t n_hosts;            /* from the preset; 0 when it has none */
+    int threads;                 /* --threads N, 0 = all cores */
+} cli_job;
+
+/* Generator-specific JSON written by --stats: run() appends
+ * `"key": value` members with cli_stat_*; main wraps them in one object. */
+typedef struct cli_stats {
+    char buf[16384];
+    size_t len;
+} cli_stats;
+void cli_stat_num(cli_stats *s, const char *key, double v);
+void cli_stat_raw(cli_stats *s, const char *key, const char *json);
+
+typedef struct cli_command {
+    const char *name;            /* subcommand */
+    int generator;               /* banyan_generator, or -1 when it has no param table */
+    const char *summary;         /* one line for --help */
+    size_t params_size;
+    void (*init)(void *params);  /* defaults */
+    /* Fills default hosts when the preset gave none (may leave 0). */
+    void (*default_hosts)(cli_job *job);
+    /* Generates one or more meshes. *names may stay NULL. */
+    banyan_status (*run)(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
+                         uint32_t *count, cli_stats *stats, banyan_error *err);
+    /* --set for commands without a param table (generator == -1). */
+    banyan_status (*set)(void *params, const char *key, const char *value, banyan_error *err);
+    const char *missing;         /* when run is NULL: which issue builds it */
+} cli_command;
+
+extern const cli_command *const cli_commands[];
+
+#endif

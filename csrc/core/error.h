@@ -1,0 +1,33 @@
+/* error.h - filling banyan_error and small input checks shared by every
+ * entry point, so messages read the same everywhere. */
+#ifndef BANYAN_ERROR_H
+#define BANYAN_ERROR_H
+
+#include "banyan.h"
+
+#if defined(__GNUC__)
+#  define BANYAN_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#  define BANYAN_PRINTF(a, b)
+#endif
+
+/* Fills err (when non-NULL) and returns code. */
+banyan_status banyan_fail(banyan_error *err, banyan_status code, const char *fmt, ...) BANYAN_PRINTF(3, 4);
+/* Puts `prefix` (e.g. "file.json:3: ") before err's message, truncating. */
+void banyan_error_prefix(banyan_error *err, const char *prefix);
+/* Clears err to BANYAN_OK / "". */
+void banyan_error_clear(banyan_error *err);
+
+/* "name = value must be within [lo, hi] unit": finite and in range. */
+banyan_status banyan_check_range(banyan_error *err, const char *name, double v, double lo, double hi,
+                                 const char *unit);
+banyan_status banyan_check_int(banyan_error *err, const char *name, long long v, long long lo, long long hi);
+
+/* Guard for out-parameters: checks out != NULL and sets *out = NULL. */
+#define BANYAN_CHECK_OUT(out, err)                                                              \
+    do {                                                                                        \
+        if (!(out)) return banyan_fail((err), BANYAN_E_INVALID_ARG, "out is NULL");           \
+        *(out) = NULL;                                                                          \
+    } while (0)
+
+#endif

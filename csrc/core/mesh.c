@@ -1,0 +1,81 @@
+/* banyan_mesh ownership, lookup and hashing; ABI and layout queries. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "banyan.h"
+#include "error.h"
+#include "obb.h"
+
+void banyan_mesh_free(banyan_mesh *m) {
+    if (!m) return;
+    free(m->positions); free(m->normals); free(m->uvs); free(m->colors); free(m->indices);
+    if (m->attributes)
+        for (uint32_t i = 0; i < m->attribute_count; i++) free(m->attributes[i].data);
+    free(m->attributes);
+    free(m->materials); free(m->parts);
+    free(m->skel_points); free(m->skel_radius); free(m->skel_tag); free(m->skel_edges);
+    free(m);
+}
+
+const float *banyan_mesh_attribute(const banyan_mesh *m, const char *name) {
+    if (!m || !name) return NULL;
+    for (uint32_t i = 0; i < m->attribute_count; i++)
+        if (strncmp(m->attributes[i].name, name, BANYAN_NAME_MAX) == 0) return m->attributes[i].data;
+    return NULL;
+}
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n) {
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+uint64_t banyan_mesh_hash(const banyan_mesh *m) {
+    uint64_t h = 14695981039346656037ULL;
+    if (!m) return h;
+    size_t nv = m->vertex_count;
+    h = fnv(h, &m->vertex_count, sizeof m->vertex_count);
+    h = fnv(h, &m->index_count, sizeof m->index_count);
+    if (m->positions) h = fnv(h, m->positions, 3 * nv * sizeof(float));
+    if (m->normals) h = fnv(h, m->normals, 3 * nv * sizeof(float));
+    if (m->uvs) h = fnv(h, m->uvs, 2 * nv * sizeof(float));
+    if (m->colors) h = fnv(h, m->colors, 4 * nv * sizeof(float));
+    if (m->indices) h = fnv(h, m->indices, m->index_count * sizeof(uint32_t));
+    for (uint32_t i = 0; m->attributes && i < m->attribute_count; i++) {
+        h = fnv(h, m->attributes[i].name, BANYAN_NAME_MAX);
+        if (m->attributes[i].data) h = fnv(h, m->attributes[i].data, nv * sizeof(float));
+    }
+    if (m->materials) h = fnv(h, m->materials, m->material_count * sizeof(banyan_material));
+    if (m->parts) h = fnv(h, m->parts, m->part_count * sizeof(banyan_part));
+    size_t ns = m->skel_point_count;
+    if (m->skel_points) h = fnv(h, m->skel_points, 3 * ns * sizeof(float));
+    if (m->skel_radius) h = fnv(h, m->skel_radius, ns * sizeof(float));
+    if (m->skel_tag) h = fnv(h, m->skel_tag, ns * sizeof(int32_t));
+    if (m->skel_edges) h = fnv(h, m->skel_edges, 2 * (size_t)m->skel_edge_count * sizeof(uint32_t));
+    return h;
+}
+
+banyan_box banyan_box_make(double cx, double cy, double cz, double hx, double hy, double hz) {
+    banyan_box b = {{cx, cy, cz}, {hx, hy, hz}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    return b;
+}
+
+banyan_status banyan_box_validate(const banyan_box *box, uint32_t index, banyan_error *err) {
+    obb o;
+    banyan_status s = obb_from_box(box, index, &o, err);
+    if (!s) banyan_error_clear(err);
+    return s;
+}
+
+int32_t banyan_abi_version(void) { return BANYAN_ABI_VERSION; }
+const char *banyan_version_string(void) { return BANYAN_VERSION_STRING; }
+size_t banyan_sizeof_error(void) { return sizeof(banyan_error); }
+size_t banyan_sizeof_box(void) { return sizeof(banyan_box); }
+size_t banyan_sizeof_attribute(void) { return sizeof(banyan_attribute); }
+size_t banyan_sizeof_material(void) { return sizeof(banyan_material); }
+size_t banyan_sizeof_part(void) { return sizeof(banyan_part); }
+size_t banyan_sizeof_mesh(void) { return sizeof(banyan_mesh); }
+size_t banyan_sizeof_param_info(void) { return sizeof(banyan_param_info); }

@@ -1,0 +1,229 @@
+#include "mesh_builder.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+
+void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color) {
+    memset(mb, 0, sizeof *mb);
+    mb->max_vertices = max_vertices < 1 ? 1 : (max_vertices > MB_VERTEX_CEILING ? MB_VERTEX_CEILING : max_vertices);
+    mb->with_color = with_color;
+    for (int i = 0; i < 4; i++) mb->cur_color[i] = 1.0f;
+}
+
+void mb_free(mesh_builder *mb) {
+    free(mb->pos); free(mb->nrm); free(mb->uv); free(mb->col); free(mb->idx);
+    for (uint32_t i = 0; i < mb->n_attr; i++) free(mb->attr[i]);
+    free(mb->mat); free(mb->part);
+    free(mb->skel_pos); free(mb->skel_rad); free(mb->skel_tag); free(mb->skel_edge);
+    memset(mb, 0, sizeof *mb);
+}
+
+/* realloc that leaves *p untouched on failure. */
+static int grow(void **p, size_t count, size_t elem) {
+    void *q = realloc(*p, count * elem);
+    if (!q) return 0;
+    *p = q;
+    return 1;
+}
+
+int mb_add_attr(mesh_builder *mb, const char *name) {
+    if (mb->n_attr >= MB_MAX_ATTRS || mb->nv > 0) {
+        if (!mb->status) mb->status = BANYAN_E_INTERNAL;
+        return 0;
+    }
+    int slot = (int)mb->n_attr++;
+    strncpy(mb->attr_name[slot], name, BANYAN_NAME_MAX - 1);
+    mb->attr_name[slot][BANYAN_NAME_MAX - 1] = '\0';
+    mb->cur_attr[slot] = 0.0f;
+    if (mb->cap_v && !grow((void **)&mb->attr[slot], mb->cap_v, sizeof(float))) mb->status = BANYAN_E_NOMEM;
+    return slot;
+}
+
+void mb_set_color(mesh_builder *mb, const double rgba[4]) {
+    for (int i = 0; i < 4; i++) mb->cur_color[i] = (float)rgba[i];
+}
+
+uint32_t mb_add_material(mesh_builder *mb, const char *name, const double rgba[4], double roughness,
+                         int double_sided) {
+    if (mb->status) return 0;
+    if (!grow((void **)&mb->mat, mb->n_mat + 1, sizeof *mb->mat)) {
+        mb->status = BANYAN_E_NOMEM;
+        return 0;
+    }
+    banyan_material *m = &mb->mat[mb->n_mat];
+    memset(m, 0, sizeof *m);
+    strncpy(m->name, name, BANYAN_NAME_MAX - 1);
+    for (int i = 0; i < 4; i++) m->base_color[i] = (float)rgba[i];
+    m->roughness = (float)roughness;
+    m->double_sided = double_sided ? 1 : 0;
+    return mb->n_mat++;
+}
+
+static void close_part(mesh_builder *mb) {
+    if (!mb->n_part) return;
+    banyan_part *p = &mb->part[mb->n_part - 1];
+    p->vertex_count = mb->nv - p->vertex_offset;
+    p->index_count = mb->ni - p->index_offset;
+}
+
+void mb_begin_part(mesh_builder *mb, uint32_t material, uint32_t group) {
+    if (mb->status) return;
+    close_part(mb);
+    /* An empty previous part is reused rather than kept. */
+    if (mb->n_part && mb->part[mb->n_part - 1].vertex_count == 0 && mb->part[mb->n_part - 1].index_count == 0)
+        mb->n_part--;
+    if (!grow((void **)&mb->part, mb->n_part + 1, sizeof *mb->part)) {
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    banyan_part *p = &mb->part[mb->n_part++];
+    memset(p, 0, sizeof *p);
+    p->vertex_offset = mb->nv;
+    p->index_offset = mb->ni;
+    p->material = material;
+    p->group = group;
+}
+
+static int grow_vertices(mesh_builder *mb, uint32_t need) {
+    if (need <= mb->cap_v) return 1;
+    uint64_t cap = mb->cap_v ? (uint64_t)mb->cap_v * 2 : 256;
+    while (cap < need) cap *= 2;
+    if (cap > mb->max_vertices) cap = mb->max_vertices;
+    size_t c = (size_t)cap;
+    if (!grow((void **)&mb->pos, c, 3 * sizeof(float)) || !grow((void **)&mb->nrm, c, 3 * sizeof(float)) ||
+        !grow((void **)&mb->uv, c, 2 * sizeof(float)) ||
+        (mb->with_color && !grow((void **)&mb->col, c, 4 * sizeof(float))))
+        return 0;
+    for (uint32_t i = 0; i < mb->n_attr; i++)
+        if (!grow((void **)&mb->attr[i], c, sizeof(float))) return 0;
+    mb->cap_v = (uint32_t)c;
+    return 1;
+}
+
+banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indices) {
+    if (mb->status) return mb->status;
+    uint64_t need_v = (uint64_t)mb->nv + n_vertices, need_i = (uint64_t)mb->ni + n_indices;
+    if (need_v > mb->max_vertices || need_i > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
+    if (!grow_vertices(mb, (uint32_t)need_v)) return mb->status = BANYAN_E_NOMEM;
+    if (need_i > mb->cap_i) {
+        uint64_t cap = mb->cap_i ? (uint64_t)mb->cap_i * 2 : 768;
+        while (cap < need_i) cap *= 2;
+        if (cap > 0xFFFFFFF0u) cap = 0xFFFFFFF0u;
+        if (!grow((void **)&mb->idx, (size_t)cap, sizeof(uint32_t))) return mb->status = BANYAN_E_NOMEM;
+        mb->cap_i = (uint32_t)cap;
+    }
+    return BANYAN_OK;
+}
+
+uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v) {
+    if (mb->nv >= mb->cap_v && mb_reserve(mb, 1, 0)) return 0;
+    if (mb->status) return 0;
+    uint32_t i = mb->nv++;
+    float *P = mb->pos + 3 * (size_t)i, *N = mb->nrm + 3 * (size_t)i, *T = mb->uv + 2 * (size_t)i;
+    P[0] = (float)p.x; P[1] = (float)p.y; P[2] = (float)p.z;
+    N[0] = (float)n.x; N[1] = (float)n.y; N[2] = (float)n.z;
+    T[0] = (float)u; T[1] = (float)v;
+    if (mb->with_color) memcpy(mb->col + 4 * (size_t)i, mb->cur_color, sizeof mb->cur_color);
+    for (uint32_t a = 0; a < mb->n_attr; a++) mb->attr[a][i] = mb->cur_attr[a];
+    return i;
+}
+
+void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) {
+    if (mb->ni + 3 > mb->cap_i && mb_reserve(mb, 0, 3)) return;
+    if (mb->status) return;
+    uint32_t *I = mb->idx + mb->ni;
+    I[0] = a; I[1] = b; I[2] = c;
+    mb->ni += 3;
+}
+
+uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {
+    if (mb->status) return 0;
+    if (mb->n_skel >= mb->cap_skel) {
+        uint32_t cap = mb->cap_skel ? mb->cap_skel * 2 : 256;
+        if (!grow((void **)&mb->skel_pos, cap, 3 * sizeof(float)) || !grow((void **)&mb->skel_rad, cap, sizeof(float)) ||
+            !grow((void **)&mb->skel_tag, cap, sizeof(int32_t))) {
+            mb->status = BANYAN_E_NOMEM;
+            return 0;
+        }
+        mb->cap_skel = cap;
+    }
+    uint32_t i = mb->n_skel++;
+    mb->skel_pos[3 * i] = (float)p.x;
+    mb->skel_pos[3 * i + 1] = (float)p.y;
+    mb->skel_pos[3 * i + 2] = (float)p.z;
+    mb->skel_rad[i] = (float)radius;
+    mb->skel_tag[i] = tag;
+    return i;
+}
+
+void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b) {
+    if (mb->status) return;
+    if (mb->n_edge >= mb->cap_edge) {
+        uint32_t cap = mb->cap_edge ? mb->cap_edge * 2 : 256;
+        if (!grow((void **)&mb->skel_edge, cap, 2 * sizeof(uint32_t))) {
+            mb->status = BANYAN_E_NOMEM;
+            return;
+        }
+        mb->cap_edge = cap;
+    }
+    mb->skel_edge[2 * mb->n_edge] = a;
+    mb->skel_edge[2 * mb->n_edge + 1] = b;
+    mb->n_edge++;
+}
+
+banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
+    *out = NULL;
+    if (mb->status) {
+        banyan_status s = mb->status;
+        uint32_t limit = mb->max_vertices;
+        mb_free(mb);
+        if (s == BANYAN_E_LIMIT)
+            return banyan_fail(err, s, "max_vertices = %u would be exceeded; raise max_vertices or lower the "
+                               "detail", limit);
+        if (s == BANYAN_E_NOMEM) return banyan_fail(err, s, "out of memory while building the mesh");
+        return banyan_fail(err, s, "internal error while building the mesh");
+    }
+    if (mb->nv == 0 || mb->ni == 0) {
+        mb_free(mb);
+        return banyan_fail(err, BANYAN_E_INTERNAL, "the generator produced an empty mesh");
+    }
+    static const double white[4] = {0.8, 0.8, 0.8, 1.0};
+    if (mb->n_mat == 0) mb_add_material(mb, "banyan", white, 0.8, 0);
+    if (mb->n_part == 0) {
+        /* One part over everything. */
+        uint32_t nv = mb->nv, ni = mb->ni;
+        mb->nv = mb->ni = 0;
+        mb_begin_part(mb, 0, 0);
+        mb->nv = nv;
+        mb->ni = ni;
+    }
+    close_part(mb);
+    if (mb->n_part > 1 && mb->part[mb->n_part - 1].vertex_count == 0) mb->n_part--;
+    banyan_mesh *m = calloc(1, sizeof *m);
+    banyan_attribute *attrs = mb->n_attr ? calloc(mb->n_attr, sizeof *attrs) : NULL;
+    if (!m || mb->status || (mb->n_attr && !attrs)) {
+        free(m); free(attrs);
+        mb_free(mb);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory while finishing the mesh");
+    }
+    m->vertex_count = mb->nv;
+    m->index_count = mb->ni;
+    m->positions = mb->pos; m->normals = mb->nrm; m->uvs = mb->uv; m->colors = mb->col; m->indices = mb->idx;
+    m->attribute_count = mb->n_attr;
+    m->attributes = attrs;
+    for (uint32_t i = 0; i < mb->n_attr; i++) {
+        memcpy(attrs[i].name, mb->attr_name[i], BANYAN_NAME_MAX);
+        attrs[i].data = mb->attr[i];
+    }
+    m->material_count = mb->n_mat; m->materials = mb->mat;
+    m->part_count = mb->n_part; m->parts = mb->part;
+    m->skel_point_count = mb->n_skel;
+    m->skel_points = mb->skel_pos; m->skel_radius = mb->skel_rad; m->skel_tag = mb->skel_tag;
+    m->skel_edge_count = mb->n_edge; m->skel_edges = mb->skel_edge;
+    memset(mb, 0, sizeof *mb); /* ownership moved; arrays keep their capacity slack */
+    *out = m;
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}

@@ -1,0 +1,79 @@
+/* mesh_builder.h - a growable banyan_mesh under construction.
+ *
+ * Generators set the "current" colour and attribute values, then add
+ * vertices and triangles; every vertex takes the current values. Errors
+ * are sticky: after the first failure (out of memory, or the vertex limit)
+ * further calls do nothing and mb_finish reports it, so generator code
+ * need not check every call. */
+#ifndef BANYAN_MESH_BUILDER_H
+#define BANYAN_MESH_BUILDER_H
+
+#include "banyan.h"
+#include "vec.h"
+
+#define MB_MAX_ATTRS 8
+/* Hard ceiling on vertices in one mesh, whatever max_vertices asks. */
+#define MB_VERTEX_CEILING 0x40000000u
+
+typedef struct mesh_builder {
+    float *pos, *nrm, *uv, *col;
+    uint32_t *idx;
+    uint32_t nv, cap_v, ni, cap_i;
+    uint32_t max_vertices;
+    int with_color;
+    float cur_color[4];
+
+    uint32_t n_attr;
+    char attr_name[MB_MAX_ATTRS][BANYAN_NAME_MAX];
+    float *attr[MB_MAX_ATTRS];
+    float cur_attr[MB_MAX_ATTRS];
+
+    banyan_material *mat;
+    uint32_t n_mat;
+    banyan_part *part;
+    uint32_t n_part;
+
+    float *skel_pos, *skel_rad;
+    int32_t *skel_tag;
+    uint32_t n_skel, cap_skel;
+    uint32_t *skel_edge;
+    uint32_t n_edge, cap_edge;
+
+    banyan_status status; /* first failure, sticky */
+} mesh_builder;
+
+/* max_vertices: the generator's limit (1 .. MB_VERTEX_CEILING). */
+void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color);
+void mb_free(mesh_builder *mb);
+
+/* Declares a per-vertex float attribute; returns its slot. Declare all
+ * attributes before adding vertices. */
+int mb_add_attr(mesh_builder *mb, const char *name);
+static inline void mb_set_attr(mesh_builder *mb, int slot, double v) { mb->cur_attr[slot] = (float)v; }
+void mb_set_color(mesh_builder *mb, const double rgba[4]);
+
+/* Adds a material; returns its index. */
+uint32_t mb_add_material(mesh_builder *mb, const char *name, const double rgba[4], double roughness,
+                         int double_sided);
+/* Starts a new part drawn with `material`; vertices and triangles added
+ * from now on belong to it. Without any call, one part with material 0
+ * covers everything. */
+void mb_begin_part(mesh_builder *mb, uint32_t material, uint32_t group);
+
+/* Makes room for n more vertices and m more indices; fails with
+ * BANYAN_E_LIMIT when the vertex limit would be passed. */
+banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indices);
+/* Adds a vertex and returns its index (call mb_reserve first for speed;
+ * it grows on its own otherwise). */
+uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v);
+void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c);
+
+/* Skeleton. */
+uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag);
+void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b);
+
+/* Hands the arrays over as a banyan_mesh; the builder is emptied either
+ * way. On failure *out stays NULL and err says why. */
+banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err);
+
+#endif

@@ -1,0 +1,43 @@
+/* PCG32 as published by M. O'Neill (pcg-random.org, pcg_basic.c), with
+ * Lemire-free rejection for bounded draws, so streams are portable. */
+#include "rng.h"
+
+#include <math.h>
+
+void pcg32_seed(pcg32 *r, uint64_t seed, uint64_t stream) {
+    r->state = 0u;
+    r->inc = (stream << 1u) | 1u;
+    pcg32_next(r);
+    r->state += seed;
+    pcg32_next(r);
+}
+
+uint32_t pcg32_next(pcg32 *r) {
+    uint64_t old = r->state;
+    r->state = old * 6364136223846793005ULL + r->inc;
+    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = (uint32_t)(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+}
+
+double rng_uniform(pcg32 *r) {
+    uint64_t hi = pcg32_next(r) >> 5, lo = pcg32_next(r) >> 6; /* 27 + 26 bits */
+    return (double)(hi * 67108864.0 + lo) * (1.0 / 9007199254740992.0);
+}
+
+double rng_range(pcg32 *r, double a, double b) { return a + (b - a) * rng_uniform(r); }
+
+uint32_t rng_below(pcg32 *r, uint32_t n) {
+    if (n <= 1) return 0;
+    uint32_t threshold = (uint32_t)(-n) % n; /* 2^32 mod n */
+    for (;;) {
+        uint32_t x = pcg32_next(r);
+        if (x >= threshold) return x % n;
+    }
+}
+
+double rng_normal(pcg32 *r) {
+    double u1 = rng_uniform(r), u2 = rng_uniform(r);
+    if (u1 < 1e-300) u1 = 1e-300;
+    return sqrt(-2.0 * log(u1)) * cos(6.283185307179586 * u2);
+}

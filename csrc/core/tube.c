@@ -1,0 +1,159 @@
+/* Tube sweeper; see tube.h. Shared by every generator (spec README,
+ * "Output"; roots.md section 5 "Rings"). */
+#include "tube.h"
+
+#include <stdlib.h>
+
+void tube_counts(uint32_t n, int sides, int cap_start, int cap_end, uint32_t *verts, uint32_t *indices) {
+    uint32_t ring = (uint32_t)sides + 1;
+    uint32_t caps = (cap_start ? 1u : 0u) + (cap_end ? 1u : 0u);
+    *verts = n * ring + caps * (ring + 1);
+    *indices = (n - 1) * (uint32_t)sides * 6 + caps * (uint32_t)sides * 3;
+}
+
+static v3 tangent_at(const v3 *p, uint32_t n, uint32_t i, v3 prev) {
+    v3 d;
+    if (i == 0) d = v3_sub(p[1], p[0]);
+    else if (i == n - 1) d = v3_sub(p[n - 1], p[n - 2]);
+    else {
+        /* Bisector of the two unit segment directions: a ring tilted to it
+         * meets both neighbours' rings evenly. */
+        v3 a = v3_norm_or(v3_sub(p[i], p[i - 1]), prev), b = v3_norm_or(v3_sub(p[i + 1], p[i]), prev);
+        d = v3_add(a, b);
+    }
+    return v3_norm_or(d, prev);
+}
+
+void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N) {
+    v3 prev = v3_make(0, 0, 1);
+    for (uint32_t i = 0; i < n; i++) prev = T[i] = tangent_at(pts, n, i, i ? T[i - 1] : v3_norm_or(v3_sub(pts[n - 1], pts[0]), prev));
+    v3 n0 = v3_sub(first_normal, v3_scale(T[0], v3_dot(first_normal, T[0])));
+    N[0] = v3_len2(n0) > 1e-12 ? v3_norm(n0) : v3_any_perp(T[0]);
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        /* Double reflection: reflect across the bisector plane of x_i,
+         * x_{i+1}, then across the plane that maps the reflected tangent
+         * onto T_{i+1}. */
+        v3 v1 = v3_sub(pts[i + 1], pts[i]);
+        double c1 = v3_len2(v1);
+        v3 rL = N[i], tL = T[i];
+        if (c1 > 1e-24) {
+            rL = v3_madd(N[i], v1, -2.0 / c1 * v3_dot(v1, N[i]));
+            tL = v3_madd(T[i], v1, -2.0 / c1 * v3_dot(v1, T[i]));
+        }
+        v3 v2 = v3_sub(T[i + 1], tL);
+        double c2 = v3_len2(v2);
+        v3 r = c2 > 1e-24 ? v3_madd(rL, v2, -2.0 / c2 * v3_dot(v2, rL)) : rL;
+        /* Re-orthonormalise against float drift. */
+        r = v3_sub(r, v3_scale(T[i + 1], v3_dot(r, T[i + 1])));
+        N[i + 1] = v3_len2(r) > 1e-24 ? v3_norm(r) : v3_any_perp(T[i + 1]);
+    }
+}
+
+/* Quads between consecutive rings and the two caps. ring_base[i] is the
+ * first vertex of ring i; each ring has sides+1 vertices. */
+static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
+    uint32_t ring = (uint32_t)sides + 1;
+    for (uint32_t i = 0; i + 1 < n; i++) {
+        uint32_t r0 = first + i * ring, r1 = r0 + ring;
+        for (uint32_t j = 0; j < (uint32_t)sides; j++) {
+            uint32_t a = r0 + j, b = r0 + j + 1, c = r1 + j + 1, d = r1 + j;
+            mb_tri(mb, a, b, c);
+            mb_tri(mb, a, c, d);
+        }
+    }
+}
+
+static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int sides, int at_end) {
+    uint32_t c = mb_vertex(mb, centre, normal, 0.5, 0.5);
+    v3 ref = v3_sub(ring[0], centre);
+    double rr = v3_len(ref);
+    v3 ax = v3_norm_or(ref, v3_any_perp(normal)), ay = v3_cross(normal, ax);
+    uint32_t first = mb->nv;
+    for (int j = 0; j <= sides; j++) {
+        v3 p = ring[j % sides], d = v3_sub(p, centre);
+        double s = rr > 0 ? 0.5 / rr : 0.0;
+        mb_vertex(mb, p, normal, 0.5 + v3_dot(d, ax) * s, 0.5 + v3_dot(d, ay) * s);
+    }
+    for (int j = 0; j < sides; j++) {
+        if (at_end) mb_tri(mb, c, first + j, first + j + 1);
+        else mb_tri(mb, c, first + j + 1, first + j);
+    }
+}
+
+void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o) {
+    int sides = o->sides;
+    if (n < 2 || sides < 3) return;
+    uint32_t nv, ni;
+    tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
+    if (mb_reserve(mb, nv, ni)) return;
+    /* Mean ring radius and arc length for v. */
+    double rsum = 0;
+    for (uint32_t i = 0; i < n; i++) rsum += v3_dist(rings[(size_t)i * sides], centres[i]);
+    double circ = 6.283185307179586 * (rsum / n);
+    double vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+    uint32_t first = mb->nv;
+    double s = 0;
+    v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
+    for (uint32_t i = 0; i < n; i++) {
+        if (i) s += v3_dist(centres[i], centres[i - 1]);
+        v3 T = tangent_at(centres, n, i, prevT);
+        prevT = T;
+        const v3 *ring = rings + (size_t)i * sides;
+        /* Slope of the radius along the tube tilts the normals of a taper. */
+        double dr = 0;
+        if (n > 1) {
+            uint32_t a = i ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+            double ds = v3_dist(centres[b], centres[a]);
+            double ra = v3_dist(rings[(size_t)a * sides], centres[a]), rb = v3_dist(rings[(size_t)b * sides], centres[b]);
+            dr = ds > 1e-12 ? (rb - ra) / ds : 0;
+        }
+        for (int j = 0; j <= sides; j++) {
+            v3 p = ring[j % sides];
+            v3 radial = v3_sub(p, centres[i]);
+            radial = v3_norm_or(v3_sub(radial, v3_scale(T, v3_dot(radial, T))), v3_any_perp(T));
+            v3 nrm = v3_norm(v3_madd(radial, T, -dr));
+            mb_vertex(mb, p, nrm, (double)j / sides, o->v_offset + s * vscale);
+        }
+    }
+    stitch(mb, first, n, sides);
+    if (o->cap_start) cap(mb, rings, centres[0], v3_neg(tangent_at(centres, n, 0, prevT)), sides, 0);
+    if (o->cap_end)
+        cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);
+}
+
+void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
+    int sides = o->sides;
+    if (n < 2 || sides < 3 || mb->status) return;
+    size_t nr = (size_t)n * sides;
+    v3 *T = malloc(sizeof(v3) * n * 2 + sizeof(v3) * nr);
+    if (!T) {
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    v3 *N = T + n, *rings = N + n;
+    tube_frames(pts, n, o->first_normal, T, N);
+    for (uint32_t i = 0; i < n; i++) {
+        /* Scale a ring at a bend by 1/cos(half angle) across the bend, so
+         * the tube keeps its radius through corners. */
+        v3 bend = v3_make(0, 0, 0);
+        double stretch = 1.0;
+        if (i > 0 && i + 1 < n) {
+            v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T[i]), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T[i]);
+            double c = v3_dot(a, T[i]);
+            if (c > 0.2 && c < 0.999999) {
+                stretch = 1.0 / c;
+                bend = v3_norm(v3_sub(b, a));
+            }
+        }
+        for (int j = 0; j < sides; j++) {
+            v3 p = tube_ring_point(pts[i], T[i], N[i], radii[i], j, sides);
+            if (stretch != 1.0) {
+                v3 d = v3_sub(p, pts[i]);
+                p = v3_madd(p, bend, v3_dot(d, bend) * (stretch - 1.0));
+            }
+            rings[(size_t)i * sides + j] = p;
+        }
+    }
+    tube_sweep_rings(mb, pts, rings, n, o);
+    free(T);
+}

@@ -1,0 +1,46 @@
+/* tube.h - the shared tube sweeper every generator meshes through.
+ *
+ * A polyline with a radius per point becomes rings of `sides` vertices
+ * (plus one seam vertex so u runs 0..1), joined by quads split into two
+ * triangles, wound counter-clockwise from outside. Frames are
+ * rotation-minimising (double reflection, Wang et al. 2008), so rings do
+ * not twist. u goes around the tube, v along it: arc length divided by the
+ * circumference at the mean radius, so texels stay square. */
+#ifndef BANYAN_TUBE_H
+#define BANYAN_TUBE_H
+
+#include "mesh_builder.h"
+
+typedef struct tube_opts {
+    int sides;        /* 3 .. 256 */
+    int cap_start;    /* close the first ring with a flat cap */
+    int cap_end;      /* close the last ring */
+    v3 first_normal;  /* frame normal at point 0; (0,0,0) picks one */
+    double v_offset;  /* v at point 0 (continues a parent's texture) */
+} tube_opts;
+
+/* Vertices and indices one tube of n points adds; for mb_reserve. */
+void tube_counts(uint32_t n, int sides, int cap_start, int cap_end, uint32_t *verts, uint32_t *indices);
+
+/* Rotation-minimising frames along pts[0..n-1]: unit tangents T and
+ * normals N (N perpendicular to T). Coincident points reuse the previous
+ * tangent. first_normal as in tube_opts. */
+void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N);
+
+/* Sweeps a round tube. Needs n >= 2. */
+void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o);
+
+/* Sweeps given rings: ring i is rings[i*sides .. i*sides+sides-1] around
+ * centres[i]; vertex j of each ring should sit at angle 2*pi*j/sides in the
+ * same sense as tube_sweep's (counter-clockwise about the tangent). Used
+ * where rings are not circles (the roots' junction smoothing). */
+void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o);
+
+/* Ring vertex j of a round ring: centre + r (cos a N + sin a (T x N)). */
+static inline v3 tube_ring_point(v3 c, v3 T, v3 N, double r, int j, int sides) {
+    double a = 6.283185307179586 * j / sides;
+    v3 B = v3_cross(T, N);
+    return v3_add(c, v3_add(v3_scale(N, r * cos(a)), v3_scale(B, r * sin(a))));
+}
+
+#endif

@@ -1,0 +1,45 @@
+/* banyan_tube_generate: the public face of the shared sweeper (tube.h),
+ * used by the CLI's `tube` demo and the tests. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "tube.h"
+
+banyan_status banyan_tube_generate(const double *points, const double *radii, uint32_t point_count, int32_t sides,
+                                   int32_t caps, banyan_mesh **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (!points || !radii) return banyan_fail(err, BANYAN_E_INVALID_ARG, "points and radii must not be NULL");
+    banyan_status s;
+    if ((s = banyan_check_int(err, "point_count", point_count, 2, 1000000))) return s;
+    if ((s = banyan_check_int(err, "sides", sides, 3, 256))) return s;
+    if ((s = banyan_check_int(err, "caps", caps, 0, 1))) return s;
+    v3 *pts = malloc(sizeof(v3) * point_count);
+    if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
+    for (uint32_t i = 0; i < point_count; i++) {
+        pts[i] = v3_load(points + 3 * (size_t)i);
+        char name[48];
+        snprintf(name, sizeof name, "radii[%u]", i);
+        if (!v3_finite(pts[i]))
+            s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] = (%g, %g, %g) must be finite", i, pts[i].x, pts[i].y, pts[i].z);
+        else if (!(radii[i] > 0))
+            s = banyan_fail(err, BANYAN_E_RANGE, "radii[%u] = %g must be > 0 m", i, radii[i]);
+        else s = banyan_check_range(err, name, radii[i], 1e-9, 1e6, "m");
+        if (!s && i && v3_dist(pts[i], pts[i - 1]) < 1e-9)
+            s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] repeats points[%u]; consecutive points must differ", i, i - 1);
+        if (s) {
+            free(pts);
+            return s;
+        }
+    }
+    mesh_builder mb;
+    mb_init(&mb, MB_VERTEX_CEILING, 0);
+    tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0};
+    tube_sweep(&mb, pts, radii, point_count, &o);
+    for (uint32_t i = 0; i < point_count; i++) {
+        uint32_t k = mb_skel_point(&mb, pts[i], radii[i], 0);
+        if (i) mb_skel_edge(&mb, k - 1, k);
+    }
+    free(pts);
+    return mb_finish(&mb, out, err);
+}

@@ -1,0 +1,304 @@
+/*
+ * banyan.h - public C API of libbanyan.
+ *
+ * libbanyan grows plants procedurally around host boxes: strangler-fig
+ * roots, keyaki trees and avenues, ivy, and geometry-shader branch
+ * segments. This header holds the shared types (status, error, box, mesh),
+ * the parameter tables, presets and glTF export. Each generator's own
+ * params and calls live in banyan/<generator>.h, included at the end.
+ *
+ * Conventions (see docs/api.md):
+ *   - Z up, metres, radians only where a field says so (most angles are
+ *     degrees, as in the papers, and say so).
+ *   - Every call validates its input. A failed call returns a non-zero
+ *     banyan_status, fills *err when err != NULL, leaves *out == NULL and
+ *     leaks nothing.
+ *   - Ownership: a banyan_mesh returned through `banyan_mesh **out` belongs
+ *     to the caller, who frees it with banyan_mesh_free(). Nothing else the
+ *     library returns needs freeing unless its doc says so.
+ *   - No global state: every call is reentrant and thread-safe on distinct
+ *     arguments. The same params and seed give byte-identical output.
+ */
+#ifndef BANYAN_H
+#define BANYAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#  if defined(BANYAN_BUILD)
+#    define BANYAN_API __declspec(dllexport)
+#  else
+#    define BANYAN_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__)
+#  define BANYAN_API __attribute__((visibility("default")))
+#else
+#  define BANYAN_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped whenever a public struct's layout or a call's meaning changes.
+ * The Blender add-on refuses to load a library with another version. */
+#define BANYAN_ABI_VERSION 1
+
+/* ---------------------------------------------------------------- status */
+
+typedef enum banyan_status {
+    BANYAN_OK = 0,
+    BANYAN_E_INVALID_ARG = 1,  /* a NULL pointer or a malformed argument */
+    BANYAN_E_RANGE = 2,        /* a number is NaN, inf or outside its range */
+    BANYAN_E_NO_HOSTS = 3,     /* hosts are required but none were given */
+    BANYAN_E_BAD_HOST = 4,     /* a host box is degenerate (zero extent, bad rotation) */
+    BANYAN_E_START_INSIDE = 5, /* the start / germination point is inside a host */
+    BANYAN_E_START_FAR = 6,    /* the start point is far from every host */
+    BANYAN_E_LIMIT = 7,        /* the output would pass max_vertices; nothing allocated */
+    BANYAN_E_NOMEM = 8,        /* an allocation failed */
+    BANYAN_E_IO = 9,           /* a file could not be read or written */
+    BANYAN_E_PARSE = 10,       /* a preset or JSON text is malformed */
+    BANYAN_E_UNKNOWN_KEY = 11, /* a preset or --set names a key that does not exist */
+    BANYAN_E_TYPE = 12,        /* a preset value has the wrong type */
+    BANYAN_E_UNSUPPORTED = 13, /* a feature is not available in this build */
+    BANYAN_E_INTERNAL = 14     /* a broken invariant; please report it */
+} banyan_status;
+
+/* Filled on failure when the caller passes a non-NULL pointer. The message
+ * names the parameter, its value and its valid range. */
+typedef struct banyan_error {
+    int32_t code;       /* a banyan_status */
+    char message[256];  /* NUL-terminated, UTF-8 */
+} banyan_error;
+
+/* A short fixed English name for a status ("BANYAN_E_RANGE"); never NULL. */
+BANYAN_API const char *banyan_status_name(banyan_status s);
+
+/* ----------------------------------------------------------------- hosts */
+
+/* An oriented box: a host object's bounding box under its world matrix.
+ * A world point p is inside when |dot(p - center, axis_k)| <= half[k] for
+ * k = 0,1,2, where axis_k is column k of `rotation`.
+ *   center    metres, finite.
+ *   half      half-extents in metres, each finite and > 0 (1e-6 .. 1e6).
+ *   rotation  3x3, row-major: rotation[3*r + c]. Its columns are the box's
+ *             local x, y, z axes in world space. Must be orthonormal with
+ *             determinant +1 within 1e-3; a scaled matrix is refused
+ *             (fold the scale into `half`). */
+typedef struct banyan_box {
+    double center[3];
+    double half[3];
+    double rotation[9];
+} banyan_box;
+
+/* Axis-aligned box helper: rotation = identity. */
+BANYAN_API banyan_box banyan_box_make(double cx, double cy, double cz,
+                                      double hx, double hy, double hz);
+
+/* Checks one box; BANYAN_E_BAD_HOST names `hosts[index]` and the fault. */
+BANYAN_API banyan_status banyan_box_validate(const banyan_box *box, uint32_t index,
+                                             banyan_error *err);
+
+/* ------------------------------------------------------------------ mesh */
+
+#define BANYAN_NAME_MAX 32
+
+/* One float per vertex, e.g. "root_kind", "tree_id", "birth_step". */
+typedef struct banyan_attribute {
+    char name[BANYAN_NAME_MAX]; /* NUL-terminated, [A-Za-z0-9_] */
+    float *data;                /* vertex_count floats */
+} banyan_attribute;
+
+/* A material: glTF metallic-roughness, base colour only. */
+typedef struct banyan_material {
+    char name[BANYAN_NAME_MAX];
+    float base_color[4];        /* linear RGBA, each 0..1 */
+    float roughness;            /* 0..1 */
+    int32_t double_sided;       /* 0 or 1; leaf cards are double sided */
+} banyan_material;
+
+/* A part is a contiguous run of vertices and of indices drawn with one
+ * material. Parts never share vertices. Ivy has a stem part and a leaf
+ * part; an avenue has parts grouped by tree (group = tree index). */
+typedef struct banyan_part {
+    uint32_t vertex_offset, vertex_count;
+    uint32_t index_offset, index_count; /* indices are absolute vertex numbers */
+    uint32_t material;                  /* index into materials */
+    uint32_t group;                     /* generator-defined, e.g. tree index; else 0 */
+} banyan_part;
+
+/* A flat triangle mesh (par_shapes style) plus an optional skeleton.
+ * Positions in metres, Z up. Triangles wind counter-clockwise seen from
+ * outside. Every array below has the length its comment gives; optional
+ * arrays are NULL when absent. */
+typedef struct banyan_mesh {
+    uint32_t vertex_count;
+    uint32_t index_count;       /* 3 * triangle count */
+    float *positions;           /* 3 * vertex_count */
+    float *normals;             /* 3 * vertex_count, unit length */
+    float *uvs;                 /* 2 * vertex_count; u around a tube 0..1, v along it in metres / circumference */
+    float *colors;              /* 4 * vertex_count linear RGBA, or NULL */
+    uint32_t *indices;          /* index_count */
+
+    uint32_t attribute_count;
+    banyan_attribute *attributes;
+
+    uint32_t material_count;    /* >= 1 */
+    banyan_material *materials;
+    uint32_t part_count;        /* >= 1; parts cover all vertices and indices in order */
+    banyan_part *parts;
+
+    /* Skeleton: the growth graph the mesh was swept from. */
+    uint32_t skel_point_count;
+    float *skel_points;         /* 3 * skel_point_count, metres */
+    float *skel_radius;         /* skel_point_count, metres */
+    int32_t *skel_tag;          /* skel_point_count; generator-defined (root kind, level...) */
+    uint32_t skel_edge_count;
+    uint32_t *skel_edges;       /* 2 * skel_edge_count point indices */
+} banyan_mesh;
+
+/* Frees a mesh and every array it owns. Accepts NULL. */
+BANYAN_API void banyan_mesh_free(banyan_mesh *mesh);
+
+/* The attribute array called `name`, or NULL. */
+BANYAN_API const float *banyan_mesh_attribute(const banyan_mesh *mesh, const char *name);
+
+/* FNV-1a 64 hash over every byte of every array of the mesh; used by tests
+ * and tools to compare outputs. */
+BANYAN_API uint64_t banyan_mesh_hash(const banyan_mesh *mesh);
+
+/* ---------------------------------------------------------- ABI checking */
+
+BANYAN_API int32_t banyan_abi_version(void);
+BANYAN_API const char *banyan_version_string(void);
+BANYAN_API size_t banyan_sizeof_error(void);
+BANYAN_API size_t banyan_sizeof_box(void);
+BANYAN_API size_t banyan_sizeof_attribute(void);
+BANYAN_API size_t banyan_sizeof_material(void);
+BANYAN_API size_t banyan_sizeof_part(void);
+BANYAN_API size_t banyan_sizeof_mesh(void);
+BANYAN_API size_t banyan_sizeof_param_info(void);
+
+/* ------------------------------------------------------ parameter tables */
+
+/* Every generator describes its params struct with a table, so the CLI,
+ * presets and the Blender add-on set, check and document parameters in
+ * one place. */
+typedef enum banyan_generator {
+    BANYAN_GEN_ROOTS = 0,
+    BANYAN_GEN_KEYAKI = 1,
+    BANYAN_GEN_AVENUE = 2,
+    BANYAN_GEN_IVY = 3,
+    BANYAN_GEN_SEGMENTS = 4,
+    BANYAN_GEN_COUNT = 5
+} banyan_generator;
+
+typedef enum banyan_param_type {
+    BANYAN_PT_DOUBLE = 0, /* double */
+    BANYAN_PT_INT = 1,    /* int32_t */
+    BANYAN_PT_BOOL = 2,   /* int32_t, 0 or 1 */
+    BANYAN_PT_ENUM = 3,   /* int32_t index into the '|'-separated `choices` */
+    BANYAN_PT_VEC3 = 4,   /* double[3] */
+    BANYAN_PT_COLOR = 5,  /* double[4] linear RGBA, each 0..1 */
+    BANYAN_PT_SEED = 6    /* uint64_t */
+} banyan_param_type;
+
+typedef struct banyan_param_info {
+    const char *name;        /* key in presets, --set and the add-on */
+    const char *unit;        /* "m", "deg", "unit", "" ... */
+    const char *description; /* one sentence, used as tooltip */
+    int32_t type;            /* banyan_param_type */
+    double min, max;         /* inclusive range for numbers (each component) */
+    const char *choices;     /* for ENUM: "simple|strong_weak|..." else NULL */
+    size_t offset;           /* byte offset in the params struct */
+} banyan_param_info;
+
+/* Name of a generator ("roots", "keyaki", "avenue", "ivy", "segments"), or
+ * NULL when out of range; and the reverse, returning -1 when unknown. */
+BANYAN_API const char *banyan_generator_name(banyan_generator g);
+BANYAN_API int32_t banyan_generator_from_name(const char *name);
+
+/* Number of parameters of a generator, and the i-th description (NULL when
+ * out of range). 0 when the generator is not built yet. */
+BANYAN_API int32_t banyan_param_count(banyan_generator g);
+BANYAN_API const banyan_param_info *banyan_param_get(banyan_generator g, int32_t i);
+BANYAN_API const banyan_param_info *banyan_param_find(banyan_generator g, const char *name);
+
+/* Sets a parameter from text, as given to --set key=value: numbers, true /
+ * false, enum names, "x,y,z" vectors, "r,g,b[,a]" colours. Refuses unknown
+ * keys (BANYAN_E_UNKNOWN_KEY), malformed text (BANYAN_E_TYPE) and values
+ * outside [min, max] (BANYAN_E_RANGE). `params` points to the generator's
+ * params struct. On failure the struct is unchanged. */
+BANYAN_API banyan_status banyan_param_set_text(banyan_generator g, void *params,
+                                               const char *key, const char *value,
+                                               banyan_error *err);
+
+/* Checks every field of a params struct against its table: finite, within
+ * [min, max], enum in range. Generators call it first, then check the
+ * rules that tie fields together. */
+BANYAN_API banyan_status banyan_params_check(banyan_generator g, const void *params,
+                                             banyan_error *err);
+
+/* --------------------------------------------------------------- presets */
+
+/* A preset is a JSON object:
+ *   { "generator": "roots", "schema": 1, "description": "...",
+ *     "params": { "<key>": value, ... },
+ *     "hosts": [ { "center": [x,y,z], "half": [hx,hy,hz],
+ *                  "rotation": [9 numbers, row-major]  (optional)
+ *                  | "rotation_euler_deg": [rx,ry,rz]    (optional, XYZ) } ] }
+ * Unknown keys at any level, wrong types and values out of range are
+ * refused; messages start with "<source>:<line>:" where known. */
+#define BANYAN_PRESET_SCHEMA 1
+#define BANYAN_MAX_HOSTS 256
+
+/* Applies a preset's "params" to `params` (which should hold defaults from
+ * the generator's params_init). `generator` must match the preset's. The
+ * text need not be NUL-terminated. On failure `params` may be partly set. */
+BANYAN_API banyan_status banyan_preset_apply(banyan_generator g, void *params,
+                                             const char *text, size_t length,
+                                             const char *source, banyan_error *err);
+
+/* Reads a preset's "hosts" into out[0..cap-1]; *count gets how many there
+ * are (0 when the preset has none). Refuses more than `cap`. */
+BANYAN_API banyan_status banyan_preset_hosts(const char *text, size_t length,
+                                             const char *source, banyan_box *out,
+                                             uint32_t cap, uint32_t *count,
+                                             banyan_error *err);
+
+/* ----------------------------------------------------------- glTF export */
+
+/* Writes meshes as one glTF 2.0 asset: one node and one mesh per input,
+ * one primitive per part, one material per banyan_material, vertex colours
+ * as COLOR_0, custom attributes as "_NAME" accessors (upper-cased name).
+ * Positions convert Z-up to Y-up: (x, y, z) -> (x, z, -y). The format
+ * follows the path: ".glb" binary, ".gltf" JSON with embedded buffer.
+ * names may be NULL (nodes are then "banyan_0", ...). */
+BANYAN_API banyan_status banyan_gltf_write(const char *path,
+                                           const banyan_mesh *const *meshes,
+                                           const char *const *names, uint32_t count,
+                                           banyan_error *err);
+
+/* --------------------------------------------------------- demo: a tube */
+
+/* A swept tube along a polyline, through the shared sweeper: the smallest
+ * thing the library makes, used by the CLI's `tube` demo and tests.
+ *   points  3 * point_count metres, point_count 2 .. 1e6, consecutive
+ *           points distinct.
+ *   radii   point_count radii in metres, each > 0 and finite.
+ *   sides   3 .. 256.  caps: 0 or 1. */
+BANYAN_API banyan_status banyan_tube_generate(const double *points, const double *radii,
+                                              uint32_t point_count, int32_t sides,
+                                              int32_t caps, banyan_mesh **out,
+                                              banyan_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+/* Generators. Each header declares its params struct, params_init,
+ * generate and sizeof calls. */
+#include "banyan/generators.h"
+
+#endif /* BANYAN_H */

@@ -1,0 +1,40 @@
+/* params.h - internal side of the parameter tables (see banyan.h,
+ * "parameter tables"). Each generator defines one table of
+ * banyan_param_info rows; registry.c maps generators to tables. */
+#ifndef BANYAN_PARAMS_H
+#define BANYAN_PARAMS_H
+
+#include <stddef.h>
+
+#include "banyan.h"
+
+typedef struct param_table {
+    const banyan_param_info *rows;
+    int32_t count;
+    size_t params_size; /* sizeof the generator's params struct */
+} param_table;
+
+/* The table of g; count 0 when g has none (not built yet or out of range). */
+param_table param_table_get(banyan_generator g);
+
+/* Writes vals[0..n-1] into the field `info` describes after checking
+ * count, finiteness and range. For ENUM/BOOL/INT vals must be integral.
+ * `where` prefixes messages (e.g. "presets/x.json:12: "). */
+banyan_status param_assign(const banyan_param_info *info, void *params, const double *vals, int n,
+                           const char *where, banyan_error *err);
+/* Enum choice index of name in "a|b|c", or -1. */
+int param_enum_index(const char *choices, const char *name, size_t len);
+
+/* Row constructors: the key is the field name, so one name is used in C,
+ * presets, --set and the add-on. */
+#define BP_ROW(S, field, type, unit, lo, hi, choices, desc) \
+    { #field, unit, desc, type, lo, hi, choices, offsetof(S, field) }
+#define BP_DOUBLE(S, field, unit, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_DOUBLE, unit, lo, hi, NULL, desc)
+#define BP_INT(S, field, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_INT, "", lo, hi, NULL, desc)
+#define BP_BOOL(S, field, desc) BP_ROW(S, field, BANYAN_PT_BOOL, "", 0, 1, NULL, desc)
+#define BP_ENUM(S, field, choices, desc) BP_ROW(S, field, BANYAN_PT_ENUM, "", 0, 0, choices, desc)
+#define BP_VEC3(S, field, unit, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_VEC3, unit, lo, hi, NULL, desc)
+#define BP_COLOR(S, field, desc) BP_ROW(S, field, BANYAN_PT_COLOR, "", 0, 1, NULL, desc)
+#define BP_SEED(S, field, desc) BP_ROW(S, field, BANYAN_PT_SEED, "", 0, 18446744073709551615.0, NULL, desc)
+
+#endif

@@ -1,0 +1,267 @@
+/* preset.c - reading preset JSON (cJSON) into params and hosts. Every
+ * refusal names the source, the line where it can be found, the key and
+ * the reason. Format: see banyan.h "presets" and docs/presets.md. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "../core/error.h"
+#include "../core/vec.h"
+#include "params.h"
+
+/* Presets are small; a larger text is a mistake, not a preset. */
+#define PRESET_MAX_BYTES (4u << 20)
+#define PRESET_MAX_DEPTH 16
+
+static int line_of(const char *text, size_t len, size_t offset) {
+    int line = 1;
+    for (size_t i = 0; i < offset && i < len; i++) line += text[i] == '\n';
+    return line;
+}
+
+/* Line of the first occurrence of "key" (quoted), or 0. cJSON keeps no
+ * positions, so keys are found again in the text. */
+static int line_of_key(const char *text, size_t len, const char *key) {
+    size_t k = strlen(key);
+    for (size_t i = 0; i + k + 2 <= len; i++)
+        if (text[i] == '"' && memcmp(text + i + 1, key, k) == 0 && text[i + k + 1] == '"') return line_of(text, len, i);
+    return 0;
+}
+
+static void where(char *buf, size_t n, const char *source, const char *text, size_t len, const char *key) {
+    int line = key ? line_of_key(text, len, key) : 0;
+    if (line) snprintf(buf, n, "%s:%d: ", source, line);
+    else snprintf(buf, n, "%s: ", source);
+}
+
+static int valid_utf8(const unsigned char *s, size_t n, size_t *bad) {
+    for (size_t i = 0; i < n;) {
+        unsigned char c = s[i];
+        size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+        if (!len || i + len > n || (len == 2 && c < 0xC2) || (len == 4 && c > 0xF4)) { *bad = i; return 0; }
+        for (size_t k = 1; k < len; k++)
+            if ((s[i + k] & 0xC0) != 0x80) { *bad = i; return 0; }
+        if (c == 0) { *bad = i; return 0; } /* NUL inside a text file */
+        i += len;
+    }
+    return 1;
+}
+
+static int depth_of(const cJSON *j) {
+    int d = 0;
+    for (const cJSON *c = j ? j->child : NULL; c; c = c->next) {
+        int k = depth_of(c);
+        if (k > d) d = k;
+    }
+    return d + 1;
+}
+
+/* Parses and checks the envelope; *root is owned by the caller. */
+static banyan_status parse(const char *text, size_t len, const char *source, cJSON **root, banyan_error *err) {
+    *root = NULL;
+    if (!source) source = "<preset>";
+    if (!text) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s: text is NULL", source);
+    if (len == 0) return banyan_fail(err, BANYAN_E_PARSE, "%s: the file is empty; a preset is a JSON object", source);
+    if (len > PRESET_MAX_BYTES)
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: %zu bytes is over the %u-byte preset limit", source, len,
+                           PRESET_MAX_BYTES);
+    size_t bad;
+    if (!valid_utf8((const unsigned char *)text, len, &bad))
+        return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: byte %zu is not valid UTF-8", source, line_of(text, len, bad), bad);
+    const char *end = NULL;
+    cJSON *j = cJSON_ParseWithLengthOpts(text, len, &end, 0);
+    if (!j) {
+        size_t off = end && end >= text ? (size_t)(end - text) : len;
+        return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: malformed JSON (truncated file or syntax error)", source,
+                           line_of(text, len, off));
+    }
+    if (!cJSON_IsObject(j)) {
+        cJSON_Delete(j);
+        return banyan_fail(err, BANYAN_E_TYPE, "%s:1: a preset must be a JSON object", source);
+    }
+    if (depth_of(j) > PRESET_MAX_DEPTH) {
+        cJSON_Delete(j);
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: nesting deeper than %d levels", source, PRESET_MAX_DEPTH);
+    }
+    static const char *const known[] = {"generator", "schema", "description", "params", "hosts", "name", "thumbnail"};
+    char w[300];
+    for (cJSON *c = j->child; c; c = c->next) {
+        int ok = 0;
+        for (size_t k = 0; k < sizeof known / sizeof known[0]; k++) ok |= strcmp(c->string, known[k]) == 0;
+        if (!ok) {
+            where(w, sizeof w, source, text, len, c->string);
+            banyan_status s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY,
+                                          "%sunknown top-level key '%s' (expected generator, schema, description, "
+                                          "params, hosts, name, thumbnail)", w, c->string);
+            cJSON_Delete(j);
+            return s;
+        }
+    }
+    cJSON *schema = cJSON_GetObjectItemCaseSensitive(j, "schema");
+    if (schema && (!cJSON_IsNumber(schema) || schema->valuedouble != BANYAN_PRESET_SCHEMA)) {
+        where(w, sizeof w, source, text, len, "schema");
+        cJSON_Delete(j);
+        return banyan_fail(err, BANYAN_E_RANGE, "%sschema must be %d", w, BANYAN_PRESET_SCHEMA);
+    }
+    *root = j;
+    return BANYAN_OK;
+}
+
+/* Numbers of a JSON number or array of numbers into out[0..cap-1]. */
+static int numbers(const cJSON *v, double *out, int cap) {
+    if (cJSON_IsNumber(v)) { out[0] = v->valuedouble; return 1; }
+    if (!cJSON_IsArray(v)) return -1;
+    int n = 0;
+    for (const cJSON *c = v->child; c; c = c->next) {
+        if (!cJSON_IsNumber(c) || n >= cap) return -1;
+        out[n++] = c->valuedouble;
+    }
+    return n;
+}
+
+banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *text, size_t length,
+                                  const char *source, banyan_error *err) {
+    if (!params) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    if (!banyan_generator_name(g)) return banyan_fail(err, BANYAN_E_INVALID_ARG, "generator %d is unknown", (int)g);
+    if (!source) source = "<preset>";
+    cJSON *j;
+    banyan_status s = parse(text, length, source, &j, err);
+    if (s) return s;
+    char w[300];
+    const cJSON *gen = cJSON_GetObjectItemCaseSensitive(j, "generator");
+    if (!cJSON_IsString(gen) || strcmp(gen->valuestring, banyan_generator_name(g)) != 0) {
+        where(w, sizeof w, source, text, length, "generator");
+        s = banyan_fail(err, gen ? BANYAN_E_TYPE : BANYAN_E_PARSE, "%sgenerator must be \"%s\"%s%s", w,
+                        banyan_generator_name(g), cJSON_IsString(gen) ? ", not " : "",
+                        cJSON_IsString(gen) ? gen->valuestring : "");
+        goto done;
+    }
+    const cJSON *ps = cJSON_GetObjectItemCaseSensitive(j, "params");
+    if (ps && !cJSON_IsObject(ps)) {
+        where(w, sizeof w, source, text, length, "params");
+        s = banyan_fail(err, BANYAN_E_TYPE, "%sparams must be an object", w);
+        goto done;
+    }
+    for (const cJSON *c = ps ? ps->child : NULL; c; c = c->next) {
+        where(w, sizeof w, source, text, length, c->string);
+        const banyan_param_info *info = banyan_param_find(g, c->string);
+        if (!info) {
+            s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "%sunknown %s parameter '%s'", w, banyan_generator_name(g),
+                            c->string);
+            goto done;
+        }
+        double vals[4];
+        int n = -1;
+        if (info->type == BANYAN_PT_BOOL) {
+            if (cJSON_IsBool(c)) { vals[0] = cJSON_IsTrue(c) ? 1 : 0; n = 1; }
+        } else if (info->type == BANYAN_PT_ENUM) {
+            if (cJSON_IsString(c)) {
+                int idx = param_enum_index(info->choices, c->valuestring, strlen(c->valuestring));
+                if (idx < 0) {
+                    s = banyan_fail(err, BANYAN_E_RANGE, "%s%s = \"%s\" must be one of %s", w, c->string,
+                                    c->valuestring, info->choices);
+                    goto done;
+                }
+                vals[0] = idx;
+                n = 1;
+            }
+        } else if (info->type == BANYAN_PT_SEED) {
+            if (cJSON_IsNumber(c) && c->valuedouble >= 0 && c->valuedouble <= 9007199254740992.0) {
+                vals[0] = c->valuedouble;
+                n = 1;
+            } else if (cJSON_IsString(c)) {
+                s = banyan_param_set_text(g, params, c->string, c->valuestring, err);
+                if (s) {
+                    banyan_error_prefix(err, w);
+                    goto done;
+                }
+                continue;
+            }
+        } else {
+            n = numbers(c, vals, 4);
+        }
+        if (n < 0) {
+            static const char *const tn[] = {"a number", "a whole number", "true or false", "a name", "[x, y, z]",
+                                             "[r, g, b] or [r, g, b, a]", "a whole number >= 0"};
+            s = banyan_fail(err, BANYAN_E_TYPE, "%s%s must be %s", w, c->string, tn[info->type]);
+            goto done;
+        }
+        s = param_assign(info, params, vals, n, w, err);
+        if (s) goto done;
+    }
+    banyan_error_clear(err);
+done:
+    cJSON_Delete(j);
+    return s;
+}
+
+static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_box *out, banyan_error *err) {
+    if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] must be an object", w, i);
+    double c[3] = {0, 0, 0}, half[3], rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    int have_half = 0, have_rot = 0;
+    for (const cJSON *k = h->child; k; k = k->next) {
+        double v[9];
+        int n = -1;
+        if (cJSON_IsArray(k)) {
+            n = 0;
+            for (const cJSON *x = k->child; x && n >= 0; x = x->next) {
+                if (!cJSON_IsNumber(x) || n >= 9) n = -1;
+                else v[n++] = x->valuedouble;
+            }
+        }
+        if (strcmp(k->string, "center") == 0 && n == 3) memcpy(c, v, sizeof c);
+        else if (strcmp(k->string, "half") == 0 && n == 3) { memcpy(half, v, sizeof half); have_half = 1; }
+        else if (strcmp(k->string, "rotation") == 0 && n == 9 && !have_rot) { memcpy(rot, v, sizeof rot); have_rot = 1; }
+        else if (strcmp(k->string, "rotation_euler_deg") == 0 && n == 3 && !have_rot) {
+            /* Blender's XYZ Euler: R = Rz * Ry * Rx. */
+            m3 rx = m3_rotation(v3_make(1, 0, 0), deg2rad(v[0]));
+            m3 ry = m3_rotation(v3_make(0, 1, 0), deg2rad(v[1]));
+            m3 rz = m3_rotation(v3_make(0, 0, 1), deg2rad(v[2]));
+            m3 a = m3_mul(&rz, &ry), r = m3_mul(&a, &rx);
+            memcpy(rot, r.m, sizeof rot);
+            have_rot = 1;
+        } else if (strcmp(k->string, "name") == 0 && cJSON_IsString(k)) {
+        } else
+            return banyan_fail(err, BANYAN_E_TYPE,
+                               "%shosts[%u].%s is unknown or malformed (keys: center [3], half [3], rotation [9] or "
+                               "rotation_euler_deg [3], name)", w, i, k->string);
+    }
+    if (!have_half) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] needs \"half\": [hx, hy, hz]", w, i);
+    memcpy(out->center, c, sizeof c);
+    memcpy(out->half, half, sizeof half);
+    memcpy(out->rotation, rot, sizeof rot);
+    banyan_status s = banyan_box_validate(out, i, err);
+    if (s) banyan_error_prefix(err, w);
+    return s;
+}
+
+banyan_status banyan_preset_hosts(const char *text, size_t length, const char *source, banyan_box *out, uint32_t cap,
+                                  uint32_t *count, banyan_error *err) {
+    if (!count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is NULL");
+    *count = 0;
+    if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL but cap = %u", cap);
+    if (!source) source = "<preset>";
+    cJSON *j;
+    banyan_status s = parse(text, length, source, &j, err);
+    if (s) return s;
+    const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
+    char w[300];
+    where(w, sizeof w, source, text, length, "hosts");
+    if (hosts && !cJSON_IsArray(hosts)) {
+        s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes", w);
+    } else {
+        uint32_t n = (uint32_t)cJSON_GetArraySize(hosts);
+        if (n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts is more than the %u allowed", w, n, cap);
+        uint32_t i = 0;
+        for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++) s = read_box(h, i, w, &out[i], err);
+        if (!s) {
+            *count = n;
+            banyan_error_clear(err);
+        }
+    }
+    cJSON_Delete(j);
+    return s;
+}
