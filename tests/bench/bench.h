@@ -1,0 +1,58 @@
+/* bench.h - shared helpers for the benchmarks in tests/bench/: a
+ * monotonic clock, medians, and this machine's memory write bandwidth
+ * (the bound a mesh generator cannot beat: every triangle it emits is
+ * bytes written). Benchmarks print figures; they assert nothing. */
+#ifndef BANYAN_BENCH_H
+#define BANYAN_BENCH_H
+
+#define _POSIX_C_SOURCE 200809L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static inline double bench_now(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+static int bench_cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Sorts v[0..n-1] and returns the median. */
+static inline double bench_median(double *v, int n) {
+    qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Median bytes per second of a plain store loop over a 256 MiB buffer
+ * (past every cache), best of a few passes. */
+static inline double bench_memory_write_bandwidth(void) {
+    size_t n = (size_t)256 << 20;
+    float *buf = malloc(n);
+    if (!buf) return 0;
+    memset(buf, 1, n); /* fault the pages in first */
+    double rates[5];
+    for (int r = 0; r < 5; r++) {
+        double t0 = bench_now();
+        size_t count = n / sizeof(float);
+        for (size_t i = 0; i < count; i++) buf[i] = (float)(i & 1023);
+        double t1 = bench_now();
+        rates[r] = n / (t1 - t0);
+    }
+    volatile float sink = buf[12345];
+    (void)sink;
+    free(buf);
+    return bench_median(rates, 5);
+}
+
+/* Bytes one mesh triangle costs as output when vertices are shared by a
+ * tube's quads (about one vertex per two triangles): 3 indices plus half
+ * a vertex of position, normal and uv. */
+#define BENCH_BYTES_PER_TUBE_TRIANGLE (3 * 4 + (3 + 3 + 2) * 4 / 2)
+
+#endif
