@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs everything banyan needs on Debian 12 and builds it. Safe to run
+# again: packages already present are not fetched twice, and the build is
+# incremental. Used by main.sh and test.sh (the README's two commands).
+#   BUILD_DIR   build directory (default: build)
+#   BANYAN_CMAKE_ARGS  extra cmake arguments
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+cd "$here"
+
+# Debian packages: compiler and build tools, the two C libraries, node for
+# the glTF validator, Blender for the add-on tests, Mesa EGL for the
+# geometry-shader twin, clang for fuzzing.
+packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev
+          blender python3-numpy libegl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+# Node may come from another packaging of nodejs that bundles npm; ask
+# Debian only for what is really missing.
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" = 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}"
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# The Khronos glTF validator, pinned in tests/gltf/package-lock.json.
+if [ ! -d tests/gltf/node_modules/gltf-validator ]; then
+  npm ci --prefix tests/gltf --no-audit --no-fund
+fi
+
+build=${BUILD_DIR:-build}
+# shellcheck disable=SC2086
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release ${BANYAN_CMAKE_ARGS:-}
+cmake --build "$build"
