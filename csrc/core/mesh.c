@@ -24,6 +24,24 @@ const float *banyan_mesh_attribute(const banyan_mesh *m, const char *name) {
     return NULL;
 }
 
+banyan_status banyan_mesh_corner_uvs(const banyan_mesh *m, float *out, uint64_t out_count, banyan_error *err) {
+    if (!m || !out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "mesh and out must not be NULL");
+    if (!m->uvs || !m->indices) return banyan_fail(err, BANYAN_E_INVALID_ARG, "the mesh has no uvs or indices");
+    if (out_count < 2 * (uint64_t)m->index_count)
+        return banyan_fail(err, BANYAN_E_RANGE, "out_count = %llu must be at least 2 * index_count = %llu",
+                           (unsigned long long)out_count, 2ULL * m->index_count);
+    for (uint32_t k = 0; k < m->index_count; k++) {
+        uint32_t v = m->indices[k];
+        if (v >= m->vertex_count)
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "indices[%u] = %u is out of range [0, %u)", k, v,
+                               m->vertex_count);
+        out[2 * (size_t)k] = m->uvs[2 * (size_t)v];
+        out[2 * (size_t)k + 1] = m->uvs[2 * (size_t)v + 1];
+    }
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}
+
 static uint64_t fnv(uint64_t h, const void *p, size_t n) {
     const unsigned char *b = p;
     for (size_t i = 0; i < n; i++) {

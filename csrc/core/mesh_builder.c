@@ -117,25 +117,14 @@ banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indic
     return BANYAN_OK;
 }
 
-uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v) {
-    if (mb->nv >= mb->cap_v && mb_reserve(mb, 1, 0)) return 0;
-    if (mb->status) return 0;
-    uint32_t i = mb->nv++;
-    float *P = mb->pos + 3 * (size_t)i, *N = mb->nrm + 3 * (size_t)i, *T = mb->uv + 2 * (size_t)i;
-    P[0] = (float)p.x; P[1] = (float)p.y; P[2] = (float)p.z;
-    N[0] = (float)n.x; N[1] = (float)n.y; N[2] = (float)n.z;
-    T[0] = (float)u; T[1] = (float)v;
-    if (mb->with_color) memcpy(mb->col + 4 * (size_t)i, mb->cur_color, sizeof mb->cur_color);
-    for (uint32_t a = 0; a < mb->n_attr; a++) mb->attr[a][i] = mb->cur_attr[a];
-    return i;
+uint32_t mb_vertex_grow(mesh_builder *mb, v3 p, v3 n, double u, double v) {
+    if (mb->status || mb_reserve(mb, 1, 0)) return 0;
+    return mb_vertex(mb, p, n, u, v);
 }
 
-void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) {
-    if (mb->ni + 3 > mb->cap_i && mb_reserve(mb, 0, 3)) return;
-    if (mb->status) return;
-    uint32_t *I = mb->idx + mb->ni;
-    I[0] = a; I[1] = b; I[2] = c;
-    mb->ni += 3;
+void mb_tri_grow(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) {
+    if (mb->status || mb_reserve(mb, 0, 3)) return;
+    mb_tri(mb, a, b, c);
 }
 
 uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {

@@ -63,10 +63,36 @@ void mb_begin_part(mesh_builder *mb, uint32_t material, uint32_t group);
 /* Makes room for n more vertices and m more indices; fails with
  * BANYAN_E_LIMIT when the vertex limit would be passed. */
 banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indices);
-/* Adds a vertex and returns its index (call mb_reserve first for speed;
- * it grows on its own otherwise). */
-uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v);
-void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c);
+/* Slow paths of mb_vertex / mb_tri: grow, then add. */
+uint32_t mb_vertex_grow(mesh_builder *mb, v3 p, v3 n, double u, double v);
+void mb_tri_grow(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c);
+
+/* Adds a vertex and returns its index. Inline because the sweeper calls it
+ * for every vertex; call mb_reserve first so it never has to grow. */
+static inline uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v) {
+    if (mb->nv >= mb->cap_v || mb->status) return mb_vertex_grow(mb, p, n, u, v);
+    uint32_t i = mb->nv++;
+    float *P = mb->pos + 3 * (size_t)i, *N = mb->nrm + 3 * (size_t)i, *T = mb->uv + 2 * (size_t)i;
+    P[0] = (float)p.x; P[1] = (float)p.y; P[2] = (float)p.z;
+    N[0] = (float)n.x; N[1] = (float)n.y; N[2] = (float)n.z;
+    T[0] = (float)u; T[1] = (float)v;
+    if (mb->with_color) {
+        float *C = mb->col + 4 * (size_t)i;
+        C[0] = mb->cur_color[0]; C[1] = mb->cur_color[1]; C[2] = mb->cur_color[2]; C[3] = mb->cur_color[3];
+    }
+    for (uint32_t a = 0; a < mb->n_attr; a++) mb->attr[a][i] = mb->cur_attr[a];
+    return i;
+}
+
+static inline void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) {
+    if (mb->ni + 3 > mb->cap_i || mb->status) {
+        mb_tri_grow(mb, a, b, c);
+        return;
+    }
+    uint32_t *I = mb->idx + mb->ni;
+    I[0] = a; I[1] = b; I[2] = c;
+    mb->ni += 3;
+}
 
 /* Skeleton. */
 uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag);

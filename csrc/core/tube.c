@@ -86,34 +86,46 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     uint32_t nv, ni;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     if (mb_reserve(mb, nv, ni)) return;
-    /* Mean ring radius and arc length for v. */
+    /* Per ring: radius (distance of its first vertex), tangent and arc
+     * length; v is arc length over the circumference at the mean radius. */
     double rsum = 0;
     for (uint32_t i = 0; i < n; i++) rsum += v3_dist(rings[(size_t)i * sides], centres[i]);
     double circ = 6.283185307179586 * (rsum / n);
     double vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
     uint32_t first = mb->nv;
-    double s = 0;
+    double s = 0, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
     for (uint32_t i = 0; i < n; i++) {
         if (i) s += v3_dist(centres[i], centres[i - 1]);
         v3 T = tangent_at(centres, n, i, prevT);
         prevT = T;
         const v3 *ring = rings + (size_t)i * sides;
-        /* Slope of the radius along the tube tilts the normals of a taper. */
-        double dr = 0;
-        if (n > 1) {
-            uint32_t a = i ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
-            double ds = v3_dist(centres[b], centres[a]);
-            double ra = v3_dist(rings[(size_t)a * sides], centres[a]), rb = v3_dist(rings[(size_t)b * sides], centres[b]);
-            dr = ds > 1e-12 ? (rb - ra) / ds : 0;
+        double vv = o->v_offset + s * vscale;
+        if (o->ring_normals) {
+            const v3 *rn = o->ring_normals + (size_t)i * sides;
+            for (int j = 0; j <= sides; j++) mb_vertex(mb, ring[j % sides], rn[j % sides], (double)j / sides, vv);
+            continue;
         }
+        /* A taper tilts the normals along the tube: n = (radial - dr T) /
+         * sqrt(1 + dr^2), with dr the radius slope per metre. */
+        uint32_t a = i ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+        double r_next = b == i ? r_cur : v3_dist(rings[(size_t)b * sides], centres[b]);
+        double ra = a == i ? r_cur : r_prev, rb = b == i ? r_cur : r_next;
+        double ds = v3_dist(centres[b], centres[a]);
+        double dr = ds > 1e-12 ? (rb - ra) / ds : 0;
+        double k = 1.0 / sqrt(1.0 + dr * dr);
+        v3 fallback = v3_any_perp(T);
         for (int j = 0; j <= sides; j++) {
-            v3 p = ring[j % sides];
+            v3 p = ring[j < sides ? j : 0];
             v3 radial = v3_sub(p, centres[i]);
-            radial = v3_norm_or(v3_sub(radial, v3_scale(T, v3_dot(radial, T))), v3_any_perp(T));
-            v3 nrm = v3_norm(v3_madd(radial, T, -dr));
-            mb_vertex(mb, p, nrm, (double)j / sides, o->v_offset + s * vscale);
+            radial = v3_madd(radial, T, -v3_dot(radial, T));
+            double l2 = v3_len2(radial);
+            radial = l2 > 1e-300 ? v3_scale(radial, 1.0 / sqrt(l2)) : fallback;
+            v3 nrm = v3_scale(v3_madd(radial, T, -dr), k);
+            mb_vertex(mb, p, nrm, (double)j / sides, vv);
         }
+        r_prev = r_cur;
+        r_cur = r_next;
     }
     stitch(mb, first, n, sides);
     if (o->cap_start) cap(mb, rings, centres[0], v3_neg(tangent_at(centres, n, 0, prevT)), sides, 0);
@@ -154,6 +166,8 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
             rings[(size_t)i * sides + j] = p;
         }
     }
-    tube_sweep_rings(mb, pts, rings, n, o);
+    tube_opts round = *o;
+    round.ring_normals = NULL; /* circles: derived normals are exact */
+    tube_sweep_rings(mb, pts, rings, n, &round);
     free(T);
 }

@@ -17,6 +17,9 @@ typedef struct tube_opts {
     int cap_end;      /* close the last ring */
     v3 first_normal;  /* frame normal at point 0; (0,0,0) picks one */
     double v_offset;  /* v at point 0 (continues a parent's texture) */
+    /* tube_sweep_rings only: unit normals per ring vertex (n * sides), for
+     * rings that are not circles about their centre; NULL derives them. */
+    const v3 *ring_normals;
 } tube_opts;
 
 /* Vertices and indices one tube of n points adds; for mb_reserve. */

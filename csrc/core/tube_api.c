@@ -34,7 +34,7 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
     }
     mesh_builder mb;
     mb_init(&mb, MB_VERTEX_CEILING, 0);
-    tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0};
+    tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL};
     tube_sweep(&mb, pts, radii, point_count, &o);
     for (uint32_t i = 0; i < point_count; i++) {
         uint32_t k = mb_skel_point(&mb, pts[i], radii[i], 0);

@@ -164,6 +164,13 @@ BANYAN_API void banyan_mesh_free(banyan_mesh *mesh);
 /* The attribute array called `name`, or NULL. */
 BANYAN_API const float *banyan_mesh_attribute(const banyan_mesh *mesh, const char *name);
 
+/* Per-corner UVs, as Blender's UV layers and other per-loop consumers
+ * want them: out[2k], out[2k+1] = uv of vertex indices[k], for every k <
+ * index_count. `out_count` is the number of floats `out` can take and must
+ * be at least 2 * index_count. */
+BANYAN_API banyan_status banyan_mesh_corner_uvs(const banyan_mesh *mesh, float *out, uint64_t out_count,
+                                                banyan_error *err);
+
 /* FNV-1a 64 hash over every byte of every array of the mesh; used by tests
  * and tools to compare outputs. */
 BANYAN_API uint64_t banyan_mesh_hash(const banyan_mesh *mesh);

@@ -86,7 +86,7 @@ static banyan_status parse(const char *text, size_t len, const char *source, cJS
         cJSON_Delete(j);
         return banyan_fail(err, BANYAN_E_PARSE, "%s: nesting deeper than %d levels", source, PRESET_MAX_DEPTH);
     }
-    static const char *const known[] = {"generator", "schema", "description", "params", "hosts", "name", "thumbnail"};
+    static const char *const known[] = {"generator", "schema", "description", "params", "hosts", "name", "thumbnail", "segments", "trunk"};
     char w[300];
     for (cJSON *c = j->child; c; c = c->next) {
         int ok = 0;

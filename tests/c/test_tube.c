@@ -124,6 +124,17 @@ int main(int argc, char **argv) {
     CHECK(banyan_tube_generate(pts, rad, 2, 32, 1, &m, NULL) == BANYAN_OK, "straight tube");
     double want = 32 * 0.25 * sin(2 * BANYAN_PI / 32) * 2 / 2;
     CHECK(m && fabs(volume(m) - want) < 1e-5, "volume %g, want %g", m ? volume(m) : 0, want);
+    /* Per-corner UVs gather uv[indices[k]]; a short buffer is refused. */
+    if (m) {
+        float *cu = malloc(sizeof(float) * 2 * m->index_count);
+        CHECK(banyan_mesh_corner_uvs(m, cu, 2ull * m->index_count, NULL) == BANYAN_OK, "corner uvs");
+        int bad_cu = 0;
+        for (uint32_t k = 0; k < m->index_count; k++)
+            bad_cu += cu[2 * k] != m->uvs[2 * m->indices[k]] || cu[2 * k + 1] != m->uvs[2 * m->indices[k] + 1];
+        CHECK(bad_cu == 0, "%d corner uvs differ from their vertex's uv", bad_cu);
+        CHECK(banyan_mesh_corner_uvs(m, cu, 2ull * m->index_count - 1, NULL) == BANYAN_E_RANGE, "short buffer accepted");
+        free(cu);
+    }
     banyan_mesh_free(m);
 
     /* Frames on a planar curve stay perpendicular to the plane's normal or

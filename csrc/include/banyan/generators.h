@@ -1,4 +1,8 @@
 /* Generator headers, one per generator; included by banyan.h. */
 #ifndef BANYAN_GENERATORS_H
 #define BANYAN_GENERATORS_H
+#include "segments.h"
+#include "keyaki.h"
+#include "ivy.h"
+#include "roots.h"
 #endif

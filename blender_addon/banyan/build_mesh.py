@@ -1,0 +1,170 @@
+"""MeshData -> Blender meshes, materials and objects, via foreach_set.
+
+Every datablock made here is recorded in a Created list so a failure
+half way removes everything again (the operator then leaves the scene as
+it was). No per-vertex Python loops: arrays are sliced, per-corner UVs come
+gathered by the library (banyan_mesh_corner_uvs), and index rebasing runs
+in C through map() over built-ins.
+"""
+from array import array
+import operator
+
+import bpy
+
+
+class Created:
+    """The datablocks an operation made, for rollback on failure."""
+
+    def __init__(self):
+        self.items = []
+
+    def add(self, idblock):
+        self.items.append(idblock)
+        return idblock
+
+    def objects(self):
+        return [i for i in self.items if isinstance(i, bpy.types.Object)]
+
+    def rollback(self):
+        for idb in reversed(self.items):
+            try:
+                coll = _collection_of(idb)
+                if coll is not None:
+                    coll.remove(idb)
+            except (ReferenceError, RuntimeError):
+                pass
+        self.items.clear()
+
+
+def _collection_of(idb):
+    for t, coll in ((bpy.types.Object, bpy.data.objects), (bpy.types.Mesh, bpy.data.meshes),
+                    (bpy.types.Material, bpy.data.materials), (bpy.types.Collection, bpy.data.collections),
+                    (bpy.types.NodeTree, bpy.data.node_groups), (bpy.types.Curve, bpy.data.curves)):
+        if isinstance(idb, t):
+            return coll
+    return None
+
+
+def make_material(spec, created, prefix="banyan"):
+    """A Principled material from a banyan_material dict."""
+    mat = created.add(bpy.data.materials.new("%s_%s" % (prefix, spec["name"])))
+    col = tuple(spec["base_color"])
+    mat.diffuse_color = col
+    mat.roughness = spec["roughness"]
+    mat.use_backface_culling = not spec["double_sided"]
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes.get("Principled BSDF")
+    if bsdf is not None:
+        bsdf.inputs["Base Color"].default_value = col
+        bsdf.inputs["Roughness"].default_value = spec["roughness"]
+    return mat
+
+
+def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attributes=None, material_index=None,
+              smooth=True):
+    """Fills an empty mesh from flat buffers (indices are local vertex numbers)."""
+    nv = len(positions) // 3
+    ni = len(indices)
+    nt = ni // 3
+    me.vertices.add(nv)
+    me.vertices.foreach_set("co", positions)
+    me.loops.add(ni)
+    me.loops.foreach_set("vertex_index", indices)
+    me.polygons.add(nt)
+    me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
+    if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # read-only from Blender 4.0
+        me.polygons.foreach_set("loop_total", array("i", [3]) * nt)
+    if material_index is not None:
+        me.polygons.foreach_set("material_index", material_index)
+    if smooth:
+        me.polygons.foreach_set("use_smooth", array("b", [1]) * nt)
+    me.update(calc_edges=True)
+    if corner_uvs is not None and nt:
+        layer = me.uv_layers.new(name="UVMap")
+        layer.data.foreach_set("uv", corner_uvs)
+    if colors is not None:
+        ca = me.color_attributes.new("Color", 'FLOAT_COLOR', 'POINT')
+        ca.data.foreach_set("color", colors)
+    for name, data in (attributes or {}).items():
+        attr_name = name if name not in me.attributes else "banyan_" + name
+        me.attributes.new(attr_name, 'FLOAT', 'POINT').data.foreach_set("value", data)
+    return me
+
+
+def material_indices(parts, tri_offset=0, part_material=None):
+    """Per-triangle material slots from parts (None when all are slot 0)."""
+    part_material = part_material or (lambda p: p["material"])
+    if all(part_material(p) == 0 for p in parts):
+        return None
+    out = array("i")
+    for p in parts:
+        out += array("i", [part_material(p)]) * (p["index_count"] // 3)
+    return out
+
+
+def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=True, smooth=True):
+    """One object holding all of MeshData d."""
+    me = created.add(bpy.data.meshes.new(name))
+    mats = materials if materials is not None else [make_material(m, created, name) for m in d.materials]
+    for m in mats:
+        me.materials.append(m)
+    fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
+              attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth)
+    obj = created.add(bpy.data.objects.new(name, me))
+    collection.objects.link(obj)
+    return obj
+
+
+def group_ranges(parts):
+    """(v0, v1, i0, i1) of a list of contiguous parts, or None if not contiguous."""
+    parts = sorted(parts, key=lambda p: p["vertex_offset"])
+    v0, i0 = parts[0]["vertex_offset"], parts[0]["index_offset"]
+    v, i = v0, i0
+    for p in parts:
+        if p["vertex_offset"] != v or p["index_offset"] != i:
+            return None
+        v += p["vertex_count"]
+        i += p["index_count"]
+    return v0, v, i0, i
+
+
+def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, progress=None):
+    """One object per part group (e.g. one per tree), origins at each
+    group's base (bottom centre of its bounds). Returns the objects."""
+    from mathutils import Matrix, Vector
+    mats = [make_material(m, created, prefix) for m in d.materials]
+    groups = d.groups()
+    objs = []
+    for n, (g, parts) in enumerate(groups.items()):
+        r = group_ranges(parts)
+        if r is None:
+            raise ValueError("parts of group %d are not contiguous" % g)
+        v0, v1, i0, i1 = r
+        pos = d.positions[3 * v0:3 * v1]
+        idx = d.indices[i0:i1]
+        if v0:
+            idx = array("i", map(operator.sub, idx, _repeat(v0, len(idx))))
+        uvs = d.corner_uvs[2 * i0:2 * i1] if (uv and d.corner_uvs is not None) else None
+        cols = d.colors[4 * v0:4 * v1] if d.colors is not None else None
+        attrs = {k: a[v0:v1] for k, a in d.attributes.items()}
+        me = created.add(bpy.data.meshes.new("%s_%03d" % (prefix, g)))
+        for m in mats:
+            me.materials.append(m)
+        local_parts = [dict(p, index_offset=p["index_offset"] - i0) for p in parts]
+        fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
+                  material_index=material_indices(local_parts), smooth=smooth)
+        xs, ys, zs = pos[0::3], pos[1::3], pos[2::3]
+        base = Vector(((min(xs) + max(xs)) * 0.5, (min(ys) + max(ys)) * 0.5, min(zs))) if len(pos) else Vector()
+        me.transform(Matrix.Translation(-base))
+        obj = created.add(bpy.data.objects.new(me.name, me))
+        obj.location = base
+        collection.objects.link(obj)
+        objs.append(obj)
+        if progress:
+            progress(n + 1, len(groups))
+    return objs
+
+
+def _repeat(value, n):
+    import itertools
+    return itertools.repeat(value, n)

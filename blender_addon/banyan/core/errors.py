@@ -1,0 +1,30 @@
+"""Exceptions raised by the binding."""
+
+
+class BanyanError(Exception):
+    """A libbanyan call failed: `status` is the banyan_status code, `name`
+    its fixed name ("BANYAN_E_RANGE"), `message` the library's message."""
+
+    def __init__(self, status, message, name=""):
+        self.status = int(status)
+        self.name = name
+        self.message = message
+        super().__init__(message)
+
+
+class LoadError(BanyanError):
+    """The library could not be found or does not match this binding."""
+
+    def __init__(self, message):
+        super().__init__(-1, message, "LOAD")
+
+
+class GeneratorMissing(BanyanError):
+    """The library has no parameter table / symbols for a generator."""
+
+    def __init__(self, generator, detail=""):
+        msg = "generator '%s' is not built into this libbanyan" % generator
+        if detail:
+            msg += " (%s)" % detail
+        super().__init__(13, msg, "BANYAN_E_UNSUPPORTED")
+        self.generator = generator

@@ -1,0 +1,202 @@
+"""Per-generator calls: the one place that knows each generate()
+signature (csrc/include/banyan/<gen>.h). Symbols are looked up lazily, so
+a library without a generator still loads; calling it raises
+GeneratorMissing.
+"""
+import ctypes as C
+
+from . import lib as L
+from . import structs as S
+from .errors import BanyanError, GeneratorMissing
+from .mesh import MeshData, call_generate
+from .params import Params
+
+P = C.POINTER
+_err = P(S.Error)
+_mesh_out = P(P(S.Mesh))
+
+
+class SegmentInput(C.Structure):
+    _fields_ = [("S", C.c_double * 3), ("A", C.c_double * 3), ("l", C.c_double),
+                ("n", C.c_int32), ("s", C.c_int32)]
+
+
+class SegmentsStats(C.Structure):
+    _fields_ = [("segments", C.c_uint32), ("lines", C.c_uint32), ("budget_hits", C.c_uint32),
+                ("unattached", C.c_uint32), ("max_level", C.c_uint32), ("lines_per_level", C.c_uint32 * 8)]
+
+
+def _fn(name, restype, argtypes, gen):
+    f = L.symbol(name)
+    if f is None:
+        raise GeneratorMissing(gen, "%s() is not in the library" % name)
+    f.restype = restype
+    f.argtypes = argtypes
+    return f
+
+
+def _check_size(name, cls, gen):
+    f = _fn("banyan_sizeof_" + name, C.c_size_t, [], gen)
+    if f() != C.sizeof(cls):
+        raise BanyanError(14, "banyan_%s: library %d bytes, add-on %d; rebuild both from the same source"
+                          % (name, f(), C.sizeof(cls)), "LOAD")
+
+
+def _boxes(hosts):
+    hosts = list(hosts or [])
+    arr = (S.Box * max(1, len(hosts)))()
+    for i, h in enumerate(hosts):
+        arr[i] = h
+    return arr, len(hosts)
+
+
+def _as_params(gen, params):
+    if params is None:
+        return Params(gen)
+    if params.name != gen:
+        raise BanyanError(1, "params are for '%s', not '%s'" % (params.name, gen))
+    return params
+
+
+def roots(params=None, hosts=()):
+    """Strangler-fig roots around hosts (list of structs.Box)."""
+    params = _as_params("roots", params)
+    f = _fn("banyan_roots_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "roots")
+    arr, n = _boxes(hosts)
+    return call_generate(f, params.ptr, arr, n)
+
+
+def keyaki(params=None):
+    params = _as_params("keyaki", params)
+    f = _fn("banyan_keyaki_generate", C.c_int, [C.c_void_p, _mesh_out, _err], "keyaki")
+    return call_generate(f, params.ptr)
+
+
+def avenue(params=None, path=None, threads=0):
+    """path: None (the params' start-end line) or a list of (x, y, z)."""
+    params = _as_params("avenue", params)
+    f = _fn("banyan_avenue_generate", C.c_int,
+            [C.c_void_p, P(C.c_double), C.c_uint32, C.c_int32, _mesh_out, _err], "avenue")
+    if path:
+        pts = (C.c_double * (3 * len(path)))(*[float(c) for p in path for c in p])
+        return call_generate(f, params.ptr, pts, len(path), int(threads))
+    return call_generate(f, params.ptr, None, 0, int(threads))
+
+
+def avenue_tree_count(params, path=None):
+    f = _fn("banyan_avenue_layout", C.c_int, [C.c_void_p, P(C.c_double), C.c_uint32, C.c_void_p, C.c_uint32,
+                                              P(C.c_uint32), _err], "avenue")
+    n = C.c_uint32(0)
+    err = S.Error()
+    pts = (C.c_double * (3 * len(path)))(*[float(c) for p in path for c in p]) if path else None
+    L.raise_for(f(params.ptr, pts, len(path) if path else 0, None, 0, C.byref(n), C.byref(err)), err)
+    return n.value
+
+
+def ivy(params=None, hosts=()):
+    params = _as_params("ivy", params)
+    f = _fn("banyan_ivy_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "ivy")
+    arr, n = _boxes(hosts)
+    return call_generate(f, params.ptr, arr, n)
+
+
+class IvyPlant:
+    """The stepping API: create, step(n) as often as wanted, mesh()."""
+
+    def __init__(self, params, hosts):
+        self._free = _fn("banyan_ivy_free", None, [C.c_void_p], "ivy")
+        create = _fn("banyan_ivy_create", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, P(C.c_void_p), _err],
+                     "ivy")
+        self._step = _fn("banyan_ivy_step", C.c_int, [C.c_void_p, C.c_int32, _err], "ivy")
+        self._mesh = _fn("banyan_ivy_mesh", C.c_int, [C.c_void_p, _mesh_out, _err], "ivy")
+        self.handle = C.c_void_p()
+        arr, n = _boxes(hosts)
+        err = S.Error()
+        L.raise_for(create(params.ptr, arr, n, C.byref(self.handle), C.byref(err)), err)
+
+    def step(self, n):
+        err = S.Error()
+        L.raise_for(self._step(self.handle, int(n), C.byref(err)), err)
+
+    def mesh(self):
+        return call_generate(self._mesh, self.handle)
+
+    def close(self):
+        if self.handle:
+            self._free(self.handle)
+            self.handle = C.c_void_p()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+def segments_read(text, source="<preset>"):
+    """(inputs array, count, trunk or None) from a segments preset text."""
+    _check_size("segment_input", SegmentInput, "segments")
+    f = _fn("banyan_segments_preset_read", C.c_int,
+            [C.c_char_p, C.c_size_t, C.c_char_p, P(SegmentInput), C.c_uint32, P(C.c_uint32), P(C.c_double),
+             P(C.c_int32), _err], "segments")
+    data = text.encode() if isinstance(text, str) else bytes(text)
+    count = C.c_uint32(0)
+    err = S.Error()
+    L.raise_for(f(data, len(data), source.encode(), None, 0, C.byref(count), None, None, C.byref(err)), err)
+    arr = (SegmentInput * max(1, count.value))()
+    trunk = (C.c_double * 6)()
+    has = C.c_int32(0)
+    L.raise_for(f(data, len(data), source.encode(), arr, count.value, C.byref(count), trunk, C.byref(has),
+                  C.byref(err)), err)
+    return arr, count.value, (trunk if has.value else None)
+
+
+def segments_demo(params):
+    f = _fn("banyan_segments_demo", C.c_int, [C.c_void_p, P(SegmentInput), C.c_uint32, P(C.c_uint32),
+                                              P(C.c_double), _err], "segments")
+    cap = max(1, int(params.get("demo_segments")))
+    arr = (SegmentInput * cap)()
+    trunk = (C.c_double * 6)()
+    count = C.c_uint32(0)
+    err = S.Error()
+    L.raise_for(f(params.ptr, arr, cap, C.byref(count), trunk, C.byref(err)), err)
+    return arr, count.value, trunk
+
+
+def segments(params=None, inputs=None, count=0, trunk=None):
+    """A segment tree. inputs/count/trunk from segments_read or
+    segments_demo; None -> the demo tree of params. Returns (MeshData, stats dict)."""
+    params = _as_params("segments", params)
+    _check_size("segments_stats", SegmentsStats, "segments")
+    if inputs is None:
+        inputs, count, trunk = segments_demo(params)
+    f = _fn("banyan_segments_generate", C.c_int,
+            [C.c_void_p, P(SegmentInput), C.c_uint32, P(C.c_double), _mesh_out, P(SegmentsStats),
+             P(C.c_uint32), _err], "segments")
+    out = P(S.Mesh)()
+    stats = SegmentsStats()
+    err = S.Error()
+    st = f(params.ptr, inputs, count, trunk, C.byref(out), C.byref(stats), None, C.byref(err))
+    if st:
+        if out:
+            L.load().banyan_mesh_free(out)
+        L.raise_for(st, err)
+    d = MeshData.take(out)
+    info = {k: getattr(stats, k) for k, _ in SegmentsStats._fields_ if k != "lines_per_level"}
+    info["lines_per_level"] = list(stats.lines_per_level)
+    return d, info
+
+
+def available():
+    """{generator: True/False}: table, sizeof, params_init and generate present."""
+    from . import params as PP
+    calls = {"roots": "banyan_roots_generate", "keyaki": "banyan_keyaki_generate",
+             "avenue": "banyan_avenue_generate", "ivy": "banyan_ivy_generate",
+             "segments": "banyan_segments_generate"}
+    return {g: PP.available(g) and L.symbol(calls[g]) is not None for g in S.GENERATORS}

@@ -1,0 +1,115 @@
+"""Copying a banyan_mesh out of C memory into array.array buffers.
+
+One ctypes.memmove per array: Blender's foreach_set reads array.array
+('f' / 'i') buffers at memory speed, while raw ctypes arrays are read item
+by item (see docs/addon.md). No numpy, no per-vertex Python loops.
+"""
+import ctypes as C
+from array import array
+
+from . import lib as L
+from . import structs as S
+
+
+def _copy(ptr, count, typecode):
+    """array(typecode) holding `count` items copied from ptr (or None)."""
+    if not ptr or count == 0:
+        return array(typecode) if ptr else None
+    out = array(typecode, bytes(array(typecode).itemsize)) * count
+    C.memmove(out.buffer_info()[0], ptr, count * out.itemsize)
+    return out
+
+
+class MeshData:
+    """A banyan_mesh in Python buffers (the C mesh is freed right after).
+
+    positions/normals 3n 'f', uvs 2n 'f', corner_uvs 2 per index 'f' (what
+    Blender's UV layer takes, gathered in C), colors 4n 'f' or None, indices 'i'
+    (uint32 in C; Blender wants int), attributes {name: 'f' n},
+    materials [dict], parts [dict], skeleton arrays ('f'/'i') or None.
+    """
+
+    def __init__(self):
+        self.vertex_count = 0
+        self.index_count = 0
+        self.positions = self.normals = self.uvs = self.corner_uvs = self.colors = self.indices = None
+        self.attributes = {}
+        self.materials = []
+        self.parts = []
+        self.skel_points = self.skel_radius = self.skel_tag = self.skel_edges = None
+
+    @property
+    def triangle_count(self):
+        return self.index_count // 3
+
+    @classmethod
+    def take(cls, mesh_ptr, want_hash=False):
+        """Copies *mesh_ptr out and frees it (even when copying fails).
+        want_hash: also keep banyan_mesh_hash (costs a pass over every byte)."""
+        lib = L.load()
+        try:
+            m = mesh_ptr.contents
+            d = cls()
+            n = d.vertex_count = m.vertex_count
+            d.index_count = m.index_count
+            d.hash = lib.banyan_mesh_hash(mesh_ptr) if want_hash else None
+            d.positions = _copy(m.positions, 3 * n, "f")
+            d.normals = _copy(m.normals, 3 * n, "f")
+            d.uvs = _copy(m.uvs, 2 * n, "f")
+            d.colors = _copy(m.colors, 4 * n, "f")
+            d.indices = _copy(m.indices, m.index_count, "i")
+            if m.uvs and m.index_count:
+                d.corner_uvs = array("f", bytes(4)) * (2 * m.index_count)
+                err = S.Error()
+                st = lib.banyan_mesh_corner_uvs(mesh_ptr, d.corner_uvs.buffer_info()[0], len(d.corner_uvs),
+                                                C.byref(err))
+                if st:
+                    L.raise_for(st, err)
+            for i in range(m.attribute_count):
+                a = m.attributes[i]
+                d.attributes[a.name.decode()] = _copy(a.data, n, "f")
+            for i in range(m.material_count):
+                mat = m.materials[i]
+                d.materials.append({"name": mat.name.decode(), "base_color": tuple(mat.base_color),
+                                    "roughness": mat.roughness, "double_sided": bool(mat.double_sided)})
+            for i in range(m.part_count):
+                p = m.parts[i]
+                d.parts.append({k: getattr(p, k) for k, _ in S.Part._fields_})
+            ns = m.skel_point_count
+            d.skel_points = _copy(m.skel_points, 3 * ns, "f")
+            d.skel_radius = _copy(m.skel_radius, ns, "f")
+            d.skel_tag = _copy(m.skel_tag, ns, "i")
+            d.skel_edges = _copy(m.skel_edges, 2 * m.skel_edge_count, "i")
+            return d
+        finally:
+            lib.banyan_mesh_free(mesh_ptr)
+
+    def groups(self):
+        """{group: [part dicts]} in order of first appearance."""
+        out = {}
+        for p in self.parts:
+            out.setdefault(p["group"], []).append(p)
+        return out
+
+
+def call_generate(func, *args):
+    """Calls a banyan_*_generate-style function whose last two arguments
+    are (banyan_mesh **out, banyan_error *err); returns MeshData."""
+    out = C.POINTER(S.Mesh)()
+    err = S.Error()
+    st = func(*args, C.byref(out), C.byref(err))
+    if st:
+        if out:  # the contract says *out stays NULL; free defensively
+            L.load().banyan_mesh_free(out)
+        L.raise_for(st, err)
+    if not out:
+        raise L.BanyanError(14, "the library returned OK but no mesh", "BANYAN_E_INTERNAL")
+    return MeshData.take(out)
+
+
+def tube(points, radii, sides=12, caps=True):
+    """banyan_tube_generate: the smallest thing the library makes."""
+    n = len(points)
+    pts = (C.c_double * (3 * n))(*[float(c) for p in points for c in p])
+    rad = (C.c_double * len(radii))(*[float(r) for r in radii])
+    return call_generate(L.load().banyan_tube_generate, pts, rad, n, int(sides), int(bool(caps)))

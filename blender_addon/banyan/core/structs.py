@@ -1,0 +1,94 @@
+"""ctypes mirrors of the public structs in banyan.h. The loader compares
+each ctypes.sizeof with the library's banyan_sizeof_* at load time."""
+import ctypes as C
+
+NAME_MAX = 32        # BANYAN_NAME_MAX
+MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
+ABI_VERSION = 1      # BANYAN_ABI_VERSION this binding was written for
+
+
+class Error(C.Structure):
+    _fields_ = [("code", C.c_int32), ("message", C.c_char * 256)]
+
+    def text(self):
+        return self.message.decode("utf-8", "replace")
+
+
+class Box(C.Structure):
+    _fields_ = [("center", C.c_double * 3), ("half", C.c_double * 3),
+                ("rotation", C.c_double * 9)]
+
+    @classmethod
+    def make(cls, center, half, rotation=(1, 0, 0, 0, 1, 0, 0, 0, 1)):
+        b = cls()
+        b.center[:] = [float(x) for x in center]
+        b.half[:] = [float(x) for x in half]
+        b.rotation[:] = [float(x) for x in rotation]
+        return b
+
+    def as_dict(self):
+        return {"center": list(self.center), "half": list(self.half),
+                "rotation": list(self.rotation)}
+
+
+class Attribute(C.Structure):
+    _fields_ = [("name", C.c_char * NAME_MAX), ("data", C.POINTER(C.c_float))]
+
+
+class Material(C.Structure):
+    _fields_ = [("name", C.c_char * NAME_MAX), ("base_color", C.c_float * 4),
+                ("roughness", C.c_float), ("double_sided", C.c_int32)]
+
+
+class Part(C.Structure):
+    _fields_ = [("vertex_offset", C.c_uint32), ("vertex_count", C.c_uint32),
+                ("index_offset", C.c_uint32), ("index_count", C.c_uint32),
+                ("material", C.c_uint32), ("group", C.c_uint32)]
+
+
+class Mesh(C.Structure):
+    _fields_ = [
+        ("vertex_count", C.c_uint32),
+        ("index_count", C.c_uint32),
+        ("positions", C.POINTER(C.c_float)),
+        ("normals", C.POINTER(C.c_float)),
+        ("uvs", C.POINTER(C.c_float)),
+        ("colors", C.POINTER(C.c_float)),
+        ("indices", C.POINTER(C.c_uint32)),
+        ("attribute_count", C.c_uint32),
+        ("attributes", C.POINTER(Attribute)),
+        ("material_count", C.c_uint32),
+        ("materials", C.POINTER(Material)),
+        ("part_count", C.c_uint32),
+        ("parts", C.POINTER(Part)),
+        ("skel_point_count", C.c_uint32),
+        ("skel_points", C.POINTER(C.c_float)),
+        ("skel_radius", C.POINTER(C.c_float)),
+        ("skel_tag", C.POINTER(C.c_int32)),
+        ("skel_edge_count", C.c_uint32),
+        ("skel_edges", C.POINTER(C.c_uint32)),
+    ]
+
+
+class ParamInfo(C.Structure):
+    _fields_ = [
+        ("name", C.c_char_p),
+        ("unit", C.c_char_p),
+        ("description", C.c_char_p),
+        ("type", C.c_int32),
+        ("min", C.c_double),
+        ("max", C.c_double),
+        ("choices", C.c_char_p),
+        ("offset", C.c_size_t),
+    ]
+
+
+# banyan_param_type
+PT_DOUBLE, PT_INT, PT_BOOL, PT_ENUM, PT_VEC3, PT_COLOR, PT_SEED = range(7)
+
+# banyan_generator
+GENERATORS = ("roots", "keyaki", "avenue", "ivy", "segments")
+
+# Checked against banyan_sizeof_<key>() at load.
+SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
+         "part": Part, "mesh": Mesh, "param_info": ParamInfo}

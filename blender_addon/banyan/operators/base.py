@@ -1,0 +1,150 @@
+"""The machinery every Banyan operator shares: properties generated from
+the generator's parameter table, the JSON preset menu, and execute()
+that turns a library error into an error report with the scene left as
+it was (api calls roll back what they made)."""
+import traceback
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, StringProperty
+
+from .. import presets as PR
+from .. import props as PP
+from ..core.errors import BanyanError
+from ..core.params import Params
+
+NO_PRESET = "NONE"
+LAST_PARAMS = {}  # bl_idname -> Params of its last successful run (for "save preset")
+
+
+_items_cache = {}  # Blender needs the enum strings kept alive
+
+
+def preset_items(gen):
+    items = [(NO_PRESET, "(current values)", "Keep the values below")]
+    for key, _path, desc in PR.list_presets(gen):
+        items.append((key, key, desc or key))
+    _items_cache[gen] = items
+    return items
+
+
+def _dynamic_items(gen):
+    return lambda self, context: preset_items(gen)
+
+
+class BanyanOperatorMixin:
+    """Subclasses set `generator` and implement build(context, params) ->
+    objects (through banyan.api). Properties come from make_operator()."""
+    bl_options = {'REGISTER', 'UNDO', 'PRESET'}
+    generator = ""
+    extra_props = ()  # names of non-table properties, drawn first
+
+    def load_preset_if_changed(self):
+        """A newly chosen JSON preset overwrites the table properties once;
+        later edits in the redo panel then apply on top of it."""
+        key = self.banyan_preset or NO_PRESET
+        if key == self.banyan_preset_loaded:
+            return
+        if key != NO_PRESET:
+            p = Params(self.generator)
+            path = PR.find(self.generator, key)
+            p.apply_preset(PR.read(path), path)
+            PP.write_props(self, p)
+        self.banyan_preset_loaded = key
+
+    def params(self):
+        return PP.to_params(self.generator, self)
+
+    def execute(self, context):
+        try:
+            self.load_preset_if_changed()
+            params = self.params()
+            objs = self.build(context, params)
+            LAST_PARAMS[self.banyan_idname] = params
+        except (BanyanError, FileNotFoundError, ValueError) as e:
+            self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
+            return {'CANCELLED'}
+        except Exception as e:  # never leave a half-built scene or crash
+            traceback.print_exc()
+            self.report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
+            return {'CANCELLED'}
+        select_only(context, objs)
+        nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
+        self.report({'INFO'}, "Banyan: %d object(s), %d vertices" % (len(objs), nv))
+        return {'FINISHED'}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        row = layout.row(align=True)
+        row.prop(self, "banyan_preset", text="Preset")
+        row.operator("banyan.preset_save", text="", icon="ADD").operator = self.banyan_idname
+        for name in self.extra_props:
+            layout.prop(self, name)
+        layout.separator()
+        for name in self.table_props:
+            layout.prop(self, name)
+
+
+def select_only(context, objs):
+    vl = getattr(context, "view_layer", None)
+    if vl is None or not objs:
+        return
+    for o in list(context.selected_objects):
+        o.select_set(False)
+    for o in objs:
+        if o.name in vl.objects:
+            o.select_set(True)
+    if objs[0].name in vl.objects:
+        vl.objects.active = objs[0]
+
+
+def make_operator(mixin, idname, label, description, gen, extra):
+    """Builds an Operator class for gen: the table's properties plus
+    `extra` (dict of non-table properties) plus the preset menu."""
+    table = PP.annotations(gen)
+    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded"})
+    if clash:
+        raise BanyanError(14, "%s: operator property names clash with the table: %s" % (gen, sorted(clash)))
+    ann = {}
+    ann["banyan_preset"] = EnumProperty(name="Preset", items=_dynamic_items(gen),
+                                        description="A JSON preset from presets/; applied once when chosen")
+    ann["banyan_preset_loaded"] = StringProperty(default=NO_PRESET, options={'HIDDEN'})
+    extra = dict(extra)
+    extra["uv_map"] = BoolProperty(name="UV map", default=True,
+                                   description="Copy the library's UVs into a UV map (costs about 0.1 us per "
+                                               "triangle corner on top of Blender's own mesh building)")
+    ann.update(extra)
+    ann.update(table)
+    cls_name = "MESH_OT_" + idname.split(".", 1)[1]
+    return type(cls_name, (mixin, bpy.types.Operator), {
+        "bl_idname": idname, "banyan_idname": idname, "bl_label": label, "bl_description": description, "generator": gen,
+        "extra_props": tuple(extra), "table_props": tuple(table), "__annotations__": ann,
+    })
+
+
+class BANYAN_OT_preset_save(bpy.types.Operator):
+    """Save the last values of a Banyan operator as a JSON preset (usable by the CLI too)"""
+    bl_idname = "banyan.preset_save"
+    bl_label = "Save Banyan Preset"
+    bl_options = {'REGISTER', 'INTERNAL'}
+
+    operator: StringProperty(name="Operator", options={'HIDDEN', 'SKIP_SAVE'})
+    name: StringProperty(name="Name", default="my_preset", options={'SKIP_SAVE'})
+    description: StringProperty(name="Description", default="", options={'SKIP_SAVE'})
+
+    def invoke(self, context, event):
+        return context.window_manager.invoke_props_dialog(self)
+
+    def execute(self, context):
+        p = LAST_PARAMS.get(self.operator)
+        if p is None:
+            self.report({'ERROR'}, "Banyan: '%s' has not run yet in this session" % self.operator)
+            return {'CANCELLED'}
+        try:
+            path = PR.save(p.name, self.name, p.to_preset(self.description))
+        except (BanyanError, OSError) as e:
+            self.report({'ERROR'}, "Banyan: %s" % e)
+            return {'CANCELLED'}
+        self.report({'INFO'}, "Banyan: saved %s" % path)
+        return {'FINISHED'}

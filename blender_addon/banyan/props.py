@@ -1,0 +1,141 @@
+"""Blender properties generated from a generator's parameter table, and
+the way back from property values to a checked params struct.
+
+Each row becomes one property named by the row's key: DOUBLE -> Float
+(unit "m" -> DISTANCE, "deg" -> ANGLE, shown in degrees, stored by Blender
+in radians), INT -> Int, BOOL -> Bool, ENUM -> Enum, VEC3 -> FloatVector,
+COLOR -> FloatVector(COLOR, size 4), SEED -> Int (0 .. 2^31-1; larger
+seeds through banyan.api). The table's [min, max] is the soft range (the
+slider range); values typed or set from Python outside it are refused by
+the library, whose message becomes the operator's error report.
+Defaults come from the generator's params_init.
+"""
+import math
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty
+
+from .core import params as P
+from .core import structs as S
+
+INT_MAX = 2 ** 31 - 1
+RESERVED = {"name", "bl_idname", "bl_label", "bl_description", "bl_options", "layout", "options", "properties",
+            "rna_type", "macros", "has_reports", "bl_undo_group", "bl_translation_context", "report",
+            "bl_cursor_pending"}
+
+
+def prop_name(key):
+    """Blender identifier of a table key ("tree.levels" -> "tree__levels")."""
+    key = key.replace(".", "__")
+    return "p_" + key if key in RESERVED else key
+
+
+def _label(key):
+    return key.replace(".", ": ").replace("_", " ").capitalize()
+
+
+def _clip_f32(x):
+    """A double as a float32-safe value for Blender (finite, in range)."""
+    return max(-3.0e38, min(3.0e38, float(x)))
+
+
+def _desc(spec):
+    d = spec.description
+    if spec.type in (S.PT_DOUBLE, S.PT_INT, S.PT_VEC3):
+        unit = (" " + spec.unit) if spec.unit else ""
+        d += " [%g .. %g%s]" % (spec.min, spec.max, unit)
+    return d
+
+
+def annotations(gen):
+    """{property name: bpy property} for every row of gen's table."""
+    params = P.Params(gen)
+    out = {}
+    for s in params.specs:
+        v = params.get(s.name)
+        kw = dict(name=_label(s.name), description=_desc(s))
+        if s.type == S.PT_DOUBLE:
+            if s.unit == "deg":
+                prop = FloatProperty(subtype='ANGLE', default=math.radians(v), soft_min=math.radians(s.min),
+                                     soft_max=math.radians(s.max), **kw)
+            else:
+                extra = dict(subtype='DISTANCE', unit='LENGTH') if s.unit == "m" else {}
+                prop = FloatProperty(default=_clip_f32(v), soft_min=_clip_f32(s.min), soft_max=_clip_f32(s.max),
+                                     precision=4 if s.unit == "m" else 3, **extra, **kw)
+        elif s.type == S.PT_INT:
+            lo, hi = max(-INT_MAX - 1, int(s.min)), min(INT_MAX, int(s.max))
+            prop = IntProperty(default=int(v), soft_min=lo, soft_max=hi, **kw)
+        elif s.type == S.PT_BOOL:
+            prop = BoolProperty(default=bool(v), **kw)
+        elif s.type == S.PT_ENUM:
+            items = [(c, _label(c), "") for c in s.choices]
+            prop = EnumProperty(items=items, default=v if isinstance(v, str) else s.choices[0], **kw)
+        elif s.type == S.PT_VEC3:
+            extra = dict(subtype='TRANSLATION', unit='LENGTH') if s.unit == "m" else dict(subtype='XYZ')
+            prop = FloatVectorProperty(size=3, default=tuple(_clip_f32(c) for c in v),
+                                       soft_min=_clip_f32(s.min), soft_max=_clip_f32(s.max), **extra, **kw)
+        elif s.type == S.PT_COLOR:
+            prop = FloatVectorProperty(size=4, subtype='COLOR', default=tuple(v), min=0.0, max=1.0, **kw)
+        elif s.type == S.PT_SEED:
+            prop = IntProperty(default=int(v) if v <= INT_MAX else 0, min=0, soft_max=INT_MAX, **kw)
+        else:
+            continue
+        out[prop_name(s.name)] = prop
+    return out
+
+
+def _nice(x):
+    """float32 property value -> the double the user meant (7 digits)."""
+    return float("%.7g" % x)
+
+
+def _snap(x, spec, default):
+    """Maps a float32-rounded value onto the exact default or a bound."""
+    if isinstance(default, float) and _nice(default) == x:
+        return default
+    for b in (spec.min, spec.max):
+        if b != 0 and abs(x - b) <= 1e-6 * abs(b):
+            return b
+    return x
+
+
+def to_params(gen, holder, skip=()):
+    """A Params of gen filled from holder's properties (an operator or any
+    object with the attributes); raises BanyanError on bad values."""
+    p = P.Params(gen)
+    defaults = P.Params(gen)
+    for s in p.specs:
+        name = prop_name(s.name)
+        if s.name in skip or not hasattr(holder, name):
+            continue
+        v = getattr(holder, name)
+        d = defaults.get(s.name)
+        if s.type == S.PT_DOUBLE:
+            x = _nice(math.degrees(v)) if s.unit == "deg" else _nice(v)
+            v = _snap(x, s, d)
+        elif s.type == S.PT_VEC3:
+            v = tuple(_snap(_nice(c), s, dc) for c, dc in zip(v, d))
+        elif s.type == S.PT_COLOR:
+            v = tuple(_snap(_nice(c), s, dc) for c, dc in zip(v, d))
+        elif s.type == S.PT_SEED and v == 0 and d > INT_MAX:
+            v = d
+        p.set(s.name, v)
+    return p
+
+
+def write_props(holder, params):
+    """Copies a Params' values into holder's properties (e.g. after a preset)."""
+    for s in params.specs:
+        name = prop_name(s.name)
+        if not hasattr(holder, name):
+            continue
+        v = params.get(s.name)
+        if s.type == S.PT_DOUBLE and s.unit == "deg":
+            v = math.radians(v)
+        elif s.type == S.PT_SEED and v > INT_MAX:
+            v = 0
+        setattr(holder, name, v)
+
+
+def has_bpy():
+    return bpy is not None

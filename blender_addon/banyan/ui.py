@@ -1,0 +1,56 @@
+"""Shift+A > Mesh > Banyan menu and the View3D sidebar tab "Banyan"."""
+import bpy
+
+from . import state
+
+
+class VIEW3D_MT_banyan_add(bpy.types.Menu):
+    bl_idname = "VIEW3D_MT_banyan_add"
+    bl_label = "Banyan"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.operator_context = 'INVOKE_REGION_WIN'
+        for idname, label in state.operator_entries():
+            layout.operator(idname, text=label)
+        if state.MISSING:
+            layout.separator()
+            layout.label(text="Not built: " + ", ".join(sorted(state.MISSING)))
+
+
+class VIEW3D_PT_banyan(bpy.types.Panel):
+    bl_idname = "VIEW3D_PT_banyan"
+    bl_label = "Banyan"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Banyan"
+
+    def draw(self, context):
+        layout = self.layout
+        col = layout.column(align=True)
+        for idname, label in state.operator_entries():
+            col.operator(idname, text=label)
+        box = layout.box()
+        box.label(text="libbanyan %s" % state.VERSION)
+        if state.MISSING:
+            box.label(text="Not built: " + ", ".join(sorted(state.MISSING)))
+        if state.ERRORS:
+            for e in state.ERRORS:
+                box.label(text=e, icon='ERROR')
+
+
+def menu_func(self, context):
+    self.layout.menu(VIEW3D_MT_banyan_add.bl_idname, icon='OUTLINER_OB_MESH')
+
+
+class VIEW3D_PT_banyan_error(bpy.types.Panel):
+    """Shown instead of everything else when the library failed to load."""
+    bl_idname = "VIEW3D_PT_banyan_error"
+    bl_label = "Banyan"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Banyan"
+
+    def draw(self, context):
+        for line in state.LOAD_ERROR.split("; "):
+            self.layout.label(text=line, icon='ERROR')

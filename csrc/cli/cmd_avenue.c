@@ -1,0 +1,71 @@
+/* `banyan avenue`: keyaki trees along the straight path start..end, one
+ * or two rows, grown on --threads N threads (0 = all cores). --stats adds
+ * the tree count and, over the trees, the mean, min and max of tips and
+ * crown widths and the mean Strahler bifurcation ratio. A polyline path
+ * is available through the library call (banyan_avenue_generate). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void init(void *p) { banyan_avenue_params_init((banyan_avenue_params *)p); }
+
+static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
+                         uint32_t *count, cli_stats *stats, banyan_error *err) {
+    const banyan_avenue_params *p = params;
+    uint32_t n = 0;
+    banyan_status s = banyan_avenue_layout(p, NULL, 0, NULL, 0, &n, err);
+    if (s) return s;
+    banyan_mesh **m = calloc(1, sizeof *m);
+    char **nm = calloc(1, sizeof *nm);
+    banyan_keyaki_params *trees = malloc(sizeof *trees * (n ? n : 1));
+    if (!m || !nm || !trees) {
+        s = BANYAN_E_NOMEM;
+        goto fail;
+    }
+    if ((s = banyan_avenue_generate(p, NULL, 0, job->threads, &m[0], err))) goto fail;
+    if ((s = banyan_avenue_layout(p, NULL, 0, trees, n, &n, err))) {
+        banyan_mesh_free(m[0]);
+        goto fail;
+    }
+    double tips = 0, width = 0, ratio = 0, tmin = 1e300, tmax = 0, wmin = 1e300, wmax = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        banyan_keyaki_statistics st;
+        if ((s = banyan_keyaki_stats(&trees[i], &st, err))) {
+            banyan_mesh_free(m[0]);
+            goto fail;
+        }
+        tips += st.tip_count;
+        width += st.crown_width;
+        ratio += st.mean_bifurcation_ratio;
+        if (st.tip_count < tmin) tmin = st.tip_count;
+        if (st.tip_count > tmax) tmax = st.tip_count;
+        if (st.crown_width < wmin) wmin = st.crown_width;
+        if (st.crown_width > wmax) wmax = st.crown_width;
+    }
+    free(trees);
+    nm[0] = malloc(16);
+    if (nm[0]) strcpy(nm[0], "avenue");
+    *meshes = m;
+    *names = nm;
+    *count = 1;
+    cli_stat_num(stats, "trees", n);
+    cli_stat_num(stats, "parts", m[0]->part_count);
+    cli_stat_num(stats, "tips_mean", tips / n);
+    cli_stat_num(stats, "tips_min", tmin);
+    cli_stat_num(stats, "tips_max", tmax);
+    cli_stat_num(stats, "crown_width_mean_m", width / n);
+    cli_stat_num(stats, "crown_width_min_m", wmin);
+    cli_stat_num(stats, "crown_width_max_m", wmax);
+    cli_stat_num(stats, "mean_bifurcation_ratio", ratio / n);
+    return BANYAN_OK;
+fail:
+    free(m);
+    free(nm);
+    free(trees);
+    return s;
+}
+
+const cli_command cli_cmd_avenue = {"avenue", BANYAN_GEN_AVENUE, "an avenue of keyaki trees",
+                                    sizeof(banyan_avenue_params), init, NULL, run, NULL, NULL};

@@ -1,0 +1,72 @@
+/* `banyan keyaki`: one keyaki tree (spec/keyaki.md). Takes no hosts.
+ * --stats adds the tree's own measures: Strahler stream counts N_k, the
+ * bifurcation ratios N_k / N_{k+1} and their mean, tips, forks, breaks,
+ * height and crown width (banyan_keyaki_stats, on the same skeleton). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void init(void *p) { banyan_keyaki_params_init((banyan_keyaki_params *)p); }
+
+/* Appends the measures of one skeleton as stats members (shared with
+ * cmd_avenue.c through this declaration). */
+void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st);
+
+void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st) {
+    char buf[2048];
+    size_t n = 0;
+    n += (size_t)snprintf(buf + n, sizeof buf - n, "[");
+    for (int k = 0; k < st->max_order && n < sizeof buf; k++)
+        n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%d", k ? ", " : "", st->stream_count[k]);
+    if (n < sizeof buf) snprintf(buf + n, sizeof buf - n, "]");
+    cli_stat_raw(stats, "stream_counts", buf);
+    n = 0;
+    n += (size_t)snprintf(buf + n, sizeof buf - n, "[");
+    for (int k = 0; k + 1 < st->max_order && n < sizeof buf; k++)
+        n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%.17g", k ? ", " : "", st->bifurcation_ratio[k]);
+    if (n < sizeof buf) snprintf(buf + n, sizeof buf - n, "]");
+    cli_stat_raw(stats, "bifurcation_ratios", buf);
+    cli_stat_num(stats, "mean_bifurcation_ratio", st->mean_bifurcation_ratio);
+    cli_stat_num(stats, "max_order", st->max_order);
+    cli_stat_num(stats, "branches", st->node_count);
+    cli_stat_num(stats, "tips", st->tip_count);
+    cli_stat_num(stats, "forks", st->fork_count);
+    cli_stat_num(stats, "breaks", st->break_count);
+    cli_stat_num(stats, "max_level", st->max_level);
+    cli_stat_num(stats, "mean_run_length", st->mean_run_length);
+    cli_stat_num(stats, "height_m", st->height);
+    cli_stat_num(stats, "crown_width_m", st->crown_width);
+}
+
+static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
+                         uint32_t *count, cli_stats *stats, banyan_error *err) {
+    (void)job;
+    const banyan_keyaki_params *p = params;
+    banyan_keyaki_statistics st;
+    banyan_status s = banyan_keyaki_stats(p, &st, err);
+    if (s) return s;
+    banyan_mesh **m = calloc(1, sizeof *m);
+    char **nm = calloc(1, sizeof *nm);
+    if (!m || !nm) {
+        free(m);
+        free(nm);
+        return BANYAN_E_NOMEM;
+    }
+    if ((s = banyan_keyaki_generate(p, &m[0], err))) {
+        free(m);
+        free(nm);
+        return s;
+    }
+    nm[0] = malloc(16);
+    if (nm[0]) strcpy(nm[0], "keyaki");
+    *meshes = m;
+    *names = nm;
+    *count = 1;
+    cli_keyaki_stats_json(stats, &st);
+    return BANYAN_OK;
+}
+
+const cli_command cli_cmd_keyaki = {"keyaki", BANYAN_GEN_KEYAKI, "one keyaki (Zelkova) tree",
+                                    sizeof(banyan_keyaki_params), init, NULL, run, NULL, NULL};

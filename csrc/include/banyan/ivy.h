@@ -1,0 +1,159 @@
+/*
+ * banyan/ivy.h - climbing ivy (Boston ivy, Parthenocissus) by growth
+ * simulation: Shindo and Sakamoto's parametric L-system with a directed
+ * random walk, light competition and sag of unattached stems
+ * (spec/ivy.md). Included by banyan.h.
+ *
+ * Two ways to use it:
+ *   - one shot: banyan_ivy_generate(params, hosts, n, &mesh, &err) grows
+ *     params->steps steps and meshes the result;
+ *   - stepping: banyan_ivy_create, then banyan_ivy_step(n) as often as
+ *     wanted, banyan_ivy_mesh / banyan_ivy_stats at any point, and
+ *     banyan_ivy_free. Growing 100 steps then 50 more gives the same plant
+ *     as growing 150 at once.
+ *
+ * Units: metres, steps, degrees where a field says "deg". The paper's
+ * Table 3 is in millimetres (1 px = 1 mm); the defaults are those values
+ * in metres.
+ */
+#ifndef BANYAN_IVY_H
+#define BANYAN_IVY_H
+
+#include <stdint.h>
+
+#include "../banyan.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest `steps` (and largest n of one banyan_ivy_step call). */
+#define BANYAN_IVY_MAX_STEPS 100000
+
+/* Bud states (also the skeleton's skel_tag). A0, A1, A2 are the three
+ * successive apical states; A2 has no sucker. D is dormant, Z ended. */
+typedef enum banyan_ivy_bud_state {
+    BANYAN_IVY_A0 = 0,
+    BANYAN_IVY_A1 = 1,
+    BANYAN_IVY_A2 = 2,
+    BANYAN_IVY_D = 3,
+    BANYAN_IVY_Z = 4
+} banyan_ivy_bud_state;
+
+typedef struct banyan_ivy_params {
+    uint64_t seed;              /* any value; same seed, same bytes */
+    int32_t max_vertices;       /* mesh vertex cap, 1 .. 1<<30; more -> BANYAN_E_LIMIT */
+    int32_t steps;              /* growth steps of banyan_ivy_generate, 0 .. BANYAN_IVY_MAX_STEPS (paper: 450) */
+    int32_t max_buds;           /* bud cap, 1 .. 50,000,000; a step that could pass it -> BANYAN_E_LIMIT */
+    int32_t candidates;         /* K, random-walk candidates per new bud, 1 .. 1000 */
+    int32_t h1_buds;            /* buds before a dormant bud whose H0 adds into H1, 0 .. 64 */
+    int32_t leaf_growth_steps;  /* steps a leaf (and its shadow) takes to reach leaf_max, 1 .. 100000 */
+    int32_t sucker_pull;        /* 0/1: a bud that attaches is drawn to `clearance` off the surface */
+    int32_t leaves;             /* 0/1: emit leaf cards in the mesh */
+    int32_t stem_sides;         /* sides of a stem tube, 3 .. 64 */
+    int32_t helio_in_plane;     /* 0/1: for a bud within sucker reach, V_l is taken along the surface (docs/ivy.md) */
+    int32_t ground;             /* plane z = ground_z: 0 none, 1 obstacle (stems rest on it, suckers do
+                                   not grip it), 2 host (ivy climbs it too) */
+
+    double start[3];            /* growth start, m; snapped to the nearest host surface */
+    double start_snap_max;      /* farthest the start may be from every host, m, 0 .. 1e6 (the ground does not count) */
+    double ground_z;            /* height of the ground plane, m, -1e6 .. 1e6 */
+    double internode;           /* l, internode length, m, 0.001 .. 10 (paper 30 mm) */
+    double sucker_length;       /* D, sucker reach, m, 0 .. 10 (paper 30 mm) */
+    double clearance;           /* gap a stem keeps from host surfaces, m, 1e-5 .. 1 */
+    double leaf_max;            /* d_max, largest leaf (shadow) diameter, m, 0.001 .. 10 (paper 60 mm) */
+
+    double t0;                  /* light threshold on H0 / H1, 0 .. 1e6 (paper 15 or 20) */
+    double t1;                  /* nourishment an apical bud needs to grow, 0 .. 1e6 (paper 0.2) */
+    double t2;                  /* nourishment a dormant bud needs to sprout, >= t1, 0 .. 1e6 (paper 2.0) */
+    double alpha;               /* apical dominance, 0.5 .. 1 (paper 0.8) */
+    double beta;                /* nourishment gained per step, 0 .. 1e3 (paper 0.05) */
+    double n_start;             /* nourishment of the first bud, 0 .. 1e6 */
+
+    double theta_max;           /* largest turn per axis of a candidate, deg, 0 .. 180 */
+    double branch_angle;        /* R(theta) of rule p3, lateral branch angle, deg, 0 .. 180 */
+    double w_d;                 /* weight of f_d (stay within sucker reach), 0 .. 100 */
+    double w_v;                 /* weight of f_v (gentle turns), 0 .. 100 */
+    double w_geo;               /* weight of f_geo (grow up), 0 .. 100 */
+    double w_grav;              /* weight of f_grav (long free stems fall), 0 .. 100 */
+    double w_helio;             /* weight of f_helio (grow towards light), 0 .. 100 */
+    double free_length;         /* unattached length after which f_grav acts and the free tip turns up, m, 0 .. 100 */
+    double bmax;                /* Bmax: an unattached run longer than this ends (p6), m, 0 .. 100 */
+
+    double gravity;             /* g, m/s^2, 0 .. 1000 (paper 9.8) */
+    double internode_mass;      /* mass of one internode with its leaf, kg, 0 .. 1000 */
+    double moment_max;          /* moment a joint holds before the stem sags, N m, 0 .. 1e6 */
+    double sag_step;            /* rotation increment of the sag correction, deg, 0.01 .. 90 */
+    double tip_elevation;       /* a free tip turns up to at least this angle above horizontal, deg, -90 .. 90 */
+
+    double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
+    double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
+    double stem_radius_max;     /* radius cap, m, >= stem_radius, 1e-5 .. 1 */
+    double leaf_scale;          /* drawn leaf size / shadow diameter, 0 .. 10 */
+    double leaf_lift;           /* leaf card offset off its stem along the surface normal, m, 0 .. 1 */
+    double stem_color[4];       /* linear RGBA of material "ivy_stem" */
+    double leaf_color[4];       /* linear RGBA of material "ivy_leaf" */
+    double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
+} banyan_ivy_params;
+
+/* What banyan_ivy_stats reports. Crossings and covered area are seen
+ * along the normal of each bud's nearest host face (docs/ivy.md). */
+typedef struct banyan_ivy_stats {
+    int32_t steps;              /* steps grown so far */
+    int32_t buds;               /* all buds, one leaf each */
+    int32_t by_state[5];        /* buds in A0, A1, A2, D, Z (banyan_ivy_bud_state order) */
+    int32_t attached;           /* buds with F set (within sucker reach, with a sucker) */
+    int32_t branch_points;      /* buds with a lateral branch (p3 firings) */
+    int32_t crossings;          /* stem crossings seen along the host normal */
+    int32_t reserved0;
+    double attached_fraction;   /* attached / buds */
+    double covered_area;        /* m^2: occupied stats_cell cells on host faces */
+    double density;             /* (branch_points + crossings) / covered_area, per m^2 */
+    double stem_length;         /* m, sum of internode lengths */
+    double step_seconds;        /* wall time spent in banyan_ivy_step so far */
+} banyan_ivy_stats;
+
+typedef struct banyan_ivy banyan_ivy;
+
+/* Defaults: the paper's Table 3 in metres (t0 = 20) and 450 steps; the
+ * start at (0, 0, 0.05), the bottom centre of the CLI's default wall. */
+BANYAN_API void banyan_ivy_params_init(banyan_ivy_params *params);
+BANYAN_API size_t banyan_sizeof_ivy_params(void);
+BANYAN_API size_t banyan_sizeof_ivy_stats(void);
+
+/* Checks params and hosts, snaps the start to the nearest host surface and
+ * plants the first bud. Errors: BANYAN_E_RANGE (a field, or t2 < t1),
+ * BANYAN_E_NO_HOSTS, BANYAN_E_BAD_HOST, BANYAN_E_START_FAR (start farther
+ * than start_snap_max from every host). On failure *out == NULL. The
+ * params and hosts are copied. */
+BANYAN_API banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts,
+                                           uint32_t n_hosts, banyan_ivy **out, banyan_error *err);
+
+/* Grows n more steps (0 .. BANYAN_IVY_MAX_STEPS). Refuses with
+ * BANYAN_E_LIMIT, before a step that could pass max_buds; the steps done
+ * before it are kept and the plant stays usable. */
+BANYAN_API banyan_status banyan_ivy_step(banyan_ivy *ivy, int32_t n, banyan_error *err);
+
+/* Meshes the plant as it is now: stem tubes (part 0, material "ivy_stem")
+ * and leaf cards (part 1, material "ivy_leaf", double-sided); attributes
+ * `birth_step` and `part` (0 stem, 1 leaf); skeleton of bud positions,
+ * internode edges, stem radii, skel_tag = banyan_ivy_bud_state. */
+BANYAN_API banyan_status banyan_ivy_mesh(const banyan_ivy *ivy, banyan_mesh **out, banyan_error *err);
+
+/* Fills *out with the plant's measures now (named get_stats because
+ * banyan_ivy_stats is the struct). Returns BANYAN_E_INVALID_ARG on
+ * NULL, BANYAN_E_NOMEM when the crossing count cannot allocate. */
+BANYAN_API banyan_status banyan_ivy_get_stats(const banyan_ivy *ivy, banyan_ivy_stats *out, banyan_error *err);
+
+/* Frees the handle; accepts NULL. */
+BANYAN_API void banyan_ivy_free(banyan_ivy *ivy);
+
+/* create + step(params->steps) + mesh + free. */
+BANYAN_API banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts,
+                                             uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

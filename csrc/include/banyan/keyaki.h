@@ -1,0 +1,220 @@
+/*
+ * banyan/keyaki.h - keyaki (Zelkova serrata) trees and avenues of them.
+ *
+ * Method: Ishii, Chiba, Saito, "Simulation of natural scenes: procedure
+ * modeling for trees" (spec/keyaki.md). A tree is a binary branching
+ * process grown level by level under one of four models (simple fork,
+ * strong/weak fork, twisted fork, branch-breaking "edaore" fork); the
+ * skeleton gets pipe-model radii, tapered tubes and optional leaf cards.
+ * An avenue places many trees along a line or polyline, generated in
+ * parallel. See docs/keyaki.md for every rule and choice.
+ *
+ * Keyaki takes no hosts: a tree stands at `position` and grows up +Z.
+ *
+ * Lengths: every length field marked "unit" is multiplied by `unit`
+ * (metres), so `unit` scales the whole tree and keeps its proportions.
+ */
+#ifndef BANYAN_KEYAKI_H
+#define BANYAN_KEYAKI_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The four branching models of spec/keyaki.md, in the paper's order. */
+typedef enum banyan_keyaki_model {
+    BANYAN_KEYAKI_SIMPLE = 0,      /* model 1: rules 1-4 */
+    BANYAN_KEYAKI_STRONG_WEAK = 1, /* model 2: rules 1-3, 5 */
+    BANYAN_KEYAKI_TWISTED = 2,     /* model 3: rules 1, 3, 5, 6 */
+    BANYAN_KEYAKI_EDAORE = 3       /* model 4: rules 1, 3, 4, 7-10 (default) */
+} banyan_keyaki_model;
+
+/* Rule 7: how the edaore split ratio is drawn from the ten values
+ * 0.05:0.95, 0.15:0.85, ..., 0.95:0.05 (index k = 0..9).
+ *   UNIFORM: k = rng_below(10).
+ *   NORMAL:  k = floor(10 * (u1 + u2 + u3) / 3), u uniform in [0, 1):
+ *            an Irwin-Hall bell centred between k = 4 and k = 5 (0.5:0.5). */
+typedef enum banyan_keyaki_distribution {
+    BANYAN_KEYAKI_UNIFORM = 0,
+    BANYAN_KEYAKI_NORMAL = 1
+} banyan_keyaki_distribution;
+
+/* Branch lengths of models 2 and 3. EQUAL: every branch is segment_length
+ * (rule 4). ENERGY: the children of a split e1:e2 get lengths in the ratio
+ * 1/e1 : 1/e2 with mean segment_length (so 1:1 keeps segment_length),
+ * the ratio capped at max_length_ratio. */
+typedef enum banyan_keyaki_length_rule {
+    BANYAN_KEYAKI_LENGTH_EQUAL = 0,
+    BANYAN_KEYAKI_LENGTH_ENERGY = 1
+} banyan_keyaki_length_rule;
+
+/* Rule 2 (models 1 and 2): the fork plane of a tilted parent d.
+ * STEEPEST: the plane in which d is the line of steepest slope, i.e. the
+ *           plane through d and the horizontal perpendicular Z x d (the
+ *           children spread sideways at equal height; rule 2 as stated).
+ * VERTICAL: the vertical plane through d (the spec's "in other words"
+ *           reading; every tree of models 1 and 2 is then a flat fan).
+ * A vertical parent gets a random heading under both. */
+typedef enum banyan_keyaki_fork_plane {
+    BANYAN_KEYAKI_PLANE_STEEPEST = 0,
+    BANYAN_KEYAKI_PLANE_VERTICAL = 1
+} banyan_keyaki_fork_plane;
+
+/* Models 3 and 4: which child of a fork is the strong one (the spec says
+ * only that the twist turns "the way that raises the strong child").
+ * UPPER:  the child that ends higher; the twist sense raises it most.
+ *         Strong children stand up: a central leader, a narrow crown.
+ * RANDOM: a side of the fork plane drawn 50:50 at each fork (also the
+ *         survivor's side at a break); the twist sense raises that child.
+ *         The crown opens like a wine glass. From tilt_mid on (leaning
+ *         parents) the upper child is strong, so branches do not hang. */
+typedef enum banyan_keyaki_strong_side {
+    BANYAN_KEYAKI_SIDE_UPPER = 0,
+    BANYAN_KEYAKI_SIDE_RANDOM = 1
+} banyan_keyaki_strong_side;
+
+/* Hard caps, documented so callers can plan. */
+#define BANYAN_KEYAKI_MAX_LEVELS 30  /* levels 1 .. 30 */
+#define BANYAN_KEYAKI_MAX_ORDER 32   /* Strahler orders never exceed levels + 1 */
+#define BANYAN_AVENUE_MAX_TREES 10000
+
+typedef struct banyan_keyaki_params {
+    uint64_t seed;           /* any value; the tree's PCG32 streams derive from it */
+    int32_t max_vertices;    /* 1 .. 2^30; refuse (BANYAN_E_LIMIT) beyond it. Default 4,000,000 */
+    int32_t max_nodes;       /* 1 .. 2^24 skeleton branches; refuse (BANYAN_E_LIMIT) beyond. Default 1,000,000 */
+
+    /* --- placement */
+    double position[3];      /* m, each within +-1e6: trunk base. Default origin */
+    double heading;          /* deg, -360 .. 360: turns the whole tree about its trunk. Default 0 */
+    double unit;             /* m, 1e-3 .. 1e3: multiplies every "unit" length. Default 1 */
+
+    /* --- growth (spec "Common terms", models 1-4) */
+    int32_t model;           /* banyan_keyaki_model. Default EDAORE */
+    int32_t levels;          /* L_max, 1 .. 30: forks from trunk to tip. Default 21 */
+    double trunk_length;     /* unit, 0.01 .. 100: bole below the level-1 fork. Default 0.8 */
+    double segment_length;   /* unit, 0.01 .. 100: length of one level (rule 4). Default 0.8 */
+    double fork_angle;       /* deg, 0 .. 90: each child's angle from its parent at level 1 (rule 3). Default 15 */
+    double fork_angle_step;  /* deg, -10 .. 10: added per level; the angle at level l is
+                                fork_angle + step * (l - 1), which must stay within 0 .. 90. Default 1 */
+    int32_t fork_plane;      /* banyan_keyaki_fork_plane, models 1-2 (rule 2). Default STEEPEST */
+    /* models 2 and 3 (rule 5) */
+    double strong_probability; /* 0 .. 1: p, the chance of a strong/weak split (7:3 and 3:7 share it). Default 0.5 */
+    double strong_ratio;     /* 0.5 .. 0.95: the strong child's share at such a split (0.7 = 7:3). Default 0.7 */
+    double stop_energy;      /* 0 .. 1: a branch with less energy stops forking. Default 0.01 */
+    int32_t length_rule;     /* banyan_keyaki_length_rule. Default ENERGY */
+    double max_length_ratio; /* 1 .. 10: cap of the weak:strong length ratio. Default 3 */
+    /* models 3 and 4: twist of the fork plane about the parent (rules 6, 10) */
+    double twist;            /* deg, 0 .. 90: tau; model 3 always, model 4 below tilt_mid. Default 35 */
+    double twist_mid;        /* deg, 0 .. 90: model 4 twist for tilt_mid <= tilt < tilt_high. Default 15 */
+    double twist_high;       /* deg, 0 .. 90: model 4 twist from tilt_high. Default 0 */
+    double tilt_mid;         /* deg, 0 .. 180: parent tilt from vertical where twist_mid starts. Default 30 */
+    double tilt_high;        /* deg, 0 .. 180, >= tilt_mid: where twist_high starts. Default 60 */
+    int32_t strong_side;     /* banyan_keyaki_strong_side, models 3-4. Default RANDOM */
+    /* model 4 (rules 7-9) */
+    int32_t distribution;    /* banyan_keyaki_distribution. Default UNIFORM */
+    double alpha;            /* 1.001 .. 10: break threshold T(l) = alpha^-l. Default 1.3 */
+    double springback;       /* 0 .. 1: s; a survivor's angle is angle * (1 - s * (1 - l / L_max)). Default 1 */
+
+    /* --- body (beyond the paper) */
+    double tip_radius;       /* unit, 1e-4 .. 10: pipe-model radius of a tip branch. Default 0.045 */
+    double pipe_exponent;    /* 1 .. 4: p in r_parent^p = sum r_child^p. Default 2.5 */
+    double tip_taper;        /* 0.05 .. 1: end radius of a tip as a fraction of tip_radius. Default 0.5 */
+    int32_t sides_max;       /* 3 .. 64: tube sides of the trunk. Default 14 */
+    int32_t sides_min;       /* 3 .. 64, <= sides_max: tube sides of the thinnest branches. Default 4 */
+    int32_t leaves;          /* bool: leaf cards. Default true */
+    int32_t leaf_levels;     /* 0 .. 30: branches within this many levels of a tip carry leaves. Default 4 */
+    double leaf_density;     /* cards per unit of branch length (per metre at unit 1), 0 .. 100. Default 4 */
+    double leaf_size;        /* unit, 0.01 .. 10: card edge. Default 0.5 */
+    double bark_color[4];    /* linear RGBA. Default grey-brown */
+    double leaf_color[4];    /* linear RGBA. Default green */
+} banyan_keyaki_params;
+
+/* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
+BANYAN_API void banyan_keyaki_params_init(banyan_keyaki_params *p);
+BANYAN_API size_t banyan_sizeof_keyaki_params(void);
+
+/* Grows and meshes one tree. Refuses bad params (BANYAN_E_RANGE naming the
+ * field), more than max_nodes branches or max_vertices vertices
+ * (BANYAN_E_LIMIT, before the mesh is allocated).
+ * The mesh: part 0 bark (material 0, "keyaki_bark"), part 1 leaves
+ * (material 1, "keyaki_leaf", double sided; absent without leaves); every
+ * part has group 0. Attributes: tree_id (0), level (the branch's level,
+ * 0 = trunk), order (its Strahler order). Skeleton: point 0 is the trunk
+ * base, point i+1 the end of branch i; one edge per branch; skel_tag =
+ * level | order << 8 | broken << 16 (broken: the branch's fork broke). */
+BANYAN_API banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out,
+                                                banyan_error *err);
+
+/* Topology of the final skeleton (after breaks). */
+typedef struct banyan_keyaki_statistics {
+    int32_t node_count;       /* branches (straight segments), trunk included */
+    int32_t tip_count;        /* branches without children */
+    int32_t fork_count;       /* branches with two children */
+    int32_t break_count;      /* forks where the weak child broke off (model 4) */
+    int32_t max_level;        /* deepest level reached */
+    int32_t max_order;        /* K: the trunk's Strahler order */
+    int32_t stream_count[BANYAN_KEYAKI_MAX_ORDER];   /* [k-1] = N_k, k = 1 .. K; 0 beyond */
+    double bifurcation_ratio[BANYAN_KEYAKI_MAX_ORDER]; /* [k-1] = N_k / N_{k+1}, k = 1 .. K-1; 0 beyond */
+    double mean_bifurcation_ratio; /* mean of the K-1 ratios; 0 when K == 1 */
+    double height;            /* m: highest branch end above position[2] */
+    double crown_width;       /* m: twice the largest horizontal distance of a branch end from the trunk base */
+    double mean_run_length;   /* levels: mean length of a run of single branches between real forks */
+} banyan_keyaki_statistics;
+
+BANYAN_API size_t banyan_sizeof_keyaki_statistics(void);
+
+/* Grows the skeleton only (no mesh) and measures it: fast enough for
+ * thousands of trees. max_vertices and the body fields are not used. */
+BANYAN_API banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_statistics *out,
+                                             banyan_error *err);
+
+/* ------------------------------------------------------------- avenues */
+
+typedef enum banyan_avenue_placement {
+    BANYAN_AVENUE_SPACING = 0, /* trees every `spacing` metres, centred on the path */
+    BANYAN_AVENUE_COUNT = 1    /* `count` trees per row, first and last at the path's ends */
+} banyan_avenue_placement;
+
+typedef struct banyan_avenue_params {
+    uint64_t seed;           /* base seed: tree i uses seed + i */
+    int32_t max_vertices;    /* 1 .. 2^30, over the whole avenue. Default 4,000,000 */
+    double start[3];         /* m: the path's first point when no polyline is given. Default (0,0,0) */
+    double end[3];           /* m: its last point. Default (60,0,0) */
+    int32_t rows;            /* 1 .. 2. Default 2 */
+    double row_offset;       /* m, 0 .. 1000: distance between the two rows (each at +-half from the path). Default 12 */
+    int32_t stagger;         /* bool: shift row 2 by half a spacing. Default false */
+    int32_t placement;       /* banyan_avenue_placement. Default SPACING */
+    double spacing;          /* m, 0.1 .. 1e4. Default 8 */
+    int32_t count;           /* trees per row, 1 .. 10000 (COUNT). Default 10 */
+    double heading_jitter;   /* deg, 0 .. 180: heading uniform in +-this. Default 180 (any) */
+    double height_jitter;    /* 0 .. 0.9: trunk_length scaled by 1 + uniform(+-this). Default 0.15 */
+    double position_jitter;  /* m, 0 .. 100: offset uniform in a disc of this radius. Default 0.3 */
+    banyan_keyaki_params tree; /* every tree; seed, max_vertices, position and heading are set per tree */
+} banyan_avenue_params;
+
+BANYAN_API void banyan_avenue_params_init(banyan_avenue_params *p);
+BANYAN_API size_t banyan_sizeof_avenue_params(void);
+
+/* The per-tree params of an avenue, in tree order (row 0 along the path,
+ * then row 1). path_xyz: 3 * path_point_count metres (2 .. 1e6 points,
+ * finite, consecutive points distinct), or NULL for the start-end line.
+ * trees may be NULL (capacity 0) to count only; *tree_count gets the
+ * count (at most BANYAN_AVENUE_MAX_TREES, else BANYAN_E_LIMIT). */
+BANYAN_API banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *path_xyz,
+                                              uint32_t path_point_count, banyan_keyaki_params *trees,
+                                              uint32_t capacity, uint32_t *tree_count, banyan_error *err);
+
+/* Grows every tree of the avenue on `threads` threads (0 = all cores,
+ * 1 .. 256 otherwise) and merges them into one mesh. The output does not
+ * depend on the thread count. Tree i's vertices are contiguous; its parts
+ * (bark, material 0; leaves, material 1) have group = i; attribute
+ * tree_id = i. The skeletons are merged the same way. */
+BANYAN_API banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz,
+                                                uint32_t path_point_count, int32_t threads, banyan_mesh **out,
+                                                banyan_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

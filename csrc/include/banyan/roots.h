@@ -1,0 +1,110 @@
+/*
+ * banyan/roots.h - strangler-fig roots around host boxes (spec roots.md,
+ * after Honma 2011): six main roots grow from a germination point G by a
+ * sphere walk down and around the hosts, first branch roots join
+ * neighbouring main roots like belts, second branch roots cross-link the
+ * belts, and the whole net is swept into tubes. See docs/roots.md.
+ *
+ * Lengths marked "unit" are multiples of `unit` (the paper's bare
+ * numbers); lengths marked "m" are metres. Bools and counts are int32_t.
+ */
+#ifndef BANYAN_ROOTS_H
+#define BANYAN_ROOTS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct banyan_roots_params {
+    uint64_t seed;                /* any value; same seed -> same bytes */
+    double unit;                  /* m, 1e-4 .. 100: the paper's length unit u [0.05] */
+    double radius;                /* unit, 0.001 .. 100: root radius r = radius * unit [0.8] */
+    int32_t sides;                /* 4 .. 256 and even: tube sides n [8] */
+    int32_t main_roots;           /* 1 .. 64: number of main roots [6] */
+    int32_t growth_points;        /* 2 .. 10000: growth points per main root B [40] */
+    int32_t moves;                /* 1 .. 100: sphere moves per growth point [5] */
+    double forward_min;           /* unit, 0 .. 1000: forward draw I(min <= x <= max) [0] */
+    double forward_max;           /* unit, 0 .. 1000, >= forward_min [4] */
+    double lateral;               /* unit, 0 .. 1000: lateral draw I(-l <= x <= l) [4] */
+    double start_radius;          /* unit, 0.01 .. 1000: circle around G holding M(a,1) [2] */
+    double descent;               /* m, 0 .. 1000: length of U in V = S - Lambda - U [1] */
+    int32_t branch_start;         /* 1 .. 10000: first-branch start index b (1-based) [4] */
+    int32_t branch_spacing;       /* 1 .. 10000: first-branch spacing [5] */
+    double branch_vertical;       /* unit, 0 .. 1000: Bezier vertical draw +-v [15] */
+    int32_t branch_samples;       /* 3 .. 1001: growth points per first branch root [21] */
+    double branch_jitter;         /* unit, 0 .. 1000: vertical jitter I(-j <= x <= j) per point [1.5] */
+    double second_lateral;        /* unit, 0 .. 1000: second-branch lateral draw +-l [20] */
+    int32_t second_samples;       /* 2 .. 1001: growth points per second branch root [6] */
+    int32_t bezier_uniform;       /* bool: draw the Bezier offsets uniformly in [-v, v] instead of the
+                                     spec's I(-v, v) pick of -v or +v [0] */
+    double color[4];              /* linear RGBA 0..1: vertex and material colour */
+    int32_t first_branches;       /* bool: grow first branch roots [1] */
+    int32_t second_branches;      /* bool: grow second branch roots [1] */
+    int32_t correction;           /* bool: bend main roots at first branches (spec 3) [1] */
+    int32_t smoothing;            /* bool: junction smoothing of first branch roots (spec 5) [1] */
+    int32_t hugging;              /* bool: surface hugging; 0 = the paper's stop-on-contact [1] */
+    double hug_range;             /* multiples of r, 1 .. 100: a face this near pulls the root [3] */
+    double hug_pull;              /* 0 .. 100: weight of the down-the-face direction added to V [1] */
+    double ground_step;           /* 0 .. 1: scale of a move's draws once a root crawls on the ground;
+                                     1 = the paper, lower keeps the ground net near the host [0.3] */
+    double junction_start_scale;  /* 0.1 .. 10: loop radius at a first branch's start, times r [1.15] */
+    double junction_end_scale;    /* 0.1 .. 10: loop radius at a first branch's end, times r [1.08] */
+    double junction_reach;        /* multiples of r, 1 .. 1e4: a junction loop reaches at most this far
+                                     along the main root from the junction (0.8x at the far end) [8] */
+    double junction_falloff;      /* 0.1 .. 10: exponent of the loop-to-round blend along the branch [3] */
+    int32_t main_taper;           /* bool: main roots thin away from G [0] */
+    double taper_end;             /* 0.05 .. 1: radius at a main root's tip, times r [0.5] */
+    double germination[3];        /* m, each -1e6 .. 1e6: G when germination_auto is 0 */
+    int32_t germination_auto;     /* bool: G = top centre of hosts[0] lifted by r [1] */
+    int32_t ground;               /* bool: the ground half-space z < ground_z is solid [1] */
+    double ground_z;              /* m, -1e6 .. 1e6 [0] */
+    int32_t max_vertices;         /* 1 .. 2^30: refuse (BANYAN_E_LIMIT) beyond this [4000000] */
+} banyan_roots_params;
+
+/* Measures of one generation (docs/roots.md, "Stats"). */
+typedef struct banyan_roots_stats {
+    uint32_t main_points;         /* growth points of main roots (B per root, G not counted) */
+    uint32_t first_points;        /* growth points of first branch roots */
+    uint32_t second_points;       /* growth points of second branch roots */
+    uint32_t repair_points;       /* points inserted so no segment cuts a host (all kinds) */
+    uint32_t first_roots;         /* first branch roots grown */
+    uint32_t first_reached;       /* of those, how many end exactly on M(a+1,b) */
+    uint32_t second_roots;        /* second branch roots grown */
+    uint32_t reroute_events;      /* first-branch 1-degree re-routing events */
+    uint32_t reroute_pushouts;    /* re-routes where a full turn found nothing: pushed out */
+    uint32_t second_pushouts;     /* second-branch points pushed out of a host */
+    uint32_t correction_pushouts; /* corrected main-root points pushed out of a host */
+    uint32_t mains_on_ground;     /* main roots that reached the ground */
+    double min_clearance;         /* m: least (distance to a host or the ground) over all skeleton points */
+    double radius;                /* m: r, for comparing with min_clearance */
+    uint32_t vertices;
+    uint32_t triangles;
+} banyan_roots_stats;
+
+/* Defaults from the spec (roots.md, "Parameters"). */
+BANYAN_API void banyan_roots_params_init(banyan_roots_params *p);
+BANYAN_API size_t banyan_sizeof_roots_params(void);
+BANYAN_API size_t banyan_sizeof_roots_stats(void);
+
+/* Grows the net around hosts[0..n_hosts-1] (n_hosts 1 .. BANYAN_MAX_HOSTS)
+ * and sweeps it into one mesh with attributes `root_kind` (0 main, 1 first
+ * branch, 2 second branch) and `root_id`, vertex colour, one material, and
+ * the skeleton (skel_tag = root kind). Refuses bad parameters
+ * (BANYAN_E_RANGE), no hosts (BANYAN_E_NO_HOSTS), bad boxes
+ * (BANYAN_E_BAD_HOST), G inside a host or below the ground
+ * (BANYAN_E_START_INSIDE) and meshes beyond max_vertices (BANYAN_E_LIMIT). */
+BANYAN_API banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts,
+                                               uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
+/* The same, also filling *stats when stats != NULL (zeroed on failure). */
+BANYAN_API banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,
+                                                     uint32_t n_hosts, banyan_mesh **out,
+                                                     banyan_roots_stats *stats, banyan_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

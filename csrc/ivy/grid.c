@@ -1,0 +1,301 @@
+/* Ivy look-ups (spec/ivy.md, "Light" and "Placement"): the spatial hash
+ * over bud positions that makes the light query cost the same at 100 buds
+ * and at 100,000, the light sum H0 / V_l itself, and the host queries of
+ * the random walk (nearest surface, collision, push-out).
+ *
+ * The hash has cells of leaf_max, the look-up radius, so a query reads
+ * the 27 cells around a point. Buckets hold singly linked chains through
+ * a compact copy of each bud (ivy_gnode); each copy keeps its cell so that
+ * two cells sharing a bucket are told apart and nothing is counted twice.
+ *
+ * Shade at a point never falls while buds stay put (leaves only grow, buds
+ * are only added), so a bud found too shaded stays so until a bud within
+ * leaf_max of it (or of one of its H1 buds) moves away. It keeps a flag;
+ * a move (the sag correction) clears the flags of the buds near the place
+ * it left, of the mover, and of their descendants whose H1 reads them.
+ * Waiting buds then cost one test a step. This changes no result.
+ * This changes no result, only the cost of buds that wait in shade. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ivy_internal.h"
+
+/* ------------------------------------------------------------ hosts */
+
+static int face_of(const obb *o, v3 p) {
+    v3 l = obb_to_local(o, p);
+    double c[3] = {l.x, l.y, l.z};
+    int best = 0;
+    double q = fabs(c[0]) - o->h[0];
+    for (int k = 1; k < 3; k++) {
+        double t = fabs(c[k]) - o->h[k];
+        if (t > q) { q = t; best = k; }
+    }
+    return 2 * best + (c[best] >= 0 ? 1 : 0);
+}
+
+/* Is p farther than `margin` outside host h's world bounding box? Then it
+ * is farther than that from the host: the exact query can be skipped. */
+static int far_from(const banyan_ivy *iv, uint32_t h, v3 p, double margin) {
+    v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
+    return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
+           p.z < lo.z - margin || p.z > hi.z + margin;
+}
+
+void ivy_host_boxes(banyan_ivy *iv) {
+    for (uint32_t h = 0; h < iv->n_hosts; h++) {
+        const obb *o = &iv->hosts[h];
+        v3 e = v3_make(0, 0, 0);
+        for (int k = 0; k < 3; k++) {
+            e.x += fabs(o->ax[k].x) * o->h[k];
+            e.y += fabs(o->ax[k].y) * o->h[k];
+            e.z += fabs(o->ax[k].z) * o->h[k];
+        }
+        iv->box_lo[h] = v3_sub(o->c, e);
+        iv->box_hi[h] = v3_add(o->c, e);
+    }
+}
+
+double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap) {
+    double best = HUGE_VAL;
+    for (uint32_t h = 0; h < iv->n_grip; h++) {
+        if (far_from(iv, h, p, cap)) continue;
+        double d = obb_signed_distance(&iv->hosts[h], p);
+        if (d < best) best = d;
+    }
+    return best;
+}
+
+ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) {
+    ivy_near r = {HUGE_VAL, {0, 0, 1}, 0, 5};
+    for (uint32_t h = 0; h < n; h++) {
+        double d = obb_signed_distance(&iv->hosts[h], p);
+        if (d < r.dist) { r.dist = d; r.host = (int32_t)h; }
+    }
+    if (n) {
+        const obb *o = &iv->hosts[r.host];
+        obb_closest_surface(o, p, &r.normal);
+        r.face = face_of(o, p);
+    }
+    return r;
+}
+
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b) {
+    const double c = iv->p.clearance;
+    for (uint32_t h = 0; h < iv->n_hosts; h++) {
+        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
+        if (fmax(a.x, b.x) < lo.x - c || fmin(a.x, b.x) > hi.x + c || fmax(a.y, b.y) < lo.y - c ||
+            fmin(a.y, b.y) > hi.y + c || fmax(a.z, b.z) < lo.z - c || fmin(a.z, b.z) > hi.z + c)
+            continue;
+        if (obb_signed_distance(&iv->hosts[h], b) < iv->p.clearance) return 1;
+        if (obb_segment_hit(&iv->hosts[h], a, b, NULL)) return 1;
+    }
+    return 0;
+}
+
+v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
+    const double c = iv->p.clearance;
+    /* A few rounds: leaving one box may enter a neighbour. */
+    for (int round = 0; round < 4; round++) {
+        int moved = 0;
+        for (uint32_t h = 0; h < iv->n_hosts; h++) {
+            if (far_from(iv, h, p, c)) continue;
+            const obb *o = &iv->hosts[h];
+            /* Quick accept: clear of the box by c along one of its axes. */
+            v3 l = obb_to_local(o, p);
+            if (fabs(l.x) - o->h[0] >= c || fabs(l.y) - o->h[1] >= c || fabs(l.z) - o->h[2] >= c) continue;
+            if (obb_signed_distance(o, p) >= c) continue;
+            v3 n;
+            v3 s = obb_closest_surface(o, p, &n);
+            p = v3_madd(s, n, c);
+            moved = 1;
+        }
+        if (!moved) break;
+    }
+    return p;
+}
+
+ivy_near ivy_nearest(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv, p, iv->n_grip); }
+ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv, p, iv->n_hosts); }
+
+/* ------------------------------------------------------ spatial hash */
+
+static int32_t cell_coord(double v, double inv) {
+    double f = floor(v * inv);
+    if (!(f > -1e9)) f = -1e9; /* also catches NaN */
+    if (f > 1e9) f = 1e9;
+    return (int32_t)f;
+}
+
+static uint32_t bucket_of(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
+    uint32_t h = (uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ (uint32_t)z * 83492791u;
+    h ^= h >> 15;
+    h *= 0x2c1b3c6du;
+    h ^= h >> 12;
+    return h & iv->mask;
+}
+
+static void link_bud(banyan_ivy *iv, int32_t i) {
+    ivy_gnode *g = &iv->gn[i];
+    g->P = iv->buds[i].P;
+    g->step_c = iv->buds[i].step_c;
+    g->cell[0] = cell_coord(g->P.x, iv->inv_cell);
+    g->cell[1] = cell_coord(g->P.y, iv->inv_cell);
+    g->cell[2] = cell_coord(g->P.z, iv->inv_cell);
+    uint32_t k = bucket_of(iv, g->cell[0], g->cell[1], g->cell[2]);
+    g->next = iv->head[k];
+    iv->head[k] = i;
+}
+
+static void unlink_bud(banyan_ivy *iv, int32_t i) {
+    ivy_gnode *g = &iv->gn[i];
+    uint32_t k = bucket_of(iv, g->cell[0], g->cell[1], g->cell[2]);
+    int32_t *at = &iv->head[k];
+    while (*at >= 0 && *at != i) at = &iv->gn[*at].next;
+    if (*at == i) *at = g->next;
+    g->next = -1;
+}
+
+banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets) {
+    int32_t *h = malloc(sizeof(int32_t) * buckets);
+    if (!h) return BANYAN_E_NOMEM;
+    for (uint32_t i = 0; i < buckets; i++) h[i] = -1;
+    free(iv->head);
+    iv->head = h;
+    iv->mask = buckets - 1;
+    /* Relink in bud order: the chains are the same whatever the history. */
+    for (int32_t i = 0; i < iv->n; i++) link_bud(iv, i);
+    return BANYAN_OK;
+}
+
+void ivy_grid_insert(banyan_ivy *iv, int32_t i) {
+    /* Rehash (which links every bud, i included) at load 2; when that
+     * cannot allocate, the old table keeps working, only slower. */
+    if ((uint32_t)iv->n > 2u * (iv->mask + 1u) && iv->mask < (1u << 26) &&
+        ivy_grid_init(iv, 4u * (iv->mask + 1u)) == BANYAN_OK)
+        return;
+    link_bud(iv, i);
+}
+
+/* ------------------------------------------------ light cache upkeep */
+
+/* Bud i and its descendants up to h1_buds generations (whose H1 reads
+ * H0 at i) forget that they were too shaded, and wake up. */
+static void forget(banyan_ivy *iv, int32_t i) {
+    int32_t stack[2 * 64 + 2][2];
+    int32_t top = 0;
+    stack[top][0] = i;
+    stack[top++][1] = 0;
+    while (top > 0) {
+        top--;
+        int32_t j = stack[top][0], depth = stack[top][1];
+        ivy_bud *b = &iv->buds[j];
+        if (b->shaded && b->state != BANYAN_IVY_Z) iv->wake[iv->n_wake++] = j; /* it sleeps: wake it */
+        b->shaded = 0;
+        if (depth >= iv->p.h1_buds) continue;
+        for (int k = 0; k < 2; k++) {
+            int32_t c = iv->buds[j].child[k];
+            if (c >= 0) {
+                stack[top][0] = c;
+                stack[top++][1] = depth + 1;
+            }
+        }
+    }
+}
+
+/* Forgets every bud within leaf_max of one of olds[0..n-1]: one walk of
+ * the cells that the spheres around them touch. */
+static void forget_near(banyan_ivy *iv, const v3 *olds, int n) {
+    const double d = iv->p.leaf_max, dmax2 = d * d;
+    v3 lo = olds[0], hi = olds[0];
+    for (int k = 1; k < n; k++) {
+        lo = v3_make(fmin(lo.x, olds[k].x), fmin(lo.y, olds[k].y), fmin(lo.z, olds[k].z));
+        hi = v3_make(fmax(hi.x, olds[k].x), fmax(hi.y, olds[k].y), fmax(hi.z, olds[k].z));
+    }
+    const double ic = iv->inv_cell;
+    int32_t x0 = cell_coord(lo.x - d, ic), x1 = cell_coord(hi.x + d, ic), y0 = cell_coord(lo.y - d, ic),
+            y1 = cell_coord(hi.y + d, ic), z0 = cell_coord(lo.z - d, ic), z1 = cell_coord(hi.z + d, ic);
+    for (int32_t z = z0; z <= z1; z++)
+        for (int32_t y = y0; y <= y1; y++)
+            for (int32_t x = x0; x <= x1; x++)
+                for (int32_t j = iv->head[bucket_of(iv, x, y, z)]; j >= 0; j = iv->gn[j].next) {
+                    const ivy_gnode *g = &iv->gn[j];
+                    if (g->cell[0] != x || g->cell[1] != y || g->cell[2] != z) continue;
+                    for (int k = 0; k < n; k++)
+                        if (v3_len2(v3_sub(g->P, olds[k])) < dmax2) {
+                            forget(iv, j);
+                            break;
+                        }
+                }
+}
+
+void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t n) {
+    /* Shade falls only where a bud was: near its old place (for the buds
+     * there), and at its new place for itself. Movers that left the same
+     * cell share one walk (a stem's buds follow each other). */
+    enum { GROUP = 16 };
+    v3 olds[GROUP];
+    int32_t cell[3] = {0, 0, 0};
+    int ng = 0;
+    for (int32_t k = 0; k < n; k++) {
+        int32_t i = set[k];
+        ivy_bud *b = &iv->buds[i];
+        v3 o = b->P, p = q[k];
+        if (p.x == o.x && p.y == o.y && p.z == o.z) continue;
+        const int32_t *c = iv->gn[i].cell;
+        if (ng && (ng == GROUP || c[0] != cell[0] || c[1] != cell[1] || c[2] != cell[2])) {
+            forget_near(iv, olds, ng);
+            ng = 0;
+        }
+        if (!ng) memcpy(cell, c, sizeof cell);
+        olds[ng++] = o;
+        unlink_bud(iv, i);
+        b->P = p;
+        link_bud(iv, i);
+        forget(iv, i);
+    }
+    if (ng) forget_near(iv, olds, ng);
+}
+
+double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b) {
+    double age = (double)(iv->step - b->step_c) + 1.0;
+    double f = age / iv->p.leaf_growth_steps;
+    return iv->p.leaf_max * (f < 1.0 ? f : 1.0);
+}
+
+double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b) {
+    double r = iv->p.stem_radius + iv->p.stem_radius_growth * (double)(iv->step - b->step_c);
+    return r < iv->p.stem_radius_max ? r : iv->p.stem_radius_max;
+}
+
+double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
+    const double dmax = iv->p.leaf_max, dmax2 = dmax * dmax, inv_dmax = 1.0 / dmax;
+    const double grow = iv->p.leaf_max / iv->p.leaf_growth_steps;
+    const double ic = iv->inv_cell;
+    int32_t x0 = cell_coord(p.x - dmax, ic), x1 = cell_coord(p.x + dmax, ic), y0 = cell_coord(p.y - dmax, ic),
+            y1 = cell_coord(p.y + dmax, ic), z0 = cell_coord(p.z - dmax, ic), z1 = cell_coord(p.z + dmax, ic);
+    double H = 0.0;
+    v3 acc = v3_make(0, 0, 0);
+    for (int32_t z = z0; z <= z1; z++)
+        for (int32_t y = y0; y <= y1; y++)
+            for (int32_t x = x0; x <= x1; x++) {
+                for (int32_t j = iv->head[bucket_of(iv, x, y, z)]; j >= 0; j = iv->gn[j].next) {
+                    const ivy_gnode *b = &iv->gn[j];
+                    if (b->cell[0] != x || b->cell[1] != y || b->cell[2] != z || j == self) continue;
+                    v3 d = v3_sub(p, b->P);
+                    double d2 = v3_len2(d);
+                    if (d2 >= dmax2) continue;
+                    double dist = sqrt(d2);
+                    double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
+                    if (dl > dmax) dl = dmax;
+                    double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
+                    if (h <= 0) continue;
+                    H += h;
+                    if (H > stop) return H; /* the caller will not grow: V_l unused */
+                    if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
+                }
+            }
+    if (vl) *vl = v3_add(*vl, acc);
+    return H;
+}

@@ -1,0 +1,396 @@
+/* Ivy growth (spec/ivy.md, "Rules" and "Placement"): the parametric
+ * L-system p0..p6 applied bud by bud, and the directed random walk that
+ * places every new bud. One step = one pass over the buds that existed
+ * when the step began, in creation order; a bud placed earlier in the
+ * pass already shades and repels the ones placed after it (sequential
+ * rewriting keeps neighbouring tips from landing on the same spot). Then
+ * the sag correction runs (sag.c).
+ *
+ * Also the handle's life: create (checks, start snapping, first bud),
+ * step, free and the one-shot generate. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/error.h"
+#include "ivy_internal.h"
+
+static double now_seconds(void) {
+    struct timespec t;
+    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+/* sin and cos; for the small angles of the random walk a short series
+ * (error below 1e-11 for |x| <= 0.8) is several times cheaper than libm. */
+static void sin_cos(double x, double *s, double *c) {
+    if (fabs(x) > 0.8) {
+        *s = sin(x);
+        *c = cos(x);
+        return;
+    }
+    double x2 = x * x;
+    *s = x + x * x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 + x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800.0))))));
+    *c = 1 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 + x2 * (1.0 / 479001600.0 - x2 / 87178291200.0))))));
+}
+
+/* Rotation about the world X, then Y, then Z axis: R(theta_x, theta_y, theta_z). */
+static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
+    double c, s;
+    sin_cos(ax, &s, &c);
+    v = v3_make(v.x, c * v.y - s * v.z, s * v.y + c * v.z);
+    sin_cos(ay, &s, &c);
+    v = v3_make(c * v.x + s * v.z, v.y, -s * v.x + c * v.z);
+    sin_cos(az, &s, &c);
+    return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
+}
+
+/* The directed random walk from bud i along `base`: K candidates, host
+ * collisions discarded, the best of the weighted five fitness terms kept.
+ * Appends the new bud (state `st`, nourishment `N`) as child `slot` of
+ * bud i and returns its index, or -1 when every candidate collided. */
+static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, double N, int slot) {
+    const banyan_ivy_params *p = &iv->p;
+    ivy_bud *b = &iv->buds[i];
+    const int sucker = st != BANYAN_IVY_A2; /* the third apical bud has none */
+    const double l = p->internode, D = p->sucker_length, tm = deg2rad(p->theta_max);
+    const int grav_on = (b->run + 1) * l > p->free_length;
+    if (p->helio_in_plane) {
+        /* Stems on a wall spread along it: light comes off the wall for
+         * every bud alike, so only the tangential part of V_l steers. */
+        ivy_near nr = ivy_nearest(iv, b->P);
+        if (nr.dist <= D) vl = v3_sub(vl, v3_scale(nr.normal, v3_dot(vl, nr.normal)));
+    }
+    double vlen = v3_len(vl);
+    const int helio_on = vlen > 1e-12;
+    v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
+
+    double best = -HUGE_VAL, best_dist = 0;
+    v3 best_q = b->P, best_d = base;
+    for (int32_t k = 0; k < p->candidates; k++) {
+        double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
+        v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
+        v3 q = v3_madd(b->P, d, l);
+        if (ivy_blocked(iv, b->P, q)) continue;
+        double dist = ivy_grip_distance(iv, q, D);
+        int attach = sucker && dist <= D;
+        double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
+        double fv = (v3_dot(base, d) + 1.0) * 0.5;
+        double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
+        double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
+        double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
+        double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
+        if (f > best) {
+            best = f;
+            best_q = q;
+            best_d = d;
+            best_dist = dist;
+        }
+    }
+    if (best == -HUGE_VAL) return -1;
+
+    if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
+        /* The sucker draws the stem onto the surface: aim the internode at
+         * the point `clearance` off the surface below the candidate. */
+        ivy_near nr = ivy_nearest(iv, best_q);
+        v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
+        v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
+        v3 q = v3_madd(b->P, d, l);
+        if (!ivy_blocked(iv, b->P, q)) {
+            best_q = q;
+            best_d = d;
+            best_dist = ivy_grip_distance(iv, q, D);
+        }
+    }
+
+    int32_t j = iv->n++;
+    iv->act[iv->n_act++] = j;
+    ivy_bud *c = &iv->buds[j];
+    memset(c, 0, sizeof *c);
+    c->P = best_q;
+    c->V = best_d;
+    c->N = N;
+    c->state = st;
+    c->L = 1 - b->L;
+    c->sucker = sucker;
+    c->attached = sucker && best_dist <= D;
+    c->run = c->attached ? 0 : b->run + 1;
+    c->step_c = iv->step;
+    c->step_d = -1;
+    c->parent = i;
+    c->child[0] = c->child[1] = -1;
+    b->child[slot] = j;
+    ivy_grid_insert(iv, j);
+    return j;
+}
+
+static void end_bud(banyan_ivy *iv, ivy_bud *b) {
+    b->state = BANYAN_IVY_Z;
+    b->N = 0.0;
+    b->step_d = iv->step;
+    iv->active--;
+}
+
+/* One pass of the rules over the buds that exist now. */
+static int cmp_i32(const void *a, const void *b) {
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* The woken buds join the awake list, which stays in creation order. */
+static void wake_up(banyan_ivy *iv) {
+    if (!iv->n_wake) return;
+    qsort(iv->wake, (size_t)iv->n_wake, sizeof(int32_t), cmp_i32);
+    int32_t a = 0, w = 0, m = 0;
+    while (a < iv->n_act || w < iv->n_wake) {
+        if (w == iv->n_wake || (a < iv->n_act && iv->act[a] < iv->wake[w])) iv->merge[m++] = iv->act[a++];
+        else iv->merge[m++] = iv->wake[w++];
+    }
+    memcpy(iv->act, iv->merge, sizeof(int32_t) * (size_t)m);
+    iv->n_act = m;
+    iv->n_wake = 0;
+}
+
+static void rules(banyan_ivy *iv) {
+    const banyan_ivy_params *p = &iv->p;
+    wake_up(iv);
+    const int32_t n0 = iv->n_act;
+    for (int32_t k = 0; k < n0; k++) {
+        const int32_t i = iv->act[k];
+        ivy_bud *b = &iv->buds[i];
+        if (b->run > 0 && b->run * p->internode > p->bmax) { /* p6 */
+            end_bud(iv, b);
+            continue;
+        }
+        v3 vl = v3_make(0, 0, 0);
+        if (b->state == BANYAN_IVY_D) {
+            if (b->N < p->t2) { /* p5 */
+                b->N += p->beta;
+                continue;
+            }
+            /* p3 when H1 <= t0: H0 here plus H0 at the h1_buds buds before. */
+            if (b->shaded) continue;
+            double H = ivy_shade(iv, b->P, i, p->t0, &vl);
+            int32_t a = b->parent;
+            for (int32_t k = 0; k < p->h1_buds && a >= 0 && H <= p->t0; k++, a = iv->buds[a].parent)
+                H += ivy_shade(iv, iv->buds[a].P, a, p->t0 - H, NULL);
+            if (H > p->t0) {
+                b->shaded = 1;
+                continue;
+            }
+            v3 axis = ivy_nearest_any(iv, b->P).normal;
+            double ang = deg2rad(p->branch_angle) * (b->L ? 1.0 : -1.0);
+            v3 base = v3_norm_or(v3_rotate(b->V, axis, ang), b->V);
+            if (place(iv, i, base, vl, BANYAN_IVY_A0, b->N, 1) < 0) continue;
+            b = &iv->buds[i];
+            end_bud(iv, b); /* D -> Z, the new A0 takes its place among the active */
+            iv->active++;
+            iv->branch_points++;
+        } else {
+            if (b->N < p->t1) { /* p4 */
+                b->N += p->beta;
+                continue;
+            }
+            if (b->shaded) continue;
+            double H = ivy_shade(iv, b->P, i, p->t0, &vl);
+            if (H > p->t0) {
+                b->shaded = 1;
+                continue;
+            }
+            int32_t st = b->state;
+            double keep = st == BANYAN_IVY_A2 ? p->alpha * b->N : b->N;
+            if (place(iv, i, b->V, vl, (st + 1) % 3, keep, 0) < 0) continue;
+            b = &iv->buds[i];
+            iv->active++;
+            if (st == BANYAN_IVY_A2) { /* p2: the suckerless bud stays as a dormant bud */
+                b->state = BANYAN_IVY_D;
+                b->N = (1.0 - p->alpha) * b->N;
+            } else { /* p0, p1 */
+                end_bud(iv, b);
+            }
+        }
+    }
+    /* Drop the buds that ended or fell asleep; the list stays in creation
+     * order. */
+    int32_t m = 0;
+    for (int32_t k = 0; k < iv->n_act; k++) {
+        const ivy_bud *b = &iv->buds[iv->act[k]];
+        if (b->state != BANYAN_IVY_Z && !b->shaded) iv->act[m++] = iv->act[k];
+    }
+    iv->n_act = m;
+}
+
+static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
+    if (need <= iv->cap) return BANYAN_OK;
+    int64_t cap = iv->cap > 256 ? iv->cap : 256;
+    while (cap < need) cap *= 2;
+    if (cap > iv->p.max_buds) cap = need > iv->p.max_buds ? need : iv->p.max_buds;
+    ivy_bud *b = realloc(iv->buds, sizeof(ivy_bud) * (size_t)cap);
+    if (!b) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
+    iv->buds = b;
+    ivy_gnode *g = realloc(iv->gn, sizeof(ivy_gnode) * (size_t)cap);
+    if (!g) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
+    iv->gn = g;
+    int32_t *c = realloc(iv->chain, sizeof(int32_t) * (size_t)cap * 7);
+    if (!c) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
+    /* The awake and wake lists (at 4 and 5 caps) keep their contents: move
+     * them, the higher one first, to their places in the larger block. */
+    if (iv->cap) {
+        memmove(c + 5 * cap, c + 5 * (int64_t)iv->cap, sizeof(int32_t) * (size_t)iv->n_wake);
+        memmove(c + 4 * cap, c + 4 * (int64_t)iv->cap, sizeof(int32_t) * (size_t)iv->n_act);
+    }
+    iv->chain = c;
+    iv->moving = c + cap;
+    iv->stack = c + 2 * cap;
+    iv->sizes = c + 3 * cap;
+    iv->act = c + 4 * cap;
+    iv->wake = c + 5 * cap;
+    iv->merge = c + 6 * cap;
+    v3 *t = realloc(iv->tmp, sizeof(v3) * (size_t)cap * 3);
+    if (!t) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
+    iv->tmp = t;
+    iv->cap = (int32_t)cap;
+    return BANYAN_OK;
+}
+
+banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) {
+    if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
+    banyan_status s = banyan_check_int(err, "n (steps)", n, 0, BANYAN_IVY_MAX_STEPS);
+    if (s) return s;
+    double t0 = now_seconds();
+    for (int32_t k = 0; k < n; k++) {
+        /* Every growing bud adds at most one bud per step. */
+        int64_t worst = (int64_t)iv->n + iv->active;
+        if (worst > iv->p.max_buds) {
+            iv->step_seconds += now_seconds() - t0;
+            return banyan_fail(err, BANYAN_E_LIMIT,
+                               "max_buds = %d could be exceeded at step %d (%d buds, %d growing); raise max_buds or "
+                               "lower t0 or steps",
+                               iv->p.max_buds, iv->step + 1, iv->n, iv->active);
+        }
+        if ((s = reserve(iv, (int32_t)worst, err))) {
+            iv->step_seconds += now_seconds() - t0;
+            return s;
+        }
+        iv->step++;
+        rules(iv);
+        ivy_sag(iv);
+    }
+    iv->step_seconds += now_seconds() - t0;
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}
+
+void banyan_ivy_free(banyan_ivy *iv) {
+    if (!iv) return;
+    free(iv->hosts);
+    free(iv->box_lo);
+    free(iv->buds);
+    free(iv->gn);
+    free(iv->head);
+    free(iv->chain);
+    free(iv->tmp);
+    free(iv);
+}
+
+banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
+                                banyan_ivy **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_status s = ivy_params_check(params, err);
+    if (s) return s;
+    if (n_hosts == 0)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS, "n_hosts = 0: ivy needs at least one host box to climb");
+    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
+    if (n_hosts > BANYAN_MAX_HOSTS)
+        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
+    banyan_ivy *iv = calloc(1, sizeof *iv);
+    if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    iv->p = *params;
+    iv->hosts = malloc(sizeof(obb) * (n_hosts + 1));
+    iv->box_lo = malloc(sizeof(v3) * 2 * (n_hosts + 1));
+    iv->box_hi = iv->box_lo ? iv->box_lo + n_hosts + 1 : NULL;
+    if (!iv->hosts || !iv->box_lo) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    }
+    iv->n_hosts = iv->n_given = iv->n_grip = n_hosts;
+    if ((s = obb_from_boxes(hosts, n_hosts, iv->hosts, err))) {
+        banyan_ivy_free(iv);
+        return s;
+    }
+
+    /* Snap the start to the nearest given host surface, `clearance` off it. */
+    v3 start = v3_load(params->start);
+    ivy_near nr = ivy_nearest(iv, start);
+    if (nr.dist > params->start_snap_max) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_START_FAR,
+                           "start = (%g, %g, %g) is %g m from the nearest host surface (hosts[%d]); it must be within "
+                           "start_snap_max = %g m",
+                           start.x, start.y, start.z, nr.dist, nr.host, params->start_snap_max);
+    }
+    if (params->ground) {
+        /* The ground: the top face of a box far larger than the hosts. */
+        obb *g = &iv->hosts[iv->n_hosts++];
+        const double G = 1e5, depth = 1e3;
+        g->c = v3_make(iv->hosts[0].c.x, iv->hosts[0].c.y, params->ground_z - depth);
+        g->ax[0] = v3_make(1, 0, 0);
+        g->ax[1] = v3_make(0, 1, 0);
+        g->ax[2] = v3_make(0, 0, 1);
+        g->h[0] = g->h[1] = G;
+        g->h[2] = depth;
+        if (params->ground == 2) iv->n_grip++;
+    }
+    ivy_host_boxes(iv);
+    v3 nrm;
+    v3 surf = obb_closest_surface(&iv->hosts[nr.host], start, &nrm);
+    v3 P = ivy_push_out(iv, v3_madd(surf, nrm, params->clearance));
+    nr = ivy_nearest(iv, P);
+    /* First growth direction: up along the surface (sideways on a ceiling). */
+    v3 up = v3_make(0, 0, 1);
+    v3 V = v3_sub(up, v3_scale(nr.normal, v3_dot(up, nr.normal)));
+    V = v3_len(V) > 1e-6 ? v3_norm(V) : v3_any_perp(nr.normal);
+
+    if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024, err)) != BANYAN_OK) {
+        banyan_ivy_free(iv);
+        return s;
+    }
+    iv->inv_cell = 1.0 / (IVY_CELL_SCALE * params->leaf_max);
+    if (ivy_grid_init(iv, 1024) != BANYAN_OK) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    }
+    pcg32_seed(&iv->rng, params->seed, 0x1517);
+
+    ivy_bud *b = &iv->buds[0];
+    memset(b, 0, sizeof *b);
+    b->P = P;
+    b->V = V;
+    b->N = params->n_start;
+    b->state = BANYAN_IVY_A0;
+    b->sucker = 1;
+    b->attached = nr.dist <= params->sucker_length;
+    b->run = b->attached ? 0 : 1;
+    b->step_d = -1;
+    b->parent = b->child[0] = b->child[1] = -1;
+    iv->n = 1;
+    iv->active = 1;
+    iv->act[0] = 0;
+    iv->n_act = 1;
+    ivy_grid_insert(iv, 0);
+    *out = iv;
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}
+
+banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
+                                  banyan_mesh **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_ivy *iv = NULL;
+    banyan_status s = banyan_ivy_create(params, hosts, n_hosts, &iv, err);
+    if (s) return s;
+    s = banyan_ivy_step(iv, params->steps, err);
+    if (!s) s = banyan_ivy_mesh(iv, out, err);
+    banyan_ivy_free(iv);
+    return s;
+}

@@ -1,0 +1,123 @@
+/* ivy_internal.h - the ivy plant between steps (spec/ivy.md, "Buds"):
+ * a binary tree of buds in creation order, a spatial hash over bud
+ * positions for the light look-up, and the hosts. Shared by the ivy
+ * source files only. */
+#ifndef BANYAN_IVY_INTERNAL_H
+#define BANYAN_IVY_INTERNAL_H
+
+#include "banyan.h"
+#include "core/obb.h"
+#include "core/rng.h"
+#include "core/vec.h"
+
+/* Spatial hash cell edge, in units of leaf_max (the light look-up radius). */
+#ifndef IVY_CELL_SCALE
+#define IVY_CELL_SCALE 1.0
+#endif
+
+typedef struct ivy_bud {
+    v3 P;             /* position */
+    v3 V;             /* growth direction, unit */
+    double N;         /* nourishment */
+    int32_t state;    /* banyan_ivy_bud_state */
+    int32_t L;        /* leaf side 0/1 */
+    int32_t attached; /* F */
+    int32_t sucker;   /* has a sucker (born A0 or A1) */
+    int32_t run;      /* unattached buds from the last attached ancestor to here; 0 when attached */
+    int32_t step_c;   /* step it was created */
+    int32_t step_d;   /* step it became Z, -1 while alive */
+    int32_t parent;   /* -1 for the first bud */
+    int32_t child[2]; /* continuation, lateral; -1 when none */
+    /* Light cache: found too shaded to grow, and no bud near it (or near
+     * its H1 buds) has moved away since (grid.c). */
+    int32_t shaded;
+    int32_t mark;     /* scratch of the sag correction */
+} ivy_bud;
+
+/* The spatial hash's copy of a bud: compact, so chain walks stay in cache. */
+typedef struct ivy_gnode {
+    v3 P;
+    int32_t step_c;
+    int32_t next;     /* chain */
+    int32_t cell[3];  /* cell coordinates */
+    int32_t pad;
+} ivy_gnode;
+
+struct banyan_ivy {
+    banyan_ivy_params p;
+    obb *hosts;
+    uint32_t n_hosts;      /* the given hosts, then the ground when params.ground: stems keep out of all */
+    uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */
+    uint32_t n_given;      /* the given hosts */
+    v3 *box_lo, *box_hi;   /* world bounding boxes of the hosts (quick rejection) */
+
+    ivy_bud *buds;
+    int32_t n, cap;
+    int32_t active;        /* buds in A0, A1, A2 or D */
+    int32_t *act, n_act;   /* those that are awake, in creation order (plus ones that ended or
+                              fell asleep this step): a bud known too shaded sleeps until
+                              the light cache forgets it */
+    int32_t *wake, n_wake; /* buds woken since the last step, to merge into act */
+    int32_t *merge;        /* scratch for the merge */
+    int32_t branch_points; /* p3 firings */
+    int32_t step;          /* steps done */
+    double step_seconds;
+
+    /* Spatial hash: cells of IVY_CELL_SCALE * leaf_max. */
+    ivy_gnode *gn;         /* one per bud */
+    int32_t *head;         /* bucket chains */
+    uint32_t mask;
+    double inv_cell;
+
+    /* Scratch for the sag correction: cap entries each (tmp: 3 cap). */
+    int32_t *chain, *moving, *stack, *sizes;
+    v3 *tmp;
+    int32_t scratch_cap;
+
+    pcg32 rng;
+};
+
+/* Nearest surface that suckers grip (the given hosts, and the ground when
+ * it is a host) of p: distance (< 0 inside), outward normal there, host
+ * index and face (0..5: -x, +x, -y, +y, -z, +z of that host). */
+typedef struct ivy_near {
+    double dist;
+    v3 normal;
+    int32_t host, face;
+} ivy_near;
+ivy_near ivy_nearest(const banyan_ivy *iv, v3 p);
+/* The same over the first n hosts; over all of them (the ground too,
+ * whatever its kind): the surface a stem or leaf lies on. */
+ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n);
+ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p);
+/* Signed distance to the nearest gripped surface when it is at most
+ * `cap`; HUGE_VAL or some value > cap otherwise (cheaper: no normal). */
+double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap);
+/* Fills box_lo / box_hi from the hosts. */
+void ivy_host_boxes(banyan_ivy *iv);
+/* Does the segment a-b meet a host or the ground, or end closer than
+ * `clearance` to one? */
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b);
+/* p pushed out of every host to `clearance` off the nearest surface. */
+v3 ivy_push_out(const banyan_ivy *iv, v3 p);
+
+/* Spatial hash (grid.c). */
+banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets);
+void ivy_grid_insert(banyan_ivy *iv, int32_t i); /* after iv->n counts bud i; may rehash */
+/* Moves buds set[k] to q[k] (k < n) and upkeeps the light cache. */
+void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t n);
+/* Shade at p from every bud within leaf_max but `self`: returns H0, and
+ * adds the light vector V_l to *vl when vl != NULL. Stops early once H0
+ * passes `stop` (*vl is then left as it was: the bud will not grow). */
+double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
+/* Diameter of bud i's leaf (and shadow) at the current step. */
+double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
+double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
+
+/* Sag correction of every dangling stem (sag.c). */
+void ivy_sag(banyan_ivy *iv);
+
+/* Checks params (table ranges and cross-field rules). */
+banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err);
+
+#endif

@@ -1,0 +1,135 @@
+/* Ivy parameters: defaults (the paper's Table 3, spec/ivy.md "Defaults",
+ * converted from millimetres to metres), the parameter table that presets,
+ * --set and the add-on use, and the checks that tie fields together. */
+#include <string.h>
+
+#include "core/error.h"
+#include "ivy_internal.h"
+#include "params/params.h"
+
+#define S banyan_ivy_params
+
+const banyan_param_info ivy_table_rows[] = {
+    BP_SEED(S, seed, "random seed; the same seed gives the same bytes"),
+    BP_INT(S, max_vertices, 1, 1073741824, "mesh vertex cap; a larger mesh is refused with BANYAN_E_LIMIT"),
+    BP_INT(S, steps, 0, BANYAN_IVY_MAX_STEPS, "growth steps (paper: 450)"),
+    BP_INT(S, max_buds, 1, 50000000, "bud cap; a step that could pass it is refused with BANYAN_E_LIMIT"),
+    BP_INT(S, candidates, 1, 1000, "K, random-walk candidates tried for each new bud"),
+    BP_INT(S, h1_buds, 0, 64, "buds before a dormant bud on its stem whose H0 adds into H1"),
+    BP_INT(S, leaf_growth_steps, 1, 100000, "steps a leaf and its shadow take to reach leaf_max"),
+    BP_BOOL(S, sucker_pull, "a bud that attaches is drawn to clearance off the surface by its sucker"),
+    BP_BOOL(S, leaves, "emit leaf cards"),
+    BP_INT(S, stem_sides, 3, 64, "sides of a stem tube"),
+    BP_BOOL(S, helio_in_plane, "for a bud within sucker reach, the light vector is taken along the surface"),
+    BP_ENUM(S, ground, "none|obstacle|host",
+            "the plane z = ground_z: absent, an obstacle stems rest on, or a host suckers grip as well"),
+    BP_VEC3(S, start, "m", -1e6, 1e6, "growth start; snapped to the nearest host surface"),
+    BP_DOUBLE(S, start_snap_max, "m", 0, 1e6, "farthest the start may be from every host (the ground does not count)"),
+    BP_DOUBLE(S, ground_z, "m", -1e6, 1e6, "height of the ground plane"),
+    BP_DOUBLE(S, internode, "m", 0.001, 10, "l, internode length (paper 30 mm)"),
+    BP_DOUBLE(S, sucker_length, "m", 0, 10, "D, sucker reach: a bud within it of a surface attaches (paper 30 mm)"),
+    BP_DOUBLE(S, clearance, "m", 1e-5, 1, "gap a stem keeps from host surfaces (> 0: a stem on a face must not count as inside it)"),
+    BP_DOUBLE(S, leaf_max, "m", 0.001, 10, "d_max, largest leaf and shadow diameter; light look-up radius (paper 60 mm)"),
+    BP_DOUBLE(S, t0, "", 0, 1e6, "light threshold on H0 and H1: larger lets buds grow in more shade (paper 15 or 20)"),
+    BP_DOUBLE(S, t1, "", 0, 1e6, "nourishment an apical bud needs to grow (paper 0.2)"),
+    BP_DOUBLE(S, t2, "", 0, 1e6, "nourishment a dormant bud needs to sprout; at least t1 (paper 2.0)"),
+    BP_DOUBLE(S, alpha, "", 0.5, 1, "apical dominance: share of nourishment the apex keeps at p2 (paper 0.8)"),
+    BP_DOUBLE(S, beta, "", 0, 1000, "nourishment a waiting bud gains per step (paper 0.05)"),
+    BP_DOUBLE(S, n_start, "", 0, 1e6, "nourishment of the first bud"),
+    BP_DOUBLE(S, theta_max, "deg", 0, 180, "largest turn about each axis of a random-walk candidate"),
+    BP_DOUBLE(S, branch_angle, "deg", 0, 180, "R(theta) of rule p3: angle of a lateral branch off its stem"),
+    BP_DOUBLE(S, w_d, "", 0, 100, "weight of f_d, staying within sucker reach of a surface"),
+    BP_DOUBLE(S, w_v, "", 0, 100, "weight of f_v, gentle turns"),
+    BP_DOUBLE(S, w_geo, "", 0, 100, "weight of f_geo, growing against gravity"),
+    BP_DOUBLE(S, w_grav, "", 0, 100, "weight of f_grav, long unattached stems falling"),
+    BP_DOUBLE(S, w_helio, "", 0, 100, "weight of f_helio, growing towards light (curbs crossings)"),
+    BP_DOUBLE(S, free_length, "m", 0, 100, "unattached length after which f_grav acts and the free tip turns up"),
+    BP_DOUBLE(S, bmax, "m", 0, 100, "Bmax: a longer unattached run ends (rule p6)"),
+    BP_DOUBLE(S, gravity, "m/s^2", 0, 1000, "g (paper 9.8)"),
+    BP_DOUBLE(S, internode_mass, "kg", 0, 1000, "mass of one internode with its leaf"),
+    BP_DOUBLE(S, moment_max, "N m", 0, 1e6, "moment a joint holds before an unattached stem sags"),
+    BP_DOUBLE(S, sag_step, "deg", 0.01, 90, "rotation increment of the sag correction"),
+    BP_DOUBLE(S, tip_elevation, "deg", -90, 90, "a free stem tip turns up to at least this angle above horizontal"),
+    BP_DOUBLE(S, stem_radius, "m", 1e-5, 1, "r0, stem radius at birth"),
+    BP_DOUBLE(S, stem_radius_growth, "m", 0, 1, "k, stem radius added per step of age"),
+    BP_DOUBLE(S, stem_radius_max, "m", 1e-5, 1, "largest stem radius; at least stem_radius"),
+    BP_DOUBLE(S, leaf_scale, "", 0, 10, "drawn leaf size over shadow diameter"),
+    BP_DOUBLE(S, leaf_lift, "m", 0, 1, "leaf card offset off its stem along the surface normal (petiole)"),
+    BP_COLOR(S, stem_color, "base colour of material ivy_stem (linear RGBA)"),
+    BP_COLOR(S, leaf_color, "base colour of material ivy_leaf (linear RGBA)"),
+    BP_DOUBLE(S, stats_cell, "m", 0.001, 100, "grid cell of the covered-area measure"),
+};
+const int32_t ivy_table_row_count = (int32_t)(sizeof ivy_table_rows / sizeof ivy_table_rows[0]);
+const size_t ivy_table_params_size = sizeof(banyan_ivy_params);
+
+void banyan_ivy_params_init(banyan_ivy_params *p) {
+    if (!p) return;
+    memset(p, 0, sizeof *p);
+    p->seed = 1;
+    p->max_vertices = 4000000;
+    p->steps = 450;
+    p->max_buds = 2000000;
+    p->candidates = 10;
+    p->h1_buds = 2;
+    p->leaf_growth_steps = 20;
+    p->sucker_pull = 1;
+    p->leaves = 1;
+    p->stem_sides = 6;
+    p->helio_in_plane = 1;
+    p->ground = 1;
+    p->ground_z = 0.0;
+    p->start[0] = 0.0;
+    p->start[1] = 0.0;
+    p->start[2] = 0.05;
+    p->start_snap_max = 0.5;
+    p->internode = 0.03;
+    p->sucker_length = 0.03;
+    p->clearance = 0.004;
+    p->leaf_max = 0.06;
+    p->t0 = 20.0;
+    p->t1 = 0.2;
+    p->t2 = 2.0;
+    p->alpha = 0.8;
+    p->beta = 0.05;
+    p->n_start = 2.0;
+    p->theta_max = 30.0;
+    p->branch_angle = 45.0;
+    p->w_d = 1.0;
+    p->w_v = 1.0;
+    p->w_geo = 1.0;
+    p->w_grav = 1.0;
+    p->w_helio = 1.0;
+    p->free_length = 0.1;
+    p->bmax = 0.6;
+    p->gravity = 9.8;
+    p->internode_mass = 0.001;
+    p->moment_max = 0.003;
+    p->sag_step = 2.0;
+    p->tip_elevation = 20.0;
+    p->stem_radius = 0.0015;
+    p->stem_radius_growth = 0.00002;
+    p->stem_radius_max = 0.008;
+    p->leaf_scale = 1.0;
+    p->leaf_lift = 0.012;
+    const double stem[4] = {0.20, 0.12, 0.07, 1.0}, leaf[4] = {0.10, 0.30, 0.05, 1.0};
+    memcpy(p->stem_color, stem, sizeof stem);
+    memcpy(p->leaf_color, leaf, sizeof leaf);
+    p->stats_cell = 0.1;
+}
+
+size_t banyan_sizeof_ivy_params(void) { return sizeof(banyan_ivy_params); }
+size_t banyan_sizeof_ivy_stats(void) { return sizeof(banyan_ivy_stats); }
+
+banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err) {
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    banyan_status s = banyan_params_check(BANYAN_GEN_IVY, p, err);
+    if (s) return s;
+    if (p->t2 < p->t1)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "t2 = %g must be >= t1 = %g (dormant buds need more nourishment than apical buds)", p->t2,
+                           p->t1);
+    if (p->stem_radius_max < p->stem_radius)
+        return banyan_fail(err, BANYAN_E_RANGE, "stem_radius_max = %g must be >= stem_radius = %g m",
+                           p->stem_radius_max, p->stem_radius);
+    return BANYAN_OK;
+}

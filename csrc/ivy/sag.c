@@ -1,0 +1,212 @@
+/* Ivy sag (spec/ivy.md, "Sag of unattached stems"). For every growing
+ * tip on an unattached run: P0 is the last held bud before it and
+ * P1..Pnum the unattached buds after it (with any branches hanging from
+ * them). While the moment of their weight about P0,
+ *     F = |C - P0| M g sin(phi) = M g * (horizontal distance of C from P0),
+ * exceeds moment_max, they rotate down about P0 in sag_step increments
+ * (the last one cut to the angle that reaches moment_max);
+ * then the pivot moves to P1, and so on towards the tip. A bud that would
+ * enter a host is put back on its surface (clearance off it), and a bud
+ * with a sucker that ends within reach of a surface grips it. Last, a
+ * free tip turns up to at least tip_elevation (geotropism).
+ *
+ * P0 is the first bud up from the tip that is held: attached, lying on
+ * the ground, or held by its other branch (so a lateral hanging from a
+ * dormant bud of an attached stem sags about that bud). Only dangling runs
+ * sag: when a bud hanging below P1 is held, the run is held at both ends.
+ *
+ * The sweep from P0 to the tip repeats (up to SAG_PASSES times) until no
+ * pivot turns, since turning a part about a later pivot can move weight
+ * away from an earlier one. The turns of all pivots run on copies of the positions; every bud then
+ * moves once, which is what the light cache hears of (grid.c). */
+#include "ivy_internal.h"
+
+/* Most sweeps over the pivots of one stem per step. */
+#define SAG_PASSES 8
+
+/* Is bud b held in place: attached, or lying on the ground (which carries
+ * a stem's weight like a ledge)? */
+static int held(const banyan_ivy *iv, const ivy_bud *b) {
+    return b->attached || (iv->p.ground && b->P.z <= iv->p.ground_z + iv->p.clearance + 1e-9);
+}
+
+/* Is a held bud within the first `limit` buds of the subtree under
+ * `root`? A larger subtree counts as held. */
+static int holds(const banyan_ivy *iv, int32_t root, int32_t *scratch, int32_t limit) {
+    int32_t n = 0, top = 0;
+    scratch[n++] = root;
+    while (top < n) {
+        const ivy_bud *b = &iv->buds[scratch[top++]];
+        if (held(iv, b)) return 1;
+        for (int k = 0; k < 2; k++)
+            if (b->child[k] >= 0) {
+                if (n == limit) return 1;
+                scratch[n++] = b->child[k];
+            }
+    }
+    return 0;
+}
+
+/* The moment about the pivot of the n buds at q[0..n-1]. Below the
+ * horizontal it is the spec's |C - P0| M g sin(phi). Above it a thin stem
+ * cannot balance upright, so the full arm |C - P0| counts (docs/ivy.md):
+ * an upright run that is too heavy falls over and hangs instead of
+ * standing like a small tree. */
+static double moment(const banyan_ivy *iv, v3 pivot, const v3 *q, int32_t n, v3 *C) {
+    v3 c = v3_make(0, 0, 0);
+    for (int32_t k = 0; k < n; k++) c = v3_add(c, q[k]);
+    c = v3_scale(c, 1.0 / n);
+    *C = c;
+    double dx = c.x - pivot.x, dy = c.y - pivot.y, dz = c.z - pivot.z;
+    double arm = dz > 0 ? sqrt(dx * dx + dy * dy + dz * dz) : sqrt(dx * dx + dy * dy);
+    return n * iv->p.internode_mass * iv->p.gravity * arm;
+}
+
+/* Rotation by angle (cos c, sin s) about a horizontal unit axis k. */
+static m3 rotation_h(v3 k, double c, double s) {
+    double t = 1.0 - c;
+    m3 r = {{c + k.x * k.x * t, k.x * k.y * t, k.y * s,
+             k.x * k.y * t, c + k.y * k.y * t, -k.x * s,
+             -k.y * s, k.x * s, c}};
+    return r;
+}
+
+/* Turns the copies q[0..n-1] (directions qv) down about the pivot in
+ * sag_step increments while their moment passes moment_max. A turn that a
+ * surface undoes (the push-out brings C back) ends it: the stem rests on
+ * that surface. qn is scratch for n positions. */
+static int sag_pivot(const banyan_ivy *iv, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n) {
+    const banyan_ivy_params *p = &iv->p;
+    const double step = deg2rad(p->sag_step), cs = cos(step), sn = sin(step);
+    const int max_iter = (int)(180.0 / p->sag_step) + 2;
+    v3 C;
+    double F = moment(iv, pivot, q, n, &C);
+    int turned = 0;
+    for (int it = 0; it < max_iter && F > p->moment_max; it++) {
+        v3 a = v3_sub(C, pivot);
+        v3 axis = v3_make(-a.y, a.x, 0); /* a x G with G = (0, 0, -1): turns a towards G */
+        double al = v3_len(axis);
+        if (al < 1e-12) {
+            if (a.z <= 0) break; /* hanging straight down */
+            /* Straight up: fall away from the nearest surface. */
+            v3 out = ivy_nearest_any(iv, C).normal;
+            axis = v3_make(-out.y, out.x, 0);
+            al = v3_len(axis);
+            if (al < 1e-12) axis = v3_make(1, 0, 0), al = 1;
+        }
+        /* Below the horizontal, the last increment is cut to the angle that
+         * brings the moment to moment_max, so a long stem does not swing
+         * across the vertical forever. */
+        double ang = step;
+        m3 R = rotation_h(v3_scale(axis, 1.0 / al), cs, sn);
+        if (a.z < 0) {
+            double arm = v3_len(a), phi = atan2(al, -a.z);
+            double weight = F / al; /* below the horizontal F = weight * horizontal arm */
+            double s_eq = p->moment_max / (weight * arm);
+            double need = phi - asin(s_eq < 1 ? s_eq : 1) + 1e-9;
+            if (need < step) {
+                ang = need;
+                R = rotation_h(v3_scale(axis, 1.0 / al), cos(need), sin(need));
+            }
+        }
+        for (int32_t k = 0; k < n; k++)
+            qn[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(q[k], pivot))));
+        v3 C2;
+        double F2 = moment(iv, pivot, qn, n, &C2);
+        v3 a2 = v3_sub(C2, pivot);
+        if (atan2(v3_len(v3_cross(a, a2)), v3_dot(a, a2)) < 0.5 * ang) break; /* held by a surface */
+        for (int32_t k = 0; k < n; k++) {
+            q[k] = qn[k];
+            qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
+        }
+        C = C2;
+        F = F2;
+        turned = 1;
+    }
+    return turned;
+}
+
+static void sag_tip(banyan_ivy *iv, int32_t tip) {
+    const banyan_ivy_params *p = &iv->p;
+    int32_t *chain = iv->chain, m = 0;
+    /* Walk up to the anchor P0: a held bud, or one held by its other
+     * branch (a dormant bud between two attached buds holds the lateral
+     * that grew from it). */
+    int32_t j = tip, prev = -1;
+    while (j >= 0) {
+        const ivy_bud *b = &iv->buds[j];
+        if (held(iv, b)) break;
+        if (prev >= 0) {
+            int32_t other = b->child[0] == prev ? b->child[1] : b->child[0];
+            if (other >= 0 && holds(iv, other, iv->moving, 256)) break;
+        }
+        chain[m++] = j;
+        prev = j;
+        j = b->parent;
+    }
+    if (j >= 0 && m > 0) {
+        chain[m++] = j;
+        /* chain[m-1] is P0, chain[m-2] P1, ..., chain[0] the tip. The
+         * subtree of P1 in preorder: every bud's subtree is a contiguous
+         * range starting at its own index (mark). */
+        int32_t *set = iv->moving, *stack = iv->stack, *size = iv->sizes, n = 0, top = 0;
+        stack[top++] = chain[m - 2];
+        while (top > 0) {
+            int32_t x = stack[--top];
+            ivy_bud *b = &iv->buds[x];
+            if (held(iv, b)) { n = -1; break; } /* held at both ends */
+            b->mark = n;
+            set[n++] = x;
+            for (int k = 1; k >= 0; k--)
+                if (b->child[k] >= 0) stack[top++] = b->child[k];
+        }
+        if (n > 0) {
+            v3 *q = iv->tmp, *qv = q + iv->cap, *qn = qv + iv->cap;
+            for (int32_t k = 0; k < n; k++) {
+                size[k] = 1;
+                q[k] = iv->buds[set[k]].P;
+                qv[k] = iv->buds[set[k]].V;
+            }
+            for (int32_t k = n - 1; k > 0; k--) size[iv->buds[iv->buds[set[k]].parent].mark] += size[k];
+            /* Turning a part about a later pivot can move the weight away
+             * from an earlier one: sweep again until nothing turns. */
+            for (int pass = 0, turned = 1; turned && pass < SAG_PASSES; pass++) {
+                turned = 0;
+                for (int32_t k = m - 1; k >= 1; k--) {
+                    v3 pivot = k == m - 1 ? iv->buds[chain[k]].P : q[iv->buds[chain[k]].mark];
+                    int32_t lo = iv->buds[chain[k - 1]].mark;
+                    turned |= sag_pivot(iv, pivot, q + lo, qv + lo, qn, size[lo]);
+                }
+            }
+            /* Move once; grip where a sucker now reaches a surface; runs
+             * follow (preorder: parents first). */
+            ivy_grid_move_many(iv, set, q, n);
+            for (int32_t k = 0; k < n; k++) {
+                ivy_bud *b = &iv->buds[set[k]];
+                b->V = v3_norm_or(qv[k], b->V);
+                if (b->sucker && ivy_grip_distance(iv, b->P, p->sucker_length) <= p->sucker_length) b->attached = 1;
+                b->run = b->attached ? 0 : iv->buds[b->parent].run + 1;
+            }
+        }
+    }
+    /* Geotropism: a long free tip points up. */
+    ivy_bud *t = &iv->buds[tip];
+    double el = deg2rad(p->tip_elevation);
+    if (!t->attached && t->run * p->internode > p->free_length && t->V.z < sin(el)) {
+        v3 h = v3_make(t->V.x, t->V.y, 0);
+        if (v3_len(h) < 1e-9 && t->parent >= 0) {
+            v3 d = v3_sub(t->P, iv->buds[t->parent].P);
+            h = v3_make(d.x, d.y, 0);
+        }
+        h = v3_norm_or(h, v3_make(1, 0, 0));
+        t->V = v3_add(v3_scale(h, cos(el)), v3_make(0, 0, sin(el)));
+    }
+}
+
+void ivy_sag(banyan_ivy *iv) {
+    for (int32_t k = 0; k < iv->n_act; k++) {
+        int32_t i = iv->act[k];
+        const ivy_bud *b = &iv->buds[i];
+        if (b->state <= BANYAN_IVY_A2 && !b->attached) sag_tip(iv, i);
+    }
+}

@@ -1,0 +1,361 @@
+/* avenue.c - keyaki avenues (spec/keyaki.md, "Avenues"): trees placed
+ * along a line or polyline in one or two rows, each with its own seed
+ * (base seed + index), a random heading and jitter of trunk height and
+ * position, grown in parallel with pthreads.
+ *
+ * Layout: trees sit at arc lengths along the path, every `spacing` metres
+ * centred on it, or `count` per row from end to end; row 0 lies
+ * row_offset / 2 to the left of the path (left of its direction, seen from
+ * above), row 1 as far to the right, optionally staggered by half a step.
+ * Tree order: row 0 along the path, then row 1.
+ * Parallelism: workers take tree indices from an atomic counter; tree i
+ * draws only from its own PCG32 streams (seed + i) and is meshed into its
+ * own mesh, which the worker copies into the tree's slice of the merged
+ * mesh; slices follow index order, so the bytes never depend on the thread
+ * count or on scheduling. A first parallel pass sizes every tree exactly
+ * (vertices, indices, parts, skeleton), so max_vertices is checked and
+ * the merged arrays are allocated once, before any mesh is built. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "keyaki_internal.h"
+
+#define AVENUE_MAX_THREADS 256
+#define AVENUE_MAX_PATH_POINTS 1000000u
+
+typedef struct path_walk {
+    const v3 *pts;
+    double *cum; /* cumulative length at each point */
+    uint32_t n;
+} path_walk;
+
+/* Point and unit horizontal left normal at arc length s. */
+static void path_at(const path_walk *w, double s, v3 *pos, v3 *left) {
+    uint32_t lo = 0, hi = w->n - 1;
+    while (hi - lo > 1) {
+        uint32_t mid = (lo + hi) / 2;
+        if (w->cum[mid] <= s) lo = mid;
+        else hi = mid;
+    }
+    double len = w->cum[hi] - w->cum[lo], t = len > 0 ? (s - w->cum[lo]) / len : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    *pos = v3_lerp(w->pts[lo], w->pts[hi], t);
+    v3 dir = v3_sub(w->pts[hi], w->pts[lo]);
+    *left = v3_norm_or(v3_make(-dir.y, dir.x, 0), v3_make(0, 1, 0));
+}
+
+banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
+                                   banyan_keyaki_params *trees, uint32_t capacity, uint32_t *tree_count,
+                                   banyan_error *err) {
+    if (!p || !tree_count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params and tree_count must not be NULL");
+    *tree_count = 0;
+    banyan_status s = banyan_params_check(BANYAN_GEN_AVENUE, p, err);
+    if (s) return s;
+    if (trees == NULL && capacity) return banyan_fail(err, BANYAN_E_INVALID_ARG, "trees is NULL but capacity = %u", capacity);
+    path_walk w;
+    v3 line[2];
+    if (path_xyz) {
+        if ((s = banyan_check_int(err, "path_point_count", path_point_count, 2, AVENUE_MAX_PATH_POINTS))) return s;
+        for (uint32_t i = 0; i < 3 * path_point_count; i++)
+            if (!isfinite(path_xyz[i]) || fabs(path_xyz[i]) > 1e6)
+                return banyan_fail(err, BANYAN_E_RANGE, "path point %u = (%g, %g, %g) must be finite and within 1e6 m",
+                                   i / 3, path_xyz[i / 3 * 3], path_xyz[i / 3 * 3 + 1], path_xyz[i / 3 * 3 + 2]);
+        w.pts = (const v3 *)NULL;
+        w.n = path_point_count;
+    } else {
+        line[0] = v3_load(p->start);
+        line[1] = v3_load(p->end);
+        w.pts = line;
+        w.n = 2;
+    }
+    v3 *own = NULL;
+    if (path_xyz) {
+        own = malloc(sizeof(v3) * w.n);
+        if (!own) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u path points", w.n);
+        for (uint32_t i = 0; i < w.n; i++) own[i] = v3_load(path_xyz + 3 * (size_t)i);
+        w.pts = own;
+    }
+    w.cum = malloc(sizeof(double) * w.n);
+    if (!w.cum) {
+        free(own);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u path points", w.n);
+    }
+    w.cum[0] = 0;
+    for (uint32_t i = 1; i < w.n; i++) {
+        double d = v3_dist(w.pts[i], w.pts[i - 1]);
+        if (d < 1e-9) {
+            free(own);
+            free(w.cum);
+            if (!path_xyz) return banyan_fail(err, BANYAN_E_RANGE, "start and end must differ (the path has no length)");
+            return banyan_fail(err, BANYAN_E_RANGE, "path point %u repeats point %u; consecutive points must differ", i,
+                               i - 1);
+        }
+        w.cum[i] = w.cum[i - 1] + d;
+    }
+    const double length = w.cum[w.n - 1];
+
+    /* Arc lengths of row 0; row 1 the same, shifted when staggered. */
+    double step, first;
+    double per_row;
+    if (p->placement == BANYAN_AVENUE_COUNT) {
+        per_row = p->count;
+        step = p->count > 1 ? length / (p->count - 1) : 0;
+        first = p->count > 1 ? 0 : 0.5 * length;
+    } else {
+        per_row = floor(length / p->spacing + 1e-9) + 1;
+        step = p->spacing;
+        first = per_row <= BANYAN_AVENUE_MAX_TREES ? 0.5 * (length - (per_row - 1) * step) : 0;
+    }
+    if (per_row * p->rows > BANYAN_AVENUE_MAX_TREES) {
+        free(own);
+        free(w.cum);
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the avenue would have %.0f trees, more than %d; raise spacing or shorten the path",
+                           per_row * p->rows, BANYAN_AVENUE_MAX_TREES);
+    }
+    uint32_t n_row = (uint32_t)per_row, total = 0;
+    for (int row = 0; row < p->rows; row++) {
+        double shift = row == 1 && p->stagger ? 0.5 * step : 0.0;
+        double offset = p->rows == 2 ? (row == 0 ? 0.5 : -0.5) * p->row_offset : 0.0;
+        for (uint32_t k = 0; k < n_row; k++) {
+            double sdist = first + k * step + shift;
+            if (sdist > length + 1e-9) continue; /* a staggered row loses its last tree */
+            uint32_t i = total++;
+            if (i >= capacity) continue;
+            banyan_keyaki_params *t = &trees[i];
+            *t = p->tree;
+            t->seed = p->seed + i;
+            t->max_vertices = p->max_vertices;
+            pcg32 r;
+            pcg32_seed(&r, p->seed + i, AVENUE_STREAM_JITTER);
+            t->heading = rng_range(&r, -p->heading_jitter, p->heading_jitter);
+            t->trunk_length = p->tree.trunk_length * (1.0 + rng_range(&r, -p->height_jitter, p->height_jitter));
+            double jr = p->position_jitter * sqrt(rng_uniform(&r)), ja = 2.0 * BANYAN_PI * rng_uniform(&r);
+            v3 at, left;
+            path_at(&w, sdist, &at, &left);
+            at = v3_madd(at, left, offset);
+            at = v3_add(at, v3_make(jr * cos(ja), jr * sin(ja), 0));
+            t->position[0] = at.x;
+            t->position[1] = at.y;
+            t->position[2] = at.z;
+        }
+    }
+    free(own);
+    free(w.cum);
+    *tree_count = total;
+    if (trees && total > capacity)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "capacity = %u is less than the %u trees", capacity, total);
+    /* Check every tree as banyan_keyaki_generate would. */
+    for (uint32_t i = 0; trees && i < total; i++) {
+        if ((s = keyaki_params_validate(&trees[i], err))) {
+            char prefix[48];
+            snprintf(prefix, sizeof prefix, "tree %u: tree.", i);
+            banyan_error_prefix(err, prefix);
+            return s;
+        }
+    }
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}
+
+/* ------------------------------------------------------------ workers */
+
+typedef struct avenue_job {
+    const banyan_keyaki_params *trees;
+    uint32_t n;
+    int phase; /* 0: count, 1: build and copy into out */
+    atomic_uint next;
+    keyaki_counts *counts;
+    uint64_t *voff, *ioff, *soff, *poff; /* where tree i goes in out (skeleton edges: soff - i) */
+    banyan_mesh *out;
+    banyan_status *status;
+    banyan_error *errs;
+} avenue_job;
+
+/* Copies tree i's mesh into its slice of the merged mesh. Slices are
+ * disjoint, so workers copy in parallel without locks. */
+static banyan_status place(avenue_job *J, uint32_t i, const banyan_mesh *t, banyan_error *err) {
+    banyan_mesh *o = J->out;
+    const keyaki_counts *c = &J->counts[i];
+    if (t->vertex_count != c->vertices || t->index_count != c->indices || t->part_count != c->parts ||
+        t->skel_point_count != c->nodes + 1 || t->skel_edge_count != c->nodes || t->attribute_count != o->attribute_count)
+        return banyan_fail(err, BANYAN_E_INTERNAL, "planned and built sizes differ");
+    uint64_t v = J->voff[i], x = J->ioff[i], s = J->soff[i], e = J->soff[i] - i, pp = J->poff[i];
+    memcpy(o->positions + 3 * v, t->positions, sizeof(float) * 3 * t->vertex_count);
+    memcpy(o->normals + 3 * v, t->normals, sizeof(float) * 3 * t->vertex_count);
+    memcpy(o->uvs + 2 * v, t->uvs, sizeof(float) * 2 * t->vertex_count);
+    for (uint32_t a = 0; a < o->attribute_count; a++)
+        memcpy(o->attributes[a].data + v, t->attributes[a].data, sizeof(float) * t->vertex_count);
+    for (uint32_t k = 0; k < t->index_count; k++) o->indices[x + k] = t->indices[k] + (uint32_t)v;
+    for (uint32_t k = 0; k < t->part_count; k++) {
+        banyan_part q = t->parts[k];
+        q.vertex_offset += (uint32_t)v;
+        q.index_offset += (uint32_t)x;
+        o->parts[pp + k] = q;
+    }
+    memcpy(o->skel_points + 3 * s, t->skel_points, sizeof(float) * 3 * t->skel_point_count);
+    memcpy(o->skel_radius + s, t->skel_radius, sizeof(float) * t->skel_point_count);
+    memcpy(o->skel_tag + s, t->skel_tag, sizeof(int32_t) * t->skel_point_count);
+    for (uint32_t k = 0; k < 2 * t->skel_edge_count; k++) o->skel_edges[2 * e + k] = t->skel_edges[k] + (uint32_t)s;
+    if (i == 0) memcpy(o->materials, t->materials, sizeof(banyan_material) * o->material_count);
+    return BANYAN_OK;
+}
+
+static void *worker(void *arg) {
+    avenue_job *J = arg;
+    keyaki_skeleton sk = {NULL, 0, 0};
+    for (;;) {
+        uint32_t i = atomic_fetch_add(&J->next, 1u);
+        if (i >= J->n) break;
+        if (J->phase == 0) {
+            J->status[i] = keyaki_count(&J->trees[i], &sk, &J->counts[i], &J->errs[i]);
+        } else {
+            banyan_mesh *t = NULL;
+            J->status[i] = keyaki_build(&J->trees[i], (double)i, i, &sk, &t, &J->errs[i]);
+            if (!J->status[i]) J->status[i] = place(J, i, t, &J->errs[i]);
+            banyan_mesh_free(t);
+        }
+    }
+    keyaki_skeleton_free(&sk);
+    return NULL;
+}
+
+/* Runs the job on `threads` threads: the caller plus threads - 1 more.
+ * A thread that cannot be started only means fewer workers. */
+static void run_job(avenue_job *J, int threads) {
+    pthread_t tid[AVENUE_MAX_THREADS];
+    int started = 0;
+    atomic_store(&J->next, 0u);
+    for (int t = 1; t < threads; t++)
+        if (pthread_create(&tid[started], NULL, worker, J) == 0) started++;
+    worker(J);
+    for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
+}
+
+/* The merged mesh's arrays, sized exactly; NULL when out of memory. */
+static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t ne, uint64_t np) {
+    static const char *const attrs[3] = {"tree_id", "level", "order"};
+    banyan_mesh *o = calloc(1, sizeof *o);
+    if (!o) return NULL;
+    o->vertex_count = (uint32_t)nv;
+    o->index_count = (uint32_t)ni;
+    o->positions = malloc(sizeof(float) * 3 * nv);
+    o->normals = malloc(sizeof(float) * 3 * nv);
+    o->uvs = malloc(sizeof(float) * 2 * nv);
+    o->indices = malloc(sizeof(uint32_t) * ni);
+    o->attribute_count = 3;
+    o->attributes = calloc(3, sizeof(banyan_attribute));
+    o->material_count = 2;
+    o->materials = calloc(2, sizeof(banyan_material));
+    o->part_count = (uint32_t)np;
+    o->parts = malloc(sizeof(banyan_part) * np);
+    o->skel_point_count = (uint32_t)ns;
+    o->skel_points = malloc(sizeof(float) * 3 * ns);
+    o->skel_radius = malloc(sizeof(float) * ns);
+    o->skel_tag = malloc(sizeof(int32_t) * ns);
+    o->skel_edge_count = (uint32_t)ne;
+    o->skel_edges = malloc(sizeof(uint32_t) * 2 * ne);
+    int ok = o->positions && o->normals && o->uvs && o->indices && o->attributes && o->materials && o->parts &&
+             o->skel_points && o->skel_radius && o->skel_tag && o->skel_edges;
+    for (uint32_t a = 0; ok && a < 3; a++) {
+        strcpy(o->attributes[a].name, attrs[a]);
+        if (!(o->attributes[a].data = malloc(sizeof(float) * nv))) ok = 0;
+    }
+    if (!ok) {
+        banyan_mesh_free(o);
+        return NULL;
+    }
+    return o;
+}
+
+banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
+                                     int32_t threads, banyan_mesh **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    banyan_status s;
+    if ((s = banyan_check_int(err, "threads", threads, 0, AVENUE_MAX_THREADS))) return s;
+    uint32_t n = 0;
+    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
+    if (n == 0) return banyan_fail(err, BANYAN_E_RANGE, "the path is too short for any tree");
+    avenue_job J;
+    memset(&J, 0, sizeof J);
+    banyan_keyaki_params *trees = malloc(sizeof *trees * n);
+    J.counts = calloc(n, sizeof *J.counts);
+    J.voff = calloc(4 * (size_t)n, sizeof *J.voff);
+    J.status = calloc(n, sizeof *J.status);
+    J.errs = calloc(n, sizeof *J.errs);
+    if (!trees || !J.counts || !J.voff || !J.status || !J.errs) {
+        s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u trees", n);
+        goto done;
+    }
+    J.ioff = J.voff + n;
+    J.soff = J.ioff + n;
+    J.poff = J.soff + n;
+    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
+    J.trees = trees;
+    J.n = n;
+    int t = threads;
+    if (t == 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        t = c < 1 ? 1 : c > AVENUE_MAX_THREADS ? AVENUE_MAX_THREADS : (int)c;
+    }
+    if ((uint32_t)t > n) t = (int)n;
+
+    /* Pass 1: exact sizes of every tree, before any mesh memory. */
+    J.phase = 0;
+    run_job(&J, t);
+    uint64_t nv = 0, ni = 0, ns = 0, np = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        if (J.status[i]) {
+            s = banyan_fail(err, J.status[i], "tree %u: %s", i, J.errs[i].message);
+            goto done;
+        }
+        J.voff[i] = nv;
+        J.ioff[i] = ni;
+        J.soff[i] = ns;
+        J.poff[i] = np;
+        nv += J.counts[i].vertices;
+        ni += J.counts[i].indices;
+        ns += J.counts[i].nodes + 1;
+        np += J.counts[i].parts;
+    }
+    if (nv > (uint64_t)p->max_vertices || ni > 0xFFFFFFF0u || ns > 0xFFFFFFF0u) {
+        s = banyan_fail(err, BANYAN_E_LIMIT,
+                        "the avenue's %u trees need %llu vertices, more than max_vertices = %d; raise max_vertices or "
+                        "lower tree.leaf_density, tree.sides_max, tree.levels or the tree count",
+                        n, (unsigned long long)nv, p->max_vertices);
+        goto done;
+    }
+    /* Pass 2: every tree built, then copied into its slice in parallel. */
+    J.out = alloc_merged(nv, ni, ns, ns - n, np);
+    if (!J.out) {
+        s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the avenue's %llu vertices", (unsigned long long)nv);
+        goto done;
+    }
+    J.phase = 1;
+    run_job(&J, t);
+    for (uint32_t i = 0; i < n; i++) {
+        if (J.status[i]) {
+            s = banyan_fail(err, J.status[i], "tree %u: %s", i, J.errs[i].message);
+            goto done;
+        }
+    }
+    *out = J.out;
+    J.out = NULL;
+    banyan_error_clear(err);
+done:
+    banyan_mesh_free(J.out);
+    free(trees);
+    free(J.counts);
+    free(J.voff);
+    free(J.status);
+    free(J.errs);
+    return s;
+}

@@ -1,0 +1,267 @@
+/* body.c - the keyaki's body (spec/keyaki.md, "Body and leaves", beyond
+ * the paper): tapered tubes through the shared sweeper and leaf cards.
+ *
+ * Crack-free forks: every chain of branches that always continues into
+ * the thicker child (a "limb") is swept as ONE tube, so a limb bends at a
+ * fork without any seam. The other child starts a new limb whose first
+ * ring sits inside the parent, set back along its own direction by
+ * 0.3 x the parent's radius, with the child's own radius; its tube
+ * therefore leaves the parent's surface with no gap and no spike; it
+ * starts at 0.75 x its radius there and widens to it at the fork point,
+ * so the seam where the tubes cross is short. Pipe
+ * radii shrink towards the tips: the ring where branch a ends has a's
+ * radius, so each branch tapers from its parent's radius to its own;
+ * tips narrow to tip_taper x tip_radius and are capped.
+ * Tube sides fall with the radius: sides_min + (sides_max - sides_min)
+ * sqrt(r / r_trunk). Leaf cards (textured quads, UV 0..1) hang from the
+ * branches within leaf_levels of a tip, leaf_density per unit of length.
+ * Everything is counted exactly before meshing (keyaki_body_plan) so the
+ * vertex limit is checked before any mesh memory is allocated. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tube.h"
+#include "keyaki_internal.h"
+
+void keyaki_body_free(keyaki_body *b) {
+    if (!b) return;
+    free(b->limbs);
+    free(b->leaf_count);
+    memset(b, 0, sizeof *b);
+}
+
+/* The child a limb continues into: the thicker one, child[0] on a tie. */
+static int32_t main_child(const keyaki_node *n, int32_t i) {
+    int32_t a = n[i].child[0], b = n[i].child[1];
+    if (a < 0) return b;
+    if (b < 0) return a;
+    return n[b].radius > n[a].radius ? b : a;
+}
+
+static inline v3 node_end(const keyaki_node *x) { return v3_madd(x->start, x->dir, x->length); }
+
+banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
+                               banyan_error *err) {
+    memset(body, 0, sizeof *body);
+    int32_t limbs = 0;
+    for (int32_t i = 0; i < count; i++)
+        if (i == 0 || main_child(n, n[i].parent) != i) limbs++;
+    body->limbs = malloc(sizeof *body->limbs * (size_t)limbs);
+    body->leaf_count = malloc(sizeof *body->leaf_count * (size_t)count);
+    if (!body->limbs || !body->leaf_count) {
+        keyaki_body_free(body);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory planning %d branches", count);
+    }
+    uint64_t bv = 0, bi = 0;
+    double r_trunk = n[0].radius;
+    for (int32_t i = 0; i < count; i++) {
+        if (!(i == 0 || main_child(n, n[i].parent) != i)) continue;
+        keyaki_limb *L = &body->limbs[body->limb_count++];
+        int32_t m = 1;
+        for (int32_t j = main_child(n, i); j >= 0; j = main_child(n, j)) m++;
+        L->first = i;
+        L->points = m + 1 + (i != 0);
+        double f = r_trunk > 0 ? sqrt(n[i].radius / r_trunk) : 1.0;
+        int sides = (int)floor(p->sides_min + (p->sides_max - p->sides_min) * f + 0.5);
+        L->sides = sides < p->sides_min ? p->sides_min : sides > p->sides_max ? p->sides_max : sides;
+        if (i == 0) {
+            L->start = n[0].start;
+        } else {
+            /* Set back inside the parent so the child's tube leaves from
+             * within it; never past half the child's own length. */
+            double back = 0.3 * n[n[i].parent].radius, cap = 0.45 * n[i].length;
+            L->start = v3_madd(n[i].start, n[i].dir, -(back < cap ? back : cap));
+        }
+        L->start_radius = i == 0 ? n[i].radius : KEYAKI_SIDE_START * n[i].radius;
+        L->vertex_offset = 0;
+        uint32_t tv, ti;
+        tube_counts((uint32_t)L->points, L->sides, i == 0, 1, &tv, &ti);
+        bv += tv;
+        bi += ti;
+    }
+    /* Depth to the nearest tip, children first (leaf_count as scratch). */
+    int32_t *depth = body->leaf_count;
+    for (int32_t i = count - 1; i >= 0; i--) {
+        int32_t a = n[i].child[0], b = n[i].child[1];
+        if (a < 0 && b < 0) depth[i] = 0;
+        else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
+        else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
+    }
+    pcg32_seed(&body->leaf_rng, p->seed, KEYAKI_STREAM_LEAVES);
+    uint64_t cards = 0;
+    for (int32_t i = 0; i < count; i++) {
+        int32_t c = 0;
+        if (p->leaves && depth[i] < p->leaf_levels && p->leaf_density > 0) {
+            double want = p->leaf_density * n[i].length / p->unit + rng_uniform(&body->leaf_rng);
+            c = want > 1e6 ? 1000000 : (int32_t)floor(want);
+        }
+        body->leaf_count[i] = c;
+        cards += (uint64_t)c;
+    }
+    uint64_t tv = bv + 4 * cards, ti = bi + 6 * cards;
+    body->bark_vertices = bv > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)bv;
+    body->bark_indices = bi > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)bi;
+    body->vertices = tv > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)tv;
+    body->indices = ti > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)ti;
+    return BANYAN_OK;
+}
+
+static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32_t to, const keyaki_node *x) {
+    if (mb->status || to > mb->nv) return;
+    for (uint32_t v = from; v < to; v++) {
+        mb->attr[attr[1]][v] = (float)x->level;
+        mb->attr[attr[2]][v] = (float)x->order;
+    }
+}
+
+static void leaf_card(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double size) {
+    double t = rng_uniform(r), phi = rng_uniform(r) * 2.0 * BANYAN_PI, roll = rng_range(r, -1.0, 1.0);
+    v3 N0 = v3_any_perp(x->dir), B0 = v3_cross(x->dir, N0);
+    v3 side = v3_add(v3_scale(N0, cos(phi)), v3_scale(B0, sin(phi)));
+    v3 at = v3_madd(v3_madd(x->start, x->dir, x->length * t), side, x->radius);
+    /* The card reaches out from the branch, a little forward and up. */
+    v3 a = v3_norm(v3_add(v3_add(side, v3_scale(x->dir, 0.6)), v3_make(0, 0, 0.4)));
+    v3 w = v3_norm_or(v3_cross(a, v3_make(0, 0, 1)), v3_any_perp(a));
+    w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
+    v3 nrm = v3_norm(v3_cross(w, a));
+    if (nrm.z < 0) { /* face the sky: lit like a crown from above */
+        w = v3_neg(w);
+        nrm = v3_neg(nrm);
+    }
+    double hw = 0.5 * size;
+    v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
+    v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
+    uint32_t i0 = mb_vertex(mb, p0, nrm, 0, 0);
+    uint32_t i1 = mb_vertex(mb, p1, nrm, 1, 0);
+    uint32_t i2 = mb_vertex(mb, p2, nrm, 1, 1);
+    uint32_t i3 = mb_vertex(mb, p3, nrm, 0, 1);
+    mb_tri(mb, i0, i1, i2);
+    mb_tri(mb, i0, i2, i3);
+}
+
+void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
+                      mesh_builder *mb, const int attr[3], uint32_t bark_mat, uint32_t leaf_mat, uint32_t group,
+                      double tree_id) {
+    uint32_t base = mb->nv;
+    if (mb_reserve(mb, body->vertices, body->indices)) return;
+    int32_t max_pts = 2;
+    for (int32_t k = 0; k < body->limb_count; k++)
+        if (body->limbs[k].points > max_pts) max_pts = body->limbs[k].points;
+    v3 *pts = malloc(sizeof(v3) * (size_t)max_pts);
+    double *rad = malloc(sizeof(double) * (size_t)max_pts);
+    int32_t *ids = malloc(sizeof(int32_t) * (size_t)max_pts);
+    if (!pts || !rad || !ids) {
+        free(pts); free(rad); free(ids);
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    const double tip_end = p->tip_radius * p->unit * p->tip_taper;
+    mb_begin_part(mb, bark_mat, group);
+    mb_set_attr(mb, attr[0], tree_id);
+    for (int32_t k = 0; k < body->limb_count; k++) {
+        keyaki_limb *L = &body->limbs[k];
+        int32_t m = 0;
+        pts[0] = L->start;
+        rad[0] = L->start_radius;
+        ids[0] = L->first;
+        if (L->first != 0) { /* the fork point, at the child's full radius */
+            m = 1;
+            pts[1] = n[L->first].start;
+            rad[1] = n[L->first].radius;
+            ids[1] = L->first;
+        }
+        for (int32_t j = L->first; j >= 0; j = main_child(n, j)) {
+            m++;
+            pts[m] = node_end(&n[j]);
+            int32_t next = main_child(n, j);
+            rad[m] = next < 0 ? tip_end : n[j].radius;
+            ids[m] = j;
+        }
+        uint32_t v0 = mb->nv;
+        L->vertex_offset = v0 - base;
+        mb_set_attr(mb, attr[1], n[L->first].level);
+        mb_set_attr(mb, attr[2], n[L->first].order);
+        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL};
+        tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
+        /* Ring i > 0 closes branch ids[i]; the end cap belongs to the tip. */
+        uint32_t ring = (uint32_t)L->sides + 1;
+        for (int32_t i = 1; i <= m; i++) set_attrs(mb, attr, v0 + i * ring, v0 + (i + 1) * ring, &n[ids[i]]);
+        uint32_t caps_from = v0 + (uint32_t)(m + 1) * ring + (L->first == 0 ? ring + 1 : 0);
+        set_attrs(mb, attr, caps_from, caps_from + ring + 1, &n[ids[m]]);
+    }
+    free(pts);
+    free(rad);
+    free(ids);
+
+    if (body->vertices > body->bark_vertices) {
+        mb_begin_part(mb, leaf_mat, group);
+        const double size = p->leaf_size * p->unit;
+        for (int32_t i = 0; i < count; i++) {
+            if (!body->leaf_count[i]) continue;
+            mb_set_attr(mb, attr[1], n[i].level);
+            mb_set_attr(mb, attr[2], n[i].order);
+            for (int32_t c = 0; c < body->leaf_count[i]; c++) leaf_card(mb, &body->leaf_rng, &n[i], size);
+        }
+    }
+
+    /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i. */
+    uint32_t s0 = mb->n_skel;
+    for (int32_t i = -1; i < count; i++) {
+        const keyaki_node *x = &n[i < 0 ? 0 : i];
+        int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);
+        mb_skel_point(mb, i < 0 ? x->start : node_end(x), x->radius, tag);
+    }
+    for (int32_t i = 0; i < count; i++)
+        mb_skel_edge(mb, s0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), s0 + (uint32_t)i + 1);
+}
+
+banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
+    banyan_status s = keyaki_grow(p, sk, err);
+    if (s) return s;
+    if (keyaki_strahler(sk->nodes, sk->count))
+        return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
+    keyaki_radii(sk->nodes, sk->count, p->tip_radius * p->unit, p->pipe_exponent);
+    keyaki_body body;
+    if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
+    c->vertices = body.vertices;
+    c->indices = body.indices;
+    c->nodes = (uint32_t)sk->count;
+    c->parts = body.vertices > body.bark_vertices ? 2 : 1;
+    keyaki_body_free(&body);
+    return BANYAN_OK;
+}
+
+banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
+                           banyan_mesh **out, banyan_error *err) {
+    *out = NULL;
+    banyan_status s = keyaki_grow(p, sk, err);
+    if (s) return s;
+    if (keyaki_strahler(sk->nodes, sk->count))
+        return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
+    keyaki_radii(sk->nodes, sk->count, p->tip_radius * p->unit, p->pipe_exponent);
+    keyaki_body body;
+    if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
+    if (body.vertices > (uint32_t)p->max_vertices) {
+        uint32_t v = body.vertices;
+        keyaki_body_free(&body);
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the tree needs %u vertices, more than max_vertices = %d; raise max_vertices or lower "
+                           "leaf_density, sides_max or levels",
+                           v, p->max_vertices);
+    }
+    mesh_builder mb;
+    mb_init(&mb, (uint32_t)p->max_vertices, 0);
+    uint32_t bark = mb_add_material(&mb, "keyaki_bark", p->bark_color, 0.9, 0);
+    uint32_t leaf = mb_add_material(&mb, "keyaki_leaf", p->leaf_color, 0.6, 1);
+    int attr[3];
+    attr[0] = mb_add_attr(&mb, "tree_id");
+    attr[1] = mb_add_attr(&mb, "level");
+    attr[2] = mb_add_attr(&mb, "order");
+    keyaki_body_mesh(p, sk->nodes, sk->count, &body, &mb, attr, bark, leaf, group, tree_id);
+    uint32_t planned = body.vertices;
+    keyaki_body_free(&body);
+    if (!mb.status && mb.nv != planned) mb.status = BANYAN_E_INTERNAL; /* the plan must be exact */
+    return mb_finish(&mb, out, err);
+}

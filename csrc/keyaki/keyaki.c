@@ -1,0 +1,37 @@
+/* keyaki.c - the public keyaki calls: one tree, meshed
+ * (banyan_keyaki_generate) or measured only (banyan_keyaki_stats), per
+ * spec/keyaki.md. Growth is in growth.c, Strahler in strahler.c, the body
+ * in body.c. The tree takes no hosts: it stands at `position`, up +Z. */
+#include <string.h>
+
+#include "core/error.h"
+#include "keyaki_internal.h"
+
+banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_status s = keyaki_params_validate(p, err);
+    if (s) return s;
+    keyaki_skeleton sk = {NULL, 0, 0};
+    s = keyaki_build(p, 0.0, 0, &sk, out, err);
+    keyaki_skeleton_free(&sk);
+    return s;
+}
+
+size_t banyan_sizeof_keyaki_statistics(void) { return sizeof(banyan_keyaki_statistics); }
+
+banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_statistics *out, banyan_error *err) {
+    if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
+    memset(out, 0, sizeof *out);
+    banyan_status s = keyaki_params_validate(p, err);
+    if (s) return s;
+    keyaki_skeleton sk = {NULL, 0, 0};
+    s = keyaki_grow(p, &sk, err);
+    if (!s && keyaki_strahler(sk.nodes, sk.count))
+        s = banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
+    if (!s) {
+        keyaki_measure(sk.nodes, sk.count, v3_load(p->position), out);
+        banyan_error_clear(err);
+    }
+    keyaki_skeleton_free(&sk);
+    return s;
+}

@@ -1,0 +1,123 @@
+/* keyaki_internal.h - the keyaki skeleton shared by growth, Strahler
+ * statistics, the body mesher and the avenue (spec/keyaki.md). Tests
+ * include it to inspect skeletons and to run Strahler on hand-built ones. */
+#ifndef BANYAN_KEYAKI_INTERNAL_H
+#define BANYAN_KEYAKI_INTERNAL_H
+
+#include <stdint.h>
+
+#include "banyan.h"
+#include "core/mesh_builder.h"
+#include "core/rng.h"
+#include "core/vec.h"
+
+/* Node flags. */
+#define KN_BROKEN 1u  /* this branch's fork broke: its weak child was removed (rule 8) */
+#define KN_SPRUNG 2u  /* this branch survived a break and its angle sprang back (rule 9) */
+#define KN_STRONG 4u  /* this branch is the strong child of a strong/weak fork */
+#define KN_STOPPED 8u /* this branch stopped forking: energy below stop_energy (models 2-3) */
+
+/* One branch: a straight segment from `start` along `dir` for `length`.
+ * Nodes are stored parents first (child index > parent index), level by
+ * level in growth order. child[0] is the strong (or first) child. */
+typedef struct keyaki_node {
+    v3 start;        /* m */
+    v3 dir;          /* unit */
+    v3 plane;        /* unit normal of the fork plane this branch was made in (trunk: a random vertical plane) */
+    double length;   /* m */
+    double energy;   /* share of the trunk's energy (trunk 1) */
+    double angle;    /* deg between this branch and its parent (0 for the trunk) */
+    double radius;   /* m, pipe model (keyaki_radii) */
+    int32_t parent;  /* -1 for the trunk */
+    int32_t child[2];/* -1 when absent; a single child is child[0] */
+    int32_t level;   /* 0 = trunk; a child of a level-l branch has level l + 1 */
+    int32_t order;   /* Strahler order (keyaki_strahler) */
+    uint32_t flags;  /* KN_* */
+} keyaki_node;
+
+/* A growable skeleton; reuse one across calls to avoid allocations. */
+typedef struct keyaki_skeleton {
+    keyaki_node *nodes;
+    int32_t count, cap;
+} keyaki_skeleton;
+
+void keyaki_skeleton_free(keyaki_skeleton *sk);
+
+/* Checks every field (table ranges, then the rules tying fields together). */
+banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error *err);
+
+/* Grows the skeleton of p (validated) into sk, replacing its contents.
+ * BANYAN_E_LIMIT past max_nodes, BANYAN_E_NOMEM. */
+banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err);
+
+/* Strahler orders of every node (tips 1; equal orders meeting give k + 1,
+ * different orders the higher; a single child passes its order up).
+ * Needs child index > parent index; returns BANYAN_E_INTERNAL otherwise. */
+banyan_status keyaki_strahler(keyaki_node *nodes, int32_t count);
+
+/* Fills st from a skeleton whose orders are set. base: the trunk base. */
+void keyaki_measure(const keyaki_node *nodes, int32_t count, v3 base, banyan_keyaki_statistics *st);
+
+/* Pipe-model radii, children first. */
+void keyaki_radii(keyaki_node *nodes, int32_t count, double tip_radius, double exponent);
+
+/* A side limb's first ring, set back inside its parent, has this fraction
+ * of the child's radius; the second ring, at the fork point, has all of
+ * it. The child so emerges from the parent as a widening tube, and the
+ * seam where the two tubes cross stays short. */
+#define KEYAKI_SIDE_START 0.75
+
+/* Body: a limb is one continuous tube through a chain of branches, always
+ * continuing into the thicker child (tie: child[0]). */
+typedef struct keyaki_limb {
+    int32_t first;        /* first node of the chain */
+    int32_t points;       /* ring count: nodes in the chain + 1, + 1 more for a side limb */
+    int32_t sides;
+    v3 start;             /* centre of the first ring (inside the parent for a side limb) */
+    double start_radius;  /* m: KEYAKI_SIDE_START x the child's radius for a side limb */
+    uint32_t vertex_offset; /* first ring's first vertex in the mesh (tree-local) */
+} keyaki_limb;
+
+typedef struct keyaki_body {
+    keyaki_limb *limbs;
+    int32_t limb_count;
+    int32_t *leaf_count;  /* per node */
+    uint32_t vertices, indices;         /* totals: bark + leaves */
+    uint32_t bark_vertices, bark_indices;
+    pcg32 leaf_rng;       /* leaf placement continues the stream that drew leaf_count */
+} keyaki_body;
+
+void keyaki_body_free(keyaki_body *b);
+
+/* Plans the body of a grown skeleton (radii, orders set): limbs, sides,
+ * leaf counts (drawn from the tree's leaf stream) and exact totals, so the
+ * caller can refuse past max_vertices before meshing. */
+banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count,
+                               keyaki_body *body, banyan_error *err);
+
+/* Meshes a planned body into mb: bark part (material bark_mat, group) then
+ * leaf part (leaf_mat, group); sets the tree_id/level/order attributes in
+ * slots attr[0..2]; adds the skeleton. */
+void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count, keyaki_body *body,
+                      mesh_builder *mb, const int attr[3], uint32_t bark_mat, uint32_t leaf_mat, uint32_t group,
+                      double tree_id);
+
+/* The whole pipeline for one tree into a fresh mesh (used by keyaki and
+ * avenue). sk is a scratch skeleton (may be reused). */
+banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
+                           banyan_mesh **out, banyan_error *err);
+
+/* Grows + plans without meshing: the exact sizes of a tree's mesh. */
+typedef struct keyaki_counts {
+    uint32_t vertices, indices;
+    uint32_t nodes; /* skeleton: nodes + 1 points, nodes edges */
+    uint32_t parts; /* 1 (bark) or 2 (bark, leaves) */
+} keyaki_counts;
+banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err);
+
+/* PCG32 stream numbers of one tree. */
+#define KEYAKI_STREAM_GROWTH 0x6b6579616b69ull /* "keyaki" */
+#define KEYAKI_STREAM_LEAVES 0x6c6561766573ull /* "leaves" */
+#define AVENUE_STREAM_JITTER 0x6a6974746572ull /* "jitter" */
+
+#endif

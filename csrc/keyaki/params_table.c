@@ -1,0 +1,179 @@
+/* params_table.c - parameter tables of `keyaki` and `avenue`, their
+ * defaults (the paper's: spec/keyaki.md, models 1-4) and the checks that
+ * tie fields together.
+ *
+ * The avenue table embeds the tree's rows under a "tree." prefix
+ * (offsetof(banyan_avenue_params, tree.levels) is plain C), so an avenue
+ * preset or `--set tree.levels=14` sets every tree at once. The tree's
+ * seed, max_vertices, position and heading are not in the avenue table:
+ * the avenue sets them per tree. */
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "keyaki_internal.h"
+#include "params/params.h"
+
+#define KEYAKI_MODELS "simple|strong_weak|twisted|edaore"
+
+/* The tree's rows, shared by both tables; F names the field. */
+#define KEYAKI_TREE_ROWS(S, F)                                                                                       \
+    BP_INT(S, F(max_nodes), 1, 16777216, "skeleton branches allowed before refusing (BANYAN_E_LIMIT)"),              \
+    BP_DOUBLE(S, F(unit), "m", 1e-3, 1e3, "length of one paper unit: scales every length marked 'unit'"),            \
+    BP_ENUM(S, F(model), KEYAKI_MODELS, "branching model (spec models 1-4); edaore is the paper's best"),             \
+    BP_INT(S, F(levels), 1, BANYAN_KEYAKI_MAX_LEVELS, "L_max: fork levels from trunk to tip"),                       \
+    BP_DOUBLE(S, F(trunk_length), "unit", 0.01, 100, "bole length below the level-1 fork"),                          \
+    BP_DOUBLE(S, F(segment_length), "unit", 0.01, 100, "length of one level's branch (rule 4)"),                     \
+    BP_DOUBLE(S, F(fork_angle), "deg", 0, 90, "angle of each child from its parent at level 1 (rule 3)"),           \
+    BP_DOUBLE(S, F(fork_angle_step), "deg", -10, 10, "fork angle added per level"),                                  \
+    BP_ENUM(S, F(fork_plane), "steepest|vertical", "rule 2 fork plane of models 1-2 (see docs/keyaki.md)"),          \
+    BP_DOUBLE(S, F(strong_probability), "", 0, 1, "p: chance of a strong/weak split (models 2-3, rule 5)"),          \
+    BP_DOUBLE(S, F(strong_ratio), "", 0.5, 0.95, "strong child's energy share at such a split (0.7 = 7:3)"),        \
+    BP_DOUBLE(S, F(stop_energy), "", 0, 1, "a branch with less energy stops forking (models 2-3)"),                  \
+    BP_ENUM(S, F(length_rule), "equal|energy", "branch lengths of models 2-3: equal, or 1/energy"),                  \
+    BP_DOUBLE(S, F(max_length_ratio), "", 1, 10, "cap of the weak:strong length ratio (energy lengths)"),           \
+    BP_DOUBLE(S, F(twist), "deg", 0, 90, "tau: fork-plane twist (model 3; model 4 below tilt_mid)"),                \
+    BP_DOUBLE(S, F(twist_mid), "deg", 0, 90, "model 4 twist for tilt_mid <= parent tilt < tilt_high"),               \
+    BP_DOUBLE(S, F(twist_high), "deg", 0, 90, "model 4 twist from tilt_high"),                                      \
+    BP_DOUBLE(S, F(tilt_mid), "deg", 0, 180, "parent tilt from vertical where twist_mid takes over"),               \
+    BP_DOUBLE(S, F(tilt_high), "deg", 0, 180, "parent tilt from vertical where twist_high takes over"),             \
+    BP_ENUM(S, F(strong_side), "upper|random", "strong child of models 3-4: the upper one, or a random side"),        \
+    BP_ENUM(S, F(distribution), "uniform|normal", "edaore split-ratio distribution (rule 7)"),                       \
+    BP_DOUBLE(S, F(alpha), "", 1.001, 10, "break threshold T(l) = alpha^-l (rule 8)"),                              \
+    BP_DOUBLE(S, F(springback), "", 0, 1, "s: a survivor's angle becomes angle * (1 - s (1 - l / L_max)) (rule 9)"), \
+    BP_DOUBLE(S, F(tip_radius), "unit", 1e-4, 10, "pipe-model radius of a tip branch"),                              \
+    BP_DOUBLE(S, F(pipe_exponent), "", 1, 4, "p in r_parent^p = sum of r_child^p"),                                  \
+    BP_DOUBLE(S, F(tip_taper), "", 0.05, 1, "end radius of a tip as a fraction of tip_radius"),                     \
+    BP_INT(S, F(sides_max), 3, 64, "tube sides of the trunk"),                                                       \
+    BP_INT(S, F(sides_min), 3, 64, "tube sides of the thinnest branches"),                                           \
+    BP_BOOL(S, F(leaves), "leaf cards on the last levels"),                                                           \
+    BP_INT(S, F(leaf_levels), 0, BANYAN_KEYAKI_MAX_LEVELS, "branches within this many levels of a tip carry leaves"), \
+    BP_DOUBLE(S, F(leaf_density), "1/unit", 0, 100, "leaf cards per unit of branch length"),                                  \
+    BP_DOUBLE(S, F(leaf_size), "unit", 0.01, 10, "leaf card edge"),                                                  \
+    BP_COLOR(S, F(bark_color), "bark material colour (linear RGBA)"),                                                \
+    BP_COLOR(S, F(leaf_color), "leaf material colour (linear RGBA)")
+
+#define KEYAKI_F(x) x
+#define AVENUE_F(x) tree.x
+
+const banyan_param_info keyaki_table_rows[] = {
+    BP_SEED(banyan_keyaki_params, seed, "random seed"),
+    BP_INT(banyan_keyaki_params, max_vertices, 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
+    BP_VEC3(banyan_keyaki_params, position, "m", -1e6, 1e6, "trunk base"),
+    BP_DOUBLE(banyan_keyaki_params, heading, "deg", -360, 360, "turns the whole tree about its trunk"),
+    KEYAKI_TREE_ROWS(banyan_keyaki_params, KEYAKI_F),
+};
+const int32_t keyaki_table_row_count = (int32_t)(sizeof keyaki_table_rows / sizeof keyaki_table_rows[0]);
+const size_t keyaki_table_params_size = sizeof(banyan_keyaki_params);
+
+const banyan_param_info avenue_table_rows[] = {
+    BP_SEED(banyan_avenue_params, seed, "base seed: tree i uses seed + i"),
+    BP_INT(banyan_avenue_params, max_vertices, 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
+    BP_VEC3(banyan_avenue_params, start, "m", -1e6, 1e6, "first point of the straight path"),
+    BP_VEC3(banyan_avenue_params, end, "m", -1e6, 1e6, "last point of the straight path"),
+    BP_INT(banyan_avenue_params, rows, 1, 2, "one or two rows of trees"),
+    BP_DOUBLE(banyan_avenue_params, row_offset, "m", 0, 1000, "distance between the two rows"),
+    BP_BOOL(banyan_avenue_params, stagger, "shift the second row by half a spacing"),
+    BP_ENUM(banyan_avenue_params, placement, "spacing|count", "place trees every `spacing` m, or `count` per row"),
+    BP_DOUBLE(banyan_avenue_params, spacing, "m", 0.1, 1e4, "distance between trees along the path"),
+    BP_INT(banyan_avenue_params, count, 1, BANYAN_AVENUE_MAX_TREES, "trees per row (placement count)"),
+    BP_DOUBLE(banyan_avenue_params, heading_jitter, "deg", 0, 180, "each tree turned by uniform(+-this)"),
+    BP_DOUBLE(banyan_avenue_params, height_jitter, "", 0, 0.9, "trunk length scaled by 1 + uniform(+-this)"),
+    BP_DOUBLE(banyan_avenue_params, position_jitter, "m", 0, 100, "trunk moved uniformly within a disc of this radius"),
+    KEYAKI_TREE_ROWS(banyan_avenue_params, AVENUE_F),
+};
+const int32_t avenue_table_row_count = (int32_t)(sizeof avenue_table_rows / sizeof avenue_table_rows[0]);
+const size_t avenue_table_params_size = sizeof(banyan_avenue_params);
+
+void banyan_keyaki_params_init(banyan_keyaki_params *p) {
+    if (!p) return;
+    memset(p, 0, sizeof *p);
+    p->seed = 1;
+    p->max_vertices = 4000000;
+    p->max_nodes = 1000000;
+    p->heading = 0;
+    p->unit = 1.0;
+    p->model = BANYAN_KEYAKI_EDAORE;
+    p->levels = 21;
+    p->trunk_length = 0.8;
+    p->segment_length = 0.8;
+    p->fork_angle = 15.0;
+    p->fork_angle_step = 1.0;
+    p->fork_plane = BANYAN_KEYAKI_PLANE_STEEPEST;
+    p->strong_probability = 0.5;
+    p->strong_ratio = 0.7;
+    p->stop_energy = 0.01;
+    p->length_rule = BANYAN_KEYAKI_LENGTH_ENERGY;
+    p->max_length_ratio = 3.0;
+    p->twist = 35.0;
+    p->twist_mid = 15.0;
+    p->twist_high = 0.0;
+    p->tilt_mid = 30.0;
+    p->tilt_high = 60.0;
+    p->strong_side = BANYAN_KEYAKI_SIDE_RANDOM;
+    p->distribution = BANYAN_KEYAKI_UNIFORM;
+    p->alpha = 1.3;
+    p->springback = 1.0;
+    p->tip_radius = 0.045;
+    p->pipe_exponent = 2.5;
+    p->tip_taper = 0.5;
+    p->sides_max = 14;
+    p->sides_min = 4;
+    p->leaves = 1;
+    p->leaf_levels = 4;
+    p->leaf_density = 4.0;
+    p->leaf_size = 0.5;
+    static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};
+    memcpy(p->bark_color, bark, sizeof bark);
+    memcpy(p->leaf_color, leaf, sizeof leaf);
+}
+
+size_t banyan_sizeof_keyaki_params(void) { return sizeof(banyan_keyaki_params); }
+
+void banyan_avenue_params_init(banyan_avenue_params *p) {
+    if (!p) return;
+    memset(p, 0, sizeof *p);
+    banyan_keyaki_params_init(&p->tree);
+    p->seed = 1;
+    p->max_vertices = 4000000;
+    p->end[0] = 60.0;
+    p->rows = 2;
+    p->row_offset = 12.0;
+    p->stagger = 0;
+    p->placement = BANYAN_AVENUE_SPACING;
+    p->spacing = 8.0;
+    p->count = 10;
+    p->heading_jitter = 180.0;
+    p->height_jitter = 0.15;
+    p->position_jitter = 0.3;
+}
+
+size_t banyan_sizeof_avenue_params(void) { return sizeof(banyan_avenue_params); }
+
+banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error *err) {
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    banyan_status s = banyan_params_check(BANYAN_GEN_KEYAKI, p, err);
+    if (s) return s;
+    double last = p->fork_angle + p->fork_angle_step * (p->levels - 1);
+    if (last < 0 || last > 90)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "fork_angle + fork_angle_step * (levels - 1) = %g + %g * %d = %g deg must stay within "
+                           "[0, 90] deg",
+                           p->fork_angle, p->fork_angle_step, p->levels - 1, last);
+    if (p->sides_min > p->sides_max)
+        return banyan_fail(err, BANYAN_E_RANGE, "sides_min = %d must be <= sides_max = %d", p->sides_min,
+                           p->sides_max);
+    if (p->tilt_mid > p->tilt_high)
+        return banyan_fail(err, BANYAN_E_RANGE, "tilt_mid = %g deg must be <= tilt_high = %g deg", p->tilt_mid,
+                           p->tilt_high);
+    if (p->model == BANYAN_KEYAKI_SIMPLE) {
+        /* Model 1 never stops: 2^(levels+1) - 1 branches, known up front. */
+        double nodes = ldexp(1.0, p->levels + 1) - 1;
+        if (nodes > p->max_nodes)
+            return banyan_fail(err, BANYAN_E_LIMIT,
+                               "model simple with levels = %d makes %.0f branches, more than max_nodes = %d; lower "
+                               "levels (6 in the paper) or raise max_nodes",
+                               p->levels, nodes, p->max_nodes);
+    }
+    return BANYAN_OK;
+}

@@ -1,0 +1,342 @@
+/* Collision queries of the roots generator: the sphere of radius r against
+ * host boxes and the ground (spec roots.md 1, "Collision", and the hard
+ * invariant). The spec's face test (d < r with the foot point inside the
+ * face) misses spheres that reach past an edge or a corner, and boxes a
+ * long move jumps over; here every test uses the exact signed distance to
+ * the box and traces whole moves, so a point the walk accepts is never
+ * closer than r to any host. The distance to a convex box is a convex
+ * function along a line, which makes the traces exact up to bisection. */
+#include "roots_internal.h"
+
+/* Signed distance to the box and the outward unit normal of its distance
+ * field (as obb_signed_distance / obb_closest_surface, in one pass). */
+static inline double box_sd(const obb *o, v3 p, v3 *n) {
+    v3 d = v3_sub(p, o->c);
+    double l[3] = {v3_dot(d, o->ax[0]), v3_dot(d, o->ax[1]), v3_dot(d, o->ax[2])};
+    double q[3], s[3], out2 = 0;
+    int k = 0;
+    for (int i = 0; i < 3; i++) {
+        s[i] = l[i] < 0 ? -1.0 : 1.0;
+        q[i] = fabs(l[i]) - o->h[i];
+        if (q[i] > 0) out2 += q[i] * q[i];
+        if (q[i] > q[k]) k = i;
+    }
+    if (out2 > 0) {
+        double dist = sqrt(out2), inv = 1.0 / dist;
+        v3 nn = v3_make(0, 0, 0);
+        for (int i = 0; i < 3; i++)
+            if (q[i] > 0) nn = v3_madd(nn, o->ax[i], q[i] * s[i] * inv);
+        *n = nn;
+        return dist;
+    }
+    *n = v3_scale(o->ax[k], s[k]);
+    return q[k];
+}
+
+/* Signed distance only. */
+static inline double box_dist(const obb *o, v3 p) {
+    v3 d = v3_sub(p, o->c);
+    double qx = fabs(v3_dot(d, o->ax[0])) - o->h[0];
+    double qy = fabs(v3_dot(d, o->ax[1])) - o->h[1];
+    double qz = fabs(v3_dot(d, o->ax[2])) - o->h[2];
+    double inside = qx > qy ? (qx > qz ? qx : qz) : (qy > qz ? qy : qz);
+    if (inside <= 0) return inside;
+    qx = qx > 0 ? qx : 0;
+    qy = qy > 0 ? qy : 0;
+    qz = qz > 0 ? qz : 0;
+    return sqrt(qx * qx + qy * qy + qz * qz);
+}
+
+double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which) {
+    if (!normal && !which) {
+        double best = w->ground && with_ground ? p.z - w->ground_z : 1e300;
+        for (uint32_t i = 0; i < w->n_hosts; i++) {
+            double c = box_dist(&w->hosts[i], p);
+            if (c < best) best = c;
+        }
+        return best;
+    }
+    double best = 1e300;
+    v3 bn = v3_make(0, 0, 1);
+    int bw = -2;
+    if (w->ground && with_ground) {
+        best = p.z - w->ground_z;
+        bw = -1;
+    }
+    for (uint32_t i = 0; i < w->n_hosts; i++) {
+        v3 n;
+        double c = box_sd(&w->hosts[i], p, &n);
+        if (c < best) {
+            best = c;
+            bn = n;
+            bw = (int)i;
+        }
+    }
+    if (normal) *normal = bn;
+    if (which) *which = bw;
+    return best;
+}
+
+/* First t where the sphere along p + t d comes closer than r to box o, or
+ * 1; *nh = normal at the last free position. */
+static double trace_box(const obb *o, v3 p, v3 d, double L, double r, v3 *nh) {
+    v3 n0, n1, n;
+    double f0 = box_sd(o, p, &n0) - r;
+    if (f0 > L) return 1.0; /* out of reach: the distance is 1-Lipschitz */
+    double g0 = v3_dot(n0, d);
+    if (g0 >= -1e-12 * L) return 1.0; /* convex and not falling at 0 */
+    if (f0 < -1e-9 * r) {             /* already touching: no progress */
+        *nh = n0;
+        return 0.0;
+    }
+    double f1 = box_sd(o, v3_add(p, d), &n1) - r, hi = 1.0, fhi = f1;
+    if (f1 >= 0) {
+        if (v3_dot(n1, d) <= 0) return 1.0; /* still falling at 1: the minimum is f1 >= 0 */
+        /* The minimum lies inside: bisect on the slope, stop at the first
+         * point below r. */
+        double a = 0, b = 1;
+        int found = 0;
+        for (int it = 0; it < 40; it++) {
+            double m = 0.5 * (a + b);
+            double f = box_sd(o, v3_madd(p, d, m), &n) - r;
+            if (f < 0) {
+                hi = m;
+                fhi = f;
+                found = 1;
+                break;
+            }
+            if (v3_dot(n, d) < 0) a = m;
+            else b = m;
+        }
+        if (!found) return 1.0;
+    }
+    /* The crossing between lo (free) and hi (touching): regula falsi with
+     * the Illinois step, exact at once where the distance is linear (a
+     * face), a few steps round an edge; bisection would take ~36. */
+    double lo = 0, flo = f0 > 0 ? f0 : 0;
+    int side = 0;
+    for (int it = 0; it < 80 && hi - lo > 1e-13; it++) {
+        double m = lo + (hi - lo) * flo / (flo - fhi);
+        if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
+        double f = box_dist(o, v3_madd(p, d, m)) - r;
+        if (f < 0) {
+            hi = m;
+            fhi = f;
+            if (side == -1) flo *= 0.5;
+            side = -1;
+        } else {
+            lo = m;
+            flo = f;
+            if (side == 1) fhi *= 0.5;
+            side = 1;
+            if (f < 1e-12 * r) break; /* free, and touching within 1e-12 r */
+        }
+    }
+    box_sd(o, v3_madd(p, d, lo), nh);
+    return lo;
+}
+
+double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
+    double L = v3_len(d), best = 1.0;
+    v3 bn = v3_make(0, 0, 1);
+    int bw = -2;
+    if (L <= 0) {
+        if (normal) *normal = bn;
+        if (which) *which = bw;
+        return 1.0;
+    }
+    if (w->ground && d.z < 0) {
+        double f0 = p.z - w->ground_z - w->r;
+        if (f0 + d.z < 0) {
+            double t = f0 > 0 ? f0 / -d.z : 0.0;
+            if (t < best) {
+                best = t;
+                bw = -1;
+            }
+        }
+    }
+    for (uint32_t i = 0; i < w->n_hosts && best > 0; i++) {
+        v3 n = bn;
+        double t = trace_box(&w->hosts[i], p, d, L, w->r, &n);
+        if (t < best) {
+            best = t;
+            bn = n;
+            bw = (int)i;
+        }
+    }
+    if (bw == -1) bn = v3_make(0, 0, 1);
+    if (normal) *normal = bn;
+    if (which) *which = bw;
+    return best;
+}
+
+/* Least signed distance to box o along a -> a + d (convex: bisect on the
+ * slope). Stops early with a value below `stop` once one is found, or
+ * with a lower bound >= stop once the tangents at the bracket's ends prove
+ * the minimum cannot go below it. */
+static double segment_box(const obb *o, v3 a, v3 d, double L, double stop) {
+    v3 n;
+    double fa = box_sd(o, a, &n);
+    if (fa - L >= stop) return fa - L;
+    double ga = v3_dot(n, d);
+    v3 nb;
+    double fb = box_sd(o, v3_add(a, d), &nb), gb = v3_dot(nb, d);
+    double best = fa < fb ? fa : fb;
+    if (best < stop || ga >= 0 || gb <= 0) return best;
+    double lo = 0, hi = 1, flo = fa, glo = ga, fhi = fb, ghi = gb;
+    for (int it = 0; it < 50; it++) {
+        /* Convexity: f >= both tangent lines; they cross at the bound. */
+        double tx = (fhi - flo + glo * lo - ghi * hi) / (glo - ghi);
+        double bound = flo + glo * (tx - lo);
+        if (bound >= stop) return bound < best ? bound : best;
+        double m = 0.5 * (lo + hi);
+        double f = box_sd(o, v3_madd(a, d, m), &n), g = v3_dot(n, d);
+        if (f < best) best = f;
+        if (best < stop) break;
+        if (g < 0) lo = m, flo = f, glo = g;
+        else hi = m, fhi = f, ghi = g;
+    }
+    return best;
+}
+
+double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
+    v3 d = v3_sub(b, a);
+    double L = v3_len(d), best = 1e300;
+    if (w->ground) best = (a.z < b.z ? a.z : b.z) - w->ground_z;
+    for (uint32_t i = 0; i < w->n_hosts && best >= stop; i++) {
+        double c = segment_box(&w->hosts[i], a, d, L, stop);
+        if (c < best) best = c;
+    }
+    return best;
+}
+
+int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int cap) {
+    int k = 0;
+    if (w->ground && p.z - w->ground_z < range && k < cap) {
+        c[k] = p.z - w->ground_z;
+        n[k++] = v3_make(0, 0, 1);
+    }
+    for (uint32_t i = 0; i < w->n_hosts && k < cap; i++) {
+        v3 nn;
+        double d = box_sd(&w->hosts[i], p, &nn);
+        if (d < range) {
+            c[k] = d;
+            n[k++] = nn;
+        }
+    }
+    return k;
+}
+
+double world_segment_deepest(const roots_world *w, v3 a, v3 b, double *t_min) {
+    v3 d = v3_sub(b, a), n;
+    double best = 1e300, bt = 0.5;
+    if (w->ground) {
+        best = (a.z < b.z ? a.z : b.z) - w->ground_z;
+        bt = a.z < b.z ? 0.0 : 1.0;
+    }
+    for (uint32_t i = 0; i < w->n_hosts; i++) {
+        const obb *o = &w->hosts[i];
+        double lo = 0, hi = 1;
+        box_sd(o, a, &n);
+        if (v3_dot(n, d) >= 0) hi = 0; /* rising from a: the minimum is at a */
+        else {
+            box_sd(o, b, &n);
+            if (v3_dot(n, d) <= 0) lo = 1; /* falling up to b */
+        }
+        for (int it = 0; it < 16 && hi - lo > 1e-9; it++) { /* a split point needs no more */
+            double m = 0.5 * (lo + hi);
+            box_sd(o, v3_madd(a, d, m), &n);
+            if (v3_dot(n, d) < 0) lo = m;
+            else hi = m;
+        }
+        double t = 0.5 * (lo + hi), c = box_dist(o, v3_madd(a, d, t));
+        if (c < best) {
+            best = c;
+            bt = t;
+        }
+    }
+    if (t_min) *t_min = bt;
+    return best;
+}
+
+/* How bad a candidate position is: its displacement plus what it still
+ * lacks of clearance r, weighted: a deficit left now costs another push,
+ * which may undo this one (a trunk's bottom face lies on the ground). */
+static double push_score(const roots_world *w, v3 from, v3 to) {
+    double c = world_clearance(w, to, NULL, NULL);
+    return v3_dist(from, to) + (c < w->r ? 4.0 * (w->r - c) : 0.0);
+}
+
+int world_push_out(const roots_world *w, v3 *p) {
+    int moved = 0;
+    for (int it = 0; it < 16; it++) {
+        v3 n;
+        int which;
+        double c = world_clearance(w, *p, &n, &which);
+        if (c >= w->r - w->eps) return moved;
+        /* Along the distance-field normal of the worst obstacle... */
+        v3 best = v3_madd(*p, n, w->r - c);
+        if (which >= 0) {
+            /* ...or out through any face of that host: the nearest face can
+             * lead into the ground or another host (a trunk's bottom face
+             * lies on the ground), so take the exit that costs least. */
+            const obb *o = &w->hosts[which];
+            v3 l = obb_to_local(o, *p);
+            double lc[3] = {l.x, l.y, l.z}, bs = push_score(w, *p, best);
+            for (int f = 0; f < 6; f++) {
+                int k = f / 2;
+                double e[3] = {lc[0], lc[1], lc[2]};
+                e[k] = (f & 1 ? 1.0 : -1.0) * (o->h[k] + w->r);
+                if ((f & 1) ? lc[k] > e[k] : lc[k] < e[k]) continue; /* already beyond that face */
+                v3 q = obb_to_world(o, v3_make(e[0], e[1], e[2]));
+                double s = push_score(w, *p, q);
+                if (s < bs) {
+                    bs = s;
+                    best = q;
+                }
+            }
+        }
+        *p = best;
+        moved = 1;
+    }
+    {
+        /* Still stuck in a crowded corner: the nearest free point among 26
+         * directions at growing distances. */
+        v3 start = *p;
+        for (int k = 0; k < 24; k++) {
+            double rho = w->r * 0.25 * (double)(1 << k);
+            for (int dz = -1; dz <= 1; dz++)
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++) {
+                        if (!dx && !dy && !dz) continue;
+                        v3 q = v3_madd(start, v3_norm(v3_make(dx, dy, dz)), rho);
+                        if (world_clearance(w, q, NULL, NULL) >= w->r - w->eps) {
+                            *p = q;
+                            return 1;
+                        }
+                    }
+        }
+    }
+    /* Crowded corner between hosts: rise above every host still in the way.
+     * Each round clears one host for good, so this ends. */
+    for (uint32_t round = 0; round <= w->n_hosts + 1; round++) {
+        int changed = 0;
+        if (w->ground && p->z < w->ground_z + w->r) {
+            p->z = w->ground_z + w->r;
+            changed = 1;
+        }
+        for (uint32_t i = 0; i < w->n_hosts; i++) {
+            const obb *o = &w->hosts[i];
+            v3 n;
+            if (box_sd(o, *p, &n) >= w->r - w->eps) continue;
+            double top = o->c.z + fabs(o->ax[0].z) * o->h[0] + fabs(o->ax[1].z) * o->h[1] +
+                         fabs(o->ax[2].z) * o->h[2] + w->r * (1.0 + 1e-9);
+            if (p->z < top) {
+                p->z = top;
+                changed = 1;
+            }
+        }
+        if (!changed) break;
+    }
+    return 1;
+}

@@ -1,0 +1,193 @@
+/* Entry points of the roots generator: input checks, the germination point
+ * G (spec roots.md, "Parameters": top centre of the first host, lifted by
+ * r), the stages in order (main roots, first branch roots, correction,
+ * second branch roots, final paths, mesh) and the stats. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "roots_internal.h"
+
+void roots_net_free(roots_net *net) {
+    if (!net) return;
+    free(net->hosts);
+    free(net->M);
+    free(net->M_grown);
+    free(net->K);
+    free(net->K_valid);
+    free(net->K_ok);
+    free(net->Q);
+    free(net->Q_valid);
+    free(net->ground_hit);
+    free(net->pts);
+    free(net->rad);
+    free(net->poly);
+    free(net->M_at);
+    free(net->K_mid_at);
+    memset(net, 0, sizeof *net);
+}
+
+static banyan_status check_params(const banyan_roots_params *p, banyan_error *err) {
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    /* The ones the issue names first, with messages of their own. */
+    if (isnan(p->radius) || !(p->radius > 0))
+        return banyan_fail(err, BANYAN_E_RANGE, "radius = %g must be > 0 (root radius r in units; valid [0.001, 100])",
+                           p->radius);
+    if (p->sides < 4 || p->sides > 256 || p->sides % 2)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "sides = %d must be even and within [4, 256] (each junction ring splits into two halves)",
+                           p->sides);
+    banyan_status s = banyan_params_check(BANYAN_GEN_ROOTS, p, err);
+    if (s) return s;
+    if (p->forward_min > p->forward_max)
+        return banyan_fail(err, BANYAN_E_RANGE, "forward_min = %g must not exceed forward_max = %g unit",
+                           p->forward_min, p->forward_max);
+    return BANYAN_OK;
+}
+
+/* Centre of the most upward face of a box, lifted by r along its normal. */
+static v3 top_centre(const obb *o, double r) {
+    int k = 0;
+    for (int i = 1; i < 3; i++)
+        if (fabs(o->ax[i].z) > fabs(o->ax[k].z)) k = i;
+    v3 n = o->ax[k].z >= 0 ? o->ax[k] : v3_neg(o->ax[k]);
+    return v3_madd(o->c, n, o->h[k] + r);
+}
+
+static size_t tube_vertices(size_t n, int sides) { return n * (size_t)(sides + 1) + 2 * (size_t)(sides + 2); }
+
+banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
+                              roots_net *net, banyan_error *err) {
+    memset(net, 0, sizeof *net);
+    banyan_status s = check_params(p, err);
+    if (s) return s;
+    if (n_hosts == 0)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS,
+                           "n_hosts = 0: strangler-fig roots need at least one host box to grow around");
+    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
+    if (n_hosts > BANYAN_MAX_HOSTS)
+        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
+    net->hosts = malloc(sizeof(obb) * n_hosts);
+    if (!net->hosts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u hosts", n_hosts);
+    if ((s = obb_from_boxes(hosts, n_hosts, net->hosts, err))) {
+        roots_net_free(net);
+        return s;
+    }
+    net->u = p->unit;
+    net->r = p->radius * p->unit;
+    net->w.hosts = net->hosts;
+    net->w.n_hosts = n_hosts;
+    net->w.ground = p->ground;
+    net->w.ground_z = p->ground_z;
+    net->w.r = net->r;
+    net->w.eps = 1e-9 * net->r;
+
+    /* Germination point. */
+    v3 G = p->germination_auto ? top_centre(&net->hosts[0], net->r) : v3_load(p->germination);
+    for (uint32_t i = 0; i < n_hosts; i++) {
+        if (obb_signed_distance(&net->hosts[i], G) <= 0) { /* inside or on its surface */
+            roots_net_free(net);
+            return banyan_fail(err, BANYAN_E_START_INSIDE,
+                               "germination point G = (%g, %g, %g) m is inside hosts[%u]; G must lie outside every "
+                               "host%s",
+                               G.x, G.y, G.z, i,
+                               p->germination_auto ? " (G is the top of hosts[0]: list the topmost box first, or "
+                                                     "set germination_auto = false and germination)"
+                                                   : "");
+        }
+    }
+    if (p->ground && G.z < p->ground_z) {
+        roots_net_free(net);
+        return banyan_fail(err, BANYAN_E_START_INSIDE,
+                           "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x, G.y, G.z,
+                           p->ground_z);
+    }
+    world_push_out(&net->w, &G); /* closer than r to a host: out to r */
+    net->G = G;
+
+    /* Sizes, and the vertex estimate before anything big is allocated. */
+    net->N = p->main_roots;
+    net->B = p->growth_points;
+    net->S1 = p->branch_samples;
+    net->S2 = p->second_samples;
+    net->nb = p->branch_start > p->growth_points ? 0 : (p->growth_points - p->branch_start) / p->branch_spacing + 1;
+    size_t N = (size_t)net->N, B = (size_t)net->B, nb = (size_t)net->nb;
+    size_t firsts = p->first_branches && net->N >= 2 ? N * nb : 0;
+    size_t seconds = firsts && p->second_branches && nb > 1 ? N * (nb - 1) : 0;
+    size_t est = N * tube_vertices(B + 1, p->sides) + firsts * tube_vertices((size_t)net->S1, p->sides) +
+                 seconds * tube_vertices((size_t)net->S2, p->sides);
+    if (est > (size_t)p->max_vertices) {
+        roots_net_free(net);
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the roots mesh would need about %zu vertices, more than max_vertices = %d; raise "
+                           "max_vertices or lower sides, growth_points, main_roots or branch_samples",
+                           est, p->max_vertices);
+    }
+    size_t slots = N * (nb ? nb : 1);
+    net->M = malloc(sizeof(v3) * N * B);
+    net->M_grown = malloc(sizeof(v3) * N * B);
+    net->K = malloc(sizeof(v3) * slots * (size_t)net->S1);
+    net->K_valid = calloc(slots, sizeof(int32_t));
+    net->K_ok = calloc(slots * (size_t)net->S1, 1);
+    net->Q = malloc(sizeof(v3) * slots * (size_t)net->S2);
+    net->Q_valid = calloc(slots, sizeof(int32_t));
+    net->ground_hit = calloc(N, sizeof(int32_t));
+    net->M_at = malloc(sizeof(uint32_t) * N * B);
+    net->K_mid_at = calloc(slots, sizeof(uint32_t));
+    if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
+        !net->M_at || !net->K_mid_at) {
+        roots_net_free(net);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots net");
+    }
+
+    roots_grow_mains(net, p);
+    memcpy(net->M, net->M_grown, sizeof(v3) * N * B);
+    roots_grow_first(net, p);
+    roots_correct_mains(net, p);
+    roots_grow_second(net, p);
+    if ((s = roots_make_paths(net, p))) {
+        roots_net_free(net);
+        return banyan_fail(err, s, "out of memory for the roots paths");
+    }
+
+    /* Stats over the finished net. */
+    banyan_roots_stats *st = &net->stats;
+    st->main_points = (uint32_t)(N * B);
+    st->radius = net->r;
+    st->min_clearance = 1e300;
+    for (uint32_t i = 0; i < net->n_pts; i++) {
+        double c = world_clearance(&net->w, net->pts[i], NULL, NULL);
+        if (c < st->min_clearance) st->min_clearance = c;
+    }
+    for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->kind != ROOT_FIRST) continue;
+        int b = roots_branch_b(p, pl->k);
+        v3 start = net->M[(size_t)pl->a * B + b], end = net->M[(size_t)((pl->a + 1) % net->N) * B + b];
+        const v3 *P = net->pts + pl->off;
+        if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
+            st->first_reached++;
+    }
+    return BANYAN_OK;
+}
+
+banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,
+                                          uint32_t n_hosts, banyan_mesh **out, banyan_roots_stats *stats,
+                                          banyan_error *err) {
+    if (stats) memset(stats, 0, sizeof *stats);
+    BANYAN_CHECK_OUT(out, err);
+    roots_net net;
+    banyan_status s = roots_net_build(params, hosts, n_hosts, &net, err);
+    if (s) return s;
+    banyan_roots_stats st = net.stats;
+    s = roots_net_mesh(&net, params, out, &st, err);
+    roots_net_free(&net);
+    if (s == BANYAN_OK && stats) *stats = st;
+    return s;
+}
+
+banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts, uint32_t n_hosts,
+                                    banyan_mesh **out, banyan_error *err) {
+    return banyan_roots_generate_stats(params, hosts, n_hosts, out, NULL, err);
+}

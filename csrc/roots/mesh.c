@@ -1,0 +1,326 @@
+/* The tube mesh of the net (spec roots.md 5), through the shared sweeper
+ * (tube_frames + tube_sweep_rings): rings of n vertices on
+ * rotation-minimising frames, joined by quads, both ends capped.
+ *
+ * Junction smoothing of a first branch root: its first ring becomes an
+ * elongated loop round M(a,b-3) and M(a,b+2) (half the vertices round
+ * each centre), its last ring a loop round M(a+1,b-2) and M(a+1,b+2); the
+ * rings between blend from the loops to the round ring of radius r,
+ * reaching it at the branch's middle. The spec splits the ring by index
+ * (upper half round M(a,b-3)); here each vertex goes round the centre on
+ * its side of the line between the two centres, which is the same for a
+ * vertical main root and stays a convex loop when the main root runs
+ * sideways. Every ring vertex that would enter a host or the ground is
+ * pressed onto its surface. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tube.h"
+#include "roots_internal.h"
+
+static const v3 UP = {0, 0, 1};
+
+typedef struct work {
+    int sides;
+    double *cs, *sn;      /* cos, sin of ring angles */
+    v3 *T, *N, *B;        /* frames, per point */
+    v3 *rings, *normals;  /* per point * sides */
+    double *arc;          /* arc length per point */
+    double *extent;       /* per point: the farthest ring vertex from the centre */
+    v3 *ls, *le, *ds, *de;/* loop offsets from the end point and loop directions, world */
+} work;
+
+/* Round rings (spec 5 "Rings"): radius per point, scaled across a bend by
+ * 1/cos(half angle) as tube_sweep does, so tubes keep their width. */
+static void round_rings(work *wk, const v3 *P, const double *rad, uint32_t n) {
+    int sides = wk->sides;
+    for (uint32_t i = 0; i < n; i++) {
+        v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
+        v3 bend = v3_make(0, 0, 0);
+        double stretch = 1.0;
+        if (i > 0 && i + 1 < n) {
+            v3 a = v3_norm_or(v3_sub(P[i], P[i - 1]), T), b = v3_norm_or(v3_sub(P[i + 1], P[i]), T);
+            double c = v3_dot(a, T);
+            if (c > 0.2 && c < 0.999999) {
+                stretch = 1.0 / c;
+                bend = v3_norm(v3_sub(b, a));
+            }
+        }
+        v3 *ring = wk->rings + (size_t)i * sides;
+        double ri = rad[i], nb = ri * v3_dot(N, bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
+        for (int j = 0; j < sides; j++) {
+            double c = wk->cs[j], s = wk->sn[j], k = c * nb + s * bb; /* (d . bend)(stretch - 1) */
+            ring[j] = v3_make(P[i].x + ri * (c * N.x + s * Bv.x) + k * bend.x,
+                              P[i].y + ri * (c * N.y + s * Bv.y) + k * bend.y,
+                              P[i].z + ri * (c * N.z + s * Bv.z) + k * bend.z);
+        }
+        wk->extent[i] = ri * stretch;
+    }
+}
+
+/* Loop for one end of a first branch root: for every ring direction d of
+ * the frame at P, the point of the stadium round C1 and C2 (radius rl) in
+ * that direction, stored as a world offset from P and a unit direction.
+ * The spec stands the loop in the vertical plane across the heading gamma;
+ * here it stands in the ring's own plane (across the branch's tangent),
+ * with C1 and C2 projected into it. For a branch leaving horizontally, as
+ * the spec pictures it, the two planes are the same; for one that leaves
+ * steeply, a loop in the vertical plane would lie along the tube and turn
+ * it inside out. The rings towards the middle blend these world offsets
+ * (not frame-relative ones), so the thick part keeps lying along the main
+ * root instead of turning with the branch. */
+static void end_loop(work *wk, v3 P, v3 T, v3 N, v3 C1, v3 C2, double rl, v3 *off, v3 *dir) {
+    v3 Bv = v3_cross(T, N);
+    C1 = v3_madd(C1, T, -v3_dot(v3_sub(C1, P), T));
+    C2 = v3_madd(C2, T, -v3_dot(v3_sub(C2, P), T));
+    v3 e = v3_sub(C1, C2);
+    for (int j = 0; j < wk->sides; j++) {
+        v3 d = v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j]));
+        v3 C = v3_dot(d, e) >= 0 ? C1 : C2;
+        off[j] = v3_sub(v3_madd(C, d, rl), P);
+        dir[j] = d;
+    }
+}
+
+static v3 clamp_reach(v3 from, v3 to, double reach) {
+    v3 d = v3_sub(to, from);
+    double l = v3_len(d);
+    return l > reach ? v3_madd(from, d, reach / l) : to;
+}
+
+/* Rings of a first branch root with junction smoothing; also their
+ * normals. */
+static void junction_rings(work *wk, const roots_net *net, const banyan_roots_params *p, const roots_poly *pl) {
+    const v3 *P = net->pts + pl->off;
+    uint32_t n = pl->n;
+    int sides = wk->sides, B = net->B;
+    int b = roots_branch_b(p, pl->k), a2 = (pl->a + 1) % net->N;
+#define MAT(a, i) net->M[(size_t)(a) * B + ((i) < 0 ? 0 : ((i) >= B ? B - 1 : (i)))]
+    v3 C1 = MAT(pl->a, b - 3), C2 = MAT(pl->a, b + 2), E1 = MAT(a2, b - 2), E2 = MAT(a2, b + 2);
+#undef MAT
+    /* Growth points lie several r apart; on a root crawling over the ground
+     * five of them make a sheet metres long, so the loop's reach is capped. */
+    double reach = p->junction_reach * net->r;
+    C1 = clamp_reach(P[0], C1, reach);
+    C2 = clamp_reach(P[0], C2, reach);
+    E1 = clamp_reach(P[n - 1], E1, 0.8 * reach);
+    E2 = clamp_reach(P[n - 1], E2, 0.8 * reach);
+    double L = wk->arc[n - 1], half = 0.5 * L;
+    end_loop(wk, P[0], wk->T[0], wk->N[0], C1, C2, net->r * p->junction_start_scale, wk->ls, wk->ds);
+    end_loop(wk, P[n - 1], wk->T[n - 1], wk->N[n - 1], E1, E2, net->r * p->junction_end_scale, wk->le, wk->de);
+    for (uint32_t i = 0; i < n; i++) {
+        double s = wk->arc[i];
+        double ws = half > 0 && s < half ? pow(1.0 - s / half, p->junction_falloff) : 0.0;
+        double we = half > 0 && L - s < half ? pow(1.0 - (L - s) / half, p->junction_falloff) : 0.0;
+        if (i == 0) ws = 1.0, we = 0.0;
+        if (i == n - 1) we = 1.0, ws = 0.0;
+        if (ws < 1e-4) ws = 0; /* below a hundredth of a millimetre at r = 4 cm */
+        if (we < 1e-4) we = 0;
+        double wr = 1.0 - ws - we, rad = net->rad[pl->off + i];
+        v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
+        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+        for (int j = 0; j < sides; j++) {
+            v3 dir = v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j]));
+            if (ws == 0 && we == 0) { /* round */
+                ring[j] = v3_madd(P[i], dir, rad);
+                nr[j] = dir;
+                continue;
+            }
+            v3 o = v3_scale(dir, wr * rad), d = v3_scale(dir, wr);
+            /* Loop offsets in the ring's plane only: along the tangent
+             * they would slide rings past each other. */
+            if (ws > 0) {
+                v3 lo = wk->ls[j];
+                o = v3_madd(o, v3_madd(lo, T, -v3_dot(lo, T)), ws);
+                d = v3_madd(d, wk->ds[j], ws);
+            }
+            if (we > 0) {
+                v3 lo = wk->le[j];
+                o = v3_madd(o, v3_madd(lo, T, -v3_dot(lo, T)), we);
+                d = v3_madd(d, wk->de[j], we);
+            }
+            ring[j] = v3_add(P[i], o);
+            nr[j] = v3_norm_or(d, dir);
+        }
+        double e2 = rad * rad;
+        for (int j = 0; j < sides; j++) {
+            double l2 = v3_len2(v3_sub(ring[j], P[i]));
+            if (l2 > e2) e2 = l2;
+        }
+        wk->extent[i] = sqrt(e2);
+    }
+}
+
+/* Ring vertices that a bend's stretch or a junction loop put inside a host
+ * or under the ground go onto its surface: the tube flattens against the
+ * bark instead of entering it. A ring whose centre is farther from every
+ * obstacle than its widest vertex is left alone, which is most. */
+static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
+    int sides = wk->sides;
+    for (uint32_t i = 0; i < n; i++) {
+        v3 *ring = wk->rings + (size_t)i * sides;
+        /* Obstacles within reach of the ring, and per vertex the tangent-
+         * plane bound c + n.o, exact for the ground and for a face. (A ring
+         * of radius r round a centre r from a face just touches it: 1e-6 r
+         * of slack keeps those out.) */
+        enum { CAP = 8 };
+        double oc[CAP];
+        v3 on[CAP];
+        int k = world_near(w, P[i], wk->extent[i] * (1.0 + 1e-9) - 1e-6 * w->r, oc, on, CAP);
+        if (k == 0) continue;
+        int all = k == CAP; /* more obstacles than we track: test every vertex */
+        for (int j = 0; j < sides; j++) {
+            v3 q = ring[j], o = v3_sub(q, P[i]);
+            int maybe = all;
+            for (int t = 0; t < k && !maybe; t++) maybe = oc[t] + v3_dot(on[t], o) < 1e-6 * w->r;
+            if (!maybe || world_clearance(w, q, NULL, NULL) >= 0) continue;
+            double d = -1;
+            for (int it = 0; it < 4; it++) {
+                v3 nrm;
+                d = world_clearance(w, q, &nrm, NULL);
+                if (d >= 0) break;
+                q = v3_madd(q, nrm, -d);
+            }
+            if (d < 0) {
+                /* A sharp wedge between two obstacles: the farthest free
+                 * point between the ring's centre (free) and the vertex. */
+                double lo = 0, hi = 1;
+                for (int it = 0; it < 30; it++) {
+                    double m = 0.5 * (lo + hi);
+                    if (world_clearance(w, v3_lerp(P[i], ring[j], m), NULL, NULL) >= 0) lo = m;
+                    else hi = m;
+                }
+                q = v3_lerp(P[i], ring[j], lo);
+            }
+            ring[j] = q;
+        }
+    }
+}
+
+banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
+                             banyan_roots_stats *stats, banyan_error *err) {
+    const int sides = p->sides;
+    uint64_t total_v = 0, total_i = 0;
+    uint32_t longest = 2;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2) continue;
+        uint32_t v, i;
+        tube_counts(pl->n, sides, 1, 1, &v, &i);
+        total_v += v;
+        total_i += i;
+        if (pl->n > longest) longest = pl->n;
+    }
+    if (total_v > (uint64_t)p->max_vertices)
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the roots mesh needs %llu vertices, more than max_vertices = %d; raise max_vertices or "
+                           "lower sides, growth_points or main_roots",
+                           (unsigned long long)total_v, p->max_vertices);
+    if (total_v == 0) return banyan_fail(err, BANYAN_E_INTERNAL, "the roots net has no tube to sweep");
+
+    work wk;
+    memset(&wk, 0, sizeof wk);
+    wk.sides = sides;
+    size_t nr = (size_t)longest * sides;
+    void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 3 * longest + sizeof(v3) * 2 * nr +
+                         sizeof(double) * 2 * longest + sizeof(v3) * 4 * sides);
+    if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots mesh workspace");
+    wk.cs = block;
+    wk.sn = wk.cs + sides;
+    wk.T = (v3 *)(wk.sn + sides);
+    wk.N = wk.T + longest;
+    wk.B = wk.N + longest;
+    wk.rings = wk.B + longest;
+    wk.normals = wk.rings + nr;
+    wk.ls = wk.normals + nr;
+    wk.ds = wk.ls + sides;
+    wk.le = wk.ds + sides;
+    wk.de = wk.le + sides;
+    wk.arc = (double *)(wk.de + sides);
+    wk.extent = wk.arc + longest;
+    for (int j = 0; j < sides; j++) {
+        /* Half-step offset: each half of a junction loop is symmetric. */
+        double ang = 2.0 * BANYAN_PI * (j + 0.5) / sides;
+        wk.cs[j] = cos(ang);
+        wk.sn[j] = sin(ang);
+    }
+
+    mesh_builder mb;
+    mb_init(&mb, (uint32_t)p->max_vertices, 1);
+    int a_kind = mb_add_attr(&mb, "root_kind"), a_id = mb_add_attr(&mb, "root_id");
+    mb_set_color(&mb, p->color);
+    mb_add_material(&mb, "roots", p->color, 0.9, 0);
+    mb_reserve(&mb, (uint32_t)total_v, (uint32_t)total_i);
+
+    for (uint32_t t = 0; t < net->n_poly && !mb.status; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2) continue;
+        const v3 *P = net->pts + pl->off;
+        mb_set_attr(&mb, a_kind, pl->kind);
+        mb_set_attr(&mb, a_id, pl->id);
+        int smooth = pl->kind == ROOT_FIRST && p->smoothing;
+        v3 first_normal = v3_make(0, 0, 0);
+        if (smooth) {
+            /* Start the frames in the loop's plane: horizontal, across the heading. */
+            v3 h = v3_make(P[pl->n - 1].x - P[0].x, P[pl->n - 1].y - P[0].y, 0);
+            v3 d0 = v3_sub(P[1], P[0]);
+            if (v3_dot(h, d0) < 0) h = v3_neg(h);
+            first_normal = v3_cross(UP, h);
+        }
+        tube_frames(P, pl->n, first_normal, wk.T, wk.N);
+        tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, NULL};
+        if (smooth) {
+            wk.arc[0] = 0;
+            for (uint32_t i = 1; i < pl->n; i++) wk.arc[i] = wk.arc[i - 1] + v3_dist(P[i], P[i - 1]);
+            junction_rings(&wk, net, p, pl);
+            /* A loop's centre is not its middle: give the sweeper the
+             * loop normals rather than let it point them from the centre. */
+            o.ring_normals = wk.normals;
+        } else {
+            round_rings(&wk, P, net->rad + pl->off, pl->n);
+        }
+        press_rings(&wk, &net->w, P, pl->n);
+        tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
+    }
+
+    /* Skeleton: one point per polyline point, the junctions shared: a first
+     * branch root's ends are its main roots' points, a second branch root's
+     * ends are its first branch roots' middle points; G is one point. */
+    uint32_t *skel = malloc(sizeof(uint32_t) * (net->n_pts ? net->n_pts : 1));
+    if (!skel) {
+        free(block);
+        mb_free(&mb);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots skeleton");
+    }
+    uint32_t g_index = UINT32_MAX;
+    for (uint32_t t = 0; t < net->n_poly && !mb.status; t++) {
+        const roots_poly *pl = &net->poly[t];
+        for (uint32_t i = 0; i < pl->n; i++) {
+            uint32_t src = pl->off + i, k;
+            if (pl->kind == ROOT_MAIN && i == 0) {
+                if (g_index == UINT32_MAX) g_index = mb_skel_point(&mb, net->pts[src], net->rad[src], ROOT_MAIN);
+                k = g_index;
+            } else if (pl->kind == ROOT_FIRST && (i == 0 || i + 1 == pl->n)) {
+                int b = roots_branch_b(p, pl->k), a = i == 0 ? pl->a : (pl->a + 1) % net->N;
+                k = skel[net->M_at[(size_t)a * net->B + b]];
+            } else if (pl->kind == ROOT_SECOND && (i == 0 || i + 1 == pl->n)) {
+                int slot = pl->a * net->nb + pl->k + (i == 0 ? 0 : 1);
+                k = skel[net->K_mid_at[slot]];
+            } else {
+                k = mb_skel_point(&mb, net->pts[src], net->rad[src], pl->kind);
+            }
+            skel[src] = k;
+            if (i && skel[src - 1] != k) mb_skel_edge(&mb, skel[src - 1], k);
+        }
+    }
+    free(skel);
+    free(block);
+    uint32_t nv = mb.nv, ni = mb.ni;
+    banyan_status s = mb_finish(&mb, out, err);
+    if (s == BANYAN_OK && stats) {
+        stats->vertices = nv;
+        stats->triangles = ni / 3;
+    }
+    return s;
+}

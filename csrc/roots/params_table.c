@@ -1,0 +1,103 @@
+/* Parameter table and defaults of the roots generator. The defaults are the
+ * spec's (roots.md, "Parameters"); the few that the spec leaves open are
+ * explained in docs/roots.md. */
+#include "banyan.h"
+#include "params/params.h"
+
+#define S banyan_roots_params
+
+const banyan_param_info roots_table_rows[] = {
+    BP_SEED(S, seed, "random seed; the same seed gives the same mesh"),
+    BP_DOUBLE(S, unit, "m", 1e-4, 100, "the paper's length unit u; every paper constant is multiplied by it"),
+    BP_DOUBLE(S, radius, "unit", 0.001, 100, "root radius r, in units"),
+    BP_INT(S, sides, 4, 256, "tube sides n (even)"),
+    BP_INT(S, main_roots, 1, 64, "number of main roots"),
+    BP_INT(S, growth_points, 2, 10000, "growth points per main root B"),
+    BP_INT(S, moves, 1, 100, "sphere moves per growth point"),
+    BP_DOUBLE(S, forward_min, "unit", 0, 1000, "forward draw, lower end"),
+    BP_DOUBLE(S, forward_max, "unit", 0, 1000, "forward draw, upper end"),
+    BP_DOUBLE(S, lateral, "unit", 0, 1000, "lateral draw: I(-lateral <= x <= lateral)"),
+    BP_DOUBLE(S, start_radius, "unit", 0.01, 1000, "radius of the circle around G holding the first growth points"),
+    BP_DOUBLE(S, descent, "m", 0, 1000, "length of U in V = S - Lambda - U while growing down (the spec's U is 1 m)"),
+    BP_INT(S, branch_start, 1, 10000, "first-branch start index b (1-based)"),
+    BP_INT(S, branch_spacing, 1, 10000, "first-branch spacing along a main root"),
+    BP_DOUBLE(S, branch_vertical, "unit", 0, 1000, "first-branch Bezier vertical draw"),
+    BP_INT(S, branch_samples, 3, 1001, "growth points per first branch root"),
+    BP_DOUBLE(S, branch_jitter, "unit", 0, 1000, "first-branch vertical jitter per point"),
+    BP_DOUBLE(S, second_lateral, "unit", 0, 1000, "second-branch lateral Bezier draw"),
+    BP_INT(S, second_samples, 2, 1001, "growth points per second branch root"),
+    BP_BOOL(S, bezier_uniform, "draw Bezier offsets uniformly in [-v, v] instead of picking -v or +v"),
+    BP_COLOR(S, color, "root colour (vertex colour and material base colour)"),
+    BP_BOOL(S, first_branches, "grow first branch roots"),
+    BP_BOOL(S, second_branches, "grow second branch roots"),
+    BP_BOOL(S, correction, "bend main roots where first branch roots leave them"),
+    BP_BOOL(S, smoothing, "junction smoothing at both ends of first branch roots"),
+    BP_BOOL(S, hugging, "surface hugging (off: the paper's stop-on-contact)"),
+    BP_DOUBLE(S, hug_range, "r", 1, 100, "a host face nearer than this pulls a hugging root"),
+    BP_DOUBLE(S, hug_pull, "", 0, 100, "weight of the down-the-face direction added to V"),
+    BP_DOUBLE(S, ground_step, "", 0, 1, "scale of the moves once a root crawls on the ground (1 = the paper)"),
+    BP_DOUBLE(S, junction_start_scale, "r", 0.1, 10, "radius of the junction loop at a first branch's start"),
+    BP_DOUBLE(S, junction_end_scale, "r", 0.1, 10, "radius of the junction loop at a first branch's end"),
+    BP_DOUBLE(S, junction_reach, "r", 1, 1e4, "how far a junction loop reaches along the main root (0.8x at the far end)"),
+    BP_DOUBLE(S, junction_falloff, "", 0.1, 10, "exponent of the loop-to-round blend towards the branch middle"),
+    BP_BOOL(S, main_taper, "main roots thin away from G"),
+    BP_DOUBLE(S, taper_end, "r", 0.05, 1, "main-root radius at the tip when tapering"),
+    BP_VEC3(S, germination, "m", -1e6, 1e6, "germination point G (when germination_auto is off)"),
+    BP_BOOL(S, germination_auto, "G = top centre of hosts[0] lifted by r"),
+    BP_BOOL(S, ground, "the ground half-space below ground_z is solid"),
+    BP_DOUBLE(S, ground_z, "m", -1e6, 1e6, "height of the ground plane"),
+    BP_INT(S, max_vertices, 1, 1073741824, "refuse meshes with more vertices"),
+};
+
+const int32_t roots_table_row_count = (int32_t)(sizeof roots_table_rows / sizeof roots_table_rows[0]);
+const size_t roots_table_params_size = sizeof(S);
+
+void banyan_roots_params_init(banyan_roots_params *p) {
+    if (!p) return;
+    static const banyan_roots_params d = {
+        .seed = 1,
+        .unit = 0.05,
+        .radius = 0.8,
+        .sides = 8,
+        .main_roots = 6,
+        .growth_points = 40,
+        .moves = 5,
+        .forward_min = 0,
+        .forward_max = 4,
+        .lateral = 4,
+        .start_radius = 2,
+        .descent = 1,
+        .branch_start = 4,
+        .branch_spacing = 5,
+        .branch_vertical = 15,
+        .branch_samples = 21,
+        .branch_jitter = 1.5,
+        .second_lateral = 20,
+        .second_samples = 6,
+        .bezier_uniform = 0,
+        .color = {0.20, 0.15, 0.10, 1.0},
+        .first_branches = 1,
+        .second_branches = 1,
+        .correction = 1,
+        .smoothing = 1,
+        .hugging = 1,
+        .hug_range = 3,
+        .hug_pull = 1,
+        .ground_step = 0.3,
+        .junction_start_scale = 1.15,
+        .junction_end_scale = 1.08,
+        .junction_reach = 8,
+        .junction_falloff = 3,
+        .main_taper = 0,
+        .taper_end = 0.5,
+        .germination = {0, 0, 0},
+        .germination_auto = 1,
+        .ground = 1,
+        .ground_z = 0,
+        .max_vertices = 4000000,
+    };
+    *p = d;
+}
+
+size_t banyan_sizeof_roots_params(void) { return sizeof(banyan_roots_params); }
+size_t banyan_sizeof_roots_stats(void) { return sizeof(banyan_roots_stats); }

@@ -1,0 +1,129 @@
+/* roots_internal.h - shared state of the roots generator (spec roots.md).
+ * The net is built in stages: main roots (growth.c, spec 1), first branch
+ * roots, main-root correction and second branch roots (branches.c, spec
+ * 2-4), final polylines with segment repair (paths.c), and the tube mesh
+ * with junction smoothing (mesh.c, spec 5). Tests reach the net through
+ * roots_net_build to check its invariants. */
+#ifndef BANYAN_ROOTS_INTERNAL_H
+#define BANYAN_ROOTS_INTERNAL_H
+
+#include "banyan.h"
+#include "core/obb.h"
+#include "core/rng.h"
+#include "core/vec.h"
+
+/* Kinds, also the skeleton tag and the `root_kind` attribute. */
+enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2 };
+
+/* Collision world: hosts, ground, r. Clearance of a point = its distance
+ * to the nearest host surface (signed, < 0 inside) or to the ground
+ * plane; a sphere centre is free when its clearance is >= r. */
+typedef struct roots_world {
+    const obb *hosts;
+    uint32_t n_hosts;
+    int ground;
+    double ground_z;
+    double r;
+    double eps;  /* numerical slack of the free test, 1e-9 r */
+} roots_world;
+
+/* Nearest obstacle: clearance and the outward unit normal of the distance
+ * field there; *which = host index, or -1 for the ground. */
+double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which);
+static inline double world_clearance(const roots_world *w, v3 p, v3 *normal, int *which) {
+    return world_clearance_ex(w, p, 1, normal, which);
+}
+static inline int world_free(const roots_world *w, v3 p) { return world_clearance(w, p, NULL, NULL) >= w->r - w->eps; }
+/* First t in [0,1] at which the sphere moving p -> p + d would come closer
+ * than r to an obstacle (1 when it never does); *normal gets the normal of
+ * the obstacle hit. Exact up to bisection (the distance to a convex body
+ * is convex along a line). */
+double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which);
+/* Clearance along the segment a-b, for comparing with `stop`: a value
+ * below `stop` is a clearance the segment really has there; a value at or
+ * above it is a lower bound of the least clearance (convexity). */
+double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop);
+/* The obstacles (ground first, then hosts) closer to p than `range`: their
+ * clearance and distance-field normal, at most cap of them; returns how
+ * many. A convex distance grows at least as fast as its tangent plane:
+ * clearance(p + o) >= c + n.o, which lets callers skip far points. */
+int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int cap);
+/* Exact least clearance along a-b and where it is (t in [0,1]). */
+double world_segment_deepest(const roots_world *w, v3 a, v3 b, double *t_min);
+/* Moves p out of every obstacle to clearance r; returns 1 when it moved. */
+int world_push_out(const roots_world *w, v3 *p);
+
+/* One final polyline of the net (after correction and segment repair). */
+typedef struct roots_poly {
+    uint32_t off, n;   /* points pts[off .. off+n-1] */
+    int32_t kind;      /* ROOT_* */
+    int32_t id;        /* root_id, see docs/roots.md */
+    int32_t a, k;      /* main root (0-based) and branch number along it */
+    uint32_t ring_off; /* junction loops: index into net->loops, or UINT32_MAX */
+} roots_poly;
+
+typedef struct roots_net {
+    /* Inputs, resolved. */
+    roots_world w;
+    obb *hosts;
+    v3 G;
+    int N, B;          /* main roots, growth points per main root */
+    int S1, S2;        /* samples per first / second branch root */
+    int nb;            /* first-branch slots per main root */
+    double r, u;
+
+    /* Growth points (spec notation, 0-based). */
+    v3 *M;             /* N * B: M[a*B + b] = M(a+1, b+1) after correction */
+    v3 *M_grown;       /* N * B: as grown, before correction */
+    v3 *K;             /* N * nb * S1 first branch points, slot [a*nb + k] */
+    int32_t *K_valid;  /* N * nb: 1 when the slot holds a first branch root */
+    uint8_t *K_ok;     /* N * nb * S1: the step into K[i] was checked free while placing it */
+    v3 *Q;             /* N * nb * S2 second branch points, slot [a*nb + k] joins k and k+1 */
+    int32_t *Q_valid;  /* N * nb */
+    int32_t *ground_hit; /* N: main root a reached the ground */
+
+    /* Final polylines. */
+    v3 *pts;
+    double *rad;       /* per point radius (taper) */
+    uint32_t n_pts, cap_pts;
+    roots_poly *poly;
+    uint32_t n_poly, cap_poly;
+    /* Where growth point b of main root a sits in pts (after repair). */
+    uint32_t *M_at;    /* N * B */
+    uint32_t *K_mid_at; /* N * nb: where each first branch root's middle point K^mid sits */
+
+    banyan_roots_stats stats;
+} roots_net;
+
+/* Validates params and hosts and builds the net; on failure the net is
+ * freed and err says why. */
+banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
+                              roots_net *net, banyan_error *err);
+void roots_net_free(roots_net *net);
+/* Sweeps the net into a mesh (spec 5). */
+banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
+                             banyan_roots_stats *stats, banyan_error *err);
+
+/* Stages (each file's header comment names its spec section). */
+void roots_grow_mains(roots_net *net, const banyan_roots_params *p);
+void roots_grow_first(roots_net *net, const banyan_roots_params *p);
+void roots_correct_mains(roots_net *net, const banyan_roots_params *p);
+void roots_grow_second(roots_net *net, const banyan_roots_params *p);
+banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p);
+
+/* First-branch slot k of a main root starts at growth index (0-based). */
+static inline int roots_branch_b(const banyan_roots_params *p, int k) {
+    return p->branch_start - 1 + k * p->branch_spacing;
+}
+
+/* A segment between two free sphere centres may sag this far (times r)
+ * into the r-offset of a host before it counts as cutting through: a chord
+ * round a convex corner always dips a little, and a tube of n sides is
+ * itself a polygon. Shared by the first-branch step test and segment
+ * repair, so steps checked by one need not be checked by the other. */
+#define ROOTS_SAG 0.2
+
+/* Per-entity random streams (pcg32_seed's stream argument). */
+enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000 };
+
+#endif

@@ -1,0 +1,61 @@
+/* params_table.c - the parameter table of `banyan segments` (the tree
+ * composer of spec segments.md, "Composing a tree") and its defaults: the
+ * paper's angles and branch length, plus the choices banyan makes where
+ * the spec is silent (unit, radii, sides, attachment tolerance). */
+#include "../core/error.h"
+#include "../params/params.h"
+#include "segment_core.h"
+
+#define S banyan_segments_params
+const banyan_param_info segments_table_rows[] = {
+    BP_SEED(S, seed, "seed of the random demo tree (used only when no segment list is given)"),
+    BP_INT(S, max_vertices, 1, 1073741824, "refuse meshes with more vertices than this"),
+    BP_DOUBLE(S, alpha_deg, "deg", -360, 360, "twig angle about the vertical, +alpha for odd twigs, -alpha for even"),
+    BP_DOUBLE(S, beta_deg, "deg", -360, 360, "fork yaw about the vertical"),
+    BP_DOUBLE(S, gamma_deg, "deg", -360, 360, "roll of the first child about its parent's direction"),
+    BP_DOUBLE(S, omega_deg, "deg", -360, 360, "roll of the second child about its parent's direction"),
+    BP_DOUBLE(S, m, "unit", 1e-6, 1e6, "length of every twig and fork branch, in paper units"),
+    BP_DOUBLE(S, unit, "m", 1e-6, 1e3, "metres per paper unit"),
+    BP_DOUBLE(S, radius, "m", 1e-6, 100, "tube radius of a segment's axis"),
+    BP_DOUBLE(S, radius_ratio, "", 0.01, 1, "each level's radius is this times the level above"),
+    BP_DOUBLE(S, radius_min, "m", 1e-6, 100, "no tube is thinner than this"),
+    BP_DOUBLE(S, trunk_radius, "m", 1e-6, 100, "tube radius of the trunk line"),
+    BP_INT(S, sides, 3, 64, "sides of every tube"),
+    BP_DOUBLE(S, attach_tolerance, "m", 0, 1e6, "how far a segment's start may lie from an earlier axis and still count as attached"),
+    BP_INT(S, demo_segments, 1, 100000, "segments in the random demo tree"),
+    BP_DOUBLE(S, demo_height, "m", 0.01, 1000, "trunk height of the random demo tree"),
+};
+#undef S
+const int32_t segments_table_row_count = (int32_t)(sizeof segments_table_rows / sizeof segments_table_rows[0]);
+const size_t segments_table_params_size = sizeof(banyan_segments_params);
+
+void banyan_segments_params_init(banyan_segments_params *p) {
+    if (!p) return;
+    p->seed = 1;
+    p->max_vertices = 4000000;
+    p->alpha_deg = 40.0;
+    p->beta_deg = 30.0;
+    p->gamma_deg = -30.0;
+    p->omega_deg = 10.0;
+    p->m = 10.0;
+    p->unit = 0.05;
+    p->radius = 0.02;
+    p->radius_ratio = 0.6;
+    p->radius_min = 0.002;
+    p->trunk_radius = 0.06;
+    p->sides = 6;
+    p->attach_tolerance = 0.001;
+    p->demo_segments = 24;
+    p->demo_height = 4.0;
+}
+
+size_t banyan_sizeof_segments_params(void) { return sizeof(banyan_segments_params); }
+size_t banyan_sizeof_segments_stats(void) { return sizeof(banyan_segments_stats); }
+
+void seg_params_from_tree(const banyan_segments_params *tp, banyan_segment_params *sp) {
+    sp->alpha_deg = tp->alpha_deg;
+    sp->beta_deg = tp->beta_deg;
+    sp->gamma_deg = tp->gamma_deg;
+    sp->omega_deg = tp->omega_deg;
+    sp->m = tp->m;
+}

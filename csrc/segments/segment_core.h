@@ -1,0 +1,40 @@
+/* segment_core.h - internal side of the segment reference (reference.c),
+ * shared by the composer, the preset reader and the demo tree. */
+#ifndef BANYAN_SEGMENT_CORE_H
+#define BANYAN_SEGMENT_CORE_H
+
+#include "banyan.h"
+
+/* The float constants one segment is generated with: exactly the shader's
+ * uniforms (banyan_segment_uniforms). */
+typedef struct seg_consts {
+    float ca, sa, cb, sb, cg, sg, co, so; /* cos, sin of alpha, beta, gamma, omega */
+    float m;                              /* twig / fork length */
+} seg_consts;
+
+/* Checks the four angles and m (m given in the caller's length unit,
+ * scaled by m_scale before the check of the product) and fills k. */
+banyan_status seg_consts_make(const banyan_segment_params *p, double m_scale, seg_consts *k, banyan_error *err);
+
+/* Checks one input; messages start with `prefix` (e.g. "segs[3].") then
+ * the field name. */
+banyan_status seg_check_input(const banyan_segment_input *in, const char *prefix, banyan_error *err);
+
+/* Generates one checked segment: xyz gets 3 floats per vertex, level (may
+ * be NULL) one level code per vertex. Returns the vertex count (2..128).
+ * Allocates nothing. */
+int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uint8_t *level);
+
+/* Attachment (spec "Composing a tree"): writes the indices of segments
+ * whose S is farther than tol from every earlier axis and from the trunk
+ * line (6 doubles or NULL; without it segment 0 is the root) into out (may
+ * be NULL) in increasing order and returns how many. A uniform grid finds
+ * candidates; brute != 0 forces the O(count^2) scan (tests compare the
+ * two). Inputs must be checked. *status gets BANYAN_E_NOMEM or OK. */
+uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
+                             int brute, uint32_t *out, banyan_status *status);
+
+/* The segment parameters inside the composer's params. */
+void seg_params_from_tree(const banyan_segments_params *tp, banyan_segment_params *sp);
+
+#endif

@@ -1,0 +1,149 @@
+/* Ivy benchmark: the wall preset (presets/ivy_wall.json: 3 m x 3 m wall,
+ * 450 steps, t0 = 20), mesh included, single-threaded. Prints
+ *   - the median wall time of generate (grow + mesh) over several runs,
+ *     and buds per second;
+ *   - the time per step over the first and the last 50 steps, also per
+ *     growing bud, to show that the spatial index keeps a step's cost per
+ *     bud flat while the plant grows a hundredfold;
+ *   - the light look-up alone at 100 to 100,000 buds.
+ * Usage: bench_ivy [runs] */
+#include "bench.h"
+
+#include "ivy/ivy_internal.h"
+
+static char *read_text(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *t = malloc((size_t)n + 1);
+    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
+        free(t);
+        t = NULL;
+    }
+    fclose(f);
+    *len = (size_t)n;
+    return t;
+}
+
+/* Mean time of one light look-up at random bud positions of the plant;
+ * *mean_h gets the mean H0 found (how crowded the plant is there). */
+static double lookup_us(const banyan_ivy *iv, double *mean_h) {
+    pcg32 r;
+    pcg32_seed(&r, 5, 5);
+    const int q = 20000;
+    double sink = 0, t0 = bench_now();
+    for (int k = 0; k < q; k++) {
+        int32_t i = (int32_t)rng_below(&r, (uint32_t)iv->n);
+        v3 vl = v3_make(0, 0, 0);
+        sink += ivy_shade(iv, iv->buds[i].P, i, HUGE_VAL, &vl);
+    }
+    double t = (bench_now() - t0) / q * 1e6;
+    *mean_h = sink / q;
+    return t;
+}
+
+int main(int argc, char **argv) {
+    int runs = argc > 1 ? atoi(argv[1]) : 7;
+    if (runs < 1) runs = 1;
+    char path[1024];
+    snprintf(path, sizeof path, "%s/presets/ivy_wall.json", BANYAN_SOURCE_DIR);
+    size_t len;
+    char *text = read_text(path, &len);
+    banyan_ivy_params p;
+    banyan_box hosts[4];
+    uint32_t nh = 0;
+    banyan_error err = {0, ""};
+    banyan_ivy_params_init(&p);
+    if (!text || banyan_preset_apply(BANYAN_GEN_IVY, &p, text, len, path, &err) ||
+        banyan_preset_hosts(text, len, path, hosts, 4, &nh, &err)) {
+        fprintf(stderr, "bench_ivy: cannot load %s: %s\n", path, err.message);
+        return 1;
+    }
+    free(text);
+
+    double *t = malloc(sizeof(double) * (size_t)runs), *tg = malloc(sizeof(double) * (size_t)runs);
+    uint32_t verts = 0;
+    int32_t buds = 0;
+    for (int r = 0; r < runs; r++) {
+        banyan_ivy *iv = NULL;
+        banyan_mesh *m = NULL;
+        double a = bench_now();
+        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) {
+            fprintf(stderr, "bench_ivy: %s\n", err.message);
+            return 1;
+        }
+        double b = bench_now();
+        if (banyan_ivy_mesh(iv, &m, &err)) {
+            fprintf(stderr, "bench_ivy: %s\n", err.message);
+            return 1;
+        }
+        double c = bench_now();
+        t[r] = c - a;
+        tg[r] = b - a;
+        verts = m->vertex_count;
+        buds = iv->n;
+        banyan_mesh_free(m);
+        banyan_ivy_free(iv);
+    }
+    double med = bench_median(t, runs), medg = bench_median(tg, runs);
+    printf("ivy wall preset: %d steps, %d buds, %u vertices\n", p.steps, buds, verts);
+    printf("  generate (grow + mesh): median %.3f s over %d runs (grow %.3f s, mesh %.3f s)\n", med, runs, medg,
+           med - medg);
+    printf("  buds per second: %.0f (whole generate), %.0f (growth alone)\n", buds / med, buds / medg);
+
+    /* Time per step at the start and at the end. */
+    banyan_ivy *iv = NULL;
+    banyan_ivy_create(&p, hosts, nh, &iv, &err);
+    double first = 0, last = 0;
+    int64_t grow_first = 0, grow_last = 0;
+    int32_t n_first = 0, n_last0 = 0;
+    double probe[4] = {0, 0, 0, 0}, probe_h[4] = {0, 0, 0, 0};
+    int32_t probe_n[4] = {0, 0, 0, 0}, next_probe = 0;
+    const int32_t probe_at[4] = {100, 1000, 10000, 30000};
+    for (int s = 0; s < p.steps; s++) {
+        int64_t act = iv->active;
+        double a = bench_now();
+        banyan_ivy_step(iv, 1, &err);
+        double d = bench_now() - a;
+        if (s < 50) { first += d; grow_first += act; n_first = iv->n; }
+        if (s == p.steps - 50) n_last0 = iv->n;
+        if (s >= p.steps - 50) { last += d; grow_last += act; }
+        while (next_probe < 4 && iv->n >= probe_at[next_probe]) {
+            probe[next_probe] = lookup_us(iv, &probe_h[next_probe]);
+            probe_n[next_probe++] = iv->n;
+        }
+    }
+    printf("  time per step: first 50 steps %.3f ms (%d buds at step 50), last 50 steps %.3f ms (%d..%d buds)\n",
+           first / 50 * 1e3, n_first, last / 50 * 1e3, n_last0, iv->n);
+    printf("  per growing bud and step: first 50 steps %.2f us, last 50 steps %.2f us\n",
+           grow_first ? first / grow_first * 1e6 : 0.0, grow_last ? last / grow_last * 1e6 : 0.0);
+    banyan_ivy_free(iv);
+
+    /* The light look-up alone, up to 100,000 buds: the same ivy (t0 = 20)
+     * on a wall 12 m wide and 6 m high, grown longer. */
+    banyan_box wide = banyan_box_make(0, 0.1, 3, 6, 0.1, 3);
+    iv = NULL;
+    banyan_ivy_create(&p, &wide, 1, &iv, &err);
+    double tb = bench_now();
+    int64_t grow_big = 0;
+    double last_big = 0;
+    while (iv->n < 100000 && iv->step < 3000) {
+        int64_t act = iv->active;
+        double a = bench_now();
+        if (banyan_ivy_step(iv, 1, &err)) break;
+        if (iv->n > 90000) { last_big += bench_now() - a; grow_big += act; }
+    }
+    printf("  12 m x 6 m wall to %d buds (%d steps, %.2f s): per growing bud and step over the last 10%%: %.2f us\n",
+           iv->n, iv->step, bench_now() - tb, grow_big ? last_big / grow_big * 1e6 : 0.0);
+    printf("  light look-up (H0 + V_l at a bud, no early stop):");
+    for (int k = 0; k < 4; k++)
+        if (probe_n[k]) printf(" %.2f us at %d buds (mean H0 %.1f),", probe[k], probe_n[k], probe_h[k]);
+    double hb, tbig = lookup_us(iv, &hb);
+    printf(" %.2f us at %d buds (mean H0 %.1f)\n", tbig, iv->n, hb);
+    banyan_ivy_free(iv);
+    free(t);
+    free(tg);
+    return 0;
+}

@@ -1,0 +1,136 @@
+"""Issue 7 "Speed": in one Blender process, for the roots default, the
+wall ivy and the 100-tree boulevard:
+  library   the generate call through the binding, copy-out included
+  operator  the add-on's whole operator (bpy.ops...), library included
+  bare      Blender's floor: foreach_set of the same arrays into an empty
+            mesh (vertices, loops, polygons, update(calc_edges=True)) and
+            linking one object
+and the ratios operator / (library + bare) and (operator - library) / bare
+(the add-on's hand-off against the bare one; target <= 1.5).
+
+Run (the runner's environment):
+  BANYAN_LIB=build/libbanyan.so BLENDER_USER_SCRIPTS=<dir with addons/banyan> \
+    blender -b --factory-startup --addons banyan --python tests/bench/blender_handoff.py [-- runs]
+"""
+import statistics
+import sys
+import time
+from array import array
+
+import bpy
+
+from banyan import hosts as H
+from banyan.core import generators as G
+from banyan.core.params import Params
+
+# The default 450 steps pass the default max_vertices (4 M) on this wall.
+IVY_STEPS = 300
+RUNS = int(sys.argv[sys.argv.index("--") + 1]) if "--" in sys.argv else 3
+
+
+def clear_generated(keep):
+    for o in list(bpy.data.objects):
+        if o.name not in keep:
+            bpy.data.objects.remove(o)
+    for m in list(bpy.data.meshes):
+        if m.users == 0:
+            bpy.data.meshes.remove(m)
+    for m in list(bpy.data.materials):
+        if m.users == 0:
+            bpy.data.materials.remove(m)
+    for c in list(bpy.data.collections):
+        if c.name.startswith("Keyaki Avenue"):
+            bpy.data.collections.remove(c)
+
+
+def bare(d):
+    t = time.perf_counter()
+    me = bpy.data.meshes.new("bare")
+    nv, ni = d.vertex_count, d.index_count
+    me.vertices.add(nv)
+    me.vertices.foreach_set("co", d.positions)
+    me.loops.add(ni)
+    me.loops.foreach_set("vertex_index", d.indices)
+    me.polygons.add(ni // 3)
+    me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
+    me.polygons.foreach_set("loop_total", array("i", [3]) * (ni // 3))
+    me.update(calc_edges=True)
+    ob = bpy.data.objects.new("bare", me)
+    bpy.context.scene.collection.objects.link(ob)
+    dt = time.perf_counter() - t
+    bpy.data.objects.remove(ob)
+    bpy.data.meshes.remove(me)
+    return dt
+
+
+def setup_roots():
+    cube = bpy.data.objects["Cube"]
+    return [cube], lambda: G.roots(Params("roots"), H.boxes_from_objects([cube])), \
+        lambda **kw: bpy.ops.mesh.banyan_roots(**kw)
+
+
+def setup_ivy():
+    cube = bpy.data.objects["Cube"]
+    cube.location = (0.0, 0.1, 1.5)
+    cube.scale = (1.5, 0.1, 1.5)  # the CLI's default wall: 3 x 0.2 x 3 m
+    bpy.context.view_layer.update()
+    p = Params("ivy")
+    p.set("steps", IVY_STEPS)
+    return [cube], lambda: G.ivy(p, H.boxes_from_objects([cube])), \
+        lambda **kw: bpy.ops.mesh.banyan_ivy(start_at_cursor=False, steps=IVY_STEPS, **kw)
+
+
+def setup_boulevard():
+    p = Params("avenue")
+    p.set("placement", "count")
+    p.set("count", 50)
+    p.set("rows", 2)
+    return [], lambda: G.avenue(p), \
+        lambda **kw: bpy.ops.mesh.banyan_keyaki_avenue(path_from='PARAMS', placement='count', count=50, rows=2,
+                                                       **kw)
+
+
+CASES = [("roots default", "roots", setup_roots), ("wall ivy", "ivy", setup_ivy),
+         ("100-tree boulevard", "avenue", setup_boulevard)]
+
+
+def main():
+    avail = G.available()
+    print("banyan Blender hand-off benchmark, median of %d runs, Blender %s" % (RUNS, bpy.app.version_string))
+    print("%-20s %9s %9s %9s %8s %8s %9s %11s %9s %11s" % (
+        "case", "vertices", "tris", "library", "bare", "op", "op/(l+b)", "(op-l)/bare", "op no-uv",
+        "(nouv-l)/b"))
+    for label, gen, setup in CASES:
+        if not avail[gen]:
+            print("%-20s not built into this library" % label)
+            continue
+        bpy.ops.wm.read_homefile(use_factory_startup=True)
+        keep = {o.name for o in bpy.data.objects}
+        hosts, lib_call, op_call = setup()
+        libs, bares, ops, nouv = [], [], [], []
+        d = None
+        for _ in range(RUNS):
+            t = time.perf_counter()
+            d = lib_call()
+            libs.append(time.perf_counter() - t)
+            bares.append(bare(d))
+            for h in hosts:
+                h.select_set(True)
+                bpy.context.view_layer.objects.active = h
+            for uv, out in ((True, ops), (False, nouv)):
+                for h in hosts:
+                    h.select_set(True)
+                    bpy.context.view_layer.objects.active = h
+                t = time.perf_counter()
+                res = op_call(uv_map=uv)
+                out.append(time.perf_counter() - t)
+                assert res == {'FINISHED'}, res
+                clear_generated(keep)
+        lib_t, bare_t, op_t, nouv_t = (statistics.median(x) for x in (libs, bares, ops, nouv))
+        print("%-20s %9d %9d %8.3fs %7.3fs %7.3fs %9.2f %11.2f %8.3fs %11.2f" % (
+            label, d.vertex_count, d.triangle_count, lib_t, bare_t, op_t, op_t / (lib_t + bare_t),
+            (op_t - lib_t) / bare_t, nouv_t, (nouv_t - lib_t) / bare_t))
+        sys.stdout.flush()
+
+
+main()

@@ -1,0 +1,77 @@
+"""Tiny test helper for tests run inside headless Blender.
+
+    import bt
+    bt.check(cond, "what")      # records pass / fail, prints failures
+    if bt.generator("roots"): ... # True when built; fails loudly when missing
+                                  # unless config.EXPECTED_MISSING lists it
+    bt.done()                   # prints "name: N passed, N failed", exits 1 on failure
+"""
+import os
+import sys
+import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import config  # noqa: E402
+
+NAME = os.path.splitext(os.path.basename(sys.argv[-1]))[0] if sys.argv else "test"
+_passed = 0
+_failed = 0
+SOURCE_DIR = os.environ.get("BANYAN_SOURCE_DIR", os.path.normpath(os.path.join(os.path.dirname(__file__), "..", "..")))
+OUT_DIR = os.environ.get("BANYAN_TEST_OUT", "/tmp")
+
+
+def check(cond, what):
+    global _passed, _failed
+    if cond:
+        _passed += 1
+    else:
+        _failed += 1
+        print("FAIL: %s" % what, flush=True)
+    return bool(cond)
+
+
+def run(fn):
+    """Runs a test function; an exception counts as a failure."""
+    try:
+        fn()
+    except Exception:
+        traceback.print_exc()
+        check(False, "%s raised" % fn.__name__)
+
+
+def generator(gen):
+    from banyan.core import generators as G
+    from banyan.core import lib
+    try:
+        lib.load()  # a library that does not load is a failure, never a skip
+        ok = G.available()[gen]
+    except Exception as e:  # the library did not load: that is a failure
+        check(False, "library did not load: %s" % e)
+        return False
+    if ok:
+        return True
+    if gen in config.EXPECTED_MISSING:
+        print("SKIP: generator '%s' is missing (expected: %s)" % (gen, config.EXPECTED_MISSING[gen]), flush=True)
+        return False
+    check(False, "generator '%s' is missing from the library and not listed in tests/blender/config.py" % gen)
+    return False
+
+
+def done():
+    print("%s: %d passed, %d failed" % (NAME, _passed, _failed), flush=True)
+    sys.stdout.flush()
+    os._exit(1 if _failed or not _passed else 0)
+
+
+def reset_scene():
+    """Factory scene: the default cube (selected, active), camera, light."""
+    import bpy
+    bpy.ops.wm.read_homefile(use_factory_startup=True)
+
+
+def scene_state():
+    """Names of every object, mesh, material, collection and node group."""
+    import bpy
+    return (sorted(o.name for o in bpy.data.objects), sorted(m.name for m in bpy.data.meshes),
+            sorted(m.name for m in bpy.data.materials), sorted(c.name for c in bpy.data.collections),
+            sorted(n.name for n in bpy.data.node_groups))

@@ -1,0 +1,49 @@
+"""docs/examples/render_roots.py renders a non-blank PNG headless (Cycles
+CPU), for the defaults and for a shipped preset."""
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bt  # noqa: E402
+
+import bpy  # noqa: E402
+
+SCRIPT = os.path.join(bt.SOURCE_DIR, "docs", "examples", "render_roots.py")
+
+
+def render(preset, name):
+    out = os.path.join(bt.OUT_DIR, name)
+    if os.path.exists(out):
+        os.remove(out)
+    cmd = [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python", SCRIPT, "--",
+           "--out", out, "--size", "96", "--samples", "4"]
+    if preset:
+        cmd += ["--preset", preset]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    bt.check(r.returncode == 0 and os.path.isfile(out), "render %s: exit %d %s" % (name, r.returncode, r.stderr[-400:]))
+    if not os.path.isfile(out):
+        return
+    img = bpy.data.images.load(out)
+    w, h = img.size
+    px = list(img.pixels)
+    bt.check((w, h) == (96, 96), "%s: 96x96 (%dx%d)" % (name, w, h))
+    lum = [0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2] for i in range(0, len(px), 4)]
+    mean = sum(lum) / len(lum)
+    var = sum((x - mean) ** 2 for x in lum) / len(lum)
+    bt.check(0.02 < mean < 0.98, "%s: not black or white (mean %.3f)" % (name, mean))
+    bt.check(var > 1e-4, "%s: not flat (variance %.5f)" % (name, var))
+    # The roots are in the middle of the frame: the centre differs from the corners.
+    def at(x, y):
+        return lum[y * w + x]
+    centre = sum(at(x, y) for x in range(40, 56) for y in range(30, 60)) / (16 * 30)
+    corner = sum(at(x, y) for x in range(0, 10) for y in range(0, 10)) / 100
+    bt.check(abs(centre - corner) > 0.01, "%s: something in the middle (%.3f vs %.3f)" % (name, centre, corner))
+
+
+if bt.generator("roots"):
+    render(None, "render_roots_default.png")
+    render("roots_trunk", "render_roots_trunk.png")
+else:
+    bt.check(True, "roots not built (expected)")
+bt.done()

@@ -1,0 +1,275 @@
+/* avenue: layout (counts by spacing and count, rows, stagger, row offset,
+ * polylines), per-tree seeds (tree i is the keyaki of seed base + i),
+ * the merged mesh grouped by tree, byte-identical output on 1, 2 and all
+ * threads, trees that differ, refusals with clear messages, the avenue
+ * presets, and a glb for the validator. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "keyaki/keyaki_internal.h"
+
+static void small(banyan_avenue_params *p) {
+    banyan_avenue_params_init(p);
+    /* Small trees keep the test quick. */
+    p->tree.levels = 12;
+    p->tree.alpha = 1.45;
+    p->tree.unit = 0.5;
+}
+
+static double dist_to_line_xy(const double *pos, v3 a, v3 b) {
+    v3 ab = v3_sub(b, a), q = v3_sub(v3_make(pos[0], pos[1], pos[2]), a);
+    double t = v3_dot(q, ab) / v3_len2(ab);
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    v3 f = v3_madd(a, ab, t);
+    return hypot(pos[0] - f.x, pos[1] - f.y);
+}
+
+static void layout(void) {
+    banyan_avenue_params p;
+    banyan_avenue_params_init(&p);
+    uint32_t n = 0;
+    banyan_error err;
+    /* 60 m every 8 m: 8 per row, centred (first at 2 m), 2 rows. */
+    CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n == 16, "spacing: %u trees", n);
+    banyan_keyaki_params t[64];
+    p.position_jitter = 0;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, t, 64, &n, &err) == BANYAN_OK, "%s", err.message);
+    int bad = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t k = i % 8;
+        double want_x = 2.0 + 8.0 * k, want_y = i < 8 ? 6.0 : -6.0;
+        bad += fabs(t[i].position[0] - want_x) > 1e-9 || fabs(t[i].position[1] - want_y) > 1e-9;
+        bad += t[i].seed != p.seed + i || t[i].max_vertices != p.max_vertices;
+        bad += fabs(t[i].heading) > p.heading_jitter ||
+               fabs(t[i].trunk_length / p.tree.trunk_length - 1) > p.height_jitter + 1e-12;
+    }
+    CHECK(bad == 0, "%d misplaced trees", bad);
+    /* Stagger: row 1 shifted by 4 m loses its last tree (62 m > 60 m). */
+    p.stagger = 1;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, t, 64, &n, &err) == BANYAN_OK && n == 15 &&
+              fabs(t[8].position[0] - 6.0) < 1e-9,
+          "stagger: %u trees, row 1 starts at %g", n, t[8].position[0]);
+    /* Count: 5 per row from end to end; one row on the path. */
+    p.stagger = 0;
+    p.placement = BANYAN_AVENUE_COUNT;
+    p.count = 5;
+    p.rows = 1;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, t, 64, &n, &err) == BANYAN_OK && n == 5 && t[0].position[0] == 0 &&
+              fabs(t[4].position[0] - 60) < 1e-9 && t[2].position[1] == 0,
+          "count: %u trees", n);
+    /* Jitter stays within its disc; a polyline keeps trees at the row
+     * offset from the path. */
+    p.rows = 2;
+    p.row_offset = 10;
+    p.placement = BANYAN_AVENUE_SPACING;
+    p.spacing = 5;
+    p.position_jitter = 0.5;
+    double path[] = {0, 0, 0, 40, 0, 0, 40, 30, 0, 10, 60, 1};
+    CHECK(banyan_avenue_layout(&p, path, 4, t, 64, &n, &err) == BANYAN_OK, "polyline: %s", err.message);
+    double length = 40 + 30 + hypot(30, 30) + 0 * 1;
+    length = 40 + 30 + sqrt(30 * 30 + 30 * 30 + 1);
+    CHECK(n == 2 * (uint32_t)(floor(length / 5) + 1), "polyline: %u trees for %g m", n, length);
+    bad = 0;
+    for (uint32_t i = 0; i < n && i < 64; i++) {
+        double best = 1e30;
+        for (int s = 0; s < 3; s++) {
+            double d = dist_to_line_xy(t[i].position, v3_load(path + 3 * s), v3_load(path + 3 * s + 3));
+            if (d < best) best = d;
+        }
+        /* Within the offset +- jitter of the nearest segment (corners
+         * bring the other leg closer, never farther). */
+        bad += best > 5 + 0.5 + 1e-9;
+    }
+    CHECK(bad == 0, "%d polyline trees off their row", bad);
+}
+
+static void refusals(void) {
+    banyan_avenue_params p;
+    banyan_error err = {0, ""};
+    banyan_mesh *m;
+    uint32_t n;
+#define REFUSE(call, code, needle, what)                                                                         \
+    do {                                                                                                        \
+        m = (banyan_mesh *)&err;                                                                                \
+        banyan_status s_ = (call);                                                                              \
+        CHECK(s_ == (code) && m == NULL && strstr(err.message, needle), "%s: status %d, '%s'", what, s_,        \
+              err.message);                                                                                     \
+    } while (0)
+    small(&p);
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, -1, &m, &err), BANYAN_E_RANGE, "threads = -1", "threads -1");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 257, &m, &err), BANYAN_E_RANGE, "threads = 257", "threads 257");
+    p.end[0] = 0;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, &err), BANYAN_E_RANGE, "start and end must differ", "no length");
+    small(&p);
+    double bad_path[] = {0, 0, 0, 1, NAN, 0};
+    REFUSE(banyan_avenue_generate(&p, bad_path, 2, 1, &m, &err), BANYAN_E_RANGE, "path point 1", "NaN path");
+    double rep_path[] = {0, 0, 0, 5, 0, 0, 5, 0, 0};
+    REFUSE(banyan_avenue_generate(&p, rep_path, 3, 1, &m, &err), BANYAN_E_RANGE, "repeats", "repeated path point");
+    REFUSE(banyan_avenue_generate(&p, rep_path, 1, 1, &m, &err), BANYAN_E_RANGE, "path_point_count", "one point");
+    p.spacing = 0.1;
+    p.end[0] = 1e5;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, &err), BANYAN_E_LIMIT, "more than 10000", "too many trees");
+    small(&p);
+    p.max_vertices = 5000;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_LIMIT, "more than max_vertices = 5000",
+           "vertex limit");
+    small(&p);
+    p.tree.alpha = 1.0;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
+    small(&p);
+    p.tree.trunk_length = 90;
+    p.height_jitter = 0.5;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "tree 0: tree.trunk_length",
+           "jittered trunk out of range");
+    small(&p);
+    p.rows = 3;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "rows = 3", "three rows");
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
+    CHECK(banyan_avenue_layout(NULL, NULL, 0, NULL, 0, &n, &err) == BANYAN_E_INVALID_ARG, "NULL params");
+    /* The table takes tree.* keys. */
+    small(&p);
+    CHECK(banyan_param_set_text(BANYAN_GEN_AVENUE, &p, "tree.levels", "9", &err) == BANYAN_OK && p.tree.levels == 9,
+          "set tree.levels: %s", err.message);
+    CHECK(banyan_param_set_text(BANYAN_GEN_AVENUE, &p, "tree.seed", "9", &err) == BANYAN_E_UNKNOWN_KEY,
+          "tree.seed must not be settable (the avenue sets it)");
+#undef REFUSE
+}
+
+static void merged(const char *outdir) {
+    banyan_avenue_params p;
+    small(&p);
+    p.end[0] = 40;
+    banyan_mesh *m1 = NULL, *m2 = NULL, *m0 = NULL, *again = NULL;
+    banyan_error err;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m1, &err) == BANYAN_OK, "1 thread: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m2, &err) == BANYAN_OK, "2 threads: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 0, &m0, &err) == BANYAN_OK, "all cores: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 7, &again, &err) == BANYAN_OK, "7 threads: %s", err.message);
+    if (!m1 || !m2 || !m0 || !again) return;
+    uint64_t h = banyan_mesh_hash(m1);
+    CHECK(h == banyan_mesh_hash(m2) && h == banyan_mesh_hash(m0) && h == banyan_mesh_hash(again),
+          "thread counts change the bytes");
+    CHECK(m1->vertex_count == m2->vertex_count && memcmp(m1->positions, m2->positions, 12 * (size_t)m1->vertex_count) == 0,
+          "positions differ between 1 and 2 threads");
+
+    /* Tree i's vertices are contiguous, its parts have group i, its
+     * tree_id is i, and they equal the keyaki of the layout's params i. */
+    uint32_t n = 0;
+    banyan_keyaki_params t[32];
+    CHECK(banyan_avenue_layout(&p, NULL, 0, t, 32, &n, &err) == BANYAN_OK && n == 12, "layout: %u", n);
+    const float *tid = banyan_mesh_attribute(m1, "tree_id");
+    CHECK(tid && banyan_mesh_attribute(m1, "level") && banyan_mesh_attribute(m1, "order"), "attributes");
+    CHECK(m1->material_count == 2, "%u materials", m1->material_count);
+    uint32_t part = 0, v = 0, x = 0;
+    int bad_group = 0, bad_same = 0, bad_tid = 0;
+    for (uint32_t i = 0; i < n && tid; i++) {
+        banyan_mesh *k = NULL;
+        CHECK(banyan_keyaki_generate(&t[i], &k, &err) == BANYAN_OK, "tree %u: %s", i, err.message);
+        if (!k) continue;
+        for (uint32_t q = 0; q < k->part_count; q++, part++) {
+            const banyan_part *a = &m1->parts[part], *b = &k->parts[q];
+            bad_group += a->group != i || a->material != b->material || a->vertex_offset != v + b->vertex_offset ||
+                         a->vertex_count != b->vertex_count || a->index_offset != x + b->index_offset;
+        }
+        bad_same += memcmp(m1->positions + 3 * (size_t)v, k->positions, 12 * (size_t)k->vertex_count) != 0;
+        for (uint32_t j = 0; j < k->index_count; j++) bad_same += m1->indices[x + j] != k->indices[j] + v;
+        for (uint32_t j = 0; j < k->vertex_count; j++) bad_tid += tid[v + j] != (float)i;
+        v += k->vertex_count;
+        x += k->index_count;
+        banyan_mesh_free(k);
+    }
+    CHECK(part == m1->part_count && v == m1->vertex_count && x == m1->index_count, "coverage: %u parts %u verts", part,
+          v);
+    CHECK(bad_group == 0 && bad_same == 0 && bad_tid == 0, "grouping %d, tree bytes %d, tree_id %d", bad_group,
+          bad_same, bad_tid);
+
+    /* Trees differ: tip counts and crown widths vary across the avenue. */
+    int distinct = 0;
+    for (uint32_t i = 1; i < n; i++) {
+        banyan_keyaki_statistics a, b;
+        banyan_keyaki_stats(&t[i - 1], &a, NULL);
+        banyan_keyaki_stats(&t[i], &b, NULL);
+        distinct += a.crown_width != b.crown_width || a.tip_count != b.tip_count;
+    }
+    CHECK(distinct == (int)n - 1, "only %d of %u neighbours differ", distinct, n - 1);
+
+    /* Another base seed, another avenue. */
+    p.seed++;
+    banyan_mesh *other = NULL;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &other, &err) == BANYAN_OK, "seed+1");
+    CHECK(other && banyan_mesh_hash(other) != h, "base seed does not change the avenue");
+    banyan_mesh_free(other);
+
+    if (outdir) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/avenue_small.glb", outdir);
+        const char *name = "avenue";
+        CHECK(banyan_gltf_write(path, (const banyan_mesh *const *)&m1, &name, 1, &err) == BANYAN_OK, "write: %s",
+              err.message);
+    }
+    banyan_mesh_free(m1);
+    banyan_mesh_free(m2);
+    banyan_mesh_free(m0);
+    banyan_mesh_free(again);
+}
+
+static char *slurp(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = malloc((size_t)n + 1);
+    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
+        free(b);
+        b = NULL;
+    }
+    fclose(f);
+    *len = (size_t)n;
+    return b;
+}
+
+static void presets(const char *outdir) {
+    static const char *const names[] = {"avenue_boulevard", "avenue_street", "avenue_young"};
+    static const uint32_t want[] = {100, 10, 0};
+    for (int i = 0; i < 3; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, names[i]);
+        size_t len;
+        char *text = slurp(path, &len);
+        CHECK(text != NULL, "cannot read %s", path);
+        if (!text) continue;
+        banyan_avenue_params p;
+        banyan_avenue_params_init(&p);
+        banyan_error err = {0, ""};
+        banyan_status s = banyan_preset_apply(BANYAN_GEN_AVENUE, &p, text, len, path, &err);
+        CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
+        uint32_t n = 0;
+        CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && (!want[i] || n == want[i]),
+              "%s: %u trees", names[i], n);
+        banyan_mesh *m = NULL;
+        if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, &err);
+        CHECK(s == BANYAN_OK && m && m->part_count == 2 * n, "%s: %s", names[i], err.message);
+        CHECK(m == NULL || m->vertex_count <= (uint32_t)p.max_vertices, "%s: over max_vertices", names[i]);
+        /* The smallest preset goes to the validator as well. */
+        if (m && outdir && i == 2) {
+            snprintf(path, sizeof path, "%s/%s.glb", outdir, names[i]);
+            const char *name = names[i];
+            CHECK(banyan_gltf_write(path, (const banyan_mesh *const *)&m, &name, 1, &err) == BANYAN_OK, "write: %s",
+                  err.message);
+        }
+        banyan_mesh_free(m);
+        free(text);
+    }
+}
+
+int main(int argc, char **argv) {
+    const char *outdir = argc > 1 ? argv[1] : NULL;
+    layout();
+    refusals();
+    merged(outdir);
+    presets(outdir);
+    return check_done("test_avenue");
+}
