@@ -135,14 +135,23 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
 
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
-    if (n < 2 || sides < 3 || mb->status) return;
-    size_t nr = (size_t)n * sides;
-    v3 *T = malloc(sizeof(v3) * n * 2 + sizeof(v3) * nr);
+    if (n < 2 || sides < 3 || sides > 256 || mb->status) return;
+    /* Short tubes (most of a tree's) use the stack, long ones the heap. */
+    enum { STACK_V3 = 2048 };
+    v3 stack[STACK_V3];
+    size_t need = (size_t)n * (2 + (size_t)sides);
+    v3 *T = need <= STACK_V3 ? stack : malloc(sizeof(v3) * need);
     if (!T) {
         mb->status = BANYAN_E_NOMEM;
         return;
     }
     v3 *N = T + n, *rings = N + n;
+    double cs[256], sn[256];
+    for (int j = 0; j < sides; j++) {
+        double a = 6.283185307179586 * j / sides;
+        cs[j] = cos(a);
+        sn[j] = sin(a);
+    }
     tube_frames(pts, n, o->first_normal, T, N);
     for (uint32_t i = 0; i < n; i++) {
         /* Scale a ring at a bend by 1/cos(half angle) across the bend, so
@@ -157,8 +166,9 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
                 bend = v3_norm(v3_sub(b, a));
             }
         }
+        v3 Nr = v3_scale(N[i], radii[i]), Br = v3_scale(v3_cross(T[i], N[i]), radii[i]);
         for (int j = 0; j < sides; j++) {
-            v3 p = tube_ring_point(pts[i], T[i], N[i], radii[i], j, sides);
+            v3 p = v3_add(pts[i], v3_add(v3_scale(Nr, cs[j]), v3_scale(Br, sn[j])));
             if (stretch != 1.0) {
                 v3 d = v3_sub(p, pts[i]);
                 p = v3_madd(p, bend, v3_dot(d, bend) * (stretch - 1.0));
@@ -169,5 +179,5 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     tube_opts round = *o;
     round.ring_normals = NULL; /* circles: derived normals are exact */
     tube_sweep_rings(mb, pts, rings, n, &round);
-    free(T);
+    if (T != stack) free(T);
 }

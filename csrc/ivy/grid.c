@@ -13,6 +13,10 @@
  * leaf_max of it (or of one of its H1 buds) moves away. It keeps a flag;
  * a move (the sag correction) clears the flags of the buds near the place
  * it left, of the mover, and of their descendants whose H1 reads them.
+ * Only buds that a light test of the rules counted can have put a bud to
+ * sleep (a bud's sleep rests on the buds its test counted before stopping,
+ * and the others could only have added shade), so only their moves walk
+ * the neighbourhood.
  * Waiting buds then cost one test a step. This changes no result.
  * This changes no result, only the cost of buds that wait in shade. */
 #include <math.h>
@@ -248,8 +252,12 @@ void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t
             forget_near(iv, olds, ng);
             ng = 0;
         }
-        if (!ng) memcpy(cell, c, sizeof cell);
-        olds[ng++] = o;
+        /* Only a bud that some light test counted can have made a bud
+         * sleep; the others need no walk. */
+        if (iv->watch[i]) {
+            if (!ng) memcpy(cell, c, sizeof cell);
+            olds[ng++] = o;
+        }
         unlink_bud(iv, i);
         b->P = p;
         link_bud(iv, i);
@@ -269,7 +277,7 @@ double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b) {
     return r < iv->p.stem_radius_max ? r : iv->p.stem_radius_max;
 }
 
-double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
+static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl, unsigned char *watch) {
     const double dmax = iv->p.leaf_max, dmax2 = dmax * dmax, inv_dmax = 1.0 / dmax;
     const double grow = iv->p.leaf_max / iv->p.leaf_growth_steps;
     const double ic = iv->inv_cell;
@@ -292,10 +300,19 @@ double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) 
                     double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
                     if (h <= 0) continue;
                     H += h;
+                    if (watch) watch[j] = 1;
                     if (H > stop) return H; /* the caller will not grow: V_l unused */
                     if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
                 }
             }
     if (vl) *vl = v3_add(*vl, acc);
     return H;
+}
+
+double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
+    return shade(iv, p, self, stop, vl, NULL);
+}
+
+double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
+    return shade(iv, p, self, stop, vl, iv->watch);
 }

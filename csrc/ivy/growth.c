@@ -80,7 +80,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
         double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
         double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
-        if (f > best) {
+        if (f > best) { /* the first drawn wins a tie */
             best = f;
             best_q = q;
             best_d = d;
@@ -170,10 +170,10 @@ static void rules(banyan_ivy *iv) {
             }
             /* p3 when H1 <= t0: H0 here plus H0 at the h1_buds buds before. */
             if (b->shaded) continue;
-            double H = ivy_shade(iv, b->P, i, p->t0, &vl);
+            double H = ivy_shade_watch(iv, b->P, i, p->t0, &vl);
             int32_t a = b->parent;
             for (int32_t k = 0; k < p->h1_buds && a >= 0 && H <= p->t0; k++, a = iv->buds[a].parent)
-                H += ivy_shade(iv, iv->buds[a].P, a, p->t0 - H, NULL);
+                H += ivy_shade_watch(iv, iv->buds[a].P, a, p->t0 - H, NULL);
             if (H > p->t0) {
                 b->shaded = 1;
                 continue;
@@ -192,7 +192,7 @@ static void rules(banyan_ivy *iv) {
                 continue;
             }
             if (b->shaded) continue;
-            double H = ivy_shade(iv, b->P, i, p->t0, &vl);
+            double H = ivy_shade_watch(iv, b->P, i, p->t0, &vl);
             if (H > p->t0) {
                 b->shaded = 1;
                 continue;
@@ -231,6 +231,10 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     ivy_gnode *g = realloc(iv->gn, sizeof(ivy_gnode) * (size_t)cap);
     if (!g) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     iv->gn = g;
+    unsigned char *w = realloc(iv->watch, (size_t)cap);
+    if (!w) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
+    memset(w + iv->cap, 0, (size_t)(cap - iv->cap));
+    iv->watch = w;
     int32_t *c = realloc(iv->chain, sizeof(int32_t) * (size_t)cap * 7);
     if (!c) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     /* The awake and wake lists (at 4 and 5 caps) keep their contents: move
@@ -287,6 +291,7 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->box_lo);
     free(iv->buds);
     free(iv->gn);
+    free(iv->watch);
     free(iv->head);
     free(iv->chain);
     free(iv->tmp);
@@ -356,6 +361,7 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
         return s;
     }
     iv->inv_cell = 1.0 / (IVY_CELL_SCALE * params->leaf_max);
+
     if (ivy_grid_init(iv, 1024) != BANYAN_OK) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");

@@ -59,6 +59,7 @@ struct banyan_ivy {
                               the light cache forgets it */
     int32_t *wake, n_wake; /* buds woken since the last step, to merge into act */
     int32_t *merge;        /* scratch for the merge */
+    unsigned char *watch;  /* per bud: counted by a light test of the rules */
     int32_t branch_points; /* p3 firings */
     int32_t step;          /* steps done */
     double step_seconds;
@@ -110,6 +111,9 @@ void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t
  * adds the light vector V_l to *vl when vl != NULL. Stops early once H0
  * passes `stop` (*vl is then left as it was: the bud will not grow). */
 double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
+/* The same for the rules: every bud it counts is marked in iv->watch, so
+ * that a move of it later wakes the buds near it (grid.c). */
+double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
 /* Diameter of bud i's leaf (and shadow) at the current step. */
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
 double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);

@@ -104,7 +104,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->gravity = 9.8;
     p->internode_mass = 0.001;
     p->moment_max = 0.003;
-    p->sag_step = 2.0;
+    p->sag_step = 4.0;
     p->tip_elevation = 20.0;
     p->stem_radius = 0.0015;
     p->stem_radius_growth = 0.00002;

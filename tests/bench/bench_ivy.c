@@ -10,22 +10,8 @@
 #include "bench.h"
 
 #include "ivy/ivy_internal.h"
+#include "test_files.h"
 
-static char *read_text(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *t = malloc((size_t)n + 1);
-    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
-        free(t);
-        t = NULL;
-    }
-    fclose(f);
-    *len = (size_t)n;
-    return t;
-}
 
 /* Mean time of one light look-up at random bud positions of the plant;
  * *mean_h gets the mean H0 found (how crowded the plant is there). */
@@ -50,7 +36,7 @@ int main(int argc, char **argv) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/ivy_wall.json", BANYAN_SOURCE_DIR);
     size_t len;
-    char *text = read_text(path, &len);
+    char *text = test_read_file(path, &len);
     banyan_ivy_params p;
     banyan_box hosts[4];
     uint32_t nh = 0;

@@ -8,28 +8,14 @@
 #include <math.h>
 
 #include "banyan.h"
+#include "test_files.h"
 
-static char *slurp(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    *len = (size_t)n;
-    return b;
-}
 
 static int load(banyan_generator g, void *params, const char *name) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
     size_t len;
-    char *text = slurp(path, &len);
+    char *text = test_read_file(path, &len);
     banyan_error err;
     int ok = text && banyan_preset_apply(g, params, text, len, path, &err) == BANYAN_OK;
     if (!ok) fprintf(stderr, "cannot load %s: %s\n", path, text ? err.message : "unreadable");

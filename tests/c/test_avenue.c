@@ -9,6 +9,7 @@
 
 #include "check.h"
 #include "keyaki/keyaki_internal.h"
+#include "test_files.h"
 
 static void small(banyan_avenue_params *p) {
     banyan_avenue_params_init(p);
@@ -215,21 +216,6 @@ static void merged(const char *outdir) {
     banyan_mesh_free(again);
 }
 
-static char *slurp(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    *len = (size_t)n;
-    return b;
-}
 
 static void presets(const char *outdir) {
     static const char *const names[] = {"avenue_boulevard", "avenue_street", "avenue_young"};
@@ -238,7 +224,7 @@ static void presets(const char *outdir) {
         char path[1024];
         snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, names[i]);
         size_t len;
-        char *text = slurp(path, &len);
+        char *text = test_read_file(path, &len);
         CHECK(text != NULL, "cannot read %s", path);
         if (!text) continue;
         banyan_avenue_params p;

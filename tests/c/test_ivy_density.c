@@ -13,28 +13,14 @@
 
 #include "check.h"
 #include "ivy/ivy_internal.h"
+#include "test_files.h"
 
-static char *read_text(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *t = malloc((size_t)n + 1);
-    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
-        free(t);
-        t = NULL;
-    }
-    fclose(f);
-    *len = (size_t)n;
-    return t;
-}
 
 int main(void) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/ivy_wall.json", BANYAN_SOURCE_DIR);
     size_t len;
-    char *text = read_text(path, &len);
+    char *text = test_read_file(path, &len);
     CHECK(text != NULL, "cannot read %s", path);
     if (!text) return check_done("test_ivy_density");
     banyan_ivy_params base;

@@ -13,6 +13,7 @@
 
 #include "check.h"
 #include "keyaki/keyaki_internal.h"
+#include "test_files.h"
 
 /* atan2 keeps small angles exact (acos loses them near 1). */
 static double angle_deg(v3 a, v3 b) { return atan2(v3_len(v3_cross(a, b)), v3_dot(a, b)) * 180.0 / BANYAN_PI; }
@@ -427,22 +428,6 @@ static void mesh_sanity(const banyan_mesh *m, int levels, const char *name) {
           m->skel_edge_count);
 }
 
-static char *slurp(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    if (b) b[n] = 0;
-    *len = (size_t)n;
-    return b;
-}
 
 static void write_glb(const char *dir, const char *name, const banyan_mesh *m) {
     if (!dir) return;
@@ -459,7 +444,7 @@ static void presets(const char *outdir) {
         char path[1024];
         snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, names[i]);
         size_t len;
-        char *text = slurp(path, &len);
+        char *text = test_read_file(path, &len);
         CHECK(text != NULL, "cannot read %s", path);
         if (!text) continue;
         banyan_keyaki_params p;

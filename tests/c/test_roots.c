@@ -20,6 +20,7 @@
 
 #include "check.h"
 #include "roots/roots_internal.h"
+#include "test_files.h"
 
 #define TOL 1e-3 /* times r */
 
@@ -41,29 +42,13 @@ static banyan_box rotated(double cx, double cy, double cz, double hx, double hy,
     return b;
 }
 
-static char *slurp(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    if (b) b[n] = 0;
-    *len = (size_t)n;
-    return b;
-}
 
 /* Loads presets/<name> into p and hosts; returns the host count, 0 on failure. */
 static uint32_t load_preset(const char *name, banyan_roots_params *p, banyan_box *hosts) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/%s", BANYAN_SOURCE_DIR, name);
     size_t len;
-    char *text = slurp(path, &len);
+    char *text = test_read_file(path, &len);
     CHECK(text != NULL, "cannot read %s", path);
     if (!text) return 0;
     banyan_error err;

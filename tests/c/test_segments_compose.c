@@ -18,22 +18,10 @@
 #include "core/tube.h"
 #include "core/vec.h"
 #include "segments/segment_core.h"
+#include "test_files.h"
 
 #define MAXV BANYAN_SEGMENT_MAX_VERTICES
 
-static char *read_text(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *t = malloc((size_t)n + 1);
-    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) { free(t); t = NULL; }
-    fclose(f);
-    if (t) t[n] = '\0';
-    *len = (size_t)n;
-    return t;
-}
 
 static void write_glb(const char *dir, const char *name, const banyan_mesh *m) {
     if (!dir || !m) return;
@@ -349,7 +337,7 @@ int main(int argc, char **argv) {
         char path[2048];
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         size_t len;
-        char *text = read_text(path, &len);
+        char *text = test_read_file(path, &len);
         CHECK(text != NULL, "cannot read %s", path);
         if (!text) continue;
         presets++;

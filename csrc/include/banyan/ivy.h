@@ -96,8 +96,9 @@ typedef struct banyan_ivy_params {
     double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
 } banyan_ivy_params;
 
-/* What banyan_ivy_stats reports. Crossings and covered area are seen
- * along the normal of each bud's nearest host face (docs/ivy.md). */
+/* What banyan_ivy_get_stats reports. Crossings and covered area are seen
+ * along the normal of each bud's nearest host face, the ground included
+ * (docs/ivy.md). */
 typedef struct banyan_ivy_stats {
     int32_t steps;              /* steps grown so far */
     int32_t buds;               /* all buds, one leaf each */
