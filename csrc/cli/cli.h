@@ -1,6 +1,6 @@
 /* cli.h - the `banyan` command line tool: shared job description and the
- * per-generator command table. Each generator adds one cmd_<name>.c with a
- * cli_command and lists it in commands.c. */
+ * per-generator command table. Each generator has one cmd_<name>.c with a
+ * cli_command, listed in commands.c. */
 #ifndef BANYAN_CLI_H
 #define BANYAN_CLI_H
 
@@ -40,7 +40,6 @@ typedef struct cli_command {
                          uint32_t *count, cli_stats *stats, banyan_error *err);
     /* --set for commands without a param table (generator == -1). */
     banyan_status (*set)(void *params, const char *key, const char *value, banyan_error *err);
-    const char *missing;         /* when run is NULL: which issue builds it */
 } cli_command;
 
 extern const cli_command *const cli_commands[];

@@ -68,4 +68,4 @@ fail:
 }
 
 const cli_command cli_cmd_avenue = {"avenue", BANYAN_GEN_AVENUE, "an avenue of keyaki trees",
-                                    sizeof(banyan_avenue_params), init, NULL, run, NULL, NULL};
+                                    sizeof(banyan_avenue_params), init, NULL, run, NULL};

@@ -65,4 +65,4 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
 }
 
 const cli_command cli_cmd_ivy = {"ivy", BANYAN_GEN_IVY, "ivy climbing host boxes", sizeof(banyan_ivy_params),
-                                 init, default_hosts, run, NULL, NULL};
+                                 init, default_hosts, run, NULL};

@@ -69,4 +69,4 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
 }
 
 const cli_command cli_cmd_keyaki = {"keyaki", BANYAN_GEN_KEYAKI, "one keyaki (Zelkova) tree",
-                                    sizeof(banyan_keyaki_params), init, NULL, run, NULL, NULL};
+                                    sizeof(banyan_keyaki_params), init, NULL, run, NULL};

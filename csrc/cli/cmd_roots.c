@@ -53,4 +53,4 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
 }
 
 const cli_command cli_cmd_roots = {"roots", BANYAN_GEN_ROOTS, "strangler-fig roots around host boxes",
-                                   sizeof(banyan_roots_params), init, default_hosts, run, NULL, NULL};
+                                   sizeof(banyan_roots_params), init, default_hosts, run, NULL};

@@ -87,4 +87,4 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
 
 const cli_command cli_cmd_segments = {"segments", BANYAN_GEN_SEGMENTS,
                                       "a tree of geometry-shader branch segments (preset list or random demo)",
-                                      sizeof(banyan_segments_params), init, NULL, run, NULL, NULL};
+                                      sizeof(banyan_segments_params), init, NULL, run, NULL};

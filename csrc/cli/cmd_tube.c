@@ -55,4 +55,4 @@ static banyan_status set(void *params, const char *key, const char *value, banya
 }
 
 const cli_command cli_cmd_tube = {"tube", -1, "a demo tube along a helix (shared sweeper)", sizeof(tube_demo_params),
-                                  init, NULL, run, set, NULL};
+                                  init, NULL, run, set};

@@ -81,6 +81,10 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
         bv += tv;
         bi += ti;
     }
+    uint64_t twv, twi; /* twigs from segments join the bark part */
+    keyaki_twigs_plan(p, n, count, &twv, &twi);
+    bv += twv;
+    bi += twi;
     /* Depth to the nearest tip, children first (leaf_count as scratch). */
     int32_t *depth = body->leaf_count;
     for (int32_t i = count - 1; i >= 0; i--) {
@@ -157,7 +161,6 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         mb->status = BANYAN_E_NOMEM;
         return;
     }
-    const double tip_end = p->tip_radius * p->unit * p->tip_taper;
     mb_begin_part(mb, bark_mat, group);
     mb_set_attr(mb, attr[0], tree_id);
     for (int32_t k = 0; k < body->limb_count; k++) {
@@ -176,7 +179,9 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
             m++;
             pts[m] = node_end(&n[j]);
             int32_t next = main_child(n, j);
-            rad[m] = next < 0 ? tip_end : n[j].radius;
+            /* A tip (radius tip_radius, or a cut subtree's with twigs from
+             * segments) narrows to tip_taper of its radius. */
+            rad[m] = next < 0 ? n[j].radius * p->tip_taper : n[j].radius;
             ids[m] = j;
         }
         uint32_t v0 = mb->nv;
@@ -194,6 +199,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     free(pts);
     free(rad);
     free(ids);
+    keyaki_twigs_mesh(p, n, count, mb, attr);
 
     if (body->vertices > body->bark_vertices) {
         mb_begin_part(mb, leaf_mat, group);
@@ -222,7 +228,6 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
-    keyaki_radii(sk->nodes, sk->count, p->tip_radius * p->unit, p->pipe_exponent);
     keyaki_body body;
     if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
     c->vertices = body.vertices;
@@ -240,7 +245,6 @@ banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
-    keyaki_radii(sk->nodes, sk->count, p->tip_radius * p->unit, p->pipe_exponent);
     keyaki_body body;
     if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
     if (body.vertices > (uint32_t)p->max_vertices) {

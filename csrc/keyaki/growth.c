@@ -265,5 +265,9 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
             add_child(sk->nodes, &sk->count, i, down, n, lw, E - E * fs, angle, 0);
         }
     }
+    keyaki_radii(sk->nodes, sk->count, p->tip_radius * unit, p->pipe_exponent);
+    /* Twigs from segments: the finest levels go, after the radii, so the
+     * limbs keep the thickness of the full tree (twigs.c). */
+    if (p->twigs_from_segments) keyaki_truncate(sk, keyaki_grown_levels(p));
     return BANYAN_OK;
 }

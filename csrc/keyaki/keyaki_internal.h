@@ -43,11 +43,19 @@ typedef struct keyaki_skeleton {
 
 void keyaki_skeleton_free(keyaki_skeleton *sk);
 
+/* The levels the skeleton is grown to: levels, or levels - segment_levels
+ * when the finest levels come from segments (twigs.c). */
+static inline int keyaki_grown_levels(const banyan_keyaki_params *p) {
+    return p->twigs_from_segments ? p->levels - p->segment_levels : p->levels;
+}
+
 /* Checks every field (table ranges, then the rules tying fields together). */
 banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error *err);
 
-/* Grows the skeleton of p (validated) into sk, replacing its contents.
- * BANYAN_E_LIMIT past max_nodes, BANYAN_E_NOMEM. */
+/* Grows the skeleton of p (validated) into sk, replacing its contents,
+ * and sets the pipe-model radii (keyaki_radii). With twigs_from_segments
+ * the full tree is grown, radii set, then cut to keyaki_grown_levels
+ * (keyaki_truncate). BANYAN_E_LIMIT past max_nodes, BANYAN_E_NOMEM. */
 banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err);
 
 /* Strahler orders of every node (tips 1; equal orders meeting give k + 1,
@@ -101,6 +109,25 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
 void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count, keyaki_body *body,
                       mesh_builder *mb, const int attr[3], uint32_t bark_mat, uint32_t leaf_mat, uint32_t group,
                       double tree_id);
+
+/* Twigs from segments (twigs.c). */
+/* Keeps the branches of level <= max_level (a prefix: nodes are stored
+ * breadth first); the new tips lose their children and KN_BROKEN. */
+void keyaki_truncate(keyaki_skeleton *sk, int max_level);
+/* The segment params of the twigs: the paper's angles, m = segment_twig_length * unit. */
+void keyaki_twig_params(const banyan_keyaki_params *p, banyan_segment_params *sp);
+/* The segment input of tip branch x. */
+void keyaki_twig_input(const banyan_keyaki_params *p, const keyaki_node *x, banyan_segment_input *in);
+/* Tube radius of a line of segment level code level_code >= 1 on the
+ * segment whose axis is tip branch x, m. */
+double keyaki_twig_radius(const banyan_keyaki_params *p, const keyaki_node *x, int level_code);
+/* Exact vertex and index counts of the twig tubes (0 without the flag). */
+void keyaki_twigs_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, uint64_t *vertices,
+                       uint64_t *indices);
+/* Appends the twig tubes to the current part of mb (attr[1] level,
+ * attr[2] order; tree_id as set). */
+void keyaki_twigs_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, mesh_builder *mb,
+                       const int attr[3]);
 
 /* The whole pipeline for one tree into a fresh mesh (used by keyaki and
  * avenue). sk is a scratch skeleton (may be reused). */

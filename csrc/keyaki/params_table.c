@@ -51,7 +51,12 @@
     BP_DOUBLE(S, F(leaf_density), "1/unit", 0, 100, "leaf cards per unit of branch length"),                                  \
     BP_DOUBLE(S, F(leaf_size), "unit", 0.01, 10, "leaf card edge"),                                                  \
     BP_COLOR(S, F(bark_color), "bark material colour (linear RGBA)"),                                                \
-    BP_COLOR(S, F(leaf_color), "leaf material colour (linear RGBA)")
+    BP_COLOR(S, F(leaf_color), "leaf material colour (linear RGBA)"),                                                \
+    BP_BOOL(S, F(twigs_from_segments), "finest levels as geometry-shader segments along the outer branches"),         \
+    BP_INT(S, F(segment_levels), 1, BANYAN_KEYAKI_MAX_LEVELS - 1, "finest levels the segments replace (< levels)"),  \
+    BP_DOUBLE(S, F(segment_twig_length), "unit", 0.001, 100, "m: length of every segment twig and fork line"),       \
+    BP_INT(S, F(segment_twigs), 0, BANYAN_SEGMENT_MAX_TWIGS, "n: twigs per segment"),                                 \
+    BP_INT(S, F(segment_depth), 0, 16, "s: fork depth of a segment's first twig (twig i: s + i - 1)")
 
 #define KEYAKI_F(x) x
 #define AVENUE_F(x) tree.x
@@ -126,6 +131,11 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};
     memcpy(p->bark_color, bark, sizeof bark);
     memcpy(p->leaf_color, leaf, sizeof leaf);
+    p->twigs_from_segments = 0;
+    p->segment_levels = 4;
+    p->segment_twig_length = 0.8;
+    p->segment_twigs = 4;
+    p->segment_depth = 1;
 }
 
 size_t banyan_sizeof_keyaki_params(void) { return sizeof(banyan_keyaki_params); }
@@ -166,14 +176,20 @@ banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error
     if (p->tilt_mid > p->tilt_high)
         return banyan_fail(err, BANYAN_E_RANGE, "tilt_mid = %g deg must be <= tilt_high = %g deg", p->tilt_mid,
                            p->tilt_high);
+    if (p->twigs_from_segments && p->segment_levels >= p->levels)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "segment_levels = %d must be < levels = %d with twigs_from_segments (the skeleton keeps "
+                           "levels - segment_levels >= 1 levels)",
+                           p->segment_levels, p->levels);
     if (p->model == BANYAN_KEYAKI_SIMPLE) {
         /* Model 1 never stops: 2^(levels+1) - 1 branches, known up front. */
-        double nodes = ldexp(1.0, p->levels + 1) - 1;
+        int grown = p->levels; /* twigs from segments too: the full tree is grown, then cut */
+        double nodes = ldexp(1.0, grown + 1) - 1;
         if (nodes > p->max_nodes)
             return banyan_fail(err, BANYAN_E_LIMIT,
                                "model simple with levels = %d makes %.0f branches, more than max_nodes = %d; lower "
                                "levels (6 in the paper) or raise max_nodes",
-                               p->levels, nodes, p->max_nodes);
+                               grown, nodes, p->max_nodes);
     }
     return BANYAN_OK;
 }

@@ -117,14 +117,18 @@ static int64_t forks_wanted(int32_t n, int32_t s) {
     return f;
 }
 
+double seg_level_radius(double radius, double ratio, double radius_min, int level) {
+    double r = radius * pow(ratio, level);
+    return r > radius_min ? r : radius_min;
+}
+
 static double level_radius(const banyan_segments_params *p, int level) {
-    double r = p->radius * pow(p->radius_ratio, level);
-    return r > p->radius_min ? r : p->radius_min;
+    return seg_level_radius(p->radius, p->radius_ratio, p->radius_min, level);
 }
 
 /* One straight tube a -> b, closed at b; frames from the shared sweeper,
- * no allocation (sides <= 64). */
-static void line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
+ * no allocation (sides <= 64). Also the keyaki's twig tubes. */
+void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
     v3 pts[2] = {a, b}, T[2], N[2], rings[2 * 64];
     tube_frames(pts, 2, v3_make(0, 0, 0), T, N);
     for (int i = 0; i < 2; i++)
@@ -200,7 +204,7 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
         mb_set_attr(&mb, a_seg, -1);
         level_color(-1, rgba);
         mb_set_color(&mb, rgba);
-        line_tube(&mb, a, b, p->trunk_radius, p->sides);
+        seg_line_tube(&mb, a, b, p->trunk_radius, p->sides);
         uint32_t q = mb_skel_point(&mb, a, p->trunk_radius, -1);
         mb_skel_point(&mb, b, p->trunk_radius, -1);
         mb_skel_edge(&mb, q, q + 1);
@@ -215,7 +219,7 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
             mb_set_attr(&mb, a_level, lev[j]);
             level_color(lev[j], rgba);
             mb_set_color(&mb, rgba);
-            if (v3_dist(a, b) >= MIN_TUBE_LENGTH) line_tube(&mb, a, b, r, p->sides);
+            if (v3_dist(a, b) >= MIN_TUBE_LENGTH) seg_line_tube(&mb, a, b, r, p->sides);
             uint32_t q = mb_skel_point(&mb, a, r, lev[j]);
             mb_skel_point(&mb, b, r, lev[j]);
             mb_skel_edge(&mb, q, q + 1);

@@ -4,6 +4,8 @@
 #define BANYAN_SEGMENT_CORE_H
 
 #include "banyan.h"
+#include "../core/mesh_builder.h"
+#include "../core/vec.h"
 
 /* The float constants one segment is generated with: exactly the shader's
  * uniforms (banyan_segment_uniforms). */
@@ -33,6 +35,18 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
  * two). Inputs must be checked. *status gets BANYAN_E_NOMEM or OK. */
 uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
                              int brute, uint32_t *out, banyan_status *status);
+
+/* Tube meshing of a segment's lines, shared by the composer (compose.c)
+ * and the keyaki's twigs (keyaki/twigs.c). */
+
+/* Radius of level code `level`: radius * ratio^level, never below
+ * radius_min. */
+double seg_level_radius(double radius, double ratio, double radius_min, int level);
+
+/* One straight tube a -> b of `sides` (3..64) sides and radius r, closed
+ * at b, through the shared sweeper: tube_counts(2, sides, 0, 1) vertices
+ * and indices. The caller sets the attributes and part first. */
+void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides);
 
 /* The segment parameters inside the composer's params. */
 void seg_params_from_tree(const banyan_segments_params *tp, banyan_segment_params *sp);

@@ -127,6 +127,15 @@ typedef struct banyan_keyaki_params {
     double leaf_size;        /* unit, 0.01 .. 10: card edge. Default 0.5 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
     double leaf_color[4];    /* linear RGBA. Default green */
+
+    /* --- twigs from segments (spec/segments.md, "Composing a tree"; docs/keyaki.md) */
+    int32_t twigs_from_segments; /* bool: grow the skeleton to levels - segment_levels and make the finest
+                                    levels as geometry-shader segments along its outer branches. Default false */
+    int32_t segment_levels;  /* 1 .. 29, < levels when twigs_from_segments: finest levels the segments replace. Default 4 */
+    double segment_twig_length; /* unit, 0.001 .. 100: m, the length of every twig and fork line. Default 0.8 */
+    int32_t segment_twigs;   /* 0 .. 63: n, twigs per segment. Default 4 */
+    int32_t segment_depth;   /* 0 .. 16: s, fork depth of the first twig (twig i forks to s + i - 1; the
+                                128-vertex budget cuts the rest). Default 1 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
@@ -141,7 +150,12 @@ BANYAN_API size_t banyan_sizeof_keyaki_params(void);
  * part has group 0. Attributes: tree_id (0), level (the branch's level,
  * 0 = trunk), order (its Strahler order). Skeleton: point 0 is the trunk
  * base, point i+1 the end of branch i; one edge per branch; skel_tag =
- * level | order << 8 | broken << 16 (broken: the branch's fork broke). */
+ * level | order << 8 | broken << 16 (broken: the branch's fork broke).
+ * With twigs_from_segments, every tip of the (shorter) skeleton is the
+ * axis of one segment; its twig and fork lines (not the axis, which is the
+ * branch itself) are thin tubes appended to the bark part, with level =
+ * the branch's level + the segment level code (twig = +1, fork depth d =
+ * +1 + d) and order 0; they are not in the skeleton. */
 BANYAN_API banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out,
                                                 banyan_error *err);
 
