@@ -17,6 +17,7 @@
 #include "keyaki/keyaki_internal.h"
 #include "segments/segment_core.h"
 #include "test_files.h"
+#include "mesh_checks.h"
 
 static banyan_keyaki_params twig_params(uint64_t seed, int model) {
     banyan_keyaki_params p;
@@ -205,15 +206,7 @@ static void mesh_checks(uint64_t seed, int model) {
         bad_n += fabs(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1) > 1e-4;
         for (int k = 0; k < 3; k++) bad_n += !isfinite(m->positions[3 * v + k]);
     }
-    for (uint32_t t = 0; t < m->index_count / 3; t++) {
-        const uint32_t *I = m->indices + 3 * t;
-        v3 a = v3_make(m->positions[3 * I[0]], m->positions[3 * I[0] + 1], m->positions[3 * I[0] + 2]);
-        v3 b = v3_make(m->positions[3 * I[1]], m->positions[3 * I[1] + 1], m->positions[3 * I[1] + 2]);
-        v3 c = v3_make(m->positions[3 * I[2]], m->positions[3 * I[2] + 1], m->positions[3 * I[2] + 2]);
-        v3 fn = v3_cross(v3_sub(b, a), v3_sub(c, a));
-        v3 vn = v3_make(m->normals[3 * I[0]], m->normals[3 * I[0] + 1], m->normals[3 * I[0] + 2]);
-        if (v3_len(fn) > 1e-14 && v3_dot(fn, vn) <= 0) bad_wind++;
-    }
+    bad_wind += mc_wound_against_normals(m, 1e-14);
     for (uint32_t s = 0; s < m->skel_point_count; s++)
         if ((m->skel_tag[s] & 0xff) > skel_max) skel_max = m->skel_tag[s] & 0xff;
     CHECK(bad_n == 0 && bad_wind == 0, "seed %llu: %d bad normals, %d triangles wound against them",

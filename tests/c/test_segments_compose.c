@@ -19,6 +19,7 @@
 #include "core/vec.h"
 #include "segments/segment_core.h"
 #include "test_files.h"
+#include "mesh_checks.h"
 
 #define MAXV BANYAN_SEGMENT_MAX_VERTICES
 
@@ -78,15 +79,7 @@ static void check_mesh(const banyan_mesh *m, const banyan_segments_params *p, co
         for (int k = 0; k < 3; k++)
             if (!isfinite(m->positions[3 * v + k])) bad_n++;
     }
-    for (uint32_t t = 0; t < m->index_count / 3; t++) {
-        const uint32_t *I = m->indices + 3 * t;
-        v3 a = v3_make(m->positions[3 * I[0]], m->positions[3 * I[0] + 1], m->positions[3 * I[0] + 2]);
-        v3 b = v3_make(m->positions[3 * I[1]], m->positions[3 * I[1] + 1], m->positions[3 * I[1] + 2]);
-        v3 c = v3_make(m->positions[3 * I[2]], m->positions[3 * I[2] + 1], m->positions[3 * I[2] + 2]);
-        v3 fn = v3_cross(v3_sub(b, a), v3_sub(c, a));
-        v3 vn = v3_make(m->normals[3 * I[0]], m->normals[3 * I[0] + 1], m->normals[3 * I[0] + 2]);
-        if (v3_len(fn) > 1e-14 && v3_dot(fn, vn) <= 0) bad_wind++;
-    }
+    bad_wind += mc_wound_against_normals(m, 1e-14);
     /* Side ring vertices (the first 2 (sides + 1) of each tube) lie at
      * their line's radius with normals pointing away from it. */
     uint32_t tube = 0;

@@ -10,6 +10,7 @@
 #include "check.h"
 #include "core/rng.h"
 #include "core/tube.h"
+#include "mesh_checks.h"
 
 typedef struct { float p[3]; } key3;
 
@@ -83,15 +84,7 @@ int main(int argc, char **argv) {
         if (m->vertex_count != ev || m->index_count != ei) bad_count++;
         if (open_edges(m)) bad_open++;
         if (!(volume(m) > 0)) bad_vol++;
-        for (uint32_t t = 0; t < m->index_count / 3; t++) {
-            const uint32_t *I = m->indices + 3 * t;
-            v3 a = v3_make(m->positions[3 * I[0]], m->positions[3 * I[0] + 1], m->positions[3 * I[0] + 2]);
-            v3 b = v3_make(m->positions[3 * I[1]], m->positions[3 * I[1] + 1], m->positions[3 * I[1] + 2]);
-            v3 c = v3_make(m->positions[3 * I[2]], m->positions[3 * I[2] + 1], m->positions[3 * I[2] + 2]);
-            v3 fn = v3_cross(v3_sub(b, a), v3_sub(c, a));
-            v3 vn = v3_make(m->normals[3 * I[0]], m->normals[3 * I[0] + 1], m->normals[3 * I[0] + 2]);
-            if (v3_len(fn) > 1e-12 && v3_dot(fn, vn) <= 0) bad_wind++;
-        }
+        bad_wind += mc_wound_against_normals(m, 1e-12);
         /* Side vertices: the normal points away from the nearest axis segment. */
         uint32_t side_verts = n * (uint32_t)(sides + 1);
         for (uint32_t v = 0; v < side_verts; v++) {

@@ -99,6 +99,26 @@ def select_only(context, objs):
         vl.objects.active = objs[0]
 
 
+class HostsOperatorMixin(BanyanOperatorMixin):
+    """An operator whose hosts are the selected mesh objects."""
+
+    @classmethod
+    def poll(cls, context):
+        return any(o.type == 'MESH' for o in getattr(context, "selected_objects", ()))
+
+    @staticmethod
+    def selected_hosts(context):
+        """The selected mesh objects, the active one first."""
+        hosts = [o for o in context.selected_objects if o.type == 'MESH']
+        if not hosts:
+            raise BanyanError(3, "select one or more mesh objects as hosts")
+        active = context.active_object
+        if active in hosts:
+            hosts.remove(active)
+            hosts.insert(0, active)
+        return hosts
+
+
 def make_operator(mixin, idname, label, description, gen, extra):
     """Builds an Operator class for gen: the table's properties plus
     `extra` (dict of non-table properties) plus the preset menu."""

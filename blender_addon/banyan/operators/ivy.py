@@ -4,21 +4,14 @@ from bpy.props import BoolProperty
 
 from .. import api
 from .. import hosts as H
-from ..core.errors import BanyanError
-from .base import BanyanOperatorMixin, make_operator
+from .base import HostsOperatorMixin, make_operator
 
 IDNAME = "mesh.banyan_ivy"
 
 
-class IvyMixin(BanyanOperatorMixin):
-    @classmethod
-    def poll(cls, context):
-        return any(o.type == 'MESH' for o in getattr(context, "selected_objects", ()))
-
+class IvyMixin(HostsOperatorMixin):
     def build(self, context, params):
-        hosts = [o for o in context.selected_objects if o.type == 'MESH']
-        if not hosts:
-            raise BanyanError(3, "select one or more mesh objects as hosts")
+        hosts = self.selected_hosts(context)
         boxes = H.boxes_from_objects(hosts)
         start = None
         if self.start_at_cursor:

@@ -5,25 +5,14 @@ from bpy.props import EnumProperty
 
 from .. import api
 from .. import hosts as H
-from ..core.errors import BanyanError
-from .base import BanyanOperatorMixin, make_operator
+from .base import HostsOperatorMixin, make_operator
 
 IDNAME = "mesh.banyan_roots"
 
 
-class RootsMixin(BanyanOperatorMixin):
-    @classmethod
-    def poll(cls, context):
-        return any(o.type == 'MESH' for o in getattr(context, "selected_objects", ()))
-
+class RootsMixin(HostsOperatorMixin):
     def build(self, context, params):
-        hosts = [o for o in context.selected_objects if o.type == 'MESH']
-        if not hosts:
-            raise BanyanError(3, "select one or more mesh objects as hosts")
-        active = context.active_object
-        if active in hosts:  # the active object is the first host
-            hosts.remove(active)
-            hosts.insert(0, active)
+        hosts = self.selected_hosts(context)  # the active object is the first host
         boxes = H.boxes_from_objects(hosts)
         if self.germinate_at == 'CURSOR':
             api.set_roots_germination(params, tuple(context.scene.cursor.location))
