@@ -33,8 +33,32 @@ def preset_dirs():
     return [d for d in out if os.path.isdir(d)]
 
 
+_parsed = {}  # path -> (mtime_ns, generator, description): presets are read once per change
+
+
+def _preset_info(path):
+    """(generator, description) of a preset file, or None; cached by mtime."""
+    try:
+        mtime = os.stat(path).st_mtime_ns
+    except OSError:
+        return None
+    hit = _parsed.get(path)
+    if hit and hit[0] == mtime:
+        return hit[1:]
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = json.load(f)
+    except (OSError, ValueError):
+        doc = None
+    info = (doc.get("generator"), str(doc.get("description", ""))) if isinstance(doc, dict) else (None, "")
+    _parsed[path] = (mtime,) + info
+    return info
+
+
 def list_presets(generator):
-    """[(key, path, description)] of the presets for generator, by key."""
+    """[(key, path, description)] of the presets for generator, by key.
+    Blender asks for these on every operator call (the preset enum), so
+    files are parsed only when they change."""
     seen = {}
     for d in preset_dirs():
         for fn in sorted(os.listdir(d)):
@@ -44,13 +68,9 @@ def list_presets(generator):
             if key in seen:
                 continue
             path = os.path.join(d, fn)
-            try:
-                with open(path, encoding="utf-8") as f:
-                    doc = json.load(f)
-            except (OSError, ValueError):
-                continue
-            if isinstance(doc, dict) and doc.get("generator") == generator:
-                seen[key] = (key, path, str(doc.get("description", "")))
+            info = _preset_info(path)
+            if info and info[0] == generator:
+                seen[key] = (key, path, info[1])
     return [seen[k] for k in sorted(seen)]
 
 
