@@ -48,7 +48,9 @@ def clear_generated(keep):
             bpy.data.collections.remove(c)
 
 
-def bare(d):
+def bare(d, full=False):
+    """Blender's own hand-off of d: positions and indices, and with full
+    also the UV, colour and attribute arrays the operator sets."""
     t = time.perf_counter()
     me = bpy.data.meshes.new("bare")
     nv, ni = d.vertex_count, d.index_count
@@ -60,32 +62,11 @@ def bare(d):
     me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
     me.polygons.foreach_set("loop_total", array("i", [3]) * (ni // 3))
     me.update(calc_edges=True)
-    ob = bpy.data.objects.new("bare", me)
-    bpy.context.scene.collection.objects.link(ob)
-    dt = time.perf_counter() - t
-    bpy.data.objects.remove(ob)
-    bpy.data.meshes.remove(me)
-    return dt
-
-
-def bare_plus(d):
-    """bare() plus the same UV, colour and attribute arrays the operator sets."""
-    t = time.perf_counter()
-    me = bpy.data.meshes.new("bare")
-    nv, ni = d.vertex_count, d.index_count
-    me.vertices.add(nv)
-    me.vertices.foreach_set("co", d.positions)
-    me.loops.add(ni)
-    me.loops.foreach_set("vertex_index", d.indices)
-    me.polygons.add(ni // 3)
-    me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
-    me.polygons.foreach_set("loop_total", array("i", [3]) * (ni // 3))
-    me.update(calc_edges=True)
-    if d.corner_uvs is not None:
+    if full and d.corner_uvs is not None:
         me.uv_layers.new(name="UVMap").data.foreach_set("uv", d.corner_uvs)
-    if d.colors is not None:
+    if full and d.colors is not None:
         me.color_attributes.new("Color", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", d.colors)
-    for name, a in d.attributes.items():
+    for name, a in (d.attributes.items() if full else ()):
         me.attributes.new(name, 'FLOAT', 'POINT').data.foreach_set("value", a)
     ob = bpy.data.objects.new("bare", me)
     bpy.context.scene.collection.objects.link(ob)
@@ -146,7 +127,7 @@ def main():
             d = lib_call()
             libs.append(time.perf_counter() - t)
             bares.append(bare(d))
-            bplus.append(bare_plus(d))
+            bplus.append(bare(d, full=True))
             for h in hosts:
                 h.select_set(True)
                 bpy.context.view_layer.objects.active = h
