@@ -223,13 +223,21 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         mb_skel_edge(mb, s0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), s0 + (uint32_t)i + 1);
 }
 
-banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
+/* Grows the skeleton, orders it and plans its body: what counting and
+ * building share. */
+static banyan_status grow_and_plan(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_body *body,
+                                   banyan_error *err) {
     banyan_status s = keyaki_grow(p, sk, err);
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
+    return keyaki_body_plan(p, sk->nodes, sk->count, body, err);
+}
+
+banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
     keyaki_body body;
-    if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
+    banyan_status s = grow_and_plan(p, sk, &body, err);
+    if (s) return s;
     c->vertices = body.vertices;
     c->indices = body.indices;
     c->nodes = (uint32_t)sk->count;
@@ -241,12 +249,9 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
 banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
                            banyan_mesh **out, banyan_error *err) {
     *out = NULL;
-    banyan_status s = keyaki_grow(p, sk, err);
-    if (s) return s;
-    if (keyaki_strahler(sk->nodes, sk->count))
-        return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
     keyaki_body body;
-    if ((s = keyaki_body_plan(p, sk->nodes, sk->count, &body, err))) return s;
+    banyan_status s = grow_and_plan(p, sk, &body, err);
+    if (s) return s;
     if (body.vertices > (uint32_t)p->max_vertices) {
         uint32_t v = body.vertices;
         keyaki_body_free(&body);
