@@ -127,6 +127,28 @@ void mb_tri_grow(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) {
     mb_tri(mb, a, b, c);
 }
 
+uint32_t mb_vertices(mesh_builder *mb, uint32_t count) {
+    if (mb->status || (mb->nv + (uint64_t)count > mb->cap_v && mb_reserve(mb, count, 0))) return UINT32_MAX;
+    uint32_t first = mb->nv, end = first + count;
+    if (mb->with_color) {
+        float *C = mb->col + 4 * (size_t)first;
+        for (uint32_t i = 0; i < count; i++, C += 4) memcpy(C, mb->cur_color, sizeof mb->cur_color);
+    }
+    for (uint32_t a = 0; a < mb->n_attr; a++) {
+        float *A = mb->attr[a], v = mb->cur_attr[a];
+        for (uint32_t i = first; i < end; i++) A[i] = v;
+    }
+    mb->nv = end;
+    return first;
+}
+
+uint32_t *mb_indices(mesh_builder *mb, uint32_t count) {
+    if (mb->status || (mb->ni + (uint64_t)count > mb->cap_i && mb_reserve(mb, 0, count))) return NULL;
+    uint32_t *I = mb->idx + mb->ni;
+    mb->ni += count;
+    return I;
+}
+
 uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {
     if (mb->status) return 0;
     if (mb->n_skel >= mb->cap_skel) {

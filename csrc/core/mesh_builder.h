@@ -94,6 +94,14 @@ static inline void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) 
     mb->ni += 3;
 }
 
+/* Bulk paths for sweepers: mb_vertices appends `count` vertices carrying
+ * the current colour and attributes and returns the first one's index; the
+ * caller writes their positions, normals and uvs into mb->pos/nrm/uv.
+ * mb_indices appends `count` indices and returns where to write them.
+ * Both return UINT32_MAX / NULL once the builder has failed. */
+uint32_t mb_vertices(mesh_builder *mb, uint32_t count);
+uint32_t *mb_indices(mesh_builder *mb, uint32_t count);
+
 /* Skeleton. */
 uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag);
 void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b);

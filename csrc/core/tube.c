@@ -49,34 +49,47 @@ void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N) {
     }
 }
 
-/* Quads between consecutive rings and the two caps. ring_base[i] is the
- * first vertex of ring i; each ring has sides+1 vertices. */
+/* Quads between consecutive rings; ring i starts at first + i * (sides+1). */
 static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
     uint32_t ring = (uint32_t)sides + 1;
+    uint32_t *I = mb_indices(mb, (n - 1) * (uint32_t)sides * 6);
+    if (!I) return;
     for (uint32_t i = 0; i + 1 < n; i++) {
         uint32_t r0 = first + i * ring, r1 = r0 + ring;
-        for (uint32_t j = 0; j < (uint32_t)sides; j++) {
-            uint32_t a = r0 + j, b = r0 + j + 1, c = r1 + j + 1, d = r1 + j;
-            mb_tri(mb, a, b, c);
-            mb_tri(mb, a, c, d);
+        for (uint32_t j = 0; j < (uint32_t)sides; j++, I += 6) {
+            I[0] = r0 + j; I[1] = r0 + j + 1; I[2] = r1 + j + 1;
+            I[3] = r0 + j; I[4] = r1 + j + 1; I[5] = r1 + j;
         }
     }
 }
 
+static inline void put3(float *f, v3 p) {
+    f[0] = (float)p.x; f[1] = (float)p.y; f[2] = (float)p.z;
+}
+
 static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int sides, int at_end) {
-    uint32_t c = mb_vertex(mb, centre, normal, 0.5, 0.5);
+    uint32_t c = mb_vertices(mb, (uint32_t)sides + 2);
+    uint32_t *I = mb_indices(mb, 3 * (uint32_t)sides);
+    if (c == UINT32_MAX || !I) return;
     v3 ref = v3_sub(ring[0], centre);
-    double rr = v3_len(ref);
+    double rr = v3_len(ref), s = rr > 0 ? 0.5 / rr : 0.0;
     v3 ax = v3_norm_or(ref, v3_any_perp(normal)), ay = v3_cross(normal, ax);
-    uint32_t first = mb->nv;
+    float *P = mb->pos + 3 * (size_t)c, *N = mb->nrm + 3 * (size_t)c, *T = mb->uv + 2 * (size_t)c;
+    put3(P, centre);
+    put3(N, normal);
+    T[0] = T[1] = 0.5f;
     for (int j = 0; j <= sides; j++) {
         v3 p = ring[j % sides], d = v3_sub(p, centre);
-        double s = rr > 0 ? 0.5 / rr : 0.0;
-        mb_vertex(mb, p, normal, 0.5 + v3_dot(d, ax) * s, 0.5 + v3_dot(d, ay) * s);
+        put3(P + 3 * (j + 1), p);
+        put3(N + 3 * (j + 1), normal);
+        T[2 * (j + 1)] = (float)(0.5 + v3_dot(d, ax) * s);
+        T[2 * (j + 1) + 1] = (float)(0.5 + v3_dot(d, ay) * s);
     }
-    for (int j = 0; j < sides; j++) {
-        if (at_end) mb_tri(mb, c, first + j, first + j + 1);
-        else mb_tri(mb, c, first + j + 1, first + j);
+    uint32_t first = c + 1;
+    for (uint32_t j = 0; j < (uint32_t)sides; j++, I += 3) {
+        I[0] = c;
+        I[1] = at_end ? first + j : first + j + 1;
+        I[2] = at_end ? first + j + 1 : first + j;
     }
 }
 
@@ -92,18 +105,27 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     for (uint32_t i = 0; i < n; i++) rsum += v3_dist(rings[(size_t)i * sides], centres[i]);
     double circ = 6.283185307179586 * (rsum / n);
     double vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
-    uint32_t first = mb->nv;
+    uint32_t ring_len = (uint32_t)sides + 1;
+    uint32_t first = mb_vertices(mb, n * ring_len);
+    if (first == UINT32_MAX) return;
+    float *P = mb->pos + 3 * (size_t)first, *N = mb->nrm + 3 * (size_t)first, *UV = mb->uv + 2 * (size_t)first;
+    float du = 1.0f / (float)sides;
     double s = 0, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
-    for (uint32_t i = 0; i < n; i++) {
+    for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
         if (i) s += v3_dist(centres[i], centres[i - 1]);
         v3 T = tangent_at(centres, n, i, prevT);
         prevT = T;
         const v3 *ring = rings + (size_t)i * sides;
-        double vv = o->v_offset + s * vscale;
+        float vv = (float)(o->v_offset + s * vscale);
+        for (int j = 0; j <= sides; j++) {
+            put3(P + 3 * j, ring[j < sides ? j : 0]);
+            UV[2 * j] = (float)j * du;
+            UV[2 * j + 1] = vv;
+        }
         if (o->ring_normals) {
             const v3 *rn = o->ring_normals + (size_t)i * sides;
-            for (int j = 0; j <= sides; j++) mb_vertex(mb, ring[j % sides], rn[j % sides], (double)j / sides, vv);
+            for (int j = 0; j <= sides; j++) put3(N + 3 * j, rn[j < sides ? j : 0]);
             continue;
         }
         /* A taper tilts the normals along the tube: n = (radial - dr T) /
@@ -115,15 +137,14 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         double dr = ds > 1e-12 ? (rb - ra) / ds : 0;
         double k = 1.0 / sqrt(1.0 + dr * dr);
         v3 fallback = v3_any_perp(T);
-        for (int j = 0; j <= sides; j++) {
-            v3 p = ring[j < sides ? j : 0];
-            v3 radial = v3_sub(p, centres[i]);
+        for (int j = 0; j < sides; j++) {
+            v3 radial = v3_sub(ring[j], centres[i]);
             radial = v3_madd(radial, T, -v3_dot(radial, T));
             double l2 = v3_len2(radial);
             radial = l2 > 1e-300 ? v3_scale(radial, 1.0 / sqrt(l2)) : fallback;
-            v3 nrm = v3_scale(v3_madd(radial, T, -dr), k);
-            mb_vertex(mb, p, nrm, (double)j / sides, vv);
+            put3(N + 3 * j, v3_scale(v3_madd(radial, T, -dr), k));
         }
+        N[3 * sides] = N[0]; N[3 * sides + 1] = N[1]; N[3 * sides + 2] = N[2];
         r_prev = r_cur;
         r_cur = r_next;
     }

@@ -12,25 +12,28 @@
  * field (as obb_signed_distance / obb_closest_surface, in one pass). */
 static inline double box_sd(const obb *o, v3 p, v3 *n) {
     v3 d = v3_sub(p, o->c);
-    double l[3] = {v3_dot(d, o->ax[0]), v3_dot(d, o->ax[1]), v3_dot(d, o->ax[2])};
-    double q[3], s[3], out2 = 0;
-    int k = 0;
-    for (int i = 0; i < 3; i++) {
-        s[i] = l[i] < 0 ? -1.0 : 1.0;
-        q[i] = fabs(l[i]) - o->h[i];
-        if (q[i] > 0) out2 += q[i] * q[i];
-        if (q[i] > q[k]) k = i;
-    }
+    double lx = v3_dot(d, o->ax[0]), ly = v3_dot(d, o->ax[1]), lz = v3_dot(d, o->ax[2]);
+    double qx = fabs(lx) - o->h[0], qy = fabs(ly) - o->h[1], qz = fabs(lz) - o->h[2];
+    double mx = qx > 0 ? qx : 0, my = qy > 0 ? qy : 0, mz = qz > 0 ? qz : 0;
+    double out2 = mx * mx + my * my + mz * mz;
     if (out2 > 0) {
-        double dist = sqrt(out2), inv = 1.0 / dist;
-        v3 nn = v3_make(0, 0, 0);
-        for (int i = 0; i < 3; i++)
-            if (q[i] > 0) nn = v3_madd(nn, o->ax[i], q[i] * s[i] * inv);
-        *n = nn;
-        return dist;
+        double inv = 1.0 / sqrt(out2);
+        v3 nn = v3_scale(o->ax[0], copysign(mx * inv, lx));
+        nn = v3_madd(nn, o->ax[1], copysign(my * inv, ly));
+        *n = v3_madd(nn, o->ax[2], copysign(mz * inv, lz));
+        return out2 * inv;
     }
-    *n = v3_scale(o->ax[k], s[k]);
-    return q[k];
+    /* Inside: the nearest face (ties go to the lower axis). */
+    if (qx >= qy && qx >= qz) {
+        *n = v3_scale(o->ax[0], copysign(1.0, lx));
+        return qx;
+    }
+    if (qy >= qz) {
+        *n = v3_scale(o->ax[1], copysign(1.0, ly));
+        return qy;
+    }
+    *n = v3_scale(o->ax[2], copysign(1.0, lz));
+    return qz;
 }
 
 /* Signed distance only. */

@@ -32,11 +32,20 @@ typedef struct work {
 } work;
 
 /* Round rings (spec 5 "Rings"): radius per point, scaled across a bend by
- * 1/cos(half angle) as tube_sweep does, so tubes keep their width. */
+ * 1/cos(half angle) as tube_sweep does, so tubes keep their width. Their
+ * normals are the ring directions tilted by the taper, n = (d - dr T) /
+ * sqrt(1 + dr^2) with dr the radius slope per metre, known here without
+ * the sweeper's per-vertex square roots. */
 static void round_rings(work *wk, const v3 *P, const double *rad, uint32_t n) {
     int sides = wk->sides;
     for (uint32_t i = 0; i < n; i++) {
         v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
+        uint32_t ia = i ? i - 1 : 0, ib = i + 1 < n ? i + 1 : n - 1;
+        double ds = v3_dist(P[ib], P[ia]), dr = ds > 1e-12 ? (rad[ib] - rad[ia]) / ds : 0;
+        double k = 1.0 / sqrt(1.0 + dr * dr);
+        v3 *nr = wk->normals + (size_t)i * sides;
+        for (int j = 0; j < sides; j++)
+            nr[j] = v3_scale(v3_madd(v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j])), T, -dr), k);
         v3 bend = v3_make(0, 0, 0);
         double stretch = 1.0;
         if (i > 0 && i + 1 < n) {
@@ -269,14 +278,12 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
             first_normal = v3_cross(UP, h);
         }
         tube_frames(P, pl->n, first_normal, wk.T, wk.N);
-        tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, NULL};
+        /* Both ring kinds come with their normals. */
+        tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, wk.normals};
         if (smooth) {
             wk.arc[0] = 0;
             for (uint32_t i = 1; i < pl->n; i++) wk.arc[i] = wk.arc[i - 1] + v3_dist(P[i], P[i - 1]);
             junction_rings(&wk, net, p, pl);
-            /* A loop's centre is not its middle: give the sweeper the
-             * loop normals rather than let it point them from the centre. */
-            o.ring_normals = wk.normals;
         } else {
             round_rings(&wk, P, net->rad + pl->off, pl->n);
         }
