@@ -160,13 +160,13 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     /* Short tubes (most of a tree's) use the stack, long ones the heap. */
     enum { STACK_V3 = 2048 };
     v3 stack[STACK_V3];
-    size_t need = (size_t)n * (2 + (size_t)sides);
+    size_t need = (size_t)n * (2 + 2 * (size_t)sides);
     v3 *T = need <= STACK_V3 ? stack : malloc(sizeof(v3) * need);
     if (!T) {
         mb->status = BANYAN_E_NOMEM;
         return;
     }
-    v3 *N = T + n, *rings = N + n;
+    v3 *N = T + n, *rings = N + n, *normals = rings + (size_t)n * sides;
     double cs[256], sn[256];
     for (int j = 0; j < sides; j++) {
         double a = 6.283185307179586 * j / sides;
@@ -187,9 +187,12 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
                 bend = v3_norm(v3_sub(b, a));
             }
         }
-        v3 Nr = v3_scale(N[i], radii[i]), Br = v3_scale(v3_cross(T[i], N[i]), radii[i]);
+        v3 Bv = v3_cross(T[i], N[i]);
+        double dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
         for (int j = 0; j < sides; j++) {
-            v3 p = v3_add(pts[i], v3_add(v3_scale(Nr, cs[j]), v3_scale(Br, sn[j])));
+            v3 d = v3_add(v3_scale(N[i], cs[j]), v3_scale(Bv, sn[j]));
+            normals[(size_t)i * sides + j] = v3_scale(v3_madd(d, T[i], -dr), k);
+            v3 p = v3_madd(pts[i], d, radii[i]);
             if (stretch != 1.0) {
                 v3 d = v3_sub(p, pts[i]);
                 p = v3_madd(p, bend, v3_dot(d, bend) * (stretch - 1.0));
@@ -198,7 +201,7 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         }
     }
     tube_opts round = *o;
-    round.ring_normals = NULL; /* circles: derived normals are exact */
+    round.ring_normals = normals;
     tube_sweep_rings(mb, pts, rings, n, &round);
     if (T != stack) free(T);
 }

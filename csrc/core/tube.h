@@ -39,6 +39,15 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
  * where rings are not circles (the roots' junction smoothing). */
 void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o);
 
+/* Radius slope per metre at point i (central difference). A tapering
+ * round tube's normal at ring direction d is (d - slope T) / sqrt(1 +
+ * slope^2). */
+static inline double tube_taper_slope(const v3 *pts, const double *radii, uint32_t n, uint32_t i) {
+    uint32_t a = i ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+    double ds = v3_dist(pts[b], pts[a]);
+    return ds > 1e-12 ? (radii[b] - radii[a]) / ds : 0.0;
+}
+
 /* Ring vertex j of a round ring: centre + r (cos a N + sin a (T x N)). */
 static inline v3 tube_ring_point(v3 c, v3 T, v3 N, double r, int j, int sides) {
     double a = 6.283185307179586 * j / sides;

@@ -33,16 +33,13 @@ typedef struct work {
 
 /* Round rings (spec 5 "Rings"): radius per point, scaled across a bend by
  * 1/cos(half angle) as tube_sweep does, so tubes keep their width. Their
- * normals are the ring directions tilted by the taper, n = (d - dr T) /
- * sqrt(1 + dr^2) with dr the radius slope per metre, known here without
- * the sweeper's per-vertex square roots. */
+ * normals are the ring directions tilted by the taper (tube_taper_slope),
+ * known here without the sweeper's per-vertex square roots. */
 static void round_rings(work *wk, const v3 *P, const double *rad, uint32_t n) {
     int sides = wk->sides;
     for (uint32_t i = 0; i < n; i++) {
         v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
-        uint32_t ia = i ? i - 1 : 0, ib = i + 1 < n ? i + 1 : n - 1;
-        double ds = v3_dist(P[ib], P[ia]), dr = ds > 1e-12 ? (rad[ib] - rad[ia]) / ds : 0;
-        double k = 1.0 / sqrt(1.0 + dr * dr);
+        double dr = tube_taper_slope(P, rad, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
         v3 *nr = wk->normals + (size_t)i * sides;
         for (int j = 0; j < sides; j++)
             nr[j] = v3_scale(v3_madd(v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j])), T, -dr), k);
