@@ -50,7 +50,6 @@ from banyan.core.params import Params, specs  # noqa: E402
 NAN, INF = float("nan"), float("inf")
 I32 = 2 ** 31 - 1
 RESULTS = []
-T0 = time.time()
 
 # ---------------------------------------------------------------- spying
 
@@ -338,11 +337,6 @@ def fresh_scene():
     bpy.context.scene.cursor.location = gens.IVY_CURSOR  # near the cube: ivy snaps, trees stand
 
 
-def user_preset_files():
-    d = PR.user_dir(create=True)
-    return d, set(os.listdir(d))
-
-
 def test_operator_properties():
     fresh_scene()
     idnames = [c.bl_idname for c in OPERATOR_CLASSES]
@@ -354,13 +348,15 @@ def test_operator_properties():
     # banyan.preset_save before any operator ran: nothing to save.
     run_op("banyan.preset_save", "operator", "mesh.banyan_roots", BASE["banyan.preset_save"],
            expect=("error report", "not run yet"))
-    pdir, pfiles = user_preset_files()
+    pdir = PR.user_dir(create=True)
+    pfiles = set(os.listdir(pdir))
     for idname in idnames:
         rna = op_fn(idname).get_rna_type()
         base = BASE.get(idname, {})
-        if idname == "banyan.preset_save":
+        if idname == "banyan.preset_save":  # something to save
+            st, snap = state(), snapshot()
             bt.check(op_fn("mesh.banyan_roots")(**BASE["mesh.banyan_roots"]) == {'FINISHED'}, "roots ran")
-            restore(snapshot_at_start, state_at_start)
+            restore(snap, st)
         for p in rna.properties:
             if p.identifier == "rna_type":
                 continue
@@ -814,14 +810,7 @@ def write_results():
         print("cases %-34s %4d  %s" % (op, sum(c.values()), ", ".join("%s %d" % kv for kv in sorted(c.items()))))
 
 
-state_at_start = None
-snapshot_at_start = None
-
-
 def main():
-    global state_at_start, snapshot_at_start
-    fresh_scene()
-    state_at_start, snapshot_at_start = state(), snapshot()
     for t in (test_operator_properties, test_scenes, test_presets, test_api, test_loops, test_library_meshes_freed):
         t0 = time.time()
         bt.run(t)
