@@ -12,9 +12,24 @@ Parameters are the generator's table keys (`banyan <gen> --list`); dotted
 keys such as avenue's "tree.levels" are written tree__levels, or passed in
 values={"tree.levels": 14}. `preset` is a preset name from presets/ or a
 JSON file path; keyword values apply on top of it. `params` may be a ready
-core.params.Params. On any error a BanyanError is raised and nothing is
-left in the scene.
+core.params.Params.
+
+Errors. Nothing is ever left in the scene when a call raises:
+  - BanyanError (banyan.core; .status, .name, .message) for every bad
+    value: a parameter out of range or of the wrong type, an unknown key,
+    a missing or malformed preset (PresetNotFound, also a
+    FileNotFoundError), a host that cannot be one (not a mesh, no
+    vertices, zero scale, non-finite; the message names the object), a
+    bad path or curve, and any failure of the library itself;
+  - TypeError for an argument of the wrong kind: hosts not a list of mesh
+    objects / Box, params not a Params, values not a mapping, collection
+    not a bpy Collection, name not a string, progress not callable;
+  - ReferenceError (Blender's own) for an object that was deleted;
+  - whatever a caller's progress callback raises, unchanged.
 """
+from collections.abc import Mapping
+import math
+
 import bpy
 
 from . import build_mesh as BM
@@ -28,24 +43,61 @@ from .core.structs import Box
 
 def make_params(gen, preset=None, params=None, values=None, **kw):
     """Params of gen: defaults, then the preset, then values and kw."""
+    if params is not None and not isinstance(params, Params):
+        raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
+    if values is not None and not isinstance(values, Mapping):
+        raise TypeError("values must be a mapping of parameter names to values, not %s" % type(values).__name__)
     p = params.copy() if params is not None else Params(gen)
     if preset:
         path = PR.find(gen, preset)
         p.apply_preset(PR.read(path), path)
     for k, v in dict(values or {}, **{k.replace("__", "."): v for k, v in kw.items()}).items():
+        if not isinstance(k, str):
+            raise TypeError("parameter names are strings, not %r" % (k,))
         p.set(k, v)
     return p
 
 
 def _boxes(hosts):
+    if hosts is None:
+        return []
+    if isinstance(hosts, (str, bytes, Box, bpy.types.bpy_struct)) or not hasattr(hosts, "__iter__"):
+        raise TypeError("hosts must be a list of mesh objects or Box, not %s" % type(hosts).__name__)
     out = []
-    for h in hosts or ():
-        out.append(h if isinstance(h, Box) else H.box_from_object(h))
+    for i, h in enumerate(hosts):
+        if isinstance(h, Box):
+            out.append(h)
+        elif isinstance(h, bpy.types.Object):
+            out.append(H.box_from_object(h))
+        else:
+            raise TypeError("hosts[%d] must be a mesh object or a Box, not %s" % (i, type(h).__name__))
     return out
 
 
 def _collection(collection):
-    return collection if collection is not None else bpy.context.scene.collection
+    if collection is None:
+        return bpy.context.scene.collection
+    if not isinstance(collection, bpy.types.Collection):
+        raise TypeError("collection must be a bpy.types.Collection, not %s" % type(collection).__name__)
+    return collection
+
+
+def _check_name(name):
+    if not isinstance(name, str):
+        raise TypeError("name must be a string, not %s" % type(name).__name__)
+
+
+def _frame(what, value, default):
+    """A frame number: finite, or the scene's when None."""
+    if value is None:
+        return default
+    try:
+        f = float(value)
+    except (TypeError, ValueError):
+        raise BanyanError(12, "%s = %r must be a number" % (what, value), "BANYAN_E_TYPE")
+    if not math.isfinite(f):
+        raise BanyanError(2, "%s = %r must be finite" % (what, value), "BANYAN_E_RANGE")
+    return f
 
 
 def _guard(build):
@@ -70,6 +122,8 @@ def strangler_roots(hosts=(), *, preset=None, params=None, germination=None, col
     """Roots around `hosts` (mesh objects or core.structs.Box). germination:
     a world point, or None for the generator's own choice (top centre of
     the first host). Hosts from the preset are used when none are given."""
+    _collection(collection)
+    _check_name(name)
     p = make_params("roots", preset, params, values, **kw)
     boxes = _boxes(hosts)
     if not boxes and preset:
@@ -78,36 +132,82 @@ def strangler_roots(hosts=(), *, preset=None, params=None, germination=None, col
         boxes = preset_hosts(PR.read(path), path)
     if germination is not None:
         set_roots_germination(p, germination)
-    d = G.roots(p, boxes)
+    d = H.generate_named(lambda: G.roots(p, boxes), boxes)
     return _guard(lambda c: _single(name, d, collection, uv, c))
 
 
 def set_roots_germination(p, point):
     """Sets an explicit germination point G (world metres) in roots params
     and switches off germination_auto (top centre of hosts[0], lifted by r)."""
-    p.set("germination", tuple(point))
+    p.set("germination", point)
     p.set("germination_auto", False)
 
 
 # ----------------------------------------------------------------- keyaki
 def keyaki_tree(*, preset=None, params=None, position=None, collection=None, name="Keyaki", uv=True,
                 values=None, **kw):
+    _collection(collection)
+    _check_name(name)
     p = make_params("keyaki", preset, params, values, **kw)
     if position is not None:
-        p.set("position", tuple(position))
+        p.set("position", position)
     d = G.keyaki(p)
     return _guard(lambda c: _single(name, d, collection, uv, c))
 
 
 def curve_points(obj, depsgraph=None):
-    """World points of the first spline of a curve object (evaluated, at
-    its resolution), consecutive duplicates removed."""
+    """World points along the first spline of a curve object: a Bezier
+    spline at its resolution, a Poly spline through its points, a NURBS
+    spline from the evaluated curve (which then must have no bevel or
+    extrusion). Consecutive duplicates are removed; BanyanError, naming
+    the curve, when fewer than 2 distinct points remain."""
+    if not isinstance(obj, bpy.types.Object) or obj.type != 'CURVE':
+        raise BanyanError(1, "the avenue path object '%s' is not a curve" % getattr(obj, "name", obj),
+                          "BANYAN_E_INVALID_ARG")
+    splines = obj.data.splines
+    if not len(splines):
+        raise BanyanError(1, "curve '%s' has no points; an avenue path needs at least 2" % obj.name,
+                          "BANYAN_E_INVALID_ARG")
+    sp = splines[0]
+    if sp.type == 'BEZIER':
+        from mathutils.geometry import interpolate_bezier
+        bp = list(sp.bezier_points)
+        segs = list(zip(bp, bp[1:])) + ([(bp[-1], bp[0])] if sp.use_cyclic_u and len(bp) > 2 else [])
+        local = [bp[0].co.copy()] if bp else []
+        for a, b in segs:
+            local += interpolate_bezier(a.co, a.handle_right, b.handle_left, b.co, max(1, sp.resolution_u) + 1)[1:]
+    elif sp.type == 'POLY':
+        local = [p.co.xyz for p in sp.points]
+        if sp.use_cyclic_u and len(local) > 2:
+            local.append(local[0])
+    else:
+        local = _evaluated_polyline(obj, depsgraph)
+    mw = obj.matrix_world
+    out = []
+    for v in local:
+        q = tuple(mw @ v)
+        # "not <=" keeps NaN points: the library names them.
+        if not out or not sum((a - b) ** 2 for a, b in zip(q, out[-1])) <= 1e-18:
+            out.append(q)
+    if len(out) < 2:
+        raise BanyanError(1, "curve '%s' has %d distinct point(s); an avenue path needs at least 2" % (
+            obj.name, len(out)), "BANYAN_E_INVALID_ARG")
+    return out
+
+
+def _evaluated_polyline(obj, depsgraph=None):
+    """Local points of a curve's evaluated wire mesh, in edge order."""
+    cu = obj.data
+    if cu.bevel_depth or cu.extrude or cu.bevel_object is not None or len(cu.splines) > 1:
+        raise BanyanError(13, "curve '%s': a NURBS path must be a single spline without bevel or extrusion "
+                          "(or convert it to Bezier or Poly)" % obj.name, "BANYAN_E_UNSUPPORTED")
     depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
     ev = obj.evaluated_get(depsgraph)
     me = ev.to_mesh()
+    if me is None:
+        return []
     try:
-        mw = obj.matrix_world
-        pts = [tuple(mw @ v.co) for v in me.vertices]
+        pts = [v.co.copy() for v in me.vertices]
         if me.edges:
             # Follow the edge chain from an end so the order is the curve's.
             adj = {}
@@ -126,11 +226,7 @@ def curve_points(obj, depsgraph=None):
             pts = [pts[i] for i in order]
     finally:
         ev.to_mesh_clear()
-    out = []
-    for q in pts:
-        if not out or sum((a - b) ** 2 for a, b in zip(q, out[-1])) > 1e-18:
-            out.append(q)
-    return out
+    return pts
 
 
 def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collection=None,
@@ -139,11 +235,22 @@ def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collecti
     (the params' start-end line). merged=False: one object per tree in a
     new collection; True: one object. progress(done, total) is called as
     objects are built."""
+    _collection(collection)
+    _check_name(name)
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable as progress(done, total), not %s" % type(progress).__name__)
     p = make_params("avenue", preset, params, values, **kw)
-    pts = curve_points(path) if isinstance(path, bpy.types.Object) else (list(path) if path else None)
-    if pts is not None and len(pts) < 2:
-        raise BanyanError(1, "the avenue path needs at least 2 distinct points, got %d" % len(pts))
-    d = G.avenue(p, pts, threads)
+    curve = path if isinstance(path, bpy.types.bpy_struct) else None
+    if curve is not None:
+        path = curve_points(curve)
+    elif path is not None and (isinstance(path, (str, bytes)) or not hasattr(path, "__iter__")):
+        raise TypeError("path must be a curve object or a list of (x, y, z), not %s" % type(path).__name__)
+    try:
+        d = G.avenue(p, path, threads)
+    except BanyanError as e:
+        if curve is not None and e.message.startswith("path"):
+            raise BanyanError(e.status, "curve '%s': %s" % (curve.name, e.message), e.name) from None
+        raise
 
     def build(created):
         parent = _collection(collection)
@@ -161,26 +268,27 @@ def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collectio
     """Ivy over hosts from `start` (snapped by the library to the nearest
     host). animate=True adds a Geometry Nodes modifier revealing the plant
     by birth_step over [frame_start, frame_end] (default: the scene's)."""
+    _collection(collection)
+    _check_name(name)
+    sc = bpy.context.scene
+    f0, f1 = _frame("frame_start", frame_start, sc.frame_start), _frame("frame_end", frame_end, sc.frame_end)
     p = make_params("ivy", preset, params, values, **kw)
     if start is not None:
-        p.set("start", tuple(start))
+        p.set("start", start)
     if steps is not None:
-        p.set("steps", int(steps))
+        p.set("steps", steps)
     boxes = _boxes(hosts)
     if not boxes and preset:
         from .core.params import preset_hosts
         path = PR.find("ivy", preset)
         boxes = preset_hosts(PR.read(path), path)
-    d = G.ivy(p, boxes)
+    d = H.generate_named(lambda: G.ivy(p, boxes), boxes)
 
     def build(created):
         objs = _single(name, d, collection, uv, created)
         if animate:
             from .growth_anim import add_growth_modifier
-            sc = bpy.context.scene
-            add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))),
-                                sc.frame_start if frame_start is None else frame_start,
-                                sc.frame_end if frame_end is None else frame_end)
+            add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))), f0, f1)
         return objs
     return _guard(build)
 
@@ -200,6 +308,8 @@ def segment_twigs(*, preset=None, params=None, collection=None, name="Segment Tw
     """A segment tree: the segment list of a segments preset (its "segments"
     and "trunk"), or the random demo tree of params when the preset has
     none or no preset is given."""
+    _collection(collection)
+    _check_name(name)
     p = make_params("segments", preset, params, values, **kw)
     inputs = None
     count, trunk = 0, None

@@ -8,13 +8,23 @@ mirrored object) flips the last axis, which a symmetric box does not
 notice. Scale is folded into the half extents. With shear the image of the
 box is a parallelepiped; the box returned is the smallest R-aligned box
 around it, so the host is never smaller than what the user sees.
-Degenerate axes (zero scale, flat planes) get a thickness of MIN_HALF.
+One degenerate axis (a plane, or one axis scaled to zero) gets a
+thickness of MIN_HALF. An object that is not a mesh, has no extent on two
+or more axes (no vertices, zero scale: a point or a line), or a
+non-finite matrix or bound box is refused with a BanyanError naming it;
+so is a box the library's banyan_box_validate refuses (e.g. 1e30 m away).
 """
+import ctypes as C
 import math
+import re
 
-from .core.structs import Box
+from .core import lib as L
+from .core.errors import BanyanError
+from .core.structs import Box, Error
 
 MIN_HALF = 1e-3  # metres; planes and zero-scaled axes become 2 mm thick
+DEGENERATE = 1e-6  # metres; a half extent below this is no extent (the library's floor)
+BAD_HOST = 4  # BANYAN_E_BAD_HOST
 
 
 def _sub(a, b):
@@ -66,9 +76,8 @@ def orthonormal_frame(cols):
     return x, y, z
 
 
-def box_from_matrix(matrix, local_min, local_max):
-    """An oriented Box for the local box [local_min, local_max] under the
-    4x4 world matrix (any sequence of rows, e.g. mathutils.Matrix)."""
+def _box_parts(matrix, local_min, local_max):
+    """(centre, axes, raw half extents) of the local box under the matrix."""
     m = [[float(matrix[r][c]) for c in range(4)] for r in range(4)]
     c_local = [(local_min[k] + local_max[k]) * 0.5 for k in range(3)]
     h_local = [abs(local_max[k] - local_min[k]) * 0.5 for k in range(3)]
@@ -76,23 +85,100 @@ def box_from_matrix(matrix, local_min, local_max):
     center = tuple(m[r][3] + sum(m[r][k] * c_local[k] for k in range(3)) for r in range(3))
     axes = orthonormal_frame(cols)
     # Half extent along each frame axis of the (possibly sheared) image.
-    half = []
-    for a in axes:
-        h = sum(abs(_dot(a, cols[k])) * h_local[k] for k in range(3))
-        half.append(max(h, MIN_HALF))
+    half = [sum(abs(_dot(a, cols[k])) * h_local[k] for k in range(3)) for a in axes]
+    return center, axes, half
+
+
+def _make(center, axes, half):
     rot = [axes[c][r] for r in range(3) for c in range(3)]  # row-major, columns = axes
-    return Box.make(center, half, rot)
+    return Box.make(center, [max(h, MIN_HALF) for h in half], rot)
+
+
+def box_from_matrix(matrix, local_min, local_max):
+    """An oriented Box for the local box [local_min, local_max] under the
+    4x4 world matrix (any sequence of rows, e.g. mathutils.Matrix)."""
+    return _make(*_box_parts(matrix, local_min, local_max))
+
+
+def _finite(values):
+    return all(math.isfinite(x) for x in values)
 
 
 def box_from_object(obj):
-    """The world-space oriented bounding box of a Blender object."""
+    """The world-space oriented bounding box of a mesh object; raises
+    BanyanError (BANYAN_E_BAD_HOST) naming the object when it cannot be a
+    host (see the module docstring)."""
+    if not hasattr(obj, "bound_box") or not hasattr(obj, "matrix_world"):
+        raise TypeError("a host must be a mesh object or a banyan Box, not %s" % type(obj).__name__)
+    name = obj.name
+    if obj.type != 'MESH':
+        raise BanyanError(BAD_HOST, "host '%s' is a %s object, not a mesh" % (name, obj.type.lower()),
+                          "BANYAN_E_BAD_HOST")
+    if not len(obj.data.vertices) and not obj.modifiers:  # the bound box of a new object may be stale
+        raise BanyanError(BAD_HOST, "host '%s' has no surface to grow on: it has no vertices" % name,
+                          "BANYAN_E_BAD_HOST")
+    mw = obj.matrix_world
+    if not _finite(x for row in mw for x in row):
+        raise BanyanError(BAD_HOST, "host '%s' has a non-finite location, rotation or scale" % name,
+                          "BANYAN_E_BAD_HOST")
     bb = [tuple(v) for v in obj.bound_box]
+    # Corner 0 is the minimum, 6 the maximum; inverted when no vertex is finite.
+    if not _finite(x for p in bb for x in p) or any(bb[0][k] > bb[6][k] for k in range(3)):
+        raise BanyanError(BAD_HOST, "host '%s' has no finite vertex coordinates" % name, "BANYAN_E_BAD_HOST")
     lo = [min(p[k] for p in bb) for k in range(3)]
     hi = [max(p[k] for p in bb) for k in range(3)]
-    return box_from_matrix(obj.matrix_world, lo, hi)
+    center, axes, half = _box_parts(mw, lo, hi)
+    if not _finite(center + tuple(half)):
+        raise BanyanError(BAD_HOST, "host '%s' is too large or too far away (its box overflows)" % name,
+                          "BANYAN_E_BAD_HOST")
+    if sum(h < DEGENERATE for h in half) >= 2:
+        if obj.data is not None and not len(obj.data.vertices):
+            why = "it has no vertices"
+        elif any(abs(s) < DEGENERATE for s in obj.scale):
+            why = "it is scaled to zero (scale %s)" % ", ".join("%g" % s for s in obj.scale)
+        else:
+            why = "it is a point or a line (half extents %s m)" % ", ".join("%.3g" % h for h in half)
+        raise BanyanError(BAD_HOST, "host '%s' has no surface to grow on: %s" % (name, why), "BANYAN_E_BAD_HOST")
+    box = _make(center, axes, half)
+    check_box(box, name)
+    box.host_name = name  # for messages about this box (generate_named)
+    return box
+
+
+def check_box(box, name):
+    """The library's own check of one box, its message naming the object."""
+    err = Error()
+    st = L.load().banyan_box_validate(C.byref(box), 0, C.byref(err))
+    if st:
+        raise BanyanError(st, name_hosts(err.text(), [name]), L.status_name(st))
+
+
+def name_hosts(message, names):
+    """A library message with "hosts[i]" spelt as the object it came from
+    ("hosts[0].half[2] = 0 ..." -> "host 'Cube': box half[2] = 0 ...")."""
+    def sub(m):
+        i = int(m.group(1))
+        if i >= len(names) or not names[i]:
+            return m.group(0)
+        return "host '%s'%s" % (names[i], ": box " if m.group(2) else "")
+    return re.sub(r"hosts\[(\d+)\](\.)?", sub, message)
+
+
+def generate_named(call, boxes):
+    """call(); a BanyanError about hosts[i] names the object of boxes[i]
+    (boxes made by box_from_object carry its name)."""
+    try:
+        return call()
+    except BanyanError as e:
+        names = [getattr(b, "host_name", None) for b in boxes]
+        msg = name_hosts(e.message, names)
+        if msg == e.message:
+            raise
+        raise BanyanError(e.status, msg, e.name) from None
 
 
 def boxes_from_objects(objects):
+    """Boxes of the mesh objects among `objects` (others are skipped)."""
     return [box_from_object(o) for o in objects if o.type == 'MESH']
 
 

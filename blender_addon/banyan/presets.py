@@ -9,6 +9,7 @@ import json
 import os
 
 from .core import lib
+from .core.errors import PresetNotFound
 
 
 def user_dir(create=False):
@@ -33,6 +34,7 @@ def preset_dirs():
     return [d for d in out if os.path.isdir(d)]
 
 
+NAME_MAX = 64  # characters of a user preset's name kept in its file name
 _parsed = {}  # path -> (mtime_ns, generator, description): presets are read once per change
 
 
@@ -75,13 +77,16 @@ def list_presets(generator):
 
 
 def find(generator, key):
-    """Path of preset `key` (file name without .json) or a path as given."""
+    """Path of preset `key` (file name without .json) or a path as given;
+    PresetNotFound (a BanyanError and a FileNotFoundError) if neither."""
+    if not isinstance(key, (str, os.PathLike)):
+        raise TypeError("a preset is a name or a path, not %s" % type(key).__name__)
     if os.path.isfile(key):
         return key
     for k, path, _ in list_presets(generator):
         if k == key:
             return path
-    raise FileNotFoundError("no %s preset '%s' (have: %s)" % (
+    raise PresetNotFound("no %s preset '%s' (have: %s)" % (
         generator, key, ", ".join(k for k, _, _ in list_presets(generator)) or "none"))
 
 
@@ -90,7 +95,7 @@ def save(generator, name, text):
     d = user_dir(create=True)
     if not d:
         raise OSError("no user preset directory")
-    safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in name.strip()) or "preset"
+    safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in name.strip()[:NAME_MAX]) or "preset"
     key = safe if safe.startswith(generator + "_") else "%s_%s" % (generator, safe)
     path = os.path.join(d, key + ".json")
     with open(path, "w", encoding="utf-8") as f:

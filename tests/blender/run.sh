@@ -54,7 +54,7 @@ for t in "${tests[@]}"; do
   if [ $rc -ne 0 ] || [ -z "$summary" ]; then
     failed=$((failed + 1))
     echo "FAILED $name (exit $rc): ${summary:-no summary line}"
-    grep -E "^(FAIL|SKIP|Traceback|  File|[A-Za-z]*Error)" "$log" | head -40 | sed 's/^/    /'
+    grep -E "^(FAIL|SKIP|Traceback|  File|[A-Za-z]+Error)" "$log" | head -40 | sed 's/^/    /'
   else
     echo "ok     $summary"
     grep -E "^SKIP" "$log" | sort -u | sed 's/^/    /'

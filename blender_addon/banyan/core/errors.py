@@ -28,3 +28,10 @@ class GeneratorMissing(BanyanError):
             msg += " (%s)" % detail
         super().__init__(13, msg, "BANYAN_E_UNSUPPORTED")
         self.generator = generator
+
+
+class PresetNotFound(BanyanError, FileNotFoundError):
+    """No preset of that name or path (BANYAN_E_IO); also a FileNotFoundError."""
+
+    def __init__(self, message):
+        BanyanError.__init__(self, 9, message, "BANYAN_E_IO")

@@ -5,6 +5,7 @@ GeneratorMissing.
 """
 import ctypes as C
 
+from . import args as A
 from . import lib as L
 from . import structs as S
 from .errors import BanyanError, GeneratorMissing
@@ -73,14 +74,16 @@ def keyaki(params=None):
 
 
 def avenue(params=None, path=None, threads=0):
-    """path: None (the params' start-end line) or a list of (x, y, z)."""
+    """path: None (the params' start-end line) or a list of (x, y, z)
+    (the library wants 2 or more, finite, consecutive ones distinct)."""
     params = _as_params("avenue", params)
     f = _fn("banyan_avenue_generate", C.c_int,
             [C.c_void_p, P(C.c_double), C.c_uint32, C.c_int32, _mesh_out, _err], "avenue")
-    if path:
-        pts = (C.c_double * (3 * len(path)))(*[float(c) for p in path for c in p])
-        return call_generate(f, params.ptr, pts, len(path), int(threads))
-    return call_generate(f, params.ptr, None, 0, int(threads))
+    threads = A.int32("threads", threads)
+    if path is not None:
+        pts, n = A.points("path", path)
+        return call_generate(f, params.ptr, pts, n, threads)
+    return call_generate(f, params.ptr, None, 0, threads)
 
 
 def avenue_tree_count(params, path=None):
@@ -88,8 +91,8 @@ def avenue_tree_count(params, path=None):
                                               P(C.c_uint32), _err], "avenue")
     n = C.c_uint32(0)
     err = S.Error()
-    pts = (C.c_double * (3 * len(path)))(*[float(c) for p in path for c in p]) if path else None
-    L.raise_for(f(params.ptr, pts, len(path) if path else 0, None, 0, C.byref(n), C.byref(err)), err)
+    pts, npts = A.points("path", path) if path is not None else (None, 0)
+    L.raise_for(f(params.ptr, pts, npts, None, 0, C.byref(n), C.byref(err)), err)
     return n.value
 
 
@@ -116,7 +119,7 @@ class IvyPlant:
 
     def step(self, n):
         err = S.Error()
-        L.raise_for(self._step(self.handle, int(n), C.byref(err)), err)
+        L.raise_for(self._step(self.handle, A.int32("steps", n), C.byref(err)), err)
 
     def mesh(self):
         return call_generate(self._mesh, self.handle)

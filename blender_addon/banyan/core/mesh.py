@@ -109,7 +109,9 @@ def call_generate(func, *args):
 
 def tube(points, radii, sides=12, caps=True):
     """banyan_tube_generate: the smallest thing the library makes."""
-    n = len(points)
-    pts = (C.c_double * (3 * n))(*[float(c) for p in points for c in p])
-    rad = (C.c_double * len(radii))(*[float(r) for r in radii])
-    return call_generate(L.load().banyan_tube_generate, pts, rad, n, int(sides), int(bool(caps)))
+    from . import args as A
+    pts, n = A.points("points", points)
+    rad, nr = A.numbers_of("radii", radii)
+    if nr != n:
+        raise L.BanyanError(1, "%d radii for %d points" % (nr, n), "BANYAN_E_INVALID_ARG")
+    return call_generate(L.load().banyan_tube_generate, pts, rad, n, A.int32("sides", sides), int(bool(caps)))

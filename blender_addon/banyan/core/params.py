@@ -156,8 +156,15 @@ class Params:
         if isinstance(value, float):
             return repr(value)
         if isinstance(value, (list, tuple)) or hasattr(value, "__len__") and not isinstance(value, str):
-            return ",".join(repr(float(v)) for v in value)
+            return ",".join(Params._number_text(v) for v in value)
         return str(value)
+
+    @staticmethod
+    def _number_text(v):
+        try:
+            return repr(float(v))
+        except (TypeError, ValueError):
+            return str(v)  # the library refuses it, naming the field
 
     def set(self, name, value):
         """Sets one parameter; raises BanyanError with the library's message

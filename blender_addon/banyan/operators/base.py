@@ -2,6 +2,8 @@
 the generator's parameter table, the JSON preset menu, and execute()
 that turns a library error into an error report with the scene left as
 it was (api calls roll back what they made)."""
+import contextlib
+import math
 import traceback
 
 import bpy
@@ -84,6 +86,37 @@ class BanyanOperatorMixin:
         layout.separator()
         for name in self.table_props:
             layout.prop(self, name)
+
+
+def cursor_location(context):
+    """The 3D cursor's location; BanyanError when it is not finite (a
+    script can put it at NaN, and the library would name a parameter the
+    user never set)."""
+    loc = tuple(context.scene.cursor.location)
+    if not all(math.isfinite(c) for c in loc):
+        raise BanyanError(2, "the 3D cursor is at (%s); move it to a finite location" % ", ".join(
+            "%g" % c for c in loc), "BANYAN_E_RANGE")
+    return loc
+
+
+def cursor_axis(context, k=0):
+    """Unit world direction of the 3D cursor's local axis k."""
+    d = context.scene.cursor.matrix.to_3x3().col[k]
+    if not all(math.isfinite(c) for c in d) or d.length < 1e-9:
+        raise BanyanError(2, "the 3D cursor's rotation is not finite; reset it (Shift+C)", "BANYAN_E_RANGE")
+    return d.normalized()
+
+
+@contextlib.contextmanager
+def at_cursor_note(active, field, note):
+    """Adds `note` to a library error about `field` when the value came
+    from the 3D cursor, not from a property the user set."""
+    try:
+        yield
+    except BanyanError as e:
+        if not active or not e.message.startswith(field):
+            raise
+        raise BanyanError(e.status, "%s (%s)" % (e.message, note), e.name) from None
 
 
 def select_only(context, objs):

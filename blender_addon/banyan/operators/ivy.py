@@ -4,7 +4,7 @@ from bpy.props import BoolProperty
 
 from .. import api
 from .. import hosts as H
-from .base import HostsOperatorMixin, make_operator
+from .base import HostsOperatorMixin, cursor_location, make_operator
 
 IDNAME = "mesh.banyan_ivy"
 
@@ -16,7 +16,7 @@ class IvyMixin(HostsOperatorMixin):
         start = None
         if self.start_at_cursor:
             # Snap here too, so a cursor far from the hosts still starts on the nearest one.
-            start, _box = H.closest_point(boxes, tuple(context.scene.cursor.location))
+            start, _box = H.closest_point(boxes, cursor_location(context))
         return api.ivy(hosts=boxes, params=params, start=start, collection=context.collection, uv=self.uv_map,
                        animate=self.animate)
 

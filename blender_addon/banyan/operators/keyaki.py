@@ -4,7 +4,8 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty
 
 from .. import api
-from .base import BanyanOperatorMixin, make_operator
+from ..core.errors import BanyanError
+from .base import BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator
 
 TREE_IDNAME = "mesh.banyan_keyaki_tree"
 AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
@@ -12,8 +13,9 @@ AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
 
 class TreeMixin(BanyanOperatorMixin):
     def build(self, context, params):
-        pos = tuple(context.scene.cursor.location) if self.at_cursor else None
-        return api.keyaki_tree(params=params, position=pos, collection=context.collection, uv=self.uv_map)
+        pos = cursor_location(context) if self.at_cursor else None
+        with at_cursor_note(pos is not None, "position", "the tree stands at the 3D cursor"):
+            return api.keyaki_tree(params=params, position=pos, collection=context.collection, uv=self.uv_map)
 
 
 class AvenueMixin(BanyanOperatorMixin):
@@ -22,19 +24,19 @@ class AvenueMixin(BanyanOperatorMixin):
         act = context.active_object
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':
-                raise ValueError("the active object is not a curve (choose 'Straight line')")
+                raise BanyanError(1, "the active object is not a curve (choose 'Straight line')")
             path = act
         elif self.path_from == 'CURSOR':
-            c = context.scene.cursor
-            d = c.matrix.to_3x3().col[0].normalized()
-            a = c.location
-            path = [tuple(a), tuple(a + d * self.line_length)]
+            a = cursor_location(context)
+            d = cursor_axis(context, 0)
+            path = [a, tuple(a[k] + d[k] * self.line_length for k in range(3))]
         wm = context.window_manager
         wm.progress_begin(0, 100)
         try:
-            return api.keyaki_avenue(path=path, params=params, merged=self.merged,
-                                     collection=context.collection, uv=self.uv_map,
-                                     progress=lambda done, total: wm.progress_update(int(100 * done / total)))
+            with at_cursor_note(self.path_from == 'CURSOR', "path point", "the line starts at the 3D cursor"):
+                return api.keyaki_avenue(path=path, params=params, merged=self.merged,
+                                         collection=context.collection, uv=self.uv_map,
+                                         progress=lambda done, total: wm.progress_update(int(100 * done / total)))
         finally:
             wm.progress_end()
 

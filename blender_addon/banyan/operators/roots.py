@@ -5,7 +5,7 @@ from bpy.props import EnumProperty
 
 from .. import api
 from .. import hosts as H
-from .base import HostsOperatorMixin, make_operator
+from .base import HostsOperatorMixin, cursor_location, make_operator
 
 IDNAME = "mesh.banyan_roots"
 
@@ -15,7 +15,7 @@ class RootsMixin(HostsOperatorMixin):
         hosts = self.selected_hosts(context)  # the active object is the first host
         boxes = H.boxes_from_objects(hosts)
         if self.germinate_at == 'CURSOR':
-            api.set_roots_germination(params, tuple(context.scene.cursor.location))
+            api.set_roots_germination(params, cursor_location(context))
         elif self.germinate_at == 'ACTIVE_TOP':
             # The generator's own rule: top centre of hosts[0] (the active object), lifted by r.
             params.set("germination_auto", True)

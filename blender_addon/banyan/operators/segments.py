@@ -1,7 +1,7 @@
 """Add Segment Twigs: a tree of geometry-shader segments from a segments
 preset (its segment list), or the random demo tree."""
 from .. import api
-from .base import NO_PRESET, BanyanOperatorMixin, make_operator
+from .base import NO_PRESET, BanyanOperatorMixin, cursor_location, make_operator
 
 IDNAME = "mesh.banyan_segment_twigs"
 
@@ -9,9 +9,10 @@ IDNAME = "mesh.banyan_segment_twigs"
 class SegmentsMixin(BanyanOperatorMixin):
     def build(self, context, params):
         key = self.banyan_preset if self.banyan_preset != NO_PRESET else None
+        at = cursor_location(context)
         objs = api.segment_twigs(preset=key, params=params, collection=context.collection, uv=self.uv_map)
         for o in objs:
-            o.location = context.scene.cursor.location
+            o.location = at
         return objs
 
     def load_preset_if_changed(self):

@@ -6,7 +6,7 @@ from bpy.props import FloatProperty, IntProperty, BoolProperty
 from .. import build_mesh as BM
 from ..core import mesh as M
 from ..core.errors import BanyanError
-from .base import select_only
+from .base import cursor_location, select_only
 
 
 class MESH_OT_banyan_tube(bpy.types.Operator):
@@ -23,7 +23,7 @@ class MESH_OT_banyan_tube(bpy.types.Operator):
     def execute(self, context):
         created = BM.Created()
         try:
-            c = tuple(context.scene.cursor.location)
+            c = cursor_location(context)
             pts = [c, (c[0], c[1], c[2] + self.height * 0.5), (c[0] + 0.2 * self.height, c[1], c[2] + self.height)]
             d = M.tube(pts, [self.radius, self.radius * 0.8, self.radius * 0.5], self.sides, self.caps)
             obj = BM.object_from_mesh_data("Banyan Tube", d, context.collection, created)
