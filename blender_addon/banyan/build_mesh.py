@@ -3,13 +3,14 @@
 Every datablock made here is recorded in a Created list so a failure
 half way removes everything again (the operator then leaves the scene as
 it was). No per-vertex Python loops: arrays are sliced, per-corner UVs come
-gathered by the library (banyan_mesh_corner_uvs), and index rebasing runs
-in C through map() over built-ins.
+gathered by the library (banyan_mesh_corner_uvs), and splitting a mesh
+into one object per group runs in C too (banyan_group_localize).
 """
 from array import array
-import operator
 
 import bpy
+
+from .core.mesh import localize_group
 
 
 class Created:
@@ -131,7 +132,6 @@ def group_ranges(parts):
 def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, progress=None):
     """One object per part group (e.g. one per tree), origins at each
     group's base (bottom centre of its bounds). Returns the objects."""
-    from mathutils import Matrix, Vector
     mats = [make_material(m, created, prefix) for m in d.materials]
     groups = d.groups()
     objs = []
@@ -140,10 +140,7 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         if r is None:
             raise ValueError("parts of group %d are not contiguous" % g)
         v0, v1, i0, i1 = r
-        pos = d.positions[3 * v0:3 * v1]
-        idx = d.indices[i0:i1]
-        if v0:
-            idx = array("i", map(operator.sub, idx, _repeat(v0, len(idx))))
+        pos, idx, base = localize_group(d.positions[3 * v0:3 * v1], d.indices[i0:i1], v0)
         uvs = d.corner_uvs[2 * i0:2 * i1] if (uv and d.corner_uvs is not None) else None
         cols = d.colors[4 * v0:4 * v1] if d.colors is not None else None
         attrs = {k: a[v0:v1] for k, a in d.attributes.items()}
@@ -153,9 +150,6 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         local_parts = [dict(p, index_offset=p["index_offset"] - i0) for p in parts]
         fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
                   material_index=material_indices(local_parts), smooth=smooth)
-        xs, ys, zs = pos[0::3], pos[1::3], pos[2::3]
-        base = Vector(((min(xs) + max(xs)) * 0.5, (min(ys) + max(ys)) * 0.5, min(zs))) if len(pos) else Vector()
-        me.transform(Matrix.Translation(-base))
         obj = created.add(bpy.data.objects.new(me.name, me))
         obj.location = base
         collection.objects.link(obj)
@@ -164,7 +158,3 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
             progress(n + 1, len(groups))
     return objs
 
-
-def _repeat(value, n):
-    import itertools
-    return itertools.repeat(value, n)

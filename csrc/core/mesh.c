@@ -42,6 +42,33 @@ banyan_status banyan_mesh_corner_uvs(const banyan_mesh *m, float *out, uint64_t 
     return BANYAN_OK;
 }
 
+banyan_status banyan_group_localize(float *positions, uint32_t vertex_count, uint32_t *indices, uint64_t index_count,
+                                    uint32_t first_vertex, double origin_out[3], banyan_error *err) {
+    if (!origin_out || (!positions && vertex_count) || (!indices && index_count))
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "positions, indices and origin_out must not be NULL");
+    if ((uint64_t)first_vertex + vertex_count > UINT32_MAX)
+        return banyan_fail(err, BANYAN_E_RANGE, "first_vertex + vertex_count = %llu must be at most %u",
+                           (unsigned long long)first_vertex + vertex_count, UINT32_MAX);
+    for (uint64_t k = 0; k < index_count; k++)
+        if (indices[k] - first_vertex >= vertex_count) /* unsigned: below first_vertex wraps high */
+            return banyan_fail(err, BANYAN_E_RANGE, "indices[%llu] = %u is outside the group's vertices [%u, %u)",
+                               (unsigned long long)k, indices[k], first_vertex, first_vertex + vertex_count);
+    for (uint64_t k = 0; k < index_count; k++) indices[k] -= first_vertex;
+    float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < vertex_count; i++)
+        for (int c = 0; c < 3; c++) {
+            float x = positions[3 * (size_t)i + c];
+            if (i == 0 || x < lo[c]) lo[c] = x;
+            if (i == 0 || x > hi[c]) hi[c] = x;
+        }
+    float o[3] = {0.5f * (lo[0] + hi[0]), 0.5f * (lo[1] + hi[1]), lo[2]};
+    for (uint32_t i = 0; i < vertex_count; i++)
+        for (int c = 0; c < 3; c++) positions[3 * (size_t)i + c] -= o[c];
+    for (int c = 0; c < 3; c++) origin_out[c] = o[c];
+    banyan_error_clear(err);
+    return BANYAN_OK;
+}
+
 static uint64_t fnv(uint64_t h, const void *p, size_t n) {
     const unsigned char *b = p;
     for (size_t i = 0; i < n; i++) {

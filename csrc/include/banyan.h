@@ -171,6 +171,18 @@ BANYAN_API const float *banyan_mesh_attribute(const banyan_mesh *mesh, const cha
 BANYAN_API banyan_status banyan_mesh_corner_uvs(const banyan_mesh *mesh, float *out, uint64_t out_count,
                                                 banyan_error *err);
 
+/* Makes one group of a mesh (e.g. one tree of an avenue) a mesh of its
+ * own, in buffers the caller copied out: `indices` (index_count of them)
+ * refer to vertices first_vertex .. first_vertex + vertex_count - 1 and
+ * become 0-based; `positions` (3 * vertex_count floats) move so that the
+ * bottom centre of their bounds is the origin, and that point, in the
+ * mesh's frame, is written to origin_out (the object's location, a pivot
+ * at the foot). An index outside the group is refused and nothing is
+ * changed. */
+BANYAN_API banyan_status banyan_group_localize(float *positions, uint32_t vertex_count, uint32_t *indices,
+                                               uint64_t index_count, uint32_t first_vertex, double origin_out[3],
+                                               banyan_error *err);
+
 /* FNV-1a 64 hash over every byte of every array of the mesh; used by tests
  * and tools to compare outputs. */
 BANYAN_API uint64_t banyan_mesh_hash(const banyan_mesh *mesh);

@@ -138,6 +138,37 @@ static void refusals(void) {
 #undef REFUSE
 }
 
+/* banyan_group_localize on tree copies: 0-based indices, the origin at the
+ * bottom centre of the tree's bounds, positions moved by it; a wrong
+ * first_vertex is refused with both buffers untouched. Returns failures. */
+static int localize_tree(const banyan_mesh *m, uint32_t v0, uint32_t nv, uint32_t i0, uint32_t ni) {
+    float *pos = malloc(12 * (size_t)nv);
+    uint32_t *idx = malloc(4 * (size_t)ni);
+    if (!pos || !idx) abort();
+    memcpy(pos, m->positions + 3 * (size_t)v0, 12 * (size_t)nv);
+    memcpy(idx, m->indices + i0, 4 * (size_t)ni);
+    int bad = 0;
+    double o[3];
+    banyan_error err;
+    bad += banyan_group_localize(pos, nv, idx, ni, v0 + 1, o, &err) != BANYAN_E_RANGE || !strstr(err.message, "indices[");
+    bad += memcmp(pos, m->positions + 3 * (size_t)v0, 12 * (size_t)nv) != 0 || memcmp(idx, m->indices + i0, 4 * (size_t)ni) != 0;
+    bad += banyan_group_localize(pos, nv, idx, ni, v0, o, &err) != BANYAN_OK;
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f}, zmin = 1e30f;
+    for (uint32_t j = 0; j < nv; j++)
+        for (int c = 0; c < 3; c++) {
+            float a = m->positions[3 * (size_t)(v0 + j) + c], b = pos[3 * (size_t)j + c];
+            lo[c] = a < lo[c] ? a : lo[c];
+            hi[c] = a > hi[c] ? a : hi[c];
+            if (c == 2 && b < zmin) zmin = b;
+            bad += fabs((double)(a - (float)o[c]) - b) > 1e-4 * (1 + fabs(a));
+        }
+    bad += fabs(o[0] - 0.5 * (lo[0] + hi[0])) > 1e-4 || fabs(o[1] - 0.5 * (lo[1] + hi[1])) > 1e-4 || o[2] != lo[2] || zmin != 0;
+    for (uint32_t j = 0; j < ni; j++) bad += idx[j] >= nv || idx[j] + v0 != m->indices[i0 + j];
+    free(pos);
+    free(idx);
+    return bad != 0;
+}
+
 static void merged(const char *outdir) {
     banyan_avenue_params p;
     small(&p);
@@ -164,7 +195,7 @@ static void merged(const char *outdir) {
     CHECK(tid && banyan_mesh_attribute(m1, "level") && banyan_mesh_attribute(m1, "order"), "attributes");
     CHECK(m1->material_count == 2, "%u materials", m1->material_count);
     uint32_t part = 0, v = 0, x = 0;
-    int bad_group = 0, bad_same = 0, bad_tid = 0;
+    int bad_group = 0, bad_same = 0, bad_tid = 0, bad_local = 0;
     for (uint32_t i = 0; i < n && tid; i++) {
         banyan_mesh *k = NULL;
         CHECK(banyan_keyaki_generate(&t[i], &k, &err) == BANYAN_OK, "tree %u: %s", i, err.message);
@@ -177,6 +208,7 @@ static void merged(const char *outdir) {
         bad_same += memcmp(m1->positions + 3 * (size_t)v, k->positions, 12 * (size_t)k->vertex_count) != 0;
         for (uint32_t j = 0; j < k->index_count; j++) bad_same += m1->indices[x + j] != k->indices[j] + v;
         for (uint32_t j = 0; j < k->vertex_count; j++) bad_tid += tid[v + j] != (float)i;
+        bad_local += localize_tree(m1, v, k->vertex_count, x, k->index_count);
         v += k->vertex_count;
         x += k->index_count;
         banyan_mesh_free(k);
@@ -185,6 +217,7 @@ static void merged(const char *outdir) {
           v);
     CHECK(bad_group == 0 && bad_same == 0 && bad_tid == 0, "grouping %d, tree bytes %d, tree_id %d", bad_group,
           bad_same, bad_tid);
+    CHECK(bad_local == 0, "%d trees localized wrongly", bad_local);
 
     /* Trees differ: tip counts and crown widths vary across the avenue. */
     int distinct = 0;

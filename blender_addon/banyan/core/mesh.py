@@ -23,16 +23,19 @@ def _copy(ptr, count, typecode):
 class MeshData:
     """A banyan_mesh in Python buffers (the C mesh is freed right after).
 
-    positions/normals 3n 'f', uvs 2n 'f', corner_uvs 2 per index 'f' (what
-    Blender's UV layer takes, gathered in C), colors 4n 'f' or None, indices 'i'
-    (uint32 in C; Blender wants int), attributes {name: 'f' n},
-    materials [dict], parts [dict], skeleton arrays ('f'/'i') or None.
+    positions 3n 'f', corner_uvs 2 per index 'f' (what Blender's UV layer
+    takes, gathered in C), colors 4n 'f' or None, indices 'i' (uint32 in
+    C; Blender wants int), attributes {name: 'f' n}, materials [dict],
+    parts [dict], skeleton arrays ('f'/'i') or None. Vertex normals and
+    per-vertex uvs are copied only when asked for (vertex_arrays=True):
+    Blender computes its own normals and takes uvs per corner.
     """
 
     def __init__(self):
         self.vertex_count = 0
         self.index_count = 0
         self.positions = self.normals = self.uvs = self.corner_uvs = self.colors = self.indices = None
+        self.hash = None
         self.attributes = {}
         self.materials = []
         self.parts = []
@@ -43,9 +46,10 @@ class MeshData:
         return self.index_count // 3
 
     @classmethod
-    def take(cls, mesh_ptr, want_hash=False):
+    def take(cls, mesh_ptr, want_hash=False, vertex_arrays=False):
         """Copies *mesh_ptr out and frees it (even when copying fails).
-        want_hash: also keep banyan_mesh_hash (costs a pass over every byte)."""
+        want_hash: also keep banyan_mesh_hash (costs a pass over every byte);
+        vertex_arrays: also copy the vertex normals and uvs."""
         lib = L.load()
         try:
             m = mesh_ptr.contents
@@ -54,8 +58,9 @@ class MeshData:
             d.index_count = m.index_count
             d.hash = lib.banyan_mesh_hash(mesh_ptr) if want_hash else None
             d.positions = _copy(m.positions, 3 * n, "f")
-            d.normals = _copy(m.normals, 3 * n, "f")
-            d.uvs = _copy(m.uvs, 2 * n, "f")
+            if vertex_arrays:
+                d.normals = _copy(m.normals, 3 * n, "f")
+                d.uvs = _copy(m.uvs, 2 * n, "f")
             d.colors = _copy(m.colors, 4 * n, "f")
             d.indices = _copy(m.indices, m.index_count, "i")
             if m.uvs and m.index_count:
@@ -90,6 +95,20 @@ class MeshData:
         for p in self.parts:
             out.setdefault(p["group"], []).append(p)
         return out
+
+
+def localize_group(positions, indices, first_vertex):
+    """banyan_group_localize on copies: (positions, indices) of one group
+    made 0-based with the origin at the bottom centre of its bounds, and
+    that origin. The inputs are slices the caller owns."""
+    lib = L.load()
+    origin = (C.c_double * 3)()
+    err = S.Error()
+    st = lib.banyan_group_localize(positions.buffer_info()[0], len(positions) // 3, indices.buffer_info()[0],
+                                   len(indices), first_vertex, origin, C.byref(err))
+    if st:
+        L.raise_for(st, err)
+    return positions, indices, tuple(origin)
 
 
 def call_generate(func, *args):
