@@ -99,16 +99,18 @@ def _snap(x, spec, default):
     return x
 
 
+_MISSING = object()
+
+
 def to_params(gen, holder, skip=()):
     """A Params of gen filled from holder's properties (an operator or any
     object with the attributes); raises BanyanError on bad values."""
     p = P.Params(gen)
     defaults = P.Params(gen)
     for s in p.specs:
-        name = prop_name(s.name)
-        if s.name in skip or not hasattr(holder, name):
+        v = getattr(holder, prop_name(s.name), _MISSING)
+        if s.name in skip or v is _MISSING:
             continue
-        v = getattr(holder, name)
         d = defaults.get(s.name)
         if s.type == S.PT_DOUBLE:
             x = _nice(math.degrees(v)) if s.unit == "deg" else _nice(v)

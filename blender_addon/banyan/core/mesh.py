@@ -1,6 +1,6 @@
 """Copying a banyan_mesh out of C memory into array.array buffers.
 
-One ctypes.memmove per array: Blender's foreach_set reads array.array
+One copy per array: Blender's foreach_set reads array.array
 ('f' / 'i') buffers at memory speed, while raw ctypes arrays are read item
 by item (see docs/addon.md). No numpy, no per-vertex Python loops.
 """
@@ -15,8 +15,9 @@ def _copy(ptr, count, typecode):
     """array(typecode) holding `count` items copied from ptr (or None)."""
     if not ptr or count == 0:
         return array(typecode) if ptr else None
-    out = array(typecode, bytes(array(typecode).itemsize)) * count
-    C.memmove(out.buffer_info()[0], ptr, count * out.itemsize)
+    out = array(typecode)
+    # One pass: frombytes reads the C memory as a buffer (no zero fill first).
+    out.frombytes((C.c_char * (count * out.itemsize)).from_address(C.cast(ptr, C.c_void_p).value))
     return out
 
 
