@@ -154,6 +154,33 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);
 }
 
+void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *T, const v3 *N, const double *cs,
+                      const double *sn, int sides, v3 *rings, v3 *normals, double *extent) {
+    for (uint32_t i = 0; i < n; i++) {
+        v3 bend = v3_make(0, 0, 0);
+        double stretch = 1.0;
+        if (i > 0 && i + 1 < n) {
+            v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T[i]), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T[i]);
+            double c = v3_dot(a, T[i]);
+            if (c > 0.2 && c < 0.999999) {
+                stretch = 1.0 / c;
+                bend = v3_norm(v3_sub(b, a));
+            }
+        }
+        v3 Bv = v3_cross(T[i], N[i]);
+        double ri = radii[i], dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
+        /* (d . bend)(stretch - 1) for d = c N + s B, split by c and s. */
+        double nb = ri * v3_dot(N[i], bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
+        v3 *ring = rings + (size_t)i * sides, *nr = normals + (size_t)i * sides;
+        for (int j = 0; j < sides; j++) {
+            v3 d = v3_add(v3_scale(N[i], cs[j]), v3_scale(Bv, sn[j]));
+            ring[j] = v3_madd(v3_madd(pts[i], d, ri), bend, cs[j] * nb + sn[j] * bb);
+            nr[j] = v3_scale(v3_madd(d, T[i], -dr), k);
+        }
+        if (extent) extent[i] = ri * stretch;
+    }
+}
+
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256 || mb->status) return;
@@ -174,32 +201,7 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         sn[j] = sin(a);
     }
     tube_frames(pts, n, o->first_normal, T, N);
-    for (uint32_t i = 0; i < n; i++) {
-        /* Scale a ring at a bend by 1/cos(half angle) across the bend, so
-         * the tube keeps its radius through corners. */
-        v3 bend = v3_make(0, 0, 0);
-        double stretch = 1.0;
-        if (i > 0 && i + 1 < n) {
-            v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T[i]), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T[i]);
-            double c = v3_dot(a, T[i]);
-            if (c > 0.2 && c < 0.999999) {
-                stretch = 1.0 / c;
-                bend = v3_norm(v3_sub(b, a));
-            }
-        }
-        v3 Bv = v3_cross(T[i], N[i]);
-        double dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
-        for (int j = 0; j < sides; j++) {
-            v3 d = v3_add(v3_scale(N[i], cs[j]), v3_scale(Bv, sn[j]));
-            normals[(size_t)i * sides + j] = v3_scale(v3_madd(d, T[i], -dr), k);
-            v3 p = v3_madd(pts[i], d, radii[i]);
-            if (stretch != 1.0) {
-                v3 d = v3_sub(p, pts[i]);
-                p = v3_madd(p, bend, v3_dot(d, bend) * (stretch - 1.0));
-            }
-            rings[(size_t)i * sides + j] = p;
-        }
-    }
+    tube_round_rings(pts, radii, n, T, N, cs, sn, sides, rings, normals, NULL);
     tube_opts round = *o;
     round.ring_normals = normals;
     tube_sweep_rings(mb, pts, rings, n, &round);

@@ -30,6 +30,14 @@ void tube_counts(uint32_t n, int sides, int cap_start, int cap_end, uint32_t *ve
  * tangent. first_normal as in tube_opts. */
 void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N);
 
+/* Round rings on given frames: ring i holds `sides` vertices at angles
+ * whose cosines and sines are cs[j], sn[j], radius radii[i], widened
+ * across a bend by 1/cos(half angle) so the tube keeps its width through
+ * corners; normals[i*sides+j] are the ring directions tilted by the taper
+ * (tube_taper_slope). extent (optional) gets each ring's widest reach. */
+void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *T, const v3 *N, const double *cs,
+                      const double *sn, int sides, v3 *rings, v3 *normals, double *extent);
+
 /* Sweeps a round tube. Needs n >= 2. */
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o);
 

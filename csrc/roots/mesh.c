@@ -24,46 +24,12 @@ static const v3 UP = {0, 0, 1};
 typedef struct work {
     int sides;
     double *cs, *sn;      /* cos, sin of ring angles */
-    v3 *T, *N, *B;        /* frames, per point */
+    v3 *T, *N;            /* frames, per point */
     v3 *rings, *normals;  /* per point * sides */
     double *arc;          /* arc length per point */
     double *extent;       /* per point: the farthest ring vertex from the centre */
     v3 *ls, *le, *ds, *de;/* loop offsets from the end point and loop directions, world */
 } work;
-
-/* Round rings (spec 5 "Rings"): radius per point, scaled across a bend by
- * 1/cos(half angle) as tube_sweep does, so tubes keep their width. Their
- * normals are the ring directions tilted by the taper (tube_taper_slope),
- * known here without the sweeper's per-vertex square roots. */
-static void round_rings(work *wk, const v3 *P, const double *rad, uint32_t n) {
-    int sides = wk->sides;
-    for (uint32_t i = 0; i < n; i++) {
-        v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
-        double dr = tube_taper_slope(P, rad, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
-        v3 *nr = wk->normals + (size_t)i * sides;
-        for (int j = 0; j < sides; j++)
-            nr[j] = v3_scale(v3_madd(v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j])), T, -dr), k);
-        v3 bend = v3_make(0, 0, 0);
-        double stretch = 1.0;
-        if (i > 0 && i + 1 < n) {
-            v3 a = v3_norm_or(v3_sub(P[i], P[i - 1]), T), b = v3_norm_or(v3_sub(P[i + 1], P[i]), T);
-            double c = v3_dot(a, T);
-            if (c > 0.2 && c < 0.999999) {
-                stretch = 1.0 / c;
-                bend = v3_norm(v3_sub(b, a));
-            }
-        }
-        v3 *ring = wk->rings + (size_t)i * sides;
-        double ri = rad[i], nb = ri * v3_dot(N, bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
-        for (int j = 0; j < sides; j++) {
-            double c = wk->cs[j], s = wk->sn[j], k = c * nb + s * bb; /* (d . bend)(stretch - 1) */
-            ring[j] = v3_make(P[i].x + ri * (c * N.x + s * Bv.x) + k * bend.x,
-                              P[i].y + ri * (c * N.y + s * Bv.y) + k * bend.y,
-                              P[i].z + ri * (c * N.z + s * Bv.z) + k * bend.z);
-        }
-        wk->extent[i] = ri * stretch;
-    }
-}
 
 /* Loop for one end of a first branch root: for every ring direction d of
  * the frame at P, the point of the stadium round C1 and C2 (radius rl) in
@@ -229,15 +195,14 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     memset(&wk, 0, sizeof wk);
     wk.sides = sides;
     size_t nr = (size_t)longest * sides;
-    void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 3 * longest + sizeof(v3) * 2 * nr +
+    void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 2 * longest + sizeof(v3) * 2 * nr +
                          sizeof(double) * 2 * longest + sizeof(v3) * 4 * sides);
     if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots mesh workspace");
     wk.cs = block;
     wk.sn = wk.cs + sides;
     wk.T = (v3 *)(wk.sn + sides);
     wk.N = wk.T + longest;
-    wk.B = wk.N + longest;
-    wk.rings = wk.B + longest;
+    wk.rings = wk.N + longest;
     wk.normals = wk.rings + nr;
     wk.ls = wk.normals + nr;
     wk.ds = wk.ls + sides;
@@ -282,7 +247,9 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
             for (uint32_t i = 1; i < pl->n; i++) wk.arc[i] = wk.arc[i - 1] + v3_dist(P[i], P[i - 1]);
             junction_rings(&wk, net, p, pl);
         } else {
-            round_rings(&wk, P, net->rad + pl->off, pl->n);
+            /* Round rings (spec 5 "Rings"). */
+            tube_round_rings(P, net->rad + pl->off, pl->n, wk.T, wk.N, wk.cs, wk.sn, sides, wk.rings, wk.normals,
+                             wk.extent);
         }
         press_rings(&wk, &net->w, P, pl->n);
         tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
