@@ -1,7 +1,7 @@
 /* avenue.c - keyaki avenues (spec/keyaki.md, "Avenues"): trees placed
  * along a line or polyline in one or two rows, each with its own seed
- * (base seed + index), a random heading and jitter of trunk height and
- * position, grown in parallel with pthreads.
+ * (base seed + index), a random heading and jitter of trunk height,
+ * position and (for mixed ages) levels, grown in parallel with pthreads.
  *
  * Layout: trees sit at arc lengths along the path, every `spacing` metres
  * centred on it, or `count` per row from end to end; row 0 lies
@@ -145,6 +145,12 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
             t->position[0] = at.x;
             t->position[1] = at.y;
             t->position[2] = at.z;
+            /* Drawn last, so the draws above (and every avenue without
+             * levels_jitter) stay as they were. */
+            if (p->levels_jitter > 0) {
+                int32_t drop = (int32_t)rng_below(&r, (uint32_t)p->levels_jitter + 1);
+                t->levels = p->tree.levels - drop < 1 ? 1 : p->tree.levels - drop;
+            }
         }
     }
     free(own);

@@ -85,6 +85,8 @@ const banyan_param_info avenue_table_rows[] = {
     BP_DOUBLE(banyan_avenue_params, heading_jitter, "deg", 0, 180, "each tree turned by uniform(+-this)"),
     BP_DOUBLE(banyan_avenue_params, height_jitter, "", 0, 0.9, "trunk length scaled by 1 + uniform(+-this)"),
     BP_DOUBLE(banyan_avenue_params, position_jitter, "m", 0, 100, "trunk moved uniformly within a disc of this radius"),
+    BP_INT(banyan_avenue_params, levels_jitter, 0, BANYAN_KEYAKI_MAX_LEVELS - 1,
+           "tree.levels lowered by a uniform whole number in [0, this], never below 1: trees of mixed ages"),
     KEYAKI_TREE_ROWS(banyan_avenue_params, AVENUE_F),
 };
 const int32_t avenue_table_row_count = (int32_t)(sizeof avenue_table_rows / sizeof avenue_table_rows[0]);

@@ -35,6 +35,7 @@ else
   export BANYAN_EXPECT_LIB="$BANYAN_LIB"
 fi
 export BANYAN_SOURCE_DIR="$src"
+export BANYAN_BUILD_DIR="$build"
 export BANYAN_TEST_OUT="$out"
 export PYTHONDONTWRITEBYTECODE=1
 

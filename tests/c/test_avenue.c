@@ -1,8 +1,8 @@
 /* avenue: layout (counts by spacing and count, rows, stagger, row offset,
  * polylines), per-tree seeds (tree i is the keyaki of seed base + i),
  * the merged mesh grouped by tree, byte-identical output on 1, 2 and all
- * threads, trees that differ, refusals with clear messages, the avenue
- * presets, and a glb for the validator. */
+ * threads, trees that differ, mixed ages (levels_jitter), refusals with
+ * clear messages, every avenue preset, and a glb for the validator. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -84,6 +84,40 @@ static void layout(void) {
         bad += best > 5 + 0.5 + 1e-9;
     }
     CHECK(bad == 0, "%d polyline trees off their row", bad);
+}
+
+/* levels_jitter: levels within [levels - jitter, levels], never below 1,
+ * several ages present; nothing else in the layout moves. */
+static void mixed_ages(void) {
+    banyan_avenue_params p;
+    banyan_avenue_params_init(&p);
+    p.end[0] = 200; /* 25 trees per row */
+    banyan_keyaki_params same[64], mixed[64];
+    uint32_t n0 = 0, n1 = 0;
+    banyan_error err;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, same, 64, &n0, &err) == BANYAN_OK, "%s", err.message);
+    p.levels_jitter = 6;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, mixed, 64, &n1, &err) == BANYAN_OK && n1 == n0, "%s", err.message);
+    int moved = 0, outside = 0, seen[32] = {0}, ages = 0;
+    for (uint32_t i = 0; i < n1; i++) {
+        moved += same[i].levels != p.tree.levels || memcmp(same[i].position, mixed[i].position, sizeof same[i].position) ||
+                 same[i].heading != mixed[i].heading || same[i].trunk_length != mixed[i].trunk_length;
+        outside += mixed[i].levels < p.tree.levels - 6 || mixed[i].levels > p.tree.levels;
+        if (mixed[i].levels >= 0 && mixed[i].levels < 32 && !seen[mixed[i].levels]++) ages++;
+    }
+    CHECK(moved == 0, "levels_jitter moved %d trees", moved);
+    CHECK(outside == 0 && ages >= 4, "%d trees outside [15, 21] levels, %d distinct ages", outside, ages);
+    /* Never below one level. */
+    p.tree.levels = 3;
+    p.tree.fork_angle_step = 0;
+    p.levels_jitter = 20;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, mixed, 64, &n1, &err) == BANYAN_OK, "%s", err.message);
+    int low = 0, ones = 0;
+    for (uint32_t i = 0; i < n1; i++) {
+        low += mixed[i].levels < 1;
+        ones += mixed[i].levels == 1;
+    }
+    CHECK(low == 0 && ones > 0, "%d trees below 1 level, %d at 1", low, ones);
 }
 
 static void refusals(void) {
@@ -250,43 +284,55 @@ static void merged(const char *outdir) {
 }
 
 
-static void presets(const char *outdir) {
-    static const char *const names[] = {"avenue_boulevard", "avenue_street", "avenue_young"};
-    static const uint32_t want[] = {100, 10, 0};
-    for (int i = 0; i < 3; i++) {
-        char path[1024];
-        snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, names[i]);
-        size_t len;
-        char *text = test_read_file(path, &len);
-        CHECK(text != NULL, "cannot read %s", path);
-        if (!text) continue;
-        banyan_avenue_params p;
-        banyan_avenue_params_init(&p);
-        banyan_error err = {0, ""};
-        banyan_status s = banyan_preset_apply(BANYAN_GEN_AVENUE, &p, text, len, path, &err);
-        CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
-        uint32_t n = 0;
-        CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && (!want[i] || n == want[i]),
-              "%s: %u trees", names[i], n);
-        banyan_mesh *m = NULL;
-        if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, &err);
-        CHECK(s == BANYAN_OK && m && m->part_count == 2 * n, "%s: %s", names[i], err.message);
-        CHECK(m == NULL || m->vertex_count <= (uint32_t)p.max_vertices, "%s: over max_vertices", names[i]);
-        /* The smallest preset goes to the validator as well. */
-        if (m && outdir && i == 2) {
-            snprintf(path, sizeof path, "%s/%s.glb", outdir, names[i]);
-            const char *name = names[i];
-            CHECK(banyan_gltf_write(path, (const banyan_mesh *const *)&m, &name, 1, &err) == BANYAN_OK, "write: %s",
-                  err.message);
-        }
-        banyan_mesh_free(m);
-        free(text);
+/* Tree counts of the presets whose layout the docs quote; 0: not checked. */
+static uint32_t want_trees(const char *name) {
+    if (!strcmp(name, "avenue_boulevard")) return 100;
+    if (!strcmp(name, "avenue_street")) return 10;
+    return 0;
+}
+
+/* One presets/avenue_*.json: it loads and generates within max_vertices;
+ * the young planting (small) also goes to the validator. */
+static void preset(const char *path, const char *name, void *ctx) {
+    const char *outdir = ctx;
+    size_t len;
+    char *text = test_read_file(path, &len);
+    CHECK(text != NULL, "cannot read %s", path);
+    if (!text) return;
+    banyan_avenue_params p;
+    banyan_avenue_params_init(&p);
+    banyan_error err = {0, ""};
+    banyan_status s = banyan_preset_apply(BANYAN_GEN_AVENUE, &p, text, len, path, &err);
+    CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
+    uint32_t n = 0, want = want_trees(name);
+    CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n > 0 && (!want || n == want),
+          "%s: %u trees", name, n);
+    banyan_mesh *m = NULL;
+    if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, &err);
+    /* Bark and leaves per tree; bark only in winter. */
+    uint32_t parts = (p.tree.leaves ? 2 : 1) * n;
+    CHECK(s == BANYAN_OK && m && m->part_count == parts, "%s: %s (%u parts, want %u)", name, err.message,
+          m ? m->part_count : 0, parts);
+    CHECK(m == NULL || m->vertex_count <= (uint32_t)p.max_vertices, "%s: over max_vertices", name);
+    if (m && outdir && !strcmp(name, "avenue_young")) {
+        char out[1024];
+        snprintf(out, sizeof out, "%s/%s.glb", outdir, name);
+        CHECK(banyan_gltf_write(out, (const banyan_mesh *const *)&m, &name, 1, &err) == BANYAN_OK, "write: %s",
+              err.message);
     }
+    banyan_mesh_free(m);
+    free(text);
+}
+
+static void presets(const char *outdir) {
+    int n = test_each_preset(BANYAN_SOURCE_DIR "/presets", "avenue_", preset, (void *)outdir);
+    CHECK(n >= 3, "found %d presets/avenue_*.json", n);
 }
 
 int main(int argc, char **argv) {
     const char *outdir = argc > 1 ? argv[1] : NULL;
     layout();
+    mixed_ages();
     refusals();
     merged(outdir);
     presets(outdir);

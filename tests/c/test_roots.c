@@ -322,6 +322,40 @@ static void refused(const banyan_roots_params *p, const banyan_box *hosts, uint3
           s, want, err.message);
 }
 
+/* One shipped preset: its net keeps the invariants, it writes a glb, and
+ * the presets whose descriptions promise something keep the promise. */
+static void roots_preset(const char *path, const char *name, void *ctx) {
+    (void)path;
+    char file[300], glb[320];
+    snprintf(file, sizeof file, "%s.json", name);
+    banyan_roots_params p;
+    banyan_box hosts[8];
+    uint32_t n = load_preset(file, &p, hosts);
+    if (!n) return;
+    net_report nr;
+    tube_report tr;
+    memset(&nr, 0, sizeof nr);
+    memset(&tr, 0, sizeof tr);
+    nr.worst = 1e300;
+    run(&p, hosts, n, &nr, &tr, 1);
+    CHECK(nr.nets == 1 && nr.clearance_bad == 0 && nr.verts_inside == 0 && nr.disconnected == 0 && tr.open == 0,
+          "%s: %d nets, %d points too close, %ld vertices inside, %d disconnected, %d open tubes", name, nr.nets,
+          nr.clearance_bad, nr.verts_inside, nr.disconnected, tr.open);
+    banyan_mesh *m = NULL;
+    banyan_roots_stats st;
+    banyan_error err;
+    CHECK(banyan_roots_generate_stats(&p, hosts, n, &m, &st, &err) == BANYAN_OK, "%s: %s", name, err.message);
+    if (!strcmp(name, "roots_paper")) CHECK(p.hugging == 0, "the paper preset must turn hugging off");
+    if (!strcmp(name, "roots_young_fig"))
+        CHECK(m && st.mains_on_ground == 0, "young fig: %u main roots reached the ground", st.mains_on_ground);
+    if (!strcmp(name, "roots_trunk") || !strcmp(name, "roots_ruin"))
+        CHECK(m && st.mains_on_ground == (uint32_t)p.main_roots, "%s: %u of %d main roots reached the ground", name,
+              st.mains_on_ground, p.main_roots);
+    banyan_mesh_free(m);
+    snprintf(glb, sizeof glb, "roots_preset_%s.glb", name + 6);
+    write_glb(ctx, glb, &p, hosts, n);
+}
+
 int main(int argc, char **argv) {
     const char *out = argc > 1 ? argv[1] : NULL;
     layout layouts[6];
@@ -446,17 +480,10 @@ int main(int argc, char **argv) {
         CHECK(faces_missed == 0, "trunk preset: %d nets whose first branch roots miss a side face", faces_missed);
     }
 
-    /* 3. Every preset loads and generates. */
+    /* 3. Every presets/roots_*.json loads and generates. */
     {
-        const char *names[] = {"roots_trunk.json", "roots_boulder.json", "roots_paper.json"};
-        const char *glbs[] = {"roots_preset_trunk.glb", "roots_preset_boulder.glb", "roots_preset_paper.glb"};
-        for (int i = 0; i < 3; i++) {
-            banyan_roots_params p;
-            banyan_box hosts[8];
-            uint32_t n = load_preset(names[i], &p, hosts);
-            if (n) write_glb(out, glbs[i], &p, hosts, n);
-            if (i == 2) CHECK(n && p.hugging == 0, "the paper preset must turn hugging off");
-        }
+        int n = test_each_preset(BANYAN_SOURCE_DIR "/presets", "roots_", roots_preset, (void *)out);
+        CHECK(n >= 5, "found %d presets/roots_*.json", n);
     }
 
     /* 4. Determinism. */

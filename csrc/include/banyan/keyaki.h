@@ -203,6 +203,8 @@ typedef struct banyan_avenue_params {
     double heading_jitter;   /* deg, 0 .. 180: heading uniform in +-this. Default 180 (any) */
     double height_jitter;    /* 0 .. 0.9: trunk_length scaled by 1 + uniform(+-this). Default 0.15 */
     double position_jitter;  /* m, 0 .. 100: offset uniform in a disc of this radius. Default 0.3 */
+    int32_t levels_jitter;   /* 0 .. 29: levels lowered by a uniform whole number in [0, this] (never below 1),
+                                so trees of mixed ages stand side by side. Default 0 */
     banyan_keyaki_params tree; /* every tree; seed, max_vertices, position and heading are set per tree */
 } banyan_avenue_params;
 

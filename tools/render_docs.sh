@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Regenerates the documentation's pictures with headless Blender, the
+# add-on loaded as the tests load it (a temporary BLENDER_USER_SCRIPTS
+# whose addons/banyan links to blender_addon/banyan, BANYAN_LIB from
+# build/):
+#   bash tools/render_docs.sh            # everything
+#   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
+#   (also: params, start, avenue; extra arguments go to the script)
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+cd "$here"
+[ -f build/libbanyan.so ] || { echo "build first (tools/main.sh or cmake + ninja)"; exit 1; }
+scripts=$(mktemp -d)
+trap 'rm -rf "$scripts"' EXIT
+mkdir -p "$scripts/addons"
+ln -s "$here/blender_addon/banyan" "$scripts/addons/banyan"
+run() {
+  BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$here/build/libbanyan.so" \
+    blender -b --factory-startup --addons banyan --python-exit-code 1 --python "$@"
+}
+what=${1:-all}
+[ $# -gt 0 ] && shift
+case $what in
+  gallery) run docs/render_gallery.py -- "$@" ;;
+  params) run docs/render_params.py -- "$@" ;;
+  start) run docs/render_getting_started.py -- "$@" ;;
+  avenue) run docs/examples/render_avenue.py -- --out docs/img/avenue.png "$@" ;;
+  all)
+    run docs/render_gallery.py
+    run docs/render_params.py
+    run docs/render_getting_started.py
+    run docs/examples/render_avenue.py -- --out docs/img/avenue.png ;;
+  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue] [script args]"; exit 2 ;;
+esac
