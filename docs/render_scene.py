@@ -177,25 +177,14 @@ def studio(objs, ground_rgba=(0.11, 0.09, 0.06, 1.0), sun_energy=3.0, sky_streng
 
 
 def plant_materials(objs, rgba=(0.2, 0.14, 0.09, 1.0)):
-    """A plain bark material for plant objects that came without one; a
-    white material over vertex colours (the segments generator's) shows
-    base colour x vertex colour, as glTF viewers do."""
+    """A plain bark material for plant objects that came without one (the
+    add-on's own materials already show vertex colours where they carry
+    the colour)."""
     bark = None
     for o in objs:
-        if o.type != 'MESH':
-            continue
-        if not o.data.materials:
+        if o.type == 'MESH' and not o.data.materials:
             bark = bark or material("Bark", rgba)
             o.data.materials.append(bark)
-        if not o.data.color_attributes:
-            continue
-        for m in o.data.materials:
-            b = m.node_tree.nodes.get("Principled BSDF") if m and m.use_nodes else None
-            if b is None or min(b.inputs["Base Color"].default_value[:3]) < 0.99:
-                continue
-            vc = m.node_tree.nodes.new("ShaderNodeVertexColor")
-            vc.layer_name = o.data.color_attributes[0].name
-            m.node_tree.links.new(vc.outputs["Color"], b.inputs["Base Color"])
 
 
 def near_part(lo, hi, ratio=2.0):

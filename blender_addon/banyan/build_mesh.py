@@ -12,6 +12,8 @@ import bpy
 
 from .core.mesh import localize_group
 
+COLOR_ATTRIBUTE = "Color"
+
 
 class Created:
     """The datablocks an operation made, for rollback on failure."""
@@ -46,8 +48,10 @@ def _collection_of(idb):
     return None
 
 
-def make_material(spec, created, prefix="banyan"):
-    """A Principled material from a banyan_material dict."""
+def make_material(spec, created, prefix="banyan", vertex_colors=False):
+    """A Principled material from a banyan_material dict. A white material
+    on a mesh with vertex colours (the segments generator's) takes its
+    base colour from them, as glTF viewers show base colour x COLOR_0."""
     mat = created.add(bpy.data.materials.new("%s_%s" % (prefix, spec["name"])))
     col = tuple(spec["base_color"])
     mat.diffuse_color = col
@@ -58,6 +62,10 @@ def make_material(spec, created, prefix="banyan"):
     if bsdf is not None:
         bsdf.inputs["Base Color"].default_value = col
         bsdf.inputs["Roughness"].default_value = spec["roughness"]
+        if vertex_colors and min(col[:3]) >= 0.99:
+            vc = mat.node_tree.nodes.new("ShaderNodeVertexColor")
+            vc.layer_name = COLOR_ATTRIBUTE
+            mat.node_tree.links.new(vc.outputs["Color"], bsdf.inputs["Base Color"])
     return mat
 
 
@@ -84,7 +92,7 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
         layer = me.uv_layers.new(name="UVMap")
         layer.data.foreach_set("uv", corner_uvs)
     if colors is not None:
-        ca = me.color_attributes.new("Color", 'FLOAT_COLOR', 'POINT')
+        ca = me.color_attributes.new(COLOR_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
         ca.data.foreach_set("color", colors)
     for name, data in (attributes or {}).items():
         attr_name = name if name not in me.attributes else "banyan_" + name
@@ -106,7 +114,8 @@ def material_indices(parts, tri_offset=0, part_material=None):
 def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=True, smooth=True):
     """One object holding all of MeshData d."""
     me = created.add(bpy.data.meshes.new(name))
-    mats = materials if materials is not None else [make_material(m, created, name) for m in d.materials]
+    mats = materials if materials is not None else [
+        make_material(m, created, name, d.colors is not None) for m in d.materials]
     for m in mats:
         me.materials.append(m)
     fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
@@ -132,7 +141,7 @@ def group_ranges(parts):
 def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, progress=None):
     """One object per part group (e.g. one per tree), origins at each
     group's base (bottom centre of its bounds). Returns the objects."""
-    mats = [make_material(m, created, prefix) for m in d.materials]
+    mats = [make_material(m, created, prefix, d.colors is not None) for m in d.materials]
     groups = d.groups()
     objs = []
     for n, (g, parts) in enumerate(groups.items()):

@@ -41,6 +41,15 @@ def test_api(gen):
     bt.check(all(o.name in bpy.context.scene.objects for o in objs), "%s: objects are in the scene" % gen)
     bt.check({o.name for o in bpy.data.objects} - before == {o.name for o in objs}, "%s: only those objects added" % gen)
     bt.check(all(len(o.data.vertices) > 0 for o in objs), "%s: non-empty meshes" % gen)
+    # Where the colour lives in the vertex colours (a white material), the
+    # material shows them; elsewhere the material carries the colour.
+    for o in objs:
+        for m in o.data.materials:
+            bsdf = m.node_tree.nodes["Principled BSDF"]
+            white = min(bsdf.inputs["Base Color"].default_value[:3]) >= 0.99
+            linked = bsdf.inputs["Base Color"].is_linked
+            bt.check(linked == (white and bool(o.data.color_attributes)),
+                     "%s: material %s base colour linked to vertex colours: %s" % (gen, m.name, linked))
     # An error through the API: BanyanError, scene unchanged.
     state = bt.scene_state()
     key, value = gens.bad_double(gen)
