@@ -358,9 +358,33 @@ std::string upper_attribute_key(const char *name) {
     return key;
 }
 
+/* True when every vertex colour equals the base colour of the material
+ * drawing it. glTF shows baseColorFactor x COLOR_0, so writing both would
+ * square the colour; such colours are left out (the roots carry their one
+ * colour both ways). */
+bool colors_repeat_material(const banyan_mesh *m) {
+    if (!m->colors || m->material_count == 0) return false;
+    auto same = [&](uint32_t v, uint32_t mat) {
+        if (mat >= m->material_count || v >= m->vertex_count) return false;
+        return std::memcmp(m->colors + 4 * static_cast<size_t>(v), m->materials[mat].base_color,
+                           4 * sizeof(float)) == 0;
+    };
+    if (m->part_count == 0) {
+        for (uint32_t v = 0; v < m->vertex_count; ++v)
+            if (!same(v, 0)) return false;
+        return true;
+    }
+    for (uint32_t p = 0; p < m->part_count; ++p) {
+        const banyan_part *pt = &m->parts[p];
+        for (uint32_t i = 0; i < pt->index_count; ++i)
+            if (!same(m->indices[pt->index_offset + i], pt->material)) return false;
+    }
+    return true;
+}
+
 /* The vertex accessors for vertices [base, base + count) of mesh m. */
 std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, uint32_t base,
-                                            uint32_t count) {
+                                            uint32_t count, bool with_colors) {
     std::map<std::string, int> attrs;
     const int AB = TINYGLTF_TARGET_ARRAY_BUFFER;
     const int F = TINYGLTF_COMPONENT_TYPE_FLOAT;
@@ -413,7 +437,7 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     }
 
-    if (m->colors) {
+    if (m->colors && with_colors) {
         v = b.add_view(m->colors + 4 * static_cast<size_t>(base),
                        static_cast<size_t>(count) * 4 * sizeof(float), AB);
         attrs["COLOR_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
@@ -428,8 +452,8 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
     return attrs;
 }
 
-uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count) {
-    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs ? 2 : 0) + (m->colors ? 4 : 0) +
+uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count, bool with_colors) {
+    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs ? 2 : 0) + (m->colors && with_colors ? 4 : 0) +
                       m->attribute_count;
     return floats * 4 * count;
 }
@@ -473,11 +497,12 @@ uint64_t plan_mesh(const banyan_mesh *m, int material_base, std::vector<Prim> &p
         pr.material = m->material_count > 0 ? material_base + static_cast<int>(pt->material) : -1;
         prims.push_back(pr);
     }
+    bool colors = !colors_repeat_material(m);
     for (const Prim &pr : prims) {
         bytes += 4ull * pr.icount;
-        if (local) bytes += vertex_range_bytes(m, pr.vcount);
+        if (local) bytes += vertex_range_bytes(m, pr.vcount, colors);
     }
-    if (!local) bytes += vertex_range_bytes(m, m->vertex_count);
+    if (!local) bytes += vertex_range_bytes(m, m->vertex_count, colors);
     return bytes;
 }
 
@@ -616,10 +641,11 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         tinygltf::Mesh gm;
         gm.name = name;
         std::map<std::string, int> shared;
-        if (!local[i]) shared = add_vertex_range(b, m, 0, m->vertex_count);
+        bool colors = !colors_repeat_material(m);
+        if (!local[i]) shared = add_vertex_range(b, m, 0, m->vertex_count, colors);
         for (const Prim &pr : plans[i]) {
             tinygltf::Primitive prim;
-            prim.attributes = local[i] ? add_vertex_range(b, m, pr.vbase, pr.vcount) : shared;
+            prim.attributes = local[i] ? add_vertex_range(b, m, pr.vbase, pr.vcount, colors) : shared;
             rebased.resize(pr.icount);
             for (uint32_t k = 0; k < pr.icount; ++k)
                 rebased[k] = m->indices[pr.ioff + k] - pr.vbase;

@@ -377,6 +377,28 @@ int main(int argc, char **argv) {
         }
     }
 
+    /* Vertex colours that repeat their part's material colour are left out
+     * (glTF would square the colour); one differing vertex brings them back. */
+    {
+        banyan_mesh *c = make_mesh_a();
+        if (c) {
+            for (uint32_t p = 0; p < c->part_count; ++p)
+                for (uint32_t v = c->parts[p].vertex_offset; v < c->parts[p].vertex_offset + c->parts[p].vertex_count; ++v)
+                    memcpy(c->colors + 4 * v, c->materials[c->parts[p].material].base_color, 4 * sizeof(float));
+            const banyan_mesh *one[1] = {c};
+            s = banyan_gltf_write(out_path("test_gltf_same_colour.glb"), one, NULL, 1, &err);
+            char *json = s == BANYAN_OK ? json_of(out_path("test_gltf_same_colour.glb"), 1) : NULL;
+            CHECK(json && !strstr(json, "COLOR_0"), "same_colour.glb: COLOR_0 repeats the materials");
+            free(json);
+            c->colors[0] += 0.25f;
+            s = banyan_gltf_write(out_path("test_gltf_same_colour.glb"), one, NULL, 1, &err);
+            json = s == BANYAN_OK ? json_of(out_path("test_gltf_same_colour.glb"), 1) : NULL;
+            CHECK(json && strstr(json, "COLOR_0"), "same_colour.glb: differing colours left out");
+            free(json);
+            mesh_destroy(c);
+        }
+    }
+
     /* No parts and no materials: one primitive without material. No normals
      * or uvs either: only POSITION is written. */
     {
