@@ -10,9 +10,10 @@ cd "$here"
 
 # Debian packages: compiler and build tools, the two C libraries, node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
-# geometry-shader twin, clang for fuzzing.
+# geometry-shader twin, clang for fuzzing, chromium for the viewer test.
 packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev
-          blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev)
+          blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
+          chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,6 +33,11 @@ fi
 # The Khronos glTF validator, pinned in tests/gltf/package-lock.json.
 if [ ! -d tests/gltf/node_modules/gltf-validator ]; then
   npm ci --prefix tests/gltf --no-audit --no-fund
+fi
+
+# three.js for the browser viewer, pinned in docs/viewer/package-lock.json.
+if [ ! -f docs/viewer/node_modules/three/build/three.module.js ]; then
+  npm ci --prefix docs/viewer --no-audit --no-fund
 fi
 
 build=${BUILD_DIR:-build}

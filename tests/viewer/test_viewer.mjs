@@ -1,0 +1,340 @@
+#!/usr/bin/env node
+// The browser viewer (docs/viewer) in real headless Chromium.
+//
+//   node tests/viewer/test_viewer.mjs BANYAN_CLI REPO_DIR OUT_DIR
+//
+// Writes every presets/*.json as a .glb with the CLI, serves the repository
+// and those files from a local HTTP server, and opens the viewer with
+// ?file= for each in one browser. A preset passes when the viewer reports
+// it loaded with the file's own triangle and vertex counts and attributes,
+// and the WebGL canvas is not blank: the model, drawn and then hidden,
+// changes enough pixels, and the frame's luminance varies. Controls that
+// must NOT pass: a text file, a truncated .glb and a missing URL must end
+// in the viewer's error state, and a valid .glb whose only triangle is a
+// point must be judged blank. Screenshots go to OUT_DIR/*.png.
+// Exits 77 (ctest SKIP) only when no chromium binary is found.
+import { spawnSync } from 'node:child_process';
+import { createServer } from 'node:http';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync,
+         writeFileSync, createReadStream } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { launchChromium } from './cdp.mjs';
+
+const [cli, repo, outDir] = process.argv.slice(2).map((a) => a && path.resolve(a));
+if (!outDir) {
+  console.error('usage: node test_viewer.mjs BANYAN_CLI REPO_DIR OUT_DIR');
+  process.exit(2);
+}
+
+// Thresholds of the blank check, luminance on the 0..255 scale. The
+// presets give frame variances of 220 to 2700, models covering 1.5 to 25 %
+// of the pixels with variances of 390 to 2700; the grid alone gives ~22.
+const MIN_FRAME_VARIANCE = 50;     // luminance variance of the whole canvas
+const MIN_MODEL_FRACTION = 0.005;  // share of pixels the model changes
+const MIN_MODEL_VARIANCE = 4;      // luminance variance over the model's pixels
+const MIN_RECOLOURED = 0.25;       // share of the model's pixels 'Colour by' changes
+const LOAD_TIMEOUT_MS = 180000;
+const START_TIMEOUT_MS = 20000;    // until the viewer's module has run
+const WIDTH = 960, HEIGHT = 640;
+
+function findChromium() {
+  if (process.env.CHROMIUM) return process.env.CHROMIUM;
+  for (const dir of (process.env.PATH || '').split(':')) {
+    for (const name of ['chromium', 'chromium-browser']) {
+      const p = path.join(dir, name);
+      if (existsSync(p)) return p;
+    }
+  }
+  return null;
+}
+
+const chromium = findChromium();
+if (!chromium) {
+  console.log('SKIP: chromium not found on PATH (apt-get install chromium; tools/setup.sh installs it)');
+  process.exit(77);
+}
+const threeModule = path.join(repo, 'docs/viewer/node_modules/three/build/three.module.js');
+if (!existsSync(threeModule)) {
+  console.log(`FAIL: ${threeModule} is missing: run npm ci --prefix docs/viewer (tools/setup.sh does)`);
+  process.exit(1);
+}
+
+const glbDir = path.join(outDir, 'glb');
+mkdirSync(glbDir, { recursive: true });
+
+// --- inputs ---------------------------------------------------------------
+
+function glbJson(file) {
+  const b = readFileSync(file);
+  const len = b.readUInt32LE(12);
+  return JSON.parse(b.subarray(20, 20 + len).toString('utf8'));
+}
+
+// What the viewer must report for a file: counts from the glTF JSON.
+function expected(file) {
+  const j = glbJson(file);
+  const positions = new Set(), attributes = new Set();
+  let triangles = 0, colors = false;
+  for (const m of j.meshes) {
+    for (const p of m.primitives) {
+      positions.add(p.attributes.POSITION);
+      triangles += j.accessors[p.indices].count / 3;
+      colors ||= 'COLOR_0' in p.attributes;
+      for (const k of Object.keys(p.attributes)) if (k.startsWith('_')) attributes.add(k.slice(1).toLowerCase());
+    }
+  }
+  let vertices = 0;
+  for (const a of positions) vertices += j.accessors[a].count;
+  return { triangles, vertices, colors, attributes: [...attributes].sort() };
+}
+
+// A valid .glb with one triangle whose corners coincide: it loads, but
+// draws nothing, so the blank check must catch it.
+function pointGlb() {
+  const bin = Buffer.alloc(48);
+  for (let i = 0; i < 9; i++) bin.writeFloatLE(1, i * 4);
+  for (let i = 0; i < 3; i++) bin.writeUInt32LE(i, 36 + i * 4);
+  const json = {
+    asset: { version: '2.0', generator: 'banyan viewer test' }, scene: 0, scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0 }], meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3', min: [1, 1, 1], max: [1, 1, 1] },
+                { bufferView: 1, componentType: 5125, count: 3, type: 'SCALAR' }],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 36 }, { buffer: 0, byteOffset: 36, byteLength: 12 }],
+    buffers: [{ byteLength: 48 }],
+  };
+  let text = Buffer.from(JSON.stringify(json));
+  text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
+  const header = Buffer.alloc(12), jh = Buffer.alloc(8), bh = Buffer.alloc(8);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
+  jh.writeUInt32LE(text.length, 0);
+  jh.writeUInt32LE(0x4e4f534a, 4);
+  bh.writeUInt32LE(bin.length, 0);
+  bh.writeUInt32LE(0x004e4942, 4);
+  return Buffer.concat([header, jh, text, bh, bin]);
+}
+
+// BANYAN_VIEWER_ONLY=regex narrows the presets, for working on one by hand.
+const only = new RegExp(process.env.BANYAN_VIEWER_ONLY || '.');
+const presets = readdirSync(path.join(repo, 'presets')).filter((n) => n.endsWith('.json') && only.test(n)).sort();
+if (presets.length === 0) {
+  console.log('FAIL: no presets/*.json');
+  process.exit(1);
+}
+const cases = [];
+for (const name of presets) {
+  const file = path.join(repo, 'presets', name);
+  const generator = JSON.parse(readFileSync(file, 'utf8')).generator;
+  const glb = path.join(glbDir, name.replace(/\.json$/, '.glb'));
+  const r = spawnSync(cli, [generator, '--preset', file, '-o', glb], { encoding: 'utf8' });
+  if (r.status !== 0) {
+    console.log(`FAIL ${name}: banyan ${generator} exited ${r.status}: ${r.stderr}`);
+    process.exit(1);
+  }
+  cases.push({ name: path.basename(glb, '.glb'), file: path.basename(glb), kind: 'preset', expect: expected(glb) });
+}
+writeFileSync(path.join(glbDir, 'bad_text.glb'), 'this is not a glTF file\n');
+const smallest = cases.map((c) => path.join(glbDir, c.file)).sort((a, b) => statSync(a).size - statSync(b).size)[0];
+const whole = readFileSync(smallest);
+writeFileSync(path.join(glbDir, 'bad_truncated.glb'), whole.subarray(0, Math.floor(whole.length / 2)));
+writeFileSync(path.join(glbDir, 'bad_point.glb'), pointGlb());
+cases.push({ name: 'bad_text', file: 'bad_text.glb', kind: 'error' },
+           { name: 'bad_truncated', file: 'bad_truncated.glb', kind: 'error' },
+           { name: 'bad_missing', file: 'bad_missing.glb', kind: 'error' },
+           { name: 'bad_point', file: 'bad_point.glb', kind: 'blank' });
+
+// --- server: the repository at /, the .glb files at /glb/ ------------------
+
+const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json',
+               '.glb': 'model/gltf-binary', '.png': 'image/png', '.css': 'text/css' };
+const server = createServer((req, res) => {
+  const url = new URL(req.url, 'http://localhost');
+  let rel = decodeURIComponent(url.pathname);
+  let base = repo;
+  if (rel.startsWith('/glb/')) { base = glbDir; rel = rel.slice(4); }
+  const file = path.join(base, path.normalize(rel));
+  if (!file.startsWith(base)) { res.writeHead(403).end(); return; }
+  let st = null;
+  try { st = statSync(file); } catch { /* not found */ }
+  const target = st && st.isDirectory() ? path.join(file, 'index.html') : file;
+  if (!existsSync(target) || statSync(target).isDirectory()) { res.writeHead(404).end('not found'); return; }
+  res.writeHead(200, { 'Content-Type': MIME[path.extname(target)] || 'application/octet-stream',
+                       'Content-Length': statSync(target).size });
+  createReadStream(target).pipe(res);
+});
+await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+const origin = `http://127.0.0.1:${server.address().port}`;
+
+// --- browser ---------------------------------------------------------------
+
+// Runs in the page: draws the frame with the model shown, then hidden,
+// reading the WebGL canvas back right after each render (same task, so no
+// preserveDrawingBuffer is needed). Luminance on the 0..255 scale.
+const STATS = `(() => {
+  const v = window.__banyanViewer, gl = document.querySelector('#view canvas');
+  const w = gl.width, h = gl.height, c = document.createElement('canvas');
+  c.width = w; c.height = h;
+  const ctx = c.getContext('2d', { willReadFrequently: true });
+  const read = () => { ctx.clearRect(0, 0, w, h); ctx.drawImage(gl, 0, 0); return ctx.getImageData(0, 0, w, h).data; };
+  const grab = (visible) => { v.model.visible = visible; v.render(); return read(); };
+  const a = grab(true), b = grab(false);
+  v.model.visible = true;
+  const changed = (p, q, i) => Math.abs(p[i] - q[i]) + Math.abs(p[i + 1] - q[i + 1]) + Math.abs(p[i + 2] - q[i + 2]) > 24;
+  // Colour by the first banyan attribute (setColour renders): the model's
+  // pixels must change.
+  const attr = Object.keys(v.attributes)[0];
+  let recoloured = null;
+  if (attr) {
+    v.setColour(attr);
+    const r = read();
+    recoloured = 0;
+    for (let i = 0; i < a.length; i += 4) if (changed(a, r, i)) recoloured++;
+    recoloured /= a.length / 4;
+  }
+  const lum = (d, i) => 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2];
+  let n = 0, s = 0, s2 = 0, m = 0, ms = 0, ms2 = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    const y = lum(a, i);
+    n++; s += y; s2 += y * y;
+    if (changed(a, b, i)) { m++; ms += y; ms2 += y * y; }
+  }
+  return { width: w, height: h, variance: s2 / n - (s / n) ** 2, fraction: m / n,
+           modelVariance: m ? ms2 / m - (ms / m) ** 2 : 0, attr, recoloured };
+})()`;
+
+const STATE = `(() => { const v = window.__banyanViewer; return v ? { loaded: v.loaded, error: v.error,
+  triangles: v.triangles, vertices: v.vertices, colors: v.colors, title: document.title,
+  attributes: Object.keys(v.attributes).sort() } : null; })()`;
+
+const profile = mkdtempSync(path.join(tmpdir(), 'banyan-viewer-'));
+const { proc, cdp, log } = launchChromium(chromium, profile, [`--window-size=${WIDTH},${HEIGHT}`]);
+// ctest's timeout sends SIGTERM: take the browser and its profile along.
+process.on('SIGTERM', () => {
+  proc.kill('SIGKILL');
+  rmSync(profile, { recursive: true, force: true });
+  process.exit(1);
+});
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+async function openPage() {
+  const { targetId } = await cdp.send('Target.createTarget', { url: 'about:blank' });
+  const { sessionId } = await cdp.send('Target.attachToTarget', { targetId, flatten: true });
+  const page = { targetId, exceptions: [], console: [],
+                 send: (m, p) => cdp.send(m, p, sessionId) };
+  cdp.on('Runtime.exceptionThrown', sessionId, (e) =>
+    page.exceptions.push(e.exceptionDetails.exception?.description || e.exceptionDetails.text));
+  cdp.on('Runtime.consoleAPICalled', sessionId, (e) => {
+    if (e.type === 'error' || e.type === 'warning') page.console.push(e.args.map((a) => a.value ?? a.description).join(' '));
+  });
+  await page.send('Runtime.enable');
+  await page.send('Page.enable');
+  await page.send('Emulation.setDeviceMetricsOverride', { width: WIDTH, height: HEIGHT, deviceScaleFactor: 1, mobile: false });
+  return page;
+}
+
+async function evaluate(page, expression) {
+  const r = await page.send('Runtime.evaluate', { expression, returnByValue: true });
+  if (r.exceptionDetails) throw new Error(`page: ${r.exceptionDetails.exception?.description || r.exceptionDetails.text}`);
+  return r.result.value;
+}
+
+async function waitDone(page) {
+  const t0 = Date.now();
+  for (;;) {
+    const s = await evaluate(page, STATE);
+    if (s && (s.loaded || s.error)) return { ...s, seconds: (Date.now() - t0) / 1000 };
+    if (Date.now() - t0 > (s ? LOAD_TIMEOUT_MS : START_TIMEOUT_MS)) return { ...(s || {}), timeout: true, seconds: (Date.now() - t0) / 1000 };
+    await sleep(100);
+  }
+}
+
+function sameList(a, b) {
+  return a.length === b.length && a.every((x, i) => x === b[i]);
+}
+
+// Returns a list of problems (empty: pass).
+async function runCase(c) {
+  const page = await openPage();
+  const problems = [];
+  let s, stats = null;
+  try {
+    const url = `${origin}/docs/viewer/?file=${encodeURIComponent('/glb/' + c.file)}`;
+    const nav = await page.send('Page.navigate', { url });
+    if (nav.errorText) problems.push(`navigation failed: ${nav.errorText}`);
+    s = await waitDone(page);
+    if (s.timeout) problems.push(s.loaded === undefined ? 'the viewer did not start (no window.__banyanViewer)'
+                                                        : `no load or error within ${LOAD_TIMEOUT_MS / 1000} s`);
+    // The screenshot first: the pixel checks below redraw the model.
+    const shot = await page.send('Page.captureScreenshot', { format: 'png' });
+    writeFileSync(path.join(outDir, `${c.name}.png`), Buffer.from(shot.data, 'base64'));
+    if (c.kind === 'error') {
+      if (!s.error) problems.push('expected the error state, got none');
+      if (s.loaded) problems.push('reported loaded for a broken file');
+      if (s.error && s.title !== 'banyan viewer: error') problems.push(`title is "${s.title}"`);
+    } else {
+      if (s.error) problems.push(`viewer error: ${s.error}`);
+      if (s.loaded) stats = await evaluate(page, STATS);
+    }
+    if (c.kind === 'preset' && s.loaded) {
+      const e = c.expect;
+      if (s.triangles !== e.triangles) problems.push(`triangles ${s.triangles}, file has ${e.triangles}`);
+      if (s.vertices !== e.vertices) problems.push(`vertices ${s.vertices}, file has ${e.vertices}`);
+      if (s.colors !== e.colors) problems.push(`colours ${s.colors}, file has ${e.colors}`);
+      if (!sameList(s.attributes, e.attributes)) problems.push(`attributes [${s.attributes}], file has [${e.attributes}]`);
+      if (s.title !== `banyan viewer: ${c.file}`) problems.push(`title is "${s.title}"`);
+    }
+    const blank = stats && (stats.variance < MIN_FRAME_VARIANCE || stats.fraction < MIN_MODEL_FRACTION ||
+                            stats.modelVariance < MIN_MODEL_VARIANCE);
+    if (c.kind === 'preset' && blank) problems.push('canvas is blank');
+    if (c.kind === 'preset' && stats && stats.attr && !(stats.recoloured >= MIN_RECOLOURED * stats.fraction))
+      problems.push(`colouring by ${stats.attr} changed ${(100 * stats.recoloured).toFixed(2)}% of pixels`);
+    if (c.kind === 'blank' && !s.loaded) problems.push('expected it to load');
+    if (c.kind === 'blank' && stats && !blank) problems.push('a point-sized model was not judged blank');
+    if (page.exceptions.length) problems.push(`page exceptions: ${page.exceptions.join(' | ')}`);
+  } finally {
+    await cdp.send('Target.closeTarget', { targetId: page.targetId }).catch(() => {});
+  }
+  const fig = stats ? `variance ${stats.variance.toFixed(0)}, model ${(100 * stats.fraction).toFixed(2)}% of ` +
+                      `${stats.width}x${stats.height} px, model variance ${stats.modelVariance.toFixed(0)}` +
+                      (stats.attr ? `, by ${stats.attr} ${(100 * stats.recoloured).toFixed(2)}%` : '') : '';
+  const what = c.kind === 'error' ? `error state: ${s?.error}` : `${s?.triangles} triangles, ${fig}`;
+  return { problems, line: `${c.name}: ${what}; ${s ? s.seconds.toFixed(1) : '?'} s` +
+                           (page.console.length ? `; console: ${page.console.join(' | ').slice(0, 300)}` : '') };
+}
+
+let passed = 0, failed = 0;
+const t0 = Date.now();
+try {
+  for (const c of cases) {
+    let r;
+    try {
+      r = await runCase(c);
+    } catch (e) {
+      r = { problems: [e.message], line: `${c.name}: aborted` };
+    }
+    if (r.problems.length) {
+      failed++;
+      console.log(`FAIL ${r.line}\n     ${r.problems.join('\n     ')}`);
+      if (cdp.closed) {
+        console.log(`     ${cdp.closed}; chromium's last output:\n${log.join('').slice(-3000)}`);
+        break;
+      }
+    } else {
+      passed++;
+      console.log(`ok   ${r.line}`);
+    }
+  }
+} finally {
+  await cdp.send('Browser.close').catch(() => {});
+  await Promise.race([new Promise((r) => proc.once('exit', r)), sleep(5000)]);
+  if (proc.exitCode === null) proc.kill('SIGKILL');
+  server.close();
+  rmSync(profile, { recursive: true, force: true });
+}
+const presetCount = cases.filter((c) => c.kind === 'preset').length;
+console.log(`viewer: ${presetCount} presets, ${cases.length - presetCount} controls, ` +
+            `${((Date.now() - t0) / 1000).toFixed(1)} s in chromium; screenshots in ${outDir}`);
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed || passed !== cases.length ? 1 : 0);
