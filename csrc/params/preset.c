@@ -2,6 +2,7 @@
  * refusal names the source, the line where it can be found, the key and
  * the reason. Format: see banyan.h "presets" and docs/presets.md. */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,7 +17,7 @@
 #define PRESET_MAX_BYTES (4u << 20)
 #define PRESET_MAX_DEPTH 16
 
-static int line_of(const char *text, size_t len, size_t offset) {
+int preset_line_at(const char *text, size_t len, size_t offset) {
     int line = 1;
     for (size_t i = 0; i < offset && i < len; i++) line += text[i] == '\n';
     return line;
@@ -27,7 +28,8 @@ static int line_of(const char *text, size_t len, size_t offset) {
 static int line_of_key(const char *text, size_t len, const char *key) {
     size_t k = strlen(key);
     for (size_t i = 0; i + k + 2 <= len; i++)
-        if (text[i] == '"' && memcmp(text + i + 1, key, k) == 0 && text[i + k + 1] == '"') return line_of(text, len, i);
+        if (text[i] == '"' && memcmp(text + i + 1, key, k) == 0 && text[i + k + 1] == '"')
+            return preset_line_at(text, len, i);
     return 0;
 }
 
@@ -37,30 +39,89 @@ static void where(char *buf, size_t n, const char *source, const char *text, siz
     else snprintf(buf, n, "%s: ", source);
 }
 
-static int valid_utf8(const unsigned char *s, size_t n, size_t *bad) {
-    for (size_t i = 0; i < n;) {
-        unsigned char c = s[i];
-        size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
-        if (!len || i + len > n || (len == 2 && c < 0xC2) || (len == 4 && c > 0xF4)) { *bad = i; return 0; }
-        for (size_t k = 1; k < len; k++)
-            if ((s[i + k] & 0xC0) != 0x80) { *bad = i; return 0; }
-        if (c == 0) { *bad = i; return 0; } /* NUL inside a text file */
-        i += len;
-    }
-    return 1;
+/* Length of the strict UTF-8 sequence at s[0..n-1] (RFC 3629: no overlong
+ * forms, no surrogates, nothing past U+10FFFF, no NUL), or 0. */
+static size_t utf8_sequence(const unsigned char *s, size_t n) {
+    unsigned char c = s[0];
+    if (c == 0) return 0;
+    if (c < 0x80) return 1;
+    size_t len;
+    unsigned char lo = 0x80, hi = 0xBF; /* range of the second byte */
+    if (c >= 0xC2 && c <= 0xDF) len = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
+        len = 3;
+        if (c == 0xE0) lo = 0xA0;
+        if (c == 0xED) hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        len = 4;
+        if (c == 0xF0) lo = 0x90;
+        if (c == 0xF4) hi = 0x8F;
+    } else
+        return 0;
+    if (len > n || s[1] < lo || s[1] > hi) return 0;
+    for (size_t k = 2; k < len; k++)
+        if ((s[k] & 0xC0) != 0x80) return 0;
+    return len;
 }
 
-static int depth_of(const cJSON *j) {
-    int d = 0;
-    for (const cJSON *c = j ? j->child : NULL; c; c = c->next) {
-        int k = depth_of(c);
-        if (k > d) d = k;
+/* One pass over the raw bytes before cJSON sees them: strict UTF-8, no
+ * \u0000 escape (it would cut the C string cJSON makes short, so
+ * "roots\u0000x" would read as "roots"), and brackets nested at most
+ * PRESET_MAX_DEPTH deep, so cJSON never recurses far. */
+static banyan_status prescan(const char *text, size_t len, const char *source, banyan_error *err) {
+    const unsigned char *t = (const unsigned char *)text;
+    int depth = 0, in_string = 0;
+    for (size_t i = 0; i < len;) {
+        size_t k = utf8_sequence(t + i, len - i);
+        if (!k)
+            return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: byte %zu is not valid UTF-8 (0x%02x)", source,
+                               preset_line_at(text, len, i), i, t[i]);
+        unsigned char c = t[i];
+        if (in_string) {
+            if (c == '"') in_string = 0;
+            else if (c == '\\' && i + 1 < len) {
+                if (t[i + 1] == 'u' && i + 6 <= len && memcmp(t + i + 2, "0000", 4) == 0)
+                    return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: a \\u0000 escape is not allowed in a preset",
+                                       source, preset_line_at(text, len, i));
+                k = 2; /* skip the escaped character */
+            }
+        } else if (c == '"') {
+            in_string = 1;
+        } else if (c == '[' || c == '{') {
+            if (++depth > PRESET_MAX_DEPTH)
+                return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: nesting deeper than %d levels", source,
+                                   preset_line_at(text, len, i), PRESET_MAX_DEPTH);
+        } else if (c == ']' || c == '}') {
+            depth--;
+        }
+        i += k;
     }
-    return d + 1;
+    return BANYAN_OK;
 }
 
-/* Parses and checks the envelope; *root is owned by the caller. */
-static banyan_status parse(const char *text, size_t len, const char *source, cJSON **root, banyan_error *err) {
+/* The first key that appears twice in an object, or NULL. cJSON keeps
+ * both; a preset must not say two things. */
+static const char *duplicate_key(const cJSON *obj) {
+    for (const cJSON *a = obj ? obj->child : NULL; a; a = a->next)
+        for (const cJSON *b = a->next; b; b = b->next)
+            if (strcmp(a->string, b->string) == 0) return a->string;
+    return NULL;
+}
+
+static banyan_status refuse_duplicate(const cJSON *obj, const char *what, const char *source, const char *text,
+                                      size_t len, banyan_error *err) {
+    const char *dup = duplicate_key(obj);
+    if (!dup) return BANYAN_OK;
+    char w[300];
+    where(w, sizeof w, source, text, len, dup);
+    return banyan_fail(err, BANYAN_E_PARSE, "%s%s'%s' is given twice", w, what, dup);
+}
+
+/* cJSON 1.7 writes a file-level error position on every parse: serialise
+ * parses so that concurrent calls on distinct texts stay race-free. */
+static pthread_mutex_t json_lock = PTHREAD_MUTEX_INITIALIZER;
+
+banyan_status preset_parse(const char *text, size_t len, const char *source, cJSON **root, banyan_error *err) {
     *root = NULL;
     if (!source) source = "<preset>";
     if (!text) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s: text is NULL", source);
@@ -68,23 +129,25 @@ static banyan_status parse(const char *text, size_t len, const char *source, cJS
     if (len > PRESET_MAX_BYTES)
         return banyan_fail(err, BANYAN_E_PARSE, "%s: %zu bytes is over the %u-byte preset limit", source, len,
                            PRESET_MAX_BYTES);
-    size_t bad;
-    if (!valid_utf8((const unsigned char *)text, len, &bad))
-        return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: byte %zu is not valid UTF-8", source, line_of(text, len, bad), bad);
+    banyan_status s = prescan(text, len, source, err);
+    if (s) return s;
     const char *end = NULL;
+    pthread_mutex_lock(&json_lock);
     cJSON *j = cJSON_ParseWithLengthOpts(text, len, &end, 0);
-    if (!j) {
-        size_t off = end && end >= text ? (size_t)(end - text) : len;
+    pthread_mutex_unlock(&json_lock);
+    size_t off = end && end >= text && end <= text + len ? (size_t)(end - text) : len;
+    if (!j)
         return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: malformed JSON (truncated file or syntax error)", source,
-                           line_of(text, len, off));
+                           preset_line_at(text, len, off));
+    while (off < len && (text[off] == ' ' || text[off] == '\t' || text[off] == '\n' || text[off] == '\r')) off++;
+    if (off < len) {
+        cJSON_Delete(j);
+        return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: text after the JSON object", source,
+                           preset_line_at(text, len, off));
     }
     if (!cJSON_IsObject(j)) {
         cJSON_Delete(j);
         return banyan_fail(err, BANYAN_E_TYPE, "%s:1: a preset must be a JSON object", source);
-    }
-    if (depth_of(j) > PRESET_MAX_DEPTH) {
-        cJSON_Delete(j);
-        return banyan_fail(err, BANYAN_E_PARSE, "%s: nesting deeper than %d levels", source, PRESET_MAX_DEPTH);
     }
     static const char *const known[] = {"generator", "schema", "description", "params", "hosts", "name", "thumbnail", "segments", "trunk"};
     char w[300];
@@ -93,12 +156,16 @@ static banyan_status parse(const char *text, size_t len, const char *source, cJS
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++) ok |= strcmp(c->string, known[k]) == 0;
         if (!ok) {
             where(w, sizeof w, source, text, len, c->string);
-            banyan_status s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY,
-                                          "%sunknown top-level key '%s' (expected generator, schema, description, "
-                                          "params, hosts, name, thumbnail)", w, c->string);
+            s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY,
+                            "%sunknown top-level key '%s' (expected generator, schema, description, params, hosts, "
+                            "name, thumbnail, segments, trunk)", w, c->string);
             cJSON_Delete(j);
             return s;
         }
+    }
+    if ((s = refuse_duplicate(j, "top-level key ", source, text, len, err))) {
+        cJSON_Delete(j);
+        return s;
     }
     cJSON *schema = cJSON_GetObjectItemCaseSensitive(j, "schema");
     if (schema && (!cJSON_IsNumber(schema) || schema->valuedouble != BANYAN_PRESET_SCHEMA)) {
@@ -128,7 +195,7 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
     if (!banyan_generator_name(g)) return banyan_fail(err, BANYAN_E_INVALID_ARG, "generator %d is unknown", (int)g);
     if (!source) source = "<preset>";
     cJSON *j;
-    banyan_status s = parse(text, length, source, &j, err);
+    banyan_status s = preset_parse(text, length, source, &j, err);
     if (s) return s;
     char w[300];
     const cJSON *gen = cJSON_GetObjectItemCaseSensitive(j, "generator");
@@ -145,6 +212,7 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
         s = banyan_fail(err, BANYAN_E_TYPE, "%sparams must be an object", w);
         goto done;
     }
+    if ((s = refuse_duplicate(ps, "parameter ", source, text, length, err))) goto done;
     for (const cJSON *c = ps ? ps->child : NULL; c; c = c->next) {
         where(w, sizeof w, source, text, length, c->string);
         const banyan_param_info *info = banyan_param_find(g, c->string);
@@ -200,6 +268,8 @@ done:
 
 static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_box *out, banyan_error *err) {
     if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] must be an object", w, i);
+    const char *dup = duplicate_key(h);
+    if (dup) return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, dup);
     double c[3] = {0, 0, 0}, half[3], rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     int have_half = 0, have_rot = 0;
     for (const cJSON *k = h->child; k; k = k->next) {
@@ -245,7 +315,7 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
     if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL but cap = %u", cap);
     if (!source) source = "<preset>";
     cJSON *j;
-    banyan_status s = parse(text, length, source, &j, err);
+    banyan_status s = preset_parse(text, length, source, &j, err);
     if (s) return s;
     const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
     char w[300];
