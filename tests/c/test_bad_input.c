@@ -836,6 +836,15 @@ static void input_cases(void) {
              banyan_tube_generate(bp, br, count, sides, caps, &m, &e))
     TB("below range", "point_count = 1", (void)0, 1, 8, 1, "point_count");
     TB("above cap", "point_count = 1000001", (void)0, 1000001, 8, 1, "point_count");
+    {
+        /* 1e6 points x 257: refused before the points are even read. */
+        banyan_mesh *m = SENTINEL;
+        banyan_error e;
+        memset(&e, 0, sizeof e);
+        banyan_status s = banyan_tube_generate(pts, radii, 1000000, 256, 1, &m, &e);
+        report("common", "banyan_tube_generate", "limit", "point_count = 1e6, sides = 256 (257M vertices)",
+               BANYAN_E_LIMIT, "point_count", s, &e, mesh_out_ok(m, s));
+    }
     TB("below range", "sides = 2", (void)0, 3, 2, 1, "sides");
     TB("above cap", "sides = 257", (void)0, 3, 257, 1, "sides");
     TB("above range", "caps = 2", (void)0, 3, 8, 2, "caps");
