@@ -34,7 +34,7 @@ run_one() {
   local h=$1 work=$here/$build/fuzz_work/$1 max_len=4096
   [ "$h" = fuzz_preset ] && max_len=65536
   rm -rf "$work"
-  mkdir -p "$work/crashes"
+  mkdir -p "$work/crashes" "$here/tests/fuzz/regressions/$h"
   local start rc=0
   start=$(date +%s)
   (cd "$work" && ASAN_OPTIONS=detect_leaks=1 "$here/$build/tests/fuzz/$h" \
