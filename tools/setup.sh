@@ -10,9 +10,9 @@ cd "$here"
 
 # Debian packages: compiler and build tools, the two C libraries, node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
-# geometry-shader twin, clang for fuzzing.
+# geometry-shader twin, clang for fuzzing, valgrind for the failure paths.
 packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev
-          blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev)
+          blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev valgrind)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -122,11 +122,11 @@ int main(void) {
     s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1000", s, m, &e);
     CHECK(strstr(e.message, "counted before stopping") != NULL, "the avenue stopped counting early: %s", e.message);
-    ap.max_vertices = 4000000;
+    ap.max_vertices = 1000000;
     reset();
     m = NULL;
     s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
-    refused("avenue 2 x 5000 trees, max_vertices 4e6", s, m, &e);
+    refused("avenue 2 x 5000 trees, max_vertices 1e6", s, m, &e);
 
     /* Ivy: 100,000 steps with a small cap stops growing early. */
     banyan_ivy_params ip;
@@ -137,17 +137,18 @@ int main(void) {
     s = banyan_ivy_generate(&ip, &wall, 1, &m, &e);
     refused("ivy 100000 steps, max_vertices 50000", s, m, &e);
 
-    /* Segments: a million segments of 64 lines each as tubes. */
-    uint32_t n = 1u << 20;
+    /* Segments: 131,072 segments of 64 lines, each a 64-sided tube. */
+    uint32_t n = 1u << 17;
     banyan_segment_input *segs = malloc(sizeof *segs * n);
     for (uint32_t i = 0; i < n; i++) segs[i] = (banyan_segment_input){{0, 0, 0.001 * i}, {1, 0, 1}, 1.0, 20, 3};
     banyan_segments_params sp;
     banyan_segments_params_init(&sp);
     sp.max_vertices = 1 << 30;
+    sp.sides = 64;
     reset();
     m = NULL;
     s = banyan_segments_generate(&sp, segs, n, NULL, &m, NULL, NULL, &e);
-    refused("segments 2^20 x 64 lines, max_vertices 2^30", s, m, &e);
+    refused("segments 2^17 x 64 lines x 64 sides, max_vertices 2^30", s, m, &e);
     free(segs);
 
     /* The tube demo: 1e6 points x 257 vertices. */

@@ -30,7 +30,7 @@ static void write_seed(const char *out, const char *harness, const char *name, c
     mkdir(path, 0777);
     snprintf(path, sizeof path, "%s/%s/%s", out, harness, name);
     FILE *f = fopen(path, "wb");
-    if (!f || fwrite(s->b, 1, s->n, f) != s->n) {
+    if (!f || (s->n && fwrite(s->b, 1, s->n, f) != s->n)) {
         fprintf(stderr, "fuzz_seeds: cannot write %s\n", path);
         exit(1);
     }
