@@ -23,20 +23,25 @@ int preset_line_at(const char *text, size_t len, size_t offset) {
     return line;
 }
 
-/* Line of the first occurrence of "key" (quoted), or 0. cJSON keeps no
- * positions, so keys are found again in the text. */
-static int line_of_key(const char *text, size_t len, const char *key) {
+/* Line of occurrence `nth` (0 = the first) of "key" (quoted), or 0.
+ * cJSON keeps no positions, so keys are found again in the text. */
+static int line_of_key(const char *text, size_t len, const char *key, int nth) {
     size_t k = strlen(key);
     for (size_t i = 0; i + k + 2 <= len; i++)
-        if (text[i] == '"' && memcmp(text + i + 1, key, k) == 0 && text[i + k + 1] == '"')
+        if (text[i] == '"' && memcmp(text + i + 1, key, k) == 0 && text[i + k + 1] == '"' && nth-- == 0)
             return preset_line_at(text, len, i);
     return 0;
 }
 
-static void where(char *buf, size_t n, const char *source, const char *text, size_t len, const char *key) {
-    int line = key ? line_of_key(text, len, key) : 0;
+static void where_nth(char *buf, size_t n, const char *source, const char *text, size_t len, const char *key,
+                      int nth) {
+    int line = key ? line_of_key(text, len, key, nth) : 0;
     if (line) snprintf(buf, n, "%s:%d: ", source, line);
     else snprintf(buf, n, "%s: ", source);
+}
+
+static void where(char *buf, size_t n, const char *source, const char *text, size_t len, const char *key) {
+    where_nth(buf, n, source, text, len, key, 0);
 }
 
 /* Length of the strict UTF-8 sequence at s[0..n-1] (RFC 3629: no overlong
@@ -99,22 +104,13 @@ static banyan_status prescan(const char *text, size_t len, const char *source, b
     return BANYAN_OK;
 }
 
-/* The first key that appears twice in an object, or NULL. cJSON keeps
- * both; a preset must not say two things. */
-static const char *duplicate_key(const cJSON *obj) {
-    for (const cJSON *a = obj ? obj->child : NULL; a; a = a->next)
-        for (const cJSON *b = a->next; b; b = b->next)
-            if (strcmp(a->string, b->string) == 0) return a->string;
-    return NULL;
-}
-
-static banyan_status refuse_duplicate(const cJSON *obj, const char *what, const char *source, const char *text,
-                                      size_t len, banyan_error *err) {
-    const char *dup = duplicate_key(obj);
-    if (!dup) return BANYAN_OK;
-    char w[300];
-    where(w, sizeof w, source, text, len, dup);
-    return banyan_fail(err, BANYAN_E_PARSE, "%s%s'%s' is given twice", w, what, dup);
+/* c's key names an earlier member of its object too: a preset must not
+ * say two things. Callers refuse unknown keys first, so the earlier
+ * members are few and distinct and this stays cheap. */
+static int given_before(const cJSON *obj, const cJSON *c) {
+    int n = 0;
+    for (const cJSON *d = obj->child; d && d != c; d = d->next) n += strcmp(d->string, c->string) == 0;
+    return n; /* how many times: the line to name is that occurrence's */
 }
 
 /* cJSON 1.7 writes a file-level error position on every parse: serialise
@@ -154,18 +150,18 @@ banyan_status preset_parse(const char *text, size_t len, const char *source, cJS
     for (cJSON *c = j->child; c; c = c->next) {
         int ok = 0;
         for (size_t k = 0; k < sizeof known / sizeof known[0]; k++) ok |= strcmp(c->string, known[k]) == 0;
-        if (!ok) {
-            where(w, sizeof w, source, text, len, c->string);
-            s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY,
-                            "%sunknown top-level key '%s' (expected generator, schema, description, params, hosts, "
-                            "name, thumbnail, segments, trunk)", w, c->string);
+        int twice = ok ? given_before(j, c) : 0;
+        if (!ok || twice) {
+            where_nth(w, sizeof w, source, text, len, c->string, twice);
+            if (ok)
+                s = banyan_fail(err, BANYAN_E_PARSE, "%stop-level key '%s' is given twice", w, c->string);
+            else
+                s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY,
+                                "%sunknown top-level key '%s' (expected generator, schema, description, params, "
+                                "hosts, name, thumbnail, segments, trunk)", w, c->string);
             cJSON_Delete(j);
             return s;
         }
-    }
-    if ((s = refuse_duplicate(j, "top-level key ", source, text, len, err))) {
-        cJSON_Delete(j);
-        return s;
     }
     cJSON *schema = cJSON_GetObjectItemCaseSensitive(j, "schema");
     if (schema && (!cJSON_IsNumber(schema) || schema->valuedouble != BANYAN_PRESET_SCHEMA)) {
@@ -212,13 +208,20 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
         s = banyan_fail(err, BANYAN_E_TYPE, "%sparams must be an object", w);
         goto done;
     }
-    if ((s = refuse_duplicate(ps, "parameter ", source, text, length, err))) goto done;
+    /* "<source>:<line>: " of the key, looked up only on failure (it scans
+     * the text). */
+#define W() (where(w, sizeof w, source, text, length, c->string), w)
     for (const cJSON *c = ps ? ps->child : NULL; c; c = c->next) {
-        where(w, sizeof w, source, text, length, c->string);
         const banyan_param_info *info = banyan_param_find(g, c->string);
         if (!info) {
-            s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "%sunknown %s parameter '%s'", w, banyan_generator_name(g),
+            s = banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "%sunknown %s parameter '%s'", W(), banyan_generator_name(g),
                             c->string);
+            goto done;
+        }
+        int twice = given_before(ps, c);
+        if (twice) {
+            where_nth(w, sizeof w, source, text, length, c->string, twice);
+            s = banyan_fail(err, BANYAN_E_PARSE, "%sparameter '%s' is given twice", w, c->string);
             goto done;
         }
         double vals[4];
@@ -229,7 +232,7 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
             if (cJSON_IsString(c)) {
                 int idx = param_enum_index(info->choices, c->valuestring, strlen(c->valuestring));
                 if (idx < 0) {
-                    s = banyan_fail(err, BANYAN_E_RANGE, "%s%s = \"%s\" must be one of %s", w, c->string,
+                    s = banyan_fail(err, BANYAN_E_RANGE, "%s%s = \"%s\" must be one of %s", W(), c->string,
                                     c->valuestring, info->choices);
                     goto done;
                 }
@@ -243,7 +246,7 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
             } else if (cJSON_IsString(c)) {
                 s = banyan_param_set_text(g, params, c->string, c->valuestring, err);
                 if (s) {
-                    banyan_error_prefix(err, w);
+                    banyan_error_prefix(err, W());
                     goto done;
                 }
                 continue;
@@ -254,12 +257,16 @@ banyan_status banyan_preset_apply(banyan_generator g, void *params, const char *
         if (n < 0) {
             static const char *const tn[] = {"a number", "a whole number", "true or false", "a name", "[x, y, z]",
                                              "[r, g, b] or [r, g, b, a]", "a whole number >= 0"};
-            s = banyan_fail(err, BANYAN_E_TYPE, "%s%s must be %s", w, c->string, tn[info->type]);
+            s = banyan_fail(err, BANYAN_E_TYPE, "%s%s must be %s", W(), c->string, tn[info->type]);
             goto done;
         }
-        s = param_assign(info, params, vals, n, w, err);
-        if (s) goto done;
+        s = param_assign(info, params, vals, n, "", err);
+        if (s) {
+            banyan_error_prefix(err, W());
+            goto done;
+        }
     }
+#undef W
     banyan_error_clear(err);
 done:
     cJSON_Delete(j);
@@ -268,11 +275,11 @@ done:
 
 static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_box *out, banyan_error *err) {
     if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] must be an object", w, i);
-    const char *dup = duplicate_key(h);
-    if (dup) return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, dup);
     double c[3] = {0, 0, 0}, half[3], rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     int have_half = 0, have_rot = 0;
     for (const cJSON *k = h->child; k; k = k->next) {
+        if (given_before(h, k))
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, k->string);
         double v[9];
         int n = -1;
         if (cJSON_IsArray(k)) {
