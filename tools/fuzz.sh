@@ -24,6 +24,7 @@ echo "== fuzzing: ${#harnesses[@]} harnesses x ${secs} s, ${jobs} at a time =="
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBANYAN_FUZZ=ON >/dev/null
 cmake --build "$build" --target "${harnesses[@]}" fuzz_seeds
 
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 corpus=$here/$build/corpus
 "$build/tests/fuzz/fuzz_seeds" presets "$corpus"
 mkdir -p "$corpus/fuzz_preset"
@@ -52,7 +53,7 @@ run_one() {
   local units
   units=$(find "$corpus/$h" -type f | wc -l)
   printf '{"harness": "%s", "date": "%s", "commit": "%s", "seconds": %d, "execs": %d, "crashes": %d, "exit": %d, "corpus": %d}\n' \
-    "$h" "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)" \
+    "$h" "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$commit" \
     "$wall" "$execs" "$crashes" "$rc" "$units" >"$work/result"
   echo "$h: $execs execs in ${wall} s, $crashes crashes, exit $rc"
 }

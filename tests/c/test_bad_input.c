@@ -627,6 +627,36 @@ static void null_cases(void) {
     RUN("common", "banyan_gltf_write", "zero", "count = 0", BANYAN_E_INVALID_ARG, "count",
         banyan_gltf_write("x.glb", &none, NULL, 0, &e), 1);
 
+    /* Calls on a real mesh. */
+    banyan_mesh *tube = NULL;
+    banyan_error te;
+    if (banyan_tube_generate(pts, radii, 2, 8, 1, &tube, &te) == BANYAN_OK) {
+        float few[4];
+        RUN("common", "banyan_mesh_corner_uvs", "below range", "out_count = 4, too small", BANYAN_E_RANGE, "out_count",
+            banyan_mesh_corner_uvs(tube, few, 4, &e), 1);
+        const banyan_mesh *one = tube;
+        RUN("common", "banyan_gltf_write", "NULL", "a directory that does not exist", BANYAN_E_IO, "/no/such/dir",
+            banyan_gltf_write("/no/such/dir/x.glb", &one, NULL, 1, &e), 1);
+        RUN("common", "banyan_gltf_write", "wrong type", "path ending in .obj", BANYAN_E_INVALID_ARG, ".glb",
+            banyan_gltf_write("x.obj", &one, NULL, 1, &e), 1);
+        const char *bad_name = "\xff\xfe";
+        RUN("common", "banyan_gltf_write", "non-UTF-8", "node name ff fe", BANYAN_E_INVALID_ARG, "names[0]",
+            banyan_gltf_write("x.glb", &one, &bad_name, 1, &e), 1);
+        uint32_t keep = tube->indices[0];
+        tube->indices[0] = tube->vertex_count; /* a corrupted mesh from a caller */
+        RUN("common", "banyan_gltf_write", "above range", "indices[0] = vertex_count", BANYAN_E_RANGE, "indices[0]",
+            banyan_gltf_write("x.glb", &one, NULL, 1, &e), 1);
+        tube->indices[0] = keep;
+        float keep_p = tube->positions[4];
+        tube->positions[4] = NAN;
+        RUN("common", "banyan_gltf_write", "NaN", "positions[4] = NaN", BANYAN_E_RANGE, "positions",
+            banyan_gltf_write("x.glb", &one, NULL, 1, &e), 1);
+        tube->positions[4] = keep_p;
+        banyan_mesh_free(tube);
+    } else {
+        CHECK(0, "tube: %s", te.message);
+    }
+
     /* Functions without a status answer NULL or -1, and do not crash. */
     CHECK(banyan_generator_name((banyan_generator)-1) == NULL && banyan_generator_name(BANYAN_GEN_COUNT) == NULL,
           "generator names out of range");

@@ -1,7 +1,8 @@
 /* fuzz_ivy.c - libFuzzer harness for ivy: bytes -> ivy params and hosts.
  * Without control records: banyan_ivy_generate. With them: the stepping
  * calls - create, then for each control byte c step c % 64 steps and, when
- * c >= 128, mesh in between - then free. Kept small: steps at most 80,
+ * c >= 128, mesh in between - then the mesh must equal a one-shot
+ * generation of as many steps - then free. Kept small: steps at most 80,
  * max_buds at most 5,000, candidates at most 16, max_vertices at most
  * 50,000. */
 #include "fuzz_common.h"
@@ -37,11 +38,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         return 0;
     }
     int32_t grown = 0;
+    int limited = 0;
     for (int k = 0; k < in.n_control; k++) {
         int32_t n = in.control[k] % 64;
         s = banyan_ivy_step(iv, n, &e);
         if (s) {
             FZ_ASSERT(s == BANYAN_E_LIMIT || s == BANYAN_E_NOMEM, "step: %s", e.message);
+            limited = 1;
             break;
         }
         grown += n;
@@ -55,6 +58,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             FZ_ASSERT(s == BANYAN_OK || s == BANYAN_E_LIMIT, "mesh: %s", e.message);
             fz_check(s, &e, m, max_v);
         }
+    }
+    /* Growing in pieces gives the plant grown at once (banyan/ivy.h). */
+    if (!limited) {
+        banyan_mesh *a = NULL, *b = NULL;
+        banyan_status sa = banyan_ivy_mesh(iv, &a, &e);
+        banyan_ivy_params once = p;
+        once.steps = grown;
+        banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &e);
+        FZ_ASSERT(sa == sb, "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
+        if (sa == BANYAN_OK)
+            FZ_ASSERT(banyan_mesh_hash(a) == banyan_mesh_hash(b), "%d steps in pieces differ from one shot", grown);
+        banyan_mesh_free(a);
+        banyan_mesh_free(b);
     }
     banyan_ivy_free(iv);
     return 0;

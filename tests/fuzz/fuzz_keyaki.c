@@ -1,7 +1,8 @@
 /* fuzz_keyaki.c - libFuzzer harness for keyaki trees and avenues. The
  * first byte picks: even, one tree (banyan_keyaki_generate and
  * banyan_keyaki_stats); odd, an avenue (banyan_avenue_layout and
- * banyan_avenue_generate on 1 .. 4 threads, from a control record). The
+ * banyan_avenue_generate on 0 .. 4 threads, from a control record, which
+ * must give the same mesh as 1 thread). The
  * rest are records (fuzz_common.h) for that generator's table. Kept small:
  * max_vertices at most 50,000, max_nodes at most 4,000, at most 16 trees. */
 #include "fuzz_common.h"
@@ -52,11 +53,19 @@ static void avenue(const uint8_t *data, size_t size) {
     banyan_keyaki_params trees[16];
     s = banyan_avenue_layout(&p, NULL, 0, trees, 16, &n, &e);
     if (s) fz_check_failure(s, &e, NULL);
-    int threads = in.n_control ? in.control[0] % 5 : 1; /* 0 = all cores */
+    int threads = in.n_control ? in.control[0] % 5 : 2; /* 0 = all cores */
     banyan_mesh *m = (banyan_mesh *)&p;
     memset(&e, 0, sizeof e);
     s = banyan_avenue_generate(&p, NULL, 0, threads, &m, &e);
+    /* The output does not depend on the thread count (banyan/keyaki.h). */
+    uint64_t h = s == BANYAN_OK ? banyan_mesh_hash(m) : 0;
     fz_check(s, &e, m, (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0));
+    banyan_mesh *one = NULL;
+    banyan_status s1 = banyan_avenue_generate(&p, NULL, 0, 1, &one, &e);
+    FZ_ASSERT(s1 == s, "%d threads: %s, 1 thread: %s", threads, banyan_status_name(s), banyan_status_name(s1));
+    if (s1 == BANYAN_OK)
+        FZ_ASSERT(banyan_mesh_hash(one) == h, "%d threads and 1 thread give different meshes", threads);
+    banyan_mesh_free(one);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {

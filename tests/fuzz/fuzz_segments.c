@@ -11,7 +11,8 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 static fz_input in; /* large: keep it off the stack */
-static float one_xyz[FZ_MAX_SEGS][3 * BANYAN_SEGMENT_MAX_VERTICES], many_xyz[FZ_MAX_SEGS][3 * BANYAN_SEGMENT_MAX_VERTICES];
+static float one_xyz[FZ_MAX_SEGS][3 * BANYAN_SEGMENT_MAX_VERTICES];
+static float many_xyz[FZ_MAX_SEGS][3 * BANYAN_SEGMENT_MAX_VERTICES];
 static uint8_t one_lev[FZ_MAX_SEGS][BANYAN_SEGMENT_MAX_VERTICES], many_lev[FZ_MAX_SEGS][BANYAN_SEGMENT_MAX_VERTICES];
 static float lines_xyz[3 * (FZ_MAX_SEGS * BANYAN_SEGMENT_MAX_VERTICES + 2)];
 static int8_t lines_lev[FZ_MAX_SEGS * BANYAN_SEGMENT_MAX_VERTICES + 2];
@@ -68,7 +69,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     }
     if (in.n_segs && all_ok && !su) {
         int32_t mc[FZ_MAX_SEGS];
-        banyan_status s = banyan_segment_generate_many(in.segs, in.n_segs, &sp, &many_xyz[0][0], &many_lev[0][0], mc, &e);
+        banyan_status s =
+            banyan_segment_generate_many(in.segs, in.n_segs, &sp, &many_xyz[0][0], &many_lev[0][0], mc, &e);
         FZ_ASSERT(s == BANYAN_OK, "batch: %s", e.message);
         for (uint32_t i = 0; i < in.n_segs; i++) {
             FZ_ASSERT(mc[i] == counts[i], "batch count %u", i);
