@@ -161,6 +161,12 @@ static banyan_status call_segments_lines(const void *p, int *out_ok, banyan_erro
     *out_ok = s == BANYAN_OK || n == 0;
     return s;
 }
+static banyan_status call_segments_unattached(const void *p, int *out_ok, banyan_error *e) {
+    uint32_t list[2], n = 12345;
+    banyan_status s = banyan_segments_find_unattached(p, demo_segs, 2, NULL, list, &n, e);
+    *out_ok = s == BANYAN_OK || n == 0;
+    return s;
+}
 static banyan_status call_segments_demo(const void *p, int *out_ok, banyan_error *e) {
     banyan_segment_input segs[4096];
     double trunk[6];
@@ -195,6 +201,7 @@ static const gen_entries generators[] = {
     {BANYAN_GEN_SEGMENTS, init_segments, sizeof(banyan_segments_params),
      {{"banyan_segments_generate", call_segments},
       {"banyan_segments_lines", call_segments_lines},
+      {"banyan_segments_find_unattached", call_segments_unattached},
       {"banyan_segments_demo", call_segments_demo}}},
 };
 #define N_GENERATORS (sizeof generators / sizeof generators[0])
