@@ -10,10 +10,11 @@ cd "$here"
 
 # Debian packages: compiler and build tools, the two C libraries, node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
-# geometry-shader twin, clang for fuzzing, chromium for the viewer test.
+# geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
+# chromium for the viewer test.
 packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
-          chromium)
+          valgrind chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

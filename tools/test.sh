@@ -2,7 +2,8 @@
 # All the tests: set up, build, run ctest (C unit and property tests, the
 # CLI, the Khronos validator on every glTF the tests write), then the same
 # suite again under AddressSanitizer (with LeakSanitizer, on by default)
-# and UndefinedBehaviorSanitizer.
+# and UndefinedBehaviorSanitizer, the thread tests under ThreadSanitizer,
+# and a short libFuzzer run of every harness (tools/fuzz.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
@@ -14,3 +15,11 @@ echo "== sanitizer build (ASan + UBSan) =="
 BUILD_DIR=build-asan BANYAN_CMAKE_ARGS="-DBANYAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo" bash tools/setup.sh
 (cd build-asan && ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$jobs")
+
+echo "== ThreadSanitizer: the thread tests =="
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBANYAN_TSAN=ON >/dev/null
+cmake --build build-tsan --target test_threads test_avenue
+(cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^(test_threads|test_avenue)$')
+
+echo "== fuzzing (FUZZ_SECONDS per harness, default 60) =="
+bash tools/fuzz.sh

@@ -14,6 +14,12 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
     if ((s = banyan_check_int(err, "point_count", point_count, 2, 1000000))) return s;
     if ((s = banyan_check_int(err, "sides", sides, 3, 256))) return s;
     if ((s = banyan_check_int(err, "caps", caps, 0, 1))) return s;
+    uint32_t nv, ni;
+    tube_counts(point_count, sides, caps, caps, &nv, &ni);
+    if (nv > BANYAN_TUBE_MAX_VERTICES)
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "point_count = %u with sides = %d makes %u vertices, more than %u; lower point_count or "
+                           "sides", point_count, sides, nv, (unsigned)BANYAN_TUBE_MAX_VERTICES);
     v3 *pts = malloc(sizeof(v3) * point_count);
     if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
     for (uint32_t i = 0; i < point_count; i++) {
@@ -33,7 +39,7 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         }
     }
     mesh_builder mb;
-    mb_init(&mb, MB_VERTEX_CEILING, 0);
+    mb_init(&mb, BANYAN_TUBE_MAX_VERTICES, 0);
     tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL};
     tube_sweep(&mb, pts, radii, point_count, &o);
     for (uint32_t i = 0; i < point_count; i++) {

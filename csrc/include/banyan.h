@@ -306,7 +306,11 @@ BANYAN_API banyan_status banyan_gltf_write(const char *path,
  *   points  3 * point_count metres, point_count 2 .. 1e6, consecutive
  *           points distinct.
  *   radii   point_count radii in metres, each > 0 and finite.
- *   sides   3 .. 256.  caps: 0 or 1. */
+ *   sides   3 .. 256.  caps: 0 or 1.
+ * The tube has no max_vertices of its own: point_count * (sides + 1) (plus
+ * the caps) past BANYAN_TUBE_MAX_VERTICES is refused with BANYAN_E_LIMIT
+ * before anything is allocated. */
+#define BANYAN_TUBE_MAX_VERTICES 16000000u
 BANYAN_API banyan_status banyan_tube_generate(const double *points, const double *radii,
                                               uint32_t point_count, int32_t sides,
                                               int32_t caps, banyan_mesh **out,

@@ -257,7 +257,7 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     return BANYAN_OK;
 }
 
-banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) {
+banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error *err) {
     if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
     banyan_status s = banyan_check_int(err, "n (steps)", n, 0, BANYAN_IVY_MAX_STEPS);
     if (s) return s;
@@ -272,6 +272,14 @@ banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) {
                                "lower t0 or steps",
                                iv->p.max_buds, iv->step + 1, iv->n, iv->active);
         }
+        uint64_t floor_v = ivy_mesh_vertex_floor(&iv->p, iv->n);
+        if (vertex_stop && floor_v > (uint64_t)iv->p.max_vertices) {
+            iv->step_seconds += now_seconds() - t0;
+            return banyan_fail(err, BANYAN_E_LIMIT,
+                               "the ivy mesh would need at least %llu vertices after step %d (%d buds), over "
+                               "max_vertices = %d; raise max_vertices or lower steps or stem_sides",
+                               (unsigned long long)floor_v, iv->step, iv->n, iv->p.max_vertices);
+        }
         if ((s = reserve(iv, (int32_t)worst, err))) {
             iv->step_seconds += now_seconds() - t0;
             return s;
@@ -284,6 +292,8 @@ banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) {
     banyan_error_clear(err);
     return BANYAN_OK;
 }
+
+banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) { return ivy_grow(iv, n, 0, err); }
 
 void banyan_ivy_free(banyan_ivy *iv) {
     if (!iv) return;
@@ -395,7 +405,8 @@ banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_
     banyan_ivy *iv = NULL;
     banyan_status s = banyan_ivy_create(params, hosts, n_hosts, &iv, err);
     if (s) return s;
-    s = banyan_ivy_step(iv, params->steps, err);
+    /* One shot: stop as soon as the mesh could no longer fit. */
+    s = ivy_grow(iv, params->steps, 1, err);
     if (!s) s = banyan_ivy_mesh(iv, out, err);
     banyan_ivy_free(iv);
     return s;

@@ -121,6 +121,16 @@ double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
 /* Sag correction of every dangling stem (sag.c). */
 void ivy_sag(banyan_ivy *iv);
 
+/* Fewest mesh vertices a plant of n buds can need: every bud is one ring
+ * of its chain's tube, plus one leaf card each (as banyan_ivy_mesh
+ * counts). It only grows with n, so a one-shot generation can stop as
+ * soon as it passes max_vertices instead of growing to the end (mesh.c). */
+uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);
+
+/* Grows n steps; stops with BANYAN_E_LIMIT as soon as the plant could no
+ * longer be meshed within max_vertices when vertex_stop is set. */
+banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error *err);
+
 /* Checks params (table ranges and cross-field rules). */
 banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err);
 

@@ -32,6 +32,11 @@ static double leaf_radius(double th) {
     return 1.1 * r;
 }
 
+uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n) {
+    uint64_t per_bud = (uint64_t)p->stem_sides + 1 + (p->leaves ? LEAF_OUTLINE + 1 : 0);
+    return (uint64_t)(n > 0 ? n : 0) * per_bud;
+}
+
 /* Points of the chain starting at bud s; returns the count. */
 static uint32_t chain_points(const banyan_ivy *iv, int32_t s, int32_t *out) {
     uint32_t n = 0;
@@ -66,6 +71,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         need_v += v;
     }
     if (p->leaves) need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1);
+    /* need_v >= ivy_mesh_vertex_floor(p, iv->n): the floor must stay a floor. */
     if (need_v > (uint64_t)p->max_vertices) {
         free(pts);
         return banyan_fail(err, BANYAN_E_LIMIT,

@@ -183,6 +183,12 @@ typedef struct avenue_job {
     banyan_mesh *out;
     banyan_status *status;
     banyan_error *errs;
+    /* Pass 1 stops early once a tree fails or the trees counted so far
+     * pass max_vertices: the answer is then BANYAN_E_LIMIT either way, and
+     * thousands of trees are not grown for nothing. */
+    uint64_t max_vertices;
+    atomic_ullong counted; /* vertices of the trees counted so far */
+    atomic_int stop;
 } avenue_job;
 
 /* Copies tree i's mesh into its slice of the merged mesh. Slices are
@@ -221,7 +227,11 @@ static void *worker(void *arg) {
         uint32_t i = atomic_fetch_add(&J->next, 1u);
         if (i >= J->n) break;
         if (J->phase == 0) {
+            if (atomic_load(&J->stop)) break;
             J->status[i] = keyaki_count(&J->trees[i], &sk, &J->counts[i], &J->errs[i]);
+            if (J->status[i] ||
+                atomic_fetch_add(&J->counted, J->counts[i].vertices) + J->counts[i].vertices > J->max_vertices)
+                atomic_store(&J->stop, 1);
         } else {
             banyan_mesh *t = NULL;
             J->status[i] = keyaki_build(&J->trees[i], (double)i, i, &sk, &t, &J->errs[i]);
@@ -316,7 +326,26 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
 
     /* Pass 1: exact sizes of every tree, before any mesh memory. */
     J.phase = 0;
+    J.max_vertices = (uint64_t)p->max_vertices;
+    atomic_store(&J.counted, 0ull);
+    atomic_store(&J.stop, 0);
     run_job(&J, t);
+    if (atomic_load(&J.stop)) {
+        /* Which trees were counted depends on the threads; the status does
+         * not: a failed count is a limit (or out of memory), and so is a
+         * sum past max_vertices. */
+        for (uint32_t i = 0; i < n; i++)
+            if (J.status[i]) {
+                s = banyan_fail(err, J.status[i], "tree %u: %s", i, J.errs[i].message);
+                goto done;
+            }
+        s = banyan_fail(err, BANYAN_E_LIMIT,
+                        "the avenue's %u trees need more than max_vertices = %d vertices (%llu counted before "
+                        "stopping); raise max_vertices or lower tree.leaf_density, tree.sides_max, tree.levels or "
+                        "the tree count",
+                        n, p->max_vertices, (unsigned long long)atomic_load(&J.counted));
+        goto done;
+    }
     uint64_t nv = 0, ni = 0, ns = 0, np = 0;
     for (uint32_t i = 0; i < n; i++) {
         if (J.status[i]) {

@@ -80,7 +80,8 @@ banyan_status param_assign(const banyan_param_info *info, void *params, const do
         int integral = info->type == BANYAN_PT_INT || info->type == BANYAN_PT_BOOL || info->type == BANYAN_PT_ENUM ||
                        info->type == BANYAN_PT_SEED;
         if (!isfinite(v))
-            return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %g must be finite", where, info->name, v);
+            return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %g must be finite, within [%g, %g]%s%s", where,
+                               info->name, v, info->min, info->max, *info->unit ? " " : "", info->unit);
         if (integral && v != floor(v))
             return banyan_fail(err, BANYAN_E_TYPE, "%s%s = %g must be a whole number", where, info->name, v);
         double lo = info->min, hi = info->max;
@@ -130,6 +131,7 @@ static banyan_status unknown_key(banyan_generator g, const char *key, banyan_err
 banyan_status banyan_param_set_text(banyan_generator g, void *params, const char *key, const char *value,
                                     banyan_error *err) {
     if (!params || !key || !value) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params, key and value must not be NULL");
+    if (!banyan_generator_name(g)) return banyan_fail(err, BANYAN_E_INVALID_ARG, "generator %d is unknown", (int)g);
     const banyan_param_info *info = banyan_param_find(g, key);
     if (!info) return unknown_key(g, key, err);
     double vals[4];
@@ -174,6 +176,7 @@ banyan_status banyan_param_set_text(banyan_generator g, void *params, const char
 
 banyan_status banyan_params_check(banyan_generator g, const void *params, banyan_error *err) {
     if (!params) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    if (!banyan_generator_name(g)) return banyan_fail(err, BANYAN_E_INVALID_ARG, "generator %d is unknown", (int)g);
     param_table t = param_table_get(g);
     for (int32_t i = 0; i < t.count; i++) {
         const banyan_param_info *info = &t.rows[i];

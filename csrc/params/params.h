@@ -25,6 +25,16 @@ banyan_status param_assign(const banyan_param_info *info, void *params, const do
 /* Enum choice index of name in "a|b|c", or -1. */
 int param_enum_index(const char *choices, const char *name, size_t len);
 
+/* The envelope every preset reader shares (preset.c): size, strict UTF-8,
+ * nesting, JSON syntax, nothing after the object, a JSON object with known
+ * top-level keys, each once, and the schema. *root (a cJSON object) is
+ * the caller's to cJSON_Delete. Messages start "<source>:<line>: ". */
+struct cJSON;
+banyan_status preset_parse(const char *text, size_t len, const char *source, struct cJSON **root,
+                           banyan_error *err);
+/* 1-based line of byte `offset` in text. */
+int preset_line_at(const char *text, size_t len, size_t offset);
+
 /* Row constructors: the key is the field name, so one name is used in C,
  * presets, --set and the add-on. */
 #define BP_ROW(S, field, type, unit, lo, hi, choices, desc) \

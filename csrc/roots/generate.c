@@ -1,7 +1,9 @@
 /* Entry points of the roots generator: input checks, the germination point
  * G (spec roots.md, "Parameters": top centre of the first host, lifted by
  * r), the stages in order (main roots, first branch roots, correction,
- * second branch roots, final paths, mesh) and the stats. */
+ * second branch roots, final paths, mesh) and the stats. Refusals: bad
+ * params, no or bad hosts, G inside a host or below the ground, G beyond
+ * the roots' reach of every host, a mesh past max_vertices. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,6 +103,26 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
         return banyan_fail(err, BANYAN_E_START_INSIDE,
                            "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x, G.y, G.z,
                            p->ground_z);
+    }
+    /* A main root moves at most `moves` steps of length sqrt(forward_max^2
+     * + lateral^2) per growth point from its start circle (pushes out of a
+     * host and the pull back to a face each move it by at most r): a G
+     * farther than that from every host grows roots that touch none. */
+    double step = hypot(p->forward_max, p->lateral) * net->u;
+    double reach = p->start_radius * net->u + (double)(p->growth_points - 1) * p->moves * step + 4.0 * net->r;
+    double nearest = 1e300;
+    uint32_t nearest_i = 0;
+    for (uint32_t i = 0; i < n_hosts; i++) {
+        double d = obb_signed_distance(&net->hosts[i], G);
+        if (d < nearest) nearest = d, nearest_i = i;
+    }
+    if (nearest > reach) {
+        roots_net_free(net);
+        return banyan_fail(err, BANYAN_E_START_FAR,
+                           "germination point G = (%g, %g, %g) m is %g m from the nearest host (hosts[%u]); the roots "
+                           "reach at most %g m (start_radius + (growth_points - 1) x moves x step), so none would "
+                           "touch a host: move G within %g m of a host",
+                           G.x, G.y, G.z, nearest, nearest_i, reach, reach);
     }
     world_push_out(&net->w, &G); /* closer than r to a host: out to r */
     net->G = G;

@@ -11,9 +11,8 @@
 #include <cjson/cJSON.h>
 
 #include "../core/error.h"
+#include "../params/params.h"
 #include "segment_core.h"
-
-#define SEG_PRESET_MAX_BYTES (4u << 20)
 
 /* ---- positions in the JSON text (the text is known to be valid JSON) */
 
@@ -89,12 +88,6 @@ static size_t element_offset(const char *t, size_t n, size_t a, uint32_t idx) {
     }
 }
 
-static int line_at(const char *t, size_t n, size_t off) {
-    int line = 1;
-    for (size_t i = 0; i < off && i < n; i++) line += t[i] == '\n';
-    return line;
-}
-
 typedef struct reader {
     const char *t;
     size_t n;
@@ -111,7 +104,7 @@ static void where_entry(const reader *r, uint32_t i, const char *field, char *bu
         if (f < r->n) off = f;
     }
     if (off >= r->n) off = r->list;
-    if (off < r->n) snprintf(buf, cap, "%s:%d: ", r->source, line_at(r->t, r->n, off));
+    if (off < r->n) snprintf(buf, cap, "%s:%d: ", r->source, preset_line_at(r->t, r->n, off));
     else snprintf(buf, cap, "%s: ", r->source);
 }
 
@@ -135,36 +128,41 @@ static banyan_status read_entry(const reader *r, const cJSON *e, uint32_t i, ban
                            "\"s\": ..}", w, i);
     }
     static const char *const keys[5] = {"S", "A", "l", "n", "s"};
+    /* The line is looked up only on failure: finding it scans the text. */
+#define AT(field) (where_entry(r, i, (field), w, sizeof w), w)
     int seen[5] = {0, 0, 0, 0, 0};
     for (const cJSON *c = e->child; c; c = c->next) {
         int k = -1;
         for (int q = 0; q < 5; q++)
             if (strcmp(c->string, keys[q]) == 0) k = q;
-        where_entry(r, i, c->string, w, sizeof w);
         if (k < 0)
-            return banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "%ssegments[%u]: unknown key '%s' (keys: S, A, l, n, s)", w,
-                               i, c->string);
+            return banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "%ssegments[%u]: unknown key '%s' (keys: S, A, l, n, s)",
+                               AT(c->string), i, c->string);
         if (seen[k]++)
-            return banyan_fail(err, BANYAN_E_PARSE, "%ssegments[%u].%s is given twice", w, i, keys[k]);
+            return banyan_fail(err, BANYAN_E_PARSE, "%ssegments[%u].%s is given twice", AT(c->string), i, keys[k]);
         if (k <= 1) {
             if (!read_vec3(c, k == 0 ? out->S : out->A))
-                return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s must be [x, y, z] (3 numbers)", w, i, keys[k]);
+                return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s must be [x, y, z] (3 numbers)",
+                                   AT(c->string), i, keys[k]);
         } else if (!cJSON_IsNumber(c)) {
-            return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s must be a %snumber", w, i, keys[k],
+            return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s must be a %snumber", AT(c->string), i, keys[k],
                                k == 2 ? "" : "whole ");
         } else if (k == 2) {
             out->l = c->valuedouble;
         } else {
             double v = c->valuedouble;
             if (v != floor(v))
-                return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s = %g must be a whole number", w, i, keys[k], v);
+                return banyan_fail(err, BANYAN_E_TYPE, "%ssegments[%u].%s = %g must be a whole number",
+                                   AT(c->string), i, keys[k], v);
             if (!(v >= -1e9 && v <= 1e9))
-                return banyan_fail(err, BANYAN_E_RANGE, "%ssegments[%u].%s = %g must be within [0, %d]", w, i, keys[k],
-                                   v, k == 3 ? BANYAN_SEGMENT_MAX_TWIGS : BANYAN_SEGMENT_MAX_DEPTH);
+                return banyan_fail(err, BANYAN_E_RANGE, "%ssegments[%u].%s = %g must be within [0, %d]",
+                                   AT(c->string), i, keys[k], v,
+                                   k == 3 ? BANYAN_SEGMENT_MAX_TWIGS : BANYAN_SEGMENT_MAX_DEPTH);
             if (k == 3) out->n = (int32_t)v;
             else out->s = (int32_t)v;
         }
     }
+#undef AT
     for (int q = 0; q < 5; q++)
         if (!seen[q]) {
             where_entry(r, i, NULL, w, sizeof w);
@@ -185,7 +183,7 @@ static banyan_status read_entry(const reader *r, const cJSON *e, uint32_t i, ban
 
 static banyan_status read_trunk(const reader *r, const cJSON *tr, double trunk[6], banyan_error *err) {
     char w[300];
-    if (r->trunk < r->n) snprintf(w, sizeof w, "%s:%d: ", r->source, line_at(r->t, r->n, r->trunk));
+    if (r->trunk < r->n) snprintf(w, sizeof w, "%s:%d: ", r->source, preset_line_at(r->t, r->n, r->trunk));
     else snprintf(w, sizeof w, "%s: ", r->source);
     const cJSON *a = cJSON_GetObjectItemCaseSensitive(tr, "start"), *b = cJSON_GetObjectItemCaseSensitive(tr, "end");
     double v[6];
@@ -209,23 +207,10 @@ banyan_status banyan_segments_preset_read(const char *text, size_t length, const
     if (!source) source = "<preset>";
     if (!text || !count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s: text and count must not be NULL", source);
     if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s: out is NULL but cap = %u", source, cap);
-    if (length == 0) return banyan_fail(err, BANYAN_E_PARSE, "%s: the file is empty; a preset is a JSON object", source);
-    if (length > SEG_PRESET_MAX_BYTES)
-        return banyan_fail(err, BANYAN_E_PARSE, "%s: %zu bytes is over the %u-byte preset limit", source, length,
-                           SEG_PRESET_MAX_BYTES);
-    const char *end = NULL;
-    cJSON *j = cJSON_ParseWithLengthOpts(text, length, &end, 0);
-    if (!j) {
-        size_t off = end && end >= text ? (size_t)(end - text) : length;
-        return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: malformed JSON (truncated file or syntax error)", source,
-                           line_at(text, length, off));
-    }
-    banyan_status s = BANYAN_OK;
+    cJSON *j;
+    banyan_status s = preset_parse(text, length, source, &j, err);
+    if (s) return s;
     reader r = {text, length, source, length, length};
-    if (!cJSON_IsObject(j)) {
-        s = banyan_fail(err, BANYAN_E_TYPE, "%s:1: a preset must be a JSON object", source);
-        goto done;
-    }
     size_t k = key_offset(text, length, 0, "segments");
     if (k < length) r.list = value_after_key(text, length, k);
     k = key_offset(text, length, 0, "trunk");
@@ -234,7 +219,7 @@ banyan_status banyan_segments_preset_read(const char *text, size_t length, const
     if (gen && (!cJSON_IsString(gen) || strcmp(gen->valuestring, "segments") != 0)) {
         k = key_offset(text, length, 0, "generator");
         s = banyan_fail(err, BANYAN_E_TYPE, "%s:%d: generator must be \"segments\" for a segment list", source,
-                        line_at(text, length, k));
+                        preset_line_at(text, length, k));
         goto done;
     }
     const cJSON *tr = cJSON_GetObjectItemCaseSensitive(j, "trunk");
@@ -246,13 +231,13 @@ banyan_status banyan_segments_preset_read(const char *text, size_t length, const
     if (!list) goto done;
     if (!cJSON_IsArray(list)) {
         s = banyan_fail(err, BANYAN_E_TYPE, "%s:%d: segments must be an array of segment objects", source,
-                        line_at(text, length, r.list));
+                        preset_line_at(text, length, r.list));
         goto done;
     }
     uint32_t n = (uint32_t)cJSON_GetArraySize(list);
     if (n > BANYAN_SEGMENTS_MAX_COUNT) {
         s = banyan_fail(err, BANYAN_E_RANGE, "%s:%d: %u segments is more than the %u allowed", source,
-                        line_at(text, length, r.list), n, BANYAN_SEGMENTS_MAX_COUNT);
+                        preset_line_at(text, length, r.list), n, BANYAN_SEGMENTS_MAX_COUNT);
         goto done;
     }
     if (!out && cap == 0) {
@@ -262,7 +247,7 @@ banyan_status banyan_segments_preset_read(const char *text, size_t length, const
     } else {
         if (n > cap) {
             s = banyan_fail(err, BANYAN_E_RANGE, "%s:%d: %u segments is more than cap = %u", source,
-                            line_at(text, length, r.list), n, cap);
+                            preset_line_at(text, length, r.list), n, cap);
             goto done;
         }
         uint32_t i = 0;

@@ -95,7 +95,10 @@ BANYAN_API size_t banyan_sizeof_roots_stats(void);
  * the skeleton (skel_tag = root kind). Refuses bad parameters
  * (BANYAN_E_RANGE), no hosts (BANYAN_E_NO_HOSTS), bad boxes
  * (BANYAN_E_BAD_HOST), G inside a host or below the ground
- * (BANYAN_E_START_INSIDE) and meshes beyond max_vertices (BANYAN_E_LIMIT). */
+ * (BANYAN_E_START_INSIDE), G so far from every host that no root could
+ * reach one (BANYAN_E_START_FAR: farther than start_radius + (growth_points
+ * - 1) * moves * hypot(forward_max, lateral) units + 4 r) and meshes beyond
+ * max_vertices (BANYAN_E_LIMIT). */
 BANYAN_API banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts,
                                                uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
 /* The same, also filling *stats when stats != NULL (zeroed on failure). */

@@ -1,0 +1,167 @@
+/* test_limits.c - vertex limits refuse before large buffers exist (issue
+ * 8, "Memory"). The test links with -Wl,--wrap for malloc, calloc and
+ * realloc (tests/CMakeLists.txt), so every allocation the library's
+ * objects make passes the counters below: a generation that would pass
+ * max_vertices must fail with BANYAN_E_LIMIT, return no mesh, and never
+ * ask for a block larger than a few megabytes - although the mesh it was
+ * asked for would take gigabytes. Successful generations are measured too,
+ * to show the counters see the mesh when there is one. Leaks on these
+ * paths are LeakSanitizer's job (the ASan build) and valgrind's
+ * (docs/reliability.md). */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "banyan.h"
+#include "check.h"
+
+/* The counters: the largest single request and the sum of requests. */
+static size_t alloc_largest;
+static unsigned long long alloc_total;
+
+void *__real_malloc(size_t n);
+void *__real_calloc(size_t n, size_t m);
+void *__real_realloc(void *p, size_t n);
+void *__wrap_malloc(size_t n);
+void *__wrap_calloc(size_t n, size_t m);
+void *__wrap_realloc(void *p, size_t n);
+
+static void count(size_t n) {
+    if (n > alloc_largest) alloc_largest = n;
+    alloc_total += n;
+}
+void *__wrap_malloc(size_t n) {
+    count(n);
+    return __real_malloc(n);
+}
+void *__wrap_calloc(size_t n, size_t m) {
+    count(m && n > SIZE_MAX / m ? SIZE_MAX : n * m);
+    return __real_calloc(n, m);
+}
+void *__wrap_realloc(void *p, size_t n) {
+    count(n);
+    return __real_realloc(p, n);
+}
+
+static void reset(void) {
+    alloc_largest = 0;
+    alloc_total = 0;
+}
+
+#define MB (1024.0 * 1024.0)
+/* A refusal may allocate its bookkeeping (hosts, per-tree params, the
+ * skeleton it grows to count), never the mesh. */
+#define REFUSAL_LARGEST (8u << 20)
+
+/* One refused generation: status, NULL out, allocations small. The
+ * `wanted` text says what the mesh would have needed. */
+static void refused(const char *what, banyan_status s, const banyan_mesh *m, const banyan_error *e) {
+    CHECK(s == BANYAN_E_LIMIT, "%s: got %s: %s", what, banyan_status_name(s), e->message);
+    CHECK(m == NULL, "%s: out is not NULL", what);
+    CHECK(alloc_largest < REFUSAL_LARGEST, "%s: largest allocation %.1f MB before refusing", what,
+          alloc_largest / MB);
+    printf("%-58s refused, largest allocation %8.3f MB, %8.3f MB in all\n", what, alloc_largest / MB,
+           (double)alloc_total / MB);
+}
+
+int main(void) {
+    banyan_error e;
+    banyan_mesh *m;
+    banyan_box trunk = banyan_box_make(0, 0, 1, 0.3, 0.3, 1), wall = banyan_box_make(0, 0.1, 1.5, 1.5, 0.1, 1.5);
+
+    /* The counters work: a real tree allocates its mesh. */
+    banyan_keyaki_params kp;
+    banyan_keyaki_params_init(&kp);
+    kp.leaf_density = 60; /* a mesh far larger than the skeleton */
+    reset();
+    m = NULL;
+    banyan_status s = banyan_keyaki_generate(&kp, &m, &e);
+    CHECK(s == BANYAN_OK && m, "keyaki: %s", e.message);
+    size_t positions = m ? sizeof(float) * 3 * (size_t)m->vertex_count : 0;
+    CHECK(m && alloc_largest >= positions, "the counters see the mesh: largest %zu < positions %zu", alloc_largest,
+          positions);
+    printf("%-58s ok, %u vertices, largest allocation %.3f MB\n", "keyaki, leaf_density 60", m ? m->vertex_count : 0,
+           alloc_largest / MB);
+    banyan_mesh_free(m);
+
+    /* Roots: about 1.2e9 vertices asked for, refused from the estimate,
+     * under the default cap and under the largest cap. */
+    banyan_roots_params rp;
+    banyan_roots_params_init(&rp);
+    rp.growth_points = 10000, rp.main_roots = 64, rp.sides = 256;
+    int32_t caps[2] = {4000000, 1 << 30};
+    for (int k = 0; k < 2; k++) {
+        rp.max_vertices = caps[k];
+        reset();
+        m = NULL;
+        s = banyan_roots_generate(&rp, &trunk, 1, &m, &e);
+        refused(k ? "roots 64 x 10000 points x 256 sides, max 2^30" : "roots 64 x 10000 points x 256 sides, max 4e6",
+                s, m, &e);
+    }
+
+    /* Keyaki: the skeleton is grown to count, the mesh is not made. */
+    banyan_keyaki_params_init(&kp);
+    kp.max_vertices = 1000;
+    reset();
+    m = NULL;
+    s = banyan_keyaki_generate(&kp, &m, &e);
+    refused("keyaki default tree, max_vertices 1000", s, m, &e);
+    banyan_keyaki_params_init(&kp);
+    kp.model = BANYAN_KEYAKI_SIMPLE, kp.levels = 30, kp.max_nodes = 1 << 24;
+    reset();
+    m = NULL;
+    s = banyan_keyaki_generate(&kp, &m, &e);
+    refused("keyaki simple, 30 levels (2^31 branches)", s, m, &e);
+
+    /* Avenue: 10,000 trees, stops counting once max_vertices is passed. */
+    banyan_avenue_params ap;
+    banyan_avenue_params_init(&ap);
+    ap.placement = BANYAN_AVENUE_COUNT, ap.count = 5000, ap.max_vertices = 1000;
+    reset();
+    m = NULL;
+    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
+    refused("avenue 2 x 5000 trees, max_vertices 1000", s, m, &e);
+    CHECK(strstr(e.message, "counted before stopping") != NULL, "the avenue stopped counting early: %s", e.message);
+    ap.max_vertices = 1000000;
+    reset();
+    m = NULL;
+    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
+    refused("avenue 2 x 5000 trees, max_vertices 1e6", s, m, &e);
+
+    /* Ivy: 100,000 steps with a small cap stops growing early. */
+    banyan_ivy_params ip;
+    banyan_ivy_params_init(&ip);
+    ip.steps = BANYAN_IVY_MAX_STEPS, ip.max_vertices = 50000, ip.t0 = 1e6;
+    reset();
+    m = NULL;
+    s = banyan_ivy_generate(&ip, &wall, 1, &m, &e);
+    refused("ivy 100000 steps, max_vertices 50000", s, m, &e);
+
+    /* Segments: 131,072 segments of 64 lines, each a 64-sided tube. */
+    uint32_t n = 1u << 17;
+    banyan_segment_input *segs = malloc(sizeof *segs * n);
+    for (uint32_t i = 0; i < n; i++) segs[i] = (banyan_segment_input){{0, 0, 0.001 * i}, {1, 0, 1}, 1.0, 20, 3};
+    banyan_segments_params sp;
+    banyan_segments_params_init(&sp);
+    sp.max_vertices = 1 << 30;
+    sp.sides = 64;
+    reset();
+    m = NULL;
+    s = banyan_segments_generate(&sp, segs, n, NULL, &m, NULL, NULL, &e);
+    refused("segments 2^17 x 64 lines x 64 sides, max_vertices 2^30", s, m, &e);
+    free(segs);
+
+    /* The tube demo: 1e6 points x 257 vertices. */
+    double *pts = malloc(sizeof(double) * 3 * 1000000), *radii = malloc(sizeof(double) * 1000000);
+    for (int i = 0; i < 1000000; i++) {
+        pts[3 * i] = 0, pts[3 * i + 1] = 0, pts[3 * i + 2] = 0.01 * i;
+        radii[i] = 0.1;
+    }
+    reset();
+    m = NULL;
+    s = banyan_tube_generate(pts, radii, 1000000, 256, 1, &m, &e);
+    refused("tube 1e6 points x 256 sides", s, m, &e);
+    free(pts);
+    free(radii);
+    return check_done("test_limits");
+}

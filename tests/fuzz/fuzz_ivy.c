@@ -1,0 +1,77 @@
+/* fuzz_ivy.c - libFuzzer harness for ivy: bytes -> ivy params and hosts.
+ * Without control records: banyan_ivy_generate. With them: the stepping
+ * calls - create, then for each control byte c step c % 64 steps and, when
+ * c >= 128, mesh in between - then the mesh must equal a one-shot
+ * generation of as many steps - then free. Kept small: steps at most 80,
+ * max_buds at most 5,000, candidates at most 16, max_vertices at most
+ * 50,000. */
+#include "fuzz_common.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    fz_input in;
+    fz_read(BANYAN_GEN_IVY, &p, data, size, &in);
+    p.steps = fz_clamp_i32(p.steps, 80);
+    p.max_buds = fz_clamp_i32(p.max_buds, 5000);
+    p.candidates = fz_clamp_i32(p.candidates, 16);
+    p.max_vertices = fz_clamp_i32(p.max_vertices, 50000);
+    if (in.n_hosts == 0) {
+        in.hosts[0] = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5); /* the CLI's wall */
+        in.n_hosts = 1;
+    }
+    uint32_t max_v = (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0);
+    banyan_error e;
+    memset(&e, 0, sizeof e);
+    if (in.n_control == 0) {
+        banyan_mesh *m = (banyan_mesh *)&p;
+        banyan_status s = banyan_ivy_generate(&p, in.hosts, in.n_hosts, &m, &e);
+        fz_check(s, &e, m, max_v);
+        return 0;
+    }
+    banyan_ivy *iv = (banyan_ivy *)&p;
+    banyan_status s = banyan_ivy_create(&p, in.hosts, in.n_hosts, &iv, &e);
+    if (s) {
+        fz_check_failure(s, &e, iv);
+        return 0;
+    }
+    int32_t grown = 0;
+    int limited = 0;
+    for (int k = 0; k < in.n_control; k++) {
+        int32_t n = in.control[k] % 64;
+        s = banyan_ivy_step(iv, n, &e);
+        if (s) {
+            FZ_ASSERT(s == BANYAN_E_LIMIT || s == BANYAN_E_NOMEM, "step: %s", e.message);
+            limited = 1;
+            break;
+        }
+        grown += n;
+        banyan_ivy_stats st;
+        s = banyan_ivy_get_stats(iv, &st, &e);
+        FZ_ASSERT(s == BANYAN_OK, "stats: %s", e.message);
+        FZ_ASSERT(st.steps == grown && st.buds >= 1, "stats: %d steps of %d, %d buds", st.steps, grown, st.buds);
+        if (in.control[k] >= 128) {
+            banyan_mesh *m = (banyan_mesh *)&p;
+            s = banyan_ivy_mesh(iv, &m, &e);
+            FZ_ASSERT(s == BANYAN_OK || s == BANYAN_E_LIMIT, "mesh: %s", e.message);
+            fz_check(s, &e, m, max_v);
+        }
+    }
+    /* Growing in pieces gives the plant grown at once (banyan/ivy.h). */
+    if (!limited) {
+        banyan_mesh *a = NULL, *b = NULL;
+        banyan_status sa = banyan_ivy_mesh(iv, &a, &e);
+        banyan_ivy_params once = p;
+        once.steps = grown;
+        banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &e);
+        FZ_ASSERT(sa == sb, "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
+        if (sa == BANYAN_OK)
+            FZ_ASSERT(banyan_mesh_hash(a) == banyan_mesh_hash(b), "%d steps in pieces differ from one shot", grown);
+        banyan_mesh_free(a);
+        banyan_mesh_free(b);
+    }
+    banyan_ivy_free(iv);
+    return 0;
+}

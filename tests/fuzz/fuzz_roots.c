@@ -1,0 +1,34 @@
+/* fuzz_roots.c - libFuzzer harness: bytes -> roots params (through the
+ * parameter table) and hosts -> banyan_roots_generate_stats -> free.
+ * Generation is kept small - max_vertices at most 50,000, moves at most
+ * 5, growth_points at most 200 - since time, not memory, is the fuzzer's
+ * budget; the code paths are the same as for large nets. */
+#include "fuzz_common.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    banyan_roots_params p;
+    banyan_roots_params_init(&p);
+    fz_input in;
+    fz_read(BANYAN_GEN_ROOTS, &p, data, size, &in);
+    p.max_vertices = fz_clamp_i32(p.max_vertices, 50000);
+    p.moves = fz_clamp_i32(p.moves, 5);
+    p.growth_points = fz_clamp_i32(p.growth_points, 200);
+    if (in.n_hosts == 0 && !(in.n_control && in.control[0] & 1)) {
+        in.hosts[0] = banyan_box_make(0, 0, 1, 0.3, 0.3, 1); /* a trunk, unless the input wants none */
+        in.n_hosts = 1;
+    }
+    banyan_mesh *m = (banyan_mesh *)&p; /* non-NULL: the call must clear it */
+    banyan_roots_stats st;
+    banyan_error e;
+    memset(&e, 0, sizeof e);
+    banyan_status s = banyan_roots_generate_stats(&p, in.hosts, in.n_hosts, &m, &st, &e);
+    if (s == BANYAN_OK) {
+        FZ_ASSERT(st.vertices == m->vertex_count, "stats %u vertices, mesh %u", st.vertices, m->vertex_count);
+    } else {
+        FZ_ASSERT(st.vertices == 0, "stats not zeroed on failure");
+    }
+    fz_check(s, &e, m, (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0));
+    return 0;
+}
