@@ -29,15 +29,14 @@ static inline double bench_median(double *v, int n) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* Median bytes per second of a plain store loop over a 256 MiB buffer
- * (past every cache), best of a few passes. */
-static inline double bench_memory_write_bandwidth(void) {
+/* Bytes per second of `runs` passes of a plain store loop over a 256 MiB
+ * buffer (past every cache) into rates[0..runs-1]; 0 if out of memory. */
+static inline int bench_memory_write_rates(double *rates, int runs) {
     size_t n = (size_t)256 << 20;
     float *buf = malloc(n);
     if (!buf) return 0;
     memset(buf, 1, n); /* fault the pages in first */
-    double rates[5];
-    for (int r = 0; r < 5; r++) {
+    for (int r = 0; r < runs; r++) {
         double t0 = bench_now();
         size_t count = n / sizeof(float);
         for (size_t i = 0; i < count; i++) buf[i] = (float)(i & 1023);
@@ -47,7 +46,13 @@ static inline double bench_memory_write_bandwidth(void) {
     volatile float sink = buf[12345];
     (void)sink;
     free(buf);
-    return bench_median(rates, 5);
+    return runs;
+}
+
+/* Median of five passes of bench_memory_write_rates. */
+static inline double bench_memory_write_bandwidth(void) {
+    double rates[5];
+    return bench_memory_write_rates(rates, 5) ? bench_median(rates, 5) : 0;
 }
 
 /* Bytes one mesh triangle costs as output when vertices are shared by a
