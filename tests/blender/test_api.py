@@ -41,6 +41,11 @@ def test_api(gen):
     bt.check(all(o.name in bpy.context.scene.objects for o in objs), "%s: objects are in the scene" % gen)
     bt.check({o.name for o in bpy.data.objects} - before == {o.name for o in objs}, "%s: only those objects added" % gen)
     bt.check(all(len(o.data.vertices) > 0 for o in objs), "%s: non-empty meshes" % gen)
+    for o in objs:  # every material slot drawn by some polygon, none beyond the slots
+        me = o.data
+        used = {p.material_index for p in me.polygons}
+        bt.check(used == set(range(len(me.materials))), "%s: %s uses material slots %s of %d" % (
+            gen, o.name, sorted(used), len(me.materials)))
     # An error through the API: BanyanError, scene unchanged.
     state = bt.scene_state()
     key, value = gens.bad_double(gen)
