@@ -330,9 +330,13 @@ def machine():
 
 
 def git_rev():
+    """HEAD, with "+changes" when tracked files other than OUT differ from it."""
+    def git(*a):
+        return subprocess.run(["git", "-C", SRC] + list(a), capture_output=True, text=True, check=True).stdout
     try:
-        return subprocess.run(["git", "-C", SRC, "describe", "--always", "--dirty"], capture_output=True, text=True,
-                              check=True).stdout.strip()
+        out = os.path.relpath(OUT, SRC)
+        changed = [l for l in git("status", "--porcelain", "--untracked-files=no").splitlines() if l[3:] != out]
+        return git("rev-parse", "--short", "HEAD").strip() + (" +changes" if changed else "")
     except (OSError, subprocess.CalledProcessError):
         return "?"
 
