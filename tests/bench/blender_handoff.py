@@ -15,6 +15,8 @@ The boulevard runs twice: one object per tree (100 objects, each with
 Blender's per-object cost) and merged into one object, the case that
 compares like with like.
 
+bare() and clear_generated() are imported by tests/bench/peers/peers.py.
+
 Run (the runner's environment):
   BANYAN_LIB=build/libbanyan.so BLENDER_USER_SCRIPTS=<dir with addons/banyan> \
     blender -b --factory-startup --addons banyan --python tests/bench/blender_handoff.py [-- runs]
@@ -45,6 +47,9 @@ def clear_generated(keep):
     for m in list(bpy.data.materials):
         if m.users == 0:
             bpy.data.materials.remove(m)
+    for c in list(bpy.data.curves):  # peers.py: what IvyGen and Sapling leave
+        if c.users == 0:
+            bpy.data.curves.remove(c)
     for c in list(bpy.data.collections):
         if c.name.startswith("Keyaki Avenue"):
             bpy.data.collections.remove(c)
@@ -158,4 +163,5 @@ def main():
         sys.stdout.flush()
 
 
-main()
+if __name__ == "__main__":  # tests/bench/peers/peers.py imports bare()
+    main()

@@ -50,6 +50,11 @@ def test_api(gen):
             linked = bsdf.inputs["Base Color"].is_linked
             bt.check(linked == (white and bool(o.data.color_attributes)),
                      "%s: material %s base colour linked to vertex colours: %s" % (gen, m.name, linked))
+    for o in objs:  # every material slot drawn by some polygon, none beyond the slots
+        me = o.data
+        used = {p.material_index for p in me.polygons}
+        bt.check(used == set(range(len(me.materials))), "%s: %s uses material slots %s of %d" % (
+            gen, o.name, sorted(used), len(me.materials)))
     # An error through the API: BanyanError, scene unchanged.
     state = bt.scene_state()
     key, value = gens.bad_double(gen)

@@ -1,0 +1,195 @@
+/* bench_tube: triangles per second of the shared tube sweeper (tube.h)
+ * against this machine's memory write bandwidth, measured in the same run
+ * by a plain store loop (bench.h), into touched memory and into fresh
+ * memory (page faults included). The sweeper cannot beat the store loop:
+ * every triangle it emits is 12 bytes of indices plus its share of
+ * vertices (32 bytes each: position, normal, uv). The bound in triangles
+ * per second is bandwidth / (bytes the workload writes per triangle).
+ *
+ * Workloads, 8 sides, no caps:
+ *   branches  4,000 short tapered tubes of 24 points (a tree's worth)
+ *   long      one tube of 200,000 points
+ * and three ways of running them:
+ *   reused    tube_sweep into a builder whose arrays are already allocated
+ *             and touched (what the store loop gets: no page faults)
+ *   fresh     mb_init + tube_sweep + mb_finish: new output memory each run,
+ *             page faults included (a one-shot generate call)
+ *   api       banyan_tube_generate (long only): validation, fresh memory,
+ *             skeleton
+ * Each figure is the median of `runs` runs with min and max; each run
+ * measures the store loops and every case once, so that on a shared
+ * machine the sweeper and its bound see the same load.
+ *   bench_tube [runs]      (default 7)
+ * The last line, "JSON {...}", is for tests/bench/peers/peers.py. */
+#include "bench.h"
+
+#include <math.h>
+
+#include "banyan.h"
+#include "core/tube.h"
+
+#define SIDES 8
+
+typedef struct workload {
+    const char *name;
+    uint32_t tubes, points; /* points per tube */
+    v3 *pts;                /* tubes * points */
+    double *radii;
+} workload;
+
+/* Gently curving tapered polylines; tube k starts at a point of a grid. */
+static void workload_make(workload *w, const char *name, uint32_t tubes, uint32_t points) {
+    w->name = name;
+    w->tubes = tubes;
+    w->points = points;
+    w->pts = malloc(sizeof(v3) * tubes * points);
+    w->radii = malloc(sizeof(double) * tubes * points);
+    for (uint32_t k = 0; k < tubes; k++) {
+        double x0 = (k % 64) * 0.5, y0 = (k / 64) * 0.5;
+        for (uint32_t i = 0; i < points; i++) {
+            double t = i * 0.05;
+            w->pts[k * points + i] = v3_make(x0 + 0.1 * sin(t + k), y0 + 0.1 * cos(0.7 * t + k), t);
+            w->radii[k * points + i] = 0.05 * (1.0 - 0.5 * i / points);
+        }
+    }
+}
+
+static void sweep_all(mesh_builder *mb, const workload *w) {
+    tube_opts o = {SIDES, 0, 0, {0, 0, 0}, 0.0, NULL};
+    for (uint32_t k = 0; k < w->tubes; k++)
+        tube_sweep(mb, w->pts + (size_t)k * w->points, w->radii + (size_t)k * w->points, w->points, &o);
+}
+
+typedef struct figure {
+    double med, min, max; /* seconds */
+} figure;
+
+static figure summarise(double *t, int runs) {
+    figure f;
+    f.med = bench_median(t, runs); /* sorts t */
+    f.min = t[0];
+    f.max = t[runs - 1];
+    return f;
+}
+
+/* One sweep of w into mb, whose arrays earlier sweeps allocated and touched. */
+static double reused_once(mesh_builder *mb, const workload *w) {
+    mb->nv = mb->ni = 0;
+    double t0 = bench_now();
+    sweep_all(mb, w);
+    return bench_now() - t0;
+}
+
+/* mb_init + the sweeps + mb_finish: new output memory. */
+static double fresh_once(const workload *w) {
+    mesh_builder mb;
+    banyan_mesh *m = NULL;
+    banyan_error err;
+    double t0 = bench_now();
+    mb_init(&mb, MB_VERTEX_CEILING, 0);
+    sweep_all(&mb, w);
+    banyan_status s = mb_finish(&mb, &m, &err);
+    double t = bench_now() - t0;
+    if (s) fprintf(stderr, "bench_tube: %s\n", err.message);
+    banyan_mesh_free(m);
+    return t;
+}
+
+/* banyan_tube_generate on a single-tube workload (flat: its points as doubles). */
+static double api_once(const workload *w, const double *flat) {
+    banyan_mesh *m = NULL;
+    banyan_error err;
+    double t0 = bench_now();
+    banyan_status s = banyan_tube_generate(flat, w->radii, w->points, SIDES, 0, &m, &err);
+    double t = bench_now() - t0;
+    if (s) fprintf(stderr, "bench_tube: %s\n", err.message);
+    banyan_mesh_free(m);
+    return t;
+}
+
+enum { N_CASES = 5 }; /* branches reused, fresh; long reused, fresh, api */
+
+int main(int argc, char **argv) {
+    int runs = argc > 1 ? atoi(argv[1]) : 7;
+    if (runs < 5) runs = 5;
+    workload ws[2];
+    workload_make(&ws[0], "branches", 4000, 24);
+    workload_make(&ws[1], "long", 1, 200000);
+    double *flat = malloc(sizeof(double) * 3 * ws[1].points);
+    for (uint32_t i = 0; i < ws[1].points; i++) {
+        flat[3 * i] = ws[1].pts[i].x;
+        flat[3 * i + 1] = ws[1].pts[i].y;
+        flat[3 * i + 2] = ws[1].pts[i].z;
+    }
+    mesh_builder mb[2];
+    uint32_t nv[2], ni[2];
+    for (int k = 0; k < 2; k++) {
+        mb_init(&mb[k], MB_VERTEX_CEILING, 0);
+        sweep_all(&mb[k], &ws[k]); /* allocates and touches the arrays */
+        nv[k] = mb[k].nv;
+        ni[k] = mb[k].ni;
+    }
+
+    /* Run r measures everything once, store loops first, so that the
+     * sweeper and its bound see the same load on a shared machine. */
+    double *t = malloc(sizeof(double) * (size_t)runs * (N_CASES + 2));
+    double *bw_t = t, *bwf_t = t + runs, *ct = t + 2 * runs; /* ct[c * runs + r] */
+    for (int r = 0; r < runs; r++) {
+        bench_memory_write_rates(&bw_t[r], 1, 0);
+        bench_memory_write_rates(&bwf_t[r], 1, 1);
+        ct[0 * runs + r] = reused_once(&mb[0], &ws[0]);
+        ct[1 * runs + r] = fresh_once(&ws[0]);
+        ct[2 * runs + r] = reused_once(&mb[1], &ws[1]);
+        ct[3 * runs + r] = fresh_once(&ws[1]);
+        ct[4 * runs + r] = api_once(&ws[1], flat);
+    }
+    for (int k = 0; k < 2; k++) {
+        if (mb[k].status) fprintf(stderr, "bench_tube: builder status %d\n", (int)mb[k].status);
+        mb_free(&mb[k]);
+    }
+    free(flat);
+
+    figure bw = summarise(bw_t, runs); /* bytes per second, not seconds */
+    figure bwf = summarise(bwf_t, runs);
+    printf("bench_tube: %d runs per figure (median [min .. max]), 1 thread, %d sides\n", runs, SIDES);
+    printf("  store loop, 256 MiB:  %.2f GB/s [%.2f .. %.2f] touched memory, %.2f GB/s [%.2f .. %.2f] fresh\n",
+           bw.med / 1e9, bw.min / 1e9, bw.max / 1e9, bwf.med / 1e9, bwf.min / 1e9, bwf.max / 1e9);
+    char json[4096];
+    int len = snprintf(json, sizeof json, "{\"runs\": %d, \"sides\": %d, \"store_bytes_per_s\": [%.6g, %.6g, %.6g], "
+                       "\"fresh_store_bytes_per_s\": [%.6g, %.6g, %.6g], \"cases\": [", runs, SIDES, bw.med, bw.min,
+                       bw.max, bwf.med, bwf.min, bwf.max);
+    const char *how[N_CASES] = {"reused", "fresh", "reused", "fresh", "api"};
+    const int which[N_CASES] = {0, 0, 1, 1, 1};
+    for (int c = 0; c < N_CASES; c++) {
+        int k = which[c];
+        const workload *w = &ws[k];
+        figure f = summarise(ct + c * runs, runs);
+        double tris = ni[k] / 3.0;
+        double bytes = (double)nv[k] * 32 + (double)ni[k] * 4; /* pos + nrm + uv, indices */
+        double bound = bw.med / (bytes / tris);                /* tris/s the store loop allows */
+        double bound_fresh = bwf.med / (bytes / tris);         /* the same into fresh memory */
+        if (c == 0 || which[c - 1] != k)
+            printf("  %s: %u tubes x %u points, %u vertices, %.0f triangles, %.1f bytes per triangle, "
+                   "bound %.1f M tris/s (%.1f into fresh memory)\n", w->name, w->tubes, w->points, nv[k], tris,
+                   bytes / tris, bound / 1e6, bound_fresh / 1e6);
+        printf("    %-7s %.2f ms [%.2f .. %.2f], %.1f M tris/s, %.1f%% of the bound", how[c], f.med * 1e3,
+               f.min * 1e3, f.max * 1e3, tris / f.med / 1e6, 100.0 * tris / f.med / bound);
+        if (strcmp(how[c], "reused")) printf(", %.1f%% of the fresh-memory bound", 100.0 * tris / f.med / bound_fresh);
+        printf("\n");
+        len += snprintf(json + len, sizeof json - (size_t)len,
+                        "%s{\"workload\": \"%s\", \"how\": \"%s\", \"tubes\": %u, \"points\": %u, "
+                        "\"vertices\": %u, \"triangles\": %.0f, \"bytes_per_triangle\": %.4g, "
+                        "\"bound_tris_per_s\": %.6g, \"bound_fresh_tris_per_s\": %.6g, "
+                        "\"seconds\": [%.6g, %.6g, %.6g]}",
+                        c ? ", " : "", w->name, how[c], w->tubes, w->points, nv[k], tris, bytes / tris, bound,
+                        bound_fresh, f.med, f.min, f.max);
+    }
+    for (int k = 0; k < 2; k++) {
+        free(ws[k].pts);
+        free(ws[k].radii);
+    }
+    snprintf(json + len, sizeof json - (size_t)len, "]}");
+    printf("JSON %s\n", json);
+    free(t);
+    return 0;
+}

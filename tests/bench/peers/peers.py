@@ -1,0 +1,555 @@
+"""Issue 9: banyan against the peers a Blender user would pick instead,
+in one Blender process, on one machine, ratios from the same run:
+
+  1. ivy      banyan's ivy_wall preset vs IvyGen (add_curve_ivygen) on the
+              same 3 m x 3 m wall: IvyGen's defaults, then maxIvyLength
+              matched to banyan's total stem length and to its triangles
+  2. tree     banyan's keyaki_mature vs Sapling (add_curve_sapling): its
+              default tree (bevel on) and levels 4 with leaves
+  3. roots    banyan's roots against Blender's bare foreach_set of the same
+              arrays (tests/bench/blender_handoff.py's bare())
+  4. memory   build/tests/bench_tube: the tube sweeper against a store loop
+
+Every time is the median of RUNS runs with min and max; banyan and the
+peer alternate within each run so both see the same machine load. Writes
+docs/benchmarks.md (rewritten each time). Not run by CI.
+
+Run: tests/bench/peers/run.sh [build_dir] [runs]   (sets BANYAN_LIB and
+BLENDER_USER_SCRIPTS, builds bench_tube, then runs
+  blender -b --factory-startup --python tests/bench/peers/peers.py -- runs)
+"""
+import contextlib
+import datetime
+import io
+import json
+import math
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+import addon_utils
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SRC = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
+ARGS = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+RUNS = max(5, int(ARGS[0])) if ARGS else 5
+BUILD = os.environ.get("BANYAN_BUILD_DIR") or os.path.dirname(os.environ.get("BANYAN_LIB", SRC + "/build/x"))
+OUT = os.environ.get("BANYAN_BENCH_OUT", os.path.join(SRC, "docs", "benchmarks.md"))
+
+for mod in ("banyan", "add_curve_ivygen", "add_curve_sapling"):
+    if not addon_utils.enable(mod, default_set=True):
+        sys.exit("peers.py: cannot enable the add-on %s" % mod)
+
+sys.path.insert(0, os.path.dirname(HERE))
+import blender_handoff as HO  # noqa: E402  bare() and clear_generated()
+from banyan import api as B  # noqa: E402
+from banyan import hosts as H  # noqa: E402
+from banyan.core import generators as G  # noqa: E402
+
+WALL_CURSOR = (0.0, 0.0, 0.05)  # the ivy_wall preset's start: bottom centre of the wall face
+LEAF_CARD_TRIS = {"ivy": 12, "keyaki": 2}  # csrc/ivy/mesh.c LEAF_OUTLINE; keyaki's quads
+SAPLING_LEAF_VERTS = 6  # 'hex' leaves (utils.py leafVertSize)
+CHEAP_REPEAT = 3  # banyan's millisecond cases (roots, keyaki) take 3x the runs: their medians are noisier
+
+
+# ------------------------------------------------------------------ helpers
+class Series:
+    """Times of one measured thing; med/min/max in seconds."""
+
+    def __init__(self):
+        self.t = []
+
+    def time(self, fn, *a, **kw):
+        t0 = time.perf_counter()
+        r = fn(*a, **kw)
+        self.t.append(time.perf_counter() - t0)
+        return r
+
+    @property
+    def med(self):
+        return statistics.median(self.t)
+
+    def fmt(self, scale=1.0, unit="s", digits=3):
+        return "%.*f %s [%.*f .. %.*f]" % (digits, self.med * scale, unit, digits, min(self.t) * scale,
+                                           digits, max(self.t) * scale)
+
+
+def quiet(fn, *a, **kw):
+    """Runs fn with the peers' progress prints swallowed."""
+    with contextlib.redirect_stdout(io.StringIO()):
+        return fn(*a, **kw)
+
+
+def keep_names():
+    return {o.name for o in bpy.data.objects}
+
+
+def select_only(obj):
+    for o in bpy.context.view_layer.objects:
+        o.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+
+
+def convert_to_mesh(obj):
+    """What a user does to get a mesh from the peers' curves."""
+    select_only(obj)
+    r = bpy.ops.object.convert(target='MESH')
+    assert r == {'FINISHED'}, r
+
+
+def mesh_counts(objs):
+    """(vertices, triangles) of mesh objects."""
+    v = t = 0
+    for o in objs:
+        me = o.data
+        me.calc_loop_triangles()
+        v += len(me.vertices)
+        t += len(me.loop_triangles)
+    return v, t
+
+
+def curve_length(cu):
+    return sum(s.calc_length() for s in cu.splines)
+
+
+def skeleton_length(d):
+    """Total branch / stem length: the sum of the skeleton's edge lengths."""
+    p, e = d.skel_points, d.skel_edges
+    return sum(math.dist(p[3 * e[k]:3 * e[k] + 3], p[3 * e[k + 1]:3 * e[k + 1] + 3]) for k in range(0, len(e), 2))
+
+
+def part_tris(d, material):
+    return sum(p["index_count"] for p in d.parts if p["material"] == material) // 3
+
+
+def new_objects(keep):
+    return [o for o in bpy.data.objects if o.name not in keep]
+
+
+def wall():
+    """The default cube as the CLI's default wall: 3 x 0.2 x 3 m, face at y = 0."""
+    cube = bpy.data.objects["Cube"]
+    cube.location = (0.0, 0.1, 1.5)
+    cube.scale = (1.5, 0.1, 1.5)
+    bpy.context.view_layer.update()
+    return cube
+
+
+# -------------------------------------------------------------------- peers
+class PeerRun:
+    """One peer configuration: operator time, conversion time, figures."""
+
+    def __init__(self, label, note):
+        self.label, self.note = label, note
+        self.op, self.conv, self.e2e = Series(), Series(), Series()
+        self.stem = self.leaves = self.verts = self.tris = 0
+
+
+def ivygen_once(run, host, max_length):
+    """IvyGen's operator on host from the cursor, then its curve to a mesh."""
+    keep = keep_names()
+    props = bpy.context.window_manager.ivy_gen_props
+    props.maxIvyLength = max_length
+    bpy.context.scene.cursor.location = WALL_CURSOR
+    select_only(host)
+    run.op.time(quiet, bpy.ops.curve.ivy_gen, updateIvy=True)
+    curve = bpy.data.objects["IVY_Curve"]
+    leaf = bpy.data.objects.get("IvyLeaf")
+    run.stem = curve_length(curve.data)
+    run.conv.time(convert_to_mesh, curve)
+    run.e2e.t.append(run.op.t[-1] + run.conv.t[-1])
+    run.leaves = len(leaf.data.polygons) if leaf else 0
+    run.verts, run.tris = mesh_counts(new_objects(keep))
+    HO.clear_generated(keep)
+
+
+def sapling_once(run, kw):
+    keep = keep_names()
+    run.op.time(quiet, bpy.ops.curve.tree_add, **kw)
+    made = new_objects(keep)
+    tree = next(o for o in made if o.type == 'CURVE')
+    run.stem = curve_length(tree.data)
+    run.conv.time(convert_to_mesh, tree)
+    run.e2e.t.append(run.op.t[-1] + run.conv.t[-1])
+    leaf = next((o for o in made if o.name.startswith("leaves")), None)
+    run.leaves = len(leaf.data.vertices) // SAPLING_LEAF_VERTS if leaf else 0
+    run.verts, run.tris = mesh_counts(new_objects(keep))
+    HO.clear_generated(keep)
+
+
+def match_ivygen(target, key, host, probes=7, tol=0.03):
+    """IvyGen's maxIvyLength whose `key` figure (stem or tris) is closest to
+    target. The figure grows monotonically with maxIvyLength (the same
+    seeded growth, stopped later); secant steps in log-log."""
+    seen = []
+
+    def probe(x):
+        r = PeerRun("probe", "")
+        ivygen_once(r, host, x)
+        seen.append((x, getattr(r, key)))
+
+    probe(3.0)
+    probe(5.0)
+    while len(seen) < probes:
+        seen.sort(key=lambda s: abs(math.log(s[1] / target)))
+        (xa, va), (xb, vb) = seen[0], seen[1]
+        if abs(va / target - 1) < tol or va == vb or xa == xb:
+            break
+        k = math.log(va / vb) / math.log(xa / xb)
+        probe(min(12.0, max(0.5, xa * (target / va) ** (1.0 / k))))
+    x, v = min(seen, key=lambda s: abs(math.log(s[1] / target)))
+    return round(x, 3), v
+
+
+# ------------------------------------------------------------------- banyan
+class BanyanRun:
+    """banyan's library call, growth (ivy), end to end via banyan.api, and
+    Blender's bare hand-off of the same arrays."""
+
+    def __init__(self, label):
+        self.label = label
+        self.lib, self.grow, self.e2e, self.bare, self.bare_full = Series(), Series(), Series(), Series(), Series()
+        self.d = None
+        self.stem = self.leaves = 0
+
+    def once(self, lib_call, api_call, grow_call=None):
+        keep = keep_names()
+        if grow_call:
+            self.grow.time(grow_call)
+        self.d = self.lib.time(lib_call)
+        self.bare.t.append(HO.bare(self.d))
+        self.bare_full.t.append(HO.bare(self.d, full=True))
+        self.e2e.time(api_call)
+        HO.clear_generated(keep)
+
+    @property
+    def verts(self):
+        return self.d.vertex_count
+
+    @property
+    def tris(self):
+        return self.d.triangle_count
+
+    def handoff(self, full=True):
+        return (self.e2e.med - self.lib.med) / (self.bare_full if full else self.bare).med
+
+
+def ivy_grow(p, boxes):
+    plant = G.IvyPlant(p, boxes)
+    plant.step(p.get("steps"))
+    plant.close()
+
+
+# ----------------------------------------------------------------- sections
+def section_ivy():
+    bpy.ops.wm.read_homefile(use_factory_startup=True)
+    host = wall()
+    boxes = H.boxes_from_objects([host])
+    p = B.make_params("ivy", preset="ivy_wall")
+    ban = BanyanRun("banyan ivy_wall (%d steps)" % p.get("steps"))
+    ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall"), lambda: ivy_grow(p, boxes))
+    ban.stem = skeleton_length(ban.d)
+    ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["ivy"]
+    x_stem, _ = match_ivygen(ban.stem, "stem", host)
+    x_tris, _ = match_ivygen(ban.tris, "tris", host)
+    peers = [(PeerRun("IvyGen defaults", "maxIvyLength 1.0"), 1.0),
+             (PeerRun("IvyGen, stem length matched", "maxIvyLength %.3g" % x_stem), x_stem),
+             (PeerRun("IvyGen, triangles matched", "maxIvyLength %.3g" % x_tris), x_tris)]
+    for r in range(RUNS):
+        if r:
+            ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall"),
+                     lambda: ivy_grow(p, boxes))
+        for run, x in peers:
+            ivygen_once(run, host, x)
+        print("ivy run %d/%d done" % (r + 1, RUNS), flush=True)
+    return ban, [r for r, _ in peers]
+
+
+def section_tree():
+    bpy.ops.wm.read_homefile(use_factory_startup=True)
+    p = B.make_params("keyaki", preset="keyaki_mature")
+    ban = BanyanRun("banyan keyaki_mature")
+    configs = [(PeerRun("Sapling default tree", "operator defaults (levels 3, no leaves) + bevel"),
+                dict(bevel=True)),
+               (PeerRun("Sapling levels 4, leaves", "defaults + bevel, levels 4, leaves (25, hex)"),
+                dict(bevel=True, levels=4, showLeaves=True))]
+    for r in range(RUNS):
+        for _ in range(CHEAP_REPEAT):
+            ban.once(lambda: G.keyaki(p), lambda: B.keyaki_tree(preset="keyaki_mature"))
+        for run, kw in configs:
+            sapling_once(run, kw)
+    ban.stem = skeleton_length(ban.d)
+    ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["keyaki"]
+    return ban, [r for r, _ in configs]
+
+
+def section_roots():
+    out = []
+    for label, preset in (("banyan roots default (default cube)", None), ("banyan roots_trunk preset", "roots_trunk")):
+        bpy.ops.wm.read_homefile(use_factory_startup=True)
+        cube = bpy.data.objects["Cube"]
+        if preset:
+            from banyan import presets as PR
+            from banyan.core.params import preset_hosts
+            path = PR.find("roots", preset)
+            boxes = preset_hosts(PR.read(path), path)
+            p = B.make_params("roots", preset=preset)
+            api = lambda: B.strangler_roots(preset=preset)  # noqa: E731  the preset's hosts
+        else:
+            boxes = H.boxes_from_objects([cube])
+            p = B.make_params("roots")
+            api = lambda: B.strangler_roots(hosts=[cube])  # noqa: E731
+        ban = BanyanRun(label)
+        for _ in range(RUNS * CHEAP_REPEAT):
+            ban.once(lambda: G.roots(p, boxes), api)
+        out.append(ban)
+    return out
+
+
+def section_memory():
+    exe = os.path.join(BUILD, "tests", "bench_tube")
+    res = subprocess.run([exe, str(RUNS)], capture_output=True, text=True, check=True)
+    line = next(l for l in res.stdout.splitlines() if l.startswith("JSON "))
+    return json.loads(line[5:]), res.stdout
+
+
+# ------------------------------------------------------------------- report
+def machine():
+    model = "?"
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    return model, os.cpu_count()
+
+
+def git_rev():
+    """HEAD, with "+changes" when tracked files other than OUT differ from it."""
+    def git(*a):
+        return subprocess.run(["git", "-C", SRC] + list(a), capture_output=True, text=True, check=True).stdout
+    try:
+        out = os.path.relpath(OUT, SRC)
+        changed = [l for l in git("status", "--porcelain", "--untracked-files=no").splitlines() if l[3:] != out]
+        return git("rev-parse", "--short", "HEAD").strip() + (" +changes" if changed else "")
+    except (OSError, subprocess.CalledProcessError):
+        return "?"
+
+
+def mtris(n, s):
+    return n / s / 1e6
+
+
+def ceiling(ban, peer):
+    """The end-to-end tris/s ratio if banyan's end to end cost only the bare floor."""
+    return (ban.tris / ban.bare.med) / (peer.tris / peer.e2e.med)
+
+
+def verdict(ok):
+    return "**met**" if ok else "**missed**"
+
+
+def report(ivy, tree, roots, mem, mem_text, load0, load1, elapsed):
+    ban_i, peers_i = ivy
+    ban_t, peers_t = tree
+    model, cores = machine()
+    L = []
+    w = L.append
+    w("# Benchmarks against the peers (issue 9)")
+    w("")
+    w("Written by `tests/bench/peers/peers.py` (rewritten on each run). banyan against the add-ons that ship "
+      "with Blender: IvyGen (`add_curve_ivygen`) and Sapling Tree Gen (`add_curve_sapling`), in one Blender "
+      "process; ratios are taken within this run (absolute times on this shared machine are noise). Every "
+      "time is the median of %d runs, [min .. max] (%d for banyan's roots and keyaki, which take milliseconds); "
+      "banyan and the peer alternate within each run." % (RUNS, RUNS * CHEAP_REPEAT))
+    w("")
+    w("## Run")
+    w("")
+    w("- Command: `tests/bench/peers/run.sh build %d`, which builds `libbanyan.so` and `bench_tube`, links "
+      "the add-on into a temporary `BLENDER_USER_SCRIPTS` (as `tests/blender/run.sh` does), sets "
+      "`BANYAN_LIB=build/libbanyan.so` and runs `blender -b --factory-startup --python "
+      "tests/bench/peers/peers.py -- %d`." % (RUNS, RUNS))
+    w("- Blender %s, Python %s; banyan %s." % (bpy.app.version_string, platform.python_version(), git_rev()))
+    w("- Machine: %s, %d logical cores, %s. Load average (1/5/15 min) %.2f %.2f %.2f at the start, "
+      "%.2f %.2f %.2f at the end (the machine is shared); %.0f s in all." %
+      (model, cores, platform.platform(), *load0, *load1, elapsed))
+    w("- Date: %s." % datetime.date.today().isoformat())
+    w("")
+    w("Terms. *library*: the generate call through the add-on's ctypes binding, copy-out into Python arrays "
+      "included. *growth*: ivy's simulation alone (`banyan_ivy_create` + `banyan_ivy_step`). *end to end*: "
+      "`banyan.api.<generator>(...)`, which ends with a mesh object in the scene. For the peers, *operator* "
+      "is `bpy.ops.curve.ivy_gen` / `bpy.ops.curve.tree_add` (curves, and their leaf mesh), and *end to end* "
+      "adds `bpy.ops.object.convert(target='MESH')` of the curve, since their output is a curve; vertices "
+      "and triangles are counted after conversion (Blender's `loop_triangles`, leaves included). "
+      "*bare*: Blender's floor for the same mesh, `foreach_set` of positions and indices into an empty mesh "
+      "plus one object (`tests/bench/blender_handoff.py`); *bare+* also sets the UV, colour and attribute "
+      "arrays the add-on sets. *Hand-off* = (end to end - library) / bare+.")
+    w("")
+
+    # ---- ivy
+    w("## 1. Ivy: banyan vs IvyGen on a 3 m x 3 m wall")
+    w("")
+    w("The default cube scaled to 3 x 0.2 x 3 m; IvyGen starts at the 3D cursor %s, banyan at the preset's "
+      "start (the same point). IvyGen's default settings, then its `maxIvyLength` (the length of the longest "
+      "branch; growth stops there) chosen in this run by a secant search so that its total stem length, "
+      "then its triangle count, matches banyan's `ivy_wall` preset. Stem length: the sum of the curve "
+      "splines' lengths (IvyGen), of the skeleton's internode edges (banyan). Leaves: IvyGen's leaf quads; "
+      "banyan's 12-triangle leaf cards (one per bud)." % (WALL_CURSOR,))
+    w("")
+    w("| run | setting | stem m | leaves | vertices | triangles | operator / library | growth | end to end | "
+      "m stem/s | M tris/s e2e |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %s | %.0f (growth) | %.2f |" % (
+        ban_i.label, ban_i.stem, ban_i.leaves, ban_i.verts, ban_i.tris, ban_i.lib.fmt(), ban_i.grow.fmt(),
+        ban_i.e2e.fmt(), ban_i.stem / ban_i.grow.med, mtris(ban_i.tris, ban_i.e2e.med)))
+    for r in peers_i:
+        w("| %s | %s | %.0f | %d | %d | %d | %s | - | %s | %.0f (operator) | %.2f |" % (
+            r.label, r.note, r.stem, r.leaves, r.verts, r.tris, r.op.fmt(), r.e2e.fmt(), r.stem / r.op.med,
+            mtris(r.tris, r.e2e.med)))
+    w("")
+    stem_rate = ban_i.stem / ban_i.grow.med
+    w("| ratio banyan / IvyGen | stem length/s, growth vs operator | tris/s, library vs operator | "
+      "tris/s end to end |")
+    w("|---|---|---|---|")
+    for r in peers_i:
+        w("| vs %s | %.0fx | %.0fx | %.1fx |" % (
+            r.label, stem_rate / (r.stem / r.op.med), (ban_i.tris / ban_i.lib.med) / (r.tris / r.op.med),
+            (ban_i.tris / ban_i.e2e.med) / (r.tris / r.e2e.med)))
+    w("")
+
+    # ---- tree
+    w("## 2. Tree: banyan keyaki_mature vs Sapling")
+    w("")
+    w("Sapling's operator defaults have `bevel` off (the curves have no surface, so no triangles); both "
+      "Sapling runs turn it on. Leaves: both sides emit one layer of leaf faces, drawn from both sides "
+      "(banyan's `keyaki_leaf` material is double-sided; Blender draws Sapling's faces two-sided), so "
+      "leaf triangles are counted once on both sides. Branch length: the curve splines' lengths "
+      "(Sapling), the skeleton's edges (banyan).")
+    w("")
+    w("| run | setting | branch m | leaves | vertices | triangles | operator / library | end to end | "
+      "M tris/s library/op | M tris/s e2e |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %.2f | %.2f |" % (
+        ban_t.label, ban_t.stem, ban_t.leaves, ban_t.verts, ban_t.tris, ban_t.lib.fmt(digits=4),
+        ban_t.e2e.fmt(digits=4), mtris(ban_t.tris, ban_t.lib.med), mtris(ban_t.tris, ban_t.e2e.med)))
+    for r in peers_t:
+        w("| %s | %s | %.0f | %d | %d | %d | %s | %s | %.2f | %.2f |" % (
+            r.label, r.note, r.stem, r.leaves, r.verts, r.tris, r.op.fmt(digits=4), r.e2e.fmt(digits=4),
+            mtris(r.tris, r.op.med), mtris(r.tris, r.e2e.med)))
+    w("")
+    w("| ratio banyan / Sapling | tris/s, library vs operator | tris/s end to end |")
+    w("|---|---|---|")
+    for r in peers_t:
+        w("| vs %s | %.0fx | %.1fx |" % (r.label, (ban_t.tris / ban_t.lib.med) / (r.tris / r.op.med),
+                                         (ban_t.tris / ban_t.e2e.med) / (r.tris / r.e2e.med)))
+    w("")
+
+    # ---- roots and hand-off
+    w("## 3. Roots, and every generator's hand-off against Blender's floor")
+    w("")
+    w("| run | vertices | triangles | library | bare | bare+ | end to end | library / bare | "
+      "end to end / bare+ | hand-off (e2e - lib) / bare+ |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    for b in roots + [ban_i, ban_t]:
+        w("| %s | %d | %d | %s | %s | %s | %s | %.2f | %.2f | %.2f |" % (
+            b.label, b.verts, b.tris, b.lib.fmt(1e3, "ms", 2), b.bare.fmt(1e3, "ms", 2),
+            b.bare_full.fmt(1e3, "ms", 2), b.e2e.fmt(1e3, "ms", 2), b.lib.med / b.bare.med,
+            b.e2e.med / b.bare_full.med, b.handoff()))
+    w("")
+
+    # ---- memory
+    w("## 4. The tube sweeper against memory write bandwidth")
+    w("")
+    sbw, fbw = mem["store_bytes_per_s"], mem["fresh_store_bytes_per_s"]
+    w("`build/tests/bench_tube %d` (tests/bench/bench_tube.c), one thread, %d sides, no caps. Store loop "
+      "over 256 MiB: %.2f GB/s [%.2f .. %.2f] into memory touched beforehand (the issue's bound), %.2f GB/s "
+      "[%.2f .. %.2f] into fresh memory (a new buffer each pass: the kernel's page faults and zeroing "
+      "included). The bound in triangles/s is that bandwidth over the bytes the workload writes per "
+      "triangle (12 of indices plus its share of 32-byte vertices)." % (
+          mem["runs"], mem["sides"], sbw[0] / 1e9, sbw[1] / 1e9, sbw[2] / 1e9, fbw[0] / 1e9, fbw[1] / 1e9,
+          fbw[2] / 1e9))
+    w("")
+    w("| workload | how | triangles | bytes/tri | bound M tris/s | time | M tris/s | fraction of the bound | "
+      "of the fresh-memory bound |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    for c in mem["cases"]:
+        s = c["seconds"]
+        rate = c["triangles"] / s[0]
+        w("| %s (%d x %d points) | %s | %d | %.1f | %.1f | %.1f ms [%.1f .. %.1f] | %.1f | %.0f%% | %s |" % (
+            c["workload"], c["tubes"], c["points"], c["how"], c["triangles"], c["bytes_per_triangle"],
+            c["bound_tris_per_s"] / 1e6, s[0] * 1e3, s[1] * 1e3, s[2] * 1e3, rate / 1e6,
+            100 * rate / c["bound_tris_per_s"],
+            "-" if c["how"] == "reused" else "%.0f%%" % (100 * rate / c["bound_fresh_tris_per_s"])))
+    w("")
+    w("*reused*: into a builder whose arrays are already allocated and touched, as the store loop's buffer "
+      "is; *fresh*: new output memory each run (page faults included), as a one-shot generate call; *api*: "
+      "`banyan_tube_generate` (validation and skeleton too).")
+    w("")
+
+    # ---- targets
+    w("## Targets (issue 9)")
+    w("")
+    ig_stem = peers_i[1]
+    ig_tris = peers_i[2]
+    r_stem = stem_rate / (ig_stem.stem / ig_stem.op.med)
+    r_e2e = (ban_i.tris / ban_i.e2e.med) / (ig_tris.tris / ig_tris.e2e.med)
+    w("| target | figure | verdict |")
+    w("|---|---|---|")
+    w("| ivy library >= 100x IvyGen stem length/s | %.0fx (growth vs operator, stem-matched IvyGen) | %s |" % (
+        r_stem, verdict(r_stem >= 100)))
+    w("| ivy end to end >= 5x IvyGen tris/s at equal triangles | %.1fx (vs the triangle-matched IvyGen); "
+      "ceiling %.1fx | %s |" % (r_e2e, ceiling(ban_i, ig_tris), verdict(r_e2e >= 5)))
+    for r in peers_t:
+        rl = (ban_t.tris / ban_t.lib.med) / (r.tris / r.op.med)
+        re = (ban_t.tris / ban_t.e2e.med) / (r.tris / r.e2e.med)
+        w("| tree library >= 100x Sapling tris/s (%s) | %.0fx | %s |" % (r.label, rl, verdict(rl >= 100)))
+        w("| tree end to end >= 10x Sapling tris/s (%s) | %.1fx; ceiling %.1fx | %s |" % (
+            r.label, re, ceiling(ban_t, r), verdict(re >= 10)))
+    for b in roots + [ban_i, ban_t]:
+        w("| hand-off <= 1.5x bare+ (%s) | %.2f | %s |" % (b.label, b.handoff(), verdict(b.handoff() <= 1.5)))
+    for c in mem["cases"]:
+        f = c["triangles"] / c["seconds"][0] / c["bound_tris_per_s"]
+        ff = "" if c["how"] == "reused" else "; %.0f%% of the fresh-memory bound" % (
+            100 * c["triangles"] / c["seconds"][0] / c["bound_fresh_tris_per_s"])
+        w("| tube sweeper >= 25%% of the memory-write bound (%s, %s) | %.1f%%%s | %s |" % (
+            c["workload"], c["how"], 100 * f, ff, verdict(f >= 0.25)))
+    w("")
+    w("*Ceiling*: the end-to-end ratio banyan would reach if the library and the add-on cost nothing beyond "
+      "Blender's bare floor for its mesh (banyan's time = bare): no end-to-end ratio can pass it.")
+    w("")
+    notes = os.path.join(HERE, "profile.md")
+    if os.path.exists(notes):
+        with open(notes) as f:
+            w(f.read().rstrip())
+        w("")
+    w("<!-- bench_tube output:")
+    w(mem_text.strip().replace("--", "- -"))
+    w("-->")
+    return "\n".join(L) + "\n"
+
+
+def main():
+    t0 = time.perf_counter()
+    load0 = os.getloadavg()
+    print("peers.py: %d runs per figure, Blender %s, library %s" % (RUNS, bpy.app.version_string,
+                                                                   os.environ.get("BANYAN_LIB")), flush=True)
+    mem = section_memory()
+    print(mem[1], flush=True)
+    roots = section_roots()
+    print("roots done", flush=True)
+    tree = section_tree()
+    print("tree done", flush=True)
+    ivy = section_ivy()
+    text = report(ivy, tree, roots, mem[0], mem[1], load0, os.getloadavg(), time.perf_counter() - t0)
+    with open(OUT, "w") as f:
+        f.write(text)
+    print(text)
+    print("peers.py: wrote %s" % OUT, flush=True)
+
+
+main()

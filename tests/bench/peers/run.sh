@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Issue 9's peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs]
+# Builds libbanyan.so and bench_tube in build_dir (default build/), loads
+# the add-on from the repository the way tests/blender/run.sh does (a
+# temporary BLENDER_USER_SCRIPTS whose addons/banyan links to
+# blender_addon/banyan, BANYAN_LIB=<build_dir>/libbanyan.so) and runs
+# peers.py in one Blender process. Writes docs/benchmarks.md. Not CI.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+src=$(cd "$here/../../.." && pwd)
+build=$(cd "${1:-$src/build}" && pwd)
+runs=${2:-5}
+blender=${BLENDER:-blender}
+cmake --build "$build" --target banyan bench_tube
+
+scripts=$(mktemp -d)
+trap 'rm -rf "$scripts"' EXIT
+mkdir -p "$scripts/addons"
+ln -s "$src/blender_addon/banyan" "$scripts/addons/banyan"
+export BLENDER_USER_SCRIPTS="$scripts"
+export BANYAN_LIB="$build/libbanyan.so"
+export BANYAN_BUILD_DIR="$build"
+export PYTHONDONTWRITEBYTECODE=1
+"$blender" -b --factory-startup --python-exit-code 1 --python "$here/peers.py" -- "$runs"
