@@ -1,5 +1,6 @@
 /* banyan_tube_generate: the public face of the shared sweeper (tube.h),
  * used by the CLI's `tube` demo and the tests. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -24,13 +25,16 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
     if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
     for (uint32_t i = 0; i < point_count; i++) {
         pts[i] = v3_load(points + 3 * (size_t)i);
-        char name[48];
-        snprintf(name, sizeof name, "radii[%u]", i);
-        if (!v3_finite(pts[i]))
-            s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] = (%g, %g, %g) must be finite", i, pts[i].x, pts[i].y, pts[i].z);
+        if (!v3_finite(pts[i]) || fabs(pts[i].x) > 1e6 || fabs(pts[i].y) > 1e6 || fabs(pts[i].z) > 1e6)
+            s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] = (%g, %g, %g) must be finite, within [-1e6, 1e6] m", i,
+                            pts[i].x, pts[i].y, pts[i].z);
         else if (!(radii[i] > 0))
             s = banyan_fail(err, BANYAN_E_RANGE, "radii[%u] = %g must be > 0 m", i, radii[i]);
-        else s = banyan_check_range(err, name, radii[i], 1e-9, 1e6, "m");
+        else if (!(radii[i] >= 1e-9 && radii[i] <= 1e6)) { /* the name is formatted only on failure */
+            char name[48];
+            snprintf(name, sizeof name, "radii[%u]", i);
+            s = banyan_check_range(err, name, radii[i], 1e-9, 1e6, "m");
+        }
         if (!s && i && v3_dist(pts[i], pts[i - 1]) < 1e-9)
             s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] repeats points[%u]; consecutive points must differ", i, i - 1);
         if (s) {

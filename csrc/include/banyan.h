@@ -303,9 +303,9 @@ BANYAN_API banyan_status banyan_gltf_write(const char *path,
 
 /* A swept tube along a polyline, through the shared sweeper: the smallest
  * thing the library makes, used by the CLI's `tube` demo and tests.
- *   points  3 * point_count metres, point_count 2 .. 1e6, consecutive
- *           points distinct.
- *   radii   point_count radii in metres, each > 0 and finite.
+ *   points  3 * point_count metres, each coordinate within [-1e6, 1e6],
+ *           point_count 2 .. 1e6, consecutive points distinct.
+ *   radii   point_count radii in metres, each within [1e-9, 1e6].
  *   sides   3 .. 256.  caps: 0 or 1.
  * The tube has no max_vertices of its own: point_count * (sides + 1) (plus
  * the caps) past BANYAN_TUBE_MAX_VERTICES is refused with BANYAN_E_LIMIT

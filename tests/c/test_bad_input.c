@@ -891,6 +891,7 @@ static void input_cases(void) {
     TB("above range", "caps = 2", (void)0, 3, 8, 2, "caps");
     TB("NaN", "points[1] y = NaN", bp[4] = NAN, 3, 8, 1, "points[1]");
     TB("inf", "points[2] z = inf", bp[8] = INFINITY, 3, 8, 1, "points[2]");
+    TB("huge", "points[1] x = 1e300", bp[3] = 1e300, 3, 8, 1, "points[1]");
     TB("zero", "radii[1] = 0", br[1] = 0, 3, 8, 1, "radii[1]");
     TB("negative", "radii[0] = -1", br[0] = -1, 3, 8, 1, "radii[0]");
     TB("NaN", "radii[2] = NaN", br[2] = NAN, 3, 8, 1, "radii[2]");
