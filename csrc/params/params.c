@@ -90,10 +90,13 @@ banyan_status param_assign(const banyan_param_info *info, void *params, const do
             hi = enum_count(info->choices) - 1;
         }
         if (v < lo || v > hi) {
+            /* Whole numbers in full: 2147483647, not 2.14748e+09. */
+            char vt[40];
+            snprintf(vt, sizeof vt, integral && fabs(v) < 1e18 ? "%.0f" : "%g", v);
             if (info->type == BANYAN_PT_ENUM)
-                return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %g must be one of %s", where, info->name, v,
+                return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %s must be one of %s", where, info->name, vt,
                                    info->choices);
-            return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %g must be within [%g, %g]%s%s", where, info->name, v,
+            return banyan_fail(err, BANYAN_E_RANGE, "%s%s = %s must be within [%g, %g]%s%s", where, info->name, vt,
                                lo, hi, *info->unit ? " " : "", info->unit);
         }
     }
@@ -161,8 +164,12 @@ banyan_status banyan_param_set_text(banyan_generator g, void *params, const char
         for (;;) {
             char *end;
             double v = strtod(p, &end);
-            if (end == p) return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' is not a number%s", key, value,
-                                             components(info->type) > 1 ? " list like 1,2,3" : "");
+            /* strtod also reads hexadecimal ("0x10"); parameters are decimal. */
+            int hex = 0;
+            for (const char *q = p; q < end; q++) hex |= *q == 'x' || *q == 'X';
+            if (end == p || hex)
+                return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' is not a decimal number%s", key, value,
+                                   components(info->type) > 1 ? " list like 1,2,3" : "");
             if (n >= 4) return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' has too many numbers", key, value);
             vals[n++] = v;
             while (isspace((unsigned char)*end)) end++;

@@ -610,6 +610,8 @@ static void null_cases(void) {
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "radius", "nan", &e), rp.radius == 0.8);
     RUN("common", "banyan_param_set_text", "inf", "unit = '1e400'", BANYAN_E_RANGE, "unit",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "unit", "1e400", &e), 1);
+    RUN("common", "banyan_param_set_text", "wrong type", "sides = '0x10' (hexadecimal)", BANYAN_E_TYPE, "sides",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "sides", "0x10", &e), rp.sides == 8);
     RUN("common", "banyan_param_set_text", "wrong type", "sides = '8.5'", BANYAN_E_TYPE, "sides",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "sides", "8.5", &e), 1);
     RUN("common", "banyan_param_set_text", "above range", "sides = '4294967304' (beyond int32)", BANYAN_E_RANGE,

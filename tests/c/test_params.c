@@ -47,6 +47,9 @@ int main(void) {
     CHECK(assign(0, &d, v, 1, &e) == BANYAN_E_RANGE, "inf accepted");
     v[0] = 8.5;
     CHECK(assign(1, &d, v, 1, &e) == BANYAN_E_TYPE && strstr(e.message, "whole"), "sides 8.5: %s", e.message);
+    v[0] = 2147483647;
+    CHECK(assign(1, &d, v, 1, &e) == BANYAN_E_RANGE && strstr(e.message, "sides = 2147483647 must be within [4, 64]"),
+          "whole numbers in full: %s", e.message);
     v[0] = 8;
     CHECK(assign(1, &d, v, 1, &e) == BANYAN_OK && d.sides == 8, "sides 8");
     v[0] = 4;
