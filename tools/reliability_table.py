@@ -214,16 +214,48 @@ def addon_section(rows, path):
                    "test writes it." % os.path.relpath(path, HERE))
         out.append("")
         return out
-    ok = sum(1 for r in rows if r.get("scene_unchanged"))
-    out.append("From `%s`: %d operator calls with hostile values, the scene unchanged after %d of them (object, "
-               "mesh and material counts and names compared)." % (os.path.relpath(path, HERE), len(rows), ok))
+    def kind(r):
+        res = r.get("result", "")
+        return "ok (objects made on purpose)" if res.endswith("ok") else res
+
+    def unchanged(r):
+        u = r.get("scene_unchanged")
+        return "n/a (made objects)" if u is None else ("yes" if u else "**no**")
+
+    failed = [r for r in rows if r.get("scene_unchanged") is False]
+    out.append("From `%s`: %d operator and API calls with hostile values or scenes. After every refused call "
+               "the scene is compared (object, mesh, material, collection and node-group names and counts); "
+               "it changed after %d of them." % (os.path.relpath(path, HERE), len(rows), len(failed)))
     out.append("")
+    def category(r):
+        res = r.get("result", "")
+        if res.startswith("raised"):
+            return "raised an exception (API)"
+        if res.endswith("error report"):
+            return "error report"
+        if res.endswith("ok"):
+            return "ok"
+        return res.split(":")[0]  # refused by Blender, poll refused
+    cats = ["error report", "raised an exception (API)", "refused by Blender", "poll refused", "ok"]
+    cats += sorted({category(r) for r in rows} - set(cats))
+    out.append("| operator | calls | " + " | ".join(cats) + " | clamped by Blender first |")
+    out.append("|---|---|" + "---|" * (len(cats) + 1))
+    by_op = collections.OrderedDict()
+    for r in rows:
+        by_op.setdefault(r.get("operator", ""), []).append(r)
+    for op, rs in by_op.items():
+        counts = collections.Counter(category(r) for r in rs)
+        clamped = sum(1 for r in rs if r.get("result", "").startswith("clamped"))
+        out.append("| `%s` | %d | %s | %d |" % (md(op), len(rs), " | ".join(str(counts[c]) for c in cats), clamped))
+    out.append("")
+    out.append("<details><summary>Every call (%d rows)</summary>\n" % len(rows))
     out.append("| operator | property | value | result | message | scene unchanged |")
     out.append("|---|---|---|---|---|---|")
     for r in rows:
         out.append("| `%s` | %s | %s | %s | %s | %s |" % (
-            md(r.get("operator", "")), md(r.get("property", "")), md(r.get("value", "")), md(r.get("result", "")),
-            md(r.get("message", "")), "yes" if r.get("scene_unchanged") else "**no**"))
+            md(r.get("operator", "")), md(r.get("property", "")), md(r.get("value", "")), md(kind(r)),
+            md(r.get("message", "")), unchanged(r)))
+    out.append("\n</details>")
     out.append("")
     return out
 
