@@ -295,14 +295,10 @@ static uint32_t want_trees(const char *name) {
  * the young planting (small) also goes to the validator. */
 static void preset(const char *path, const char *name, void *ctx) {
     const char *outdir = ctx;
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return;
     banyan_avenue_params p;
     banyan_avenue_params_init(&p);
     banyan_error err = {0, ""};
-    banyan_status s = banyan_preset_apply(BANYAN_GEN_AVENUE, &p, text, len, path, &err);
+    banyan_status s = test_load_preset(BANYAN_GEN_AVENUE, &p, path, NULL, 0, NULL, &err);
     CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
     uint32_t n = 0, want = want_trees(name);
     CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n > 0 && (!want || n == want),
@@ -321,7 +317,6 @@ static void preset(const char *path, const char *name, void *ctx) {
               err.message);
     }
     banyan_mesh_free(m);
-    free(text);
 }
 
 static void presets(const char *outdir) {

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "banyan.h"
+
 /* A NUL-terminated malloc'd copy of the file, or NULL. */
 static inline char *test_read_file(const char *path, size_t *len) {
     FILE *f = fopen(path, "rb");
@@ -24,6 +26,23 @@ static inline char *test_read_file(const char *path, size_t *len) {
     if (b) b[n] = 0;
     if (len) *len = b ? (size_t)n : 0;
     return b;
+}
+
+/* Reads the preset file at path and applies it to params (already
+ * initialised), and, when hosts is not NULL, reads its hosts (at most cap)
+ * into hosts and *n_hosts. Returns the status; err says why. */
+static inline banyan_status test_load_preset(banyan_generator g, void *params, const char *path, banyan_box *hosts,
+                                             uint32_t cap, uint32_t *n_hosts, banyan_error *err) {
+    size_t len;
+    char *text = test_read_file(path, &len);
+    if (!text) {
+        snprintf(err->message, sizeof err->message, "cannot read %.200s", path);
+        return err->code = BANYAN_E_IO;
+    }
+    banyan_status s = banyan_preset_apply(g, params, text, len, path, err);
+    if (!s && hosts) s = banyan_preset_hosts(text, len, path, hosts, cap, n_hosts, err);
+    free(text);
+    return s;
 }
 
 static inline int test_name_cmp(const void *a, const void *b) {

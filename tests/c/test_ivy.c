@@ -30,15 +30,9 @@ static banyan_box wall_box(void) { return banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.
 static int load_preset(const char *name, banyan_ivy_params *p, banyan_box *hosts, uint32_t *n_hosts) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return 0;
     banyan_error err = {0, ""};
     banyan_ivy_params_init(p);
-    banyan_status s = banyan_preset_apply(BANYAN_GEN_IVY, p, text, len, path, &err);
-    if (!s) s = banyan_preset_hosts(text, len, path, hosts, 8, n_hosts, &err);
-    free(text);
+    banyan_status s = test_load_preset(BANYAN_GEN_IVY, p, path, hosts, 8, n_hosts, &err);
     CHECK(s == BANYAN_OK, "%s: %s", name, err.message);
     return s == BANYAN_OK;
 }

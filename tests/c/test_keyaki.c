@@ -439,14 +439,10 @@ static void write_glb(const char *dir, const char *name, const banyan_mesh *m) {
 
 /* One presets/keyaki_*.json: it loads, generates a sane mesh and writes a glb. */
 static void preset(const char *path, const char *name, void *ctx) {
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return;
     banyan_keyaki_params p;
     banyan_keyaki_params_init(&p);
     banyan_error err = {0, ""};
-    banyan_status s = banyan_preset_apply(BANYAN_GEN_KEYAKI, &p, text, len, path, &err);
+    banyan_status s = test_load_preset(BANYAN_GEN_KEYAKI, &p, path, NULL, 0, NULL, &err);
     CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
     banyan_mesh *m = NULL;
     if (!s) s = banyan_keyaki_generate(&p, &m, &err);
@@ -457,7 +453,6 @@ static void preset(const char *path, const char *name, void *ctx) {
         write_glb(ctx, name, m);
     }
     banyan_mesh_free(m);
-    free(text);
 }
 
 static void presets(const char *outdir) {

@@ -334,21 +334,16 @@ static void bad_input(void) {
 static void preset(const char *outdir) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/keyaki_segment_twigs.json", BANYAN_SOURCE_DIR);
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return;
     banyan_keyaki_params p;
     banyan_keyaki_params_init(&p);
     banyan_error err = {0, ""};
-    banyan_status s = banyan_preset_apply(BANYAN_GEN_KEYAKI, &p, text, len, path, &err);
+    banyan_status s = test_load_preset(BANYAN_GEN_KEYAKI, &p, path, NULL, 0, NULL, &err);
     CHECK(s == BANYAN_OK && p.twigs_from_segments, "%s: %s", path, err.message);
     banyan_mesh *m = NULL;
     if (!s) s = banyan_keyaki_generate(&p, &m, &err);
     CHECK(s == BANYAN_OK && m, "preset generate: %s", err.message);
     write_glb(outdir, "keyaki_segment_twigs", m);
     banyan_mesh_free(m);
-    free(text);
 }
 
 int main(int argc, char **argv) {

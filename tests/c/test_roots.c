@@ -47,17 +47,11 @@ static banyan_box rotated(double cx, double cy, double cz, double hx, double hy,
 static uint32_t load_preset(const char *name, banyan_roots_params *p, banyan_box *hosts) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/%s", BANYAN_SOURCE_DIR, name);
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return 0;
     banyan_error err;
     uint32_t n = 0;
     banyan_roots_params_init(p);
-    banyan_status s = banyan_preset_apply(BANYAN_GEN_ROOTS, p, text, len, path, &err);
-    if (!s) s = banyan_preset_hosts(text, len, path, hosts, 8, &n, &err);
+    banyan_status s = test_load_preset(BANYAN_GEN_ROOTS, p, path, hosts, 8, &n, &err);
     CHECK(s == BANYAN_OK && n > 0, "preset %s: %s", name, err.message);
-    free(text);
     return s ? 0 : n;
 }
 

@@ -67,6 +67,17 @@ static inline int16_t fz_i16(fz_reader *r) {
     return (int16_t)(uint16_t)(lo | hi << 8);
 }
 
+/* The generator's params_init, by generator. */
+static inline void fz_params_init(banyan_generator g, void *p) {
+    switch (g) {
+    case BANYAN_GEN_ROOTS: banyan_roots_params_init(p); break;
+    case BANYAN_GEN_KEYAKI: banyan_keyaki_params_init(p); break;
+    case BANYAN_GEN_AVENUE: banyan_avenue_params_init(p); break;
+    case BANYAN_GEN_IVY: banyan_ivy_params_init(p); break;
+    default: banyan_segments_params_init(p); break;
+    }
+}
+
 static inline int fz_components(int type) { return type == BANYAN_PT_VEC3 ? 3 : type == BANYAN_PT_COLOR ? 4 : 1; }
 
 static inline int fz_choices(const char *c) {

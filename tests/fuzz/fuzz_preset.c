@@ -10,23 +10,13 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void init(banyan_generator g, void *p) {
-    switch (g) {
-    case BANYAN_GEN_ROOTS: banyan_roots_params_init(p); break;
-    case BANYAN_GEN_KEYAKI: banyan_keyaki_params_init(p); break;
-    case BANYAN_GEN_AVENUE: banyan_avenue_params_init(p); break;
-    case BANYAN_GEN_IVY: banyan_ivy_params_init(p); break;
-    default: banyan_segments_params_init(p); break;
-    }
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     char *text = malloc(size ? size : 1);
     memcpy(text, data, size);
     static unsigned char params[8192];
     banyan_error e;
     for (int g = 0; g < BANYAN_GEN_COUNT; g++) {
-        init((banyan_generator)g, params);
+        fz_params_init((banyan_generator)g, params);
         memset(&e, 0, sizeof e);
         banyan_status s = banyan_preset_apply((banyan_generator)g, params, text, size, "fuzz.json", &e);
         if (s) {
@@ -75,7 +65,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         kv[size] = 0;
         kv[eq - text] = 0;
         for (int g = 0; g < BANYAN_GEN_COUNT; g++) {
-            init((banyan_generator)g, params);
+            fz_params_init((banyan_generator)g, params);
             s = banyan_param_set_text((banyan_generator)g, params, kv, kv + (eq - text) + 1, &e);
             if (s) fz_check_failure(s, &e, NULL);
             else FZ_ASSERT(banyan_params_check((banyan_generator)g, params, &e) == BANYAN_OK,

@@ -37,16 +37,6 @@ static void write_seed(const char *out, const char *harness, const char *name, c
     fclose(f);
 }
 
-static void init(banyan_generator g, void *p) {
-    switch (g) {
-    case BANYAN_GEN_ROOTS: banyan_roots_params_init(p); break;
-    case BANYAN_GEN_KEYAKI: banyan_keyaki_params_init(p); break;
-    case BANYAN_GEN_AVENUE: banyan_avenue_params_init(p); break;
-    case BANYAN_GEN_IVY: banyan_ivy_params_init(p); break;
-    default: banyan_segments_params_init(p); break;
-    }
-}
-
 /* Raw records for every field where params differs from defaults. */
 static void put_params(seed *s, banyan_generator g, const unsigned char *params, const unsigned char *defaults) {
     for (int32_t r = 0; r < banyan_param_count(g); r++) {
@@ -79,8 +69,8 @@ static const char *harness_of(banyan_generator g) {
 /* The seed of one preset text for generator g. */
 static void preset_seed(const char *out, const char *name, banyan_generator g, const char *text, size_t len) {
     static unsigned char params[8192], defaults[8192];
-    init(g, params);
-    init(g, defaults);
+    fz_params_init(g, params);
+    fz_params_init(g, defaults);
     banyan_error e;
     if (banyan_preset_apply(g, params, text, len, name, &e)) return; /* another generator's preset */
     seed s = {NULL, 0, 0};
