@@ -93,9 +93,21 @@ static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int side
     }
 }
 
+/* Writes one ring's sides + 1 vertices (the seam repeats vertex 0): its
+ * positions, normals and uvs (u round the ring, v given). */
+static void put_ring(float *P, float *N, float *UV, const v3 *ring, const v3 *nrm, int sides, float v) {
+    float du = 1.0f / (float)sides;
+    for (int j = 0; j <= sides; j++) {
+        put3(P + 3 * j, ring[j < sides ? j : 0]);
+        UV[2 * j] = (float)j * du;
+        UV[2 * j + 1] = v;
+    }
+    for (int j = 0; j <= sides; j++) put3(N + 3 * j, nrm[j < sides ? j : 0]);
+}
+
 void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
-    if (n < 2 || sides < 3) return;
+    if (n < 2 || sides < 3 || sides > 256) return;
     uint32_t nv, ni;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     if (mb_reserve(mb, nv, ni)) return;
@@ -109,23 +121,17 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     uint32_t first = mb_vertices(mb, n * ring_len);
     if (first == UINT32_MAX) return;
     float *P = mb->pos + 3 * (size_t)first, *N = mb->nrm + 3 * (size_t)first, *UV = mb->uv + 2 * (size_t)first;
-    float du = 1.0f / (float)sides;
     double s = 0, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
+    v3 derived[256];
     for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
         if (i) s += v3_dist(centres[i], centres[i - 1]);
         v3 T = tangent_at(centres, n, i, prevT);
         prevT = T;
         const v3 *ring = rings + (size_t)i * sides;
         float vv = (float)(o->v_offset + s * vscale);
-        for (int j = 0; j <= sides; j++) {
-            put3(P + 3 * j, ring[j < sides ? j : 0]);
-            UV[2 * j] = (float)j * du;
-            UV[2 * j + 1] = vv;
-        }
         if (o->ring_normals) {
-            const v3 *rn = o->ring_normals + (size_t)i * sides;
-            for (int j = 0; j <= sides; j++) put3(N + 3 * j, rn[j < sides ? j : 0]);
+            put_ring(P, N, UV, ring, o->ring_normals + (size_t)i * sides, sides, vv);
             continue;
         }
         /* A taper tilts the normals along the tube: n = (radial - dr T) /
@@ -142,9 +148,9 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
             radial = v3_madd(radial, T, -v3_dot(radial, T));
             double l2 = v3_len2(radial);
             radial = l2 > 1e-300 ? v3_scale(radial, 1.0 / sqrt(l2)) : fallback;
-            put3(N + 3 * j, v3_scale(v3_madd(radial, T, -dr), k));
+            derived[j] = v3_scale(v3_madd(radial, T, -dr), k);
         }
-        N[3 * sides] = N[0]; N[3 * sides + 1] = N[1]; N[3 * sides + 2] = N[2];
+        put_ring(P, N, UV, ring, derived, sides, vv);
         r_prev = r_cur;
         r_cur = r_next;
     }
@@ -154,46 +160,54 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);
 }
 
+/* Round ring i of tube_round_rings; returns its widest reach. */
+static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
+                         const double *sn, int sides, v3 *ring, v3 *nr) {
+    v3 bend = v3_make(0, 0, 0);
+    double stretch = 1.0;
+    if (i > 0 && i + 1 < n) {
+        v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
+        double c = v3_dot(a, T);
+        if (c > 0.2 && c < 0.999999) {
+            stretch = 1.0 / c;
+            bend = v3_norm(v3_sub(b, a));
+        }
+    }
+    v3 Bv = v3_cross(T, N);
+    double ri = radii[i], dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
+    /* (d . bend)(stretch - 1) for d = c N + s B, split by c and s. */
+    double nb = ri * v3_dot(N, bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
+    for (int j = 0; j < sides; j++) {
+        v3 d = v3_add(v3_scale(N, cs[j]), v3_scale(Bv, sn[j]));
+        ring[j] = v3_madd(v3_madd(pts[i], d, ri), bend, cs[j] * nb + sn[j] * bb);
+        nr[j] = v3_scale(v3_madd(d, T, -dr), k);
+    }
+    return ri * stretch;
+}
+
 void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *T, const v3 *N, const double *cs,
                       const double *sn, int sides, v3 *rings, v3 *normals, double *extent) {
     for (uint32_t i = 0; i < n; i++) {
-        v3 bend = v3_make(0, 0, 0);
-        double stretch = 1.0;
-        if (i > 0 && i + 1 < n) {
-            v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T[i]), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T[i]);
-            double c = v3_dot(a, T[i]);
-            if (c > 0.2 && c < 0.999999) {
-                stretch = 1.0 / c;
-                bend = v3_norm(v3_sub(b, a));
-            }
-        }
-        v3 Bv = v3_cross(T[i], N[i]);
-        double ri = radii[i], dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
-        /* (d . bend)(stretch - 1) for d = c N + s B, split by c and s. */
-        double nb = ri * v3_dot(N[i], bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
-        v3 *ring = rings + (size_t)i * sides, *nr = normals + (size_t)i * sides;
-        for (int j = 0; j < sides; j++) {
-            v3 d = v3_add(v3_scale(N[i], cs[j]), v3_scale(Bv, sn[j]));
-            ring[j] = v3_madd(v3_madd(pts[i], d, ri), bend, cs[j] * nb + sn[j] * bb);
-            nr[j] = v3_scale(v3_madd(d, T[i], -dr), k);
-        }
-        if (extent) extent[i] = ri * stretch;
+        double e = round_ring(pts, radii, n, i, T[i], N[i], cs, sn, sides, rings + (size_t)i * sides,
+                              normals + (size_t)i * sides);
+        if (extent) extent[i] = e;
     }
 }
 
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256 || mb->status) return;
-    /* Short tubes (most of a tree's) use the stack, long ones the heap. */
+    /* Frames for every point (short tubes, most of a tree's, on the
+     * stack); rings are made one at a time straight into the mesh, so a
+     * long tube needs no scratch per vertex. */
     enum { STACK_V3 = 2048 };
     v3 stack[STACK_V3];
-    size_t need = (size_t)n * (2 + 2 * (size_t)sides);
-    v3 *T = need <= STACK_V3 ? stack : malloc(sizeof(v3) * need);
+    v3 *T = 2 * (size_t)n <= STACK_V3 ? stack : malloc(sizeof(v3) * 2 * (size_t)n);
     if (!T) {
         mb->status = BANYAN_E_NOMEM;
         return;
     }
-    v3 *N = T + n, *rings = N + n, *normals = rings + (size_t)n * sides;
+    v3 *N = T + n, ring[256], nrm[256];
     double cs[256], sn[256];
     for (int j = 0; j < sides; j++) {
         double a = 6.283185307179586 * j / sides;
@@ -201,9 +215,30 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         sn[j] = sin(a);
     }
     tube_frames(pts, n, o->first_normal, T, N);
-    tube_round_rings(pts, radii, n, T, N, cs, sn, sides, rings, normals, NULL);
-    tube_opts round = *o;
-    round.ring_normals = normals;
-    tube_sweep_rings(mb, pts, rings, n, &round);
+    uint32_t nv, ni, ring_len = (uint32_t)sides + 1;
+    tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
+    uint32_t first = mb_reserve(mb, nv, ni) ? UINT32_MAX : mb_vertices(mb, n * ring_len);
+    if (first != UINT32_MAX) {
+        /* v: arc length over the circumference at the mean radius. */
+        double rsum = 0, s = 0;
+        for (uint32_t i = 0; i < n; i++) rsum += radii[i];
+        double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+        for (uint32_t i = 0; i < n; i++) {
+            if (i) s += v3_dist(pts[i], pts[i - 1]);
+            size_t at = (size_t)first + (size_t)i * ring_len;
+            round_ring(pts, radii, n, i, T[i], N[i], cs, sn, sides, ring, nrm);
+            put_ring(mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at, ring, nrm, sides,
+                     (float)(o->v_offset + s * vscale));
+        }
+        stitch(mb, first, n, sides);
+        if (o->cap_start) {
+            round_ring(pts, radii, n, 0, T[0], N[0], cs, sn, sides, ring, nrm);
+            cap(mb, ring, pts[0], v3_neg(T[0]), sides, 0);
+        }
+        if (o->cap_end) {
+            round_ring(pts, radii, n, n - 1, T[n - 1], N[n - 1], cs, sn, sides, ring, nrm);
+            cap(mb, ring, pts[n - 1], T[n - 1], sides, 1);
+        }
+    }
     if (T != stack) free(T);
 }
