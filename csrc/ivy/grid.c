@@ -9,16 +9,14 @@
  * two cells sharing a bucket are told apart and nothing is counted twice.
  *
  * Shade at a point never falls while buds stay put (leaves only grow, buds
- * are only added), so a bud found too shaded stays so until a bud within
- * leaf_max of it (or of one of its H1 buds) moves away. It keeps a flag;
- * a move (the sag correction) clears the flags of the buds near the place
- * it left, of the mover, and of their descendants whose H1 reads them.
- * Only buds that a light test of the rules counted can have put a bud to
- * sleep (a bud's sleep rests on the buds its test counted before stopping,
- * and the others could only have added shade), so only their moves walk
- * the neighbourhood.
- * Waiting buds then cost one test a step. This changes no result.
- * This changes no result, only the cost of buds that wait in shade. */
+ * are only added), and a test that finds a bud too shaded rests only on
+ * the buds it counted before passing t0: the others could only add shade.
+ * So the bud sleeps until one of those moves (the sag correction), or it
+ * or one of its H1 buds moves. Each sleep leaves an edge at every bud the
+ * test counted; a move walks the mover's edges and wakes their sleepers.
+ * Waiting buds then cost nothing, and a move costs its own edges, not a
+ * walk of the neighbourhood. This changes no result: a bud that sleeps
+ * would test too shaded, and a bud woken needlessly tests so again. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,10 +124,11 @@ ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv,
 /* ------------------------------------------------------ spatial hash */
 
 static int32_t cell_coord(double v, double inv) {
-    double f = floor(v * inv);
+    double f = v * inv;
     if (!(f > -1e9)) f = -1e9; /* also catches NaN */
     if (f > 1e9) f = 1e9;
-    return (int32_t)f;
+    int32_t i = (int32_t)f; /* floor, without a libm call */
+    return i - (f < (double)i);
 }
 
 static uint32_t bucket_of(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
@@ -208,62 +207,95 @@ static void forget(banyan_ivy *iv, int32_t i) {
     }
 }
 
-/* Forgets every bud within leaf_max of one of olds[0..n-1]: one walk of
- * the cells that the spheres around them touch. */
-static void forget_near(banyan_ivy *iv, const v3 *olds, int n) {
-    const double d = iv->p.leaf_max, dmax2 = d * d;
-    v3 lo = olds[0], hi = olds[0];
-    for (int k = 1; k < n; k++) {
-        lo = v3_make(fmin(lo.x, olds[k].x), fmin(lo.y, olds[k].y), fmin(lo.z, olds[k].z));
-        hi = v3_make(fmax(hi.x, olds[k].x), fmax(hi.y, olds[k].y), fmax(hi.z, olds[k].z));
+/* Wakes the sleepers whose test counted bud i: it is moving. Its edges
+ * are spent (a sleeper that falls asleep again leaves new ones). */
+static void wake_counters(banyan_ivy *iv, int32_t i) {
+    for (int32_t e = iv->dep_head[i]; e >= 0; e = iv->dep[e].next) {
+        ivy_bud *s = &iv->buds[iv->dep[e].sleeper];
+        if (s->shaded != iv->dep[e].serial) continue; /* woken since */
+        s->shaded = 0;
+        if (s->state != BANYAN_IVY_Z) iv->wake[iv->n_wake++] = iv->dep[e].sleeper;
     }
-    const double ic = iv->inv_cell;
-    int32_t x0 = cell_coord(lo.x - d, ic), x1 = cell_coord(hi.x + d, ic), y0 = cell_coord(lo.y - d, ic),
-            y1 = cell_coord(hi.y + d, ic), z0 = cell_coord(lo.z - d, ic), z1 = cell_coord(hi.z + d, ic);
-    for (int32_t z = z0; z <= z1; z++)
-        for (int32_t y = y0; y <= y1; y++)
-            for (int32_t x = x0; x <= x1; x++)
-                for (int32_t j = iv->head[bucket_of(iv, x, y, z)]; j >= 0; j = iv->gn[j].next) {
-                    const ivy_gnode *g = &iv->gn[j];
-                    if (g->cell[0] != x || g->cell[1] != y || g->cell[2] != z) continue;
-                    for (int k = 0; k < n; k++)
-                        if (v3_len2(v3_sub(g->P, olds[k])) < dmax2) {
-                            forget(iv, j);
-                            break;
-                        }
-                }
+    iv->dep_head[i] = -1;
 }
 
 void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t n) {
-    /* Shade falls only where a bud was: near its old place (for the buds
-     * there), and at its new place for itself. Movers that left the same
-     * cell share one walk (a stem's buds follow each other). */
-    enum { GROUP = 16 };
-    v3 olds[GROUP];
-    int32_t cell[3] = {0, 0, 0};
-    int ng = 0;
+    /* Shade falls only where a bud was: for the buds whose test counted
+     * it, and at its new place for itself and the buds whose H1 reads it. */
     for (int32_t k = 0; k < n; k++) {
         int32_t i = set[k];
         ivy_bud *b = &iv->buds[i];
         v3 o = b->P, p = q[k];
         if (p.x == o.x && p.y == o.y && p.z == o.z) continue;
-        const int32_t *c = iv->gn[i].cell;
-        if (ng && (ng == GROUP || c[0] != cell[0] || c[1] != cell[1] || c[2] != cell[2])) {
-            forget_near(iv, olds, ng);
-            ng = 0;
-        }
-        /* Only a bud that some light test counted can have made a bud
-         * sleep; the others need no walk. */
-        if (iv->watch[i]) {
-            if (!ng) memcpy(cell, c, sizeof cell);
-            olds[ng++] = o;
-        }
+        wake_counters(iv, i);
         unlink_bud(iv, i);
         b->P = p;
         link_bud(iv, i);
         forget(iv, i);
     }
-    if (ng) forget_near(iv, olds, ng);
+}
+
+/* Moves the live edges (sleepers not woken since) into a new pool of
+ * `cap`; returns 0 when that cannot allocate (the old pool stays). */
+static int collect_deps(banyan_ivy *iv, int32_t cap) {
+    ivy_dep *d = malloc(sizeof(ivy_dep) * (size_t)cap);
+    if (!d) return 0;
+    int32_t m = 0;
+    for (int32_t j = 0; j < iv->n; j++) {
+        int32_t *at = &iv->dep_head[j];
+        for (int32_t e = *at; e >= 0; e = iv->dep[e].next) {
+            const ivy_dep *x = &iv->dep[e];
+            if (iv->buds[x->sleeper].shaded != x->serial) continue;
+            d[m] = *x;
+            *at = m;
+            at = &d[m++].next;
+        }
+        *at = -1;
+    }
+    free(iv->dep);
+    iv->dep = d;
+    iv->n_dep = m;
+    iv->dep_cap = cap;
+    return 1;
+}
+
+void ivy_test_begin(banyan_ivy *iv) {
+    iv->n_counted = 0;
+    if (iv->test_id == INT32_MAX) { /* the stamps start over */
+        memset(iv->seen, 0, sizeof(int32_t) * (size_t)iv->cap);
+        iv->test_id = 0;
+    }
+    iv->test_id++;
+}
+
+void ivy_sleep(banyan_ivy *iv, int32_t i) {
+    if (iv->n_counted > iv->dep_cap - iv->n_dep) {
+        /* Full: keep the live edges, in a pool at least twice their number
+         * (so collections stay rare). When memory runs out the bud stays
+         * awake: tested every step, only slower. */
+        int64_t cap = iv->dep_cap > 4096 ? iv->dep_cap : 4096;
+        if (iv->dep_cap && !collect_deps(iv, iv->dep_cap)) return;
+        while (cap - iv->n_dep < iv->n_counted || cap < 2 * (int64_t)iv->n_dep) cap *= 2;
+        if (cap > INT32_MAX) return;
+        if (cap != iv->dep_cap) {
+            ivy_dep *d = realloc(iv->dep, sizeof(ivy_dep) * (size_t)cap);
+            if (!d) return;
+            iv->dep = d;
+            iv->dep_cap = (int32_t)cap;
+        }
+    }
+    /* Never 0 (awake); a serial seen again after wrapping only wakes a
+     * bud needlessly. */
+    if (++iv->sleep_serial == INT32_MAX) iv->sleep_serial = 1;
+    const int32_t serial = iv->sleep_serial;
+    for (int32_t k = 0; k < iv->n_counted; k++) {
+        int32_t j = iv->counted[k], e = iv->n_dep++;
+        iv->dep[e].sleeper = i;
+        iv->dep[e].serial = serial;
+        iv->dep[e].next = iv->dep_head[j];
+        iv->dep_head[j] = e;
+    }
+    iv->buds[i].shaded = serial;
 }
 
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b) {
@@ -277,7 +309,7 @@ double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b) {
     return r < iv->p.stem_radius_max ? r : iv->p.stem_radius_max;
 }
 
-static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl, unsigned char *watch) {
+static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl, banyan_ivy *gather) {
     const double dmax = iv->p.leaf_max, dmax2 = dmax * dmax, inv_dmax = 1.0 / dmax;
     const double grow = iv->p.leaf_max / iv->p.leaf_growth_steps;
     const double ic = iv->inv_cell;
@@ -285,8 +317,8 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
             y1 = cell_coord(p.y + dmax, ic), z0 = cell_coord(p.z - dmax, ic), z1 = cell_coord(p.z + dmax, ic);
     double H = 0.0;
     v3 acc = v3_make(0, 0, 0);
-    for (int32_t z = z0; z <= z1; z++)
-        for (int32_t y = y0; y <= y1; y++)
+    for (int32_t z = z0; z <= z1; z++) {
+        for (int32_t y = y0; y <= y1; y++) {
             for (int32_t x = x0; x <= x1; x++) {
                 for (int32_t j = iv->head[bucket_of(iv, x, y, z)]; j >= 0; j = iv->gn[j].next) {
                     const ivy_gnode *b = &iv->gn[j];
@@ -300,11 +332,16 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
                     double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
                     if (h <= 0) continue;
                     H += h;
-                    if (watch) watch[j] = 1;
+                    if (gather && gather->seen[j] != gather->test_id) {
+                        gather->seen[j] = gather->test_id;
+                        gather->counted[gather->n_counted++] = j;
+                    }
                     if (H > stop) return H; /* the caller will not grow: V_l unused */
                     if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
                 }
             }
+        }
+    }
     if (vl) *vl = v3_add(*vl, acc);
     return H;
 }
@@ -314,5 +351,5 @@ double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) 
 }
 
 double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
-    return shade(iv, p, self, stop, vl, iv->watch);
+    return shade(iv, p, self, stop, vl, iv);
 }

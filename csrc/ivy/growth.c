@@ -170,12 +170,13 @@ static void rules(banyan_ivy *iv) {
             }
             /* p3 when H1 <= t0: H0 here plus H0 at the h1_buds buds before. */
             if (b->shaded) continue;
+            ivy_test_begin(iv);
             double H = ivy_shade_watch(iv, b->P, i, p->t0, &vl);
             int32_t a = b->parent;
             for (int32_t k = 0; k < p->h1_buds && a >= 0 && H <= p->t0; k++, a = iv->buds[a].parent)
                 H += ivy_shade_watch(iv, iv->buds[a].P, a, p->t0 - H, NULL);
             if (H > p->t0) {
-                b->shaded = 1;
+                ivy_sleep(iv, i);
                 continue;
             }
             v3 axis = ivy_nearest_any(iv, b->P).normal;
@@ -192,9 +193,10 @@ static void rules(banyan_ivy *iv) {
                 continue;
             }
             if (b->shaded) continue;
+            ivy_test_begin(iv);
             double H = ivy_shade_watch(iv, b->P, i, p->t0, &vl);
             if (H > p->t0) {
-                b->shaded = 1;
+                ivy_sleep(iv, i);
                 continue;
             }
             int32_t st = b->state;
@@ -231,11 +233,15 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     ivy_gnode *g = realloc(iv->gn, sizeof(ivy_gnode) * (size_t)cap);
     if (!g) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     iv->gn = g;
-    unsigned char *w = realloc(iv->watch, (size_t)cap);
+    /* Per bud: the light cache's first edge and test stamp (grid.c). */
+    int32_t *w = realloc(iv->dep_head, sizeof(int32_t) * (size_t)cap * 2);
     if (!w) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
-    memset(w + iv->cap, 0, (size_t)(cap - iv->cap));
-    iv->watch = w;
-    int32_t *c = realloc(iv->chain, sizeof(int32_t) * (size_t)cap * 7);
+    if (iv->cap) memmove(w + cap, w + iv->cap, sizeof(int32_t) * (size_t)iv->cap);
+    for (int64_t k = iv->cap; k < cap; k++) w[k] = -1;
+    memset(w + cap + iv->cap, 0, sizeof(int32_t) * (size_t)(cap - iv->cap));
+    iv->dep_head = w;
+    iv->seen = w + cap;
+    int32_t *c = realloc(iv->chain, sizeof(int32_t) * (size_t)cap * 8);
     if (!c) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     /* The awake and wake lists (at 4 and 5 caps) keep their contents: move
      * them, the higher one first, to their places in the larger block. */
@@ -250,6 +256,7 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     iv->act = c + 4 * cap;
     iv->wake = c + 5 * cap;
     iv->merge = c + 6 * cap;
+    iv->counted = c + 7 * cap; /* a test counts each bud once */
     v3 *t = realloc(iv->tmp, sizeof(v3) * (size_t)cap * 3);
     if (!t) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     iv->tmp = t;
@@ -301,7 +308,8 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->box_lo);
     free(iv->buds);
     free(iv->gn);
-    free(iv->watch);
+    free(iv->dep_head);
+    free(iv->dep);
     free(iv->head);
     free(iv->chain);
     free(iv->tmp);

@@ -28,11 +28,18 @@ typedef struct ivy_bud {
     int32_t step_d;   /* step it became Z, -1 while alive */
     int32_t parent;   /* -1 for the first bud */
     int32_t child[2]; /* continuation, lateral; -1 when none */
-    /* Light cache: found too shaded to grow, and no bud near it (or near
-     * its H1 buds) has moved away since (grid.c). */
+    /* Light cache: 0 while awake; else the serial of the sleep that
+     * found it too shaded to grow, which lasts until a bud its light test
+     * counted moves (grid.c). */
     int32_t shaded;
     int32_t mark;     /* scratch of the sag correction */
 } ivy_bud;
+
+/* One sleeper that counted a bud: valid while that sleeper's `shaded`
+ * still holds `serial`. */
+typedef struct ivy_dep {
+    int32_t sleeper, serial, next;
+} ivy_dep;
 
 /* The spatial hash's copy of a bud: compact, so chain walks stay in cache. */
 typedef struct ivy_gnode {
@@ -59,7 +66,14 @@ struct banyan_ivy {
                               the light cache forgets it */
     int32_t *wake, n_wake; /* buds woken since the last step, to merge into act */
     int32_t *merge;        /* scratch for the merge */
-    unsigned char *watch;  /* per bud: counted by a light test of the rules */
+    /* Light cache (grid.c): each sleep leaves an edge at every bud its
+     * test counted; a move of that bud walks its edges and wakes them. */
+    ivy_dep *dep;          /* edge pool */
+    int32_t n_dep, dep_cap;
+    int32_t *dep_head;     /* per bud: first edge of the sleepers that counted it */
+    int32_t *seen;         /* per bud: the last test that counted it */
+    int32_t *counted, n_counted; /* buds the current test counted */
+    int32_t test_id, sleep_serial;
     int32_t branch_points; /* p3 firings */
     int32_t step;          /* steps done */
     double step_seconds;
@@ -111,9 +125,13 @@ void ivy_grid_move_many(banyan_ivy *iv, const int32_t *set, const v3 *q, int32_t
  * adds the light vector V_l to *vl when vl != NULL. Stops early once H0
  * passes `stop` (*vl is then left as it was: the bud will not grow). */
 double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
-/* The same for the rules: every bud it counts is marked in iv->watch, so
- * that a move of it later wakes the buds near it (grid.c). */
+/* The light test of the rules: ivy_test_begin, then one ivy_shade_watch
+ * per point (the bud, then its H1 buds), which gathers the buds counted;
+ * then ivy_sleep when the sum is over t0: bud i sleeps until one of them
+ * moves (or it or an H1 bud moves: ivy_grid_move_many). */
+void ivy_test_begin(banyan_ivy *iv);
 double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
+void ivy_sleep(banyan_ivy *iv, int32_t i);
 /* Diameter of bud i's leaf (and shadow) at the current step. */
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
 double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
