@@ -60,7 +60,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     /* Size first: refuse before allocating the mesh. */
     int32_t *pts = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
     if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
-    uint64_t need_v = 0;
+    uint64_t need_v = 0, need_i = 0;
     uint32_t max_pts = 2;
     for (int32_t i = 0; i < iv->n; i++) {
         if (!chain_start(iv, i)) continue;
@@ -69,8 +69,12 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         if (n > max_pts) max_pts = n;
         tube_counts(n, sides, iv->buds[i].parent < 0, 1, &v, &ix);
         need_v += v;
+        need_i += ix;
     }
-    if (p->leaves) need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1);
+    if (p->leaves) {
+        need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1);
+        need_i += (uint64_t)iv->n * LEAF_OUTLINE * 3;
+    }
     /* need_v >= ivy_mesh_vertex_floor(p, iv->n): the floor must stay a floor. */
     if (need_v > (uint64_t)p->max_vertices) {
         free(pts);
@@ -92,6 +96,8 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     int a_birth = mb_add_attr(&mb, "birth_step"), a_part = mb_add_attr(&mb, "part");
     uint32_t m_stem = mb_add_material(&mb, "ivy_stem", p->stem_color, 0.85, 0);
     uint32_t m_leaf = mb_add_material(&mb, "ivy_leaf", p->leaf_color, 0.6, 1);
+    /* The whole mesh at once: no copies as the arrays grow. */
+    mb_reserve(&mb, (uint32_t)need_v, need_i > UINT32_MAX ? UINT32_MAX : (uint32_t)need_i);
 
     /* Stems. */
     mb_begin_part(&mb, m_stem, 0);
@@ -142,13 +148,19 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         pcg32_seed(&rng, p->seed, 0x1eaf);
         const v3 up = v3_make(0, 0, 1);
         double rmax = 0, rnotch = leaf_radius(BANYAN_PI);
-        double rad[LEAF_OUTLINE];
+        double rad[LEAF_OUTLINE], ox[LEAF_OUTLINE], oy[LEAF_OUTLINE];
         for (int k = 0; k < LEAF_OUTLINE; k++) {
             rad[k] = leaf_radius(leaf_angle[k]);
             if (rad[k] > rmax) rmax = rad[k];
+            ox[k] = rad[k] * cos(leaf_angle[k]); /* the outline, per unit of leaf diameter */
+            oy[k] = rad[k] * sin(leaf_angle[k]);
+        }
+        float ou[LEAF_OUTLINE], ov[LEAF_OUTLINE];
+        for (int k = 0; k < LEAF_OUTLINE; k++) {
+            ou[k] = (float)(0.5 + 0.5 * oy[k] / rmax);
+            ov[k] = (float)(0.5 + 0.5 * ox[k] / rmax);
         }
         const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
-        mb_reserve(&mb, (uint32_t)iv->n * (LEAF_OUTLINE + 1), (uint32_t)iv->n * LEAF_OUTLINE * 3);
         for (int32_t i = 0; i < iv->n && !mb.status; i++) {
             const ivy_bud *b = &iv->buds[i];
             double jitter = rng_range(&rng, -0.35, 0.35); /* one draw per bud: leaves keep their look as the plant grows */
@@ -169,15 +181,24 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             v3 base = v3_madd(b->P, n, p->leaf_lift);
             v3 c = v3_madd(base, a, rnotch * d);
             mb_set_attr(&mb, a_birth, (double)b->step_c);
-            uint32_t vc = mb_vertex(&mb, c, n, 0.5, 0.5);
-            for (int k = 0; k < LEAF_OUTLINE; k++) {
-                double th = leaf_angle[k];
-                double x = rad[k] * cos(th), y = rad[k] * sin(th);
-                v3 q = v3_madd(v3_madd(c, a, x * d), bb, y * d);
-                mb_vertex(&mb, q, n, 0.5 + 0.5 * y / rmax, 0.5 + 0.5 * x / rmax);
+            uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
+            uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
+            if (!I) break;
+            float *pos = mb.pos + 3 * (size_t)vc, *nrm = mb.nrm + 3 * (size_t)vc, *uv = mb.uv + 2 * (size_t)vc;
+            const float fn[3] = {(float)n.x, (float)n.y, (float)n.z};
+            for (int k = 0; k <= LEAF_OUTLINE; k++, pos += 3, nrm += 3, uv += 2) {
+                /* The centre, then the outline. */
+                v3 q = k ? v3_madd(v3_madd(c, a, ox[k - 1] * d), bb, oy[k - 1] * d) : c;
+                pos[0] = (float)q.x; pos[1] = (float)q.y; pos[2] = (float)q.z;
+                memcpy(nrm, fn, sizeof fn);
+                uv[0] = k ? ou[k - 1] : 0.5f;
+                uv[1] = k ? ov[k - 1] : 0.5f;
             }
-            for (uint32_t k = 0; k < LEAF_OUTLINE; k++)
-                mb_tri(&mb, vc, vc + 1 + k, vc + 1 + (k + 1) % LEAF_OUTLINE);
+            for (uint32_t k = 0; k < LEAF_OUTLINE; k++, I += 3) {
+                I[0] = vc;
+                I[1] = vc + 1 + k;
+                I[2] = vc + 1 + (k + 1) % LEAF_OUTLINE;
+            }
         }
     }
 
