@@ -5,7 +5,7 @@ in one Blender process, on one machine, ratios from the same run:
               same 3 m x 3 m wall: IvyGen's defaults, then maxIvyLength
               matched to banyan's total stem length and to its triangles
   2. tree     banyan's keyaki_mature vs Sapling (add_curve_sapling): its
-              default tree (bevel on) and levels 4 with leaves
+              default tree (bevel on), with and without leaves, and levels 4 with leaves
   3. roots    banyan's roots against Blender's bare foreach_set of the same
               arrays (tests/bench/blender_handoff.py's bare())
   4. memory   build/tests/bench_tube: the tube sweeper against a store loop
@@ -276,6 +276,8 @@ def section_tree():
     ban = BanyanRun("banyan keyaki_mature")
     configs = [(PeerRun("Sapling default tree", "operator defaults (levels 3, no leaves) + bevel"),
                 dict(bevel=True)),
+               (PeerRun("Sapling default tree, leaves", "defaults + bevel, leaves (25, hex)"),
+                dict(bevel=True, showLeaves=True)),
                (PeerRun("Sapling levels 4, leaves", "defaults + bevel, levels 4, leaves (25, hex)"),
                 dict(bevel=True, levels=4, showLeaves=True))]
     for r in range(RUNS):
@@ -425,8 +427,9 @@ def report(ivy, tree, roots, mem, mem_text, load0, load1, elapsed):
     # ---- tree
     w("## 2. Tree: banyan keyaki_mature vs Sapling")
     w("")
-    w("Sapling's operator defaults have `bevel` off (the curves have no surface, so no triangles); both "
-      "Sapling runs turn it on. Leaves: both sides emit one layer of leaf faces, drawn from both sides "
+    w("Sapling's operator defaults have `bevel` off (the curves have no surface, so no triangles); every "
+      "Sapling run turns it on. The tree targets ask for leaves on both sides, so the leafless default tree "
+      "is reported for reference and judged only with its leaves on. Leaves: both sides emit one layer of leaf faces, drawn from both sides "
       "(banyan's `keyaki_leaf` material is double-sided; Blender draws Sapling's faces two-sided), so "
       "leaf triangles are counted once on both sides. Branch length: the curve splines' lengths "
       "(Sapling), the skeleton's edges (banyan).")
@@ -507,9 +510,12 @@ def report(ivy, tree, roots, mem, mem_text, load0, load1, elapsed):
     for r in peers_t:
         rl = (ban_t.tris / ban_t.lib.med) / (r.tris / r.op.med)
         re = (ban_t.tris / ban_t.e2e.med) / (r.tris / r.e2e.med)
-        w("| tree library >= 100x Sapling tris/s (%s) | %.0fx | %s |" % (r.label, rl, verdict(rl >= 100)))
+        # The tree targets are "with leaves on both sides": a leafless Sapling
+        # tree is shown for reference, not judged.
+        judge = verdict if r.leaves else (lambda ok: "reference (Sapling without leaves)")
+        w("| tree library >= 100x Sapling tris/s (%s) | %.0fx | %s |" % (r.label, rl, judge(rl >= 100)))
         w("| tree end to end >= 10x Sapling tris/s (%s) | %.1fx; ceiling %.1fx | %s |" % (
-            r.label, re, ceiling(ban_t, r), verdict(re >= 10)))
+            r.label, re, ceiling(ban_t, r), judge(re >= 10)))
     for b in roots + [ban_i, ban_t]:
         w("| hand-off <= 1.5x bare+ (%s) | %.2f | %s |" % (b.label, b.handoff(), verdict(b.handoff() <= 1.5)))
     for c in mem["cases"]:
