@@ -149,6 +149,7 @@ static void link_bud(banyan_ivy *iv, int32_t i) {
     uint32_t k = bucket_of(iv, g->cell[0], g->cell[1], g->cell[2]);
     g->next = iv->head[k];
     iv->head[k] = i;
+    iv->occupied[k >> 6] |= (uint64_t)1 << (k & 63);
 }
 
 static void unlink_bud(banyan_ivy *iv, int32_t i) {
@@ -158,14 +159,18 @@ static void unlink_bud(banyan_ivy *iv, int32_t i) {
     while (*at >= 0 && *at != i) at = &iv->gn[*at].next;
     if (*at == i) *at = g->next;
     g->next = -1;
+    if (iv->head[k] < 0) iv->occupied[k >> 6] &= ~((uint64_t)1 << (k & 63));
 }
 
 banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets) {
-    int32_t *h = malloc(sizeof(int32_t) * buckets);
+    /* buckets is a power of 2, at least 64 */
+    int32_t *h = malloc(sizeof(int32_t) * buckets + sizeof(uint64_t) * (buckets / 64));
     if (!h) return BANYAN_E_NOMEM;
     for (uint32_t i = 0; i < buckets; i++) h[i] = -1;
     free(iv->head);
     iv->head = h;
+    iv->occupied = (uint64_t *)(void *)(h + buckets);
+    memset(iv->occupied, 0, sizeof(uint64_t) * (buckets / 64));
     iv->mask = buckets - 1;
     /* Relink in bud order: the chains are the same whatever the history. */
     for (int32_t i = 0; i < iv->n; i++) link_bud(iv, i);
@@ -315,31 +320,45 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
     const double ic = iv->inv_cell;
     int32_t x0 = cell_coord(p.x - dmax, ic), x1 = cell_coord(p.x + dmax, ic), y0 = cell_coord(p.y - dmax, ic),
             y1 = cell_coord(p.y + dmax, ic), z0 = cell_coord(p.z - dmax, ic), z1 = cell_coord(p.z + dmax, ic);
+    /* The occupied buckets of the cells around p, in z, y, x order: an
+     * empty one costs a bit test (the bitmap stays in L1), not a load of
+     * its chain head and a mispredicted loop. */
+    enum { MAX_CELLS = 64 }; /* 4 per axis at most: cells are at least leaf_max */
+    uint32_t bk[MAX_CELLS];
+    int32_t cx[MAX_CELLS], cy[MAX_CELLS], cz[MAX_CELLS];
+    int nb = 0;
+    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
+        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
+            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
+                uint32_t k = bucket_of(iv, x, y, z);
+                bk[nb] = k;
+                cx[nb] = x;
+                cy[nb] = y;
+                cz[nb] = z;
+                nb += (int)((iv->occupied[k >> 6] >> (k & 63)) & 1);
+            }
     double H = 0.0;
     v3 acc = v3_make(0, 0, 0);
-    for (int32_t z = z0; z <= z1; z++) {
-        for (int32_t y = y0; y <= y1; y++) {
-            for (int32_t x = x0; x <= x1; x++) {
-                for (int32_t j = iv->head[bucket_of(iv, x, y, z)]; j >= 0; j = iv->gn[j].next) {
-                    const ivy_gnode *b = &iv->gn[j];
-                    if (b->cell[0] != x || b->cell[1] != y || b->cell[2] != z || j == self) continue;
-                    v3 d = v3_sub(p, b->P);
-                    double d2 = v3_len2(d);
-                    if (d2 >= dmax2) continue;
-                    double dist = sqrt(d2);
-                    double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
-                    if (dl > dmax) dl = dmax;
-                    double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
-                    if (h <= 0) continue;
-                    H += h;
-                    if (gather && gather->seen[j] != gather->test_id) {
-                        gather->seen[j] = gather->test_id;
-                        gather->counted[gather->n_counted++] = j;
-                    }
-                    if (H > stop) return H; /* the caller will not grow: V_l unused */
-                    if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
-                }
+    for (int c = 0; c < nb; c++) {
+        const int32_t x = cx[c], y = cy[c], z = cz[c];
+        for (int32_t j = iv->head[bk[c]]; j >= 0; j = iv->gn[j].next) {
+            const ivy_gnode *b = &iv->gn[j];
+            if (b->cell[0] != x || b->cell[1] != y || b->cell[2] != z || j == self) continue;
+            v3 d = v3_sub(p, b->P);
+            double d2 = v3_len2(d);
+            if (d2 >= dmax2) continue;
+            double dist = sqrt(d2);
+            double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
+            if (dl > dmax) dl = dmax;
+            double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
+            if (h <= 0) continue;
+            H += h;
+            if (gather && gather->seen[j] != gather->test_id) {
+                gather->seen[j] = gather->test_id;
+                gather->counted[gather->n_counted++] = j;
             }
+            if (H > stop) return H; /* the caller will not grow: V_l unused */
+            if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
         }
     }
     if (vl) *vl = v3_add(*vl, acc);

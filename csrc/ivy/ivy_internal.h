@@ -10,10 +10,12 @@
 #include "core/rng.h"
 #include "core/vec.h"
 
-/* Spatial hash cell edge, in units of leaf_max (the light look-up radius). */
+/* Spatial hash cell edge, in units of leaf_max (the light look-up radius);
+ * at least 1: a look-up reads at most 4 cells per axis (grid.c). */
 #ifndef IVY_CELL_SCALE
 #define IVY_CELL_SCALE 1.0
 #endif
+
 
 typedef struct ivy_bud {
     v3 P;             /* position */
@@ -81,6 +83,7 @@ struct banyan_ivy {
     /* Spatial hash: cells of IVY_CELL_SCALE * leaf_max. */
     ivy_gnode *gn;         /* one per bud */
     int32_t *head;         /* bucket chains */
+    uint64_t *occupied;    /* a bit per bucket: its chain is not empty (in head's block) */
     uint32_t mask;
     double inv_cell;
 
