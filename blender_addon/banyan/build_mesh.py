@@ -4,7 +4,8 @@ Every datablock made here is recorded in a Created list so a failure
 half way removes everything again (the operator then leaves the scene as
 it was). No per-vertex Python loops: arrays are sliced, per-corner UVs come
 gathered by the library (banyan_mesh_corner_uvs), and splitting a mesh
-into one object per group runs in C too (banyan_group_localize).
+into one object per group runs in C too (banyan_group_localize), and so
+does the edge list Blender would otherwise derive (banyan_triangle_edges).
 """
 from array import array
 
