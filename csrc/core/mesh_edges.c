@@ -76,7 +76,7 @@ out:
 /* The same by sorting: the corners bucketed by lower vertex (a counting
  * sort, corners in order within a bucket); a run of equal upper vertices
  * in a sorted bucket is one edge, first used by the run's first corner.
- * n log n at worst, about three times slower than by_lists on a mesh. */
+ * n log n at worst, two to three times slower than by_lists on a mesh. */
 static int by_buckets(const uint32_t *indices, uint32_t n, uint32_t vertex_count, uint32_t *corner_edges,
                       uint32_t *edges, uint64_t cap, uint64_t *count, int *nomem) {
     uint32_t *end = calloc((size_t)vertex_count + 1, sizeof *end);

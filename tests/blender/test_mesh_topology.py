@@ -122,8 +122,26 @@ def test_smooth_paths():
         BM.SMOOTH_OP_MIN = old
 
 
+def test_binding_errors():
+    from banyan.core import BanyanError
+    from banyan.core.mesh import triangle_edges
+    try:
+        triangle_edges(array("I", [0, 1, 5]), 3)
+        bt.check(False, "an index past the vertices accepted")
+    except BanyanError as e:
+        bt.check(e.status == 2 and "indices[2] = 5" in e.message, "out of range: %s" % e.message)
+    try:
+        triangle_edges(array("d", [0, 1, 2]), 3)
+        bt.check(False, "a double array accepted")
+    except TypeError:
+        bt.check(True, "")
+    ce, ed, st = triangle_edges(array("I"), 0)
+    bt.check(len(ce) == len(ed) == len(st) == 0, "no triangles, no edges")
+
+
 for g in gens.OPS:
     if bt.generator(g):
         bt.run(lambda: test_topology(g))
 bt.run(test_smooth_paths)
+bt.run(test_binding_errors)
 bt.done()

@@ -25,11 +25,12 @@ class MeshData:
     """A banyan_mesh in Python buffers (the C mesh is freed right after).
 
     positions 3n 'f', corner_uvs 2 per index 'f' (what Blender's UV layer
-    takes, gathered in C), colors 4n 'f' or None, indices 'I' (uint32 as in
-    C; Blender's loop indices are unsigned properties), attributes {name: 'f' n}, materials [dict],
-    parts [dict], skeleton arrays ('f'/'i') or None. Vertex normals and
-    per-vertex uvs are copied only when asked for (vertex_arrays=True):
-    Blender computes its own normals and takes uvs per corner.
+    takes, gathered in C), colors 4n 'f' or None, indices 'I' (uint32 as
+    in C; Blender's loop indices are unsigned properties), attributes
+    {name: 'f' n}, materials [dict], parts [dict], skeleton arrays
+    ('f'/'i') or None. Vertex normals and per-vertex uvs are copied only
+    when asked for (vertex_arrays=True): Blender computes its own normals
+    and takes uvs per corner.
     """
 
     def __init__(self):
@@ -120,6 +121,8 @@ def triangle_edges(indices, vertex_count):
     edges' vertex pairs (MeshEdge.vertices) and each triangle's first
     corner (MeshPolygon.loop_start). indices: an 'i' or 'I' array."""
     lib = L.load()
+    if not isinstance(indices, array) or indices.itemsize != 4:
+        raise TypeError("indices must be an array of 4-byte ints ('i' or 'I')")
     n = len(indices)
     corner_edges = array("I", [0]) * n
     edges = array("I", [0]) * (2 * n)  # n edges at most; trimmed below
