@@ -4,13 +4,14 @@ Every datablock made here is recorded in a Created list so a failure
 half way removes everything again (the operator then leaves the scene as
 it was). No per-vertex Python loops: arrays are sliced, per-corner UVs come
 gathered by the library (banyan_mesh_corner_uvs), and splitting a mesh
-into one object per group runs in C too (banyan_group_localize).
+into one object per group runs in C too (banyan_group_localize), and so
+does the edge list Blender would otherwise derive (banyan_triangle_edges).
 """
 from array import array
 
 import bpy
 
-from .core.mesh import localize_group
+from .core.mesh import localize_group, triangle_edges
 
 COLOR_ATTRIBUTE = "Color"
 
@@ -69,30 +70,74 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False):
     return mat
 
 
+def _unsigned(a):
+    """a as array('I'): foreach_set copies a buffer whole only when its
+    type matches the property's, and loop, edge and polygon indices are
+    unsigned (an 'i' buffer goes item by item, 7x slower). MeshData's
+    indices are 'I' already; other int arrays are copied once."""
+    if isinstance(a, array) and a.typecode == "I":
+        return a
+    out = array("I")
+    if isinstance(a, array) and a.itemsize == out.itemsize:
+        out.frombytes(a)
+    else:
+        out.extend(a)
+    return out
+
+
+# From this many polygons on _smooth uses the operator: its fixed cost (a
+# view-layer update first) pays off on big meshes only.
+SMOOTH_OP_MIN = 100000
+
+
+def _smooth(me, nt):
+    """Makes every polygon smooth. use_smooth is a bit flag, so foreach_set
+    goes item by item (about 40 ns a polygon: 35 ms for the wall ivy), and
+    Blender 3.4 has no Mesh.shade_smooth(); its operator sets the flags in
+    one C loop (3 ms), here on a temporary object. Only in object mode: in
+    a paint mode the operator would smooth the active object instead."""
+    if nt >= SMOOTH_OP_MIN and bpy.context.mode == 'OBJECT':
+        ob = bpy.data.objects.new("banyan_smooth", me)
+        try:
+            with bpy.context.temp_override(selected_editable_objects=[ob], active_object=ob, object=ob):
+                if bpy.ops.object.shade_smooth.poll() and bpy.ops.object.shade_smooth() == {'FINISHED'}:
+                    return
+        finally:
+            bpy.data.objects.remove(ob)
+    me.polygons.foreach_set("use_smooth", array("b", [1]) * nt)
+
+
 def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attributes=None, material_index=None,
               smooth=True):
-    """Fills an empty mesh from flat buffers (indices are local vertex numbers)."""
+    """Fills an empty mesh from flat buffers (indices are local vertex numbers).
+    The edges come from the library (banyan_triangle_edges) with each
+    loop's edge, so update() has nothing to derive."""
     nv = len(positions) // 3
     ni = len(indices)
     nt = ni // 3
+    indices = _unsigned(indices)
+    corner_edges, edges, loop_start = triangle_edges(indices, nv)
     me.vertices.add(nv)
     me.vertices.foreach_set("co", positions)
+    me.edges.add(len(edges) // 2)
+    me.edges.foreach_set("vertices", edges)
     me.loops.add(ni)
     me.loops.foreach_set("vertex_index", indices)
+    me.loops.foreach_set("edge_index", corner_edges)
     me.polygons.add(nt)
-    me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
+    me.polygons.foreach_set("loop_start", loop_start)
     if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # read-only from Blender 4.0
-        me.polygons.foreach_set("loop_total", array("i", [3]) * nt)
+        me.polygons.foreach_set("loop_total", array("I", [3]) * nt)
     if material_index is not None:
         # The generic attribute (Blender 3.4+) takes the buffer whole; the
         # polygons' material_index goes item by item (50x slower).
         attr = me.attributes.get("material_index") or me.attributes.new("material_index", 'INT', 'FACE')
         attr.data.foreach_set("value", material_index)
     if smooth:
-        me.polygons.foreach_set("use_smooth", array("b", [1]) * nt)
-    me.update(calc_edges=True)
+        _smooth(me, nt)
+    me.update()
     if corner_uvs is not None and nt:
-        layer = me.uv_layers.new(name="UVMap")
+        layer = me.uv_layers.new(name="UVMap", do_init=False)  # no default uvs: all are set next
         layer.data.foreach_set("uv", corner_uvs)
     if colors is not None:
         ca = me.color_attributes.new(COLOR_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')

@@ -43,7 +43,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 2
+#define BANYAN_ABI_VERSION 3
 
 /* ---------------------------------------------------------------- status */
 
@@ -182,6 +182,22 @@ BANYAN_API banyan_status banyan_mesh_corner_uvs(const banyan_mesh *mesh, float *
 BANYAN_API banyan_status banyan_group_localize(float *positions, uint32_t vertex_count, uint32_t *indices,
                                                uint64_t index_count, uint32_t first_vertex, double origin_out[3],
                                                banyan_error *err);
+
+/* The edges of a triangle list, for hosts that keep meshes as polygons,
+ * corners and edges (Blender's polygons, loops and edges) and would
+ * otherwise derive them: each unordered vertex pair that some triangle's
+ * side joins is one edge. indices (index_count, a multiple of 3) refer to
+ * vertices 0 .. vertex_count - 1. Writes corner_edges[k] (index_count of
+ * them) = the edge from corner k to the next corner of its triangle (k + 1,
+ * or k - 2 after its third); edges[2e], edges[2e + 1] = edge e's vertices,
+ * the lower first, edges numbered by the first corner that uses them;
+ * *edge_count = their number, at most edge_capacity (index_count always
+ * suffices). face_starts, when not NULL, gets index_count / 3 entries 0,
+ * 3, 6, ... (each triangle's first corner). On failure the outputs'
+ * contents are unspecified and *edge_count is 0. */
+BANYAN_API banyan_status banyan_triangle_edges(const uint32_t *indices, uint64_t index_count, uint32_t vertex_count,
+                                               uint32_t *corner_edges, uint32_t *edges, uint64_t edge_capacity,
+                                               uint64_t *edge_count, uint32_t *face_starts, banyan_error *err);
 
 /* FNV-1a 64 hash over every byte of every array of the mesh; used by tests
  * and tools to compare outputs. */

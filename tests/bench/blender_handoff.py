@@ -3,7 +3,9 @@ wall ivy and the 100-tree boulevard:
   library   the generate call through the binding, copy-out included
   operator  the add-on's whole operator (bpy.ops...), library included
   bare      Blender's floor: foreach_set of the mesh's arrays into an empty
-            mesh (vertices, loops, polygons, update(calc_edges=True)) and
+            mesh (vertices, loops, polygons, update(calc_edges=True):
+            Blender derives the edges, which the add-on gets from the
+            library instead; indices as MeshData holds them, 'I') and
             linking one object; "bare" hands off positions and indices
             only, "bare+" also every array the operator hands off (the
             per-corner UVs, the vertex colours, the float attributes), and

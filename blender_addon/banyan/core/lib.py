@@ -58,6 +58,7 @@ def _bind(lib):
         "banyan_mesh_hash": (C.c_uint64, [P(S.Mesh)]),
         "banyan_mesh_corner_uvs": (C.c_int, [P(S.Mesh), vp, C.c_uint64, err]),
         "banyan_group_localize": (C.c_int, [vp, C.c_uint32, vp, C.c_uint64, C.c_uint32, P(C.c_double), err]),
+        "banyan_triangle_edges": (C.c_int, [vp, C.c_uint64, C.c_uint32, vp, vp, C.c_uint64, P(C.c_uint64), vp, err]),
         "banyan_abi_version": (C.c_int32, []),
         "banyan_version_string": (C.c_char_p, []),
         "banyan_generator_name": (C.c_char_p, [C.c_int]),

@@ -25,11 +25,12 @@ class MeshData:
     """A banyan_mesh in Python buffers (the C mesh is freed right after).
 
     positions 3n 'f', corner_uvs 2 per index 'f' (what Blender's UV layer
-    takes, gathered in C), colors 4n 'f' or None, indices 'i' (uint32 in
-    C; Blender wants int), attributes {name: 'f' n}, materials [dict],
-    parts [dict], skeleton arrays ('f'/'i') or None. Vertex normals and
-    per-vertex uvs are copied only when asked for (vertex_arrays=True):
-    Blender computes its own normals and takes uvs per corner.
+    takes, gathered in C), colors 4n 'f' or None, indices 'I' (uint32 as
+    in C; Blender's loop indices are unsigned properties), attributes
+    {name: 'f' n}, materials [dict], parts [dict], skeleton arrays
+    ('f'/'i') or None. Vertex normals and per-vertex uvs are copied only
+    when asked for (vertex_arrays=True): Blender computes its own normals
+    and takes uvs per corner.
     """
 
     def __init__(self):
@@ -63,7 +64,7 @@ class MeshData:
                 d.normals = _copy(m.normals, 3 * n, "f")
                 d.uvs = _copy(m.uvs, 2 * n, "f")
             d.colors = _copy(m.colors, 4 * n, "f")
-            d.indices = _copy(m.indices, m.index_count, "i")
+            d.indices = _copy(m.indices, m.index_count, "I")
             if m.uvs and m.index_count:
                 d.corner_uvs = array("f", bytes(4)) * (2 * m.index_count)
                 err = S.Error()
@@ -110,6 +111,31 @@ def localize_group(positions, indices, first_vertex):
     if st:
         L.raise_for(st, err)
     return positions, indices, tuple(origin)
+
+
+def triangle_edges(indices, vertex_count):
+    """banyan_triangle_edges: Blender's topology of a triangle list, so
+    Blender need not derive it (update(calc_edges=True) is a hash table
+    of its own, ten times slower). Returns array('I')s (corner_edges,
+    edges, face_starts): each corner's edge (MeshLoop.edge_index), the
+    edges' vertex pairs (MeshEdge.vertices) and each triangle's first
+    corner (MeshPolygon.loop_start). indices: an 'i' or 'I' array."""
+    lib = L.load()
+    if not isinstance(indices, array) or indices.itemsize != 4:
+        raise TypeError("indices must be an array of 4-byte ints ('i' or 'I')")
+    n = len(indices)
+    corner_edges = array("I", [0]) * n
+    edges = array("I", [0]) * (2 * n)  # n edges at most; trimmed below
+    starts = array("I", [0]) * (n // 3)
+    count = C.c_uint64()
+    err = S.Error()
+    st = lib.banyan_triangle_edges(indices.buffer_info()[0] if n else None, n, vertex_count,
+                                   corner_edges.buffer_info()[0], edges.buffer_info()[0], n, C.byref(count),
+                                   starts.buffer_info()[0], C.byref(err))
+    if st:
+        L.raise_for(st, err)
+    del edges[2 * count.value:]
+    return corner_edges, edges, starts
 
 
 def call_generate(func, *args):
