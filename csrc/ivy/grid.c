@@ -85,16 +85,25 @@ ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) {
     return r;
 }
 
-int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b) {
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     const double c = iv->p.clearance;
+    /* The segment's bounding box (positions are finite: plain compares). */
+    const v3 mn = v3_make(a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z);
+    const v3 mx = v3_make(a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z);
+    const uint32_t n_grip = grip ? iv->n_grip : 0;
+    double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
         v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-        if (fmax(a.x, b.x) < lo.x - c || fmin(a.x, b.x) > hi.x + c || fmax(a.y, b.y) < lo.y - c ||
-            fmin(a.y, b.y) > hi.y + c || fmax(a.z, b.z) < lo.z - c || fmin(a.z, b.z) > hi.z + c)
-            continue;
-        if (obb_signed_distance(&iv->hosts[h], b) < iv->p.clearance) return 1;
-        if (obb_segment_hit(&iv->hosts[h], a, b, NULL)) return 1;
+        int seg = !(mx.x < lo.x - c || mn.x > hi.x + c || mx.y < lo.y - c || mn.y > hi.y + c || mx.z < lo.z - c ||
+                    mn.z > hi.z + c);
+        int reach = h < n_grip && !far_from(iv, h, b, cap);
+        if (!seg && !reach) continue;
+        /* One distance of b serves both questions. */
+        double d = obb_signed_distance(&iv->hosts[h], b);
+        if (seg && (d < c || obb_segment_hit(&iv->hosts[h], a, b, NULL))) return 1;
+        if (reach && d < best) best = d;
     }
+    if (grip) *grip = best;
     return 0;
 }
 

@@ -23,7 +23,7 @@ static double now_seconds(void) {
 
 /* sin and cos; for the small angles of the random walk a short series
  * (error below 1e-11 for |x| <= 0.8) is several times cheaper than libm. */
-static void sin_cos(double x, double *s, double *c) {
+static inline void sin_cos(double x, double *s, double *c) {
     if (fabs(x) > 0.8) {
         *s = sin(x);
         *c = cos(x);
@@ -71,8 +71,8 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
         v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
         v3 q = v3_madd(b->P, d, l);
-        if (ivy_blocked(iv, b->P, q)) continue;
-        double dist = ivy_grip_distance(iv, q, D);
+        double dist;
+        if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
         int attach = sucker && dist <= D;
         double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
         double fv = (v3_dot(base, d) + 1.0) * 0.5;
@@ -96,10 +96,11 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
         v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
         v3 q = v3_madd(b->P, d, l);
-        if (!ivy_blocked(iv, b->P, q)) {
+        double dist;
+        if (!ivy_blocked(iv, b->P, q, D, &dist)) {
             best_q = q;
             best_d = d;
-            best_dist = ivy_grip_distance(iv, q, D);
+            best_dist = dist;
         }
     }
 

@@ -97,8 +97,9 @@ double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap);
 /* Fills box_lo / box_hi from the hosts. */
 void ivy_host_boxes(banyan_ivy *iv);
 /* Does the segment a-b meet a host or the ground, or end closer than
- * `clearance` to one? */
-int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b);
+ * `clearance` to one? When it does not and grip != NULL, *grip is
+ * ivy_grip_distance(iv, b, cap), found in the same pass over the hosts. */
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip);
 /* p pushed out of every host to `clearance` off the nearest surface. */
 v3 ivy_push_out(const banyan_ivy *iv, v3 p);
 
