@@ -21,8 +21,8 @@ static inline uint32_t pcg32_next(pcg32 *r) {
 }
 /* Uniform in [0, 1), 53 random bits. */
 static inline double rng_uniform(pcg32 *r) {
-    uint64_t hi = pcg32_next(r) >> 5, lo = pcg32_next(r) >> 6; /* 27 + 26 bits */
-    return (double)(hi * 67108864.0 + lo) * (1.0 / 9007199254740992.0);
+    int32_t hi = (int32_t)(pcg32_next(r) >> 5), lo = (int32_t)(pcg32_next(r) >> 6); /* 27 + 26 bits */
+    return (hi * 67108864.0 + lo) * (1.0 / 9007199254740992.0); /* exact up to the last product */
 }
 /* Uniform real in [a, b]; I(a <= x <= b) in the specs. */
 static inline double rng_range(pcg32 *r, double a, double b) { return a + (b - a) * rng_uniform(r); }

@@ -39,14 +39,6 @@ static int face_of(const obb *o, v3 p) {
     return 2 * best + (c[best] >= 0 ? 1 : 0);
 }
 
-/* Is p farther than `margin` outside host h's world bounding box? Then it
- * is farther than that from the host: the exact query can be skipped. */
-static int far_from(const banyan_ivy *iv, uint32_t h, v3 p, double margin) {
-    v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-    return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
-           p.z < lo.z - margin || p.z > hi.z + margin;
-}
-
 void ivy_host_boxes(banyan_ivy *iv) {
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
         const obb *o = &iv->hosts[h];
@@ -58,13 +50,16 @@ void ivy_host_boxes(banyan_ivy *iv) {
         }
         iv->box_lo[h] = v3_sub(o->c, e);
         iv->box_hi[h] = v3_add(o->c, e);
+        const double c = iv->p.clearance; /* the same sums as ivy_far_from's */
+        iv->clear_lo[h] = v3_make(iv->box_lo[h].x - c, iv->box_lo[h].y - c, iv->box_lo[h].z - c);
+        iv->clear_hi[h] = v3_make(iv->box_hi[h].x + c, iv->box_hi[h].y + c, iv->box_hi[h].z + c);
     }
 }
 
 double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap) {
     double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_grip; h++) {
-        if (far_from(iv, h, p, cap)) continue;
+        if (ivy_far_from(iv, h, p, cap)) continue;
         double d = obb_signed_distance(&iv->hosts[h], p);
         if (d < best) best = d;
     }
@@ -93,10 +88,9 @@ int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     const uint32_t n_grip = grip ? iv->n_grip : 0;
     double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
-        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-        int seg = !(mx.x < lo.x - c || mn.x > hi.x + c || mx.y < lo.y - c || mn.y > hi.y + c || mx.z < lo.z - c ||
-                    mn.z > hi.z + c);
-        int reach = h < n_grip && !far_from(iv, h, b, cap);
+        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+        int seg = !(mx.x < lo.x || mn.x > hi.x || mx.y < lo.y || mn.y > hi.y || mx.z < lo.z || mn.z > hi.z);
+        int reach = h < n_grip && !ivy_far_from(iv, h, b, cap);
         if (!seg && !reach) continue;
         /* One distance of b serves both questions. */
         double d = obb_signed_distance(&iv->hosts[h], b);
@@ -107,13 +101,13 @@ int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     return 0;
 }
 
-v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
+v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
     const double c = iv->p.clearance;
     /* A few rounds: leaving one box may enter a neighbour. */
     for (int round = 0; round < 4; round++) {
         int moved = 0;
         for (uint32_t h = 0; h < iv->n_hosts; h++) {
-            if (far_from(iv, h, p, c)) continue;
+            if (ivy_far_from(iv, h, p, c)) continue;
             const obb *o = &iv->hosts[h];
             /* Quick accept: clear of the box by c along one of its axes. */
             v3 l = obb_to_local(o, p);

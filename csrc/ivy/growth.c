@@ -323,8 +323,10 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     iv->p = *params;
     iv->hosts = malloc(sizeof(obb) * (n_hosts + 1));
-    iv->box_lo = malloc(sizeof(v3) * 2 * (n_hosts + 1));
+    iv->box_lo = malloc(sizeof(v3) * 4 * (n_hosts + 1));
     iv->box_hi = iv->box_lo ? iv->box_lo + n_hosts + 1 : NULL;
+    iv->clear_lo = iv->box_lo ? iv->box_lo + 2 * (n_hosts + 1) : NULL;
+    iv->clear_hi = iv->box_lo ? iv->box_lo + 3 * (n_hosts + 1) : NULL;
     if (!iv->hosts || !iv->box_lo) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");

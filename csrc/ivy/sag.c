@@ -19,6 +19,8 @@
  * pivot turns, since turning a part about a later pivot can move weight
  * away from an earlier one. The turns of all pivots run on copies of the positions; every bud then
  * moves once, which is what the light cache hears of (grid.c). */
+#include <string.h>
+
 #include "ivy_internal.h"
 
 /* Most sweeps over the pivots of one stem per step. */
@@ -47,19 +49,24 @@ static int holds(const banyan_ivy *iv, int32_t root, int32_t *scratch, int32_t l
     return 0;
 }
 
-/* The moment about the pivot of the n buds at q[0..n-1]. Below the
+/* The moment about the pivot of the n buds at q[0..n-1] (moment_of: of
+ * the n buds whose positions sum to `sum`). Below the
  * horizontal it is the spec's |C - P0| M g sin(phi). Above it a thin stem
  * cannot balance upright, so the full arm |C - P0| counts (docs/ivy.md):
  * an upright run that is too heavy falls over and hangs instead of
  * standing like a small tree. */
-static double moment(const banyan_ivy *iv, v3 pivot, const v3 *q, int32_t n, v3 *C) {
-    v3 c = v3_make(0, 0, 0);
-    for (int32_t k = 0; k < n; k++) c = v3_add(c, q[k]);
-    c = v3_scale(c, 1.0 / n);
+static double moment_of(const banyan_ivy *iv, v3 pivot, v3 sum, int32_t n, v3 *C) {
+    v3 c = v3_scale(sum, 1.0 / n);
     *C = c;
     double dx = c.x - pivot.x, dy = c.y - pivot.y, dz = c.z - pivot.z;
     double arm = dz > 0 ? sqrt(dx * dx + dy * dy + dz * dz) : sqrt(dx * dx + dy * dy);
     return n * iv->p.internode_mass * iv->p.gravity * arm;
+}
+
+static double moment(const banyan_ivy *iv, v3 pivot, const v3 *q, int32_t n, v3 *C) {
+    v3 c = v3_make(0, 0, 0);
+    for (int32_t k = 0; k < n; k++) c = v3_add(c, q[k]);
+    return moment_of(iv, pivot, c, n, C);
 }
 
 /* Rotation by angle (cos c, sin s) about a horizontal unit axis k. */
@@ -105,7 +112,7 @@ enum { SAG_TURNED = 1, SAG_UNSETTLED = 2 };
 static int sag_pivot(const banyan_ivy *iv, const sag_consts *sc, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n) {
     const banyan_ivy_params *p = &iv->p;
     const double step = sc->step;
-    v3 C;
+    v3 C, *cur = q, *nxt = qn; /* the positions now and after the turn being tried */
     double F = moment(iv, pivot, q, n, &C);
     int turned = 0, it = 0;
     for (; it < sc->max_iter && F > p->moment_max; it++) {
@@ -140,19 +147,22 @@ static int sag_pivot(const banyan_ivy *iv, const sag_consts *sc, v3 pivot, v3 *q
                 }
             }
         }
-        for (int32_t k = 0; k < n; k++)
-            qn[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(q[k], pivot))));
-        v3 C2;
-        double F2 = moment(iv, pivot, qn, n, &C2);
-        if (angle_below(a, v3_sub(C2, pivot), 0.5 * ang, ang == step ? sc->tan_half : 0)) break; /* held by a surface */
+        v3 sum = v3_make(0, 0, 0), C2;
         for (int32_t k = 0; k < n; k++) {
-            q[k] = qn[k];
-            qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
+            nxt[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
+            sum = v3_add(sum, nxt[k]);
         }
+        double F2 = moment_of(iv, pivot, sum, n, &C2);
+        if (angle_below(a, v3_sub(C2, pivot), 0.5 * ang, ang == step ? sc->tan_half : 0)) break; /* held by a surface */
+        for (int32_t k = 0; k < n; k++) qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
+        v3 *t = cur;
+        cur = nxt;
+        nxt = t;
         C = C2;
         F = F2;
         turned = SAG_TURNED;
     }
+    if (cur != q) memcpy(q, cur, sizeof(v3) * (size_t)n);
     return turned | (it == sc->max_iter && F > p->moment_max ? SAG_UNSETTLED : 0);
 }
 
