@@ -50,6 +50,8 @@ static inline double obb_signed_distance(const obb *o, v3 p) {
  * points inside or on a face, the direction from the surface to p over
  * edges and corners. */
 v3 obb_closest_surface(const obb *o, v3 p, v3 *normal);
+/* The same given l = obb_to_local(o, p), for a caller that has it. */
+v3 obb_closest_surface_local(const obb *o, v3 p, v3 l, v3 *normal);
 
 /* Face f (0..5: -x, +x, -y, +y, -z, +z) as the parallelogram
  * A + u(B-A) + v(C-A), u, v in [0,1], with (B-A) x (C-A) pointing out. */

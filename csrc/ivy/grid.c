@@ -27,8 +27,9 @@
 
 /* ------------------------------------------------------------ hosts */
 
-static int face_of(const obb *o, v3 p) {
-    v3 l = obb_to_local(o, p);
+/* The face of o whose plane p (in o's frame) is farthest outside of, or
+ * least inside. */
+static int face_of(const obb *o, v3 l) {
     double c[3] = {l.x, l.y, l.z};
     int best = 0;
     double q = fabs(c[0]) - o->h[0];
@@ -74,8 +75,9 @@ ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) {
     }
     if (n) {
         const obb *o = &iv->hosts[r.host];
-        obb_closest_surface(o, p, &r.normal);
-        r.face = face_of(o, p);
+        v3 l = obb_to_local(o, p);
+        obb_closest_surface_local(o, p, l, &r.normal);
+        r.face = face_of(o, l);
     }
     return r;
 }

@@ -65,20 +65,28 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     const int helio_on = vlen > 1e-12;
     v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
 
+    const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
     double best = -HUGE_VAL, best_dist = 0;
     v3 best_q = b->P, best_d = base;
     for (int32_t k = 0; k < p->candidates; k++) {
         double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
         v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
         v3 q = v3_madd(b->P, d, l);
+        double fv = (v3_dot(base, d) + 1.0) * 0.5;
+        double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
+        double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
+        /* With f_d and f_grav at their most (a free candidate is at least
+         * clearance off every surface: f_d <= 1), can it beat the best?
+         * The same sum, term by term no smaller (weights >= 0): when it
+         * cannot, the host queries are skipped. */
+        double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
+        double f_max = p->w_d * fd_max + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav_max + p->w_helio * fhelio;
+        if (!(f_max > best)) continue;
         double dist;
         if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
         int attach = sucker && dist <= D;
         double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
-        double fv = (v3_dot(base, d) + 1.0) * 0.5;
-        double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
         double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
-        double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
         double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
         if (f > best) { /* the first drawn wins a tie */
             best = f;
