@@ -66,7 +66,9 @@ v3 obb_closest_point(const obb *o, v3 p) {
     return obb_to_world(o, l);
 }
 
-v3 obb_closest_surface(const obb *o, v3 p, v3 *normal) { return obb_closest_surface_local(o, p, obb_to_local(o, p), normal); }
+v3 obb_closest_surface(const obb *o, v3 p, v3 *normal) {
+    return obb_closest_surface_local(o, p, obb_to_local(o, p), normal);
+}
 
 v3 obb_closest_surface_local(const obb *o, v3 p, v3 l, v3 *normal) {
     double c[3] = {l.x, l.y, l.z};

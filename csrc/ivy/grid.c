@@ -51,7 +51,7 @@ void ivy_host_boxes(banyan_ivy *iv) {
         }
         iv->box_lo[h] = v3_sub(o->c, e);
         iv->box_hi[h] = v3_add(o->c, e);
-        const double c = iv->p.clearance; /* the same sums as ivy_far_from's */
+        const double c = iv->p.clearance; /* the same sums as ivy_far_from(..., clearance) */
         iv->clear_lo[h] = v3_make(iv->box_lo[h].x - c, iv->box_lo[h].y - c, iv->box_lo[h].z - c);
         iv->clear_hi[h] = v3_make(iv->box_hi[h].x + c, iv->box_hi[h].y + c, iv->box_hi[h].z + c);
     }
@@ -109,7 +109,7 @@ v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
     for (int round = 0; round < 4; round++) {
         int moved = 0;
         for (uint32_t h = 0; h < iv->n_hosts; h++) {
-            if (ivy_far_from(iv, h, p, c)) continue;
+            if (ivy_far_by_clearance(iv, h, p)) continue;
             const obb *o = &iv->hosts[h];
             /* Quick accept: clear of the box by c along one of its axes. */
             v3 l = obb_to_local(o, p);

@@ -108,16 +108,18 @@ static inline int ivy_far_from(const banyan_ivy *iv, uint32_t h, v3 p, double ma
     return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
            p.z < lo.z - margin || p.z > hi.z + margin;
 }
+/* ivy_far_from(iv, h, p, clearance), on the boxes grown once. */
+static inline int ivy_far_by_clearance(const banyan_ivy *iv, uint32_t h, v3 p) {
+    v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+    return p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y || p.z < lo.z || p.z > hi.z;
+}
 /* p pushed out of every host to `clearance` off the nearest surface. */
 v3 ivy_push_out_near(const banyan_ivy *iv, v3 p);
 /* The same; inline for the usual point, clear of every host's box (the
  * sag correction pushes each bud of every turn). */
 static inline v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
-    for (uint32_t h = 0; h < iv->n_hosts; h++) {
-        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h]; /* as ivy_far_from(iv, h, p, clearance) */
-        if (!(p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y || p.z < lo.z || p.z > hi.z))
-            return ivy_push_out_near(iv, p);
-    }
+    for (uint32_t h = 0; h < iv->n_hosts; h++)
+        if (!ivy_far_by_clearance(iv, h, p)) return ivy_push_out_near(iv, p);
     return p;
 }
 

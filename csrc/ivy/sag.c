@@ -209,11 +209,10 @@ static void sag_tip(banyan_ivy *iv, const sag_consts *sc, int32_t tip) {
             }
             for (int32_t k = n - 1; k > 0; k--) size[iv->buds[iv->buds[set[k]].parent].mark] += size[k];
             /* Turning a part about a later pivot can move the weight away
-             * from an earlier one: sweep again until nothing turns. */
-            /* A pivot that held changes nothing: the pivots from 1 to
-             * `settled` hold on the positions as they are (the last turn
-             * left them so), and a pass that turns nothing above them
-             * need not ask them again. */
+             * from an earlier one: sweep again until nothing turns. A
+             * pivot that holds changes nothing, so the pivots 1..settled,
+             * which held on the positions as the last turn left them, need
+             * not be asked again while nothing above them turns. */
             int32_t settled = 0;
             for (int pass = 0, turned = 1; turned && pass < SAG_PASSES; pass++) {
                 turned = 0;
