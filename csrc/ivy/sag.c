@@ -214,6 +214,7 @@ static void sag_tip(banyan_ivy *iv, const sag_consts *sc, int32_t tip) {
              * which held on the positions as the last turn left them, need
              * not be asked again while nothing above them turns. */
             int32_t settled = 0;
+            int moved = 0;
             for (int pass = 0, turned = 1; turned && pass < SAG_PASSES; pass++) {
                 turned = 0;
                 for (int32_t k = m - 1; k >= 1; k--) {
@@ -222,14 +223,14 @@ static void sag_tip(banyan_ivy *iv, const sag_consts *sc, int32_t tip) {
                     int32_t lo = iv->buds[chain[k - 1]].mark;
                     int r = sag_pivot(iv, sc, pivot, q + lo, qv + lo, qn, size[lo]);
                     if (r & SAG_TURNED) {
-                        turned = 1;
+                        turned = moved = 1;
                         settled = r & SAG_UNSETTLED ? k - 1 : k;
                     }
                 }
             }
-            /* Move once; grip where a sucker now reaches a surface; runs
-             * follow (preorder: parents first). */
-            ivy_grid_move_many(iv, set, q, n);
+            /* Move once (when anything turned); grip where a sucker now
+             * reaches a surface; runs follow (preorder: parents first). */
+            if (moved) ivy_grid_move_many(iv, set, q, n);
             for (int32_t k = 0; k < n; k++) {
                 ivy_bud *b = &iv->buds[set[k]];
                 b->V = v3_norm_or(qv[k], b->V);
