@@ -91,7 +91,7 @@ int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
         v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
-        int seg = !(mx.x < lo.x || mn.x > hi.x || mx.y < lo.y || mn.y > hi.y || mx.z < lo.z || mn.z > hi.z);
+        int seg = !(mn.z > hi.z || mx.z < lo.z || mx.x < lo.x || mn.x > hi.x || mx.y < lo.y || mn.y > hi.y);
         int reach = h < n_grip && !ivy_far_from(iv, h, b, cap);
         if (!seg && !reach) continue;
         /* One distance of b serves both questions. */

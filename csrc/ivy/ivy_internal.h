@@ -111,7 +111,8 @@ static inline int ivy_far_from(const banyan_ivy *iv, uint32_t h, v3 p, double ma
 /* ivy_far_from(iv, h, p, clearance), on the boxes grown once. */
 static inline int ivy_far_by_clearance(const banyan_ivy *iv, uint32_t h, v3 p) {
     v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
-    return p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y || p.z < lo.z || p.z > hi.z;
+    /* Above first: it settles the ground at once. */
+    return p.z > hi.z || p.z < lo.z || p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y;
 }
 /* p pushed out of every host to `clearance` off the nearest surface. */
 v3 ivy_push_out_near(const banyan_ivy *iv, v3 p);
