@@ -66,19 +66,11 @@ v3 obb_closest_point(const obb *o, v3 p) {
     return obb_to_world(o, l);
 }
 
-double obb_signed_distance(const obb *o, v3 p) {
-    v3 l = obb_to_local(o, p);
-    double q[3] = {fabs(l.x) - o->h[0], fabs(l.y) - o->h[1], fabs(l.z) - o->h[2]};
-    double out2 = 0, inside = -1e300;
-    for (int i = 0; i < 3; i++) {
-        if (q[i] > 0) out2 += q[i] * q[i];
-        if (q[i] > inside) inside = q[i];
-    }
-    return out2 > 0 ? sqrt(out2) : inside;
+v3 obb_closest_surface(const obb *o, v3 p, v3 *normal) {
+    return obb_closest_surface_local(o, p, obb_to_local(o, p), normal);
 }
 
-v3 obb_closest_surface(const obb *o, v3 p, v3 *normal) {
-    v3 l = obb_to_local(o, p);
+v3 obb_closest_surface_local(const obb *o, v3 p, v3 l, v3 *normal) {
     double c[3] = {l.x, l.y, l.z};
     int outside = 0;
     for (int i = 0; i < 3; i++)

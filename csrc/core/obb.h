@@ -33,13 +33,25 @@ static inline v3 obb_to_world(const obb *o, v3 l) {
 int obb_contains(const obb *o, v3 p, double margin);
 /* Closest point of the solid box to p (p itself when inside). */
 v3 obb_closest_point(const obb *o, v3 p);
-/* Signed distance to the box surface: < 0 inside, exact everywhere. */
-double obb_signed_distance(const obb *o, v3 p);
+/* Signed distance to the box surface: < 0 inside, exact everywhere.
+ * Inline: the ivy asks it for every random-walk candidate. */
+static inline double obb_signed_distance(const obb *o, v3 p) {
+    v3 l = obb_to_local(o, p);
+    double qx = fabs(l.x) - o->h[0], qy = fabs(l.y) - o->h[1], qz = fabs(l.z) - o->h[2];
+    double ox = qx > 0 ? qx : 0, oy = qy > 0 ? qy : 0, oz = qz > 0 ? qz : 0;
+    double out2 = ox * ox + oy * oy + oz * oz; /* + 0 for a side inside: the same sum as over the outside ones */
+    double inside = qx;
+    if (qy > inside) inside = qy;
+    if (qz > inside) inside = qz;
+    return out2 > 0 ? sqrt(out2) : inside;
+}
 /* Closest point on the box's surface (boundary), also for p inside, with
  * the outward unit normal of the distance field there: the face normal for
  * points inside or on a face, the direction from the surface to p over
  * edges and corners. */
 v3 obb_closest_surface(const obb *o, v3 p, v3 *normal);
+/* The same given l = obb_to_local(o, p), for a caller that has it. */
+v3 obb_closest_surface_local(const obb *o, v3 p, v3 l, v3 *normal);
 
 /* Face f (0..5: -x, +x, -y, +y, -z, +z) as the parallelogram
  * A + u(B-A) + v(C-A), u, v in [0,1], with (B-A) x (C-A) pointing out. */

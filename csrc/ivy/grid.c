@@ -25,8 +25,9 @@
 
 /* ------------------------------------------------------------ hosts */
 
-static int face_of(const obb *o, v3 p) {
-    v3 l = obb_to_local(o, p);
+/* The face of o whose plane p (in o's frame) is farthest outside of, or
+ * least inside. */
+static int face_of(const obb *o, v3 l) {
     double c[3] = {l.x, l.y, l.z};
     int best = 0;
     double q = fabs(c[0]) - o->h[0];
@@ -35,14 +36,6 @@ static int face_of(const obb *o, v3 p) {
         if (t > q) { q = t; best = k; }
     }
     return 2 * best + (c[best] >= 0 ? 1 : 0);
-}
-
-/* Is p farther than `margin` outside host h's world bounding box? Then it
- * is farther than that from the host: the exact query can be skipped. */
-static int far_from(const banyan_ivy *iv, uint32_t h, v3 p, double margin) {
-    v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-    return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
-           p.z < lo.z - margin || p.z > hi.z + margin;
 }
 
 void ivy_host_boxes(banyan_ivy *iv) {
@@ -56,13 +49,16 @@ void ivy_host_boxes(banyan_ivy *iv) {
         }
         iv->box_lo[h] = v3_sub(o->c, e);
         iv->box_hi[h] = v3_add(o->c, e);
+        const double c = iv->p.clearance; /* the same sums as ivy_far_from(..., clearance) */
+        iv->clear_lo[h] = v3_make(iv->box_lo[h].x - c, iv->box_lo[h].y - c, iv->box_lo[h].z - c);
+        iv->clear_hi[h] = v3_make(iv->box_hi[h].x + c, iv->box_hi[h].y + c, iv->box_hi[h].z + c);
     }
 }
 
 double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap) {
     double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_grip; h++) {
-        if (far_from(iv, h, p, cap)) continue;
+        if (ivy_far_from(iv, h, p, cap)) continue;
         double d = obb_signed_distance(&iv->hosts[h], p);
         if (d < best) best = d;
     }
@@ -77,32 +73,41 @@ ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) {
     }
     if (n) {
         const obb *o = &iv->hosts[r.host];
-        obb_closest_surface(o, p, &r.normal);
-        r.face = face_of(o, p);
+        v3 l = obb_to_local(o, p);
+        obb_closest_surface_local(o, p, l, &r.normal);
+        r.face = face_of(o, l);
     }
     return r;
 }
 
-int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b) {
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     const double c = iv->p.clearance;
+    /* The segment's bounding box (positions are finite: plain compares). */
+    const v3 mn = v3_make(a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z);
+    const v3 mx = v3_make(a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z);
+    const uint32_t n_grip = grip ? iv->n_grip : 0;
+    double best = HUGE_VAL;
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
-        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-        if (fmax(a.x, b.x) < lo.x - c || fmin(a.x, b.x) > hi.x + c || fmax(a.y, b.y) < lo.y - c ||
-            fmin(a.y, b.y) > hi.y + c || fmax(a.z, b.z) < lo.z - c || fmin(a.z, b.z) > hi.z + c)
-            continue;
-        if (obb_signed_distance(&iv->hosts[h], b) < iv->p.clearance) return 1;
-        if (obb_segment_hit(&iv->hosts[h], a, b, NULL)) return 1;
+        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+        int seg = !(mn.z > hi.z || mx.z < lo.z || mx.x < lo.x || mn.x > hi.x || mx.y < lo.y || mn.y > hi.y);
+        int reach = h < n_grip && !ivy_far_from(iv, h, b, cap);
+        if (!seg && !reach) continue;
+        /* One distance of b serves both questions. */
+        double d = obb_signed_distance(&iv->hosts[h], b);
+        if (seg && (d < c || obb_segment_hit(&iv->hosts[h], a, b, NULL))) return 1;
+        if (reach && d < best) best = d;
     }
+    if (grip) *grip = best;
     return 0;
 }
 
-v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
+v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
     const double c = iv->p.clearance;
     /* A few rounds: leaving one box may enter a neighbour. */
     for (int round = 0; round < 4; round++) {
         int moved = 0;
         for (uint32_t h = 0; h < iv->n_hosts; h++) {
-            if (far_from(iv, h, p, c)) continue;
+            if (ivy_far_by_clearance(iv, h, p)) continue;
             const obb *o = &iv->hosts[h];
             /* Quick accept: clear of the box by c along one of its axes. */
             v3 l = obb_to_local(o, p);

@@ -23,7 +23,7 @@ static double now_seconds(void) {
 
 /* sin and cos; for the small angles of the random walk a short series
  * (error below 1e-11 for |x| <= 0.8) is several times cheaper than libm. */
-static void sin_cos(double x, double *s, double *c) {
+static inline void sin_cos(double x, double *s, double *c) {
     if (fabs(x) > 0.8) {
         *s = sin(x);
         *c = cos(x);
@@ -65,20 +65,28 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     const int helio_on = vlen > 1e-12;
     v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
 
+    const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
     double best = -HUGE_VAL, best_dist = 0;
     v3 best_q = b->P, best_d = base;
     for (int32_t k = 0; k < p->candidates; k++) {
         double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
         v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
         v3 q = v3_madd(b->P, d, l);
-        if (ivy_blocked(iv, b->P, q)) continue;
-        double dist = ivy_grip_distance(iv, q, D);
-        int attach = sucker && dist <= D;
-        double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
         double fv = (v3_dot(base, d) + 1.0) * 0.5;
         double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
-        double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
         double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
+        /* With f_d and f_grav at their most (a free candidate is at least
+         * clearance off every surface: f_d <= 1), can it beat the best?
+         * The same sum, term by term no smaller (weights >= 0): when it
+         * cannot, the host queries are skipped. */
+        double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
+        double f_max = p->w_d * fd_max + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav_max + p->w_helio * fhelio;
+        if (!(f_max > best)) continue;
+        double dist;
+        if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
+        int attach = sucker && dist <= D;
+        double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
+        double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
         double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
         if (f > best) { /* the first drawn wins a tie */
             best = f;
@@ -96,10 +104,11 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
         v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
         v3 q = v3_madd(b->P, d, l);
-        if (!ivy_blocked(iv, b->P, q)) {
+        double dist;
+        if (!ivy_blocked(iv, b->P, q, D, &dist)) {
             best_q = q;
             best_d = d;
-            best_dist = ivy_grip_distance(iv, q, D);
+            best_dist = dist;
         }
     }
 
@@ -330,8 +339,10 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     iv->p = *params;
     iv->hosts = malloc(sizeof(obb) * (n_hosts + 1));
-    iv->box_lo = malloc(sizeof(v3) * 2 * (n_hosts + 1));
+    iv->box_lo = malloc(sizeof(v3) * 4 * (n_hosts + 1));
     iv->box_hi = iv->box_lo ? iv->box_lo + n_hosts + 1 : NULL;
+    iv->clear_lo = iv->box_lo ? iv->box_lo + 2 * (n_hosts + 1) : NULL;
+    iv->clear_hi = iv->box_lo ? iv->box_lo + 3 * (n_hosts + 1) : NULL;
     if (!iv->hosts || !iv->box_lo) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");

@@ -59,6 +59,7 @@ struct banyan_ivy {
     uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */
     uint32_t n_given;      /* the given hosts */
     v3 *box_lo, *box_hi;   /* world bounding boxes of the hosts (quick rejection) */
+    v3 *clear_lo, *clear_hi; /* the same grown by clearance (one block with box_lo) */
 
     ivy_bud *buds;
     int32_t n, cap;
@@ -111,13 +112,34 @@ ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p);
 /* Signed distance to the nearest gripped surface when it is at most
  * `cap`; HUGE_VAL or some value > cap otherwise (cheaper: no normal). */
 double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap);
-/* Fills box_lo / box_hi from the hosts. */
+/* Fills box_lo / box_hi and clear_lo / clear_hi from the hosts. */
 void ivy_host_boxes(banyan_ivy *iv);
 /* Does the segment a-b meet a host or the ground, or end closer than
- * `clearance` to one? */
-int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b);
+ * `clearance` to one? When it does not and grip != NULL, *grip is
+ * ivy_grip_distance(iv, b, cap), found in the same pass over the hosts. */
+int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip);
+/* Is p farther than `margin` outside host h's world bounding box? Then it
+ * is farther than that from the host: the exact query can be skipped. */
+static inline int ivy_far_from(const banyan_ivy *iv, uint32_t h, v3 p, double margin) {
+    v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
+    return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
+           p.z < lo.z - margin || p.z > hi.z + margin;
+}
+/* ivy_far_from(iv, h, p, clearance), on the boxes grown once. */
+static inline int ivy_far_by_clearance(const banyan_ivy *iv, uint32_t h, v3 p) {
+    v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+    /* Above first: it settles the ground at once. */
+    return p.z > hi.z || p.z < lo.z || p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y;
+}
 /* p pushed out of every host to `clearance` off the nearest surface. */
-v3 ivy_push_out(const banyan_ivy *iv, v3 p);
+v3 ivy_push_out_near(const banyan_ivy *iv, v3 p);
+/* The same; inline for the usual point, clear of every host's box (the
+ * sag correction pushes each bud of every turn). */
+static inline v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
+    for (uint32_t h = 0; h < iv->n_hosts; h++)
+        if (!ivy_far_by_clearance(iv, h, p)) return ivy_push_out_near(iv, p);
+    return p;
+}
 
 /* Spatial hash (grid.c). */
 banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets);

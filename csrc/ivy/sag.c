@@ -19,6 +19,8 @@
  * pivot turns, since turning a part about a later pivot can move weight
  * away from an earlier one. The turns of all pivots run on copies of the positions; every bud then
  * moves once, which is what the light cache hears of (grid.c). */
+#include <string.h>
+
 #include "ivy_internal.h"
 
 /* Most sweeps over the pivots of one stem per step. */
@@ -47,19 +49,24 @@ static int holds(const banyan_ivy *iv, int32_t root, int32_t *scratch, int32_t l
     return 0;
 }
 
-/* The moment about the pivot of the n buds at q[0..n-1]. Below the
+/* The moment about the pivot of the n buds at q[0..n-1] (moment_of: of
+ * the n buds whose positions sum to `sum`). Below the
  * horizontal it is the spec's |C - P0| M g sin(phi). Above it a thin stem
  * cannot balance upright, so the full arm |C - P0| counts (docs/ivy.md):
  * an upright run that is too heavy falls over and hangs instead of
  * standing like a small tree. */
-static double moment(const banyan_ivy *iv, v3 pivot, const v3 *q, int32_t n, v3 *C) {
-    v3 c = v3_make(0, 0, 0);
-    for (int32_t k = 0; k < n; k++) c = v3_add(c, q[k]);
-    c = v3_scale(c, 1.0 / n);
+static double moment_of(const banyan_ivy *iv, v3 pivot, v3 sum, int32_t n, v3 *C) {
+    v3 c = v3_scale(sum, 1.0 / n);
     *C = c;
     double dx = c.x - pivot.x, dy = c.y - pivot.y, dz = c.z - pivot.z;
     double arm = dz > 0 ? sqrt(dx * dx + dy * dy + dz * dz) : sqrt(dx * dx + dy * dy);
     return n * iv->p.internode_mass * iv->p.gravity * arm;
+}
+
+static double moment(const banyan_ivy *iv, v3 pivot, const v3 *q, int32_t n, v3 *C) {
+    v3 c = v3_make(0, 0, 0);
+    for (int32_t k = 0; k < n; k++) c = v3_add(c, q[k]);
+    return moment_of(iv, pivot, c, n, C);
 }
 
 /* Rotation by angle (cos c, sin s) about a horizontal unit axis k. */
@@ -71,18 +78,44 @@ static m3 rotation_h(v3 k, double c, double s) {
     return r;
 }
 
+/* What every pivot uses, found once per step: the turn of one increment
+ * (sag_step in radians, its cos, sin and half-angle tangent, most
+ * increments) and the sine and cosine of tip_elevation. */
+typedef struct sag_consts {
+    double step, cs, sn, tan_half;
+    int max_iter;
+    double el_s, el_c;
+} sag_consts;
+
+/* atan2(|a x a2|, a . a2) < t, the angle from a to a2 below t: a clear
+ * case is told by comparing tangents (tan_t = tan(t); 0 when unknown)
+ * instead. The band of 1e-9 is far wider than the rounding of either
+ * side, so the answer is always atan2's. */
+static int angle_below(v3 a, v3 a2, double t, double tan_t) {
+    double y = v3_len(v3_cross(a, a2)), x = v3_dot(a, a2);
+    if (tan_t > 0 && x > 1e-100) {
+        double lim = x * tan_t;
+        if (y < lim * (1 - 1e-9)) return 1;
+        if (y > lim * (1 + 1e-9)) return 0;
+    }
+    return atan2(y, x) < t;
+}
+
+/* sag_pivot's answer: it turned; it stopped at max_iter still too heavy
+ * (else another call on the same positions would not turn). */
+enum { SAG_TURNED = 1, SAG_UNSETTLED = 2 };
+
 /* Turns the copies q[0..n-1] (directions qv) down about the pivot in
  * sag_step increments while their moment passes moment_max. A turn that a
  * surface undoes (the push-out brings C back) ends it: the stem rests on
  * that surface. qn is scratch for n positions. */
-static int sag_pivot(const banyan_ivy *iv, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n) {
+static int sag_pivot(const banyan_ivy *iv, const sag_consts *sc, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n) {
     const banyan_ivy_params *p = &iv->p;
-    const double step = deg2rad(p->sag_step), cs = cos(step), sn = sin(step);
-    const int max_iter = (int)(180.0 / p->sag_step) + 2;
-    v3 C;
+    const double step = sc->step;
+    v3 C, *cur = q, *nxt = qn; /* the positions now and after the turn being tried */
     double F = moment(iv, pivot, q, n, &C);
-    int turned = 0;
-    for (int it = 0; it < max_iter && F > p->moment_max; it++) {
+    int turned = 0, it = 0;
+    for (; it < sc->max_iter && F > p->moment_max; it++) {
         v3 a = v3_sub(C, pivot);
         v3 axis = v3_make(-a.y, a.x, 0); /* a x G with G = (0, 0, -1): turns a towards G */
         double al = v3_len(axis);
@@ -98,35 +131,42 @@ static int sag_pivot(const banyan_ivy *iv, v3 pivot, v3 *q, v3 *qv, v3 *qn, int3
          * brings the moment to moment_max, so a long stem does not swing
          * across the vertical forever. */
         double ang = step;
-        m3 R = rotation_h(v3_scale(axis, 1.0 / al), cs, sn);
+        m3 R = rotation_h(v3_scale(axis, 1.0 / al), sc->cs, sc->sn);
         if (a.z < 0) {
-            double arm = v3_len(a), phi = atan2(al, -a.z);
+            double arm = v3_len(a);
             double weight = F / al; /* below the horizontal F = weight * horizontal arm */
-            double s_eq = p->moment_max / (weight * arm);
-            double need = phi - asin(s_eq < 1 ? s_eq : 1) + 1e-9;
-            if (need < step) {
-                ang = need;
-                R = rotation_h(v3_scale(axis, 1.0 / al), cos(need), sin(need));
+            double s_eq = p->moment_max / (weight * arm), s1 = s_eq < 1 ? s_eq : 1;
+            /* need < step asks sin(phi - step) < s1 (asin is steeper than
+             * 1): when it is clearly not so, skip atan2 and asin. */
+            if (al * sc->cs + a.z * sc->sn < (s1 + 1e-7) * arm) {
+                double phi = atan2(al, -a.z);
+                double need = phi - asin(s1) + 1e-9;
+                if (need < step) {
+                    ang = need;
+                    R = rotation_h(v3_scale(axis, 1.0 / al), cos(need), sin(need));
+                }
             }
         }
-        for (int32_t k = 0; k < n; k++)
-            qn[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(q[k], pivot))));
-        v3 C2;
-        double F2 = moment(iv, pivot, qn, n, &C2);
-        v3 a2 = v3_sub(C2, pivot);
-        if (atan2(v3_len(v3_cross(a, a2)), v3_dot(a, a2)) < 0.5 * ang) break; /* held by a surface */
+        v3 sum = v3_make(0, 0, 0), C2;
         for (int32_t k = 0; k < n; k++) {
-            q[k] = qn[k];
-            qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
+            nxt[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
+            sum = v3_add(sum, nxt[k]);
         }
+        double F2 = moment_of(iv, pivot, sum, n, &C2);
+        if (angle_below(a, v3_sub(C2, pivot), 0.5 * ang, ang == step ? sc->tan_half : 0)) break; /* held by a surface */
+        for (int32_t k = 0; k < n; k++) qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
+        v3 *t = cur;
+        cur = nxt;
+        nxt = t;
         C = C2;
         F = F2;
-        turned = 1;
+        turned = SAG_TURNED;
     }
-    return turned;
+    if (cur != q) memcpy(q, cur, sizeof(v3) * (size_t)n);
+    return turned | (it == sc->max_iter && F > p->moment_max ? SAG_UNSETTLED : 0);
 }
 
-static void sag_tip(banyan_ivy *iv, int32_t tip) {
+static void sag_tip(banyan_ivy *iv, const sag_consts *sc, int32_t tip) {
     const banyan_ivy_params *p = &iv->p;
     int32_t *chain = iv->chain, m = 0;
     /* Walk up to the anchor P0: a held bud, or one held by its other
@@ -169,18 +209,28 @@ static void sag_tip(banyan_ivy *iv, int32_t tip) {
             }
             for (int32_t k = n - 1; k > 0; k--) size[iv->buds[iv->buds[set[k]].parent].mark] += size[k];
             /* Turning a part about a later pivot can move the weight away
-             * from an earlier one: sweep again until nothing turns. */
+             * from an earlier one: sweep again until nothing turns. A
+             * pivot that holds changes nothing, so the pivots 1..settled,
+             * which held on the positions as the last turn left them, need
+             * not be asked again while nothing above them turns. */
+            int32_t settled = 0;
+            int moved = 0;
             for (int pass = 0, turned = 1; turned && pass < SAG_PASSES; pass++) {
                 turned = 0;
                 for (int32_t k = m - 1; k >= 1; k--) {
+                    if (!turned && k <= settled) break;
                     v3 pivot = k == m - 1 ? iv->buds[chain[k]].P : q[iv->buds[chain[k]].mark];
                     int32_t lo = iv->buds[chain[k - 1]].mark;
-                    turned |= sag_pivot(iv, pivot, q + lo, qv + lo, qn, size[lo]);
+                    int r = sag_pivot(iv, sc, pivot, q + lo, qv + lo, qn, size[lo]);
+                    if (r & SAG_TURNED) {
+                        turned = moved = 1;
+                        settled = r & SAG_UNSETTLED ? k - 1 : k;
+                    }
                 }
             }
-            /* Move once; grip where a sucker now reaches a surface; runs
-             * follow (preorder: parents first). */
-            ivy_grid_move_many(iv, set, q, n);
+            /* Move once (when anything turned); grip where a sucker now
+             * reaches a surface; runs follow (preorder: parents first). */
+            if (moved) ivy_grid_move_many(iv, set, q, n);
             for (int32_t k = 0; k < n; k++) {
                 ivy_bud *b = &iv->buds[set[k]];
                 b->V = v3_norm_or(qv[k], b->V);
@@ -191,22 +241,31 @@ static void sag_tip(banyan_ivy *iv, int32_t tip) {
     }
     /* Geotropism: a long free tip points up. */
     ivy_bud *t = &iv->buds[tip];
-    double el = deg2rad(p->tip_elevation);
-    if (!t->attached && t->run * p->internode > p->free_length && t->V.z < sin(el)) {
+    if (!t->attached && t->run * p->internode > p->free_length && t->V.z < sc->el_s) {
         v3 h = v3_make(t->V.x, t->V.y, 0);
         if (v3_len(h) < 1e-9 && t->parent >= 0) {
             v3 d = v3_sub(t->P, iv->buds[t->parent].P);
             h = v3_make(d.x, d.y, 0);
         }
         h = v3_norm_or(h, v3_make(1, 0, 0));
-        t->V = v3_add(v3_scale(h, cos(el)), v3_make(0, 0, sin(el)));
+        t->V = v3_add(v3_scale(h, sc->el_c), v3_make(0, 0, sc->el_s));
     }
 }
 
 void ivy_sag(banyan_ivy *iv) {
+    const banyan_ivy_params *p = &iv->p;
+    sag_consts sc;
+    sc.step = deg2rad(p->sag_step);
+    sc.cs = cos(sc.step);
+    sc.sn = sin(sc.step);
+    sc.tan_half = tan(0.5 * sc.step);
+    sc.max_iter = (int)(180.0 / p->sag_step) + 2;
+    double el = deg2rad(p->tip_elevation);
+    sc.el_s = sin(el);
+    sc.el_c = cos(el);
     for (int32_t k = 0; k < iv->n_act; k++) {
         int32_t i = iv->act[k];
         const ivy_bud *b = &iv->buds[i];
-        if (b->state <= BANYAN_IVY_A2 && !b->attached) sag_tip(iv, i);
+        if (b->state <= BANYAN_IVY_A2 && !b->attached) sag_tip(iv, &sc, i);
     }
 }
