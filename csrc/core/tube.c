@@ -49,18 +49,21 @@ void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N) {
     }
 }
 
-/* Quads between consecutive rings; ring i starts at first + i * (sides+1). */
+/* Quads between consecutive rings; ring i starts at first + i * (sides+1).
+ * Every ring pair repeats one pattern of offsets from its first vertex:
+ * built once, then each pair is one add per index (the loop vectorises). */
 static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
-    uint32_t ring = (uint32_t)sides + 1;
-    uint32_t *I = mb_indices(mb, (n - 1) * (uint32_t)sides * 6);
+    uint32_t ring = (uint32_t)sides + 1, per = 6 * (uint32_t)sides;
+    uint32_t *I = mb_indices(mb, (n - 1) * per);
     if (!I) return;
-    for (uint32_t i = 0; i + 1 < n; i++) {
-        uint32_t r0 = first + i * ring, r1 = r0 + ring;
-        for (uint32_t j = 0; j < (uint32_t)sides; j++, I += 6) {
-            I[0] = r0 + j; I[1] = r0 + j + 1; I[2] = r1 + j + 1;
-            I[3] = r0 + j; I[4] = r1 + j + 1; I[5] = r1 + j;
-        }
+    uint32_t pat[6 * 256];
+    for (uint32_t j = 0; j < (uint32_t)sides; j++) {
+        uint32_t *q = pat + 6 * j;
+        q[0] = j; q[1] = j + 1; q[2] = ring + j + 1;
+        q[3] = j; q[4] = ring + j + 1; q[5] = ring + j;
     }
+    for (uint32_t i = 0, r0 = first; i + 1 < n; i++, r0 += ring, I += per)
+        for (uint32_t k = 0; k < per; k++) I[k] = r0 + pat[k];
 }
 
 static inline void put3(float *f, v3 p) {
@@ -160,29 +163,71 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);
 }
 
-/* Round ring i of tube_round_rings; returns its widest reach. */
-static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
-                         const double *sn, int sides, v3 *ring, v3 *nr) {
-    v3 bend = v3_make(0, 0, 0);
+/* Round ring i: its frame, radius, taper and the widening across a bend. */
+typedef struct ring_geom {
+    v3 c, T, N, B, bend;
+    double ri, dr, k, nb, bb, reach;
+} ring_geom;
+
+static inline void ring_setup(ring_geom *g, const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T,
+                              v3 N) {
+    g->bend = v3_make(0, 0, 0);
     double stretch = 1.0;
     if (i > 0 && i + 1 < n) {
         v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
         double c = v3_dot(a, T);
         if (c > 0.2 && c < 0.999999) {
             stretch = 1.0 / c;
-            bend = v3_norm(v3_sub(b, a));
+            g->bend = v3_norm(v3_sub(b, a));
         }
     }
-    v3 Bv = v3_cross(T, N);
-    double ri = radii[i], dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
+    g->c = pts[i];
+    g->T = T;
+    g->N = N;
+    g->B = v3_cross(T, N);
+    g->ri = radii[i];
+    g->dr = tube_taper_slope(pts, radii, n, i);
+    g->k = 1.0 / sqrt(1.0 + g->dr * g->dr);
     /* (d . bend)(stretch - 1) for d = c N + s B, split by c and s. */
-    double nb = ri * v3_dot(N, bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
+    g->nb = g->ri * v3_dot(N, g->bend) * (stretch - 1.0);
+    g->bb = g->ri * v3_dot(g->B, g->bend) * (stretch - 1.0);
+    g->reach = g->ri * stretch;
+}
+
+/* Vertex at angle (cosine c, sine s) of a round ring and its normal. */
+static inline void ring_vertex(const ring_geom *g, double c, double s, v3 *p, v3 *nr) {
+    v3 d = v3_add(v3_scale(g->N, c), v3_scale(g->B, s));
+    *p = v3_madd(v3_madd(g->c, d, g->ri), g->bend, c * g->nb + s * g->bb);
+    *nr = v3_scale(v3_madd(d, g->T, -g->dr), g->k);
+}
+
+/* Round ring i of tube_round_rings; returns its widest reach. */
+static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
+                         const double *sn, int sides, v3 *ring, v3 *nr) {
+    ring_geom g;
+    ring_setup(&g, pts, radii, n, i, T, N);
+    for (int j = 0; j < sides; j++) ring_vertex(&g, cs[j], sn[j], &ring[j], &nr[j]);
+    return g.reach;
+}
+
+/* A round ring straight into the mesh, as put_ring would write it. */
+static void put_round_ring(const ring_geom *g, const double *cs, const double *sn, int sides, float *P, float *N,
+                           float *UV, float v) {
+    float du = 1.0f / (float)sides;
     for (int j = 0; j < sides; j++) {
-        v3 d = v3_add(v3_scale(N, cs[j]), v3_scale(Bv, sn[j]));
-        ring[j] = v3_madd(v3_madd(pts[i], d, ri), bend, cs[j] * nb + sn[j] * bb);
-        nr[j] = v3_scale(v3_madd(d, T, -dr), k);
+        v3 p, nr;
+        ring_vertex(g, cs[j], sn[j], &p, &nr);
+        put3(P + 3 * j, p);
+        put3(N + 3 * j, nr);
+        UV[2 * j] = (float)j * du;
+        UV[2 * j + 1] = v;
     }
-    return ri * stretch;
+    for (int c = 0; c < 3; c++) { /* the seam repeats vertex 0 */
+        P[3 * sides + c] = P[c];
+        N[3 * sides + c] = N[c];
+    }
+    UV[2 * sides] = (float)sides * du;
+    UV[2 * sides + 1] = v;
 }
 
 void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *T, const v3 *N, const double *cs,
@@ -226,9 +271,10 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         for (uint32_t i = 0; i < n; i++) {
             if (i) s += v3_dist(pts[i], pts[i - 1]);
             size_t at = (size_t)first + (size_t)i * ring_len;
-            round_ring(pts, radii, n, i, T[i], N[i], cs, sn, sides, ring, nrm);
-            put_ring(mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at, ring, nrm, sides,
-                     (float)(o->v_offset + s * vscale));
+            ring_geom g;
+            ring_setup(&g, pts, radii, n, i, T[i], N[i]);
+            put_round_ring(&g, cs, sn, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
+                           (float)(o->v_offset + s * vscale));
         }
         stitch(mb, first, n, sides);
         if (o->cap_start) {
