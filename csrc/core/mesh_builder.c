@@ -166,39 +166,33 @@ uint32_t *mb_indices(mesh_builder *mb, uint32_t count) {
     return I;
 }
 
-uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {
-    if (mb->status) return 0;
-    if (mb->n_skel >= mb->cap_skel) {
-        uint32_t cap = mb->cap_skel ? mb->cap_skel * 2 : 256;
+banyan_status mb_skel_reserve(mesh_builder *mb, uint32_t points, uint32_t edges) {
+    if (mb->status) return mb->status;
+    uint64_t need_p = (uint64_t)mb->n_skel + points, need_e = (uint64_t)mb->n_edge + edges;
+    if (need_p > 0xFFFFFFF0u || need_e > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
+    if (need_p > mb->cap_skel) {
+        size_t cap = (size_t)grown(mb->cap_skel, need_p, 256, 0xFFFFFFF0u);
         if (!grow((void **)&mb->skel_pos, cap, 3 * sizeof(float)) || !grow((void **)&mb->skel_rad, cap, sizeof(float)) ||
-            !grow((void **)&mb->skel_tag, cap, sizeof(int32_t))) {
-            mb->status = BANYAN_E_NOMEM;
-            return 0;
-        }
-        mb->cap_skel = cap;
+            !grow((void **)&mb->skel_tag, cap, sizeof(int32_t)))
+            return mb->status = BANYAN_E_NOMEM;
+        mb->cap_skel = (uint32_t)cap;
     }
-    uint32_t i = mb->n_skel++;
-    mb->skel_pos[3 * i] = (float)p.x;
-    mb->skel_pos[3 * i + 1] = (float)p.y;
-    mb->skel_pos[3 * i + 2] = (float)p.z;
-    mb->skel_rad[i] = (float)radius;
-    mb->skel_tag[i] = tag;
-    return i;
+    if (need_e > mb->cap_edge) {
+        size_t cap = (size_t)grown(mb->cap_edge, need_e, 256, 0xFFFFFFF0u);
+        if (!grow((void **)&mb->skel_edge, cap, 2 * sizeof(uint32_t))) return mb->status = BANYAN_E_NOMEM;
+        mb->cap_edge = (uint32_t)cap;
+    }
+    return BANYAN_OK;
 }
 
-void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b) {
-    if (mb->status) return;
-    if (mb->n_edge >= mb->cap_edge) {
-        uint32_t cap = mb->cap_edge ? mb->cap_edge * 2 : 256;
-        if (!grow((void **)&mb->skel_edge, cap, 2 * sizeof(uint32_t))) {
-            mb->status = BANYAN_E_NOMEM;
-            return;
-        }
-        mb->cap_edge = cap;
-    }
-    mb->skel_edge[2 * mb->n_edge] = a;
-    mb->skel_edge[2 * mb->n_edge + 1] = b;
-    mb->n_edge++;
+uint32_t mb_skel_point_grow(mesh_builder *mb, v3 p, double radius, int32_t tag) {
+    if (mb->status || mb_skel_reserve(mb, 1, 0)) return 0;
+    return mb_skel_point(mb, p, radius, tag);
+}
+
+void mb_skel_edge_grow(mesh_builder *mb, uint32_t a, uint32_t b) {
+    if (mb->status || mb_skel_reserve(mb, 0, 1)) return;
+    mb_skel_edge(mb, a, b);
 }
 
 banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
@@ -253,7 +247,7 @@ banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) 
     m->skel_point_count = mb->n_skel;
     m->skel_points = mb->skel_pos; m->skel_radius = mb->skel_rad; m->skel_tag = mb->skel_tag;
     m->skel_edge_count = mb->n_edge; m->skel_edges = mb->skel_edge;
-    memset(mb, 0, sizeof *mb); /* ownership moved; arrays keep their capacity slack */
+    memset(mb, 0, sizeof *mb); /* ownership moved */
     *out = m;
     banyan_error_clear(err);
     return BANYAN_OK;

@@ -253,12 +253,15 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         return;
     }
     v3 *N = T + n, ring[256], nrm[256];
-    double cs[256], sn[256];
-    for (int j = 0; j < sides; j++) {
-        double a = 6.283185307179586 * j / sides;
-        cs[j] = cos(a);
-        sn[j] = sin(a);
+    if (mb->ring_sides != sides) { /* the builder keeps the last table: most tubes repeat it */
+        for (int j = 0; j < sides; j++) {
+            double a = 6.283185307179586 * j / sides;
+            mb->ring_cs[j] = cos(a);
+            mb->ring_sn[j] = sin(a);
+        }
+        mb->ring_sides = sides;
     }
+    const double *cs = mb->ring_cs, *sn = mb->ring_sn;
     tube_frames(pts, n, o->first_normal, T, N);
     uint32_t nv, ni, ring_len = (uint32_t)sides + 1;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
