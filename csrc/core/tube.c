@@ -24,28 +24,86 @@ static v3 tangent_at(const v3 *p, uint32_t n, uint32_t i, v3 prev) {
     return v3_norm_or(d, prev);
 }
 
+/* Rotation-minimising frames walked point by point (tube_frames, and
+ * tube_sweep, which keeps no per-point scratch); each segment's vector,
+ * length and unit direction are made once. */
+typedef struct frame_walk {
+    const v3 *p;
+    uint32_t n, i;
+    v3 T, N;            /* the frame at point i */
+    v3 v, u;            /* segment i, p[i+1] - p[i], and its unit (when l > 1e-300) */
+    double d2, l;       /* its squared length and length */
+    v3 u0;              /* segment i - 1's unit and length (l0 = 0 at point 0) */
+    double l0;
+} frame_walk;
+
+static inline void segment(const v3 *p, uint32_t i, v3 *v, v3 *u, double *d2, double *l) {
+    *v = v3_sub(p[i + 1], p[i]);
+    *d2 = v3_dot(*v, *v);
+    *l = sqrt(*d2);
+    *u = *l > 1e-300 ? v3_scale(*v, 1.0 / *l) : *v; /* = v3_norm_or's unit */
+}
+
+static void walk_start(frame_walk *w, const v3 *p, uint32_t n, v3 first_normal) {
+    w->p = p;
+    w->n = n;
+    w->i = 0;
+    w->l0 = 0;
+    w->u0 = v3_make(0, 0, 0);
+    segment(p, 0, &w->v, &w->u, &w->d2, &w->l);
+    w->T = w->l > 1e-300 ? w->u : v3_norm_or(v3_sub(p[n - 1], p[0]), v3_make(0, 0, 1));
+    v3 n0 = v3_sub(first_normal, v3_scale(w->T, v3_dot(first_normal, w->T)));
+    w->N = v3_len2(n0) > 1e-12 ? v3_norm(n0) : v3_any_perp(w->T);
+}
+
+/* To point i + 1 (< n). */
+static void walk_next(frame_walk *w) {
+    uint32_t i = w->i;
+    v3 T = w->T, v2 = w->v, u2 = w->u, T1;
+    double d22 = w->d2, l2 = w->l;
+    if (i + 2 == w->n) {
+        T1 = w->l > 1e-300 ? w->u : T;
+    } else {
+        /* Bisector of the two unit segment directions: a ring tilted to it
+         * meets both neighbours' rings evenly. */
+        segment(w->p, i + 1, &v2, &u2, &d22, &l2);
+        v3 a = w->l > 1e-300 ? w->u : T, b = l2 > 1e-300 ? u2 : T;
+        T1 = v3_norm_or(v3_add(a, b), T);
+    }
+    /* Double reflection: reflect across the bisector plane of x_i,
+     * x_{i+1}, then across the plane that maps the reflected tangent onto
+     * T_{i+1}. */
+    v3 v1 = w->v;
+    double c1 = w->d2;
+    v3 rL = w->N, tL = T;
+    if (c1 > 1e-24) {
+        rL = v3_madd(w->N, v1, -2.0 / c1 * v3_dot(v1, w->N));
+        tL = v3_madd(T, v1, -2.0 / c1 * v3_dot(v1, T));
+    }
+    v3 v3r = v3_sub(T1, tL);
+    double c2 = v3_len2(v3r);
+    v3 r = c2 > 1e-24 ? v3_madd(rL, v3r, -2.0 / c2 * v3_dot(v3r, rL)) : rL;
+    /* Re-orthonormalise against float drift. */
+    r = v3_sub(r, v3_scale(T1, v3_dot(r, T1)));
+    w->N = v3_len2(r) > 1e-24 ? v3_norm(r) : v3_any_perp(T1);
+    w->T = T1;
+    w->u0 = w->u;
+    w->l0 = w->l;
+    w->v = v2;
+    w->u = u2;
+    w->d2 = d22;
+    w->l = l2;
+    w->i = i + 1;
+}
+
 void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N) {
-    v3 prev = v3_make(0, 0, 1);
-    for (uint32_t i = 0; i < n; i++) prev = T[i] = tangent_at(pts, n, i, i ? T[i - 1] : v3_norm_or(v3_sub(pts[n - 1], pts[0]), prev));
-    v3 n0 = v3_sub(first_normal, v3_scale(T[0], v3_dot(first_normal, T[0])));
-    N[0] = v3_len2(n0) > 1e-12 ? v3_norm(n0) : v3_any_perp(T[0]);
-    for (uint32_t i = 0; i + 1 < n; i++) {
-        /* Double reflection: reflect across the bisector plane of x_i,
-         * x_{i+1}, then across the plane that maps the reflected tangent
-         * onto T_{i+1}. */
-        v3 v1 = v3_sub(pts[i + 1], pts[i]);
-        double c1 = v3_len2(v1);
-        v3 rL = N[i], tL = T[i];
-        if (c1 > 1e-24) {
-            rL = v3_madd(N[i], v1, -2.0 / c1 * v3_dot(v1, N[i]));
-            tL = v3_madd(T[i], v1, -2.0 / c1 * v3_dot(v1, T[i]));
-        }
-        v3 v2 = v3_sub(T[i + 1], tL);
-        double c2 = v3_len2(v2);
-        v3 r = c2 > 1e-24 ? v3_madd(rL, v2, -2.0 / c2 * v3_dot(v2, rL)) : rL;
-        /* Re-orthonormalise against float drift. */
-        r = v3_sub(r, v3_scale(T[i + 1], v3_dot(r, T[i + 1])));
-        N[i + 1] = v3_len2(r) > 1e-24 ? v3_norm(r) : v3_any_perp(T[i + 1]);
+    frame_walk w;
+    walk_start(&w, pts, n, first_normal);
+    for (uint32_t i = 0;; i++) {
+        T[i] = w.T;
+        N[i] = w.N;
+        if (i + 1 >= n) break;
+        walk_next(&w);
     }
 }
 
@@ -169,12 +227,13 @@ typedef struct ring_geom {
     double ri, dr, k, nb, bb, reach;
 } ring_geom;
 
+/* a, b: the unit directions of the segments before and after point i (T
+ * where one is degenerate); used only at interior points. */
 static inline void ring_setup(ring_geom *g, const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T,
-                              v3 N) {
+                              v3 N, v3 a, v3 b) {
     g->bend = v3_make(0, 0, 0);
     double stretch = 1.0;
     if (i > 0 && i + 1 < n) {
-        v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
         double c = v3_dot(a, T);
         if (c > 0.2 && c < 0.999999) {
             stretch = 1.0 / c;
@@ -205,7 +264,12 @@ static inline void ring_vertex(const ring_geom *g, double c, double s, v3 *p, v3
 static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
                          const double *sn, int sides, v3 *ring, v3 *nr) {
     ring_geom g;
-    ring_setup(&g, pts, radii, n, i, T, N);
+    v3 a = T, b = T;
+    if (i > 0 && i + 1 < n) {
+        a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T);
+        b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
+    }
+    ring_setup(&g, pts, radii, n, i, T, N, a, b);
     for (int j = 0; j < sides; j++) ring_vertex(&g, cs[j], sn[j], &ring[j], &nr[j]);
     return g.reach;
 }
@@ -242,17 +306,6 @@ void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256 || mb->status) return;
-    /* Frames for every point (short tubes, most of a tree's, on the
-     * stack); rings are made one at a time straight into the mesh, so a
-     * long tube needs no scratch per vertex. */
-    enum { STACK_V3 = 2048 };
-    v3 stack[STACK_V3];
-    v3 *T = 2 * (size_t)n <= STACK_V3 ? stack : malloc(sizeof(v3) * 2 * (size_t)n);
-    if (!T) {
-        mb->status = BANYAN_E_NOMEM;
-        return;
-    }
-    v3 *N = T + n, ring[256], nrm[256];
     if (mb->ring_sides != sides) { /* the builder keeps the last table: most tubes repeat it */
         for (int j = 0; j < sides; j++) {
             double a = 6.283185307179586 * j / sides;
@@ -262,32 +315,37 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         mb->ring_sides = sides;
     }
     const double *cs = mb->ring_cs, *sn = mb->ring_sn;
-    tube_frames(pts, n, o->first_normal, T, N);
     uint32_t nv, ni, ring_len = (uint32_t)sides + 1;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     uint32_t first = mb_reserve(mb, nv, ni) ? UINT32_MAX : mb_vertices(mb, n * ring_len);
-    if (first != UINT32_MAX) {
-        /* v: arc length over the circumference at the mean radius. */
-        double rsum = 0, s = 0;
-        for (uint32_t i = 0; i < n; i++) rsum += radii[i];
-        double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
-        for (uint32_t i = 0; i < n; i++) {
-            if (i) s += v3_dist(pts[i], pts[i - 1]);
-            size_t at = (size_t)first + (size_t)i * ring_len;
-            ring_geom g;
-            ring_setup(&g, pts, radii, n, i, T[i], N[i]);
-            put_round_ring(&g, cs, sn, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
-                           (float)(o->v_offset + s * vscale));
-        }
-        stitch(mb, first, n, sides);
-        if (o->cap_start) {
-            round_ring(pts, radii, n, 0, T[0], N[0], cs, sn, sides, ring, nrm);
-            cap(mb, ring, pts[0], v3_neg(T[0]), sides, 0);
-        }
-        if (o->cap_end) {
-            round_ring(pts, radii, n, n - 1, T[n - 1], N[n - 1], cs, sn, sides, ring, nrm);
-            cap(mb, ring, pts[n - 1], T[n - 1], sides, 1);
-        }
+    if (first == UINT32_MAX) return;
+    /* v: arc length over the circumference at the mean radius. */
+    double rsum = 0, s = 0;
+    for (uint32_t i = 0; i < n; i++) rsum += radii[i];
+    double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+    /* Frames are walked along with the rings, each ring made straight into
+     * the mesh: no scratch per point or per vertex. */
+    frame_walk w;
+    walk_start(&w, pts, n, o->first_normal);
+    v3 T0 = w.T, N0 = w.N;
+    for (uint32_t i = 0;; i++) {
+        if (i) s += w.l0;
+        size_t at = (size_t)first + (size_t)i * ring_len;
+        ring_geom g;
+        ring_setup(&g, pts, radii, n, i, w.T, w.N, w.l0 > 1e-300 ? w.u0 : w.T, w.l > 1e-300 ? w.u : w.T);
+        put_round_ring(&g, cs, sn, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
+                       (float)(o->v_offset + s * vscale));
+        if (i + 1 >= n) break;
+        walk_next(&w);
     }
-    if (T != stack) free(T);
+    stitch(mb, first, n, sides);
+    v3 ring[256], nrm[256];
+    if (o->cap_start) {
+        round_ring(pts, radii, n, 0, T0, N0, cs, sn, sides, ring, nrm);
+        cap(mb, ring, pts[0], v3_neg(T0), sides, 0);
+    }
+    if (o->cap_end) {
+        round_ring(pts, radii, n, n - 1, w.T, w.N, cs, sn, sides, ring, nrm);
+        cap(mb, ring, pts[n - 1], w.T, sides, 1);
+    }
 }
