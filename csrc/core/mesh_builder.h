@@ -41,10 +41,11 @@ typedef struct mesh_builder {
 
     banyan_status status; /* first failure, sticky */
 
-    /* tube_sweep's ring angles (cosines, sines) for ring_sides sides, kept
-     * across the tubes of one mesh; 0 = none yet. */
+    /* tube_sweep's ring angles (cosines, sines) and u per ring vertex for
+     * ring_sides sides, kept across the tubes of one mesh; 0 = none yet. */
     int ring_sides;
     double ring_cs[256], ring_sn[256];
+    float ring_u[257];
 } mesh_builder;
 
 /* max_vertices: the generator's limit (1 .. MB_VERTEX_CEILING). */

@@ -274,23 +274,23 @@ static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_
     return g.reach;
 }
 
-/* A round ring straight into the mesh, as put_ring would write it. */
-static void put_round_ring(const ring_geom *g, const double *cs, const double *sn, int sides, float *P, float *N,
-                           float *UV, float v) {
-    float du = 1.0f / (float)sides;
+/* A round ring straight into the mesh, as put_ring would write it (us:
+ * its u per vertex, seam included). */
+static void put_round_ring(const ring_geom *g, const double *cs, const double *sn, const float *us, int sides,
+                           float *P, float *N, float *UV, float v) {
     for (int j = 0; j < sides; j++) {
         v3 p, nr;
         ring_vertex(g, cs[j], sn[j], &p, &nr);
         put3(P + 3 * j, p);
         put3(N + 3 * j, nr);
-        UV[2 * j] = (float)j * du;
+        UV[2 * j] = us[j];
         UV[2 * j + 1] = v;
     }
     for (int c = 0; c < 3; c++) { /* the seam repeats vertex 0 */
         P[3 * sides + c] = P[c];
         N[3 * sides + c] = N[c];
     }
-    UV[2 * sides] = (float)sides * du;
+    UV[2 * sides] = us[sides];
     UV[2 * sides + 1] = v;
 }
 
@@ -312,6 +312,8 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
             mb->ring_cs[j] = cos(a);
             mb->ring_sn[j] = sin(a);
         }
+        float du = 1.0f / (float)sides;
+        for (int j = 0; j <= sides; j++) mb->ring_u[j] = (float)j * du; /* as put_ring's */
         mb->ring_sides = sides;
     }
     const double *cs = mb->ring_cs, *sn = mb->ring_sn;
@@ -333,7 +335,7 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
         size_t at = (size_t)first + (size_t)i * ring_len;
         ring_geom g;
         ring_setup(&g, pts, radii, n, i, w.T, w.N, w.l0 > 1e-300 ? w.u0 : w.T, w.l > 1e-300 ? w.u : w.T);
-        put_round_ring(&g, cs, sn, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
+        put_round_ring(&g, cs, sn, mb->ring_u, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
                        (float)(o->v_offset + s * vscale));
         if (i + 1 >= n) break;
         walk_next(&w);
