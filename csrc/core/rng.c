@@ -12,21 +12,6 @@ void pcg32_seed(pcg32 *r, uint64_t seed, uint64_t stream) {
     pcg32_next(r);
 }
 
-uint32_t pcg32_next(pcg32 *r) {
-    uint64_t old = r->state;
-    r->state = old * 6364136223846793005ULL + r->inc;
-    uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-    uint32_t rot = (uint32_t)(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
-}
-
-double rng_uniform(pcg32 *r) {
-    uint64_t hi = pcg32_next(r) >> 5, lo = pcg32_next(r) >> 6; /* 27 + 26 bits */
-    return (double)(hi * 67108864.0 + lo) * (1.0 / 9007199254740992.0);
-}
-
-double rng_range(pcg32 *r, double a, double b) { return a + (b - a) * rng_uniform(r); }
-
 uint32_t rng_below(pcg32 *r, uint32_t n) {
     if (n <= 1) return 0;
     uint32_t threshold = (uint32_t)(-n) % n; /* 2^32 mod n */

@@ -134,7 +134,7 @@ static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int side
     if (c == UINT32_MAX || !I) return;
     v3 ref = v3_sub(ring[0], centre);
     double rr = v3_len(ref), s = rr > 0 ? 0.5 / rr : 0.0;
-    v3 ax = v3_norm_or(ref, v3_any_perp(normal)), ay = v3_cross(normal, ax);
+    v3 ax = v3_norm_or_perp(ref, normal), ay = v3_cross(normal, ax);
     float *P = mb->pos + 3 * (size_t)c, *N = mb->nrm + 3 * (size_t)c, *T = mb->uv + 2 * (size_t)c;
     put3(P, centre);
     put3(N, normal);

@@ -131,7 +131,7 @@ static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double 
         v3 at = v3_madd(v3_madd(x->start, x->dir, x->length * t), side, x->radius);
         /* The card reaches out from the branch, a little forward and up. */
         v3 a = v3_norm(v3_add(v3_add(side, v3_scale(x->dir, 0.6)), v3_make(0, 0, 0.4)));
-        v3 w = v3_norm_or(v3_cross(a, v3_make(0, 0, 1)), v3_any_perp(a));
+        v3 w = v3_norm_or_perp(v3_cross(a, v3_make(0, 0, 1)), a);
         w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
         v3 nrm = v3_norm(v3_cross(w, a));
         if (nrm.z < 0) { /* face the sky: lit like a crown from above */
