@@ -86,12 +86,19 @@ void mb_begin_part(mesh_builder *mb, uint32_t material, uint32_t group) {
     p->group = group;
 }
 
-static int grow_vertices(mesh_builder *mb, uint32_t need) {
-    if (need <= mb->cap_v) return 1;
-    uint64_t cap = mb->cap_v ? (uint64_t)mb->cap_v * 2 : 256;
-    while (cap < need) cap *= 2;
-    if (cap > mb->max_vertices) cap = mb->max_vertices;
-    size_t c = (size_t)cap;
+/* Capacity for `need` when the builder must grow. The first reservation
+ * is taken as exact (generators reserve their totals up front). Later
+ * growth is fourfold, so a caller that cannot reserve its total copies
+ * about a third of its output in reallocs instead of all of it (as with
+ * doubling); the slack is never touched, so costs no pages, and
+ * mb_finish trims it. */
+static uint64_t grown(uint64_t cap, uint64_t need, uint64_t first, uint64_t limit) {
+    if (!cap) cap = need > first ? need : first;
+    while (cap < need) cap *= 4;
+    return cap < limit ? cap : limit;
+}
+
+static int resize_vertices(mesh_builder *mb, size_t c) {
     if (!grow((void **)&mb->pos, c, 3 * sizeof(float)) || !grow((void **)&mb->nrm, c, 3 * sizeof(float)) ||
         !grow((void **)&mb->uv, c, 2 * sizeof(float)) ||
         (mb->with_color && !grow((void **)&mb->col, c, 4 * sizeof(float))))
@@ -102,18 +109,28 @@ static int grow_vertices(mesh_builder *mb, uint32_t need) {
     return 1;
 }
 
+/* On failure at the generous capacity, tries the exact need. */
+static int grow_vertices(mesh_builder *mb, uint32_t need) {
+    if (need <= mb->cap_v) return 1;
+    uint64_t cap = grown(mb->cap_v, need, 256, mb->max_vertices);
+    return resize_vertices(mb, (size_t)cap) || (cap > need && resize_vertices(mb, need));
+}
+
+static int grow_indices(mesh_builder *mb, uint64_t need) {
+    if (need <= mb->cap_i) return 1;
+    uint64_t cap = grown(mb->cap_i, need, 768, 0xFFFFFFF0u);
+    if (!grow((void **)&mb->idx, (size_t)cap, sizeof(uint32_t)) &&
+        (cap == need || !grow((void **)&mb->idx, (size_t)(cap = need), sizeof(uint32_t))))
+        return 0;
+    mb->cap_i = (uint32_t)cap;
+    return 1;
+}
+
 banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indices) {
     if (mb->status) return mb->status;
     uint64_t need_v = (uint64_t)mb->nv + n_vertices, need_i = (uint64_t)mb->ni + n_indices;
     if (need_v > mb->max_vertices || need_i > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
-    if (!grow_vertices(mb, (uint32_t)need_v)) return mb->status = BANYAN_E_NOMEM;
-    if (need_i > mb->cap_i) {
-        uint64_t cap = mb->cap_i ? (uint64_t)mb->cap_i * 2 : 768;
-        while (cap < need_i) cap *= 2;
-        if (cap > 0xFFFFFFF0u) cap = 0xFFFFFFF0u;
-        if (!grow((void **)&mb->idx, (size_t)cap, sizeof(uint32_t))) return mb->status = BANYAN_E_NOMEM;
-        mb->cap_i = (uint32_t)cap;
-    }
+    if (!grow_vertices(mb, (uint32_t)need_v) || !grow_indices(mb, need_i)) return mb->status = BANYAN_E_NOMEM;
     return BANYAN_OK;
 }
 
@@ -149,39 +166,33 @@ uint32_t *mb_indices(mesh_builder *mb, uint32_t count) {
     return I;
 }
 
-uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {
-    if (mb->status) return 0;
-    if (mb->n_skel >= mb->cap_skel) {
-        uint32_t cap = mb->cap_skel ? mb->cap_skel * 2 : 256;
+banyan_status mb_skel_reserve(mesh_builder *mb, uint32_t points, uint32_t edges) {
+    if (mb->status) return mb->status;
+    uint64_t need_p = (uint64_t)mb->n_skel + points, need_e = (uint64_t)mb->n_edge + edges;
+    if (need_p > 0xFFFFFFF0u || need_e > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
+    if (need_p > mb->cap_skel) {
+        size_t cap = (size_t)grown(mb->cap_skel, need_p, 256, 0xFFFFFFF0u);
         if (!grow((void **)&mb->skel_pos, cap, 3 * sizeof(float)) || !grow((void **)&mb->skel_rad, cap, sizeof(float)) ||
-            !grow((void **)&mb->skel_tag, cap, sizeof(int32_t))) {
-            mb->status = BANYAN_E_NOMEM;
-            return 0;
-        }
-        mb->cap_skel = cap;
+            !grow((void **)&mb->skel_tag, cap, sizeof(int32_t)))
+            return mb->status = BANYAN_E_NOMEM;
+        mb->cap_skel = (uint32_t)cap;
     }
-    uint32_t i = mb->n_skel++;
-    mb->skel_pos[3 * i] = (float)p.x;
-    mb->skel_pos[3 * i + 1] = (float)p.y;
-    mb->skel_pos[3 * i + 2] = (float)p.z;
-    mb->skel_rad[i] = (float)radius;
-    mb->skel_tag[i] = tag;
-    return i;
+    if (need_e > mb->cap_edge) {
+        size_t cap = (size_t)grown(mb->cap_edge, need_e, 256, 0xFFFFFFF0u);
+        if (!grow((void **)&mb->skel_edge, cap, 2 * sizeof(uint32_t))) return mb->status = BANYAN_E_NOMEM;
+        mb->cap_edge = (uint32_t)cap;
+    }
+    return BANYAN_OK;
 }
 
-void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b) {
-    if (mb->status) return;
-    if (mb->n_edge >= mb->cap_edge) {
-        uint32_t cap = mb->cap_edge ? mb->cap_edge * 2 : 256;
-        if (!grow((void **)&mb->skel_edge, cap, 2 * sizeof(uint32_t))) {
-            mb->status = BANYAN_E_NOMEM;
-            return;
-        }
-        mb->cap_edge = cap;
-    }
-    mb->skel_edge[2 * mb->n_edge] = a;
-    mb->skel_edge[2 * mb->n_edge + 1] = b;
-    mb->n_edge++;
+uint32_t mb_skel_point_grow(mesh_builder *mb, v3 p, double radius, int32_t tag) {
+    if (mb->status || mb_skel_reserve(mb, 1, 0)) return 0;
+    return mb_skel_point(mb, p, radius, tag);
+}
+
+void mb_skel_edge_grow(mesh_builder *mb, uint32_t a, uint32_t b) {
+    if (mb->status || mb_skel_reserve(mb, 0, 1)) return;
+    mb_skel_edge(mb, a, b);
 }
 
 banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
@@ -211,6 +222,9 @@ banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) 
         mb->ni = ni;
     }
     close_part(mb);
+    /* Hand over no slack: shrinking in place costs no copy. */
+    if (mb->cap_v > mb->nv) resize_vertices(mb, mb->nv);
+    if (mb->cap_i > mb->ni && grow((void **)&mb->idx, mb->ni, sizeof(uint32_t))) mb->cap_i = mb->ni;
     if (mb->n_part > 1 && mb->part[mb->n_part - 1].vertex_count == 0) mb->n_part--;
     banyan_mesh *m = calloc(1, sizeof *m);
     banyan_attribute *attrs = mb->n_attr ? calloc(mb->n_attr, sizeof *attrs) : NULL;
@@ -233,7 +247,7 @@ banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) 
     m->skel_point_count = mb->n_skel;
     m->skel_points = mb->skel_pos; m->skel_radius = mb->skel_rad; m->skel_tag = mb->skel_tag;
     m->skel_edge_count = mb->n_edge; m->skel_edges = mb->skel_edge;
-    memset(mb, 0, sizeof *mb); /* ownership moved; arrays keep their capacity slack */
+    memset(mb, 0, sizeof *mb); /* ownership moved */
     *out = m;
     banyan_error_clear(err);
     return BANYAN_OK;

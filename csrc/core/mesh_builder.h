@@ -40,6 +40,12 @@ typedef struct mesh_builder {
     uint32_t n_edge, cap_edge;
 
     banyan_status status; /* first failure, sticky */
+
+    /* tube_sweep's ring angles (cosines, sines) and u per ring vertex for
+     * ring_sides sides, kept across the tubes of one mesh; 0 = none yet. */
+    int ring_sides;
+    double ring_cs[256], ring_sn[256];
+    float ring_u[257];
 } mesh_builder;
 
 /* max_vertices: the generator's limit (1 .. MB_VERTEX_CEILING). */
@@ -69,13 +75,18 @@ void mb_tri_grow(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c);
 
 /* Adds a vertex and returns its index. Inline because the sweeper calls it
  * for every vertex; call mb_reserve first so it never has to grow. */
-static inline uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v) {
-    if (mb->nv >= mb->cap_v || mb->status) return mb_vertex_grow(mb, p, n, u, v);
-    uint32_t i = mb->nv++;
+/* Writes vertex i's position, normal and uv (as floats). */
+static inline void mb_put(mesh_builder *mb, uint32_t i, v3 p, v3 n, double u, double v) {
     float *P = mb->pos + 3 * (size_t)i, *N = mb->nrm + 3 * (size_t)i, *T = mb->uv + 2 * (size_t)i;
     P[0] = (float)p.x; P[1] = (float)p.y; P[2] = (float)p.z;
     N[0] = (float)n.x; N[1] = (float)n.y; N[2] = (float)n.z;
     T[0] = (float)u; T[1] = (float)v;
+}
+
+static inline uint32_t mb_vertex(mesh_builder *mb, v3 p, v3 n, double u, double v) {
+    if (mb->nv >= mb->cap_v || mb->status) return mb_vertex_grow(mb, p, n, u, v);
+    uint32_t i = mb->nv++;
+    mb_put(mb, i, p, n, u, v);
     if (mb->with_color) {
         float *C = mb->col + 4 * (size_t)i;
         C[0] = mb->cur_color[0]; C[1] = mb->cur_color[1]; C[2] = mb->cur_color[2]; C[3] = mb->cur_color[3];
@@ -96,15 +107,37 @@ static inline void mb_tri(mesh_builder *mb, uint32_t a, uint32_t b, uint32_t c) 
 
 /* Bulk paths for sweepers: mb_vertices appends `count` vertices carrying
  * the current colour and attributes and returns the first one's index; the
- * caller writes their positions, normals and uvs into mb->pos/nrm/uv.
+ * caller writes their positions, normals and uvs (mb_put, or straight into
+ * mb->pos/nrm/uv).
  * mb_indices appends `count` indices and returns where to write them.
  * Both return UINT32_MAX / NULL once the builder has failed. */
 uint32_t mb_vertices(mesh_builder *mb, uint32_t count);
 uint32_t *mb_indices(mesh_builder *mb, uint32_t count);
 
-/* Skeleton. */
-uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag);
-void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b);
+/* Skeleton: mb_skel_reserve makes room for more points and edges (like
+ * mb_reserve); the adds are inline, growing on their slow paths. */
+banyan_status mb_skel_reserve(mesh_builder *mb, uint32_t points, uint32_t edges);
+uint32_t mb_skel_point_grow(mesh_builder *mb, v3 p, double radius, int32_t tag);
+void mb_skel_edge_grow(mesh_builder *mb, uint32_t a, uint32_t b);
+
+static inline uint32_t mb_skel_point(mesh_builder *mb, v3 p, double radius, int32_t tag) {
+    if (mb->n_skel >= mb->cap_skel || mb->status) return mb_skel_point_grow(mb, p, radius, tag);
+    uint32_t i = mb->n_skel++;
+    float *P = mb->skel_pos + 3 * (size_t)i;
+    P[0] = (float)p.x; P[1] = (float)p.y; P[2] = (float)p.z;
+    mb->skel_rad[i] = (float)radius;
+    mb->skel_tag[i] = tag;
+    return i;
+}
+
+static inline void mb_skel_edge(mesh_builder *mb, uint32_t a, uint32_t b) {
+    if (mb->n_edge >= mb->cap_edge || mb->status) {
+        mb_skel_edge_grow(mb, a, b);
+        return;
+    }
+    uint32_t *E = mb->skel_edge + 2 * (size_t)mb->n_edge++;
+    E[0] = a; E[1] = b;
+}
 
 /* Hands the arrays over as a banyan_mesh; the builder is emptied either
  * way. On failure *out stays NULL and err says why. */

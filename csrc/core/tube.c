@@ -24,43 +24,104 @@ static v3 tangent_at(const v3 *p, uint32_t n, uint32_t i, v3 prev) {
     return v3_norm_or(d, prev);
 }
 
+/* Rotation-minimising frames walked point by point (tube_frames, and
+ * tube_sweep, which keeps no per-point scratch); each segment's vector,
+ * length and unit direction are made once. */
+typedef struct frame_walk {
+    const v3 *p;
+    uint32_t n, i;
+    v3 T, N;            /* the frame at point i */
+    v3 v, u;            /* segment i, p[i+1] - p[i], and its unit (when l > 1e-300) */
+    double d2, l;       /* its squared length and length */
+    v3 u0;              /* segment i - 1's unit and length (l0 = 0 at point 0) */
+    double l0;
+} frame_walk;
+
+static inline void segment(const v3 *p, uint32_t i, v3 *v, v3 *u, double *d2, double *l) {
+    *v = v3_sub(p[i + 1], p[i]);
+    *d2 = v3_dot(*v, *v);
+    *l = sqrt(*d2);
+    *u = *l > 1e-300 ? v3_scale(*v, 1.0 / *l) : *v; /* = v3_norm_or's unit */
+}
+
+static void walk_start(frame_walk *w, const v3 *p, uint32_t n, v3 first_normal) {
+    w->p = p;
+    w->n = n;
+    w->i = 0;
+    w->l0 = 0;
+    w->u0 = v3_make(0, 0, 0);
+    segment(p, 0, &w->v, &w->u, &w->d2, &w->l);
+    w->T = w->l > 1e-300 ? w->u : v3_norm_or(v3_sub(p[n - 1], p[0]), v3_make(0, 0, 1));
+    v3 n0 = v3_sub(first_normal, v3_scale(w->T, v3_dot(first_normal, w->T)));
+    w->N = v3_len2(n0) > 1e-12 ? v3_norm(n0) : v3_any_perp(w->T);
+}
+
+/* To point i + 1 (< n). */
+static void walk_next(frame_walk *w) {
+    uint32_t i = w->i;
+    v3 T = w->T, v2 = w->v, u2 = w->u, T1;
+    double d22 = w->d2, l2 = w->l;
+    if (i + 2 == w->n) {
+        T1 = w->l > 1e-300 ? w->u : T;
+    } else {
+        /* Bisector of the two unit segment directions: a ring tilted to it
+         * meets both neighbours' rings evenly. */
+        segment(w->p, i + 1, &v2, &u2, &d22, &l2);
+        v3 a = w->l > 1e-300 ? w->u : T, b = l2 > 1e-300 ? u2 : T;
+        T1 = v3_norm_or(v3_add(a, b), T);
+    }
+    /* Double reflection: reflect across the bisector plane of x_i,
+     * x_{i+1}, then across the plane that maps the reflected tangent onto
+     * T_{i+1}. */
+    v3 v1 = w->v;
+    double c1 = w->d2;
+    v3 rL = w->N, tL = T;
+    if (c1 > 1e-24) {
+        rL = v3_madd(w->N, v1, -2.0 / c1 * v3_dot(v1, w->N));
+        tL = v3_madd(T, v1, -2.0 / c1 * v3_dot(v1, T));
+    }
+    v3 v3r = v3_sub(T1, tL);
+    double c2 = v3_len2(v3r);
+    v3 r = c2 > 1e-24 ? v3_madd(rL, v3r, -2.0 / c2 * v3_dot(v3r, rL)) : rL;
+    /* Re-orthonormalise against float drift. */
+    r = v3_sub(r, v3_scale(T1, v3_dot(r, T1)));
+    w->N = v3_len2(r) > 1e-24 ? v3_norm(r) : v3_any_perp(T1);
+    w->T = T1;
+    w->u0 = w->u;
+    w->l0 = w->l;
+    w->v = v2;
+    w->u = u2;
+    w->d2 = d22;
+    w->l = l2;
+    w->i = i + 1;
+}
+
 void tube_frames(const v3 *pts, uint32_t n, v3 first_normal, v3 *T, v3 *N) {
-    v3 prev = v3_make(0, 0, 1);
-    for (uint32_t i = 0; i < n; i++) prev = T[i] = tangent_at(pts, n, i, i ? T[i - 1] : v3_norm_or(v3_sub(pts[n - 1], pts[0]), prev));
-    v3 n0 = v3_sub(first_normal, v3_scale(T[0], v3_dot(first_normal, T[0])));
-    N[0] = v3_len2(n0) > 1e-12 ? v3_norm(n0) : v3_any_perp(T[0]);
-    for (uint32_t i = 0; i + 1 < n; i++) {
-        /* Double reflection: reflect across the bisector plane of x_i,
-         * x_{i+1}, then across the plane that maps the reflected tangent
-         * onto T_{i+1}. */
-        v3 v1 = v3_sub(pts[i + 1], pts[i]);
-        double c1 = v3_len2(v1);
-        v3 rL = N[i], tL = T[i];
-        if (c1 > 1e-24) {
-            rL = v3_madd(N[i], v1, -2.0 / c1 * v3_dot(v1, N[i]));
-            tL = v3_madd(T[i], v1, -2.0 / c1 * v3_dot(v1, T[i]));
-        }
-        v3 v2 = v3_sub(T[i + 1], tL);
-        double c2 = v3_len2(v2);
-        v3 r = c2 > 1e-24 ? v3_madd(rL, v2, -2.0 / c2 * v3_dot(v2, rL)) : rL;
-        /* Re-orthonormalise against float drift. */
-        r = v3_sub(r, v3_scale(T[i + 1], v3_dot(r, T[i + 1])));
-        N[i + 1] = v3_len2(r) > 1e-24 ? v3_norm(r) : v3_any_perp(T[i + 1]);
+    frame_walk w;
+    walk_start(&w, pts, n, first_normal);
+    for (uint32_t i = 0;; i++) {
+        T[i] = w.T;
+        N[i] = w.N;
+        if (i + 1 >= n) break;
+        walk_next(&w);
     }
 }
 
-/* Quads between consecutive rings; ring i starts at first + i * (sides+1). */
+/* Quads between consecutive rings; ring i starts at first + i * (sides+1).
+ * Every ring pair repeats one pattern of offsets from its first vertex:
+ * built once, then each pair is one add per index (the loop vectorises). */
 static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
-    uint32_t ring = (uint32_t)sides + 1;
-    uint32_t *I = mb_indices(mb, (n - 1) * (uint32_t)sides * 6);
+    uint32_t ring = (uint32_t)sides + 1, per = 6 * (uint32_t)sides;
+    uint32_t *I = mb_indices(mb, (n - 1) * per);
     if (!I) return;
-    for (uint32_t i = 0; i + 1 < n; i++) {
-        uint32_t r0 = first + i * ring, r1 = r0 + ring;
-        for (uint32_t j = 0; j < (uint32_t)sides; j++, I += 6) {
-            I[0] = r0 + j; I[1] = r0 + j + 1; I[2] = r1 + j + 1;
-            I[3] = r0 + j; I[4] = r1 + j + 1; I[5] = r1 + j;
-        }
+    uint32_t pat[6 * 256];
+    for (uint32_t j = 0; j < (uint32_t)sides; j++) {
+        uint32_t *q = pat + 6 * j;
+        q[0] = j; q[1] = j + 1; q[2] = ring + j + 1;
+        q[3] = j; q[4] = ring + j + 1; q[5] = ring + j;
     }
+    for (uint32_t i = 0, r0 = first; i + 1 < n; i++, r0 += ring, I += per)
+        for (uint32_t k = 0; k < per; k++) I[k] = r0 + pat[k];
 }
 
 static inline void put3(float *f, v3 p) {
@@ -73,7 +134,7 @@ static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int side
     if (c == UINT32_MAX || !I) return;
     v3 ref = v3_sub(ring[0], centre);
     double rr = v3_len(ref), s = rr > 0 ? 0.5 / rr : 0.0;
-    v3 ax = v3_norm_or(ref, v3_any_perp(normal)), ay = v3_cross(normal, ax);
+    v3 ax = v3_norm_or_perp(ref, normal), ay = v3_cross(normal, ax);
     float *P = mb->pos + 3 * (size_t)c, *N = mb->nrm + 3 * (size_t)c, *T = mb->uv + 2 * (size_t)c;
     put3(P, centre);
     put3(N, normal);
@@ -160,29 +221,77 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);
 }
 
-/* Round ring i of tube_round_rings; returns its widest reach. */
-static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
-                         const double *sn, int sides, v3 *ring, v3 *nr) {
-    v3 bend = v3_make(0, 0, 0);
+/* Round ring i: its frame, radius, taper and the widening across a bend. */
+typedef struct ring_geom {
+    v3 c, T, N, B, bend;
+    double ri, dr, k, nb, bb, reach;
+} ring_geom;
+
+/* a, b: the unit directions of the segments before and after point i (T
+ * where one is degenerate); used only at interior points. */
+static inline void ring_setup(ring_geom *g, const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T,
+                              v3 N, v3 a, v3 b) {
+    g->bend = v3_make(0, 0, 0);
     double stretch = 1.0;
     if (i > 0 && i + 1 < n) {
-        v3 a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T), b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
         double c = v3_dot(a, T);
         if (c > 0.2 && c < 0.999999) {
             stretch = 1.0 / c;
-            bend = v3_norm(v3_sub(b, a));
+            g->bend = v3_norm(v3_sub(b, a));
         }
     }
-    v3 Bv = v3_cross(T, N);
-    double ri = radii[i], dr = tube_taper_slope(pts, radii, n, i), k = 1.0 / sqrt(1.0 + dr * dr);
+    g->c = pts[i];
+    g->T = T;
+    g->N = N;
+    g->B = v3_cross(T, N);
+    g->ri = radii[i];
+    g->dr = tube_taper_slope(pts, radii, n, i);
+    g->k = 1.0 / sqrt(1.0 + g->dr * g->dr);
     /* (d . bend)(stretch - 1) for d = c N + s B, split by c and s. */
-    double nb = ri * v3_dot(N, bend) * (stretch - 1.0), bb = ri * v3_dot(Bv, bend) * (stretch - 1.0);
-    for (int j = 0; j < sides; j++) {
-        v3 d = v3_add(v3_scale(N, cs[j]), v3_scale(Bv, sn[j]));
-        ring[j] = v3_madd(v3_madd(pts[i], d, ri), bend, cs[j] * nb + sn[j] * bb);
-        nr[j] = v3_scale(v3_madd(d, T, -dr), k);
+    g->nb = g->ri * v3_dot(N, g->bend) * (stretch - 1.0);
+    g->bb = g->ri * v3_dot(g->B, g->bend) * (stretch - 1.0);
+    g->reach = g->ri * stretch;
+}
+
+/* Vertex at angle (cosine c, sine s) of a round ring and its normal. */
+static inline void ring_vertex(const ring_geom *g, double c, double s, v3 *p, v3 *nr) {
+    v3 d = v3_add(v3_scale(g->N, c), v3_scale(g->B, s));
+    *p = v3_madd(v3_madd(g->c, d, g->ri), g->bend, c * g->nb + s * g->bb);
+    *nr = v3_scale(v3_madd(d, g->T, -g->dr), g->k);
+}
+
+/* Round ring i of tube_round_rings; returns its widest reach. */
+static double round_ring(const v3 *pts, const double *radii, uint32_t n, uint32_t i, v3 T, v3 N, const double *cs,
+                         const double *sn, int sides, v3 *ring, v3 *nr) {
+    ring_geom g;
+    v3 a = T, b = T;
+    if (i > 0 && i + 1 < n) {
+        a = v3_norm_or(v3_sub(pts[i], pts[i - 1]), T);
+        b = v3_norm_or(v3_sub(pts[i + 1], pts[i]), T);
     }
-    return ri * stretch;
+    ring_setup(&g, pts, radii, n, i, T, N, a, b);
+    for (int j = 0; j < sides; j++) ring_vertex(&g, cs[j], sn[j], &ring[j], &nr[j]);
+    return g.reach;
+}
+
+/* A round ring straight into the mesh, as put_ring would write it (us:
+ * its u per vertex, seam included). */
+static void put_round_ring(const ring_geom *g, const double *cs, const double *sn, const float *us, int sides,
+                           float *P, float *N, float *UV, float v) {
+    for (int j = 0; j < sides; j++) {
+        v3 p, nr;
+        ring_vertex(g, cs[j], sn[j], &p, &nr);
+        put3(P + 3 * j, p);
+        put3(N + 3 * j, nr);
+        UV[2 * j] = us[j];
+        UV[2 * j + 1] = v;
+    }
+    for (int c = 0; c < 3; c++) { /* the seam repeats vertex 0 */
+        P[3 * sides + c] = P[c];
+        N[3 * sides + c] = N[c];
+    }
+    UV[2 * sides] = us[sides];
+    UV[2 * sides + 1] = v;
 }
 
 void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *T, const v3 *N, const double *cs,
@@ -197,48 +306,48 @@ void tube_round_rings(const v3 *pts, const double *radii, uint32_t n, const v3 *
 void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256 || mb->status) return;
-    /* Frames for every point (short tubes, most of a tree's, on the
-     * stack); rings are made one at a time straight into the mesh, so a
-     * long tube needs no scratch per vertex. */
-    enum { STACK_V3 = 2048 };
-    v3 stack[STACK_V3];
-    v3 *T = 2 * (size_t)n <= STACK_V3 ? stack : malloc(sizeof(v3) * 2 * (size_t)n);
-    if (!T) {
-        mb->status = BANYAN_E_NOMEM;
-        return;
+    if (mb->ring_sides != sides) { /* the builder keeps the last table: most tubes repeat it */
+        for (int j = 0; j < sides; j++) {
+            double a = 6.283185307179586 * j / sides;
+            mb->ring_cs[j] = cos(a);
+            mb->ring_sn[j] = sin(a);
+        }
+        float du = 1.0f / (float)sides;
+        for (int j = 0; j <= sides; j++) mb->ring_u[j] = (float)j * du; /* as put_ring's */
+        mb->ring_sides = sides;
     }
-    v3 *N = T + n, ring[256], nrm[256];
-    double cs[256], sn[256];
-    for (int j = 0; j < sides; j++) {
-        double a = 6.283185307179586 * j / sides;
-        cs[j] = cos(a);
-        sn[j] = sin(a);
-    }
-    tube_frames(pts, n, o->first_normal, T, N);
+    const double *cs = mb->ring_cs, *sn = mb->ring_sn;
     uint32_t nv, ni, ring_len = (uint32_t)sides + 1;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     uint32_t first = mb_reserve(mb, nv, ni) ? UINT32_MAX : mb_vertices(mb, n * ring_len);
-    if (first != UINT32_MAX) {
-        /* v: arc length over the circumference at the mean radius. */
-        double rsum = 0, s = 0;
-        for (uint32_t i = 0; i < n; i++) rsum += radii[i];
-        double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
-        for (uint32_t i = 0; i < n; i++) {
-            if (i) s += v3_dist(pts[i], pts[i - 1]);
-            size_t at = (size_t)first + (size_t)i * ring_len;
-            round_ring(pts, radii, n, i, T[i], N[i], cs, sn, sides, ring, nrm);
-            put_ring(mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at, ring, nrm, sides,
-                     (float)(o->v_offset + s * vscale));
-        }
-        stitch(mb, first, n, sides);
-        if (o->cap_start) {
-            round_ring(pts, radii, n, 0, T[0], N[0], cs, sn, sides, ring, nrm);
-            cap(mb, ring, pts[0], v3_neg(T[0]), sides, 0);
-        }
-        if (o->cap_end) {
-            round_ring(pts, radii, n, n - 1, T[n - 1], N[n - 1], cs, sn, sides, ring, nrm);
-            cap(mb, ring, pts[n - 1], T[n - 1], sides, 1);
-        }
+    if (first == UINT32_MAX) return;
+    /* v: arc length over the circumference at the mean radius. */
+    double rsum = 0, s = 0;
+    for (uint32_t i = 0; i < n; i++) rsum += radii[i];
+    double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+    /* Frames are walked along with the rings, each ring made straight into
+     * the mesh: no scratch per point or per vertex. */
+    frame_walk w;
+    walk_start(&w, pts, n, o->first_normal);
+    v3 T0 = w.T, N0 = w.N;
+    for (uint32_t i = 0;; i++) {
+        if (i) s += w.l0;
+        size_t at = (size_t)first + (size_t)i * ring_len;
+        ring_geom g;
+        ring_setup(&g, pts, radii, n, i, w.T, w.N, w.l0 > 1e-300 ? w.u0 : w.T, w.l > 1e-300 ? w.u : w.T);
+        put_round_ring(&g, cs, sn, mb->ring_u, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
+                       (float)(o->v_offset + s * vscale));
+        if (i + 1 >= n) break;
+        walk_next(&w);
     }
-    if (T != stack) free(T);
+    stitch(mb, first, n, sides);
+    v3 ring[256], nrm[256];
+    if (o->cap_start) {
+        round_ring(pts, radii, n, 0, T0, N0, cs, sn, sides, ring, nrm);
+        cap(mb, ring, pts[0], v3_neg(T0), sides, 0);
+    }
+    if (o->cap_end) {
+        round_ring(pts, radii, n, n - 1, w.T, w.N, cs, sn, sides, ring, nrm);
+        cap(mb, ring, pts[n - 1], w.T, sides, 1);
+    }
 }

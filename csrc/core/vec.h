@@ -40,6 +40,13 @@ static inline v3 v3_any_perp(v3 n) {
     return v3_norm(v3_cross(n, a));
 }
 
+/* Unit vector along a, or v3_any_perp(n) when |a| is below 1e-300: as
+ * v3_norm_or(a, v3_any_perp(n)), but the fallback is made only when used. */
+static inline v3 v3_norm_or_perp(v3 a, v3 n) {
+    double l = v3_len(a);
+    return l > 1e-300 ? v3_scale(a, 1.0 / l) : v3_any_perp(n);
+}
+
 /* Rodrigues rotation of v by `angle` radians about unit axis k. */
 static inline v3 v3_rotate(v3 v, v3 k, double angle) {
     double c = cos(angle), s = sin(angle);

@@ -120,29 +120,34 @@ static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32
     }
 }
 
-static void leaf_card(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double size) {
-    double t = rng_uniform(r), phi = rng_uniform(r) * 2.0 * BANYAN_PI, roll = rng_range(r, -1.0, 1.0);
+/* The cards of branch x: vertices v0.. and indices I were made room for
+ * (4 and 6 a card); N0, B0 span the plane across the branch. */
+static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double size, int32_t cards, uint32_t v0,
+                       uint32_t *I) {
     v3 N0 = v3_any_perp(x->dir), B0 = v3_cross(x->dir, N0);
-    v3 side = v3_add(v3_scale(N0, cos(phi)), v3_scale(B0, sin(phi)));
-    v3 at = v3_madd(v3_madd(x->start, x->dir, x->length * t), side, x->radius);
-    /* The card reaches out from the branch, a little forward and up. */
-    v3 a = v3_norm(v3_add(v3_add(side, v3_scale(x->dir, 0.6)), v3_make(0, 0, 0.4)));
-    v3 w = v3_norm_or(v3_cross(a, v3_make(0, 0, 1)), v3_any_perp(a));
-    w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
-    v3 nrm = v3_norm(v3_cross(w, a));
-    if (nrm.z < 0) { /* face the sky: lit like a crown from above */
-        w = v3_neg(w);
-        nrm = v3_neg(nrm);
+    for (int32_t c = 0; c < cards; c++, v0 += 4, I += 6) {
+        double t = rng_uniform(r), phi = rng_uniform(r) * 2.0 * BANYAN_PI, roll = rng_range(r, -1.0, 1.0);
+        v3 side = v3_add(v3_scale(N0, cos(phi)), v3_scale(B0, sin(phi)));
+        v3 at = v3_madd(v3_madd(x->start, x->dir, x->length * t), side, x->radius);
+        /* The card reaches out from the branch, a little forward and up. */
+        v3 a = v3_norm(v3_add(v3_add(side, v3_scale(x->dir, 0.6)), v3_make(0, 0, 0.4)));
+        v3 w = v3_norm_or_perp(v3_cross(a, v3_make(0, 0, 1)), a);
+        w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
+        v3 nrm = v3_norm(v3_cross(w, a));
+        if (nrm.z < 0) { /* face the sky: lit like a crown from above */
+            w = v3_neg(w);
+            nrm = v3_neg(nrm);
+        }
+        double hw = 0.5 * size;
+        v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
+        v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
+        mb_put(mb, v0, p0, nrm, 0, 0);
+        mb_put(mb, v0 + 1, p1, nrm, 1, 0);
+        mb_put(mb, v0 + 2, p2, nrm, 1, 1);
+        mb_put(mb, v0 + 3, p3, nrm, 0, 1);
+        I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
+        I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;
     }
-    double hw = 0.5 * size;
-    v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
-    v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
-    uint32_t i0 = mb_vertex(mb, p0, nrm, 0, 0);
-    uint32_t i1 = mb_vertex(mb, p1, nrm, 1, 0);
-    uint32_t i2 = mb_vertex(mb, p2, nrm, 1, 1);
-    uint32_t i3 = mb_vertex(mb, p3, nrm, 0, 1);
-    mb_tri(mb, i0, i1, i2);
-    mb_tri(mb, i0, i2, i3);
 }
 
 void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
@@ -208,12 +213,16 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
             if (!body->leaf_count[i]) continue;
             mb_set_attr(mb, attr[1], n[i].level);
             mb_set_attr(mb, attr[2], n[i].order);
-            for (int32_t c = 0; c < body->leaf_count[i]; c++) leaf_card(mb, &body->leaf_rng, &n[i], size);
+            uint32_t c = (uint32_t)body->leaf_count[i], v0 = mb_vertices(mb, 4 * c);
+            uint32_t *I = mb_indices(mb, 6 * c);
+            if (v0 == UINT32_MAX || !I) break;
+            leaf_cards(mb, &body->leaf_rng, &n[i], size, (int32_t)c, v0, I);
         }
     }
 
     /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i. */
     uint32_t s0 = mb->n_skel;
+    mb_skel_reserve(mb, (uint32_t)count + 1, (uint32_t)count);
     for (int32_t i = -1; i < count; i++) {
         const keyaki_node *x = &n[i < 0 ? 0 : i];
         int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);

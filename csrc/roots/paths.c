@@ -70,7 +70,7 @@ static v3 split_point(const roots_world *w, v3 a, v3 b, v3 m0) {
     /* Start with the obstacle's own way out, so the later directions are
      * cut short by the best distance found so far. */
     world_clearance(w, m0, &n, NULL);
-    v3 e1 = v3_norm_or(v3_madd(n, axis, -v3_dot(n, axis)), v3_any_perp(axis)), e2 = v3_cross(axis, e1);
+    v3 e1 = v3_norm_or_perp(v3_madd(n, axis, -v3_dot(n, axis)), axis), e2 = v3_cross(axis, e1);
     static const double c8[8] = {1, 0.70710678118654752, 0, -0.70710678118654752, -1, -0.70710678118654752, 0,
                                  0.70710678118654752};
     double reach = v3_dist(a, b) + 2.0 * w->r, best_s = 1e300;
