@@ -24,6 +24,9 @@
 #include "bench.h"
 
 #include <math.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "banyan.h"
 #include "core/tube.h"
@@ -112,6 +115,13 @@ enum { N_CASES = 5 }; /* branches reused, fresh; long reused, fresh, api */
 int main(int argc, char **argv) {
     int runs = argc > 1 ? atoi(argv[1]) : 7;
     if (runs < 5) runs = 5;
+#ifdef __GLIBC__
+    /* A fixed mmap threshold: every large output array is a new mapping
+     * and its pages are new, as in a one-shot process. glibc's sliding
+     * threshold would otherwise serve later runs from freed heap pages,
+     * and "fresh" would be partly reused memory. */
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
     workload ws[2];
     workload_make(&ws[0], "branches", 4000, 24);
     workload_make(&ws[1], "long", 1, 200000);
