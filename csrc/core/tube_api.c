@@ -21,10 +21,10 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         return banyan_fail(err, BANYAN_E_LIMIT,
                            "point_count = %u with sides = %d makes %u vertices, more than %u; lower point_count or "
                            "sides", point_count, sides, nv, (unsigned)BANYAN_TUBE_MAX_VERTICES);
-    v3 *pts = malloc(sizeof(v3) * point_count);
-    if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
+    /* The points are read in place: v3 is three doubles, as the array is. */
+    _Static_assert(sizeof(v3) == 3 * sizeof(double), "v3 must be three packed doubles");
+    const v3 *pts = (const v3 *)(const void *)points;
     for (uint32_t i = 0; i < point_count; i++) {
-        pts[i] = v3_load(points + 3 * (size_t)i);
         if (!v3_finite(pts[i]) || fabs(pts[i].x) > 1e6 || fabs(pts[i].y) > 1e6 || fabs(pts[i].z) > 1e6)
             s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] = (%g, %g, %g) must be finite, within [-1e6, 1e6] m", i,
                             pts[i].x, pts[i].y, pts[i].z);
@@ -37,10 +37,7 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         }
         if (!s && i && v3_dist(pts[i], pts[i - 1]) < 1e-9)
             s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] repeats points[%u]; consecutive points must differ", i, i - 1);
-        if (s) {
-            free(pts);
-            return s;
-        }
+        if (s) return s;
     }
     mesh_builder mb;
     mb_init(&mb, BANYAN_TUBE_MAX_VERTICES, 0);
@@ -51,6 +48,5 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         uint32_t k = mb_skel_point(&mb, pts[i], radii[i], 0);
         if (i) mb_skel_edge(&mb, k - 1, k);
     }
-    free(pts);
     return mb_finish(&mb, out, err);
 }
