@@ -9,15 +9,18 @@
  * paths are LeakSanitizer's job (the ASan build) and valgrind's
  * (docs/reliability.md). */
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "banyan.h"
 #include "check.h"
 
-/* The counters: the largest single request and the sum of requests. */
+/* The counters: the largest single request and the sum of requests;
+ * the calls since reset(), and which of them fails (0: none). */
 static size_t alloc_largest;
 static unsigned long long alloc_total;
+static long alloc_calls, alloc_fail_at;
 
 void *__real_malloc(size_t n);
 void *__real_calloc(size_t n, size_t m);
@@ -26,26 +29,26 @@ void *__wrap_malloc(size_t n);
 void *__wrap_calloc(size_t n, size_t m);
 void *__wrap_realloc(void *p, size_t n);
 
-static void count(size_t n) {
+/* Counts a request; returns 1 when it is the one to fail. */
+static int count(size_t n) {
     if (n > alloc_largest) alloc_largest = n;
     alloc_total += n;
+    return ++alloc_calls == alloc_fail_at;
 }
 void *__wrap_malloc(size_t n) {
-    count(n);
-    return __real_malloc(n);
+    return count(n) ? NULL : __real_malloc(n);
 }
 void *__wrap_calloc(size_t n, size_t m) {
-    count(m && n > SIZE_MAX / m ? SIZE_MAX : n * m);
-    return __real_calloc(n, m);
+    return count(m && n > SIZE_MAX / m ? SIZE_MAX : n * m) ? NULL : __real_calloc(n, m);
 }
 void *__wrap_realloc(void *p, size_t n) {
-    count(n);
-    return __real_realloc(p, n);
+    return count(n) ? NULL : __real_realloc(p, n);
 }
 
 static void reset(void) {
     alloc_largest = 0;
     alloc_total = 0;
+    alloc_calls = 0;
 }
 
 #define MB (1024.0 * 1024.0)
@@ -62,6 +65,80 @@ static void refused(const char *what, banyan_status s, const banyan_mesh *m, con
           alloc_largest / MB);
     printf("%-58s refused, largest allocation %8.3f MB, %8.3f MB in all\n", what, alloc_largest / MB,
            (double)alloc_total / MB);
+}
+
+/* Out of memory at every allocation (issue 8: a failed call leaves *out
+ * NULL, leaks nothing and never crashes). The generation runs once to
+ * count its allocations, then once per allocation with that one failing:
+ * each run must give a mesh (the paths that can do without the memory,
+ * such as the ivy light cache's edges) or BANYAN_E_NOMEM and no mesh.
+ * Leaks on these paths are the ASan build's (LeakSanitizer). */
+typedef banyan_status (*generate_fn)(const void *ctx, banyan_mesh **out, banyan_error *e);
+
+static void fail_each(const char *what, generate_fn gen, const void *ctx) {
+    banyan_error e;
+    banyan_mesh *m = NULL;
+    reset();
+    banyan_status s = gen(ctx, &m, &e);
+    long total = alloc_calls;
+    CHECK(s == BANYAN_OK && m, "%s: %s", what, e.message);
+    banyan_mesh_free(m);
+    int ok = 0, nomem = 0, bad = 0;
+    for (long k = 1; k <= total; k++) {
+        reset();
+        alloc_fail_at = k;
+        m = NULL;
+        s = gen(ctx, &m, &e);
+        alloc_fail_at = 0;
+        if (s == BANYAN_OK && m) ok++;
+        else if (s == BANYAN_E_NOMEM && !m) nomem++;
+        else if (bad++ < 3)
+            fprintf(stderr, "%s, allocation %ld of %ld failing: %s, mesh %p: %s\n", what, k, total,
+                    banyan_status_name(s), (void *)m, e.message);
+        banyan_mesh_free(m);
+    }
+    CHECK(bad == 0, "%s: %d of %ld failing allocations gave a wrong result", what, bad, total);
+    CHECK(nomem > 0, "%s: no failing allocation was reported", what);
+    printf("%-58s %ld allocations failed one at a time: %d reported, %d did without\n", what, total, nomem, ok);
+}
+
+static banyan_status gen_roots(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_roots_params p;
+    banyan_roots_params_init(&p);
+    return banyan_roots_generate(&p, (const banyan_box *)ctx, 1, out, e);
+}
+static banyan_status gen_keyaki(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    (void)ctx;
+    banyan_keyaki_params p;
+    banyan_keyaki_params_init(&p);
+    return banyan_keyaki_generate(&p, out, e);
+}
+static banyan_status gen_avenue(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    (void)ctx;
+    banyan_avenue_params p;
+    banyan_avenue_params_init(&p);
+    p.placement = BANYAN_AVENUE_COUNT, p.count = 2;
+    return banyan_avenue_generate(&p, NULL, 0, 1, out, e); /* one thread: the counters are not atomic */
+}
+static banyan_status gen_ivy(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 160;
+    return banyan_ivy_generate(&p, (const banyan_box *)ctx, 1, out, e);
+}
+static banyan_status gen_segments(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    (void)ctx;
+    banyan_segment_input segs[3] = {{{0, 0, 0}, {0, 0, 1}, 1.0, 12, 3}, {{0, 0, 1}, {1, 0, 1}, 0.6, 10, 3},
+                                    {{0, 0, 1}, {-1, 0, 1}, 0.6, 10, 3}};
+    banyan_segments_params p;
+    banyan_segments_params_init(&p);
+    return banyan_segments_generate(&p, segs, 3, NULL, out, NULL, NULL, e);
+}
+static banyan_status gen_tube(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    (void)ctx;
+    double pts[3 * 16], radii[16];
+    for (int i = 0; i < 16; i++) pts[3 * i] = 0.1 * i, pts[3 * i + 1] = 0, pts[3 * i + 2] = 0.01 * i * i, radii[i] = 0.05;
+    return banyan_tube_generate(pts, radii, 16, 8, 1, out, e);
 }
 
 int main(void) {
@@ -163,5 +240,12 @@ int main(void) {
     refused("tube 1e6 points x 256 sides", s, m, &e);
     free(pts);
     free(radii);
+
+    fail_each("out of memory: roots default", gen_roots, &trunk);
+    fail_each("out of memory: keyaki default", gen_keyaki, NULL);
+    fail_each("out of memory: avenue of 2", gen_avenue, NULL);
+    fail_each("out of memory: ivy, 160 steps on a wall", gen_ivy, &wall);
+    fail_each("out of memory: segments, 3", gen_segments, NULL);
+    fail_each("out of memory: tube, 16 points", gen_tube, NULL);
     return check_done("test_limits");
 }
