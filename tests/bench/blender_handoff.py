@@ -17,7 +17,8 @@ The boulevard runs twice: one object per tree (100 objects, each with
 Blender's per-object cost) and merged into one object, the case that
 compares like with like.
 
-bare() and clear_generated() are imported by tests/bench/peers/peers.py.
+bare() and clear_generated() are imported by tests/bench/peers/peers.py,
+stock_mesh() by tests/blender/test_mesh_topology.py.
 
 Run (the runner's environment):
   BANYAN_LIB=build/libbanyan.so BLENDER_USER_SCRIPTS=<dir with addons/banyan> \
@@ -60,13 +61,12 @@ def clear_generated(keep):
     bpy.context.view_layer.update()
 
 
-def bare(d, full=False, evaluate=False):
-    """Blender's own hand-off of d: positions and indices, and with full
-    also the UV, colour and attribute arrays the operator sets; with
-    evaluate also the view-layer update that bpy.ops runs after every
-    operator (the new object's first evaluation: normals, bounds)."""
-    t = time.perf_counter()
-    me = bpy.data.meshes.new("bare")
+def stock_mesh(d, name="bare"):
+    """Blender's own way from arrays to a mesh: positions, loops and
+    triangles by foreach_set, then update(calc_edges=True) derives the
+    edges. tests/blender/test_mesh_topology.py compares the add-on's
+    edges with these."""
+    me = bpy.data.meshes.new(name)
     nv, ni = d.vertex_count, d.index_count
     me.vertices.add(nv)
     me.vertices.foreach_set("co", d.positions)
@@ -76,6 +76,16 @@ def bare(d, full=False, evaluate=False):
     me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
     me.polygons.foreach_set("loop_total", array("i", [3]) * (ni // 3))
     me.update(calc_edges=True)
+    return me
+
+
+def bare(d, full=False, evaluate=False):
+    """Blender's own hand-off of d: positions and indices, and with full
+    also the UV, colour and attribute arrays the operator sets; with
+    evaluate also the view-layer update that bpy.ops runs after every
+    operator (the new object's first evaluation: normals, bounds)."""
+    t = time.perf_counter()
+    me = stock_mesh(d)
     if full and d.corner_uvs is not None:
         me.uv_layers.new(name="UVMap").data.foreach_set("uv", d.corner_uvs)
     if full and d.colors is not None:

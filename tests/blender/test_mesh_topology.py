@@ -10,27 +10,15 @@ import os
 import sys
 from array import array
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "bench"))
 import bt  # noqa: E402
+from blender_handoff import stock_mesh  # noqa: E402  Blender's own edges (calc_edges)
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import build_mesh as BM  # noqa: E402
-
-
-def calc_edges_mesh(d):
-    """The mesh Blender builds with its own edges (the old path)."""
-    me = bpy.data.meshes.new("reference")
-    ni = d.index_count
-    me.vertices.add(d.vertex_count)
-    me.vertices.foreach_set("co", d.positions)
-    me.loops.add(ni)
-    me.loops.foreach_set("vertex_index", d.indices)
-    me.polygons.add(ni // 3)
-    me.polygons.foreach_set("loop_start", array("i", range(0, ni, 3)))
-    me.polygons.foreach_set("loop_total", array("i", [3]) * (ni // 3))
-    me.update(calc_edges=True)
-    return me
 
 
 def get(coll, prop, n, typecode="i"):
@@ -55,7 +43,7 @@ def test_topology(gen):
     d = gens.library_mesh(gen, [cube], gens.KWARGS[gen])
     me = bpy.data.meshes.new("ours")
     BM.fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs)
-    ref = calc_edges_mesh(d)
+    ref = stock_mesh(d, "reference")
     ni, nt = d.index_count, d.index_count // 3
     bt.check(ni > 0 and len(me.loops) == ni and len(me.polygons) == nt, "%s: %d loops, %d polygons" % (
         gen, len(me.loops), len(me.polygons)))
