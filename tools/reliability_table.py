@@ -79,7 +79,7 @@ Choices made where the issue left one open:
   checks the largest allocation of every refused generation.
 - **Out of memory.** `test_limits` also makes each allocation of a roots
   net, a keyaki tree, an avenue, a 160-step ivy, a segment tree and a tube
-  fail, one at a time (267 runs): each gives its mesh (where the memory was
+  fail, one at a time (269 runs): each gives its mesh (where the memory was
   only for speed: the ivy light cache's edges, a larger hash table, the
   final trim of the arrays) or `BANYAN_E_NOMEM` with no mesh, and the ASan
   build finds no leak on any of these paths.
