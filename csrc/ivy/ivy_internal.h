@@ -16,7 +16,6 @@
 #define IVY_CELL_SCALE 1.0
 #endif
 
-
 typedef struct ivy_bud {
     v3 P;             /* position */
     v3 V;             /* growth direction, unit */

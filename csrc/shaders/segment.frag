@@ -1,6 +1,6 @@
 #version 330 core
-// banyan segment shader, fragment stage: a stub that colours a line by its
-// level code (0 axis, 1 twig, 2.. forks), bark brown to twig green.
+// banyan segment shader, fragment stage: the minimal one a line needs, a
+// colour from its level code (0 axis, 1 twig, 2.. forks), bark brown to twig green.
 in vec4 g_seg;
 out vec4 f_color;
 
