@@ -48,7 +48,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, gravity, "m/s^2", 0, 1000, "g (paper 9.8)"),
     BP_DOUBLE(S, internode_mass, "kg", 0, 1000, "mass of one internode with its leaf"),
     BP_DOUBLE(S, moment_max, "N m", 0, 1e6, "moment a joint holds before an unattached stem sags"),
-    BP_DOUBLE(S, sag_step, "deg", 0.01, 90, "rotation increment of the sag correction"),
+    BP_DOUBLE(S, sag_step, "deg", 0.5, 90, "rotation increment of the sag correction"),
     BP_DOUBLE(S, tip_elevation, "deg", -90, 90, "a free stem tip turns up to at least this angle above horizontal"),
     BP_DOUBLE(S, stem_radius, "m", 1e-5, 1, "r0, stem radius at birth"),
     BP_DOUBLE(S, stem_radius_growth, "m", 0, 1, "k, stem radius added per step of age"),
