@@ -8,11 +8,12 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 
-# Debian packages: compiler and build tools, the two C libraries, node for
+# Debian packages: compiler and build tools, the C libraries (Embree for
+# mesh hosts), node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test.
-packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev
+packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev libembree-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium)
 missing=()

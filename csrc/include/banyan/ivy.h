@@ -153,6 +153,14 @@ BANYAN_API void banyan_ivy_free(banyan_ivy *ivy);
 BANYAN_API banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts,
                                              uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
 
+/* The same on a host set (banyan/hosts.h): suckers grip, and leaves face,
+ * the real surface of boxes and triangle meshes. The handle keeps a
+ * pointer to `hosts`, which must outlive it (banyan_ivy_free first). */
+BANYAN_API banyan_status banyan_ivy_create_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                                 banyan_ivy **out, banyan_error *err);
+BANYAN_API banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                                   banyan_mesh **out, banyan_error *err);
+
 #ifdef __cplusplus
 }
 #endif

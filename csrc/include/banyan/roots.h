@@ -106,6 +106,15 @@ BANYAN_API banyan_status banyan_roots_generate_stats(const banyan_roots_params *
                                                      uint32_t n_hosts, banyan_mesh **out,
                                                      banyan_roots_stats *stats, banyan_error *err);
 
+/* The same on a host set (banyan/hosts.h): boxes and triangle meshes,
+ * distances and contact taken on the real surface. With germination_auto,
+ * G is the highest surface point of host 0 on the vertical line through
+ * the centre of its world bounds, lifted by r. `hosts` is only read; stats
+ * may be NULL. */
+BANYAN_API banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
+                                                     banyan_mesh **out, banyan_roots_stats *stats,
+                                                     banyan_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,79 @@
+/* hosts.h - the host set inside the library (public side: banyan/hosts.h).
+ * Boxes keep the exact obb queries of obb.h; meshes are Embree scenes
+ * queried here (hosts.c). Generators loop over the boxes as before (so a
+ * box-only set gives the bytes it always gave) and ask the mesh queries
+ * below for the meshes. */
+#ifndef BANYAN_CORE_HOSTS_H
+#define BANYAN_CORE_HOSTS_H
+
+#include "banyan.h"
+#include "obb.h"
+#include "vec.h"
+
+/* One mesh host, in world space relative to `origin` (kept in double, so
+ * a mesh far from the world origin keeps float precision near itself). */
+typedef struct host_mesh {
+    v3 origin;              /* world position of the local frame's zero */
+    uint32_t nv, nt;        /* vertices, triangles kept */
+    float *pos;             /* 4 * nv (Embree reads 16-byte vertices): x, y, z, 0 relative to origin */
+    uint32_t *tri;          /* 3 * nt */
+    float *fnrm;            /* 3 * nt unit face normals (outward for a closed mesh) */
+    float *enrm;            /* 9 * nt: per triangle edge (v0v1, v1v2, v2v0) pseudonormals, unit */
+    float *vnrm;            /* 3 * nv angle-weighted vertex pseudonormals, unit */
+    int closed;             /* has an inside: signed distances */
+    int sign_by_rays;       /* the pseudonormal sign is not to be trusted (holes, several shells,
+                               inconsistent winding): inside is decided by rays */
+    uint32_t dropped, boundary_edges, shells;
+    v3 lo, hi;              /* world bounds */
+    void *scene;            /* RTCScene */
+} host_mesh;
+
+struct banyan_hosts {
+    uint32_t n_boxes, n_meshes;
+    obb *boxes;             /* n_boxes */
+    host_mesh *meshes;      /* n_meshes */
+    v3 *lo, *hi;            /* world bounds per host (boxes, then meshes) */
+    void *device;           /* RTCDevice, NULL without meshes */
+};
+
+/* Nearest surface point of a mesh. */
+typedef struct mesh_near {
+    double dist;            /* signed for closed meshes (< 0 inside), else >= 0 */
+    v3 point;               /* world */
+    v3 normal;              /* unit: outward normal of the distance field at p (from the surface towards p
+                               outside, away from p inside); the face's normal when p is on it */
+    uint32_t prim;          /* triangle */
+} mesh_near;
+
+/* The nearest surface of m to p, looked for within `cap` metres (> 0,
+ * HUGE_VAL for no limit). Returns 1 with *out filled when a surface lies
+ * within cap. Returns 0 when none does: out->dist is then +cap outside (or
+ * for an open mesh) and -cap inside a closed mesh (a bound: |distance| >=
+ * cap), out->normal (0,0,1), out->point p. */
+int hmesh_nearest(const host_mesh *m, v3 p, double cap, mesh_near *out);
+/* Signed distance only, under the same rule (exact below cap, +-cap beyond). */
+double hmesh_distance(const host_mesh *m, v3 p, double cap);
+/* p inside the closed mesh m (0 for open meshes). */
+int hmesh_inside(const host_mesh *m, v3 p);
+/* First surface hit along segment a -> b: returns 1 with t in [0, 1] and
+ * the face normal (facing a), else 0. */
+int hmesh_segment_hit(const host_mesh *m, v3 a, v3 b, double *t, v3 *normal);
+/* First t in [0, 1] at which a sphere of radius r moved from p by d comes
+ * closer than r to the surface (sphere tracing on the exact distance, which
+ * is 1-Lipschitz); 1 when it never does. *normal gets the distance-field
+ * normal at the last free position. `tol` is the touching tolerance
+ * (metres): the returned position is free and within tol of touching. */
+double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double tol, v3 *normal);
+
+/* Host h's world bounds (boxes then meshes). */
+static inline int hosts_far_from(const banyan_hosts *H, uint32_t h, v3 p, double margin) {
+    v3 lo = H->lo[h], hi = H->hi[h];
+    return p.x < lo.x - margin || p.x > hi.x + margin || p.y < lo.y - margin || p.y > hi.y + margin ||
+           p.z < lo.z - margin || p.z > hi.z + margin;
+}
+
+/* A box-only host set on boxes[0 .. n - 1] (checked as banyan_box_validate),
+ * for the generators' box entry points. */
+banyan_status hosts_from_boxes(const banyan_box *boxes, uint32_t n, banyan_hosts **out, banyan_error *err);
+
+#endif
