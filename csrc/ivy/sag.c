@@ -6,7 +6,9 @@
  * exceeds moment_max, they rotate down about P0 in sag_step increments
  * (the last one cut to the angle that reaches moment_max);
  * then the pivot moves to P1, and so on towards the tip. A bud that would
- * enter a host is put back on its surface (clearance off it), and a bud
+ * enter a host is put back on its surface (clearance off it; a bud whose
+ * turn would carry it through a mesh surface, which a thin open mesh
+ * cannot tell by its inside, stops short of it), and a bud
  * with a sucker that ends within reach of a surface grips it. Last, a
  * free tip turns up to at least tip_elevation (geotropism).
  *
@@ -162,7 +164,7 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *
         v3 sum = v3_make(0, 0, 0), C2;
         sc->budget -= n;
         for (int32_t k = 0; k < n; k++) {
-            nxt[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
+            nxt[k] = ivy_move_out(iv, cur[k], v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
             sum = v3_add(sum, nxt[k]);
         }
         double F2 = moment_of(iv, pivot, sum, n, &C2);
