@@ -241,6 +241,20 @@ v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to) {
     return to;
 }
 
+int ivy_segment_meets_mesh(const banyan_ivy *iv, v3 a, v3 b) {
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        const uint32_t h = iv->mesh0 + m;
+        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
+        if ((a.x < lo.x && b.x < lo.x) || (a.x > hi.x && b.x > hi.x) || (a.y < lo.y && b.y < lo.y) ||
+            (a.y > hi.y && b.y > hi.y) || (a.z < lo.z && b.z < lo.z) || (a.z > hi.z && b.z > hi.z))
+            continue;
+        double t;
+        v3 nrm;
+        if (hmesh_segment_hit(&iv->meshes[m], a, b, &t, &nrm)) return 1;
+    }
+    return 0;
+}
+
 ivy_near ivy_nearest(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv, p, iv->n_grip); }
 ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv, p, iv->n_hosts); }
 

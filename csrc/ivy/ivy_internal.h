@@ -164,6 +164,8 @@ static inline v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
  * has no inside for the push-out to find), then pushed out. Boxes: just
  * ivy_push_out(to). */
 v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to);
+/* Does segment a-b meet a mesh host's surface? */
+int ivy_segment_meets_mesh(const banyan_ivy *iv, v3 a, v3 b);
 static inline v3 ivy_move_out(const banyan_ivy *iv, v3 from, v3 to) {
     if (iv->n_mesh) to = ivy_stop_at_meshes(iv, from, to);
     return ivy_push_out(iv, to);
