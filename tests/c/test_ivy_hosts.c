@@ -11,13 +11,15 @@
  *     surface, leaves lie on the real surface normal, and the ivy grows
  *     round the curve (attached buds on most sides of the sphere and the
  *     cylinder, up the cylinder, over the sphere's shoulder).
- *   - Same seed, same bytes; another seed, other bytes.
+ *   - Same seed, same bytes; another seed, other bytes; two threads
+ *     growing on one host set at once get the serial bytes.
  *   - Boxes through banyan_ivy_generate_hosts give banyan_ivy_generate's
  *     bytes (the wall and pillar presets), and so does a set that adds a
  *     mesh far from the plant.
  *   - The wall as a 12-triangle closed mesh grows a plant of the box
  *     wall's size.
  *   - Bad input: a NULL host set. */
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,6 +38,8 @@ typedef struct oracle {
     uint32_t nt;
     uint32_t shell_end[4], shells;
     int convex;     /* inside = inside every face plane of some shell */
+    const obb *boxes; /* box hosts besides the meshes (exact obb queries) */
+    uint32_t nb;
 } oracle;
 
 static void oracle_add(oracle *o, const tm_mesh *m, v3 off) {
@@ -91,11 +95,23 @@ static double oracle_dist(const oracle *o, v3 p, v3 *dir) {
         double d = v3_dist(p, c);
         if (d < best) best = d, q = c, bt = k;
     }
-    if (dir) *dir = best > 1e-9 ? v3_scale(v3_sub(p, q), 1.0 / best) : o->n[bt];
+    if (dir && o->nt) *dir = best > 1e-9 ? v3_scale(v3_sub(p, q), 1.0 / best) : o->n[bt];
+    for (uint32_t h = 0; h < o->nb; h++) {
+        double d = fabs(obb_signed_distance(&o->boxes[h], p));
+        if (d < best) {
+            best = d;
+            v3 n;
+            obb_closest_surface(&o->boxes[h], p, &n);
+            if (dir) *dir = n;
+        }
+    }
     return best;
 }
 
-static int oracle_inside(const oracle *o, v3 p) {
+/* Inside a closed mesh; with `boxes`, inside a box host too. */
+static int oracle_inside(const oracle *o, v3 p, int boxes) {
+    for (uint32_t h = 0; boxes && h < o->nb; h++)
+        if (obb_signed_distance(&o->boxes[h], p) < 0) return 1;
     if (!o->convex) return 0;
     uint32_t k = 0;
     for (uint32_t s = 0; s < o->shells; s++) {
@@ -135,6 +151,52 @@ static int cmp_d(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
+/* Stem crossings by brute force over every pair of internodes, each seen
+ * on its end bud's face chart (docs/ivy.md): a box face in the box's
+ * axes, a mesh's cube-map face in the world plane across its axis. */
+static int32_t brute_crossings(const banyan_ivy *iv) {
+    int32_t n = iv->n, count = 0;
+    int32_t *face = malloc(sizeof(int32_t) * (size_t)n);
+    double (*uv)[4] = malloc(sizeof *uv * (size_t)n);
+    for (int32_t i = 0; i < n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        ivy_near nr = ivy_nearest_any(iv, b->P);
+        face[i] = nr.host * 6 + nr.face;
+        if (b->parent < 0) continue;
+        int k = nr.face / 2, a = (k + 1) % 3, c = (k + 2) % 3;
+        v3 p0 = b->P, p1 = iv->buds[b->parent].P;
+        if ((uint32_t)nr.host < iv->n_hosts) {
+            const obb *o = &iv->hosts[nr.host];
+            v3 d0 = v3_sub(p0, o->c), d1 = v3_sub(p1, o->c);
+            uv[i][0] = v3_dot(d0, o->ax[a]);
+            uv[i][1] = v3_dot(d0, o->ax[c]);
+            uv[i][2] = v3_dot(d1, o->ax[a]);
+            uv[i][3] = v3_dot(d1, o->ax[c]);
+        } else {
+            const double q0[3] = {p0.x, p0.y, p0.z}, q1[3] = {p1.x, p1.y, p1.z};
+            uv[i][0] = q0[a];
+            uv[i][1] = q0[c];
+            uv[i][2] = q1[a];
+            uv[i][3] = q1[c];
+        }
+    }
+    for (int32_t i = 1; i < n; i++)
+        for (int32_t j = i + 1; j < n; j++) {
+            const ivy_bud *s = &iv->buds[i], *t = &iv->buds[j];
+            if (face[i] != face[j] || s->parent < 0 || t->parent < 0) continue;
+            if (s->parent == t->parent || s->parent == j || t->parent == i) continue;
+            const double *A = uv[i], *B = uv[j];
+#define X2(o0, o1, a0, a1, b0, b1) (((a0) - (o0)) * ((b1) - (o1)) - ((a1) - (o1)) * ((b0) - (o0)))
+            double d1 = X2(A[0], A[1], A[2], A[3], B[0], B[1]), d2 = X2(A[0], A[1], A[2], A[3], B[2], B[3]);
+            double d3 = X2(B[0], B[1], B[2], B[3], A[0], A[1]), d4 = X2(B[0], B[1], B[2], B[3], A[2], A[3]);
+#undef X2
+            if ((d1 > 0) != (d2 > 0) && d1 != 0 && d2 != 0 && (d3 > 0) != (d4 > 0) && d3 != 0 && d4 != 0) count++;
+        }
+    free(face);
+    free(uv);
+    return count;
+}
+
 typedef struct report {
     int32_t buds, attached;
     double median_attached_dist, worst_attached_dist;
@@ -163,6 +225,8 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     banyan_ivy_stats st;
     CHECK(banyan_ivy_get_stats(iv, &st, &err) == BANYAN_OK, "%s: stats: %s", what, err.message);
     r.covered_area = st.covered_area;
+    int32_t want = brute_crossings(iv);
+    CHECK(st.crossings == want && want > 0, "%s: %d crossings, brute force %d", what, st.crossings, want);
     CHECK(st.covered_area > 0 && st.crossings >= 0 && st.density >= 0 && st.density < 1e6,
           "%s: stats area %g crossings %d density %g", what, st.covered_area, st.crossings, st.density);
 
@@ -174,13 +238,16 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     CHECK(leaves_ok, "%s: one leaf card per bud", what);
     for (int32_t i = 0; i < iv->n; i++) {
         const ivy_bud *b = &iv->buds[i];
-        v3 dir;
+        v3 dir = v3_make(0, 0, 1);
         double d = oracle_dist(o, b->P, &dir);
-        if (oracle_inside(o, b->P)) r.inside++;
+        if (oracle_inside(o, b->P, 1)) r.inside++;
         if (b->parent >= 0) {
             v3 a = iv->buds[b->parent].P;
             if (oracle_crossed(o, a, b->P)) r.crossed++;
-            if (oracle_inside(o, v3_lerp(a, b->P, 0.5))) r.inside++;
+            /* Midpoints and crossings: meshes only. Against boxes, stems
+             * that a sag turn swings over an edge can cut its corner
+             * (test_ivy checks bud points there). */
+            if (oracle_inside(o, v3_lerp(a, b->P, 0.5), 0)) r.inside++;
         }
         if (!b->attached) continue;
         ad[na++] = d;
@@ -228,6 +295,21 @@ static banyan_hosts *make_set(const banyan_box *boxes, uint32_t nb, const banyan
     return H;
 }
 
+typedef struct job {
+    banyan_ivy_params p;
+    const banyan_hosts *H;
+    uint64_t hash;
+} job;
+
+static void *grow_job(void *arg) {
+    job *j = arg;
+    banyan_mesh *m = NULL;
+    banyan_error err = {0, ""};
+    if (banyan_ivy_generate_hosts(&j->p, j->H, &m, &err) == BANYAN_OK) j->hash = banyan_mesh_hash(m);
+    banyan_mesh_free(m);
+    return NULL;
+}
+
 static void sphere_scene(void) {
     const double R = 0.5;
     tm_mesh sm = {0};
@@ -260,6 +342,22 @@ static void sphere_scene(void) {
         CHECK(banyan_ivy_generate_hosts(&p, H, &c, &err) == BANYAN_OK, "%s", err.message);
         CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "sphere: same seed, different bytes");
         CHECK(a && c && banyan_mesh_hash(a) != banyan_mesh_hash(c), "sphere: another seed, the same bytes");
+        /* Two threads on the one set (it is read-only): the serial bytes. */
+        job jobs[2];
+        pthread_t th[2];
+        for (int k = 0; k < 2; k++) {
+            jobs[k].p = p;
+            jobs[k].p.seed = k ? 2 : 1;
+            jobs[k].H = H;
+            jobs[k].hash = 0;
+        }
+        int started[2];
+        for (int k = 0; k < 2; k++) started[k] = pthread_create(&th[k], NULL, grow_job, &jobs[k]) == 0;
+        for (int k = 0; k < 2; k++)
+            if (started[k]) pthread_join(th[k], NULL);
+        CHECK(started[0] && started[1] && a && c && jobs[0].hash == banyan_mesh_hash(a) &&
+                  jobs[1].hash == banyan_mesh_hash(c),
+              "sphere: two threads on one host set differ from the serial plants");
         banyan_mesh_free(a);
         banyan_mesh_free(b);
         banyan_mesh_free(c);
@@ -354,6 +452,52 @@ static void two_shell_scene(void) {
     tm_free(&head);
     tm_free(&eye0);
     tm_free(&eye1);
+}
+
+/* Boxes and meshes in one set: the box wall of the presets with a sphere
+ * resting in front of it, started on the sphere. Suckers grip both. */
+static void mixed_scene(void) {
+    const double R = 0.4;
+    banyan_box wall = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
+    tm_mesh sm = {0};
+    tm_uv_sphere(&sm, 0, 0, 0, R, 32, 16);
+    const v3 c = v3_make(0.3, -0.12 - R, R);
+    banyan_host_mesh hm = tm_host(&sm, c.x, c.y, c.z, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(&wall, 1, &hm, 1);
+    obb wo;
+    banyan_error err = {0, ""};
+    CHECK(obb_from_box(&wall, 0, &wo, &err) == BANYAN_OK, "%s", err.message);
+    oracle o = {0};
+    o.convex = 1;
+    o.boxes = &wo;
+    o.nb = 1;
+    oracle_add(&o, &sm, c);
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 350;
+    p.start[0] = c.x;
+    p.start[1] = c.y - R - 0.05;
+    p.start[2] = 0.3;
+    if (H) {
+        report r = grow_and_check("box wall and a sphere", &p, H, &o, c.x, c.y);
+        CHECK(r.buds > 2000, "mixed: only %d buds", r.buds);
+        /* It climbs the sphere and goes on to the wall. */
+        banyan_ivy *iv = NULL;
+        int on_wall = 0, on_sphere = 0;
+        if (banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &err) == BANYAN_OK)
+            for (int32_t i = 0; i < iv->n; i++) {
+                const ivy_bud *b = &iv->buds[i];
+                if (!b->attached) continue;
+                if (fabs(obb_signed_distance(&wo, b->P)) <= p.sucker_length) on_wall++;
+                if (fabs(v3_dist(b->P, c) - R) <= p.sucker_length + 0.01) on_sphere++;
+            }
+        printf("  %-22s %d attached buds on the wall, %d on the sphere\n", "", on_wall, on_sphere);
+        CHECK(on_wall > 500 && on_sphere > 500, "mixed: %d buds on the wall, %d on the sphere", on_wall, on_sphere);
+        banyan_ivy_free(iv);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&sm);
 }
 
 /* ------------------------------------------------------------ boxes */
@@ -478,5 +622,6 @@ int main(int argc, char **argv) {
     cylinder_scene();
     quad_scene();
     two_shell_scene();
+    mixed_scene();
     return check_done("test_ivy_hosts");
 }
