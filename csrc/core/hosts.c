@@ -488,23 +488,26 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     m->boundary_edges = boundary;
     m->shells = shells;
 
-    /* Closed? Auto: no non-manifold edges to speak of and holes that are
-     * small beside the surface (a boundary shorter than a quarter of the
-     * square root of the area): a sculpt with a few pin holes is solid, a
-     * wall, a terrain or an open tube is not. */
+    /* Closed? Auto: no non-manifold edges to speak of and holes small
+     * beside the surface: a boundary shorter than 1.7 times the square root
+     * of the area. Suzanne (1.59: open eye sockets plugged by the eyes), a
+     * sculpt with pin holes, a column without its top cap (0.9) are solid;
+     * a wall (4), a terrain, a bowl (2.5), a short open tube (1.8) are not.
+     * banyan_host_mesh.closed overrides it. */
     double area = 0;
     for (uint32_t t = 0; t < nt; t++) {
         const uint32_t *ix = m->tri + 3 * (size_t)t;
         area += 0.5 * v3_len(v3_cross(v3_sub(vtx(m, ix[1]), vtx(m, ix[0])), v3_sub(vtx(m, ix[2]), vtx(m, ix[0]))));
     }
     if (in->closed == BANYAN_HOST_CLOSED_AUTO)
-        m->closed = nonmanifold * 100 <= ne / 3 && boundary_len <= 0.25 * sqrt(area);
+        m->closed = nonmanifold * 100 <= ne / 3 && boundary_len <= 1.7 * sqrt(area);
     else
         m->closed = in->closed;
 
     /* Shells wound inside out (negative volume) are turned round, per
-     * shell, when the winding is consistent. */
-    if (m->closed && consistent) {
+     * shell, when the winding is consistent and there are no holes (the
+     * volume of an open shell says nothing of its winding). */
+    if (m->closed && consistent && boundary == 0) {
         vol = calloc(nt, sizeof *vol);
         if (!vol) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u]", hi);
         for (uint32_t t = 0; t < nt; t++) {
