@@ -46,6 +46,17 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
     return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
 }
 
+/* Candidate order of the host queries: the larger bound first, then
+ * the one drawn first. */
+static inline int cand_before(const ivy_cand *a, const ivy_cand *b) {
+    return a->f_max > b->f_max || (a->f_max == b->f_max && a->k < b->k);
+}
+
+static int cmp_cand(const void *x, const void *y) {
+    const ivy_cand *a = x, *b = y;
+    return cand_before(a, b) ? -1 : cand_before(b, a) ? 1 : 0;
+}
+
 /* The directed random walk from bud i along `base`: K candidates, host
  * collisions discarded, the best of the weighted five fitness terms kept.
  * Appends the new bud (state `st`, nourishment `N`) as child `slot` of
@@ -67,30 +78,55 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
 
     const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
-    double best = -HUGE_VAL, best_dist = 0;
-    v3 best_q = b->P, best_d = base;
-    for (int32_t k = 0; k < p->candidates; k++) {
+    /* Every candidate's free terms first, with the most it could score
+     * (f_d and f_grav at their most: a free candidate is at least
+     * clearance off every surface, so f_d <= 1). Then the host queries,
+     * the costly part, in order of that bound, best first: once the bound
+     * cannot beat the best found, no later candidate can. The winner is
+     * the one the spec's order gives: the highest score, and on a tie the
+     * first drawn. */
+    ivy_cand *cd = iv->cand;
+    const int32_t K = p->candidates;
+    for (int32_t k = 0; k < K; k++) {
         double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
         v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
-        v3 q = v3_madd(b->P, d, l);
-        double fv = (v3_dot(base, d) + 1.0) * 0.5;
-        double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
-        double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
-        /* With f_d and f_grav at their most (a free candidate is at least
-         * clearance off every surface: f_d <= 1), can it beat the best?
-         * The same sum, term by term no smaller (weights >= 0): when it
-         * cannot, the host queries are skipped. */
+        ivy_cand *c = &cd[k];
+        c->d = d;
+        c->k = k;
+        c->fv = (v3_dot(base, d) + 1.0) * 0.5;
+        c->fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
+        c->fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
         double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
-        double f_max = p->w_d * fd_max + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav_max + p->w_helio * fhelio;
-        if (!(f_max > best)) continue;
+        c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max + p->w_helio * c->fhelio;
+    }
+    if (K > 32) qsort(cd, (size_t)K, sizeof *cd, cmp_cand);
+    double best = -HUGE_VAL, best_dist = 0;
+    int32_t best_k = -1;
+    v3 best_q = b->P, best_d = base;
+    for (int32_t n = 0; n < K; n++) {
+        if (K <= 32) { /* pick the next by selection: most plants stop after two or three */
+            int32_t m = n;
+            for (int32_t j = n + 1; j < K; j++)
+                if (cand_before(&cd[j], &cd[m])) m = j;
+            if (m != n) {
+                ivy_cand t = cd[n];
+                cd[n] = cd[m];
+                cd[m] = t;
+            }
+        }
+        const ivy_cand *c = &cd[n];
+        if (!(c->f_max >= best)) break; /* (NaN too) */
+        if (c->f_max == best && c->k > best_k) continue; /* at most a tie, drawn later */
+        v3 d = c->d, q = v3_madd(b->P, d, l);
         double dist;
         if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
         int attach = sucker && dist <= D;
         double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
         double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
-        double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
-        if (f > best) { /* the first drawn wins a tie */
+        double f = p->w_d * fd + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav + p->w_helio * c->fhelio;
+        if (f > best || (f == best && c->k < best_k)) {
             best = f;
+            best_k = c->k;
             best_q = q;
             best_d = d;
             best_dist = dist;
@@ -323,6 +359,7 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->head);
     free(iv->chain);
     free(iv->tmp);
+    free(iv->cand);
     free(iv);
 }
 
@@ -404,7 +441,13 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         banyan_ivy_free(iv);
         return s;
     }
+    iv->cand = malloc(sizeof(ivy_cand) * (size_t)params->candidates);
+    if (!iv->cand) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    }
     iv->inv_cell = 1.0 / (IVY_CELL_SCALE * params->leaf_max);
+
 
     if (ivy_grid_init(iv, 1024) != BANYAN_OK) {
         banyan_ivy_free(iv);

@@ -19,6 +19,14 @@
 #define IVY_CELL_SCALE 1.0
 #endif
 
+/* A random-walk candidate being scored (growth.c). */
+typedef struct ivy_cand {
+    v3 d;             /* direction */
+    double fv, fgeo, fhelio;
+    double f_max;     /* the most its score can be */
+    int32_t k;        /* the order it was drawn in */
+} ivy_cand;
+
 typedef struct ivy_bud {
     v3 P;             /* position */
     v3 V;             /* growth direction, unit */
@@ -101,6 +109,8 @@ struct banyan_ivy {
     int32_t *chain, *moving, *stack, *sizes;
     v3 *tmp;
     int32_t scratch_cap;
+
+    ivy_cand *cand;        /* params.candidates of them */
 
     pcg32 rng;
 };
