@@ -322,7 +322,7 @@ static int weld(const float *pos, uint32_t nv, uint32_t *remap) {
     return 1;
 }
 
-static double angle_at(v3 a, v3 b, v3 c) { /* angle at a of triangle abc; float is plenty for a weight */
+static float angle_at(v3 a, v3 b, v3 c) { /* angle at a of triangle abc; float is plenty for a weight */
     v3 u = v3_sub(b, a), v = v3_sub(c, a);
     float cosine = (float)(v3_dot(u, v) / sqrt(v3_len2(u) * v3_len2(v)));
     return acosf(cosine < -1 ? -1 : cosine > 1 ? 1 : cosine);
@@ -531,23 +531,21 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
         if (twin[e] != UINT32_MAX) n = v3_norm_or(v3_add(n, f3(m->fnrm + 3 * (twin[e] / 3))), n);
         store3(m->enrm + 3 * e, n);
     }
-    {
-        double *acc = calloc(3 * (size_t)nv, sizeof *acc);
-        if (!acc) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] normals", hi);
-        for (uint32_t t = 0; t < nt; t++) {
-            const uint32_t *ix = m->tri + 3 * (size_t)t;
-            v3 n = f3(m->fnrm + 3 * (size_t)t), a = vtx(m, ix[0]), b = vtx(m, ix[1]), c = vtx(m, ix[2]);
-            double w[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
-            for (int k = 0; k < 3; k++) {
-                double *s = acc + 3 * (size_t)ix[k];
-                s[0] += w[k] * n.x, s[1] += w[k] * n.y, s[2] += w[k] * n.z;
-            }
+    for (uint32_t t = 0; t < nt; t++) { /* sums in vnrm itself, normalised after */
+        const uint32_t *ix = m->tri + 3 * (size_t)t;
+        const float *n = m->fnrm + 3 * (size_t)t;
+        v3 a = vtx(m, ix[0]), b = vtx(m, ix[1]), c = vtx(m, ix[2]);
+        float w[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+        for (int k = 0; k < 3; k++) {
+            float *s = m->vnrm + 3 * (size_t)ix[k];
+            s[0] += w[k] * n[0], s[1] += w[k] * n[1], s[2] += w[k] * n[2];
         }
-        for (uint32_t i = 0; i < nv; i++) {
-            const double *s = acc + 3 * (size_t)i;
-            store3(m->vnrm + 3 * (size_t)i, v3_norm(v3_make(s[0], s[1], s[2])));
-        }
-        free(acc);
+    }
+    for (uint32_t i = 0; i < nv; i++) {
+        float *s = m->vnrm + 3 * (size_t)i;
+        float l = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        if (l > 0) s[0] /= l, s[1] /= l, s[2] /= l;
+        else s[2] = 1; /* a vertex no triangle uses */
     }
     free(remap), remap = NULL;
     free(up), up = NULL;
@@ -564,6 +562,7 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     rtcSetSceneBuildQuality(sc, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!g) MESH_FAIL(BANYAN_E_NOMEM, "Embree could not make a geometry for hosts[%u]", hi);
+    rtcSetGeometryBuildQuality(g, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM); /* both are read */
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m->pos, 0, 4 * sizeof(float), nv);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->tri, 0, 3 * sizeof(uint32_t), nt);
     rtcCommitGeometry(g);
