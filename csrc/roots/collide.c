@@ -1,11 +1,17 @@
 /* Collision queries of the roots generator: the sphere of radius r against
- * host boxes and the ground (spec roots.md 1, "Collision", and the hard
- * invariant). The spec's face test (d < r with the foot point inside the
+ * the hosts and the ground (spec roots.md 1, "Collision", and the hard
+ * invariant; spec README "Hosts": distances and contact on the real
+ * surface). The spec's face test (d < r with the foot point inside the
  * face) misses spheres that reach past an edge or a corner, and boxes a
  * long move jumps over; here every test uses the exact signed distance to
- * the box and traces whole moves, so a point the walk accepts is never
- * closer than r to any host. The distance to a convex box is a convex
- * function along a line, which makes the traces exact up to bisection. */
+ * the host and traces whole moves, so a point the walk accepts is never
+ * closer than r to any host.
+ * Boxes come first, each query exactly as before mesh hosts existed: the
+ * distance to a convex box is convex along a line, which makes the traces
+ * exact up to bisection. Meshes (core/hosts.h) are not convex; their
+ * queries rest on the distance being 1-Lipschitz instead: sphere tracing
+ * for moves and segments, the Lipschitz ball for nearby-obstacle bounds.
+ * Each mesh query is capped at the range that can change the answer. */
 #include "roots_internal.h"
 
 /* Signed distance to the box and the outward unit normal of its distance
@@ -50,11 +56,44 @@ static inline double box_dist(const obb *o, v3 p) {
     return sqrt(qx * qx + qy * qy + qz * qz);
 }
 
-double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which) {
+/* Signed distance to mesh j, exact where it is below cap (> 0) or
+ * negative; cap, a lower bound, where it is not. *n (when non-NULL) gets
+ * the distance-field normal when the value is below cap. A point outside
+ * the mesh's bounds grown by cap is farther than cap from it. */
+static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 *n) {
+    const host_mesh *m = &w->meshes[j];
+    if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
+    if (!n) {
+        double d = hmesh_distance(m, p, cap);
+        if (d <= -cap) d = hmesh_distance(m, p, HUGE_VAL); /* deeper inside than cap: how deep */
+        return d < cap ? d : cap;
+    }
+    mesh_near nr;
+    if (!hmesh_nearest(m, p, cap, &nr)) {
+        if (nr.dist >= 0) return cap;
+        hmesh_nearest(m, p, HUGE_VAL, &nr);
+    }
+    *n = nr.normal;
+    return nr.dist;
+}
+
+/* The cap for a mesh query that only matters below `best` and `range`:
+ * below best (> 0) only an inside point can matter, which any small cap
+ * finds. */
+static inline double mesh_cap(const roots_world *w, double best, double range) {
+    double c = best < range ? best : range;
+    return c > w->eps ? c : w->eps;
+}
+
+double world_clearance_in(const roots_world *w, v3 p, int with_ground, double range, v3 *normal, int *which) {
     if (!normal && !which) {
         double best = w->ground && with_ground ? p.z - w->ground_z : 1e300;
         for (uint32_t i = 0; i < w->n_hosts; i++) {
             double c = box_dist(&w->hosts[i], p);
+            if (c < best) best = c;
+        }
+        for (uint32_t j = 0; j < w->n_meshes; j++) {
+            double c = mesh_clear(w, j, p, mesh_cap(w, best, range), NULL);
             if (c < best) best = c;
         }
         return best;
@@ -73,6 +112,16 @@ double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *norma
             best = c;
             bn = n;
             bw = (int)i;
+        }
+    }
+    for (uint32_t j = 0; j < w->n_meshes; j++) {
+        double cap = mesh_cap(w, best, range);
+        v3 n;
+        double c = mesh_clear(w, j, p, cap, &n);
+        if (c < cap && c < best) {
+            best = c;
+            bn = n;
+            bw = (int)(w->n_hosts + j);
         }
     }
     if (normal) *normal = bn;
@@ -167,6 +216,19 @@ double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
             bw = (int)i;
         }
     }
+    /* Meshes: sphere tracing, only over the part of the move still free,
+     * with the radius less ROOTS_MESH_SLACK (see roots_internal.h). */
+    double rs = w->r * (1.0 - ROOTS_MESH_SLACK);
+    for (uint32_t j = 0; j < w->n_meshes && best > 0; j++) {
+        if (hosts_far_from(w->set, w->n_hosts + j, p, L * best + rs)) continue;
+        v3 n = bn;
+        double t = best * hmesh_sweep(&w->meshes[j], p, v3_scale(d, best), rs, ROOTS_MESH_TOL * w->r, &n);
+        if (t < best) {
+            best = t;
+            bn = n;
+            bw = (int)(w->n_hosts + j);
+        }
+    }
     if (bw == -1) bn = v3_make(0, 0, 1);
     if (normal) *normal = bn;
     if (which) *which = bw;
@@ -202,12 +264,33 @@ static double segment_box(const obb *o, v3 a, v3 d, double L, double stop) {
     return best;
 }
 
+/* Sphere tracing along a -> a + d against mesh j: the first clearance
+ * found below stop (a real one, at a point of the segment), else stop,
+ * a lower bound within tol: every step leaves a ball of clearance >=
+ * stop - tol behind it, and is at least tol long. */
+static double segment_mesh(const roots_world *w, uint32_t j, v3 a, v3 d, double L, double stop, double tol) {
+    if (hosts_far_from(w->set, w->n_hosts + j, a, L + (stop > 0 ? stop : 0))) return stop;
+    double t = 0;
+    for (;;) {
+        double left = (1.0 - t) * L, cap = stop + left + tol;
+        double f = mesh_clear(w, j, v3_madd(a, d, t), cap > w->eps ? cap : w->eps, NULL);
+        if (f < stop) return f;
+        double step = f - stop + tol;
+        if (step >= left) return stop;
+        t += step / L;
+    }
+}
+
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
     v3 d = v3_sub(b, a);
     double L = v3_len(d), best = 1e300;
     if (w->ground) best = (a.z < b.z ? a.z : b.z) - w->ground_z;
     for (uint32_t i = 0; i < w->n_hosts && best >= stop; i++) {
         double c = segment_box(&w->hosts[i], a, d, L, stop);
+        if (c < best) best = c;
+    }
+    for (uint32_t j = 0; j < w->n_meshes && best >= stop; j++) {
+        double c = segment_mesh(w, j, a, d, L, stop, ROOTS_MESH_TOL * w->r);
         if (c < best) best = c;
     }
     return best;
@@ -225,6 +308,13 @@ int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int c
         if (d < range) {
             c[k] = d;
             n[k++] = nn;
+        }
+    }
+    for (uint32_t j = 0; j < w->n_meshes && k < cap && range > 0; j++) {
+        double d = mesh_clear(w, j, p, range, NULL);
+        if (d < range) { /* n = 0 marks the Lipschitz bound clearance(p + o) >= d - |o| */
+            c[k] = d;
+            n[k++] = v3_make(0, 0, 0);
         }
     }
     return k;
@@ -258,6 +348,45 @@ double world_segment_deepest(const roots_world *w, v3 a, v3 b, double *t_min) {
             bt = t;
         }
     }
+    /* Meshes: the least of 17 samples, refined by golden-section search
+     * within one sample spacing (a local minimum: a split point needs no
+     * more). */
+    enum { SAMPLES = 16 };
+    double L = v3_len(d);
+    for (uint32_t j = 0; j < w->n_meshes; j++) {
+        if (hosts_far_from(w->set, w->n_hosts + j, a, L + (best > 0 ? best : 0))) continue;
+        double mb = 1e300, mt = 0.5;
+        for (int k = 0; k <= SAMPLES; k++) {
+            double t = (double)k / SAMPLES;
+            double c = mesh_clear(w, j, v3_madd(a, d, t), mesh_cap(w, best < mb ? best : mb, HUGE_VAL), NULL);
+            if (c < mb) mb = c, mt = t;
+        }
+        if (!(mb < best)) continue;
+        /* Exact over the window: within it the distance stays below mb + L / SAMPLES. */
+        double cap = mb + L / SAMPLES + w->r;
+        if (cap < w->eps) cap = w->eps;
+        double lo = mt - 1.0 / SAMPLES, hi = mt + 1.0 / SAMPLES;
+        if (lo < 0) lo = 0;
+        if (hi > 1) hi = 1;
+        const double g = 0.6180339887498949;
+        double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+        double f1 = mesh_clear(w, j, v3_madd(a, d, x1), cap, NULL), f2 = mesh_clear(w, j, v3_madd(a, d, x2), cap, NULL);
+        for (int it = 0; it < 12; it++) {
+            if (f1 < f2) {
+                hi = x2, x2 = x1, f2 = f1;
+                x1 = hi - g * (hi - lo);
+                f1 = mesh_clear(w, j, v3_madd(a, d, x1), cap, NULL);
+            } else {
+                lo = x1, x1 = x2, f1 = f2;
+                x2 = lo + g * (hi - lo);
+                f2 = mesh_clear(w, j, v3_madd(a, d, x2), cap, NULL);
+            }
+        }
+        if (f1 < mb) mb = f1, mt = x1;
+        if (f2 < mb) mb = f2, mt = x2;
+        best = mb;
+        bt = mt;
+    }
     if (t_min) *t_min = bt;
     return best;
 }
@@ -275,11 +404,11 @@ int world_push_out(const roots_world *w, v3 *p) {
     for (int it = 0; it < 16; it++) {
         v3 n;
         int which;
-        double c = world_clearance(w, *p, &n, &which);
+        double c = world_clearance_in(w, *p, 1, w->r, &n, &which);
         if (c >= w->r - w->eps) return moved;
         /* Along the distance-field normal of the worst obstacle... */
         v3 best = v3_madd(*p, n, w->r - c);
-        if (which >= 0) {
+        if (which >= 0 && (uint32_t)which < w->n_hosts) {
             /* ...or out through any face of that host: the nearest face can
              * lead into the ground or another host (a trunk's bottom face
              * lies on the ground), so take the exit that costs least. */
@@ -313,7 +442,7 @@ int world_push_out(const roots_world *w, v3 *p) {
                     for (int dx = -1; dx <= 1; dx++) {
                         if (!dx && !dy && !dz) continue;
                         v3 q = v3_madd(start, v3_norm(v3_make(dx, dy, dz)), rho);
-                        if (world_clearance(w, q, NULL, NULL) >= w->r - w->eps) {
+                        if (world_free(w, q)) {
                             *p = q;
                             return 1;
                         }
@@ -322,7 +451,7 @@ int world_push_out(const roots_world *w, v3 *p) {
     }
     /* Crowded corner between hosts: rise above every host still in the way.
      * Each round clears one host for good, so this ends. */
-    for (uint32_t round = 0; round <= w->n_hosts + 1; round++) {
+    for (uint32_t round = 0; round <= w->n_hosts + w->n_meshes + 1; round++) {
         int changed = 0;
         if (w->ground && p->z < w->ground_z + w->r) {
             p->z = w->ground_z + w->r;
@@ -334,6 +463,14 @@ int world_push_out(const roots_world *w, v3 *p) {
             if (box_sd(o, *p, &n) >= w->r - w->eps) continue;
             double top = o->c.z + fabs(o->ax[0].z) * o->h[0] + fabs(o->ax[1].z) * o->h[1] +
                          fabs(o->ax[2].z) * o->h[2] + w->r * (1.0 + 1e-9);
+            if (p->z < top) {
+                p->z = top;
+                changed = 1;
+            }
+        }
+        for (uint32_t j = 0; j < w->n_meshes; j++) {
+            if (mesh_clear(w, j, *p, w->r, NULL) >= w->r - w->eps) continue;
+            double top = w->set->hi[w->n_hosts + j].z + w->r * (1.0 + 1e-9);
             if (p->z < top) {
                 p->z = top;
                 changed = 1;

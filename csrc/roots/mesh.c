@@ -133,9 +133,10 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
     for (uint32_t i = 0; i < n; i++) {
         v3 *ring = wk->rings + (size_t)i * sides;
         /* Obstacles within reach of the ring, and per vertex the tangent-
-         * plane bound c + n.o, exact for the ground and for a face. (A ring
-         * of radius r round a centre r from a face just touches it: 1e-6 r
-         * of slack keeps those out.) */
+         * plane bound c + n.o, exact for the ground and for a face (for a
+         * mesh the Lipschitz bound c - |o|). (A ring of radius r round a
+         * centre r from a face just touches it: 1e-6 r of slack keeps
+         * those out.) */
         enum { CAP = 8 };
         double oc[CAP];
         v3 on[CAP];
@@ -145,8 +146,8 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
         for (int j = 0; j < sides; j++) {
             v3 q = ring[j], o = v3_sub(q, P[i]);
             int maybe = all;
-            for (int t = 0; t < k && !maybe; t++) maybe = oc[t] + v3_dot(on[t], o) < 1e-6 * w->r;
-            if (!maybe || world_clearance(w, q, NULL, NULL) >= 0) continue;
+            for (int t = 0; t < k && !maybe; t++) maybe = world_near_bound(oc[t], on[t], o) < 1e-6 * w->r;
+            if (!maybe || world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) continue;
             double d = -1;
             for (int it = 0; it < 4; it++) {
                 v3 nrm;
@@ -160,7 +161,7 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
                 double lo = 0, hi = 1;
                 for (int it = 0; it < 30; it++) {
                     double m = 0.5 * (lo + hi);
-                    if (world_clearance(w, v3_lerp(P[i], ring[j], m), NULL, NULL) >= 0) lo = m;
+                    if (world_clearance_in(w, v3_lerp(P[i], ring[j], m), 1, w->r, NULL, NULL) >= 0) lo = m;
                     else hi = m;
                 }
                 q = v3_lerp(P[i], ring[j], lo);
