@@ -56,6 +56,8 @@ static inline double box_dist(const obb *o, v3 p) {
     return sqrt(qx * qx + qy * qy + qz * qz);
 }
 
+#define MESH_SIGN_REACH 2.0
+
 /* Signed distance to mesh j, exact where it is below cap (> 0) or
  * negative; cap, a lower bound, where it is not. *n (when non-NULL) gets
  * the distance-field normal when the value is below cap. A point outside
@@ -63,18 +65,32 @@ static inline double box_dist(const obb *o, v3 p) {
 static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 *n) {
     const host_mesh *m = &w->meshes[j];
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
+    /* A query that finds nothing within its cap decides the sign with rays;
+     * one that finds a surface, with its pseudonormal: look at least
+     * MESH_SIGN_REACH r far, where the roots mostly are. */
+    double q = cap > MESH_SIGN_REACH * w->r ? cap : MESH_SIGN_REACH * w->r;
     if (!n) {
-        double d = hmesh_distance(m, p, cap);
-        if (d <= -cap) d = hmesh_distance(m, p, HUGE_VAL); /* deeper inside than cap: how deep */
+        double d = hmesh_distance(m, p, q);
+        if (d <= -q) d = hmesh_distance(m, p, HUGE_VAL); /* deeper inside than that: how deep */
         return d < cap ? d : cap;
     }
     mesh_near nr;
-    if (!hmesh_nearest(m, p, cap, &nr)) {
+    if (!hmesh_nearest(m, p, q, &nr)) {
         if (nr.dist >= 0) return cap;
         hmesh_nearest(m, p, HUGE_VAL, &nr);
     }
+    if (nr.dist >= cap) return cap;
     *n = nr.normal;
     return nr.dist;
+}
+
+/* Unsigned distance to mesh j from a point known to be outside it (or on
+ * either side of an open mesh): exact below cap, cap beyond. No inside
+ * test, which costs rays (hmesh_udistance). A point within the free ball
+ * of a point known to be outside is outside: sphere tracing knows. */
+static double mesh_uclear(const roots_world *w, uint32_t j, v3 p, double cap) {
+    if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
+    return hmesh_udistance(&w->meshes[j], p, cap);
 }
 
 /* The cap for a mesh query that only matters below `best` and `range`:
@@ -127,6 +143,36 @@ double world_clearance_in(const roots_world *w, v3 p, int with_ground, double ra
     if (normal) *normal = bn;
     if (which) *which = bw;
     return best;
+}
+
+double world_clearance_boxes(const roots_world *w, v3 p) {
+    double best = w->ground ? p.z - w->ground_z : 1e300;
+    for (uint32_t i = 0; i < w->n_hosts; i++) {
+        double c = box_dist(&w->hosts[i], p);
+        if (c < best) best = c;
+    }
+    return best;
+}
+
+double world_clearance_outside(const roots_world *w, v3 p, double range) {
+    double best = world_clearance_boxes(w, p);
+    for (uint32_t j = 0; j < w->n_meshes; j++) {
+        double c = mesh_uclear(w, j, p, mesh_cap(w, best, range));
+        if (c < best) best = c;
+    }
+    return best;
+}
+
+v3 world_spoke(const roots_world *w, v3 c, v3 q) {
+    double reach = v3_dist(c, q), t_min = 1.0;
+    for (uint32_t j = 0; j < w->n_meshes; j++) {
+        double t;
+        v3 n;
+        if (hosts_far_from(w->set, w->n_hosts + j, c, reach)) continue;
+        if (hmesh_segment_hit(&w->meshes[j], c, q, &t, &n) && t < t_min) t_min = t;
+    }
+    /* just short of the surface: 1e-6 of the spoke */
+    return t_min < 1.0 ? v3_lerp(c, q, t_min * (1.0 - 1e-6)) : q;
 }
 
 /* First t where the sphere along p + t d comes closer than r to box o, or
@@ -216,13 +262,12 @@ double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
             bw = (int)i;
         }
     }
-    /* Meshes: sphere tracing, only over the part of the move still free,
-     * with the radius less ROOTS_MESH_SLACK (see roots_internal.h). */
-    double rs = w->r * (1.0 - ROOTS_MESH_SLACK);
+    /* Meshes: exact per triangle (convex, as a box), over the part of the
+     * move still free. */
     for (uint32_t j = 0; j < w->n_meshes && best > 0; j++) {
-        if (hosts_far_from(w->set, w->n_hosts + j, p, L * best + rs)) continue;
+        if (hosts_far_from(w->set, w->n_hosts + j, p, L * best + w->r)) continue;
         v3 n = bn;
-        double t = best * hmesh_sweep(&w->meshes[j], p, v3_scale(d, best), rs, ROOTS_MESH_TOL * w->r, &n);
+        double t = best * hmesh_sweep_exact(&w->meshes[j], p, v3_scale(d, best), w->r, w->eps, &n);
         if (t < best) {
             best = t;
             bn = n;
@@ -264,23 +309,6 @@ static double segment_box(const obb *o, v3 a, v3 d, double L, double stop) {
     return best;
 }
 
-/* Sphere tracing along a -> a + d against mesh j: the first clearance
- * found below stop (a real one, at a point of the segment), else stop,
- * a lower bound within tol: every step leaves a ball of clearance >=
- * stop - tol behind it, and is at least tol long. */
-static double segment_mesh(const roots_world *w, uint32_t j, v3 a, v3 d, double L, double stop, double tol) {
-    if (hosts_far_from(w->set, w->n_hosts + j, a, L + (stop > 0 ? stop : 0))) return stop;
-    double t = 0;
-    for (;;) {
-        double left = (1.0 - t) * L, cap = stop + left + tol;
-        double f = mesh_clear(w, j, v3_madd(a, d, t), cap > w->eps ? cap : w->eps, NULL);
-        if (f < stop) return f;
-        double step = f - stop + tol;
-        if (step >= left) return stop;
-        t += step / L;
-    }
-}
-
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
     v3 d = v3_sub(b, a);
     double L = v3_len(d), best = 1e300;
@@ -289,8 +317,12 @@ double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
         double c = segment_box(&w->hosts[i], a, d, L, stop);
         if (c < best) best = c;
     }
-    for (uint32_t j = 0; j < w->n_meshes && best >= stop; j++) {
-        double c = segment_mesh(w, j, a, d, L, stop, ROOTS_MESH_TOL * w->r);
+    /* Meshes: the segment's exact unsigned distance (a lies outside every
+     * closed mesh: callers pass free points), so stop is a lower bound
+     * when nothing is nearer. */
+    for (uint32_t j = 0; j < w->n_meshes && best >= stop && stop > 0; j++) {
+        if (hosts_far_from(w->set, w->n_hosts + j, a, L + stop)) continue;
+        double c = hmesh_segment_distance(&w->meshes[j], a, b, stop);
         if (c < best) best = c;
     }
     return best;
@@ -348,44 +380,58 @@ double world_segment_deepest(const roots_world *w, v3 a, v3 b, double *t_min) {
             bt = t;
         }
     }
-    /* Meshes: the least of 17 samples, refined by golden-section search
-     * within one sample spacing (a local minimum: a split point needs no
+    /* Meshes. A segment that crosses the surface goes deepest about the
+     * middle of the part between its first and last crossing (two rays;
+     * for a thin open wall, the crossing). One that does not stays on a's
+     * side: the least of 9 unsigned samples, refined by golden-section
+     * search within one spacing (a local minimum: a split point needs no
      * more). */
-    enum { SAMPLES = 16 };
+    enum { SAMPLES = 8 };
     double L = v3_len(d);
     for (uint32_t j = 0; j < w->n_meshes; j++) {
+        const host_mesh *m = &w->meshes[j];
         if (hosts_far_from(w->set, w->n_hosts + j, a, L + (best > 0 ? best : 0))) continue;
-        double mb = 1e300, mt = 0.5;
-        for (int k = 0; k <= SAMPLES; k++) {
-            double t = (double)k / SAMPLES;
-            double c = mesh_clear(w, j, v3_madd(a, d, t), mesh_cap(w, best < mb ? best : mb, HUGE_VAL), NULL);
-            if (c < mb) mb = c, mt = t;
-        }
-        if (!(mb < best)) continue;
-        /* Exact over the window: within it the distance stays below mb + L / SAMPLES. */
-        double cap = mb + L / SAMPLES + w->r;
-        if (cap < w->eps) cap = w->eps;
-        double lo = mt - 1.0 / SAMPLES, hi = mt + 1.0 / SAMPLES;
-        if (lo < 0) lo = 0;
-        if (hi > 1) hi = 1;
-        const double g = 0.6180339887498949;
-        double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-        double f1 = mesh_clear(w, j, v3_madd(a, d, x1), cap, NULL), f2 = mesh_clear(w, j, v3_madd(a, d, x2), cap, NULL);
-        for (int it = 0; it < 12; it++) {
-            if (f1 < f2) {
-                hi = x2, x2 = x1, f2 = f1;
-                x1 = hi - g * (hi - lo);
-                f1 = mesh_clear(w, j, v3_madd(a, d, x1), cap, NULL);
-            } else {
-                lo = x1, x1 = x2, f1 = f2;
-                x2 = lo + g * (hi - lo);
-                f2 = mesh_clear(w, j, v3_madd(a, d, x2), cap, NULL);
+        double t1, t2, mb, mt;
+        v3 hn;
+        if (hmesh_segment_hit(m, a, b, &t1, &hn)) {
+            if (!hmesh_segment_hit(m, b, a, &t2, &hn)) t2 = 1.0 - t1;
+            mt = 0.5 * (t1 + (1.0 - t2));
+            mb = mesh_clear(w, j, v3_madd(a, d, mt), HUGE_VAL, NULL);
+        } else {
+            double cap = best < L + w->r ? best : L + w->r;
+            if (cap < w->eps) cap = w->eps;
+            mb = 1e300, mt = 0.5;
+            for (int k = 0; k <= SAMPLES; k++) {
+                double t = (double)k / SAMPLES, c = mesh_uclear(w, j, v3_madd(a, d, t), cap);
+                if (c < mb) mb = c, mt = t;
             }
+            if (!(mb < best)) continue;
+            /* Exact over the window: within it the distance stays below mb + L / SAMPLES. */
+            cap = mb + L / SAMPLES + w->r;
+            double lo = mt - 1.0 / SAMPLES, hi = mt + 1.0 / SAMPLES;
+            if (lo < 0) lo = 0;
+            if (hi > 1) hi = 1;
+            const double g = 0.6180339887498949;
+            double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+            double f1 = mesh_uclear(w, j, v3_madd(a, d, x1), cap), f2 = mesh_uclear(w, j, v3_madd(a, d, x2), cap);
+            for (int it = 0; it < 8; it++) {
+                if (f1 < f2) {
+                    hi = x2, x2 = x1, f2 = f1;
+                    x1 = hi - g * (hi - lo);
+                    f1 = mesh_uclear(w, j, v3_madd(a, d, x1), cap);
+                } else {
+                    lo = x1, x1 = x2, f1 = f2;
+                    x2 = lo + g * (hi - lo);
+                    f2 = mesh_uclear(w, j, v3_madd(a, d, x2), cap);
+                }
+            }
+            if (f1 < mb) mb = f1, mt = x1;
+            if (f2 < mb) mb = f2, mt = x2;
         }
-        if (f1 < mb) mb = f1, mt = x1;
-        if (f2 < mb) mb = f2, mt = x2;
-        best = mb;
-        bt = mt;
+        if (mb < best) {
+            best = mb;
+            bt = mt;
+        }
     }
     if (t_min) *t_min = bt;
     return best;

@@ -223,9 +223,12 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
     st->radius = net->r;
     st->min_clearance = 1e300;
     for (uint32_t i = 0; i < net->n_pts; i++) {
-        /* Only values below the least so far count (keeps mesh queries short). */
-        double c = world_clearance_in(&net->w, net->pts[i], 1, st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL,
-                                      NULL, NULL);
+        /* Only values below the least so far count (keeps mesh queries
+         * short). Every skeleton point passed a free test or a push-out,
+         * so it is outside every mesh: unsigned mesh distances (an inside
+         * test costs rays). */
+        double c = world_clearance_outside(&net->w, net->pts[i],
+                                           st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
         if (c < st->min_clearance) st->min_clearance = c;
     }
     for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;

@@ -19,10 +19,13 @@
 
 static const v3 UP = {0, 0, 1};
 
-/* Within `support` below p lies the ground or a host. */
+/* Within `support` below p lies the ground or a host. (q is within the
+ * free ball of p, so outside every mesh, when support < r: the hugging
+ * case; paper mode's longer reach asks with the sign.) */
 static int supported(const roots_world *w, v3 p, double support) {
     v3 q = v3_madd(p, UP, -support);
-    return world_clearance_in(w, q, 1, w->r, NULL, NULL) < w->r * (1.0 - 1e-3);
+    double c = support < w->r ? world_clearance_outside(w, q, w->r) : world_clearance_in(w, q, 1, w->r, NULL, NULL);
+    return c < w->r * (1.0 - 1e-3);
 }
 
 /* Slides the sphere from *S along D (hugging). Sets *crawl on landing on
@@ -143,9 +146,6 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                     hw = which;
                     cached = 1;
                 }
-                /* A move traced against a mesh may end up to ROOTS_MESH_SLACK
-                 * r too close: back out to r. */
-                if (w->n_meshes && world_push_out(w, &S)) cached = 0;
             }
             M[b] = S;
             if (w->ground && S.z - w->ground_z <= r * (1.0 + 1e-6)) ground = 1;

@@ -126,8 +126,9 @@ static void junction_rings(work *wk, const roots_net *net, const banyan_roots_pa
 
 /* Ring vertices that a bend's stretch or a junction loop put inside a host
  * or under the ground go onto its surface: the tube flattens against the
- * bark instead of entering it. A ring whose centre is farther from every
- * obstacle than its widest vertex is left alone, which is most. */
+ * bark instead of entering it (onto a mesh: back along the spoke from the
+ * ring's free centre). A ring whose centre is farther from every obstacle
+ * than its widest vertex is left alone, which is most. */
 static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
     int sides = wk->sides;
     for (uint32_t i = 0; i < n; i++) {
@@ -147,13 +148,23 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
             v3 q = ring[j], o = v3_sub(q, P[i]);
             int maybe = all;
             for (int t = 0; t < k && !maybe; t++) maybe = world_near_bound(oc[t], on[t], o) < 1e-6 * w->r;
-            if (!maybe || world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) continue;
+            if (!maybe) continue;
+            /* Meshes: back along the spoke from the free centre to the
+             * first surface it crosses (one ray; the Lipschitz bound above
+             * leaves many vertices to look at). */
+            if (w->n_meshes) q = world_spoke(w, P[i], q);
+            if (world_clearance_boxes(w, q) >= 0) {
+                ring[j] = q;
+                continue;
+            }
             double d = -1;
             for (int it = 0; it < 4; it++) {
                 v3 nrm;
-                d = world_clearance(w, q, &nrm, NULL);
+                int which;
+                d = world_clearance(w, q, &nrm, &which);
                 if (d >= 0) break;
-                q = v3_madd(q, nrm, -d);
+                /* onto a mesh's surface the sign is a coin toss: a hair beyond */
+                q = v3_madd(q, nrm, -d + (which >= (int)w->n_hosts ? w->eps : 0.0));
             }
             if (d < 0) {
                 /* A sharp wedge between two obstacles: the farthest free

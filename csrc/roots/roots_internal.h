@@ -50,17 +50,25 @@ static inline double world_clearance(const roots_world *w, v3 p, v3 *normal, int
 static inline int world_free(const roots_world *w, v3 p) {
     return world_clearance_in(w, p, 1, w->r, NULL, NULL) >= w->r - w->eps;
 }
+/* Boxes and the ground only, exact (the fast path of world_clearance). */
+double world_clearance_boxes(const roots_world *w, v3 p);
+/* world_clearance_in without normal for a point known to lie outside
+ * every closed mesh (within the free ball of a free point): meshes give
+ * unsigned distances, which skips their inside tests. */
+double world_clearance_outside(const roots_world *w, v3 p, double range);
+/* q taken back along the segment c -> q to just before the first mesh
+ * surface it crosses (a ray), q itself when it crosses none: with c free,
+ * the result is outside every closed mesh and on c's side of open ones. */
+v3 world_spoke(const roots_world *w, v3 c, v3 q);
 /* First t in [0,1] at which the sphere moving p -> p + d would come closer
  * than r to an obstacle (1 when it never does); *normal gets the normal of
- * the obstacle hit. Exact up to bisection for boxes (the distance to a
- * convex body is convex along a line). Meshes: sphere tracing with the
- * radius r (1 - ROOTS_MESH_SLACK), stopping free within ROOTS_MESH_TOL r
- * of touching; callers push the end back out to r (world_push_out). */
+ * the obstacle hit. Exact up to bisection (the distance to a convex body,
+ * a box or one triangle of a mesh, is convex along a line). */
 double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which);
-/* Clearance along the segment a-b, for comparing with `stop`: a value
- * below `stop` is a clearance the segment really has there; a value at or
- * above it is a lower bound of the least clearance (convexity; for meshes
- * the Lipschitz bound of sphere tracing, within ROOTS_MESH_TOL r). */
+/* Clearance along the segment a-b (a free point), for comparing with
+ * `stop`: a value below `stop` is a clearance the segment really has
+ * there; a value at or above it is a lower bound of the least clearance
+ * (convexity; for meshes the exact segment-to-triangles distance). */
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop);
 /* The obstacles (ground first, then hosts) closer to p than `range`: their
  * clearance and distance-field normal, at most cap of them; returns how
@@ -154,19 +162,6 @@ static inline int roots_branch_b(const banyan_roots_params *p, int k) {
  * itself a polygon. Shared by the first-branch step test and segment
  * repair, so steps checked by one need not be checked by the other. */
 #define ROOTS_SAG 0.2
-
-/* Touching tolerance of sphere tracing on meshes, times r: a traced move
- * stops free and within this of touching; a segment test may miss a dip
- * this shallow. Far below ROOTS_SAG and the tube's polygon sag. */
-#define ROOTS_MESH_TOL 1e-3
-
-/* Sphere tracing cannot slide: a sphere pressed against a face at exactly
- * r, moved along it, has no clearance to step with, and the Lipschitz
- * bound knows no better (a box's convexity does). So moves are traced
- * against meshes with a sphere this much (times r) thinner, which slides
- * along a face in steps of this size, and the walk pushes each position
- * back out to r along the distance-field normal. */
-#define ROOTS_MESH_SLACK 0.5
 
 /* Per-entity random streams (pcg32_seed's stream argument). */
 enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000 };

@@ -11,7 +11,7 @@
 
 #include "banyan.h"
 #include "roots/roots_internal.h"
-#include "roots_host_meshes.h"
+#include "host_meshes.h"
 
 typedef struct figures {
     double call, net;
@@ -58,8 +58,9 @@ int main(int argc, char **argv) {
     int runs = argc > 1 ? atoi(argv[1]) : 40;
     if (runs < 3) runs = 3;
     /* 128 sides x 195 rows: 49,920 side triangles and 256 in the caps. */
-    tmesh trunk = cylinder(0.4, 8.0, 128, 195);
-    banyan_host_mesh hm = host_of(&trunk, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    tm_mesh trunk = {0};
+    tm_cylinder(&trunk, 0, 0, 0, 0.4, 8.0, 128, 195);
+    banyan_host_mesh hm = tm_host(&trunk, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
     banyan_box box = banyan_box_make(0, 0, 4, 0.4, 0.4, 4); /* its bounding box: the CLI's default trunk */
     banyan_hosts *H = NULL;
     banyan_error err;
