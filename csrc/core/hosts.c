@@ -218,7 +218,14 @@ double hmesh_distance(const host_mesh *m, v3 p, double cap) {
     return n.dist;
 }
 
-double hmesh_udistance(const host_mesh *m, v3 p, double cap) {
+double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p) {
+    const uint32_t *t = m->tri + 3 * (size_t)prim;
+    int region;
+    v3 pl = v3_sub(p, m->origin);
+    return v3_dist(pl, closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region));
+}
+
+double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
     nq_ctx c;
     c.m = m;
     c.p = v3_sub(p, m->origin);
@@ -233,6 +240,7 @@ double hmesh_udistance(const host_mesh *m, v3 p, double cap) {
     struct RTCPointQueryContext qc;
     rtcInitPointQueryContext(&qc);
     rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, &c);
+    if (prim) *prim = c.prim;
     return c.prim == UINT32_MAX ? cap : sqrt(c.best2);
 }
 

@@ -62,6 +62,21 @@ static inline double box_dist(const obb *o, v3 p) {
  * negative; cap, a lower bound, where it is not. *n (when non-NULL) gets
  * the distance-field normal when the value is below cap. A point outside
  * the mesh's bounds grown by cap is farther than cap from it. */
+/* Queries go to the nearest triangle of the last point asked on mesh j
+ * first: the surface is no farther than it, so the query's cap shrinks to
+ * that (Embree then visits the few leaves round it). Embree holds the
+ * query's centre and radius in float: the margin covers their rounding,
+ * and a query that still finds nothing is asked again at the full cap. */
+static inline double hint_cap(const roots_world *w, uint32_t j, v3 p, double cap) {
+    uint32_t h = w->hint[j];
+    if (h == UINT32_MAX) return cap;
+    const host_mesh *m = &w->meshes[j];
+    v3 l = v3_sub(p, m->origin);
+    double d = hmesh_prim_distance(m, h, p);
+    double c = d * (1.0 + 1e-6) + 1e-6 * (fabs(l.x) + fabs(l.y) + fabs(l.z)) + 1e-9;
+    return c < cap ? c : cap;
+}
+
 static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 *n) {
     const host_mesh *m = &w->meshes[j];
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
@@ -69,18 +84,15 @@ static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 
      * one that finds a surface, with its pseudonormal: look at least
      * MESH_SIGN_REACH r far, where the roots mostly are. */
     double q = cap > MESH_SIGN_REACH * w->r ? cap : MESH_SIGN_REACH * w->r;
-    if (!n) {
-        double d = hmesh_distance(m, p, q);
-        if (d <= -q) d = hmesh_distance(m, p, HUGE_VAL); /* deeper inside than that: how deep */
-        return d < cap ? d : cap;
-    }
+    double qh = hint_cap(w, j, p, q);
     mesh_near nr;
-    if (!hmesh_nearest(m, p, q, &nr)) {
+    if (!(qh < q && hmesh_nearest(m, p, qh, &nr)) && !hmesh_nearest(m, p, q, &nr)) {
         if (nr.dist >= 0) return cap;
-        hmesh_nearest(m, p, HUGE_VAL, &nr);
+        hmesh_nearest(m, p, HUGE_VAL, &nr); /* deeper inside than that: how deep */
     }
+    w->hint[j] = nr.prim;
     if (nr.dist >= cap) return cap;
-    *n = nr.normal;
+    if (n) *n = nr.normal;
     return nr.dist;
 }
 
@@ -90,7 +102,12 @@ static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 
  * of a point known to be outside is outside: sphere tracing knows. */
 static double mesh_uclear(const roots_world *w, uint32_t j, v3 p, double cap) {
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
-    return hmesh_udistance(&w->meshes[j], p, cap);
+    uint32_t prim = UINT32_MAX;
+    double hc = hint_cap(w, j, p, cap), d = hc < cap ? hmesh_udistance(&w->meshes[j], p, hc, &prim) : cap;
+    if (prim == UINT32_MAX) d = hmesh_udistance(&w->meshes[j], p, cap, &prim);
+    if (prim == UINT32_MAX) return cap;
+    w->hint[j] = prim;
+    return d < cap ? d : cap;
 }
 
 /* The cap for a mesh query that only matters below `best` and `range`:

@@ -28,6 +28,8 @@ typedef struct roots_world {
     const host_mesh *meshes;  /* mesh hosts, numbered n_hosts + j */
     uint32_t n_meshes;
     const banyan_hosts *set;  /* the host set (world bounds per host) */
+    uint32_t *hint;           /* per mesh: nearest triangle of the last point asked (UINT32_MAX: none),
+                                 scratch of one net (see hint_cap in collide.c) */
     int ground;
     double ground_z;
     double r;
