@@ -59,7 +59,9 @@ static inline double box_dist(const obb *o, v3 p) {
 #define MESH_SIGN_REACH 2.0
 
 /* Signed distance to mesh j, exact where it is below cap (> 0) or
- * negative; cap, a lower bound, where it is not. *n (when non-NULL) gets
+ * negative (without n, a point deeper inside than MESH_SIGN_REACH r or cap
+ * may get that depth instead: an upper bound); cap, a lower bound, where
+ * it is not. *n (when non-NULL) gets
  * the distance-field normal when the value is below cap. A point outside
  * the mesh's bounds grown by cap is farther than cap from it. */
 /* Queries go to the nearest triangle of the last point asked on mesh j
@@ -88,7 +90,8 @@ static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 
     mesh_near nr;
     if (!(qh < q && hmesh_nearest(m, p, qh, &nr)) && !hmesh_nearest(m, p, q, &nr)) {
         if (nr.dist >= 0) return cap;
-        hmesh_nearest(m, p, HUGE_VAL, &nr); /* deeper inside than that: how deep */
+        if (!n) return nr.dist; /* deeper inside than q: -q bounds it, which is all a free test needs */
+        hmesh_nearest(m, p, HUGE_VAL, &nr); /* how deep, and which way out */
     }
     w->hint[j] = nr.prim;
     if (nr.dist >= cap) return cap;
@@ -339,7 +342,7 @@ double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
      * when nothing is nearer. */
     for (uint32_t j = 0; j < w->n_meshes && best >= stop && stop > 0; j++) {
         if (hosts_far_from(w->set, w->n_hosts + j, a, L + stop)) continue;
-        double c = hmesh_segment_distance(&w->meshes[j], a, b, stop);
+        double c = hmesh_segment_distance(&w->meshes[j], a, b, stop, 1);
         if (c < best) best = c;
     }
     return best;

@@ -470,12 +470,15 @@ static void test_exact_queries(void) {
             if (hmesh_distance(m, a, HUGE_VAL) < 0.05) continue; /* start outside, free of r = 0.05 */
             n++;
             /* Segment: the sampled least within one spacing above, never below. */
-            double sd = hmesh_segment_distance(m, a, b, HUGE_VAL), least = 1e300, L = v3_dist(a, b);
+            double sd = hmesh_segment_distance(m, a, b, HUGE_VAL, 0), least = 1e300, L = v3_dist(a, b);
             for (int i = 0; i <= 1000; i++) {
                 double d = fabs(hmesh_distance(m, v3_lerp(a, b, i / 1000.0), HUGE_VAL));
                 if (d < least) least = d;
             }
             if (least < sd - 1e-6 || least > sd + L / 1000.0 + 1e-6) seg_bad++;
+            /* `first` with cap 0.1: below it when the least is, and then no less than the least. */
+            double sf = hmesh_segment_distance(m, a, b, 0.1, 1);
+            if ((sd < 0.1) != (sf < 0.1) || (sf < 0.1 && sf < sd - 1e-12)) seg_bad++;
             /* Sweep of r = 0.05 from a by b - a. */
             v3 nrm;
             double t = hmesh_sweep_exact(m, a, v3_sub(b, a), 0.05, 1e-11, &nrm);
