@@ -24,7 +24,7 @@ static double fz_coord(fz_reader *r) {
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     fz_reader r = {data, size, 0};
     uint8_t head = fz_u8(&r);
-    uint32_t n_boxes = head & 3, n_meshes = (head >> 2) & 3;
+    uint32_t n_boxes = head & 3, n_meshes = ((head >> 2) & 3) % 3;
     banyan_box boxes[3];
     for (uint32_t i = 0; i < n_boxes; i++) {
         double c[3], h[3];
