@@ -8,10 +8,13 @@
  * closer than r to any host.
  * Boxes come first, each query exactly as before mesh hosts existed: the
  * distance to a convex box is convex along a line, which makes the traces
- * exact up to bisection. Meshes (core/hosts.h) are not convex; their
- * queries rest on the distance being 1-Lipschitz instead: sphere tracing
- * for moves and segments, the Lipschitz ball for nearby-obstacle bounds.
- * Each mesh query is capped at the range that can change the answer. */
+ * exact up to bisection. A mesh (core/hosts.h) is not convex, but each of
+ * its triangles is: moves and segments are taken exactly per triangle
+ * (hmesh_sweep_exact, hmesh_segment_distance), so a sphere pressed against
+ * a mesh slides along it as along a box, which sphere tracing on the
+ * mesh's (1-Lipschitz, non-convex) distance cannot do. Nearby-obstacle
+ * bounds use the Lipschitz ball. Each mesh query is capped at the range
+ * that can change the answer. */
 #include "roots_internal.h"
 
 /* Signed distance to the box and the outward unit normal of its distance
@@ -58,12 +61,6 @@ static inline double box_dist(const obb *o, v3 p) {
 
 #define MESH_SIGN_REACH 2.0
 
-/* Signed distance to mesh j, exact where it is below cap (> 0) or
- * negative (without n, a point deeper inside than MESH_SIGN_REACH r or cap
- * may get that depth instead: an upper bound); cap, a lower bound, where
- * it is not. *n (when non-NULL) gets
- * the distance-field normal when the value is below cap. A point outside
- * the mesh's bounds grown by cap is farther than cap from it. */
 /* Queries go to the nearest triangle of the last point asked on mesh j
  * first: the surface is no farther than it, so the query's cap shrinks to
  * that (Embree then visits the few leaves round it). Embree holds the
@@ -79,6 +76,12 @@ static inline double hint_cap(const roots_world *w, uint32_t j, v3 p, double cap
     return c < cap ? c : cap;
 }
 
+/* Signed distance to mesh j, exact where it is below cap (> 0) or
+ * negative (without n, a point deeper inside than MESH_SIGN_REACH r or cap
+ * may get that depth instead: an upper bound); cap, a lower bound, where
+ * it is not. *n (when non-NULL) gets the distance-field normal when the
+ * value is below cap. A point outside the mesh's bounds grown by cap is
+ * farther than cap from it. */
 static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 *n) {
     const host_mesh *m = &w->meshes[j];
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
@@ -102,7 +105,7 @@ static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 
 /* Unsigned distance to mesh j from a point known to be outside it (or on
  * either side of an open mesh): exact below cap, cap beyond. No inside
  * test, which costs rays (hmesh_udistance). A point within the free ball
- * of a point known to be outside is outside: sphere tracing knows. */
+ * of a point known to be outside is outside too. */
 static double mesh_uclear(const roots_world *w, uint32_t j, v3 p, double cap) {
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
     uint32_t prim = UINT32_MAX;
