@@ -292,8 +292,9 @@ double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double tol, v3 *nor
  * sphere's first contact are exact per triangle; the mesh's are the least
  * over the triangles near the segment. Unlike sphere tracing on the
  * (non-convex) mesh distance, this lets a sphere pressed against a surface
- * slide along it. Triangles are found with a point query round the
- * segment's middle; most are dropped by their plane or bounding sphere. */
+ * slide along it. Triangles are found with point queries round the
+ * middles of pieces about 2 r (or 2 cap) long, so each query sphere holds
+ * few triangles; most are dropped by the capsule's box or their plane. */
 
 /* Squared distance between segments p1-q1 and p2-q2 (Ericson 5.1.9). */
 static double seg_seg_dist2(v3 p1, v3 q1, v3 p2, v3 q2) {

@@ -77,7 +77,7 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int fi
  * distance gradient of that triangle there. Exact up to root finding (the
  * distance to a triangle is convex along a line); unlike hmesh_sweep, a
  * sphere pressed against the surface and moving along it or away is not
- * stopped, so it can slide. */
+ * stopped, so it can slide. (These four were added for the roots.) */
 double hmesh_sweep_exact(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal);
 /* p inside the closed mesh m (0 for open meshes). */
 int hmesh_inside(const host_mesh *m, v3 p);
