@@ -121,6 +121,11 @@ double det3(const mat4 &a) {
            m[8] * (m[1] * m[6] - m[5] * m[2]);
 }
 
+/* " (\"name\")" of a named mesh, for messages; "" when unnamed. */
+std::string label(const tinygltf::Mesh &m) {
+    return m.name.empty() ? std::string() : " (\"" + m.name.substr(0, 40) + "\")";
+}
+
 /* A vertex key: the float bits of a position (-0 made +0 first). */
 struct vkey {
     uint32_t b[3];
@@ -217,8 +222,8 @@ struct reader {
             vkey key;
             for (int r = 0; r < 3; ++r) {
                 if (!std::isfinite(z[r]))
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d (\"%.40s\") primitive %zu: vertex %zu is not "
-                                "finite (%g, %g, %g) after its node transforms", path, mesh, gm.name.c_str(), pi, k,
+                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: vertex %zu is not finite "
+                                "(%g, %g, %g) after its node transforms", path, mesh, label(gm).c_str(), pi, k,
                                 static_cast<double>(f[0]), static_cast<double>(f[1]), static_cast<double>(f[2]));
                 if (z[r] == 0.0f) z[r] = 0.0f; /* -0 -> +0 */
                 std::memcpy(&key.b[r], &z[r], 4);
@@ -255,8 +260,8 @@ struct reader {
                 uint32_t v = es == 1 ? e[0] : es == 2 ? static_cast<uint32_t>(e[0] | e[1] << 8) : 0;
                 if (es == 4) std::memcpy(&v, e, 4);
                 if (v >= nv)
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d (\"%.40s\") primitive %zu: index %zu = %u is out "
-                                "of range (%zu vertices)", path, mesh, gm.name.c_str(), pi, k, v, nv);
+                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: index %zu = %u is out of "
+                                "range (%zu vertices)", path, mesh, label(gm).c_str(), pi, k, v, nv);
                 idx[k] = v;
             }
         } else {
@@ -306,12 +311,11 @@ struct reader {
                 return fail(err, BANYAN_E_PARSE, "%s: node %d is reached twice (the node graph must be a tree)", path,
                             it.node);
             const tinygltf::Node &n = model.nodes[static_cast<size_t>(it.node)];
-            mat4 local = node_matrix(n);
-            for (double v : local.m)
+            mat4 world = mat_mul(it.parent, node_matrix(n));
+            for (double v : world.m)
                 if (!std::isfinite(v))
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: node %d (\"%.40s\") has a non-finite transform", path,
-                                it.node, n.name.c_str());
-            mat4 world = mat_mul(it.parent, local);
+                    return fail(err, BANYAN_E_BAD_HOST, "%s: node %d (\"%.40s\") has a non-finite transform (with "
+                                "its parents')", path, it.node, n.name.c_str());
             if (n.mesh >= 0) {
                 if (static_cast<size_t>(n.mesh) >= model.meshes.size())
                     return fail(err, BANYAN_E_PARSE, "%s: node %d names mesh %d, which does not exist", path, it.node,

@@ -346,8 +346,11 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
         double v[9];
         int n = number_array(k, v, 9);
         const char *key = k->string;
-        if (!strcmp(key, "mesh") && cJSON_IsString(k) && k->valuestring[0]) file = k->valuestring;
-        else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3 && !have_t) {
+        if (!strcmp(key, "mesh")) {
+            if (!cJSON_IsString(k) || !k->valuestring[0])
+                return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
+            file = k->valuestring;
+        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3 && !have_t) {
             memcpy(t, v, sizeof t);
             have_t = 1;
         } else if (!strcmp(key, "rotation") && n == 9 && !have_rot) {
