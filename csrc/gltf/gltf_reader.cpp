@@ -32,6 +32,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <sys/stat.h>
 #include <unordered_map>
 #include <vector>
 
@@ -341,6 +342,10 @@ bool ignorable_extension(const std::string &e) {
 
 banyan_status read_host(const char *path, const double *transform, int32_t closed, banyan_host_mesh **out,
                         banyan_error *err) {
+    /* A FIFO or a device would block or never end: regular files only. */
+    struct stat sb;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return fail(err, BANYAN_E_IO, "%s: not a regular file", path);
     FILE *f = std::fopen(path, "rb");
     if (!f) return fail(err, BANYAN_E_IO, "%s: cannot open: %s", path, std::strerror(errno));
     std::vector<unsigned char> bytes;

@@ -14,6 +14,7 @@
 
 #include "banyan.h"
 #include "check.h"
+#include "test_files.h"
 
 static char outdir[1024];
 
@@ -310,7 +311,9 @@ static void bad_files(void) {
           "closed 2: %s", e.message);
     CHECK(banyan_glb_read_host(NULL, NULL, -1, &m, &e) == BANYAN_E_INVALID_ARG && !m, "NULL path");
     CHECK(banyan_glb_read_host(path, NULL, -1, NULL, &e) == BANYAN_E_INVALID_ARG, "NULL out");
-    CHECK(banyan_glb_read_host(outdir, NULL, -1, &m, &e) != BANYAN_OK && !m, "a directory: %s", e.message);
+    CHECK(banyan_glb_read_host(outdir, NULL, -1, &m, &e) == BANYAN_E_IO && !m && strstr(e.message, "regular file"),
+          "a directory: %s", e.message);
+    CHECK(banyan_glb_read_host("/dev/zero", NULL, -1, &m, &e) == BANYAN_E_IO && !m, "a device: %s", e.message);
     banyan_host_mesh_free(NULL);
 }
 
@@ -467,6 +470,50 @@ static void presets(void) {
     banyan_host_mesh_free(rock);
 }
 
+/* Every shipped preset with a mesh host: its params apply, its host set
+ * builds with its meshes, and the box-preset walker leaves it out. */
+static void mesh_preset(const char *path, const char *name, void *ctx) {
+    int *meshes = ctx;
+    banyan_error e;
+    banyan_hosts *H = NULL;
+    CHECK(test_load_host_set(path, &H, &e) == BANYAN_OK && H, "%s: %s", name, e.message);
+    uint32_t n_mesh = 0;
+    for (uint32_t i = 0; H && i < banyan_hosts_count(H); i++) {
+        banyan_host_info info;
+        if (banyan_hosts_info(H, i, &info, &e) == BANYAN_OK && info.kind == 1) {
+            n_mesh++;
+            CHECK(info.closed == 1 && info.boundary_edges == 0, "%s: host %u is not a closed solid", name, i);
+        }
+    }
+    CHECK(n_mesh >= 1, "%s: no mesh host", name);
+    *meshes += n_mesh > 0;
+    banyan_hosts_free(H);
+    unsigned char params[8192];
+    banyan_generator g = strncmp(name, "ivy_", 4) == 0 ? BANYAN_GEN_IVY : BANYAN_GEN_ROOTS;
+    if (g == BANYAN_GEN_IVY) banyan_ivy_params_init((banyan_ivy_params *)params);
+    else banyan_roots_params_init((banyan_roots_params *)params);
+    size_t len;
+    char *text = test_read_file(path, &len);
+    CHECK(text && banyan_preset_apply(g, params, text, len, path, &e) == BANYAN_OK, "%s params: %s", name,
+          text ? e.message : "unreadable");
+    free(text);
+}
+
+static void box_preset(const char *path, const char *name, void *ctx) {
+    (void)name;
+    (*(int *)ctx)++;
+    CHECK(!test_preset_has_mesh_hosts(path), "%s: the box walker reached a mesh preset", path);
+}
+
+static void shipped_presets(void) {
+    int with_meshes = 0, boxes = 0;
+    int n = test_each_mesh_preset(BANYAN_SOURCE_DIR "/presets", "", mesh_preset, &with_meshes);
+    CHECK(n >= 3 && with_meshes == n, "%d mesh presets, %d with a mesh host (want roots_column, roots_rock, "
+          "ivy_statue)", n, with_meshes);
+    int nb = test_each_preset(BANYAN_SOURCE_DIR "/presets", "", box_preset, &boxes);
+    CHECK(nb >= 20 && nb == boxes, "%d box presets walked", nb);
+}
+
 int main(int argc, char **argv) {
     /* A folder of its own: the validator checks every .glb directly in argv[1]. */
     snprintf(outdir, sizeof outdir, "%s/host_files", argc > 1 ? argv[1] : ".");
@@ -476,5 +523,6 @@ int main(int argc, char **argv) {
     bad_files();
     shipped();
     presets();
+    shipped_presets();
     return check_done("test_host_files");
 }
