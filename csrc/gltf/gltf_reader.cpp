@@ -368,6 +368,26 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
         return fail(err, BANYAN_E_PARSE, "%s: not a glTF binary (.glb) file: it does not start with \"glTF\"%s", path,
                     !bytes.empty() && bytes[0] == '{' ? " (a .gltf JSON file? export it as .glb)" : "");
 
+    /* The container, checked here in full: tinygltf 2.7 lets a BIN chunk
+     * run up to its 8-byte header past the end of the data. */
+    uint32_t hdr[5] = {0, 0, 0, 0, 0};
+    std::memcpy(hdr, bytes.data(), bytes.size() < 20 ? 12 : 20);
+    if (hdr[1] != 2)
+        return fail(err, BANYAN_E_PARSE, "%s: glTF binary version %u (banyan reads version 2)", path, hdr[1]);
+    if (hdr[2] != bytes.size())
+        return fail(err, BANYAN_E_PARSE, "%s: the header says %u bytes but the file has %zu (truncated?)", path,
+                    hdr[2], bytes.size());
+    if (bytes.size() < 20 || hdr[4] != 0x4E4F534Au || hdr[3] == 0 || hdr[3] > bytes.size() - 20)
+        return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the JSON chunk is missing or truncated", path);
+    size_t next = 20 + static_cast<size_t>(hdr[3]);
+    if (next < bytes.size()) {
+        uint32_t bin[2] = {0, 0};
+        if (bytes.size() - next >= 8) std::memcpy(bin, bytes.data() + next, 8);
+        if (bytes.size() - next < 8 || bin[0] > bytes.size() - next - 8)
+            return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the chunk after the JSON runs past the end "
+                        "of the file", path);
+    }
+
     std::string dir(path);
     size_t slash = dir.find_last_of('/');
     dir = slash == std::string::npos ? std::string(".") : dir.substr(0, slash ? slash : 1);

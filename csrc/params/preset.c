@@ -350,7 +350,11 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
             if (!cJSON_IsString(k) || !k->valuestring[0])
                 return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
             file = k->valuestring;
-        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3 && !have_t) {
+        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && have_t) {
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of translation and center", w, i);
+        } else if ((!strcmp(key, "rotation") || !strcmp(key, "rotation_euler_deg")) && have_rot) {
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of rotation and rotation_euler_deg", w, i);
+        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3) {
             memcpy(t, v, sizeof t);
             have_t = 1;
         } else if (!strcmp(key, "rotation") && n == 9 && !have_rot) {

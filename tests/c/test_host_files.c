@@ -218,7 +218,9 @@ static void bad_files(void) {
         {"host_files_missing.glb", BANYAN_E_IO, "cannot open"},
         {"host_files_text.glb", BANYAN_E_PARSE, "does not start with \"glTF\""},
         {"host_files_json.glb", BANYAN_E_PARSE, ".gltf JSON"},
-        {"host_files_truncated.glb", BANYAN_E_PARSE, "not a valid glTF binary"},
+        {"host_files_truncated.glb", BANYAN_E_PARSE, "(truncated?)"},
+        {"host_files_bin_past.glb", BANYAN_E_PARSE, "runs past the end"},
+        {"host_files_version.glb", BANYAN_E_PARSE, "version 1"},
         {"host_files_points.glb", BANYAN_E_BAD_HOST, "has no triangles"},
         {"host_files_empty_scene.glb", BANYAN_E_BAD_HOST, "has no triangles"},
         {"host_files_nan.glb", BANYAN_E_BAD_HOST, "not finite"},
@@ -257,6 +259,25 @@ static void bad_files(void) {
         if (f) fclose(f);
         path_in(p, sizeof p, "host_files_truncated.glb");
         write_bytes(p, buf, got);
+        /* A BIN chunk claiming 8 bytes more than the file holds (the header
+         * length fixed up to match the file), and a version-1 header. */
+        path_in(p, sizeof p, "host_files_good.glb");
+        f = fopen(p, "rb");
+        unsigned char whole[4096];
+        size_t n = f ? fread(whole, 1, sizeof whole, f) : 0;
+        if (f) fclose(f);
+        uint32_t jl, bl;
+        memcpy(&jl, whole + 12, 4);
+        memcpy(&bl, whole + 20 + jl, 4);
+        bl += 8;
+        memcpy(whole + 20 + jl, &bl, 4);
+        path_in(p, sizeof p, "host_files_bin_past.glb");
+        write_bytes(p, whole, n);
+        bl -= 8;
+        memcpy(whole + 20 + jl, &bl, 4);
+        whole[4] = 1;
+        path_in(p, sizeof p, "host_files_version.glb");
+        write_bytes(p, whole, n);
         banyan_host_mesh *m = NULL;
         path_in(p, sizeof p, "host_files_good.glb");
         CHECK(banyan_glb_read_host(p, NULL, -1, &m, &e) == BANYAN_OK, "the good file: %s", e.message);
@@ -446,8 +467,10 @@ static void presets(void) {
         {"{\"mesh\": \"host_files_good.glb\", \"colour\": 1}", BANYAN_E_TYPE, ".colour is unknown"},
         {"{\"mesh\": \"host_files_good.glb\", \"half\": [1, 1, 1]}", BANYAN_E_UNKNOWN_KEY, ".half is unknown"},
         {"{\"mesh\": \"host_files_good.glb\", \"closed\": \"maybe\"}", BANYAN_E_RANGE, "\"auto\", \"open\""},
-        {"{\"mesh\": \"host_files_good.glb\", \"center\": [0,0,0], \"translation\": [0,0,0]}", BANYAN_E_TYPE,
-         "translation"},
+        {"{\"mesh\": \"host_files_good.glb\", \"center\": [0,0,0], \"translation\": [0,0,0]}", BANYAN_E_PARSE,
+         "one of translation and center"},
+        {"{\"mesh\": \"host_files_good.glb\", \"rotation_euler_deg\": [0,0,0], \"rotation\": [1,0,0,0,1,0,0,0,1]}",
+         BANYAN_E_PARSE, "one of rotation and rotation_euler_deg"},
         {"{\"mesh\": \"\"}", BANYAN_E_TYPE, "must name a .glb file"},
         {"{\"mesh\": 3}", BANYAN_E_TYPE, "must name a .glb file"},
         {"{\"center\": [0, 0, 1], \"half\": [1, 1, 1], \"scale\": 2}", BANYAN_E_TYPE, ".scale is unknown"},
