@@ -8,7 +8,8 @@
  * calls declared in banyan.h. tinygltf parses the container and JSON;
  * everything it does not check (accessor and view bounds, index ranges,
  * the node tree, finiteness) is checked here, since a host file is input
- * from anywhere. Images are never decoded.
+ * from anywhere. Images are never decoded and no other file is opened
+ * (external buffers are refused).
  *
  * What is read: the triangles of every primitive reached from the scene
  * (modes 4, 5, 6), POSITION as float VEC3 and indices as unsigned
@@ -67,6 +68,17 @@ bool skip_image(tinygltf::Image *, const int, std::string *, std::string *, int,
                 void *) {
     return true;
 }
+
+/* No file is opened on the glb's behalf: a buffer or image "uri" naming
+ * a file (another .bin, /dev/zero, anything) is refused; only the BIN
+ * chunk and data: URIs are read. */
+bool any_file(const std::string &, void *) { return true; } /* so that no_read says why */
+std::string same_path(const std::string &p, void *) { return p; }
+bool no_read(std::vector<unsigned char> *, std::string *why, const std::string &, void *) {
+    if (why) *why = "an external file (banyan reads self-contained .glb files only)";
+    return false;
+}
+bool no_write(std::string *, const std::string &, const std::vector<unsigned char> &, void *) { return false; }
 
 /* Column-major 4x4, as glTF stores node matrices. */
 struct mat4 {
@@ -394,6 +406,8 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skip_image, nullptr);
+    tinygltf::FsCallbacks fs = {any_file, same_path, no_read, no_write, nullptr};
+    loader.SetFsCallbacks(fs);
     std::string e, w;
     if (!loader.LoadBinaryFromMemory(&model, &e, &w, bytes.data(), static_cast<unsigned int>(bytes.size()), dir)) {
         size_t nl = e.find('\n');

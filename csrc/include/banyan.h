@@ -312,7 +312,8 @@ BANYAN_API banyan_status banyan_preset_hosts(const char *text, size_t length,
 struct banyan_host_mesh;
 struct banyan_hosts;
 
-/* Reads a glTF 2.0 binary file (.glb) as one host mesh: every triangle
+/* Reads a self-contained glTF 2.0 binary file (.glb; no other file is
+ * opened, images are not decoded) as one host mesh: every triangle
  * (modes TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; points and lines are
  * skipped) of every mesh primitive reached from the default scene (scene
  * 0 when none is named; every root node when there are no scenes), under

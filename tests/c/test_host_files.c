@@ -230,6 +230,7 @@ static void bad_files(void) {
         {"host_files_draco.glb", BANYAN_E_PARSE, "KHR_draco_mesh_compression"},
         {"host_files_int_pos.glb", BANYAN_E_PARSE, "not float VEC3"},
         {"host_files_node_nan.glb", BANYAN_E_BAD_HOST, "non-finite transform"},
+        {"host_files_external.glb", BANYAN_E_PARSE, "external file"},
     };
     char p[1200];
     path_in(p, sizeof p, "host_files_text.glb");
@@ -311,6 +312,15 @@ static void bad_files(void) {
              "\"children\":[1]},{\"mesh\":0,\"scale\":[1e200,1,1]}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
              ACCESSORS "}");
     write_glb("host_files_node_nan.glb", json, &b, sizeof b);
+    /* A buffer in another file (here the good .glb itself): not opened. */
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],\"meshes\":"
+             "[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],\"buffers\":[{\"byteLength\":96,"
+             "\"uri\":\"host_files_good.glb\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,"
+             "\"byteOffset\":48,\"byteLength\":48}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,"
+             "\"count\":4,\"type\":\"VEC3\"},{\"bufferView\":1,\"componentType\":5125,\"count\":12,"
+             "\"type\":\"SCALAR\"}]}");
+    write_glb("host_files_external.glb", json, NULL, 0);
 
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         path_in(path, sizeof path, cases[i].name);
