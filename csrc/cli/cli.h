@@ -15,6 +15,10 @@ typedef struct cli_job {
     size_t preset_len;
     banyan_box hosts[BANYAN_MAX_HOSTS];
     uint32_t n_hosts;            /* from the preset; 0 when it has none */
+    /* Set when any host is a mesh (a preset "mesh" or --host): the command
+     * grows on it instead of `hosts`. With boxes only it stays NULL, so
+     * box scenes take the box calls and keep their bytes. */
+    const banyan_hosts *host_set;
     int threads;                 /* --threads N, 0 = all cores */
 } cli_job;
 
@@ -33,7 +37,8 @@ typedef struct cli_command {
     const char *summary;         /* one line for --help */
     size_t params_size;
     void (*init)(void *params);  /* defaults */
-    /* Fills default hosts when the preset gave none (may leave 0). */
+    /* Fills default hosts when the preset and --host gave none (may leave
+     * 0). NULL for commands that take no hosts (they refuse --host). */
     void (*default_hosts)(cli_job *job);
     /* Generates one or more meshes. *names may stay NULL. */
     banyan_status (*run)(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,

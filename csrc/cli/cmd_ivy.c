@@ -1,8 +1,9 @@
-/* `banyan ivy`: ivy climbing host boxes (spec/ivy.md). Without hosts in
- * the preset it grows on a 3 m x 3 m wall whose face is the plane y = 0
- * (x in [-1.5, 1.5], z in [0, 3]), the paper's setting. --stats prints
- * the generator's measures: bud counts by state, attached fraction,
- * branch points, crossings, covered area and density. */
+/* `banyan ivy`: ivy climbing hosts (spec/ivy.md): the preset's boxes and
+ * meshes and any --host meshes. Without hosts it grows on a 3 m x 3 m
+ * wall whose face is the plane y = 0 (x in [-1.5, 1.5], z in [0, 3]), the
+ * paper's setting. --stats prints the generator's measures: bud counts
+ * by state, attached fraction, branch points, crossings, covered area and
+ * density. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -19,7 +20,8 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
                          uint32_t *count, cli_stats *stats, banyan_error *err) {
     const banyan_ivy_params *p = params;
     banyan_ivy *iv = NULL;
-    banyan_status s = banyan_ivy_create(p, job->hosts, job->n_hosts, &iv, err);
+    banyan_status s = job->host_set ? banyan_ivy_create_hosts(p, job->host_set, &iv, err)
+                                    : banyan_ivy_create(p, job->hosts, job->n_hosts, &iv, err);
     if (s) return s;
     banyan_ivy_stats st;
     banyan_mesh **m = calloc(1, sizeof *m);
@@ -64,5 +66,5 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     return BANYAN_OK;
 }
 
-const cli_command cli_cmd_ivy = {"ivy", BANYAN_GEN_IVY, "ivy climbing host boxes", sizeof(banyan_ivy_params),
+const cli_command cli_cmd_ivy = {"ivy", BANYAN_GEN_IVY, "ivy climbing host boxes and meshes", sizeof(banyan_ivy_params),
                                  init, default_hosts, run, NULL};

@@ -1,7 +1,8 @@
-/* `banyan roots`: strangler-fig roots around host boxes (spec roots.md).
- * Without hosts in the preset it grows round a trunk-like box. --stats adds
- * the generator's own measures (growth points per kind, branch roots that
- * reached their end, re-routes and push-outs, least clearance). */
+/* `banyan roots`: strangler-fig roots around hosts (spec roots.md): the
+ * preset's boxes and meshes and any --host meshes. Without hosts it grows
+ * round a trunk-like box. --stats adds the generator's own measures
+ * (growth points per kind, branch roots that reached their end, re-routes
+ * and push-outs, least clearance). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -21,8 +22,9 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     banyan_mesh **m = calloc(1, sizeof *m);
     if (!m) return BANYAN_E_NOMEM;
     banyan_roots_stats st;
-    banyan_status s = banyan_roots_generate_stats((const banyan_roots_params *)params, job->hosts, job->n_hosts, &m[0],
-                                                  &st, err);
+    const banyan_roots_params *p = params;
+    banyan_status s = job->host_set ? banyan_roots_generate_hosts(p, job->host_set, &m[0], &st, err)
+                                    : banyan_roots_generate_stats(p, job->hosts, job->n_hosts, &m[0], &st, err);
     if (s) {
         free(m);
         return s;
@@ -52,5 +54,5 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     return BANYAN_OK;
 }
 
-const cli_command cli_cmd_roots = {"roots", BANYAN_GEN_ROOTS, "strangler-fig roots around host boxes",
+const cli_command cli_cmd_roots = {"roots", BANYAN_GEN_ROOTS, "strangler-fig roots around host boxes and meshes",
                                    sizeof(banyan_roots_params), init, default_hosts, run, NULL};

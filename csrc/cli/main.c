@@ -1,9 +1,12 @@
 /* `banyan` command line tool:
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
- *                      [--threads N] [-o out.glb|out.gltf] [--stats]
+ *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
+ *                      [-o out.glb|out.gltf] [--stats]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
- * presets and the Blender add-on accept exactly the same keys. */
+ * presets and the Blender add-on accept exactly the same keys. Hosts are
+ * the preset's (boxes and meshes) plus every --host mesh; the command's
+ * default boxes only when there are none. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <inttypes.h>
@@ -37,8 +40,11 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
-               "                        [-o out.glb|out.gltf] [--stats]\n"
-               "       banyan <command> --list\n\ncommands:\n");
+               "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
+               "       banyan <command> --list\n\n"
+               "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
+               "when given; the preset's hosts stay, the default host is used only when there are none.\n"
+               "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
     return f == stdout ? 0 : 2;
@@ -101,6 +107,53 @@ static void list_params(const cli_command *c) {
     free(p);
 }
 
+/* "FILE.glb" or "FILE.glb@x,y,z": the file and the translation it asks
+ * for (t unchanged when there is none). Returns 0 when the part after the
+ * last '@' looks like a placement but is not three finite numbers. */
+static int host_spec(const char *spec, char *path, size_t cap, double t[3]) {
+    const char *at = strrchr(spec, '@');
+    size_t n = strlen(spec);
+    if (at && at[1] && strchr("+-.0123456789", at[1])) {
+        char *end;
+        const char *q = at + 1;
+        for (int k = 0; k < 3; k++) {
+            t[k] = strtod(q, &end);
+            if (end == q || !(t[k] >= -1e6 && t[k] <= 1e6) || (k < 2 && *end != ',') || (k == 2 && *end))
+                return 0;
+            q = end + 1;
+        }
+        n = (size_t)(at - spec);
+    }
+    if (n == 0 || n >= cap) return 0;
+    memcpy(path, spec, n);
+    path[n] = '\0';
+    return 1;
+}
+
+/* Reads the --host meshes into read[] (caller frees) and extra[] (their
+ * structs, for the host-set calls). */
+static int read_host_args(const cli_command *cmd, const char **specs, int n, banyan_host_mesh **read,
+                          banyan_host_mesh *extra) {
+    for (int i = 0; i < n; i++) {
+        char path[4096];
+        double t[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, at[3] = {0, 0, 0};
+        if (!host_spec(specs[i], path, sizeof path, at)) {
+            fprintf(stderr, "banyan %s: --host %s: expected FILE.glb or FILE.glb@x,y,z (metres, each within "
+                    "[-1e6, 1e6])\n", cmd->name, specs[i]);
+            return 0;
+        }
+        t[3] = at[0], t[7] = at[1], t[11] = at[2];
+        banyan_error err = {0, ""};
+        if (banyan_glb_read_host(path, t, BANYAN_HOST_CLOSED_AUTO, &read[i], &err)) {
+            fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
+                    banyan_status_name((banyan_status)err.code), err.message);
+            return 0;
+        }
+        extra[i] = *read[i];
+    }
+    return 1;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -119,15 +172,20 @@ int main(int argc, char **argv) {
     static cli_job job; /* large (hosts); one per process */
     const char *out_path = NULL, *seed = NULL;
     int stats = 0, list = 0;
-    const char **sets = calloc((size_t)argc, sizeof *sets);
-    int n_sets = 0;
-    if (!sets) return 1;
+    const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
+    int n_sets = 0, n_host_args = 0;
+    if (!sets || !host_args) {
+        free(sets);
+        free(host_args);
+        return 1;
+    }
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         int has_val = i + 1 < argc;
         if (!strcmp(a, "--preset") && has_val) job.preset_path = argv[++i];
         else if (!strcmp(a, "--seed") && has_val) seed = argv[++i];
         else if (!strcmp(a, "--set") && has_val) sets[n_sets++] = argv[++i];
+        else if (!strcmp(a, "--host") && has_val) host_args[n_host_args++] = argv[++i];
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) out_path = argv[++i];
         else if (!strcmp(a, "--threads") && has_val) job.threads = atoi(argv[++i]);
         else if (!strcmp(a, "--stats")) stats = 1;
@@ -135,12 +193,14 @@ int main(int argc, char **argv) {
         else {
             fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
             free(sets);
+            free(host_args);
             return usage(stderr);
         }
     }
     if (list) {
         list_params(cmd);
         free(sets);
+        free(host_args);
         return 0;
     }
 
@@ -150,8 +210,15 @@ int main(int argc, char **argv) {
     char **names = NULL;
     uint32_t count = 0;
     banyan_error err = {0, ""};
+    banyan_hosts *host_set = NULL;
+    banyan_host_mesh **host_read = calloc((size_t)n_host_args + 1, sizeof *host_read);
+    banyan_host_mesh *host_extra = calloc((size_t)n_host_args + 1, sizeof *host_extra);
     void *params = calloc(1, cmd->params_size);
-    if (!params) goto out;
+    if (!params || !host_read || !host_extra) goto out;
+    if (n_host_args && !cmd->default_hosts) {
+        fprintf(stderr, "banyan %s: --host: this command takes no hosts (roots and ivy do)\n", cmd->name);
+        goto out;
+    }
     cmd->init(params);
     banyan_generator g = (banyan_generator)cmd->generator;
     if (job.preset_path) {
@@ -165,12 +232,44 @@ int main(int argc, char **argv) {
             fprintf(stderr, "banyan %s: this command takes no preset\n", cmd->name);
             goto out;
         }
-        if (banyan_preset_apply(g, params, text, job.preset_len, job.preset_path, &err) ||
-            banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts, &err)) {
+        if (banyan_preset_apply(g, params, text, job.preset_len, job.preset_path, &err)) {
             fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
             goto out;
         }
+        /* Boxes only, no --host: the box calls, as always. A mesh preset
+         * (refused by banyan_preset_hosts as UNSUPPORTED) or any --host
+         * takes the host set. */
+        banyan_status hs = BANYAN_E_UNSUPPORTED;
+        if (!n_host_args)
+            hs = banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts,
+                                     &err);
+        if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra)) goto out;
+            const char *slash = strrchr(job.preset_path, '/');
+            char dir[4096] = ".";
+            if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
+                snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
+                         job.preset_path);
+            hs = banyan_preset_host_set(text, job.preset_len, job.preset_path, dir, host_extra, (uint32_t)n_host_args,
+                                        &host_set, &err);
+        }
+        if (hs) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
+            goto out;
+        }
+    } else if (n_host_args) {
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra)) goto out;
+        if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
+            fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
+            goto out;
+        }
     }
+    /* The set holds its own copy of the meshes. */
+    for (int i = 0; i < n_host_args; i++) {
+        banyan_host_mesh_free(host_read[i]);
+        host_read[i] = NULL;
+    }
+    job.host_set = host_set;
     if (seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", seed, &err)) {
         fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err.message);
         goto out;
@@ -191,7 +290,7 @@ int main(int argc, char **argv) {
             goto out;
         }
     }
-    if (job.n_hosts == 0 && cmd->default_hosts) cmd->default_hosts(&job);
+    if (!host_set && job.n_hosts == 0 && cmd->default_hosts) cmd->default_hosts(&job);
 
     cli_stats st;
     st.len = 0;
@@ -201,6 +300,20 @@ int main(int argc, char **argv) {
     if (s) {
         fprintf(stderr, "banyan %s: %s: %s\n", cmd->name, banyan_status_name(s), err.message);
         goto out;
+    }
+    if (host_set) {
+        uint32_t nb = 0, nm = 0;
+        uint64_t tris = 0;
+        for (uint32_t i = 0; i < banyan_hosts_count(host_set); i++) {
+            banyan_host_info info;
+            if (banyan_hosts_info(host_set, i, &info, NULL)) continue;
+            nb += info.kind == 0;
+            nm += info.kind == 1;
+            tris += info.triangle_count;
+        }
+        char buf[128];
+        snprintf(buf, sizeof buf, "{\"boxes\": %u, \"meshes\": %u, \"triangles\": %" PRIu64 "}", nb, nm, tris);
+        cli_stat_raw(&st, "host_set", buf);
     }
     double t2 = t1;
     if (out_path) {
@@ -226,8 +339,13 @@ out:
     for (uint32_t i = 0; names && i < count; i++) free(names[i]);
     free(meshes);
     free(names);
+    for (int i = 0; host_read && i < n_host_args; i++) banyan_host_mesh_free(host_read[i]);
+    free(host_read);
+    free(host_extra);
+    banyan_hosts_free(host_set);
     free(params);
     free(text);
     free(sets);
+    free(host_args);
     return rc;
 }

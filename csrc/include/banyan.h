@@ -282,7 +282,8 @@ BANYAN_API banyan_status banyan_params_check(banyan_generator g, const void *par
  *     "params": { "<key>": value, ... },
  *     "hosts": [ { "center": [x,y,z], "half": [hx,hy,hz],
  *                  "rotation": [9 numbers, row-major]  (optional)
- *                  | "rotation_euler_deg": [rx,ry,rz]    (optional, XYZ) } ] }
+ *                  | "rotation_euler_deg": [rx,ry,rz]    (optional, XYZ) }
+ *                | { "mesh": "file.glb", ... } (banyan_preset_host_set) ] }
  * Unknown keys at any level, wrong types and values out of range are
  * refused; messages start with "<source>:<line>:" where known. */
 #define BANYAN_PRESET_SCHEMA 1
@@ -296,11 +297,73 @@ BANYAN_API banyan_status banyan_preset_apply(banyan_generator g, void *params,
                                              const char *source, banyan_error *err);
 
 /* Reads a preset's "hosts" into out[0..cap-1]; *count gets how many there
- * are (0 when the preset has none). Refuses more than `cap`. */
+ * are (0 when the preset has none). Refuses more than `cap`, and a preset
+ * with a mesh host (BANYAN_E_UNSUPPORTED: read those with
+ * banyan_preset_host_set). */
 BANYAN_API banyan_status banyan_preset_hosts(const char *text, size_t length,
                                              const char *source, banyan_box *out,
                                              uint32_t cap, uint32_t *count,
                                              banyan_error *err);
+
+/* ------------------------------------------------- mesh hosts from files */
+
+/* banyan_host_mesh and banyan_hosts are defined in banyan/hosts.h; the
+ * tags are declared here so these calls can name them. */
+struct banyan_host_mesh;
+struct banyan_hosts;
+
+/* Reads a self-contained glTF 2.0 binary file (.glb; no other file is
+ * opened, images are not decoded) as one host mesh: every triangle
+ * (modes TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; points and lines are
+ * skipped) of every mesh primitive reached from the default scene (scene
+ * 0 when none is named; every root node when there are no scenes), under
+ * its node transforms, in the rest pose (skins and morph targets are not
+ * applied). Positions are converted from glTF's Y up to banyan's Z up,
+ * (x, y, z) -> (x, -z, y), and vertices at exactly the same position are
+ * merged, so a watertight mesh exported with split UV seams or hard
+ * edges reads as closed. A mirroring node transform reverses the
+ * triangles' winding, keeping them counter-clockwise from outside.
+ *   transform  the 3x4 object -> world matrix to put in the mesh (as
+ *              banyan_host_mesh.transform), or NULL for identity; finite.
+ *   closed     banyan_host_closed: -1 auto, 0 open, 1 closed.
+ * *out is one allocation (the struct and its arrays) that the caller
+ * frees with banyan_host_mesh_free. Refuses, with the path and, where it
+ * applies, the mesh and primitive: a file that cannot be read
+ * (BANYAN_E_IO), that is not a glTF binary or is malformed (buffers or
+ * accessors out of bounds, a node graph that is not a tree, compressed or
+ * quantized positions, a required extension it cannot read:
+ * BANYAN_E_PARSE), that has no triangles or a non-finite position or an
+ * index out of range (BANYAN_E_BAD_HOST), or more than
+ * BANYAN_HOSTS_MAX_TRIANGLES triangles (BANYAN_E_LIMIT). On failure
+ * *out == NULL. */
+BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
+                                              struct banyan_host_mesh **out, banyan_error *err);
+/* Frees a mesh from banyan_glb_read_host; accepts NULL. */
+BANYAN_API void banyan_host_mesh_free(struct banyan_host_mesh *mesh);
+
+/* Builds the host set of a preset (banyan/hosts.h) whose "hosts" may mix
+ * boxes and meshes. A mesh host is
+ *   { "mesh": "hosts/rock.glb",           (required; relative to base_dir)
+ *     "translation": [x, y, z]            (or "center"; default origin)
+ *     "rotation": [9] | "rotation_euler_deg": [3]   (as for boxes)
+ *     "scale": s | [sx, sy, sz]           (each 1e-6 .. 1e6 in size; < 0 mirrors)
+ *     "closed": "auto" | "open" | "closed"  (default "auto")
+ *     "name": "..." }
+ * read with banyan_glb_read_host; world = translation + rotation * (scale
+ * * p). A relative mesh path is joined to base_dir (the preset's folder;
+ * NULL for the current directory). The meshes extra[0 .. n_extra - 1]
+ * (e.g. the CLI's --host files) are added after the preset's own hosts;
+ * their arrays are only read during the call. Host numbering as in
+ * banyan_hosts_create: the boxes, then the meshes in order (the preset's,
+ * then the extra ones). Refuses, naming `hosts[i]` (the preset's
+ * numbering) and the problem, before anything is built: a mesh file that
+ * is missing, not glTF or without triangles, a non-finite or singular
+ * transform, unknown keys, box keys on a mesh or mesh keys on a box.
+ * BANYAN_E_NO_HOSTS when the preset names no hosts and n_extra is 0
+ * (callers then use their own defaults). On failure *out == NULL. */
+BANYAN_API banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source,
+                                                const char *base_dir, const struct banyan_host_mesh *extra,
+                                                uint32_t n_extra, struct banyan_hosts **out, banyan_error *err);
 
 /* ----------------------------------------------------------- glTF export */
 

@@ -1,6 +1,8 @@
-/* preset.c - reading preset JSON (cJSON) into params and hosts. Every
- * refusal names the source, the line where it can be found, the key and
- * the reason. Format: see banyan.h "presets" and docs/presets.md. */
+/* preset.c - reading preset JSON (cJSON) into params and hosts: boxes
+ * (banyan_preset_hosts) or a host set of boxes and .glb meshes
+ * (banyan_preset_host_set; the files are read by gltf/gltf_reader.cpp).
+ * Every refusal names the source, the line where it can be found, the key
+ * and the reason. Format: see banyan.h "presets" and docs/formats.md. */
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -273,6 +275,27 @@ done:
     return s;
 }
 
+/* Numbers of a JSON array into v[0..cap-1]: how many, or -1 when k is not
+ * an array of at most cap numbers. */
+static int number_array(const cJSON *k, double *v, int cap) {
+    if (!cJSON_IsArray(k)) return -1;
+    int n = 0;
+    for (const cJSON *x = k->child; x; x = x->next) {
+        if (!cJSON_IsNumber(x) || n >= cap) return -1;
+        v[n++] = x->valuedouble;
+    }
+    return n;
+}
+
+/* Blender's XYZ Euler in degrees: R = Rz * Ry * Rx, row-major. */
+static void euler_deg(const double *v, double rot[9]) {
+    m3 rx = m3_rotation(v3_make(1, 0, 0), deg2rad(v[0]));
+    m3 ry = m3_rotation(v3_make(0, 1, 0), deg2rad(v[1]));
+    m3 rz = m3_rotation(v3_make(0, 0, 1), deg2rad(v[2]));
+    m3 a = m3_mul(&rz, &ry), r = m3_mul(&a, &rx);
+    memcpy(rot, r.m, sizeof r.m);
+}
+
 static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_box *out, banyan_error *err) {
     if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] must be an object", w, i);
     double c[3] = {0, 0, 0}, half[3], rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -281,30 +304,18 @@ static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_
         if (given_before(h, k))
             return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, k->string);
         double v[9];
-        int n = -1;
-        if (cJSON_IsArray(k)) {
-            n = 0;
-            for (const cJSON *x = k->child; x && n >= 0; x = x->next) {
-                if (!cJSON_IsNumber(x) || n >= 9) n = -1;
-                else v[n++] = x->valuedouble;
-            }
-        }
+        int n = number_array(k, v, 9);
         if (strcmp(k->string, "center") == 0 && n == 3) memcpy(c, v, sizeof c);
         else if (strcmp(k->string, "half") == 0 && n == 3) { memcpy(half, v, sizeof half); have_half = 1; }
         else if (strcmp(k->string, "rotation") == 0 && n == 9 && !have_rot) { memcpy(rot, v, sizeof rot); have_rot = 1; }
         else if (strcmp(k->string, "rotation_euler_deg") == 0 && n == 3 && !have_rot) {
-            /* Blender's XYZ Euler: R = Rz * Ry * Rx. */
-            m3 rx = m3_rotation(v3_make(1, 0, 0), deg2rad(v[0]));
-            m3 ry = m3_rotation(v3_make(0, 1, 0), deg2rad(v[1]));
-            m3 rz = m3_rotation(v3_make(0, 0, 1), deg2rad(v[2]));
-            m3 a = m3_mul(&rz, &ry), r = m3_mul(&a, &rx);
-            memcpy(rot, r.m, sizeof rot);
+            euler_deg(v, rot);
             have_rot = 1;
         } else if (strcmp(k->string, "name") == 0 && cJSON_IsString(k)) {
         } else
             return banyan_fail(err, BANYAN_E_TYPE,
                                "%shosts[%u].%s is unknown or malformed (keys: center [3], half [3], rotation [9] or "
-                               "rotation_euler_deg [3], name)", w, i, k->string);
+                               "rotation_euler_deg [3], name; or \"mesh\" for a mesh host)", w, i, k->string);
     }
     if (!have_half) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] needs \"half\": [hx, hy, hz]", w, i);
     memcpy(out->center, c, sizeof c);
@@ -313,6 +324,99 @@ static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_
     banyan_status s = banyan_box_validate(out, i, err);
     if (s) banyan_error_prefix(err, w);
     return s;
+}
+
+/* The "mesh" member of host entry h, or NULL when it is a box. */
+static const cJSON *mesh_member(const cJSON *h) {
+    return cJSON_IsObject(h) ? cJSON_GetObjectItemCaseSensitive(h, "mesh") : NULL;
+}
+
+/* One mesh host entry: its file (joined to base_dir, malloc'd into *path),
+ * object -> world transform and closed mode. Reads no file. */
+static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, const char *base_dir, char **path,
+                                     double transform[12], int32_t *closed, banyan_error *err) {
+    *path = NULL;
+    double t[3] = {0, 0, 0}, sc[3] = {1, 1, 1}, rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    int have_t = 0, have_rot = 0;
+    const char *file = NULL;
+    *closed = BANYAN_HOST_CLOSED_AUTO;
+    for (const cJSON *k = h->child; k; k = k->next) {
+        if (given_before(h, k))
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, k->string);
+        double v[9];
+        int n = number_array(k, v, 9);
+        const char *key = k->string;
+        if (!strcmp(key, "mesh")) {
+            if (!cJSON_IsString(k) || !k->valuestring[0])
+                return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
+            file = k->valuestring;
+        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && have_t) {
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of translation and center", w, i);
+        } else if ((!strcmp(key, "rotation") || !strcmp(key, "rotation_euler_deg")) && have_rot) {
+            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of rotation and rotation_euler_deg", w, i);
+        } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3) {
+            memcpy(t, v, sizeof t);
+            have_t = 1;
+        } else if (!strcmp(key, "rotation") && n == 9 && !have_rot) {
+            memcpy(rot, v, sizeof rot);
+            have_rot = 1;
+        } else if (!strcmp(key, "rotation_euler_deg") && n == 3 && !have_rot) {
+            for (int a = 0; a < 3; a++)
+                if (!isfinite(v[a]))
+                    return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation_euler_deg[%d] = %g must be "
+                                       "finite", w, i, a, v[a]);
+            euler_deg(v, rot);
+            have_rot = 1;
+        } else if (!strcmp(key, "scale") && (cJSON_IsNumber(k) || n == 3)) {
+            if (cJSON_IsNumber(k)) sc[0] = sc[1] = sc[2] = k->valuedouble;
+            else memcpy(sc, v, sizeof sc);
+        } else if (!strcmp(key, "closed") && cJSON_IsString(k)) {
+            const char *c = k->valuestring;
+            if (!strcmp(c, "auto")) *closed = BANYAN_HOST_CLOSED_AUTO;
+            else if (!strcmp(c, "open")) *closed = BANYAN_HOST_OPEN;
+            else if (!strcmp(c, "closed")) *closed = BANYAN_HOST_CLOSED;
+            else
+                return banyan_fail(err, BANYAN_E_RANGE, "%shosts[%u].closed = \"%.40s\" must be \"auto\", \"open\" or "
+                                   "\"closed\"", w, i, c);
+        } else if (!strcmp(key, "name") && cJSON_IsString(k)) {
+        } else
+            return banyan_fail(err, !strcmp(key, "half") ? BANYAN_E_UNKNOWN_KEY : BANYAN_E_TYPE,
+                               "%shosts[%u].%s is unknown or malformed for a mesh host (keys: mesh \"file.glb\", "
+                               "translation or center [3], rotation [9] or rotation_euler_deg [3], scale s or [3], "
+                               "closed \"auto\"|\"open\"|\"closed\", name)", w, i, key);
+    }
+    if (!file) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
+    for (int a = 0; a < 3; a++) {
+        if (!isfinite(t[a]) || fabs(t[a]) > 1e6)
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].translation[%d] = %g must be finite, within "
+                               "[-1e6, 1e6] m", w, i, a, t[a]);
+        if (!isfinite(sc[a]) || fabs(sc[a]) < 1e-6 || fabs(sc[a]) > 1e6)
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].scale[%d] = %g must be within [1e-6, 1e6] in "
+                               "size (a negative scale mirrors)", w, i, a, sc[a]);
+    }
+    /* The rotation is checked as a box's is: one rule, one message. */
+    banyan_box probe = banyan_box_make(0, 0, 0, 1, 1, 1);
+    memcpy(probe.rotation, rot, sizeof rot);
+    banyan_status s = banyan_box_validate(&probe, i, err);
+    if (s) {
+        banyan_error_prefix(err, w);
+        return s;
+    }
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) transform[4 * r + c] = rot[3 * r + c] * sc[c];
+        transform[4 * r + 3] = t[r];
+    }
+    size_t fl = strlen(file), bl = base_dir ? strlen(base_dir) : 0;
+    int absolute = file[0] == '/' || file[0] == '\\' || (fl > 1 && file[1] == ':');
+    if (absolute || !bl) bl = 0;
+    *path = malloc(bl + fl + 2);
+    if (!*path) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    if (bl) {
+        memcpy(*path, base_dir, bl);
+        if (base_dir[bl - 1] != '/') (*path)[bl++] = '/';
+    }
+    memcpy(*path + bl, file, fl + 1);
+    return BANYAN_OK;
 }
 
 banyan_status banyan_preset_hosts(const char *text, size_t length, const char *source, banyan_box *out, uint32_t cap,
@@ -331,8 +435,13 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
         s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes", w);
     } else {
         uint32_t n = (uint32_t)cJSON_GetArraySize(hosts);
-        if (n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts is more than the %u allowed", w, n, cap);
         uint32_t i = 0;
+        for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++)
+            if (mesh_member(h))
+                s = banyan_fail(err, BANYAN_E_UNSUPPORTED, "%shosts[%u] is a mesh host; read this preset's hosts "
+                                "with banyan_preset_host_set (banyan_preset_hosts reads boxes only)", w, i);
+        if (!s && n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts is more than the %u allowed", w, n, cap);
+        i = 0;
         for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++) s = read_box(h, i, w, &out[i], err);
         if (!s) {
             *count = n;
@@ -340,5 +449,103 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
         }
     }
     cJSON_Delete(j);
+    return s;
+}
+
+banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source, const char *base_dir,
+                                     const banyan_host_mesh *extra, uint32_t n_extra, banyan_hosts **out,
+                                     banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (n_extra && !extra) return banyan_fail(err, BANYAN_E_INVALID_ARG, "extra is NULL but n_extra = %u", n_extra);
+    if (!source) source = "<preset>";
+    cJSON *j;
+    banyan_status s = preset_parse(text, length, source, &j, err);
+    if (s) return s;
+    const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
+    char w[300];
+    where(w, sizeof w, source, text, length, "hosts");
+    uint32_t n = hosts ? (uint32_t)cJSON_GetArraySize(hosts) : 0, nb = 0, nm = 0;
+    banyan_box *boxes = NULL;
+    banyan_host_mesh *meshes = NULL, **read = NULL;
+    uint32_t *entry = NULL; /* preset index of each of the preset's meshes */
+    if (hosts && !cJSON_IsArray(hosts)) {
+        s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes and meshes", w);
+        goto done;
+    }
+    if ((uint64_t)n + n_extra > BANYAN_MAX_HOSTS) {
+        s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts (%u in the preset, %u more) is more than the %u allowed", w,
+                        n + n_extra, n, n_extra, BANYAN_MAX_HOSTS);
+        goto done;
+    }
+    if (n + n_extra == 0) {
+        s = banyan_fail(err, BANYAN_E_NO_HOSTS, "%s: the preset names no hosts", source);
+        goto done;
+    }
+    boxes = malloc(sizeof *boxes * (n ? n : 1));
+    meshes = malloc(sizeof *meshes * (n + n_extra));
+    read = calloc(n ? n : 1, sizeof *read);
+    entry = malloc(sizeof *entry * (n ? n : 1));
+    if (!boxes || !meshes || !read || !entry) {
+        s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+        goto done;
+    }
+    uint32_t i = 0;
+    for (const cJSON *h = hosts ? hosts->child : NULL; h; h = h->next, i++) {
+        if (!mesh_member(h)) {
+            if ((s = read_box(h, i, w, &boxes[nb++], err))) goto done;
+            continue;
+        }
+        char wm[300], *path = NULL;
+        where_nth(wm, sizeof wm, source, text, length, "mesh", (int)nm);
+        double transform[12];
+        int32_t closed;
+        if ((s = read_mesh_entry(h, i, wm, base_dir, &path, transform, &closed, err))) goto done;
+        s = banyan_glb_read_host(path, transform, closed, &read[nm], err);
+        free(path);
+        if (s) {
+            char pre[340];
+            snprintf(pre, sizeof pre, "%shosts[%u]: ", wm, i);
+            banyan_error_prefix(err, pre);
+            goto done;
+        }
+        /* Placed, every vertex must stay where the host set accepts it. */
+        const banyan_host_mesh *m = read[nm];
+        for (uint32_t v = 0; v < m->vertex_count; v++) {
+            const float *p = m->positions + 3 * (size_t)v;
+            for (int r = 0; r < 3; r++) {
+                double x = transform[4 * r] * p[0] + transform[4 * r + 1] * p[1] + transform[4 * r + 2] * p[2] +
+                           transform[4 * r + 3];
+                if (!(fabs(x) <= 1e6)) {
+                    s = banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u]: vertex %u lands at %g on axis %d, outside "
+                                    "[-1e6, 1e6] m", wm, i, v, x, r);
+                    goto done;
+                }
+            }
+        }
+        meshes[nm] = *m;
+        entry[nm++] = i;
+    }
+    if (n_extra) memcpy(meshes + nm, extra, sizeof *extra * n_extra);
+    s = banyan_hosts_create(boxes, nb, meshes, nm + n_extra, out, err);
+    if (s) {
+        /* The set numbers boxes first; say which preset entry it was. */
+        char pre[400];
+        snprintf(pre, sizeof pre, "%s: host set (%u boxes, then %u meshes: preset hosts", source, nb, nm);
+        size_t len = strlen(pre);
+        for (uint32_t k = 0; k < nm && len + 16 < sizeof pre; k++)
+            len += (size_t)snprintf(pre + len, sizeof pre - len, "%s%u", k ? ", " : " ", entry[k]);
+        snprintf(pre + len, sizeof pre - len, "%s): ", n_extra ? ", then the extra meshes" : "");
+        banyan_error_prefix(err, pre);
+    } else {
+        banyan_error_clear(err);
+    }
+done:
+    for (uint32_t k = 0; read && k < n; k++) banyan_host_mesh_free(read[k]);
+    free(read);
+    free(boxes);
+    free(meshes);
+    free(entry);
+    cJSON_Delete(j);
+    if (s) *out = NULL;
     return s;
 }

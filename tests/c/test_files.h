@@ -49,11 +49,58 @@ static inline int test_name_cmp(const void *a, const void *b) {
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-/* Calls fn(path, name, ctx) for every <dir>/<prefix>*.json in name order
- * (name: the file name without .json), so a new preset is tested as soon
- * as it is added. Returns how many it found, -1 if dir cannot be read. */
+/* 1 when the preset file at path has a mesh host ("mesh" in "hosts"):
+ * banyan_preset_hosts refuses it; read it with test_load_host_set. */
+static inline int test_preset_has_mesh_hosts(const char *path) {
+    size_t len;
+    char *text = test_read_file(path, &len);
+    if (!text) return 0;
+    banyan_box box[1];
+    uint32_t n = 0;
+    int mesh = banyan_preset_hosts(text, len, path, box, 1, &n, NULL) == BANYAN_E_UNSUPPORTED;
+    free(text);
+    return mesh;
+}
+
+/* The host set of the preset file at path (boxes and meshes, mesh files
+ * relative to the preset's folder), as banyan_preset_host_set builds it. */
+static inline banyan_status test_load_host_set(const char *path, banyan_hosts **out, banyan_error *err) {
+    *out = NULL;
+    size_t len;
+    char *text = test_read_file(path, &len);
+    if (!text) {
+        snprintf(err->message, sizeof err->message, "cannot read %.200s", path);
+        return err->code = BANYAN_E_IO;
+    }
+    char dir[2048];
+    const char *slash = strrchr(path, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    banyan_status s = banyan_preset_host_set(text, len, path, dir, NULL, 0, out, err);
+    free(text);
+    return s;
+}
+
+static inline int test_walk_presets(const char *dir, const char *prefix, int meshes,
+                                    void (*fn)(const char *path, const char *name, void *ctx), void *ctx);
+
+/* Calls fn(path, name, ctx) for every <dir>/<prefix>*.json with box hosts
+ * (or none) in name order (name: the file name without .json), so a new
+ * preset is tested as soon as it is added. Returns how many it found, -1
+ * if dir cannot be read. Presets with mesh hosts are walked by
+ * test_each_mesh_preset. */
 static inline int test_each_preset(const char *dir, const char *prefix,
                                    void (*fn)(const char *path, const char *name, void *ctx), void *ctx) {
+    return test_walk_presets(dir, prefix, 0, fn, ctx);
+}
+
+/* The same for the presets with a mesh host (test_load_host_set). */
+static inline int test_each_mesh_preset(const char *dir, const char *prefix,
+                                        void (*fn)(const char *path, const char *name, void *ctx), void *ctx) {
+    return test_walk_presets(dir, prefix, 1, fn, ctx);
+}
+
+static inline int test_walk_presets(const char *dir, const char *prefix, int meshes,
+                                    void (*fn)(const char *path, const char *name, void *ctx), void *ctx) {
     DIR *d = opendir(dir);
     if (!d) return -1;
     char *names[256];
@@ -70,13 +117,17 @@ static inline int test_each_preset(const char *dir, const char *prefix,
     }
     closedir(d);
     qsort(names, (size_t)n, sizeof names[0], test_name_cmp);
+    int walked = 0;
     for (int i = 0; i < n; i++) {
         char path[2048];
         snprintf(path, sizeof path, "%s/%s.json", dir, names[i]);
-        fn(path, names[i], ctx);
+        if (test_preset_has_mesh_hosts(path) == meshes) {
+            fn(path, names[i], ctx);
+            walked++;
+        }
         free(names[i]);
     }
-    return n;
+    return walked;
 }
 
 #endif

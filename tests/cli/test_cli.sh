@@ -1,6 +1,6 @@
 #!/bin/sh
 # The CLI end to end: help, refusals with clear messages and non-zero
-# exits, and generators that are not built yet saying so.
+# exits, every preset, and mesh hosts (--host and presets' "mesh").
 bin="$1"; src="$2"; out="$3"
 pass=0; fail=0
 expect() { # expect CODE NEEDLE -- command...
@@ -30,10 +30,64 @@ done
 expect 1 "must be within" -- "$bin" roots --set sides=2
 expect 1 "roots_trunk.json" -- "$bin" keyaki --preset "$src/presets/roots_trunk.json"
 expect 0 '"unattached": 0' -- "$bin" segments --preset "$src/presets/segments_paper.json" --stats
-# Every shipped preset loads and generates with its own command.
+# Every shipped preset loads and generates with its own command; those
+# with mesh hosts grow on a host set of their meshes and their output goes
+# to the glTF validator.
 for p in "$src"/presets/*.json; do
   g=$(sed -n 's/.*"generator": *"\([a-z]*\)".*/\1/p' "$p" | head -1)
-  expect 0 '"triangles"' -- "$bin" "$g" --preset "$p" --stats
+  if grep -q '"mesh"' "$p"; then
+    n=$(basename "$p" .json)
+    expect 0 '"host_set": {"boxes": 0, "meshes": 1' -- "$bin" "$g" --preset "$p" --stats -o "$out/cli_preset_$n.glb"
+  else
+    expect 0 '"triangles"' -- "$bin" "$g" --preset "$p" --stats
+  fi
 done
+
+# --host: a glTF mesh as a host, placed with @x,y,z, added to the preset's.
+hosts="$src/presets/hosts"
+expect 0 '"host_set": {"boxes": 0, "meshes": 1, "triangles": 3456}' -- "$bin" roots --host "$hosts/column.glb@1.5,0,0" \
+  --set growth_points=12 --stats -o "$out/cli_host_column.glb"
+expect 0 '"host_set": {"boxes": 1, "meshes": 1' -- "$bin" ivy --preset "$src/presets/ivy_wall.json" \
+  --host "$hosts/rock.glb@0,-2.5,0" --set steps=40 --stats
+expect 0 '"host_set": {"boxes": 0, "meshes": 2' -- "$bin" roots --preset "$src/presets/roots_column.json" \
+  --host "$hosts/rock.glb@3,0,0" --set growth_points=12 --stats
+expect 1 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$hosts/rock.glb@1,2"
+expect 1 "this command takes no hosts" -- "$bin" keyaki --host "$hosts/rock.glb"
+
+# Bad mesh files are refused, naming the host, before anything grows. They
+# live in a folder of their own: the validator reads every .glb in $out.
+bad="$out/cli_bad_hosts"
+mkdir -p "$bad"
+le32() { printf "$(printf '\\%03o\\%03o\\%03o\\%03o' $(($1 & 255)) $(($1 >> 8 & 255)) $(($1 >> 16 & 255)) $(($1 >> 24 & 255)))"; }
+glb() { # glb FILE JSON [BINFILE]: a glTF binary from a JSON text and a binary chunk
+  js="$2"; while [ $(( $(printf '%s' "$js" | wc -c) % 4 )) != 0 ]; do js="$js "; done
+  jl=$(printf '%s' "$js" | wc -c); bl=0; [ -n "$3" ] && bl=$(wc -c < "$3")
+  total=$((12 + 8 + jl)); [ -n "$3" ] && total=$((total + 8 + bl))
+  { printf 'glTF'; le32 2; le32 $total; le32 $jl; printf 'JSON'; printf '%s' "$js"
+    if [ -n "$3" ]; then le32 $bl; printf 'BIN\000'; cat "$3"; fi; } > "$1"
+}
+# A tetrahedron whose last vertex has a NaN coordinate (0x7fc00000).
+{ for v in 0 0 0 1065353216 0 0 0 1065353216 0 0 0 2143289344; do le32 $v; done
+  for i in 0 2 1 0 1 3 0 3 2 1 2 3; do le32 $i; done; } > "$bad/tet_nan.bin"
+acc='"buffers":[{"byteLength":96}],"bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":48}],"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},{"bufferView":1,"componentType":5125,"count":12,"type":"SCALAR"}]'
+glb "$bad/nan.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],'"$acc"'}' "$bad/tet_nan.bin"
+glb "$bad/points.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":0}]}],'"$acc"'}' "$bad/tet_nan.bin"
+glb "$bad/empty.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[]}]}'
+printf 'solid cube\nendsolid cube\n' > "$bad/cube.glb"
+expect 1 "--host $bad/nan.glb: BANYAN_E_BAD_HOST: $bad/nan.glb: mesh 0" -- "$bin" roots --host "$bad/nan.glb"
+expect 1 "vertex 3 is not finite" -- "$bin" ivy --host "$bad/nan.glb"
+expect 1 "$bad/points.glb: has no triangles" -- "$bin" roots --host "$bad/points.glb"
+expect 1 "$bad/empty.glb: has no triangles" -- "$bin" ivy --host "$bad/empty.glb"
+expect 1 "$bad/cube.glb: not a glTF binary (.glb) file" -- "$bin" roots --host "$bad/cube.glb"
+expect 1 "cannot open" -- "$bin" roots --host "$bad/missing.glb"
+# The same files named by a preset: the message names the preset's host.
+for f in nan points empty cube missing; do
+  printf '{\n "generator": "roots",\n "hosts": [\n  { "center": [0, 0, 1], "half": [1, 1, 1] },\n  { "mesh": "%s.glb" }\n ]\n}\n' "$f" > "$bad/$f.json"
+  expect 1 "$bad/$f.json:5: hosts[1]: $bad/$f.glb:" -- "$bin" roots --preset "$bad/$f.json"
+done
+printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "scale": 0 } ] }\n' > "$bad/scale.json"
+expect 1 "hosts[0].scale[0] = 0 must be within" -- "$bin" roots --preset "$bad/scale.json"
+printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "half": [1, 1, 1] } ] }\n' > "$bad/half.json"
+expect 1 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots --preset "$bad/half.json"
 echo "cli: $pass passed, $fail failed"
 [ $fail = 0 ]
