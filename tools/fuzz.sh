@@ -18,7 +18,7 @@ secs=${FUZZ_SECONDS:-60}
 jobs=${FUZZ_JOBS:-2}
 results=${FUZZ_RESULTS:-out/fuzz_results.json}
 build=build-fuzz
-harnesses=(fuzz_preset fuzz_roots fuzz_keyaki fuzz_ivy fuzz_segments)
+harnesses=(fuzz_preset fuzz_roots fuzz_keyaki fuzz_ivy fuzz_segments fuzz_hosts)
 
 echo "== fuzzing: ${#harnesses[@]} harnesses x ${secs} s, ${jobs} at a time =="
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBANYAN_FUZZ=ON >/dev/null
@@ -27,8 +27,9 @@ cmake --build "$build" --target "${harnesses[@]}" fuzz_seeds
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 corpus=$here/$build/corpus
 "$build/tests/fuzz/fuzz_seeds" presets "$corpus"
-mkdir -p "$corpus/fuzz_preset"
+mkdir -p "$corpus/fuzz_preset" "$corpus/fuzz_hosts"
 cp presets/*.json tests/data/bad_presets/* "$corpus/fuzz_preset/"
+cp tests/fuzz/seeds/fuzz_hosts/* "$corpus/fuzz_hosts/"
 
 # One harness: runs it, then writes its JSON line to fuzz_work/<h>/result.
 run_one() {
