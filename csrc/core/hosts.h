@@ -53,6 +53,23 @@ typedef struct mesh_near {
 int hmesh_nearest(const host_mesh *m, v3 p, double cap, mesh_near *out);
 /* Signed distance only, under the same rule (exact below cap, +-cap beyond). */
 double hmesh_distance(const host_mesh *m, v3 p, double cap);
+/* Unsigned distance under the same cap rule, with no inside test (which
+ * costs rays on a miss, or on every query of a mesh signed by rays): for a
+ * caller that knows which side p is on, e.g. a point within the free ball
+ * of a point known to be outside. */
+double hmesh_udistance(const host_mesh *m, v3 p, double cap);
+/* Least unsigned distance from the segment a-b to m's surface, exact below
+ * cap (> 0), cap beyond. Exact per triangle (no sphere tracing): one query
+ * however near the segment runs to the surface. */
+double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap);
+/* A sphere of radius r moved from p by d: the first t in [0, 1] at which,
+ * getting nearer to a triangle, it would come within r - eps of it (t is
+ * where it is at r: free); 1 when it never does. *normal (when t < 1): the
+ * distance gradient of that triangle there. Exact up to root finding (the
+ * distance to a triangle is convex along a line); unlike hmesh_sweep, a
+ * sphere pressed against the surface and moving along it or away is not
+ * stopped, so it can slide. */
+double hmesh_sweep_exact(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal);
 /* p inside the closed mesh m (0 for open meshes). */
 int hmesh_inside(const host_mesh *m, v3 p);
 /* First surface hit along segment a -> b: returns 1 with t in [0, 1] and

@@ -48,7 +48,7 @@ static int turn(const roots_world *w, const double *cs, v3 from, v3 *q, double d
     while (deg < 360) {
         double c = cs[2 * deg], s = dir * cs[2 * deg + 1];
         v3 cand = v3_add(from, v3_make(c * off.x - s * off.y, s * off.x + c * off.y, off.z));
-        double clear = world_clearance(w, cand, NULL, NULL), need;
+        double clear = world_clearance_in(w, cand, 1, w->r, NULL, NULL), need; /* exact below r */
         if (clear >= w->r - w->eps) {
             double stop = w->r * (1.0 - STEP_SAG);
             double seg = world_segment_clearance(w, from, cand, stop);

@@ -1,9 +1,12 @@
 /* Entry points of the roots generator: input checks, the germination point
  * G (spec roots.md, "Parameters": top centre of the first host, lifted by
- * r), the stages in order (main roots, first branch roots, correction,
- * second branch roots, final paths, mesh) and the stats. Refusals: bad
- * params, no or bad hosts, G inside a host or below the ground, G beyond
- * the roots' reach of every host, a mesh past max_vertices. */
+ * r; for a mesh host the highest surface point above the centre of its
+ * bounds), the stages in order (main roots, first branch roots,
+ * correction, second branch roots, final paths, mesh) and the stats. Box
+ * input becomes a box-only host set, so boxes and meshes share one path.
+ * Refusals: bad params, no or bad hosts, G inside a host or below the
+ * ground, G beyond the roots' reach of every host, a mesh past
+ * max_vertices. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,7 +15,7 @@
 
 void roots_net_free(roots_net *net) {
     if (!net) return;
-    free(net->hosts);
+    banyan_hosts_free(net->own_hosts);
     free(net->M);
     free(net->M_grown);
     free(net->K);
@@ -58,6 +61,27 @@ static v3 top_centre(const obb *o, double r) {
 
 static size_t tube_vertices(size_t n, int sides) { return n * (size_t)(sides + 1) + 2 * (size_t)(sides + 2); }
 
+/* G for germination_auto on mesh host 0: the highest surface point on the
+ * vertical line through the centre of its world bounds (a ray down from
+ * above them), else the top of its bounds; lifted by r. */
+static v3 mesh_top(const banyan_hosts *H, uint32_t h, double r) {
+    v3 lo = H->lo[h], hi = H->hi[h];
+    double cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y), pad = 1.0 + (hi.z - lo.z);
+    v3 a = v3_make(cx, cy, hi.z + pad), b = v3_make(cx, cy, lo.z - pad), n;
+    double t;
+    double z = hi.z;
+    if (hmesh_segment_hit(&H->meshes[h - H->n_boxes], a, b, &t, &n)) z = a.z + (b.z - a.z) * t;
+    return v3_make(cx, cy, z + r);
+}
+
+/* Signed distance from p to host h, exact where below cap. */
+static double host_distance(const roots_world *w, uint32_t h, v3 p, double cap) {
+    if (h < w->n_hosts) return obb_signed_distance(&w->hosts[h], p);
+    double d = hmesh_distance(&w->meshes[h - w->n_hosts], p, cap);
+    if (d <= -cap) d = hmesh_distance(&w->meshes[h - w->n_hosts], p, HUGE_VAL);
+    return d;
+}
+
 banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
                               roots_net *net, banyan_error *err) {
     memset(net, 0, sizeof *net);
@@ -69,31 +93,52 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
     if (n_hosts > BANYAN_MAX_HOSTS)
         return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
-    net->hosts = malloc(sizeof(obb) * n_hosts);
-    if (!net->hosts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u hosts", n_hosts);
-    if ((s = obb_from_boxes(hosts, n_hosts, net->hosts, err))) {
-        roots_net_free(net);
+    banyan_hosts *H = NULL;
+    if ((s = hosts_from_boxes(hosts, n_hosts, &H, err))) return s;
+    if ((s = roots_net_build_hosts(p, H, net, err))) {
+        banyan_hosts_free(H);
         return s;
     }
+    net->own_hosts = H;
+    return BANYAN_OK;
+}
+
+banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net,
+                                    banyan_error *err) {
+    memset(net, 0, sizeof *net);
+    banyan_status s = check_params(p, err);
+    if (s) return s;
+    if (!hosts)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS,
+                           "hosts is NULL: strangler-fig roots need a host set (banyan_hosts_create) to grow around");
+    uint32_t n_hosts = hosts->n_boxes + hosts->n_meshes;
+    if (n_hosts == 0)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS, "the host set is empty: strangler-fig roots need a host");
+    net->hosts = hosts;
     net->u = p->unit;
     net->r = p->radius * p->unit;
-    net->w.hosts = net->hosts;
-    net->w.n_hosts = n_hosts;
+    net->w.hosts = hosts->boxes;
+    net->w.n_hosts = hosts->n_boxes;
+    net->w.meshes = hosts->meshes;
+    net->w.n_meshes = hosts->n_meshes;
+    net->w.set = hosts;
     net->w.ground = p->ground;
     net->w.ground_z = p->ground_z;
     net->w.r = net->r;
     net->w.eps = 1e-9 * net->r;
 
     /* Germination point. */
-    v3 G = p->germination_auto ? top_centre(&net->hosts[0], net->r) : v3_load(p->germination);
+    v3 G = !p->germination_auto  ? v3_load(p->germination)
+           : hosts->n_boxes      ? top_centre(&hosts->boxes[0], net->r)
+                                 : mesh_top(hosts, 0, net->r);
     for (uint32_t i = 0; i < n_hosts; i++) {
-        if (obb_signed_distance(&net->hosts[i], G) <= 0) { /* inside or on its surface */
+        if (host_distance(&net->w, i, G, net->r) <= 0) { /* inside or on its surface */
             roots_net_free(net);
             return banyan_fail(err, BANYAN_E_START_INSIDE,
                                "germination point G = (%g, %g, %g) m is inside hosts[%u]; G must lie outside every "
                                "host%s",
                                G.x, G.y, G.z, i,
-                               p->germination_auto ? " (G is the top of hosts[0]: list the topmost box first, or "
+                               p->germination_auto ? " (G is the top of hosts[0]: list the topmost host first, or "
                                                      "set germination_auto = false and germination)"
                                                    : "");
         }
@@ -113,7 +158,7 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     double nearest = 1e300;
     uint32_t nearest_i = 0;
     for (uint32_t i = 0; i < n_hosts; i++) {
-        double d = obb_signed_distance(&net->hosts[i], G);
+        double d = host_distance(&net->w, i, G, HUGE_VAL);
         if (d < nearest) nearest = d, nearest_i = i;
     }
     if (nearest > reach) {
@@ -178,7 +223,12 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     st->radius = net->r;
     st->min_clearance = 1e300;
     for (uint32_t i = 0; i < net->n_pts; i++) {
-        double c = world_clearance(&net->w, net->pts[i], NULL, NULL);
+        /* Only values below the least so far count (keeps mesh queries
+         * short). Every skeleton point passed a free test or a push-out,
+         * so it is outside every mesh: unsigned mesh distances (an inside
+         * test costs rays). */
+        double c = world_clearance_outside(&net->w, net->pts[i],
+                                           st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
         if (c < st->min_clearance) st->min_clearance = c;
     }
     for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;
@@ -194,19 +244,31 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     return BANYAN_OK;
 }
 
+static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_params *params, banyan_mesh **out,
+                            banyan_roots_stats *stats, banyan_error *err) {
+    if (s) return s;
+    banyan_roots_stats st = net->stats;
+    s = roots_net_mesh(net, params, out, &st, err);
+    roots_net_free(net);
+    if (s == BANYAN_OK && stats) *stats = st;
+    return s;
+}
+
+banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
+                                          banyan_mesh **out, banyan_roots_stats *stats, banyan_error *err) {
+    if (stats) memset(stats, 0, sizeof *stats);
+    BANYAN_CHECK_OUT(out, err);
+    roots_net net;
+    return finish(&net, roots_net_build_hosts(params, hosts, &net, err), params, out, stats, err);
+}
+
 banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,
                                           uint32_t n_hosts, banyan_mesh **out, banyan_roots_stats *stats,
                                           banyan_error *err) {
     if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
     roots_net net;
-    banyan_status s = roots_net_build(params, hosts, n_hosts, &net, err);
-    if (s) return s;
-    banyan_roots_stats st = net.stats;
-    s = roots_net_mesh(&net, params, out, &st, err);
-    roots_net_free(&net);
-    if (s == BANYAN_OK && stats) *stats = st;
-    return s;
+    return finish(&net, roots_net_build(params, hosts, n_hosts, &net, err), params, out, stats, err);
 }
 
 banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts, uint32_t n_hosts,

@@ -19,10 +19,13 @@
 
 static const v3 UP = {0, 0, 1};
 
-/* Within `support` below p lies the ground or a host. */
+/* Within `support` below p lies the ground or a host. (q is within the
+ * free ball of p, so outside every mesh, when support < r: the hugging
+ * case; paper mode's longer reach asks with the sign.) */
 static int supported(const roots_world *w, v3 p, double support) {
     v3 q = v3_madd(p, UP, -support);
-    return world_clearance(w, q, NULL, NULL) < w->r * (1.0 - 1e-3);
+    double c = support < w->r ? world_clearance_outside(w, q, w->r) : world_clearance_in(w, q, 1, w->r, NULL, NULL);
+    return c < w->r * (1.0 - 1e-3);
 }
 
 /* Slides the sphere from *S along D (hugging). Sets *crawl on landing on
@@ -55,6 +58,9 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
     /* A stopped paper-mode root rests up to one move above what it hit. */
     double support = p->hugging ? 0.5 * r : (max_step > 0.5 * r ? max_step : 0.5 * r);
     double hug_range = p->hug_range * r;
+    /* Nearest-host queries only matter within this (exact for boxes at any
+     * distance; a mesh is only searched this far). */
+    double look = hug_range + max_step;
 
     for (int a = 0; a < N; a++) {
         pcg32 g;
@@ -77,7 +83,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                 int hugged = 0; /* a host face lies within hug_range before the move */
                 v3 hn = UP;
                 if (p->hugging && !crawl) {
-                    if (!cached) hc = world_clearance_ex(w, S, 0, &hn0, &hw);
+                    if (!cached) hc = world_clearance_in(w, S, 0, look, &hn0, &hw);
                     int which = hw;
                     double c = hc;
                     hn = hn0;
@@ -123,7 +129,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                 if (p->hugging) {
                     v3 n;
                     int which;
-                    double c = world_clearance_ex(w, S, 0, &n, &which);
+                    double c = world_clearance_in(w, S, 0, look, &n, &which);
                     if (!crawl && (hugged || pressed) && which >= 0 && c > r && c < hug_range + max_step &&
                         n.z > -0.5) {
                         /* Back to distance r from the host it was pressed
@@ -132,7 +138,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                         v3 pull = v3_scale(n, -(c - r));
                         double t = world_trace(w, S, pull, &n, &which);
                         S = v3_madd(S, pull, t);
-                        c = world_clearance_ex(w, S, 0, &n, &which);
+                        c = world_clearance_in(w, S, 0, look, &n, &which);
                     }
                     pressed = which >= 0 && c < hug_range;
                     hc = c;

@@ -126,16 +126,18 @@ static void junction_rings(work *wk, const roots_net *net, const banyan_roots_pa
 
 /* Ring vertices that a bend's stretch or a junction loop put inside a host
  * or under the ground go onto its surface: the tube flattens against the
- * bark instead of entering it. A ring whose centre is farther from every
- * obstacle than its widest vertex is left alone, which is most. */
+ * bark instead of entering it (onto a mesh: back along the spoke from the
+ * ring's free centre). A ring whose centre is farther from every obstacle
+ * than its widest vertex is left alone, which is most. */
 static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
     int sides = wk->sides;
     for (uint32_t i = 0; i < n; i++) {
         v3 *ring = wk->rings + (size_t)i * sides;
         /* Obstacles within reach of the ring, and per vertex the tangent-
-         * plane bound c + n.o, exact for the ground and for a face. (A ring
-         * of radius r round a centre r from a face just touches it: 1e-6 r
-         * of slack keeps those out.) */
+         * plane bound c + n.o, exact for the ground and for a face (for a
+         * mesh the Lipschitz bound c - |o|). (A ring of radius r round a
+         * centre r from a face just touches it: 1e-6 r of slack keeps
+         * those out.) */
         enum { CAP = 8 };
         double oc[CAP];
         v3 on[CAP];
@@ -145,14 +147,24 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
         for (int j = 0; j < sides; j++) {
             v3 q = ring[j], o = v3_sub(q, P[i]);
             int maybe = all;
-            for (int t = 0; t < k && !maybe; t++) maybe = oc[t] + v3_dot(on[t], o) < 1e-6 * w->r;
-            if (!maybe || world_clearance(w, q, NULL, NULL) >= 0) continue;
+            for (int t = 0; t < k && !maybe; t++) maybe = world_near_bound(oc[t], on[t], o) < 1e-6 * w->r;
+            if (!maybe) continue;
+            /* Meshes: back along the spoke from the free centre to the
+             * first surface it crosses (one ray; the Lipschitz bound above
+             * leaves many vertices to look at). */
+            if (w->n_meshes) q = world_spoke(w, P[i], q);
+            if (world_clearance_boxes(w, q) >= 0) {
+                ring[j] = q;
+                continue;
+            }
             double d = -1;
             for (int it = 0; it < 4; it++) {
                 v3 nrm;
-                d = world_clearance(w, q, &nrm, NULL);
+                int which;
+                d = world_clearance(w, q, &nrm, &which);
                 if (d >= 0) break;
-                q = v3_madd(q, nrm, -d);
+                /* onto a mesh's surface the sign is a coin toss: a hair beyond */
+                q = v3_madd(q, nrm, -d + (which >= (int)w->n_hosts ? w->eps : 0.0));
             }
             if (d < 0) {
                 /* A sharp wedge between two obstacles: the farthest free
@@ -160,7 +172,7 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
                 double lo = 0, hi = 1;
                 for (int it = 0; it < 30; it++) {
                     double m = 0.5 * (lo + hi);
-                    if (world_clearance(w, v3_lerp(P[i], ring[j], m), NULL, NULL) >= 0) lo = m;
+                    if (world_clearance_in(w, v3_lerp(P[i], ring[j], m), 1, w->r, NULL, NULL) >= 0) lo = m;
                     else hi = m;
                 }
                 q = v3_lerp(P[i], ring[j], lo);

@@ -8,6 +8,7 @@
 #define BANYAN_ROOTS_INTERNAL_H
 
 #include "banyan.h"
+#include "core/hosts.h"
 #include "core/obb.h"
 #include "core/rng.h"
 #include "core/vec.h"
@@ -16,41 +17,75 @@
 enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2 };
 
 /* Collision world: hosts, ground, r. Clearance of a point = its distance
- * to the nearest host surface (signed, < 0 inside) or to the ground
- * plane; a sphere centre is free when its clearance is >= r. */
+ * to the nearest host surface (signed, < 0 inside a box or a closed mesh)
+ * or to the ground plane; a sphere centre is free when its clearance is
+ * >= r. Every query loops over the boxes first, exactly as it did before
+ * meshes existed (a box-only world gives the same bytes), then over the
+ * meshes. Host numbers (`which`) follow the host set: boxes, then meshes. */
 typedef struct roots_world {
-    const obb *hosts;
-    uint32_t n_hosts;
+    const obb *hosts;         /* the boxes */
+    uint32_t n_hosts;         /* boxes */
+    const host_mesh *meshes;  /* mesh hosts, numbered n_hosts + j */
+    uint32_t n_meshes;
+    const banyan_hosts *set;  /* the host set (world bounds per host) */
     int ground;
     double ground_z;
     double r;
     double eps;  /* numerical slack of the free test, 1e-9 r */
 } roots_world;
 
-/* Nearest obstacle: clearance and the outward unit normal of the distance
- * field there; *which = host index, or -1 for the ground. */
-double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which);
-static inline double world_clearance(const roots_world *w, v3 p, v3 *normal, int *which) {
-    return world_clearance_ex(w, p, 1, normal, which);
+/* Nearest obstacle within `range` (> 0, HUGE_VAL for any): its clearance
+ * and the outward unit normal of the distance field there; *which = host
+ * index, or -1 for the ground (-2 when nothing was found). Exact below
+ * range; at or above it the value is a lower bound (boxes and the ground
+ * are always exact; a mesh is only searched within range, which keeps its
+ * queries cheap). */
+double world_clearance_in(const roots_world *w, v3 p, int with_ground, double range, v3 *normal, int *which);
+static inline double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which) {
+    return world_clearance_in(w, p, with_ground, HUGE_VAL, normal, which);
 }
-static inline int world_free(const roots_world *w, v3 p) { return world_clearance(w, p, NULL, NULL) >= w->r - w->eps; }
+static inline double world_clearance(const roots_world *w, v3 p, v3 *normal, int *which) {
+    return world_clearance_in(w, p, 1, HUGE_VAL, normal, which);
+}
+static inline int world_free(const roots_world *w, v3 p) {
+    return world_clearance_in(w, p, 1, w->r, NULL, NULL) >= w->r - w->eps;
+}
+/* Boxes and the ground only, exact (the fast path of world_clearance). */
+double world_clearance_boxes(const roots_world *w, v3 p);
+/* world_clearance_in without normal for a point known to lie outside
+ * every closed mesh (within the free ball of a free point): meshes give
+ * unsigned distances, which skips their inside tests. */
+double world_clearance_outside(const roots_world *w, v3 p, double range);
+/* q taken back along the segment c -> q to just before the first mesh
+ * surface it crosses (a ray), q itself when it crosses none: with c free,
+ * the result is outside every closed mesh and on c's side of open ones. */
+v3 world_spoke(const roots_world *w, v3 c, v3 q);
 /* First t in [0,1] at which the sphere moving p -> p + d would come closer
  * than r to an obstacle (1 when it never does); *normal gets the normal of
- * the obstacle hit. Exact up to bisection (the distance to a convex body
- * is convex along a line). */
+ * the obstacle hit. Exact up to bisection (the distance to a convex body,
+ * a box or one triangle of a mesh, is convex along a line). */
 double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which);
-/* Clearance along the segment a-b, for comparing with `stop`: a value
- * below `stop` is a clearance the segment really has there; a value at or
- * above it is a lower bound of the least clearance (convexity). */
+/* Clearance along the segment a-b (a free point), for comparing with
+ * `stop`: a value below `stop` is a clearance the segment really has
+ * there; a value at or above it is a lower bound of the least clearance
+ * (convexity; for meshes the exact segment-to-triangles distance). */
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop);
 /* The obstacles (ground first, then hosts) closer to p than `range`: their
  * clearance and distance-field normal, at most cap of them; returns how
  * many. A convex distance grows at least as fast as its tangent plane:
- * clearance(p + o) >= c + n.o, which lets callers skip far points. */
+ * clearance(p + o) >= c + n.o, which lets callers skip far points. A mesh
+ * is not convex: it comes with n = 0, and its bound is the Lipschitz one,
+ * clearance(p + o) >= c - |o| (world_near_bound gives either). */
 int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int cap);
-/* Exact least clearance along a-b and where it is (t in [0,1]). */
+static inline double world_near_bound(double c, v3 n, v3 o) {
+    return n.x == 0 && n.y == 0 && n.z == 0 ? c - v3_len(o) : c + v3_dot(n, o);
+}
+/* Least clearance along a-b and where it is (t in [0,1]): exact for
+ * boxes, sampled and refined for meshes (a split point needs no more). */
 double world_segment_deepest(const roots_world *w, v3 a, v3 b, double *t_min);
-/* Moves p out of every obstacle to clearance r; returns 1 when it moved. */
+/* Moves p out of every obstacle to clearance r; returns 1 when it moved.
+ * Along the distance-field normal; out of a box also through whichever
+ * face costs least. */
 int world_push_out(const roots_world *w, v3 *p);
 
 /* One final polyline of the net (after correction and segment repair). */
@@ -65,7 +100,8 @@ typedef struct roots_poly {
 typedef struct roots_net {
     /* Inputs, resolved. */
     roots_world w;
-    obb *hosts;
+    const banyan_hosts *hosts; /* the host set grown on */
+    banyan_hosts *own_hosts;   /* made from boxes by roots_net_build, freed with the net */
     v3 G;
     int N, B;          /* main roots, growth points per main root */
     int S1, S2;        /* samples per first / second branch root */
@@ -96,9 +132,13 @@ typedef struct roots_net {
 } roots_net;
 
 /* Validates params and hosts and builds the net; on failure the net is
- * freed and err says why. */
+ * freed and err says why. The box form makes a box-only host set and goes
+ * the same way; the set form only reads `hosts`, which must outlive the
+ * net. */
 banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
                               roots_net *net, banyan_error *err);
+banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net,
+                                    banyan_error *err);
 void roots_net_free(roots_net *net);
 /* Sweeps the net into a mesh (spec 5). */
 banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,

@@ -197,17 +197,17 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
     /* Clearance of every skeleton point (float) to every host, exact box distance. */
     for (uint32_t i = 0; i < m->skel_point_count; i++) {
         v3 q = v3_make(m->skel_points[3 * i], m->skel_points[3 * i + 1], m->skel_points[3 * i + 2]);
-        double c = clearance(w, net->hosts, w->n_hosts, q);
+        double c = clearance(w, w->hosts, w->n_hosts, q);
         if (c / r < rep->worst) rep->worst = c / r;
         if (c < r - TOL * r) rep->clearance_bad++;
     }
     for (uint32_t i = 0; i < net->n_pts; i++)
-        if (clearance(w, net->hosts, w->n_hosts, net->pts[i]) < r * (1 - 1e-6)) rep->pts_bad++;
+        if (clearance(w, w->hosts, w->n_hosts, net->pts[i]) < r * (1 - 1e-6)) rep->pts_bad++;
     /* No mesh vertex enters a host or the ground (the tube surface, not only
      * its axis; 0.1 mm for float storage). */
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         const float *q = m->positions + 3 * (size_t)v;
-        double c = clearance(w, net->hosts, w->n_hosts, v3_make(q[0], q[1], q[2]));
+        double c = clearance(w, w->hosts, w->n_hosts, v3_make(q[0], q[1], q[2]));
         if (c < -1e-4) {
             rep->verts_inside++;
             if (-c > rep->deepest) rep->deepest = -c;
@@ -221,7 +221,7 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
             rep->segments++;
             int bad = 0;
             for (int k = 1; k < 16 && !bad; k++)
-                if (clearance(w, net->hosts, w->n_hosts, v3_lerp(a, b, k / 16.0)) < 0.8 * r - TOL * r) bad = 1;
+                if (clearance(w, w->hosts, w->n_hosts, v3_lerp(a, b, k / 16.0)) < 0.8 * r - TOL * r) bad = 1;
             rep->sag_bad += bad;
         }
     }
@@ -449,7 +449,7 @@ int main(int argc, char **argv) {
                 if (!net.ground_hit[a] || low > net.r * (1 + 1e-6)) not_down++;
             }
             int cover[4] = {0, 0, 0, 0};
-            const obb *o = &net.hosts[0];
+            const obb *o = &net.w.hosts[0];
             for (uint32_t t = 0; t < net.n_poly; t++) {
                 const roots_poly *pl = &net.poly[t];
                 if (pl->kind != ROOT_FIRST) continue;
