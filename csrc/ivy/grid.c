@@ -1,7 +1,8 @@
 /* Ivy look-ups (spec/ivy.md, "Light" and "Placement"): the spatial hash
  * over bud positions that makes the light query cost the same at 100 buds
  * and at 100,000, the light sum H0 / V_l itself, and the host queries of
- * the random walk (nearest surface, collision, push-out).
+ * the random walk (nearest surface, collision, push-out) on boxes and on
+ * the triangle meshes of a host set.
  *
  * The hash has cells of leaf_max, the look-up radius, so a query reads
  * the 27 cells around a point. Buckets hold singly linked chains through
@@ -25,6 +26,12 @@
 
 /* ------------------------------------------------------------ hosts */
 
+/* Boxes keep their exact obb queries, in the order they always had (so a
+ * box-only plant is the same to the byte); the meshes of a host set come
+ * after them in every query, through core/hosts.h. A mesh query is asked
+ * with a cap (exact below it, +-cap beyond): the farthest that matters to
+ * the caller. */
+
 /* The face of o whose plane p (in o's frame) is farthest outside of, or
  * least inside. */
 static int face_of(const obb *o, v3 l) {
@@ -38,7 +45,17 @@ static int face_of(const obb *o, v3 l) {
     return 2 * best + (c[best] >= 0 ? 1 : 0);
 }
 
+/* A mesh triangle's cube-map face: the world axis of its normal's largest
+ * component, and that component's sign (0..5 as face_of). */
+static int mesh_face(const host_mesh *m, uint32_t prim) {
+    const float *n = m->fnrm + 3 * (size_t)prim;
+    int k = fabsf(n[1]) > fabsf(n[0]) ? 1 : 0;
+    if (fabsf(n[2]) > fabsf(n[k])) k = 2;
+    return 2 * k + (n[k] >= 0 ? 1 : 0);
+}
+
 void ivy_host_boxes(banyan_ivy *iv) {
+    const double c = iv->p.clearance; /* the same sums as ivy_far_from(..., clearance) */
     for (uint32_t h = 0; h < iv->n_hosts; h++) {
         const obb *o = &iv->hosts[h];
         v3 e = v3_make(0, 0, 0);
@@ -49,11 +66,20 @@ void ivy_host_boxes(banyan_ivy *iv) {
         }
         iv->box_lo[h] = v3_sub(o->c, e);
         iv->box_hi[h] = v3_add(o->c, e);
-        const double c = iv->p.clearance; /* the same sums as ivy_far_from(..., clearance) */
+        iv->clear_lo[h] = v3_make(iv->box_lo[h].x - c, iv->box_lo[h].y - c, iv->box_lo[h].z - c);
+        iv->clear_hi[h] = v3_make(iv->box_hi[h].x + c, iv->box_hi[h].y + c, iv->box_hi[h].z + c);
+    }
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        uint32_t h = iv->mesh0 + m;
+        iv->box_lo[h] = iv->meshes[m].lo;
+        iv->box_hi[h] = iv->meshes[m].hi;
         iv->clear_lo[h] = v3_make(iv->box_lo[h].x - c, iv->box_lo[h].y - c, iv->box_lo[h].z - c);
         iv->clear_hi[h] = v3_make(iv->box_hi[h].x + c, iv->box_hi[h].y + c, iv->box_hi[h].z + c);
     }
 }
+
+/* A cap for the mesh queries: they refuse 0. */
+static inline double mesh_cap(double cap) { return cap > 1e-9 ? cap : 1e-9; }
 
 double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap) {
     double best = HUGE_VAL;
@@ -62,23 +88,56 @@ double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap) {
         double d = obb_signed_distance(&iv->hosts[h], p);
         if (d < best) best = d;
     }
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        if (ivy_far_from(iv, iv->mesh0 + m, p, cap)) continue;
+        const double q = mesh_cap(cap);
+        double d = hmesh_distance(&iv->meshes[m], p, q);
+        /* +q means "q or farther" (out of reach); -q (deep inside) is a bound that still reads as inside. */
+        if (d < q && d < best) best = d;
+    }
     return best;
 }
 
-ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) {
-    ivy_near r = {HUGE_VAL, {0, 0, 1}, 0, 5};
+/* The box part of ivy_nearest_of, as it always was; then the meshes, each
+ * looked for within the nearest so far (and within cap). */
+static ivy_near nearest(const banyan_ivy *iv, v3 p, uint32_t n, double cap) {
+    ivy_near r = {HUGE_VAL, {0, 0, 1}, {0, 0, 0}, 0, 5};
+    r.point = p;
     for (uint32_t h = 0; h < n; h++) {
         double d = obb_signed_distance(&iv->hosts[h], p);
         if (d < r.dist) { r.dist = d; r.host = (int32_t)h; }
     }
-    if (n) {
+    int32_t best_mesh = -1;
+    mesh_near mn, best_mn;
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        /* Only a surface nearer than the best so far can win. A point
+         * outside the mesh's bounds grown by that is farther from it. */
+        double lim = r.dist < cap ? r.dist : cap;
+        if (lim > 0 && lim < HUGE_VAL && ivy_far_from(iv, iv->mesh0 + m, p, lim)) continue;
+        if (!hmesh_nearest(&iv->meshes[m], p, lim > 0 ? mesh_cap(lim) : HUGE_VAL, &mn)) continue;
+        if (mn.dist < r.dist) {
+            r.dist = mn.dist;
+            best_mesh = (int32_t)m;
+            best_mn = mn;
+        }
+    }
+    if (best_mesh >= 0) {
+        r.host = (int32_t)(iv->mesh0 + (uint32_t)best_mesh);
+        r.normal = best_mn.normal;
+        r.point = best_mn.point;
+        r.face = mesh_face(&iv->meshes[best_mesh], best_mn.prim);
+    } else if (n && r.dist < HUGE_VAL) {
         const obb *o = &iv->hosts[r.host];
         v3 l = obb_to_local(o, p);
-        obb_closest_surface_local(o, p, l, &r.normal);
+        r.point = obb_closest_surface_local(o, p, l, &r.normal);
         r.face = face_of(o, l);
     }
     return r;
 }
+
+ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n) { return nearest(iv, p, n, HUGE_VAL); }
+
+ivy_near ivy_nearest_within(const banyan_ivy *iv, v3 p, double cap) { return nearest(iv, p, iv->n_grip, cap); }
 
 int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
     const double c = iv->p.clearance;
@@ -97,8 +156,47 @@ int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip) {
         if (seg && (d < c || obb_segment_hit(&iv->hosts[h], a, b, NULL))) return 1;
         if (reach && d < best) best = d;
     }
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        const uint32_t h = iv->mesh0 + m;
+        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+        int seg = !(mn.z > hi.z || mx.z < lo.z || mx.x < lo.x || mn.x > hi.x || mx.y < lo.y || mn.y > hi.y);
+        int reach = grip && !ivy_far_from(iv, h, b, cap);
+        if (!seg && !reach) continue;
+        /* One distance of b, capped at the farthest that matters, answers
+         * all three: ends within clearance; can the segment reach a
+         * surface at all (not when b is farther from every surface than
+         * the segment is long: the ball round b holds the segment); how
+         * far is the grip. */
+        const double len = v3_dist(a, b);
+        double q = seg ? (len > c ? len : c) : 0;
+        if (reach && cap > q) q = cap;
+        q = mesh_cap(q);
+        double d = hmesh_distance(&iv->meshes[m], b, q);
+        if (seg) {
+            double t;
+            v3 nrm;
+            if (d < c || (d < len && hmesh_segment_hit(&iv->meshes[m], a, b, &t, &nrm))) return 1;
+        }
+        if (reach && d < q && d < best) best = d;
+    }
     if (grip) *grip = best;
     return 0;
+}
+
+/* Mesh m pushes p out to `clearance` off its surface when p is nearer;
+ * returns 1 when it moved p. */
+static int push_out_mesh(const banyan_ivy *iv, uint32_t m, v3 *p) {
+    const double c = iv->p.clearance;
+    mesh_near r;
+    if (!hmesh_nearest(&iv->meshes[m], *p, mesh_cap(c), &r)) {
+        if (r.dist > 0) return 0;
+        hmesh_nearest(&iv->meshes[m], *p, HUGE_VAL, &r); /* deep inside: out by the nearest way */
+    }
+    if (r.dist >= c) return 0;
+    /* A hair past c: the mesh is float, and a point pushed to exactly c
+     * could read a little nearer and be refused by the next clearance test. */
+    *p = v3_madd(r.point, r.normal, c * (1.0 + 1e-6) + 1e-7);
+    return 1;
 }
 
 v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
@@ -118,9 +216,43 @@ v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
             p = v3_madd(s, n, c);
             moved = 1;
         }
+        for (uint32_t m = 0; m < iv->n_mesh; m++) {
+            if (ivy_far_by_clearance(iv, iv->mesh0 + m, p)) continue;
+            moved |= push_out_mesh(iv, m, &p);
+        }
         if (!moved) break;
     }
     return p;
+}
+
+v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to) {
+    const double c = iv->p.clearance;
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        const uint32_t h = iv->mesh0 + m;
+        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
+        if ((from.x < lo.x && to.x < lo.x) || (from.x > hi.x && to.x > hi.x) || (from.y < lo.y && to.y < lo.y) ||
+            (from.y > hi.y && to.y > hi.y) || (from.z < lo.z && to.z < lo.z) || (from.z > hi.z && to.z > hi.z))
+            continue;
+        double t;
+        v3 nrm;
+        if (hmesh_segment_hit(&iv->meshes[m], from, to, &t, &nrm))
+            to = v3_madd(v3_lerp(from, to, t), nrm, c * (1.0 + 1e-6) + 1e-7); /* on the side it came from */
+    }
+    return to;
+}
+
+int ivy_segment_meets_mesh(const banyan_ivy *iv, v3 a, v3 b) {
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        const uint32_t h = iv->mesh0 + m;
+        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
+        if ((a.x < lo.x && b.x < lo.x) || (a.x > hi.x && b.x > hi.x) || (a.y < lo.y && b.y < lo.y) ||
+            (a.y > hi.y && b.y > hi.y) || (a.z < lo.z && b.z < lo.z) || (a.z > hi.z && b.z > hi.z))
+            continue;
+        double t;
+        v3 nrm;
+        if (hmesh_segment_hit(&iv->meshes[m], a, b, &t, &nrm)) return 1;
+    }
+    return 0;
 }
 
 ivy_near ivy_nearest(const banyan_ivy *iv, v3 p) { return ivy_nearest_of(iv, p, iv->n_grip); }

@@ -7,7 +7,8 @@
  * the sag correction runs (sag.c).
  *
  * Also the handle's life: create (checks, start snapping, first bud),
- * step, free and the one-shot generate. */
+ * step, free and the one-shot generate, on boxes or on a host set (whose
+ * meshes the handle reads through its pointer; grid.c asks them). */
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -45,6 +46,17 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
     return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
 }
 
+/* Candidate order of the host queries: the larger bound first, then
+ * the one drawn first. */
+static inline int cand_before(const ivy_cand *a, const ivy_cand *b) {
+    return a->f_max > b->f_max || (a->f_max == b->f_max && a->k < b->k);
+}
+
+static int cmp_cand(const void *x, const void *y) {
+    const ivy_cand *a = x, *b = y;
+    return cand_before(a, b) ? -1 : cand_before(b, a) ? 1 : 0;
+}
+
 /* The directed random walk from bud i along `base`: K candidates, host
  * collisions discarded, the best of the weighted five fitness terms kept.
  * Appends the new bud (state `st`, nourishment `N`) as child `slot` of
@@ -58,7 +70,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     if (p->helio_in_plane) {
         /* Stems on a wall spread along it: light comes off the wall for
          * every bud alike, so only the tangential part of V_l steers. */
-        ivy_near nr = ivy_nearest(iv, b->P);
+        ivy_near nr = ivy_nearest_within(iv, b->P, D);
         if (nr.dist <= D) vl = v3_sub(vl, v3_scale(nr.normal, v3_dot(vl, nr.normal)));
     }
     double vlen = v3_len(vl);
@@ -66,30 +78,55 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
 
     const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
-    double best = -HUGE_VAL, best_dist = 0;
-    v3 best_q = b->P, best_d = base;
-    for (int32_t k = 0; k < p->candidates; k++) {
+    /* Every candidate's free terms first, with the most it could score
+     * (f_d and f_grav at their most: a free candidate is at least
+     * clearance off every surface, so f_d <= 1). Then the host queries,
+     * the costly part, in order of that bound, best first: once the bound
+     * cannot beat the best found, no later candidate can. The winner is
+     * the one the spec's order gives: the highest score, and on a tie the
+     * first drawn. */
+    ivy_cand *cd = iv->cand;
+    const int32_t K = p->candidates;
+    for (int32_t k = 0; k < K; k++) {
         double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
         v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
-        v3 q = v3_madd(b->P, d, l);
-        double fv = (v3_dot(base, d) + 1.0) * 0.5;
-        double fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
-        double fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
-        /* With f_d and f_grav at their most (a free candidate is at least
-         * clearance off every surface: f_d <= 1), can it beat the best?
-         * The same sum, term by term no smaller (weights >= 0): when it
-         * cannot, the host queries are skipped. */
+        ivy_cand *c = &cd[k];
+        c->d = d;
+        c->k = k;
+        c->fv = (v3_dot(base, d) + 1.0) * 0.5;
+        c->fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
+        c->fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
         double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
-        double f_max = p->w_d * fd_max + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav_max + p->w_helio * fhelio;
-        if (!(f_max > best)) continue;
+        c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max + p->w_helio * c->fhelio;
+    }
+    if (K > 32) qsort(cd, (size_t)K, sizeof *cd, cmp_cand);
+    double best = -HUGE_VAL, best_dist = 0;
+    int32_t best_k = -1;
+    v3 best_q = b->P, best_d = base;
+    for (int32_t n = 0; n < K; n++) {
+        if (K <= 32) { /* pick the next by selection: most plants stop after two or three */
+            int32_t m = n;
+            for (int32_t j = n + 1; j < K; j++)
+                if (cand_before(&cd[j], &cd[m])) m = j;
+            if (m != n) {
+                ivy_cand t = cd[n];
+                cd[n] = cd[m];
+                cd[m] = t;
+            }
+        }
+        const ivy_cand *c = &cd[n];
+        if (!(c->f_max >= best)) break; /* (NaN too) */
+        if (c->f_max == best && c->k > best_k) continue; /* at most a tie, drawn later */
+        v3 d = c->d, q = v3_madd(b->P, d, l);
         double dist;
         if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
         int attach = sucker && dist <= D;
         double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
         double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
-        double f = p->w_d * fd + p->w_v * fv + p->w_geo * fgeo + p->w_grav * fgrav + p->w_helio * fhelio;
-        if (f > best) { /* the first drawn wins a tie */
+        double f = p->w_d * fd + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav + p->w_helio * c->fhelio;
+        if (f > best || (f == best && c->k < best_k)) {
             best = f;
+            best_k = c->k;
             best_q = q;
             best_d = d;
             best_dist = dist;
@@ -100,7 +137,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
         /* The sucker draws the stem onto the surface: aim the internode at
          * the point `clearance` off the surface below the candidate. */
-        ivy_near nr = ivy_nearest(iv, best_q);
+        ivy_near nr = ivy_nearest_within(iv, best_q, D + p->clearance);
         v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
         v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
         v3 q = v3_madd(b->P, d, l);
@@ -322,52 +359,62 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->head);
     free(iv->chain);
     free(iv->tmp);
+    free(iv->cand);
     free(iv);
 }
 
-banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
-                                banyan_ivy **out, banyan_error *err) {
-    BANYAN_CHECK_OUT(out, err);
-    banyan_status s = ivy_params_check(params, err);
-    if (s) return s;
-    if (n_hosts == 0)
-        return banyan_fail(err, BANYAN_E_NO_HOSTS, "n_hosts = 0: ivy needs at least one host box to climb");
-    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
-    if (n_hosts > BANYAN_MAX_HOSTS)
-        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
+/* The handle on nb boxes (from `boxes`, checked here, or already checked
+ * in `set`) and the meshes of `set` (NULL: none). */
+static banyan_status create(const banyan_ivy_params *params, const banyan_box *boxes, const banyan_hosts *set,
+                            uint32_t nb, banyan_ivy **out, banyan_error *err) {
+    banyan_status s;
     banyan_ivy *iv = calloc(1, sizeof *iv);
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     iv->p = *params;
-    iv->hosts = malloc(sizeof(obb) * (n_hosts + 1));
-    iv->box_lo = malloc(sizeof(v3) * 4 * (n_hosts + 1));
-    iv->box_hi = iv->box_lo ? iv->box_lo + n_hosts + 1 : NULL;
-    iv->clear_lo = iv->box_lo ? iv->box_lo + 2 * (n_hosts + 1) : NULL;
-    iv->clear_hi = iv->box_lo ? iv->box_lo + 3 * (n_hosts + 1) : NULL;
+    iv->set = set;
+    iv->meshes = set ? set->meshes : NULL;
+    iv->n_mesh = set ? set->n_meshes : 0;
+    iv->mesh0 = nb + 1; /* after the ground's slot */
+    const size_t nbound = (size_t)nb + 1 + iv->n_mesh;
+    iv->hosts = malloc(sizeof(obb) * (nb + 1));
+    iv->box_lo = malloc(sizeof(v3) * 4 * nbound);
+    iv->box_hi = iv->box_lo ? iv->box_lo + nbound : NULL;
+    iv->clear_lo = iv->box_lo ? iv->box_lo + 2 * nbound : NULL;
+    iv->clear_hi = iv->box_lo ? iv->box_lo + 3 * nbound : NULL;
     if (!iv->hosts || !iv->box_lo) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
-    iv->n_hosts = iv->n_given = iv->n_grip = n_hosts;
-    if ((s = obb_from_boxes(hosts, n_hosts, iv->hosts, err))) {
-        banyan_ivy_free(iv);
-        return s;
+    iv->n_hosts = iv->n_given = iv->n_grip = nb;
+    if (boxes) {
+        if ((s = obb_from_boxes(boxes, nb, iv->hosts, err))) {
+            banyan_ivy_free(iv);
+            return s;
+        }
+    } else if (nb) {
+        memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
     }
+    /* The meshes' bounds (boxes and ground follow, after the ground). */
+    ivy_host_boxes(iv);
 
     /* Snap the start to the nearest given host surface, `clearance` off it. */
     v3 start = v3_load(params->start);
     ivy_near nr = ivy_nearest(iv, start);
     if (nr.dist > params->start_snap_max) {
+        /* Host numbers as the caller gave them: boxes, then meshes. */
+        int32_t host = nr.host < (int32_t)nb ? nr.host : (int32_t)(nb + ((uint32_t)nr.host - iv->mesh0));
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_START_FAR,
                            "start = (%g, %g, %g) is %g m from the nearest host surface (hosts[%d]); it must be within "
                            "start_snap_max = %g m",
-                           start.x, start.y, start.z, nr.dist, nr.host, params->start_snap_max);
+                           start.x, start.y, start.z, nr.dist, host, params->start_snap_max);
     }
     if (params->ground) {
         /* The ground: the top face of a box far larger than the hosts. */
         obb *g = &iv->hosts[iv->n_hosts++];
         const double G = 1e5, depth = 1e3;
-        g->c = v3_make(iv->hosts[0].c.x, iv->hosts[0].c.y, params->ground_z - depth);
+        v3 mid = nb ? iv->hosts[0].c : v3_scale(v3_add(iv->meshes[0].lo, iv->meshes[0].hi), 0.5);
+        g->c = v3_make(mid.x, mid.y, params->ground_z - depth);
         g->ax[0] = v3_make(1, 0, 0);
         g->ax[1] = v3_make(0, 1, 0);
         g->ax[2] = v3_make(0, 0, 1);
@@ -376,8 +423,13 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
         if (params->ground == 2) iv->n_grip++;
     }
     ivy_host_boxes(iv);
-    v3 nrm;
-    v3 surf = obb_closest_surface(&iv->hosts[nr.host], start, &nrm);
+    v3 nrm, surf;
+    if (nr.host < (int32_t)nb) {
+        surf = obb_closest_surface(&iv->hosts[nr.host], start, &nrm);
+    } else {
+        surf = nr.point;
+        nrm = nr.normal;
+    }
     v3 P = ivy_push_out(iv, v3_madd(surf, nrm, params->clearance));
     nr = ivy_nearest(iv, P);
     /* First growth direction: up along the surface (sideways on a ceiling). */
@@ -389,7 +441,13 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
         banyan_ivy_free(iv);
         return s;
     }
+    iv->cand = malloc(sizeof(ivy_cand) * (size_t)params->candidates);
+    if (!iv->cand) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    }
     iv->inv_cell = 1.0 / (IVY_CELL_SCALE * params->leaf_max);
+
 
     if (ivy_grid_init(iv, 1024) != BANYAN_OK) {
         banyan_ivy_free(iv);
@@ -418,6 +476,30 @@ banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_bo
     return BANYAN_OK;
 }
 
+banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
+                                banyan_ivy **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_status s = ivy_params_check(params, err);
+    if (s) return s;
+    if (n_hosts == 0)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS, "n_hosts = 0: ivy needs at least one host box to climb");
+    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
+    if (n_hosts > BANYAN_MAX_HOSTS)
+        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
+    return create(params, hosts, NULL, n_hosts, out, err);
+}
+
+banyan_status banyan_ivy_create_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_ivy **out,
+                                      banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_status s = ivy_params_check(params, err);
+    if (s) return s;
+    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL: ivy needs a host set (banyan_hosts_create)");
+    if (hosts->n_boxes + hosts->n_meshes == 0)
+        return banyan_fail(err, BANYAN_E_NO_HOSTS, "the host set is empty: ivy needs at least one host to climb");
+    return create(params, NULL, hosts, hosts->n_boxes, out, err);
+}
+
 banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
                                   banyan_mesh **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
@@ -425,6 +507,18 @@ banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_
     banyan_status s = banyan_ivy_create(params, hosts, n_hosts, &iv, err);
     if (s) return s;
     /* One shot: stop as soon as the mesh could no longer fit. */
+    s = ivy_grow(iv, params->steps, 1, err);
+    if (!s) s = banyan_ivy_mesh(iv, out, err);
+    banyan_ivy_free(iv);
+    return s;
+}
+
+banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_mesh **out,
+                                        banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    banyan_ivy *iv = NULL;
+    banyan_status s = banyan_ivy_create_hosts(params, hosts, &iv, err);
+    if (s) return s;
     s = ivy_grow(iv, params->steps, 1, err);
     if (!s) s = banyan_ivy_mesh(iv, out, err);
     banyan_ivy_free(iv);

@@ -1,11 +1,14 @@
 /* ivy_internal.h - the ivy plant between steps (spec/ivy.md, "Buds"):
  * a binary tree of buds in creation order, a spatial hash over bud
- * positions for the light look-up, and the hosts. Shared by the ivy
- * source files only. */
+ * positions for the light look-up, and the hosts: oriented boxes (the
+ * given ones, then the ground) with their exact obb queries, and the
+ * triangle meshes of a host set (core/hosts.h). Shared by the ivy source
+ * files only. */
 #ifndef BANYAN_IVY_INTERNAL_H
 #define BANYAN_IVY_INTERNAL_H
 
 #include "banyan.h"
+#include "core/hosts.h"
 #include "core/obb.h"
 #include "core/rng.h"
 #include "core/vec.h"
@@ -15,6 +18,14 @@
 #ifndef IVY_CELL_SCALE
 #define IVY_CELL_SCALE 1.0
 #endif
+
+/* A random-walk candidate being scored (growth.c). */
+typedef struct ivy_cand {
+    v3 d;             /* direction */
+    double fv, fgeo, fhelio;
+    double f_max;     /* the most its score can be */
+    int32_t k;        /* the order it was drawn in */
+} ivy_cand;
 
 typedef struct ivy_bud {
     v3 P;             /* position */
@@ -54,9 +65,16 @@ typedef struct ivy_gnode {
 struct banyan_ivy {
     banyan_ivy_params p;
     obb *hosts;
-    uint32_t n_hosts;      /* the given hosts, then the ground when params.ground: stems keep out of all */
+    uint32_t n_hosts;      /* the given boxes, then the ground when params.ground: stems keep out of all */
     uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */
-    uint32_t n_given;      /* the given hosts */
+    uint32_t n_given;      /* the given boxes */
+    /* Mesh hosts (a host set's meshes; suckers grip them all). Mesh m is
+     * host mesh0 + m in ivy_near.host and in the bounds below: mesh0 =
+     * n_given + 1, after the ground's slot whether there is a ground or
+     * not, so the numbers do not change when the ground is added. */
+    const banyan_hosts *set; /* NULL from the box entry points */
+    const host_mesh *meshes;
+    uint32_t n_mesh, mesh0;
     v3 *box_lo, *box_hi;   /* world bounding boxes of the hosts (quick rejection) */
     v3 *clear_lo, *clear_hi; /* the same grown by clearance (one block with box_lo) */
 
@@ -92,22 +110,32 @@ struct banyan_ivy {
     v3 *tmp;
     int32_t scratch_cap;
 
+    ivy_cand *cand;        /* params.candidates of them */
+
     pcg32 rng;
 };
 
 /* Nearest surface that suckers grip (the given hosts, and the ground when
- * it is a host) of p: distance (< 0 inside), outward normal there, host
- * index and face (0..5: -x, +x, -y, +y, -z, +z of that host). */
+ * it is a host) of p: distance (< 0 inside a box or a closed mesh), the
+ * closest surface point and the outward normal of the distance field
+ * there, host index (boxes, the ground, then mesh0 + m) and face: for a
+ * box 0..5 = -x, +x, -y, +y, -z, +z of that box; for a mesh the same
+ * numbers as a cube map, the world axis along which the nearest
+ * triangle's normal is largest, and its sign (the chart of the stats). */
 typedef struct ivy_near {
     double dist;
     v3 normal;
+    v3 point;
     int32_t host, face;
 } ivy_near;
 ivy_near ivy_nearest(const banyan_ivy *iv, v3 p);
-/* The same over the first n hosts; over all of them (the ground too,
- * whatever its kind): the surface a stem or leaf lies on. */
+/* The same over the first n boxes and every mesh; over all of them (the
+ * ground too, whatever its kind): the surface a stem or leaf lies on. */
 ivy_near ivy_nearest_of(const banyan_ivy *iv, v3 p, uint32_t n);
 ivy_near ivy_nearest_any(const banyan_ivy *iv, v3 p);
+/* ivy_nearest for a caller that only uses the answer when dist <= cap:
+ * meshes are looked for within cap only (boxes as ivy_nearest). */
+ivy_near ivy_nearest_within(const banyan_ivy *iv, v3 p, double cap);
 /* Signed distance to the nearest gripped surface when it is at most
  * `cap`; HUGE_VAL or some value > cap otherwise (cheaper: no normal). */
 double ivy_grip_distance(const banyan_ivy *iv, v3 p, double cap);
@@ -137,7 +165,20 @@ v3 ivy_push_out_near(const banyan_ivy *iv, v3 p);
 static inline v3 ivy_push_out(const banyan_ivy *iv, v3 p) {
     for (uint32_t h = 0; h < iv->n_hosts; h++)
         if (!ivy_far_by_clearance(iv, h, p)) return ivy_push_out_near(iv, p);
+    for (uint32_t m = 0; m < iv->n_mesh; m++)
+        if (!ivy_far_by_clearance(iv, iv->mesh0 + m, p)) return ivy_push_out_near(iv, p);
     return p;
+}
+/* A bud moved from `from` to `to` (a turn of the sag): stopped
+ * `clearance` before the first mesh surface in its way (a thin open mesh
+ * has no inside for the push-out to find), then pushed out. Boxes: just
+ * ivy_push_out(to). */
+v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to);
+/* Does segment a-b meet a mesh host's surface? */
+int ivy_segment_meets_mesh(const banyan_ivy *iv, v3 a, v3 b);
+static inline v3 ivy_move_out(const banyan_ivy *iv, v3 from, v3 to) {
+    if (iv->n_mesh) to = ivy_stop_at_meshes(iv, from, to);
+    return ivy_push_out(iv, to);
 }
 
 /* Spatial hash (grid.c). */

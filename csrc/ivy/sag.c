@@ -6,7 +6,9 @@
  * exceeds moment_max, they rotate down about P0 in sag_step increments
  * (the last one cut to the angle that reaches moment_max);
  * then the pivot moves to P1, and so on towards the tip. A bud that would
- * enter a host is put back on its surface (clearance off it), and a bud
+ * enter a host is put back on its surface (clearance off it; a bud whose
+ * turn would carry it through a mesh surface, which a thin open mesh
+ * cannot tell by its inside, stops short of it), and a bud
  * with a sucker that ends within reach of a surface grips it. Last, a
  * free tip turns up to at least tip_elevation (geotropism).
  *
@@ -121,7 +123,25 @@ enum { SAG_TURNED = 1, SAG_UNSETTLED = 2 };
  * sag_step increments while their moment passes moment_max. A turn that a
  * surface undoes (the push-out brings C back) ends it: the stem rests on
  * that surface. qn is scratch for n positions. */
-static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n) {
+/* Would the turn of q[0..n-1] (a subtree in preorder, set[0..n-1] its
+ * buds, set[0] hanging from the pivot) to qn carry an internode through a
+ * mesh surface? Bud paths are stopped by ivy_move_out, but an internode
+ * between two buds can still sweep over a mesh edge (a wall's top, a
+ * cylinder's rim) into or through the mesh. The turn is then held, as by
+ * the push-out; one that already crossed before the turn does not count. */
+static int turn_crosses_mesh(const banyan_ivy *iv, const int32_t *set, int32_t lo, v3 pivot, const v3 *q,
+                             const v3 *qn, int32_t n) {
+    for (int32_t k = 0; k < n; k++) {
+        int32_t par = k ? iv->buds[iv->buds[set[k]].parent].mark - lo : -1;
+        v3 a = par >= 0 ? qn[par] : pivot;
+        if (ivy_segment_meets_mesh(iv, a, qn[k]) && !ivy_segment_meets_mesh(iv, par >= 0 ? q[par] : pivot, q[k]))
+            return 1;
+    }
+    return 0;
+}
+
+static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n,
+                     const int32_t *set, int32_t lo) {
     const banyan_ivy_params *p = &iv->p;
     const double step = sc->step;
     v3 C, *cur = q, *nxt = qn; /* the positions now and after the turn being tried */
@@ -162,9 +182,10 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *
         v3 sum = v3_make(0, 0, 0), C2;
         sc->budget -= n;
         for (int32_t k = 0; k < n; k++) {
-            nxt[k] = ivy_push_out(iv, v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
+            nxt[k] = ivy_move_out(iv, cur[k], v3_add(pivot, m3_mul_v3(&R, v3_sub(cur[k], pivot))));
             sum = v3_add(sum, nxt[k]);
         }
+        if (iv->n_mesh && turn_crosses_mesh(iv, set, lo, pivot, cur, nxt, n)) break; /* held by a mesh edge */
         double F2 = moment_of(iv, pivot, sum, n, &C2);
         if (angle_below(a, v3_sub(C2, pivot), 0.5 * ang, ang == step ? sc->tan_half : 0)) break; /* held by a surface */
         for (int32_t k = 0; k < n; k++) qv[k] = m3_mul_v3(&R, qv[k]); /* normalised once, at the end */
@@ -234,7 +255,7 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                     if (!turned && k <= settled) break;
                     v3 pivot = k == m - 1 ? iv->buds[chain[k]].P : q[iv->buds[chain[k]].mark];
                     int32_t lo = iv->buds[chain[k - 1]].mark;
-                    int r = sag_pivot(iv, sc, pivot, q + lo, qv + lo, qn, size[lo]);
+                    int r = sag_pivot(iv, sc, pivot, q + lo, qv + lo, qn, size[lo], set + lo, lo);
                     if (r & SAG_TURNED) {
                         turned = moved = 1;
                         settled = r & SAG_UNSETTLED ? k - 1 : k;

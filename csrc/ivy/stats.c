@@ -2,7 +2,10 @@
  * crossings per square metre of covered host, seen along the host normal.
  *
  * Every bud belongs to the face of its nearest host (host, face; the
- * ground counts as a host here whatever its kind). An
+ * ground counts as a host here whatever its kind). A mesh host has no
+ * faces of its own: its "faces" are a cube map, the world axis along
+ * which the nearest triangle's normal is largest and its sign, and a bud
+ * is projected along that axis (docs/ivy.md). An
  * internode belongs to the face of its end bud; both its ends are
  * projected onto that face's plane. Two internodes of the same face cross
  * when their projections properly intersect (internodes that share a bud
@@ -38,11 +41,21 @@ static int cmp_u64(const void *x, const void *y) {
     return (a > b) - (a < b);
 }
 
-static void face_uv(const obb *o, int face, v3 p, double uv[2]) {
+/* The 2D chart of a face: a box face's own axes about the box centre; a
+ * mesh's cube-map face (world axis k) the world plane across k, the point
+ * projected along k. */
+static void face_uv(const banyan_ivy *iv, int32_t host, int face, v3 p, double uv[2]) {
     int k = face / 2, i = (k + 1) % 3, j = (k + 2) % 3;
-    v3 d = v3_sub(p, o->c);
-    uv[0] = v3_dot(d, o->ax[i]);
-    uv[1] = v3_dot(d, o->ax[j]);
+    if ((uint32_t)host < iv->n_hosts) {
+        const obb *o = &iv->hosts[host];
+        v3 d = v3_sub(p, o->c);
+        uv[0] = v3_dot(d, o->ax[i]);
+        uv[1] = v3_dot(d, o->ax[j]);
+    } else {
+        const double c[3] = {p.x, p.y, p.z};
+        uv[0] = c[i];
+        uv[1] = c[j];
+    }
 }
 
 static int64_t cell_of(double v, double inv) {
@@ -92,7 +105,7 @@ banyan_status banyan_ivy_get_stats(const banyan_ivy *iv, banyan_ivy_stats *out, 
         ivy_near nr = ivy_nearest_any(iv, iv->buds[i].P);
         face[i] = nr.host * 6 + nr.face;
         double uv[2];
-        face_uv(&iv->hosts[nr.host], nr.face, iv->buds[i].P, uv);
+        face_uv(iv, nr.host, nr.face, iv->buds[i].P, uv);
         cover[i] = key_of(face[i], cell_of(uv[0], inv_cover), cell_of(uv[1], inv_cover));
     }
     qsort(cover, (size_t)n, sizeof *cover, cmp_u64);
@@ -112,9 +125,8 @@ banyan_status banyan_ivy_get_stats(const banyan_ivy *iv, banyan_ivy_stats *out, 
         s->face = face[i];
         s->child = i;
         s->parent = b->parent;
-        const obb *o = &iv->hosts[face[i] / 6];
-        face_uv(o, face[i] % 6, b->P, s->a);
-        face_uv(o, face[i] % 6, iv->buds[b->parent].P, s->b);
+        face_uv(iv, face[i] / 6, face[i] % 6, b->P, s->a);
+        face_uv(iv, face[i] / 6, face[i] % 6, iv->buds[b->parent].P, s->b);
         int64_t u0 = cell_of(fmin(s->a[0], s->b[0]), ginv), u1 = cell_of(fmax(s->a[0], s->b[0]), ginv);
         int64_t v0 = cell_of(fmin(s->a[1], s->b[1]), ginv), v1 = cell_of(fmax(s->a[1], s->b[1]), ginv);
         for (int64_t u = u0; u <= u1 && e; u++)

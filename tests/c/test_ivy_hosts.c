@@ -1,0 +1,627 @@
+/* Ivy on mesh hosts (issue 15, spec/ivy.md with spec README "Hosts"):
+ * meshes built here, checked against brute-force oracles of this file
+ * (closest point over every triangle, inside by the face planes of each
+ * convex shell, segment against every triangle), not against the host
+ * set's own queries.
+ *   - A UV sphere resting on the ground, a closed 32-sided cylinder, an
+ *     open two-triangle wall and a self-intersecting mesh of three
+ *     shells (a head with two eyes, standing in for Suzanne): the median distance of
+ *     attached buds to the real surface is within sucker reach, no stem
+ *     point is inside a closed host, no internode passes through a
+ *     surface, leaves lie on the real surface normal, and the ivy grows
+ *     round the curve (attached buds on most sides of the sphere and the
+ *     cylinder, up the cylinder, over the sphere's shoulder).
+ *   - Same seed, same bytes; another seed, other bytes; two threads
+ *     growing on one host set at once get the serial bytes.
+ *   - Boxes through banyan_ivy_generate_hosts give banyan_ivy_generate's
+ *     bytes (the wall and pillar presets), and so does a set that adds a
+ *     mesh far from the plant.
+ *   - The wall as a 12-triangle closed mesh grows a plant of the box
+ *     wall's size.
+ *   - Bad input: a NULL host set. */
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "host_meshes.h"
+#include "ivy/ivy_internal.h"
+#include "test_files.h"
+
+/* ------------------------------------------------------------ oracles */
+
+/* Triangles in world space, in shells (each shell convex when `convex`). */
+typedef struct oracle {
+    v3 *t;          /* 3 per triangle */
+    v3 *n;          /* outward unit normal per triangle */
+    uint32_t nt;
+    uint32_t shell_end[4], shells;
+    int convex;     /* inside = inside every face plane of some shell */
+    const obb *boxes; /* box hosts besides the meshes (exact obb queries) */
+    uint32_t nb;
+} oracle;
+
+static void oracle_add(oracle *o, const tm_mesh *m, v3 off) {
+    o->t = realloc(o->t, sizeof(v3) * 3 * (o->nt + m->nt));
+    o->n = realloc(o->n, sizeof(v3) * (o->nt + m->nt));
+    for (uint32_t k = 0; k < m->nt; k++) {
+        v3 *T = o->t + 3 * (o->nt + k);
+        for (int c = 0; c < 3; c++) {
+            const float *q = m->pos + 3 * m->idx[3 * k + c];
+            T[c] = v3_add(off, v3_make(q[0], q[1], q[2]));
+        }
+        o->n[o->nt + k] = v3_norm_or(v3_cross(v3_sub(T[1], T[0]), v3_sub(T[2], T[0])), v3_make(0, 0, 1));
+    }
+    o->nt += m->nt;
+    o->shell_end[o->shells++] = o->nt;
+}
+
+static void oracle_free(oracle *o) {
+    free(o->t);
+    free(o->n);
+}
+
+/* Closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5). */
+static v3 closest_on_tri(v3 p, v3 a, v3 b, v3 c) {
+    v3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
+    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    v3 bp = v3_sub(p, b);
+    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return v3_madd(a, ab, d1 / (d1 - d3));
+    v3 cp = v3_sub(p, c);
+    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return v3_madd(a, ac, d2 / (d2 - d6));
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return v3_madd(b, v3_sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    double den = 1.0 / (va + vb + vc);
+    return v3_add(a, v3_add(v3_scale(ab, vb * den), v3_scale(ac, vc * den)));
+}
+
+/* Unsigned distance to the surface, and the unit direction from the
+ * closest surface point to p (the normal of the distance field). */
+static double oracle_dist(const oracle *o, v3 p, v3 *dir) {
+    double best = HUGE_VAL;
+    v3 q = p;
+    uint32_t bt = 0;
+    for (uint32_t k = 0; k < o->nt; k++) {
+        v3 c = closest_on_tri(p, o->t[3 * k], o->t[3 * k + 1], o->t[3 * k + 2]);
+        double d = v3_dist(p, c);
+        if (d < best) best = d, q = c, bt = k;
+    }
+    if (dir && o->nt) *dir = best > 1e-9 ? v3_scale(v3_sub(p, q), 1.0 / best) : o->n[bt];
+    for (uint32_t h = 0; h < o->nb; h++) {
+        double d = fabs(obb_signed_distance(&o->boxes[h], p));
+        if (d < best) {
+            best = d;
+            v3 n;
+            obb_closest_surface(&o->boxes[h], p, &n);
+            if (dir) *dir = n;
+        }
+    }
+    return best;
+}
+
+/* Inside a closed mesh; with `boxes`, inside a box host too. */
+static int oracle_inside(const oracle *o, v3 p, int boxes) {
+    for (uint32_t h = 0; boxes && h < o->nb; h++)
+        if (obb_signed_distance(&o->boxes[h], p) < 0) return 1;
+    if (!o->convex) return 0;
+    uint32_t k = 0;
+    for (uint32_t s = 0; s < o->shells; s++) {
+        int in = 1;
+        for (; k < o->shell_end[s]; k++)
+            if (v3_dot(v3_sub(p, o->t[3 * k]), o->n[k]) >= 0) in = 0;
+        if (in) return 1;
+    }
+    return 0;
+}
+
+/* Does segment a-b cross a triangle (Moller-Trumbore, t in [0, 1])? */
+static int oracle_crossed(const oracle *o, v3 a, v3 b) {
+    v3 d = v3_sub(b, a);
+    for (uint32_t k = 0; k < o->nt; k++) {
+        v3 v0 = o->t[3 * k], e1 = v3_sub(o->t[3 * k + 1], v0), e2 = v3_sub(o->t[3 * k + 2], v0);
+        v3 h = v3_cross(d, e2);
+        double det = v3_dot(e1, h);
+        if (fabs(det) < 1e-300) continue;
+        double f = 1.0 / det;
+        v3 s = v3_sub(a, v0);
+        double u = f * v3_dot(s, h);
+        if (u < 0 || u > 1) continue;
+        v3 q = v3_cross(s, e1);
+        double v = f * v3_dot(d, q);
+        if (v < 0 || u + v > 1) continue;
+        double t = f * v3_dot(e2, q);
+        if (t >= 0 && t <= 1) return 1;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------ scenes */
+
+static int cmp_d(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Stem crossings by brute force over every pair of internodes, each seen
+ * on its end bud's face chart (docs/ivy.md): a box face in the box's
+ * axes, a mesh's cube-map face in the world plane across its axis. */
+static int32_t brute_crossings(const banyan_ivy *iv) {
+    int32_t n = iv->n, count = 0;
+    int32_t *face = malloc(sizeof(int32_t) * (size_t)n);
+    double (*uv)[4] = malloc(sizeof *uv * (size_t)n);
+    for (int32_t i = 0; i < n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        ivy_near nr = ivy_nearest_any(iv, b->P);
+        face[i] = nr.host * 6 + nr.face;
+        if (b->parent < 0) continue;
+        int k = nr.face / 2, a = (k + 1) % 3, c = (k + 2) % 3;
+        v3 p0 = b->P, p1 = iv->buds[b->parent].P;
+        if ((uint32_t)nr.host < iv->n_hosts) {
+            const obb *o = &iv->hosts[nr.host];
+            v3 d0 = v3_sub(p0, o->c), d1 = v3_sub(p1, o->c);
+            uv[i][0] = v3_dot(d0, o->ax[a]);
+            uv[i][1] = v3_dot(d0, o->ax[c]);
+            uv[i][2] = v3_dot(d1, o->ax[a]);
+            uv[i][3] = v3_dot(d1, o->ax[c]);
+        } else {
+            const double q0[3] = {p0.x, p0.y, p0.z}, q1[3] = {p1.x, p1.y, p1.z};
+            uv[i][0] = q0[a];
+            uv[i][1] = q0[c];
+            uv[i][2] = q1[a];
+            uv[i][3] = q1[c];
+        }
+    }
+    for (int32_t i = 1; i < n; i++)
+        for (int32_t j = i + 1; j < n; j++) {
+            const ivy_bud *s = &iv->buds[i], *t = &iv->buds[j];
+            if (face[i] != face[j] || s->parent < 0 || t->parent < 0) continue;
+            if (s->parent == t->parent || s->parent == j || t->parent == i) continue;
+            const double *A = uv[i], *B = uv[j];
+#define X2(o0, o1, a0, a1, b0, b1) (((a0) - (o0)) * ((b1) - (o1)) - ((a1) - (o1)) * ((b0) - (o0)))
+            double d1 = X2(A[0], A[1], A[2], A[3], B[0], B[1]), d2 = X2(A[0], A[1], A[2], A[3], B[2], B[3]);
+            double d3 = X2(B[0], B[1], B[2], B[3], A[0], A[1]), d4 = X2(B[0], B[1], B[2], B[3], A[2], A[3]);
+#undef X2
+            if ((d1 > 0) != (d2 > 0) && d1 != 0 && d2 != 0 && (d3 > 0) != (d4 > 0) && d3 != 0 && d4 != 0) count++;
+        }
+    free(face);
+    free(uv);
+    return count;
+}
+
+typedef struct report {
+    int32_t buds, attached;
+    double median_attached_dist, worst_attached_dist;
+    int inside, crossed, leaf_off, leaves_checked;
+    int sectors;        /* of 8 azimuth sectors about (cx, cy) holding an attached bud */
+    double top_z;       /* highest attached bud */
+    double covered_area;
+} report;
+
+/* Grows params on the set, then checks every bud against the oracle. */
+static report grow_and_check(const char *what, const banyan_ivy_params *p, const banyan_hosts *H, const oracle *o,
+                             double cx, double cy) {
+    report r;
+    memset(&r, 0, sizeof r);
+    r.top_z = -HUGE_VAL;
+    banyan_ivy *iv = NULL;
+    banyan_error err = {0, ""};
+    banyan_status s = banyan_ivy_create_hosts(p, H, &iv, &err);
+    CHECK(s == BANYAN_OK, "%s: create: %s", what, err.message);
+    if (s) return r;
+    s = banyan_ivy_step(iv, p->steps, &err);
+    CHECK(s == BANYAN_OK, "%s: step: %s", what, err.message);
+    banyan_mesh *m = NULL;
+    s = banyan_ivy_mesh(iv, &m, &err);
+    CHECK(s == BANYAN_OK && m, "%s: mesh: %s", what, err.message);
+    banyan_ivy_stats st;
+    CHECK(banyan_ivy_get_stats(iv, &st, &err) == BANYAN_OK, "%s: stats: %s", what, err.message);
+    r.covered_area = st.covered_area;
+    int32_t want = brute_crossings(iv);
+    CHECK(st.crossings == want && want > 0, "%s: %d crossings, brute force %d", what, st.crossings, want);
+    CHECK(st.covered_area > 0 && st.crossings >= 0 && st.density >= 0 && st.density < 1e6,
+          "%s: stats area %g crossings %d density %g", what, st.covered_area, st.crossings, st.density);
+
+    double *ad = malloc(sizeof(double) * (size_t)iv->n);
+    int na = 0, sector[8] = {0};
+    /* Leaves: one 13-vertex card per bud, in bud order, in part 1. */
+    const banyan_part *lp = m && m->part_count > 1 ? &m->parts[1] : NULL;
+    int leaves_ok = lp && lp->vertex_count == 13u * (uint32_t)iv->n;
+    CHECK(leaves_ok, "%s: one leaf card per bud", what);
+    for (int32_t i = 0; i < iv->n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        v3 dir = v3_make(0, 0, 1);
+        double d = oracle_dist(o, b->P, &dir);
+        if (oracle_inside(o, b->P, 1)) r.inside++;
+        if (b->parent >= 0) {
+            v3 a = iv->buds[b->parent].P;
+            if (oracle_crossed(o, a, b->P)) r.crossed++;
+            /* Midpoints and crossings: meshes only. Against boxes, stems
+             * that a sag turn swings over an edge can cut its corner
+             * (test_ivy checks bud points there). */
+            if (oracle_inside(o, v3_lerp(a, b->P, 0.5), 0)) r.inside++;
+        }
+        if (!b->attached) continue;
+        ad[na++] = d;
+        if (d > r.worst_attached_dist) r.worst_attached_dist = d;
+        if (b->P.z > r.top_z) r.top_z = b->P.z;
+        double az = atan2(b->P.y - cy, b->P.x - cx);
+        int sec = (int)floor((az + BANYAN_PI) / (2 * BANYAN_PI) * 8);
+        sector[sec < 0 ? 0 : sec > 7 ? 7 : sec]++;
+        /* The leaf of a bud within reach faces along the real surface's normal. */
+        if (leaves_ok && d <= p->sucker_length) {
+            const float *n = m->normals + 3 * (size_t)(lp->vertex_offset + 13u * (uint32_t)i);
+            r.leaves_checked++;
+            if (n[0] * dir.x + n[1] * dir.y + n[2] * dir.z < 0.99) r.leaf_off++;
+        }
+    }
+    r.buds = iv->n;
+    r.attached = na;
+    if (na) {
+        qsort(ad, (size_t)na, sizeof(double), cmp_d);
+        r.median_attached_dist = ad[na / 2];
+    }
+    for (int k = 0; k < 8; k++) r.sectors += sector[k] > 0;
+    free(ad);
+    printf("  %-22s %6d buds, %6d attached, median d %.4f m (worst %.4f), %d inside, %d crossing, "
+           "%d/%d leaves off the normal, %d sectors, top z %.2f, covered %.2f m^2 (%.2f s)\n",
+           what, r.buds, r.attached, r.median_attached_dist, r.worst_attached_dist, r.inside, r.crossed, r.leaf_off,
+           r.leaves_checked, r.sectors, r.top_z, r.covered_area, iv->step_seconds);
+    /* The shared invariants. */
+    CHECK(r.attached > 0 && r.median_attached_dist <= p->sucker_length, "%s: median attached distance %g > D = %g",
+          what, r.median_attached_dist, p->sucker_length);
+    CHECK(r.inside == 0, "%s: %d stem points inside a closed host", what, r.inside);
+    CHECK(r.crossed == 0, "%s: %d internodes pass through a surface", what, r.crossed);
+    CHECK(r.leaf_off * 100 <= r.leaves_checked, "%s: %d of %d leaves off the surface normal", what, r.leaf_off,
+          r.leaves_checked);
+    banyan_mesh_free(m);
+    banyan_ivy_free(iv);
+    return r;
+}
+
+static banyan_hosts *make_set(const banyan_box *boxes, uint32_t nb, const banyan_host_mesh *meshes, uint32_t nm) {
+    banyan_hosts *H = NULL;
+    banyan_error err = {0, ""};
+    banyan_status s = banyan_hosts_create(boxes, nb, meshes, nm, &H, &err);
+    CHECK(s == BANYAN_OK && H, "hosts_create: %s", err.message);
+    return H;
+}
+
+typedef struct job {
+    banyan_ivy_params p;
+    const banyan_hosts *H;
+    uint64_t hash;
+} job;
+
+static void *grow_job(void *arg) {
+    job *j = arg;
+    banyan_mesh *m = NULL;
+    banyan_error err = {0, ""};
+    if (banyan_ivy_generate_hosts(&j->p, j->H, &m, &err) == BANYAN_OK) j->hash = banyan_mesh_hash(m);
+    banyan_mesh_free(m);
+    return NULL;
+}
+
+static void sphere_scene(void) {
+    const double R = 0.5;
+    tm_mesh sm = {0};
+    tm_uv_sphere(&sm, 0, 0, 0, R, 32, 16);
+    banyan_host_mesh hm = tm_host(&sm, 0, 0, R, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    oracle o = {0};
+    o.convex = 1;
+    oracle_add(&o, &sm, v3_make(0, 0, R));
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 300;
+    p.start[0] = R + 0.05;
+    p.start[1] = 0;
+    p.start[2] = 0.3;
+    if (H) {
+        report r = grow_and_check("sphere on the ground", &p, H, &o, 0, 0);
+        CHECK(r.buds > 2000, "sphere: only %d buds", r.buds);
+        /* Round the curve: attached buds on most sides and over the shoulder. */
+        CHECK(r.sectors >= 6, "sphere: attached buds on %d of 8 sides", r.sectors);
+        CHECK(r.top_z > R + 0.8 * R, "sphere: highest attached bud at z = %g", r.top_z);
+
+        /* Same seed, same bytes; another seed, others. */
+        banyan_mesh *a = NULL, *b = NULL, *c = NULL;
+        banyan_error err = {0, ""};
+        p.steps = 120;
+        CHECK(banyan_ivy_generate_hosts(&p, H, &a, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(banyan_ivy_generate_hosts(&p, H, &b, &err) == BANYAN_OK, "%s", err.message);
+        p.seed = 2;
+        CHECK(banyan_ivy_generate_hosts(&p, H, &c, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "sphere: same seed, different bytes");
+        CHECK(a && c && banyan_mesh_hash(a) != banyan_mesh_hash(c), "sphere: another seed, the same bytes");
+        /* Two threads on the one set (it is read-only): the serial bytes. */
+        job jobs[2];
+        pthread_t th[2];
+        for (int k = 0; k < 2; k++) {
+            jobs[k].p = p;
+            jobs[k].p.seed = k ? 2 : 1;
+            jobs[k].H = H;
+            jobs[k].hash = 0;
+        }
+        int started[2];
+        for (int k = 0; k < 2; k++) started[k] = pthread_create(&th[k], NULL, grow_job, &jobs[k]) == 0;
+        for (int k = 0; k < 2; k++)
+            if (started[k]) pthread_join(th[k], NULL);
+        CHECK(started[0] && started[1] && a && c && jobs[0].hash == banyan_mesh_hash(a) &&
+                  jobs[1].hash == banyan_mesh_hash(c),
+              "sphere: two threads on one host set differ from the serial plants");
+        banyan_mesh_free(a);
+        banyan_mesh_free(b);
+        banyan_mesh_free(c);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&sm);
+}
+
+static void cylinder_scene(void) {
+    const double r = 0.3, h = 2.0;
+    tm_mesh cm = {0};
+    tm_cylinder(&cm, 0, 0, 0, r, h, 32, 1);
+    banyan_host_mesh hm = tm_host(&cm, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    oracle o = {0};
+    o.convex = 1;
+    oracle_add(&o, &cm, v3_make(0, 0, 0));
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 300;
+    p.start[0] = r + 0.02;
+    p.start[1] = 0;
+    p.start[2] = 0.05;
+    if (H) {
+        report rp = grow_and_check("32-sided cylinder", &p, H, &o, 0, 0);
+        CHECK(rp.buds > 2000, "cylinder: only %d buds", rp.buds);
+        CHECK(rp.sectors >= 7, "cylinder: attached buds on %d of 8 sides", rp.sectors);
+        CHECK(rp.top_z > 1.0, "cylinder: highest attached bud at z = %g", rp.top_z);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&cm);
+}
+
+static void quad_scene(void) {
+    tm_mesh qm = {0};
+    tm_quad(&qm, -1.5, 1.5, 0, 0, 3.0);
+    banyan_host_mesh hm = tm_host(&qm, 0, 0, 0, BANYAN_HOST_OPEN);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    oracle o = {0};
+    oracle_add(&o, &qm, v3_make(0, 0, 0));
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 250;
+    p.start[0] = 0;
+    p.start[1] = -0.02;
+    p.start[2] = 0.05;
+    if (H) {
+        report r = grow_and_check("open 2-triangle wall", &p, H, &o, 0, 0);
+        CHECK(r.buds > 2000, "open wall: only %d buds", r.buds);
+        CHECK(r.top_z > 1.0, "open wall: highest attached bud at z = %g", r.top_z);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&qm);
+}
+
+/* Suzanne's stand-in (host_meshes.h): a head sphere with two eye spheres
+ * sunk into it, one closed mesh whose shells cross each other. The
+ * oracle takes each shell on its own (each is convex). */
+static void two_shell_scene(void) {
+    const double r = 0.5;
+    tm_mesh m = {0}, head = {0}, eye0 = {0}, eye1 = {0};
+    tm_two_shell_head(&m, r);
+    tm_uv_sphere(&head, 0, 0, r, r, 32, 16);
+    tm_uv_sphere(&eye0, -0.4 * r, -0.8 * r, 1.25 * r, 0.35 * r, 16, 8);
+    tm_uv_sphere(&eye1, 0.4 * r, -0.8 * r, 1.25 * r, 0.35 * r, 16, 8);
+    CHECK(m.nt == head.nt + eye0.nt + eye1.nt, "the head's shells");
+    banyan_host_mesh hm = tm_host(&m, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    oracle o = {0};
+    o.convex = 1;
+    oracle_add(&o, &head, v3_make(0, 0, 0));
+    oracle_add(&o, &eye0, v3_make(0, 0, 0));
+    oracle_add(&o, &eye1, v3_make(0, 0, 0));
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 300;
+    p.start[0] = 0;
+    p.start[1] = -r - 0.05; /* the face side, below the eyes */
+    p.start[2] = 0.3;
+    if (H) {
+        report rp = grow_and_check("head with two eyes", &p, H, &o, 0, 0);
+        CHECK(rp.buds > 2000, "head: only %d buds", rp.buds);
+        CHECK(rp.sectors >= 6, "head: attached buds on %d of 8 sides", rp.sectors);
+        CHECK(rp.top_z > 1.6 * r, "head: highest attached bud at z = %g", rp.top_z);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&m);
+    tm_free(&head);
+    tm_free(&eye0);
+    tm_free(&eye1);
+}
+
+/* Boxes and meshes in one set: the box wall of the presets with a sphere
+ * resting in front of it, started on the sphere. Suckers grip both. */
+static void mixed_scene(void) {
+    const double R = 0.4;
+    banyan_box wall = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
+    tm_mesh sm = {0};
+    tm_uv_sphere(&sm, 0, 0, 0, R, 32, 16);
+    const v3 c = v3_make(0.3, -0.12 - R, R);
+    banyan_host_mesh hm = tm_host(&sm, c.x, c.y, c.z, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(&wall, 1, &hm, 1);
+    obb wo;
+    banyan_error err = {0, ""};
+    CHECK(obb_from_box(&wall, 0, &wo, &err) == BANYAN_OK, "%s", err.message);
+    oracle o = {0};
+    o.convex = 1;
+    o.boxes = &wo;
+    o.nb = 1;
+    oracle_add(&o, &sm, c);
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 350;
+    p.start[0] = c.x;
+    p.start[1] = c.y - R - 0.05;
+    p.start[2] = 0.3;
+    if (H) {
+        report r = grow_and_check("box wall and a sphere", &p, H, &o, c.x, c.y);
+        CHECK(r.buds > 2000, "mixed: only %d buds", r.buds);
+        /* It climbs the sphere and goes on to the wall. */
+        banyan_ivy *iv = NULL;
+        int on_wall = 0, on_sphere = 0;
+        if (banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &err) == BANYAN_OK)
+            for (int32_t i = 0; i < iv->n; i++) {
+                const ivy_bud *b = &iv->buds[i];
+                if (!b->attached) continue;
+                if (fabs(obb_signed_distance(&wo, b->P)) <= p.sucker_length) on_wall++;
+                if (fabs(v3_dist(b->P, c) - R) <= p.sucker_length + 0.01) on_sphere++;
+            }
+        printf("  %-22s %d attached buds on the wall, %d on the sphere\n", "", on_wall, on_sphere);
+        CHECK(on_wall > 500 && on_sphere > 500, "mixed: %d buds on the wall, %d on the sphere", on_wall, on_sphere);
+        banyan_ivy_free(iv);
+    }
+    banyan_hosts_free(H);
+    oracle_free(&o);
+    tm_free(&sm);
+}
+
+/* ------------------------------------------------------------ boxes */
+
+static int same_bytes(const banyan_mesh *a, const banyan_mesh *b) {
+    if (!a || !b || a->vertex_count != b->vertex_count || a->index_count != b->index_count) return 0;
+    return banyan_mesh_hash(a) == banyan_mesh_hash(b) &&
+           !memcmp(a->positions, b->positions, sizeof(float) * 3 * a->vertex_count) &&
+           !memcmp(a->normals, b->normals, sizeof(float) * 3 * a->vertex_count) &&
+           !memcmp(a->indices, b->indices, sizeof(uint32_t) * a->index_count);
+}
+
+static void boxes_as_before(const char *preset, int32_t steps) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, preset);
+    banyan_ivy_params p;
+    banyan_box boxes[8];
+    uint32_t nb = 0;
+    banyan_error err = {0, ""};
+    banyan_ivy_params_init(&p);
+    if (test_load_preset(BANYAN_GEN_IVY, &p, path, boxes, 8, &nb, &err) != BANYAN_OK) {
+        CHECK(0, "%s: %s", preset, err.message);
+        return;
+    }
+    p.steps = steps;
+    banyan_mesh *a = NULL, *b = NULL, *c = NULL;
+    CHECK(banyan_ivy_generate(&p, boxes, nb, &a, &err) == BANYAN_OK, "%s: %s", preset, err.message);
+    banyan_hosts *H = make_set(boxes, nb, NULL, 0);
+    if (H) CHECK(banyan_ivy_generate_hosts(&p, H, &b, &err) == BANYAN_OK, "%s: %s", preset, err.message);
+    CHECK(same_bytes(a, b), "%s: boxes through the host set give other bytes", preset);
+    /* A mesh far from the plant changes nothing either. */
+    tm_mesh far = {0};
+    tm_uv_sphere(&far, 0, 0, 0, 0.5, 16, 8);
+    banyan_host_mesh hm = tm_host(&far, 40.0, 40.0, 5.0, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H2 = make_set(boxes, nb, &hm, 1);
+    if (H2) CHECK(banyan_ivy_generate_hosts(&p, H2, &c, &err) == BANYAN_OK, "%s: %s", preset, err.message);
+    CHECK(same_bytes(a, c), "%s: a far mesh host changed the bytes", preset);
+    printf("  %s (%d steps): box entry and host set %s\n", preset, steps, same_bytes(a, b) && same_bytes(a, c) ? "equal" : "DIFFER");
+    banyan_mesh_free(a);
+    banyan_mesh_free(b);
+    banyan_mesh_free(c);
+    banyan_hosts_free(H);
+    banyan_hosts_free(H2);
+    tm_free(&far);
+}
+
+/* The wall preset's box given as 12 triangles: the same kind of plant. */
+static void wall_as_mesh(void) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 300;
+    banyan_box wall = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
+    tm_mesh bm = {0};
+    tm_box(&bm, 0, 0, 0, 1.5, 0.1, 1.5);
+    banyan_host_mesh hm = tm_host(&bm, 0.0, 0.1, 1.5, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    banyan_error err = {0, ""};
+    banyan_ivy *a = NULL, *b = NULL;
+    CHECK(banyan_ivy_create(&p, &wall, 1, &a, &err) == BANYAN_OK && banyan_ivy_step(a, p.steps, &err) == BANYAN_OK,
+          "%s", err.message);
+    if (H)
+        CHECK(banyan_ivy_create_hosts(&p, H, &b, &err) == BANYAN_OK && banyan_ivy_step(b, p.steps, &err) == BANYAN_OK,
+              "%s", err.message);
+    if (a && b) {
+        banyan_ivy_stats sa, sb;
+        banyan_ivy_get_stats(a, &sa, &err);
+        banyan_ivy_get_stats(b, &sb, &err);
+        printf("  wall as box: %d buds, attached %.3f, %.1f m^2; as 12 triangles: %d buds, attached %.3f, %.1f m^2\n",
+               sa.buds, sa.attached_fraction, sa.covered_area, sb.buds, sb.attached_fraction, sb.covered_area);
+        CHECK(sb.buds > 0.8 * sa.buds && sb.buds < 1.25 * sa.buds, "wall mesh %d buds vs box %d", sb.buds, sa.buds);
+        CHECK(fabs(sb.attached_fraction - sa.attached_fraction) < 0.1, "wall mesh attached %g vs box %g",
+              sb.attached_fraction, sa.attached_fraction);
+        CHECK(fabs(sb.covered_area - sa.covered_area) < 0.25 * sa.covered_area, "wall mesh covers %g m^2, box %g",
+              sb.covered_area, sa.covered_area);
+    }
+    banyan_ivy_free(a);
+    banyan_ivy_free(b);
+    banyan_hosts_free(H);
+    tm_free(&bm);
+}
+
+static void bad_input(void) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    banyan_error err = {0, ""};
+    banyan_ivy *iv = (banyan_ivy *)&p; /* not NULL: the call must clear it */
+    CHECK(banyan_ivy_create_hosts(&p, NULL, &iv, &err) == BANYAN_E_INVALID_ARG && iv == NULL &&
+              strstr(err.message, "hosts"),
+          "NULL host set: %s", err.message);
+    banyan_mesh *m = (banyan_mesh *)&p;
+    CHECK(banyan_ivy_generate_hosts(&p, NULL, &m, &err) == BANYAN_E_INVALID_ARG && m == NULL, "NULL host set: %s",
+          err.message);
+    /* A start far from every mesh. */
+    tm_mesh sm = {0};
+    tm_uv_sphere(&sm, 0, 0, 0, 0.5, 16, 8);
+    banyan_host_mesh hm = tm_host(&sm, 0, 0, 0.5, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hm, 1);
+    p.start[0] = 5;
+    iv = (banyan_ivy *)&p;
+    if (H)
+        CHECK(banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_E_START_FAR && iv == NULL &&
+                  strstr(err.message, "hosts[0]"),
+              "far start: %s", err.message);
+    p.start[0] = 0.1;
+    p.alpha = 0.2;
+    iv = (banyan_ivy *)&p;
+    if (H)
+        CHECK(banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_E_RANGE && iv == NULL && strstr(err.message, "alpha"),
+              "bad alpha: %s", err.message);
+    banyan_hosts_free(H);
+    tm_free(&sm);
+}
+
+int main(int argc, char **argv) {
+    (void)argc;
+    (void)argv;
+    bad_input();
+    boxes_as_before("ivy_wall", 450);
+    boxes_as_before("ivy_pillar", 250);
+    wall_as_mesh();
+    sphere_scene();
+    cylinder_scene();
+    quad_scene();
+    two_shell_scene();
+    mixed_scene();
+    return check_done("test_ivy_hosts");
+}
