@@ -95,9 +95,10 @@ def name_hosts(message, names, n_boxes=0):
         i = int(m.group(2)) + (n_boxes if m.group(1) == "meshes" else 0)
         if i >= len(names) or not names[i]:
             return m.group(0)
-        return "host '%s'%s" % (names[i], ": box " if m.group(3) and m.group(1) == "hosts" and i < n_boxes
-                                else (": " if m.group(3) else ""))
-    return re.sub(r"\b(hosts|meshes)\[(\d+)\](\.)?", sub, message)
+        return "host '%s'%s" % (names[i], ": box " if m.group(4) and m.group(1) == "hosts" and i < n_boxes
+                                else (": " if m.group(4) else ""))
+    # "hosts[2] (mesh 0): ..." -> "host 'Rock': ..." (the object says which mesh).
+    return re.sub(r"\b(hosts|meshes)\[(\d+)\]( \(mesh \d+\))?(\.)?", sub, message)
 
 
 class HostSet:

@@ -53,16 +53,14 @@ def suzanne():
 
 
 def world_bvh(obj):
+    """BVHTree of the evaluated mesh's own triangles in world space (what
+    the add-on hands the library and Blender draws)."""
     dg = bpy.context.evaluated_depsgraph_get()
-    ev = obj.evaluated_get(dg)
-    me = ev.to_mesh()
-    try:
-        mw = obj.matrix_world
-        bvh = BVHTree.FromPolygons([mw @ v.co for v in me.vertices], [tuple(p.vertices) for p in me.polygons])
-        tris = sum(len(p.vertices) - 2 for p in me.polygons)
-    finally:
-        ev.to_mesh_clear()
-    return bvh, tris
+    me = obj.evaluated_get(dg).data
+    me.calc_loop_triangles()
+    mw = obj.matrix_world
+    bvh = BVHTree.FromPolygons([mw @ v.co for v in me.vertices], [tuple(t.vertices) for t in me.loop_triangles])
+    return bvh, len(me.loop_triangles)
 
 
 def distances(bvh, pts):

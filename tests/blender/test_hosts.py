@@ -1,4 +1,4 @@
-"""Host shape (issue 15): hosts are the objects' real surfaces.
+"""Host shape (issue 15): hosts are the objects' real surfaces (docs/addon.md, "Hosts from objects").
 
 On a UV sphere, Suzanne, a 32-vertex cylinder and an open plane, checked
 in Blender's world space with mathutils (BVHTree of each host's evaluated
@@ -72,37 +72,56 @@ def add_host(kind):
     return obj, closed, cursor
 
 
-def world_bvh(obj):
-    """A BVHTree of the object's evaluated surface in world space."""
+def world_triangles(obj):
+    """The object's evaluated mesh in world space, on the evaluated mesh's
+    own triangles (loop_triangles), which the add-on reads: Blender may split
+    a non-planar quad of the evaluated mesh on the other diagonal than a
+    to_mesh() copy (Suzanne's nose: up to 5 mm apart). (vertices, triangles)."""
     dg = bpy.context.evaluated_depsgraph_get()
-    ev = obj.evaluated_get(dg)
-    me = ev.to_mesh()
-    try:
-        mw = obj.matrix_world
-        verts = [mw @ v.co for v in me.vertices]
-        polys = [tuple(p.vertices) for p in me.polygons]
-    finally:
-        ev.to_mesh_clear()
-    return BVHTree.FromPolygons(verts, polys)
+    me = obj.evaluated_get(dg).data
+    me.calc_loop_triangles()
+    mw = obj.matrix_world
+    return [mw @ v.co for v in me.vertices], [tuple(t.vertices) for t in me.loop_triangles]
 
 
-# Three skewed directions: a point is inside when most rays cross the
-# surface an odd number of times (robust to a ray grazing an edge).
-RAY_DIRS = [Vector(d).normalized() for d in ((0.31, 0.17, 0.93), (-0.72, 0.41, -0.56), (0.23, -0.95, 0.2))]
+class Surface:
+    """A host's world-space triangles: a BVHTree for distances, the soup for winding()."""
+
+    def __init__(self, obj):
+        verts, tris = world_triangles(obj)
+        self.tree = BVHTree.FromPolygons(verts, tris)
+        self.soup = [(tuple(verts[a]), tuple(verts[b]), tuple(verts[c])) for a, b, c in tris]
+
+    def find_nearest(self, p):
+        return self.tree.find_nearest(p)
+
+
+def world_bvh(obj):
+    return Surface(obj)
+
+
+def winding(soup, p):
+    """Generalised winding number of the triangle soup at p (Jacobson et
+    al. 2013: the sum of signed solid angles / 4 pi): about 1 inside, 0
+    outside, and robust to Suzanne's holes (open eye sockets), separate
+    shells (its eyes) and self-intersections, where ray parity and the
+    nearest face's normal both go wrong."""
+    px, py, pz = p
+    total = 0.0
+    for (ax, ay, az), (bx, by, bz), (cx, cy, cz) in soup:
+        ax, ay, az, bx, by, bz, cx, cy, cz = ax - px, ay - py, az - pz, bx - px, by - py, bz - pz, cx - px, cy - py, cz - pz
+        la = math.sqrt(ax * ax + ay * ay + az * az)
+        lb = math.sqrt(bx * bx + by * by + bz * bz)
+        lc = math.sqrt(cx * cx + cy * cy + cz * cz)
+        det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+        div = la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb + \
+            (bx * cx + by * cy + bz * cz) * la
+        total += math.atan2(det, div)
+    return total / (2.0 * math.pi)
 
 
 def inside(bvh, p):
-    odd = 0
-    for d in RAY_DIRS:
-        o, n = Vector(p), 0
-        while n < 1000:
-            hit = bvh.ray_cast(o, d)
-            if hit[0] is None:
-                break
-            n += 1
-            o = hit[0] + d * 1e-6
-        odd += n & 1
-    return odd >= 2
+    return winding(bvh.soup, p) > 0.5
 
 
 def distance(bvh, p):
@@ -208,6 +227,10 @@ def test_ivy(kind):
     # The box path, for the record: how far the same ivy on the bounding box is.
     box_med = statistics.median(distance(bvh, q) for q in points(library_ivy(obj, cursor, H.BOX).skel_points))
     n_in = sum(inside(bvh, q) for q in buds) if closed else 0
+    if closed:  # the measure itself: the host's centre is inside, a point beside it is not
+        c = obj.matrix_world.translation
+        bt.check(inside(bvh, c) and not inside(bvh, c + Vector((0.0, -2.0, 0.0))),
+                 "%s: the winding number tells inside from outside" % kind)
     if closed:
         bt.check(n_in == 0, "ivy on %s: %d of %d skeleton points inside the host" % (kind, n_in, len(buds)))
     print("ivy on %-8s %5d buds, median distance %.4f m (box path %.4f m), max %.3f m, %d inside; operator %.2f s"
