@@ -7,6 +7,7 @@ it created. Works in `blender -b`: no 3D view, selection or cursor needed.
     objs = B.keyaki_tree(position=(0, 0, 0), levels=14)
     objs = B.keyaki_avenue(path=curve_obj, merged=False, spacing=10)
     objs = B.ivy(hosts=[wall], start=(0, 0, 0.1), steps=200, animate=True)
+    objs = B.ivy(hosts=[statue], host_shape='BOX')     # hosts: real surfaces unless 'BOX'
     objs = B.segment_twigs(preset="segments_demo")
 
 Parameters are the generator's table keys (`banyan <gen> --list`); dotted

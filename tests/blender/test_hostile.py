@@ -665,6 +665,14 @@ def run_api(gen, prop, value, kw, want, label=None):
         restore(snap, st)
 
 
+def closed_host_set():
+    """A host set already freed: using it is refused, not a crash."""
+    from banyan.core.hostset import HostSet
+    hs = HostSet(boxes=[S.Box.make((0, 0, 1), (1, 1, 1))])
+    hs.close()
+    return hs
+
+
 def removed_object():
     o = new_object("Gone", bpy.data.meshes.new("Gone"))
     bpy.data.objects.remove(o)
@@ -713,6 +721,10 @@ def test_api():
                     ("hosts", [S.Box.make((0, 0, 0), (0, 0, 0))], BanyanError),
                     ("hosts", [S.Box.make((NAN, 0, 0), (1, 1, 1))], BanyanError),
                     ("hosts", [S.Box.make((0, 0, 0), (1, 1, 1))] * 300, BanyanError),
+                    ("host_shape", "SPHERE", BanyanError), ("host_shape", "", BanyanError),
+                    ("host_shape", None, TypeError), ("host_shape", 5, TypeError), ("host_shape", "box", None),
+                    ("host_shape", "BOX", None), ("host_shape", "SURFACE", None),
+                    ("hosts", closed_host_set, BanyanError),
                 ]
             if gen == "roots":
                 common += [("germination", (NAN, 0, 0), BanyanError), ("germination", "abc", BanyanError),

@@ -109,7 +109,8 @@ def winding(soup, p):
     px, py, pz = p
     total = 0.0
     for (ax, ay, az), (bx, by, bz), (cx, cy, cz) in soup:
-        ax, ay, az, bx, by, bz, cx, cy, cz = ax - px, ay - py, az - pz, bx - px, by - py, bz - pz, cx - px, cy - py, cz - pz
+        ax, ay, az, bx, by, bz = ax - px, ay - py, az - pz, bx - px, by - py, bz - pz
+        cx, cy, cz = cx - px, cy - py, cz - pz
         la = math.sqrt(ax * ax + ay * ay + az * az)
         lb = math.sqrt(bx * bx + by * by + bz * bz)
         lc = math.sqrt(cx * cx + cy * cy + cz * cz)
@@ -288,7 +289,8 @@ def test_box_shape_unchanged():
     if objs:
         co = array("f", bytes(12 * len(objs[0].data.vertices)))
         objs[0].data.vertices.foreach_get("co", co)
-        bt.check(co.tobytes() == ref.positions.tobytes(), "roots (box): the operator's vertices are the box path's bytes")
+        bt.check(co.tobytes() == ref.positions.tobytes(),
+                 "roots (box): the operator's vertices are the box path's bytes")
     api_objs = B.strangler_roots(hosts=[cube], host_shape='BOX')
     co = array("f", bytes(12 * len(api_objs[0].data.vertices)))
     api_objs[0].data.vertices.foreach_get("co", co)
@@ -328,7 +330,7 @@ def test_evaluated_world_mesh():
     dg = bpy.context.evaluated_depsgraph_get()
     m = H.mesh_input_from_object(cube, dg)
     bt.check(m.triangle_count == 2 * 6 * 16, "subdivided cube: %d triangles (96 quads -> 192)" % m.triangle_count)
-    bt.check(abs(m.transform[3] - 1.0) < 1e-9 and abs(m.transform[7] - 2.0) < 1e-9 and abs(m.transform[11] - 3.0) < 1e-9,
+    bt.check(all(abs(m.transform[k] - v) < 1e-9 for k, v in ((3, 1.0), (7, 2.0), (11, 3.0))),
              "world translation in the transform")
     bt.check(abs(m.transform[0] - math.cos(math.pi / 4)) < 1e-6 and abs(m.transform[4] - math.sin(math.pi / 4)) < 1e-6,
              "world rotation in the transform")
