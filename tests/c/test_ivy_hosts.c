@@ -601,7 +601,18 @@ static void bad_input(void) {
         CHECK(banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_E_START_FAR && iv == NULL &&
                   strstr(err.message, "hosts[0]"),
               "far start: %s", err.message);
+    /* A start inside the closed mesh snaps out to clearance off it. */
     p.start[0] = 0.1;
+    p.start[2] = 0.45;
+    iv = NULL;
+    if (H && banyan_ivy_create_hosts(&p, H, &iv, &err) == BANYAN_OK) {
+        double d = hmesh_distance(&H->meshes[0], iv->buds[0].P, HUGE_VAL);
+        CHECK(d >= p.clearance * 0.999 && d < p.clearance * 1.01, "start inside: first bud %g m off the surface", d);
+        CHECK(iv->buds[0].P.x > 0.4, "start inside: snapped to (%g, %g, %g), not the near side", iv->buds[0].P.x,
+              iv->buds[0].P.y, iv->buds[0].P.z);
+    } else
+        CHECK(0, "start inside the mesh: %s", err.message);
+    banyan_ivy_free(iv);
     p.alpha = 0.2;
     iv = (banyan_ivy *)&p;
     if (H)
