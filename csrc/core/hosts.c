@@ -218,7 +218,14 @@ double hmesh_distance(const host_mesh *m, v3 p, double cap) {
     return n.dist;
 }
 
-double hmesh_udistance(const host_mesh *m, v3 p, double cap) {
+double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p) {
+    const uint32_t *t = m->tri + 3 * (size_t)prim;
+    int region;
+    v3 pl = v3_sub(p, m->origin);
+    return v3_dist(pl, closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region));
+}
+
+double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
     nq_ctx c;
     c.m = m;
     c.p = v3_sub(p, m->origin);
@@ -233,6 +240,7 @@ double hmesh_udistance(const host_mesh *m, v3 p, double cap) {
     struct RTCPointQueryContext qc;
     rtcInitPointQueryContext(&qc);
     rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, &c);
+    if (prim) *prim = c.prim;
     return c.prim == UINT32_MAX ? cap : sqrt(c.best2);
 }
 
@@ -376,6 +384,7 @@ typedef struct seg_ctx {
     v3 a, d;       /* local */
     v3 lo, hi;     /* the capsule's box at the first cap */
     double best;
+    int first;     /* stop at the first triangle below the cap */
 } seg_ctx;
 
 static bool seg_cb(struct RTCPointQueryFunctionArguments *q) {
@@ -383,11 +392,14 @@ static bool seg_cb(struct RTCPointQueryFunctionArguments *q) {
     tri3 T;
     if (!tri_get(c->m, q->primID, c->lo, c->hi, &T) || tri_far(&T, c->a, c->d, c->best)) return false;
     double dist = tri_seg_dist(&T, c->a, c->d);
-    if (dist < c->best) c->best = dist;
-    return false;
+    if (dist >= c->best) return false;
+    c->best = dist;
+    if (!c->first) return false;
+    q->query->radius = 0.0f; /* any distance below the cap will do: stop looking */
+    return true;
 }
 
-double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap) {
+double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int first) {
     /* In pieces of at most 2 cap (at least 1e-3 of the whole): a query
      * sphere round a long segment's middle would hold many triangles far
      * from it. */
@@ -395,12 +407,13 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap) {
     double L = v3_len(d), best = cap;
     int pieces = 1;
     if (cap < 1e30 && L > 2.0 * cap) pieces = L > 2000.0 * cap ? 1000 : (int)ceil(L / (2.0 * cap));
-    for (int k = 0; k < pieces && best > 0; k++) {
+    for (int k = 0; k < pieces && best > 0 && !(first && best < cap); k++) {
         seg_ctx c;
         c.m = m;
         c.a = v3_madd(al, d, (double)k / pieces);
         c.d = v3_scale(d, 1.0 / pieces);
         c.best = best;
+        c.first = first;
         capsule_box(c.a, c.d, best < 1e30 ? best : 1e30, &c.lo, &c.hi);
         v3 mid = v3_madd(c.a, c.d, 0.5);
         struct RTCPointQuery q;

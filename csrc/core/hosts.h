@@ -57,11 +57,20 @@ double hmesh_distance(const host_mesh *m, v3 p, double cap);
  * costs rays on a miss, or on every query of a mesh signed by rays): for a
  * caller that knows which side p is on, e.g. a point within the free ball
  * of a point known to be outside. */
-double hmesh_udistance(const host_mesh *m, v3 p, double cap);
+double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim);
+/* Distance from p to triangle prim of m. A caller asking many nearby
+ * points keeps the last nearest triangle (prim of hmesh_nearest, or of
+ * hmesh_udistance above when not NULL) and caps the next query at its
+ * distance (times 1 + 1e-6: Embree's radius is a float): the nearest
+ * surface is no farther, and a small query sphere visits few leaves. */
+double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p);
 /* Least unsigned distance from the segment a-b to m's surface, exact below
- * cap (> 0), cap beyond. Exact per triangle (no sphere tracing): one query
- * however near the segment runs to the surface. */
-double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap);
+ * cap (> 0), cap beyond. Exact per triangle (no sphere tracing): a few
+ * queries however near the segment runs to the surface. With `first`, the
+ * distance of the first triangle found nearer than cap instead (a real
+ * distance of the segment, not always the least): for a caller that only
+ * asks whether the segment comes within cap. */
+double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int first);
 /* A sphere of radius r moved from p by d: the first t in [0, 1] at which,
  * getting nearer to a triangle, it would come within r - eps of it (t is
  * where it is at r: free); 1 when it never does. *normal (when t < 1): the

@@ -8,10 +8,13 @@
  * closer than r to any host.
  * Boxes come first, each query exactly as before mesh hosts existed: the
  * distance to a convex box is convex along a line, which makes the traces
- * exact up to bisection. Meshes (core/hosts.h) are not convex; their
- * queries rest on the distance being 1-Lipschitz instead: sphere tracing
- * for moves and segments, the Lipschitz ball for nearby-obstacle bounds.
- * Each mesh query is capped at the range that can change the answer. */
+ * exact up to bisection. A mesh (core/hosts.h) is not convex, but each of
+ * its triangles is: moves and segments are taken exactly per triangle
+ * (hmesh_sweep_exact, hmesh_segment_distance), so a sphere pressed against
+ * a mesh slides along it as along a box, which sphere tracing on the
+ * mesh's (1-Lipschitz, non-convex) distance cannot do. Nearby-obstacle
+ * bounds use the Lipschitz ball. Each mesh query is capped at the range
+ * that can change the answer. */
 #include "roots_internal.h"
 
 /* Signed distance to the box and the outward unit normal of its distance
@@ -58,10 +61,27 @@ static inline double box_dist(const obb *o, v3 p) {
 
 #define MESH_SIGN_REACH 2.0
 
+/* Queries go to the nearest triangle of the last point asked on mesh j
+ * first: the surface is no farther than it, so the query's cap shrinks to
+ * that (Embree then visits the few leaves round it). Embree holds the
+ * query's centre and radius in float: the margin covers their rounding,
+ * and a query that still finds nothing is asked again at the full cap. */
+static inline double hint_cap(const roots_world *w, uint32_t j, v3 p, double cap) {
+    uint32_t h = w->hint[j];
+    if (h == UINT32_MAX) return cap;
+    const host_mesh *m = &w->meshes[j];
+    v3 l = v3_sub(p, m->origin);
+    double d = hmesh_prim_distance(m, h, p);
+    double c = d * (1.0 + 1e-6) + 1e-6 * (fabs(l.x) + fabs(l.y) + fabs(l.z)) + 1e-9;
+    return c < cap ? c : cap;
+}
+
 /* Signed distance to mesh j, exact where it is below cap (> 0) or
- * negative; cap, a lower bound, where it is not. *n (when non-NULL) gets
- * the distance-field normal when the value is below cap. A point outside
- * the mesh's bounds grown by cap is farther than cap from it. */
+ * negative (without n, a point deeper inside than MESH_SIGN_REACH r or cap
+ * may get that depth instead: an upper bound); cap, a lower bound, where
+ * it is not. *n (when non-NULL) gets the distance-field normal when the
+ * value is below cap. A point outside the mesh's bounds grown by cap is
+ * farther than cap from it. */
 static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 *n) {
     const host_mesh *m = &w->meshes[j];
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
@@ -69,28 +89,31 @@ static double mesh_clear(const roots_world *w, uint32_t j, v3 p, double cap, v3 
      * one that finds a surface, with its pseudonormal: look at least
      * MESH_SIGN_REACH r far, where the roots mostly are. */
     double q = cap > MESH_SIGN_REACH * w->r ? cap : MESH_SIGN_REACH * w->r;
-    if (!n) {
-        double d = hmesh_distance(m, p, q);
-        if (d <= -q) d = hmesh_distance(m, p, HUGE_VAL); /* deeper inside than that: how deep */
-        return d < cap ? d : cap;
-    }
+    double qh = hint_cap(w, j, p, q);
     mesh_near nr;
-    if (!hmesh_nearest(m, p, q, &nr)) {
+    if (!(qh < q && hmesh_nearest(m, p, qh, &nr)) && !hmesh_nearest(m, p, q, &nr)) {
         if (nr.dist >= 0) return cap;
-        hmesh_nearest(m, p, HUGE_VAL, &nr);
+        if (!n) return nr.dist; /* deeper inside than q: -q bounds it, which is all a free test needs */
+        hmesh_nearest(m, p, HUGE_VAL, &nr); /* how deep, and which way out */
     }
+    w->hint[j] = nr.prim;
     if (nr.dist >= cap) return cap;
-    *n = nr.normal;
+    if (n) *n = nr.normal;
     return nr.dist;
 }
 
 /* Unsigned distance to mesh j from a point known to be outside it (or on
  * either side of an open mesh): exact below cap, cap beyond. No inside
  * test, which costs rays (hmesh_udistance). A point within the free ball
- * of a point known to be outside is outside: sphere tracing knows. */
+ * of a point known to be outside is outside too. */
 static double mesh_uclear(const roots_world *w, uint32_t j, v3 p, double cap) {
     if (hosts_far_from(w->set, w->n_hosts + j, p, cap)) return cap;
-    return hmesh_udistance(&w->meshes[j], p, cap);
+    uint32_t prim = UINT32_MAX;
+    double hc = hint_cap(w, j, p, cap), d = hc < cap ? hmesh_udistance(&w->meshes[j], p, hc, &prim) : cap;
+    if (prim == UINT32_MAX) d = hmesh_udistance(&w->meshes[j], p, cap, &prim);
+    if (prim == UINT32_MAX) return cap;
+    w->hint[j] = prim;
+    return d < cap ? d : cap;
 }
 
 /* The cap for a mesh query that only matters below `best` and `range`:
@@ -322,7 +345,7 @@ double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop) {
      * when nothing is nearer. */
     for (uint32_t j = 0; j < w->n_meshes && best >= stop && stop > 0; j++) {
         if (hosts_far_from(w->set, w->n_hosts + j, a, L + stop)) continue;
-        double c = hmesh_segment_distance(&w->meshes[j], a, b, stop);
+        double c = hmesh_segment_distance(&w->meshes[j], a, b, stop, 1);
         if (c < best) best = c;
     }
     return best;

@@ -16,6 +16,7 @@
 void roots_net_free(roots_net *net) {
     if (!net) return;
     banyan_hosts_free(net->own_hosts);
+    free(net->w.hint);
     free(net->M);
     free(net->M_grown);
     free(net->K);
@@ -122,6 +123,11 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
     net->w.meshes = hosts->meshes;
     net->w.n_meshes = hosts->n_meshes;
     net->w.set = hosts;
+    if (hosts->n_meshes) {
+        net->w.hint = malloc(sizeof(uint32_t) * hosts->n_meshes);
+        if (!net->w.hint) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u mesh hosts", hosts->n_meshes);
+        memset(net->w.hint, 0xff, sizeof(uint32_t) * hosts->n_meshes);
+    }
     net->w.ground = p->ground;
     net->w.ground_z = p->ground_z;
     net->w.r = net->r;

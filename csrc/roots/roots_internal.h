@@ -28,6 +28,8 @@ typedef struct roots_world {
     const host_mesh *meshes;  /* mesh hosts, numbered n_hosts + j */
     uint32_t n_meshes;
     const banyan_hosts *set;  /* the host set (world bounds per host) */
+    uint32_t *hint;           /* per mesh: nearest triangle of the last point asked (UINT32_MAX: none),
+                                 scratch of one net (see hint_cap in collide.c) */
     int ground;
     double ground_z;
     double r;
@@ -39,7 +41,9 @@ typedef struct roots_world {
  * index, or -1 for the ground (-2 when nothing was found). Exact below
  * range; at or above it the value is a lower bound (boxes and the ground
  * are always exact; a mesh is only searched within range, which keeps its
- * queries cheap). */
+ * queries cheap). Without normal and which, a point deep inside a mesh
+ * (deeper than max(range, 2 r)) may get an upper bound of its negative
+ * clearance: enough for free tests and the turn's skipping. */
 double world_clearance_in(const roots_world *w, v3 p, int with_ground, double range, v3 *normal, int *which);
 static inline double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which) {
     return world_clearance_in(w, p, with_ground, HUGE_VAL, normal, which);

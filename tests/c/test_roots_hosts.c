@@ -443,8 +443,86 @@ static void test_refusals(void) {
     tm_free(&t);
 }
 
+/* The exact mesh queries the roots use (core/hosts.c), against dense
+ * sampling with the nearest-point query: a segment's distance is the least
+ * over its points; a swept sphere is free before its contact t and touches
+ * at t; pressed against a face and moved along it, it slides. */
+static void test_exact_queries(void) {
+    tm_mesh shapes[2] = {{0}, {0}}, flat = {0};
+    tm_cylinder(&shapes[0], 0, 0, 0, 0.4, 3.0, 32, 3);
+    tm_uv_sphere(&shapes[1], 0, 0, 1.0, 1.0, 32, 16);
+    tm_box(&flat, 0, 0, 1, 0.5, 0.5, 1);
+    pcg32 g;
+    pcg32_seed(&g, 7, 1);
+    long seg_bad = 0, sweep_free_bad = 0, sweep_touch_bad = 0, contacts = 0, n = 0;
+    for (int s = 0; s < 2; s++) {
+        banyan_host_mesh hm = tm_host(&shapes[s], 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+        banyan_hosts *H = make(NULL, 0, &hm, 1);
+        if (!H) continue;
+        const host_mesh *m = &H->meshes[0];
+        for (int k = 0; k < 300; k++) {
+            /* From around the shape towards somewhere near its middle, half of them. */
+            v3 a = v3_make(rng_range(&g, -1.2, 1.2), rng_range(&g, -1.2, 1.2), rng_range(&g, -0.2, 2.4));
+            v3 aim = k % 2 ? v3_make(rng_range(&g, -0.5, 0.5), rng_range(&g, -0.5, 0.5), rng_range(&g, 0.5, 1.5))
+                           : v3_add(a, v3_make(rng_range(&g, -0.6, 0.6), rng_range(&g, -0.6, 0.6),
+                                               rng_range(&g, -0.6, 0.6)));
+            v3 b = v3_lerp(a, aim, rng_range(&g, 0.2, 1.0));
+            if (hmesh_distance(m, a, HUGE_VAL) < 0.05) continue; /* start outside, free of r = 0.05 */
+            n++;
+            /* Segment: the sampled least within one spacing above, never below. */
+            double sd = hmesh_segment_distance(m, a, b, HUGE_VAL, 0), least = 1e300, L = v3_dist(a, b);
+            for (int i = 0; i <= 1000; i++) {
+                double d = fabs(hmesh_distance(m, v3_lerp(a, b, i / 1000.0), HUGE_VAL));
+                if (d < least) least = d;
+            }
+            if (least < sd - 1e-6 || least > sd + L / 1000.0 + 1e-6) seg_bad++;
+            /* `first` with cap 0.1: below it when the least is, and then no less than the least. */
+            double sf = hmesh_segment_distance(m, a, b, 0.1, 1);
+            if ((sd < 0.1) != (sf < 0.1) || (sf < 0.1 && sf < sd - 1e-12)) seg_bad++;
+            /* Sweep of r = 0.05 from a by b - a. */
+            v3 nrm;
+            double t = hmesh_sweep_exact(m, a, v3_sub(b, a), 0.05, 1e-11, &nrm);
+            for (int i = 0; i < 200; i++) {
+                double u = t * i / 200.0;
+                if (fabs(hmesh_distance(m, v3_lerp(a, b, u), HUGE_VAL)) < 0.05 - 1e-6) {
+                    sweep_free_bad++;
+                    break;
+                }
+            }
+            if (t < 1.0) {
+                contacts++;
+                if (fabs(fabs(hmesh_distance(m, v3_lerp(a, b, t), HUGE_VAL)) - 0.05) > 1e-6) sweep_touch_bad++;
+            }
+        }
+        banyan_hosts_free(H);
+    }
+    printf("  exact queries: %ld segments and sweeps (%ld contacts)\n", n, contacts);
+    CHECK(seg_bad == 0, "segment distance disagrees with dense sampling %ld times", seg_bad);
+    CHECK(sweep_free_bad == 0, "swept sphere closer than r before its contact %ld times", sweep_free_bad);
+    CHECK(sweep_touch_bad == 0, "swept sphere not touching at its contact %ld times", sweep_touch_bad);
+    CHECK(contacts > 100, "only %ld sweeps met the surface", contacts);
+    /* Sliding: a sphere r from the face x = 0.5 of a 12-triangle box moved
+     * along the face (across its diagonal edges) is not stopped; moved in,
+     * it stops at once. */
+    banyan_host_mesh fm = tm_host(&flat, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make(NULL, 0, &fm, 1);
+    if (H) {
+        v3 nrm, p = v3_make(0.5 + 0.05, -0.3, 0.2);
+        CHECK(hmesh_sweep_exact(&H->meshes[0], p, v3_make(0, 0.6, 1.5), 0.05, 1e-11, &nrm) == 1.0,
+              "a sphere pressed against a face does not slide along it");
+        double t = hmesh_sweep_exact(&H->meshes[0], p, v3_make(-0.2, 0.1, 0), 0.05, 1e-11, &nrm);
+        CHECK(t < 1e-9 && nrm.x > 0.999, "a sphere pressed against a face and moved in: t = %g, n = (%g, %g, %g)", t,
+              nrm.x, nrm.y, nrm.z);
+        banyan_hosts_free(H);
+    }
+    tm_free(&shapes[0]);
+    tm_free(&shapes[1]);
+    tm_free(&flat);
+}
+
 int main(int argc, char **argv) {
     const char *dir = argc > 1 ? argv[1] : NULL;
+    test_exact_queries();
     test_boxes_unchanged();
     test_refusals();
     test_cylinder(dir);
