@@ -2,10 +2,12 @@
 it created. Works in `blender -b`: no 3D view, selection or cursor needed.
 
     import banyan.api as B
-    objs = B.strangler_roots(hosts=[bpy.data.objects["Cube"]], sides=8)
+    objs = B.strangler_roots(hosts=[bpy.data.objects["Cube"]], sides=8)   # on its real surface
+    objs = B.strangler_roots(hosts=[cube], host_shape='BOX')                # on its bounding box
     objs = B.keyaki_tree(position=(0, 0, 0), levels=14)
     objs = B.keyaki_avenue(path=curve_obj, merged=False, spacing=10)
     objs = B.ivy(hosts=[wall], start=(0, 0, 0.1), steps=200, animate=True)
+    objs = B.ivy(hosts=[statue], host_shape='BOX')     # hosts: real surfaces unless 'BOX'
     objs = B.segment_twigs(preset="segments_demo")
 
 Parameters are the generator's table keys (`banyan <gen> --list`); dotted
@@ -19,7 +21,9 @@ Errors. Nothing is ever left in the scene when a call raises:
     value: a parameter out of range or of the wrong type, an unknown key,
     a missing or malformed preset (PresetNotFound, also a
     FileNotFoundError), a host that cannot be one (not a mesh, no
-    vertices, zero scale, non-finite; the message names the object), a
+    vertices, zero scale, non-finite; with host_shape='SURFACE' no
+    triangles, a NaN or infinite vertex, a singular matrix, too many
+    triangles; the message names the object), a
     bad path or curve, and any failure of the library itself;
   - TypeError for an argument of the wrong kind: hosts not a list of mesh
     objects / Box, params not a Params, values not a mapping, collection
@@ -37,6 +41,7 @@ from . import hosts as H
 from . import presets as PR
 from .core import generators as G
 from .core.errors import BanyanError
+from .core.hostset import HostSet
 from .core.params import Params
 from .core.structs import Box
 
@@ -117,22 +122,59 @@ def _single(name, d, collection, uv, created):
 # ------------------------------------------------------------------ roots
 
 
+def _preset_boxes(gen, preset):
+    from .core.params import preset_hosts
+    path = PR.find(gen, preset)
+    return preset_hosts(PR.read(path), path)
+
+
+def _check_hosts(hosts):
+    if hosts is None:
+        return []
+    if isinstance(hosts, (str, bytes, Box, bpy.types.bpy_struct)) or not hasattr(hosts, "__iter__"):
+        raise TypeError("hosts must be a list of objects or Box, or a HostSet, not %s" % type(hosts).__name__)
+    hosts = list(hosts)
+    for i, h in enumerate(hosts):
+        if not isinstance(h, (Box, bpy.types.Object)):
+            raise TypeError("hosts[%d] must be an object or a Box, not %s" % (i, type(h).__name__))
+    return hosts
+
+
+def grow_on_hosts(gen, hosts, host_shape, preset, grow):
+    """grow(hosts_arg) on `hosts` as `host_shape` says, and its result.
+    hosts: a list of objects and core.structs.Box, or a ready
+    core.hostset.HostSet (used as is; the caller frees it).
+    'BOX': every object as its oriented bounding box (hosts.py); the
+    preset's boxes when no hosts are given. 'SURFACE': objects as their
+    evaluated meshes in a host set built here once and freed after, boxes
+    staying boxes (numbered first); with no objects among the hosts this is
+    the box path, to the byte."""
+    if isinstance(hosts, HostSet):
+        return grow(hosts)
+    shape = H.check_shape(host_shape)
+    hosts = _check_hosts(hosts)
+    if shape == H.BOX or all(isinstance(h, Box) for h in hosts):
+        boxes = _boxes(hosts)
+        if not boxes and preset:
+            boxes = _preset_boxes(gen, preset)
+        return H.generate_named(lambda: grow(boxes), boxes)
+    with H.surface_host_set(hosts) as hs:
+        return grow(hs)
+
+
 def strangler_roots(hosts=(), *, preset=None, params=None, germination=None, collection=None,
-                    name="Banyan Roots", uv=True, values=None, **kw):
-    """Roots around `hosts` (mesh objects or core.structs.Box). germination:
-    a world point, or None for the generator's own choice (top centre of
-    the first host). Hosts from the preset are used when none are given."""
+                    name="Banyan Roots", uv=True, host_shape=H.SURFACE, values=None, **kw):
+    """Roots around `hosts` (objects, core.structs.Box, or a HostSet).
+    host_shape: 'SURFACE' (the objects' evaluated meshes) or 'BOX' (their
+    oriented bounding boxes). germination: a world point, or None for the
+    generator's own choice (above the first host). Hosts from the preset
+    are used when none are given."""
     _collection(collection)
     _check_name(name)
     p = make_params("roots", preset, params, values, **kw)
-    boxes = _boxes(hosts)
-    if not boxes and preset:
-        from .core.params import preset_hosts
-        path = PR.find("roots", preset)
-        boxes = preset_hosts(PR.read(path), path)
     if germination is not None:
         set_roots_germination(p, germination)
-    d = H.generate_named(lambda: G.roots(p, boxes), boxes)
+    d = grow_on_hosts("roots", hosts, host_shape, preset, lambda h: G.roots(p, h))
     return _guard(lambda c: _single(name, d, collection, uv, c))
 
 
@@ -264,10 +306,12 @@ def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collecti
 
 # -------------------------------------------------------------------- ivy
 def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
-        animate=False, frame_start=None, frame_end=None, values=None, **kw):
-    """Ivy over hosts from `start` (snapped by the library to the nearest
-    host). animate=True adds a Geometry Nodes modifier revealing the plant
-    by birth_step over [frame_start, frame_end] (default: the scene's)."""
+        animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, values=None, **kw):
+    """Ivy over hosts (objects, core.structs.Box, or a HostSet; host_shape
+    as strangler_roots) from `start` (snapped by the library to the
+    nearest host). animate=True adds a Geometry Nodes modifier revealing
+    the plant by birth_step over [frame_start, frame_end] (default: the
+    scene's)."""
     _collection(collection)
     _check_name(name)
     sc = bpy.context.scene
@@ -277,12 +321,7 @@ def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collectio
         p.set("start", start)
     if steps is not None:
         p.set("steps", steps)
-    boxes = _boxes(hosts)
-    if not boxes and preset:
-        from .core.params import preset_hosts
-        path = PR.find("ivy", preset)
-        boxes = preset_hosts(PR.read(path), path)
-    d = H.generate_named(lambda: G.ivy(p, boxes), boxes)
+    d = grow_on_hosts("ivy", hosts, host_shape, preset, lambda h: G.ivy(p, h))
 
     def build(created):
         objs = _single(name, d, collection, uv, created)

@@ -105,7 +105,7 @@ def bare(d, full=False, evaluate=False):
 def setup_roots():
     cube = bpy.data.objects["Cube"]
     return [cube], lambda: G.roots(Params("roots"), H.boxes_from_objects([cube])), \
-        lambda **kw: bpy.ops.mesh.banyan_roots(**kw)
+        lambda **kw: bpy.ops.mesh.banyan_roots(host_shape='BOX', **kw)
 
 
 def setup_ivy():
@@ -116,7 +116,7 @@ def setup_ivy():
     p = Params("ivy")
     p.set("steps", IVY_STEPS)
     return [cube], lambda: G.ivy(p, H.boxes_from_objects([cube])), \
-        lambda **kw: bpy.ops.mesh.banyan_ivy(start_at_cursor=False, steps=IVY_STEPS, **kw)
+        lambda **kw: bpy.ops.mesh.banyan_ivy(host_shape='BOX', start_at_cursor=False, steps=IVY_STEPS, **kw)
 
 
 def setup_boulevard(merged=False):

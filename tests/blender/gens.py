@@ -44,6 +44,12 @@ def library_mesh(gen, hosts_objs, kwargs):
         if k in p.by_name:
             p.set(k, v)
     cur = tuple(bpy.context.scene.cursor.location)
+    if gen in ("roots", "ivy") and kwargs.get("host_shape", "SURFACE") == "SURFACE":
+        with H.surface_host_set(hosts_objs) as hs:  # what the operators grow on by default
+            if gen == "roots":
+                return G.roots(p, hs)
+            p.set("start", H.closest_on_set(hs, cur))
+            return G.ivy(p, hs)
     boxes = H.boxes_from_objects(hosts_objs)
     if gen == "roots":
         return G.roots(p, boxes)

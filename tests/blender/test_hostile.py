@@ -83,11 +83,13 @@ class Spy:
     texts that reached banyan_param_set_text. Every call site looks the C
     functions up on the loaded CDLL, so wrapping them there sees all."""
     MAKERS = ("banyan_roots_generate", "banyan_keyaki_generate", "banyan_avenue_generate",
-              "banyan_ivy_generate", "banyan_ivy_mesh", "banyan_segments_generate", "banyan_tube_generate")
+              "banyan_ivy_generate", "banyan_ivy_mesh", "banyan_segments_generate", "banyan_tube_generate",
+              "banyan_roots_generate_hosts", "banyan_ivy_generate_hosts")
     ARG = type(C.byref(C.c_int()))
 
     def __init__(self):
         self.live, self.made, self.freed, self.bad_free, self.texts = set(), 0, 0, 0, []
+        self.sets_live, self.sets_made, self.sets_bad_free = set(), 0, 0  # banyan_hosts handles
         lib = L.load()
         for name in self.MAKERS:
             real = L.symbol(name)
@@ -95,6 +97,21 @@ class Spy:
                 setattr(lib, name, Wrapped(real, after=self._made))
         lib.banyan_mesh_free = Wrapped(lib.banyan_mesh_free, before=self._free)
         lib.banyan_param_set_text = Wrapped(lib.banyan_param_set_text, after=self._set)
+        lib.banyan_hosts_create = Wrapped(lib.banyan_hosts_create, after=self._set_made)
+        lib.banyan_hosts_free = Wrapped(lib.banyan_hosts_free, before=self._set_free)
+
+    def _set_made(self, args, status):
+        h = args[4]._obj.value
+        if h:
+            self.sets_live.add(h)
+            self.sets_made += 1
+
+    def _set_free(self, args):
+        h = args[0].value if isinstance(args[0], C.c_void_p) else args[0]
+        if h in self.sets_live:
+            self.sets_live.remove(h)
+        elif h:
+            self.sets_bad_free += 1
 
     def _made(self, args, status):
         for a in args:
@@ -463,14 +480,21 @@ SCENES = [
     ("camera active, cube selected", HOSTS_OPS,
      lambda: select([cube(), bpy.data.objects["Camera"]], bpy.data.objects["Camera"]), {}, ("ok", None)),
     ("zero-scale host", HOSTS_OPS, lambda: setattr(cube(), "scale", (0, 0, 0)), {}, ("error report", "'Cube'")),
-    ("host scaled 1e-9", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3), {}, ("error report", "'Cube'")),
-    ("flat host (scale z = 0)", HOSTS_OPS, lambda: setattr(cube(), "scale", (1, 1, 0)), {}, ("ok", None)),
+    # A 2 nm cube has a surface (the library takes any invertible transform); its box is below the box floor.
+    ("host scaled 1e-9", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3), {}, ("ok", None)),
+    ("host scaled 1e-9, bounding box", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3),
+     {"host_shape": 'BOX'}, ("error report", "'Cube'")),
+    # Host shape Surface: a singular world matrix has no surface; the box is thickened.
+    ("flat host (scale z = 0)", HOSTS_OPS, lambda: setattr(cube(), "scale", (1, 1, 0)), {}, ("error report", "'Cube'")),
+    ("flat host (scale z = 0), bounding box", HOSTS_OPS, lambda: setattr(cube(), "scale", (1, 1, 0)),
+     {"host_shape": 'BOX'}, ("ok", None)),
     ("host at a NaN location", HOSTS_OPS, lambda: setattr(cube(), "location", (NAN, 0, 0)), {},
      ("error report", "'Cube'")),
     ("host with inf scale", HOSTS_OPS, lambda: setattr(cube(), "scale", (INF, 1, 1)), {}, ("error report", "'Cube'")),
     ("host 1e30 m away", HOSTS_OPS, lambda: setattr(cube(), "location", (1e30, 0, 0)), {}, ("error report", "'Cube'")),
-    # Blender's bound box skips a NaN vertex: the host is the box of the others.
-    ("host with a NaN vertex", HOSTS_OPS, nan_vertex, {}, ("ok", None)),
+    # The surface has a NaN vertex: refused. Blender's bound box skips it: the box of the others.
+    ("host with a NaN vertex", HOSTS_OPS, nan_vertex, {}, ("error report", "'Cube'")),
+    ("host with a NaN vertex, bounding box", HOSTS_OPS, nan_vertex, {"host_shape": 'BOX'}, ("ok", None)),
     ("host whose vertices are all NaN", HOSTS_OPS, all_nan_vertices, {}, ("error report", "'Cube'")),
     ("sheared host (rotated child of a non-uniformly scaled parent)", HOSTS_OPS, lambda: sheared(cube()), {},
      ("ok", None)),
@@ -641,6 +665,14 @@ def run_api(gen, prop, value, kw, want, label=None):
         restore(snap, st)
 
 
+def closed_host_set():
+    """A host set already freed: using it is refused, not a crash."""
+    from banyan.core.hostset import HostSet
+    hs = HostSet(boxes=[S.Box.make((0, 0, 1), (1, 1, 1))])
+    hs.close()
+    return hs
+
+
 def removed_object():
     o = new_object("Gone", bpy.data.meshes.new("Gone"))
     bpy.data.objects.remove(o)
@@ -689,6 +721,10 @@ def test_api():
                     ("hosts", [S.Box.make((0, 0, 0), (0, 0, 0))], BanyanError),
                     ("hosts", [S.Box.make((NAN, 0, 0), (1, 1, 1))], BanyanError),
                     ("hosts", [S.Box.make((0, 0, 0), (1, 1, 1))] * 300, BanyanError),
+                    ("host_shape", "SPHERE", BanyanError), ("host_shape", "", BanyanError),
+                    ("host_shape", None, TypeError), ("host_shape", 5, TypeError), ("host_shape", "box", None),
+                    ("host_shape", "BOX", None), ("host_shape", "SURFACE", None),
+                    ("hosts", closed_host_set, BanyanError),
                 ]
             if gen == "roots":
                 common += [("germination", (NAN, 0, 0), BanyanError), ("germination", "abc", BanyanError),
@@ -751,6 +787,7 @@ def loop(idname, kw, bad, n, setup=lambda: None):
     bpy.data.orphans_purge(do_local_ids=True, do_linked_ids=True, do_recursive=True)
     base_counts, base_names, st = counts(), snapshot(), state()
     made0, live0 = SPY.made, len(SPY.live)
+    sets0, sets_live0 = SPY.sets_made, len(SPY.sets_live)
     rss0 = rss_mb()
     finished = errors = 0
     for i in range(n):
@@ -770,6 +807,9 @@ def loop(idname, kw, bad, n, setup=lambda: None):
     bpy.data.orphans_purge(do_local_ids=True, do_linked_ids=True, do_recursive=True)
     ok = counts() == base_counts and snapshot() == base_names
     bt.check(ok, "%s: datablocks back to baseline after delete + purge: %s vs %s" % (what, counts(), base_counts))
+    bt.check(SPY.sets_made - sets0 >= (finished if idname in HOSTS_OPS else 0) and len(SPY.sets_live) == sets_live0,
+             "%s: %d host sets built for %d finished calls, %d still live" % (
+                 what, SPY.sets_made - sets0, finished, len(SPY.sets_live) - sets_live0))
     bt.check(SPY.made - made0 == finished and len(SPY.live) == live0,
              "%s: %d library meshes made for %d finished calls, %d still live" % (
                  what, SPY.made - made0, finished, len(SPY.live) - live0))
@@ -791,6 +831,9 @@ def test_library_meshes_freed():
     bt.check(not SPY.live, "every library mesh freed: %d made, %d freed, %d still live" % (
         SPY.made, SPY.freed, len(SPY.live)))
     bt.check(SPY.bad_free == 0, "no free of a mesh the library did not hand out (%d)" % SPY.bad_free)
+    bt.check(SPY.sets_made > 100 and not SPY.sets_live and SPY.sets_bad_free == 0,
+             "every host set freed: %d built, %d still live, %d bad frees" % (
+                 SPY.sets_made, len(SPY.sets_live), SPY.sets_bad_free))
 
 
 def write_results():

@@ -125,8 +125,8 @@ def test_bad_values(gen):
     # A cross-field or host error after the params are fine (hosts for roots / ivy).
     if gen in ("roots", "ivy"):
         cube = bpy.data.objects["Cube"]
-        cube.scale = (1.0, 1.0, 0.0)  # a flat host is thickened, not refused
-        bt.check(gens.op(gen)(**gens.KWARGS[gen]) == {'FINISHED'}, "%s: flat host works" % gen)
+        cube.scale = (1.0, 1.0, 0.0)  # a flat host box is thickened, not refused
+        bt.check(gens.op(gen)(host_shape='BOX', **gens.KWARGS[gen]) == {'FINISHED'}, "%s: flat host works" % gen)
 
 
 def test_undo(gen):

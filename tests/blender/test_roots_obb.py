@@ -105,6 +105,11 @@ def test_germination_cursor():
                                                    zip(p.get("germination"), (0.2, 0.1, 1.4))),
              "cursor became the germination point")
     # Cursor inside the host: the library refuses, the scene stays as it was.
+    # (The run above selected its roots; the cube is the host again.)
+    for o in bpy.context.selected_objects:
+        o.select_set(False)
+    cube.select_set(True)
+    bpy.context.view_layer.objects.active = cube
     bpy.context.scene.cursor.location = (0.0, 0.0, 0.0)
     state = bt.scene_state()
     try:

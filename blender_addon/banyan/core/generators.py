@@ -9,6 +9,7 @@ from . import args as A
 from . import lib as L
 from . import structs as S
 from .errors import BanyanError, GeneratorMissing
+from .hostset import HostSet
 from .mesh import MeshData, call_generate
 from .params import Params
 
@@ -60,8 +61,14 @@ def _as_params(gen, params):
 
 
 def roots(params=None, hosts=()):
-    """Strangler-fig roots around hosts (list of structs.Box)."""
+    """Strangler-fig roots around hosts: a list of structs.Box
+    (banyan_roots_generate) or a hostset.HostSet (banyan_roots_generate_hosts,
+    the real surface of its meshes)."""
     params = _as_params("roots", params)
+    if isinstance(hosts, HostSet):
+        f = _fn("banyan_roots_generate_hosts", C.c_int, [C.c_void_p, C.c_void_p, _mesh_out, C.c_void_p, _err],
+                "roots")
+        return hosts.named(lambda: call_generate(lambda out, err: f(params.ptr, hosts._live(), out, None, err)))
     f = _fn("banyan_roots_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "roots")
     arr, n = _boxes(hosts)
     return call_generate(f, params.ptr, arr, n)
@@ -97,24 +104,38 @@ def avenue_tree_count(params, path=None):
 
 
 def ivy(params=None, hosts=()):
+    """Ivy over hosts: a list of structs.Box or a hostset.HostSet."""
     params = _as_params("ivy", params)
+    if isinstance(hosts, HostSet):
+        f = _fn("banyan_ivy_generate_hosts", C.c_int, [C.c_void_p, C.c_void_p, _mesh_out, _err], "ivy")
+        return hosts.named(lambda: call_generate(f, params.ptr, hosts._live()))
     f = _fn("banyan_ivy_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "ivy")
     arr, n = _boxes(hosts)
     return call_generate(f, params.ptr, arr, n)
 
 
 class IvyPlant:
-    """The stepping API: create, step(n) as often as wanted, mesh()."""
+    """The stepping API: create, step(n) as often as wanted, mesh(). hosts:
+    a list of structs.Box, or a hostset.HostSet, which the plant keeps
+    using: close the plant before the set."""
 
     def __init__(self, params, hosts):
         self._free = _fn("banyan_ivy_free", None, [C.c_void_p], "ivy")
-        create = _fn("banyan_ivy_create", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, P(C.c_void_p), _err],
-                     "ivy")
         self._step = _fn("banyan_ivy_step", C.c_int, [C.c_void_p, C.c_int32, _err], "ivy")
         self._mesh = _fn("banyan_ivy_mesh", C.c_int, [C.c_void_p, _mesh_out, _err], "ivy")
         self.handle = C.c_void_p()
-        arr, n = _boxes(hosts)
+        self.hosts = None
         err = S.Error()
+        if isinstance(hosts, HostSet):
+            create = _fn("banyan_ivy_create_hosts", C.c_int, [C.c_void_p, C.c_void_p, P(C.c_void_p), _err], "ivy")
+            self.hosts = hosts  # kept alive at least as long as the plant
+            st = create(params.ptr, hosts._live(), C.byref(self.handle), C.byref(err))
+            if st:
+                hosts.named(lambda: L.raise_for(st, err))
+            return
+        create = _fn("banyan_ivy_create", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, P(C.c_void_p), _err],
+                     "ivy")
+        arr, n = _boxes(hosts)
         L.raise_for(create(params.ptr, arr, n, C.byref(self.handle), C.byref(err)), err)
 
     def step(self, n):
@@ -128,6 +149,7 @@ class IvyPlant:
         if self.handle:
             self._free(self.handle)
             self.handle = C.c_void_p()
+        self.hosts = None
 
     def __enter__(self):
         return self

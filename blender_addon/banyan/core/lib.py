@@ -74,6 +74,16 @@ def _bind(lib):
         "banyan_gltf_write": (C.c_int, [C.c_char_p, P(P(S.Mesh)), P(C.c_char_p), C.c_uint32, err]),
         "banyan_tube_generate": (C.c_int, [P(C.c_double), P(C.c_double), C.c_uint32, C.c_int32,
                                            C.c_int32, P(P(S.Mesh)), err]),
+        # Host sets (banyan/hosts.h): core API, bound here.
+        "banyan_hosts_create": (C.c_int, [P(S.Box), C.c_uint32, P(S.HostMesh), C.c_uint32, P(vp), err]),
+        "banyan_hosts_free": (None, [vp]),
+        "banyan_hosts_count": (C.c_uint32, [vp]),
+        "banyan_hosts_info": (C.c_int, [vp, C.c_uint32, P(S.HostInfo), err]),
+        "banyan_hosts_closest": (C.c_int, [vp, P(C.c_double), C.c_double, P(S.HostHit), err]),
+        "banyan_hosts_raycast": (C.c_int, [vp, P(C.c_double), P(C.c_double), C.c_double, P(S.HostHit), err]),
+        "banyan_hosts_sweep_sphere": (C.c_int, [vp, P(C.c_double), P(C.c_double), C.c_double, P(S.HostHit),
+                                                err]),
+        "banyan_hosts_inside": (C.c_int32, [vp, P(C.c_double)]),
     }
     for key in S.SIZED:
         sigs["banyan_sizeof_" + key] = (C.c_size_t, [])

@@ -83,6 +83,35 @@ class ParamInfo(C.Structure):
     ]
 
 
+class HostMesh(C.Structure):
+    """banyan_host_mesh (banyan/hosts.h): one triangle mesh host. The
+    arrays are read during banyan_hosts_create only."""
+    _fields_ = [
+        ("positions", C.POINTER(C.c_float)),
+        ("indices", C.POINTER(C.c_uint32)),
+        ("vertex_count", C.c_uint32),
+        ("triangle_count", C.c_uint32),
+        ("transform", C.c_double * 12),
+        ("closed", C.c_int32),
+        ("reserved", C.c_int32),
+    ]
+
+
+class HostHit(C.Structure):
+    _fields_ = [("host", C.c_int32), ("primitive", C.c_uint32), ("distance", C.c_double),
+                ("point", C.c_double * 3), ("normal", C.c_double * 3)]
+
+
+class HostInfo(C.Structure):
+    _fields_ = [("kind", C.c_int32), ("closed", C.c_int32), ("triangle_count", C.c_uint32),
+                ("dropped_triangles", C.c_uint32), ("boundary_edges", C.c_uint32), ("shells", C.c_uint32),
+                ("lo", C.c_double * 3), ("hi", C.c_double * 3)]
+
+
+# banyan_host_closed
+HOST_CLOSED_AUTO, HOST_OPEN, HOST_CLOSED = -1, 0, 1
+HOSTS_MAX_TRIANGLES = 1 << 25  # BANYAN_HOSTS_MAX_TRIANGLES
+
 # banyan_param_type
 PT_DOUBLE, PT_INT, PT_BOOL, PT_ENUM, PT_VEC3, PT_COLOR, PT_SEED = range(7)
 
@@ -91,4 +120,5 @@ GENERATORS = ("roots", "keyaki", "avenue", "ivy", "segments")
 
 # Checked against banyan_sizeof_<key>() at load.
 SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
-         "part": Part, "mesh": Mesh, "param_info": ParamInfo}
+         "part": Part, "mesh": Mesh, "param_info": ParamInfo, "host_mesh": HostMesh, "host_hit": HostHit,
+         "host_info": HostInfo}

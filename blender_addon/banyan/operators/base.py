@@ -9,6 +9,7 @@ import traceback
 import bpy
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 
+from .. import hosts as H
 from .. import presets as PR
 from .. import props as PP
 from ..core.errors import BanyanError
@@ -135,23 +136,46 @@ def select_only(context, objs):
 
 
 class HostsOperatorMixin(BanyanOperatorMixin):
-    """An operator whose hosts are the selected mesh objects."""
+    """An operator whose hosts are the selected objects: with host shape
+    Surface every selected object that has a surface (mesh, curve,
+    surface, text, metaball) as its evaluated mesh, in one host set built
+    per execute; with Bounding box the selected mesh objects' boxes."""
 
     @classmethod
     def poll(cls, context):
-        return any(o.type == 'MESH' for o in getattr(context, "selected_objects", ()))
+        return any(o.type in H.SURFACE_TYPES for o in getattr(context, "selected_objects", ()))
 
-    @staticmethod
-    def selected_hosts(context):
-        """The selected mesh objects, the active one first."""
-        hosts = [o for o in context.selected_objects if o.type == 'MESH']
+    def selected_hosts(self, context):
+        """The selected host objects, the active one first."""
+        surface = getattr(self, "host_shape", H.BOX) == H.SURFACE
+        types = H.SURFACE_TYPES if surface else ('MESH',)
+        hosts = [o for o in context.selected_objects if o.type in types]
         if not hosts:
-            raise BanyanError(3, "select one or more mesh objects as hosts")
+            raise BanyanError(3, "select one or more %s as hosts" % (
+                "objects with a surface (mesh, curve, text)" if surface else "mesh objects"), "BANYAN_E_NO_HOSTS")
         active = context.active_object
         if active in hosts:
             hosts.remove(active)
             hosts.insert(0, active)
         return hosts
+
+    @contextlib.contextmanager
+    def host_arg(self, context):
+        """What the generator gets: the boxes of the selected meshes (Bounding
+        box), or a host set of their surfaces, built once here and freed when
+        the block ends (Surface)."""
+        hosts = self.selected_hosts(context)
+        if self.host_shape == H.BOX:
+            yield H.boxes_from_objects(hosts)
+            return
+        with H.surface_host_set(hosts, context.evaluated_depsgraph_get()) as hs:
+            yield hs
+
+
+def host_shape_property():
+    return EnumProperty(name="Host shape", default=H.SURFACE, items=H.HOST_SHAPES,
+                        description="What the plant grows on: the selected objects' real surfaces (evaluated "
+                                    "meshes, modifiers applied) or their oriented bounding boxes")
 
 
 def make_operator(mixin, idname, label, description, gen, extra):

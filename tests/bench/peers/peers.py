@@ -153,17 +153,20 @@ class PeerRun:
         self.stem = self.leaves = self.verts = self.tris = 0
 
 
-def ivygen_once(run, host, max_length):
-    """IvyGen's operator on host from the cursor, then its curve to a mesh."""
+def ivygen_once(run, host, max_length, cursor=WALL_CURSOR, inspect=None):
+    """IvyGen's operator on host from the cursor, then its curve to a mesh.
+    inspect(curve, leaf): called on IvyGen's objects before the conversion."""
     keep = keep_names()
     props = bpy.context.window_manager.ivy_gen_props
     props.maxIvyLength = max_length
-    bpy.context.scene.cursor.location = WALL_CURSOR
+    bpy.context.scene.cursor.location = cursor
     select_only(host)
     run.op.time(quiet, bpy.ops.curve.ivy_gen, updateIvy=True)
     curve = bpy.data.objects["IVY_Curve"]
     leaf = bpy.data.objects.get("IvyLeaf")
     run.stem = curve_length(curve.data)
+    if inspect:
+        inspect(curve, leaf)
     run.conv.time(convert_to_mesh, curve)
     run.e2e.t.append(run.op.t[-1] + run.conv.t[-1])
     run.leaves = len(leaf.data.polygons) if leaf else 0
@@ -185,7 +188,7 @@ def sapling_once(run, kw):
     HO.clear_generated(keep)
 
 
-def match_ivygen(target, key, host, probes=7, tol=0.03):
+def match_ivygen(target, key, host, probes=7, tol=0.03, cursor=WALL_CURSOR):
     """IvyGen's maxIvyLength whose `key` figure (stem or tris) is closest to
     target. The figure grows monotonically with maxIvyLength (the same
     seeded growth, stopped later); secant steps in log-log."""
@@ -193,7 +196,7 @@ def match_ivygen(target, key, host, probes=7, tol=0.03):
 
     def probe(x):
         r = PeerRun("probe", "")
-        ivygen_once(r, host, x)
+        ivygen_once(r, host, x, cursor)
         seen.append((x, getattr(r, key)))
 
     probe(3.0)
@@ -278,7 +281,7 @@ def section_ivy():
     boxes = H.boxes_from_objects([host])
     p = B.make_params("ivy", preset="ivy_wall")
     ban = BanyanRun("banyan ivy_wall (%d steps)" % p.get("steps"))
-    ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall"), lambda: ivy_grow(p, boxes))
+    ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall", host_shape='BOX'), lambda: ivy_grow(p, boxes))
     ban.stem = skeleton_length(ban.d)
     ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["ivy"]
     x_stem, _ = match_ivygen(ban.stem, "stem", host)
@@ -288,7 +291,7 @@ def section_ivy():
              (PeerRun("IvyGen, triangles matched", "maxIvyLength %.3g" % x_tris), x_tris)]
     for r in range(RUNS):
         if r:
-            ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall"),
+            ban.once(lambda: G.ivy(p, boxes), lambda: B.ivy(hosts=[host], preset="ivy_wall", host_shape='BOX'),
                      lambda: ivy_grow(p, boxes))
         for run, x in peers:
             ivygen_once(run, host, x)
@@ -331,7 +334,7 @@ def section_roots():
         else:
             boxes = H.boxes_from_objects([cube])
             p = B.make_params("roots")
-            api = lambda: B.strangler_roots(hosts=[cube])  # noqa: E731
+            api = lambda: B.strangler_roots(hosts=[cube], host_shape='BOX')  # noqa: E731
         ban = BanyanRun(label)
         for _ in range(RUNS * CHEAP_REPEAT):
             ban.once(lambda: G.roots(p, boxes), api)
@@ -588,4 +591,5 @@ def main():
     print("peers.py: wrote %s" % OUT, flush=True)
 
 
-main()
+if __name__ == "__main__":  # ivy_suzanne.py imports the helpers above
+    main()

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Issue 9's peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs]
+# Issue 9's peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs] [script]
+# (script: peers.py, the default, or ivy_suzanne.py: issue 15's ivy on
+# Suzanne against IvyGen, which prints its figures and writes nothing)
 # Builds libbanyan.so and bench_tube in build_dir (default build/), loads
 # the add-on from the repository the way tests/blender/run.sh does (a
 # temporary BLENDER_USER_SCRIPTS whose addons/banyan links to
@@ -10,6 +12,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 src=$(cd "$here/../../.." && pwd)
 build=$(cd "${1:-$src/build}" && pwd)
 runs=${2:-5}
+script=${3:-peers.py}
 blender=${BLENDER:-blender}
 cmake --build "$build" --target banyan bench_tube
 
@@ -21,4 +24,4 @@ export BLENDER_USER_SCRIPTS="$scripts"
 export BANYAN_LIB="$build/libbanyan.so"
 export BANYAN_BUILD_DIR="$build"
 export PYTHONDONTWRITEBYTECODE=1
-"$blender" -b --factory-startup --python-exit-code 1 --python "$here/peers.py" -- "$runs"
+"$blender" -b --factory-startup --python-exit-code 1 --python "$here/$script" -- "$runs"
