@@ -36,6 +36,13 @@ struct banyan_hosts {
     void *device;           /* RTCDevice, NULL without meshes */
 };
 
+/* Vertex i of m (relative to m->origin) and a stored float triple. */
+static inline v3 vtx(const host_mesh *m, uint32_t i) {
+    const float *f = m->pos + 4 * (size_t)i;
+    return v3_make(f[0], f[1], f[2]);
+}
+static inline v3 f3(const float *f) { return v3_make(f[0], f[1], f[2]); }
+
 /* Nearest surface point of a mesh. */
 typedef struct mesh_near {
     double dist;            /* signed for closed meshes (< 0 inside), else >= 0 */
@@ -75,21 +82,16 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int fi
  * getting nearer to a triangle, it would come within r - eps of it (t is
  * where it is at r: free); 1 when it never does. *normal (when t < 1): the
  * distance gradient of that triangle there. Exact up to root finding (the
- * distance to a triangle is convex along a line); unlike hmesh_sweep, a
+ * distance to a triangle is convex along a line); unlike sphere tracing, a
  * sphere pressed against the surface and moving along it or away is not
  * stopped, so it can slide. (These four were added for the roots.) */
-double hmesh_sweep_exact(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal);
+double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal);
 /* p inside the closed mesh m (0 for open meshes). */
 int hmesh_inside(const host_mesh *m, v3 p);
 /* First surface hit along segment a -> b: returns 1 with t in [0, 1] and
  * the face normal (facing a), else 0. */
 int hmesh_segment_hit(const host_mesh *m, v3 a, v3 b, double *t, v3 *normal);
-/* First t in [0, 1] at which a sphere of radius r moved from p by d comes
- * closer than r to the surface (sphere tracing on the exact distance, which
- * is 1-Lipschitz); 1 when it never does. *normal gets the distance-field
- * normal at the last free position. `tol` is the touching tolerance
- * (metres): the returned position is free and within tol of touching. */
-double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double tol, v3 *normal);
+
 
 /* Host h's world bounds (boxes then meshes). */
 static inline int hosts_far_from(const banyan_hosts *H, uint32_t h, v3 p, double margin) {

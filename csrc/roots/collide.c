@@ -10,7 +10,7 @@
  * distance to a convex box is convex along a line, which makes the traces
  * exact up to bisection. A mesh (core/hosts.h) is not convex, but each of
  * its triangles is: moves and segments are taken exactly per triangle
- * (hmesh_sweep_exact, hmesh_segment_distance), so a sphere pressed against
+ * (hmesh_sweep, hmesh_segment_distance), so a sphere pressed against
  * a mesh slides along it as along a box, which sphere tracing on the
  * mesh's (1-Lipschitz, non-convex) distance cannot do. Nearby-obstacle
  * bounds use the Lipschitz ball. Each mesh query is capped at the range
@@ -290,7 +290,7 @@ double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
     for (uint32_t j = 0; j < w->n_meshes && best > 0; j++) {
         if (hosts_far_from(w->set, w->n_hosts + j, p, L * best + w->r)) continue;
         v3 n = bn;
-        double t = best * hmesh_sweep_exact(&w->meshes[j], p, v3_scale(d, best), w->r, w->eps, &n);
+        double t = best * hmesh_sweep(&w->meshes[j], p, v3_scale(d, best), w->r, w->eps, &n);
         if (t < best) {
             best = t;
             bn = n;

@@ -266,6 +266,9 @@ static void bad_input_checks(void) {
     s.transform[10] = 0; /* flattened */
     expect_refusal(&s, BANYAN_E_BAD_HOST, "singular", "singular transform");
     s = hm;
+    s.transform[0] = s.transform[5] = s.transform[10] = 1e-9; /* a 2 nm sphere */
+    expect_refusal(&s, BANYAN_E_BAD_HOST, "1e-6", "a speck");
+    s = hm;
     s.transform[3] = NAN;
     expect_refusal(&s, BANYAN_E_BAD_HOST, "finite", "NaN transform");
     s = hm;

@@ -481,7 +481,7 @@ static void test_exact_queries(void) {
             if ((sd < 0.1) != (sf < 0.1) || (sf < 0.1 && sf < sd - 1e-12)) seg_bad++;
             /* Sweep of r = 0.05 from a by b - a. */
             v3 nrm;
-            double t = hmesh_sweep_exact(m, a, v3_sub(b, a), 0.05, 1e-11, &nrm);
+            double t = hmesh_sweep(m, a, v3_sub(b, a), 0.05, 1e-11, &nrm);
             for (int i = 0; i < 200; i++) {
                 double u = t * i / 200.0;
                 if (fabs(hmesh_distance(m, v3_lerp(a, b, u), HUGE_VAL)) < 0.05 - 1e-6) {
@@ -508,9 +508,9 @@ static void test_exact_queries(void) {
     banyan_hosts *H = make(NULL, 0, &fm, 1);
     if (H) {
         v3 nrm, p = v3_make(0.5 + 0.05, -0.3, 0.2);
-        CHECK(hmesh_sweep_exact(&H->meshes[0], p, v3_make(0, 0.6, 1.5), 0.05, 1e-11, &nrm) == 1.0,
+        CHECK(hmesh_sweep(&H->meshes[0], p, v3_make(0, 0.6, 1.5), 0.05, 1e-11, &nrm) == 1.0,
               "a sphere pressed against a face does not slide along it");
-        double t = hmesh_sweep_exact(&H->meshes[0], p, v3_make(-0.2, 0.1, 0), 0.05, 1e-11, &nrm);
+        double t = hmesh_sweep(&H->meshes[0], p, v3_make(-0.2, 0.1, 0), 0.05, 1e-11, &nrm);
         CHECK(t < 1e-9 && nrm.x > 0.999, "a sphere pressed against a face and moved in: t = %g, n = (%g, %g, %g)", t,
               nrm.x, nrm.y, nrm.z);
         banyan_hosts_free(H);
