@@ -81,7 +81,11 @@ static v3 feature_normal(const host_mesh *m, uint32_t prim, int region) {
     const uint32_t *t = m->tri + 3 * (size_t)prim;
     if (region == 0) return f3(m->fnrm + 3 * (size_t)prim);
     if (region <= 3) return f3(m->vnrm + 3 * (size_t)t[region - 1]);
-    return f3(m->enrm + 9 * (size_t)prim + 3 * (size_t)(region - 4));
+    /* An edge's: the sum of its two faces' normals (its own face's alone
+     * on a hole or a non-manifold edge). */
+    v3 n = f3(m->fnrm + 3 * (size_t)prim);
+    uint32_t tw = m->twin[3 * (size_t)prim + (size_t)(region - 4)];
+    return tw == UINT32_MAX ? n : v3_norm_or(v3_add(n, f3(m->fnrm + 3 * (size_t)(tw / 3))), n);
 }
 
 /* ---------------------------------------------------- inside by rays */

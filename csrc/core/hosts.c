@@ -32,7 +32,7 @@ static void mesh_free(host_mesh *m) {
     free(m->pos);
     free(m->tri);
     free(m->fnrm);
-    free(m->enrm);
+    free(m->twin);
     free(m->vnrm);
     memset(m, 0, sizeof *m);
 }
@@ -206,9 +206,9 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     val = malloc(sizeof *val * ne);
     twin = malloc(sizeof *twin * ne);
     up = malloc(sizeof *up * (size_t)nt);
-    uint32_t *start = calloc((size_t)nv + 1, sizeof *start);
-    if (!val || !twin || !up || !start) {
-        free(start);
+    uint32_t *start = calloc((size_t)nv + 1, sizeof *start), *bh = malloc(sizeof *bh * ne);
+    if (!val || !twin || !up || !start || !bh) {
+        free(start), free(bh);
         MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] edges", hi);
     }
 #define SIDE_B(e) (m->tri[(e) % 3 == 2 ? (e) - 2 : (e) + 1])
@@ -216,7 +216,11 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
 #define SIDE_HI(e) (m->tri[e] < SIDE_B(e) ? SIDE_B(e) : m->tri[e])
     for (size_t e = 0; e < ne; e++) start[SIDE_LO(e) + 1]++, twin[e] = UINT32_MAX;
     for (uint32_t v = 0; v < nv; v++) start[v + 1] += start[v];
-    for (size_t e = 0; e < ne; e++) val[start[SIDE_LO(e)]++] = (uint32_t)e;
+    for (size_t e = 0; e < ne; e++) { /* each side with its upper vertex beside it, read in order below */
+        uint32_t at = start[SIDE_LO(e)]++;
+        val[at] = (uint32_t)e;
+        bh[at] = SIDE_HI(e);
+    }
     for (uint32_t v = nv; v > 0; v--) start[v] = start[v - 1]; /* back to bucket starts */
     start[0] = 0;
     for (uint32_t t = 0; t < nt; t++) up[t] = t;
@@ -224,12 +228,12 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     int consistent = 1;
     double boundary_len = 0;
     for (uint32_t v = 0; v < nv; v++) {
-        uint32_t *b = val + start[v], k = start[v + 1] - start[v];
+        uint32_t *b = val + start[v], *bhi = bh + start[v], k = start[v + 1] - start[v];
         for (uint32_t i = 0; i < k; i++) {
             if (b[i] == UINT32_MAX) continue; /* taken by an earlier side */
-            uint32_t e0 = b[i], h = SIDE_HI(e0), same = 1, e1 = UINT32_MAX;
+            uint32_t e0 = b[i], h = bhi[i], same = 1, e1 = UINT32_MAX;
             for (uint32_t j = i + 1; j < k; j++) {
-                if (b[j] == UINT32_MAX || SIDE_HI(b[j]) != h) continue;
+                if (b[j] == UINT32_MAX || bhi[j] != h) continue;
                 uint32_t ra = uf_find(up, e0 / 3), rb = uf_find(up, b[j] / 3); /* round one edge: one shell */
                 if (ra != rb) up[ra > rb ? ra : rb] = ra < rb ? ra : rb;
                 e1 = b[j];
@@ -251,6 +255,7 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
 #undef SIDE_LO
 #undef SIDE_HI
     free(start);
+    free(bh);
     free(val), val = NULL;
     uint32_t shells = 0;
     for (uint32_t t = 0; t < nt; t++) shells += uf_find(up, t) == t;
@@ -291,15 +296,11 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     }
     m->sign_by_rays = !m->closed ? 0 : !consistent ? 2 : (boundary || nonmanifold || shells > 1) ? 1 : 0;
 
-    /* Pseudonormals: edges from their two faces, vertices by angle. */
-    m->enrm = malloc(sizeof(float) * 9 * (size_t)nt);
+    /* Pseudonormals: vertices by angle (edges from their two faces, in
+     * host_queries.c). */
+    m->twin = twin, twin = NULL; /* edge pseudonormals are summed when asked */
     m->vnrm = calloc(3 * (size_t)nv, sizeof(float));
-    if (!m->enrm || !m->vnrm) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] normals", hi);
-    for (size_t e = 0; e < ne; e++) {
-        v3 n = f3(m->fnrm + 3 * (e / 3));
-        if (twin[e] != UINT32_MAX) n = v3_norm_or(v3_add(n, f3(m->fnrm + 3 * (twin[e] / 3))), n);
-        store3(m->enrm + 3 * e, n);
-    }
+    if (!m->vnrm) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] normals", hi);
     for (uint32_t t = 0; t < nt; t++) { /* sums in vnrm itself, normalised after */
         const uint32_t *ix = m->tri + 3 * (size_t)t;
         const float *n = m->fnrm + 3 * (size_t)t;

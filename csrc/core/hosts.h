@@ -18,7 +18,8 @@ typedef struct host_mesh {
     float *pos;             /* 4 * nv (Embree reads 16-byte vertices): x, y, z, 0 relative to origin */
     uint32_t *tri;          /* 3 * nt */
     float *fnrm;            /* 3 * nt unit face normals (outward for a closed mesh) */
-    float *enrm;            /* 9 * nt: per triangle edge (v0v1, v1v2, v2v0) pseudonormals, unit */
+    uint32_t *twin;         /* 3 * nt: the side (3 t + k) across edge k (v0v1, v1v2, v2v0) of triangle t,
+                               UINT32_MAX on a hole or a non-manifold edge; gives the edge pseudonormals */
     float *vnrm;            /* 3 * nv angle-weighted vertex pseudonormals, unit */
     int closed;             /* has an inside: signed distances */
     int sign_by_rays;       /* the pseudonormal sign is not to be trusted (holes, several shells,
