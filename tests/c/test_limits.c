@@ -15,6 +15,7 @@
 
 #include "banyan.h"
 #include "check.h"
+#include "host_meshes.h"
 
 /* The counters: the largest single request and the sum of requests;
  * the calls since reset(), and which of them fails (0: none). */
@@ -106,6 +107,30 @@ static banyan_status gen_roots(const void *ctx, banyan_mesh **out, banyan_error 
     banyan_roots_params p;
     banyan_roots_params_init(&p);
     return banyan_roots_generate(&p, (const banyan_box *)ctx, 1, out, e);
+}
+/* Mesh hosts: the host set is built inside, so its failure paths count. */
+static banyan_status gen_roots_mesh(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create(NULL, 0, (const banyan_host_mesh *)ctx, 1, &H, e);
+    if (s) return s;
+    banyan_roots_params p;
+    banyan_roots_params_init(&p);
+    p.growth_points = 12;
+    s = banyan_roots_generate_hosts(&p, H, out, NULL, e);
+    banyan_hosts_free(H);
+    return s;
+}
+static banyan_status gen_ivy_mesh(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create(NULL, 0, (const banyan_host_mesh *)ctx, 1, &H, e);
+    if (s) return s;
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 60;
+    p.start[0] = 0, p.start[1] = -0.6, p.start[2] = 0.1;
+    s = banyan_ivy_generate_hosts(&p, H, out, e);
+    banyan_hosts_free(H);
+    return s;
 }
 static banyan_status gen_keyaki(const void *ctx, banyan_mesh **out, banyan_error *e) {
     (void)ctx;
@@ -247,5 +272,11 @@ int main(void) {
     fail_each("out of memory: ivy, 160 steps on a wall", gen_ivy, &wall);
     fail_each("out of memory: segments, 3", gen_segments, NULL);
     fail_each("out of memory: tube, 16 points", gen_tube, NULL);
+    tm_mesh sphere = {0}; /* made before any allocation is failed */
+    tm_uv_sphere(&sphere, 0, 0, 0.5, 0.5, 16, 8);
+    banyan_host_mesh host = tm_host(&sphere, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    fail_each("out of memory: roots on a mesh (host set inside)", gen_roots_mesh, &host);
+    fail_each("out of memory: ivy on a mesh (host set inside)", gen_ivy_mesh, &host);
+    tm_free(&sphere);
     return check_done("test_limits");
 }

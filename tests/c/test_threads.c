@@ -4,7 +4,8 @@
  * params, each thread in its own order and several rounds; every mesh
  * hash (banyan_mesh_hash) must equal the sequential one. The avenue runs
  * its own worker threads inside these. Built under ThreadSanitizer too
- * (BANYAN_TSAN, tools/test.sh), where a data race fails the run. */
+ * (BANYAN_TSAN, tools/test.sh), where a data race fails the run. Roots
+ * and ivy on meshes share one host set between all the threads. */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 
 #include "banyan.h"
 #include "check.h"
+#include "host_meshes.h"
 #include "test_files.h"
 
 #define THREADS 4
@@ -81,6 +83,30 @@ static uint64_t run_ivy(int v) {
     return finish(banyan_ivy_generate(&p, &h, 1, &m, &e), &m, &e, "ivy");
 }
 
+/* One host set (a sphere and a column) shared by every thread. */
+static banyan_hosts *shared_hosts;
+
+static uint64_t run_roots_mesh(int v) {
+    banyan_roots_params p;
+    banyan_roots_params_init(&p);
+    p.seed = 31 + (uint64_t)v;
+    p.growth_points = 14;
+    banyan_mesh *m = NULL;
+    banyan_error e;
+    return finish(banyan_roots_generate_hosts(&p, shared_hosts, &m, NULL, &e), &m, &e, "roots on meshes");
+}
+
+static uint64_t run_ivy_mesh(int v) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.seed = 41 + (uint64_t)v;
+    p.steps = 50;
+    p.start[0] = 0, p.start[1] = -0.45, p.start[2] = 0.1;
+    banyan_mesh *m = NULL;
+    banyan_error e;
+    return finish(banyan_ivy_generate_hosts(&p, shared_hosts, &m, &e), &m, &e, "ivy on meshes");
+}
+
 static uint64_t run_segments(int v) {
     banyan_segments_params p;
     banyan_segments_params_init(&p);
@@ -125,7 +151,8 @@ static job jobs[] = {
     {"keyaki", run_keyaki, 1},     {"keyaki", run_keyaki, 2},     {"avenue", run_avenue, 0},
     {"avenue", run_avenue, 1},     {"ivy", run_ivy, 0},           {"ivy", run_ivy, 1},
     {"segments", run_segments, 0}, {"segments", run_segments, 1}, {"preset", run_preset, 0},
-    {"preset", run_preset, 1},     {"preset", run_preset, 2},
+    {"preset", run_preset, 1},     {"preset", run_preset, 2},     {"roots_mesh", run_roots_mesh, 0},
+    {"roots_mesh", run_roots_mesh, 1}, {"ivy_mesh", run_ivy_mesh, 0}, {"ivy_mesh", run_ivy_mesh, 1},
 };
 #define N_JOBS (sizeof jobs / sizeof jobs[0])
 
@@ -148,6 +175,12 @@ static void *worker(void *p) {
 }
 
 int main(void) {
+    tm_mesh column = {0}, sphere = {0};
+    tm_cylinder(&column, 0, 0, 0, 0.4, 2.0, 32, 4);
+    tm_uv_sphere(&sphere, 1.5, 0, 0.5, 0.5, 24, 12);
+    banyan_host_mesh hm[2] = {tm_host(&column, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO),
+                              tm_host(&sphere, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO)};
+    CHECK(banyan_hosts_create(NULL, 0, hm, 2, &shared_hosts, NULL) == BANYAN_OK, "the shared host set");
     uint64_t want[N_JOBS];
     for (size_t j = 0; j < N_JOBS; j++) {
         want[j] = jobs[j].run(jobs[j].variant);
@@ -177,5 +210,8 @@ int main(void) {
             }
     printf("%d concurrent results of %zu jobs on %d threads x %d rounds equal the sequential ones\n", same, N_JOBS,
            THREADS, ROUNDS);
+    banyan_hosts_free(shared_hosts);
+    tm_free(&column);
+    tm_free(&sphere);
     return check_done("test_threads");
 }
