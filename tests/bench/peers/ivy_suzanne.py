@@ -8,7 +8,8 @@ peers.py's secant search so that its total stem length matches banyan's.
 Both start at the surface point of Suzanne nearest START_NEAR (IvyGen
 seeds at the 3D cursor as it is; banyan snaps its start to the surface).
 
-Printed (nothing is written): times (median [min .. max] of RUNS runs,
+peers.py puts this in docs/benchmarks.md (section 5); run alone it
+prints it. Figures: times (median [min .. max] of RUNS runs,
 the two alternating), stem length, leaves, triangles, and the median and
 90th percentile distance of each one's stem points (banyan: skeleton
 points; IvyGen: its curve's points) and leaf vertices to Suzanne's
@@ -99,13 +100,15 @@ def ivygen_points(curve, leaf):
     return stem, lv
 
 
-def main():
+def section(runs=RUNS):
+    """The section's markdown lines (and progress on stdout)."""
     t_all = time.perf_counter()
+    out = []
     host = suzanne()
     bvh, host_tris = world_bvh(host)
     start = tuple(bvh.find_nearest(Vector(START_NEAR))[0])
     print("ivy_suzanne.py: %d runs, Blender %s, library %s; Suzanne %d triangles, start %s" % (
-        RUNS, bpy.app.version_string, os.environ.get("BANYAN_LIB"), host_tris,
+        runs, bpy.app.version_string, os.environ.get("BANYAN_LIB"), host_tris,
         tuple(round(c, 4) for c in start)), flush=True)
     p = B.make_params("ivy")
     p.set("start", start)
@@ -140,35 +143,36 @@ def main():
     def keep_points(curve, leaf):
         seen["stem"], seen["leaf"] = ivygen_points(curve, leaf)
 
-    for r in range(RUNS):
+    for r in range(runs):
         if r:
             banyan_once()
         PE.ivygen_once(ig, host, x, start, keep_points if r == 0 else None)
-        print("run %d/%d done" % (r + 1, RUNS), flush=True)
+        print("run %d/%d done" % (r + 1, runs), flush=True)
 
     bd_stem, bd_leaf = distances(bvh, b_stem), distances(bvh, b_leaf)
     gd_stem, gd_leaf = distances(bvh, seen["stem"]), distances(bvh, seen["leaf"])
     leaves = PE.part_tris(d, 1) // PE.LEAF_CARD_TRIS["ivy"]
-    print()
-    print("## Ivy on Suzanne: banyan (host shape Surface) vs IvyGen")
-    print()
-    print("Suzanne (bpy.ops.mesh.primitive_monkey_add, size 2, %d triangles); start %s on its surface; median "
-          "[min .. max] of %d runs; distances to Suzanne's surface (mathutils BVHTree, world space): median / "
-          "90th percentile, metres." % (host_tris, tuple(round(c, 3) for c in start), RUNS))
-    print()
-    print("| run | setting | stem m | leaves | triangles | host set | growth / operator | end to end | "
-          "stem points: distance | leaf vertices: distance |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    print("| banyan ivy | defaults (%d steps), Surface | %.1f | %d | %d | %s | %s | %s | %s | %s |" % (
+    w = out.append
+    w("Suzanne (bpy.ops.mesh.primitive_monkey_add, size 2, %d triangles); start %s on its surface; median "
+      "[min .. max] of %d runs; distances to Suzanne's surface (mathutils BVHTree, world space): median / "
+      "90th percentile, metres." % (host_tris, tuple(round(c, 3) for c in start), runs))
+    w("")
+    w("| run | setting | stem m | leaves | triangles | host set | growth / operator | end to end | "
+      "stem points: distance | leaf vertices: distance |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
+    w("| banyan ivy | defaults (%d steps), Surface | %.1f | %d | %d | %s | %s | %s | %s | %s |" % (
         p.get("steps"), stem_len, leaves, d.triangle_count, build.fmt(1e3, "ms", 1), grow.fmt(), e2e.fmt(),
         summary(bd_stem), summary(bd_leaf)))
-    print("| IvyGen | %s | %.1f | %d | %d | - | %s | %s | %s | %s |" % (
+    w("| IvyGen | %s | %.1f | %d | %d | - | %s | %s | %s | %s |" % (
         ig.note, ig.stem, ig.leaves, ig.tris, ig.op.fmt(), ig.e2e.fmt(), summary(gd_stem), summary(gd_leaf)))
-    print()
-    print("banyan sucker reach %.3f m, clearance %.4f m; %d / %d stem points, %d / %d leaf vertices sampled. "
-          "Ratio of end-to-end times IvyGen / banyan: %.1fx; %.0f s in all." % (
-              p.get("sucker_length"), p.get("clearance"), len(bd_stem), len(b_stem), len(bd_leaf), len(b_leaf),
-              ig.e2e.med / e2e.med, time.perf_counter() - t_all), flush=True)
+    w("")
+    w("banyan sucker reach %.3f m, clearance %.4f m; %d / %d stem points, %d / %d leaf vertices sampled. "
+      "Ratio of end-to-end times IvyGen / banyan: %.1fx; %.0f s in all." % (
+          p.get("sucker_length"), p.get("clearance"), len(bd_stem), len(b_stem), len(bd_leaf), len(b_leaf),
+          ig.e2e.med / e2e.med, time.perf_counter() - t_all))
+    return out, ig.e2e.med / e2e.med
 
 
-main()
+if __name__ == "__main__":
+    lines, _ = section()
+    print("\n".join(lines))

@@ -9,6 +9,8 @@ in one Blender process, on one machine, ratios from the same run:
   3. roots    banyan's roots against Blender's bare foreach_set of the same
               arrays (tests/bench/blender_handoff.py's bare())
   4. memory   build/tests/bench_tube: the tube sweeper against a store loop
+  5. hosts    build/tests/bench_hosts, bench_roots_hosts, bench_ivy, and
+              ivy_suzanne.py: ivy on Suzanne against IvyGen (issue 15)
 
 Every time is the median of RUNS runs with min and max; banyan and the
 peer alternate within each run so both see the same machine load. Writes
@@ -26,6 +28,7 @@ import json
 import math
 import os
 import platform
+import re
 import statistics
 import subprocess
 import sys
@@ -349,6 +352,29 @@ def section_memory():
     return json.loads(line[5:]), res.stdout
 
 
+def section_hosts():
+    """Issue 15: the C host benchmarks' output, and ivy on Suzanne against
+    IvyGen (ivy_suzanne.py)."""
+    outs = {}
+    for name, args in (("bench_hosts", ["3"]), ("bench_roots_hosts", []), ("bench_ivy", ["3"])):
+        exe = os.path.join(BUILD, "tests", name)
+        outs[name] = subprocess.run([exe] + args, capture_output=True, text=True, check=True).stdout
+        print(outs[name], flush=True)
+    import ivy_suzanne
+    lines, ratio = ivy_suzanne.section(RUNS)
+    return outs, lines, ratio
+
+
+def hosts_figures(outs):
+    """(1M build s, roots mesh/box, ivy mesh/box CPU) parsed from the benchmarks' lines."""
+    def find(text, pattern):
+        m = re.search(pattern, text)
+        return float(m.group(1)) if m else float("nan")
+    return (find(outs["bench_hosts"], r"1000000 triangles.*median ([0-9.]+) s"),
+            find(outs["bench_roots_hosts"], r"mesh / box: +([0-9.]+)x per call"),
+            find(outs["bench_ivy"], r"mesh / box: [0-9.]+x wall, ([0-9.]+)x CPU"))
+
+
 # ------------------------------------------------------------------- report
 def machine():
     model = "?"
@@ -385,7 +411,7 @@ def verdict(ok):
     return "**met**" if ok else "**missed**"
 
 
-def report(ivy, tree, roots, mem, mem_text, load0, load1, elapsed):
+def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed):
     ban_i, peers_i = ivy
     ban_t, peers_t = tree
     model, cores = machine()
@@ -526,6 +552,35 @@ def report(ivy, tree, roots, mem, mem_text, load0, load1, elapsed):
       "`banyan_tube_generate` (validation and skeleton too).")
     w("")
 
+    # ---- hosts
+    outs, suz_lines, suz_ratio = hosts
+    build_1m, roots_ratio, ivy_ratio = hosts_figures(outs)
+    w("## 5. Hosts of any shape (issue 15)")
+    w("")
+    w("### Ivy on Suzanne: banyan (host shape Surface) vs IvyGen")
+    w("")
+    L.extend(suz_lines)
+    w("")
+    w("### Host sets, roots and ivy on meshes (C benchmarks, one thread)")
+    w("")
+    w("| target | figure | verdict |")
+    w("|---|---|---|")
+    w("| host set build, 1M triangles < 0.5 s on one core | %.3f s (median of 3) | %s |" % (
+        build_1m, verdict(build_1m < 0.5)))
+    w("| default roots on a 50k-triangle host within 5x of its bounding box | %.2fx | %s |" % (
+        roots_ratio, verdict(roots_ratio <= 5)))
+    w("| ivy_wall with the wall as a 12-triangle mesh within 1.5x of the box | %.2fx CPU | %s |" % (
+        ivy_ratio, verdict(ivy_ratio <= 1.5)))
+    w("| ivy on Suzanne: end to end against IvyGen at equal stem length | %.1fx faster | reference |" % suz_ratio)
+    w("")
+    for name in ("bench_hosts", "bench_roots_hosts", "bench_ivy"):
+        w("`build/tests/%s`:" % name)
+        w("")
+        w("```")
+        w(outs[name].strip())
+        w("```")
+        w("")
+
     # ---- targets
     w("## Targets (issue 9)")
     w("")
@@ -584,7 +639,9 @@ def main():
     tree = section_tree()
     print("tree done", flush=True)
     ivy = section_ivy()
-    text = report(ivy, tree, roots, mem[0], mem[1], load0, os.getloadavg(), time.perf_counter() - t0)
+    print("ivy done", flush=True)
+    hosts = section_hosts()
+    text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0)
     with open(OUT, "w") as f:
         f.write(text)
     print(text)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 9's peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs] [script]
-# (script: peers.py, the default, or ivy_suzanne.py: issue 15's ivy on
-# Suzanne against IvyGen, which prints its figures and writes nothing)
+# (script: peers.py, the default, or ivy_suzanne.py alone: issue 15's ivy
+# on Suzanne against IvyGen, printed; peers.py includes it)
 # Builds libbanyan.so and bench_tube in build_dir (default build/), loads
 # the add-on from the repository the way tests/blender/run.sh does (a
 # temporary BLENDER_USER_SCRIPTS whose addons/banyan links to
@@ -14,7 +14,7 @@ build=$(cd "${1:-$src/build}" && pwd)
 runs=${2:-5}
 script=${3:-peers.py}
 blender=${BLENDER:-blender}
-cmake --build "$build" --target banyan bench_tube
+cmake --build "$build" --target banyan bench_tube bench_hosts bench_roots_hosts bench_ivy
 
 scripts=$(mktemp -d)
 trap 'rm -rf "$scripts"' EXIT
