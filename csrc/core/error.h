@@ -11,6 +11,10 @@
 #  define BANYAN_PRINTF(a, b)
 #endif
 
+#ifdef __cplusplus
+extern "C" { /* the C++ shims (csrc/gltf) report through these too */
+#endif
+
 /* Fills err (when non-NULL) and returns code. */
 banyan_status banyan_fail(banyan_error *err, banyan_status code, const char *fmt, ...) BANYAN_PRINTF(3, 4);
 /* Puts `prefix` (e.g. "file.json:3: ") before err's message, truncating. */
@@ -22,6 +26,10 @@ void banyan_error_clear(banyan_error *err);
 banyan_status banyan_check_range(banyan_error *err, const char *name, double v, double lo, double hi,
                                  const char *unit);
 banyan_status banyan_check_int(banyan_error *err, const char *name, long long v, long long lo, long long hi);
+
+#ifdef __cplusplus
+}
+#endif
 
 /* Guard for out-parameters: checks out != NULL and sets *out = NULL. */
 #define BANYAN_CHECK_OUT(out, err)                                                              \

@@ -20,12 +20,12 @@
  * leaves this file.
  */
 #include "banyan.h"
+#include "core/error.h"
 
 #include <tiny_gltf.h>
 
 #include <cerrno>
 #include <cmath>
-#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -45,23 +45,6 @@ namespace {
 
 /* tinygltf takes the file's length as unsigned int. */
 const uint64_t kMaxFileBytes = UINT64_C(0x7FFFFFFF);
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-banyan_status
-fail(banyan_error *err, banyan_status code, const char *fmt, ...) {
-    if (err != nullptr) {
-        err->code = static_cast<int32_t>(code);
-        va_list ap;
-        va_start(ap, fmt);
-        int n = std::vsnprintf(err->message, sizeof err->message, fmt, ap);
-        va_end(ap);
-        if (n < 0) err->message[0] = '\0';
-        err->message[sizeof err->message - 1] = '\0';
-    }
-    return code;
-}
 
 /* Images are not needed for a host: accept them undecoded. */
 bool skip_image(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
@@ -169,14 +152,14 @@ struct reader {
                        size_t *stride, size_t *count) {
         const auto &acc = model.accessors[static_cast<size_t>(a)];
         if (acc.sparse.isSparse)
-            return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: %s is a sparse accessor (not read)", path,
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: %s is a sparse accessor (not read)", path,
                         mesh, prim, what);
         if (acc.bufferView < 0 || static_cast<size_t>(acc.bufferView) >= model.bufferViews.size())
-            return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: %s has no buffer view (compressed?)", path,
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: %s has no buffer view (compressed?)", path,
                         mesh, prim, what);
         const auto &view = model.bufferViews[static_cast<size_t>(acc.bufferView)];
         if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size())
-            return fail(err, BANYAN_E_PARSE, "%s: buffer view %d names buffer %d, which does not exist", path,
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: buffer view %d names buffer %d, which does not exist", path,
                         acc.bufferView, view.buffer);
         const auto &buf = model.buffers[static_cast<size_t>(view.buffer)].data;
         size_t st = view.byteStride ? view.byteStride : elem;
@@ -185,7 +168,7 @@ struct reader {
                                   : 0;
         if (st < elem || view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset ||
             need > view.byteLength)
-            return fail(err, BANYAN_E_PARSE,
+            return banyan_fail(err, BANYAN_E_PARSE,
                         "%s: mesh %d primitive %zu: %s (%zu elements) reaches past its buffer view or buffer", path,
                         mesh, prim, what, acc.count);
         *base = buf.data() + view.byteOffset + acc.byteOffset;
@@ -210,18 +193,18 @@ struct reader {
             return BANYAN_OK;
         }
         if (it->second < 0 || static_cast<size_t>(it->second) >= model.accessors.size())
-            return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: POSITION names accessor %d, which does "
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: POSITION names accessor %d, which does "
                         "not exist", path, mesh, pi, it->second);
         const auto &pacc = model.accessors[static_cast<size_t>(it->second)];
         if (pacc.type != TINYGLTF_TYPE_VEC3 || pacc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-            return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: POSITION is not float VEC3 (quantized "
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: POSITION is not float VEC3 (quantized "
                         "positions are not read)", path, mesh, pi);
         const unsigned char *pb = nullptr;
         size_t pstride = 0, nv = 0;
         banyan_status s = span(it->second, mesh, pi, "POSITION", 12, &pb, &pstride, &nv);
         if (s) return s;
         if (nv > UINT32_MAX)
-            return fail(err, BANYAN_E_LIMIT, "%s: mesh %d primitive %zu: %zu vertices", path, mesh, pi, nv);
+            return banyan_fail(err, BANYAN_E_LIMIT, "%s: mesh %d primitive %zu: %zu vertices", path, mesh, pi, nv);
 
         /* This primitive's vertices, transformed and merged. */
         std::vector<uint32_t> local(nv);
@@ -235,7 +218,7 @@ struct reader {
             vkey key;
             for (int r = 0; r < 3; ++r) {
                 if (!std::isfinite(z[r]))
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: vertex %zu is not finite "
+                    return banyan_fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: vertex %zu is not finite "
                                 "(%g, %g, %g) after its node transforms", path, mesh, label(gm).c_str(), pi, k,
                                 static_cast<double>(f[0]), static_cast<double>(f[1]), static_cast<double>(f[2]));
                 if (z[r] == 0.0f) z[r] = 0.0f; /* -0 -> +0 */
@@ -244,7 +227,7 @@ struct reader {
             auto ins = weld.emplace(key, static_cast<uint32_t>(pos.size() / 3));
             if (ins.second) {
                 if (pos.size() / 3 >= UINT32_MAX)
-                    return fail(err, BANYAN_E_LIMIT, "%s: more than %u vertices", path, UINT32_MAX);
+                    return banyan_fail(err, BANYAN_E_LIMIT, "%s: more than %u vertices", path, UINT32_MAX);
                 pos.insert(pos.end(), z, z + 3);
             }
             local[k] = ins.first->second;
@@ -254,7 +237,7 @@ struct reader {
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
             if (static_cast<size_t>(p.indices) >= model.accessors.size())
-                return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: indices name accessor %d, which does "
+                return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: indices name accessor %d, which does "
                             "not exist", path, mesh, pi, p.indices);
             const auto &iacc = model.accessors[static_cast<size_t>(p.indices)];
             size_t es = iacc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
@@ -262,7 +245,7 @@ struct reader {
                         : iacc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
                                                                                        : 0;
             if (iacc.type != TINYGLTF_TYPE_SCALAR || es == 0)
-                return fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: indices must be unsigned byte, short "
+                return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: indices must be unsigned byte, short "
                             "or int scalars", path, mesh, pi);
             const unsigned char *ib = nullptr;
             size_t istride = 0, ni = 0;
@@ -273,7 +256,7 @@ struct reader {
                 uint32_t v = es == 1 ? e[0] : es == 2 ? static_cast<uint32_t>(e[0] | e[1] << 8) : 0;
                 if (es == 4) std::memcpy(&v, e, 4);
                 if (v >= nv)
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: index %zu = %u is out of "
+                    return banyan_fail(err, BANYAN_E_BAD_HOST, "%s: mesh %d%s primitive %zu: index %zu = %u is out of "
                                 "range (%zu vertices)", path, mesh, label(gm).c_str(), pi, k, v, nv);
                 idx[k] = v;
             }
@@ -285,7 +268,7 @@ struct reader {
         size_t n = idx.size();
         size_t nt = mode == TINYGLTF_MODE_TRIANGLES ? n / 3 : n >= 3 ? n - 2 : 0;
         if (static_cast<uint64_t>(tri.size() / 3) + nt > BANYAN_HOSTS_MAX_TRIANGLES)
-            return fail(err, BANYAN_E_LIMIT, "%s: more than %u triangles (BANYAN_HOSTS_MAX_TRIANGLES)", path,
+            return banyan_fail(err, BANYAN_E_LIMIT, "%s: more than %u triangles (BANYAN_HOSTS_MAX_TRIANGLES)", path,
                         BANYAN_HOSTS_MAX_TRIANGLES);
         tri.reserve(tri.size() + 3 * nt);
         for (size_t t = 0; t < nt; ++t) {
@@ -319,19 +302,19 @@ struct reader {
             item it = stack.back();
             stack.pop_back();
             if (it.node < 0 || static_cast<size_t>(it.node) >= model.nodes.size())
-                return fail(err, BANYAN_E_PARSE, "%s: node %d does not exist", path, it.node);
+                return banyan_fail(err, BANYAN_E_PARSE, "%s: node %d does not exist", path, it.node);
             if (seen[static_cast<size_t>(it.node)]++)
-                return fail(err, BANYAN_E_PARSE, "%s: node %d is reached twice (the node graph must be a tree)", path,
+                return banyan_fail(err, BANYAN_E_PARSE, "%s: node %d is reached twice (the node graph must be a tree)", path,
                             it.node);
             const tinygltf::Node &n = model.nodes[static_cast<size_t>(it.node)];
             mat4 world = mat_mul(it.parent, node_matrix(n));
             for (double v : world.m)
                 if (!std::isfinite(v))
-                    return fail(err, BANYAN_E_BAD_HOST, "%s: node %d (\"%.40s\") has a non-finite transform (with "
+                    return banyan_fail(err, BANYAN_E_BAD_HOST, "%s: node %d (\"%.40s\") has a non-finite transform (with "
                                 "its parents')", path, it.node, n.name.c_str());
             if (n.mesh >= 0) {
                 if (static_cast<size_t>(n.mesh) >= model.meshes.size())
-                    return fail(err, BANYAN_E_PARSE, "%s: node %d names mesh %d, which does not exist", path, it.node,
+                    return banyan_fail(err, BANYAN_E_PARSE, "%s: node %d names mesh %d, which does not exist", path, it.node,
                                 n.mesh);
                 bool mirrored = det3(world) < 0;
                 const auto &gm = model.meshes[static_cast<size_t>(n.mesh)];
@@ -357,27 +340,27 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     /* A FIFO or a device would block or never end: regular files only. */
     struct stat sb;
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
-        return fail(err, BANYAN_E_IO, "%s: not a regular file", path);
+        return banyan_fail(err, BANYAN_E_IO, "%s: not a regular file", path);
     FILE *f = std::fopen(path, "rb");
-    if (!f) return fail(err, BANYAN_E_IO, "%s: cannot open: %s", path, std::strerror(errno));
+    if (!f) return banyan_fail(err, BANYAN_E_IO, "%s: cannot open: %s", path, std::strerror(errno));
     std::vector<unsigned char> bytes;
     long size = -1;
     if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
     if (size < 0 || std::fseek(f, 0, SEEK_SET) != 0) {
         std::fclose(f);
-        return fail(err, BANYAN_E_IO, "%s: cannot read (not a regular file?)", path);
+        return banyan_fail(err, BANYAN_E_IO, "%s: cannot read (not a regular file?)", path);
     }
     if (static_cast<uint64_t>(size) > kMaxFileBytes) {
         std::fclose(f);
-        return fail(err, BANYAN_E_LIMIT, "%s: %ld bytes is more than the %llu a .glb may have here", path, size,
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: %ld bytes is more than the %llu a .glb may have here", path, size,
                     static_cast<unsigned long long>(kMaxFileBytes));
     }
     bytes.resize(static_cast<size_t>(size));
     size_t got = size ? std::fread(bytes.data(), 1, bytes.size(), f) : 0;
     std::fclose(f);
-    if (got != bytes.size()) return fail(err, BANYAN_E_IO, "%s: read %zu of %ld bytes", path, got, size);
+    if (got != bytes.size()) return banyan_fail(err, BANYAN_E_IO, "%s: read %zu of %ld bytes", path, got, size);
     if (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0)
-        return fail(err, BANYAN_E_PARSE, "%s: not a glTF binary (.glb) file: it does not start with \"glTF\"%s", path,
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a glTF binary (.glb) file: it does not start with \"glTF\"%s", path,
                     !bytes.empty() && bytes[0] == '{' ? " (a .gltf JSON file? export it as .glb)" : "");
 
     /* The container, checked here in full: tinygltf 2.7 lets a BIN chunk
@@ -385,18 +368,18 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     uint32_t hdr[5] = {0, 0, 0, 0, 0};
     std::memcpy(hdr, bytes.data(), bytes.size() < 20 ? 12 : 20);
     if (hdr[1] != 2)
-        return fail(err, BANYAN_E_PARSE, "%s: glTF binary version %u (banyan reads version 2)", path, hdr[1]);
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: glTF binary version %u (banyan reads version 2)", path, hdr[1]);
     if (hdr[2] != bytes.size())
-        return fail(err, BANYAN_E_PARSE, "%s: the header says %u bytes but the file has %zu (truncated?)", path,
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: the header says %u bytes but the file has %zu (truncated?)", path,
                     hdr[2], bytes.size());
     if (bytes.size() < 20 || hdr[4] != 0x4E4F534Au || hdr[3] == 0 || hdr[3] > bytes.size() - 20)
-        return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the JSON chunk is missing or truncated", path);
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the JSON chunk is missing or truncated", path);
     size_t next = 20 + static_cast<size_t>(hdr[3]);
     if (next < bytes.size()) {
         uint32_t bin[2] = {0, 0};
         if (bytes.size() - next >= 8) std::memcpy(bin, bytes.data() + next, 8);
         if (bytes.size() - next < 8 || bin[0] > bytes.size() - next - 8)
-            return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the chunk after the JSON runs past the end "
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the chunk after the JSON runs past the end "
                         "of the file", path);
     }
 
@@ -412,14 +395,14 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     if (!loader.LoadBinaryFromMemory(&model, &e, &w, bytes.data(), static_cast<unsigned int>(bytes.size()), dir)) {
         size_t nl = e.find('\n');
         if (nl != std::string::npos) e.resize(nl);
-        return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: %.160s", path,
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: %.160s", path,
                     e.empty() ? "tinygltf gave no reason" : e.c_str());
     }
     bytes.clear();
     bytes.shrink_to_fit();
     for (const auto &x : model.extensionsRequired)
         if (!ignorable_extension(x))
-            return fail(err, BANYAN_E_PARSE, "%s: requires the extension %.60s, which banyan does not read "
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: requires the extension %.60s, which banyan does not read "
                         "(export without compression or quantization)", path, x.c_str());
 
     /* The scene's root nodes; without scenes, every node no one holds. */
@@ -427,7 +410,7 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     if (!model.scenes.empty()) {
         int sc = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (static_cast<size_t>(sc) >= model.scenes.size())
-            return fail(err, BANYAN_E_PARSE, "%s: the default scene %d does not exist", path, sc);
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: the default scene %d does not exist", path, sc);
         roots = model.scenes[static_cast<size_t>(sc)].nodes;
     } else {
         std::vector<char> child(model.nodes.size(), 0);
@@ -442,7 +425,7 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     if (s) return s;
     size_t nt = r.tri.size() / 3, nv = r.pos.size() / 3;
     if (nt == 0)
-        return fail(err, BANYAN_E_BAD_HOST, "%s: has no triangles (%zu meshes, %llu primitives reached, %llu of them "
+        return banyan_fail(err, BANYAN_E_BAD_HOST, "%s: has no triangles (%zu meshes, %llu primitives reached, %llu of them "
                     "points, lines or without POSITION)", path, model.meshes.size(),
                     static_cast<unsigned long long>(r.primitives), static_cast<unsigned long long>(r.skipped));
 
@@ -450,7 +433,7 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     size_t head = (sizeof(banyan_host_mesh) + 15) & ~static_cast<size_t>(15);
     size_t total = head + sizeof(float) * r.pos.size() + sizeof(uint32_t) * r.tri.size();
     unsigned char *block = static_cast<unsigned char *>(std::malloc(total));
-    if (!block) return fail(err, BANYAN_E_NOMEM, "%s: out of memory for %zu vertices", path, nv);
+    if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "%s: out of memory for %zu vertices", path, nv);
     banyan_host_mesh *m = reinterpret_cast<banyan_host_mesh *>(block);
     std::memset(m, 0, sizeof *m);
     float *pos = reinterpret_cast<float *>(block + head);
@@ -473,22 +456,22 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
 
 extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
                                                          banyan_host_mesh **out, banyan_error *err) {
-    if (!out) return fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
+    if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
     *out = nullptr;
-    if (!path || !*path) return fail(err, BANYAN_E_INVALID_ARG, "path is NULL or empty");
+    if (!path || !*path) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL or empty");
     if (closed < -1 || closed > 1)
-        return fail(err, BANYAN_E_RANGE, "closed = %d must be -1 (auto), 0 (open) or 1 (closed)", closed);
+        return banyan_fail(err, BANYAN_E_RANGE, "closed = %d must be -1 (auto), 0 (open) or 1 (closed)", closed);
     for (int i = 0; transform && i < 12; ++i)
         if (!std::isfinite(transform[i]))
-            return fail(err, BANYAN_E_RANGE, "transform[%d] = %g must be finite", i, transform[i]);
+            return banyan_fail(err, BANYAN_E_RANGE, "transform[%d] = %g must be finite", i, transform[i]);
     try {
         return read_host(path, transform, closed, out, err);
     } catch (const std::bad_alloc &) {
-        return fail(err, BANYAN_E_NOMEM, "%s: out of memory", path);
+        return banyan_fail(err, BANYAN_E_NOMEM, "%s: out of memory", path);
     } catch (const std::exception &x) {
-        return fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: %.160s", path, x.what());
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: %.160s", path, x.what());
     } catch (...) {
-        return fail(err, BANYAN_E_INTERNAL, "%s: unexpected exception while reading", path);
+        return banyan_fail(err, BANYAN_E_INTERNAL, "%s: unexpected exception while reading", path);
     }
 }
 

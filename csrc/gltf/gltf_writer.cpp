@@ -25,12 +25,12 @@
  * that fails part-way removes the file. No exception leaves this file.
  */
 #include "banyan.h"
+#include "core/error.h"
 
 #include <tiny_gltf.h>
 
 #include <cerrno>
 #include <cmath>
-#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -53,23 +53,6 @@ namespace {
 /* glTF buffers are addressed with 32-bit lengths in GLB; keep some room for
  * the JSON chunk as well. */
 const uint64_t kMaxBufferBytes = UINT64_C(0xFFFFFFFF) - (UINT64_C(64) << 20);
-
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-banyan_status
-fail(banyan_error *err, banyan_status code, const char *fmt, ...) {
-    if (err != nullptr) {
-        err->code = static_cast<int32_t>(code);
-        va_list ap;
-        va_start(ap, fmt);
-        int n = std::vsnprintf(err->message, sizeof err->message, fmt, ap);
-        va_end(ap);
-        if (n < 0) err->message[0] = '\0';
-        err->message[sizeof err->message - 1] = '\0';
-    }
-    return code;
-}
 
 /* Strict UTF-8 check (no overlongs, no surrogates, <= U+10FFFF). The JSON
  * serialiser throws on invalid UTF-8, so names are checked up front. */
@@ -146,7 +129,7 @@ banyan_status check_finite(const float *a, uint32_t n, uint32_t width, uint32_t 
     const uint64_t total = static_cast<uint64_t>(n) * width;
     for (uint64_t i = 0; i < total; ++i) {
         if (!std::isfinite(a[i])) {
-            return fail(err, BANYAN_E_RANGE,
+            return banyan_fail(err, BANYAN_E_RANGE,
                         "meshes[%u].%s[%llu] = %g is not finite (vertex %llu%s%s)", mesh,
                         field, static_cast<unsigned long long>(i),
                         static_cast<double>(a[i]),
@@ -159,25 +142,25 @@ banyan_status check_finite(const float *a, uint32_t n, uint32_t width, uint32_t 
 }
 
 banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
-    if (m == nullptr) return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u] is NULL", mi);
+    if (m == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u] is NULL", mi);
     if (m->vertex_count == 0)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u].vertex_count is 0; a mesh needs at least one vertex", mi);
     if (m->index_count == 0)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u].index_count is 0; a mesh needs at least one triangle", mi);
     if (m->index_count % 3 != 0)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u].index_count = %u is not a multiple of 3", mi, m->index_count);
     if (m->positions == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].positions is NULL", mi);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].positions is NULL", mi);
     if (m->indices == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].indices is NULL", mi);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].indices is NULL", mi);
 
     const uint32_t vc = m->vertex_count;
     for (uint32_t i = 0; i < m->index_count; ++i) {
         if (m->indices[i] >= vc)
-            return fail(err, BANYAN_E_RANGE,
+            return banyan_fail(err, BANYAN_E_RANGE,
                         "meshes[%u].indices[%u] = %u is out of range [0, %u]", mi, i,
                         m->indices[i], vc - 1);
     }
@@ -192,25 +175,25 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
 
     /* Custom attributes: "_" + upper-cased name must be a unique key. */
     if (m->attribute_count > 0 && m->attributes == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u].attributes is NULL but attribute_count = %u", mi,
                     m->attribute_count);
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
         const banyan_attribute *at = &m->attributes[a];
         size_t n = name_len(at->name, BANYAN_NAME_MAX);
         if (n == BANYAN_NAME_MAX)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].attributes[%u].name is not NUL-terminated within %d bytes",
                         mi, a, BANYAN_NAME_MAX);
         if (n == 0)
-            return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u].name is empty",
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u].name is empty",
                         mi, a);
         for (size_t k = 0; k < n; ++k) {
             char c = at->name[k];
             bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
                       (c >= '0' && c <= '9') || c == '_';
             if (!ok)
-                return fail(err, BANYAN_E_INVALID_ARG,
+                return banyan_fail(err, BANYAN_E_INVALID_ARG,
                             "meshes[%u].attributes[%u].name \"%.*s\" has a character "
                             "outside [A-Za-z0-9_] at byte %zu",
                             mi, a, static_cast<int>(n), at->name, k);
@@ -225,13 +208,13 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
                 if (x != y) break;
             }
             if (k == n && o[n] == '\0')
-                return fail(err, BANYAN_E_INVALID_ARG,
+                return banyan_fail(err, BANYAN_E_INVALID_ARG,
                             "meshes[%u].attributes[%u].name \"%s\" repeats attributes[%u] "
                             "(glTF names are upper-cased)",
                             mi, a, at->name, b);
         }
         if (at->data == nullptr)
-            return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u] (\"%s\").data is NULL",
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u] (\"%s\").data is NULL",
                         mi, a, at->name);
         std::string field = std::string("attributes[") + std::to_string(a) + "].data";
         if ((s = check_finite(at->data, vc, 1, mi, field.c_str(), err)) != BANYAN_OK) return s;
@@ -239,7 +222,7 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
 
     /* Materials. */
     if (m->material_count > 0 && m->materials == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u].materials is NULL but material_count = %u", mi,
                     m->material_count);
     for (uint32_t k = 0; k < m->material_count; ++k) {
@@ -247,53 +230,53 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
         size_t n = name_len(mat->name, BANYAN_NAME_MAX);
         size_t bad = 0;
         if (n == BANYAN_NAME_MAX)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].materials[%u].name is not NUL-terminated within %d bytes",
                         mi, k, BANYAN_NAME_MAX);
         if (!valid_utf8(mat->name, n, &bad))
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].materials[%u].name is not valid UTF-8 (byte %zu)", mi, k,
                         bad);
         for (int c = 0; c < 4; ++c) {
             float v = mat->base_color[c];
             if (!(v >= 0.0f && v <= 1.0f))
-                return fail(err, BANYAN_E_RANGE,
+                return banyan_fail(err, BANYAN_E_RANGE,
                             "meshes[%u].materials[%u].base_color[%d] = %g is outside [0, 1]",
                             mi, k, c, static_cast<double>(v));
         }
         if (!(mat->roughness >= 0.0f && mat->roughness <= 1.0f))
-            return fail(err, BANYAN_E_RANGE,
+            return banyan_fail(err, BANYAN_E_RANGE,
                         "meshes[%u].materials[%u].roughness = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->roughness));
     }
 
     /* Parts. */
     if (m->part_count > 0 && m->parts == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].parts is NULL but part_count = %u",
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].parts is NULL but part_count = %u",
                     mi, m->part_count);
     bool any_triangles = m->part_count == 0;
     for (uint32_t p = 0; p < m->part_count; ++p) {
         const banyan_part *pt = &m->parts[p];
         if (static_cast<uint64_t>(pt->vertex_offset) + pt->vertex_count > vc)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].parts[%u] vertices [%u, +%u) pass vertex_count = %u", mi, p,
                         pt->vertex_offset, pt->vertex_count, vc);
         if (static_cast<uint64_t>(pt->index_offset) + pt->index_count > m->index_count)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].parts[%u] indices [%u, +%u) pass index_count = %u", mi, p,
                         pt->index_offset, pt->index_count, m->index_count);
         if (pt->index_count % 3 != 0)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].parts[%u].index_count = %u is not a multiple of 3", mi, p,
                         pt->index_count);
         if (m->material_count > 0 && pt->material >= m->material_count)
-            return fail(err, BANYAN_E_INVALID_ARG,
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
                         "meshes[%u].parts[%u].material = %u is out of range [0, %u]", mi, p,
                         pt->material, m->material_count - 1);
         if (pt->index_count > 0) any_triangles = true;
     }
     if (!any_triangles)
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "meshes[%u] has %u parts and none has a triangle", mi, m->part_count);
     return BANYAN_OK;
 }
@@ -567,20 +550,20 @@ class OutFile {
 
 banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
                          const char *const *names, uint32_t count, banyan_error *err) {
-    if (path == nullptr) return fail(err, BANYAN_E_INVALID_ARG, "path is NULL");
-    if (path[0] == '\0') return fail(err, BANYAN_E_INVALID_ARG, "path is empty");
+    if (path == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL");
+    if (path[0] == '\0') return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is empty");
     bool binary;
     if (ends_with_ci(path, ".glb")) {
         binary = true;
     } else if (ends_with_ci(path, ".gltf")) {
         binary = false;
     } else {
-        return fail(err, BANYAN_E_INVALID_ARG,
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "path '%s' must end in .glb (binary) or .gltf (JSON)", path);
     }
-    if (count == 0) return fail(err, BANYAN_E_INVALID_ARG, "count is 0; nothing to write");
+    if (count == 0) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is 0; nothing to write");
     if (meshes == nullptr)
-        return fail(err, BANYAN_E_INVALID_ARG, "meshes is NULL but count = %u", count);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes is NULL but count = %u", count);
 
     for (uint32_t i = 0; i < count; ++i) {
         banyan_status s = check_mesh(meshes[i], i, err);
@@ -588,7 +571,7 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         if (names && names[i]) {
             size_t bad = 0;
             if (!valid_utf8(names[i], std::strlen(names[i]), &bad))
-                return fail(err, BANYAN_E_INVALID_ARG, "names[%u] is not valid UTF-8 (byte %zu)",
+                return banyan_fail(err, BANYAN_E_INVALID_ARG, "names[%u] is not valid UTF-8 (byte %zu)",
                             i, bad);
         }
     }
@@ -605,7 +588,7 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         material_base += static_cast<int>(meshes[i]->material_count);
     }
     if (total > kMaxBufferBytes)
-        return fail(err, BANYAN_E_LIMIT,
+        return banyan_fail(err, BANYAN_E_LIMIT,
                     "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
                     "JSON)",
                     static_cast<unsigned long long>(total),
@@ -669,7 +652,7 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     model.defaultScene = 0;
 
     if (bin.size() != total)
-        return fail(err, BANYAN_E_INTERNAL,
+        return banyan_fail(err, BANYAN_E_INTERNAL,
                     "glTF buffer holds %zu bytes, planned %llu; please report this",
                     bin.size(), static_cast<unsigned long long>(total));
     tinygltf::Buffer buffer;
@@ -678,7 +661,7 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
 
     OutFile out(path);
     if (!out.open())
-        return fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path,
+        return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path,
                     std::strerror(errno));
     FileBuf fb(out.get());
     std::ostream os(&fb);
@@ -686,11 +669,11 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     bool ok = writer.WriteGltfSceneToStream(&model, os, /*prettyPrint=*/true, binary);
     os.flush();
     if (fb.error() != 0)
-        return fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(fb.error()));
+        return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(fb.error()));
     if (!ok || !os)
-        return fail(err, BANYAN_E_IO, "cannot write '%s': the glTF serialiser failed", path);
+        return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': the glTF serialiser failed", path);
     int e = out.close();
-    if (e != 0) return fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
+    if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
     return BANYAN_OK;
 }
 
@@ -703,13 +686,13 @@ extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
     try {
         return write_impl(path, meshes, names, count, err);
     } catch (const std::bad_alloc &) {
-        return fail(err, BANYAN_E_NOMEM, "out of memory while writing glTF '%s'",
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory while writing glTF '%s'",
                     path ? path : "(null)");
     } catch (const std::exception &e) {
-        return fail(err, BANYAN_E_INTERNAL, "internal error while writing glTF '%s': %s",
+        return banyan_fail(err, BANYAN_E_INTERNAL, "internal error while writing glTF '%s': %s",
                     path ? path : "(null)", e.what());
     } catch (...) {
-        return fail(err, BANYAN_E_INTERNAL, "unknown internal error while writing glTF '%s'",
+        return banyan_fail(err, BANYAN_E_INTERNAL, "unknown internal error while writing glTF '%s'",
                     path ? path : "(null)");
     }
 }
