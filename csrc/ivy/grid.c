@@ -225,14 +225,17 @@ v3 ivy_push_out_near(const banyan_ivy *iv, v3 p) {
     return p;
 }
 
+/* Both ends beyond one face of the box lo..hi: the segment misses it. */
+static inline int segment_off_box(v3 a, v3 b, v3 lo, v3 hi) {
+    return (a.x < lo.x && b.x < lo.x) || (a.x > hi.x && b.x > hi.x) || (a.y < lo.y && b.y < lo.y) ||
+           (a.y > hi.y && b.y > hi.y) || (a.z < lo.z && b.z < lo.z) || (a.z > hi.z && b.z > hi.z);
+}
+
 v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to) {
     const double c = iv->p.clearance;
     for (uint32_t m = 0; m < iv->n_mesh; m++) {
         const uint32_t h = iv->mesh0 + m;
-        v3 lo = iv->clear_lo[h], hi = iv->clear_hi[h];
-        if ((from.x < lo.x && to.x < lo.x) || (from.x > hi.x && to.x > hi.x) || (from.y < lo.y && to.y < lo.y) ||
-            (from.y > hi.y && to.y > hi.y) || (from.z < lo.z && to.z < lo.z) || (from.z > hi.z && to.z > hi.z))
-            continue;
+        if (segment_off_box(from, to, iv->clear_lo[h], iv->clear_hi[h])) continue;
         double t;
         v3 nrm;
         if (hmesh_segment_hit(&iv->meshes[m], from, to, &t, &nrm))
@@ -244,10 +247,7 @@ v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to) {
 int ivy_segment_meets_mesh(const banyan_ivy *iv, v3 a, v3 b) {
     for (uint32_t m = 0; m < iv->n_mesh; m++) {
         const uint32_t h = iv->mesh0 + m;
-        v3 lo = iv->box_lo[h], hi = iv->box_hi[h];
-        if ((a.x < lo.x && b.x < lo.x) || (a.x > hi.x && b.x > hi.x) || (a.y < lo.y && b.y < lo.y) ||
-            (a.y > hi.y && b.y > hi.y) || (a.z < lo.z && b.z < lo.z) || (a.z > hi.z && b.z > hi.z))
-            continue;
+        if (segment_off_box(a, b, iv->box_lo[h], iv->box_hi[h])) continue;
         double t;
         v3 nrm;
         if (hmesh_segment_hit(&iv->meshes[m], a, b, &t, &nrm)) return 1;
