@@ -2,6 +2,8 @@
 #ifndef BANYAN_MESH_CHECKS_H
 #define BANYAN_MESH_CHECKS_H
 
+#include <stdlib.h>
+
 #include "banyan.h"
 #include "core/vec.h"
 
@@ -21,6 +23,23 @@ static inline int mc_wound_against_normals(const banyan_mesh *m, double min_cros
         if (v3_len(fn) > min_cross && v3_dot(fn, vn) <= 0) bad++;
     }
     return bad;
+}
+
+/* Connected pieces of the mesh's skeleton graph (1: all joined). */
+static inline int mc_skeleton_pieces(const banyan_mesh *m) {
+    uint32_t np = m->skel_point_count;
+    uint32_t *parent = (uint32_t *)malloc(sizeof(uint32_t) * (np ? np : 1));
+    for (uint32_t i = 0; i < np; i++) parent[i] = i;
+    for (uint32_t e = 0; e < m->skel_edge_count; e++) {
+        uint32_t a = m->skel_edges[2 * e], b = m->skel_edges[2 * e + 1];
+        while (parent[a] != a) a = parent[a] = parent[parent[a]];
+        while (parent[b] != b) b = parent[b] = parent[parent[b]];
+        parent[a] = b;
+    }
+    int pieces = 0;
+    for (uint32_t i = 0; i < np; i++) pieces += parent[i] == i;
+    free(parent);
+    return pieces;
 }
 
 #endif

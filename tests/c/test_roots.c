@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "mesh_checks.h"
 #include "roots/roots_internal.h"
 #include "test_files.h"
 
@@ -184,11 +185,6 @@ static double clearance(const roots_world *w, const obb *hosts, uint32_t n, v3 p
     return c;
 }
 
-static int find(uint32_t *parent, uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return (int)x;
-}
-
 static void check_net(const roots_net *net, const banyan_roots_params *p, const banyan_mesh *m,
                       const banyan_roots_stats *st, net_report *rep) {
     const roots_world *w = &net->w;
@@ -250,18 +246,7 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
     int want_second = want_first && p->second_branches && nb > 1 ? N * (nb - 1) : 0;
     if (firsts != want_first) rep->first_missing++;
     if (seconds != want_second) rep->second_missing++;
-    /* The skeleton is one connected graph. */
-    uint32_t np = m->skel_point_count;
-    uint32_t *parent = malloc(sizeof(uint32_t) * (np ? np : 1));
-    for (uint32_t i = 0; i < np; i++) parent[i] = i;
-    for (uint32_t e = 0; e < m->skel_edge_count; e++) {
-        int a = find(parent, m->skel_edges[2 * e]), b = find(parent, m->skel_edges[2 * e + 1]);
-        parent[a] = (uint32_t)b;
-    }
-    int roots = 0;
-    for (uint32_t i = 0; i < np; i++) roots += find(parent, i) == (int)i;
-    if (roots != 1) rep->disconnected++;
-    free(parent);
+    if (mc_skeleton_pieces(m) != 1) rep->disconnected++; /* one connected graph */
     if (st->first_reached != st->first_roots || st->first_roots != (uint32_t)want_first ||
         st->min_clearance < r * (1 - 1e-6) || st->vertices != m->vertex_count || st->triangles != m->index_count / 3)
         rep->stats_bad++;

@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "mesh_checks.h"
 #include "host_meshes.h"
 #include "roots/roots_internal.h"
 #include "test_files.h"
@@ -45,11 +46,6 @@ static double host_clearance(const banyan_hosts *H, const banyan_roots_params *p
         if (d < c) c = d;
     }
     return c;
-}
-
-static int find(uint32_t *parent, uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return (int)x;
 }
 
 typedef struct report {
@@ -114,18 +110,7 @@ static banyan_mesh *grow_check(const banyan_hosts *H, const banyan_roots_params 
             }
         }
     }
-    /* One connected graph. */
-    uint32_t np = m->skel_point_count;
-    uint32_t *parent = malloc(sizeof(uint32_t) * (np ? np : 1));
-    for (uint32_t i = 0; i < np; i++) parent[i] = i;
-    for (uint32_t e = 0; e < m->skel_edge_count; e++) {
-        int a = find(parent, m->skel_edges[2 * e]), b = find(parent, m->skel_edges[2 * e + 1]);
-        parent[a] = (uint32_t)b;
-    }
-    int roots = 0;
-    for (uint32_t i = 0; i < np; i++) roots += find(parent, i) == (int)i;
-    if (roots != 1) rep->disconnected++;
-    free(parent);
+    if (mc_skeleton_pieces(m) != 1) rep->disconnected++; /* one connected graph */
     if (st.first_reached != st.first_roots) rep->first_unreached++;
     rep->on_ground += (int)st.mains_on_ground;
     rep->mains += p->main_roots;
