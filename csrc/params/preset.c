@@ -277,15 +277,7 @@ done:
 
 /* Numbers of a JSON array into v[0..cap-1]: how many, or -1 when k is not
  * an array of at most cap numbers. */
-static int number_array(const cJSON *k, double *v, int cap) {
-    if (!cJSON_IsArray(k)) return -1;
-    int n = 0;
-    for (const cJSON *x = k->child; x; x = x->next) {
-        if (!cJSON_IsNumber(x) || n >= cap) return -1;
-        v[n++] = x->valuedouble;
-    }
-    return n;
-}
+static int number_array(const cJSON *k, double *v, int cap) { return cJSON_IsArray(k) ? numbers(k, v, cap) : -1; }
 
 /* Blender's XYZ Euler in degrees: R = Rz * Ry * Rx, row-major. */
 static void euler_deg(const double *v, double rot[9]) {
