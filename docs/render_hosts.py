@@ -54,8 +54,8 @@ def suzanne():
 #        framing: a margin (m) round the host's bounds, or a (lo, hi) box,
 #        view direction)
 IVY = {"seed": 1, "steps": 450, "t0": 20, "start": (0.0, -1.05, 0.05)}  # start just off the sphere's bounding box
-COLUMN_MID = ((-0.8, -0.8, 0.3), (0.8, 0.8, 3.9))  # the shaft, close: where the box's corners stand off
-COLUMN_VIEW = (1.0, -1.25, 0.6)
+COLUMN_MID = ((-0.7, -0.7, 1.2), (0.7, 0.7, 3.8))  # the upper shaft, close: where the box's corners stand off
+COLUMN_VIEW = (1.0, -1.25, 0.45)
 SHOTS = {
     "ivy_sphere_box": ("ivy", uv_sphere, 'BOX', "ivy_statue", IVY, 0.7, RS.VIEWS["ivy"]),
     "ivy_sphere_surface": ("ivy", uv_sphere, 'SURFACE', "ivy_statue", IVY, 0.7, RS.VIEWS["ivy"]),
