@@ -7,8 +7,8 @@ gallery table in presets/README.md.
 (or `bash tools/render_docs.sh`, which loads the add-on as the tests do).
 Each preset is grown through banyan.api in the shared scene of
 docs/render_scene.py (Cycles on the CPU, fixed seed and samples, no
-denoiser): grey host boxes, a ground plane, sun and sky, a camera framed
-on the bounds. Every thumbnail is checked: a blank one (low luminance
+denoiser): grey hosts (boxes; a preset's .glb meshes as objects), a
+ground plane, sun and sky, a camera framed on the bounds. Every thumbnail is checked: a blank one (low luminance
 variance, or the plant covering almost no pixels) stops the script with
 an error after the rest are rendered. The README table is rebuilt from
 every preset's "description" and its thumbnail.
@@ -51,8 +51,8 @@ def presets():
 
 def render_one(name, gen, a):
     RS.reset()
-    plant, boxes = RS.grow(gen, preset=name)
-    hosts = RS.host_objects(boxes)
+    plant, hosts = RS.grow(gen, preset=name)  # boxes, and objects for .glb hosts
+    hosts = RS.host_objects(hosts)
     RS.plant_materials(plant)
     RS.studio(plant + hosts)
     box = RS.near_part(*RS.bounds(plant)) if gen == "avenue" else None

@@ -1,13 +1,14 @@
 """The scene every documentation render shares (headless Blender, Cycles
-on the CPU): grey host boxes, a ground plane, a sun and a Nishita sky, a
-camera framed on the plant's bounds, and a check that the picture shows
-the plant. Used by docs/render_gallery.py, docs/render_params.py and the
-scripts in docs/examples/.
+on the CPU): grey hosts (boxes, or a preset's .glb meshes as objects), a
+ground plane, a sun and a Nishita sky, a camera framed on the plant's
+bounds, and a check that the picture shows the plant. Used by
+docs/render_gallery.py, docs/render_params.py, docs/render_hosts.py and
+the scripts in docs/examples/.
 
     import render_scene as RS
     RS.reset()
-    plant, boxes = RS.grow("roots", preset="roots_trunk")
-    hosts = RS.host_objects(boxes)
+    plant, hosts = RS.grow("roots", preset="roots_trunk")  # Boxes and objects
+    hosts = RS.host_objects(hosts)
     RS.plant_materials(plant)
     RS.studio(plant + hosts)
     RS.frame_camera(plant + hosts, RS.VIEWS["roots"], 320, 240)
@@ -23,6 +24,7 @@ import os
 import struct
 import sys
 import tempfile
+from array import array
 
 import bpy
 from mathutils import Matrix, Vector
@@ -73,35 +75,47 @@ def preset_path(gen, preset):
 
 
 def preset_hosts(gen, preset):
-    """The host boxes of a preset file (may be none)."""
-    from banyan import presets
+    """The hosts of a preset (may be none): its boxes (banyan Box), then,
+    for its .glb mesh hosts, new Blender objects made by
+    banyan.hosts.objects_from_preset (placed as the library places them)."""
+    import json
+    from banyan import hosts as H, presets
     from banyan.core.params import preset_hosts as hosts_of
     path = presets.find(gen, preset)
-    return hosts_of(presets.read(path), path)
+    text = presets.read(path)
+    if any(isinstance(h, dict) and "mesh" in h for h in json.loads(text).get("hosts") or []):
+        objs, boxes = H.objects_from_preset(gen, preset)
+        return list(boxes) + objs
+    return hosts_of(text, path)
 
 
-def grow(gen, preset=None, values=None):
-    """Builds one plant through banyan.api: (objects, host boxes). Hosts
-    come from the preset; roots without any get the CLI's default trunk."""
+def grow(gen, preset=None, values=None, hosts=None, host_shape='SURFACE'):
+    """Builds one plant through banyan.api: (objects, hosts), hosts being
+    banyan Boxes and Blender objects (host_objects draws both). Hosts
+    come from the preset unless given; roots without any get the CLI's
+    default trunk. Objects are grown on as host_shape says ('SURFACE':
+    their real surface; boxes stay boxes either way)."""
     api = import_banyan()
     from banyan.core.structs import Box
     values = dict(values or {})
-    boxes = preset_hosts(gen, preset) if preset else []
+    if hosts is None:
+        hosts = preset_hosts(gen, preset) if preset else []
+    hosts = list(hosts)
     if gen == "roots":
-        if not boxes:
-            boxes = [Box.make((0, 0, 4), (0.4, 0.4, 4))]
-        objs = api.strangler_roots(hosts=boxes, preset=preset, name="Roots", values=values)
+        if not hosts:
+            hosts = [Box.make((0, 0, 4), (0.4, 0.4, 4))]
+        objs = api.strangler_roots(hosts=hosts, preset=preset, name="Roots", values=values, host_shape=host_shape)
     elif gen == "keyaki":
         objs = api.keyaki_tree(preset=preset, name="Keyaki", values=values)
     elif gen == "avenue":
         objs = api.keyaki_avenue(preset=preset, merged=True, name="Avenue", values=values)
     elif gen == "ivy":
-        objs = api.ivy(hosts=boxes, preset=preset, name="Ivy", values=values)
+        objs = api.ivy(hosts=hosts, preset=preset, name="Ivy", values=values, host_shape=host_shape)
     elif gen == "segments":
         objs = api.segment_twigs(preset=preset, name="Segments", values=values)
     else:
         raise ValueError("unknown generator %s" % gen)
-    return objs, boxes
+    return objs, hosts
 
 
 def material(name, rgba, rough=0.8):
@@ -114,12 +128,23 @@ def material(name, rgba, rough=0.8):
     return m
 
 
-def host_objects(boxes, rgba=(0.45, 0.45, 0.45, 1.0)):
-    """One grey box object per banyan Box."""
+def host_objects(hosts, rgba=(0.45, 0.45, 0.45, 1.0)):
+    """The hosts drawn in grey: a box object per banyan Box; Blender
+    objects (mesh hosts) as they are, given the grey material and smooth
+    shading below 40 degrees (the surface the plant grew on is unchanged)."""
     grey = material("Host", rgba)
     out = []
     faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-    for i, box in enumerate(boxes):
+    for i, box in enumerate(hosts):
+        if isinstance(box, bpy.types.Object):
+            me = box.data
+            me.materials.clear()
+            me.materials.append(grey)
+            me.polygons.foreach_set("use_smooth", array("b", [1]) * len(me.polygons))
+            me.use_auto_smooth = True
+            me.auto_smooth_angle = math.radians(40)
+            out.append(box)
+            continue
         me = bpy.data.meshes.new("Host%d" % i)
         h = box.half
         me.from_pydata([(sx * h[0], sy * h[1], sz * h[2]) for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)],

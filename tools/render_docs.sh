@@ -5,7 +5,7 @@
 # build/):
 #   bash tools/render_docs.sh            # everything
 #   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
-#   (also: params, start, avenue; extra arguments go to the script)
+#   (also: params, start, avenue, hosts; extra arguments go to the script)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
@@ -25,10 +25,12 @@ case $what in
   params) run docs/render_params.py -- "$@" ;;
   start) run docs/render_getting_started.py -- "$@" ;;
   avenue) run docs/examples/render_avenue.py -- --out docs/img/avenue.png "$@" ;;
+  hosts) run docs/render_hosts.py -- "$@" ;;
   all)
     run docs/render_gallery.py
     run docs/render_params.py
     run docs/render_getting_started.py
+    run docs/render_hosts.py
     run docs/examples/render_avenue.py -- --out docs/img/avenue.png ;;
-  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue] [script args]"; exit 2 ;;
+  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts] [script args]"; exit 2 ;;
 esac

@@ -128,6 +128,15 @@ def _preset_boxes(gen, preset):
     return preset_hosts(PR.read(path), path)
 
 
+def _preset_has_meshes(gen, preset):
+    import json
+    try:
+        doc = json.loads(PR.read(PR.find(gen, preset)))
+        return any(isinstance(h, dict) and "mesh" in h for h in doc.get("hosts") or [])
+    except (ValueError, AttributeError):
+        return False  # the library reports it
+
+
 def _check_hosts(hosts):
     if hosts is None:
         return []
@@ -153,6 +162,11 @@ def grow_on_hosts(gen, hosts, host_shape, preset, grow):
         return grow(hosts)
     shape = H.check_shape(host_shape)
     hosts = _check_hosts(hosts)
+    if not hosts and preset and shape == H.SURFACE and _preset_has_meshes(gen, preset):
+        # The preset's own boxes and .glb meshes, as the CLI builds them.
+        path = PR.find(gen, preset)
+        with HostSet.from_preset(PR.read(path), path) as hs:
+            return grow(hs)
     if shape == H.BOX or all(isinstance(h, Box) for h in hosts):
         boxes = _boxes(hosts)
         if not boxes and preset:

@@ -314,7 +314,80 @@ def mesh_input_from_object(obj, depsgraph):
             pos, tri = _read_mesh(me, name)
         finally:
             ev.to_mesh_clear()
-    return MeshInput(pos, tri, transform=ev.matrix_world, closed=S.HOST_CLOSED_AUTO, name=name)
+    return MeshInput(pos, tri, transform=ev.matrix_world, closed=closed_mode(obj), name=name)
+
+
+CLOSED_PROP = "banyan_host_closed"  # object property: -1 auto, 0 open, 1 closed (e.g. from a preset)
+
+
+def closed_mode(obj):
+    """The object's banyan_host_closed property when it holds a valid mode
+    (objects made by objects_from_preset carry the preset's), else auto."""
+    try:
+        v = int(obj.get(CLOSED_PROP, S.HOST_CLOSED_AUTO))
+    except (TypeError, ValueError, AttributeError):
+        return S.HOST_CLOSED_AUTO
+    return v if v in (S.HOST_CLOSED_AUTO, S.HOST_OPEN, S.HOST_CLOSED) else S.HOST_CLOSED_AUTO
+
+
+def mesh_from_input(name, mi):
+    """A new Mesh datablock of a MeshInput's object-space triangles:
+    foreach_set from its typed buffers, no per-vertex Python loop."""
+    import bpy
+    nv, nt = mi.vertex_count, mi.triangle_count
+    me = bpy.data.meshes.new(name)
+    me.vertices.add(nv)
+    me.vertices.foreach_set("co", mi.positions)
+    loops = array("i")
+    loops.frombytes(mi.indices.tobytes())  # 'I' -> 'i': the property's own item type, one copy
+    me.loops.add(3 * nt)
+    me.loops.foreach_set("vertex_index", loops)
+    me.polygons.add(nt)
+    me.polygons.foreach_set("loop_start", array("i", range(0, 3 * nt, 3)))
+    me.polygons.foreach_set("loop_total", array("i", [3]) * nt)
+    me.update()
+    return me
+
+
+def objects_from_preset(gen, preset, collection=None, material=None):
+    """Blender objects for the mesh hosts of a preset (its "hosts" entries
+    with "mesh": "file.glb"): each file read through the library
+    (banyan_glb_read_host, exactly as the CLI reads it), its object-space
+    triangles in a new mesh object whose matrix_world is the entry's
+    translation / rotation / scale composed as the library composes them,
+    so a plant grown on these objects with host shape Surface lines up
+    with the CLI's. The preset's "closed" is kept in the object's
+    banyan_host_closed property. Returns (objects, boxes): the new objects
+    in preset order and the preset's box hosts (structs.Box). The whole
+    preset is checked by the library first: a bad entry or file raises
+    BanyanError and nothing is added to the scene."""
+    import bpy
+    from mathutils import Matrix
+    from . import presets as PR
+    from .core.hostset import preset_hosts_split, read_glb
+    path = PR.find(gen, preset)
+    boxes, entries = preset_hosts_split(PR.read(path), path)
+    inputs = [read_glb(e["path"], e["transform"], e["closed"], e["name"]) for e in entries]
+    coll = collection or bpy.context.scene.collection
+    out = []
+    try:
+        for e, mi in zip(entries, inputs):
+            me = mesh_from_input(e["name"], mi)
+            if material is not None:
+                me.materials.append(material)
+            ob = bpy.data.objects.new(e["name"], me)
+            t = mi.transform
+            ob.matrix_world = Matrix((t[0:4], t[4:8], t[8:12], (0.0, 0.0, 0.0, 1.0)))
+            ob[CLOSED_PROP] = e["closed"]
+            coll.objects.link(ob)
+            out.append(ob)
+    except BaseException:
+        for ob in out:
+            me = ob.data
+            bpy.data.objects.remove(ob)
+            bpy.data.meshes.remove(me)
+        raise
+    return out, boxes
 
 
 def _mesh_type():

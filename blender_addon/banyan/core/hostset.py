@@ -14,7 +14,9 @@ first, then the meshes in order; library messages about hosts[i] name the
 object each came from.
 """
 import ctypes as C
+import json
 import math
+import os
 import re
 from array import array
 
@@ -87,6 +89,110 @@ class MeshInput:
         return m
 
 
+def read_glb(path, transform=None, closed=S.HOST_CLOSED_AUTO, name=None):
+    """A .glb file read by the library (banyan_glb_read_host: every triangle
+    of its default scene under its node transforms, Z up, coincident
+    vertices merged) as a MeshInput: object-space positions and triangles
+    copied out of the library's allocation with two memmoves, `transform`
+    (see transform_rows) as its object -> world matrix. BanyanError with
+    the path when the file is not a readable glTF binary with triangles."""
+    lib = L.load()
+    rows = transform_rows(transform)
+    out = C.POINTER(S.HostMesh)()
+    err = S.Error()
+    st = lib.banyan_glb_read_host(os.fsencode(path), (C.c_double * 12)(*rows), int(closed), C.byref(out),
+                                  C.byref(err))
+    L.raise_for(st, err)
+    try:
+        m = out.contents
+        pos = array("f", bytes(12 * m.vertex_count))
+        tri = array("I", bytes(12 * m.triangle_count))
+        C.memmove(pos.buffer_info()[0], m.positions, 12 * m.vertex_count)
+        C.memmove(tri.buffer_info()[0], m.indices, 12 * m.triangle_count)
+    finally:
+        lib.banyan_host_mesh_free(out)
+    return MeshInput(pos, tri, transform=rows, closed=closed, name=name or os.path.basename(path))
+
+
+def _rotate(v, k, angle):
+    """vec.h v3_rotate (Rodrigues), term by term as the C computes it."""
+    c, s = math.cos(angle), math.sin(angle)
+    r = [v[i] * c for i in range(3)]
+    kxv = (k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0])
+    r = [r[i] + kxv[i] * s for i in range(3)]
+    d = (k[0] * v[0] + k[1] * v[1] + k[2] * v[2]) * (1.0 - c)
+    return [r[i] + k[i] * d for i in range(3)]
+
+
+def _axis_rotation(k, angle):
+    """vec.h m3_rotation: row-major 3x3, columns the rotated unit axes."""
+    cols = [_rotate(e, k, angle) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+    return [cols[c][r] for r in range(3) for c in range(3)]
+
+
+def _m3_mul(a, b):
+    return [sum(a[3 * r + k] * b[3 * k + c] for k in range(3)) for r in range(3) for c in range(3)]
+
+
+def euler_deg_rotation(deg):
+    """preset.c euler_deg: R = Rz * Ry * Rx (XYZ, degrees), row-major 9."""
+    rad = [d * (3.14159265358979323846 / 180.0) for d in deg]
+    rx = _axis_rotation((1.0, 0.0, 0.0), rad[0])
+    ry = _axis_rotation((0.0, 1.0, 0.0), rad[1])
+    rz = _axis_rotation((0.0, 0.0, 1.0), rad[2])
+    return _m3_mul(_m3_mul(rz, ry), rx)
+
+
+CLOSED_NAMES = {"auto": S.HOST_CLOSED_AUTO, "open": S.HOST_OPEN, "closed": S.HOST_CLOSED}
+
+
+def preset_mesh_transform(entry):
+    """The 3x4 object -> world rows of a preset's mesh host entry, composed
+    as preset.c read_mesh_entry does: translation (or center) + rotation
+    (9 numbers or rotation_euler_deg) * (scale * p)."""
+    t = [float(x) for x in entry.get("translation", entry.get("center", (0.0, 0.0, 0.0)))]
+    if "rotation" in entry:
+        rot = [float(x) for x in entry["rotation"]]
+    elif "rotation_euler_deg" in entry:
+        rot = euler_deg_rotation([float(x) for x in entry["rotation_euler_deg"]])
+    else:
+        rot = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    sc = entry.get("scale", 1.0)
+    sc = [float(sc)] * 3 if isinstance(sc, (int, float)) else [float(x) for x in sc]
+    return tuple(rot[3 * r + c] * sc[c] if c < 3 else t[r] for r in range(3) for c in range(4))
+
+
+def preset_hosts_split(text, source="<preset>", base_dir=None):
+    """(boxes, meshes) of a preset's "hosts" that may name .glb meshes.
+    The whole preset is first checked by the library
+    (banyan_preset_host_set, which reads every file), so a bad entry or
+    file is refused with its message before anything is made. boxes: the
+    box entries as structs.Box, read by the library; meshes: one dict per
+    mesh entry, in order: {"index" (in the preset's hosts), "name",
+    "path" (joined to base_dir), "transform" (12 rows), "closed"}."""
+    data = text.encode() if isinstance(text, str) else bytes(text)
+    source = str(source)
+    base = os.path.dirname(os.path.abspath(source)) if base_dir is None and os.path.isfile(source) else base_dir
+    # Checked (and built, then dropped) by the library: one rule, one message.
+    HostSet.from_preset(data, source, base).close()
+    doc = json.loads(data.decode("utf-8"))
+    entries = list(doc.get("hosts") or [])
+    boxes = []
+    box_entries = [e for e in entries if "mesh" not in e]
+    if box_entries:
+        from .params import preset_hosts
+        boxes = preset_hosts(json.dumps(dict(doc, hosts=box_entries)), source)
+    meshes = []
+    for i, e in enumerate(entries):
+        if "mesh" not in e:
+            continue
+        path = e["mesh"] if os.path.isabs(e["mesh"]) or not base else os.path.join(base, e["mesh"])
+        meshes.append({"index": i, "name": str(e.get("name") or os.path.splitext(os.path.basename(path))[0]),
+                       "path": path, "transform": preset_mesh_transform(e),
+                       "closed": CLOSED_NAMES[e.get("closed", "auto")]})
+    return boxes, meshes
+
+
 def name_hosts(message, names, n_boxes=0):
     """A library message with hosts[i] (or meshes[j], j counted among the
     meshes) spelt as the object it came from: "hosts[2] has a vertex ..."
@@ -126,6 +232,40 @@ class HostSet:
             raise BanyanError(st, self.name_message(msg), L.status_name(st))
         if not self.handle:
             raise BanyanError(14, "banyan_hosts_create returned OK but no host set", "BANYAN_E_INTERNAL")
+
+    @classmethod
+    def from_preset(cls, text, source="<preset>", base_dir=None, extra=()):
+        """The host set of a preset (banyan_preset_host_set): its boxes and
+        .glb meshes (paths relative to base_dir, by default the preset's
+        folder), then the MeshInputs in `extra`. BanyanError naming
+        hosts[i] on a bad entry or file; BANYAN_E_NO_HOSTS when it has
+        none."""
+        data = text.encode() if isinstance(text, str) else bytes(text)
+        source = str(source)
+        if base_dir is None and os.path.isfile(source):
+            base_dir = os.path.dirname(os.path.abspath(source))
+        extra = list(extra)
+        self = cls.__new__(cls)
+        self.handle = C.c_void_p()
+        try:
+            doc = json.loads(data.decode("utf-8"))
+            entries = [h for h in doc.get("hosts") or [] if isinstance(h, dict)]
+        except (ValueError, AttributeError):
+            entries = []  # the library reports the syntax error with its line
+        boxes = [h for h in entries if "mesh" not in h]
+        self.n_boxes = len(boxes)
+        self.n_meshes = len(entries) - len(boxes) + len(extra)
+        self.names = ([h.get("name") for h in boxes] + [h.get("name") or h.get("mesh") for h in entries
+                                                        if "mesh" in h] + [m.name for m in extra])
+        marr = (S.HostMesh * max(1, len(extra)))(*[m.struct() for m in extra])
+        err = S.Error()
+        st = L.load().banyan_preset_host_set(data, len(data), source.encode(),
+                                             os.fsencode(base_dir) if base_dir else None,
+                                             marr if extra else None, len(extra), C.byref(self.handle), C.byref(err))
+        if st:
+            self.handle = C.c_void_p()
+            raise BanyanError(st, err.text() if err.code else L.status_name(st), L.status_name(st))
+        return self
 
     # ------------------------------------------------------------ queries
     def _live(self):

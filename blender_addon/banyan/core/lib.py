@@ -84,6 +84,11 @@ def _bind(lib):
         "banyan_hosts_sweep_sphere": (C.c_int, [vp, P(C.c_double), P(C.c_double), C.c_double, P(S.HostHit),
                                                 err]),
         "banyan_hosts_inside": (C.c_int32, [vp, P(C.c_double)]),
+        # Mesh hosts from .glb files and presets (banyan.h).
+        "banyan_glb_read_host": (C.c_int, [C.c_char_p, P(C.c_double), C.c_int32, P(P(S.HostMesh)), err]),
+        "banyan_host_mesh_free": (None, [P(S.HostMesh)]),
+        "banyan_preset_host_set": (C.c_int, [C.c_char_p, C.c_size_t, C.c_char_p, C.c_char_p, P(S.HostMesh),
+                                             C.c_uint32, P(vp), err]),
     }
     for key in S.SIZED:
         sigs["banyan_sizeof_" + key] = (C.c_size_t, [])
