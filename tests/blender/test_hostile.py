@@ -480,8 +480,8 @@ SCENES = [
     ("camera active, cube selected", HOSTS_OPS,
      lambda: select([cube(), bpy.data.objects["Camera"]], bpy.data.objects["Camera"]), {}, ("ok", None)),
     ("zero-scale host", HOSTS_OPS, lambda: setattr(cube(), "scale", (0, 0, 0)), {}, ("error report", "'Cube'")),
-    # A 2 nm cube has a surface (the library takes any invertible transform); its box is below the box floor.
-    ("host scaled 1e-9", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3), {}, ("ok", None)),
+    # A 2 nm cube: below the floor of both shapes (a mesh must span 1e-6 m, a box's half extent be 1e-6 m).
+    ("host scaled 1e-9", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3), {}, ("error report", "'Cube'")),
     ("host scaled 1e-9, bounding box", HOSTS_OPS, lambda: setattr(cube(), "scale", (1e-9,) * 3),
      {"host_shape": 'BOX'}, ("error report", "'Cube'")),
     # Host shape Surface: a singular world matrix has no surface; the box is thickened.
