@@ -114,7 +114,7 @@ def ivy(params=None, hosts=()):
     return call_generate(f, params.ptr, arr, n)
 
 
-class IvyPlant:
+class IvyPlant(L.Handle):
     """The stepping API: create, step(n) as often as wanted, mesh(). hosts:
     a list of structs.Box, or a hostset.HostSet, which the plant keeps
     using: close the plant before the set."""
@@ -150,18 +150,6 @@ class IvyPlant:
             self._free(self.handle)
             self.handle = C.c_void_p()
         self.hosts = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
 
 
 def segments_read(text, source="<preset>"):

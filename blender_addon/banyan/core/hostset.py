@@ -207,7 +207,7 @@ def name_hosts(message, names, n_boxes=0):
     return re.sub(r"\b(hosts|meshes)\[(\d+)\]( \(mesh \d+\))?(\.)?", sub, message)
 
 
-class HostSet:
+class HostSet(L.Handle):
     """A banyan_hosts handle: boxes (structs.Box) then meshes (MeshInput).
     Raises BanyanError naming the host on a bad one (BANYAN_E_BAD_HOST /
     BANYAN_E_LIMIT / BANYAN_E_NO_HOSTS)."""
@@ -343,15 +343,3 @@ class HostSet:
         if self.handle:
             L.load().banyan_hosts_free(self.handle)
             self.handle = C.c_void_p()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass

@@ -21,6 +21,23 @@ _lock = threading.Lock()
 _lib = None
 
 
+class Handle:
+    """Base of the wrappers of a library object that close() frees: a
+    with-block and garbage collection close it too."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
 def library_filename():
     if sys.platform.startswith("win"):
         return "banyan.dll"
