@@ -304,6 +304,7 @@ static void bad_input_checks(void) {
     double p[3] = {0, 0, 3}, z0[3] = {0, 0, 0};
     CHECK(banyan_hosts_raycast(H, p, z0, 1, &hit, NULL) == BANYAN_E_RANGE, "zero ray direction");
     CHECK(banyan_hosts_sweep_sphere(H, p, z0, -1, &hit, NULL) == BANYAN_E_RANGE, "negative sweep radius");
+    banyan_hosts_free(H);
     CHECK(banyan_hosts_create(NULL, 0, NULL, 0, &H, NULL) == BANYAN_E_NO_HOSTS && H == NULL, "an empty set");
     tm_free(&m);
     tm_free(&d);
