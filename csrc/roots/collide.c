@@ -366,7 +366,7 @@ int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int c
         }
     }
     for (uint32_t j = 0; j < w->n_meshes && k < cap && range > 0; j++) {
-        double d = mesh_clear(w, j, p, range, NULL);
+        double d = mesh_uclear(w, j, p, range); /* p is free: outside */
         if (d < range) { /* n = 0 marks the Lipschitz bound clearance(p + o) >= d - |o| */
             c[k] = d;
             n[k++] = v3_make(0, 0, 0);

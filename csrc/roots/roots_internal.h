@@ -74,7 +74,8 @@ double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which);
  * there; a value at or above it is a lower bound of the least clearance
  * (convexity; for meshes the exact segment-to-triangles distance). */
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop);
-/* The obstacles (ground first, then hosts) closer to p than `range`: their
+/* The obstacles (ground first, then hosts) closer to a free point p (so
+ * outside every closed mesh: unsigned mesh distances) than `range`: their
  * clearance and distance-field normal, at most cap of them; returns how
  * many. A convex distance grows at least as fast as its tangent plane:
  * clearance(p + o) >= c + n.o, which lets callers skip far points. A mesh
