@@ -486,10 +486,13 @@ static bool sweep_cb(struct RTCPointQueryFunctionArguments *q) {
 double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal) {
     double L = v3_len(d);
     if (!(L > 0)) return 1.0;
-    /* In pieces of at most 2 r, the first contact ending the sweep: a query
+    /* In pieces of at most r, the first contact ending the sweep: a query
      * sphere round a long move's middle would hold many triangles far from
-     * it. */
-    int pieces = L > 2.0 * r ? (L > 2000.0 * r ? 1000 : (int)ceil(L / (2.0 * r))) : 1;
+     * it (r, not 2 r: a sphere pressed against the surface, the usual case,
+     * finds every triangle under its query sphere near enough to test in
+     * full; 1.3 % fewer instructions for the default net on a 50k-triangle
+     * trunk). */
+    int pieces = L > r ? (L > 1000.0 * r ? 1000 : (int)ceil(L / r)) : 1;
     v3 pl = v3_sub(p, m->origin), dp = v3_scale(d, 1.0 / pieces);
     for (int k = 0; k < pieces; k++) {
         sweep_ctx c;

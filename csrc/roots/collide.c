@@ -257,7 +257,7 @@ static double trace_box(const obb *o, v3 p, v3 d, double L, double r, v3 *nh) {
     return lo;
 }
 
-double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
+double world_trace_ex(const roots_world *w, v3 p, v3 d, int meshes_free, v3 *normal, int *which) {
     double L = v3_len(d), best = 1.0;
     v3 bn = v3_make(0, 0, 1);
     int bw = -2;
@@ -287,7 +287,7 @@ double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
     }
     /* Meshes: exact per triangle (convex, as a box), over the part of the
      * move still free. */
-    for (uint32_t j = 0; j < w->n_meshes && best > 0; j++) {
+    for (uint32_t j = 0; j < w->n_meshes && best > 0 && !meshes_free; j++) {
         if (hosts_far_from(w->set, w->n_hosts + j, p, L * best + w->r)) continue;
         v3 n = bn;
         double t = best * hmesh_sweep(&w->meshes[j], p, v3_scale(d, best), w->r, w->eps, &n);
@@ -366,7 +366,7 @@ int world_near(const roots_world *w, v3 p, double range, double *c, v3 *n, int c
         }
     }
     for (uint32_t j = 0; j < w->n_meshes && k < cap && range > 0; j++) {
-        double d = mesh_clear(w, j, p, range, NULL);
+        double d = mesh_uclear(w, j, p, range); /* p is free: outside */
         if (d < range) { /* n = 0 marks the Lipschitz bound clearance(p + o) >= d - |o| */
             c[k] = d;
             n[k++] = v3_make(0, 0, 0);

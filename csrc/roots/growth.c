@@ -136,9 +136,25 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                          * against, however far the move (or a step off an
                          * edge) took it: this wraps edges. */
                         v3 pull = v3_scale(n, -(c - r));
-                        double t = world_trace(w, S, pull, &n, &which);
+                        /* The pull stays in the free ball of radius c round S
+                         * (c is exact: below look), so it keeps r from every
+                         * host; only the ground can stop it. From a mesh's
+                         * nearest point q, S = q + c n, so a full pull ends
+                         * at exactly r from q: the clearance is r, same
+                         * normal and host, with no query. (Boxes keep their
+                         * traces and queries, and their bytes.) */
+                        int on_mesh = which >= (int)w->n_hosts;
+                        v3 n0 = n;
+                        int w0 = which;
+                        double t = world_trace_ex(w, S, pull, on_mesh, &n, &which);
                         S = v3_madd(S, pull, t);
-                        c = world_clearance_in(w, S, 0, look, &n, &which);
+                        if (on_mesh && t >= 1.0) {
+                            c = r;
+                            n = n0;
+                            which = w0;
+                        } else {
+                            c = world_clearance_in(w, S, 0, look, &n, &which);
+                        }
                     }
                     pressed = which >= 0 && c < hug_range;
                     hc = c;

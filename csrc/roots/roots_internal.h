@@ -68,13 +68,20 @@ v3 world_spoke(const roots_world *w, v3 c, v3 q);
  * than r to an obstacle (1 when it never does); *normal gets the normal of
  * the obstacle hit. Exact up to bisection (the distance to a convex body,
  * a box or one triangle of a mesh, is convex along a line). */
-double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which);
+double world_trace_ex(const roots_world *w, v3 p, v3 d, int meshes_free, v3 *normal, int *which);
+static inline double world_trace(const roots_world *w, v3 p, v3 d, v3 *normal, int *which) {
+    return world_trace_ex(w, p, d, 0, normal, which);
+}
+/* With meshes_free, the caller knows the whole move keeps clearance >= r
+ * from every mesh (it lies in the free ball of its start): only the boxes
+ * and the ground are traced. */
 /* Clearance along the segment a-b (a free point), for comparing with
  * `stop`: a value below `stop` is a clearance the segment really has
  * there; a value at or above it is a lower bound of the least clearance
  * (convexity; for meshes the exact segment-to-triangles distance). */
 double world_segment_clearance(const roots_world *w, v3 a, v3 b, double stop);
-/* The obstacles (ground first, then hosts) closer to p than `range`: their
+/* The obstacles (ground first, then hosts) closer to a free point p (so
+ * outside every closed mesh: unsigned mesh distances) than `range`: their
  * clearance and distance-field normal, at most cap of them; returns how
  * many. A convex distance grows at least as fast as its tangent plane:
  * clearance(p + o) >= c + n.o, which lets callers skip far points. A mesh
