@@ -157,21 +157,27 @@ int hmesh_inside(const host_mesh *m, v3 p) {
 
 /* --------------------------------------------------------- queries */
 
-int hmesh_nearest(const host_mesh *m, v3 p, double cap, mesh_near *out) {
-    nq_ctx c;
-    c.m = m;
-    c.p = v3_sub(p, m->origin);
-    c.best2 = cap < 1e30 ? cap * cap : HUGE_VAL;
-    c.prim = UINT32_MAX;
-    c.region = 0;
-    c.q = c.p;
+/* The closest triangle to p within cap: c->prim (UINT32_MAX when none),
+ * c->best2, c->q and c->region, all relative to m->origin. */
+static void point_query(const host_mesh *m, v3 p, double cap, nq_ctx *c) {
+    c->m = m;
+    c->p = v3_sub(p, m->origin);
+    c->best2 = cap < 1e30 ? cap * cap : HUGE_VAL;
+    c->prim = UINT32_MAX;
+    c->region = 0;
+    c->q = c->p;
     struct RTCPointQuery q;
-    q.x = (float)c.p.x, q.y = (float)c.p.y, q.z = (float)c.p.z;
+    q.x = (float)c->p.x, q.y = (float)c->p.y, q.z = (float)c->p.z;
     q.time = 0.0f;
     q.radius = cap < 1e30 ? (float)cap : INFINITY;
     struct RTCPointQueryContext qc;
     rtcInitPointQueryContext(&qc);
-    rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, &c);
+    rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, c);
+}
+
+int hmesh_nearest(const host_mesh *m, v3 p, double cap, mesh_near *out) {
+    nq_ctx c;
+    point_query(m, p, cap, &c);
     if (c.prim == UINT32_MAX) {
         int in = m->closed && hmesh_inside(m, p);
         out->dist = in ? -cap : cap;
@@ -212,19 +218,7 @@ double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p) {
 
 double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
     nq_ctx c;
-    c.m = m;
-    c.p = v3_sub(p, m->origin);
-    c.best2 = cap < 1e30 ? cap * cap : HUGE_VAL;
-    c.prim = UINT32_MAX;
-    c.region = 0;
-    c.q = c.p;
-    struct RTCPointQuery q;
-    q.x = (float)c.p.x, q.y = (float)c.p.y, q.z = (float)c.p.z;
-    q.time = 0.0f;
-    q.radius = cap < 1e30 ? (float)cap : INFINITY;
-    struct RTCPointQueryContext qc;
-    rtcInitPointQueryContext(&qc);
-    rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, &c);
+    point_query(m, p, cap, &c);
     if (prim) *prim = c.prim;
     return c.prim == UINT32_MAX ? cap : sqrt(c.best2);
 }
