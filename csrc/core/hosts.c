@@ -60,26 +60,29 @@ static uint32_t uf_find(uint32_t *up, uint32_t i) {
 static int weld(const float *pos, uint32_t nv, uint32_t *remap) {
     uint32_t cap = 16;
     while (cap < 2u * nv && cap < (1u << 31)) cap <<= 1;
-    uint32_t *slot = malloc(sizeof *slot * cap);
+    /* Each slot keeps its position's bits beside its vertex: one cache
+     * line per probe. Equal bits are equal floats (no NaN here; -0 is
+     * made +0). */
+    typedef struct { uint32_t b[3], v; } slot_t;
+    slot_t *slot = malloc(sizeof *slot * cap);
     if (!slot) return 0;
-    memset(slot, 0xff, sizeof *slot * cap);
+    for (uint32_t j = 0; j < cap; j++) slot[j].v = UINT32_MAX;
     for (uint32_t i = 0; i < nv; i++) {
-        const float *f = pos + 4 * (size_t)i;
         uint32_t b[3];
-        memcpy(b, f, sizeof b);
+        memcpy(b, pos + 4 * (size_t)i, sizeof b);
         for (int k = 0; k < 3; k++)
-            if (b[k] == 0x80000000u) b[k] = 0; /* -0 == +0 */
+            if (b[k] == 0x80000000u) b[k] = 0;
         uint32_t h = (b[0] * 73856093u) ^ (b[1] * 19349663u) ^ (b[2] * 83492791u);
         h ^= h >> 15;
         for (uint32_t j = h & (cap - 1);; j = (j + 1) & (cap - 1)) {
-            if (slot[j] == UINT32_MAX) {
-                slot[j] = i;
-                remap[i] = i;
+            slot_t *e = &slot[j];
+            if (e->v == UINT32_MAX) {
+                memcpy(e->b, b, sizeof b);
+                e->v = remap[i] = i;
                 break;
             }
-            const float *g = pos + 4 * (size_t)slot[j];
-            if (g[0] == f[0] && g[1] == f[1] && g[2] == f[2]) {
-                remap[i] = slot[j];
+            if (e->b[0] == b[0] && e->b[1] == b[1] && e->b[2] == b[2]) {
+                remap[i] = e->v;
                 break;
             }
         }

@@ -360,6 +360,7 @@ def section_hosts():
         exe = os.path.join(BUILD, "tests", name)
         outs[name] = subprocess.run([exe] + args, capture_output=True, text=True, check=True).stdout
         print(outs[name], flush=True)
+    sys.path.insert(0, HERE)
     import ivy_suzanne
     lines, ratio = ivy_suzanne.section(RUNS)
     return outs, lines, ratio
