@@ -103,16 +103,116 @@ static void store3(float *f, v3 v) {
     f[2] = (float)v.z;
 }
 
+/* The input's triangles as the host keeps them: indices checked,
+ * zero-area ones dropped, winding flipped under a mirroring transform. */
+typedef struct tri_input {
+    const uint32_t *indices;
+    uint32_t nt, nv;
+    int flip;
+    double area_eps;
+} tri_input;
+
+/* Fills m->tri, m->fnrm and m->nt, through remap (NULL: as given), and
+ * *area. Returns UINT32_MAX, or the position in indices of an index out of
+ * range. */
+static uint32_t collect_triangles(host_mesh *m, const tri_input *ti, const uint32_t *remap, double *area) {
+    uint32_t nt = 0;
+    double twice = 0;
+    for (uint32_t t = 0; t < ti->nt; t++) {
+        const uint32_t *ix = ti->indices + 3 * (size_t)t;
+        for (int k = 0; k < 3; k++)
+            if (ix[k] >= ti->nv) return 3 * t + (uint32_t)k;
+        uint32_t a = ix[0], b = ix[ti->flip ? 2 : 1], c = ix[ti->flip ? 1 : 2];
+        if (remap) a = remap[a], b = remap[b], c = remap[c];
+        v3 n = v3_cross(v3_sub(vtx(m, b), vtx(m, a)), v3_sub(vtx(m, c), vtx(m, a)));
+        double len = v3_len(n);
+        if (a == b || b == c || a == c || !(len > ti->area_eps)) continue;
+        uint32_t *o = m->tri + 3 * (size_t)nt;
+        o[0] = a, o[1] = b, o[2] = c;
+        store3(m->fnrm + 3 * (size_t)nt, v3_scale(n, 1.0 / len));
+        twice += len;
+        nt++;
+    }
+    m->nt = nt;
+    *area = 0.5 * twice;
+    return UINT32_MAX;
+}
+
+typedef struct edge_stats {
+    uint32_t boundary, nonmanifold;
+    int consistent;
+    double boundary_len;
+} edge_stats;
+
+/* Matches the 3 nt sides of m's triangles: twin[side] (UINT32_MAX on a
+ * hole or a non-manifold edge), up[] the union-find of the shells. The
+ * sides are bucketed by their lower vertex (a counting sort) and matched
+ * by their upper vertex inside each small bucket. 0 when out of memory. */
+static int match_edges(const host_mesh *m, uint32_t *twin, uint32_t *up, edge_stats *st) {
+    const size_t ne = 3 * (size_t)m->nt;
+    const uint32_t nv = m->nv;
+    uint32_t *start = calloc((size_t)nv + 1, sizeof *start), *val = malloc(sizeof *val * ne),
+             *bh = malloc(sizeof *bh * ne);
+    if (!start || !val || !bh) {
+        free(start), free(val), free(bh);
+        return 0;
+    }
+#define SIDE_B(e) (m->tri[(e) % 3 == 2 ? (e) - 2 : (e) + 1])
+#define SIDE_LO(e) (m->tri[e] < SIDE_B(e) ? m->tri[e] : SIDE_B(e))
+#define SIDE_HI(e) (m->tri[e] < SIDE_B(e) ? SIDE_B(e) : m->tri[e])
+    for (size_t e = 0; e < ne; e++) start[SIDE_LO(e) + 1]++, twin[e] = UINT32_MAX;
+    for (uint32_t v = 0; v < nv; v++) start[v + 1] += start[v];
+    for (size_t e = 0; e < ne; e++) { /* each side with its upper vertex beside it, read in order below */
+        uint32_t at = start[SIDE_LO(e)]++;
+        val[at] = (uint32_t)e;
+        bh[at] = SIDE_HI(e);
+    }
+    for (uint32_t v = nv; v > 0; v--) start[v] = start[v - 1]; /* back to bucket starts */
+    start[0] = 0;
+    for (uint32_t t = 0; t < m->nt; t++) up[t] = t;
+    memset(st, 0, sizeof *st);
+    st->consistent = 1;
+    for (uint32_t v = 0; v < nv; v++) {
+        uint32_t *b = val + start[v], *bhi = bh + start[v], k = start[v + 1] - start[v];
+        for (uint32_t i = 0; i < k; i++) {
+            if (b[i] == UINT32_MAX) continue; /* taken by an earlier side */
+            uint32_t e0 = b[i], h = bhi[i], same = 1, e1 = UINT32_MAX;
+            for (uint32_t j = i + 1; j < k; j++) {
+                if (b[j] == UINT32_MAX || bhi[j] != h) continue;
+                uint32_t ra = uf_find(up, e0 / 3), rb = uf_find(up, b[j] / 3); /* round one edge: one shell */
+                if (ra != rb) up[ra > rb ? ra : rb] = ra < rb ? ra : rb;
+                e1 = b[j];
+                b[j] = UINT32_MAX;
+                same++;
+            }
+            if (same == 1) {
+                st->boundary++;
+                st->boundary_len += v3_dist(vtx(m, m->tri[e0]), vtx(m, SIDE_B(e0)));
+            } else if (same == 2) {
+                twin[e0] = e1, twin[e1] = e0;
+                if (m->tri[e0] == m->tri[e1]) st->consistent = 0; /* both sides run the same way */
+            } else {
+                st->nonmanifold++;
+            }
+        }
+    }
+#undef SIDE_B
+#undef SIDE_LO
+#undef SIDE_HI
+    free(start), free(val), free(bh);
+    return 1;
+}
+
 #define MESH_FAIL(code, ...)                                                       \
     do {                                                                           \
-        free(remap), free(val), free(up), free(twin), free(vol);      \
+        free(remap), free(up), free(twin), free(vol);                    \
         return banyan_fail(err, code, __VA_ARGS__);                                \
     } while (0)
 
 /* Builds host `hi` (mesh number `mi`) into m. */
 static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint32_t hi, uint32_t mi, host_mesh *m,
                                 banyan_error *err) {
-    uint32_t *remap = NULL, *val = NULL, *up = NULL, *twin = NULL;
+    uint32_t *remap = NULL, *up = NULL, *twin = NULL;
     double *vol = NULL;
     const uint32_t nv = in->vertex_count, nt_in = in->triangle_count;
     if (nv < 3 || nt_in < 1)
@@ -173,93 +273,41 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
         MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u) spans %g m in the world; a host must span at least 1e-6 m "
                   "(is the object scaled to nearly 0?)", hi, mi, diag);
 
-    /* Weld, check indices, drop zero-area triangles; mirrored transforms
-     * flip the winding so that outward stays outward. */
-    remap = malloc(sizeof *remap * (size_t)nv);
+    /* Triangles by the input's indices first: a mesh watertight by index
+     * (Blender's) needs no weld. Holes then may be seams (glTF splits
+     * vertices there): weld by position and match again. */
     m->tri = malloc(sizeof(uint32_t) * 3 * (size_t)nt_in);
     m->fnrm = malloc(sizeof(float) * 3 * (size_t)nt_in);
-    if (!remap || !m->tri || !m->fnrm || !weld(m->pos, nv, remap))
+    twin = malloc(sizeof *twin * 3 * (size_t)nt_in);
+    up = malloc(sizeof *up * (size_t)nt_in);
+    if (!m->tri || !m->fnrm || !twin || !up)
         MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] (%u triangles)", hi, nt_in);
-    const int flip = det < 0;
-    const double area_eps = 1e-14 * diag * diag;
-    uint32_t nt = 0;
-    for (uint32_t t = 0; t < nt_in; t++) {
-        const uint32_t *ix = in->indices + 3 * (size_t)t;
-        for (int k = 0; k < 3; k++)
-            if (ix[k] >= nv)
-                MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): triangle %u index %u is out of range [0, %u]", hi,
-                          mi, t, ix[k], nv - 1);
-        uint32_t a = remap[ix[0]], b = remap[ix[flip ? 2 : 1]], c = remap[ix[flip ? 1 : 2]];
-        v3 n = v3_cross(v3_sub(vtx(m, b), vtx(m, a)), v3_sub(vtx(m, c), vtx(m, a)));
-        double len = v3_len(n);
-        if (a == b || b == c || a == c || !(len > area_eps)) continue;
-        uint32_t *o = m->tri + 3 * (size_t)nt;
-        o[0] = a, o[1] = b, o[2] = c;
-        store3(m->fnrm + 3 * (size_t)nt, v3_scale(n, 1.0 / len));
-        nt++;
+    const tri_input ti = {in->indices, nt_in, nv, det < 0, 1e-14 * diag * diag};
+    double area;
+    uint32_t bad = collect_triangles(m, &ti, NULL, &area);
+    if (bad != UINT32_MAX)
+        MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): triangle %u index %u is out of range [0, %u]", hi, mi,
+                  bad / 3, in->indices[bad], nv - 1);
+    edge_stats es = {0, 0, 1, 0};
+    if (m->nt && !match_edges(m, twin, up, &es))
+        MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] edges", hi);
+    if (!m->nt || es.boundary || es.nonmanifold) {
+        remap = malloc(sizeof *remap * (size_t)nv);
+        if (!remap || !weld(m->pos, nv, remap))
+            MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] (%u vertices)", hi, nv);
+        collect_triangles(m, &ti, remap, &area);
+        if (m->nt && !match_edges(m, twin, up, &es))
+            MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] edges", hi);
+        free(remap), remap = NULL;
     }
+    const uint32_t nt = m->nt;
     m->dropped = nt_in - nt;
     if (nt == 0)
         MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): all %u triangles have zero area", hi, mi, nt_in);
-    m->nt = nt;
-
-    /* Edges: the 3 nt sides bucketed by their lower vertex (a counting
-     * sort), then matched by their upper vertex inside each small bucket. */
     const size_t ne = 3 * (size_t)nt;
-    val = malloc(sizeof *val * ne);
-    twin = malloc(sizeof *twin * ne);
-    up = malloc(sizeof *up * (size_t)nt);
-    uint32_t *start = calloc((size_t)nv + 1, sizeof *start), *bh = malloc(sizeof *bh * ne);
-    if (!val || !twin || !up || !start || !bh) {
-        free(start), free(bh);
-        MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] edges", hi);
-    }
-#define SIDE_B(e) (m->tri[(e) % 3 == 2 ? (e) - 2 : (e) + 1])
-#define SIDE_LO(e) (m->tri[e] < SIDE_B(e) ? m->tri[e] : SIDE_B(e))
-#define SIDE_HI(e) (m->tri[e] < SIDE_B(e) ? SIDE_B(e) : m->tri[e])
-    for (size_t e = 0; e < ne; e++) start[SIDE_LO(e) + 1]++, twin[e] = UINT32_MAX;
-    for (uint32_t v = 0; v < nv; v++) start[v + 1] += start[v];
-    for (size_t e = 0; e < ne; e++) { /* each side with its upper vertex beside it, read in order below */
-        uint32_t at = start[SIDE_LO(e)]++;
-        val[at] = (uint32_t)e;
-        bh[at] = SIDE_HI(e);
-    }
-    for (uint32_t v = nv; v > 0; v--) start[v] = start[v - 1]; /* back to bucket starts */
-    start[0] = 0;
-    for (uint32_t t = 0; t < nt; t++) up[t] = t;
-    uint32_t boundary = 0, nonmanifold = 0;
-    int consistent = 1;
-    double boundary_len = 0;
-    for (uint32_t v = 0; v < nv; v++) {
-        uint32_t *b = val + start[v], *bhi = bh + start[v], k = start[v + 1] - start[v];
-        for (uint32_t i = 0; i < k; i++) {
-            if (b[i] == UINT32_MAX) continue; /* taken by an earlier side */
-            uint32_t e0 = b[i], h = bhi[i], same = 1, e1 = UINT32_MAX;
-            for (uint32_t j = i + 1; j < k; j++) {
-                if (b[j] == UINT32_MAX || bhi[j] != h) continue;
-                uint32_t ra = uf_find(up, e0 / 3), rb = uf_find(up, b[j] / 3); /* round one edge: one shell */
-                if (ra != rb) up[ra > rb ? ra : rb] = ra < rb ? ra : rb;
-                e1 = b[j];
-                b[j] = UINT32_MAX;
-                same++;
-            }
-            if (same == 1) {
-                boundary++;
-                boundary_len += v3_dist(vtx(m, m->tri[e0]), vtx(m, SIDE_B(e0)));
-            } else if (same == 2) {
-                twin[e0] = e1, twin[e1] = e0;
-                if (m->tri[e0] == m->tri[e1]) consistent = 0; /* both sides run the same way */
-            } else {
-                nonmanifold++;
-            }
-        }
-    }
-#undef SIDE_B
-#undef SIDE_LO
-#undef SIDE_HI
-    free(start);
-    free(bh);
-    free(val), val = NULL;
+    const uint32_t boundary = es.boundary, nonmanifold = es.nonmanifold;
+    const int consistent = es.consistent;
+    const double boundary_len = es.boundary_len;
     uint32_t shells = 0;
     for (uint32_t t = 0; t < nt; t++) shells += uf_find(up, t) == t;
     m->boundary_edges = boundary;
@@ -271,11 +319,6 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
      * sculpt with pin holes, a column without its top cap (0.9) are solid;
      * a wall (4), a terrain, a bowl (2.5), a short open tube (1.8) are not.
      * banyan_host_mesh.closed overrides it. */
-    double area = 0;
-    for (uint32_t t = 0; t < nt; t++) {
-        const uint32_t *ix = m->tri + 3 * (size_t)t;
-        area += 0.5 * v3_len(v3_cross(v3_sub(vtx(m, ix[1]), vtx(m, ix[0])), v3_sub(vtx(m, ix[2]), vtx(m, ix[0]))));
-    }
     if (in->closed == BANYAN_HOST_CLOSED_AUTO)
         m->closed = nonmanifold * 100 <= ne / 3 && boundary_len <= 1.7 * sqrt(area);
     else
@@ -320,7 +363,6 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
         if (l > 0) s[0] /= l, s[1] /= l, s[2] /= l;
         else s[2] = 1; /* a vertex no triangle uses */
     }
-    free(remap), remap = NULL;
     free(up), up = NULL;
     free(twin), twin = NULL;
     free(vol), vol = NULL;
