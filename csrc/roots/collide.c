@@ -124,13 +124,19 @@ static inline double mesh_cap(const roots_world *w, double best, double range) {
     return c > w->eps ? c : w->eps;
 }
 
+/* Least clearance over the ground (when with_ground) and the boxes. */
+static inline double boxes_clearance(const roots_world *w, v3 p, int with_ground) {
+    double best = w->ground && with_ground ? p.z - w->ground_z : 1e300;
+    for (uint32_t i = 0; i < w->n_hosts; i++) {
+        double c = box_dist(&w->hosts[i], p);
+        if (c < best) best = c;
+    }
+    return best;
+}
+
 double world_clearance_in(const roots_world *w, v3 p, int with_ground, double range, v3 *normal, int *which) {
     if (!normal && !which) {
-        double best = w->ground && with_ground ? p.z - w->ground_z : 1e300;
-        for (uint32_t i = 0; i < w->n_hosts; i++) {
-            double c = box_dist(&w->hosts[i], p);
-            if (c < best) best = c;
-        }
+        double best = boxes_clearance(w, p, with_ground);
         for (uint32_t j = 0; j < w->n_meshes; j++) {
             double c = mesh_clear(w, j, p, mesh_cap(w, best, range), NULL);
             if (c < best) best = c;
@@ -168,14 +174,7 @@ double world_clearance_in(const roots_world *w, v3 p, int with_ground, double ra
     return best;
 }
 
-double world_clearance_boxes(const roots_world *w, v3 p) {
-    double best = w->ground ? p.z - w->ground_z : 1e300;
-    for (uint32_t i = 0; i < w->n_hosts; i++) {
-        double c = box_dist(&w->hosts[i], p);
-        if (c < best) best = c;
-    }
-    return best;
-}
+double world_clearance_boxes(const roots_world *w, v3 p) { return boxes_clearance(w, p, 1); }
 
 double world_clearance_outside(const roots_world *w, v3 p, double range) {
     double best = world_clearance_boxes(w, p);

@@ -45,9 +45,6 @@ typedef struct roots_world {
  * (deeper than max(range, 2 r)) may get an upper bound of its negative
  * clearance: enough for free tests and the turn's skipping. */
 double world_clearance_in(const roots_world *w, v3 p, int with_ground, double range, v3 *normal, int *which);
-static inline double world_clearance_ex(const roots_world *w, v3 p, int with_ground, v3 *normal, int *which) {
-    return world_clearance_in(w, p, with_ground, HUGE_VAL, normal, which);
-}
 static inline double world_clearance(const roots_world *w, v3 p, v3 *normal, int *which) {
     return world_clearance_in(w, p, 1, HUGE_VAL, normal, which);
 }
