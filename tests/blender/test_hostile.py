@@ -185,7 +185,10 @@ def reselect(st):
     vl = bpy.context.view_layer
     sel = set(st[6])
     for o in vl.objects:
-        o.select_set(o.name in sel)
+        # Blender 4.2+ syncs a view layer lazily: right after objects are
+        # removed from bpy.data its object list can still hold None for them.
+        if o is not None:
+            o.select_set(o.name in sel)
     vl.objects.active = vl.objects.get(st[7]) if st[7] else None
 
 
