@@ -133,7 +133,14 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
         # polygons' material_index goes item by item (50x slower).
         attr = me.attributes.get("material_index") or me.attributes.new("material_index", 'INT', 'FACE')
         attr.data.foreach_set("value", material_index)
-    if smooth:
+    if bpy.app.version >= (4, 1, 0):
+        # Blender 4.1+: new polygons are smooth (no sharp_face attribute),
+        # and Mesh.shade_smooth()/shade_flat() set all of them in one call.
+        if smooth:
+            me.shade_smooth()
+        else:
+            me.shade_flat()
+    elif smooth:
         _smooth(me, nt)
     me.update()
     if corner_uvs is not None and nt:
