@@ -497,7 +497,9 @@ SCENES = [
     ("host 1e30 m away", HOSTS_OPS, lambda: setattr(cube(), "location", (1e30, 0, 0)), {}, ("error report", "'Cube'")),
     # The surface has a NaN vertex: refused. Blender's bound box skips it: the box of the others.
     ("host with a NaN vertex", HOSTS_OPS, nan_vertex, {}, ("error report", "'Cube'")),
-    ("host with a NaN vertex, bounding box", HOSTS_OPS, nan_vertex, {"host_shape": 'BOX'}, ("ok", None)),
+    # Blender 4.2's bound_box carries the NaN (3.4, 4.5 and 5.0 skip it): no box, refused by name.
+    ("host with a NaN vertex, bounding box", HOSTS_OPS, nan_vertex, {"host_shape": 'BOX'},
+     ("error report", "'Cube'") if bpy.app.version[:2] == (4, 2) else ("ok", None)),
     ("host whose vertices are all NaN", HOSTS_OPS, all_nan_vertices, {}, ("error report", "'Cube'")),
     ("sheared host (rotated child of a non-uniformly scaled parent)", HOSTS_OPS, lambda: sheared(cube()), {},
      ("ok", None)),
