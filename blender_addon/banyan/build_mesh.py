@@ -58,7 +58,8 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False):
     mat.diffuse_color = col
     mat.roughness = spec["roughness"]
     mat.use_backface_culling = not spec["double_sided"]
-    mat.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0: a new material always has its node tree (use_nodes is deprecated)
+        mat.use_nodes = True
     bsdf = mat.node_tree.nodes.get("Principled BSDF")
     if bsdf is not None:
         bsdf.inputs["Base Color"].default_value = col
