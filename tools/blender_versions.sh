@@ -16,9 +16,12 @@ root=${BANYAN_BPY_DIR:-$HOME/.cache/banyan/bpy}
 py=/usr/bin/python3.11
 log() { echo "blender_versions: $*"; }
 
-# Debian packages: python3.11 + venv, and the shared libraries bpy's
-# extension module links that a server image lacks.
-debs=(python3.11 python3.11-venv libx11-6 libxrender1 libxxf86vm1 libxfixes3 libxi6 libxkbcommon0 libsm6 libice6 libgl1 libegl1 libglx0 libxext6 libgomp1)
+# Debian packages: python3.11 + venv, and the system libraries that
+# bpy/__init__.so links (ldd, mapped with dpkg -S; everything else ships in
+# the wheel's bpy/lib): X11 and GL client libraries even with no window.
+# libxxf86vm1 and libgomp1 are 4.2's only.
+debs=(python3.11 python3.11-venv libx11-6 libxrender1 libxxf86vm1 libxfixes3 libxi6 libxkbcommon0 libsm6 libice6
+      libgl1 libglx0 libxext6 libgomp1)
 missing=()
 for d in "${debs[@]}"; do
   dpkg-query -W -f='${Status}' "$d" 2>/dev/null | grep -q "install ok installed" || missing+=("$d")
