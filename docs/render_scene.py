@@ -273,6 +273,9 @@ def settings(width, height, samples):
     sc.render.resolution_x = width
     sc.render.resolution_y = height
     sc.render.resolution_percentage = 100
+    # Filmic, Blender 3.x's default: 4.0+ default to AgX, which renders the
+    # same scene darker and flatter (the plant then hardly stands out).
+    sc.view_settings.view_transform = 'Filmic'
     sc.view_settings.exposure = -0.5
     sc.render.image_settings.file_format = 'PNG'
     sc.render.image_settings.color_mode = 'RGB'
@@ -304,20 +307,42 @@ def _mask_nodes(sc, plant, mask_dir):
     for o in sc.objects:
         o.pass_index = PLANT_INDEX if o in plant else 0
     sc.view_layers[0].use_pass_object_index = True
-    sc.use_nodes = True
-    nt = sc.node_tree
-    nt.nodes.clear()
-    rl = nt.nodes.new("CompositorNodeRLayers")
-    comp = nt.nodes.new("CompositorNodeComposite")
-    nt.links.new(rl.outputs["Image"], comp.inputs["Image"])
-    idm = nt.nodes.new("CompositorNodeIDMask")
-    idm.index = PLANT_INDEX
-    out = nt.nodes.new("CompositorNodeOutputFile")
-    out.base_path = mask_dir
-    out.format.file_format = 'PNG'
-    out.format.color_mode = 'BW'
-    out.file_slots[0].path = "mask"
-    nt.links.new(rl.outputs["IndexOB"], idm.inputs["ID value"])
+    if bpy.app.version >= (5, 0, 0):
+        # Blender 5.0: the scene's compositor is a node group with a Group
+        # Output (no Composite node); File Output takes a directory, a file
+        # name and items, and writes multilayer EXR unless told otherwise.
+        nt = bpy.data.node_groups.new("banyan_mask", 'CompositorNodeTree')
+        sc.compositing_node_group = nt
+        nt.interface.new_socket("Image", in_out='OUTPUT', socket_type='NodeSocketColor')
+        rl = nt.nodes.new("CompositorNodeRLayers")
+        comp = nt.nodes.new("NodeGroupOutput")
+        nt.links.new(rl.outputs["Image"], comp.inputs[0])
+        idm = nt.nodes.new("CompositorNodeIDMask")
+        idm.inputs["Index"].default_value = PLANT_INDEX
+        out = nt.nodes.new("CompositorNodeOutputFile")
+        out.directory = mask_dir
+        out.file_name = "mask"
+        out.format.media_type = 'IMAGE'
+        out.format.file_format = 'PNG'
+        out.format.color_mode = 'BW'
+        if not len(out.file_output_items):
+            out.file_output_items.new('FLOAT', "")
+        nt.links.new(rl.outputs["Object Index"], idm.inputs["ID value"])
+    else:
+        sc.use_nodes = True
+        nt = sc.node_tree
+        nt.nodes.clear()
+        rl = nt.nodes.new("CompositorNodeRLayers")
+        comp = nt.nodes.new("CompositorNodeComposite")
+        nt.links.new(rl.outputs["Image"], comp.inputs["Image"])
+        idm = nt.nodes.new("CompositorNodeIDMask")
+        idm.index = PLANT_INDEX
+        out = nt.nodes.new("CompositorNodeOutputFile")
+        out.base_path = mask_dir
+        out.format.file_format = 'PNG'
+        out.format.color_mode = 'BW'
+        out.file_slots[0].path = "mask"
+        nt.links.new(rl.outputs["IndexOB"], idm.inputs["ID value"])
     nt.links.new(idm.outputs["Alpha"], out.inputs[0])
     sc.render.use_compositing = True
 

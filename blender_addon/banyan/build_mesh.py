@@ -58,7 +58,8 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False):
     mat.diffuse_color = col
     mat.roughness = spec["roughness"]
     mat.use_backface_culling = not spec["double_sided"]
-    mat.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0: a new material always has its node tree (use_nodes is deprecated)
+        mat.use_nodes = True
     bsdf = mat.node_tree.nodes.get("Principled BSDF")
     if bsdf is not None:
         bsdf.inputs["Base Color"].default_value = col
@@ -133,7 +134,14 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
         # polygons' material_index goes item by item (50x slower).
         attr = me.attributes.get("material_index") or me.attributes.new("material_index", 'INT', 'FACE')
         attr.data.foreach_set("value", material_index)
-    if smooth:
+    if bpy.app.version >= (4, 1, 0):
+        # Blender 4.1+: new polygons are smooth (no sharp_face attribute),
+        # and Mesh.shade_smooth()/shade_flat() set all of them in one call.
+        if smooth:
+            me.shade_smooth()
+        else:
+            me.shade_flat()
+    elif smooth:
         _smooth(me, nt)
     me.update()
     if corner_uvs is not None and nt:

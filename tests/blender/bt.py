@@ -18,6 +18,9 @@ _passed = 0
 _failed = 0
 SOURCE_DIR = os.environ.get("BANYAN_SOURCE_DIR", os.path.normpath(os.path.join(os.path.dirname(__file__), "..", "..")))
 OUT_DIR = os.environ.get("BANYAN_TEST_OUT", "/tmp")
+# The command that starts a child Blender: `blender` itself, or for the bpy
+# module (which has no binary) the wrapper tests/blender/run_bpy.sh writes.
+BLENDER = os.environ.get("BANYAN_BLENDER") or __import__("bpy").app.binary_path
 
 
 def check(cond, what):

@@ -20,8 +20,10 @@ command -v "$blender" >/dev/null || { echo "blender not found (tools/setup.sh in
 scripts=$(mktemp -d)
 trap 'rm -rf "$scripts"' EXIT
 mkdir -p "$scripts/addons"
-out="$build/test_out/blender"
+out="$build/test_out/blender${BANYAN_BLENDER_TAG:+/$BANYAN_BLENDER_TAG}"
 mkdir -p "$out"
+# The Blender that tests starting a child Blender run (bt.BLENDER).
+export BANYAN_BLENDER="$(command -v "$blender")"
 export BLENDER_USER_SCRIPTS="$scripts"
 if [ $zip = 1 ]; then
   [ -f "$build/banyan.zip" ] || { echo "no $build/banyan.zip (build the banyan_addon_zip target)"; exit 1; }
@@ -52,14 +54,15 @@ for t in "${tests[@]}"; do
   "$blender" -b --factory-startup --addons banyan --python-exit-code 1 --python "$t" >"$log" 2>&1
   rc=$?
   summary=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed" "$log" | tail -1)
+  version=$(grep -m1 -oE "^Blender [0-9]+\.[0-9]+\.[0-9]+" "$log")
   if [ $rc -ne 0 ] || [ -z "$summary" ]; then
     failed=$((failed + 1))
-    echo "FAILED $name (exit $rc): ${summary:-no summary line}"
+    echo "FAILED $name (exit $rc): ${summary:-no summary line} [${version:-Blender ?}]"
     grep -E "^(FAIL|SKIP|Traceback|  File|[A-Za-z]+Error)" "$log" | head -40 | sed 's/^/    /'
   else
-    echo "ok     $summary"
+    echo "ok     $summary [${version:-Blender ?}]"
     grep -E "^SKIP" "$log" | sort -u | sed 's/^/    /'
   fi
 done
-echo "blender tests: ${#tests[@]} files, $failed failed"
+echo "blender tests${BANYAN_BLENDER_TAG:+ ($BANYAN_BLENDER_TAG)}: ${#tests[@]} files, $failed failed"
 [ $failed -eq 0 ]

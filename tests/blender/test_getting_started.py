@@ -74,7 +74,7 @@ def test_guide():
             f.write("ZIP = %r\n" % zip_path + CHILD)
         env = {k: v for k, v in os.environ.items() if not k.startswith(("BANYAN_", "BLENDER_"))}
         env["BLENDER_USER_SCRIPTS"] = os.path.join(user, "scripts")  # a newcomer's empty scripts folder
-        r = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1",
+        r = subprocess.run([bt.BLENDER, "-b", "--factory-startup", "--python-exit-code", "1",
                             "--python", script], capture_output=True, text=True, timeout=300, env=env)
         lines = [ln for ln in r.stdout.splitlines() if ln.startswith("GETTING_STARTED ")]
         if not bt.check(r.returncode == 0 and lines, "child Blender ran the guide (exit %d): %s"

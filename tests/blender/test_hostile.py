@@ -185,7 +185,10 @@ def reselect(st):
     vl = bpy.context.view_layer
     sel = set(st[6])
     for o in vl.objects:
-        o.select_set(o.name in sel)
+        # Blender 4.2+ syncs a view layer lazily: right after objects are
+        # removed from bpy.data its object list can still hold None for them.
+        if o is not None:
+            o.select_set(o.name in sel)
     vl.objects.active = vl.objects.get(st[7]) if st[7] else None
 
 
@@ -494,7 +497,9 @@ SCENES = [
     ("host 1e30 m away", HOSTS_OPS, lambda: setattr(cube(), "location", (1e30, 0, 0)), {}, ("error report", "'Cube'")),
     # The surface has a NaN vertex: refused. Blender's bound box skips it: the box of the others.
     ("host with a NaN vertex", HOSTS_OPS, nan_vertex, {}, ("error report", "'Cube'")),
-    ("host with a NaN vertex, bounding box", HOSTS_OPS, nan_vertex, {"host_shape": 'BOX'}, ("ok", None)),
+    # Blender 4.2's bound_box carries the NaN (3.4, 4.5 and 5.0 skip it): no box, refused by name.
+    ("host with a NaN vertex, bounding box", HOSTS_OPS, nan_vertex, {"host_shape": 'BOX'},
+     ("error report", "'Cube'") if bpy.app.version[:2] == (4, 2) else ("ok", None)),
     ("host whose vertices are all NaN", HOSTS_OPS, all_nan_vertices, {}, ("error report", "'Cube'")),
     ("sheared host (rotated child of a non-uniformly scaled parent)", HOSTS_OPS, lambda: sheared(cube()), {},
      ("ok", None)),

@@ -69,7 +69,10 @@ def add_host(kind):
     obj.name = "Host_" + kind
     bpy.context.view_layer.update()
     bpy.context.scene.cursor.location = cursor
-    return obj, closed, cursor
+    # The cursor as the operator reads it (single precision): the library
+    # run compared with the operator's must start from the same point
+    # (Blender 4.x triangulates Suzanne so that 1e-8 m changes the plant).
+    return obj, closed, tuple(bpy.context.scene.cursor.location)
 
 
 def world_triangles(obj):

@@ -17,7 +17,7 @@ def render(preset, name):
     out = os.path.join(bt.OUT_DIR, name)
     if os.path.exists(out):
         os.remove(out)
-    cmd = [bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python", SCRIPT, "--",
+    cmd = [bt.BLENDER, "-b", "--factory-startup", "--python-exit-code", "1", "--python", SCRIPT, "--",
            "--out", out, "--size", "96", "--samples", "4"]
     if preset:
         cmd += ["--preset", preset]
@@ -47,7 +47,7 @@ def render_avenue():
     if os.path.exists(out):
         os.remove(out)
     script = os.path.join(bt.SOURCE_DIR, "docs", "examples", "render_avenue.py")
-    r = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script,
+    r = subprocess.run([bt.BLENDER, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script,
                         "--", "--out", out, "--size", "96x54", "--samples", "2"], capture_output=True, text=True,
                        timeout=300)
     # The script's own blank check (render_scene.render) raises on a blank picture.
