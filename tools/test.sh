@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # All the tests: set up, build, run ctest (C unit and property tests, the
-# CLI, the Khronos validator on every glTF the tests write), then the same
+# CLI, the Khronos validator on every glTF the tests write, the add-on in
+# Debian's Blender 3.4 and in Blender 4.2, 4.5 and 5.0), the add-on zips
+# installed with the build folder moved away, then the same
 # suite again under AddressSanitizer (with LeakSanitizer, on by default)
 # and UndefinedBehaviorSanitizer, the thread tests under ThreadSanitizer,
 # and a short libFuzzer run of every harness (tools/fuzz.sh).
@@ -8,8 +10,13 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 bash tools/setup.sh
+# Blender 4.2, 4.5 and 5.0 as the bpy module (cached venvs) for the add-on tests.
+bash tools/blender_versions.sh
 jobs=$(nproc)
 (cd build && ctest --output-on-failure -j "$jobs")
+
+echo "== the add-on packages with the build folder moved away =="
+bash tests/blender/packages.sh build
 
 echo "== sanitizer build (ASan + UBSan) =="
 BUILD_DIR=build-asan BANYAN_CMAKE_ARGS="-DBANYAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo" bash tools/setup.sh

@@ -133,22 +133,6 @@ def _check_abi(lib, path):
                         "same source" % (path, "; ".join(bad)))
 
 
-_bundled = []
-
-
-def _load_bundled(folder):
-    """The extension zip carries the shared libraries libbanyan needs
-    beside it, named in lib/bundled.txt dependencies first
-    (blender_addon/bundle_libs.sh); loading them first by path lets the
-    dynamic linker find them by soname. No bundled.txt: the system's."""
-    listing = os.path.join(folder, "bundled.txt")
-    if _bundled or not os.path.isfile(listing):
-        return
-    with open(listing) as f:
-        for name in f.read().split():
-            _bundled.append(C.CDLL(os.path.join(folder, name), mode=C.RTLD_GLOBAL))
-
-
 def load(path=None):
     """Loads (once) and returns the checked ctypes.CDLL. Raises LoadError."""
     global _lib
@@ -161,7 +145,6 @@ def load(path=None):
             raise LoadError("libbanyan not found; looked at: %s. Build it (cmake --build build) or set "
                             "BANYAN_LIB to the library's path" % ", ".join(tried))
         try:
-            _load_bundled(os.path.dirname(found[0]))
             lib = C.CDLL(found[0])
         except OSError as e:
             raise LoadError("libbanyan at %s could not be loaded: %s" % (found[0], e))
