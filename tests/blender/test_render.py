@@ -34,12 +34,17 @@ def render(preset, name):
     var = sum((x - mean) ** 2 for x in lum) / len(lum)
     bt.check(0.02 < mean < 0.98, "%s: not black or white (mean %.3f)" % (name, mean))
     bt.check(var > 1e-4, "%s: not flat (variance %.5f)" % (name, var))
-    # The roots are in the middle of the frame: the centre differs from the corners.
+    # The roots are in the middle of the frame: many centre pixels differ from
+    # the background (the corners' mean). Pixel by pixel, not the mean: under
+    # AgX / Filmic the roots' mean can match the backdrop's.
     def at(x, y):
         return lum[y * w + x]
-    centre = sum(at(x, y) for x in range(40, 56) for y in range(30, 60)) / (16 * 30)
     corner = sum(at(x, y) for x in range(0, 10) for y in range(0, 10)) / 100
-    bt.check(abs(centre - corner) > 0.01, "%s: something in the middle (%.3f vs %.3f)" % (name, centre, corner))
+    centre = [at(x, y) for x in range(32, 64) for y in range(24, 72)]
+    covered = sum(abs(v - corner) > 0.03 for v in centre) / len(centre)
+    print("%s: %.0f %% of the centre differs from the background" % (name, 100 * covered))
+    bt.check(covered > 0.1, "%s: something in the middle (%.0f %% of the centre differs from the background %.3f)"
+             % (name, 100 * covered, corner))
 
 
 def render_avenue():
