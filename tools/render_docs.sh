@@ -6,6 +6,7 @@
 #   bash tools/render_docs.sh            # everything
 #   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
 #   (also: params, start, avenue, hosts; extra arguments go to the script)
+#   bash tools/render_docs.sh ui         # docs/screenshots.py in a real window on Xvfb
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
@@ -26,11 +27,17 @@ case $what in
   start) run docs/render_getting_started.py -- "$@" ;;
   avenue) run docs/examples/render_avenue.py -- --out docs/img/avenue.png "$@" ;;
   hosts) run docs/render_hosts.py -- "$@" ;;
+  ui) # A real window: Blender on a virtual X display; a .blend on the command line skips the splash.
+    blend="$scripts/start.blend"
+    blender -b --factory-startup --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$blend')" >/dev/null
+    BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$here/build/libbanyan.so" \
+      xvfb-run -a -s "-screen 0 1600x1000x24" blender --factory-startup "$blend" --addons banyan \
+      --python docs/screenshots.py -- "$@" ;;
   all)
     run docs/render_gallery.py
     run docs/render_params.py
     run docs/render_getting_started.py
     run docs/render_hosts.py
     run docs/examples/render_avenue.py -- --out docs/img/avenue.png ;;
-  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts] [script args]"; exit 2 ;;
+  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts|ui] [script args]"; exit 2 ;;
 esac

@@ -1,0 +1,159 @@
+"""Screenshots of the add-on's UI from a real Blender window, into
+docs/img/ui/: Blender runs with a window on a virtual X display (Xvfb,
+Mesa's llvmpipe draws it), not headless:
+
+    bash tools/render_docs.sh ui
+
+which runs, in effect,
+    xvfb-run -s "-screen 0 1600x1000x24" blender --factory-startup \
+        --addons banyan --python docs/screenshots.py
+
+Each shot is a step run from a timer once the window is up (operators
+need the window's context): select the host, run an operator as the
+menu does (INVOKE_DEFAULT), open its redo panel (F9, screen.redo_last),
+save the window (screen.screenshot) and crop the part the docs show.
+Cropping uses Blender's image API (no PIL here)."""
+import os
+import sys
+
+import bpy
+
+REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+OUT = os.path.join(REPO, "docs", "img", "ui")
+TMP = os.path.join(OUT, "_window.png")
+
+
+def ctx():
+    win = bpy.context.window_manager.windows[0]
+    area = next(a for a in win.screen.areas if a.type == 'VIEW_3D')
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    return win, area, region
+
+
+def override(**kw):
+    win, area, region = ctx()
+    d = dict(window=win, area=area, region=region, screen=win.screen)
+    d.update(kw)
+    return bpy.context.temp_override(**d)
+
+
+def crop(src, dst, x0, y0, w, h):
+    """Saves the window screenshot's rectangle (x0, y0 from the top left, in
+    pixels) as dst."""
+    img = bpy.data.images.load(src)
+    W, H = img.size
+    x0, y0 = max(0, min(x0, W - 1)), max(0, min(y0, H - 1))
+    w, h = min(w, W - x0), min(h, H - y0)
+    px = [0.0] * (W * H * 4)
+    img.pixels.foreach_get(px)
+    out = []
+    for row in range(h):  # Blender's rows go bottom-up
+        yb = H - 1 - (y0 + h - 1 - row)
+        start = (yb * W + x0) * 4
+        out.extend(px[start:start + w * 4])
+    new = bpy.data.images.new(os.path.basename(dst), w, h)
+    new.pixels.foreach_set(out)
+    new.filepath_raw = dst
+    new.file_format = 'PNG'
+    new.save()
+    bpy.data.images.remove(new)
+    bpy.data.images.remove(img)
+    print("screenshot:", dst, "%dx%d" % (w, h), flush=True)
+
+
+def shoot(name, rect):
+    with override():
+        bpy.ops.screen.screenshot(filepath=TMP)
+    crop(TMP, os.path.join(OUT, name), *rect)
+
+
+def region_rect(area, rtype):
+    """(x, y from the top, w, h) of a region of an area, in window pixels."""
+    win = bpy.context.window_manager.windows[0]
+    r = next(r for r in area.regions if r.type == rtype)
+    return r.x, win.height - (r.y + r.height), r.width, r.height
+
+
+STEPS = []
+
+
+def step(delay):
+    def deco(fn):
+        STEPS.append((delay, fn))
+        return fn
+    return deco
+
+
+@step(2.0)
+def setup():
+    os.makedirs(OUT, exist_ok=True)
+    win, area, region = ctx()
+    for a in win.screen.areas:  # the viewport larger: no timeline
+        pass
+    cube = bpy.data.objects["Cube"]
+    cube.location.z = 1.0  # resting on the ground, as in issue #16's first item
+    bpy.context.scene.cursor.location = (1.0, 0.0, 1.0)
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o == cube)
+    bpy.context.view_layer.objects.active = cube
+
+
+@step(1.0)
+def ivy_redo():
+    with override():
+        # undo=True as the UI calls it: registered, so F9 (redo_last) can show it.
+        bpy.ops.mesh.banyan_ivy('INVOKE_DEFAULT', True)
+        bpy.ops.screen.redo_last('INVOKE_DEFAULT')
+
+
+@step(2.0)
+def ivy_redo_shot():
+    win = bpy.context.window_manager.windows[0]
+    # F9 opens the redo panel under the mouse, at the window's centre here.
+    shoot("redo_ivy.png", (win.width // 2 - 260, 80, 520, win.height - 160))
+
+
+@step(1.0)
+def sidebar():
+    win, area, region = ctx()
+    with override():
+        bpy.ops.screen.region_toggle(region_type='UI') if hasattr(bpy.ops.screen, "region_toggle") else None
+    space = area.spaces.active
+    space.show_region_ui = True
+    for r in area.regions:
+        if r.type == 'UI':
+            pass
+
+
+@step(2.0)
+def sidebar_shot():
+    win, area, region = ctx()
+    x, y, w, h = region_rect(area, 'UI')
+    shoot("sidebar_plant.png", (x, y, w, h))
+
+
+@step(0.5)
+def finish():
+    if os.path.exists(TMP):
+        os.remove(TMP)
+    bpy.ops.wm.quit_blender()
+
+
+def run_steps(i=0):
+    def tick():
+        delay, fn = STEPS[i]
+        try:
+            fn()
+        except Exception:
+            import traceback
+            traceback.print_exc()
+            os._exit(1)
+        if i + 1 < len(STEPS):
+            run_steps(i + 1)
+        return None
+    bpy.app.timers.register(tick, first_interval=STEPS[i][0])
+
+
+if bpy.app.background:
+    sys.exit("docs/screenshots.py needs a window: run it under xvfb-run (tools/render_docs.sh ui)")
+run_steps()
