@@ -28,6 +28,7 @@ case $what in
   avenue) run docs/examples/render_avenue.py -- --out docs/img/avenue.png "$@" ;;
   hosts) run docs/render_hosts.py -- "$@" ;;
   ui) # A real window: Blender on a virtual X display; a .blend on the command line skips the splash.
+    command -v xvfb-run >/dev/null || { echo "ui needs Xvfb: apt-get install xvfb xauth"; exit 1; }
     blend="$scripts/start.blend"
     blender -b --factory-startup --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$blend')" >/dev/null
     BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$here/build/libbanyan.so" \
