@@ -268,6 +268,21 @@ def test_avenue():
     bt.check(set(names) <= {o.name for o in coll.objects}, "avenue: the old trees are still the same objects")
     bt.check(all(PL.is_plant(o) for o in coll.objects) and len({o.banyan_plant.group for o in coll.objects}) == 1,
              "avenue: every tree recorded, one group")
+    # The trees stand where a fresh build with the same values puts them.
+    from banyan import api
+    fresh = api.keyaki_avenue(path=PL.options(act)["path_points"], params=PL.stored_params(act))
+    bpy.context.view_layer.update()
+    spots = sorted(tuple(round(c, 4) for c in o.matrix_world.translation) for o in coll.objects)
+    want = sorted(tuple(round(c, 4) for c in o.matrix_world.translation) for o in fresh)
+    bt.check(spots == want, "avenue: regenerated trees at the fresh build's places: %s %s" % (spots[:3], want[:3]))
+    bt.check(sorted(len(o.data.vertices) for o in coll.objects) == sorted(len(o.data.vertices) for o in fresh),
+             "avenue: regenerated trees have the fresh build's vertex counts")
+    fresh_coll = fresh[0].users_collection[0]
+    for o in fresh:
+        me = o.data
+        bpy.data.objects.remove(o)
+        bpy.data.meshes.remove(me)
+    bpy.data.collections.remove(fresh_coll)
     act.banyan_plant.avenue.rows = 1
     res, msg = regenerate()
     bt.check(res == {'FINISHED'} and len(coll.objects) == (n1 + 1) // 2, "avenue: one row, %d trees (%d) %s"

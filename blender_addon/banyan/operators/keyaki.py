@@ -14,9 +14,9 @@ AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
 class TreeMixin(BanyanOperatorMixin):
     def build(self, context, params):
         pos = cursor_location(context) if self.at_cursor else None
-        if pos is not None:
-            params.set("position", pos)  # on `params` itself: the plant's record keeps where it stands
         with at_cursor_note(pos is not None, "position", "the tree stands at the 3D cursor"):
+            if pos is not None:
+                params.set("position", pos)  # on `params` itself: the plant's record keeps where it stands
             return api.keyaki_tree(params=params, position=pos, collection=context.collection, uv=self.uv_map)
 
 
