@@ -37,6 +37,7 @@ from .core.params import Params
 
 SCHEMA = 1
 HOSTED = ("roots", "ivy")  # generators whose plant grows on host objects
+MOVES_OBJECT = ("segments",)  # operators that move the object, not the mesh, to the cursor
 INT_MAX = 2 ** 31 - 1
 
 
@@ -125,11 +126,17 @@ def record(objs, generator, params, hosts=(), options=None):
     built from: generator name, params (a core.params.Params), host
     objects (Object pointers; core.structs.Box hosts are not kept),
     options (a JSON-able dict; an Object under "path" is kept as a
-    pointer). Several objects are one group, rebuilt together."""
+    pointer). Several objects are one group, rebuilt together.
+    options["frame"] (4x4 rows) is the world matrix in which the mesh's
+    coordinates are the generator's; by default the object's own matrix
+    now, which is right when the mesh was built in world coordinates and
+    its origin then moved (the coordinates moved with it). An operator
+    that moves the object but not the mesh passes the identity."""
     objs = [objs] if isinstance(objs, bpy.types.Object) else list(objs)
     if not isinstance(params, Params):
         raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
     options = dict(options or {})
+    frame = options.pop("frame", None)
     path = options.pop("path", None)
     if path is not None and not isinstance(path, bpy.types.Object):
         options["path_points"] = [list(map(float, q)) for q in path]
@@ -150,7 +157,8 @@ def record(objs, generator, params, hosts=(), options=None):
             item.name = h.name
         pl.path = path
         pl.options = opt_text
-        pl.frame = _matrix_json(o.matrix_basis if o.parent is None else o.matrix_world)
+        pl.frame = _matrix_json(Matrix(frame) if frame is not None else
+                                o.matrix_basis if o.parent is None else o.matrix_world)
         pl.group = group
         pl.index = i
         _write_view(pl, params)
@@ -168,6 +176,8 @@ def record_operator(op, context, objs, params):
             v = getattr(op, name, None)
             if isinstance(v, (bool, int, float, str)):
                 options[name] = v
+        if op.generator in MOVES_OBJECT:
+            options["frame"] = [list(r) for r in Matrix.Identity(4)]
         if options.get("path_from") == 'CURVE':
             options["path"] = context.active_object
         elif getattr(op, "built_path", None) is not None:

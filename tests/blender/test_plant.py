@@ -117,6 +117,10 @@ def test_roots():
     bpy.data.objects["Cube"].name = "Renamed Host"
     pl.roots.sides = 12
     bt.check(PL.edited(obj) == ["sides"], "roots: the edit is seen: %s" % PL.edited(obj))
+    bt.check(bpy.ops.banyan.copy_preset() == {'FINISHED'}, "roots: copy as preset finished")
+    doc2 = json.loads(PL.current_params(obj).to_preset())
+    bt.check(doc2["params"]["sides"] == 12 and doc2["params"]["seed"] == doc["params"]["seed"],
+             "roots: the preset text has the edit")
     nmats = len(bpy.data.materials)
     res, msg = regenerate()
     bt.check(res == {'FINISHED'}, "roots: regenerate after edits finished %s %s" % (res, msg))
@@ -244,6 +248,21 @@ def test_keyaki():
     draw_panel(obj)
 
 
+def test_segments():
+    bt.reset_scene()
+    bpy.context.scene.cursor.location = (1.0, 2.0, 0.0)
+    obj = build("segments")[0]
+    c0, n0 = coords(obj), len(obj.data.vertices)
+    bt.check(tuple(obj.location) == (1.0, 2.0, 0.0), "segments: object at the cursor")
+    res, msg = regenerate()
+    bt.check(res == {'FINISHED'} and close(coords(obj), c0), "segments: unchanged regenerate, same vertices %s" % msg)
+    bt.check(tuple(obj.location) == (1.0, 2.0, 0.0), "segments: still at the cursor")
+    obj.banyan_plant.segments.seed = 7
+    res, msg = regenerate()
+    bt.check(res == {'FINISHED'} and not close(coords(obj), c0), "segments: a new seed, a new tree %s" % msg)
+    draw_panel(obj)
+
+
 def test_avenue():
     bt.reset_scene()
     objs = build("avenue", tree__levels=6)
@@ -345,7 +364,8 @@ def draw_panel(obj):
 
 def main():
     print("Blender %s" % bpy.app.version_string)
-    for gen, fn in (("roots", test_roots), ("ivy", test_ivy), ("keyaki", test_keyaki), ("avenue", test_avenue)):
+    for gen, fn in (("roots", test_roots), ("ivy", test_ivy), ("keyaki", test_keyaki), ("avenue", test_avenue),
+                    ("segments", test_segments)):
         if bt.generator(gen):
             bt.run(fn)
     bt.done()
