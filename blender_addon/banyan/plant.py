@@ -19,8 +19,10 @@ Regenerate builds through banyan.api into a collection linked to no
 scene, then swaps each object's mesh data: the object itself (name,
 transform, parent, collections, modifiers, selection, material slots)
 stays. Plants on hosts (roots, ivy) grow where their hosts are now, seen
-from the object's current transform; the others keep their place relative
-to the object (a moved tree stays where it was moved).
+from the object's current transform; a tree or twigs keep their object's
+transform as their place (the mesh is the generator's, as built); an
+avenue's trees go where the changed avenue puts them, moved by as much as
+the artist moved them.
 """
 import json
 import uuid
@@ -37,7 +39,7 @@ from .core.params import Params
 
 SCHEMA = 1
 HOSTED = ("roots", "ivy")  # generators whose plant grows on host objects
-MOVES_OBJECT = ("segments",)  # operators that move the object, not the mesh, to the cursor
+FOLLOWS = ("avenue",)  # objects placed by the generator (along the path), not by the operator
 INT_MAX = 2 ** 31 - 1
 
 
@@ -121,17 +123,25 @@ def _write_view(pl, params):
     pl.lossy = json.dumps(lossy)
 
 
+def _plain(v):
+    """v as JSON (numbers, text, lists of them), or None."""
+    if isinstance(v, (bool, int, float, str)):
+        return v
+    if hasattr(v, "__len__") and hasattr(v, "__getitem__"):
+        out = [_plain(c) for c in v]
+        return None if any(c is None for c in out) else out
+    return None
+
+
 def record(objs, generator, params, hosts=(), options=None):
     """Stores on each object of `objs` (an Object or a list) what it was
     built from: generator name, params (a core.params.Params), host
     objects (Object pointers; core.structs.Box hosts are not kept),
     options (a JSON-able dict; an Object under "path" is kept as a
     pointer). Several objects are one group, rebuilt together.
-    options["frame"] (4x4 rows) is the world matrix in which the mesh's
-    coordinates are the generator's; by default the object's own matrix
-    now, which is right when the mesh was built in world coordinates and
-    its origin then moved (the coordinates moved with it). An operator
-    that moves the object but not the mesh passes the identity."""
+    options["frame"] (4x4 rows): the object's world matrix as the
+    generator placed it, by default its matrix now; an avenue's regenerated
+    trees move by how their place changed from it."""
     objs = [objs] if isinstance(objs, bpy.types.Object) else list(objs)
     if not isinstance(params, Params):
         raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
@@ -142,7 +152,7 @@ def record(objs, generator, params, hosts=(), options=None):
         options["path_points"] = [list(map(float, q)) for q in path]
         path = None
     text = params.to_preset()
-    opt_text = json.dumps(options, sort_keys=True)
+    opt_text = json.dumps({k: _plain(v) for k, v in options.items() if _plain(v) is not None}, sort_keys=True)
     group = uuid.uuid4().hex if len(objs) > 1 else ""
     host_objs = [h for h in (hosts or ()) if isinstance(h, bpy.types.Object)]
     for i, o in enumerate(objs):
@@ -172,12 +182,9 @@ def record_operator(op, context, objs, params):
     try:
         hosts = op.selected_hosts(context) if hasattr(op, "selected_hosts") else []
         options = {"operator": getattr(op, "banyan_idname", op.bl_idname)}
-        for name in tuple(getattr(op, "extra_props", ())) + ("banyan_preset",):
-            v = getattr(op, name, None)
-            if isinstance(v, (bool, int, float, str)):
-                options[name] = v
-        if op.generator in MOVES_OBJECT:
-            options["frame"] = [list(r) for r in Matrix.Identity(4)]
+        for name in tuple(getattr(op, "placement_props", ())) + tuple(getattr(op, "extra_props", ())) + (
+                "banyan_preset",):
+            options[name] = getattr(op, name, None)
         if options.get("path_from") == 'CURVE':
             options["path"] = context.active_object
         elif getattr(op, "built_path", None) is not None:
@@ -420,8 +427,8 @@ def regenerate(obj, params=None):
                 _swap_mesh(target, o.data, target.matrix_world.inverted_safe() @ built)
                 if gen == "ivy":
                     _update_growth(target, p)
-            elif pl.group:
-                # An avenue's tree stands where the generator puts it now, moved as the artist moved it.
+            elif gen in FOLLOWS:
+                # Where the generator puts it now (a tree of a changed avenue), moved as the artist moved it.
                 was = _matrix(target.banyan_plant.frame)
                 _swap_mesh(target, o.data)
                 mw = target.matrix_world @ was.inverted_safe() @ built
@@ -429,9 +436,8 @@ def regenerate(obj, params=None):
                     target.matrix_world = mw
                 frames[target.name] = _matrix_json(built)
             else:
-                # Relative to the object: coordinates in the frame it was built in, the object as it is.
-                _swap_mesh(target, o.data, _matrix(target.banyan_plant.frame).inverted_safe() @ built)
-                frames[target.name] = target.banyan_plant.frame
+                # A tree or twigs: the object's transform is where it stands; the mesh is the generator's, local.
+                _swap_mesh(target, o.data)
             keep.append(target)
         for i, o in old.items():
             if i >= len(new):  # the avenue has fewer trees now

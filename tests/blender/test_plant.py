@@ -311,6 +311,49 @@ def test_avenue():
              "avenue: no orphan mesh left")
 
 
+def test_avenue_curve():
+    bt.reset_scene()
+    cu = bpy.data.curves.new("Road", 'CURVE')
+    sp = cu.splines.new('POLY')
+    sp.points.add(2)
+    for p, co in zip(sp.points, ((0, 0, 0, 1), (20, 0, 0, 1), (30, 10, 0, 1))):
+        p.co = co
+    road = bpy.data.objects.new("Road", cu)
+    bpy.context.scene.collection.objects.link(road)
+    for o in bpy.context.selected_objects:
+        o.select_set(False)
+    road.select_set(True)
+    bpy.context.view_layer.objects.active = road
+    objs = build("avenue", path_from='CURVE', rows=1, tree__levels=5)
+    bt.check(objs and all(o.banyan_plant.path == road for o in objs), "avenue on a curve: the curve kept as a pointer")
+    n = len(objs)
+    road.name = "Renamed Road"
+    sp.points[2].co = (60, 10, 0, 1)  # a longer road: more trees
+    bpy.context.view_layer.objects.active = objs[0]
+    res, msg = regenerate()
+    coll = objs[0].users_collection[0]
+    bt.check(res == {'FINISHED'} and len(coll.objects) > n, "avenue follows the edited curve: %d -> %d trees %s"
+             % (n, len(coll.objects), msg))
+    bpy.data.objects.remove(road)
+    before = object_state(objs[0])
+    res, msg = regenerate()
+    bt.check(res == {'ERROR'} and "curve" in msg, "avenue: deleted curve reported: %r" % msg)
+    bt.check(object_state(objs[0]) == before, "avenue: unchanged when its curve is gone")
+
+
+def test_record_options():
+    """record() keeps what JSON can hold (vectors as lists) and drops the rest."""
+    from mathutils import Euler, Vector
+    bt.reset_scene()
+    cube = bpy.data.objects["Cube"]
+    PL.record(cube, "keyaki", Params("keyaki"), [], {"location": Vector((1, 2, 3)), "rotation": Euler((0, 0, 1)),
+                                                     "align": 'WORLD', "thing": object()})
+    opt = PL.options(cube)
+    bt.check(opt == {"location": [1.0, 2.0, 3.0], "rotation": [0.0, 0.0, 1.0], "align": 'WORLD'},
+             "record: options as JSON: %s" % opt)
+    bt.check(PL.is_plant(cube) and not PL.is_plant(bpy.data.objects["Camera"]), "record: the cube is now a plant")
+
+
 class _Layout:
     """Records what the panel draws (no window in background Blender)."""
 
@@ -365,7 +408,7 @@ def draw_panel(obj):
 def main():
     print("Blender %s" % bpy.app.version_string)
     for gen, fn in (("roots", test_roots), ("ivy", test_ivy), ("keyaki", test_keyaki), ("avenue", test_avenue),
-                    ("segments", test_segments)):
+                    ("segments", test_segments), ("avenue", test_avenue_curve), ("keyaki", test_record_options)):
         if bt.generator(gen):
             bt.run(fn)
     bt.done()
