@@ -117,6 +117,17 @@ def _groups(specs):
     return list(out.items())
 
 
+def _section(layout, context, gen, index, title):
+    """A section's body: collapsible on Blender 4.1+, a box before."""
+    if hasattr(layout, "panel"):
+        header, body = layout.panel("banyan_plant_%s_%d" % (gen, index), default_closed=index > 0)
+        header.label(text=title)
+        return body
+    box = layout.box()
+    box.label(text=title)
+    return box.column()
+
+
 def _label(s):
     return getattr(s, "label", "") or ""
 
@@ -167,16 +178,14 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         if view is None:
             layout.label(text="This add-on has no '%s' generator" % pl.generator, icon='ERROR')
             return
-        for title, rows in _groups(specs(pl.generator)):
-            body = layout
-            if title and hasattr(layout, "panel"):  # Blender 4.1+: collapsible sections
-                header, body = layout.panel("banyan_plant_" + title, default_closed=True)
-                header.label(text=title)
-                if body is None:
-                    continue
-            else:
-                body = layout.box()
-                body.label(text=title or "Parameters")
+        try:  # the redo panel's collapsible sections (part PANELS), when the add-on has them
+            from .panels import section
+        except ImportError:
+            section = _section
+        for i, (title, rows) in enumerate(_groups(specs(pl.generator))):
+            body = section(layout, context, pl.generator, i, title or "Parameters")
+            if body is None:
+                continue
             for s in rows:
                 name = PP.prop_name(s.name)
                 if hasattr(view, name):
