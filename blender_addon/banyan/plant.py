@@ -79,8 +79,14 @@ _classes = []
 # ------------------------------------------------------------------ data
 
 def is_plant(obj):
-    pl = getattr(obj, "banyan_plant", None) if obj is not None else None
-    return pl is not None and pl.schema > 0 and bool(pl.generator)
+    # is_property_set first: reading obj.banyan_plant would add an empty record to any object.
+    try:
+        if obj is None or not obj.is_property_set("banyan_plant"):
+            return False
+    except (TypeError, AttributeError, ReferenceError):  # not an Object, or the add-on unregistered
+        return False
+    pl = obj.banyan_plant
+    return pl.schema > 0 and bool(pl.generator)
 
 
 def _matrix_json(m):
@@ -289,9 +295,8 @@ def members(obj):
         return {pl.index: obj}
     out = {}
     for o in bpy.data.objects:
-        opl = getattr(o, "banyan_plant", None)
-        if opl is not None and opl.group == pl.group and o.users_scene and opl.index not in out:
-            out[opl.index] = o
+        if is_plant(o) and o.banyan_plant.group == pl.group and o.users_scene and o.banyan_plant.index not in out:
+            out[o.banyan_plant.index] = o
     out[pl.index] = obj
     return out
 

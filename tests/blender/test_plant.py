@@ -344,6 +344,26 @@ def test_avenue_curve():
     bt.check(object_state(objs[0]) == before, "avenue: unchanged when its curve is gone")
 
 
+def test_undo():
+    """Undo after Regenerate gives back the plant as it was (mesh and record)."""
+    bt.reset_scene()
+    obj = build("keyaki", levels=6)[0]
+    name, n0 = obj.name, len(obj.data.vertices)
+    # Background Blender pushes no undo steps by itself: push what the UI would.
+    bpy.ops.ed.undo_push(message="built")
+    obj.banyan_plant.keyaki.levels = 8
+    bpy.ops.ed.undo_push(message="edited")
+    res, msg = regenerate()
+    bpy.ops.ed.undo_push(message="regenerated")
+    n1 = len(bpy.data.objects[name].data.vertices)
+    bt.check(res == {'FINISHED'} and n1 > n0, "undo: regenerated %d -> %d %s" % (n0, n1, msg))
+    bpy.ops.ed.undo()
+    obj = bpy.data.objects[name]
+    bt.check(len(obj.data.vertices) == n0, "undo: the mesh as before Regenerate (%d)" % len(obj.data.vertices))
+    bt.check(json.loads(obj.banyan_plant.params)["params"]["levels"] == 6 and obj.banyan_plant.keyaki.levels == 8,
+             "undo: stored levels 6 again, the edit (8) still in the panel")
+
+
 def test_record_options():
     """record() keeps what JSON can hold (vectors as lists) and drops the rest."""
     from mathutils import Euler, Vector
@@ -406,12 +426,14 @@ def draw_panel(obj):
         active_object = bpy.data.objects.get("Camera")
         mode = 'OBJECT'
     bt.check(not P.poll(NotPlant), "panel hidden for a non-plant")
+    bt.check(not NotPlant.active_object.is_property_set("banyan_plant"), "the panel adds no record to a non-plant")
 
 
 def main():
     print("Blender %s" % bpy.app.version_string)
     for gen, fn in (("roots", test_roots), ("ivy", test_ivy), ("keyaki", test_keyaki), ("avenue", test_avenue),
-                    ("segments", test_segments), ("avenue", test_avenue_curve), ("keyaki", test_record_options)):
+                    ("segments", test_segments), ("avenue", test_avenue_curve), ("keyaki", test_record_options),
+                    ("keyaki", test_undo)):
         if bt.generator(gen):
             bt.run(fn)
     bt.done()
