@@ -113,20 +113,24 @@ def _same(a, b):
     return a == b
 
 
-def _write_view(pl, params):
-    """Copies params into the editable view and notes what it rounds."""
+def _write_view(pl, params, lossy=None):
+    """Copies params into the editable view and notes what it rounds
+    (`lossy`, the JSON text, when already known: an avenue's trees share it)."""
     view = getattr(pl, params.name, None)
     if view is None:
         pl.lossy = ""
-        return
+        return ""
     PP.write_props(view, params)
-    seen = PP.to_params(params.name, view)
-    lossy = {}
-    for s in params.specs:
-        a, b = seen.get(s.name), params.get(s.name)
-        if not _same(a, b):
-            lossy[s.name] = list(a) if isinstance(a, tuple) else a
-    pl.lossy = json.dumps(lossy)
+    if lossy is None:
+        seen = PP.to_params(params.name, view)
+        out = {}
+        for s in params.specs:
+            a, b = seen.get(s.name), params.get(s.name)
+            if not _same(a, b):
+                out[s.name] = list(a) if isinstance(a, tuple) else a
+        lossy = json.dumps(out)
+    pl.lossy = lossy
+    return lossy
 
 
 def _plain(v):
@@ -161,6 +165,7 @@ def record(objs, generator, params, hosts=(), options=None):
     opt_text = json.dumps({k: _plain(v) for k, v in options.items() if _plain(v) is not None}, sort_keys=True)
     group = uuid.uuid4().hex if len(objs) > 1 else ""
     host_objs = [h for h in (hosts or ()) if isinstance(h, bpy.types.Object)]
+    lossy = None
     for i, o in enumerate(objs):
         pl = o.banyan_plant
         pl.generator = generator if isinstance(generator, str) else params.name
@@ -177,7 +182,7 @@ def record(objs, generator, params, hosts=(), options=None):
                                 o.matrix_basis if o.parent is None else o.matrix_world)
         pl.group = group
         pl.index = i
-        _write_view(pl, params)
+        lossy = _write_view(pl, params, lossy)
         pl.schema = SCHEMA
 
 
