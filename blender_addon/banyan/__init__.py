@@ -60,6 +60,12 @@ def register():
     for cls in (ui.VIEW3D_MT_banyan_add, ui.VIEW3D_PT_banyan):
         bpy.utils.register_class(cls)
         _registered.append(cls)
+    from . import plant, plant_ui
+    plant.register([g for g, ok in avail.items() if ok])
+    _registered.append("plant")
+    for cls in plant_ui.CLASSES:
+        bpy.utils.register_class(cls)
+        _registered.append(cls)
     bpy.types.VIEW3D_MT_mesh_add.append(ui.menu_func)
     _registered.append("menu")
 
@@ -71,5 +77,8 @@ def unregister():
         cls = _registered.pop()
         if cls == "menu":
             bpy.types.VIEW3D_MT_mesh_add.remove(ui.menu_func)
+        elif cls == "plant":
+            from . import plant
+            plant.unregister()
         else:
             bpy.utils.unregister_class(cls)

@@ -258,7 +258,7 @@ def op_call(idname, kw):
         return "python exception", "%s: %s" % (type(e).__name__, m)
     except RuntimeError as e:
         m = str(e).strip()
-        if "poll() failed" in m:
+        if "poll() failed" in m or (m.startswith("Operator bpy.ops.") and ".poll() " in m):  # + poll message
             return "poll refused", m
         if "Traceback" in m or m.startswith("Error: Python"):
             return "python trace", m

@@ -10,6 +10,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 
 from .. import hosts as H
+from .. import plant
 from .. import presets as PR
 from .. import props as PP
 from ..core.errors import BanyanError
@@ -65,6 +66,7 @@ class BanyanOperatorMixin:
             params = self.params()
             objs = self.build(context, params)
             LAST_PARAMS[self.banyan_idname] = params
+            plant.record_operator(self, context, objs, params)  # edit later (never raises)
         except (BanyanError, FileNotFoundError, ValueError) as e:
             self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
             return {'CANCELLED'}

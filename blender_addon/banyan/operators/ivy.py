@@ -21,6 +21,7 @@ class IvyMixin(HostsOperatorMixin):
                     start, _box = H.closest_point(hosts, cur)
                 else:
                     start = H.closest_on_set(hosts, cur)
+                params.set("start", start)  # on `params` itself: the plant's record keeps where it grew
             return api.ivy(hosts=hosts, params=params, start=start, collection=context.collection, uv=self.uv_map,
                            animate=self.animate)
 

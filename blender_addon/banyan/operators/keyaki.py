@@ -15,6 +15,8 @@ class TreeMixin(BanyanOperatorMixin):
     def build(self, context, params):
         pos = cursor_location(context) if self.at_cursor else None
         with at_cursor_note(pos is not None, "position", "the tree stands at the 3D cursor"):
+            if pos is not None:
+                params.set("position", pos)  # on `params` itself: the plant's record keeps where it stands
             return api.keyaki_tree(params=params, position=pos, collection=context.collection, uv=self.uv_map)
 
 
@@ -30,6 +32,7 @@ class AvenueMixin(BanyanOperatorMixin):
             a = cursor_location(context)
             d = cursor_axis(context, 0)
             path = [a, tuple(a[k] + d[k] * self.line_length for k in range(3))]
+            self.built_path = path  # the plant's record keeps the line
         wm = context.window_manager
         wm.progress_begin(0, 100)
         try:

@@ -1,0 +1,497 @@
+"""Edit later: a built plant keeps on its object what it was grown from
+(generator, the full params, seed, host objects, the operator's options),
+and regenerate() rebuilds it in place from that.
+
+Storage is Object.banyan_plant, a PropertyGroup: saved in the .blend and
+copied with the object. The params JSON text (Params.to_preset) is the
+source of truth; a PropertyGroup per generator made from the library's
+table (props.annotations) is its editable view in the sidebar. Values the
+float32 view cannot hold exactly (and seeds above 2^31) are listed in
+`lossy` with the view's value at record time, so an untouched property maps
+back to the exact JSON value and an edited one wins. Hosts are Object
+pointers, so a renamed host is still found.
+
+An avenue split into one object per tree is recorded on every tree (same
+`group`, its tree number in `index`); regenerating any tree rebuilds the
+whole avenue.
+
+Regenerate builds through banyan.api into a collection linked to no
+scene, then swaps each object's mesh data: the object itself (name,
+transform, parent, collections, modifiers, selection, material slots)
+stays. Plants on hosts (roots, ivy) grow where their hosts are now, seen
+from the object's current transform; a tree or twigs keep their object's
+transform as their place (the mesh is the generator's, as built); an
+avenue's trees go where the changed avenue puts them, moved by as much as
+the artist moved them.
+"""
+import json
+import uuid
+
+import bpy
+from bpy.props import CollectionProperty, IntProperty, PointerProperty, StringProperty
+from mathutils import Matrix
+
+from . import hosts as H
+from . import props as PP
+from .core import structs as S
+from .core.errors import BanyanError
+from .core.params import Params
+
+SCHEMA = 1
+HOSTED = ("roots", "ivy")  # generators whose plant grows on host objects
+FOLLOWS = ("avenue",)  # objects placed by the generator (along the path), not by the operator
+INT_MAX = 2 ** 31 - 1
+
+
+class BanyanPlantHost(bpy.types.PropertyGroup):
+    object: PointerProperty(type=bpy.types.Object, name="Host")
+    # name (PropertyGroup's own): the host's name when recorded, to name it once it is gone
+
+
+def _view_class(gen):
+    return type("BanyanPlantParams_" + gen, (bpy.types.PropertyGroup,), {"__annotations__": PP.annotations(gen)})
+
+
+def _plant_class(gens):
+    ann = {
+        "schema": IntProperty(name="Schema", default=0, description="0: not a Banyan plant"),
+        "generator": StringProperty(name="Generator"),
+        "params": StringProperty(name="Parameters", description="Params.to_preset JSON: what was built"),
+        "seed": StringProperty(name="Seed", description="The params' seed when built"),
+        "lossy": StringProperty(description="JSON {key: view value} of values the view rounds"),
+        "hosts": CollectionProperty(type=BanyanPlantHost),
+        "path": PointerProperty(type=bpy.types.Object, name="Path",
+                                description="The avenue's curve, when it was grown along one"),
+        "options": StringProperty(name="Options", description="JSON of the operator's options"),
+        "frame": StringProperty(description="JSON 4x4 world matrix of the object when built"),
+        "group": StringProperty(description="Shared by the objects of one build (an avenue's trees)"),
+        "index": IntProperty(description="This object's number in its group"),
+    }
+    for g in gens:
+        ann[g] = PointerProperty(type=_VIEWS[g])
+    return type("BanyanPlant", (bpy.types.PropertyGroup,), {"__annotations__": ann})
+
+
+_VIEWS = {}
+_classes = []
+
+
+# ------------------------------------------------------------------ data
+
+def is_plant(obj):
+    # is_property_set first: reading obj.banyan_plant would add an empty record to any object.
+    try:
+        if obj is None or not obj.is_property_set("banyan_plant"):
+            return False
+    except (TypeError, AttributeError, ReferenceError):  # not an Object, or the add-on unregistered
+        return False
+    pl = obj.banyan_plant
+    return pl.schema > 0 and bool(pl.generator)
+
+
+def _matrix_json(m):
+    return json.dumps([list(r) for r in m])
+
+
+def _matrix(text):
+    try:
+        return Matrix(json.loads(text))
+    except (ValueError, TypeError):
+        return Matrix.Identity(4)
+
+
+def _seed(params):
+    for s in params.specs:
+        if s.type == S.PT_SEED:
+            return str(params.get(s.name))
+    return ""
+
+
+def _same(a, b):
+    if isinstance(a, (tuple, list)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return a == b
+
+
+def _write_view(pl, params, lossy=None):
+    """Copies params into the editable view and notes what it rounds
+    (`lossy`, the JSON text, when already known: an avenue's trees share it)."""
+    view = getattr(pl, params.name, None)
+    if view is None:
+        pl.lossy = ""
+        return ""
+    PP.write_props(view, params)
+    if lossy is None:
+        seen = PP.to_params(params.name, view)
+        out = {}
+        for s in params.specs:
+            a, b = seen.get(s.name), params.get(s.name)
+            if not _same(a, b):
+                out[s.name] = list(a) if isinstance(a, tuple) else a
+        lossy = json.dumps(out)
+    pl.lossy = lossy
+    return lossy
+
+
+def _plain(v):
+    """v as JSON (numbers, text, lists of them), or None."""
+    if isinstance(v, (bool, int, float, str)):
+        return v
+    if hasattr(v, "__len__") and hasattr(v, "__getitem__"):
+        out = [_plain(c) for c in v]
+        return None if any(c is None for c in out) else out
+    return None
+
+
+def record(objs, generator, params, hosts=(), options=None):
+    """Stores on each object of `objs` (an Object or a list) what it was
+    built from: generator name, params (a core.params.Params), host
+    objects (Object pointers; core.structs.Box hosts are not kept),
+    options (a JSON-able dict; an Object under "path" is kept as a
+    pointer). Several objects are one group, rebuilt together.
+    options["frame"] (4x4 rows): the object's world matrix as the
+    generator placed it, by default its matrix now; an avenue's regenerated
+    trees move by how their place changed from it."""
+    objs = [objs] if isinstance(objs, bpy.types.Object) else list(objs)
+    if not isinstance(params, Params):
+        raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
+    options = dict(options or {})
+    frame = options.pop("frame", None)
+    path = options.pop("path", None)
+    if path is not None and not isinstance(path, bpy.types.Object):
+        options["path_points"] = [list(map(float, q)) for q in path]
+        path = None
+    text = params.to_preset()
+    opt_text = json.dumps({k: _plain(v) for k, v in options.items() if _plain(v) is not None}, sort_keys=True)
+    group = uuid.uuid4().hex if len(objs) > 1 else ""
+    host_objs = [h for h in (hosts or ()) if isinstance(h, bpy.types.Object)]
+    lossy = None
+    for i, o in enumerate(objs):
+        pl = o.banyan_plant
+        pl.generator = generator if isinstance(generator, str) else params.name
+        pl.params = text
+        pl.seed = _seed(params)
+        pl.hosts.clear()
+        for h in host_objs:
+            item = pl.hosts.add()
+            item.object = h
+            item.name = h.name
+        pl.path = path
+        pl.options = opt_text
+        pl.frame = _matrix_json(Matrix(frame) if frame is not None else
+                                o.matrix_basis if o.parent is None else o.matrix_world)
+        pl.group = group
+        pl.index = i
+        lossy = _write_view(pl, params, lossy)
+        pl.schema = SCHEMA
+
+
+def record_operator(op, context, objs, params):
+    """What a Banyan operator calls after a successful build: its hosts
+    (the selected ones), its own options and the params it grew. Never
+    raises: the plant is built, only its record would be missing."""
+    try:
+        hosts = op.selected_hosts(context) if hasattr(op, "selected_hosts") else []
+        options = {"operator": getattr(op, "banyan_idname", op.bl_idname)}
+        for name in tuple(getattr(op, "placement_props", ())) + tuple(getattr(op, "extra_props", ())) + (
+                "banyan_preset",):
+            options[name] = getattr(op, name, None)
+        if options.get("path_from") == 'CURVE':
+            options["path"] = context.active_object
+        elif getattr(op, "built_path", None) is not None:
+            options["path"] = op.built_path
+        record(objs, op.generator, params, hosts, options)
+    except Exception as e:  # noqa: BLE001 - the build succeeded; say why it cannot be edited later
+        import traceback
+        traceback.print_exc()
+        op.report({'WARNING'}, "Banyan: built, but its parameters were not kept: %s" % e)
+
+
+def options(obj):
+    try:
+        return json.loads(obj.banyan_plant.options or "{}")
+    except ValueError:
+        return {}
+
+
+def host_status(obj):
+    """[(name, object or None)]: None for a host that was deleted."""
+    out = []
+    for item in obj.banyan_plant.hosts:
+        h = item.object
+        gone = h is None or not h.users_scene
+        out.append((item.name if gone else h.name, None if gone else h))
+    return out
+
+
+def stored_params(obj):
+    """The params as built (the JSON text), exact."""
+    pl = obj.banyan_plant
+    p = Params(pl.generator)
+    p.apply_preset(pl.params, "object '%s'" % obj.name)
+    return p
+
+
+def current_params(obj):
+    """The params to build now: the stored ones with the sidebar's edits
+    on top. BanyanError (naming the key) for an edit the library refuses."""
+    pl = obj.banyan_plant
+    exact = stored_params(obj)
+    view = getattr(pl, pl.generator, None)
+    if view is None:
+        return exact
+    p = PP.to_params(pl.generator, view)
+    try:
+        lossy = json.loads(pl.lossy or "{}")
+    except ValueError:
+        lossy = {}
+    for k, seen in lossy.items():
+        if k in p.by_name and _same(p.get(k), tuple(seen) if isinstance(seen, list) else seen):
+            p.set(k, exact.get(k))
+    return p
+
+
+def set_params(obj, params):
+    """Replaces the stored params (and the view) of obj's plant, e.g. from a
+    script; Regenerate then builds them."""
+    pl = obj.banyan_plant
+    if params.name != pl.generator:
+        raise BanyanError(1, "'%s' is a %s plant, not %s" % (obj.name, pl.generator, params.name))
+    pl.params = params.to_preset()
+    pl.seed = _seed(params)
+    _write_view(pl, params)
+
+
+def edited(obj):
+    """Keys whose sidebar value differs from what was built."""
+    try:
+        a, b = current_params(obj), stored_params(obj)
+    except BanyanError:
+        return ["?"]
+    return [s.name for s in a.specs if not _same(a.get(s.name), b.get(s.name))]
+
+
+def randomize_seed(obj, rng=None):
+    """A new seed in the view (an edit; Regenerate builds it). Returns
+    {property: old value} to put back."""
+    import random
+    pl = obj.banyan_plant
+    view = getattr(pl, pl.generator)
+    r = rng or random.SystemRandom()
+    before = {}
+    for s in stored_params(obj).specs:
+        if s.type == S.PT_SEED:
+            name = PP.prop_name(s.name)
+            before[name] = old = getattr(view, name)
+            new = old
+            while new == old:
+                new = r.randint(1, INT_MAX)
+            setattr(view, name, new)
+    return before
+
+
+# ------------------------------------------------------------ regenerate
+
+def members(obj):
+    """The objects rebuilt with obj: [obj], or every tree of its avenue in
+    the scene by tree number (the first one per number)."""
+    pl = obj.banyan_plant
+    if not pl.group:
+        return {pl.index: obj}
+    out = {}
+    for o in bpy.data.objects:
+        if is_plant(o) and o.banyan_plant.group == pl.group and o.users_scene and o.banyan_plant.index not in out:
+            out[o.banyan_plant.index] = o
+    out[pl.index] = obj
+    return out
+
+
+def _hosts(obj):
+    hosts = []
+    for name, h in host_status(obj):
+        if h is None:
+            raise BanyanError(3, "host '%s' of '%s' was deleted; select new hosts and add the plant again"
+                              % (name, obj.name), "BANYAN_E_NO_HOSTS")
+        hosts.append(h)
+    return hosts
+
+
+def _build(obj, params, coll):
+    """The plant's objects built anew into coll (linked to no scene)."""
+    from . import api
+    pl = obj.banyan_plant
+    gen = pl.generator
+    opt = options(obj)
+    uv = bool(opt.get("uv_map", True))
+    shape = opt.get("host_shape", H.SURFACE)
+    if gen == "roots":
+        return api.strangler_roots(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
+    if gen == "ivy":
+        return api.ivy(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
+    if gen == "keyaki":
+        return api.keyaki_tree(params=params, collection=coll, uv=uv)
+    if gen == "avenue":
+        path = None
+        if opt.get("path_from") == 'CURVE':
+            path = pl.path
+            if path is None or not path.users_scene:
+                raise BanyanError(1, "the avenue's curve was deleted; add the avenue again", "BANYAN_E_INVALID_ARG")
+        elif opt.get("path_points"):
+            path = [tuple(q) for q in opt["path_points"]]
+        return api.keyaki_avenue(path=path, params=params, merged=bool(opt.get("merged", False)),
+                                 collection=coll, uv=uv)
+    if gen == "segments":
+        key = opt.get("banyan_preset")
+        return api.segment_twigs(preset=key if key and key != "NONE" else None, params=params,
+                                 collection=coll, uv=uv)
+    raise BanyanError(13, "'%s': generator '%s' cannot be regenerated" % (obj.name, gen), "BANYAN_E_UNSUPPORTED")
+
+
+def _remove_tree(coll):
+    """Removes a temporary collection and its children (emptied before)."""
+    for c in list(coll.children):
+        _remove_tree(c)
+    bpy.data.collections.remove(coll)
+
+
+def _is_identity(m, eps=1e-12):
+    return all(abs(m[i][j] - (1.0 if i == j else 0.0)) <= eps for i in range(4) for j in range(4))
+
+
+def _keep_slots(new_me, old_me):
+    """new_me gets old_me's material slots as they are (the artist's
+    materials); slots the library has beyond them follow."""
+    lib_mats = list(new_me.materials)
+    new_me.materials.clear()
+    for m in old_me.materials:
+        new_me.materials.append(m)
+    for m in lib_mats[len(old_me.materials):]:
+        new_me.materials.append(m)
+
+
+def _swap_mesh(obj, new_me, to_local=None):
+    """Gives obj the mesh new_me (material slots kept, coordinates moved
+    by to_local); the old mesh is removed when nothing else uses it, and
+    its name passes to new_me."""
+    old = obj.data
+    _keep_slots(new_me, old)
+    if to_local is not None and not _is_identity(to_local):
+        new_me.transform(to_local)
+    obj.data = new_me
+    if old.users == 0:
+        name = old.name
+        bpy.data.meshes.remove(old)
+        new_me.name = name
+
+
+def _update_growth(obj, params):
+    """The ivy growth modifier's last step follows a changed `steps`."""
+    if "steps" not in params.by_name:
+        return
+    last = float(max(1, int(params.get("steps"))))
+    for mod in obj.modifiers:
+        ng = getattr(mod, "node_group", None)
+        if mod.type == 'NODES' and ng is not None and ng.name.startswith("Banyan Ivy Growth"):
+            for n in ng.nodes:
+                if n.bl_idname == 'ShaderNodeMapRange':
+                    n.inputs["To Max"].default_value = last
+
+
+def regenerate(obj, params=None):
+    """Rebuilds obj's plant in place (every tree of its avenue) from its
+    stored params with the sidebar's edits (or `params`) and its current
+    hosts. Returns the plant's objects. On any error raises with nothing
+    changed."""
+    if not is_plant(obj):
+        raise BanyanError(1, "'%s' is not a Banyan plant" % getattr(obj, "name", obj), "BANYAN_E_INVALID_ARG")
+    pl = obj.banyan_plant
+    gen = pl.generator
+    p = params if params is not None else current_params(obj)
+    old = members(obj)
+    opts = options(obj)
+    if pl.path is not None:
+        opts["path"] = pl.path
+    hosts = [h for _n, h in host_status(obj)]
+    first = old[min(old)]
+    home = next(iter(first.users_collection), None)
+    coll = bpy.data.collections.new("banyan_regenerate")
+    made_mats = set()
+    keep, frames = [], {}
+    try:
+        new = _build(obj, p, coll)
+        for o in new:
+            made_mats.update(m for m in o.data.materials if m is not None)
+        for i, o in enumerate(new):
+            built = o.matrix_basis.copy()
+            target = old.get(i)
+            if target is None:
+                # The avenue grew a tree more: it joins the others, with their materials.
+                _keep_slots(o.data, first.data)
+                for c in list(o.users_collection):
+                    c.objects.unlink(o)
+                (home or bpy.context.scene.collection).objects.link(o)
+                keep.append(o)
+                continue
+            if gen in HOSTED:
+                # Grown where the hosts are now, seen from where the object is now.
+                _swap_mesh(target, o.data, target.matrix_world.inverted_safe() @ built)
+                if gen == "ivy":
+                    _update_growth(target, p)
+            elif gen in FOLLOWS:
+                # Where the generator puts it now (a tree of a changed avenue), moved as the artist moved it.
+                was = _matrix(target.banyan_plant.frame)
+                _swap_mesh(target, o.data)
+                mw = target.matrix_world @ was.inverted_safe() @ built
+                if not _is_identity(mw.inverted_safe() @ target.matrix_world):
+                    target.matrix_world = mw
+                frames[target.name] = _matrix_json(built)
+            else:
+                # A tree or twigs: the object's transform is where it stands; the mesh is the generator's, local.
+                _swap_mesh(target, o.data)
+            keep.append(target)
+        for i, o in old.items():
+            if i >= len(new):  # the avenue has fewer trees now
+                me = o.data
+                bpy.data.objects.remove(o)
+                if me is not None and me.users == 0:
+                    bpy.data.meshes.remove(me)
+    finally:
+        # The temporary objects (their meshes live on in the plant), or all of a failed build.
+        for o in list(coll.all_objects):
+            me = o.data
+            bpy.data.objects.remove(o)
+            if me is not None and me.users == 0:
+                bpy.data.meshes.remove(me)
+        _remove_tree(coll)
+        for m in made_mats:
+            if m.users == 0:
+                bpy.data.materials.remove(m)
+    record(keep, gen, p, hosts, opts)
+    for o in keep:
+        if o.name in frames:
+            o.banyan_plant.frame = frames[o.name]
+    return keep
+
+
+# -------------------------------------------------------------- register
+
+def register(gens):
+    """Registers the record's types on Object for the generators built."""
+    _VIEWS.clear()
+    del _classes[:]
+    _classes.append(BanyanPlantHost)
+    for g in gens:
+        _VIEWS[g] = _view_class(g)
+        _classes.append(_VIEWS[g])
+    _classes.append(_plant_class(gens))
+    for c in _classes:
+        bpy.utils.register_class(c)
+    bpy.types.Object.banyan_plant = PointerProperty(type=_classes[-1], name="Banyan plant")
+
+
+def unregister():
+    if hasattr(bpy.types.Object, "banyan_plant"):
+        del bpy.types.Object.banyan_plant
+    while _classes:
+        bpy.utils.unregister_class(_classes.pop())
+    _VIEWS.clear()

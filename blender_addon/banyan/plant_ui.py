@@ -1,0 +1,199 @@
+"""The sidebar's "Plant" panel (View3D > Sidebar > Banyan) for an active
+Banyan plant, and its operators: Regenerate, Randomize Seed, Copy as
+Preset. The data and the rebuilding are plant.py's."""
+import traceback
+
+import bpy
+from bpy.props import StringProperty
+
+from . import plant as PL
+from . import props as PP
+from .core.errors import BanyanError
+
+GENERATOR_LABELS = {"roots": "Strangler roots", "keyaki": "Keyaki tree", "avenue": "Keyaki avenue",
+                    "ivy": "Ivy", "segments": "Segment twigs"}
+
+
+def _active_plant(context):
+    obj = getattr(context, "active_object", None)
+    return obj if PL.is_plant(obj) else None
+
+
+def _poll(cls, context):
+    if _active_plant(context) is None:
+        cls.poll_message_set("The active object is not a Banyan plant")
+        return False
+    if context.mode != 'OBJECT':
+        cls.poll_message_set("Regenerating works in Object Mode")
+        return False
+    return True
+
+
+class BANYAN_OT_regenerate(bpy.types.Operator):
+    """Rebuild the active plant in place from its parameters (as edited in the sidebar) and its hosts,
+    keeping its name, transform, materials and modifiers"""
+    bl_idname = "banyan.regenerate"
+    bl_label = "Regenerate"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return _poll(cls, context)
+
+    def execute(self, context):
+        obj = _active_plant(context)
+        try:
+            objs = PL.regenerate(obj)
+        except (BanyanError, FileNotFoundError, ValueError) as e:
+            self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
+            return {'CANCELLED'}
+        except Exception as e:  # the object is left as it was
+            traceback.print_exc()
+            self.report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
+            return {'CANCELLED'}
+        nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
+        self.report({'INFO'}, "Banyan: regenerated %d object(s), %d vertices" % (len(objs), nv))
+        return {'FINISHED'}
+
+
+class BANYAN_OT_randomize_seed(bpy.types.Operator):
+    """Give the active plant a new random seed and regenerate it"""
+    bl_idname = "banyan.randomize_seed"
+    bl_label = "Randomize Seed"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return _poll(cls, context)
+
+    def execute(self, context):
+        obj = _active_plant(context)
+        view = getattr(obj.banyan_plant, obj.banyan_plant.generator)
+        before = PL.randomize_seed(obj)
+        try:
+            PL.regenerate(obj)
+        except BanyanError as e:
+            for k, v in before.items():  # nothing changes when it fails
+                setattr(view, k, v)
+            self.report({'ERROR'}, "Banyan: %s" % e.message)
+            return {'CANCELLED'}
+        self.report({'INFO'}, "Banyan: seed %s" % obj.banyan_plant.seed)
+        return {'FINISHED'}
+
+
+class BANYAN_OT_copy_preset(bpy.types.Operator):
+    """Copy the active plant's parameters (with the sidebar's edits) to the clipboard as a JSON preset"""
+    bl_idname = "banyan.copy_preset"
+    bl_label = "Copy as Preset"
+    bl_options = {'REGISTER'}
+
+    description: StringProperty(name="Description", default="", options={'SKIP_SAVE'})
+
+    @classmethod
+    def poll(cls, context):
+        if _active_plant(context) is None:
+            cls.poll_message_set("The active object is not a Banyan plant")
+            return False
+        return True
+
+    def execute(self, context):
+        obj = _active_plant(context)
+        try:
+            text = PL.current_params(obj).to_preset(self.description or "from %s" % obj.name)
+        except BanyanError as e:
+            self.report({'ERROR'}, "Banyan: %s" % e.message)
+            return {'CANCELLED'}
+        context.window_manager.clipboard = text
+        self.report({'INFO'}, "Banyan: %s preset copied" % obj.banyan_plant.generator)
+        return {'FINISHED'}
+
+
+def _groups(specs):
+    """[(group title, [spec])] in table order; one untitled group when the
+    table has no groups."""
+    out = {}
+    for s in specs:
+        out.setdefault(getattr(s, "group", "") or "", []).append(s)
+    return list(out.items())
+
+
+def _section(layout, context, gen, index, title):
+    """A section's body: collapsible on Blender 4.1+, a box before."""
+    if hasattr(layout, "panel"):
+        header, body = layout.panel("banyan_plant_%s_%d" % (gen, index), default_closed=index > 0)
+        header.label(text=title)
+        return body
+    box = layout.box()
+    box.label(text=title)
+    return box.column()
+
+
+def _label(s):
+    return getattr(s, "label", "") or ""
+
+
+class VIEW3D_PT_banyan_plant(bpy.types.Panel):
+    bl_idname = "VIEW3D_PT_banyan_plant"
+    bl_label = "Plant"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Banyan"
+
+    @classmethod
+    def poll(cls, context):
+        return _active_plant(context) is not None
+
+    def draw(self, context):
+        from .core.params import specs
+        obj = _active_plant(context)
+        pl = obj.banyan_plant
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column(align=True)
+        col.label(text=GENERATOR_LABELS.get(pl.generator, pl.generator), icon='OUTLINER_OB_MESH')
+        col.label(text="Seed: %s" % pl.seed)
+        hosts = PL.host_status(obj)
+        if hosts:
+            box = layout.box()
+            box.label(text="Hosts")
+            for name, h in hosts:
+                if h is None:
+                    box.label(text="%s (deleted)" % name, icon='ERROR')
+                else:
+                    box.label(text=h.name, icon='OBJECT_DATA')
+        if pl.generator == "avenue" and PL.options(obj).get("path_from") == 'CURVE':
+            ok = pl.path is not None and pl.path.users_scene
+            layout.label(text="Path: %s" % (pl.path.name if ok else "(deleted)"), icon='CURVE_DATA' if ok else 'ERROR')
+        row = layout.row(align=True)
+        row.scale_y = 1.3
+        row.operator("banyan.regenerate", icon='FILE_REFRESH')
+        changed = PL.edited(obj)  # about 2.5 ms (roots, Blender 3.4)
+        if changed:
+            layout.label(text="%d change(s) not built yet" % len(changed), icon='INFO')
+        row = layout.row(align=True)
+        row.operator("banyan.randomize_seed", icon='SHADERFX')
+        row.operator("banyan.copy_preset", icon='COPYDOWN')
+        view = getattr(pl, pl.generator, None)
+        if view is None:
+            layout.label(text="This add-on has no '%s' generator" % pl.generator, icon='ERROR')
+            return
+        try:  # the redo panel's collapsible sections (part PANELS), when the add-on has them
+            from .panels import section
+        except ImportError:
+            section = _section
+        for i, (title, rows) in enumerate(_groups(specs(pl.generator))):
+            body = section(layout, context, pl.generator, i, title or "Parameters")
+            if body is None:
+                continue
+            for s in rows:
+                name = PP.prop_name(s.name)
+                if hasattr(view, name):
+                    lab = _label(s)
+                    if lab:
+                        body.prop(view, name, text=lab)
+                    else:
+                        body.prop(view, name)
+
+
+CLASSES = (BANYAN_OT_regenerate, BANYAN_OT_randomize_seed, BANYAN_OT_copy_preset, VIEW3D_PT_banyan_plant)
