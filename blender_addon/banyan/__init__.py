@@ -60,6 +60,9 @@ def register():
     for cls in (ui.VIEW3D_MT_banyan_add, ui.VIEW3D_PT_banyan):
         bpy.utils.register_class(cls)
         _registered.append(cls)
+    from . import panels
+    panels.register()
+    _registered.append("panels")
     bpy.types.VIEW3D_MT_mesh_add.append(ui.menu_func)
     _registered.append("menu")
 
@@ -71,5 +74,8 @@ def unregister():
         cls = _registered.pop()
         if cls == "menu":
             bpy.types.VIEW3D_MT_mesh_add.remove(ui.menu_func)
+        elif cls == "panels":
+            from . import panels
+            panels.unregister()
         else:
             bpy.utils.unregister_class(cls)
