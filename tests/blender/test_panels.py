@@ -276,7 +276,13 @@ def redo(idname, **changes):
     bt.check(last.bl_idname == op_class_from(idname).bl_rna.identifier, "the last operator is %s" % idname)
     for k, v in changes.items():
         setattr(last.properties, k, v)
-    return bpy.ops.ed.undo_redo()
+    # From the 3D view's region, as the panel's redo runs (the bpy module
+    # crashes in ED_undo_operator_repeat without an area).
+    win = bpy.context.window_manager.windows[0]
+    area = next(a for a in win.screen.areas if a.type == 'VIEW_3D')
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    with bpy.context.temp_override(window=win, area=area, region=region):
+        return bpy.ops.ed.undo_redo()
 
 
 def op_class_from(idname):
