@@ -72,7 +72,7 @@ def section(layout, context, gen, index, title):
         return box.column()
     is_open = getattr(state, gen)[index]
     box.prop(state, gen, index=index, text=title, emboss=False,
-             icon='TRIANGLE_DOWN' if is_open else 'TRIANGLE_RIGHT')
+             icon='DISCLOSURE_TRI_DOWN' if is_open else 'DISCLOSURE_TRI_RIGHT')
     return box.column() if is_open else None
 
 

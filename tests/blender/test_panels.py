@@ -114,6 +114,11 @@ class FakeLayout:
         def call(*args, **kw):
             bad = set(kw) - params
             bt.check(not bad, "UILayout.%s has no parameter(s) %s" % (name, sorted(bad)))
+            for k, v in kw.items():  # enum keywords (icon, ...) must name one of this Blender's items
+                p = self.FUNCS[name].parameters.get(k)
+                if p is not None and p.type == 'ENUM' and isinstance(v, str):
+                    bt.check(v in {i.identifier for i in p.enum_items},
+                             "UILayout.%s(%s=%r): not an item in Blender %s" % (name, k, v, bpy.app.version_string))
             self._log.append((name, args, kw))
             if name in ("prop", "prop_enum", "prop_menu_enum"):
                 data, prop = args[0], args[1]
