@@ -71,8 +71,11 @@ def section(layout, context, gen, index, title):
         box.label(text=title)
         return box.column()
     is_open = getattr(state, gen)[index]
-    box.prop(state, gen, index=index, text=title, emboss=False,
-             icon='DISCLOSURE_TRI_DOWN' if is_open else 'DISCLOSURE_TRI_RIGHT')
+    head = box.row()
+    head.use_property_split = False  # the triangle and the title on the left, as a panel header
+    head.alignment = 'LEFT'
+    head.prop(state, gen, index=index, text=title, emboss=False,
+              icon='DISCLOSURE_TRI_DOWN' if is_open else 'DISCLOSURE_TRI_RIGHT')
     return box.column() if is_open else None
 
 
