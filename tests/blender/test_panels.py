@@ -197,6 +197,18 @@ def test_draw():
                 bt.check(set(cls.extra_props) <= shown, "%s: the operator's options" % what)
                 names = [c[0] for c in log]
                 bt.check(("panel" in names) == with_panels, "%s: sections drawn the right way" % what)
+    # The panel warns before a run would fail: avenue along the active curve without one.
+    if "avenue" in available():
+        bt.reset_scene()  # the cube is active
+        wm = bpy.context.window_manager  # a new one after reading the home file
+        cls = op_class("avenue")
+        props = wm.operator_properties_last(cls.bl_idname)
+        props.path_from = 'CURVE'
+        log = []
+        cls.draw(FakeOp(cls, FakeLayout(log, False, real_panels)), bpy.context)
+        texts = [c[2].get("text", "") for c in log if c[0] == "label"]
+        bt.check(any("not a curve" in s for s in texts), "avenue: the panel says the active object is not a curve")
+        props.path_from = 'CURSOR'
     # The sidebar panel draws too.
     log = []
     fake = type("P", (), {})()
