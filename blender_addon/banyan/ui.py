@@ -1,4 +1,6 @@
 """Shift+A > Mesh > Banyan menu and the View3D sidebar tab "Banyan"."""
+import textwrap
+
 import bpy
 
 from . import hosts as H
@@ -42,7 +44,8 @@ class VIEW3D_PT_banyan(bpy.types.Panel):
             for key, path, err in broken:
                 col = box.column(align=True)
                 col.label(text=key)
-                col.label(text=err)
+                for line in textwrap.wrap(err, 40):  # a label does not wrap
+                    col.label(text=line)
         box = layout.box()
         box.label(text="libbanyan %s" % state.VERSION)
         if state.MISSING:
