@@ -1,7 +1,6 @@
 /* Panel words of the parameter tables (banyan.h, banyan_param_info.label
  * and .group): every row of every generator has a label and a group, a
- * label is words (starts with a capital, no underscore, no key-like
- * abbreviation such as "T0"), labels are unique within a table, and a
+ * label is words (see words_only), labels are unique within a table, and a
  * group's rows are consecutive so the table's order is the panel's. */
 #include <ctype.h>
 #include <string.h>
@@ -11,16 +10,30 @@
 
 #define MAX_ROWS 256
 
+/* Words: starts with a capital; each word (split at spaces, brackets,
+ * '/', ',', '-') is letters only and at least two of them, or "a". So
+ * "Branch angle" and "Forward pull (min)" pass, "T0", "W geo", "H1 buds"
+ * and "stem_radius" do not: the paper's symbols belong in the tooltip. */
 static int words_only(const char *s) {
     if (!isupper((unsigned char)s[0])) return 0;
-    size_t n = strlen(s);
-    if (n < 3) return 0; /* "T0", "Wd": the paper's symbols belong in the tooltip */
-    for (size_t i = 0; i < n; i++)
-        if (s[i] == '_' || s[i] == '.' || s[i] == '|') return 0;
+    const char *p = s;
+    while (*p) {
+        while (*p && strchr(" ()/,-", *p)) p++;
+        const char *w = p;
+        while (*p && !strchr(" ()/,-", *p)) {
+            if (!isalpha((unsigned char)*p)) return 0;
+            p++;
+        }
+        size_t n = (size_t)(p - w);
+        if (n == 1 && *w != 'a' && *w != 'A') return 0;
+    }
     return 1;
 }
 
 int main(void) {
+    CHECK(words_only("Branch angle") && words_only("Forward pull (min)") && !words_only("T0") &&
+              !words_only("W geo") && !words_only("H1 buds") && !words_only("stem_radius"),
+          "the rule itself");
     for (int g = 0; g < BANYAN_GEN_COUNT; g++) {
         const char *gen = banyan_generator_name((banyan_generator)g);
         int32_t n = banyan_param_count((banyan_generator)g);
