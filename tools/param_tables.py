@@ -36,7 +36,7 @@ def table(gen):
     from banyan.core import structs as S
     from banyan.core.params import Params
     p = Params(gen)
-    rows = ["| key | type | unit | range | default | meaning |", "|---|---|---|---|---|---|"]
+    rows = ["| key | in the panel | type | unit | range | default | meaning |", "|---|---|---|---|---|---|---|"]
     for s in p.specs:
         if gen == "avenue" and s.name.startswith("tree."):
             continue  # the keyaki rows, documented in the keyaki table
@@ -51,8 +51,9 @@ def table(gen):
             rng, default = "each %s .. %s" % (fmt(s.min), fmt(s.max)), ", ".join(fmt(x) for x in v)
         else:
             rng, default = "%s .. %s" % (fmt(s.min), fmt(s.max)), fmt(v)
-        rows.append("| `%s` | %s | %s | %s | %s | %s |" % (s.name, TYPE_NAMES[s.type], cell(s.unit), rng, default,
-                                                         cell(s.description)))
+        rows.append("| `%s` | %s: %s | %s | %s | %s | %s | %s |" % (
+            s.name, cell(s.group), cell(s.label), TYPE_NAMES[s.type], cell(s.unit), rng, default,
+            cell(s.description)))
     return "\n".join(rows)
 
 

@@ -60,6 +60,9 @@ def register():
     for cls in (ui.VIEW3D_MT_banyan_add, ui.VIEW3D_PT_banyan):
         bpy.utils.register_class(cls)
         _registered.append(cls)
+    from . import panels
+    panels.register()
+    _registered.append("panels")
     from . import plant, plant_ui
     plant.register([g for g, ok in avail.items() if ok])
     _registered.append("plant")
@@ -77,6 +80,9 @@ def unregister():
         cls = _registered.pop()
         if cls == "menu":
             bpy.types.VIEW3D_MT_mesh_add.remove(ui.menu_func)
+        elif cls == "panels":
+            from . import panels
+            panels.unregister()
         elif cls == "plant":
             from . import plant
             plant.unregister()

@@ -35,32 +35,75 @@ def preset_dirs():
 
 
 NAME_MAX = 64  # characters of a user preset's name kept in its file name
-_parsed = {}  # path -> (mtime_ns, generator, description): presets are read once per change
+_parsed = {}  # path -> (mtime_ns, generator, description, error): presets are read once per change
+
+
+def _guess_generator(path):
+    """The generator a preset file is named after ("ivy_wall.json" -> "ivy"), or None."""
+    from .core.structs import GENERATORS
+    head = os.path.basename(path).split("_", 1)[0].split(".", 1)[0]
+    return head if head in GENERATORS else None
+
+
+def _library_error(generator, data, path):
+    """The library's message refusing preset `data` ("<file>:<line>: ..."), or
+    "" when it applies; "" too when the library or the generator is missing."""
+    from .core.errors import BanyanError, GeneratorMissing, LoadError
+    try:
+        from .core.params import Params
+        Params(generator).apply_preset(data, os.path.basename(path))
+    except (GeneratorMissing, LoadError):
+        return ""  # nothing to check it with; the JSON checks below still run
+    except BanyanError as e:
+        return e.message
+    except OSError:
+        return ""
+    return ""
 
 
 def _preset_info(path):
-    """(generator, description) of a preset file, or None; cached by mtime."""
+    """(generator, description, error) of a preset file, or None when it
+    cannot be read; error is "" for a good preset. Cached by mtime."""
     try:
         mtime = os.stat(path).st_mtime_ns
+        hit = _parsed.get(path)
+        if hit and hit[0] == mtime:
+            return hit[1:]
+        with open(path, "rb") as f:
+            data = f.read()
     except OSError:
         return None
-    hit = _parsed.get(path)
-    if hit and hit[0] == mtime:
-        return hit[1:]
     try:
-        with open(path, encoding="utf-8") as f:
-            doc = json.load(f)
-    except (OSError, ValueError):
+        doc = json.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError):
         doc = None
-    info = (doc.get("generator"), str(doc.get("description", ""))) if isinstance(doc, dict) else (None, "")
+    gen = doc.get("generator") if isinstance(doc, dict) else None
+    desc = str(doc.get("description", "")) if isinstance(doc, dict) else ""
+    if not isinstance(gen, str):
+        gen = None
+    lib_gen = gen if gen in _known() else _guess_generator(path)
+    name = os.path.basename(path)
+    if isinstance(doc, dict) and not lib_gen:
+        error = "%s: \"generator\" is %s, not one of %s" % (name, json.dumps(doc.get("generator")),
+                                                              ", ".join(_known()))
+    else:
+        # The library's own reading (for any generator when the JSON does not
+        # even parse: then its syntax message is what matters).
+        error = _library_error(lib_gen or _known()[0], data, path)
+        if not error and not isinstance(doc, dict):
+            error = "%s: not a JSON object" % name
+    info = (gen if gen in _known() else lib_gen, desc, error)
     _parsed[path] = (mtime,) + info
     return info
 
 
-def list_presets(generator):
-    """[(key, path, description)] of the presets for generator, by key.
-    Blender asks for these on every operator call (the preset enum), so
-    files are parsed only when they change."""
+def _known():
+    from .core.structs import GENERATORS
+    return GENERATORS
+
+
+def _scan():
+    """{key: (key, path, generator, description, error)}, user files first."""
     seen = {}
     for d in preset_dirs():
         for fn in sorted(os.listdir(d)):
@@ -71,9 +114,26 @@ def list_presets(generator):
                 continue
             path = os.path.join(d, fn)
             info = _preset_info(path)
-            if info and info[0] == generator:
-                seen[key] = (key, path, info[1])
-    return [seen[k] for k in sorted(seen)]
+            if info:
+                seen[key] = (key, path) + info
+    return seen
+
+
+def list_presets(generator):
+    """[(key, path, description)] of the good presets for generator, by key.
+    Blender asks for these on every operator call (the preset enum), so
+    files are parsed only when they change."""
+    seen = _scan()
+    return [(k, e[1], e[3]) for k, e in sorted(seen.items()) if e[2] == generator and not e[4]]
+
+
+def broken_presets(generator=None):
+    """[(key, path, error)] of the preset files the library refuses, for
+    generator (by their "generator" key, else their file name's prefix;
+    None: all). They are listed, never hidden."""
+    seen = _scan()
+    return [(k, e[1], e[4]) for k, e in sorted(seen.items())
+            if e[4] and (generator is None or e[2] == generator or e[2] is None)]
 
 
 def find(generator, key):
@@ -83,9 +143,9 @@ def find(generator, key):
         raise TypeError("a preset is a name or a path, not %s" % type(key).__name__)
     if os.path.isfile(key):
         return key
-    for k, path, _ in list_presets(generator):
+    for k, path, _ in list_presets(generator) + broken_presets(generator):
         if k == key:
-            return path
+            return path  # a broken one too: reading it gives the library's error
     raise PresetNotFound("no %s preset '%s' (have: %s)" % (
         generator, key, ", ".join(k for k, _, _ in list_presets(generator)) or "none"))
 

@@ -1,14 +1,19 @@
 """Blender properties generated from a generator's parameter table, and
 the way back from property values to a checked params struct.
 
-Each row becomes one property named by the row's key: DOUBLE -> Float
-(unit "m" -> DISTANCE, "deg" -> ANGLE, shown in degrees, stored by Blender
-in radians), INT -> Int, BOOL -> Bool, ENUM -> Enum, VEC3 -> FloatVector,
-COLOR -> FloatVector(COLOR, size 4), SEED -> Int (0 .. 2^31-1; larger
-seeds through banyan.api). The table's [min, max] is the soft range (the
-slider range); values typed or set from Python outside it are refused by
-the library, whose message becomes the operator's error report.
-Defaults come from the generator's params_init.
+Each row becomes one property named by the row's key and shown by its
+label (banyan_param_info.label, words an artist knows); the tooltip is
+the row's description with its range and unit. DOUBLE -> Float ("m" ->
+DISTANCE, "deg" -> ANGLE shown in degrees and stored by Blender in
+radians, "m/s^2" -> ACCELERATION, "kg" -> MASS, a unitless 0..1 value a
+FACTOR slider), INT -> Int, BOOL -> Bool, ENUM -> Enum, VEC3 ->
+FloatVector, COLOR -> FloatVector(COLOR, size 4), SEED -> Int (0 ..
+2^31-1; larger seeds through banyan.api). Every unit a table uses is in
+UNITS, so a new one fails the add-on's tests rather than showing a bare
+number. The table's [min, max] is the soft range (the slider range);
+values typed or set from Python outside it are refused by the library,
+whose message becomes the operator's error report. Defaults come from
+the generator's params_init.
 """
 import math
 
@@ -34,6 +39,22 @@ def _label(key):
     return key.replace(".", ": ").replace("_", " ").capitalize()
 
 
+# unit of a table row -> (Float property keywords, words for the tooltip).
+# "unit" lengths are in the generator's paper units (times its Scale), "r"
+# in root radii: Blender has no unit for either, so they stay numbers.
+UNITS = {
+    "": ({}, ""),
+    "m": (dict(subtype='DISTANCE', unit='LENGTH'), "m"),
+    "deg": (dict(subtype='ANGLE', unit='ROTATION'), "degrees"),
+    "m/s^2": (dict(unit='ACCELERATION'), "m/s\u00b2"),
+    "kg": (dict(unit='MASS'), "kg"),
+    "N m": ({}, "N\u00b7m"),
+    "unit": ({}, "paper units (times Scale)"),
+    "1/unit": ({}, "per paper unit"),
+    "r": ({}, "root radii"),
+}
+
+
 def _clip_f32(x):
     """A double as a float32-safe value for Blender (finite, in range)."""
     return max(-3.0e38, min(3.0e38, float(x)))
@@ -41,9 +62,10 @@ def _clip_f32(x):
 
 def _desc(spec):
     d = spec.description
+    d = d[:1].upper() + d[1:]
     if spec.type in (S.PT_DOUBLE, S.PT_INT, S.PT_VEC3):
-        unit = (" " + spec.unit) if spec.unit else ""
-        d += " [%g .. %g%s]" % (spec.min, spec.max, unit)
+        words = UNITS.get(spec.unit, ({}, spec.unit))[1]
+        d += " [%g .. %g%s]" % (spec.min, spec.max, (" " + words) if words else "")
     return d
 
 
@@ -53,13 +75,15 @@ def annotations(gen):
     out = {}
     for s in params.specs:
         v = params.get(s.name)
-        kw = dict(name=_label(s.name), description=_desc(s))
+        kw = dict(name=s.label, description=_desc(s))
         if s.type == S.PT_DOUBLE:
+            extra = dict(UNITS.get(s.unit, ({}, ""))[0])
             if s.unit == "deg":
-                prop = FloatProperty(subtype='ANGLE', default=math.radians(v), soft_min=math.radians(s.min),
-                                     soft_max=math.radians(s.max), **kw)
+                prop = FloatProperty(default=math.radians(v), soft_min=math.radians(s.min),
+                                     soft_max=math.radians(s.max), **extra, **kw)
             else:
-                extra = dict(subtype='DISTANCE', unit='LENGTH') if s.unit == "m" else {}
+                if not extra and s.unit == "" and s.min == 0 and s.max == 1:
+                    extra = dict(subtype='FACTOR')  # a 0..1 share or chance: a slider
                 prop = FloatProperty(default=_clip_f32(v), soft_min=_clip_f32(s.min), soft_max=_clip_f32(s.max),
                                      precision=4 if s.unit == "m" else 3, **extra, **kw)
         elif s.type == S.PT_INT:

@@ -1,6 +1,10 @@
 """Shift+A > Mesh > Banyan menu and the View3D sidebar tab "Banyan"."""
+import textwrap
+
 import bpy
 
+from . import hosts as H
+from . import presets as PR
 from . import state
 
 
@@ -30,6 +34,18 @@ class VIEW3D_PT_banyan(bpy.types.Panel):
         col = layout.column(align=True)
         for idname, label in state.operator_entries():
             col.operator(idname, text=label)
+        if not any(o.type in H.SURFACE_TYPES for o in getattr(context, "selected_objects", None) or ()):
+            # Why Roots and Ivy are greyed out (their tooltips say it too).
+            layout.label(text="Select the objects to grow on", icon='INFO')
+        broken = PR.broken_presets()
+        if broken:
+            box = layout.box()
+            box.label(text="Broken presets", icon='ERROR')
+            for key, path, err in broken:
+                col = box.column(align=True)
+                col.label(text=key)
+                for line in textwrap.wrap(err, 40):  # a label does not wrap
+                    col.label(text=line)
         box = layout.box()
         box.label(text="libbanyan %s" % state.VERSION)
         if state.MISSING:

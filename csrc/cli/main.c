@@ -84,7 +84,12 @@ static void list_params(const cli_command *c) {
         case BANYAN_PT_DOUBLE: snprintf(def, sizeof def, "%g", *(const double *)f); break;
         case BANYAN_PT_INT: snprintf(def, sizeof def, "%d", *(const int32_t *)f); break;
         case BANYAN_PT_BOOL: snprintf(def, sizeof def, "%s", *(const int32_t *)f ? "true" : "false"); break;
-        case BANYAN_PT_ENUM: snprintf(def, sizeof def, "#%d", *(const int32_t *)f); break;
+        case BANYAN_PT_ENUM: { /* the choice's name: field k of "a|b|c" */
+            const char *s = pi->choices;
+            for (int32_t k = *(const int32_t *)f; k > 0 && s; k--) s = strchr(s, '|') ? strchr(s, '|') + 1 : NULL;
+            snprintf(def, sizeof def, "%.*s", s ? (int)strcspn(s, "|") : 1, s ? s : "?");
+            break;
+        }
         case BANYAN_PT_SEED: snprintf(def, sizeof def, "%" PRIu64, *(const uint64_t *)f); break;
         case BANYAN_PT_VEC3: {
             const double *v = (const double *)f;
@@ -97,12 +102,15 @@ static void list_params(const cli_command *c) {
             break;
         }
         }
-        if (pi->type == BANYAN_PT_ENUM)
-            printf("%-28s %-14s default %-10s %s (%s)\n", pi->name, "", def, pi->description, pi->choices);
-        else if (pi->type == BANYAN_PT_SEED)
-            printf("%-28s %-14s default %-10s %s\n", pi->name, "", def, pi->description);
-        else
-            printf("%-28s [%g, %g] %-4s default %-10s %s\n", pi->name, pi->min, pi->max, pi->unit, def, pi->description);
+        /* A heading per panel group (the rows of a group are consecutive), then
+         * key, the panel's label, range and unit, default, and the meaning. */
+        if (i == 0 || strcmp(pi->group, banyan_param_get((banyan_generator)c->generator, i - 1)->group) != 0)
+            printf("%s%s\n", i ? "\n" : "", pi->group);
+        char range[64] = "";
+        if (pi->type == BANYAN_PT_ENUM) snprintf(range, sizeof range, "%s", pi->choices);
+        else if (pi->type != BANYAN_PT_SEED && pi->type != BANYAN_PT_BOOL && pi->type != BANYAN_PT_COLOR)
+            snprintf(range, sizeof range, "[%g, %g]%s%s", pi->min, pi->max, pi->unit[0] ? " " : "", pi->unit);
+        printf("  %-26s %-28s %-22s default %-12s %s\n", pi->name, pi->label, range, def, pi->description);
     }
     free(p);
 }

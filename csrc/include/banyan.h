@@ -43,7 +43,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 4
+#define BANYAN_ABI_VERSION 5
 
 /* ---------------------------------------------------------------- status */
 
@@ -247,6 +247,11 @@ typedef struct banyan_param_info {
     double min, max;         /* inclusive range for numbers (each component) */
     const char *choices;     /* for ENUM: "simple|strong_weak|..." else NULL */
     size_t offset;           /* byte offset in the params struct */
+    const char *label;       /* what a panel shows: words an artist knows, "Branch angle";
+                                unique within the generator's table */
+    const char *group;       /* panel section, "Growth", "Leaves", "Limits"...: a group's rows
+                                are consecutive, and groups come in the order to show them,
+                                the most used first */
 } banyan_param_info;
 
 /* Name of a generator ("roots", "keyaki", "avenue", "ivy", "segments"), or

@@ -16,79 +16,107 @@
 
 #define KEYAKI_MODELS "simple|strong_weak|twisted|edaore"
 
-/* The tree's rows, shared by both tables; F names the field. */
-#define KEYAKI_TREE_ROWS(S, F)                                                                                       \
-    BP_INT(S, F(max_nodes), 1, 16777216, "skeleton branches allowed before refusing (BANYAN_E_LIMIT)"),              \
-    BP_DOUBLE(S, F(unit), "m", 1e-3, 1e3, "length of one paper unit: scales every length marked 'unit'"),            \
-    BP_ENUM(S, F(model), KEYAKI_MODELS, "branching model (spec models 1-4); edaore is the paper's best"),             \
-    BP_INT(S, F(levels), 1, BANYAN_KEYAKI_MAX_LEVELS, "L_max: fork levels from trunk to tip"),                       \
-    BP_DOUBLE(S, F(trunk_length), "unit", 0.01, 100, "bole length below the level-1 fork"),                          \
-    BP_DOUBLE(S, F(segment_length), "unit", 0.01, 100, "length of one level's branch (rule 4)"),                     \
-    BP_DOUBLE(S, F(fork_angle), "deg", 0, 90, "angle of each child from its parent at level 1 (rule 3)"),           \
-    BP_DOUBLE(S, F(fork_angle_step), "deg", -10, 10, "fork angle added per level"),                                  \
-    BP_ENUM(S, F(fork_plane), "steepest|vertical", "rule 2 fork plane of models 1-2 (see docs/keyaki.md)"),          \
-    BP_DOUBLE(S, F(strong_probability), "", 0, 1, "p: chance of a strong/weak split (models 2-3, rule 5)"),          \
-    BP_DOUBLE(S, F(strong_ratio), "", 0.5, 0.95, "strong child's energy share at such a split (0.7 = 7:3)"),        \
-    BP_DOUBLE(S, F(stop_energy), "", 0, 1, "a branch with less energy stops forking (models 2-3)"),                  \
-    BP_ENUM(S, F(length_rule), "equal|energy", "branch lengths of models 2-3: equal, or 1/energy"),                  \
-    BP_DOUBLE(S, F(max_length_ratio), "", 1, 10, "cap of the weak:strong length ratio (energy lengths)"),           \
-    BP_DOUBLE(S, F(twist), "deg", 0, 90, "tau: fork-plane twist (model 3; model 4 below tilt_mid)"),                \
-    BP_DOUBLE(S, F(twist_mid), "deg", 0, 90, "model 4 twist for tilt_mid <= parent tilt < tilt_high"),               \
-    BP_DOUBLE(S, F(twist_high), "deg", 0, 90, "model 4 twist from tilt_high"),                                      \
-    BP_DOUBLE(S, F(tilt_mid), "deg", 0, 180, "parent tilt from vertical where twist_mid takes over"),               \
-    BP_DOUBLE(S, F(tilt_high), "deg", 0, 180, "parent tilt from vertical where twist_high takes over"),             \
-    BP_ENUM(S, F(strong_side), "upper|random", "strong child of models 3-4: the upper one, or a random side"),        \
-    BP_ENUM(S, F(distribution), "uniform|normal", "edaore split-ratio distribution (rule 7)"),                       \
-    BP_DOUBLE(S, F(alpha), "", 1.001, 10, "break threshold T(l) = alpha^-l (rule 8)"),                              \
-    BP_DOUBLE(S, F(springback), "", 0, 1, "s: a survivor's angle becomes angle * (1 - s (1 - l / L_max)) (rule 9)"), \
-    BP_DOUBLE(S, F(tip_radius), "unit", 1e-4, 10, "pipe-model radius of a tip branch"),                              \
-    BP_DOUBLE(S, F(pipe_exponent), "", 1, 4, "p in r_parent^p = sum of r_child^p"),                                  \
-    BP_DOUBLE(S, F(tip_taper), "", 0.05, 1, "end radius of a tip as a fraction of tip_radius"),                     \
-    BP_INT(S, F(sides_max), 3, 64, "tube sides of the trunk"),                                                       \
-    BP_INT(S, F(sides_min), 3, 64, "tube sides of the thinnest branches"),                                           \
-    BP_BOOL(S, F(leaves), "leaf cards on the last levels"),                                                           \
-    BP_INT(S, F(leaf_levels), 0, BANYAN_KEYAKI_MAX_LEVELS, "branches within this many levels of a tip carry leaves"), \
-    BP_DOUBLE(S, F(leaf_density), "1/unit", 0, 100, "leaf cards per unit of branch length"),                                  \
-    BP_DOUBLE(S, F(leaf_size), "unit", 0.01, 10, "leaf card edge"),                                                  \
-    BP_COLOR(S, F(bark_color), "bark material colour (linear RGBA)"),                                                \
-    BP_COLOR(S, F(leaf_color), "leaf material colour (linear RGBA)"),                                                \
-    BP_BOOL(S, F(twigs_from_segments), "finest levels as geometry-shader segments along the outer branches"),         \
-    BP_INT(S, F(segment_levels), 1, BANYAN_KEYAKI_MAX_LEVELS - 1, "finest levels the segments replace (< levels)"),  \
-    BP_DOUBLE(S, F(segment_twig_length), "unit", 0.001, 100, "m: length of every segment twig and fork line"),       \
-    BP_INT(S, F(segment_twigs), 0, BANYAN_SEGMENT_MAX_TWIGS, "n: twigs per segment"),                                 \
-    BP_INT(S, F(segment_depth), 0, 16, "s: fork depth of a segment's first twig (twig i: s + i - 1)")
+/* The tree's rows, shared by both tables, one macro per panel group so
+ * the avenue can put its own groups first; F names the field. */
+#define KEYAKI_TREE_MAIN_ROWS(S, F) \
+    BP_ENUM(S, F(model), "Branching model", "Tree", KEYAKI_MODELS, "branching model (spec models 1-4); edaore is the paper's best"), \
+    BP_INT(S, F(levels), "Fork levels", "Tree", 1, BANYAN_KEYAKI_MAX_LEVELS, "L_max: fork levels from trunk to tip"), \
+    BP_DOUBLE(S, F(trunk_length), "Trunk height", "Tree", "unit", 0.01, 100, "bole length below the level-1 fork"), \
+    BP_DOUBLE(S, F(segment_length), "Branch length", "Tree", "unit", 0.01, 100, "length of one level's branch (rule 4)"), \
+    BP_DOUBLE(S, F(unit), "Scale", "Tree", "m", 1e-3, 1e3, "length of one paper unit: scales every length marked 'unit'")
+
+#define KEYAKI_BRANCHING_ROWS(S, F) \
+    BP_DOUBLE(S, F(fork_angle), "Fork angle", "Branching", "deg", 0, 90, "angle of each child from its parent at level 1 (rule 3)"), \
+    BP_DOUBLE(S, F(fork_angle_step), "Fork angle per level", "Branching", "deg", -10, 10, "fork angle added per level"), \
+    BP_ENUM(S, F(fork_plane), "Fork plane", "Branching", "steepest|vertical", "rule 2 fork plane of models 1-2 (see docs/keyaki.md)"), \
+    BP_DOUBLE(S, F(strong_probability), "Uneven split chance", "Branching", "", 0, 1, "p: chance of a strong/weak split (models 2-3, rule 5)"), \
+    BP_DOUBLE(S, F(strong_ratio), "Strong branch share", "Branching", "", 0.5, 0.95, "strong child's energy share at such a split (0.7 = 7:3)"), \
+    BP_ENUM(S, F(strong_side), "Strong branch side", "Branching", "upper|random", "strong child of models 3-4: the upper one, or a random side"), \
+    BP_ENUM(S, F(distribution), "Split spread", "Branching", "uniform|normal", "edaore split-ratio distribution (rule 7)"), \
+    BP_DOUBLE(S, F(stop_energy), "Weakest branch that forks", "Branching", "", 0, 1, "a branch with less energy stops forking (models 2-3)"), \
+    BP_ENUM(S, F(length_rule), "Branch length rule", "Branching", "equal|energy", "branch lengths of models 2-3: equal, or 1/energy"), \
+    BP_DOUBLE(S, F(max_length_ratio), "Longest weak branch", "Branching", "", 1, 10, "cap of the weak:strong length ratio (energy lengths)"), \
+    BP_DOUBLE(S, F(alpha), "Branch shedding", "Branching", "", 1.001, 10, "break threshold T(l) = alpha^-l (rule 8)"), \
+    BP_DOUBLE(S, F(springback), "Spring back", "Branching", "", 0, 1, "s: a survivor's angle becomes angle * (1 - s (1 - l / L_max)) (rule 9)")
+
+#define KEYAKI_TWIST_ROWS(S, F) \
+    BP_DOUBLE(S, F(twist), "Twist", "Twist", "deg", 0, 90, "tau: fork-plane twist (model 3; model 4 below tilt_mid)"), \
+    BP_DOUBLE(S, F(twist_mid), "Twist when leaning", "Twist", "deg", 0, 90, "model 4 twist for tilt_mid <= parent tilt < tilt_high"), \
+    BP_DOUBLE(S, F(twist_high), "Twist when level", "Twist", "deg", 0, 90, "model 4 twist from tilt_high"), \
+    BP_DOUBLE(S, F(tilt_mid), "Leaning from", "Twist", "deg", 0, 180, "parent tilt from vertical where twist_mid takes over"), \
+    BP_DOUBLE(S, F(tilt_high), "Level from", "Twist", "deg", 0, 180, "parent tilt from vertical where twist_high takes over")
+
+#define KEYAKI_THICKNESS_ROWS(S, F) \
+    BP_DOUBLE(S, F(tip_radius), "Twig thickness", "Thickness", "unit", 1e-4, 10, "pipe-model radius of a tip branch"), \
+    BP_DOUBLE(S, F(pipe_exponent), "Thickening exponent", "Thickness", "", 1, 4, "p in r_parent^p = sum of r_child^p"), \
+    BP_DOUBLE(S, F(tip_taper), "Tip taper", "Thickness", "", 0.05, 1, "end radius of a tip as a fraction of tip_radius"), \
+    BP_INT(S, F(sides_max), "Trunk sides", "Thickness", 3, 64, "tube sides of the trunk"), \
+    BP_INT(S, F(sides_min), "Twig sides", "Thickness", 3, 64, "tube sides of the thinnest branches"), \
+    BP_COLOR(S, F(bark_color), "Bark color", "Thickness", "bark material colour (linear RGBA)")
+
+#define KEYAKI_LEAVES_ROWS(S, F) \
+    BP_BOOL(S, F(leaves), "Leaves", "Leaves", "leaf cards on the last levels"), \
+    BP_INT(S, F(leaf_levels), "Leafy levels", "Leaves", 0, BANYAN_KEYAKI_MAX_LEVELS, "branches within this many levels of a tip carry leaves"), \
+    BP_DOUBLE(S, F(leaf_density), "Leaf density", "Leaves", "1/unit", 0, 100, "leaf cards per unit of branch length"), \
+    BP_DOUBLE(S, F(leaf_size), "Leaf size", "Leaves", "unit", 0.01, 10, "leaf card edge"), \
+    BP_COLOR(S, F(leaf_color), "Leaf color", "Leaves", "leaf material colour (linear RGBA)")
+
+#define KEYAKI_SEGMENT_TWIGS_ROWS(S, F) \
+    BP_BOOL(S, F(twigs_from_segments), "Twigs from segments", "Segment twigs", "finest levels as geometry-shader segments along the outer branches"), \
+    BP_INT(S, F(segment_levels), "Levels replaced", "Segment twigs", 1, BANYAN_KEYAKI_MAX_LEVELS - 1, "finest levels the segments replace (< levels)"), \
+    BP_DOUBLE(S, F(segment_twig_length), "Segment twig length", "Segment twigs", "unit", 0.001, 100, "m: length of every segment twig and fork line"), \
+    BP_INT(S, F(segment_twigs), "Twigs per segment", "Segment twigs", 0, BANYAN_SEGMENT_MAX_TWIGS, "n: twigs per segment"), \
+    BP_INT(S, F(segment_depth), "Twig fork depth", "Segment twigs", 0, 16, "s: fork depth of a segment's first twig (twig i: s + i - 1)")
+
+#define KEYAKI_LIMITS_ROWS(S, F) \
+    BP_INT(S, F(max_nodes), "Branch limit", "Limits", 1, 16777216, "skeleton branches allowed before refusing (BANYAN_E_LIMIT)")
+
+#define KEYAKI_TREE_GROUPS(S, F) \
+    KEYAKI_TREE_MAIN_ROWS(S, F), \
+    KEYAKI_BRANCHING_ROWS(S, F), \
+    KEYAKI_TWIST_ROWS(S, F), \
+    KEYAKI_THICKNESS_ROWS(S, F), \
+    KEYAKI_LEAVES_ROWS(S, F), \
+    KEYAKI_SEGMENT_TWIGS_ROWS(S, F)
 
 #define KEYAKI_F(x) x
 #define AVENUE_F(x) tree.x
 
+#define K banyan_keyaki_params
 const banyan_param_info keyaki_table_rows[] = {
-    BP_SEED(banyan_keyaki_params, seed, "random seed"),
-    BP_INT(banyan_keyaki_params, max_vertices, 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
-    BP_VEC3(banyan_keyaki_params, position, "m", -1e6, 1e6, "trunk base"),
-    BP_DOUBLE(banyan_keyaki_params, heading, "deg", -360, 360, "turns the whole tree about its trunk"),
-    KEYAKI_TREE_ROWS(banyan_keyaki_params, KEYAKI_F),
+    BP_SEED(K, seed, "Seed", "Tree", "random seed"),
+    BP_VEC3(K, position, "Position", "Tree", "m", -1e6, 1e6, "trunk base"),
+    BP_DOUBLE(K, heading, "Heading", "Tree", "deg", -360, 360, "turns the whole tree about its trunk"),
+    KEYAKI_TREE_GROUPS(K, KEYAKI_F),
+    BP_INT(K, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
+    KEYAKI_LIMITS_ROWS(K, KEYAKI_F),
 };
+#undef K
 const int32_t keyaki_table_row_count = (int32_t)(sizeof keyaki_table_rows / sizeof keyaki_table_rows[0]);
 const size_t keyaki_table_params_size = sizeof(banyan_keyaki_params);
 
+#define A banyan_avenue_params
 const banyan_param_info avenue_table_rows[] = {
-    BP_SEED(banyan_avenue_params, seed, "base seed: tree i uses seed + i"),
-    BP_INT(banyan_avenue_params, max_vertices, 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
-    BP_VEC3(banyan_avenue_params, start, "m", -1e6, 1e6, "first point of the straight path"),
-    BP_VEC3(banyan_avenue_params, end, "m", -1e6, 1e6, "last point of the straight path"),
-    BP_INT(banyan_avenue_params, rows, 1, 2, "one or two rows of trees"),
-    BP_DOUBLE(banyan_avenue_params, row_offset, "m", 0, 1000, "distance between the two rows"),
-    BP_BOOL(banyan_avenue_params, stagger, "shift the second row by half a spacing"),
-    BP_ENUM(banyan_avenue_params, placement, "spacing|count", "place trees every `spacing` m, or `count` per row"),
-    BP_DOUBLE(banyan_avenue_params, spacing, "m", 0.1, 1e4, "distance between trees along the path"),
-    BP_INT(banyan_avenue_params, count, 1, BANYAN_AVENUE_MAX_TREES, "trees per row (placement count)"),
-    BP_DOUBLE(banyan_avenue_params, heading_jitter, "deg", 0, 180, "each tree turned by uniform(+-this)"),
-    BP_DOUBLE(banyan_avenue_params, height_jitter, "", 0, 0.9, "trunk length scaled by 1 + uniform(+-this)"),
-    BP_DOUBLE(banyan_avenue_params, position_jitter, "m", 0, 100, "trunk moved uniformly within a disc of this radius"),
-    BP_INT(banyan_avenue_params, levels_jitter, 0, BANYAN_KEYAKI_MAX_LEVELS - 1,
+    BP_SEED(A, seed, "Seed", "Avenue", "base seed: tree i uses seed + i"),
+    BP_VEC3(A, start, "Path start", "Avenue", "m", -1e6, 1e6, "first point of the straight path"),
+    BP_VEC3(A, end, "Path end", "Avenue", "m", -1e6, 1e6, "last point of the straight path"),
+    BP_INT(A, rows, "Rows", "Avenue", 1, 2, "one or two rows of trees"),
+    BP_DOUBLE(A, row_offset, "Row spacing", "Avenue", "m", 0, 1000, "distance between the two rows"),
+    BP_BOOL(A, stagger, "Stagger rows", "Avenue", "shift the second row by half a spacing"),
+    BP_ENUM(A, placement, "Placement", "Avenue", "spacing|count", "place trees every `spacing` m, or `count` per row"),
+    BP_DOUBLE(A, spacing, "Tree spacing", "Avenue", "m", 0.1, 1e4, "distance between trees along the path"),
+    BP_INT(A, count, "Trees per row", "Avenue", 1, BANYAN_AVENUE_MAX_TREES, "trees per row (placement count)"),
+    BP_DOUBLE(A, heading_jitter, "Random turn", "Variation", "deg", 0, 180, "each tree turned by uniform(+-this)"),
+    BP_DOUBLE(A, height_jitter, "Random height", "Variation", "", 0, 0.9, "trunk length scaled by 1 + uniform(+-this)"),
+    BP_DOUBLE(A, position_jitter, "Random offset", "Variation", "m", 0, 100,
+              "trunk moved uniformly within a disc of this radius"),
+    BP_INT(A, levels_jitter, "Random age", "Variation", 0, BANYAN_KEYAKI_MAX_LEVELS - 1,
            "tree.levels lowered by a uniform whole number in [0, this], never below 1: trees of mixed ages"),
-    KEYAKI_TREE_ROWS(banyan_avenue_params, AVENUE_F),
+    KEYAKI_TREE_GROUPS(A, AVENUE_F),
+    BP_INT(A, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
+    KEYAKI_LIMITS_ROWS(A, AVENUE_F),
 };
+#undef A
 const int32_t avenue_table_row_count = (int32_t)(sizeof avenue_table_rows / sizeof avenue_table_rows[0]);
 const size_t avenue_table_params_size = sizeof(banyan_avenue_params);
 

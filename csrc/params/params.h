@@ -36,15 +36,20 @@ banyan_status preset_parse(const char *text, size_t len, const char *source, str
 int preset_line_at(const char *text, size_t len, size_t offset);
 
 /* Row constructors: the key is the field name, so one name is used in C,
- * presets, --set and the add-on. */
-#define BP_ROW(S, field, type, unit, lo, hi, choices, desc) \
-    { #field, unit, desc, type, lo, hi, choices, offsetof(S, field) }
-#define BP_DOUBLE(S, field, unit, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_DOUBLE, unit, lo, hi, NULL, desc)
-#define BP_INT(S, field, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_INT, "", lo, hi, NULL, desc)
-#define BP_BOOL(S, field, desc) BP_ROW(S, field, BANYAN_PT_BOOL, "", 0, 1, NULL, desc)
-#define BP_ENUM(S, field, choices, desc) BP_ROW(S, field, BANYAN_PT_ENUM, "", 0, 0, choices, desc)
-#define BP_VEC3(S, field, unit, lo, hi, desc) BP_ROW(S, field, BANYAN_PT_VEC3, unit, lo, hi, NULL, desc)
-#define BP_COLOR(S, field, desc) BP_ROW(S, field, BANYAN_PT_COLOR, "", 0, 1, NULL, desc)
-#define BP_SEED(S, field, desc) BP_ROW(S, field, BANYAN_PT_SEED, "", 0, 18446744073709551615.0, NULL, desc)
+ * presets, --set and the add-on; `label` and `group` are what a panel
+ * shows (banyan.h). */
+#define BP_ROW(S, field, label, group, type, unit, lo, hi, choices, desc) \
+    { #field, unit, desc, type, lo, hi, choices, offsetof(S, field), label, group }
+#define BP_DOUBLE(S, field, label, group, unit, lo, hi, desc) \
+    BP_ROW(S, field, label, group, BANYAN_PT_DOUBLE, unit, lo, hi, NULL, desc)
+#define BP_INT(S, field, label, group, lo, hi, desc) BP_ROW(S, field, label, group, BANYAN_PT_INT, "", lo, hi, NULL, desc)
+#define BP_BOOL(S, field, label, group, desc) BP_ROW(S, field, label, group, BANYAN_PT_BOOL, "", 0, 1, NULL, desc)
+#define BP_ENUM(S, field, label, group, choices, desc) \
+    BP_ROW(S, field, label, group, BANYAN_PT_ENUM, "", 0, 0, choices, desc)
+#define BP_VEC3(S, field, label, group, unit, lo, hi, desc) \
+    BP_ROW(S, field, label, group, BANYAN_PT_VEC3, unit, lo, hi, NULL, desc)
+#define BP_COLOR(S, field, label, group, desc) BP_ROW(S, field, label, group, BANYAN_PT_COLOR, "", 0, 1, NULL, desc)
+#define BP_SEED(S, field, label, group, desc) \
+    BP_ROW(S, field, label, group, BANYAN_PT_SEED, "", 0, 18446744073709551615.0, NULL, desc)
 
 #endif

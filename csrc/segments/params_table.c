@@ -8,22 +8,22 @@
 
 #define S banyan_segments_params
 const banyan_param_info segments_table_rows[] = {
-    BP_SEED(S, seed, "seed of the random demo tree (used only when no segment list is given)"),
-    BP_INT(S, max_vertices, 1, 1073741824, "refuse meshes with more vertices than this"),
-    BP_DOUBLE(S, alpha_deg, "deg", -360, 360, "twig angle about the vertical, +alpha for odd twigs, -alpha for even"),
-    BP_DOUBLE(S, beta_deg, "deg", -360, 360, "fork yaw about the vertical"),
-    BP_DOUBLE(S, gamma_deg, "deg", -360, 360, "roll of the first child about its parent's direction"),
-    BP_DOUBLE(S, omega_deg, "deg", -360, 360, "roll of the second child about its parent's direction"),
-    BP_DOUBLE(S, m, "unit", 1e-6, 1e6, "length of every twig and fork branch, in paper units"),
-    BP_DOUBLE(S, unit, "m", 1e-6, 1e3, "metres per paper unit"),
-    BP_DOUBLE(S, radius, "m", 1e-6, 100, "tube radius of a segment's axis"),
-    BP_DOUBLE(S, radius_ratio, "", 0.01, 1, "each level's radius is this times the level above"),
-    BP_DOUBLE(S, radius_min, "m", 1e-6, 100, "no tube is thinner than this"),
-    BP_DOUBLE(S, trunk_radius, "m", 1e-6, 100, "tube radius of the trunk line"),
-    BP_INT(S, sides, 3, 64, "sides of every tube"),
-    BP_DOUBLE(S, attach_tolerance, "m", 0, 1e6, "how far a segment's start may lie from an earlier axis and still count as attached"),
-    BP_INT(S, demo_segments, 1, 100000, "segments in the random demo tree"),
-    BP_DOUBLE(S, demo_height, "m", 0.01, 1000, "trunk height of the random demo tree"),
+    BP_DOUBLE(S, m, "Twig length", "Shape", "unit", 1e-6, 1e6, "length of every twig and fork branch, in paper units"),
+    BP_DOUBLE(S, unit, "Scale", "Shape", "m", 1e-6, 1e3, "metres per paper unit"),
+    BP_DOUBLE(S, alpha_deg, "Twig angle", "Shape", "deg", -360, 360, "twig angle about the vertical, +alpha for odd twigs, -alpha for even (alpha in the paper)"),
+    BP_DOUBLE(S, beta_deg, "Fork turn", "Shape", "deg", -360, 360, "fork yaw about the vertical (beta in the paper)"),
+    BP_DOUBLE(S, gamma_deg, "First child roll", "Shape", "deg", -360, 360, "roll of the first child about its parent's direction (gamma in the paper)"),
+    BP_DOUBLE(S, omega_deg, "Second child roll", "Shape", "deg", -360, 360, "roll of the second child about its parent's direction (omega in the paper)"),
+    BP_DOUBLE(S, radius, "Thickness", "Thickness", "m", 1e-6, 100, "tube radius of a segment's axis"),
+    BP_DOUBLE(S, radius_ratio, "Thinning per level", "Thickness", "", 0.01, 1, "each level's radius is this times the level above"),
+    BP_DOUBLE(S, radius_min, "Minimum thickness", "Thickness", "m", 1e-6, 100, "no tube is thinner than this"),
+    BP_DOUBLE(S, trunk_radius, "Trunk thickness", "Thickness", "m", 1e-6, 100, "tube radius of the trunk line"),
+    BP_INT(S, sides, "Sides", "Thickness", 3, 64, "sides of every tube"),
+    BP_SEED(S, seed, "Seed", "Demo tree", "seed of the random demo tree (used only when no segment list is given)"),
+    BP_INT(S, demo_segments, "Demo segments", "Demo tree", 1, 100000, "segments in the random demo tree"),
+    BP_DOUBLE(S, demo_height, "Demo height", "Demo tree", "m", 0.01, 1000, "trunk height of the random demo tree"),
+    BP_DOUBLE(S, attach_tolerance, "Attach tolerance", "Limits", "m", 0, 1e6, "how far a segment's start may lie from an earlier axis and still count as attached"),
+    BP_INT(S, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse meshes with more vertices than this"),
 };
 #undef S
 const int32_t segments_table_row_count = (int32_t)(sizeof segments_table_rows / sizeof segments_table_rows[0]);

@@ -604,9 +604,11 @@ def test_presets():
                 "huge_number": (head + '"params": {"%s": 1e999}}' % dk, ("error report", dk)),
                 "deep_nesting": (head + '"params": {"%s": %s}}' % (dk, "[" * 300 + "]" * 300), ("error report", None)),
                 "bad_schema": ('{"generator": "%s", "schema": 99, "params": {}}' % gen, ("error report", "schema")),
-                "not_utf8": (head.encode() + b'"description": "\xff\xfe", "params": {}}', ("refused by Blender", None)),
-                "empty_file": (b"", ("refused by Blender", None)),
-                "truncated": (head + '"params": {"%s": 1' % dk, ("refused by Blender", None)),
+                "not_utf8": (head.encode() + b'"description": "\xff\xfe", "params": {}}', ("error report", "UTF-8")),
+                # Broken files are listed in the preset menu (with their error), so choosing one
+                # reports the library's message rather than being an unknown enum value.
+                "empty_file": (b"", ("error report", "empty")),
+                "truncated": (head + '"params": {"%s": 1' % dk, ("error report", "malformed JSON")),
             }
             if gen == "segments":
                 cases["segments_not_a_list"] = (head + '"segments": "notalist"}', ("error report", "segments"))

@@ -18,13 +18,13 @@ typedef struct demo {
 } demo;
 
 static const banyan_param_info rows[] = {
-    BP_DOUBLE(demo, radius, "m", 0.001, 10, "tube radius"),
-    BP_INT(demo, sides, 4, 64, "sides"),
-    BP_BOOL(demo, hugging, "hug"),
-    BP_ENUM(demo, model, "simple|strong_weak|twisted|edaore", "model"),
-    BP_VEC3(demo, offset, "m", -100, 100, "offset"),
-    BP_COLOR(demo, colour, "colour"),
-    BP_SEED(demo, seed, "seed"),
+    BP_DOUBLE(demo, radius, "Radius", "Shape", "m", 0.001, 10, "tube radius"),
+    BP_INT(demo, sides, "Sides", "Shape", 4, 64, "sides"),
+    BP_BOOL(demo, hugging, "Hug", "Shape", "hug"),
+    BP_ENUM(demo, model, "Model", "Shape", "simple|strong_weak|twisted|edaore", "model"),
+    BP_VEC3(demo, offset, "Offset", "Shape", "m", -100, 100, "offset"),
+    BP_COLOR(demo, colour, "Colour", "Shape", "colour"),
+    BP_SEED(demo, seed, "Seed", "Shape", "seed"),
 };
 
 static banyan_status assign(int row, demo *d, const double *v, int n, banyan_error *e) {

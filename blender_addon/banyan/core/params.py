@@ -15,7 +15,7 @@ from .errors import BanyanError, GeneratorMissing
 
 class ParamSpec:
     """One row of a parameter table, as plain Python values."""
-    __slots__ = ("name", "unit", "description", "type", "min", "max", "choices", "offset")
+    __slots__ = ("name", "unit", "description", "type", "min", "max", "choices", "offset", "label", "group")
 
     def __init__(self, info):
         self.name = info.name.decode()
@@ -26,6 +26,9 @@ class ParamSpec:
         self.max = info.max
         self.choices = info.choices.decode().split("|") if info.choices else []
         self.offset = info.offset
+        # What a panel shows (banyan_param_info.label / .group, ABI 5).
+        self.label = (info.label or b"").decode() or info.name.decode()
+        self.group = (info.group or b"").decode() or "Parameters"
 
     @property
     def size(self):

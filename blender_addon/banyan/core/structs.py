@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 4      # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 5      # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -80,6 +80,8 @@ class ParamInfo(C.Structure):
         ("max", C.c_double),
         ("choices", C.c_char_p),
         ("offset", C.c_size_t),
+        ("label", C.c_char_p),
+        ("group", C.c_char_p),
     ]
 
 

@@ -10,9 +10,12 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 
 from .. import hosts as H
+from .. import live
+from .. import panels
 from .. import plant
 from .. import presets as PR
 from .. import props as PP
+from ..core import lib as LIB
 from ..core.errors import BanyanError
 from ..core.params import Params
 
@@ -24,11 +27,29 @@ _items_cache = {}  # Blender needs the enum strings kept alive
 
 
 def preset_items(gen):
-    items = [(NO_PRESET, "(current values)", "Keep the values below")]
+    """The preset menu: (current values), the presets of gen, then the
+    broken ones, greyed by their icon and named with the library's error;
+    choosing one reports that error."""
+    items = [(NO_PRESET, "(current values)", "Keep the values below", 'NONE', 0)]
     for key, _path, desc in PR.list_presets(gen):
-        items.append((key, key, desc or key))
+        items.append((key, key, desc or key, 'NONE', len(items)))
+    for key, _path, err in PR.broken_presets(gen):
+        items.append((key, "%s (broken: %s)" % (key, err), "Cannot be used: %s" % err, 'ERROR', len(items)))
     _items_cache[gen] = items
     return items
+
+
+def why_not(cls, message):
+    """poll() failed: say why in the greyed menu entry's tooltip (Blender 3.0+)."""
+    if hasattr(cls, "poll_message_set"):
+        cls.poll_message_set(message)
+    return False
+
+
+def library_ready(cls):
+    if LIB._lib is None:
+        return why_not(cls, "The Banyan library is not loaded (see the Banyan tab in the sidebar)")
+    return True
 
 
 def _dynamic_items(gen):
@@ -41,6 +62,14 @@ class BanyanOperatorMixin:
     bl_options = {'REGISTER', 'UNDO', 'PRESET'}
     generator = ""
     extra_props = ()  # names of non-table properties, drawn first
+
+    @classmethod
+    def poll(cls, context):
+        if not library_ready(cls):
+            return False
+        if getattr(context, "scene", None) is None:
+            return why_not(cls, "No scene to add to")
+        return True
 
     def load_preset_if_changed(self):
         """A newly chosen JSON preset overwrites the table properties once;
@@ -80,17 +109,7 @@ class BanyanOperatorMixin:
         return {'FINISHED'}
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        row = layout.row(align=True)
-        row.prop(self, "banyan_preset", text="Preset")
-        row.operator("banyan.preset_save", text="", icon="ADD").operator = self.banyan_idname
-        for name in self.extra_props:
-            layout.prop(self, name)
-        layout.separator()
-        for name in self.table_props:
-            layout.prop(self, name)
+        panels.draw_operator(self, context)
 
 
 def cursor_location(context):
@@ -145,7 +164,11 @@ class HostsOperatorMixin(BanyanOperatorMixin):
 
     @classmethod
     def poll(cls, context):
-        return any(o.type in H.SURFACE_TYPES for o in getattr(context, "selected_objects", ()))
+        if not super().poll(context):
+            return False
+        if any(o.type in H.SURFACE_TYPES for o in getattr(context, "selected_objects", None) or ()):
+            return True
+        return why_not(cls, "Select the objects to grow on (meshes, curves, text)")
 
     def selected_hosts(self, context):
         """The selected host objects, the active one first."""
@@ -184,7 +207,7 @@ def make_operator(mixin, idname, label, description, gen, extra):
     """Builds an Operator class for gen: the table's properties plus
     `extra` (dict of non-table properties) plus the preset menu."""
     table = PP.annotations(gen)
-    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded"})
+    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded"} | set(live.properties(gen)))
     if clash:
         raise BanyanError(14, "%s: operator property names clash with the table: %s" % (gen, sorted(clash)))
     ann = {}
@@ -196,11 +219,13 @@ def make_operator(mixin, idname, label, description, gen, extra):
                                    description="Copy the library's UVs into a UV map (costs about 0.1 us per "
                                                "triangle corner on top of Blender's own mesh building)")
     ann.update(extra)
+    ann.update(live.properties(gen))
     ann.update(table)
     cls_name = "MESH_OT_" + idname.split(".", 1)[1]
     return type(cls_name, (mixin, bpy.types.Operator), {
         "bl_idname": idname, "banyan_idname": idname, "bl_label": label, "bl_description": description, "generator": gen,
         "extra_props": tuple(extra), "table_props": tuple(table), "__annotations__": ann,
+        "execute": live.wrap(mixin.execute),
     })
 
 
