@@ -84,52 +84,80 @@ def step(delay):
     return deco
 
 
+def click(x, y):
+    """A left click at window pixel (x, y from the top left): Blender's
+    event simulation (--enable-event-simulate), which the sidebar's tabs
+    need (their active tab cannot be set from Python)."""
+    win = bpy.context.window_manager.windows[0]
+    yy = win.height - y
+    win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=yy)
+    win.event_simulate(type='LEFTMOUSE', value='PRESS', x=x, y=yy)
+    win.event_simulate(type='LEFTMOUSE', value='RELEASE', x=x, y=yy)
+
+
+def move(x, y):
+    win = bpy.context.window_manager.windows[0]
+    win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=win.height - y)
+
+
 @step(2.0)
 def setup():
     os.makedirs(OUT, exist_ok=True)
-    win, area, region = ctx()
-    for a in win.screen.areas:  # the viewport larger: no timeline
-        pass
     cube = bpy.data.objects["Cube"]
-    cube.location.z = 1.0  # resting on the ground, as in issue #16's first item
-    bpy.context.scene.cursor.location = (1.0, 0.0, 1.0)
+    cube.location.z = 1.0  # resting on the ground, the cursor at the origin (issue #16's first case)
+    bpy.context.scene.cursor.location = (0.0, 0.0, 0.0)
     for o in bpy.context.view_layer.objects:
         o.select_set(o == cube)
     bpy.context.view_layer.objects.active = cube
+    move(*POPUP_AT)
 
 
-@step(1.0)
-def ivy_redo():
-    with override():
-        # undo=True as the UI calls it: registered, so F9 (redo_last) can show it.
-        bpy.ops.mesh.banyan_ivy('INVOKE_DEFAULT', True)
-        bpy.ops.screen.redo_last('INVOKE_DEFAULT')
+# F9 opens the redo panel with its top left near the mouse.
+POPUP_AT = (760, 300)
 
 
-@step(2.0)
-def ivy_redo_shot():
-    win = bpy.context.window_manager.windows[0]
-    # F9 opens the redo panel under the mouse, at the window's centre here.
-    shoot("redo_ivy.png", (win.width // 2 - 260, 80, 520, win.height - 160))
+def redo_panel(op, name, sections=()):
+    def run():
+        with override():
+            # undo=True as the UI calls it: registered, so F9 (redo_last) can show it.
+            getattr(bpy.ops.mesh, op)('INVOKE_DEFAULT', True)
+
+    def f9():
+        move(*POPUP_AT)
+        with override():
+            bpy.ops.screen.redo_last('INVOKE_DEFAULT')
+
+    def shot():
+        win = bpy.context.window_manager.windows[0]
+        x, y = POPUP_AT
+        shoot(name, (x - 110, y - 40, 420, win.height - (y - 40) - 40))
+        move(40, 40)  # away: the popup closes
+    STEPS.extend([(1.0, run), (2.0, f9), (2.0, shot), (1.0, lambda: None)])
+
+
+redo_panel("banyan_ivy", "redo_ivy.png")
+redo_panel("banyan_roots", "redo_roots.png")
 
 
 @step(1.0)
 def sidebar():
     win, area, region = ctx()
-    with override():
-        bpy.ops.screen.region_toggle(region_type='UI') if hasattr(bpy.ops.screen, "region_toggle") else None
-    space = area.spaces.active
-    space.show_region_ui = True
-    for r in area.regions:
-        if r.type == 'UI':
-            pass
+    area.spaces.active.show_region_ui = True
+
+
+@step(1.5)
+def sidebar_tab():
+    win, area, region = ctx()
+    x, y, w, h = region_rect(area, 'UI')
+    # The tabs stand at the region's right edge, in order Item, Tool, View, Banyan
+    # (about 55 px each at 1x UI scale); the Banyan tab is the 4th.
+    click(x + w - 12, y + 30 + 3 * 55)
 
 
 @step(2.0)
 def sidebar_shot():
     win, area, region = ctx()
-    x, y, w, h = region_rect(area, 'UI')
-    shoot("sidebar_plant.png", (x, y, w, h))
+    shoot("sidebar_plant.png", region_rect(area, 'UI'))
 
 
 @step(0.5)

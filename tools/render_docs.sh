@@ -31,8 +31,9 @@ case $what in
     command -v xvfb-run >/dev/null || { echo "ui needs Xvfb: apt-get install xvfb xauth"; exit 1; }
     blend="$scripts/start.blend"
     blender -b --factory-startup --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$blend')" >/dev/null
-    BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$here/build/libbanyan.so" \
-      xvfb-run -a -s "-screen 0 1600x1000x24" blender --factory-startup "$blend" --addons banyan \
+    BLENDER_USER_SCRIPTS="$scripts" BLENDER_USER_CONFIG="$scripts/config" BANYAN_LIB="$here/build/libbanyan.so" \
+      xvfb-run -a -s "-screen 0 1600x1000x24" blender --factory-startup --enable-event-simulate \
+      -p 0 0 1600 1000 "$blend" --addons banyan \
       --python docs/screenshots.py -- "$@" ;;
   all)
     run docs/render_gallery.py
