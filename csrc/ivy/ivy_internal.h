@@ -120,6 +120,7 @@ struct banyan_ivy {
     double work;           /* bud visits of the steps done */
     int32_t goal;          /* the step the generation ends at */
     double grow_share;     /* the part of the call that growth is */
+    double mesh_from;      /* the fraction where the mesh starts (after the stats) */
 
     pcg32 rng;
 };

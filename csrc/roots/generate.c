@@ -114,10 +114,9 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
 
 /* Progress of banyan_roots_generate_hosts at the end of each stage (the
  * mains by root: ROOTS_AT_MAINS). */
-#define ROOTS_AT_FIRST 0.6
-#define ROOTS_AT_SECOND 0.7
-#define ROOTS_AT_PATHS 0.8
-#define ROOTS_AT_STATS 0.85
+#define ROOTS_AT_FIRST 0.08
+#define ROOTS_AT_SECOND 0.1
+#define ROOTS_AT_PATHS 0.12
 
 static banyan_status build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net, prog *g,
                                  banyan_error *err) {
@@ -267,7 +266,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
         if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
             st->first_reached++;
     }
-    if (prog_at(g, ROOTS_AT_STATS)) goto cancelled;
+    if (prog_at(g, ROOTS_AT_MESH)) goto cancelled;
     return BANYAN_OK;
 cancelled:
     roots_net_free(net);

@@ -141,9 +141,11 @@ typedef struct roots_net {
     prog *prog;        /* progress of banyan_roots_generate_hosts, else NULL */
 } roots_net;
 
-/* The progress fraction at the end of the main roots (stage shares of the
- * time on the presets; the later stages: generate.c). */
-#define ROOTS_AT_MAINS 0.45
+/* The progress fraction at the end of the main roots and at the start of
+ * the mesh, which takes most of the time (bench_progress on the default
+ * trunk; the stages between: generate.c). */
+#define ROOTS_AT_MAINS 0.05
+#define ROOTS_AT_MESH 0.13
 
 /* Validates params and hosts and builds the net; on failure the net is
  * freed and err says why. The box form makes a box-only host set and goes
