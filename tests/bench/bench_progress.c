@@ -1,8 +1,8 @@
 /* bench_progress: how honest the progress fraction is and how soon a
  * cancel is heard (docs/api.md, "Progress and cancel").
- *   usage: bench_progress [ivy_steps (900)] [avenue_trees (100)]
- * For ivy on the wall (one host set box, max_buds and max_vertices
- * raised), an avenue and the default roots it prints: the run's time,
+ *   usage: bench_progress [ivy_steps (900)] [avenue_trees (100)] [ivy_preset.json]
+ * For ivy on the wall (one host set box; or the preset's params and hosts;
+ * max_buds and max_vertices raised), an avenue and the default roots it prints: the run's time,
  * the number of callbacks, the share of the run's time at which the
  * fraction passed 0.25, 0.5, 0.75 and 0.9 (honest: close to the fraction
  * itself), the longest gap between two callbacks, and for a cancel at
@@ -105,7 +105,24 @@ int main(int argc, char **argv) {
     ic.p.max_buds = 5000000;
     ic.p.max_vertices = 200000000;
     banyan_box wall = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
-    if (banyan_hosts_create(&wall, 1, NULL, 0, &ic.H, &e)) return printf("%s\n", e.message), 1;
+    if (argc > 3) {
+        FILE *f = fopen(argv[3], "rb");
+        static char text[1 << 16];
+        size_t n = f ? fread(text, 1, sizeof text, f) : 0;
+        if (f) fclose(f);
+        char dir[4096];
+        snprintf(dir, sizeof dir, "%s", argv[3]);
+        char *slash = strrchr(dir, '/');
+        if (slash) *slash = '\0';
+        if (!n || banyan_preset_apply(BANYAN_GEN_IVY, &ic.p, text, n, argv[3], &e) ||
+            banyan_preset_host_set(text, n, argv[3], slash ? dir : NULL, NULL, 0, &ic.H, &e))
+            return printf("%s: %s\n", argv[3], e.message), 1;
+        ic.p.steps = steps;
+        ic.p.max_buds = 5000000;
+        ic.p.max_vertices = 200000000;
+    } else if (banyan_hosts_create(&wall, 1, NULL, 0, &ic.H, &e)) {
+        return printf("%s\n", e.message), 1;
+    }
     measure("ivy", run_ivy, &ic);
     banyan_hosts_free(ic.H);
 
