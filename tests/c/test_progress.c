@@ -10,7 +10,8 @@
  *   - a cancel at the final 1.0 still cancels;
  *   - ivy started at the foot of a cube resting on the ground (box and
  *     triangle mesh) grows a plant, and so does the wall started on its
- *     bottom face; a start boxed in a closed cavity is flagged. */
+ *     bottom face; a start boxed in a closed cavity is flagged (blocked
+ *     in a 2 cm one, stunted in a 6 cm one). */
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -257,6 +258,21 @@ static void test_start(void) {
               st.cannot_grow);
         st = grow(H, 0, 0, 1, 0);
         CHECK(st.cannot_grow == BANYAN_IVY_GREW, "no steps asked, no warning: flag %d", st.cannot_grow);
+        banyan_hosts_free(H);
+    }
+    /* A closed 6 cm cavity: one internode fits, then nothing. */
+    banyan_box room[6];
+    for (int k = 0; k < 6; k++) {
+        double c[3] = {0, 0, 1}, h[3] = {0.04, 0.04, 0.04};
+        c[k / 2] += (k % 2 ? 1 : -1) * 0.035;
+        h[k / 2] = 0.005;
+        room[k] = banyan_box_make(c[0], c[1], c[2], h[0], h[1], h[2]);
+    }
+    H = box_set(room, 6);
+    if (H) {
+        banyan_ivy_stats st = grow(H, 0, 0, 1, 50);
+        CHECK(st.buds >= 2 && st.buds < 6 && st.cannot_grow == BANYAN_IVY_STUNTED, "6 cm room: %d buds, flag %d",
+              st.buds, st.cannot_grow);
         banyan_hosts_free(H);
     }
     CHECK(strstr(banyan_ivy_growth_text(BANYAN_IVY_BLOCKED), "blocked") != NULL, "text of BLOCKED");
