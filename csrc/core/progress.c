@@ -1,3 +1,4 @@
+/* progress.c - the progress / cancel callback helper (progress.h). */
 #include "progress.h"
 
 #include <time.h>
