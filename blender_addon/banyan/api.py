@@ -29,6 +29,8 @@ Errors. Nothing is ever left in the scene when a call raises:
     objects / Box, params not a Params, values not a mapping, collection
     not a bpy Collection, name not a string, progress not callable;
   - ReferenceError (Blender's own) for an object that was deleted;
+  - core.errors.Cancelled (a BanyanError) when a library progress
+    callback returned True;
   - whatever a caller's progress callback raises, unchanged.
 """
 from collections.abc import Mapping
@@ -176,19 +178,26 @@ def grow_on_hosts(gen, hosts, host_shape, preset, grow):
         return grow(hs)
 
 
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable as progress(done) -> bool, not %s" % type(progress).__name__)
+
+
 def strangler_roots(hosts=(), *, preset=None, params=None, germination=None, collection=None,
-                    name="Banyan Roots", uv=True, host_shape=H.SURFACE, values=None, **kw):
+                    name="Banyan Roots", uv=True, host_shape=H.SURFACE, progress=None, values=None, **kw):
     """Roots around `hosts` (objects, core.structs.Box, or a HostSet).
     host_shape: 'SURFACE' (the objects' evaluated meshes) or 'BOX' (their
     oriented bounding boxes). germination: a world point, or None for the
     generator's own choice (above the first host). Hosts from the preset
-    are used when none are given."""
+    are used when none are given. progress: progress(done) -> bool while
+    the library grows (done 0..1; True cancels: core.errors.Cancelled)."""
     _collection(collection)
     _check_name(name)
+    _check_progress(progress)
     p = make_params("roots", preset, params, values, **kw)
     if germination is not None:
         set_roots_germination(p, germination)
-    d = grow_on_hosts("roots", hosts, host_shape, preset, lambda h: G.roots(p, h))
+    d = grow_on_hosts("roots", hosts, host_shape, preset, lambda h: G.roots(p, h, progress=progress))
     return _guard(lambda c: _single(name, d, collection, uv, c))
 
 
@@ -286,15 +295,18 @@ def _evaluated_polyline(obj, depsgraph=None):
 
 
 def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collection=None,
-                  name="Keyaki Avenue", uv=True, threads=0, progress=None, values=None, **kw):
+                  name="Keyaki Avenue", uv=True, threads=0, progress=None, generate_progress=None, values=None,
+                  **kw):
     """An avenue along `path`: a curve object, a list of points, or None
     (the params' start-end line). merged=False: one object per tree in a
     new collection; True: one object. progress(done, total) is called as
-    objects are built."""
+    objects are built; generate_progress(done) -> bool while the library
+    grows the trees (done 0..1; True cancels: core.errors.Cancelled)."""
     _collection(collection)
     _check_name(name)
     if progress is not None and not callable(progress):
         raise TypeError("progress must be callable as progress(done, total), not %s" % type(progress).__name__)
+    _check_progress(generate_progress)
     p = make_params("avenue", preset, params, values, **kw)
     curve = path if isinstance(path, bpy.types.bpy_struct) else None
     if curve is not None:
@@ -302,7 +314,7 @@ def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collecti
     elif path is not None and (isinstance(path, (str, bytes)) or not hasattr(path, "__iter__")):
         raise TypeError("path must be a curve object or a list of (x, y, z), not %s" % type(path).__name__)
     try:
-        d = G.avenue(p, path, threads)
+        d = G.avenue(p, path, threads, progress=generate_progress)
     except BanyanError as e:
         if curve is not None and e.message.startswith("path"):
             raise BanyanError(e.status, "curve '%s': %s" % (curve.name, e.message), e.name) from None
@@ -320,14 +332,21 @@ def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collecti
 
 # -------------------------------------------------------------------- ivy
 def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
-        animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, values=None, **kw):
+        animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, progress=None, stats=None,
+        values=None, **kw):
     """Ivy over hosts (objects, core.structs.Box, or a HostSet; host_shape
-    as strangler_roots) from `start` (snapped by the library to the
-    nearest host). animate=True adds a Geometry Nodes modifier revealing
-    the plant by birth_step over [frame_start, frame_end] (default: the
-    scene's)."""
+    as strangler_roots) from `start` (placed by the library on the nearest
+    host side a stem can grow from, above the ground). animate=True adds a
+    Geometry Nodes modifier revealing the plant by birth_step over
+    [frame_start, frame_end] (default: the scene's). progress as
+    strangler_roots. stats: a dict to fill with the plant's measures
+    (core.generators.ivy_stats_dict); stats["warning"] is not empty when
+    the plant could not grow (the objects are made all the same)."""
     _collection(collection)
     _check_name(name)
+    _check_progress(progress)
+    if stats is not None and not isinstance(stats, dict):
+        raise TypeError("stats must be a dict to fill, not %s" % type(stats).__name__)
     sc = bpy.context.scene
     f0, f1 = _frame("frame_start", frame_start, sc.frame_start), _frame("frame_end", frame_end, sc.frame_end)
     p = make_params("ivy", preset, params, values, **kw)
@@ -335,7 +354,9 @@ def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collectio
         p.set("start", start)
     if steps is not None:
         p.set("steps", steps)
-    d = grow_on_hosts("ivy", hosts, host_shape, preset, lambda h: G.ivy(p, h))
+    d = grow_on_hosts("ivy", hosts, host_shape, preset, lambda h: G.ivy(p, h, progress=progress))
+    if stats is not None:
+        stats.update(d.stats or {})
 
     def build(created):
         objs = _single(name, d, collection, uv, created)

@@ -20,6 +20,9 @@ typedef struct cli_job {
      * box scenes take the box calls and keep their bytes. */
     const banyan_hosts *host_set;
     int threads;                 /* --threads N, 0 = all cores */
+    /* A "\r<command> 42 %" line on stderr when it is a terminal, else
+     * NULL; run() hands it to the library call (or calls it itself). */
+    const banyan_progress *progress;
 } cli_job;
 
 /* Generator-specific JSON written by --stats: run() appends
@@ -27,7 +30,15 @@ typedef struct cli_job {
 typedef struct cli_stats {
     char buf[16384];
     size_t len;
+    /* Set by run() when the output is written but not what was asked for
+     * (an ivy that could not grow): main prints it and exits with
+     * CLI_EXIT_WARNING. */
+    char warning[512];
 } cli_stats;
+
+/* Exit codes: 0 done, 1 refused or failed, 2 bad command line,
+ * 3 written with a warning (docs/ivy.md, "Hosts and start"). */
+#define CLI_EXIT_WARNING 3
 void cli_stat_num(cli_stats *s, const char *key, double v);
 void cli_stat_raw(cli_stats *s, const char *key, const char *json);
 

@@ -24,7 +24,7 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         s = BANYAN_E_NOMEM;
         goto fail;
     }
-    if ((s = banyan_avenue_generate(p, NULL, 0, job->threads, &m[0], err))) goto fail;
+    if ((s = banyan_avenue_generate(p, NULL, 0, job->threads, &m[0], job->progress, err))) goto fail;
     if ((s = banyan_avenue_layout(p, NULL, 0, trees, n, &n, err))) {
         banyan_mesh_free(m[0]);
         goto fail;

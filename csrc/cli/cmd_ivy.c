@@ -33,7 +33,16 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
             snprintf(err->message, sizeof err->message, "out of memory");
         }
     }
-    if (!s) s = banyan_ivy_step(iv, p->steps, err);
+    /* In up to 100 parts when showing progress (the same plant as all the
+     * steps at once), the fraction of steps done. */
+    int32_t parts = job->progress ? (p->steps < 100 ? p->steps : 100) : 1;
+    for (int32_t k = 0, done = 0; !s && k < parts; k++) {
+        int32_t to = (int32_t)((int64_t)p->steps * (k + 1) / (parts ? parts : 1));
+        s = banyan_ivy_step(iv, to - done, err);
+        done = to;
+        if (job->progress) job->progress->fn(job->progress->user, (double)done / p->steps);
+    }
+    if (!s && parts == 0) s = banyan_ivy_step(iv, 0, err);
     if (!s) s = banyan_ivy_get_stats(iv, &st, err);
     if (!s) s = banyan_ivy_mesh(iv, &m[0], err);
     banyan_ivy_free(iv);
@@ -63,6 +72,10 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     cli_stat_num(stats, "density_per_m2", st.density);
     cli_stat_num(stats, "stem_length_m", st.stem_length);
     cli_stat_num(stats, "step_seconds", st.step_seconds);
+    cli_stat_num(stats, "cannot_grow", st.cannot_grow);
+    if (st.cannot_grow)
+        snprintf(stats->warning, sizeof stats->warning, "%s (%d buds after %d steps)",
+                 banyan_ivy_growth_text(st.cannot_grow), st.buds, st.steps);
     return BANYAN_OK;
 }
 

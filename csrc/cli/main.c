@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -21,6 +22,13 @@ static double now_ms(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/* The progress line: "\r<command>  42 %" on stderr (a terminal). */
+static int32_t show_progress(void *user, double done) {
+    fprintf(stderr, "\r%-8s %3d %%", (const char *)user, (int)(done * 100.0 + 1e-9));
+    fflush(stderr);
+    return 0;
 }
 
 static void append(cli_stats *s, const char *key, const char *val) {
@@ -302,9 +310,13 @@ int main(int argc, char **argv) {
 
     cli_stats st;
     st.len = 0;
+    st.warning[0] = '\0';
+    banyan_progress progress = {show_progress, (void *)cmd->name};
+    if (isatty(STDERR_FILENO)) job.progress = &progress;
     double t0 = now_ms();
     banyan_status s = cmd->run(&job, params, &meshes, &names, &count, &st, &err);
     double t1 = now_ms();
+    if (job.progress) fprintf(stderr, "\r%-14s\r", ""); /* the line cleared */
     if (s) {
         fprintf(stderr, "banyan %s: %s: %s\n", cmd->name, banyan_status_name(s), err.message);
         goto out;
@@ -342,6 +354,10 @@ int main(int argc, char **argv) {
                cmd->name, count, verts, tris, t1 - t0, t2 - t1, st.len ? ", " : "", (int)st.len, st.buf);
     }
     rc = 0;
+    if (st.warning[0]) {
+        fprintf(stderr, "banyan %s: warning: %s\n", cmd->name, st.warning);
+        rc = CLI_EXIT_WARNING;
+    }
 out:
     for (uint32_t i = 0; meshes && i < count; i++) banyan_mesh_free(meshes[i]);
     for (uint32_t i = 0; names && i < count; i++) free(names[i]);

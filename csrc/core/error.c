@@ -40,7 +40,7 @@ const char *banyan_status_name(banyan_status s) {
         "BANYAN_OK",         "BANYAN_E_INVALID_ARG", "BANYAN_E_RANGE",       "BANYAN_E_NO_HOSTS",
         "BANYAN_E_BAD_HOST", "BANYAN_E_START_INSIDE", "BANYAN_E_START_FAR",  "BANYAN_E_LIMIT",
         "BANYAN_E_NOMEM",    "BANYAN_E_IO",          "BANYAN_E_PARSE",       "BANYAN_E_UNKNOWN_KEY",
-        "BANYAN_E_TYPE",     "BANYAN_E_UNSUPPORTED", "BANYAN_E_INTERNAL"};
+        "BANYAN_E_TYPE",     "BANYAN_E_UNSUPPORTED", "BANYAN_E_INTERNAL",    "BANYAN_E_CANCELLED"};
     if ((unsigned)s < sizeof names / sizeof names[0]) return names[s];
     return "BANYAN_E_UNKNOWN_STATUS";
 }

@@ -216,6 +216,13 @@ double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p) {
     return v3_dist(pl, closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region));
 }
 
+v3 hmesh_prim_closest(const host_mesh *m, uint32_t prim, v3 p) {
+    const uint32_t *t = m->tri + 3 * (size_t)prim;
+    int region;
+    v3 pl = v3_sub(p, m->origin);
+    return v3_add(closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region), m->origin);
+}
+
 double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
     nq_ctx c;
     point_query(m, p, cap, &c);

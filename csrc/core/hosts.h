@@ -72,6 +72,8 @@ double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim);
  * distance (times 1 + 1e-6: Embree's radius is a float): the nearest
  * surface is no farther, and a small query sphere visits few leaves. */
 double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p);
+/* The closest point of triangle prim of m to p, world. */
+v3 hmesh_prim_closest(const host_mesh *m, uint32_t prim, v3 p);
 /* Least unsigned distance from the segment a-b to m's surface, exact below
  * cap (> 0), cap beyond. Exact per triangle (no sphere tracing): a few
  * queries however near the segment runs to the surface. With `first`, the

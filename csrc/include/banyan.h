@@ -62,7 +62,8 @@ typedef enum banyan_status {
     BANYAN_E_UNKNOWN_KEY = 11, /* a preset or --set names a key that does not exist */
     BANYAN_E_TYPE = 12,        /* a preset value has the wrong type */
     BANYAN_E_UNSUPPORTED = 13, /* a feature is not available in this build */
-    BANYAN_E_INTERNAL = 14     /* a broken invariant; please report it */
+    BANYAN_E_INTERNAL = 14,    /* a broken invariant; please report it */
+    BANYAN_E_CANCELLED = 15    /* the progress callback asked to stop; nothing returned */
 } banyan_status;
 
 /* Filled on failure when the caller passes a non-NULL pointer. The message
@@ -74,6 +75,24 @@ typedef struct banyan_error {
 
 /* A short fixed English name for a status ("BANYAN_E_RANGE"); never NULL. */
 BANYAN_API const char *banyan_status_name(banyan_status s);
+
+/* ------------------------------------------------------------- progress */
+
+/* Progress and cancel for the long calls (banyan_roots_generate_hosts,
+ * banyan_ivy_generate_hosts, banyan_avenue_generate), passed as a pointer
+ * just before `err`; NULL = no progress. `done` is the fraction of the
+ * call's work done, 0 .. 1, never decreasing; fn runs on the calling
+ * thread, about 100 times for the fraction plus at most one every 0.1 s
+ * while it moves slower (so a cancel is heard within about 0.1 s), and
+ * once with exactly 1.0 just before a successful return. A nonzero return
+ * cancels: the call stops soon after and returns BANYAN_E_CANCELLED with
+ * *out == NULL and nothing leaked. fn must not call back into the same
+ * generation. The output does not depend on the callback (docs/api.md). */
+typedef int32_t (*banyan_progress_fn)(void *user, double done);
+typedef struct banyan_progress {
+    banyan_progress_fn fn; /* required when the struct is passed */
+    void *user;            /* handed back to fn as is */
+} banyan_progress;
 
 /* ----------------------------------------------------------------- hosts */
 

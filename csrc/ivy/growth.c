@@ -197,11 +197,23 @@ static void wake_up(banyan_ivy *iv) {
     iv->n_wake = 0;
 }
 
+/* Reports growth at visit k of this step's n0 to the progress callback:
+ * done = visits so far / (visits so far + the visits left, guessed at n0
+ * + 1 per step left). Returns 1 once cancelled. */
+static int ivy_progress(banyan_ivy *iv, int32_t k, int32_t n0) {
+    double w = (double)n0 + 1.0, so_far = iv->work + k;
+    double left = (n0 - k) + (double)(iv->goal - iv->step) * w;
+    return prog_at(iv->prog, iv->grow_share * so_far / (so_far + left));
+}
+
+/* A pass of the rules; returns early (the plant is then only fit to be
+ * freed) when a progress callback cancels. */
 static void rules(banyan_ivy *iv) {
     const banyan_ivy_params *p = &iv->p;
     wake_up(iv);
     const int32_t n0 = iv->n_act;
     for (int32_t k = 0; k < n0; k++) {
+        if (iv->prog && (k & 31) == 0 && ivy_progress(iv, k, n0)) return;
         const int32_t i = iv->act[k];
         ivy_bud *b = &iv->buds[i];
         if (b->run > 0 && b->run * p->internode > p->bmax) { /* p6 */
@@ -338,8 +350,14 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
             return s;
         }
         iv->step++;
+        int32_t n0 = iv->n_act + iv->n_wake;
         rules(iv);
+        if (prog_stopped(iv->prog)) {
+            iv->step_seconds += now_seconds() - t0;
+            return prog_fail(err, "ivy growth");
+        }
         ivy_sag(iv);
+        iv->work += n0 + 1.0;
     }
     iv->step_seconds += now_seconds() - t0;
     banyan_error_clear(err);
@@ -361,6 +379,57 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->tmp);
     free(iv->cand);
     free(iv);
+}
+
+/* The start: the point `clearance` off the nearest given host surface
+ * when a stem can grow from there, else the nearest such point on any
+ * given host's side (docs/ivy.md, "Hosts and start"). A side can take the
+ * start when its outward normal is less than 45 degrees below the
+ * horizon (not a bottom face) and the point is at least one internode
+ * above the ground and clear of every other host. */
+static int start_growable(const banyan_ivy *iv, v3 P, v3 n) {
+    if (n.z < -0.70710678118654752) return 0;
+    return !iv->p.ground || P.z >= iv->p.ground_z + iv->p.internode - 1e-9;
+}
+
+/* Tries q (a side's point nearest s) with outward normal n as the start. */
+static void try_start(const banyan_ivy *iv, v3 s, v3 q, v3 n, double *best, v3 *out) {
+    v3 P = v3_madd(q, n, iv->p.clearance);
+    double d = v3_dist(q, s);
+    if (!(d < *best) || !start_growable(iv, P, n)) return;
+    /* Not buried in another host (or the ground). */
+    if (ivy_nearest_any(iv, P).dist < 0.5 * iv->p.clearance) return;
+    *best = d;
+    *out = P;
+}
+
+static v3 growable_start(const banyan_ivy *iv, v3 start, v3 fallback) {
+    const banyan_ivy_params *p = &iv->p;
+    v3 s = start;
+    /* Looked for from the start lifted to the lowest height allowed, so a
+     * wall's nearest side point is that high, not at its foot. */
+    if (p->ground && s.z < p->ground_z + p->internode) s.z = p->ground_z + p->internode;
+    double best = HUGE_VAL;
+    v3 out = fallback;
+    for (uint32_t h = 0; h < iv->n_given; h++) {
+        const obb *o = &iv->hosts[h];
+        v3 l = obb_to_local(o, s);
+        for (int f = 0; f < 6; f++) {
+            int k = f / 2;
+            double sg = f % 2 ? 1.0 : -1.0, c[3] = {l.x, l.y, l.z};
+            for (int i = 0; i < 3; i++) c[i] = i == k ? sg * o->h[i] : fmax(-o->h[i], fmin(o->h[i], c[i]));
+            try_start(iv, s, obb_to_world(o, v3_make(c[0], c[1], c[2])), v3_scale(o->ax[k], sg), &best, &out);
+        }
+    }
+    for (uint32_t m = 0; m < iv->n_mesh; m++) {
+        const host_mesh *hm = &iv->meshes[m];
+        for (uint32_t t = 0; t < hm->nt; t++) {
+            v3 n = f3(hm->fnrm + 3 * (size_t)t), q = hmesh_prim_closest(hm, t, s);
+            if (!hm->closed && v3_dot(v3_sub(s, q), n) < 0) n = v3_neg(n); /* an open sheet: the start's side */
+            try_start(iv, s, q, n, &best, &out);
+        }
+    }
+    return out;
 }
 
 /* The handle on nb boxes (from `boxes`, checked here, or already checked
@@ -430,7 +499,9 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         surf = nr.point;
         nrm = nr.normal;
     }
-    v3 P = ivy_push_out(iv, v3_madd(surf, nrm, params->clearance));
+    v3 P = v3_madd(surf, nrm, params->clearance);
+    if (!start_growable(iv, P, nrm)) P = growable_start(iv, start, P);
+    P = ivy_push_out(iv, P);
     nr = ivy_nearest(iv, P);
     /* First growth direction: up along the surface (sideways on a ceiling). */
     v3 up = v3_make(0, 0, 1);
@@ -513,14 +584,42 @@ banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_
     return s;
 }
 
-banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_mesh **out,
-                                        banyan_error *err) {
+/* The parts of a one-shot generation's time (bench_progress, the wall
+ * at 450 steps): growth, then the stats when asked, then the mesh. */
+#define IVY_GROW_SHARE 0.8
+#define IVY_STATS_SHARE 0.05
+
+banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                              banyan_mesh **out, banyan_ivy_stats *stats,
+                                              const banyan_progress *progress, banyan_error *err) {
+    if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
-    banyan_ivy *iv = NULL;
-    banyan_status s = banyan_ivy_create_hosts(params, hosts, &iv, err);
+    banyan_status s = prog_check(progress, err);
     if (s) return s;
+    banyan_ivy *iv = NULL;
+    if ((s = banyan_ivy_create_hosts(params, hosts, &iv, err))) return s;
+    prog g;
+    prog_init(&g, progress);
+    iv->prog = progress ? &g : NULL;
+    iv->goal = params->steps;
+    iv->grow_share = IVY_GROW_SHARE;
+    iv->mesh_from = IVY_GROW_SHARE + (stats ? IVY_STATS_SHARE : 0.0);
     s = ivy_grow(iv, params->steps, 1, err);
+    if (!s && prog_at(iv->prog, IVY_GROW_SHARE)) s = prog_fail(err, "ivy");
+    if (!s && stats) s = banyan_ivy_get_stats(iv, stats, err);
+    if (!s && prog_at(iv->prog, iv->mesh_from)) s = prog_fail(err, "ivy");
     if (!s) s = banyan_ivy_mesh(iv, out, err);
+    if (!s && prog_finish(iv->prog)) {
+        banyan_mesh_free(*out);
+        *out = NULL;
+        s = prog_fail(err, "ivy");
+    }
     banyan_ivy_free(iv);
+    if (s && stats) memset(stats, 0, sizeof *stats);
     return s;
+}
+
+banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_mesh **out,
+                                        const banyan_progress *progress, banyan_error *err) {
+    return banyan_ivy_generate_hosts_stats(params, hosts, out, NULL, progress, err);
 }

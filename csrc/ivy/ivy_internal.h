@@ -10,6 +10,7 @@
 #include "banyan.h"
 #include "core/hosts.h"
 #include "core/obb.h"
+#include "core/progress.h"
 #include "core/rng.h"
 #include "core/vec.h"
 
@@ -112,6 +113,15 @@ struct banyan_ivy {
 
     ivy_cand *cand;        /* params.candidates of them */
 
+    /* Progress of a one-shot generation (NULL otherwise): growth is
+     * counted in bud visits, and the steps left are guessed at the
+     * current visits per step (ivy_progress). */
+    prog *prog;
+    double work;           /* bud visits of the steps done */
+    int32_t goal;          /* the step the generation ends at */
+    double grow_share;     /* the part of the call that growth is */
+    double mesh_from;      /* the fraction where the mesh starts (after the stats) */
+
     pcg32 rng;
 };
 
@@ -213,6 +223,10 @@ uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);
 /* Grows n steps; stops with BANYAN_E_LIMIT as soon as the plant could no
  * longer be meshed within max_vertices when vertex_stop is set. */
 banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error *err);
+
+/* Why the plant could not grow (banyan_ivy_growth), from its buds and
+ * steps (stats.c). */
+int32_t ivy_growth_check(const banyan_ivy *iv);
 
 /* Checks params (table ranges and cross-field rules). */
 banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err);

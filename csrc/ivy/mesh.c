@@ -51,6 +51,13 @@ static int chain_start(const banyan_ivy *iv, int32_t i) {
     return par < 0 || iv->buds[par].child[1] == i;
 }
 
+/* Progress of the mesh of a one-shot generation: stems then leaves, by
+ * bud, every 256 buds, from iv->mesh_from to 1. Returns 1 once cancelled. */
+static int mesh_progress(const banyan_ivy *iv, int32_t i, double half) {
+    if (!iv->prog || (i & 255)) return 0;
+    return prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * 0.5 * (half + (double)i / iv->n));
+}
+
 banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
@@ -102,7 +109,12 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     /* Stems. */
     mb_begin_part(&mb, m_stem, 0);
     mb_set_attr(&mb, a_part, 0.0);
+    int cancelled = 0;
     for (int32_t i = 0; i < iv->n && !mb.status; i++) {
+        if (mesh_progress(iv, i, 0.0)) {
+            cancelled = 1;
+            break;
+        }
         if (!chain_start(iv, i)) continue;
         uint32_t n = chain_points(iv, i, pts);
         const ivy_bud *s = &iv->buds[i];
@@ -141,7 +153,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     }
 
     /* Leaves. */
-    if (p->leaves && !mb.status) {
+    if (p->leaves && !mb.status && !cancelled) {
         mb_begin_part(&mb, m_leaf, 0);
         mb_set_attr(&mb, a_part, 1.0);
         pcg32 rng;
@@ -162,6 +174,10 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         }
         const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
         for (int32_t i = 0; i < iv->n && !mb.status; i++) {
+            if (mesh_progress(iv, i, 1.0)) {
+                cancelled = 1;
+                break;
+            }
             const ivy_bud *b = &iv->buds[i];
             double jitter = rng_range(&rng, -0.35, 0.35); /* one draw per bud: leaves keep their look as the plant grows */
             double d = ivy_leaf_diameter(iv, b) * p->leaf_scale;
@@ -209,5 +225,9 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         if (iv->buds[i].parent >= 0) mb_skel_edge(&mb, (uint32_t)iv->buds[i].parent, (uint32_t)i);
 
     free(pts); free(P); free(R); free(birth);
+    if (cancelled) {
+        mb_free(&mb);
+        return prog_fail(err, "ivy mesh");
+    }
     return mb_finish(&mb, out, err);
 }

@@ -74,6 +74,26 @@ static double cross2(const double *o, const double *a, const double *b) {
     return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 
+int32_t ivy_growth_check(const banyan_ivy *iv) {
+    int32_t need = iv->step < BANYAN_IVY_MIN_INTERNODES ? iv->step : BANYAN_IVY_MIN_INTERNODES;
+    int32_t internodes = iv->n - 1; /* every bud but the first ends one */
+    if (internodes >= need) return BANYAN_IVY_GREW;
+    return internodes == 0 ? BANYAN_IVY_BLOCKED : BANYAN_IVY_STUNTED;
+}
+
+const char *banyan_ivy_growth_text(int32_t cannot_grow) {
+    switch (cannot_grow) {
+    case BANYAN_IVY_GREW: return "the ivy grew";
+    case BANYAN_IVY_BLOCKED:
+        return "the ivy could not grow: every direction from its start is blocked by a host or the ground; "
+               "move the start onto a free side of a host, above the ground";
+    case BANYAN_IVY_STUNTED:
+        return "the ivy could not grow: it is boxed in after a few internodes; move the start onto an open side "
+               "of a host, above the ground";
+    default: return "unknown ivy growth value";
+    }
+}
+
 banyan_status banyan_ivy_get_stats(const banyan_ivy *iv, banyan_ivy_stats *out, banyan_error *err) {
     if (!iv || !out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy and out must not be NULL");
     memset(out, 0, sizeof *out);
@@ -83,6 +103,7 @@ banyan_status banyan_ivy_get_stats(const banyan_ivy *iv, banyan_ivy_stats *out, 
     out->buds = n;
     out->branch_points = iv->branch_points;
     out->step_seconds = iv->step_seconds;
+    out->cannot_grow = ivy_growth_check(iv);
     for (int32_t i = 0; i < n; i++) {
         const ivy_bud *b = &iv->buds[i];
         out->by_state[b->state]++;

@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "keyaki_internal.h"
 
 #define AVENUE_MAX_THREADS 256
@@ -189,7 +190,18 @@ typedef struct avenue_job {
     uint64_t max_vertices;
     atomic_ullong counted; /* vertices of the trees counted so far */
     atomic_int stop;
+    /* Progress (NULL: none): the calling thread, itself a worker, reports
+     * the trees finished by all after each tree it finishes; a cancel
+     * stops every worker before its next tree. */
+    prog *prog;
+    atomic_uint finished; /* trees of this pass done */
+    atomic_int cancel;
+    double base, share;   /* this pass's part of the fraction */
 } avenue_job;
+
+/* Sizing a tree grows its skeleton; building grows it again and meshes
+ * it: the count pass's part of the time (bench_progress, 100 trees). */
+#define AVENUE_COUNT_SHARE 0.06
 
 /* Copies tree i's mesh into its slice of the merged mesh. Slices are
  * disjoint, so workers copy in parallel without locks. */
@@ -220,10 +232,10 @@ static banyan_status place(avenue_job *J, uint32_t i, const banyan_mesh *t, bany
     return BANYAN_OK;
 }
 
-static void *worker(void *arg) {
-    avenue_job *J = arg;
+static void work(avenue_job *J, int caller) {
     keyaki_skeleton sk = {NULL, 0, 0};
     for (;;) {
+        if (atomic_load(&J->cancel)) break;
         uint32_t i = atomic_fetch_add(&J->next, 1u);
         if (i >= J->n) break;
         if (J->phase == 0) {
@@ -238,8 +250,14 @@ static void *worker(void *arg) {
             if (!J->status[i]) J->status[i] = place(J, i, t, &J->errs[i]);
             banyan_mesh_free(t);
         }
+        unsigned done = atomic_fetch_add(&J->finished, 1u) + 1u;
+        if (caller && J->prog && prog_at(J->prog, J->base + J->share * done / J->n)) atomic_store(&J->cancel, 1);
     }
     keyaki_skeleton_free(&sk);
+}
+
+static void *worker(void *arg) {
+    work(arg, 0);
     return NULL;
 }
 
@@ -249,9 +267,10 @@ static void run_job(avenue_job *J, int threads) {
     pthread_t tid[AVENUE_MAX_THREADS];
     int started = 0;
     atomic_store(&J->next, 0u);
+    atomic_store(&J->finished, 0u);
     for (int t = 1; t < threads; t++)
         if (pthread_create(&tid[started], NULL, worker, J) == 0) started++;
-    worker(J);
+    work(J, 1);
     for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
 }
 
@@ -292,16 +311,22 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
 }
 
 banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
-                                     int32_t threads, banyan_mesh **out, banyan_error *err) {
+                                     int32_t threads, banyan_mesh **out, const banyan_progress *progress,
+                                     banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     banyan_status s;
     if ((s = banyan_check_int(err, "threads", threads, 0, AVENUE_MAX_THREADS))) return s;
+    if ((s = prog_check(progress, err))) return s;
     uint32_t n = 0;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
     if (n == 0) return banyan_fail(err, BANYAN_E_RANGE, "the path is too short for any tree");
     avenue_job J;
     memset(&J, 0, sizeof J);
+    prog g;
+    prog_init(&g, progress);
+    J.prog = progress ? &g : NULL;
+    atomic_store(&J.cancel, 0);
     banyan_keyaki_params *trees = malloc(sizeof *trees * n);
     J.counts = calloc(n, sizeof *J.counts);
     J.voff = calloc(4 * (size_t)n, sizeof *J.voff);
@@ -329,7 +354,13 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.max_vertices = (uint64_t)p->max_vertices;
     atomic_store(&J.counted, 0ull);
     atomic_store(&J.stop, 0);
+    J.base = 0.0;
+    J.share = AVENUE_COUNT_SHARE;
     run_job(&J, t);
+    if (atomic_load(&J.cancel)) {
+        s = prog_fail(err, "avenue");
+        goto done;
+    }
     if (atomic_load(&J.stop)) {
         /* Which trees were counted depends on the threads; the status does
          * not: a failed count is a limit (or out of memory), and so is a
@@ -375,12 +406,22 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         goto done;
     }
     J.phase = 1;
+    J.base = AVENUE_COUNT_SHARE;
+    J.share = 1.0 - AVENUE_COUNT_SHARE;
     run_job(&J, t);
+    if (atomic_load(&J.cancel)) {
+        s = prog_fail(err, "avenue");
+        goto done;
+    }
     for (uint32_t i = 0; i < n; i++) {
         if (J.status[i]) {
             s = banyan_fail(err, J.status[i], "tree %u: %s", i, J.errs[i].message);
             goto done;
         }
+    }
+    if (prog_finish(J.prog)) {
+        s = prog_fail(err, "avenue");
+        goto done;
     }
     *out = J.out;
     J.out = NULL;

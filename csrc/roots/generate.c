@@ -104,8 +104,22 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     return BANYAN_OK;
 }
 
+static banyan_status build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net, prog *g,
+                                 banyan_error *err);
+
 banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net,
                                     banyan_error *err) {
+    return build_hosts(p, hosts, net, NULL, err);
+}
+
+/* Progress of banyan_roots_generate_hosts at the end of each stage (the
+ * mains by root: ROOTS_AT_MAINS). */
+#define ROOTS_AT_FIRST 0.08
+#define ROOTS_AT_SECOND 0.1
+#define ROOTS_AT_PATHS 0.12
+
+static banyan_status build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net, prog *g,
+                                 banyan_error *err) {
     memset(net, 0, sizeof *net);
     banyan_status s = check_params(p, err);
     if (s) return s;
@@ -116,6 +130,7 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
     if (n_hosts == 0)
         return banyan_fail(err, BANYAN_E_NO_HOSTS, "the host set is empty: strangler-fig roots need a host");
     net->hosts = hosts;
+    net->prog = g;
     net->u = p->unit;
     net->r = p->radius * p->unit;
     net->w.hosts = hosts->boxes;
@@ -214,14 +229,18 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
     }
 
     roots_grow_mains(net, p);
+    if (prog_stopped(g)) goto cancelled;
     memcpy(net->M, net->M_grown, sizeof(v3) * N * B);
     roots_grow_first(net, p);
     roots_correct_mains(net, p);
+    if (prog_at(g, ROOTS_AT_FIRST)) goto cancelled;
     roots_grow_second(net, p);
+    if (prog_at(g, ROOTS_AT_SECOND)) goto cancelled;
     if ((s = roots_make_paths(net, p))) {
         roots_net_free(net);
         return banyan_fail(err, s, "out of memory for the roots paths");
     }
+    if (prog_at(g, ROOTS_AT_PATHS)) goto cancelled;
 
     /* Stats over the finished net. */
     banyan_roots_stats *st = &net->stats;
@@ -247,7 +266,11 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
         if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
             st->first_reached++;
     }
+    if (prog_at(g, ROOTS_AT_MESH)) goto cancelled;
     return BANYAN_OK;
+cancelled:
+    roots_net_free(net);
+    return prog_fail(err, "roots");
 }
 
 static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_params *params, banyan_mesh **out,
@@ -261,11 +284,23 @@ static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_
 }
 
 banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
-                                          banyan_mesh **out, banyan_roots_stats *stats, banyan_error *err) {
+                                          banyan_mesh **out, banyan_roots_stats *stats,
+                                          const banyan_progress *progress, banyan_error *err) {
     if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
+    banyan_status s = prog_check(progress, err);
+    if (s) return s;
+    prog g;
+    prog_init(&g, progress);
     roots_net net;
-    return finish(&net, roots_net_build_hosts(params, hosts, &net, err), params, out, stats, err);
+    s = finish(&net, build_hosts(params, hosts, &net, progress ? &g : NULL, err), params, out, stats, err);
+    if (!s && prog_finish(progress ? &g : NULL)) {
+        banyan_mesh_free(*out);
+        *out = NULL;
+        if (stats) memset(stats, 0, sizeof *stats);
+        s = prog_fail(err, "roots");
+    }
+    return s;
 }
 
 banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,

@@ -167,5 +167,6 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
             if (w->ground && S.z - w->ground_z <= r * (1.0 + 1e-6)) ground = 1;
         }
         net->ground_hit[a] = ground;
+        if (prog_at(net->prog, ROOTS_AT_MAINS * (a + 1) / N)) return; /* cancelled */
     }
 }

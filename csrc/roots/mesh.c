@@ -237,6 +237,11 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     mb_reserve(&mb, (uint32_t)total_v, (uint32_t)total_i);
 
     for (uint32_t t = 0; t < net->n_poly && !mb.status; t++) {
+        if (prog_at(net->prog, ROOTS_AT_MESH + (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
+            free(block);
+            mb_free(&mb);
+            return prog_fail(err, "roots mesh");
+        }
         const roots_poly *pl = &net->poly[t];
         if (pl->n < 2) continue;
         const v3 *P = net->pts + pl->off;

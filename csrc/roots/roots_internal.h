@@ -7,6 +7,7 @@
 #ifndef BANYAN_ROOTS_INTERNAL_H
 #define BANYAN_ROOTS_INTERNAL_H
 
+#include "core/progress.h"
 #include "banyan.h"
 #include "core/hosts.h"
 #include "core/obb.h"
@@ -137,7 +138,14 @@ typedef struct roots_net {
     uint32_t *K_mid_at; /* N * nb: where each first branch root's middle point K^mid sits */
 
     banyan_roots_stats stats;
+    prog *prog;        /* progress of banyan_roots_generate_hosts, else NULL */
 } roots_net;
+
+/* The progress fraction at the end of the main roots and at the start of
+ * the mesh, which takes most of the time (bench_progress on the default
+ * trunk; the stages between: generate.c). */
+#define ROOTS_AT_MAINS 0.05
+#define ROOTS_AT_MESH 0.13
 
 /* Validates params and hosts and builds the net; on failure the net is
  * freed and err says why. The box form makes a box-only host set and goes

@@ -46,7 +46,7 @@ int main(void) {
         for (int r = 0; r < 7; r++) {
             double t0 = bench_now();
             banyan_error err;
-            if (banyan_avenue_generate(&ap, NULL, 0, threads, &m, &err)) {
+            if (banyan_avenue_generate(&ap, NULL, 0, threads, &m, NULL, &err)) {
                 fprintf(stderr, "boulevard: %s\n", err.message);
                 return 1;
             }

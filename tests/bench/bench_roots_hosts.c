@@ -32,7 +32,7 @@ static figures measure(const banyan_hosts *H, const banyan_box *box, int runs) {
         banyan_mesh *m = NULL;
         banyan_error err;
         double t0 = bench_now();
-        banyan_status s = H ? banyan_roots_generate_hosts(&p, H, &m, NULL, &err)
+        banyan_status s = H ? banyan_roots_generate_hosts(&p, H, &m, NULL, NULL, &err)
                             : banyan_roots_generate(&p, box, 1, &m, &err);
         double t1 = bench_now();
         roots_net net;

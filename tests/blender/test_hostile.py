@@ -84,7 +84,7 @@ class Spy:
     functions up on the loaded CDLL, so wrapping them there sees all."""
     MAKERS = ("banyan_roots_generate", "banyan_keyaki_generate", "banyan_avenue_generate",
               "banyan_ivy_generate", "banyan_ivy_mesh", "banyan_segments_generate", "banyan_tube_generate",
-              "banyan_roots_generate_hosts", "banyan_ivy_generate_hosts")
+              "banyan_roots_generate_hosts", "banyan_ivy_generate_hosts", "banyan_ivy_generate_hosts_stats")
     ARG = type(C.byref(C.c_int()))
 
     def __init__(self):

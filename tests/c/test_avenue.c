@@ -133,35 +133,35 @@ static void refusals(void) {
               err.message);                                                                                     \
     } while (0)
     small(&p);
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, -1, &m, &err), BANYAN_E_RANGE, "threads = -1", "threads -1");
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 257, &m, &err), BANYAN_E_RANGE, "threads = 257", "threads 257");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, -1, &m, NULL, &err), BANYAN_E_RANGE, "threads = -1", "threads -1");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 257, &m, NULL, &err), BANYAN_E_RANGE, "threads = 257", "threads 257");
     p.end[0] = 0;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, &err), BANYAN_E_RANGE, "start and end must differ", "no length");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err), BANYAN_E_RANGE, "start and end must differ", "no length");
     small(&p);
     double bad_path[] = {0, 0, 0, 1, NAN, 0};
-    REFUSE(banyan_avenue_generate(&p, bad_path, 2, 1, &m, &err), BANYAN_E_RANGE, "path point 1", "NaN path");
+    REFUSE(banyan_avenue_generate(&p, bad_path, 2, 1, &m, NULL, &err), BANYAN_E_RANGE, "path point 1", "NaN path");
     double rep_path[] = {0, 0, 0, 5, 0, 0, 5, 0, 0};
-    REFUSE(banyan_avenue_generate(&p, rep_path, 3, 1, &m, &err), BANYAN_E_RANGE, "repeats", "repeated path point");
-    REFUSE(banyan_avenue_generate(&p, rep_path, 1, 1, &m, &err), BANYAN_E_RANGE, "path_point_count", "one point");
+    REFUSE(banyan_avenue_generate(&p, rep_path, 3, 1, &m, NULL, &err), BANYAN_E_RANGE, "repeats", "repeated path point");
+    REFUSE(banyan_avenue_generate(&p, rep_path, 1, 1, &m, NULL, &err), BANYAN_E_RANGE, "path_point_count", "one point");
     p.spacing = 0.1;
     p.end[0] = 1e5;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, &err), BANYAN_E_LIMIT, "more than 10000", "too many trees");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err), BANYAN_E_LIMIT, "more than 10000", "too many trees");
     small(&p);
     p.max_vertices = 5000;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_LIMIT, "more than max_vertices = 5000",
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_LIMIT, "more than max_vertices = 5000",
            "vertex limit");
     small(&p);
     p.tree.alpha = 1.0;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
     small(&p);
     p.tree.trunk_length = 90;
     p.height_jitter = 0.5;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "tree 0: tree.trunk_length",
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "tree 0: tree.trunk_length",
            "jittered trunk out of range");
     small(&p);
     p.rows = 3;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, &err), BANYAN_E_RANGE, "rows = 3", "three rows");
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "rows = 3", "three rows");
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
     CHECK(banyan_avenue_layout(NULL, NULL, 0, NULL, 0, &n, &err) == BANYAN_E_INVALID_ARG, "NULL params");
     /* The table takes tree.* keys. */
     small(&p);
@@ -209,10 +209,10 @@ static void merged(const char *outdir) {
     p.end[0] = 40;
     banyan_mesh *m1 = NULL, *m2 = NULL, *m0 = NULL, *again = NULL;
     banyan_error err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m1, &err) == BANYAN_OK, "1 thread: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m2, &err) == BANYAN_OK, "2 threads: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 0, &m0, &err) == BANYAN_OK, "all cores: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 7, &again, &err) == BANYAN_OK, "7 threads: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m1, NULL, &err) == BANYAN_OK, "1 thread: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m2, NULL, &err) == BANYAN_OK, "2 threads: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 0, &m0, NULL, &err) == BANYAN_OK, "all cores: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 7, &again, NULL, &err) == BANYAN_OK, "7 threads: %s", err.message);
     if (!m1 || !m2 || !m0 || !again) return;
     uint64_t h = banyan_mesh_hash(m1);
     CHECK(h == banyan_mesh_hash(m2) && h == banyan_mesh_hash(m0) && h == banyan_mesh_hash(again),
@@ -266,7 +266,7 @@ static void merged(const char *outdir) {
     /* Another base seed, another avenue. */
     p.seed++;
     banyan_mesh *other = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &other, &err) == BANYAN_OK, "seed+1");
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &other, NULL, &err) == BANYAN_OK, "seed+1");
     CHECK(other && banyan_mesh_hash(other) != h, "base seed does not change the avenue");
     banyan_mesh_free(other);
 
@@ -304,7 +304,7 @@ static void preset(const char *path, const char *name, void *ctx) {
     CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n > 0 && (!want || n == want),
           "%s: %u trees", name, n);
     banyan_mesh *m = NULL;
-    if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, &err);
+    if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, NULL, &err);
     /* Bark and leaves per tree; bark only in winter. */
     uint32_t parts = (p.tree.leaves ? 2 : 1) * n;
     CHECK(s == BANYAN_OK && m && m->part_count == parts, "%s: %s (%u parts, want %u)", name, err.message,

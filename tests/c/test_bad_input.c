@@ -122,7 +122,7 @@ static banyan_status call_keyaki_stats(const void *p, int *out_ok, banyan_error 
 }
 static banyan_status call_avenue(const void *p, int *out_ok, banyan_error *e) {
     banyan_mesh *m = SENTINEL;
-    banyan_status s = banyan_avenue_generate(p, NULL, 0, 2, &m, e);
+    banyan_status s = banyan_avenue_generate(p, NULL, 0, 2, &m, NULL, e);
     *out_ok = mesh_out_ok(m, s);
     return s;
 }
@@ -472,11 +472,11 @@ static void limit_cases(void) {
     banyan_avenue_params_init(&ap);
     ap.placement = BANYAN_AVENUE_COUNT, ap.count = 5000, ap.max_vertices = 1000;
     RUN_MESH("avenue", "banyan_avenue_generate", "limit", "10000 trees, max_vertices = 1000", BANYAN_E_LIMIT,
-             "max_vertices", banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e));
+             "max_vertices", banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e));
     banyan_avenue_params_init(&ap);
     ap.spacing = 0.1, ap.end[0] = 1000;
     RUN_MESH("avenue", "banyan_avenue_generate", "above cap", "spacing 0.1 m on 1 km (20002 trees)", BANYAN_E_LIMIT,
-             "trees", banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e));
+             "trees", banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e));
 
     banyan_ivy_params ip;
     banyan_ivy_params_init(&ip);
@@ -533,9 +533,9 @@ static void null_cases(void) {
     RUN("keyaki", "banyan_keyaki_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
         banyan_keyaki_stats(NULL, &kst, &e), 1);
     RUN_MESH("avenue", "banyan_avenue_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_avenue_generate(NULL, NULL, 0, 1, &m, &e));
+             banyan_avenue_generate(NULL, NULL, 0, 1, &m, NULL, &e));
     RUN("avenue", "banyan_avenue_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_avenue_generate(&ap, NULL, 0, 1, NULL, &e), 1);
+        banyan_avenue_generate(&ap, NULL, 0, 1, NULL, NULL, &e), 1);
     uint32_t n = 0;
     RUN("avenue", "banyan_avenue_layout", "NULL", "tree_count = NULL", BANYAN_E_INVALID_ARG, "tree_count",
         banyan_avenue_layout(&ap, NULL, 0, NULL, 0, NULL, &e), 1);
@@ -555,6 +555,21 @@ static void null_cases(void) {
     banyan_ivy_stats ist;
     RUN("ivy", "banyan_ivy_get_stats", "NULL", "ivy = NULL", BANYAN_E_INVALID_ARG, "ivy",
         banyan_ivy_get_stats(NULL, &ist, &e), 1);
+    /* A progress struct without its callback. */
+    banyan_progress no_fn = {NULL, NULL};
+    banyan_hosts *hs = NULL;
+    banyan_hosts_create(&w, 1, NULL, 0, &hs, NULL);
+    RUN_MESH("roots", "banyan_roots_generate_hosts", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG,
+             "progress->fn", banyan_roots_generate_hosts(&rp, hs, &m, NULL, &no_fn, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate_hosts", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
+             banyan_ivy_generate_hosts(&ip, hs, &m, &no_fn, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate_hosts_stats", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG,
+             "progress->fn", banyan_ivy_generate_hosts_stats(&ip, hs, &m, &ist, &no_fn, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate_hosts_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
+             banyan_ivy_generate_hosts_stats(NULL, hs, &m, &ist, NULL, &e));
+    RUN_MESH("avenue", "banyan_avenue_generate", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
+             banyan_avenue_generate(&ap, NULL, 0, 1, &m, &no_fn, &e));
+    banyan_hosts_free(hs);
     RUN_MESH("segments", "banyan_segments_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
              banyan_segments_generate(NULL, demo_segs, 2, NULL, &m, NULL, NULL, &e));
     RUN_MESH("segments", "banyan_segments_generate", "NULL", "segs = NULL, count = 2", BANYAN_E_INVALID_ARG, "segs",
@@ -700,7 +715,7 @@ static void input_cases(void) {
     memcpy(bad, path, sizeof bad);                                                                   \
     expr;                                                                                            \
     RUN_MESH("avenue", "banyan_avenue_generate", klass, text, want, needle,                          \
-             banyan_avenue_generate(&ap, bad, count, 1, &m, &e))
+             banyan_avenue_generate(&ap, bad, count, 1, &m, NULL, &e))
     AV("NaN", "path point 1 = (NaN, 0, 0)", bad[3] = NAN, 3, BANYAN_E_RANGE, "path point 1");
     AV("inf", "path point 2 z = inf", bad[8] = INFINITY, 3, BANYAN_E_RANGE, "path point 2");
     AV("above range", "path point 0 x = 1e7", bad[0] = 1e7, 3, BANYAN_E_RANGE, "path point 0");
@@ -712,15 +727,15 @@ static void input_cases(void) {
     banyan_avenue_params z = ap;
     memcpy(z.end, z.start, sizeof z.end);
     RUN_MESH("avenue", "banyan_avenue_generate", "zero", "start = end (no path)", BANYAN_E_RANGE, "start and end",
-             banyan_avenue_generate(&z, NULL, 0, 1, &m, &e));
+             banyan_avenue_generate(&z, NULL, 0, 1, &m, NULL, &e));
     RUN_MESH("avenue", "banyan_avenue_generate", "negative", "threads = -1", BANYAN_E_RANGE, "threads",
-             banyan_avenue_generate(&ap, NULL, 0, -1, &m, &e));
+             banyan_avenue_generate(&ap, NULL, 0, -1, &m, NULL, &e));
     RUN_MESH("avenue", "banyan_avenue_generate", "above cap", "threads = 257", BANYAN_E_RANGE, "threads",
-             banyan_avenue_generate(&ap, NULL, 0, 257, &m, &e));
+             banyan_avenue_generate(&ap, NULL, 0, 257, &m, NULL, &e));
     banyan_avenue_params cross = ap;
     cross.tree.sides_min = 20, cross.tree.sides_max = 10;
     RUN_MESH("avenue", "banyan_avenue_generate", "inconsistent", "tree.sides_min 20 > tree.sides_max 10",
-             BANYAN_E_RANGE, "sides_min", banyan_avenue_generate(&cross, NULL, 0, 1, &m, &e));
+             BANYAN_E_RANGE, "sides_min", banyan_avenue_generate(&cross, NULL, 0, 1, &m, NULL, &e));
 
     /* Cross-field rules. */
     banyan_roots_params rp;

@@ -261,7 +261,7 @@ static void *grow_job(void *arg) {
     job *j = arg;
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    if (banyan_ivy_generate_hosts(&j->p, j->H, &m, &err) == BANYAN_OK) j->hash = banyan_mesh_hash(m);
+    if (banyan_ivy_generate_hosts(&j->p, j->H, &m, NULL, &err) == BANYAN_OK) j->hash = banyan_mesh_hash(m);
     banyan_mesh_free(m);
     return NULL;
 }
@@ -292,10 +292,10 @@ static void sphere_scene(void) {
         banyan_mesh *a = NULL, *b = NULL, *c = NULL;
         banyan_error err = {0, ""};
         p.steps = 120;
-        CHECK(banyan_ivy_generate_hosts(&p, H, &a, &err) == BANYAN_OK, "%s", err.message);
-        CHECK(banyan_ivy_generate_hosts(&p, H, &b, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(banyan_ivy_generate_hosts(&p, H, &a, NULL, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(banyan_ivy_generate_hosts(&p, H, &b, NULL, &err) == BANYAN_OK, "%s", err.message);
         p.seed = 2;
-        CHECK(banyan_ivy_generate_hosts(&p, H, &c, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(banyan_ivy_generate_hosts(&p, H, &c, NULL, &err) == BANYAN_OK, "%s", err.message);
         CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "sphere: same seed, different bytes");
         CHECK(a && c && banyan_mesh_hash(a) != banyan_mesh_hash(c), "sphere: another seed, the same bytes");
         /* Two threads on the one set (it is read-only): the serial bytes. */
@@ -482,14 +482,14 @@ static void boxes_as_before(const char *preset, int32_t steps) {
     banyan_mesh *a = NULL, *b = NULL, *c = NULL;
     CHECK(banyan_ivy_generate(&p, boxes, nb, &a, &err) == BANYAN_OK, "%s: %s", preset, err.message);
     banyan_hosts *H = make_set(boxes, nb, NULL, 0);
-    if (H) CHECK(banyan_ivy_generate_hosts(&p, H, &b, &err) == BANYAN_OK, "%s: %s", preset, err.message);
+    if (H) CHECK(banyan_ivy_generate_hosts(&p, H, &b, NULL, &err) == BANYAN_OK, "%s: %s", preset, err.message);
     CHECK(same_bytes(a, b), "%s: boxes through the host set give other bytes", preset);
     /* A mesh far from the plant changes nothing either. */
     tm_mesh far = {0};
     tm_uv_sphere(&far, 0, 0, 0, 0.5, 16, 8);
     banyan_host_mesh hm = tm_host(&far, 40.0, 40.0, 5.0, BANYAN_HOST_CLOSED_AUTO);
     banyan_hosts *H2 = make_set(boxes, nb, &hm, 1);
-    if (H2) CHECK(banyan_ivy_generate_hosts(&p, H2, &c, &err) == BANYAN_OK, "%s: %s", preset, err.message);
+    if (H2) CHECK(banyan_ivy_generate_hosts(&p, H2, &c, NULL, &err) == BANYAN_OK, "%s: %s", preset, err.message);
     CHECK(same_bytes(a, c), "%s: a far mesh host changed the bytes", preset);
     printf("  %s (%d steps): box entry and host set %s\n", preset, steps, same_bytes(a, b) && same_bytes(a, c) ? "equal" : "DIFFER");
     banyan_mesh_free(a);
@@ -544,7 +544,7 @@ static void bad_input(void) {
               strstr(err.message, "hosts"),
           "NULL host set: %s", err.message);
     banyan_mesh *m = (banyan_mesh *)&p;
-    CHECK(banyan_ivy_generate_hosts(&p, NULL, &m, &err) == BANYAN_E_INVALID_ARG && m == NULL, "NULL host set: %s",
+    CHECK(banyan_ivy_generate_hosts(&p, NULL, &m, NULL, &err) == BANYAN_E_INVALID_ARG && m == NULL, "NULL host set: %s",
           err.message);
     /* A start far from every mesh. */
     tm_mesh sm = {0};

@@ -267,8 +267,8 @@ static void avenue(const char *outdir) {
     a.count = 3;
     a.tree.levels = 15;
     banyan_mesh *m1 = NULL, *m2 = NULL;
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, &err) == BANYAN_OK, "avenue: %s", err.message);
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 2, &m2, &err) == BANYAN_OK, "avenue 2 threads: %s", err.message);
+    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    CHECK(banyan_avenue_generate(&a, NULL, 0, 2, &m2, NULL, &err) == BANYAN_OK, "avenue 2 threads: %s", err.message);
     CHECK(same_mesh(m1, m2), "avenue differs between 1 and 2 threads");
     const float *ord = m1 ? banyan_mesh_attribute(m1, "order") : NULL;
     uint32_t zero = 0;
@@ -279,7 +279,7 @@ static void avenue(const char *outdir) {
     banyan_mesh_free(m2);
     a.tree.segment_levels = a.tree.levels;
     m1 = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, &err) == BANYAN_E_RANGE && !m1 && strstr(err.message, "segment_levels"),
+    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, NULL, &err) == BANYAN_E_RANGE && !m1 && strstr(err.message, "segment_levels"),
           "avenue segment_levels = levels: '%s'", err.message);
 }
 

@@ -116,7 +116,7 @@ static banyan_status gen_roots_mesh(const void *ctx, banyan_mesh **out, banyan_e
     banyan_roots_params p;
     banyan_roots_params_init(&p);
     p.growth_points = 12;
-    s = banyan_roots_generate_hosts(&p, H, out, NULL, e);
+    s = banyan_roots_generate_hosts(&p, H, out, NULL, NULL, e);
     banyan_hosts_free(H);
     return s;
 }
@@ -128,7 +128,7 @@ static banyan_status gen_ivy_mesh(const void *ctx, banyan_mesh **out, banyan_err
     banyan_ivy_params_init(&p);
     p.steps = 60;
     p.start[0] = 0, p.start[1] = -0.6, p.start[2] = 0.1;
-    s = banyan_ivy_generate_hosts(&p, H, out, e);
+    s = banyan_ivy_generate_hosts(&p, H, out, NULL, e);
     banyan_hosts_free(H);
     return s;
 }
@@ -143,7 +143,7 @@ static banyan_status gen_avenue(const void *ctx, banyan_mesh **out, banyan_error
     banyan_avenue_params p;
     banyan_avenue_params_init(&p);
     p.placement = BANYAN_AVENUE_COUNT, p.count = 2;
-    return banyan_avenue_generate(&p, NULL, 0, 1, out, e); /* one thread: the counters are not atomic */
+    return banyan_avenue_generate(&p, NULL, 0, 1, out, NULL, e); /* one thread: the counters are not atomic */
 }
 static banyan_status gen_ivy(const void *ctx, banyan_mesh **out, banyan_error *e) {
     banyan_ivy_params p;
@@ -221,13 +221,13 @@ int main(void) {
     ap.placement = BANYAN_AVENUE_COUNT, ap.count = 5000, ap.max_vertices = 1000;
     reset();
     m = NULL;
-    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
+    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1000", s, m, &e);
     CHECK(strstr(e.message, "counted before stopping") != NULL, "the avenue stopped counting early: %s", e.message);
     ap.max_vertices = 1000000;
     reset();
     m = NULL;
-    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, &e);
+    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1e6", s, m, &e);
 
     /* Ivy: 100,000 steps with a small cap stops growing early. */

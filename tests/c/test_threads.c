@@ -69,7 +69,7 @@ static uint64_t run_avenue(int v) {
     p.tree.levels = 9;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_avenue_generate(&p, NULL, 0, 1 + v, &m, &e), &m, &e, "avenue");
+    return finish(banyan_avenue_generate(&p, NULL, 0, 1 + v, &m, NULL, &e), &m, &e, "avenue");
 }
 
 static uint64_t run_ivy(int v) {
@@ -93,7 +93,7 @@ static uint64_t run_roots_mesh(int v) {
     p.growth_points = 14;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_roots_generate_hosts(&p, shared_hosts, &m, NULL, &e), &m, &e, "roots on meshes");
+    return finish(banyan_roots_generate_hosts(&p, shared_hosts, &m, NULL, NULL, &e), &m, &e, "roots on meshes");
 }
 
 static uint64_t run_ivy_mesh(int v) {
@@ -104,7 +104,7 @@ static uint64_t run_ivy_mesh(int v) {
     p.start[0] = 0, p.start[1] = -0.45, p.start[2] = 0.1;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_ivy_generate_hosts(&p, shared_hosts, &m, &e), &m, &e, "ivy on meshes");
+    return finish(banyan_ivy_generate_hosts(&p, shared_hosts, &m, NULL, &e), &m, &e, "ivy on meshes");
 }
 
 static uint64_t run_segments(int v) {

@@ -89,5 +89,32 @@ printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "scale": 0 } ] }
 expect 1 "hosts[0].scale[0] = 0 must be within" -- "$bin" roots --preset "$bad/scale.json"
 printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "half": [1, 1, 1] } ] }\n' > "$bad/half.json"
 expect 1 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots --preset "$bad/half.json"
+# Ivy's start (issue 16): on the wall's bottom face it moves to a side a
+# stem can grow from; boxed in a closed 2 cm cavity it cannot grow, the
+# output is still written and the exit code is 3 with a warning naming why.
+expect 0 '"cannot_grow": 0' -- "$bin" ivy --preset "$src/presets/ivy_wall.json" --set start=0,0.1,0 --set steps=60 --stats
+cave="$out/cli_ivy_boxed_in.json"
+cat > "$cave" <<'JSON'
+{ "generator": "ivy", "params": { "start": [0, 0, 1], "steps": 40 }, "hosts": [
+  { "center": [0, 0, 0.985], "half": [0.05, 0.05, 0.005] }, { "center": [0, 0, 1.015], "half": [0.05, 0.05, 0.005] },
+  { "center": [-0.015, 0, 1], "half": [0.005, 0.05, 0.05] }, { "center": [0.015, 0, 1], "half": [0.005, 0.05, 0.05] },
+  { "center": [0, -0.015, 1], "half": [0.05, 0.005, 0.05] }, { "center": [0, 0.015, 1], "half": [0.05, 0.005, 0.05] } ] }
+JSON
+rm -f "$out/cli_ivy_boxed_in.glb"
+expect 3 "banyan ivy: warning: the ivy could not grow: every direction from its start is blocked" -- \
+  "$bin" ivy --preset "$cave" -o "$out/cli_ivy_boxed_in.glb"
+if [ -s "$out/cli_ivy_boxed_in.glb" ]; then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: boxed-in ivy not written"; fi
+expect 3 '"cannot_grow": 1' -- "$bin" ivy --preset "$cave" --stats
+# The progress line: only when stderr is a terminal (script gives one).
+msg=$("$bin" ivy --set steps=30 -o "$out/cli_ivy_quiet.glb" 2>&1 >/dev/null)
+if [ -z "$msg" ]; then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: progress on a non-terminal: $msg"; fi
+if command -v script >/dev/null; then
+  for g in "ivy --set steps=30" "avenue --set count=4"; do
+    msg=$(script -qec "'$bin' $g -o '$out/cli_tty.glb'" /dev/null 2>&1)
+    g=${g%% *}
+    if printf '%s' "$msg" | grep -q "$g *100 %"; then pass=$((pass+1))
+    else fail=$((fail+1)); echo "FAIL: no progress line for $g on a terminal: $msg"; fi
+  done
+fi
 echo "cli: $pass passed, $fail failed"
 [ $fail = 0 ]

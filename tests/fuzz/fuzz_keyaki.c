@@ -56,12 +56,12 @@ static void avenue(const uint8_t *data, size_t size) {
     int threads = in.n_control ? in.control[0] % 5 : 2; /* 0 = all cores */
     banyan_mesh *m = (banyan_mesh *)&p;
     memset(&e, 0, sizeof e);
-    s = banyan_avenue_generate(&p, NULL, 0, threads, &m, &e);
+    s = banyan_avenue_generate(&p, NULL, 0, threads, &m, NULL, &e);
     /* The output does not depend on the thread count (banyan/keyaki.h). */
     uint64_t h = s == BANYAN_OK ? banyan_mesh_hash(m) : 0;
     fz_check(s, &e, m, (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0));
     banyan_mesh *one = NULL;
-    banyan_status s1 = banyan_avenue_generate(&p, NULL, 0, 1, &one, &e);
+    banyan_status s1 = banyan_avenue_generate(&p, NULL, 0, 1, &one, NULL, &e);
     FZ_ASSERT(s1 == s, "%d threads: %s, 1 thread: %s", threads, banyan_status_name(s), banyan_status_name(s1));
     if (s1 == BANYAN_OK)
         FZ_ASSERT(banyan_mesh_hash(one) == h, "%d threads and 1 thread give different meshes", threads);

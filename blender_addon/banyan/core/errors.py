@@ -35,3 +35,14 @@ class PresetNotFound(BanyanError, FileNotFoundError):
 
     def __init__(self, message):
         BanyanError.__init__(self, 9, message, "BANYAN_E_IO")
+
+
+class Cancelled(BanyanError):
+    """A generation stopped because its progress callback asked it to
+    (BANYAN_E_CANCELLED): nothing was made. When the callback itself
+    raised, that exception is raised instead (generators.py)."""
+
+    STATUS = 15
+
+    def __init__(self, message="cancelled by the progress callback"):
+        super().__init__(self.STATUS, message, "BANYAN_E_CANCELLED")

@@ -8,7 +8,7 @@ import ctypes as C
 from . import args as A
 from . import lib as L
 from . import structs as S
-from .errors import BanyanError, GeneratorMissing
+from .errors import BanyanError, Cancelled, GeneratorMissing
 from .hostset import HostSet
 from .mesh import MeshData, call_generate
 from .params import Params
@@ -44,6 +44,53 @@ def _check_size(name, cls, gen):
                           % (name, f(), C.sizeof(cls)), "LOAD")
 
 
+class _Progress:
+    """A Python progress(done: float) -> bool (True cancels) as a
+    banyan_progress for one call. The ctypes callback object lives as long
+    as this wrapper, i.e. the whole call. An exception raised by the
+    callback cancels the generation and is raised again once the library
+    has returned (never swallowed, never left to ctypes, which would only
+    print it)."""
+
+    def __init__(self, progress):
+        if progress is not None and not callable(progress):
+            raise TypeError("progress must be callable as progress(done) -> bool, not %s"
+                            % type(progress).__name__)
+        self.user = progress
+        self.error = None
+        self.cfn = S.PROGRESS_FN(self._call) if progress is not None else None
+        self.struct = S.Progress(self.cfn, None) if progress is not None else None
+
+    def _call(self, _user, done):
+        if self.error is not None:
+            return 1
+        try:
+            return 1 if self.user(done) else 0
+        except BaseException as e:  # KeyboardInterrupt too: the C call must unwind first
+            self.error = e
+            return 1
+
+    @property
+    def arg(self):
+        return C.byref(self.struct) if self.struct is not None else None
+
+    def run(self, call):
+        """call(progress_arg); the callback's own exception wins over the
+        library's Cancelled."""
+        try:
+            result = call(self.arg)
+        except Cancelled:
+            if self.error is not None:
+                raise self.error
+            raise
+        if self.error is not None:  # not expected: a raising callback always cancels
+            raise self.error
+        return result
+
+
+_progress_arg = P(S.Progress)
+
+
 def _boxes(hosts):
     hosts = list(hosts or [])
     arr = (S.Box * max(1, len(hosts)))()
@@ -60,15 +107,22 @@ def _as_params(gen, params):
     return params
 
 
-def roots(params=None, hosts=()):
+def roots(params=None, hosts=(), progress=None):
     """Strangler-fig roots around hosts: a list of structs.Box
     (banyan_roots_generate) or a hostset.HostSet (banyan_roots_generate_hosts,
-    the real surface of its meshes)."""
+    the real surface of its meshes). progress: None or progress(done) ->
+    bool, done 0..1, True cancels (raises errors.Cancelled); boxes then
+    go through a host set of them (the same bytes)."""
     params = _as_params("roots", params)
+    pr = _Progress(progress)
+    if progress is not None and not isinstance(hosts, HostSet):
+        with HostSet(boxes=list(hosts or [])) as hs:
+            return roots(params, hs, progress)
     if isinstance(hosts, HostSet):
-        f = _fn("banyan_roots_generate_hosts", C.c_int, [C.c_void_p, C.c_void_p, _mesh_out, C.c_void_p, _err],
-                "roots")
-        return hosts.named(lambda: call_generate(lambda out, err: f(params.ptr, hosts._live(), out, None, err)))
+        f = _fn("banyan_roots_generate_hosts", C.c_int,
+                [C.c_void_p, C.c_void_p, _mesh_out, C.c_void_p, _progress_arg, _err], "roots")
+        return hosts.named(lambda: pr.run(lambda arg: call_generate(
+            lambda out, err: f(params.ptr, hosts._live(), out, None, arg, err))))
     f = _fn("banyan_roots_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "roots")
     arr, n = _boxes(hosts)
     return call_generate(f, params.ptr, arr, n)
@@ -80,17 +134,18 @@ def keyaki(params=None):
     return call_generate(f, params.ptr)
 
 
-def avenue(params=None, path=None, threads=0):
+def avenue(params=None, path=None, threads=0, progress=None):
     """path: None (the params' start-end line) or a list of (x, y, z)
-    (the library wants 2 or more, finite, consecutive ones distinct)."""
+    (the library wants 2 or more, finite, consecutive ones distinct).
+    progress: None or progress(done) -> bool, done 0..1, True cancels
+    (raises errors.Cancelled); called on the calling thread."""
     params = _as_params("avenue", params)
+    pr = _Progress(progress)
     f = _fn("banyan_avenue_generate", C.c_int,
-            [C.c_void_p, P(C.c_double), C.c_uint32, C.c_int32, _mesh_out, _err], "avenue")
+            [C.c_void_p, P(C.c_double), C.c_uint32, C.c_int32, _mesh_out, _progress_arg, _err], "avenue")
     threads = A.int32("threads", threads)
-    if path is not None:
-        pts, n = A.points("path", path)
-        return call_generate(f, params.ptr, pts, n, threads)
-    return call_generate(f, params.ptr, None, 0, threads)
+    pts, n = A.points("path", path) if path is not None else (None, 0)
+    return pr.run(lambda arg: call_generate(lambda out, err: f(params.ptr, pts, n, threads, out, arg, err)))
 
 
 def avenue_tree_count(params, path=None):
@@ -103,15 +158,38 @@ def avenue_tree_count(params, path=None):
     return n.value
 
 
-def ivy(params=None, hosts=()):
-    """Ivy over hosts: a list of structs.Box or a hostset.HostSet."""
+def ivy_stats_dict(st):
+    """banyan_ivy_stats as a dict; "warning" is the library's sentence
+    when the plant could not grow (cannot_grow != 0), else ""."""
+    d = {k: getattr(st, k) for k, _ in S.IvyStats._fields_ if k != "by_state"}
+    d["by_state"] = dict(zip(("A0", "A1", "A2", "D", "Z"), st.by_state))
+    d["warning"] = ""
+    if st.cannot_grow:
+        text = _fn("banyan_ivy_growth_text", C.c_char_p, [C.c_int32], "ivy")(st.cannot_grow).decode()
+        d["warning"] = "%s (%d buds after %d steps)" % (text, st.buds, st.steps)
+    return d
+
+
+def ivy(params=None, hosts=(), progress=None):
+    """Ivy over hosts: a list of structs.Box (grown on a host set of them,
+    the same bytes as banyan_ivy_generate) or a hostset.HostSet. Returns
+    MeshData with .stats, the plant's measures (ivy_stats_dict): when
+    stats["cannot_grow"] is not 0 the plant could not grow and
+    stats["warning"] says why. progress: None or progress(done) -> bool,
+    done 0..1, True cancels (raises errors.Cancelled)."""
     params = _as_params("ivy", params)
-    if isinstance(hosts, HostSet):
-        f = _fn("banyan_ivy_generate_hosts", C.c_int, [C.c_void_p, C.c_void_p, _mesh_out, _err], "ivy")
-        return hosts.named(lambda: call_generate(f, params.ptr, hosts._live()))
-    f = _fn("banyan_ivy_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "ivy")
-    arr, n = _boxes(hosts)
-    return call_generate(f, params.ptr, arr, n)
+    pr = _Progress(progress)
+    if not isinstance(hosts, HostSet):
+        with HostSet(boxes=list(hosts or [])) as hs:
+            return ivy(params, hs, progress)
+    _check_size("ivy_stats", S.IvyStats, "ivy")
+    f = _fn("banyan_ivy_generate_hosts_stats", C.c_int,
+            [C.c_void_p, C.c_void_p, _mesh_out, P(S.IvyStats), _progress_arg, _err], "ivy")
+    st = S.IvyStats()
+    d = hosts.named(lambda: pr.run(lambda arg: call_generate(
+        lambda out, err: f(params.ptr, hosts._live(), out, C.byref(st), arg, err))))
+    d.stats = ivy_stats_dict(st)
+    return d
 
 
 class IvyPlant(L.Handle):

@@ -15,7 +15,7 @@ import sys
 import threading
 
 from . import structs as S
-from .errors import BanyanError, LoadError
+from .errors import BanyanError, Cancelled, LoadError
 
 _lock = threading.Lock()
 _lib = None
@@ -172,6 +172,8 @@ def raise_for(status, err):
     """Turns a non-zero status + filled banyan_error into BanyanError."""
     if status:
         msg = err.text() if err.code else ""
+        if status == Cancelled.STATUS:
+            raise Cancelled(msg or status_name(status))
         raise BanyanError(status, msg or status_name(status), status_name(status))
 
 

@@ -42,6 +42,7 @@ class MeshData:
         self.materials = []
         self.parts = []
         self.skel_points = self.skel_radius = self.skel_tag = self.skel_edges = None
+        self.stats = None  # a generator's measures, when it reports them (ivy: generators.ivy_stats_dict)
 
     @property
     def triangle_count(self):

@@ -104,6 +104,31 @@ class HostHit(C.Structure):
                 ("point", C.c_double * 3), ("normal", C.c_double * 3)]
 
 
+# banyan_progress: done 0..1 -> nonzero cancels (banyan.h).
+PROGRESS_FN = C.CFUNCTYPE(C.c_int32, C.c_void_p, C.c_double)
+
+
+class Progress(C.Structure):
+    _fields_ = [("fn", PROGRESS_FN), ("user", C.c_void_p)]
+
+
+# banyan_status
+E_CANCELLED = 15
+
+
+# banyan_ivy_growth (banyan_ivy_stats.cannot_grow)
+IVY_GREW, IVY_BLOCKED, IVY_STUNTED = 0, 1, 2
+
+
+class IvyStats(C.Structure):
+    """banyan_ivy_stats; checked against banyan_sizeof_ivy_stats when ivy
+    is first used (generators.py), as the ivy generator may be absent."""
+    _fields_ = [("steps", C.c_int32), ("buds", C.c_int32), ("by_state", C.c_int32 * 5), ("attached", C.c_int32),
+                ("branch_points", C.c_int32), ("crossings", C.c_int32), ("cannot_grow", C.c_int32),
+                ("attached_fraction", C.c_double), ("covered_area", C.c_double), ("density", C.c_double),
+                ("stem_length", C.c_double), ("step_seconds", C.c_double)]
+
+
 class HostInfo(C.Structure):
     _fields_ = [("kind", C.c_int32), ("closed", C.c_int32), ("triangle_count", C.c_uint32),
                 ("dropped_triangles", C.c_uint32), ("boundary_edges", C.c_uint32), ("shells", C.c_uint32),

@@ -96,6 +96,21 @@ typedef struct banyan_ivy_params {
     double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
 } banyan_ivy_params;
 
+/* Fewest internodes a plant must have after its steps (or after every
+ * step, when it has fewer than this many) to count as grown. */
+#define BANYAN_IVY_MIN_INTERNODES 5
+
+/* Why a plant could not grow (banyan_ivy_stats.cannot_grow). */
+typedef enum banyan_ivy_growth {
+    BANYAN_IVY_GREW = 0,    /* at least min(steps, BANYAN_IVY_MIN_INTERNODES) internodes */
+    BANYAN_IVY_BLOCKED = 1, /* the first bud never grew: every direction from the start is blocked */
+    BANYAN_IVY_STUNTED = 2  /* it grew, but fewer internodes than that: boxed in right away */
+} banyan_ivy_growth;
+
+/* One English sentence for a banyan_ivy_growth value (what the CLI and
+ * the add-on print); never NULL. */
+BANYAN_API const char *banyan_ivy_growth_text(int32_t cannot_grow);
+
 /* What banyan_ivy_get_stats reports. Crossings and covered area are seen
  * along the normal of each bud's nearest host face, the ground included
  * (docs/ivy.md). */
@@ -106,7 +121,7 @@ typedef struct banyan_ivy_stats {
     int32_t attached;           /* buds with F set (within sucker reach, with a sucker) */
     int32_t branch_points;      /* buds with a lateral branch (p3 firings) */
     int32_t crossings;          /* stem crossings seen along the host normal */
-    int32_t reserved0;
+    int32_t cannot_grow;        /* banyan_ivy_growth: 0 when the plant grew, else why it could not */
     double attached_fraction;   /* attached / buds */
     double covered_area;        /* m^2: occupied stats_cell cells on host faces */
     double density;             /* (branch_points + crossings) / covered_area, per m^2 */
@@ -122,8 +137,8 @@ BANYAN_API void banyan_ivy_params_init(banyan_ivy_params *params);
 BANYAN_API size_t banyan_sizeof_ivy_params(void);
 BANYAN_API size_t banyan_sizeof_ivy_stats(void);
 
-/* Checks params and hosts, snaps the start to the nearest host surface and
- * plants the first bud. Errors: BANYAN_E_RANGE (a field, or t2 < t1),
+/* Checks params and hosts, places the start on a host side where a stem
+ * can grow (docs/ivy.md, "Hosts and start") and plants the first bud. Errors: BANYAN_E_RANGE (a field, or t2 < t1),
  * BANYAN_E_NO_HOSTS, BANYAN_E_BAD_HOST, BANYAN_E_START_FAR (start farther
  * than start_snap_max from every host). On failure *out == NULL. The
  * params and hosts are copied. */
@@ -159,7 +174,13 @@ BANYAN_API banyan_status banyan_ivy_generate(const banyan_ivy_params *params, co
 BANYAN_API banyan_status banyan_ivy_create_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
                                                  banyan_ivy **out, banyan_error *err);
 BANYAN_API banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
-                                                   banyan_mesh **out, banyan_error *err);
+                                                   banyan_mesh **out, const banyan_progress *progress,
+                                                   banyan_error *err);
+/* The same, also filling *stats (when not NULL; zeroed on failure) with
+ * the plant's measures after its steps, cannot_grow included. */
+BANYAN_API banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                                         banyan_mesh **out, banyan_ivy_stats *stats,
+                                                         const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus
 }

@@ -227,7 +227,7 @@ BANYAN_API banyan_status banyan_avenue_layout(const banyan_avenue_params *p, con
  * tree_id = i. The skeletons are merged the same way. */
 BANYAN_API banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz,
                                                 uint32_t path_point_count, int32_t threads, banyan_mesh **out,
-                                                banyan_error *err);
+                                                const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus
 }

@@ -113,7 +113,7 @@ BANYAN_API banyan_status banyan_roots_generate_stats(const banyan_roots_params *
  * may be NULL. */
 BANYAN_API banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
                                                      banyan_mesh **out, banyan_roots_stats *stats,
-                                                     banyan_error *err);
+                                                     const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus
 }
