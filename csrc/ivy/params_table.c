@@ -50,7 +50,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, internode_mass, "Mass per leaf", "Hanging stems", "kg", 0, 1000, "mass of one internode with its leaf"),
     BP_DOUBLE(S, moment_max, "Joint strength", "Hanging stems", "N m", 0, 1e6, "moment a joint holds before an unattached stem sags"),
     BP_DOUBLE(S, sag_step, "Sag step", "Hanging stems", "deg", 0.5, 90, "rotation increment of the sag correction"),
-    BP_VEC3(S, start, "Start point", "Start and ground", "m", -1e6, 1e6, "growth start; snapped to the nearest host surface"),
+    BP_VEC3(S, start, "Start point", "Start and ground", "m", -1e6, 1e6, "growth start; placed on the nearest host side a stem can grow from (not facing down, above the ground)"),
     BP_DOUBLE(S, start_snap_max, "Start snap distance", "Start and ground", "m", 0, 1e6, "farthest the start may be from every host (the ground does not count)"),
     BP_ENUM(S, ground, "Ground", "Start and ground", "none|obstacle|host",
             "the plane z = ground_z: absent, an obstacle stems rest on, or a host suckers grip as well"),

@@ -55,7 +55,7 @@ typedef struct banyan_ivy_params {
     int32_t ground;             /* plane z = ground_z: 0 none, 1 obstacle (stems rest on it, suckers do
                                    not grip it), 2 host (ivy climbs it too) */
 
-    double start[3];            /* growth start, m; snapped to the nearest host surface */
+    double start[3];            /* growth start, m; placed on the nearest host side a stem can grow from */
     double start_snap_max;      /* farthest the start may be from every host, m, 0 .. 1e6 (the ground does not count) */
     double ground_z;            /* height of the ground plane, m, -1e6 .. 1e6 */
     double internode;           /* l, internode length, m, 0.001 .. 10 (paper 30 mm) */
