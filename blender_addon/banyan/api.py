@@ -257,16 +257,16 @@ def _box_base(box):
     return _bounds_base([min(p[k] for p in c) for k in range(3)], [max(p[k] for p in c) for k in range(3)])
 
 
-def host_base(hosts, fallback=None):
+def host_base(hosts, fallback=None, index=0):
     """Bottom centre of the first host's world bounds: an object, a
-    structs.Box or host 0 of a HostSet; `fallback` when there is none."""
+    structs.Box or host `index` of a HostSet; `fallback` when there is none."""
     h = hosts[0] if isinstance(hosts, (list, tuple)) and hosts else hosts
     if isinstance(h, bpy.types.Object):
         return object_base(h)
     if isinstance(h, Box):
         return _box_base(h)
-    if isinstance(h, HostSet) and h.handle and h.count:
-        i = h.info(0)
+    if isinstance(h, HostSet) and h.handle and h.count > index:
+        i = h.info(index)
         return _bounds_base(i["lo"], i["hi"])
     return tuple(fallback) if fallback is not None else None
 
@@ -387,7 +387,11 @@ def host_arg(gen, hosts, host_shape, preset, stack):
             boxes = _preset_boxes(gen, preset)
         return boxes, (lambda call: H.generate_named(call, boxes)), host_base(hosts or boxes)
     hs = stack.enter_context(H.surface_host_set(hosts))
-    return hs, hs.named, host_base(hosts)
+    # The library's bounds of the first host (exact, where the box of an
+    # object's bound_box would be loose when it is rotated); boxes are
+    # numbered first in the set.
+    first = 0 if isinstance(hosts[0], Box) else sum(isinstance(h, Box) for h in hosts)
+    return hs, hs.named, host_base(hs, index=first)
 
 
 def grow_on_hosts(gen, hosts, host_shape, preset, grow):

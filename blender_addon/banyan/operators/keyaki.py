@@ -16,14 +16,13 @@ AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
 
 class TreeMixin(BanyanOperatorMixin):
     def prepare(self, context, params):
-        if self.at_cursor:
-            cursor_location(context)  # a NaN cursor is named as such
-            self._matrix = place_matrix(context, self)
-            # Recorded (save preset, the plant's parameters) as where it stands.
-            params.set("position", tuple(self._matrix.to_translation()))
-        else:
-            self._matrix = None
+        self._matrix = None
         with at_cursor_note(self.at_cursor, "position", "the tree stands at the 3D cursor"):
+            if self.at_cursor:
+                cursor_location(context)  # a NaN cursor is named as such
+                self._matrix = place_matrix(context, self)
+                # Recorded (save preset, the plant's parameters) as where it stands.
+                params.set("position", tuple(self._matrix.to_translation()))
             return api.keyaki_tree_job(params=params, collection=context.collection, uv=self.uv_map)
 
     def place(self, context, objs):
