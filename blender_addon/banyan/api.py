@@ -654,7 +654,7 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
 
         def compute(prog):
             d = named(lambda: call_with_progress(G.ivy, p, arg, progress=prog))
-            job.info["grew"] = ivy_grew(d)
+            job.info["grew"] = ivy_grew(d, p.get("steps"))
             return d
 
         def build(d, created):
@@ -670,19 +670,23 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
     return job
 
 
-def ivy_grew(d):
-    """False when the ivy could not grow: the library's stats flag when
-    the binding gives one (part LIB), else a plant of a single bud (the
-    seed and nothing after it)."""
-    flag = getattr(d, "grew", None)
-    if flag is None:
-        stats = getattr(d, "stats", None)
-        flag = None if stats is None else (stats.get("grew") if isinstance(stats, dict) else getattr(stats, "grew",
-                                                                                                      None))
-    if flag is not None:
-        return bool(flag)
-    buds = len(d.skel_points) // 3 if d.skel_points is not None else None
-    return buds is None or buds > 1
+IVY_MIN_INTERNODES = 5  # BANYAN_IVY_MIN_INTERNODES (banyan/ivy.h)
+
+
+def ivy_grew(d, steps):
+    """False when the ivy could not grow: the library's cannot_grow
+    (banyan_ivy_stats) when the binding hands it over with the mesh,
+    else its rule on the skeleton: fewer than min(steps, 5) internodes."""
+    for holder in (d, getattr(d, "stats", None)):
+        if isinstance(holder, dict):
+            flag = holder.get("cannot_grow")
+        else:
+            flag = getattr(holder, "cannot_grow", None)
+        if flag is not None:
+            return not flag
+    if d.skel_edges is None:
+        return True
+    return len(d.skel_edges) // 2 >= min(int(steps), IVY_MIN_INTERNODES)
 
 
 # --------------------------------------------------------------- segments

@@ -475,6 +475,12 @@ def place_matrix(context, op):
     sd = getattr(context, "space_data", None)
     if op.align == 'VIEW' and (sd is None or sd.type != 'VIEW_3D'):
         op.align = 'WORLD'
+    props = op.properties
+    if props.is_property_set("align") and not props.is_property_set("rotation"):
+        # An Align given without a Rotation is kept (add_object_align_init
+        # would take the preferences' instead, as for a first run); the
+        # rotation is then computed from it.
+        op.rotation = (0.0, 0.0, 0.0)
     try:
         return add_object_align_init(context, op)
     except AttributeError:  # the preferences' align is View, and there is no view
