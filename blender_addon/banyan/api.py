@@ -684,9 +684,10 @@ def ivy_grew(d, steps):
             flag = getattr(holder, "cannot_grow", None)
         if flag is not None:
             return not flag
-    if d.skel_edges is None:
-        return True
-    return len(d.skel_edges) // 2 >= min(int(steps), IVY_MIN_INTERNODES)
+    if d.skel_edges is None and getattr(d, "skel_points", None) is None:
+        return True  # no skeleton at all: nothing to judge by
+    internodes = len(d.skel_edges) // 2 if d.skel_edges is not None else 0  # no edges: a lone bud
+    return internodes >= min(int(steps), IVY_MIN_INTERNODES)
 
 
 # --------------------------------------------------------------- segments

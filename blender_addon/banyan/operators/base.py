@@ -206,7 +206,9 @@ class BanyanOperatorMixin:
 
     def _modal_end(self, context):
         wm = context.window_manager
-        wm.event_timer_remove(self._timer)
+        if self._timer is not None:
+            wm.event_timer_remove(self._timer)
+            self._timer = None
         wm.progress_end()
         _status(context, None)
         r = self._runner
@@ -222,8 +224,12 @@ class BanyanOperatorMixin:
             r.cancel()
             r.wait()
             r.job.close()
-            context.window_manager.event_timer_remove(self._timer)
+            if self._timer is not None:
+                context.window_manager.event_timer_remove(self._timer)
+                self._timer = None
             context.window_manager.progress_end()
+            _status(context, None)
+            restore_mode(context, getattr(self, "_mode", None))
 
     def draw(self, context):
         layout = self.layout
@@ -336,7 +342,8 @@ def _sync_progress(wm):
 def _status(context, text):
     ws = getattr(context, "workspace", None)
     if ws is not None:
-        ws.status_text_set(text)
+        with contextlib.suppress(RuntimeError, AttributeError):
+            ws.status_text_set(text)
 
 
 def leave_edit_mode(context):
