@@ -573,18 +573,21 @@ def _avenue_progress(progress):
         return progress, None
 
 
-def keyaki_avenue(*, progress=None, **kw):
+def keyaki_avenue(*, progress=None, generate_progress=None, **kw):
     """An avenue along `path`: a curve object, a list of points, or None
     (the params' start-end line). merged=False: one object per tree in a
     new collection (origins at each tree's foot); True: one object, its
     origin at the path's start (origin=None: world coordinates).
     progress: progress(done) -> True cancels (the library's run), or
-    progress(done, total), called as the objects are built."""
+    progress(done, total), called as the objects are built.
+    generate_progress(done) -> True cancels: the library's run, whatever
+    progress is."""
     if progress is not None and not callable(progress):
         raise TypeError("progress must be callable as progress(done) or progress(done, total), not %s"
                         % type(progress).__name__)
+    _check_progress(generate_progress)
     gen_progress, build_progress = _avenue_progress(progress)
-    return keyaki_avenue_job(build_progress=build_progress, **kw).run(gen_progress)
+    return keyaki_avenue_job(build_progress=build_progress, **kw).run(generate_progress or gen_progress)
 
 
 def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, collection=None,
@@ -624,7 +627,7 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
 
 
 # -------------------------------------------------------------------- ivy
-def ivy(hosts=(), *, progress=None, **kw):
+def ivy(hosts=(), *, progress=None, stats=None, **kw):
     """Ivy over hosts (objects, core.structs.Box, or a HostSet; host_shape
     as strangler_roots) from `start` (placed by the library on the
     nearest host side where a stem can grow). animate=True adds a
@@ -632,8 +635,17 @@ def ivy(hosts=(), *, progress=None, **kw):
     [frame_start, frame_end] (default: the scene's). origin as
     strangler_roots ('BASE': the first host's base, or the start).
     ivy_job(...) gives the run as a Job whose info["grew"] says whether
-    the plant grew (see ivy_grew)."""
-    return ivy_job(hosts, **kw).run(progress)
+    the plant grew (see ivy_grew). stats: a dict to fill with the plant's
+    measures (core.generators.ivy_stats_dict, when the binding gives
+    them); stats["warning"] is not empty when the plant could not grow
+    (the objects are made all the same)."""
+    if stats is not None and not isinstance(stats, dict):
+        raise TypeError("stats must be a dict to fill, not %s" % type(stats).__name__)
+    job = ivy_job(hosts, **kw)
+    objs = job.run(progress)
+    if stats is not None:
+        stats.update(getattr(job.data, "stats", None) or {})
+    return objs
 
 
 def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,

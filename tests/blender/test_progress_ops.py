@@ -56,6 +56,7 @@ def test_progress_and_cancel():
             job.compute(rec)
             objs = job.build()
         v = rec.values
+        print("progress %s: %d calls (the library's callback when it has one, else 0 and 1)" % (name, len(v)))
         bt.check(len(objs) >= 1, "%s: built" % name)
         bt.check(v and v[-1] == 1.0, "%s: progress reaches 100 %% (%d calls, last %s)" % (name, len(v),
                                                                                          v[-1] if v else None))
