@@ -374,11 +374,15 @@ def restore_mode(context, state):
 
 
 def record_plant(op, context, objs, params):
-    """plant.record (part PLANT: the generator, parameters, hosts and
-    options kept on the plant) when that module is there."""
+    """plant.record_operator / plant.record (part PLANT: the generator,
+    parameters, hosts and options kept on the plant) when that module is
+    there."""
     try:
         from .. import plant
     except ImportError:
+        return
+    if hasattr(plant, "record_operator"):
+        plant.record_operator(op, context, objs, params)  # never raises
         return
     hosts = []
     if isinstance(op, HostsOperatorMixin):

@@ -38,6 +38,7 @@ class TreeMixin(BanyanOperatorMixin):
 class AvenueMixin(BanyanOperatorMixin):
     def prepare(self, context, params):
         path = None
+        self.built_path = None  # the straight line, for the plant's record (part PLANT)
         act = context.active_object
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':
@@ -47,6 +48,7 @@ class AvenueMixin(BanyanOperatorMixin):
             a = cursor_location(context)
             d = cursor_axis(context, 0)
             path = [a, tuple(a[k] + d[k] * self.line_length for k in range(3))]
+            self.built_path = path
             # Recorded as grown: a preset saved from this run draws this line.
             with at_cursor_note(True, "start", "the line starts at the 3D cursor"):
                 params.set("start", path[0])
