@@ -29,7 +29,21 @@ Errors. Nothing is ever left in the scene when a call raises:
     objects / Box, params not a Params, values not a mapping, collection
     not a bpy Collection, name not a string, progress not callable;
   - ReferenceError (Blender's own) for an object that was deleted;
+  - core.errors.Cancelled (a BanyanError, status 15) when a progress
+    callback returned True;
   - whatever a caller's progress callback raises, unchanged.
+
+Placement. origin='BASE' (the default) puts each object's origin where
+the plant stands, its mesh local to it: a tree at its trunk foot, ivy and
+roots at the bottom centre of the first host's world bounds (or the
+start), a merged avenue at its path's start, each avenue tree at its
+foot; origin=None keeps the library's world coordinates (identity
+matrix); a point puts the origin there.
+
+Jobs. Each call is also a *_job(...) returning a Job: made on the main
+thread (the scene read), compute(progress) on any thread (the library
+only), build() on the main thread; the operators run compute on a worker
+thread with a progress bar and Esc to cancel.
 """
 from collections.abc import Mapping
 import math
