@@ -104,7 +104,7 @@ class FakeIvyOp(ivy_op.IvyMixin):
     """The ivy operator's methods on a plain object (a background Blender
     cannot run a real modal operator: it has no window)."""
     generator = "ivy"
-    banyan_idname = "mesh.banyan_ivy"
+    banyan_idname = bl_idname = "mesh.banyan_ivy"
     extra_props = ("host_shape", "start_at_cursor", "animate")
     placement_props = ()
 

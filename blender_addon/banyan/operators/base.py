@@ -143,8 +143,8 @@ class BanyanOperatorMixin:
         except BaseException as e:
             return self._fail(context, e)
         LAST_PARAMS[self.banyan_idname] = params
+        record_plant(self, context, objs, params)  # first: it reads the selection (hosts, the active curve)
         select_only(context, objs)
-        record_plant(self, context, objs, params)
         warning = self.grew_message(context, job)
         if warning:
             self.report({'WARNING'}, "Banyan: %s" % warning)
