@@ -216,7 +216,10 @@ class BanyanOperatorMixin:
             r.error = api.Cancelled()  # finished before it saw the cancel: dropped all the same
         if r.error is not None:
             return self._fail(context, r.error, r.job)
-        return self._finish(context, self._params, r.job)
+        result = self._finish(context, self._params, r.job)
+        if 'FINISHED' in result:
+            _note_built(self)
+        return result
 
     def cancel(self, context):  # Blender ends the modal (window closed, file loaded)
         r = getattr(self, "_runner", None)
@@ -330,6 +333,19 @@ class Runner:
         if self.thread is not None:
             self.thread.join(timeout)
         return self.finished
+
+
+def _note_built(op):
+    """A run that ended in modal() (not through execute) tells the redo
+    panel's "Update while dragging" (live.py, part PANELS) which values the
+    plant on screen was built from."""
+    try:
+        from .. import live
+    except ImportError:
+        return
+    key = getattr(op, "banyan_idname", None)
+    if hasattr(live, "BUILT") and hasattr(live, "signature") and key:
+        live.BUILT[key] = live.signature(op.properties)
 
 
 def _sync_progress(wm):
