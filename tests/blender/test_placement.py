@@ -169,6 +169,15 @@ def test_twigs_placement():
         bt.check(abs(objs[0].rotation_euler.z - 1.0) < 1e-6, "twigs: Rotation")
 
 
+def test_tube_placement():
+    bt.reset_scene()
+    bpy.context.scene.cursor.location = (2.0, -1.0, 0.5)
+    res, objs = run(bpy.ops.mesh.banyan_tube)
+    if bt.check(res == {'FINISHED'} and len(objs) == 1, "tube: finished"):
+        bt.check(close(objs[0].location, (2.0, -1.0, 0.5)), "tube: its origin at the cursor")
+        bt.check(abs(min(local_co(objs[0])[2::3])) < 1e-3, "tube: its mesh local to its foot")
+
+
 def test_edit_mode():
     """Run in Edit Mode: the host leaves it before the build, the new plant
     is active in Object Mode; a failure puts the host back in Edit Mode."""
@@ -207,6 +216,7 @@ def test_edit_mode():
         bt.check(bt.scene_state() == state, "%s bad value in Edit Mode: nothing added" % gen)
 
 
-for t in (test_tree_at_cursor, test_hosts_origin, test_avenue_origins, test_twigs_placement, test_edit_mode):
+for t in (test_tree_at_cursor, test_hosts_origin, test_avenue_origins, test_twigs_placement, test_tube_placement,
+          test_edit_mode):
     bt.run(t)
 bt.done()
