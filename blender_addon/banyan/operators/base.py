@@ -344,7 +344,7 @@ def _note_built(op):
     except ImportError:
         return
     key = getattr(op, "banyan_idname", None)
-    if hasattr(live, "BUILT") and hasattr(live, "signature") and key:
+    if hasattr(live, "BUILT") and hasattr(live, "signature") and key and getattr(op, "properties", None) is not None:
         live.BUILT[key] = live.signature(op.properties)
 
 
