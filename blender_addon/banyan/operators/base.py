@@ -197,7 +197,7 @@ class BanyanOperatorMixin:
             r.cancel()
         if event.type == 'TIMER':
             shown = (int(100 * r.done), r.cancelled)
-            if shown != self._shown:  # redraw the bar and status line only when they change
+            if shown != getattr(self, "_shown", None):  # redraw the bar and status line only when they change
                 self._shown = shown
                 context.window_manager.progress_update(shown[0])
                 _status(context, "Banyan: growing %s %d %%%s" % (self.generator, shown[0],
