@@ -130,7 +130,7 @@ def redo_panel(op, name, sections=()):
     def shot():
         win = bpy.context.window_manager.windows[0]
         x, y = POPUP_AT
-        shoot(name, (x - 110, y - 40, 420, win.height - (y - 40) - 40))
+        shoot(name, (x - 12, y - 34, 336, 640))
         move(40, 40)  # away: the popup closes
     STEPS.extend([(1.0, run), (2.0, f9), (2.0, shot), (1.0, lambda: None)])
 

@@ -29,9 +29,21 @@ Errors. Nothing is ever left in the scene when a call raises:
     objects / Box, params not a Params, values not a mapping, collection
     not a bpy Collection, name not a string, progress not callable;
   - ReferenceError (Blender's own) for an object that was deleted;
-  - core.errors.Cancelled (a BanyanError) when a library progress
+  - core.errors.Cancelled (a BanyanError, status 15) when a progress
     callback returned True;
   - whatever a caller's progress callback raises, unchanged.
+
+Placement. origin='BASE' (the default) puts each object's origin where
+the plant stands, its mesh local to it: a tree at its trunk foot, ivy and
+roots at the bottom centre of the first host's world bounds (or the
+start), a merged avenue at its path's start, each avenue tree at its
+foot; origin=None keeps the library's world coordinates (identity
+matrix); a point puts the origin there.
+
+Jobs. Each call is also a *_job(...) returning a Job: made on the main
+thread (the scene read), compute(progress) on any thread (the library
+only), build() on the main thread; the operators run compute on a worker
+thread with a progress bar and Esc to cancel.
 """
 from collections.abc import Mapping
 import math
@@ -117,8 +129,219 @@ def _guard(build):
         raise
 
 
-def _single(name, d, collection, uv, created):
-    return [BM.object_from_mesh_data(name, d, _collection(collection), created, uv=uv)]
+def _single(name, d, collection, uv, created, origin=None):
+    return [BM.object_from_mesh_data(name, d, _collection(collection), created, uv=uv, origin=origin)]
+
+
+# ----------------------------------------------------------- jobs, progress
+try:
+    from .core.errors import Cancelled
+except ImportError:  # until the library's progress callback is in core (part LIB)
+    class Cancelled(BanyanError):
+        """The run was cancelled through its progress callback (BANYAN_E_CANCELLED)."""
+
+        def __init__(self, message="cancelled"):
+            super().__init__(15, message, "BANYAN_E_CANCELLED")
+
+CANCELLED = 15  # BANYAN_E_CANCELLED
+
+
+def is_cancelled(e):
+    return isinstance(e, BanyanError) and e.status == CANCELLED
+
+
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable as progress(done) -> cancel, not %s" % type(progress).__name__)
+
+
+def _takes_progress(fn):
+    import inspect
+    try:
+        return "progress" in inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return False
+
+
+def call_with_progress(fn, *args, progress=None):
+    """fn(*args, progress=progress) when the binding takes one (the
+    library reports ~100 steps and cancels on a True return); else fn
+    runs whole, framed by progress(0.0) and progress(1.0), each of which
+    may still cancel (the result is then dropped)."""
+    if progress is None:
+        return fn(*args)
+    if _takes_progress(fn):
+        return fn(*args, progress=progress)
+    if progress(0.0):
+        raise Cancelled()
+    d = fn(*args)
+    if progress(1.0):
+        raise Cancelled()
+    return d
+
+
+class Job:
+    """One generator run in three steps, so that an operator can put the
+    middle one on a worker thread: made here (main thread: the scene is
+    read, a host set built), compute(progress) (any thread: the library
+    only, no bpy), build() (main thread: the objects, rolled back on
+    failure). close() frees what the job holds (host sets); run() does
+    it all. `info` holds what compute learnt (ivy: "grew")."""
+
+    def __init__(self, compute, build, cleanup=None):
+        import contextlib
+        self._compute, self._build = compute, build
+        self.stack = contextlib.ExitStack()
+        if cleanup is not None:
+            self.stack.push(cleanup)
+        self.data = None
+        self.info = {}
+
+    def adopt(self, stack_or_cm):
+        """Ties a context manager (or ExitStack) to the job's lifetime."""
+        self.stack.enter_context(stack_or_cm)
+        return self
+
+    def compute(self, progress=None):
+        _check_progress(progress)
+        self.data = self._compute(progress)
+        return self
+
+    def build(self):
+        if self.data is None:
+            raise BanyanError(1, "the job has not computed yet", "BANYAN_E_INVALID_ARG")
+        return _guard(lambda c: self._build(self.data, c))
+
+    def close(self):
+        self.stack.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def run(self, progress=None):
+        with self:
+            self.compute(progress)
+            return self.build()
+
+
+def _job(prepare):
+    """Calls prepare(stack) -> Job with an ExitStack that the job adopts;
+    on failure the stack is closed (host sets freed)."""
+    import contextlib
+    stack = contextlib.ExitStack()
+    try:
+        job = prepare(stack)
+    except BaseException:
+        stack.close()
+        raise
+    return job.adopt(stack)
+
+
+# ------------------------------------------------------------- placement
+ORIGINS = ('BASE', 'WORLD')
+
+
+def object_base(obj):
+    """Bottom centre of an object's world bounds (bound_box: modifiers
+    included) under its world matrix."""
+    from mathutils import Vector
+    mw = obj.matrix_world
+    pts = [mw @ Vector(c) for c in obj.bound_box]
+    lo = [min(p[k] for p in pts) for k in range(3)]
+    hi = [max(p[k] for p in pts) for k in range(3)]
+    return (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), lo[2])
+
+
+def world_bounds(objs):
+    """(lo, hi) of the union of the objects' world bounds."""
+    from mathutils import Vector
+    pts = [o.matrix_world @ Vector(c) for o in objs for c in o.bound_box]
+    return (tuple(min(p[k] for p in pts) for k in range(3)), tuple(max(p[k] for p in pts) for k in range(3)))
+
+
+def _bounds_base(lo, hi):
+    return (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), lo[2])
+
+
+def _box_base(box):
+    c = H.box_corners(box)
+    return _bounds_base([min(p[k] for p in c) for k in range(3)], [max(p[k] for p in c) for k in range(3)])
+
+
+def host_base(hosts, fallback=None, index=0):
+    """Bottom centre of the first host's world bounds: an object, a
+    structs.Box or host `index` of a HostSet; `fallback` when there is none."""
+    h = hosts[0] if isinstance(hosts, (list, tuple)) and hosts else hosts
+    if isinstance(h, bpy.types.Object):
+        return object_base(h)
+    if isinstance(h, Box):
+        return _box_base(h)
+    if isinstance(h, HostSet) and h.handle and h.count > index:
+        i = h.info(index)
+        return _bounds_base(i["lo"], i["hi"])
+    return tuple(fallback) if fallback is not None else None
+
+
+def _origin(origin, base):
+    """The point the object's origin goes to: 'BASE' -> base, None or
+    'WORLD' -> none (the mesh keeps world coordinates), or a point."""
+    if origin is None or origin == 'WORLD':
+        return None
+    if origin == 'BASE':
+        return tuple(base) if base is not None else None
+    if isinstance(origin, str) or not hasattr(origin, "__len__") or len(origin) != 3:
+        raise TypeError("origin must be 'BASE', 'WORLD', None or a point (x, y, z), not %r" % (origin,))
+    pt = tuple(float(c) for c in origin)
+    if not all(math.isfinite(c) for c in pt):
+        raise BanyanError(2, "origin = %r must be finite" % (origin,), "BANYAN_E_RANGE")
+    return pt
+
+
+def preset_host_bounds(gen, preset):
+    """(lo, hi) of the union of a preset's hosts (boxes and .glb meshes,
+    as the library builds them), or None when it has none."""
+    path = PR.find(gen, preset)
+    text = PR.read(path)
+    if not _preset_has_hosts(text):
+        return None
+    with HostSet.from_preset(text, path) as hs:
+        infos = [hs.info(i) for i in range(hs.count)]
+    if not infos:
+        return None
+    return (tuple(min(i["lo"][k] for i in infos) for k in range(3)),
+            tuple(max(i["hi"][k] for i in infos) for k in range(3)))
+
+
+def _preset_has_hosts(text):
+    import json
+    try:
+        return bool(json.loads(text).get("hosts"))
+    except (ValueError, AttributeError):
+        return False
+
+
+def map_point(point, src, dst):
+    """point in the box-normalised coordinates of bounds src=(lo, hi),
+    carried onto bounds dst (a flat axis maps to the centre)."""
+    out = []
+    for k in range(3):
+        a, b = src[0][k], src[1][k]
+        u = (point[k] - a) / (b - a) if b - a > 1e-9 else 0.5
+        out.append(dst[0][k] + u * (dst[1][k] - dst[0][k]))
+    return tuple(out)
+
+
+def preset_point_on(gen, preset, point, objs):
+    """A preset's point (ivy start, roots germination), given relative to
+    its own hosts, mapped onto the world bounds of `objs`; the point as
+    is when the preset has no hosts."""
+    src = preset_host_bounds(gen, preset)
+    if src is None or not objs:
+        return tuple(point)
+    return map_point(point, src, world_bounds(objs))
 
 
 # ------------------------------------------------------------------ roots
@@ -151,54 +374,77 @@ def _check_hosts(hosts):
     return hosts
 
 
-def grow_on_hosts(gen, hosts, host_shape, preset, grow):
-    """grow(hosts_arg) on `hosts` as `host_shape` says, and its result.
+def host_arg(gen, hosts, host_shape, preset, stack):
+    """(arg, named, base): what the generator gets for `hosts` as
+    `host_shape` says, a wrapper naming hosts in its errors, and the
+    bottom centre of the first host's world bounds. Host sets built here
+    are closed with `stack`.
     hosts: a list of objects and core.structs.Box, or a ready
     core.hostset.HostSet (used as is; the caller frees it).
     'BOX': every object as its oriented bounding box (hosts.py); the
     preset's boxes when no hosts are given. 'SURFACE': objects as their
-    evaluated meshes in a host set built here once and freed after, boxes
-    staying boxes (numbered first); with no objects among the hosts this is
-    the box path, to the byte."""
+    evaluated meshes in a host set built here once, boxes staying boxes
+    (numbered first); with no objects among the hosts this is the box
+    path, to the byte."""
     if isinstance(hosts, HostSet):
-        return grow(hosts)
+        return hosts, hosts.named, host_base(hosts)
     shape = H.check_shape(host_shape)
     hosts = _check_hosts(hosts)
     if not hosts and preset and shape == H.SURFACE and _preset_has_meshes(gen, preset):
         # The preset's own boxes and .glb meshes, as the CLI builds them.
         path = PR.find(gen, preset)
-        with HostSet.from_preset(PR.read(path), path) as hs:
-            return grow(hs)
+        hs = stack.enter_context(HostSet.from_preset(PR.read(path), path))
+        return hs, hs.named, host_base(hs)
     if shape == H.BOX or all(isinstance(h, Box) for h in hosts):
         boxes = _boxes(hosts)
         if not boxes and preset:
             boxes = _preset_boxes(gen, preset)
-        return H.generate_named(lambda: grow(boxes), boxes)
-    with H.surface_host_set(hosts) as hs:
-        return grow(hs)
+        return boxes, (lambda call: H.generate_named(call, boxes)), host_base(hosts or boxes)
+    hs = stack.enter_context(H.surface_host_set(hosts))
+    # The library's bounds of the first host (exact, where the box of an
+    # object's bound_box would be loose when it is rotated); boxes are
+    # numbered first in the set.
+    first = 0 if isinstance(hosts[0], Box) else sum(isinstance(h, Box) for h in hosts)
+    return hs, hs.named, host_base(hs, index=first)
 
 
-def _check_progress(progress):
-    if progress is not None and not callable(progress):
-        raise TypeError("progress must be callable as progress(done) -> bool, not %s" % type(progress).__name__)
+def grow_on_hosts(gen, hosts, host_shape, preset, grow):
+    """grow(hosts_arg) on `hosts` (see host_arg), host sets freed after."""
+    import contextlib
+    with contextlib.ExitStack() as stack:
+        arg, named, _base = host_arg(gen, hosts, host_shape, preset, stack)
+        return named(lambda: grow(arg))
 
 
-def strangler_roots(hosts=(), *, preset=None, params=None, germination=None, collection=None,
-                    name="Banyan Roots", uv=True, host_shape=H.SURFACE, progress=None, values=None, **kw):
+def strangler_roots(hosts=(), *, progress=None, **kw):
     """Roots around `hosts` (objects, core.structs.Box, or a HostSet).
     host_shape: 'SURFACE' (the objects' evaluated meshes) or 'BOX' (their
     oriented bounding boxes). germination: a world point, or None for the
     generator's own choice (above the first host). Hosts from the preset
-    are used when none are given. progress: progress(done) -> bool while
-    the library grows (done 0..1; True cancels: core.errors.Cancelled)."""
+    are used when none are given. origin: 'BASE' (default: the object's
+    origin at the bottom centre of the first host's world bounds), None
+    (world coordinates) or a point. progress(done) -> True cancels
+    (raises Cancelled, nothing made)."""
+    return strangler_roots_job(hosts, **kw).run(progress)
+
+
+def strangler_roots_job(hosts=(), *, preset=None, params=None, germination=None, collection=None,
+                        name="Banyan Roots", uv=True, host_shape=H.SURFACE, origin='BASE', values=None, **kw):
+    """strangler_roots as a Job (see Job)."""
     _collection(collection)
     _check_name(name)
-    _check_progress(progress)
     p = make_params("roots", preset, params, values, **kw)
     if germination is not None:
         set_roots_germination(p, germination)
-    d = grow_on_hosts("roots", hosts, host_shape, preset, lambda h: G.roots(p, h, progress=progress))
-    return _guard(lambda c: _single(name, d, collection, uv, c))
+
+    def prepare(stack):
+        arg, named, base = host_arg("roots", hosts, host_shape, preset, stack)
+        o = _origin(origin, base if base is not None else p.get("germination"))
+        return Job(lambda prog: named(lambda: call_with_progress(G.roots, p, arg, progress=prog)),
+                   lambda d, c: _single(name, d, collection, uv, c, o))
+    job = _job(prepare)
+    job.params = p
+    return job
 
 
 def set_roots_germination(p, point):
@@ -209,15 +455,46 @@ def set_roots_germination(p, point):
 
 
 # ----------------------------------------------------------------- keyaki
-def keyaki_tree(*, preset=None, params=None, position=None, collection=None, name="Keyaki", uv=True,
-                values=None, **kw):
+def keyaki_tree(*, progress=None, **kw):
+    """One tree. position: where its trunk foot stands (world); origin
+    'BASE' (default) puts the object's origin there, the mesh local to
+    it (rotating the object turns the tree about its foot); None keeps
+    world coordinates."""
+    return keyaki_tree_job(**kw).run(progress)
+
+
+def keyaki_tree_job(*, preset=None, params=None, position=None, collection=None, name="Keyaki", uv=True,
+                    origin='BASE', values=None, **kw):
     _collection(collection)
     _check_name(name)
     p = make_params("keyaki", preset, params, values, **kw)
     if position is not None:
         p.set("position", position)
-    d = G.keyaki(p)
-    return _guard(lambda c: _single(name, d, collection, uv, c))
+    foot = p.get("position")
+    o = _origin(origin, foot)
+    local = p
+    if o is not None:
+        # Grown at the world origin and placed: the library's tree moves
+        # with its position (checked to float precision), so the mesh is
+        # local to the foot without losing digits far from the origin.
+        local = p.copy()
+        local.set("position", (0.0, 0.0, 0.0))
+
+    def build(d, c):
+        objs = _single(name, d, collection, uv, c)
+        if o is not None:
+            if o != foot:  # an explicit origin: the mesh moves so that the foot stays at `position`
+                objs[0].data.transform(_translation(tuple(foot[k] - o[k] for k in range(3))))
+            objs[0].location = o
+        return objs
+    job = Job(lambda prog: call_with_progress(G.keyaki, local, progress=prog), build)
+    job.params = p
+    return job
+
+
+def _translation(v):
+    from mathutils import Matrix
+    return Matrix.Translation(v)
 
 
 def curve_points(obj, depsgraph=None):
@@ -294,59 +571,101 @@ def _evaluated_polyline(obj, depsgraph=None):
     return pts
 
 
-def keyaki_avenue(*, path=None, preset=None, params=None, merged=False, collection=None,
-                  name="Keyaki Avenue", uv=True, threads=0, progress=None, generate_progress=None, values=None,
-                  **kw):
+def _avenue_progress(progress):
+    """(generation progress, object-building progress): progress(done) ->
+    cancel for the whole run, or the earlier progress(done, total) called
+    as objects are built."""
+    if progress is None:
+        return None, None
+    import inspect
+    try:
+        inspect.signature(progress).bind(0.5)
+        return progress, None
+    except TypeError:
+        return None, progress
+    except ValueError:  # no signature (a builtin): the one-argument form
+        return progress, None
+
+
+def keyaki_avenue(*, progress=None, generate_progress=None, **kw):
     """An avenue along `path`: a curve object, a list of points, or None
     (the params' start-end line). merged=False: one object per tree in a
-    new collection; True: one object. progress(done, total) is called as
-    objects are built; generate_progress(done) -> bool while the library
-    grows the trees (done 0..1; True cancels: core.errors.Cancelled)."""
+    new collection (origins at each tree's foot); True: one object, its
+    origin at the path's start (origin=None: world coordinates).
+    progress: progress(done) -> True cancels (the library's run), or
+    progress(done, total), called as the objects are built.
+    generate_progress(done) -> True cancels: the library's run, whatever
+    progress is."""
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable as progress(done) or progress(done, total), not %s"
+                        % type(progress).__name__)
+    _check_progress(generate_progress)
+    gen_progress, build_progress = _avenue_progress(progress)
+    return keyaki_avenue_job(build_progress=build_progress, **kw).run(generate_progress or gen_progress)
+
+
+def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, collection=None,
+                      name="Keyaki Avenue", uv=True, threads=0, origin='BASE', build_progress=None, values=None,
+                      **kw):
     _collection(collection)
     _check_name(name)
-    if progress is not None and not callable(progress):
-        raise TypeError("progress must be callable as progress(done, total), not %s" % type(progress).__name__)
-    _check_progress(generate_progress)
+    if build_progress is not None and not callable(build_progress):
+        raise TypeError("progress must be callable as progress(done, total), not %s" % type(build_progress).__name__)
     p = make_params("avenue", preset, params, values, **kw)
     curve = path if isinstance(path, bpy.types.bpy_struct) else None
     if curve is not None:
         path = curve_points(curve)
     elif path is not None and (isinstance(path, (str, bytes)) or not hasattr(path, "__iter__")):
         raise TypeError("path must be a curve object or a list of (x, y, z), not %s" % type(path).__name__)
-    try:
-        d = G.avenue(p, path, threads, progress=generate_progress)
-    except BanyanError as e:
-        if curve is not None and e.message.startswith("path"):
-            raise BanyanError(e.status, "curve '%s': %s" % (curve.name, e.message), e.name) from None
-        raise
+    path = list(path) if path is not None else None
+    start = tuple(path[0]) if path else p.get("start")
 
-    def build(created):
+    def compute(prog):
+        try:
+            return call_with_progress(G.avenue, p, path, threads, progress=prog)
+        except BanyanError as e:
+            if curve is not None and e.message.startswith("path"):
+                raise BanyanError(e.status, "curve '%s': %s" % (curve.name, e.message), e.name) from None
+            raise
+
+    def build(d, created):
         parent = _collection(collection)
         if merged:
-            return _single(name, d, parent, uv, created)
+            return _single(name, d, parent, uv, created, _origin(origin, start))
         coll = created.add(bpy.data.collections.new(name))
         parent.children.link(coll)
-        return BM.objects_per_group(name, d, coll, created, uv=uv, progress=progress)
-    return _guard(build)
+        return BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
+    job = Job(compute, build)
+    job.params = p
+    return job
 
 
 # -------------------------------------------------------------------- ivy
-def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
-        animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, progress=None, stats=None,
-        values=None, **kw):
+def ivy(hosts=(), *, progress=None, stats=None, **kw):
     """Ivy over hosts (objects, core.structs.Box, or a HostSet; host_shape
-    as strangler_roots) from `start` (placed by the library on the nearest
-    host side a stem can grow from, above the ground). animate=True adds a
+    as strangler_roots) from `start` (placed by the library on the
+    nearest host side where a stem can grow). animate=True adds a
     Geometry Nodes modifier revealing the plant by birth_step over
-    [frame_start, frame_end] (default: the scene's). progress as
-    strangler_roots. stats: a dict to fill with the plant's measures
-    (core.generators.ivy_stats_dict); stats["warning"] is not empty when
-    the plant could not grow (the objects are made all the same)."""
-    _collection(collection)
-    _check_name(name)
-    _check_progress(progress)
+    [frame_start, frame_end] (default: the scene's). origin as
+    strangler_roots ('BASE': the first host's base, or the start).
+    ivy_job(...) gives the run as a Job whose info["grew"] says whether
+    the plant grew (see ivy_grew). stats: a dict to fill with the plant's
+    measures (core.generators.ivy_stats_dict, when the binding gives
+    them); stats["warning"] is not empty when the plant could not grow
+    (the objects are made all the same)."""
     if stats is not None and not isinstance(stats, dict):
         raise TypeError("stats must be a dict to fill, not %s" % type(stats).__name__)
+    job = ivy_job(hosts, **kw)
+    objs = job.run(progress)
+    if stats is not None:
+        stats.update(getattr(job.data, "stats", None) or {})
+    return objs
+
+
+def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
+            animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, origin='BASE', values=None, **kw):
+    _collection(collection)
+    _check_name(name)
     sc = bpy.context.scene
     f0, f1 = _frame("frame_start", frame_start, sc.frame_start), _frame("frame_end", frame_end, sc.frame_end)
     p = make_params("ivy", preset, params, values, **kw)
@@ -354,17 +673,47 @@ def ivy(hosts=(), *, preset=None, params=None, start=None, steps=None, collectio
         p.set("start", start)
     if steps is not None:
         p.set("steps", steps)
-    d = grow_on_hosts("ivy", hosts, host_shape, preset, lambda h: G.ivy(p, h, progress=progress))
-    if stats is not None:
-        stats.update(d.stats or {})
 
-    def build(created):
-        objs = _single(name, d, collection, uv, created)
-        if animate:
-            from .growth_anim import add_growth_modifier
-            add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))), f0, f1)
-        return objs
-    return _guard(build)
+    def prepare(stack):
+        arg, named, base = host_arg("ivy", hosts, host_shape, preset, stack)
+        o = _origin(origin, base if base is not None else p.get("start"))
+
+        def compute(prog):
+            d = named(lambda: call_with_progress(G.ivy, p, arg, progress=prog))
+            job.info["grew"] = ivy_grew(d, p.get("steps"))
+            return d
+
+        def build(d, created):
+            objs = _single(name, d, collection, uv, created, o)
+            if animate:
+                from .growth_anim import add_growth_modifier
+                add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))), f0, f1)
+            return objs
+        job = Job(compute, build)
+        return job
+    job = _job(prepare)
+    job.params = p
+    return job
+
+
+IVY_MIN_INTERNODES = 5  # BANYAN_IVY_MIN_INTERNODES (banyan/ivy.h)
+
+
+def ivy_grew(d, steps):
+    """False when the ivy could not grow: the library's cannot_grow
+    (banyan_ivy_stats) when the binding hands it over with the mesh,
+    else its rule on the skeleton: fewer than min(steps, 5) internodes."""
+    for holder in (d, getattr(d, "stats", None)):
+        if isinstance(holder, dict):
+            flag = holder.get("cannot_grow")
+        else:
+            flag = getattr(holder, "cannot_grow", None)
+        if flag is not None:
+            return not flag
+    if d.skel_edges is None and getattr(d, "skel_points", None) is None:
+        return True  # no skeleton at all: nothing to judge by
+    internodes = len(d.skel_edges) // 2 if d.skel_edges is not None else 0  # no edges: a lone bud
+    return internodes >= min(int(steps), IVY_MIN_INTERNODES)
 
 
 # --------------------------------------------------------------- segments
@@ -377,11 +726,15 @@ def _has_key(text, key):
     return isinstance(doc, dict) and key in doc
 
 
-def segment_twigs(*, preset=None, params=None, collection=None, name="Segment Twigs", uv=True, values=None,
-                  **kw):
+def segment_twigs(*, progress=None, **kw):
     """A segment tree: the segment list of a segments preset (its "segments"
     and "trunk"), or the random demo tree of params when the preset has
-    none or no preset is given."""
+    none or no preset is given. Its root stands at the object's origin."""
+    return segment_twigs_job(**kw).run(progress)
+
+
+def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segment Twigs", uv=True, values=None,
+                      **kw):
     _collection(collection)
     _check_name(name)
     p = make_params("segments", preset, params, values, **kw)
@@ -392,5 +745,7 @@ def segment_twigs(*, preset=None, params=None, collection=None, name="Segment Tw
         text = PR.read(path)
         if _has_key(text, "segments"):
             inputs, count, trunk = G.segments_read(text, path)
-    d, _stats = G.segments(p, inputs, count, trunk)
-    return _guard(lambda c: _single(name, d, collection, uv, c))
+    job = Job(lambda prog: call_with_progress(lambda: G.segments(p, inputs, count, trunk)[0], progress=prog),
+              lambda d, c: _single(name, d, collection, uv, c))
+    job.params = p
+    return job

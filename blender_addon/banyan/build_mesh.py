@@ -167,8 +167,10 @@ def material_indices(parts, tri_offset=0, part_material=None):
     return out
 
 
-def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=True, smooth=True):
-    """One object holding all of MeshData d."""
+def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=True, smooth=True, origin=None):
+    """One object holding all of MeshData d (world coordinates). origin: a
+    world point that becomes the object's location, the mesh moved to be
+    local to it (Mesh.transform, in C), or None (origin at the world's)."""
     me = created.add(bpy.data.meshes.new(name))
     mats = materials if materials is not None else [
         make_material(m, created, name, d.colors is not None) for m in d.materials]
@@ -176,7 +178,12 @@ def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=Tr
         me.materials.append(m)
     fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
               attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth)
+    if origin is not None:
+        from mathutils import Matrix
+        me.transform(Matrix.Translation((-origin[0], -origin[1], -origin[2])))
     obj = created.add(bpy.data.objects.new(name, me))
+    if origin is not None:
+        obj.location = origin
     collection.objects.link(obj)
     return obj
 

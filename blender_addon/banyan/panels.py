@@ -110,7 +110,7 @@ def draw_operator(op, context):
         box.label(text=text, icon='ERROR')
 
     col = layout.column()
-    for name in op.extra_props:
+    for name in tuple(getattr(op, "placement_props", ())) + tuple(op.extra_props):
         col.prop(props, name)
 
     live.draw_row(layout, op)

@@ -1,18 +1,25 @@
 """The machinery every Banyan operator shares: properties generated from
-the generator's parameter table, the JSON preset menu, and execute()
-that turns a library error into an error report with the scene left as
-it was (api calls roll back what they made)."""
+the generator's parameter table, the JSON preset menu, and the run:
+an operator's prepare() gives an api.Job (the scene read, host sets
+built); execute() (scripts, the redo panel, background mode) computes
+it on the spot, invoke() in a window on a worker thread under a modal
+handler with a progress bar, Esc or right-click cancelling (Runner).
+Either way Edit Mode is left first, the objects are built on the main
+thread, and a library error or a cancel leaves the scene as it was
+(api jobs roll back what they made; the mode is put back)."""
 import contextlib
+import json
 import math
+import threading
 import traceback
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 
+from .. import api
 from .. import hosts as H
 from .. import live
 from .. import panels
-from .. import plant
 from .. import presets as PR
 from .. import props as PP
 from ..core import lib as LIB
@@ -80,33 +87,190 @@ class BanyanOperatorMixin:
         if key != NO_PRESET:
             p = Params(self.generator)
             path = PR.find(self.generator, key)
-            p.apply_preset(PR.read(path), path)
+            text = PR.read(path)
+            p.apply_preset(text, path)
             PP.write_props(self.properties, p)
+            doc = json.loads(text)
+            self.preset_loaded(dict(doc.get("params") or {}), bool(doc.get("hosts")))
         self.banyan_preset_loaded = key
+
+    def preset_loaded(self, values, has_hosts):
+        """A newly chosen preset's own "params" (as written) and whether it
+        names hosts: operators switch their options so that the preset
+        applies whole (its path, its start)."""
 
     def params(self):
         # Through self.properties: each attribute of the operator itself
         # costs a property lookup in Python (bpy_types.Operator), ~30 us.
         return PP.to_params(self.generator, self.properties)
 
-    def execute(self, context):
+    def preset_doc(self):
+        """The chosen JSON preset as written ({} for none or a broken one)."""
+        key = self.banyan_preset or NO_PRESET
+        if key == NO_PRESET:
+            return {}
+        try:
+            doc = json.loads(PR.read(PR.find(self.generator, key)))
+            return doc if isinstance(doc, dict) else {}
+        except (ValueError, TypeError, OSError, BanyanError):
+            return {}
+
+    def preset_params(self):
+        p = self.preset_doc().get("params")
+        return dict(p) if isinstance(p, dict) else {}
+
+    def preset_has_hosts(self):
+        return bool(self.preset_doc().get("hosts"))
+
+    # Subclasses: prepare(context, params) -> api.Job; optionally
+    # place(context, objs) (after the build), preset_loaded(values) and
+    # grew_message(job) (a warning when the plant could not grow).
+    def prepare(self, context, params):
+        raise NotImplementedError
+
+    def place(self, context, objs):
+        pass
+
+    def build(self, context, params, progress=None):
+        """prepare + compute + build in one go (what execute() runs)."""
+        with self.prepare(context, params) as job:
+            job.compute(progress)
+            objs = job.build()
+        self.place(context, objs)
+        return objs
+
+    def _start(self, context):
+        """Leaves Edit Mode, then params and the job; None after an error report."""
+        self._mode = leave_edit_mode(context)
         try:
             self.load_preset_if_changed()
             params = self.params()
-            objs = self.build(context, params)
-            LAST_PARAMS[self.banyan_idname] = params
-            plant.record_operator(self, context, objs, params)  # edit later (never raises)
-        except (BanyanError, FileNotFoundError, ValueError) as e:
+            return params, self.prepare(context, params)
+        except BaseException as e:
+            self._fail(context, e)
+            return None
+
+    def _fail(self, context, e, job=None):
+        if job is not None:
+            job.close()
+        restore_mode(context, getattr(self, "_mode", None))
+        if api.is_cancelled(e):
+            self.report({'INFO'}, "Banyan: cancelled; nothing was added")
+        elif isinstance(e, (BanyanError, FileNotFoundError, ValueError)):
             self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
-            return {'CANCELLED'}
-        except Exception as e:  # never leave a half-built scene or crash
-            traceback.print_exc()
+        else:  # never leave a half-built scene or crash
+            traceback.print_exception(type(e), e, e.__traceback__)
             self.report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
-            return {'CANCELLED'}
+        return {'CANCELLED'}
+
+    def _finish(self, context, params, job):
+        """Main thread, the job computed: the objects, then the report."""
+        try:
+            with job:
+                objs = job.build()
+            self.place(context, objs)
+        except BaseException as e:
+            return self._fail(context, e)
+        LAST_PARAMS[self.banyan_idname] = params
+        record_plant(self, context, objs, params)  # first: it reads the selection (hosts, the active curve)
         select_only(context, objs)
-        nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
-        self.report({'INFO'}, "Banyan: %d object(s), %d vertices" % (len(objs), nv))
+        warning = self.grew_message(context, job)
+        if warning:
+            self.report({'WARNING'}, "Banyan: %s" % warning)
+        else:
+            nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
+            self.report({'INFO'}, "Banyan: %d object(s), %d vertices" % (len(objs), nv))
         return {'FINISHED'}
+
+    def grew_message(self, context, job):
+        return None
+
+    def execute(self, context):
+        started = self._start(context)
+        if started is None:
+            return {'CANCELLED'}
+        params, job = started
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
+        try:
+            job.compute(_sync_progress(wm))
+        except BaseException as e:
+            return self._fail(context, e, job)
+        finally:
+            wm.progress_end()
+        return self._finish(context, params, job)
+
+    def invoke(self, context, event):
+        if bpy.app.background or getattr(context, "window", None) is None:
+            return self.execute(context)
+        started = self._start(context)
+        if started is None:
+            return {'CANCELLED'}
+        self._params, job = started
+        self._runner = Runner(job).start()
+        RUNNING.append(self._runner)
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(TICK, window=context.window)
+        self._shown = -1
+        wm.progress_begin(0, 100)
+        wm.modal_handler_add(self)
+        return {'RUNNING_MODAL'}
+
+    # Events that only move the view: passed on while the plant grows.
+    VIEW_EVENTS = frozenset(('MIDDLEMOUSE', 'WHEELUPMOUSE', 'WHEELDOWNMOUSE', 'MOUSEMOVE', 'INBETWEEN_MOUSEMOVE',
+                             'TRACKPADPAN', 'TRACKPADZOOM', 'MOUSEROTATE', 'NDOF_MOTION'))
+
+    def modal(self, context, event):
+        r = self._runner
+        if event.type in {'ESC', 'RIGHTMOUSE'} and event.value == 'PRESS':
+            r.cancel()
+        if event.type == 'TIMER':
+            shown = (int(100 * r.done), r.cancelled)
+            if shown != getattr(self, "_shown", None):  # redraw the bar and status line only when they change
+                self._shown = shown
+                context.window_manager.progress_update(shown[0])
+                _status(context, "Banyan: growing %s %d %%%s" % (self.generator, shown[0],
+                                                                  " (cancelling)" if r.cancelled else
+                                                                  " - Esc or right-click to cancel"))
+            if r.finished:
+                return self._modal_end(context)
+        if event.type in self.VIEW_EVENTS:
+            return {'PASS_THROUGH'}
+        return {'RUNNING_MODAL'}
+
+    def _modal_end(self, context):
+        wm = context.window_manager
+        if self._timer is not None:
+            wm.event_timer_remove(self._timer)
+            self._timer = None
+        wm.progress_end()
+        _status(context, None)
+        r = self._runner
+        if r in RUNNING:
+            RUNNING.remove(r)
+        if r.cancelled and r.error is None:
+            r.error = api.Cancelled()  # finished before it saw the cancel: dropped all the same
+        if r.error is not None:
+            return self._fail(context, r.error, r.job)
+        result = self._finish(context, self._params, r.job)
+        if 'FINISHED' in result:
+            _note_built(self)
+        return result
+
+    def cancel(self, context):  # Blender ends the modal (window closed, file loaded)
+        r = getattr(self, "_runner", None)
+        if r is not None:
+            if r in RUNNING:
+                RUNNING.remove(r)
+            r.cancel()
+            r.wait()
+            r.job.close()
+            if self._timer is not None:
+                context.window_manager.event_timer_remove(self._timer)
+                self._timer = None
+            context.window_manager.progress_end()
+            _status(context, None)
+            restore_mode(context, getattr(self, "_mode", None))
 
     def draw(self, context):
         panels.draw_operator(self, context)
@@ -156,6 +320,133 @@ def select_only(context, objs):
         vl.objects.active = objs[0]
 
 
+RUNNING = []  # the Runners of modal runs in progress (the sidebar or a test may look)
+# s between the modal handler's timer events. Blender's idle event loop
+# does not hold the GIL: the worker's progress calls cost about 10 % of the
+# run under Xvfb (ivy 450 steps: 2.24 s with, 2.01 s without; there the
+# software-drawn window, not the GIL, is what slows the worker).
+TICK = 0.1
+
+
+class Runner:
+    """job.compute(progress) on a worker thread (the library's C call
+    releases the GIL; its progress callback takes it back). `done` (0..1)
+    and `cancelled` are shared with the callback, which returns the
+    cancel flag to the library; `error` is what compute raised."""
+
+    def __init__(self, job):
+        self.job = job
+        self.done = 0.0
+        self.cancelled = False
+        self.error = None
+        self.thread = None
+
+    def progress(self, done):
+        self.done = max(self.done, float(done))
+        return self.cancelled
+
+    def _run(self):
+        try:
+            self.job.compute(self.progress)
+        except BaseException as e:  # handed to the main thread
+            self.error = e
+
+    def start(self):
+        self.thread = threading.Thread(target=self._run, name="banyan-grow", daemon=True)
+        self.thread.start()
+        return self
+
+    def cancel(self):
+        self.cancelled = True
+
+    @property
+    def finished(self):
+        return self.thread is not None and not self.thread.is_alive()
+
+    def wait(self, timeout=None):
+        if self.thread is not None:
+            self.thread.join(timeout)
+        return self.finished
+
+
+def _note_built(op):
+    """A run that ended in modal() (not through execute) tells the redo
+    panel's "Update while dragging" (live.py, part PANELS) which values the
+    plant on screen was built from."""
+    try:
+        from .. import live
+    except ImportError:
+        return
+    key = getattr(op, "banyan_idname", None)
+    if hasattr(live, "BUILT") and hasattr(live, "signature") and key and getattr(op, "properties", None) is not None:
+        live.BUILT[key] = live.signature(op.properties)
+
+
+def _sync_progress(wm):
+    def progress(done):
+        wm.progress_update(int(100 * done))
+        return False  # no way to cancel a synchronous run
+    return progress
+
+
+def _status(context, text):
+    ws = getattr(context, "workspace", None)
+    if ws is not None:
+        with contextlib.suppress(RuntimeError, AttributeError):
+            ws.status_text_set(text)
+
+
+def leave_edit_mode(context):
+    """Puts the active object back in Object Mode (the host's edits then
+    reach its mesh, and the new plant does not become active beside an
+    object left in Edit Mode); returns what restore_mode needs."""
+    ob = getattr(context, "active_object", None)
+    if ob is None or ob.mode == 'OBJECT' or not bpy.ops.object.mode_set.poll():
+        return None
+    mode = ob.mode
+    bpy.ops.object.mode_set(mode='OBJECT')
+    return ob.name, mode
+
+
+def restore_mode(context, state):
+    """The mode leave_edit_mode left, after a failure or a cancel."""
+    if not state:
+        return
+    name, mode = state
+    ob = bpy.data.objects.get(name)
+    vl = getattr(context, "view_layer", None)
+    if ob is None or vl is None or ob.name not in vl.objects:
+        return
+    vl.objects.active = ob
+    ob.select_set(True)
+    with contextlib.suppress(RuntimeError):
+        bpy.ops.object.mode_set(mode=mode)
+
+
+def record_plant(op, context, objs, params):
+    """plant.record_operator / plant.record (part PLANT: the generator,
+    parameters, hosts and options kept on the plant) when that module is
+    there."""
+    try:
+        from .. import plant
+    except ImportError:
+        return
+    if hasattr(plant, "record_operator"):
+        plant.record_operator(op, context, objs, params)  # never raises
+        return
+    hosts = []
+    if isinstance(op, HostsOperatorMixin):
+        with contextlib.suppress(BanyanError):
+            hosts = op.selected_hosts(context)
+    options = {n: getattr(op, n) for n in tuple(getattr(op, "placement_props", ())) + tuple(op.extra_props)}
+    options["banyan_preset"] = op.banyan_preset
+    try:
+        plant.record(objs, op.generator, params, hosts, options)
+    except Exception as e:  # the plant is built; only its record failed
+        traceback.print_exc()
+        op.report({'WARNING'}, "Banyan: the plant's parameters were not kept on it: %s" % e)
+
+
 class HostsOperatorMixin(BanyanOperatorMixin):
     """An operator whose hosts are the selected objects: with host shape
     Surface every selected object that has a surface (mesh, curve,
@@ -203,9 +494,14 @@ def host_shape_property():
                                     "meshes, modifiers applied) or their oriented bounding boxes")
 
 
-def make_operator(mixin, idname, label, description, gen, extra):
+PLACEMENT_PROPS = ("align", "location", "rotation")
+
+
+def make_operator(mixin, idname, label, description, gen, extra, placement=False):
     """Builds an Operator class for gen: the table's properties plus
-    `extra` (dict of non-table properties) plus the preset menu."""
+    `extra` (dict of non-table properties) plus the preset menu; with
+    placement, Blender's own Align / Location / Rotation options
+    (bpy_extras.object_utils.AddObjectHelper, see place_object)."""
     table = PP.annotations(gen)
     clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded"} | set(live.properties(gen)))
     if clash:
@@ -222,11 +518,41 @@ def make_operator(mixin, idname, label, description, gen, extra):
     ann.update(live.properties(gen))
     ann.update(table)
     cls_name = "MESH_OT_" + idname.split(".", 1)[1]
-    return type(cls_name, (mixin, bpy.types.Operator), {
+    bases = (mixin, bpy.types.Operator)
+    if placement:
+        from bpy_extras.object_utils import AddObjectHelper
+        bases = (mixin, AddObjectHelper, bpy.types.Operator)
+        clash = set(table) & set(PLACEMENT_PROPS)
+        if clash:
+            raise BanyanError(14, "%s: table names clash with Align/Location/Rotation: %s" % (gen, sorted(clash)))
+    return type(cls_name, bases, {
         "bl_idname": idname, "banyan_idname": idname, "bl_label": label, "bl_description": description, "generator": gen,
         "extra_props": tuple(extra), "table_props": tuple(table), "__annotations__": ann,
+        "placement_props": PLACEMENT_PROPS if placement else (),
         "execute": live.wrap(mixin.execute),
     })
+
+
+def place_matrix(context, op):
+    """The new object's world matrix from Align / Location / Rotation, as
+    Blender's Add operators compute it (object_utils.add_object_align_init:
+    Location defaults to the 3D cursor and is then written back; Align
+    View takes the 3D view's rotation, World when there is no view)."""
+    from bpy_extras.object_utils import add_object_align_init
+    sd = getattr(context, "space_data", None)
+    if op.align == 'VIEW' and (sd is None or sd.type != 'VIEW_3D'):
+        op.align = 'WORLD'
+    props = op.properties
+    if props.is_property_set("align") and not props.is_property_set("rotation"):
+        # An Align given without a Rotation is kept (add_object_align_init
+        # would take the preferences' instead, as for a first run); the
+        # rotation is then computed from it.
+        op.rotation = (0.0, 0.0, 0.0)
+    try:
+        return add_object_align_init(context, op)
+    except AttributeError:  # the preferences' align is View, and there is no view
+        op.align = 'WORLD'
+        return add_object_align_init(context, op)
 
 
 class BANYAN_OT_preset_save(bpy.types.Operator):

@@ -1,37 +1,78 @@
 """Add Ivy: hosts are the selected objects (their real surfaces, or their
 bounding boxes: "Host shape"); the start is the 3D cursor (the library
-snaps it to the nearest host surface)."""
+places it on the nearest host side where a stem can grow), or the
+`start` parameter, which for a preset with hosts is read relative to
+them and carried onto the selected objects' bounds. The object's origin
+is the bottom centre of the active host's world bounds."""
+import math
+
 from bpy.props import BoolProperty
 
 from .. import api
 from .. import hosts as H
-from .base import HostsOperatorMixin, cursor_location, host_shape_property, make_operator
+from .base import NO_PRESET, HostsOperatorMixin, cursor_location, host_shape_property, make_operator
 
 IDNAME = "mesh.banyan_ivy"
 
 
 class IvyMixin(HostsOperatorMixin):
-    def build(self, context, params):
-        with self.host_arg(context) as hosts:
-            start = None
-            if self.start_at_cursor:
-                # Snap here too, so a cursor far from the hosts still starts on the nearest one.
-                cur = cursor_location(context)
-                if isinstance(hosts, list):
-                    start, _box = H.closest_point(hosts, cur)
-                else:
-                    start = H.closest_on_set(hosts, cur)
-                params.set("start", start)  # on `params` itself: the plant's record keeps where it grew
-            return api.ivy(hosts=hosts, params=params, start=start, collection=context.collection, uv=self.uv_map,
-                           animate=self.animate)
+    def prepare(self, context, params):
+        import contextlib
+        stack = contextlib.ExitStack()
+        try:
+            hosts = stack.enter_context(self.host_arg(context))
+            start = self._start_point(context, params, hosts)
+            if start is not None:
+                params.set("start", start)  # recorded as grown (save preset, the plant's parameters)
+            job = api.ivy_job(hosts=hosts, params=params, start=start, collection=context.collection,
+                              uv=self.uv_map, animate=self.animate)
+            return job.adopt(stack)
+        except BaseException:
+            stack.close()
+            raise
+
+    def _start_point(self, context, params, hosts):
+        if not self.start_at_cursor:
+            if self.banyan_preset != NO_PRESET and "start" in self.preset_params() and self.preset_has_hosts():
+                # The preset's start is relative to its own hosts.
+                self._start_from = "the preset's start"
+                return api.preset_point_on("ivy", self.banyan_preset, params.get("start"),
+                                           self.selected_hosts(context))
+            self._start_from = "start"
+            return None
+        # The cursor as it is, for the library to place (it knows where a
+        # stem can grow); a cursor farther than start_snap_max from every
+        # host first comes to the nearest host point, so it still grows.
+        cur = cursor_location(context)
+        self._start_from = "the 3D cursor"
+        near = H.closest_point(hosts, cur)[0] if isinstance(hosts, list) else H.closest_on_set(hosts, cur)
+        if near is not None and math.dist(near, cur) > 0.99 * params.get("start_snap_max"):
+            return near
+        return cur
+
+    def preset_loaded(self, values, has_hosts):
+        # A start given relative to the preset's hosts is part of what it
+        # describes (a preset saved from a run has no hosts: the cursor stays).
+        if "start" in values and has_hosts:
+            self.start_at_cursor = False
+
+    def grew_message(self, context, job):
+        if job.info.get("grew", True):
+            return None
+        where = getattr(self, "_start_from", "start")
+        p = job.params.get("start")
+        return ("the ivy could not grow from %s (%.3g, %.3g, %.3g) (move the 3D cursor to a side of the object)"
+                % (where, p[0], p[1], p[2]))
 
 
 def make_class():
     extra = {
         "host_shape": host_shape_property(),
         "start_at_cursor": BoolProperty(name="Start at 3D cursor", default=True,
-                                        description="Start at the host surface point nearest the 3D cursor "
-                                                    "(else the `start` parameter)"),
+                                        description="Start at the 3D cursor, placed by the library on the nearest "
+                                                    "host side where a stem can grow (else the `start` parameter; "
+                                                    "a preset's start is relative to its hosts). Off when a "
+                                                    "preset with a start is chosen"),
         "animate": BoolProperty(name="Growth animation", default=False,
                                 description="Add a Geometry Nodes modifier revealing the ivy by birth_step "
                                             "over the scene's frame range"),

@@ -1,28 +1,44 @@
-"""Add Keyaki Tree (at the 3D cursor) and Add Keyaki Avenue (along the
-active curve, or a straight line from the cursor)."""
-import bpy
+"""Add Keyaki Tree (its trunk foot at the 3D cursor, or Location, with
+Blender's Align / Location / Rotation; the object's origin at the foot)
+and Add Keyaki Avenue (along the active curve, a straight line from the
+cursor, or the parameters' start-end line)."""
+import math
+
 from bpy.props import BoolProperty, EnumProperty, FloatProperty
 
 from .. import api
 from ..core.errors import BanyanError
-from .base import BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator
+from .base import BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator, place_matrix
 
 TREE_IDNAME = "mesh.banyan_keyaki_tree"
 AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
 
 
 class TreeMixin(BanyanOperatorMixin):
-    def build(self, context, params):
-        pos = cursor_location(context) if self.at_cursor else None
-        with at_cursor_note(pos is not None, "position", "the tree stands at the 3D cursor"):
-            if pos is not None:
-                params.set("position", pos)  # on `params` itself: the plant's record keeps where it stands
-            return api.keyaki_tree(params=params, position=pos, collection=context.collection, uv=self.uv_map)
+    def prepare(self, context, params):
+        self._matrix = None
+        with at_cursor_note(self.at_cursor, "position", "the tree stands at the 3D cursor"):
+            if self.at_cursor:
+                cursor_location(context)  # a NaN cursor is named as such
+                self._matrix = place_matrix(context, self)
+                # Recorded (save preset, the plant's parameters) as where it stands.
+                params.set("position", tuple(self._matrix.to_translation()))
+            return api.keyaki_tree_job(params=params, collection=context.collection, uv=self.uv_map)
+
+    def place(self, context, objs):
+        """The foot at Location, turned by Rotation about the foot (the mesh
+        is local to it); without At 3D cursor, at `position`, turned too."""
+        from mathutils import Matrix
+        m = self._matrix
+        if m is None:
+            m = Matrix.Translation(objs[0].location) @ place_matrix(context, self).to_3x3().to_4x4()
+        objs[0].matrix_world = m
 
 
 class AvenueMixin(BanyanOperatorMixin):
-    def build(self, context, params):
+    def prepare(self, context, params):
         path = None
+        self.built_path = None  # the straight line, for the plant's record (part PLANT)
         act = context.active_object
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':
@@ -32,40 +48,50 @@ class AvenueMixin(BanyanOperatorMixin):
             a = cursor_location(context)
             d = cursor_axis(context, 0)
             path = [a, tuple(a[k] + d[k] * self.line_length for k in range(3))]
-            self.built_path = path  # the plant's record keeps the line
-        wm = context.window_manager
-        wm.progress_begin(0, 100)
-        try:
-            with at_cursor_note(self.path_from == 'CURSOR', "path point", "the line starts at the 3D cursor"):
-                return api.keyaki_avenue(path=path, params=params, merged=self.merged,
-                                         collection=context.collection, uv=self.uv_map,
-                                         progress=lambda done, total: wm.progress_update(int(100 * done / total)))
-        finally:
-            wm.progress_end()
+            self.built_path = path
+            # Recorded as grown: a preset saved from this run draws this line.
+            with at_cursor_note(True, "start", "the line starts at the 3D cursor"):
+                params.set("start", path[0])
+                params.set("end", path[1])
+        with at_cursor_note(self.path_from == 'CURSOR', "path point", "the line starts at the 3D cursor"):
+            return api.keyaki_avenue_job(path=path, params=params, merged=self.merged,
+                                         collection=context.collection, uv=self.uv_map)
+
+    def preset_loaded(self, values, has_hosts):
+        # A preset that draws its line: the straight line from the cursor
+        # takes its length (so its count too); Parameters use it as is.
+        if "start" in values or "end" in values:
+            a, b = self.properties.start, self.properties.end
+            n = math.sqrt(sum((b[k] - a[k]) ** 2 for k in range(3)))
+            if n > 0:
+                self.line_length = n
 
     def invoke(self, context, event):
         act = context.active_object
         self.path_from = 'CURVE' if act is not None and act.type == 'CURVE' else 'CURSOR'
-        return self.execute(context)
+        return BanyanOperatorMixin.invoke(self, context, event)
 
 
 def make_tree_class():
     extra = {"at_cursor": BoolProperty(name="At 3D cursor", default=True,
-                                       description="Put the trunk base at the 3D cursor (else `position`)")}
+                                       description="Put the trunk foot at Location (the 3D cursor unless set), "
+                                                   "else at `position`")}
     return make_operator(TreeMixin, TREE_IDNAME, "Add Keyaki Tree", "Grow one keyaki (Zelkova) tree",
-                         "keyaki", extra)
+                         "keyaki", extra, placement=True)
 
 
 def make_avenue_class():
     extra = {
         "path_from": EnumProperty(name="Path", default='CURSOR', items=[
             ('CURVE', "Active curve", "Along the active curve object (its first spline)"),
-            ('CURSOR', "Straight line", "From the 3D cursor along its X axis, `line length` metres"),
+            ('CURSOR', "Straight line", "From the 3D cursor along its X axis, `line length` metres (a preset's "
+                                        "start-end length when it draws a line)"),
             ('PARAMS', "Parameters", "From `start` to `end`")]),
         "line_length": FloatProperty(name="Line length", default=60.0, min=0.1, soft_max=1000.0,
                                      subtype='DISTANCE', unit='LENGTH'),
         "merged": BoolProperty(name="Merge trees", default=False,
-                               description="One merged object instead of one object per tree in a new collection"),
+                               description="One merged object (origin at the path's start) instead of one object "
+                                           "per tree (origin at its foot) in a new collection"),
     }
     return make_operator(AvenueMixin, AVENUE_IDNAME, "Add Keyaki Avenue",
                          "Plant rows of keyaki trees along a curve or a line", "avenue", extra)

@@ -1,25 +1,47 @@
 """Add Strangler Roots: hosts are the selected objects (their real
 surfaces, or their world-space oriented boxes: "Host shape");
 germination above the active object's top, at the 3D cursor, or as the
-parameters say."""
+parameters say (a preset's germination point is relative to its hosts,
+carried onto the selected objects' bounds). The object's origin is the
+bottom centre of the active host's world bounds."""
+import contextlib
+
 from bpy.props import EnumProperty
 
 from .. import api
-from .base import HostsOperatorMixin, cursor_location, host_shape_property, make_operator
+from .base import NO_PRESET, HostsOperatorMixin, cursor_location, host_shape_property, make_operator
 
 IDNAME = "mesh.banyan_roots"
 
 
 class RootsMixin(HostsOperatorMixin):
-    def build(self, context, params):
-        with self.host_arg(context) as hosts:  # the active object is the first host
+    def prepare(self, context, params):
+        stack = contextlib.ExitStack()
+        try:
+            hosts = stack.enter_context(self.host_arg(context))  # the active object is the first host
+            # Set on `params` itself so "save preset" records what was grown.
             if self.germinate_at == 'CURSOR':
                 api.set_roots_germination(params, cursor_location(context))
             elif self.germinate_at == 'ACTIVE_TOP':
                 # The generator's own rule on hosts[0] (the active object): its top, lifted by r.
                 params.set("germination_auto", True)
-            # Set on `params` itself so "save preset" records what was grown.
-            return api.strangler_roots(hosts=hosts, params=params, collection=context.collection, uv=self.uv_map)
+            elif (self.banyan_preset != NO_PRESET and not params.get("germination_auto")
+                  and "germination" in self.preset_params() and self.preset_has_hosts()):
+                api.set_roots_germination(params, api.preset_point_on(
+                    "roots", self.banyan_preset, params.get("germination"), self.selected_hosts(context)))
+            job = api.strangler_roots_job(hosts=hosts, params=params, collection=context.collection,
+                                          uv=self.uv_map)
+            return job.adopt(stack)
+        except BaseException:
+            stack.close()
+            raise
+
+    def preset_loaded(self, values, has_hosts):
+        # The preset's own germination: its point (relative to its hosts) or the automatic one.
+        if "germination" in values and not values.get("germination_auto", False):
+            self.germinate_at = 'PARAMS'
+        elif values.get("germination_auto", True):
+            self.germinate_at = 'ACTIVE_TOP'
 
 
 def make_class():
@@ -29,6 +51,7 @@ def make_class():
             name="Germinate at", default='ACTIVE_TOP',
             items=[('ACTIVE_TOP', "Active top", "Above the top of the active (first) host"),
                    ('CURSOR', "3D cursor", "At the 3D cursor"),
-                   ('PARAMS', "Parameters", "Where the germination parameters say")])}
+                   ('PARAMS', "Parameters", "Where the germination parameters say (a preset's point is "
+                                            "relative to its hosts)")])}
     return make_operator(RootsMixin, IDNAME, "Add Strangler Roots",
                          "Grow strangler-fig roots around the selected objects", "roots", extra)

@@ -1,19 +1,22 @@
 """Add Segment Twigs: a tree of geometry-shader segments from a segments
-preset (its segment list), or the random demo tree."""
+preset (its segment list), or the random demo tree; its root at the 3D
+cursor or Location, with Blender's Align / Location / Rotation."""
 from .. import api
-from .base import NO_PRESET, BanyanOperatorMixin, cursor_location, make_operator
+from .base import NO_PRESET, BanyanOperatorMixin, cursor_location, make_operator, place_matrix
 
 IDNAME = "mesh.banyan_segment_twigs"
 
 
 class SegmentsMixin(BanyanOperatorMixin):
-    def build(self, context, params):
+    def prepare(self, context, params):
         key = self.banyan_preset if self.banyan_preset != NO_PRESET else None
-        at = cursor_location(context)
-        objs = api.segment_twigs(preset=key, params=params, collection=context.collection, uv=self.uv_map)
+        cursor_location(context)  # a NaN cursor is named as such
+        self._matrix = place_matrix(context, self)
+        return api.segment_twigs_job(preset=key, params=params, collection=context.collection, uv=self.uv_map)
+
+    def place(self, context, objs):
         for o in objs:
-            o.location = at
-        return objs
+            o.matrix_world = self._matrix
 
     def load_preset_if_changed(self):
         # The preset also supplies the segment list (read in build), so it stays selected.
@@ -23,4 +26,4 @@ class SegmentsMixin(BanyanOperatorMixin):
 def make_class():
     return make_operator(SegmentsMixin, IDNAME, "Add Segment Twigs",
                          "Branch segments sized for one geometry-shader call, from a segments preset",
-                         "segments", {})
+                         "segments", {}, placement=True)

@@ -24,9 +24,11 @@ class MESH_OT_banyan_tube(bpy.types.Operator):
         created = BM.Created()
         try:
             c = cursor_location(context)
-            pts = [c, (c[0], c[1], c[2] + self.height * 0.5), (c[0] + 0.2 * self.height, c[1], c[2] + self.height)]
+            # Swept about the origin; the object stands at the cursor (its origin at the tube's foot).
+            pts = [(0.0, 0.0, 0.0), (0.0, 0.0, self.height * 0.5), (0.2 * self.height, 0.0, self.height)]
             d = M.tube(pts, [self.radius, self.radius * 0.8, self.radius * 0.5], self.sides, self.caps)
             obj = BM.object_from_mesh_data("Banyan Tube", d, context.collection, created)
+            obj.location = c
         except BanyanError as e:
             created.rollback()
             self.report({'ERROR'}, "Banyan: %s" % e.message)
