@@ -12,10 +12,11 @@ cd "$here"
 # mesh hosts), node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
-# chromium for the viewer test, patchelf for the add-on zips' $ORIGIN.
+# chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
+# for the add-on's tests in a real window (progress bar, Esc).
 packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev libembree-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
-          valgrind chromium patchelf)
+          valgrind chromium patchelf xvfb xauth)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -14,6 +14,10 @@ bash tools/setup.sh
 bash tools/blender_versions.sh
 jobs=$(nproc)
 (cd build && ctest --output-on-failure -j "$jobs")
+echo "== the add-on's tests, by Blender (tests/blender/run.sh, run_bpy.sh, under ctest) =="
+for f in build/test_out/blender/summary.txt build/test_out/blender/zip/summary.txt build/test_out/blender/bpy-*/summary.txt; do
+  [ -f "$f" ] && { echo "-- ${f#build/test_out/blender/}"; cat "$f"; }
+done
 
 echo "== the add-on packages with the build folder moved away =="
 bash tests/blender/packages.sh build

@@ -48,6 +48,10 @@ print('expected missing generators (tests/blender/config.py):', ', '.join('%s (%
 
 if [ $# -gt 0 ]; then tests=("$@"); else tests=("$here"/test_*.py); fi
 failed=0
+# One line per file, with the Blender it ran on, for tools/test.sh to print
+# (ctest shows a passing test's output only with -V).
+summary_file="$out/summary.txt"
+: >"$summary_file"
 for t in "${tests[@]}"; do
   name=$(basename "$t" .py)
   log="$out/$name.log"
@@ -57,10 +61,10 @@ for t in "${tests[@]}"; do
   version=$(grep -m1 -oE "^Blender [0-9]+\.[0-9]+\.[0-9]+" "$log")
   if [ $rc -ne 0 ] || [ -z "$summary" ]; then
     failed=$((failed + 1))
-    echo "FAILED $name (exit $rc): ${summary:-no summary line} [${version:-Blender ?}]"
+    echo "FAILED $name (exit $rc): ${summary:-no summary line} [${version:-Blender ?}]" | tee -a "$summary_file"
     grep -E "^(FAIL|SKIP|Traceback|  File|[A-Za-z]+Error)" "$log" | head -40 | sed 's/^/    /'
   else
-    echo "ok     $summary [${version:-Blender ?}]"
+    echo "ok     $summary [${version:-Blender ?}]" | tee -a "$summary_file"
     grep -E "^SKIP" "$log" | sort -u | sed 's/^/    /'
   fi
 done

@@ -16,7 +16,7 @@ failed=0
 for t in "$here"/gui/*.py; do
   name=$(basename "$t" .py)
   log="$build/test_out/blender/gui_$name.log"
-  BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$build/libbanyan.so" timeout 600 \
+  BLENDER_USER_SCRIPTS="$scripts" BLENDER_USER_CONFIG="$scripts/config" BANYAN_LIB="$build/libbanyan.so" timeout 600 \
     xvfb-run -a -s "-screen 0 1280x800x24" "$blender" --factory-startup --enable-event-simulate \
     --addons banyan --python "$t" >"$log" 2>&1
   summary=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed" "$log" | tail -1)
