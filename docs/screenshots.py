@@ -100,15 +100,20 @@ def move(x, y):
     win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=win.height - y)
 
 
-@step(2.0)
-def setup():
-    os.makedirs(OUT, exist_ok=True)
+def select_cube():
     cube = bpy.data.objects["Cube"]
-    cube.location.z = 1.0  # resting on the ground, the cursor at the origin (issue #16's first case)
-    bpy.context.scene.cursor.location = (0.0, 0.0, 0.0)
     for o in bpy.context.view_layer.objects:
         o.select_set(o == cube)
     bpy.context.view_layer.objects.active = cube
+
+
+@step(2.0)
+def setup():
+    os.makedirs(OUT, exist_ok=True)
+    # The cube resting on the ground, the cursor at the origin: issue #16's first case.
+    bpy.data.objects["Cube"].location.z = 1.0
+    bpy.context.scene.cursor.location = (0.0, 0.0, 0.0)
+    select_cube()
     move(*POPUP_AT)
 
 
@@ -116,8 +121,9 @@ def setup():
 POPUP_AT = (760, 300)
 
 
-def redo_panel(op, name, sections=()):
+def redo_panel(op, name, view=None):
     def run():
+        select_cube()
         with override():
             # undo=True as the UI calls it: registered, so F9 (redo_last) can show it.
             getattr(bpy.ops.mesh, op)('INVOKE_DEFAULT', True)
@@ -128,14 +134,22 @@ def redo_panel(op, name, sections=()):
             bpy.ops.screen.redo_last('INVOKE_DEFAULT')
 
     def shot():
-        win = bpy.context.window_manager.windows[0]
         x, y = POPUP_AT
         shoot(name, (x - 12, y - 34, 336, 640))
         move(40, 40)  # away: the popup closes
+
+    def viewport():
+        for o in bpy.context.selected_objects:  # no selection outline over the plant
+            o.select_set(False)
+        win, area, region = ctx()
+        x, y, w, h = region_rect(area, 'WINDOW')
+        shoot(view, (x + w // 2 - 330, y + h // 2 - 230, 660, 420))
     STEPS.extend([(1.0, run), (2.0, f9), (2.0, shot), (1.0, lambda: None)])
+    if view:
+        STEPS.append((1.0, viewport))
 
 
-redo_panel("banyan_ivy", "redo_ivy.png")
+redo_panel("banyan_ivy", "redo_ivy.png", view="ivy_on_grounded_cube.png")
 redo_panel("banyan_roots", "redo_roots.png")
 
 
