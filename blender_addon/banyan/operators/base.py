@@ -11,6 +11,7 @@ import contextlib
 import json
 import math
 import threading
+import time
 import traceback
 
 import bpy
@@ -340,6 +341,7 @@ class Runner:
         self.cancelled = False
         self.error = None
         self.thread = None
+        self.cancelled_at = self.ended_at = None  # time.monotonic(), for tests and the status line
 
     def progress(self, done):
         self.done = max(self.done, float(done))
@@ -350,6 +352,8 @@ class Runner:
             self.job.compute(self.progress)
         except BaseException as e:  # handed to the main thread
             self.error = e
+        finally:
+            self.ended_at = time.monotonic()
 
     def start(self):
         self.thread = threading.Thread(target=self._run, name="banyan-grow", daemon=True)
@@ -357,6 +361,8 @@ class Runner:
         return self
 
     def cancel(self):
+        if not self.cancelled:
+            self.cancelled_at = time.monotonic()
         self.cancelled = True
 
     @property

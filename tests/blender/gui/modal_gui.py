@@ -85,7 +85,7 @@ def _step():
         print("modal_gui: %.0f %% done at Esc" % (100 * (r.done if r else 0)), flush=True)
         win.event_simulate(type='ESC', value='PRESS')
         win.event_simulate(type='ESC', value='RELEASE')
-        S["phase"], S["esc"] = 4, time.time()
+        S["phase"], S["esc"], S["esc_mono"] = 4, time.time(), time.monotonic()
         return 0.1
     if S["phase"] == 4:
         if base.RUNNING and time.time() - S["esc"] < 60:
@@ -94,8 +94,15 @@ def _step():
         check(not base.RUNNING, "Esc: the modal run ended")
         check(r is not None and r.cancelled and api.is_cancelled(r.error),
               "Esc: the worker stopped on the cancel (%r)" % (r.error if r else None))
-        print("modal_gui: cancelled %.2f s after Esc, at %.0f %%" % (time.time() - S["esc"], 100 * r.done),
-              flush=True)
+        # Three delays: Blender handing Esc to the modal handler (the event loop, slow
+        # when llvmpipe redraws a big plant), the worker stopping once cancelled (the
+        # library's progress calls), the handler's next timer tick noticing.
+        print("modal_gui: cancelled %.2f s after Esc, at %.0f %% (Esc reached the handler after %.2f s, the "
+              "worker stopped %.3f s after the cancel)" % (
+                  time.time() - S["esc"], 100 * r.done, (r.cancelled_at or 0) - S["esc_mono"],
+                  (r.ended_at or 0) - (r.cancelled_at or 0)), flush=True)
+        check(r.ended_at is not None and r.cancelled_at is not None and r.ended_at - r.cancelled_at < 1.0,
+              "the worker stopped within 1 s of the cancel")
         check(state() == S["before"], "Esc: bpy.data is as before")
         finish()
         return None
