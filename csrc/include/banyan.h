@@ -43,7 +43,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 5
+#define BANYAN_ABI_VERSION 6
 
 /* ---------------------------------------------------------------- status */
 
@@ -129,12 +129,18 @@ typedef struct banyan_attribute {
     float *data;                /* vertex_count floats */
 } banyan_attribute;
 
-/* A material: glTF metallic-roughness, base colour only. */
+/* A material: glTF metallic-roughness; a base colour factor and,
+ * optionally, one of the library's textures (banyan/textures.h), which
+ * the glTF writer embeds and the add-on packs. */
 typedef struct banyan_material {
     char name[BANYAN_NAME_MAX];
-    float base_color[4];        /* linear RGBA, each 0..1 */
+    float base_color[4];        /* linear RGBA, each 0..1; multiplies the texture */
     float roughness;            /* 0..1 */
     int32_t double_sided;       /* 0 or 1; leaf cards are double sided */
+    int32_t texture;            /* banyan_texture_kind, BANYAN_TEX_NONE (-1) for none */
+    int32_t season;             /* banyan_season of a leaf texture; 0 otherwise */
+    float alpha_cutoff;         /* > 0: alpha-tested (glTF MASK) at this cutoff, leaves 0.5; 0: opaque */
+    float translucency;         /* 0..1: light through a back-lit leaf (Blender's material; glTF ignores it) */
 } banyan_material;
 
 /* A part is a contiguous run of vertices and of indices drawn with one

@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 5      # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 6      # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -37,7 +37,8 @@ class Attribute(C.Structure):
 
 class Material(C.Structure):
     _fields_ = [("name", C.c_char * NAME_MAX), ("base_color", C.c_float * 4),
-                ("roughness", C.c_float), ("double_sided", C.c_int32)]
+                ("roughness", C.c_float), ("double_sided", C.c_int32), ("texture", C.c_int32),
+                ("season", C.c_int32), ("alpha_cutoff", C.c_float), ("translucency", C.c_float)]
 
 
 class Part(C.Structure):

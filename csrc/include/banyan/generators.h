@@ -2,6 +2,7 @@
 #ifndef BANYAN_GENERATORS_H
 #define BANYAN_GENERATORS_H
 #include "hosts.h"
+#include "textures.h"
 #include "segments.h"
 #include "keyaki.h"
 #include "ivy.h"
