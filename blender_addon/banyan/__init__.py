@@ -39,6 +39,9 @@ def register():
         _registered.append(ui.VIEW3D_PT_banyan_error)
         return
 
+    from .materials import BanyanPreferences
+    bpy.utils.register_class(BanyanPreferences)
+    _registered.append(BanyanPreferences)
     avail = G.available()
     from .operators.base import BANYAN_OT_preset_save
     classes = [tube.MESH_OT_banyan_tube, BANYAN_OT_preset_save]

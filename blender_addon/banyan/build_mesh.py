@@ -43,7 +43,8 @@ class Created:
 def _collection_of(idb):
     for t, coll in ((bpy.types.Object, bpy.data.objects), (bpy.types.Mesh, bpy.data.meshes),
                     (bpy.types.Material, bpy.data.materials), (bpy.types.Collection, bpy.data.collections),
-                    (bpy.types.NodeTree, bpy.data.node_groups), (bpy.types.Curve, bpy.data.curves)):
+                    (bpy.types.NodeTree, bpy.data.node_groups), (bpy.types.Curve, bpy.data.curves),
+                    (bpy.types.Image, bpy.data.images)):
         if isinstance(idb, t):
             return coll
     return None
@@ -52,7 +53,12 @@ def _collection_of(idb):
 def make_material(spec, created, prefix="banyan", vertex_colors=False):
     """A Principled material from a banyan_material dict. A white material
     on a mesh with vertex colours (the segments generator's) takes its
-    base colour from them, as glTF viewers show base colour x COLOR_0."""
+    base colour from them, as glTF viewers show base colour x COLOR_0.
+    A material naming a library texture is the shared one of its kind and
+    season instead (materials.py: made once, reused by every run)."""
+    if spec.get("texture", -1) >= 0:
+        from .materials import shared_material
+        return shared_material(spec, created, vertex_colors)
     mat = created.add(bpy.data.materials.new("%s_%s" % (prefix, spec["name"])))
     col = tuple(spec["base_color"])
     mat.diffuse_color = col

@@ -360,10 +360,15 @@ def _is_identity(m, eps=1e-12):
 
 def _keep_slots(new_me, old_me):
     """new_me gets old_me's material slots as they are (the artist's
-    materials); slots the library has beyond them follow."""
+    materials); slots the library has beyond them follow. A slot still
+    holding a shared library material (materials.py) takes the new one,
+    so a changed season swaps it; a material the artist put there stays."""
+    from .materials import is_shared
     lib_mats = list(new_me.materials)
     new_me.materials.clear()
-    for m in old_me.materials:
+    for i, m in enumerate(old_me.materials):
+        if is_shared(m) and i < len(lib_mats) and is_shared(lib_mats[i]):
+            m = lib_mats[i]
         new_me.materials.append(m)
     for m in lib_mats[len(old_me.materials):]:
         new_me.materials.append(m)

@@ -106,6 +106,13 @@ def _bind(lib):
         "banyan_host_mesh_free": (None, [P(S.HostMesh)]),
         "banyan_preset_host_set": (C.c_int, [C.c_char_p, C.c_size_t, C.c_char_p, C.c_char_p, P(S.HostMesh),
                                              C.c_uint32, P(vp), err]),
+        # Textures (banyan/textures.h).
+        "banyan_texture_layout": (C.c_int, [C.c_int32, P(S.AtlasLayout), err]),
+        "banyan_texture_params_init": (None, [P(S.TextureParams)]),
+        "banyan_texture_generate": (C.c_int, [P(S.TextureParams), P(P(S.Image)), P(P(S.Image)), err]),
+        "banyan_image_free": (None, [P(S.Image)]),
+        "banyan_image_png": (C.c_int, [P(S.Image), P(P(C.c_uint8)), P(C.c_size_t), err]),
+        "banyan_png_free": (None, [P(C.c_uint8)]),
     }
     for key in S.SIZED:
         sigs["banyan_sizeof_" + key] = (C.c_size_t, [])

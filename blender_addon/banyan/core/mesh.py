@@ -79,7 +79,9 @@ class MeshData:
             for i in range(m.material_count):
                 mat = m.materials[i]
                 d.materials.append({"name": mat.name.decode(), "base_color": tuple(mat.base_color),
-                                    "roughness": mat.roughness, "double_sided": bool(mat.double_sided)})
+                                    "roughness": mat.roughness, "double_sided": bool(mat.double_sided),
+                                    "texture": mat.texture, "season": mat.season,
+                                    "alpha_cutoff": mat.alpha_cutoff, "translucency": mat.translucency})
             for i in range(m.part_count):
                 p = m.parts[i]
                 d.parts.append({k: getattr(p, k) for k, _ in S.Part._fields_})

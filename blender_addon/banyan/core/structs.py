@@ -146,7 +146,26 @@ PT_DOUBLE, PT_INT, PT_BOOL, PT_ENUM, PT_VEC3, PT_COLOR, PT_SEED = range(7)
 # banyan_generator
 GENERATORS = ("roots", "keyaki", "avenue", "ivy", "segments")
 
+# Textures (banyan/textures.h).
+TEX_NONE, TEX_KEYAKI_LEAF, TEX_IVY_LEAF, TEX_KEYAKI_BARK, TEX_FIG_BARK, TEX_IVY_STEM = range(-1, 5)
+SEASON_SUMMER, SEASON_AUTUMN = 0, 1
+
+
+class AtlasLayout(C.Structure):
+    _fields_ = [("cols", C.c_int32), ("rows", C.c_int32), ("leaf_aspect", C.c_float)]
+
+
+class Image(C.Structure):
+    _fields_ = [("width", C.c_uint32), ("height", C.c_uint32), ("channels", C.c_uint32),
+                ("pixels", C.POINTER(C.c_uint8))]
+
+
+class TextureParams(C.Structure):
+    _fields_ = [("kind", C.c_int32), ("season", C.c_int32), ("size", C.c_int32), ("reserved", C.c_int32),
+                ("seed", C.c_uint64)]
+
+
 # Checked against banyan_sizeof_<key>() at load.
 SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
          "part": Part, "mesh": Mesh, "param_info": ParamInfo, "host_mesh": HostMesh, "host_hit": HostHit,
-         "host_info": HostInfo}
+         "host_info": HostInfo, "image": Image, "texture_params": TextureParams}

@@ -1,0 +1,222 @@
+"""Shared, textured materials of the library's leaves and bark (issue #17).
+
+A banyan_material that names a texture (keyaki/ivy leaf atlas, keyaki/fig
+bark, ivy stem) becomes ONE material per kind and season, named for
+artists ("Banyan Keyaki Leaf", "Banyan Keyaki Leaf (autumn)", "Banyan Fig
+Bark", ...) and shared by every object and every run. Its images are drawn
+by the library (banyan_texture_generate, PNG by banyan_image_png) and
+packed into the .blend, so the file renders anywhere.
+
+Reuse rule: a material (or image) that already has the name is used as it
+is and never touched again, so an artist's edits to "Banyan Keyaki Leaf"
+survive every run and every Regenerate; to get the library's version
+back, delete or rename it. The texture size (add-on preference, default
+1024) applies to materials made from then on.
+
+Node setup, the same on Blender 3.4 to 5.0 (only inputs whose names did
+not change in 4.0 are used: Base Color, Roughness, Alpha, Normal):
+  image (sRGB) x base colour x vertex colour -> Principled Base Color;
+  leaves: image alpha > alpha_cutoff (a Math node, so the edge is a hard
+  clip in Cycles, EEVEE Legacy and EEVEE Next alike) -> Principled Alpha;
+  translucency: a Translucent BSDF of the same colour mixed in (weight
+  translucency x alpha, so cut-out texels stay transparent), the glow
+  of a back-lit leaf (Principled's subsurface/transmission inputs were
+  renamed in 4.0 and behave differently across versions);
+  normal image (Non-Color) -> Normal Map (tangent, "UVMap") -> Normal.
+EEVEE: 3.4-4.1 blend_method CLIP + shadow_method CLIP; 4.2+ (EEVEE Next)
+surface_render_method DITHERED, which with a 0/1 alpha is a clip.
+"""
+import bpy
+
+from .core import structs as S
+from .core import textures as T
+
+PROP = "banyan_texture"  # "kind/season" on materials and images this module made
+UV_MAP = "UVMap"         # build_mesh.fill_mesh's layer
+COLOR_ATTRIBUTE = "Color"
+
+
+def material_name(kind, season):
+    name = "Banyan " + T.KIND_NAMES[kind]
+    if kind in T.LEAVES and season == S.SEASON_AUTUMN:
+        name += " (autumn)"
+    return name
+
+
+def is_shared(mat):
+    """True for a material this module made, still under its name (one
+    the artist renamed is theirs)."""
+    if mat is None or PROP not in mat.keys():
+        return False
+    try:
+        kind, season = (int(x) for x in str(mat[PROP]).split("/"))
+        return mat.name == material_name(kind, season)
+    except (ValueError, KeyError):
+        return False
+
+
+def texture_size():
+    """The add-on preference's texture size (1024 when not registered)."""
+    try:
+        prefs = bpy.context.preferences.addons[__package__].preferences
+        return int(prefs.texture_size)
+    except (KeyError, AttributeError, ValueError, TypeError):
+        return T.DEFAULT_SIZE
+
+
+def _local(coll, name):
+    """The local (not linked) datablock called name, or None."""
+    for idb in coll:
+        if idb.name == name and idb.library is None:
+            return idb
+    return None
+
+
+def _image(name, png, alpha, non_color, key, created):
+    """A packed image from PNG bytes (reused by name when present)."""
+    img = _local(bpy.data.images, name)
+    if img is not None:
+        return img
+    data, w, h, _c = png
+    img = created.add(bpy.data.images.new(name, w, h, alpha=alpha))
+    # Packed from memory: no temporary file; source FILE decodes the PNG.
+    img.pack(data=data, data_len=len(data))
+    img.source = 'FILE'
+    if non_color:
+        img.colorspace_settings.name = 'Non-Color'
+    img[PROP] = key
+    return img
+
+
+def _eevee_clip(mat, cutoff):
+    if hasattr(mat, "surface_render_method"):  # EEVEE Next (4.2+)
+        mat.surface_render_method = 'DITHERED'
+        if hasattr(mat, "use_transparent_shadow"):
+            mat.use_transparent_shadow = True
+    else:                                      # EEVEE Legacy (3.4-4.1)
+        mat.blend_method = 'CLIP'
+        mat.alpha_threshold = cutoff
+        mat.shadow_method = 'CLIP'
+
+
+def _multiply(nodes, links, colour, other, x):
+    """colour x other (a socket or an RGB tuple), as a Vector Math node
+    (the same node and sockets on 3.4 to 5.0, unlike the Mix nodes)."""
+    m = nodes.new("ShaderNodeVectorMath")
+    m.operation = 'MULTIPLY'
+    m.location = (x, 300)
+    links.new(colour, m.inputs[0])
+    if isinstance(other, tuple):
+        m.inputs[1].default_value = other
+    else:
+        links.new(other, m.inputs[1])
+    return m.outputs[0]
+
+
+def shared_material(spec, created, vertex_colors=False):
+    """The shared material of a textured banyan_material dict (made once)."""
+    kind, season = spec["texture"], spec["season"] if spec["texture"] in T.LEAVES else S.SEASON_SUMMER
+    name = material_name(kind, season)
+    mat = _local(bpy.data.materials, name)
+    if mat is not None:
+        return mat
+    key = "%d/%d" % (kind, season)
+    leaf = kind in T.LEAVES
+    cutoff = float(spec.get("alpha_cutoff", 0.0))
+    size = texture_size()
+    base_png, normal_png = T.generate_png(kind, season, size)
+    img = _image("%s color" % name, base_png, True, False, key, created)
+    nimg = _image("%s normal" % name, normal_png, False, True, key, created) if normal_png else None
+
+    mat = created.add(bpy.data.materials.new(name))
+    mat[PROP] = key
+    col = tuple(spec["base_color"])
+    mat.diffuse_color = col  # the viewport's solid colour
+    mat.roughness = spec["roughness"]
+    mat.use_backface_culling = not spec["double_sided"]
+    if bpy.app.version < (5, 0, 0):  # 5.0: a new material always has its node tree (use_nodes is deprecated)
+        mat.use_nodes = True
+    nt = mat.node_tree
+    nodes, links = nt.nodes, nt.links
+    bsdf = nodes.get("Principled BSDF") or nodes.new("ShaderNodeBsdfPrincipled")
+    out = nodes.get("Material Output") or nodes.new("ShaderNodeOutputMaterial")
+    bsdf.location, out.location = (300, 300), (900, 300)
+    bsdf.inputs["Roughness"].default_value = spec["roughness"]
+
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = UV_MAP
+    uv.location = (-900, 300)
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.label = "Base Color"
+    tex.location = (-650, 400)
+    links.new(uv.outputs["UV"], tex.inputs["Vector"])
+    colour = tex.outputs["Color"]
+    if min(col[:3]) < 0.999:
+        colour = _multiply(nodes, links, colour, col[:3], -300)
+    if vertex_colors:
+        vc = nodes.new("ShaderNodeVertexColor")
+        vc.layer_name = COLOR_ATTRIBUTE
+        vc.location = (-300, 550)
+        colour = _multiply(nodes, links, colour, vc.outputs["Color"], -100)
+    links.new(colour, bsdf.inputs["Base Color"])
+
+    shader = bsdf.outputs["BSDF"]
+    alpha = None
+    if leaf and cutoff > 0.0:
+        clip = nodes.new("ShaderNodeMath")
+        clip.operation = 'GREATER_THAN'
+        clip.label = "Alpha clip"
+        clip.location = (-300, 100)
+        links.new(tex.outputs["Alpha"], clip.inputs[0])
+        clip.inputs[1].default_value = cutoff
+        alpha = clip.outputs[0]
+        links.new(alpha, bsdf.inputs["Alpha"])
+        _eevee_clip(mat, cutoff)
+    translucency = float(spec.get("translucency", 0.0))
+    if translucency > 0.0:
+        tr = nodes.new("ShaderNodeBsdfTranslucent")
+        tr.location = (300, -200)
+        links.new(colour, tr.inputs["Color"])
+        mix = nodes.new("ShaderNodeMixShader")
+        mix.label = "Translucency"
+        mix.location = (650, 300)
+        if alpha is not None:
+            w = nodes.new("ShaderNodeMath")
+            w.operation = 'MULTIPLY'
+            w.location = (300, 550)
+            links.new(alpha, w.inputs[0])
+            w.inputs[1].default_value = translucency
+            links.new(w.outputs[0], mix.inputs["Fac"])
+        else:
+            mix.inputs["Fac"].default_value = translucency
+        links.new(shader, mix.inputs[1])
+        links.new(tr.outputs["BSDF"], mix.inputs[2])
+        shader = mix.outputs["Shader"]
+    if nimg is not None:
+        ntex = nodes.new("ShaderNodeTexImage")
+        ntex.image = nimg
+        ntex.label = "Normal"
+        ntex.location = (-650, -100)
+        links.new(uv.outputs["UV"], ntex.inputs["Vector"])
+        nm = nodes.new("ShaderNodeNormalMap")
+        nm.space = 'TANGENT'
+        nm.uv_map = UV_MAP
+        nm.location = (-300, -150)
+        links.new(ntex.outputs["Color"], nm.inputs["Color"])
+        links.new(nm.outputs["Normal"], bsdf.inputs["Normal"])
+    links.new(shader, out.inputs["Surface"])
+    return mat
+
+
+class BanyanPreferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+
+    texture_size: bpy.props.EnumProperty(
+        name="Texture Size",
+        description="Pixels per side of the leaf and bark textures the library draws for new materials "
+                    "(materials already in the file are reused as they are)",
+        items=[(str(s), "%d px" % s, "") for s in T.SIZES], default=str(T.DEFAULT_SIZE))
+
+    def draw(self, context):
+        self.layout.prop(self, "texture_size")

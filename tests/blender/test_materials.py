@@ -1,0 +1,234 @@
+"""Shared textured materials (issue #17, blender_addon/banyan/materials.py):
+operators run twice leave exactly one material per kind and season and one
+image per texture, packed, of the preference's size, the leaves' with
+alpha; node trees wire image -> Principled base colour (and alpha through a
+clip for leaves, a Normal Map for bark); EEVEE clips leaves; autumn swaps
+the material, not the geometry; an artist's edit to a shared material is
+never overwritten; Regenerate with another season swaps the slot."""
+import os
+import sys
+from array import array
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bt  # noqa: E402
+import gens  # noqa: E402
+
+import bpy  # noqa: E402
+from banyan import materials as MAT  # noqa: E402
+from banyan.core import structs as S  # noqa: E402
+from banyan.core import textures as T  # noqa: E402
+from banyan.core.errors import BanyanError  # noqa: E402
+
+SIZE = 256  # small for speed; the add-on's default is 1024
+EXPECTED = {"roots": {"Banyan Fig Bark"}, "keyaki": {"Banyan Keyaki Leaf", "Banyan Keyaki Bark"},
+            "ivy": {"Banyan Ivy Leaf", "Banyan Ivy Stem"}}
+
+
+def set_size(size):
+    bpy.context.preferences.addons["banyan"].preferences.texture_size = str(size)
+
+
+def new_objects(before):
+    return [o for o in bpy.data.objects if o.name not in before]
+
+
+def run_op(gen, **kw):
+    gens.prepare(gen)
+    bpy.context.view_layer.objects.active = bpy.data.objects.get("Cube")
+    before = {o.name for o in bpy.data.objects}
+    args = dict(gens.KWARGS[gen])
+    args.update(kw)
+    res = gens.op(gen)(**args)
+    bt.check(res == {'FINISHED'}, "%s %s: operator finished (%s)" % (gen, kw, res))
+    return new_objects(before)
+
+
+def shared():
+    return [m for m in bpy.data.materials if MAT.is_shared(m)]
+
+
+def upstream(socket, seen=None):
+    """Every node feeding `socket`, following links back."""
+    out = []
+    for link in socket.links:
+        n = link.from_node
+        out.append((n, link.from_socket.name))
+        for s in n.inputs:
+            out += upstream(s)
+    return out
+
+
+def image_nodes(socket):
+    return [(n, out) for n, out in upstream(socket) if n.bl_idname == "ShaderNodeTexImage"]
+
+
+def pixels(img):
+    buf = array("f", bytes(4 * len(img.pixels)))
+    img.pixels.foreach_get(buf)
+    return buf
+
+
+def test_twice():
+    bt.reset_scene()
+    set_size(SIZE)
+    objs = {}
+    for gen in ("keyaki", "ivy", "roots"):
+        if not bt.generator(gen):
+            continue
+        for _ in range(2):
+            objs[gen] = run_op(gen)
+        names = {m.name for o in objs[gen] for m in o.data.materials if m is not None}
+        bt.check(names == EXPECTED[gen], "%s: slots hold %s, expected %s" % (gen, sorted(names), sorted(EXPECTED[gen])))
+    mats = shared()
+    bt.check(sorted(m.name for m in mats) == sorted(set().union(*(EXPECTED[g] for g in objs))),
+             "one material per kind after two runs of each: %s" % sorted(m.name for m in bpy.data.materials))
+    bt.check(not [m.name for m in bpy.data.materials if m.name.startswith("Banyan") and "." in m.name],
+             "no Banyan material duplicated (.001)")
+    imgs = [i for i in bpy.data.images if MAT.PROP in i.keys()]
+    # One colour image per material, a normal image when the library draws one; none twice.
+    bt.check(len({i.name for i in imgs}) == len(imgs) and not [i for i in imgs if "." in i.name],
+             "no image duplicated: %s" % sorted(i.name for i in imgs))
+    for m in mats:
+        bt.check(bpy.data.images.get(m.name + " color") is not None, "%s: its colour image exists" % m.name)
+    for img in imgs:
+        bt.check(img.packed_file is not None, "%s: packed into the .blend" % img.name)
+        bt.check(tuple(img.size) == (SIZE, SIZE), "%s: %s px, asked %d" % (img.name, tuple(img.size), SIZE))
+    for name in ("Banyan Keyaki Leaf color", "Banyan Ivy Leaf color"):
+        img = bpy.data.images.get(name)
+        if img is None:
+            continue
+        a = pixels(img)[3::4]
+        clear = sum(1 for v in a if v < 0.5)
+        bt.check(img.channels == 4 and 0.1 * len(a) < clear < 0.95 * len(a),
+                 "%s: alpha cuts the leaves out (%d of %d texels clear)" % (name, clear, len(a)))
+    for name in ("Banyan Keyaki Bark normal", "Banyan Fig Bark normal"):
+        img = bpy.data.images.get(name)
+        if img is not None:
+            bt.check(img.colorspace_settings.name == 'Non-Color', "%s: Non-Color" % name)
+    for m in mats:
+        check_nodes(m)
+
+
+def check_nodes(m):
+    kind = int(m[MAT.PROP].split("/")[0])
+    leaf = kind in T.LEAVES
+    nodes = m.node_tree.nodes
+    bsdf = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
+    out = next((n for n in nodes if n.bl_idname == "ShaderNodeOutputMaterial"), None)
+    if not bt.check(bsdf is not None and out is not None, "%s: Principled BSDF and output" % m.name):
+        return
+    bt.check(out.inputs["Surface"].is_linked and any(n == bsdf for n, _ in upstream(out.inputs["Surface"])),
+             "%s: the Principled BSDF reaches the output" % m.name)
+    base = image_nodes(bsdf.inputs["Base Color"])
+    bt.check(any(n.image is not None and n.image.name == m.name + " color" and o == "Color" for n, o in base),
+             "%s: colour image -> Base Color" % m.name)
+    if leaf:
+        al = image_nodes(bsdf.inputs["Alpha"])
+        bt.check(any(o == "Alpha" and n.image.name == m.name + " color" for n, o in al),
+                 "%s: image alpha -> Principled Alpha" % m.name)
+        clip = [n for n, _ in upstream(bsdf.inputs["Alpha"]) if n.bl_idname == "ShaderNodeMath"]
+        bt.check(any(n.operation == 'GREATER_THAN' and 0 < n.inputs[1].default_value < 1 for n in clip),
+                 "%s: alpha clipped at the cutoff" % m.name)
+        if hasattr(m, "surface_render_method"):
+            bt.check(m.surface_render_method == 'DITHERED', "%s: EEVEE Next dithered (clip)" % m.name)
+        else:
+            bt.check(m.blend_method == 'CLIP' and 0 < m.alpha_threshold < 1, "%s: EEVEE clip" % m.name)
+        bt.check(not m.use_backface_culling, "%s: double sided" % m.name)
+        bt.check(any(n.bl_idname == "ShaderNodeBsdfTranslucent" for n, _ in upstream(out.inputs["Surface"])),
+                 "%s: translucent BSDF mixed in (back-lit glow)" % m.name)
+    else:
+        nm = [n for n, _ in upstream(bsdf.inputs["Normal"]) if n.bl_idname == "ShaderNodeNormalMap"]
+        bt.check(len(nm) == 1 and nm[0].space == 'TANGENT', "%s: Normal Map -> Normal" % m.name)
+        if nm:
+            im = image_nodes(nm[0].inputs["Color"])
+            bt.check(any(n.image.colorspace_settings.name == 'Non-Color' for n, _ in im),
+                     "%s: a Non-Color image feeds the normal map" % m.name)
+
+
+def season_items(gen):
+    op = gens.OPS[gen].split(".")
+    rna = getattr(getattr(bpy.ops, op[0]), op[1]).get_rna_type()
+    p = rna.properties.get("season")
+    return [i.identifier for i in p.enum_items] if p is not None else []
+
+
+def coords(objs):
+    out = []
+    for o in objs:
+        buf = array("f", bytes(12 * len(o.data.vertices)))
+        o.data.vertices.foreach_get("co", buf)
+        out.append(buf.tobytes())
+    return out
+
+
+def test_season():
+    for gen, leaf in (("keyaki", "Banyan Keyaki Leaf"), ("ivy", "Banyan Ivy Leaf")):
+        if not bt.generator(gen):
+            continue
+        items = season_items(gen)
+        if not bt.check(len(items) == 2, "%s: a Season choice of two (%s)" % (gen, items)):
+            continue
+        bt.reset_scene()
+        set_size(SIZE)
+        summer = run_op(gen, season=items[0])
+        autumn = run_op(gen, season=items[1])
+        bt.check(coords(summer) == coords(autumn), "%s: autumn has the same vertex positions" % gen)
+        ms = {m.name for o in summer for m in o.data.materials}
+        ma = {m.name for o in autumn for m in o.data.materials}
+        bt.check(leaf in ms and leaf not in ma and leaf + " (autumn)" in ma,
+                 "%s: autumn swaps the leaf material (%s -> %s)" % (gen, sorted(ms), sorted(ma)))
+        bt.check(len(ms & ma) == 1, "%s: the bark/stem material is shared by both seasons" % gen)
+        # Regenerate with the other season: the library's slot follows, an artist's slot stays.
+        from banyan import plant
+        obj = summer[0]
+        me = obj.data
+        own = bpy.data.materials.new("Artist Bark")
+        slot = next(i for i, m in enumerate(me.materials) if m.name != leaf)
+        me.materials[slot] = own
+        p = plant.current_params(obj)
+        p.set("season", 1)
+        new = plant.regenerate(obj, p)
+        got = [m.name for m in new[0].data.materials]
+        bt.check(leaf + " (autumn)" in got and "Artist Bark" in got,
+                 "%s: regenerate in autumn: %s" % (gen, got))
+        bt.check(coords(new) == coords(summer[:1]) or gen == "ivy", "%s: regenerate kept the geometry" % gen)
+
+
+def test_user_edit():
+    """A shared material the artist edited is reused as it is."""
+    if not bt.generator("roots"):
+        return
+    bt.reset_scene()
+    set_size(SIZE)
+    run_op("roots")
+    m = bpy.data.materials["Banyan Fig Bark"]
+    bsdf = next(n for n in m.node_tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    bsdf.inputs["Roughness"].default_value = 0.123
+    n_nodes = len(m.node_tree.nodes)
+    objs = run_op("roots")
+    bt.check(objs and objs[0].data.materials[0] == m, "roots: the second run uses the edited material")
+    bt.check(abs(bsdf.inputs["Roughness"].default_value - 0.123) < 1e-6 and len(m.node_tree.nodes) == n_nodes,
+             "roots: the artist's edit survives another run")
+    bt.check(len([x for x in bpy.data.materials if x.name.startswith("Banyan Fig Bark")]) == 1,
+             "roots: still one Fig Bark material")
+    # A renamed library material is the artist's: the next run makes a fresh one.
+    m.name = "My Fig Bark"
+    run_op("roots")
+    bt.check("Banyan Fig Bark" in bpy.data.materials and "My Fig Bark" in bpy.data.materials,
+             "roots: after a rename the library's material comes back beside the artist's")
+
+
+def test_bad_size():
+    for size in (0, 100, 16384):
+        try:
+            T.generate_png(S.TEX_FIG_BARK, 0, size)
+            bt.check(False, "texture size %d refused" % size)
+        except BanyanError as e:
+            bt.check("size" in e.message, "texture size %d refused naming the size: %s" % (size, e.message))
+
+
+bt.run(test_twice)
+bt.run(test_season)
+bt.run(test_user_edit)
+bt.run(test_bad_size)
+bt.done()
