@@ -55,13 +55,18 @@ def is_shared(mat):
         return False
 
 
+# The size when the add-on has no preferences entry (imported as a module
+# by a script, or after factory preferences were loaded).
+FALLBACK_SIZE = T.DEFAULT_SIZE
+
+
 def texture_size():
-    """The add-on preference's texture size (1024 when not registered)."""
+    """The add-on preference's texture size, else FALLBACK_SIZE."""
+    a = bpy.context.preferences.addons.get(__package__)
     try:
-        prefs = bpy.context.preferences.addons[__package__].preferences
-        return int(prefs.texture_size)
-    except (KeyError, AttributeError, ValueError, TypeError):
-        return T.DEFAULT_SIZE
+        return int(a.preferences.texture_size)
+    except (AttributeError, ValueError, TypeError):
+        return FALLBACK_SIZE
 
 
 def _local(coll, name):

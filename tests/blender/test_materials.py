@@ -25,7 +25,23 @@ EXPECTED = {"roots": {"Banyan Fig Bark"}, "keyaki": {"Banyan Keyaki Leaf", "Bany
 
 
 def set_size(size):
-    bpy.context.preferences.addons["banyan"].preferences.texture_size = str(size)
+    a = bpy.context.preferences.addons.get("banyan")
+    if a is not None:
+        a.preferences.texture_size = str(size)
+    MAT.FALLBACK_SIZE = size  # reset_scene loads factory preferences: no add-on entry then
+
+
+def test_preference():
+    a = bpy.context.preferences.addons.get("banyan")
+    if a is None:  # `blender --addons` enables without a preferences entry; what addon_utils.enable adds
+        a = bpy.context.preferences.addons.new()
+        a.module = "banyan"
+    if not bt.check(a is not None and a.preferences is not None, "the add-on has preferences"):
+        return
+    bt.check(a.preferences.texture_size == str(T.DEFAULT_SIZE) == "1024", "texture size defaults to 1024")
+    a.preferences.texture_size = "512"
+    bt.check(MAT.texture_size() == 512, "texture_size() follows the preference")
+    a.preferences.texture_size = "1024"
 
 
 def new_objects(before):
@@ -227,6 +243,7 @@ def test_bad_size():
             bt.check("size" in e.message, "texture size %d refused naming the size: %s" % (size, e.message))
 
 
+bt.run(test_preference)
 bt.run(test_twice)
 bt.run(test_season)
 bt.run(test_user_edit)
