@@ -15,7 +15,8 @@ back, delete or rename it. The texture size (add-on preference, default
 
 Node setup, the same on Blender 3.4 to 5.0 (only inputs whose names did
 not change in 4.0 are used: Base Color, Roughness, Alpha, Normal):
-  image (sRGB) x base colour x vertex colour -> Principled Base Color;
+  image (sRGB) [x vertex colour: per-leaf tints] -> Principled Base Color
+  (the texture carries the colour; base_color is the viewport colour);
   leaves: image alpha > alpha_cutoff (a Math node, so the edge is a hard
   clip in Cycles, EEVEE Legacy and EEVEE Next alike) -> Principled Alpha;
   translucency: a Translucent BSDF of the same colour mixed in (weight
@@ -105,16 +106,13 @@ def _eevee_clip(mat, cutoff):
 
 
 def _multiply(nodes, links, colour, other, x):
-    """colour x other (a socket or an RGB tuple), as a Vector Math node
-    (the same node and sockets on 3.4 to 5.0, unlike the Mix nodes)."""
+    """colour x other, as a Vector Math node (the same node and sockets
+    on 3.4 to 5.0, unlike the Mix nodes)."""
     m = nodes.new("ShaderNodeVectorMath")
     m.operation = 'MULTIPLY'
     m.location = (x, 300)
     links.new(colour, m.inputs[0])
-    if isinstance(other, tuple):
-        m.inputs[1].default_value = other
-    else:
-        links.new(other, m.inputs[1])
+    links.new(other, m.inputs[1])
     return m.outputs[0]
 
 
@@ -157,9 +155,10 @@ def shared_material(spec, created, vertex_colors=False):
     tex.location = (-650, 400)
     links.new(uv.outputs["UV"], tex.inputs["Vector"])
     colour = tex.outputs["Color"]
-    if min(col[:3]) < 0.999:
-        colour = _multiply(nodes, links, colour, col[:3], -300)
-    if vertex_colors:
+    # The texture carries the colour (base_color is the flat colour of
+    # untextured viewers: here the viewport's), as in the glTF writer;
+    # leaves are tinted leaf by leaf by the vertex colours (COLOR_0).
+    if vertex_colors and leaf:
         vc = nodes.new("ShaderNodeVertexColor")
         vc.layer_name = COLOR_ATTRIBUTE
         vc.location = (-300, 550)
