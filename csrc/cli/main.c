@@ -1,7 +1,7 @@
 /* `banyan` command line tool:
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
- *                      [-o out.glb|out.gltf] [--stats]
+ *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -49,9 +49,12 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
+               "                        [--textures on|off] [--texture-size N]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
+               "--textures on (default) embeds the leaf and bark textures in the glTF file, drawn at\n"
+               "--texture-size pixels (a power of two, 64 .. 8192; default 1024); off writes flat colours.\n"
                "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
@@ -190,6 +193,8 @@ int main(int argc, char **argv) {
     static cli_job job; /* large (hosts); one per process */
     const char *out_path = NULL, *seed = NULL;
     int stats = 0, list = 0;
+    banyan_gltf_options gltf_opt;
+    banyan_gltf_options_init(&gltf_opt);
     const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
     int n_sets = 0, n_host_args = 0;
     if (!sets || !host_args) {
@@ -207,6 +212,29 @@ int main(int argc, char **argv) {
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) out_path = argv[++i];
         else if (!strcmp(a, "--threads") && has_val) job.threads = atoi(argv[++i]);
         else if (!strcmp(a, "--stats")) stats = 1;
+        else if (!strcmp(a, "--textures") && has_val) {
+            const char *v = argv[++i];
+            if (strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
+                free(sets);
+                free(host_args);
+                return 2;
+            }
+            gltf_opt.textures = !strcmp(v, "on");
+        } else if (!strcmp(a, "--texture-size") && has_val) {
+            const char *v = argv[++i];
+            char *end = NULL;
+            errno = 0;
+            long n = strtol(v, &end, 10);
+            if (errno || end == v || *end || n < 64 || n > 8192 || (n & (n - 1))) {
+                fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
+                        v);
+                free(sets);
+                free(host_args);
+                return 2;
+            }
+            gltf_opt.texture_size = (int32_t)n;
+        }
         else if (!strcmp(a, "--list")) list = 1;
         else {
             fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
@@ -339,7 +367,8 @@ int main(int argc, char **argv) {
     }
     double t2 = t1;
     if (out_path) {
-        if (banyan_gltf_write(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names, count, &err)) {
+        if (banyan_gltf_write_ex(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names, count,
+                                 &gltf_opt, &err)) {
             fprintf(stderr, "banyan %s: writing %s: %s\n", cmd->name, out_path, err.message);
             goto out;
         }

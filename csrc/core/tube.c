@@ -124,6 +124,19 @@ static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
         for (uint32_t k = 0; k < per; k++) I[k] = r0 + pat[k];
 }
 
+/* v gained over a segment of length l whose radius goes linearly from
+ * r0 to r1: the integral of dl / (2 pi r), so that along a tapering tube
+ * a texel stays as tall as it is wide (u runs once around whatever the
+ * radius) and bark textures do not stretch. A radius that is not
+ * positive falls back to r_mean. */
+static double tube_dv(double l, double r0, double r1, double r_mean) {
+    const double two_pi = 6.283185307179586;
+    if (!(r0 > 1e-12 && r1 > 1e-12)) return r_mean > 1e-12 ? l / (two_pi * r_mean) : l;
+    double d = r1 - r0;
+    if (fabs(d) < 1e-6 * r0) return l / (two_pi * 0.5 * (r0 + r1));
+    return l * log(r1 / r0) / (two_pi * d);
+}
+
 static inline void put3(float *f, v3 p) {
     f[0] = (float)p.x; f[1] = (float)p.y; f[2] = (float)p.z;
 }
@@ -172,25 +185,27 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     uint32_t nv, ni;
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     if (mb_reserve(mb, nv, ni)) return;
-    /* Per ring: radius (distance of its first vertex), tangent and arc
-     * length; v is arc length over the circumference at the mean radius. */
+    /* Per ring: radius (distance of its first vertex), tangent and v
+     * (tube_dv: arc length over the local circumference). */
     double rsum = 0;
     for (uint32_t i = 0; i < n; i++) rsum += v3_dist(rings[(size_t)i * sides], centres[i]);
-    double circ = 6.283185307179586 * (rsum / n);
-    double vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+    double r_mean = rsum / n;
     uint32_t ring_len = (uint32_t)sides + 1;
     uint32_t first = mb_vertices(mb, n * ring_len);
     if (first == UINT32_MAX) return;
     float *P = mb->pos + 3 * (size_t)first, *N = mb->nrm + 3 * (size_t)first, *UV = mb->uv + 2 * (size_t)first;
-    double s = 0, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
+    double vv_acc = o->v_offset, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
     v3 derived[256];
     for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
-        if (i) s += v3_dist(centres[i], centres[i - 1]);
+        if (i) {
+            vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), v3_dist(rings[(size_t)(i - 1) * sides], centres[i - 1]),
+                              v3_dist(rings[(size_t)i * sides], centres[i]), r_mean);
+        }
         v3 T = tangent_at(centres, n, i, prevT);
         prevT = T;
         const v3 *ring = rings + (size_t)i * sides;
-        float vv = (float)(o->v_offset + s * vscale);
+        float vv = (float)vv_acc;
         if (o->ring_normals) {
             put_ring(P, N, UV, ring, o->ring_normals + (size_t)i * sides, sides, vv);
             continue;
@@ -321,22 +336,22 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     uint32_t first = mb_reserve(mb, nv, ni) ? UINT32_MAX : mb_vertices(mb, n * ring_len);
     if (first == UINT32_MAX) return;
-    /* v: arc length over the circumference at the mean radius. */
-    double rsum = 0, s = 0;
+    /* v: tube_dv, arc length over the local circumference. */
+    double rsum = 0, vv = o->v_offset;
     for (uint32_t i = 0; i < n; i++) rsum += radii[i];
-    double circ = 6.283185307179586 * (rsum / n), vscale = circ > 1e-12 ? 1.0 / circ : 1.0;
+    double r_mean = rsum / n;
     /* Frames are walked along with the rings, each ring made straight into
      * the mesh: no scratch per point or per vertex. */
     frame_walk w;
     walk_start(&w, pts, n, o->first_normal);
     v3 T0 = w.T, N0 = w.N;
     for (uint32_t i = 0;; i++) {
-        if (i) s += w.l0;
+        if (i) vv += tube_dv(w.l0, radii[i - 1], radii[i], r_mean);
         size_t at = (size_t)first + (size_t)i * ring_len;
         ring_geom g;
         ring_setup(&g, pts, radii, n, i, w.T, w.N, w.l0 > 1e-300 ? w.u0 : w.T, w.l > 1e-300 ? w.u : w.T);
         put_round_ring(&g, cs, sn, mb->ring_u, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
-                       (float)(o->v_offset + s * vscale));
+                       (float)vv);
         if (i + 1 >= n) break;
         walk_next(&w);
     }

@@ -4,8 +4,9 @@
  * (plus one seam vertex so u runs 0..1), joined by quads split into two
  * triangles, wound counter-clockwise from outside. Frames are
  * rotation-minimising (double reflection, Wang et al. 2008), so rings do
- * not twist. u goes around the tube, v along it: arc length divided by the
- * circumference at the mean radius, so texels stay square. */
+ * not twist. u goes around the tube once, v along it: the integral of
+ * arc length over the local circumference, so texels stay square where
+ * the tube tapers too (bark textures keep their aspect). */
 #ifndef BANYAN_TUBE_H
 #define BANYAN_TUBE_H
 

@@ -18,7 +18,14 @@
  *     (u, 1 - v), COLOR_0 (float VEC4, when colors != NULL), "_NAME" float
  *     scalars for custom attributes, UNSIGNED_INT indices;
  *   - Z-up to Y-up: (x, y, z) -> (x, z, -y) for positions and normals;
- *   - one metallic-roughness material per banyan_material.
+ *   - one metallic-roughness material per banyan_material;
+ *   - with textures on, the library's textures that the materials name
+ *     (banyan/textures.h), drawn at the options' size and seed, as PNG
+ *     images in bufferViews at the end of the buffer: one image per
+ *     (kind, season, map), shared by every material that uses it;
+ *     baseColorTexture (factor white, as the texture carries the colour)
+ *     and normalTexture; bark samplers REPEAT, atlas samplers
+ *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK.
  * The skeleton is not exported.
  *
  * Nothing is created on disk until every input has been checked. A write
@@ -53,6 +60,8 @@ namespace {
 /* glTF buffers are addressed with 32-bit lengths in GLB; keep some room for
  * the JSON chunk as well. */
 const uint64_t kMaxBufferBytes = UINT64_C(0xFFFFFFFF) - (UINT64_C(64) << 20);
+
+uint64_t pad4(uint64_t n) { return (n + 3) & ~UINT64_C(3); }
 
 /* Strict UTF-8 check (no overlongs, no surrogates, <= U+10FFFF). The JSON
  * serialiser throws on invalid UTF-8, so names are checked up front. */
@@ -140,6 +149,8 @@ banyan_status check_finite(const float *a, uint32_t n, uint32_t width, uint32_t 
     }
     return BANYAN_OK;
 }
+
+bool is_leaf_kind(int32_t kind) { return kind == BANYAN_TEX_KEYAKI_LEAF || kind == BANYAN_TEX_IVY_LEAF; }
 
 banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
     if (m == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u] is NULL", mi);
@@ -248,6 +259,22 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
             return banyan_fail(err, BANYAN_E_RANGE,
                         "meshes[%u].materials[%u].roughness = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->roughness));
+        if (mat->texture < BANYAN_TEX_NONE || mat->texture >= BANYAN_TEX_COUNT)
+            return banyan_fail(err, BANYAN_E_RANGE,
+                        "meshes[%u].materials[%u].texture = %d is outside [%d, %d] (banyan_texture_kind)",
+                        mi, k, mat->texture, BANYAN_TEX_NONE, BANYAN_TEX_COUNT - 1);
+        if (mat->season != BANYAN_SEASON_SUMMER && mat->season != BANYAN_SEASON_AUTUMN)
+            return banyan_fail(err, BANYAN_E_RANGE,
+                        "meshes[%u].materials[%u].season = %d is outside [0, 1] (summer, autumn)", mi, k,
+                        mat->season);
+        if (!(mat->alpha_cutoff >= 0.0f && mat->alpha_cutoff <= 1.0f))
+            return banyan_fail(err, BANYAN_E_RANGE,
+                        "meshes[%u].materials[%u].alpha_cutoff = %g is outside [0, 1]", mi, k,
+                        static_cast<double>(mat->alpha_cutoff));
+        if (!(mat->translucency >= 0.0f && mat->translucency <= 1.0f))
+            return banyan_fail(err, BANYAN_E_RANGE,
+                        "meshes[%u].materials[%u].translucency = %g is outside [0, 1]", mi, k,
+                        static_cast<double>(mat->translucency));
     }
 
     /* Parts. */
@@ -288,6 +315,19 @@ struct Builder {
     std::vector<unsigned char> &bin;
 
     explicit Builder(std::vector<unsigned char> &b) : bin(b) {}
+
+    /* Appends an image's bytes as a new bufferView (no target), then pads
+     * the buffer to 4 bytes for the views that follow. */
+    int add_image_view(const std::vector<unsigned char> &bytes) {
+        tinygltf::BufferView v;
+        v.buffer = 0;
+        v.byteOffset = bin.size();
+        v.byteLength = bytes.size();
+        bin.insert(bin.end(), bytes.begin(), bytes.end());
+        bin.resize(static_cast<size_t>(pad4(bin.size())), 0);
+        model.bufferViews.push_back(v);
+        return static_cast<int>(model.bufferViews.size() - 1);
+    }
 
     /* Appends `bytes` bytes (a multiple of 4) as a new bufferView. */
     int add_view(const void *data, size_t bytes, int target) {
@@ -365,9 +405,83 @@ bool colors_repeat_material(const banyan_mesh *m) {
     return true;
 }
 
-/* The vertex accessors for vertices [base, base + count) of mesh m. */
+/* Per-vertex tangents (x, y, z, w) in the mesh's own Z-up frame, for
+ * normal maps: xyz the direction of increasing u, made perpendicular to
+ * the normal; w = +1 when (normal x tangent) points up the image
+ * (increasing banyan v, glTF's bitangent), -1 where the uvs are mirrored.
+ * Triangles add their uv gradients to their corners (Lengyel's method);
+ * a vertex without a usable gradient gets any unit vector perpendicular
+ * to its normal. Needs normals and uvs. */
+std::vector<float> vertex_tangents(const banyan_mesh *m) {
+    const size_t vc = m->vertex_count;
+    std::vector<double> acc(6 * vc, 0.0); /* t then b, per vertex */
+    for (uint32_t k = 0; k + 2 < m->index_count; k += 3) {
+        const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
+        const float *p0 = m->positions + 3 * static_cast<size_t>(i[0]);
+        const float *p1 = m->positions + 3 * static_cast<size_t>(i[1]);
+        const float *p2 = m->positions + 3 * static_cast<size_t>(i[2]);
+        const float *t0 = m->uvs + 2 * static_cast<size_t>(i[0]);
+        const float *t1 = m->uvs + 2 * static_cast<size_t>(i[1]);
+        const float *t2 = m->uvs + 2 * static_cast<size_t>(i[2]);
+        double e1[3], e2[3];
+        for (int c = 0; c < 3; ++c) {
+            e1[c] = static_cast<double>(p1[c]) - p0[c];
+            e2[c] = static_cast<double>(p2[c]) - p0[c];
+        }
+        double du1 = static_cast<double>(t1[0]) - t0[0], dv1 = static_cast<double>(t1[1]) - t0[1];
+        double du2 = static_cast<double>(t2[0]) - t0[0], dv2 = static_cast<double>(t2[1]) - t0[1];
+        double det = du1 * dv2 - du2 * dv1;
+        if (!(std::fabs(det) > 1e-20)) continue;
+        double r = 1.0 / det, sd[3], td[3];
+        for (int c = 0; c < 3; ++c) {
+            sd[c] = (e1[c] * dv2 - e2[c] * dv1) * r;
+            td[c] = (e2[c] * du1 - e1[c] * du2) * r;
+        }
+        for (int j = 0; j < 3; ++j)
+            for (int c = 0; c < 3; ++c) {
+                acc[6 * static_cast<size_t>(i[j]) + c] += sd[c];
+                acc[6 * static_cast<size_t>(i[j]) + 3 + c] += td[c];
+            }
+    }
+    std::vector<float> out(4 * vc);
+    for (size_t v = 0; v < vc; ++v) {
+        double n[3] = {m->normals[3 * v], m->normals[3 * v + 1], m->normals[3 * v + 2]};
+        double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (nl > 0.0) {
+            for (double &c : n) c /= nl;
+        } else { /* the writer's zero normal becomes +Y up, i.e. +Z here */
+            n[0] = n[1] = 0.0;
+            n[2] = 1.0;
+        }
+        const double *t = &acc[6 * v], *bt = &acc[6 * v + 3];
+        double d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+        double q[3] = {t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]};
+        double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (!(ql > 1e-12 * (1.0 + std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])))) {
+            /* any perpendicular: n x (the axis least along n) */
+            double a[3] = {0.0, 0.0, 0.0};
+            int least = std::fabs(n[0]) <= std::fabs(n[1]) ? (std::fabs(n[0]) <= std::fabs(n[2]) ? 0 : 2)
+                                                            : (std::fabs(n[1]) <= std::fabs(n[2]) ? 1 : 2);
+            a[least] = 1.0;
+            q[0] = n[1] * a[2] - n[2] * a[1];
+            q[1] = n[2] * a[0] - n[0] * a[2];
+            q[2] = n[0] * a[1] - n[1] * a[0];
+            ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        }
+        for (double &c : q) c /= ql;
+        double cx[3] = {n[1] * q[2] - n[2] * q[1], n[2] * q[0] - n[0] * q[2], n[0] * q[1] - n[1] * q[0]};
+        double w = cx[0] * bt[0] + cx[1] * bt[1] + cx[2] * bt[2] < 0.0 ? -1.0 : 1.0;
+        for (int c = 0; c < 3; ++c) out[4 * v + c] = static_cast<float>(q[c]);
+        out[4 * v + 3] = static_cast<float>(w);
+    }
+    return out;
+}
+
+/* The vertex accessors for vertices [base, base + count) of mesh m;
+ * tangents (vertex_tangents, or empty) become TANGENT. */
 std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, uint32_t base,
-                                            uint32_t count, bool with_colors) {
+                                            uint32_t count, bool with_colors,
+                                            const std::vector<float> &tangents) {
     std::map<std::string, int> attrs;
     const int AB = TINYGLTF_TARGET_ARRAY_BUFFER;
     const int F = TINYGLTF_COMPONENT_TYPE_FLOAT;
@@ -420,6 +534,21 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     }
 
+    /* TANGENT: converted like the normals (a rotation: w keeps its sign). */
+    if (!tangents.empty()) {
+        tmp.resize(static_cast<size_t>(count) * 4);
+        for (uint32_t i = 0; i < count; ++i) {
+            const float *t = &tangents[4 * static_cast<size_t>(base + i)];
+            float *o = &tmp[4 * static_cast<size_t>(i)];
+            o[0] = t[0];
+            o[1] = t[2];
+            o[2] = -t[1];
+            o[3] = t[3];
+        }
+        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        attrs["TANGENT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
+    }
+
     if (m->colors && with_colors) {
         v = b.add_view(m->colors + 4 * static_cast<size_t>(base),
                        static_cast<size_t>(count) * 4 * sizeof(float), AB);
@@ -435,8 +564,9 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
     return attrs;
 }
 
-uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count, bool with_colors) {
+uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count, bool with_colors, bool tangents) {
     uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs ? 2 : 0) + (m->colors && with_colors ? 4 : 0) +
+                      (tangents ? 4 : 0) +
                       m->attribute_count;
     return floats * 4 * count;
 }
@@ -450,7 +580,7 @@ struct Prim {
 
 /* Plans a mesh's primitives; `local` tells whether each part keeps to its
  * own vertices. Returns the bytes the mesh adds to the buffer. */
-uint64_t plan_mesh(const banyan_mesh *m, int material_base, std::vector<Prim> &prims,
+uint64_t plan_mesh(const banyan_mesh *m, int material_base, bool tangents, std::vector<Prim> &prims,
                    bool &local) {
     prims.clear();
     local = m->part_count > 0;
@@ -483,10 +613,98 @@ uint64_t plan_mesh(const banyan_mesh *m, int material_base, std::vector<Prim> &p
     bool colors = !colors_repeat_material(m);
     for (const Prim &pr : prims) {
         bytes += 4ull * pr.icount;
-        if (local) bytes += vertex_range_bytes(m, pr.vcount, colors);
+        if (local) bytes += vertex_range_bytes(m, pr.vcount, colors, tangents);
     }
-    if (!local) bytes += vertex_range_bytes(m, m->vertex_count, colors);
+    if (!local) bytes += vertex_range_bytes(m, m->vertex_count, colors, tangents);
     return bytes;
+}
+
+/* ------------------------------------------------------------ textures */
+
+const char *const kKindNames[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
+                                                  "ivy_stem"};
+
+/* One texture the asset embeds: PNG bytes of its base colour (RGBA) and
+ * normal map (RGB); image 2 i and 2 i + 1, texture 2 i and 2 i + 1 for the
+ * i-th texture drawn. */
+struct TexturePngs {
+    int32_t kind, season;
+    std::vector<unsigned char> base, normal;
+};
+
+/* Frees the library's images and PNG buffers on every path out. */
+struct ImageGuard {
+    banyan_image *base = nullptr, *normal = nullptr;
+    uint8_t *png = nullptr;
+    ~ImageGuard() {
+        banyan_image_free(base);
+        banyan_image_free(normal);
+        banyan_png_free(png);
+    }
+};
+
+banyan_status to_png(ImageGuard &g, const banyan_image *image, std::vector<unsigned char> &out, banyan_error *err) {
+    size_t size = 0;
+    banyan_status s = banyan_image_png(image, &g.png, &size, err);
+    if (s != BANYAN_OK) return s;
+    out.assign(g.png, g.png + size);
+    banyan_png_free(g.png);
+    g.png = nullptr;
+    return BANYAN_OK;
+}
+
+banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, TexturePngs &t,
+                           banyan_error *err) {
+    banyan_texture_params tp;
+    banyan_texture_params_init(&tp);
+    tp.kind = kind;
+    tp.season = season;
+    tp.size = o.texture_size;
+    tp.seed = o.texture_seed;
+    ImageGuard g;
+    banyan_status s = banyan_texture_generate(&tp, &g.base, &g.normal, err);
+    if (s != BANYAN_OK) return s;
+    t.kind = kind;
+    t.season = season;
+    if ((s = to_png(g, g.base, t.base, err)) != BANYAN_OK) return s;
+    return to_png(g, g.normal, t.normal, err);
+}
+
+/* The slot key of a material's texture, or -1 when it is drawn flat:
+ * no texture, or a mesh without the uvs and normals a texture needs. */
+int texture_key(const banyan_mesh *m, const banyan_material *bm) {
+    if (bm->texture == BANYAN_TEX_NONE || m->uvs == nullptr || m->normals == nullptr) return -1;
+    return bm->texture * 2 + (is_leaf_kind(bm->texture) ? bm->season : 0); /* bark has no seasons */
+}
+
+/* Draws every texture the meshes' materials name, in order of first use;
+ * slot[kind * 2 + season] gets its index into `out` (-1: unused). */
+banyan_status draw_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
+                            std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT], banyan_error *err) {
+    for (int i = 0; i < 2 * BANYAN_TEX_COUNT; ++i) slot[i] = -1;
+    if (!o.textures) return BANYAN_OK;
+    for (uint32_t i = 0; i < count; ++i) {
+        for (uint32_t k = 0; k < meshes[i]->material_count; ++k) {
+            const banyan_material *bm = &meshes[i]->materials[k];
+            int key = texture_key(meshes[i], bm);
+            if (key < 0 || slot[key] >= 0) continue;
+            out.emplace_back();
+            banyan_status s = draw_texture(bm->texture, key % 2, o, out.back(), err);
+            if (s != BANYAN_OK) return s;
+            slot[key] = static_cast<int>(out.size() - 1);
+        }
+    }
+    return BANYAN_OK;
+}
+
+banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
+    if (o.textures != 0 && o.textures != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->textures = %d must be 0 (off) or 1 (on)", o.textures);
+    const int32_t n = o.texture_size;
+    if (n < 64 || n > 8192 || (n & (n - 1)) != 0)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "opt->texture_size = %d must be a power of two in [64, 8192]", n);
+    return BANYAN_OK;
 }
 
 /* A std::streambuf that writes to a FILE* and remembers the first errno. */
@@ -549,7 +767,11 @@ class OutFile {
 };
 
 banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
-                         const char *const *names, uint32_t count, banyan_error *err) {
+                         const char *const *names, uint32_t count, const banyan_gltf_options *opt,
+                         banyan_error *err) {
+    banyan_gltf_options o;
+    banyan_gltf_options_init(&o);
+    if (opt) o = *opt;
     if (path == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL");
     if (path[0] == '\0') return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is empty");
     bool binary;
@@ -561,6 +783,8 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
                     "path '%s' must end in .glb (binary) or .gltf (JSON)", path);
     }
+    banyan_status checked = check_options(o, err);
+    if (checked != BANYAN_OK) return checked;
     if (count == 0) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is 0; nothing to write");
     if (meshes == nullptr)
         return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes is NULL but count = %u", count);
@@ -576,6 +800,18 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         }
     }
 
+    std::vector<TexturePngs> textures;
+    int slot[2 * BANYAN_TEX_COUNT];
+    banyan_status ts = draw_textures(meshes, count, o, textures, slot, err);
+    if (ts != BANYAN_OK) return ts;
+    /* A mesh with a textured material gets tangents for its normal map. */
+    std::vector<char> tangents(count, 0);
+    for (uint32_t i = 0; i < count; ++i)
+        for (uint32_t k = 0; k < meshes[i]->material_count; ++k) {
+            int key = texture_key(meshes[i], &meshes[i]->materials[k]);
+            if (key >= 0 && slot[key] >= 0) tangents[i] = 1;
+        }
+
     /* Plan, so the buffer is allocated once and its size checked first. */
     std::vector<std::vector<Prim>> plans(count);
     std::vector<char> local(count, 0);
@@ -583,10 +819,11 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     int material_base = 0;
     for (uint32_t i = 0; i < count; ++i) {
         bool l = false;
-        total += plan_mesh(meshes[i], material_base, plans[i], l);
+        total += plan_mesh(meshes[i], material_base, tangents[i] != 0, plans[i], l);
         local[i] = l ? 1 : 0;
         material_base += static_cast<int>(meshes[i]->material_count);
     }
+    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     if (total > kMaxBufferBytes)
         return banyan_fail(err, BANYAN_E_LIMIT,
                     "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
@@ -601,6 +838,35 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     model.asset.version = "2.0";
     model.asset.generator = "banyan";
 
+    /* Images, samplers and textures first (their bytes go at the end of
+     * the buffer): sampler 0 repeats (bark), sampler 1 clamps (atlases). */
+    int sampler[2] = {-1, -1};
+    for (size_t t = 0; t < textures.size(); ++t) {
+        const TexturePngs &tp = textures[t];
+        bool atlas = is_leaf_kind(tp.kind);
+        if (sampler[atlas] < 0) {
+            tinygltf::Sampler sm;
+            sm.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+            sm.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+            sm.wrapS = sm.wrapT = atlas ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
+            model.samplers.push_back(sm);
+            sampler[atlas] = static_cast<int>(model.samplers.size() - 1);
+        }
+        std::string name = kKindNames[tp.kind];
+        if (atlas) name += tp.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
+        for (int map = 0; map < 2; ++map) {
+            tinygltf::Image im;
+            im.name = map ? name + "_normal" : name;
+            im.mimeType = "image/png";
+            model.images.push_back(im); /* bufferView set below */
+            tinygltf::Texture tx;
+            tx.name = im.name;
+            tx.sampler = sampler[atlas];
+            tx.source = static_cast<int>(model.images.size() - 1);
+            model.textures.push_back(tx);
+        }
+    }
+
     tinygltf::Scene scene;
     std::vector<uint32_t> rebased;
     for (uint32_t i = 0; i < count; ++i) {
@@ -609,13 +875,25 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
             const banyan_material *bm = &m->materials[k];
             tinygltf::Material mat;
             mat.name.assign(bm->name, name_len(bm->name, BANYAN_NAME_MAX));
-            mat.pbrMetallicRoughness.baseColorFactor = {
-                short_double(bm->base_color[0]), short_double(bm->base_color[1]),
-                short_double(bm->base_color[2]), short_double(bm->base_color[3])};
+            int key = texture_key(m, bm), tex = key >= 0 ? slot[key] : -1;
+            if (tex >= 0) { /* the texture carries the colour */
+                mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, short_double(bm->base_color[3])};
+                mat.pbrMetallicRoughness.baseColorTexture.index = 2 * tex;
+                mat.normalTexture.index = 2 * tex + 1;
+            } else {
+                mat.pbrMetallicRoughness.baseColorFactor = {
+                    short_double(bm->base_color[0]), short_double(bm->base_color[1]),
+                    short_double(bm->base_color[2]), short_double(bm->base_color[3])};
+            }
             mat.pbrMetallicRoughness.metallicFactor = 0.0;
             mat.pbrMetallicRoughness.roughnessFactor = short_double(bm->roughness);
             mat.doubleSided = bm->double_sided != 0;
-            if (bm->base_color[3] < 1.0f) mat.alphaMode = "BLEND";
+            if (bm->alpha_cutoff > 0.0f) {
+                mat.alphaMode = "MASK"; /* alpha-tested: no sorting, unlike BLEND */
+                mat.alphaCutoff = short_double(bm->alpha_cutoff);
+            } else if (bm->base_color[3] < 1.0f) {
+                mat.alphaMode = "BLEND";
+            }
             model.materials.push_back(mat);
         }
 
@@ -625,10 +903,12 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         gm.name = name;
         std::map<std::string, int> shared;
         bool colors = !colors_repeat_material(m);
-        if (!local[i]) shared = add_vertex_range(b, m, 0, m->vertex_count, colors);
+        std::vector<float> tan;
+        if (tangents[i]) tan = vertex_tangents(m);
+        if (!local[i]) shared = add_vertex_range(b, m, 0, m->vertex_count, colors, tan);
         for (const Prim &pr : plans[i]) {
             tinygltf::Primitive prim;
-            prim.attributes = local[i] ? add_vertex_range(b, m, pr.vbase, pr.vcount, colors) : shared;
+            prim.attributes = local[i] ? add_vertex_range(b, m, pr.vbase, pr.vcount, colors, tan) : shared;
             rebased.resize(pr.icount);
             for (uint32_t k = 0; k < pr.icount; ++k)
                 rebased[k] = m->indices[pr.ioff + k] - pr.vbase;
@@ -650,6 +930,10 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     }
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+    for (size_t t = 0; t < textures.size(); ++t) {
+        model.images[2 * t].bufferView = b.add_image_view(textures[t].base);
+        model.images[2 * t + 1].bufferView = b.add_image_view(textures[t].normal);
+    }
 
     if (bin.size() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL,
@@ -679,12 +963,29 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
 
 } // namespace
 
+extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
+    if (opt == nullptr) return;
+    std::memset(opt, 0, sizeof *opt);
+    opt->textures = 1;
+    opt->texture_size = 1024;
+    opt->texture_seed = 1;
+}
+
+extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }
+
 extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
                                                       const banyan_mesh *const *meshes,
                                                       const char *const *names, uint32_t count,
                                                       banyan_error *err) {
+    return banyan_gltf_write_ex(path, meshes, names, count, nullptr, err);
+}
+
+extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
+                                                         const banyan_mesh *const *meshes,
+                                                         const char *const *names, uint32_t count,
+                                                         const banyan_gltf_options *opt, banyan_error *err) {
     try {
-        return write_impl(path, meshes, names, count, err);
+        return write_impl(path, meshes, names, count, opt, err);
     } catch (const std::bad_alloc &) {
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory while writing glTF '%s'",
                     path ? path : "(null)");

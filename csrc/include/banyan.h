@@ -134,7 +134,9 @@ typedef struct banyan_attribute {
  * the glTF writer embeds and the add-on packs. */
 typedef struct banyan_material {
     char name[BANYAN_NAME_MAX];
-    float base_color[4];        /* linear RGBA, each 0..1; multiplies the texture */
+    float base_color[4];        /* linear RGBA, each 0..1: the flat colour (textures off). With a
+                                   texture the texture's colour replaces it: the glTF writer's
+                                   baseColorFactor is then (1, 1, 1, base_color[3]) */
     float roughness;            /* 0..1 */
     int32_t double_sided;       /* 0 or 1; leaf cards are double sided */
     int32_t texture;            /* banyan_texture_kind, BANYAN_TEX_NONE (-1) for none */
@@ -162,7 +164,8 @@ typedef struct banyan_mesh {
     uint32_t index_count;       /* 3 * triangle count */
     float *positions;           /* 3 * vertex_count */
     float *normals;             /* 3 * vertex_count, unit length */
-    float *uvs;                 /* 2 * vertex_count; u around a tube 0..1, v along it in metres / circumference */
+    float *uvs;                 /* 2 * vertex_count; u around a tube 0..1, v along it in metres over the local
+                                   circumference (square texels on a taper); leaf cards: an atlas cell */
     float *colors;              /* 4 * vertex_count linear RGBA, or NULL */
     uint32_t *indices;          /* index_count */
 
@@ -397,12 +400,35 @@ BANYAN_API banyan_status banyan_preset_host_set(const char *text, size_t length,
 
 /* ----------------------------------------------------------- glTF export */
 
+/* How banyan_gltf_write_ex writes. Init with banyan_gltf_options_init. */
+typedef struct banyan_gltf_options {
+    int32_t textures;        /* 0/1: embed the textures the materials name (banyan/textures.h). Default 1 */
+    int32_t texture_size;    /* pixels per side: a power of two, 64 .. 8192. Default 1024 */
+    uint64_t texture_seed;   /* seed of the drawn textures. Default 1 */
+} banyan_gltf_options;
+
+BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
+BANYAN_API size_t banyan_sizeof_gltf_options(void);
+
 /* Writes meshes as one glTF 2.0 asset: one node and one mesh per input,
  * one primitive per part, one material per banyan_material, vertex colours
  * as COLOR_0, custom attributes as "_NAME" accessors (upper-cased name).
  * Positions convert Z-up to Y-up: (x, y, z) -> (x, z, -y). The format
  * follows the path: ".glb" binary, ".gltf" JSON with embedded buffer.
- * names may be NULL (nodes are then "banyan_0", ...). */
+ * names may be NULL (nodes are then "banyan_0", ...).
+ * Textures (opt->textures): a material whose texture is not
+ * BANYAN_TEX_NONE gets baseColorTexture and normalTexture, PNG images in
+ * the buffer, one per (kind, season, map) and shared by every material
+ * that uses it; its baseColorFactor is then white (the texture carries
+ * the colour; base_color is the flat colour for textures off). Materials
+ * with alpha_cutoff > 0 are alphaMode MASK at that cutoff. opt NULL: the
+ * defaults. Refuses a bad option naming it and its range. */
+BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
+                                              const banyan_mesh *const *meshes,
+                                              const char *const *names, uint32_t count,
+                                              const banyan_gltf_options *opt, banyan_error *err);
+
+/* banyan_gltf_write_ex with the default options (textures at 1024). */
 BANYAN_API banyan_status banyan_gltf_write(const char *path,
                                            const banyan_mesh *const *meshes,
                                            const char *const *names, uint32_t count,

@@ -4,13 +4,16 @@
  * r = r0 + k * age, capped. Leaves: one leaf-shaped card per bud (the
  * leaf of the internode that ends there), a three-lobed Boston ivy outline
  * fanned from its centre, sized by age, on alternating sides, facing away
- * from the nearest host surface, or up and out when the stem hangs free.
+ * from the nearest host surface, or up and out when the stem hangs free;
+ * its uvs fit the outline into one cell of the ivy leaf atlas and its
+ * vertex colour is a per-leaf tint (leaf_look.h).
  * Every vertex carries `birth_step` (the step its bud was created) and
  * `part` (0 stem, 1 leaf). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/leaf_look.h"
 #include "core/mesh_builder.h"
 #include "core/tube.h"
 #include "ivy_internal.h"
@@ -99,10 +102,14 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     }
 
     mesh_builder mb;
-    mb_init(&mb, (uint32_t)p->max_vertices, 0);
+    mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white stems, tinted leaves */
     int a_birth = mb_add_attr(&mb, "birth_step"), a_part = mb_add_attr(&mb, "part");
     uint32_t m_stem = mb_add_material(&mb, "ivy_stem", p->stem_color, 0.85, 0);
     uint32_t m_leaf = mb_add_material(&mb, "ivy_leaf", p->leaf_color, 0.6, 1);
+    if (!mb.status) {
+        bark_material_set(&mb.mat[m_stem], BANYAN_TEX_IVY_STEM);
+        leaf_material_set(&mb.mat[m_leaf], BANYAN_TEX_IVY_LEAF, p->season, p->leaf_color);
+    }
     /* The whole mesh at once: no copies as the arrays grow. */
     mb_reserve(&mb, (uint32_t)need_v, need_i > UINT32_MAX ? UINT32_MAX : (uint32_t)need_i);
 
@@ -159,19 +166,31 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         pcg32 rng;
         pcg32_seed(&rng, p->seed, 0x1eaf);
         const v3 up = v3_make(0, 0, 1);
-        double rmax = 0, rnotch = leaf_radius(BANYAN_PI);
+        double rnotch = leaf_radius(BANYAN_PI);
         double rad[LEAF_OUTLINE], ox[LEAF_OUTLINE], oy[LEAF_OUTLINE];
         for (int k = 0; k < LEAF_OUTLINE; k++) {
             rad[k] = leaf_radius(leaf_angle[k]);
-            if (rad[k] > rmax) rmax = rad[k];
             ox[k] = rad[k] * cos(leaf_angle[k]); /* the outline, per unit of leaf diameter */
             oy[k] = rad[k] * sin(leaf_angle[k]);
         }
-        float ou[LEAF_OUTLINE], ov[LEAF_OUTLINE];
+        /* Card uvs: the outline's bounds fill one atlas cell, the notch
+         * (petiole) at the cell's bottom centre, the tip at its top, as the
+         * atlas draws its leaves. */
+        double ymax = 0, xmin = 0, xmax = 0;
         for (int k = 0; k < LEAF_OUTLINE; k++) {
-            ou[k] = (float)(0.5 + 0.5 * oy[k] / rmax);
-            ov[k] = (float)(0.5 + 0.5 * ox[k] / rmax);
+            if (fabs(oy[k]) > ymax) ymax = fabs(oy[k]);
+            if (ox[k] < xmin) xmin = ox[k];
+            if (ox[k] > xmax) xmax = ox[k];
         }
+        double ou[LEAF_OUTLINE + 1], ov[LEAF_OUTLINE + 1]; /* the centre, then the outline, in 0..1 */
+        ou[0] = 0.5;
+        ov[0] = -xmin / (xmax - xmin);
+        for (int k = 0; k < LEAF_OUTLINE; k++) {
+            ou[k + 1] = 0.5 + 0.5 * oy[k] / ymax;
+            ov[k + 1] = (ox[k] - xmin) / (xmax - xmin);
+        }
+        int32_t cols, rows;
+        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows);
         const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
         for (int32_t i = 0; i < iv->n && !mb.status; i++) {
             if (mesh_progress(iv, i, 1.0)) {
@@ -201,14 +220,19 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
             if (!I) break;
             float *pos = mb.pos + 3 * (size_t)vc, *nrm = mb.nrm + 3 * (size_t)vc, *uv = mb.uv + 2 * (size_t)vc;
+            float *col = mb.col + 4 * (size_t)vc;
             const float fn[3] = {(float)n.x, (float)n.y, (float)n.z};
-            for (int k = 0; k <= LEAF_OUTLINE; k++, pos += 3, nrm += 3, uv += 2) {
+            leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
+            leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);
+            const float tint[4] = {(float)lk.tint[0], (float)lk.tint[1], (float)lk.tint[2], (float)lk.tint[3]};
+            for (int k = 0; k <= LEAF_OUTLINE; k++, pos += 3, nrm += 3, uv += 2, col += 4) {
                 /* The centre, then the outline. */
                 v3 q = k ? v3_madd(v3_madd(c, a, ox[k - 1] * d), bb, oy[k - 1] * d) : c;
                 pos[0] = (float)q.x; pos[1] = (float)q.y; pos[2] = (float)q.z;
                 memcpy(nrm, fn, sizeof fn);
-                uv[0] = k ? ou[k - 1] : 0.5f;
-                uv[1] = k ? ov[k - 1] : 0.5f;
+                uv[0] = (float)(lk.u0 + ou[k] * lk.du);
+                uv[1] = (float)(lk.v0 + ov[k] * lk.dv);
+                memcpy(col, tint, sizeof tint);
             }
             for (uint32_t k = 0; k < LEAF_OUTLINE; k++, I += 3) {
                 I[0] = vc;

@@ -215,6 +215,8 @@ static banyan_status place(avenue_job *J, uint32_t i, const banyan_mesh *t, bany
     memcpy(o->positions + 3 * v, t->positions, sizeof(float) * 3 * t->vertex_count);
     memcpy(o->normals + 3 * v, t->normals, sizeof(float) * 3 * t->vertex_count);
     memcpy(o->uvs + 2 * v, t->uvs, sizeof(float) * 2 * t->vertex_count);
+    if (!t->colors) return banyan_fail(err, BANYAN_E_INTERNAL, "a tree came without vertex colours");
+    memcpy(o->colors + 4 * v, t->colors, sizeof(float) * 4 * t->vertex_count);
     for (uint32_t a = 0; a < o->attribute_count; a++)
         memcpy(o->attributes[a].data + v, t->attributes[a].data, sizeof(float) * t->vertex_count);
     for (uint32_t k = 0; k < t->index_count; k++) o->indices[x + k] = t->indices[k] + (uint32_t)v;
@@ -284,6 +286,7 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     o->positions = malloc(sizeof(float) * 3 * nv);
     o->normals = malloc(sizeof(float) * 3 * nv);
     o->uvs = malloc(sizeof(float) * 2 * nv);
+    o->colors = malloc(sizeof(float) * 4 * nv);
     o->indices = malloc(sizeof(uint32_t) * ni);
     o->attribute_count = 3;
     o->attributes = calloc(3, sizeof(banyan_attribute));
@@ -297,7 +300,7 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     o->skel_tag = malloc(sizeof(int32_t) * ns);
     o->skel_edge_count = (uint32_t)ne;
     o->skel_edges = malloc(sizeof(uint32_t) * 2 * ne);
-    int ok = o->positions && o->normals && o->uvs && o->indices && o->attributes && o->materials && o->parts &&
+    int ok = o->positions && o->normals && o->uvs && o->colors && o->indices && o->attributes && o->materials && o->parts &&
              o->skel_points && o->skel_radius && o->skel_tag && o->skel_edges;
     for (uint32_t a = 0; ok && a < 3; a++) {
         strcpy(o->attributes[a].name, attrs[a]);

@@ -13,8 +13,9 @@
  * radius, so each branch tapers from its parent's radius to its own;
  * tips narrow to tip_taper x tip_radius and are capped.
  * Tube sides fall with the radius: sides_min + (sides_max - sides_min)
- * sqrt(r / r_trunk). Leaf cards (textured quads, UV 0..1) hang from the
- * branches within leaf_levels of a tip, leaf_density per unit of length.
+ * sqrt(r / r_trunk). Leaf cards (textured quads, each showing one cell of
+ * the leaf atlas, leaf_look.h) hang from the branches within leaf_levels
+ * of a tip, leaf_density per unit of length.
  * Everything is counted exactly before meshing (keyaki_body_plan) so the
  * vertex limit is checked before any mesh memory is allocated. */
 #include <math.h>
@@ -22,6 +23,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/leaf_look.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"
 
@@ -120,10 +122,18 @@ static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32
     }
 }
 
+/* What the cards need to pick their atlas cells and tints. */
+typedef struct card_looks {
+    uint64_t seed, next; /* next: the index of the tree's next card */
+    int32_t cols, rows, season;
+} card_looks;
+
 /* The cards of branch x: vertices v0.. and indices I were made room for
- * (4 and 6 a card); N0, B0 span the plane across the branch. */
+ * (4 and 6 a card); N0, B0 span the plane across the branch. Each card
+ * shows one atlas cell, petiole end (v = 0) at the branch, and carries
+ * its tint as vertex colour. */
 static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double size, int32_t cards, uint32_t v0,
-                       uint32_t *I) {
+                       uint32_t *I, card_looks *looks) {
     v3 N0 = v3_any_perp(x->dir), B0 = v3_cross(x->dir, N0);
     for (int32_t c = 0; c < cards; c++, v0 += 4, I += 6) {
         double t = rng_uniform(r), phi = rng_uniform(r) * 2.0 * BANYAN_PI, roll = rng_range(r, -1.0, 1.0);
@@ -141,10 +151,15 @@ static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double 
         double hw = 0.5 * size;
         v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
         v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
-        mb_put(mb, v0, p0, nrm, 0, 0);
-        mb_put(mb, v0 + 1, p1, nrm, 1, 0);
-        mb_put(mb, v0 + 2, p2, nrm, 1, 1);
-        mb_put(mb, v0 + 3, p3, nrm, 0, 1);
+        leaf_look lk;
+        leaf_look_of(looks->seed, looks->next++, looks->cols, looks->rows, looks->season, &lk);
+        double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
+        mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);
+        mb_put(mb, v0 + 1, p1, nrm, u1, lk.v0);
+        mb_put(mb, v0 + 2, p2, nrm, u1, v1);
+        mb_put(mb, v0 + 3, p3, nrm, lk.u0, v1);
+        for (uint32_t k = 0; k < 4; k++)
+            for (int j = 0; j < 4; j++) mb->col[4 * ((size_t)v0 + k) + j] = (float)lk.tint[j];
         I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
         I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;
     }
@@ -209,6 +224,8 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     if (body->vertices > body->bark_vertices) {
         mb_begin_part(mb, leaf_mat, group);
         const double size = p->leaf_size * p->unit;
+        card_looks looks = {p->seed, 0, 1, 1, p->season};
+        leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &looks.cols, &looks.rows);
         for (int32_t i = 0; i < count; i++) {
             if (!body->leaf_count[i]) continue;
             mb_set_attr(mb, attr[1], n[i].level);
@@ -216,7 +233,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
             uint32_t c = (uint32_t)body->leaf_count[i], v0 = mb_vertices(mb, 4 * c);
             uint32_t *I = mb_indices(mb, 6 * c);
             if (v0 == UINT32_MAX || !I) break;
-            leaf_cards(mb, &body->leaf_rng, &n[i], size, (int32_t)c, v0, I);
+            leaf_cards(mb, &body->leaf_rng, &n[i], size, (int32_t)c, v0, I, &looks);
         }
     }
 
@@ -270,9 +287,13 @@ banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32
                            v, p->max_vertices);
     }
     mesh_builder mb;
-    mb_init(&mb, (uint32_t)p->max_vertices, 0);
+    mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white bark, tinted leaves */
     uint32_t bark = mb_add_material(&mb, "keyaki_bark", p->bark_color, 0.9, 0);
     uint32_t leaf = mb_add_material(&mb, "keyaki_leaf", p->leaf_color, 0.6, 1);
+    if (!mb.status) {
+        bark_material_set(&mb.mat[bark], BANYAN_TEX_KEYAKI_BARK);
+        leaf_material_set(&mb.mat[leaf], BANYAN_TEX_KEYAKI_LEAF, p->season, p->leaf_color);
+    }
     int attr[3];
     attr[0] = mb_add_attr(&mb, "tree_id");
     attr[1] = mb_add_attr(&mb, "level");

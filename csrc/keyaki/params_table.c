@@ -59,7 +59,8 @@
     BP_INT(S, F(leaf_levels), "Leafy levels", "Leaves", 0, BANYAN_KEYAKI_MAX_LEVELS, "branches within this many levels of a tip carry leaves"), \
     BP_DOUBLE(S, F(leaf_density), "Leaf density", "Leaves", "1/unit", 0, 100, "leaf cards per unit of branch length"), \
     BP_DOUBLE(S, F(leaf_size), "Leaf size", "Leaves", "unit", 0.01, 10, "leaf card edge"), \
-    BP_COLOR(S, F(leaf_color), "Leaf color", "Leaves", "leaf material colour (linear RGBA)")
+    BP_COLOR(S, F(leaf_color), "Leaf color", "Leaves", "summer leaves' flat colour, without textures (linear RGBA)"), \
+    BP_ENUM(S, F(season), "Season", "Leaves", "summer|autumn", "leaf material: summer green or autumn yellow to rust; the geometry stays")
 
 #define KEYAKI_SEGMENT_TWIGS_ROWS(S, F) \
     BP_BOOL(S, F(twigs_from_segments), "Twigs from segments", "Segment twigs", "finest levels as geometry-shader segments along the outer branches"), \

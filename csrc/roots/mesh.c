@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/leaf_look.h"
 #include "core/tube.h"
 #include "roots_internal.h"
 
@@ -233,7 +234,8 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     mb_init(&mb, (uint32_t)p->max_vertices, 1);
     int a_kind = mb_add_attr(&mb, "root_kind"), a_id = mb_add_attr(&mb, "root_id");
     mb_set_color(&mb, p->color);
-    mb_add_material(&mb, "roots", p->color, 0.9, 0);
+    uint32_t mat = mb_add_material(&mb, "roots", p->color, 0.9, 0);
+    if (!mb.status) bark_material_set(&mb.mat[mat], BANYAN_TEX_FIG_BARK);
     mb_reserve(&mb, (uint32_t)total_v, (uint32_t)total_i);
 
     for (uint32_t t = 0; t < net->n_poly && !mb.status; t++) {

@@ -92,7 +92,8 @@ typedef struct banyan_ivy_params {
     double leaf_scale;          /* drawn leaf size / shadow diameter, 0 .. 10 */
     double leaf_lift;           /* leaf card offset off its stem along the surface normal, m, 0 .. 1 */
     double stem_color[4];       /* linear RGBA of material "ivy_stem" */
-    double leaf_color[4];       /* linear RGBA of material "ivy_leaf" */
+    double leaf_color[4];       /* linear RGBA of material "ivy_leaf" in summer (its flat colour, textures off) */
+    int32_t season;             /* banyan_season: the leaf material (texture and flat colour), not the geometry */
     double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
 } banyan_ivy_params;
 

@@ -126,7 +126,9 @@ typedef struct banyan_keyaki_params {
     double leaf_density;     /* cards per unit of branch length (per metre at unit 1), 0 .. 100. Default 4 */
     double leaf_size;        /* unit, 0.01 .. 10: card edge. Default 0.5 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
-    double leaf_color[4];    /* linear RGBA. Default green */
+    double leaf_color[4];    /* linear RGBA: the summer leaves' flat colour (textures off). Default green */
+    int32_t season;          /* banyan_season: the leaf material (texture and flat colour); the geometry
+                                is the same in every season. Default SUMMER */
 
     /* --- twigs from segments (spec/segments.md, "Composing a tree"; docs/keyaki.md) */
     int32_t twigs_from_segments; /* bool: grow the skeleton to levels - segment_levels and make the finest

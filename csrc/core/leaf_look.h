@@ -1,0 +1,32 @@
+/* leaf_look.h - how leaf cards and their materials look (issue #17):
+ * which atlas cell a card shows, its per-leaf colour tint (vertex colours,
+ * COLOR_0) and the season's material. A card's cell and tint come from a
+ * PCG32 stream of its own, seeded with the generator's seed and the
+ * leaf's index, never from the generator's stream: choosing them moves no
+ * vertex, and the same leaf keeps its look when the plant grows on. */
+#ifndef BANYAN_LEAF_LOOK_H
+#define BANYAN_LEAF_LOOK_H
+
+#include "banyan.h"
+
+typedef struct leaf_look {
+    double u0, v0, du, dv; /* the cell: card uv (s, t) in 0..1 maps to (u0 + s du, v0 + t dv) */
+    double tint[4];        /* linear RGBA multiplier, each in [0, 1] */
+} leaf_look;
+
+/* The atlas grid of a leaf texture (banyan_texture_layout); 1 x 1 when
+ * the kind has none. */
+void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows);
+
+/* The look of leaf `index` of a plant grown from `seed`. */
+void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);
+
+/* Sets a leaf material for a season: texture kind, season, alpha cutoff,
+ * translucency, and the flat colour (summer: `summer_rgba`, the user's
+ * leaf colour; autumn: the kind's autumn colour). */
+void leaf_material_set(banyan_material *m, int32_t kind, int32_t season, const double summer_rgba[4]);
+
+/* Sets a bark or stem material's texture (opaque, no translucency). */
+void bark_material_set(banyan_material *m, int32_t kind);
+
+#endif
