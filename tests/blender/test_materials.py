@@ -50,7 +50,10 @@ def new_objects(before):
 
 def run_op(gen, **kw):
     gens.prepare(gen)
-    bpy.context.view_layer.objects.active = bpy.data.objects.get("Cube")
+    cube = bpy.data.objects["Cube"]
+    for o in bpy.context.view_layer.objects:  # the host is the cube alone, as on the first run
+        o.select_set(o == cube)
+    bpy.context.view_layer.objects.active = cube
     before = {o.name for o in bpy.data.objects}
     args = dict(gens.KWARGS[gen])
     args.update(kw)
