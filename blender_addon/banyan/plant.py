@@ -421,11 +421,12 @@ def regenerate(obj, params=None):
     home = next(iter(first.users_collection), None)
     coll = bpy.data.collections.new("banyan_regenerate")
     made_mats = set()
+    had_mats = set(bpy.data.materials)  # shared materials are reused: only new ones may be left unused
     keep, frames = [], {}
     try:
         new = _build(obj, p, coll)
         for o in new:
-            made_mats.update(m for m in o.data.materials if m is not None)
+            made_mats.update(m for m in o.data.materials if m is not None and m not in had_mats)
         for i, o in enumerate(new):
             built = o.matrix_basis.copy()
             target = old.get(i)
