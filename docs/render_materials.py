@@ -1,6 +1,7 @@
-"""Renders the before / after pictures of docs/materials.md ("In Blender")
-into docs/img/materials/: the camera 1 m from a leaf and from a bark
-surface, in the shared scene of docs/render_scene.py:
+"""Renders the before / after pictures of docs/addon.md ("Materials and
+textures") into docs/img/materials/render_<shot>_<tag>.png: the camera
+1 m from a leaf and from a bark surface, in the shared scene of
+docs/render_scene.py:
 
     BANYAN_LIB=<lib> blender -b --factory-startup --python docs/render_materials.py -- \
         --tag after [--addon DIR] [--only NAME ...] [--size 480x360] [--samples 32] [--texture-size 1024]
@@ -108,7 +109,7 @@ def shoot(name, out_dir, width, height, samples, tag):
     lo, hi = RS.bounds(plant)
     target = pick(pts, direction, z0, z1, (lo + hi) / 2)
     aim(target, direction)
-    path = os.path.join(out_dir, "%s_%s.png" % (name, tag))
+    path = os.path.join(out_dir, "render_%s_%s.png" % (name, tag))
     var, cov = RS.render(path, width, height, samples, plant)
     print("%s: %s (variance %.4f, plant %.0f%% of the pixels, target %s)" % (
         name, path, var, 100 * cov, tuple(round(v, 2) for v in target)), flush=True)
