@@ -246,9 +246,51 @@ def test_bad_size():
             bt.check("size" in e.message, "texture size %d refused naming the size: %s" % (size, e.message))
 
 
+def test_render_clip():
+    """A plane showing the whole leaf atlas, rendered by Cycles with a
+    transparent film: the leaves are opaque, between them it is clear."""
+    if not bt.generator("keyaki"):
+        return
+    bt.reset_scene()
+    set_size(SIZE)
+    run_op("keyaki")
+    mat = bpy.data.materials["Banyan Keyaki Leaf"]
+    for o in list(bpy.data.objects):
+        if o.type == 'MESH':
+            bpy.data.objects.remove(o)
+    bpy.ops.mesh.primitive_plane_add(size=2.0)  # uvs 0..1 over the plane: the whole atlas
+    plane = bpy.context.active_object
+    plane.data.uv_layers[0].name = MAT.UV_MAP
+    plane.data.materials.append(mat)
+    cam = bpy.data.objects["Camera"]
+    cam.location, cam.rotation_euler = (0, 0, 3), (0, 0, 0)
+    cam.data.type = 'ORTHO'
+    cam.data.ortho_scale = 2.0
+    sc = bpy.context.scene
+    sc.render.engine = 'CYCLES'
+    sc.cycles.samples = 4
+    sc.cycles.use_denoising = False
+    sc.cycles.device = 'CPU'
+    sc.render.film_transparent = True
+    sc.render.resolution_x = sc.render.resolution_y = 64
+    sc.render.resolution_percentage = 100
+    sc.render.image_settings.file_format = 'PNG'
+    sc.render.image_settings.color_mode = 'RGBA'
+    path = os.path.join(bt.OUT_DIR, "materials_clip.png")
+    sc.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(path, check_existing=False)
+    a = pixels(img)[3::4]
+    clear = sum(1 for v in a if v < 0.05)
+    solid = sum(1 for v in a if v > 0.95)  # the keyaki atlas is sprays: about 10% of a cell is leaf
+    bt.check(clear > 0.5 * len(a) and solid > 0.01 * len(a),
+             "Cycles render of the leaf atlas: %d clear, %d opaque of %d pixels" % (clear, solid, len(a)))
+
+
 bt.run(test_preference)
 bt.run(test_twice)
 bt.run(test_season)
 bt.run(test_user_edit)
 bt.run(test_bad_size)
+bt.run(test_render_clip)
 bt.done()
