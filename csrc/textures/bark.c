@@ -3,10 +3,10 @@
  * patches), strangler fig (smooth pale grey-brown with fine horizontal
  * wrinkles around the root) and the ivy's woody stem (brown, fibrous,
  * a few longitudinal fissures). Each is periodic value noise (noise.c)
- * shaped per kind; the tile spans one circumference around (u, image
- * columns) and BANYAN_BARK_TILE_ASPECT circumferences along (v, rows), so
- * features stay round on the tube. Lenticels are small ellipses drawn
- * with wrap-around. */
+ * shaped per kind, made a band of rows at a time; the tile spans one
+ * circumference around (u, image columns) and BANYAN_BARK_TILE_ASPECT
+ * circumferences along (v, rows), so features stay round on the tube.
+ * Lenticels are small ellipses drawn with wrap-around. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,65 +37,96 @@ static void mark(tex_canvas *c, float cx, float cy, float rx, float ry, const fl
     }
 }
 
-/* Scratch fields, freed together. */
-static float *field(int n) { return calloc((size_t)n * n, sizeof(float)); }
+/* Up to four fields and their band scratch. */
+typedef struct fields {
+    tex_fbm f[4];
+    int count;
+    float *band; /* count * TEX_BAND * n */
+    float *rgb;  /* 3 * n: one row's colour channels before packing */
+} fields;
+
+static void fields_free(fields *F) {
+    for (int i = 0; i < F->count; i++) tex_fbm_free(&F->f[i]);
+    free(F->band);
+}
+
+/* Makes the fields from (f0x, f0y, octaves, gain) rows; -1 on no memory. */
+static int fields_init(fields *F, int n, int count, const float spec[][4], pcg32 *rng) {
+    memset(F, 0, sizeof *F);
+    for (int i = 0; i < count; i++) {
+        if (tex_fbm_init(&F->f[i], n, (int)spec[i][0], (int)spec[i][1], (int)spec[i][2], 1.0f, spec[i][3], 8, rng)) {
+            fields_free(F);
+            return -1;
+        }
+        F->count = i + 1;
+    }
+    F->band = malloc(sizeof(float) * ((size_t)count * TEX_BAND * n + 3 * (size_t)n));
+    F->rgb = F->band ? F->band + (size_t)count * TEX_BAND * n : NULL;
+    if (!F->band) {
+        fields_free(F);
+        return -1;
+    }
+    return 0;
+}
+
+/* Field i's band for rows y0 .. y0 + TEX_BAND - 1. */
+static float *fields_rows(fields *F, int i, int y0) {
+    float *b = F->band + (size_t)i * TEX_BAND * F->f[0].n;
+    tex_fbm_rows(&F->f[i], b, y0, TEX_BAND);
+    return b;
+}
 
 int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *patch = field(n), *tone = field(n);
-    if (!patch || !tone) goto fail;
     /* Scales: patches elongated along the trunk (fewer lattice cells in v). */
-    if (tex_fbm_add(patch, n, 4, 2, 6, 1.0f, 0.55f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 8, 8, 5, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(c->height, n, 8, 4, 6, 0.25f, 0.6f, rng)) goto fail;
+    static const float spec[3][4] = {{4, 2, 6, 0.55f}, {8, 8, 5, 0.6f}, {8, 4, 6, 0.6f}};
+    fields F;
+    if (fields_init(&F, n, 3, spec, rng)) return -1;
     const float grey[3] = {152, 150, 142}, grey2[3] = {118, 118, 112};
     const float orange[3] = {182, 112, 62}, brown[3] = {140, 92, 58};
     const float thr = 0.32f; /* about a fifth of the bark has shed */
-    for (size_t i = 0; i < (size_t)n * n; i++) {
-        float p = patch[i], t = tone[i];
-        float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);       /* inside a shed patch */
-        float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
-        float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
-        float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
-        uint8_t *px = c->rgba + 4 * i;
-        for (int ch = 0; ch < 3; ch++) {
-            float bark = tex_mix(grey2[ch], grey[ch], g) * (1.0f - 0.25f * rim);
-            float under = tex_mix(brown[ch], orange[ch], o);
-            px[ch] = tex_byte(tex_mix(bark, under, m));
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *patch = fields_rows(&F, 0, y0), *tone = fields_rows(&F, 1, y0), *hf = fields_rows(&F, 2, y0);
+        float *R = F.rgb, *G = R + n, *B = G + n;
+        for (int r = 0; r < TEX_BAND; r++) {
+            size_t row = (size_t)(y0 + r) * n;
+            const float *pr = patch + (size_t)r * n, *tr = tone + (size_t)r * n, *hr = hf + (size_t)r * n;
+            float *hout = c->height + row;
+            for (int x = 0; x < n; x++) {
+                float p = pr[x], t = tr[x];
+                float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);                  /* inside a shed patch */
+                float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
+                float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
+                float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
+                float dark = 1.0f - 0.25f * rim;
+                R[x] = tex_mix(tex_mix(grey2[0], grey[0], g) * dark, tex_mix(brown[0], orange[0], o), m);
+                G[x] = tex_mix(tex_mix(grey2[1], grey[1], g) * dark, tex_mix(brown[1], orange[1], o), m);
+                B[x] = tex_mix(tex_mix(grey2[2], grey[2], g) * dark, tex_mix(brown[2], orange[2], o), m);
+                hout[x] = 0.25f * hr[x] + 0.6f * (1.0f - m) + 0.35f * rim;
+            }
+            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
         }
-        px[3] = 255;
-        c->height[i] += 0.6f * (1.0f - m) + 0.35f * rim;
     }
     /* Lenticels: short pale dashes across the trunk. */
-    int count = 420;
     float s = (float)n / 1024.0f;
     const float lcol[3] = {178, 168, 150};
-    for (int k = 0; k < count; k++) {
+    for (int k = 0; k < 420; k++) {
         float cx = tex_unif(rng, 0, (float)n), cy = tex_unif(rng, 0, (float)n);
         float rx = tex_unif(rng, 2.5f, 6.0f) * s, ry = tex_unif(rng, 0.7f, 1.3f) * s;
-        size_t i = (size_t)((int)cy & (n - 1)) * n + (size_t)((int)cx & (n - 1));
-        if (patch[i] > thr - 0.05f) continue; /* none on the fresh under-bark */
+        if (tex_fbm_at(&F.f[0], cx, cy) > thr - 0.05f) continue; /* none on the fresh under-bark */
         mark(c, cx, cy, rx < 1.0f ? 1.0f : rx, ry < 0.6f ? 0.6f : ry, lcol, 0.8f, 0.25f);
     }
     c->relief = 6.0f * s;
     c->wrap = 1;
-    free(patch);
-    free(tone);
+    fields_free(&F);
     return 0;
-fail:
-    free(patch);
-    free(tone);
-    return -1;
 }
 
 int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *warp = field(n), *seg = field(n), *tone = field(n);
-    if (!warp || !seg || !tone) goto fail;
-    if (tex_fbm_add(warp, n, 4, 4, 4, 1.0f, 0.5f, rng)) goto fail;
-    if (tex_fbm_add(seg, n, 16, 32, 3, 1.0f, 0.5f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 4, 4, 6, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(c->height, n, 16, 16, 4, 0.05f, 0.5f, rng)) goto fail;
+    static const float spec[4][4] = {{4, 4, 4, 0.5f}, {16, 32, 3, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
+    fields F;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
     const float pale[3] = {170, 160, 145}, dark[3] = {132, 122, 108}, crease[3] = {98, 88, 76};
     const int rings = 40; /* wrinkles per tile along the root */
     /* cos^k profile of one wrinkle as a table over its period. */
@@ -104,17 +135,28 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
         float cs = cosf(6.2831853f * (float)k / 256.0f);
         prof[k] = cs > 0 ? powf(cs, 10.0f) : 0.0f;
     }
-    for (int y = 0; y < n; y++) {
-        for (int x = 0; x < n; x++) {
-            size_t i = (size_t)y * n + x;
-            float w = (float)y * rings / (float)n + 1.2f * warp[i];
-            float f = w - floorf(w);
-            float wr = prof[(int)(f * 256.0f) & 255] * tex_smooth(-0.1f, 0.35f, seg[i]);
-            float t = tex_clampf(0.5f + 0.8f * tone[i], 0.0f, 1.0f);
-            uint8_t *px = c->rgba + 4 * i;
-            for (int ch = 0; ch < 3; ch++) px[ch] = tex_byte(tex_mix(tex_mix(dark[ch], pale[ch], t), crease[ch], 0.7f * wr));
-            px[3] = 255;
-            c->height[i] -= 0.5f * wr;
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
+                    *hf = fields_rows(&F, 3, y0);
+        float *R = F.rgb, *G = R + n, *B = G + n;
+        for (int r = 0; r < TEX_BAND; r++) {
+            int y = y0 + r;
+            size_t row = (size_t)y * n;
+            const float *wr_ = warp + (size_t)r * n, *sr = seg + (size_t)r * n, *tr = tone + (size_t)r * n,
+                        *hr = hf + (size_t)r * n;
+            float *hout = c->height + row;
+            const float ring = (float)y * rings / (float)n;
+            for (int x = 0; x < n; x++) {
+                float w = ring + 1.2f * wr_[x] + 64.0f; /* positive: truncation is floor */
+                int wi = (int)(w * 256.0f);
+                float wr = prof[wi & 255] * tex_smooth(-0.1f, 0.35f, sr[x]);
+                float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f);
+                R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], 0.7f * wr);
+                G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], 0.7f * wr);
+                B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], 0.7f * wr);
+                hout[x] = 0.05f * hr[x] - 0.5f * wr;
+            }
+            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
         }
     }
     float s = (float)n / 1024.0f;
@@ -126,38 +168,36 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     }
     c->relief = 4.0f * s;
     c->wrap = 1;
-    free(warp);
-    free(seg);
-    free(tone);
+    fields_free(&F);
     return 0;
-fail:
-    free(warp);
-    free(seg);
-    free(tone);
-    return -1;
 }
 
 int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *fib = field(n), *crack = field(n), *tone = field(n);
-    if (!fib || !crack || !tone) goto fail;
     /* Fibres run along the stem: many lattice cells around, few along. */
-    if (tex_fbm_add(fib, n, 32, 2, 5, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(crack, n, 8, 1, 5, 1.0f, 0.55f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 4, 4, 5, 1.0f, 0.6f, rng)) goto fail;
+    static const float spec[3][4] = {{32, 2, 5, 0.6f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
+    fields F;
+    if (fields_init(&F, n, 3, spec, rng)) return -1;
     const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
-    for (size_t i = 0; i < (size_t)n * n; i++) {
-        float f = fib[i], cr = crack[i];
-        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
-        float t = tex_clampf(0.5f + 0.9f * tone[i], 0.0f, 1.0f);
-        float sh = tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
-        uint8_t *px = c->rgba + 4 * i;
-        for (int ch = 0; ch < 3; ch++) {
-            float base = tex_mix(wood[ch], grey[ch], t) * (0.8f + 0.35f * sh);
-            px[ch] = tex_byte(tex_mix(base, groove[ch], 0.8f * fis));
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *fib = fields_rows(&F, 0, y0), *crack = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0);
+        float *R = F.rgb, *G = R + n, *B = G + n;
+        for (int r = 0; r < TEX_BAND; r++) {
+            size_t row = (size_t)(y0 + r) * n;
+            const float *fr = fib + (size_t)r * n, *cr_ = crack + (size_t)r * n, *tr = tone + (size_t)r * n;
+            float *hout = c->height + row;
+            for (int x = 0; x < n; x++) {
+                float f = fr[x], cr = cr_[x];
+                float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
+                float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
+                float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
+                R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
+                G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
+                B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
+                hout[x] = 0.6f * f - 0.8f * fis;
+            }
+            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
         }
-        px[3] = 255;
-        c->height[i] = 0.6f * f - 0.8f * fis;
     }
     float s = (float)n / 1024.0f;
     const float lcol[3] = {160, 130, 100};
@@ -168,13 +208,6 @@ int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     }
     c->relief = 5.0f * s;
     c->wrap = 1;
-    free(fib);
-    free(crack);
-    free(tone);
+    fields_free(&F);
     return 0;
-fail:
-    free(fib);
-    free(crack);
-    free(tone);
-    return -1;
 }

@@ -12,6 +12,7 @@
  * outside leaves get the cell's mean leaf colour at alpha 0, so mipmaps
  * and texture filtering do not bleed a dark fringe. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,16 +21,99 @@
 
 #define PI_F 3.14159265f
 
+static inline float tex_maxf(float a, float b) { return a > b ? a : b; }
+static inline float tex_minf(float a, float b) { return a < b ? a : b; }
+
 /* A cell of the atlas in pixels: u right, v up, both 0..1 over the cell. */
 typedef struct cell {
     tex_canvas *c;
     int x0, y0, size; /* top-left pixel, side */
     int margin;       /* pixels kept clear at the cell's border */
+    int *xmin, *xmax; /* size entries each: a shape's pixel span per row of the cell (spans below) */
+    int lo, hi;       /* rows (of the cell) the span covers */
 } cell;
+
+/* ---------------------------------------------------------------- spans
+ * A leaf's outline rasterised into one [xmin, xmax] pixel interval per
+ * row: the per-pixel shape test then runs only there, not over the whole
+ * bounding box (most of which is empty around a lobed or slanted leaf). */
+static void span_begin(cell *k) {
+    for (int r = 0; r < k->size; r++) k->xmin[r] = INT32_MAX, k->xmax[r] = INT32_MIN;
+    k->lo = INT32_MAX, k->hi = INT32_MIN;
+}
+
+/* An outline edge from (u0, v0) to (u1, v1), cell units. */
+static void span_edge(cell *k, float u0, float v0, float u1, float v1) {
+    float s = (float)k->size;
+    float X0 = u0 * s, Y0 = (1.0f - v0) * s, X1 = u1 * s, Y1 = (1.0f - v1) * s;
+    if (Y0 > Y1) {
+        float t = X0; X0 = X1; X1 = t;
+        t = Y0; Y0 = Y1; Y1 = t;
+    }
+    int r0 = (int)floorf(Y0), r1 = (int)floorf(Y1);
+    if (r0 < 0) r0 = 0;
+    if (r1 > k->size - 1) r1 = k->size - 1;
+    float dy = Y1 - Y0, slope = dy > 1e-6f ? (X1 - X0) / dy : 0.0f;
+    for (int r = r0; r <= r1; r++) {
+        float ya = tex_clampf((float)r, Y0, Y1), yb = tex_clampf((float)r + 1.0f, Y0, Y1);
+        float xa = X0 + (ya - Y0) * slope, xb = X0 + (yb - Y0) * slope;
+        if (dy <= 1e-6f) xa = X0, xb = X1;
+        int lo = (int)floorf(tex_minf(xa, xb)), hi = (int)ceilf(tex_maxf(xa, xb));
+        if (lo < k->xmin[r]) k->xmin[r] = lo;
+        if (hi > k->xmax[r]) k->xmax[r] = hi;
+        if (r < k->lo) k->lo = r;
+        if (r > k->hi) k->hi = r;
+    }
+}
+
+/* Widens each row's span by the rows next to it and 2 pixels, for the
+ * antialiased edge; returns the absolute pixel rows to visit. */
+static void span_end(cell *k, int *y0, int *y1) {
+    if (k->lo > k->hi) {
+        *y0 = 1, *y1 = 0;
+        return;
+    }
+    int lo = k->lo > 0 ? k->lo - 1 : 0, hi = k->hi < k->size - 1 ? k->hi + 1 : k->size - 1;
+    int pmin = INT32_MAX, pmax = INT32_MIN; /* the previous row's span before widening */
+    for (int r = lo; r <= hi; r++) {
+        int cmin = k->xmin[r], cmax = k->xmax[r];
+        int nmin = r + 1 <= hi ? k->xmin[r + 1] : INT32_MAX, nmax = r + 1 <= hi ? k->xmax[r + 1] : INT32_MIN;
+        int a = cmin < pmin ? cmin : pmin, b = cmax > pmax ? cmax : pmax;
+        if (nmin < a) a = nmin;
+        if (nmax > b) b = nmax;
+        pmin = cmin, pmax = cmax;
+        k->xmin[r] = a == INT32_MAX ? INT32_MAX : a - 2;
+        k->xmax[r] = b == INT32_MIN ? INT32_MIN : b + 2;
+    }
+    int m = k->margin;
+    for (int r = lo; r <= hi; r++) {
+        if (k->xmin[r] < m) k->xmin[r] = m;
+        if (k->xmax[r] > k->size - 1 - m) k->xmax[r] = k->size - 1 - m;
+    }
+    *y0 = lo < m ? m : lo;
+    *y1 = hi > k->size - 1 - m ? k->size - 1 - m : hi;
+}
+
+/* Every pixel of the cell: the colour `rgb` at alpha 0, so texture
+ * filtering and mipmaps next to a leaf blend towards the leaf's colour
+ * instead of black; height 0. Leaves are drawn over it. */
+static void fill_cell(const cell *k, const float rgb[3]) {
+    uint8_t px[4] = {tex_byte(rgb[0]), tex_byte(rgb[1]), tex_byte(rgb[2]), 0};
+    for (int y = k->y0; y < k->y0 + k->size; y++) {
+        uint8_t *p = k->c->rgba + 4 * ((size_t)y * k->c->n + k->x0);
+        for (int x = 0; x < k->size; x++) memcpy(p + 4 * x, px, 4);
+        memset(k->c->height + (size_t)y * k->c->n + k->x0, 0, sizeof(float) * (size_t)k->size);
+    }
+}
 
 /* Straight-alpha "over" of one covered pixel. */
 static inline void put(tex_canvas *c, size_t i, float cov, const float col[3], float h) {
     uint8_t *p = c->rgba + 4 * i;
+    if (cov >= 1.0f) {
+        p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
+        c->height[i] = h;
+        return;
+    }
     float a0 = (float)p[3] * (1.0f / 255.0f);
     float a = cov + a0 * (1.0f - cov);
     if (a <= 0.0f) return;
@@ -64,7 +148,7 @@ static void stroke(const cell *k, float ax, float ay, float bx, float by, float 
                    float h) {
     float pad = (wa > wb ? wa : wb) + 2.0f / (float)k->size;
     int x0, x1, y0, y1;
-    bounds(k, fminf(ax, bx) - pad, fmaxf(ax, bx) + pad, fminf(ay, by) - pad, fmaxf(ay, by) + pad, &x0, &x1, &y0,
+    bounds(k, tex_minf(ax, bx) - pad, tex_maxf(ax, bx) + pad, tex_minf(ay, by) - pad, tex_maxf(ay, by) + pad, &x0, &x1, &y0,
            &y1);
     float dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
     if (l2 <= 0.0f) return;
@@ -151,22 +235,32 @@ static void keyaki_table(const kleaf *L, ktab *T) {
     }
 }
 
-static void keyaki_leaf(const cell *k, const kleaf *L, const tex_noise *grain) {
+static void keyaki_leaf(cell *k, const kleaf *L) {
     ktab T;
     keyaki_table(L, &T);
     const float s = (float)k->size, lp = L->len * s; /* blade length in pixels */
     const int n = k->c->n;
+    const int tile = n < TEX_TILE ? n : TEX_TILE, tm = tile - 1;
+    int msh = 0; /* mottle: image pixel to tile pixel shift */
+    while ((tile << msh) < n) msh++;
     float nx = L->dy, ny = -L->dx; /* to the right of the midrib */
-    /* Box of the blade: base, tip and the widest points. */
-    float hw = L->half * L->len * 1.05f;
-    float tipx = L->bx + L->dx * L->len, tipy = L->by + L->dy * L->len;
-    float umin = fminf(L->bx, tipx) - hw, umax = fmaxf(L->bx, tipx) + hw;
-    float vmin = fminf(L->by, tipy) - hw, vmax = fmaxf(L->by, tipy) + hw;
-    int x0, x1, y0, y1;
-    bounds(k, umin, umax, vmin, vmax, &x0, &x1, &y0, &y1);
+    /* The outline (both margins, base to tip) into row spans. */
+    span_begin(k);
+    for (int side = 0; side < 2; side++) {
+        float pu0 = L->bx, pv0 = L->by;
+        for (int i = 1; i <= KT; i++) {
+            float y = (float)i / KT, x = (side ? 1.0f : -1.0f) * T.w[side][i];
+            float pu1 = L->bx + (L->dx * y + nx * x) * L->len, pv1 = L->by + (L->dy * y + ny * x) * L->len;
+            span_edge(k, pu0, pv0, pu1, pv1);
+            pu0 = pu1, pv0 = pv1;
+        }
+    }
+    int r0, r1;
+    span_end(k, &r0, &r1);
     const float vslope = sqrtf(1.0f + L->slope * L->slope);
-    for (int yy = y0; yy <= y1; yy++) {
-        for (int xx = x0; xx <= x1; xx++) {
+    for (int r = r0; r <= r1; r++) {
+        int yy = k->y0 + r;
+        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
             float u = pu(k, xx) - L->bx, v = pv(k, yy) - L->by;
             float y = (u * L->dx + v * L->dy) / L->len, x = (u * nx + v * ny) / L->len;
             if (y <= 0.0f || y >= 1.0f) continue;
@@ -194,16 +288,16 @@ static void keyaki_leaf(const cell *k, const kleaf *L, const tex_noise *grain) {
                 vl = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
                 vl *= tex_smooth(0.0f, 0.05f, ax);
             }
-            float vein = fmaxf(vm, 0.75f * vl);
+            float vein = tex_maxf(vm, 0.75f * vl);
             float rel = w > 1e-5f ? ax / w : 1.0f;
-            float gr = tex_noise_at(grain, (float)xx * 0.25f, (float)yy * 0.25f);
+            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
             float shade = (side ? 0.96f : 1.0f) * (0.93f + 0.07f * gr);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);           /* a dark rim */
             float toward = tex_smooth(0.55f, 1.0f, rel) * 0.35f;        /* darker toward the margin */
             float col[3];
             float bl = 0.0f;
             if (L->blot > 0.0f) {
-                float b = tex_noise_at(grain, (float)xx * 0.06f + 17.0f, (float)yy * 0.06f + 5.0f);
+                float b = k->c->mottle[(size_t)((yy >> msh) & tm) * tile + (size_t)((xx >> msh) & tm)];
                 bl = L->blot * tex_smooth(0.15f, 0.55f, b);
             }
             for (int ch = 0; ch < 3; ch++) {
@@ -260,7 +354,7 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
 #define KMAX 40
 typedef struct kseg { float ax, ay, bx, by, wa, wb; } kseg;
 
-static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *grain) {
+static void keyaki_spray(cell *k, int season, pcg32 *r) {
     kleaf leaves[KMAX];
     kseg segs[KMAX];
     int nl = 0, ns = 0;
@@ -336,6 +430,10 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
     }
     const float twig[3] = {112, 92, 72};
     const float pcol[3] = {120, 130, 60};
+    float mean[3] = {0, 0, 0};
+    for (int i = 0; i < nl; i++)
+        for (int c = 0; c < 3; c++) mean[c] += leaves[i].col[c] / (float)(nl > 0 ? nl : 1);
+    fill_cell(k, mean);
     for (int i = 0; i < nl; i++) {
         kleaf *L = &leaves[i];
         float ox = 0.5f + (L->bx - L->dx * L->len * 0.06f - 0.5f) * sc, oy = (L->by - L->dy * L->len * 0.06f) * sc;
@@ -343,7 +441,7 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
         float pc[3];
         for (int c = 0; c < 3; c++) pc[c] = tex_mix(pcol[c], L->col[c], 0.5f);
         stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.5f);
-        keyaki_leaf(k, L, grain);
+        keyaki_leaf(k, L);
     }
     for (int i = 0; i < ns; i++) {
         kseg g = segs[i];
@@ -389,7 +487,7 @@ static float ivy_radius(const ivleaf *L, float phi, float teeth_amp, int nt) {
 /* atan2 good to ~1e-4 rad. */
 static inline float fast_atan2(float y, float x) {
     float ax = fabsf(x), ay = fabsf(y);
-    float mn = fminf(ax, ay), mx = fmaxf(ax, ay);
+    float mn = tex_minf(ax, ay), mx = tex_maxf(ax, ay);
     if (mx == 0.0f) return 0.0f;
     float a = mn / mx, s = a * a;
     float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
@@ -399,7 +497,7 @@ static inline float fast_atan2(float y, float x) {
     return r;
 }
 
-static void ivy_leaf(const cell *k, const ivleaf *L, int nt, float teeth_amp, const tex_noise *grain) {
+static void ivy_leaf(cell *k, const ivleaf *L, int nt, float teeth_amp) {
     static const int NV = 5;
     float rt[IT + 1], gt[IT + 1];
     float rmax = 0.0f;
@@ -421,11 +519,18 @@ static void ivy_leaf(const cell *k, const ivleaf *L, int nt, float teeth_amp, co
     for (int i = 0; i < NV; i++) vx[i] = sinf(va[i]), vy[i] = cosf(va[i]);
     const float s = (float)k->size, Rp = L->R * s;
     const int n = k->c->n;
-    float ext = rmax * L->R + 2.0f / s;
-    int x0, x1, y0, y1;
-    bounds(k, L->jx - ext, L->jx + ext, L->jy - ext, L->jy + ext, &x0, &x1, &y0, &y1);
-    for (int yy = y0; yy <= y1; yy++) {
-        for (int xx = x0; xx <= x1; xx++) {
+    const int tile = n < TEX_TILE ? n : TEX_TILE, tm = tile - 1;
+    span_begin(k);
+    for (int i = 0; i < IT; i++) {
+        float p0 = -PI_F + 2.0f * PI_F * (float)i / IT, p1 = -PI_F + 2.0f * PI_F * (float)(i + 1) / IT;
+        span_edge(k, L->jx + L->R * rt[i] * sinf(p0), L->jy + L->R * rt[i] * cosf(p0),
+                  L->jx + L->R * rt[i + 1] * sinf(p1), L->jy + L->R * rt[i + 1] * cosf(p1));
+    }
+    int r0, r1;
+    span_end(k, &r0, &r1);
+    for (int r = r0; r <= r1; r++) {
+        int yy = k->y0 + r;
+        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
             float u = (pu(k, xx) - L->jx) / L->R, v = (pv(k, yy) - L->jy) / L->R;
             float rho = sqrtf(u * u + v * v);
             if (rho > rmax + 2.0f / Rp) continue;
@@ -458,8 +563,8 @@ static void ivy_leaf(const cell *k, const ivleaf *L, int nt, float teeth_amp, co
             float sw = 0.0035f * Rp * (1.0f - 0.7f * rel);
             float vs = along > 0.05f ? (1.0f - tex_smooth(sw, sw + 0.8f, dq)) * (1.0f - tex_smooth(0.75f, 0.97f, rel)) : 0.0f;
             vs *= tex_smooth(0.0f, 0.06f, ap);
-            float vein = fmaxf(vp, 0.6f * vs);
-            float gr = tex_noise_at(grain, (float)xx * 0.3f, (float)yy * 0.3f);
+            float vein = tex_maxf(vp, 0.6f * vs);
+            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
             float toward = tex_smooth(0.5f, 1.0f, rel);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);
             float col[3];
@@ -517,41 +622,52 @@ static void ivy_colours(ivleaf *L, int season, pcg32 *r) {
 
 /* ------------------------------------------------------------ atlases */
 
-/* Alpha-0 pixels of a cell take the mean colour of its leaf pixels. */
-static void fill_background(tex_canvas *c, const cell *k) {
-    double sum[3] = {0, 0, 0};
-    double wsum = 0;
-    for (int y = k->y0; y < k->y0 + k->size; y++)
-        for (int x = k->x0; x < k->x0 + k->size; x++) {
-            const uint8_t *p = c->rgba + 4 * ((size_t)y * c->n + x);
-            if (p[3] < 128) continue;
-            for (int ch = 0; ch < 3; ch++) sum[ch] += p[ch];
-            wsum += 1;
-        }
-    uint8_t mean[3] = {64, 96, 40};
-    if (wsum > 0)
-        for (int ch = 0; ch < 3; ch++) mean[ch] = (uint8_t)(sum[ch] / wsum + 0.5);
-    for (int y = k->y0; y < k->y0 + k->size; y++)
-        for (int x = k->x0; x < k->x0 + k->size; x++) {
-            uint8_t *p = c->rgba + 4 * ((size_t)y * c->n + x);
-            if (p[3] == 0) p[0] = mean[0], p[1] = mean[1], p[2] = mean[2];
-        }
+/* The grain (cells of 4 px) and mottle tiles, TEX_TILE pixels a side (or
+ * the image's side when smaller): grain repeats across the atlas, mottle
+ * is stretched over it. */
+static void free_fields(tex_canvas *c) {
+    free(c->grain);
+    free(c->mottle);
+    c->grain = c->mottle = NULL;
+}
+
+static int leaf_fields(tex_canvas *c, pcg32 *rng) {
+    const int t = c->n < TEX_TILE ? c->n : TEX_TILE;
+    c->grain = malloc(sizeof(float) * (size_t)t * t);
+    c->mottle = malloc(sizeof(float) * (size_t)t * t);
+    tex_fbm g, m;
+    memset(&g, 0, sizeof g);
+    memset(&m, 0, sizeof m);
+    int rc = !c->grain || !c->mottle || tex_fbm_init(&g, t, t / 4, t / 4, 1, 1.0f, 0.5f, 4, rng) ||
+             tex_fbm_init(&m, t, 8, 8, 3, 1.0f, 0.5f, 4, rng);
+    if (!rc) {
+        tex_fbm_rows(&g, c->grain, 0, t);
+        tex_fbm_rows(&m, c->mottle, 0, t);
+    }
+    tex_fbm_free(&g);
+    tex_fbm_free(&m);
+    if (rc) free_fields(c);
+    return rc ? -1 : 0;
 }
 
 int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int cols, rows;
     float aspect;
     tex_leaf_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, &aspect);
-    tex_noise grain;
-    if (tex_noise_init(&grain, 64, 64, rng)) return -1;
+    if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
+    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
+    if (!spans) {
+        free_fields(c);
+        return -1;
+    }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1};
-            keyaki_spray(&k, season, rng, &grain);
-            fill_background(c, &k);
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
+            keyaki_spray(&k, season, rng);
         }
-    tex_noise_free(&grain);
+    free(spans);
+    free_fields(c);
     c->relief = 0.6f;
     c->wrap = 0;
     return 0;
@@ -561,12 +677,16 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int cols, rows;
     float aspect;
     tex_leaf_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, &aspect);
-    tex_noise grain;
-    if (tex_noise_init(&grain, 64, 64, rng)) return -1;
+    if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
+    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
+    if (!spans) {
+        free_fields(c);
+        return -1;
+    }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
             ivleaf L;
             /* A quarter of the cells: young unlobed leaves (long shoots). */
             L.lobed = ((i + j * cols) % 4) != 3;
@@ -581,20 +701,23 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
             for (int t = 0; t < 256; t++) {
                 float phi = -PI_F + 2.0f * PI_F * (float)t / 256.0f;
                 float rr = ivy_radius(&L, phi, 0.0f, nt);
-                side = fmaxf(side, fabsf(sinf(phi)) * rr);
-                up = fmaxf(up, cosf(phi) * rr);
-                down = fmaxf(down, -cosf(phi) * rr);
+                side = tex_maxf(side, fabsf(sinf(phi)) * rr);
+                up = tex_maxf(up, cosf(phi) * rr);
+                down = tex_maxf(down, -cosf(phi) * rr);
             }
-            float R = fminf(0.44f / side, 0.80f / (up + down)) * tex_unif(rng, 0.9f, 1.0f);
+            float R = tex_minf(0.44f / side, 0.80f / (up + down)) * tex_unif(rng, 0.9f, 1.0f);
             L.R = R;
             L.jx = 0.5f;
             L.jy = 0.96f - up * R;
             const float pet[3] = {season ? 150.0f : 96.0f, season ? 60.0f : 110.0f, season ? 40.0f : 50.0f};
+            float mean[3];
+            for (int ch = 0; ch < 3; ch++) mean[ch] = 0.5f * (L.col[ch] + L.inner[ch]);
+            fill_cell(&k, mean);
             stroke(&k, 0.5f, 0.0f, L.jx, L.jy - down * R * 0.2f, 0.012f, 0.008f, pet, 0.6f);
-            ivy_leaf(&k, &L, nt, amp, &grain);
-            fill_background(c, &k);
+            ivy_leaf(&k, &L, nt, amp);
         }
-    tex_noise_free(&grain);
+    free(spans);
+    free_fields(c);
     c->relief = 0.6f;
     c->wrap = 0;
     return 0;
