@@ -37,6 +37,8 @@ static void mark(tex_canvas *c, float cx, float cy, float rx, float ry, const fl
     }
 }
 
+#define KEYAKI_SHED 0.32f /* patch field threshold: about a fifth of the bark has shed */
+
 /* Up to four fields and their band scratch. */
 typedef struct fields {
     tex_fbm f[4];
@@ -76,35 +78,40 @@ static float *fields_rows(fields *F, int i, int y0) {
     return b;
 }
 
+/* One row: the shed patches (field p), the grey's tone (t), relief (h).
+ * A function of its own so the restrict pointers let it vectorise. */
+static void keyaki_row(int n, const float *restrict pr, const float *restrict tr, const float *restrict hr,
+                       float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
+    const float grey[3] = {152, 150, 142}, grey2[3] = {118, 118, 112};
+    const float orange[3] = {182, 112, 62}, brown[3] = {140, 92, 58};
+    const float thr = KEYAKI_SHED; /* about a fifth of the bark has shed */
+    for (int x = 0; x < n; x++) {
+        float p = pr[x], t = tr[x];
+        float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);                  /* inside a shed patch */
+        float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
+        float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
+        float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
+        float dark = 1.0f - 0.25f * rim;
+        R[x] = tex_mix(tex_mix(grey2[0], grey[0], g) * dark, tex_mix(brown[0], orange[0], o), m);
+        G[x] = tex_mix(tex_mix(grey2[1], grey[1], g) * dark, tex_mix(brown[1], orange[1], o), m);
+        B[x] = tex_mix(tex_mix(grey2[2], grey[2], g) * dark, tex_mix(brown[2], orange[2], o), m);
+        H[x] = 0.25f * hr[x] + 0.6f * (1.0f - m) + 0.35f * rim;
+    }
+}
+
 int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
     /* Scales: patches elongated along the trunk (fewer lattice cells in v). */
     static const float spec[3][4] = {{4, 2, 6, 0.55f}, {8, 8, 5, 0.6f}, {8, 4, 6, 0.6f}};
     fields F;
     if (fields_init(&F, n, 3, spec, rng)) return -1;
-    const float grey[3] = {152, 150, 142}, grey2[3] = {118, 118, 112};
-    const float orange[3] = {182, 112, 62}, brown[3] = {140, 92, 58};
-    const float thr = 0.32f; /* about a fifth of the bark has shed */
+    const float thr = KEYAKI_SHED;
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
         const float *patch = fields_rows(&F, 0, y0), *tone = fields_rows(&F, 1, y0), *hf = fields_rows(&F, 2, y0);
-        float *R = F.rgb, *G = R + n, *B = G + n;
         for (int r = 0; r < TEX_BAND; r++) {
-            size_t row = (size_t)(y0 + r) * n;
-            const float *pr = patch + (size_t)r * n, *tr = tone + (size_t)r * n, *hr = hf + (size_t)r * n;
-            float *hout = c->height + row;
-            for (int x = 0; x < n; x++) {
-                float p = pr[x], t = tr[x];
-                float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);                  /* inside a shed patch */
-                float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
-                float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
-                float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
-                float dark = 1.0f - 0.25f * rim;
-                R[x] = tex_mix(tex_mix(grey2[0], grey[0], g) * dark, tex_mix(brown[0], orange[0], o), m);
-                G[x] = tex_mix(tex_mix(grey2[1], grey[1], g) * dark, tex_mix(brown[1], orange[1], o), m);
-                B[x] = tex_mix(tex_mix(grey2[2], grey[2], g) * dark, tex_mix(brown[2], orange[2], o), m);
-                hout[x] = 0.25f * hr[x] + 0.6f * (1.0f - m) + 0.35f * rim;
-            }
-            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
+            size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
+            keyaki_row(n, patch + o, tone + o, hf + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
     /* Lenticels: short pale dashes across the trunk. */
@@ -138,13 +145,13 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
         const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
                     *hf = fields_rows(&F, 3, y0);
-        float *R = F.rgb, *G = R + n, *B = G + n;
+        float *restrict R = F.rgb, *restrict G = R + n, *restrict B = G + n;
         for (int r = 0; r < TEX_BAND; r++) {
             int y = y0 + r;
             size_t row = (size_t)y * n;
-            const float *wr_ = warp + (size_t)r * n, *sr = seg + (size_t)r * n, *tr = tone + (size_t)r * n,
-                        *hr = hf + (size_t)r * n;
-            float *hout = c->height + row;
+            const float *restrict wr_ = warp + (size_t)r * n, *restrict sr = seg + (size_t)r * n,
+                                  *restrict tr = tone + (size_t)r * n, *restrict hr = hf + (size_t)r * n;
+            float *restrict hout = c->height + row;
             const float ring = (float)y * rings / (float)n;
             for (int x = 0; x < n; x++) {
                 float w = ring + 1.2f * wr_[x] + 64.0f; /* positive: truncation is floor */
@@ -172,31 +179,34 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     return 0;
 }
 
+/* One row: fibres (f), fissures along the zero lines of a field (cr), tone (t). */
+static void stem_row(int n, const float *restrict fr, const float *restrict crr, const float *restrict tr,
+                     float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
+    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
+    for (int x = 0; x < n; x++) {
+        float f = fr[x], cr = crr[x];
+        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
+        float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
+        float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
+        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
+        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
+        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
+        H[x] = 0.6f * f - 0.8f * fis;
+    }
+}
+
 int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
     /* Fibres run along the stem: many lattice cells around, few along. */
     static const float spec[3][4] = {{32, 2, 5, 0.6f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
     fields F;
     if (fields_init(&F, n, 3, spec, rng)) return -1;
-    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
         const float *fib = fields_rows(&F, 0, y0), *crack = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0);
-        float *R = F.rgb, *G = R + n, *B = G + n;
         for (int r = 0; r < TEX_BAND; r++) {
-            size_t row = (size_t)(y0 + r) * n;
-            const float *fr = fib + (size_t)r * n, *cr_ = crack + (size_t)r * n, *tr = tone + (size_t)r * n;
-            float *hout = c->height + row;
-            for (int x = 0; x < n; x++) {
-                float f = fr[x], cr = cr_[x];
-                float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
-                float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
-                float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
-                R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
-                G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
-                B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
-                hout[x] = 0.6f * f - 0.8f * fis;
-            }
-            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
+            size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
+            stem_row(n, fib + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
     float s = (float)n / 1024.0f;

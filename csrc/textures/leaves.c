@@ -259,12 +259,12 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     }
     int r0, r1;
     span_end(k, &r0, &r1);
-    const float vslope = sqrtf(1.0f + L->slope * L->slope);
+    const float ivslope = 1.0f / sqrtf(1.0f + L->slope * L->slope), il = 1.0f / L->len;
     for (int r = r0; r <= r1; r++) {
         int yy = k->y0 + r;
         for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
             float u = pu(k, xx) - L->bx, v = pv(k, yy) - L->by;
-            float y = (u * L->dx + v * L->dy) / L->len, x = (u * nx + v * ny) / L->len;
+            float y = (u * L->dx + v * L->dy) * il, x = (u * nx + v * ny) * il;
             if (y <= 0.0f || y >= 1.0f) continue;
             int side = x > 0.0f;
             float ax = fabsf(x);
@@ -285,7 +285,7 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
             float j = (q - T.q0) / T.dq;
             float vl = 0.0f;
             if (j > -0.3f && j < (float)L->veins - 0.2f) {
-                float dj = fabsf(j - floorf(j + 0.5f)) * T.dq / vslope * lp; /* px to the nearest lateral */
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T.dq * ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
                 float rel = w > 1e-5f ? ax / w : 1.0f;
                 float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
                 vl = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
@@ -544,6 +544,12 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
             }
         }
     }
+    float inv_len[3], lens[3], vslope[3]; /* per lobe: 1 / length, length in pixels, 1 / |(1, slope)| */
+    for (int i = 0; i < 3; i++) {
+        inv_len[i] = 1.0f / L->lobe[i].len;
+        lens[i] = L->lobe[i].len * s;
+        vslope[i] = 1.0f / sqrtf(1.0f + L->lobe[i].slope * L->lobe[i].slope);
+    }
     /* Basal veins: from the junction into the lower halves of the side lobes. */
     float bvx[2], bvy[2], blen[2];
     for (int sd = 0; sd < 2; sd++) {
@@ -562,7 +568,8 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
             int bi = 0;
             for (int i = 0; i < 3; i++) {
                 const kleaf *B = &L->lobe[i];
-                float y = (u * B->dx + v * B->dy) / B->len, x = (u * B->dy - v * B->dx) / B->len;
+                float il = inv_len[i];
+                float y = (u * B->dx + v * B->dy) * il, x = (u * B->dy - v * B->dx) * il;
                 if (y <= 0.0f || y >= 1.0f) continue;
                 int side = x > 0.0f;
                 float fi = y * KT;
@@ -572,7 +579,7 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
                 const ktab *T = &L->tab[i];
                 float w = T->w[side][ti] + (T->w[side][ti + 1] - T->w[side][ti]) * fr;
                 float g = T->g[side][ti] + (T->g[side][ti + 1] - T->g[side][ti]) * fr;
-                float d = (w - fabsf(x)) * B->len * s * g;
+                float d = (w - fabsf(x)) * lens[i] * g;
                 if (d > best) best = d, bi = i, by = y, bx = x, bw = w;
             }
             float dpx = best;
@@ -588,7 +595,7 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
             float q = by - ax * B->slope, j = (q - T->q0) / T->dq;
             float vs = 0.0f;
             if (j > -0.3f && j < (float)B->veins - 0.2f) {
-                float dj = fabsf(j - floorf(j + 0.5f)) * T->dq / sqrtf(1.0f + B->slope * B->slope) * lp;
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T->dq * vslope[bi] * lp; /* j > -0.3: int() floors */
                 float lw = 0.004f * (1.0f - 0.6f * rel) * lp;
                 vs = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.8f, 1.0f, rel)) *
                      tex_smooth(0.0f, 0.04f, ax);

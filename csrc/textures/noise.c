@@ -45,9 +45,9 @@ float tex_noise_at(const tex_noise *t, float x, float y) {
 }
 
 /* Rows y0 .. y0 + rows - 1 of the noise times amp, added into band
- * (rows x n). Per row the lattice row is interpolated down once; per
+ * (rows x n; `first`: written, not added). Per row the lattice row is interpolated down once; per
  * pixel one multiply-add with a smoothstep weight from the table. */
-static void noise_rows(tex_noise *t, float *band, int y0, int rows, float amp) {
+static void noise_rows(tex_noise *t, float *band, int y0, int rows, float amp, int first) {
     const int n = t->n, cx = n / t->fx, cy = n / t->fy;
     float *col = t->col;
     for (int y = y0; y < y0 + rows; y++) {
@@ -62,7 +62,10 @@ static void noise_rows(tex_noise *t, float *band, int y0, int rows, float amp) {
             float a0 = col[ix], d = col[ix + 1] - a0;
             float *restrict oo = o + (size_t)ix * cx;
             const float *restrict ww = t->w;
-            for (int k = 0; k < cx; k++) oo[k] += a0 + d * ww[k];
+            if (first)
+                for (int k = 0; k < cx; k++) oo[k] = a0 + d * ww[k];
+            else
+                for (int k = 0; k < cx; k++) oo[k] += a0 + d * ww[k];
         }
     }
 }
@@ -89,8 +92,8 @@ int tex_fbm_init(tex_fbm *f, int n, int f0x, int f0y, int octaves, float amp, fl
 }
 
 void tex_fbm_rows(tex_fbm *f, float *band, int y0, int rows) {
-    memset(band, 0, sizeof(float) * (size_t)rows * f->n);
-    for (int o = 0; o < f->octaves; o++) noise_rows(&f->t[o], band, y0, rows, f->amp[o]);
+    if (f->octaves == 0) memset(band, 0, sizeof(float) * (size_t)rows * f->n);
+    for (int o = 0; o < f->octaves; o++) noise_rows(&f->t[o], band, y0, rows, f->amp[o], o == 0);
 }
 
 void tex_fbm_free(tex_fbm *f) {

@@ -167,11 +167,15 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
             gyr[x] = tex_to_byte_i(ny * iv * 127.5f + 128.0f);
             inv[x] = tex_to_byte_i(iv * 127.5f + 128.0f);
         }
+        /* Three bytes a texel: four texels as three little-endian words
+         * (n is a multiple of 4; tex_internal.h checks the byte order). */
         uint8_t *o = out + (size_t)y * n * 3;
-        for (int x = 0; x < n; x++) {
-            o[3 * x + 0] = (uint8_t)gxr[x];
-            o[3 * x + 1] = (uint8_t)gyr[x];
-            o[3 * x + 2] = (uint8_t)inv[x];
+        for (int x = 0; x < n; x += 4) {
+            const int32_t *a = gxr + x, *b = gyr + x, *z = inv + x;
+            uint32_t w[3] = {(uint32_t)a[0] | (uint32_t)b[0] << 8 | (uint32_t)z[0] << 16 | (uint32_t)a[1] << 24,
+                             (uint32_t)b[1] | (uint32_t)z[1] << 8 | (uint32_t)a[2] << 16 | (uint32_t)b[2] << 24,
+                             (uint32_t)z[2] | (uint32_t)a[3] << 8 | (uint32_t)b[3] << 16 | (uint32_t)z[3] << 24};
+            memcpy(o + 3 * (size_t)x, w, 12);
         }
     }
     free(pad);
