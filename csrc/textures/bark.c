@@ -37,8 +37,6 @@ static void mark(tex_canvas *c, float cx, float cy, float rx, float ry, const fl
     }
 }
 
-#define KEYAKI_SHED 0.32f /* patch field threshold: about a fifth of the bark has shed */
-
 /* Up to four fields and their band scratch. */
 typedef struct fields {
     tex_fbm f[4];
@@ -78,53 +76,123 @@ static float *fields_rows(fields *F, int i, int y0) {
     return b;
 }
 
-/* One row: the shed patches (field p), the grey's tone (t), relief (h).
- * A function of its own so the restrict pointers let it vectorise. */
-static void keyaki_row(int n, const float *restrict pr, const float *restrict tr, const float *restrict hr,
-                       float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
-    const float grey[3] = {152, 150, 142}, grey2[3] = {118, 118, 112};
-    const float orange[3] = {182, 112, 62}, brown[3] = {140, 92, 58};
-    const float thr = KEYAKI_SHED; /* about a fifth of the bark has shed */
+/* Keyaki's scales: a periodic jittered grid of gx x gy cells (cellular
+ * noise), warped, so the flakes are rounded polygons a little taller than
+ * wide. Each cell is a scale: grey (its own shade) or shed, showing the
+ * orange-brown under-bark (fresh) or a duller brown (older). */
+typedef struct scales {
+    int gx, gy;
+    float *jx, *jy, *val; /* per cell: point in the cell, a uniform value */
+} scales;
+
+#define KEYAKI_SHED 0.30f /* fraction of scales shed */
+
+static int scales_init(scales *S, int gx, int gy, pcg32 *rng) {
+    S->gx = gx, S->gy = gy;
+    S->jx = malloc(sizeof(float) * 3 * (size_t)gx * gy);
+    if (!S->jx) return -1;
+    S->jy = S->jx + gx * gy, S->val = S->jy + gx * gy;
+    for (int i = 0; i < gx * gy; i++) {
+        S->jx[i] = tex_unif(rng, 0.1f, 0.9f);
+        S->jy[i] = tex_unif(rng, 0.1f, 0.9f);
+        S->val[i] = tex_unif(rng, 0.0f, 1.0f);
+    }
+    return 0;
+}
+
+/* Nearest and second-nearest scale points to (px, py) in cell units. */
+static void scales_at(const scales *S, float px, float py, float *f1, float *f2, int *id) {
+    int i0 = (int)floorf(px), j0 = (int)floorf(py);
+    float d1 = 1e9f, d2 = 1e9f;
+    int best = 0;
+    for (int dj = -1; dj <= 1; dj++) {
+        int j = j0 + dj, jj = ((j % S->gy) + S->gy) % S->gy;
+        for (int di = -1; di <= 1; di++) {
+            int i = i0 + di, ii = ((i % S->gx) + S->gx) % S->gx;
+            int c = jj * S->gx + ii;
+            float dx = (float)i + S->jx[c] - px, dy = (float)j + S->jy[c] - py;
+            float d = dx * dx + dy * dy;
+            if (d < d1) d2 = d1, d1 = d, best = c;
+            else if (d < d2) d2 = d;
+        }
+    }
+    *f1 = sqrtf(d1), *f2 = sqrtf(d2), *id = best;
+}
+
+/* One row: scales (cellular, warped by fields wx, wy), tone t, relief h. */
+static void keyaki_row(int n, int y, const scales *S, const float *wx, const float *wy, const float *tr,
+                       const float *hr, float *R, float *G, float *B, float *H) {
+    const float grey[3] = {160, 158, 150}, grey2[3] = {118, 118, 112};
+    const float orange[3] = {190, 120, 74}, brown[3] = {140, 104, 78};
+    const float sx = (float)S->gx / (float)n, sy = (float)S->gy / (float)n;
     for (int x = 0; x < n; x++) {
-        float p = pr[x], t = tr[x];
-        float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);                  /* inside a shed patch */
-        float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
-        float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
-        float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
-        float dark = 1.0f - 0.25f * rim;
-        R[x] = tex_mix(tex_mix(grey2[0], grey[0], g) * dark, tex_mix(brown[0], orange[0], o), m);
-        G[x] = tex_mix(tex_mix(grey2[1], grey[1], g) * dark, tex_mix(brown[1], orange[1], o), m);
-        B[x] = tex_mix(tex_mix(grey2[2], grey[2], g) * dark, tex_mix(brown[2], orange[2], o), m);
-        H[x] = 0.25f * hr[x] + 0.6f * (1.0f - m) + 0.35f * rim;
+        float f1, f2;
+        int id;
+        scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &id);
+        float v = S->val[id];
+        float edge = 1.0f - tex_smooth(0.0f, 0.07f, f2 - f1); /* the border between two scales */
+        float t = tr[x];
+        float g = tex_clampf(0.5f + 0.9f * t + (v - 0.5f) * 0.5f, 0.0f, 1.0f);
+        float r, gg, b, h;
+        if (v < KEYAKI_SHED) {
+            /* Shed: fresh (orange) to older (duller brown), mottled; the
+             * scales around it end in a torn, shadowed edge. */
+            float fresh = tex_clampf(v / KEYAKI_SHED * 1.4f - 0.2f + 0.8f * t, 0.0f, 1.0f);
+            float m = (0.88f + 0.24f * tex_clampf(0.5f + 1.5f * hr[x], 0.0f, 1.0f)) * (1.0f - 0.3f * edge);
+            r = tex_mix(brown[0], orange[0], fresh) * m;
+            gg = tex_mix(brown[1], orange[1], fresh) * m;
+            b = tex_mix(brown[2], orange[2], fresh) * m;
+            h = 0.1f * hr[x] - 0.35f - 0.2f * edge;
+        } else {
+            /* Grey bark: continuous over the scale borders (they show only
+             * where a scale has gone), a faint seam at most. */
+            float dark = 1.0f - 0.05f * edge;
+            r = tex_mix(grey2[0], grey[0], g) * dark;
+            gg = tex_mix(grey2[1], grey[1], g) * dark;
+            b = tex_mix(grey2[2], grey[2], g) * dark;
+            h = 0.25f * hr[x] + 0.15f * tex_smooth(0.0f, 0.3f, f2 - f1);
+        }
+        R[x] = r, G[x] = gg, B[x] = b, H[x] = h;
     }
 }
 
 int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    /* Scales: patches elongated along the trunk (fewer lattice cells in v). */
-    static const float spec[3][4] = {{4, 2, 6, 0.55f}, {8, 8, 5, 0.6f}, {8, 4, 6, 0.6f}};
+    /* Warp (x, y), the grey's tone, fine relief. */
+    static const float spec[4][4] = {{8, 8, 4, 0.55f}, {8, 8, 4, 0.55f}, {8, 8, 5, 0.6f}, {16, 16, 4, 0.6f}};
     fields F;
-    if (fields_init(&F, n, 3, spec, rng)) return -1;
-    const float thr = KEYAKI_SHED;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
+    scales S;
+    if (scales_init(&S, 12, 8, rng)) {
+        fields_free(&F);
+        return -1;
+    }
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
-        const float *patch = fields_rows(&F, 0, y0), *tone = fields_rows(&F, 1, y0), *hf = fields_rows(&F, 2, y0);
+        const float *wx = fields_rows(&F, 0, y0), *wy = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
+                    *hf = fields_rows(&F, 3, y0);
         for (int r = 0; r < TEX_BAND; r++) {
             size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
-            keyaki_row(n, patch + o, tone + o, hf + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            keyaki_row(n, y0 + r, &S, wx + o, wy + o, tone + o, hf + o, F.rgb, F.rgb + n, F.rgb + 2 * n,
+                       c->height + row);
             tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
-    /* Lenticels: short pale dashes across the trunk. */
+    /* Lenticels: short pale dashes across the trunk, on the grey scales. */
     float s = (float)n / 1024.0f;
-    const float lcol[3] = {178, 168, 150};
-    for (int k = 0; k < 420; k++) {
+    const float lcol[3] = {184, 172, 152};
+    for (int k = 0; k < 500; k++) {
         float cx = tex_unif(rng, 0, (float)n), cy = tex_unif(rng, 0, (float)n);
         float rx = tex_unif(rng, 2.5f, 6.0f) * s, ry = tex_unif(rng, 0.7f, 1.3f) * s;
-        if (tex_fbm_at(&F.f[0], cx, cy) > thr - 0.05f) continue; /* none on the fresh under-bark */
+        float f1, f2;
+        int id;
+        scales_at(&S, cx * S.gx / (float)n + 0.5f * tex_fbm_at(&F.f[0], cx, cy),
+                  cy * S.gy / (float)n + 0.5f * tex_fbm_at(&F.f[1], cx, cy), &f1, &f2, &id);
+        if (S.val[id] < KEYAKI_SHED) continue; /* none on the under-bark */
         mark(c, cx, cy, rx < 1.0f ? 1.0f : rx, ry < 0.6f ? 0.6f : ry, lcol, 0.8f, 0.25f);
     }
     c->relief = 6.0f * s;
     c->wrap = 1;
+    free(S.jx);
     fields_free(&F);
     return 0;
 }
