@@ -60,4 +60,7 @@ typedef struct cli_command {
 
 extern const cli_command *const cli_commands[];
 
+/* `banyan textures -o DIR`: not a mesh command (cmd_textures.c). */
+int cli_textures_main(int argc, char **argv);
+
 #endif

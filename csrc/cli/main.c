@@ -58,6 +58,7 @@ static int usage(FILE *f) {
                "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
+    fprintf(f, "  %-9s %s\n", "textures", "leaf atlases and bark as PNG: banyan textures -o DIR [--size N] [--seed N]");
     return f == stdout ? 0 : 2;
 }
 
@@ -180,6 +181,7 @@ int main(int argc, char **argv) {
         printf("banyan %s (ABI %d)\n", banyan_version_string(), banyan_abi_version());
         return 0;
     }
+    if (!strcmp(argv[1], "textures")) return cli_textures_main(argc, argv);
     const cli_command *cmd = NULL;
     for (int i = 0; cli_commands[i]; i++)
         if (!strcmp(cli_commands[i]->name, argv[1])) cmd = cli_commands[i];

@@ -33,6 +33,8 @@ typedef enum banyan_season {
  * cell, v up), the tip towards the cell's top. Bark textures are one
  * tile: 1 in u = once around, 1 in v = `BANYAN_BARK_TILE_ASPECT`
  * circumferences along (the tube's uvs already run in circumferences). */
+#define BANYAN_BARK_TILE_ASPECT 1.0f
+
 typedef struct banyan_atlas_layout {
     int32_t cols, rows;      /* 1 x 1 for bark */
     float leaf_aspect;       /* leaf cell width / height, for the cards' shape */

@@ -1,0 +1,212 @@
+/* textures.c - the public texture calls of banyan/textures.h (issue #17):
+ * input checks, the atlas layout, the canvas each painter draws into, the
+ * normal map (Sobel on the painter's height field, glTF's tangent-space
+ * convention) and PNG bytes through stb_image_write, compiled here as a
+ * private copy so the library adds no run-time dependency. Painters:
+ * leaves.c (keyaki and Boston ivy atlases), bark.c (tileable bark). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "banyan.h"
+#include "core/error.h"
+#include "textures/tex_internal.h"
+
+/* stb_image_write, private to this file (static functions, its two
+ * tuning globals are static and never written: no shared state). */
+#if defined(__GNUC__)
+#  pragma GCC diagnostic push
+#  pragma GCC diagnostic ignored "-Wunused-function"
+#  pragma GCC diagnostic ignored "-Wpedantic"
+#  pragma GCC diagnostic ignored "-Wsign-compare"
+#  pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_WRITE_NO_STDIO
+#include <stb/stb_image_write.h>
+#if defined(__GNUC__)
+#  pragma GCC diagnostic pop
+/* Its unused static declarations are reported at the end of the file. */
+#  pragma GCC diagnostic ignored "-Wunused-function"
+#endif
+
+#define TEX_MIN_SIZE 64
+#define TEX_MAX_SIZE 8192
+
+void tex_leaf_grid(int kind, int *cols, int *rows, float *aspect) {
+    /* Keyaki: 2 x 2 cells, each a spray of leaves on a twiglet (the cards
+     * are 0.5 m; docs/materials.md). Ivy: 4 x 4 single leaves. */
+    if (kind == BANYAN_TEX_KEYAKI_LEAF) *cols = 2, *rows = 2, *aspect = 1.0f;
+    else if (kind == BANYAN_TEX_IVY_LEAF) *cols = 4, *rows = 4, *aspect = 1.0f;
+    else *cols = 1, *rows = 1, *aspect = 1.0f;
+}
+
+void banyan_texture_params_init(banyan_texture_params *p) {
+    if (!p) return;
+    memset(p, 0, sizeof *p);
+    p->kind = BANYAN_TEX_KEYAKI_LEAF;
+    p->season = BANYAN_SEASON_SUMMER;
+    p->size = 1024;
+    p->seed = 1;
+}
+
+static banyan_status check_kind(int32_t kind, banyan_error *err) {
+    if (kind >= 0 && kind < BANYAN_TEX_COUNT) return BANYAN_OK;
+    return banyan_fail(err, BANYAN_E_RANGE,
+                       "kind = %d must be within [0, %d] (keyaki_leaf 0, ivy_leaf 1, keyaki_bark 2, fig_bark 3, "
+                       "ivy_stem 4)",
+                       (int)kind, BANYAN_TEX_COUNT - 1);
+}
+
+banyan_status banyan_texture_layout(int32_t kind, banyan_atlas_layout *out, banyan_error *err) {
+    banyan_error_clear(err);
+    if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
+    banyan_status s = check_kind(kind, err);
+    if (s != BANYAN_OK) return s;
+    int cols, rows;
+    float aspect;
+    tex_leaf_grid(kind, &cols, &rows, &aspect);
+    out->cols = cols;
+    out->rows = rows;
+    out->leaf_aspect = aspect;
+    return BANYAN_OK;
+}
+
+static banyan_status check_params(const banyan_texture_params *p, banyan_error *err) {
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    banyan_status s = check_kind(p->kind, err);
+    if (s != BANYAN_OK) return s;
+    if (p->season != BANYAN_SEASON_SUMMER && p->season != BANYAN_SEASON_AUTUMN)
+        return banyan_fail(err, BANYAN_E_RANGE, "season = %d must be within [0, 1] (summer 0, autumn 1)",
+                           (int)p->season);
+    if (p->size < TEX_MIN_SIZE || p->size > TEX_MAX_SIZE || (p->size & (p->size - 1)) != 0)
+        return banyan_fail(err, BANYAN_E_RANGE, "size = %d must be a power of two within [%d, %d]", (int)p->size,
+                           TEX_MIN_SIZE, TEX_MAX_SIZE);
+    if (p->reserved != 0)
+        return banyan_fail(err, BANYAN_E_RANGE, "reserved = %d must be 0", (int)p->reserved);
+    return BANYAN_OK;
+}
+
+static banyan_image *image_new(uint32_t n, uint32_t channels) {
+    banyan_image *im = calloc(1, sizeof *im);
+    if (!im) return NULL;
+    im->width = im->height = n;
+    im->channels = channels;
+    im->pixels = malloc((size_t)n * n * channels);
+    if (!im->pixels) {
+        free(im);
+        return NULL;
+    }
+    return im;
+}
+
+void banyan_image_free(banyan_image *image) {
+    if (!image) return;
+    free(image->pixels);
+    free(image);
+}
+
+/* Tangent-space normals from the height field: Sobel gradient, glTF's
+ * convention (+X towards +u, +Y towards +v; rows run top to bottom, so
+ * v grows upwards = towards row - 1). Edges wrap for tiles, clamp else. */
+static void normal_map(const tex_canvas *c, uint8_t *out) {
+    const int n = c->n;
+    const float *h = c->height;
+    const float k = c->relief / 8.0f;
+    for (int y = 0; y < n; y++) {
+        int ym = y - 1, yp = y + 1;
+        if (c->wrap) ym = (ym + n) & (n - 1), yp &= n - 1;
+        else ym = ym < 0 ? 0 : ym, yp = yp >= n ? n - 1 : yp;
+        const float *r0 = h + (size_t)ym * n, *r1 = h + (size_t)y * n, *r2 = h + (size_t)yp * n;
+        uint8_t *o = out + (size_t)y * n * 3;
+        for (int x = 0; x < n; x++) {
+            int xm = x - 1, xp = x + 1;
+            if (c->wrap) xm = (xm + n) & (n - 1), xp &= n - 1;
+            else xm = xm < 0 ? 0 : xm, xp = xp >= n ? n - 1 : xp;
+            float gx = (r0[xp] + 2.0f * r1[xp] + r2[xp]) - (r0[xm] + 2.0f * r1[xm] + r2[xm]);
+            float gy = (r2[xm] + 2.0f * r2[x] + r2[xp]) - (r0[xm] + 2.0f * r0[x] + r0[xp]); /* down the rows */
+            float nx = -k * gx, ny = k * gy; /* dh/dv = -dh/drow */
+            float inv = 1.0f / sqrtf(nx * nx + ny * ny + 1.0f);
+            o[3 * x + 0] = tex_byte((nx * inv * 0.5f + 0.5f) * 255.0f);
+            o[3 * x + 1] = tex_byte((ny * inv * 0.5f + 0.5f) * 255.0f);
+            o[3 * x + 2] = tex_byte((inv * 0.5f + 0.5f) * 255.0f);
+        }
+    }
+}
+
+/* Streams per kind and season, so the five textures of one seed differ. */
+static uint64_t stream_of(int kind, int season) { return 0x7e47u + (uint64_t)kind * 2u + (uint64_t)season; }
+
+banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_image **base_color,
+                                      banyan_image **normal, banyan_error *err) {
+    banyan_error_clear(err);
+    if (base_color) *base_color = NULL;
+    if (normal) *normal = NULL;
+    banyan_status s = check_params(p, err);
+    if (s != BANYAN_OK) return s;
+    if (!base_color && !normal) return BANYAN_OK; /* nothing asked */
+
+    const int n = p->size;
+    tex_canvas c = {n, NULL, NULL, 1.0f, 0};
+    banyan_image *bc = image_new((uint32_t)n, 4), *nm = normal ? image_new((uint32_t)n, 3) : NULL;
+    c.height = calloc((size_t)n * n, sizeof *c.height);
+    if (!bc || (normal && !nm) || !c.height) goto nomem;
+    c.rgba = bc->pixels;
+    memset(c.rgba, 0, (size_t)n * n * 4);
+
+    pcg32 rng;
+    pcg32_seed(&rng, p->seed, stream_of(p->kind, p->season));
+    int rc = -1;
+    switch (p->kind) {
+    case BANYAN_TEX_KEYAKI_LEAF: rc = tex_paint_keyaki_leaves(&c, p->season, &rng); break;
+    case BANYAN_TEX_IVY_LEAF: rc = tex_paint_ivy_leaves(&c, p->season, &rng); break;
+    case BANYAN_TEX_KEYAKI_BARK: rc = tex_paint_keyaki_bark(&c, &rng); break;
+    case BANYAN_TEX_FIG_BARK: rc = tex_paint_fig_bark(&c, &rng); break;
+    case BANYAN_TEX_IVY_STEM: rc = tex_paint_ivy_stem(&c, &rng); break;
+    default: break;
+    }
+    if (rc != 0) goto nomem;
+    if (nm) normal_map(&c, nm->pixels);
+    free(c.height);
+    if (base_color) *base_color = bc;
+    else banyan_image_free(bc);
+    if (normal) *normal = nm;
+    return BANYAN_OK;
+nomem:
+    free(c.height);
+    banyan_image_free(bc);
+    banyan_image_free(nm);
+    return banyan_fail(err, BANYAN_E_NOMEM, "texture of size %d: out of memory", n);
+}
+
+banyan_status banyan_image_png(const banyan_image *image, uint8_t **png, size_t *size, banyan_error *err) {
+    banyan_error_clear(err);
+    if (png) *png = NULL;
+    if (size) *size = 0;
+    if (!png) return banyan_fail(err, BANYAN_E_INVALID_ARG, "png is NULL");
+    if (!size) return banyan_fail(err, BANYAN_E_INVALID_ARG, "size is NULL");
+    if (!image) return banyan_fail(err, BANYAN_E_INVALID_ARG, "image is NULL");
+    if (!image->pixels) return banyan_fail(err, BANYAN_E_INVALID_ARG, "image->pixels is NULL");
+    if (image->channels < 1 || image->channels > 4)
+        return banyan_fail(err, BANYAN_E_RANGE, "image->channels = %u must be within [1, 4]", image->channels);
+    if (image->width < 1 || image->width > TEX_MAX_SIZE || image->height < 1 || image->height > TEX_MAX_SIZE)
+        return banyan_fail(err, BANYAN_E_RANGE, "image->width x height = %u x %u must be within [1, %d] each",
+                           image->width, image->height, TEX_MAX_SIZE);
+    int len = 0;
+    unsigned char *bytes = stbi_write_png_to_mem(image->pixels, (int)(image->width * image->channels),
+                                                 (int)image->width, (int)image->height, (int)image->channels,
+                                                 &len);
+    if (!bytes || len <= 0) {
+        free(bytes);
+        return banyan_fail(err, BANYAN_E_NOMEM, "PNG of %u x %u: out of memory", image->width, image->height);
+    }
+    *png = bytes;
+    *size = (size_t)len;
+    return BANYAN_OK;
+}
+
+void banyan_png_free(uint8_t *png) { free(png); }
+
+size_t banyan_sizeof_image(void) { return sizeof(banyan_image); }
+size_t banyan_sizeof_texture_params(void) { return sizeof(banyan_texture_params); }
