@@ -131,10 +131,11 @@ static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
  * positive falls back to r_mean. */
 static double tube_dv(double l, double r0, double r1, double r_mean) {
     const double two_pi = 6.283185307179586;
-    if (!(r0 > 1e-12 && r1 > 1e-12)) return r_mean > 1e-12 ? l / (two_pi * r_mean) : l;
+    /* v counts tiles: one tile spans BANYAN_BARK_TILE_ASPECT circumferences */
+    if (!(r0 > 1e-12 && r1 > 1e-12)) return (r_mean > 1e-12 ? l / (two_pi * r_mean) : l) / BANYAN_BARK_TILE_ASPECT;
     double d = r1 - r0;
-    if (fabs(d) < 1e-6 * r0) return l / (two_pi * 0.5 * (r0 + r1));
-    return l * log(r1 / r0) / (two_pi * d);
+    if (fabs(d) < 1e-6 * r0) return l / (two_pi * 0.5 * (r0 + r1)) / BANYAN_BARK_TILE_ASPECT;
+    return l * log(r1 / r0) / (two_pi * d) / BANYAN_BARK_TILE_ASPECT;
 }
 
 static inline void put3(float *f, v3 p) {

@@ -220,7 +220,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
             if (!I) break;
             float *pos = mb.pos + 3 * (size_t)vc, *nrm = mb.nrm + 3 * (size_t)vc, *uv = mb.uv + 2 * (size_t)vc;
-            float *col = mb.col + 4 * (size_t)vc;
+            float *col = mb.col + 4 * (size_t)vc; /* the builder was made with colours */
             const float fn[3] = {(float)n.x, (float)n.y, (float)n.z};
             leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
             leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);

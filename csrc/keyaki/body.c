@@ -158,7 +158,7 @@ static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double 
         mb_put(mb, v0 + 1, p1, nrm, u1, lk.v0);
         mb_put(mb, v0 + 2, p2, nrm, u1, v1);
         mb_put(mb, v0 + 3, p3, nrm, lk.u0, v1);
-        for (uint32_t k = 0; k < 4; k++)
+        for (uint32_t k = 0; k < 4 && mb->with_color; k++)
             for (int j = 0; j < 4; j++) mb->col[4 * ((size_t)v0 + k) + j] = (float)lk.tint[j];
         I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
         I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;

@@ -159,6 +159,7 @@ static void set_material(banyan_material *m, const char *name, float r, float g,
     m->base_color[3] = a;
     m->roughness = rough;
     m->double_sided = ds;
+    m->texture = BANYAN_TEX_NONE; /* 0 would be the keyaki leaf atlas */
 }
 
 /* Mesh A: part 0 = a tetrahedron of bark (4 vertices, 4 triangles, some

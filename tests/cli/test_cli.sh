@@ -34,6 +34,19 @@ for g in roots keyaki avenue ivy segments; do
 done
 expect 1 "must be within" -- "$bin" roots --set sides=2
 expect 1 "roots_trunk.json" -- "$bin" keyaki --preset "$src/presets/roots_trunk.json"
+# Textures (issue #17): on by default, size and on/off checked, named.
+expect 2 "--textures 'maybe' must be on or off" -- "$bin" keyaki --textures maybe
+for n in 0 100 32 16384 -64 1e3 64x; do
+  expect 2 "--texture-size '$n' must be a power of two in [64, 8192]" -- "$bin" keyaki --texture-size "$n"
+done
+expect 0 '"triangles"' -- "$bin" keyaki --set levels=8 --set season=autumn --texture-size 64 --stats \
+  -o "$out/cli_keyaki_autumn.glb"
+grep -q 'image/png' "$out/cli_keyaki_autumn.glb" && grep -q 'keyaki_leaf_autumn' "$out/cli_keyaki_autumn.glb" &&
+  pass=$((pass+1)) || { fail=$((fail+1)); echo "FAIL: --texture-size 64: no autumn leaf PNG in the file"; }
+expect 0 '"triangles"' -- "$bin" ivy --set steps=30 --textures off --stats -o "$out/cli_ivy_flat.glb"
+grep -q 'image/png' "$out/cli_ivy_flat.glb" && { fail=$((fail+1)); echo "FAIL: --textures off wrote an image"; } ||
+  pass=$((pass+1))
+expect 1 "season = 'winter' must be one of summer|autumn" -- "$bin" ivy --set season=winter
 expect 0 '"unattached": 0' -- "$bin" segments --preset "$src/presets/segments_paper.json" --stats
 # Every shipped preset loads and generates with its own command; those
 # with mesh hosts grow on a host set of their meshes and their output goes

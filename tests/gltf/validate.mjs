@@ -1,12 +1,13 @@
 #!/usr/bin/env node
 // Validates glTF files with the Khronos glTF validator.
 //
-//   node tests/gltf/validate.mjs FILE_OR_DIR...
+//   node tests/gltf/validate.mjs [--no-warnings] FILE_OR_DIR...
 //
 // A directory stands for every .glb / .gltf file directly in it (at least
 // one is required). Prints one line per file with its error / warning
 // counts, then each error (and warning) message. Exits 1 when any file has
-// errors or cannot be read, 2 on bad usage. The validator comes from
+// errors (or, with --no-warnings, warnings: what banyan writes must have
+// none) or cannot be read, 2 on bad usage. The validator comes from
 // tests/gltf/node_modules:
 //   npm install --prefix tests/gltf   (package.json pins gltf-validator)
 import { createRequire } from 'node:module';
@@ -26,9 +27,11 @@ try {
   process.exit(2);
 }
 
-const args = process.argv.slice(2);
+let args = process.argv.slice(2);
+const noWarnings = args.includes('--no-warnings');
+args = args.filter((a) => a !== '--no-warnings');
 if (args.length === 0) {
-  console.error('usage: node validate.mjs FILE_OR_DIR...');
+  console.error('usage: node validate.mjs [--no-warnings] FILE_OR_DIR...');
   process.exit(2);
 }
 
@@ -96,7 +99,7 @@ for (const file of files) {
     const where = m.pointer ? ` at ${m.pointer}` : (m.offset !== undefined ? ` at byte ${m.offset}` : '');
     console.log(`  ${SEVERITY[m.severity]} ${m.code}${where}: ${m.message}`);
   }
-  if (is.numErrors > 0) failed++;
+  if (is.numErrors > 0 || (noWarnings && is.numWarnings > 0)) failed++;
   else passed++;
 }
 
