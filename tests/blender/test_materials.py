@@ -287,10 +287,30 @@ def test_render_clip():
              "Cycles render of the leaf atlas: %d clear, %d opaque of %d pixels" % (clear, solid, len(a)))
 
 
+def test_save_reload():
+    """The packed images travel in the .blend: saved, reopened, decoded."""
+    if not bt.generator("roots"):
+        return
+    bt.reset_scene()
+    set_size(SIZE)
+    run_op("roots")
+    path = os.path.join(bt.OUT_DIR, "materials_packed.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path, copy=True)
+    bpy.ops.wm.open_mainfile(filepath=path)
+    img = bpy.data.images.get("Banyan Fig Bark color")
+    bt.check(img is not None and img.packed_file is not None, "reopened: the bark image is still packed")
+    if img is not None:
+        px = pixels(img)
+        bt.check(tuple(img.size) == (SIZE, SIZE) and max(px[0::4]) > 0.05,
+                 "reopened: the packed image decodes (%s px)" % (tuple(img.size),))
+    bt.reset_scene()
+
+
 bt.run(test_preference)
 bt.run(test_twice)
 bt.run(test_season)
 bt.run(test_user_edit)
 bt.run(test_bad_size)
 bt.run(test_render_clip)
+bt.run(test_save_reload)
 bt.done()
