@@ -81,65 +81,107 @@ static float *fields_rows(fields *F, int i, int y0) {
  * wide. Each cell is a scale: grey (its own shade) or shed, showing the
  * orange-brown under-bark (fresh) or a duller brown (older). */
 typedef struct scales {
-    int gx, gy;
-    float *jx, *jy, *val; /* per cell: point in the cell, a uniform value */
+    int gx, gy, pw;       /* cells across and along; padded row width */
+    float *px, *py, *val; /* padded by SPAD cells each side (copies wrapped round): point, value */
+    int *id;              /* padded: the cell's index in 0 .. gx * gy - 1 */
+    float *vals;          /* gx * gy: each cell's value */
 } scales;
 
 #define KEYAKI_SHED 0.30f /* fraction of scales shed */
+#define SPAD 3             /* covers the warp (under a cell) and the 3 x 3 search */
 
 static int scales_init(scales *S, int gx, int gy, pcg32 *rng) {
-    S->gx = gx, S->gy = gy;
-    S->jx = malloc(sizeof(float) * 3 * (size_t)gx * gy);
-    if (!S->jx) return -1;
-    S->jy = S->jx + gx * gy, S->val = S->jy + gx * gy;
-    for (int i = 0; i < gx * gy; i++) {
-        S->jx[i] = tex_unif(rng, 0.1f, 0.9f);
-        S->jy[i] = tex_unif(rng, 0.1f, 0.9f);
-        S->val[i] = tex_unif(rng, 0.0f, 1.0f);
+    S->gx = gx, S->gy = gy, S->pw = gx + 2 * SPAD;
+    size_t cells = (size_t)gx * gy, padded = (size_t)S->pw * (gy + 2 * SPAD);
+    float *jx = malloc(sizeof(float) * 3 * cells);
+    S->px = malloc(sizeof(float) * (3 * padded + cells));
+    S->id = malloc(sizeof(int) * padded);
+    if (!jx || !S->px || !S->id) {
+        free(jx);
+        free(S->px);
+        free(S->id);
+        return -1;
     }
+    float *jy = jx + cells, *v = jy + cells;
+    for (size_t i = 0; i < cells; i++) {
+        jx[i] = tex_unif(rng, 0.1f, 0.9f);
+        jy[i] = tex_unif(rng, 0.1f, 0.9f);
+        v[i] = tex_unif(rng, 0.0f, 1.0f);
+    }
+    S->py = S->px + padded, S->val = S->py + padded, S->vals = S->val + padded;
+    memcpy(S->vals, v, sizeof(float) * cells);
+    for (int j = -SPAD; j < gy + SPAD; j++)
+        for (int i = -SPAD; i < gx + SPAD; i++) {
+            int ii = (i + gx) % gx, jj = (j + gy) % gy, c = jj * gx + ii;
+            size_t p = (size_t)(j + SPAD) * S->pw + (size_t)(i + SPAD);
+            S->px[p] = (float)i + jx[c], S->py[p] = (float)j + jy[c], S->val[p] = v[c], S->id[p] = c;
+        }
+    free(jx);
     return 0;
 }
 
-/* Nearest and second-nearest scale points to (px, py) in cell units. */
-static void scales_at(const scales *S, float px, float py, float *f1, float *f2, int *id) {
-    int i0 = (int)floorf(px), j0 = (int)floorf(py);
+static void scales_free(scales *S) {
+    free(S->px);
+    free(S->id);
+}
+
+/* Nearest and second-nearest scale points to (px, py) in cell units,
+ * px in [-2, gx + 2), py likewise (the warp is under a cell): distances
+ * and the nearest one's padded index. */
+static inline void scales_at(const scales *S, float px, float py, float *f1, float *f2, int *pid) {
+    int i0 = (int)(px + (float)SPAD) - SPAD, j0 = (int)(py + (float)SPAD) - SPAD; /* floor */
     float d1 = 1e9f, d2 = 1e9f;
     int best = 0;
     for (int dj = -1; dj <= 1; dj++) {
-        int j = j0 + dj, jj = ((j % S->gy) + S->gy) % S->gy;
+        int base = (j0 + dj + SPAD) * S->pw + i0 + SPAD;
         for (int di = -1; di <= 1; di++) {
-            int i = i0 + di, ii = ((i % S->gx) + S->gx) % S->gx;
-            int c = jj * S->gx + ii;
-            float dx = (float)i + S->jx[c] - px, dy = (float)j + S->jy[c] - py;
+            int p = base + di;
+            float dx = S->px[p] - px, dy = S->py[p] - py;
             float d = dx * dx + dy * dy;
-            if (d < d1) d2 = d1, d1 = d, best = c;
+            if (d < d1) d2 = d1, d1 = d, best = p;
             else if (d < d2) d2 = d;
         }
     }
-    *f1 = sqrtf(d1), *f2 = sqrtf(d2), *id = best;
+    *f1 = sqrtf(d1), *f2 = sqrtf(d2), *pid = best;
 }
 
-/* One row: scales (cellular, warped by fields wx, wy), tone t, relief h. */
-static void keyaki_row(int n, int y, const scales *S, const float *wx, const float *wy, const float *tr,
-                       const float *hr, float *R, float *G, float *B, float *H) {
+/* One row: scales (cellular, warped by fields wx, wy), tone t, relief h.
+ * The scale search (nine cells) runs only where a block of 4 x 4 pixels
+ * may hold a border: blocks whose corners (cid, cgap: the band's coarse
+ * samples) lie in one scale far from its border take that scale, and a
+ * border's edge terms are 0 there. */
+#define KB 4
+static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, const float *wy, const float *tr,
+                       const float *hr, const int *cid, const float *cgap, float *R, float *G, float *B, float *H) {
     const float grey[3] = {160, 158, 150}, grey2[3] = {118, 118, 112};
     const float orange[3] = {190, 120, 74}, brown[3] = {140, 104, 78};
     const float sx = (float)S->gx / (float)n, sy = (float)S->gy / (float)n;
+    const int cw = n / KB + 1, by = r / KB;
     for (int x = 0; x < n; x++) {
-        float f1, f2;
-        int id;
-        scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &id);
-        float v = S->val[id];
-        float edge = 1.0f - tex_smooth(0.0f, 0.07f, f2 - f1); /* the border between two scales */
+        float gap;
+        int id, bx = x / KB;
+        int c00 = by * cw + bx, c01 = c00 + 1, c10 = c00 + cw, c11 = c10 + 1;
+        id = cid[c00];
+        if (cid[c01] == id && cid[c10] == id && cid[c11] == id && cgap[c00] > 0.35f && cgap[c01] > 0.35f &&
+            cgap[c10] > 0.35f && cgap[c11] > 0.35f) {
+            gap = 1.0f; /* far inside one scale: no border term */
+        } else {
+            float f1, f2;
+            int p;
+            scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &p);
+            gap = f2 - f1, id = S->id[p];
+        }
+        float v = S->vals[id];
+        float edge = 1.0f - tex_smooth(0.0f, 0.07f, gap); /* the border between two scales */
         float t = tr[x];
         float g = tex_clampf(0.5f + 0.9f * t + (v - 0.5f) * 0.5f, 0.0f, 1.0f);
-        float r, gg, b, h;
+        float rr, gg, b, h;
         if (v < KEYAKI_SHED) {
             /* Shed: fresh (orange) to older (duller brown), mottled; the
              * scales around it end in a torn, shadowed edge. */
             float fresh = tex_clampf(v / KEYAKI_SHED * 1.4f - 0.2f + 0.8f * t, 0.0f, 1.0f);
             float m = (0.88f + 0.24f * tex_clampf(0.5f + 1.5f * hr[x], 0.0f, 1.0f)) * (1.0f - 0.3f * edge);
-            r = tex_mix(brown[0], orange[0], fresh) * m;
+            rr = tex_mix(brown[0], orange[0], fresh) * m;
             gg = tex_mix(brown[1], orange[1], fresh) * m;
             b = tex_mix(brown[2], orange[2], fresh) * m;
             h = 0.1f * hr[x] - 0.35f - 0.2f * edge;
@@ -147,12 +189,12 @@ static void keyaki_row(int n, int y, const scales *S, const float *wx, const flo
             /* Grey bark: continuous over the scale borders (they show only
              * where a scale has gone), a faint seam at most. */
             float dark = 1.0f - 0.05f * edge;
-            r = tex_mix(grey2[0], grey[0], g) * dark;
+            rr = tex_mix(grey2[0], grey[0], g) * dark;
             gg = tex_mix(grey2[1], grey[1], g) * dark;
             b = tex_mix(grey2[2], grey[2], g) * dark;
-            h = 0.25f * hr[x] + 0.15f * tex_smooth(0.0f, 0.3f, f2 - f1);
+            h = 0.25f * hr[x] - 0.1f * edge;
         }
-        R[x] = r, G[x] = gg, B[x] = b, H[x] = h;
+        R[x] = rr, G[x] = gg, B[x] = b, H[x] = h;
     }
 }
 
@@ -167,16 +209,44 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
         fields_free(&F);
         return -1;
     }
+    const int cw = n / KB + 1, ch = TEX_BAND / KB + 1;
+    int *cid = malloc(sizeof(int) * (size_t)cw * ch);
+    float *cgap = malloc(sizeof(float) * (size_t)cw * ch);
+    if (!cid || !cgap) {
+        free(cid);
+        free(cgap);
+        scales_free(&S);
+        fields_free(&F);
+        return -1;
+    }
+    const float sx = (float)S.gx / (float)n, sy = (float)S.gy / (float)n;
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
         const float *wx = fields_rows(&F, 0, y0), *wy = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
                     *hf = fields_rows(&F, 3, y0);
+        /* Coarse samples every KB pixels (the band's last row stands in
+         * for the next band's first: only the test above reads them). */
+        for (int j = 0; j < ch; j++) {
+            int r = j * KB < TEX_BAND ? j * KB : TEX_BAND - 1;
+            for (int i = 0; i < cw; i++) {
+                int x = (i * KB) & (n - 1);
+                size_t o = (size_t)r * n + x;
+                float f1, f2;
+                int p;
+                scales_at(&S, ((float)(i * KB) + 0.5f) * sx + 0.5f * wx[o], ((float)(y0 + r) + 0.5f) * sy + 0.5f * wy[o],
+                          &f1, &f2, &p);
+                cid[j * cw + i] = S.id[p];
+                cgap[j * cw + i] = f2 - f1;
+            }
+        }
         for (int r = 0; r < TEX_BAND; r++) {
             size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
-            keyaki_row(n, y0 + r, &S, wx + o, wy + o, tone + o, hf + o, F.rgb, F.rgb + n, F.rgb + 2 * n,
-                       c->height + row);
+            keyaki_row(n, y0 + r, r, &S, wx + o, wy + o, tone + o, hf + o, cid, cgap, F.rgb, F.rgb + n,
+                       F.rgb + 2 * n, c->height + row);
             tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
+    free(cid);
+    free(cgap);
     /* Lenticels: short pale dashes across the trunk, on the grey scales. */
     float s = (float)n / 1024.0f;
     const float lcol[3] = {184, 172, 152};
@@ -184,15 +254,15 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
         float cx = tex_unif(rng, 0, (float)n), cy = tex_unif(rng, 0, (float)n);
         float rx = tex_unif(rng, 2.5f, 6.0f) * s, ry = tex_unif(rng, 0.7f, 1.3f) * s;
         float f1, f2;
-        int id;
+        int p;
         scales_at(&S, cx * S.gx / (float)n + 0.5f * tex_fbm_at(&F.f[0], cx, cy),
-                  cy * S.gy / (float)n + 0.5f * tex_fbm_at(&F.f[1], cx, cy), &f1, &f2, &id);
-        if (S.val[id] < KEYAKI_SHED) continue; /* none on the under-bark */
+                  cy * S.gy / (float)n + 0.5f * tex_fbm_at(&F.f[1], cx, cy), &f1, &f2, &p);
+        if (S.val[p] < KEYAKI_SHED) continue; /* none on the under-bark */
         mark(c, cx, cy, rx < 1.0f ? 1.0f : rx, ry < 0.6f ? 0.6f : ry, lcol, 0.8f, 0.25f);
     }
     c->relief = 6.0f * s;
     c->wrap = 1;
-    free(S.jx);
+    scales_free(&S);
     fields_free(&F);
     return 0;
 }
