@@ -333,9 +333,9 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         return;
     }
     /* Autumn: each spray leans to one tone (trees differ), leaves mix. */
-    static const float pal[4][3] = {{212, 168, 48}, {214, 118, 36}, {156, 76, 36}, {128, 46, 34}};
+    static const float pal[4][3] = {{224, 180, 46}, {216, 122, 38}, {160, 80, 38}, {134, 50, 36}};
     int t2 = (int)rng_below(r, 4);
-    float m = tex_unif(r, 0.0f, 0.6f);
+    float m = tex_unif(r, 0.0f, 0.45f);
     float b = tex_unif(r, 0.9f, 1.07f);
     for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[t2][i], m) * b;
     float green = rng_uniform(r) < 0.15 ? tex_unif(r, 0.15f, 0.4f) : 0.0f; /* a leaf still turning */
@@ -347,7 +347,7 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         L->edge[i] = c[i] * 0.7f;
         L->blotcol[i] = c[i] * 0.62f;
     }
-    L->blot = tex_unif(r, 0.0f, 0.5f);
+    L->blot = tex_unif(r, 0.0f, 0.35f);
 }
 
 /* One spray: a zigzag shoot from the cell's bottom centre with leaves
@@ -359,12 +359,11 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
 typedef struct kseg { float ax, ay, bx, by, wa, wb; } kseg;
 typedef struct kaxis { float x, y, a, len, lmax, w; int nodes, depth; } kaxis;
 
-static void keyaki_spray(cell *k, int season, pcg32 *r) {
+static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
     kleaf leaves[KMAX];
     kseg segs[KMAX + 8];
     kaxis axes[6];
     int nl = 0, ns = 0, na = 1;
-    int tone = (int)rng_below(r, 3);
     axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.165f, 0.185f), 0.0085f,
                       11 + (int)rng_below(r, 3), 0};
     /* Side shoots at three or four of nodes 1..7 (a fan that fills the card). */
@@ -707,10 +706,13 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         free_fields(c);
         return -1;
     }
+    /* Autumn: each spray leans to one tone, the cells cycle through
+     * yellow, orange and rust (trees differ; an atlas shows all three). */
+    int tone0 = (int)rng_below(rng, 3);
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
             cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
-            keyaki_spray(&k, season, rng);
+            keyaki_spray(&k, season, (tone0 + i + j * cols) % 3, rng);
         }
     free(spans);
     free_fields(c);
