@@ -716,7 +716,7 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         }
     free(spans);
     free_fields(c);
-    c->relief = 0.6f;
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }
@@ -755,7 +755,7 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
         }
     free(spans);
     free_fields(c);
-    c->relief = 0.6f;
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }

@@ -294,6 +294,29 @@ int main(void) {
         CHECK(ratio[0] < 0.9 && ratio[1] > 1.1, "%s: red/green summer %.2f autumn %.2f", names[kind], ratio[0], ratio[1]);
     }
 
+    /* glTF's normal convention: an ivy blade is domed along its midrib, so
+     * right of the midrib the normals lean to +X (red above 128) and left
+     * of it to -X; near the tip (the dome falls towards +v) they lean to +Y. */
+    {
+        banyan_image *nm = NULL;
+        gen(BANYAN_TEX_IVY_LEAF, 0, 512, 1, NULL, &nm);
+        int cs = nm ? (int)nm->width / 4 : 0, wrong = 0;
+        for (int c = 0; nm && c < 16; c++) {
+            int x0 = (c % 4) * cs, y0 = (c / 4) * cs, cx = x0 + cs / 2;
+            double right = 0, left = 0;
+            int cnt = 0;
+            for (int y = y0 + cs * 30 / 100; y < y0 + cs * 45 / 100; y++)
+                for (int d = cs * 6 / 100; d < cs * 14 / 100; d++) {
+                    right += nm->pixels[3 * ((size_t)y * nm->width + cx + d)];
+                    left += nm->pixels[3 * ((size_t)y * nm->width + cx - d)];
+                    cnt++;
+                }
+            if (!(right / cnt > 129 && left / cnt < 127 && right - left > 4 * cnt)) wrong++;
+        }
+        CHECK(nm && wrong == 0, "ivy normal map: %d cells with red not > 128 right of the midrib and < 128 left", wrong);
+        banyan_image_free(nm);
+    }
+
     /* Either output may be skipped; the other is the same as when both are made. */
     {
         banyan_image *bc = NULL, *nm = NULL, *only = NULL;
