@@ -364,10 +364,10 @@ static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
     kseg segs[KMAX + 8];
     kaxis axes[6];
     int nl = 0, ns = 0, na = 1;
-    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.165f, 0.185f), 0.0085f,
+    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.18f, 0.2f), 0.0085f,
                       11 + (int)rng_below(r, 3), 0};
-    /* Side shoots at three or four of nodes 1..7 (a fan that fills the card). */
-    int want = 3 + (int)rng_below(r, 2);
+    /* Side shoots at four or five of nodes 1..8 (a fan that fills the card). */
+    int want = 4 + (int)rng_below(r, 2);
     for (int ax = 0; ax < na; ax++) {
         kaxis A = axes[ax];
         float x = A.x, y = A.y, a = A.a, w = A.w;
@@ -395,9 +395,9 @@ static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
             L->skew = tex_unif(r, 0.0f, 0.05f);
             L->tooth = 0.028f, L->env0 = 0.10f, L->env1 = 0.99f;
             keyaki_colours(L, season, tone, r);
-            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 7 && rng_uniform(r) < 0.7) {
+            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 8 && rng_uniform(r) < 0.75) {
                 float sa = a + side * tex_unif(r, 0.7f, 1.0f);
-                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.5f, 0.6f) * (1.0f - 0.45f * t),
+                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.42f, 0.5f) * (1.0f - 0.45f * t),
                                      A.lmax * 0.9f, w * 0.6f, 6 + (int)rng_below(r, 3), 1};
             }
             if (i == A.nodes - 1) break; /* the shoot ends in its last leaf (and a bud) */
