@@ -317,33 +317,45 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     return 0;
 }
 
-/* One row: fibres (f), fissures along the zero lines of a field (cr), tone (t). */
-static void stem_row(int n, const float *restrict fr, const float *restrict crr, const float *restrict tr,
-                     float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
-    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
+/* One row: fibres as wavy ridges along the stem (stripe coordinate
+ * across it, warped: fw), their strength (fs), fissures along the zero
+ * lines of a field (cr), tone (t). */
+static void stem_row(int n, int y, const float *prof, const float *fw, const float *fs, const float *crr,
+                     const float *tr, float *R, float *G, float *B, float *H) {
+    const float wood[3] = {124, 100, 76}, grey[3] = {132, 122, 108}, groove[3] = {64, 48, 36};
+    const int stripes = 56; /* fibres around the stem */
+    (void)y;
     for (int x = 0; x < n; x++) {
-        float f = fr[x], cr = crr[x];
-        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
+        float w = (float)x * stripes / (float)n + 2.0f * fw[x] + 64.0f; /* positive: truncation floors */
+        float ridge = prof[(int)(w * 256.0f) & 255] * tex_clampf(0.6f + 0.8f * fs[x], 0.0f, 1.0f);
+        float fis = 1.0f - tex_smooth(0.0f, 0.05f, fabsf(crr[x])); /* fissure along a zero line */
         float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
-        float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
-        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
-        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
-        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
-        H[x] = 0.6f * f - 0.8f * fis;
+        float sh = 0.78f + 0.3f * ridge;
+        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.85f * fis);
+        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.85f * fis);
+        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.85f * fis);
+        H[x] = 0.5f * ridge - 0.9f * fis + 0.1f * tr[x];
     }
 }
 
 int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    /* Fibres run along the stem: many lattice cells around, few along. */
-    static const float spec[3][4] = {{32, 2, 5, 0.6f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
+    /* Fibre warp (smooth, longer along the stem), fibre strength, fissures, tone. */
+    static const float spec[4][4] = {{8, 2, 4, 0.5f}, {16, 4, 3, 0.5f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
     fields F;
-    if (fields_init(&F, n, 3, spec, rng)) return -1;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
+    float prof[256]; /* one fibre's cross-section: a rounded ridge, a narrow groove */
+    for (int k = 0; k < 256; k++) {
+        float cs = 0.5f + 0.5f * cosf(6.2831853f * (float)k / 256.0f);
+        prof[k] = sqrtf(cs);
+    }
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
-        const float *fib = fields_rows(&F, 0, y0), *crack = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0);
+        const float *fw = fields_rows(&F, 0, y0), *fs = fields_rows(&F, 1, y0), *crack = fields_rows(&F, 2, y0),
+                    *tone = fields_rows(&F, 3, y0);
         for (int r = 0; r < TEX_BAND; r++) {
             size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
-            stem_row(n, fib + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            stem_row(n, y0 + r, prof, fw + o, fs + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n,
+                     c->height + row);
             tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
