@@ -309,7 +309,8 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
                 cc = tex_mix(cc, L->vein[ch], vein * 0.8f);
                 col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
             }
-            float h = 2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr;
+            /* Domed across; a blade under a few pixels wide (the tip) stays low. */
+            float h = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
             put(k->c, (size_t)yy * n + xx, cov, col, h);
         }
     }
@@ -333,9 +334,9 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         return;
     }
     /* Autumn: each spray leans to one tone (trees differ), leaves mix. */
-    static const float pal[4][3] = {{212, 168, 48}, {214, 118, 36}, {156, 76, 36}, {128, 46, 34}};
+    static const float pal[4][3] = {{224, 180, 46}, {216, 122, 38}, {160, 80, 38}, {134, 50, 36}};
     int t2 = (int)rng_below(r, 4);
-    float m = tex_unif(r, 0.0f, 0.6f);
+    float m = tex_unif(r, 0.0f, 0.45f);
     float b = tex_unif(r, 0.9f, 1.07f);
     for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[t2][i], m) * b;
     float green = rng_uniform(r) < 0.15 ? tex_unif(r, 0.15f, 0.4f) : 0.0f; /* a leaf still turning */
@@ -347,7 +348,7 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         L->edge[i] = c[i] * 0.7f;
         L->blotcol[i] = c[i] * 0.62f;
     }
-    L->blot = tex_unif(r, 0.0f, 0.5f);
+    L->blot = tex_unif(r, 0.0f, 0.35f);
 }
 
 /* One spray: a zigzag shoot from the cell's bottom centre with leaves
@@ -359,16 +360,15 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
 typedef struct kseg { float ax, ay, bx, by, wa, wb; } kseg;
 typedef struct kaxis { float x, y, a, len, lmax, w; int nodes, depth; } kaxis;
 
-static void keyaki_spray(cell *k, int season, pcg32 *r) {
+static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
     kleaf leaves[KMAX];
     kseg segs[KMAX + 8];
     kaxis axes[6];
     int nl = 0, ns = 0, na = 1;
-    int tone = (int)rng_below(r, 3);
-    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.165f, 0.185f), 0.0085f,
+    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.18f, 0.2f), 0.0085f,
                       11 + (int)rng_below(r, 3), 0};
-    /* Side shoots at three or four of nodes 1..7 (a fan that fills the card). */
-    int want = 3 + (int)rng_below(r, 2);
+    /* Side shoots at four or five of nodes 1..8 (a fan that fills the card). */
+    int want = 4 + (int)rng_below(r, 2);
     for (int ax = 0; ax < na; ax++) {
         kaxis A = axes[ax];
         float x = A.x, y = A.y, a = A.a, w = A.w;
@@ -396,9 +396,9 @@ static void keyaki_spray(cell *k, int season, pcg32 *r) {
             L->skew = tex_unif(r, 0.0f, 0.05f);
             L->tooth = 0.028f, L->env0 = 0.10f, L->env1 = 0.99f;
             keyaki_colours(L, season, tone, r);
-            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 7 && rng_uniform(r) < 0.7) {
+            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 8 && rng_uniform(r) < 0.75) {
                 float sa = a + side * tex_unif(r, 0.7f, 1.0f);
-                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.5f, 0.6f) * (1.0f - 0.45f * t),
+                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.42f, 0.5f) * (1.0f - 0.45f * t),
                                      A.lmax * 0.9f, w * 0.6f, 6 + (int)rng_below(r, 3), 1};
             }
             if (i == A.nodes - 1) break; /* the shoot ends in its last leaf (and a bud) */
@@ -438,13 +438,13 @@ static void keyaki_spray(cell *k, int season, pcg32 *r) {
         L->bx = 0.5f + (L->bx - 0.5f) * sc, L->by *= sc, L->len *= sc;
         float pc[3];
         for (int c = 0; c < 3; c++) pc[c] = tex_mix(pcol[c], L->col[c], 0.5f);
-        stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.5f);
+        stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.2f);
         keyaki_leaf(k, L);
     }
     for (int i = 0; i < ns; i++) {
         kseg g = segs[i];
         stroke(k, 0.5f + (g.ax - 0.5f) * sc, g.ay * sc, 0.5f + (g.bx - 0.5f) * sc, g.by * sc, g.wa * sc, g.wb * sc,
-               twig, 1.0f);
+               twig, 0.2f);
     }
 }
 
@@ -621,7 +621,7 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
                 col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
             }
             /* Puckered between the veins: veins sunken, blade domed. */
-            float h = 1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr;
+            float h = (1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr) * tex_clampf(bw * lp * 0.25f, 0.0f, 1.0f);
             put(k->c, (size_t)yy * n + xx, cov, col, h);
         }
     }
@@ -707,14 +707,17 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         free_fields(c);
         return -1;
     }
+    /* Autumn: each spray leans to one tone, the cells cycle through
+     * yellow, orange and rust (trees differ; an atlas shows all three). */
+    int tone0 = (int)rng_below(rng, 3);
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
             cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
-            keyaki_spray(&k, season, rng);
+            keyaki_spray(&k, season, (tone0 + i + j * cols) % 3, rng);
         }
     free(spans);
     free_fields(c);
-    c->relief = 0.6f;
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }
@@ -748,12 +751,12 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
             float mean[3];
             for (int ch = 0; ch < 3; ch++) mean[ch] = 0.5f * (L.col[ch] + L.inner[ch]);
             fill_cell(&k, mean);
-            stroke(&k, 0.5f, 0.0f, L.jx, L.jy, 0.011f, 0.008f, pet, 0.6f);
+            stroke(&k, 0.5f, 0.0f, L.jx, L.jy, 0.011f, 0.008f, pet, 0.2f);
             ivy_leaf(&k, &L);
         }
     free(spans);
     free_fields(c);
-    c->relief = 0.6f;
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }

@@ -1,5 +1,5 @@
 /* test_textures.c - the texture calls of banyan/textures.h (issue #17),
- * by invariants: image sizes and channels; leaf atlases have alpha where
+ * by invariants, at 64, 256 and 1024 pixels: image sizes and channels; leaf atlases have alpha where
  * each cell's leaf is (its centre, or for the keyaki sprays some pixel of
  * the cell's middle third) and alpha 0 at every cell corner and along its
  * border; bark is opaque and tiles (the wrap-around column and row steps
@@ -167,10 +167,11 @@ static void check_normals(int kind, const banyan_image *nm) {
         double x = nm->pixels[3 * i] / 127.5 - 1, y = nm->pixels[3 * i + 1] / 127.5 - 1, z = nm->pixels[3 * i + 2] / 127.5 - 1;
         double l = sqrt(x * x + y * y + z * z);
         if (fabs(l - 1) > 0.03 || z <= 0) bad++;
-        if (z < 0.98) tilted++;
+        if (z < 0.995) tilted++; /* about 6 degrees */
     }
     CHECK(bad == 0, "%s normal map: %zu texels not unit / not facing out", names[kind], bad);
-    CHECK(tilted > n / 100, "%s normal map: only %zu of %zu texels tilt", names[kind], tilted, n);
+    /* At 64 pixels the veins and wrinkles are under a texel: no relief to ask for. */
+    if (nm->width >= 256) CHECK(tilted > n / 100, "%s normal map: only %zu of %zu texels tilt", names[kind], tilted, n);
 }
 
 static void check_png(const banyan_image *im, const char *what) {
@@ -239,8 +240,8 @@ int main(void) {
     CHECK(banyan_sizeof_texture_params() == sizeof(banyan_texture_params), "sizeof params");
 
     /* Every kind and season at two sizes. */
-    const int sizes[] = {256, 1024};
-    for (int si = 0; si < 2; si++)
+    const int sizes[] = {64, 256, 1024};
+    for (int si = 0; si < 3; si++)
         for (int kind = 0; kind < BANYAN_TEX_COUNT; kind++)
             for (int season = 0; season < (is_leaf(kind) ? 2 : 1); season++) {
                 banyan_image *bc = NULL, *nm = NULL;
@@ -292,6 +293,29 @@ int main(void) {
             banyan_image_free(bc);
         }
         CHECK(ratio[0] < 0.9 && ratio[1] > 1.1, "%s: red/green summer %.2f autumn %.2f", names[kind], ratio[0], ratio[1]);
+    }
+
+    /* glTF's normal convention: an ivy blade is domed along its midrib, so
+     * right of the midrib the normals lean to +X (red above 128) and left
+     * of it to -X; near the tip (the dome falls towards +v) they lean to +Y. */
+    {
+        banyan_image *nm = NULL;
+        gen(BANYAN_TEX_IVY_LEAF, 0, 512, 1, NULL, &nm);
+        int cs = nm ? (int)nm->width / 4 : 0, wrong = 0;
+        for (int c = 0; nm && c < 16; c++) {
+            int x0 = (c % 4) * cs, y0 = (c / 4) * cs, cx = x0 + cs / 2;
+            double right = 0, left = 0;
+            int cnt = 0;
+            for (int y = y0 + cs * 30 / 100; y < y0 + cs * 45 / 100; y++)
+                for (int d = cs * 6 / 100; d < cs * 14 / 100; d++) {
+                    right += nm->pixels[3 * ((size_t)y * nm->width + cx + d)];
+                    left += nm->pixels[3 * ((size_t)y * nm->width + cx - d)];
+                    cnt++;
+                }
+            if (!(right / cnt > 129 && left / cnt < 127 && right - left > 4 * cnt)) wrong++;
+        }
+        CHECK(nm && wrong == 0, "ivy normal map: %d cells with red not > 128 right of the midrib and < 128 left", wrong);
+        banyan_image_free(nm);
     }
 
     /* Either output may be skipped; the other is the same as when both are made. */
