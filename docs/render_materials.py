@@ -1,5 +1,5 @@
-"""Renders the before / after pictures of docs/addon.md ("Materials and
-textures") into docs/img/materials/render_<shot>_<tag>.png: the camera
+"""Renders the before / after pictures of docs/materials.md ("In
+Blender") into docs/img/materials/render_<shot>_<tag>.png: the camera
 1 m from a leaf and from a bark surface, in the shared scene of
 docs/render_scene.py:
 
