@@ -27,7 +27,7 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-GENERATORS = ["roots", "keyaki", "avenue", "ivy", "segments", "presets", "common"]
+GENERATORS = ["roots", "keyaki", "avenue", "ivy", "segments", "textures", "presets", "common"]
 HARNESSES = ["fuzz_preset", "fuzz_roots", "fuzz_keyaki", "fuzz_ivy", "fuzz_segments"]
 
 POLICY = """\

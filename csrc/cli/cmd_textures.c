@@ -34,6 +34,15 @@ static int write_png(const char *dir, const char *name, const banyan_image *im) 
     return 0;
 }
 
+/* A decimal number of at most 18 digits (no sign, no trailing junk). */
+static int whole(const char *s) {
+    size_t n = strlen(s);
+    if (n == 0 || n > 18) return 0;
+    for (size_t i = 0; i < n; i++)
+        if (s[i] < '0' || s[i] > '9') return 0;
+    return 1;
+}
+
 int cli_textures_main(int argc, char **argv) {
     const char *dir = NULL;
     banyan_texture_params p;
@@ -42,8 +51,8 @@ int cli_textures_main(int argc, char **argv) {
         const char *a = argv[i];
         int has = i + 1 < argc;
         if ((!strcmp(a, "-o") || !strcmp(a, "--out")) && has) dir = argv[++i];
-        else if (!strcmp(a, "--size") && has) p.size = (int32_t)strtol(argv[++i], NULL, 10);
-        else if (!strcmp(a, "--seed") && has) p.seed = strtoull(argv[++i], NULL, 10);
+        else if (!strcmp(a, "--size") && has && whole(argv[i + 1])) p.size = (int32_t)strtol(argv[++i], NULL, 10);
+        else if (!strcmp(a, "--seed") && has && whole(argv[i + 1])) p.seed = strtoull(argv[++i], NULL, 10);
         else {
             fprintf(stderr, "usage: banyan textures -o DIR [--size N] [--seed N]\n");
             return 2;

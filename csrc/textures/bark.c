@@ -3,10 +3,10 @@
  * patches), strangler fig (smooth pale grey-brown with fine horizontal
  * wrinkles around the root) and the ivy's woody stem (brown, fibrous,
  * a few longitudinal fissures). Each is periodic value noise (noise.c)
- * shaped per kind; the tile spans one circumference around (u, image
- * columns) and BANYAN_BARK_TILE_ASPECT circumferences along (v, rows), so
- * features stay round on the tube. Lenticels are small ellipses drawn
- * with wrap-around. */
+ * shaped per kind, made a band of rows at a time; the tile spans one
+ * circumference around (u, image columns) and BANYAN_BARK_TILE_ASPECT
+ * circumferences along (v, rows), so features stay round on the tube.
+ * Lenticels are small ellipses drawn with wrap-around. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,65 +37,241 @@ static void mark(tex_canvas *c, float cx, float cy, float rx, float ry, const fl
     }
 }
 
-/* Scratch fields, freed together. */
-static float *field(int n) { return calloc((size_t)n * n, sizeof(float)); }
+/* Up to four fields and their band scratch. */
+typedef struct fields {
+    tex_fbm f[4];
+    int count;
+    float *band; /* count * TEX_BAND * n */
+    float *rgb;  /* 3 * n: one row's colour channels before packing */
+} fields;
+
+static void fields_free(fields *F) {
+    for (int i = 0; i < F->count; i++) tex_fbm_free(&F->f[i]);
+    free(F->band);
+}
+
+/* Makes the fields from (f0x, f0y, octaves, gain) rows; -1 on no memory. */
+static int fields_init(fields *F, int n, int count, const float spec[][4], pcg32 *rng) {
+    memset(F, 0, sizeof *F);
+    for (int i = 0; i < count; i++) {
+        if (tex_fbm_init(&F->f[i], n, (int)spec[i][0], (int)spec[i][1], (int)spec[i][2], 1.0f, spec[i][3], 8, rng)) {
+            fields_free(F);
+            return -1;
+        }
+        F->count = i + 1;
+    }
+    F->band = malloc(sizeof(float) * ((size_t)count * TEX_BAND * n + 3 * (size_t)n));
+    F->rgb = F->band ? F->band + (size_t)count * TEX_BAND * n : NULL;
+    if (!F->band) {
+        fields_free(F);
+        return -1;
+    }
+    return 0;
+}
+
+/* Field i's band for rows y0 .. y0 + TEX_BAND - 1. */
+static float *fields_rows(fields *F, int i, int y0) {
+    float *b = F->band + (size_t)i * TEX_BAND * F->f[0].n;
+    tex_fbm_rows(&F->f[i], b, y0, TEX_BAND);
+    return b;
+}
+
+/* Keyaki's scales: a periodic jittered grid of gx x gy cells (cellular
+ * noise), warped, so the flakes are rounded polygons a little taller than
+ * wide. Each cell is a scale: grey (its own shade) or shed, showing the
+ * orange-brown under-bark (fresh) or a duller brown (older). */
+typedef struct scales {
+    int gx, gy, pw;       /* cells across and along; padded row width */
+    float *px, *py, *val; /* padded by SPAD cells each side (copies wrapped round): point, value */
+    int *id;              /* padded: the cell's index in 0 .. gx * gy - 1 */
+    float *vals;          /* gx * gy: each cell's value */
+} scales;
+
+#define KEYAKI_SHED 0.30f /* fraction of scales shed */
+#define SPAD 3             /* covers the warp (under a cell) and the 3 x 3 search */
+
+static int scales_init(scales *S, int gx, int gy, pcg32 *rng) {
+    S->gx = gx, S->gy = gy, S->pw = gx + 2 * SPAD;
+    size_t cells = (size_t)gx * gy, padded = (size_t)S->pw * (gy + 2 * SPAD);
+    float *jx = malloc(sizeof(float) * 3 * cells);
+    S->px = malloc(sizeof(float) * (3 * padded + cells));
+    S->id = malloc(sizeof(int) * padded);
+    if (!jx || !S->px || !S->id) {
+        free(jx);
+        free(S->px);
+        free(S->id);
+        return -1;
+    }
+    float *jy = jx + cells, *v = jy + cells;
+    for (size_t i = 0; i < cells; i++) {
+        jx[i] = tex_unif(rng, 0.1f, 0.9f);
+        jy[i] = tex_unif(rng, 0.1f, 0.9f);
+        v[i] = tex_unif(rng, 0.0f, 1.0f);
+    }
+    S->py = S->px + padded, S->val = S->py + padded, S->vals = S->val + padded;
+    memcpy(S->vals, v, sizeof(float) * cells);
+    for (int j = -SPAD; j < gy + SPAD; j++)
+        for (int i = -SPAD; i < gx + SPAD; i++) {
+            int ii = (i + gx) % gx, jj = (j + gy) % gy, c = jj * gx + ii;
+            size_t p = (size_t)(j + SPAD) * S->pw + (size_t)(i + SPAD);
+            S->px[p] = (float)i + jx[c], S->py[p] = (float)j + jy[c], S->val[p] = v[c], S->id[p] = c;
+        }
+    free(jx);
+    return 0;
+}
+
+static void scales_free(scales *S) {
+    free(S->px);
+    free(S->id);
+}
+
+/* Nearest and second-nearest scale points to (px, py) in cell units,
+ * px in [-2, gx + 2), py likewise (the warp is under a cell): distances
+ * and the nearest one's padded index. */
+static inline void scales_at(const scales *S, float px, float py, float *f1, float *f2, int *pid) {
+    int i0 = (int)(px + (float)SPAD) - SPAD, j0 = (int)(py + (float)SPAD) - SPAD; /* floor */
+    float d1 = 1e9f, d2 = 1e9f;
+    int best = 0;
+    for (int dj = -1; dj <= 1; dj++) {
+        int base = (j0 + dj + SPAD) * S->pw + i0 + SPAD;
+        for (int di = -1; di <= 1; di++) {
+            int p = base + di;
+            float dx = S->px[p] - px, dy = S->py[p] - py;
+            float d = dx * dx + dy * dy;
+            if (d < d1) d2 = d1, d1 = d, best = p;
+            else if (d < d2) d2 = d;
+        }
+    }
+    *f1 = sqrtf(d1), *f2 = sqrtf(d2), *pid = best;
+}
+
+/* One row: scales (cellular, warped by fields wx, wy), tone t, relief h.
+ * The scale search (nine cells) runs only where a block of 4 x 4 pixels
+ * may hold a border: blocks whose corners (cid, cgap: the band's coarse
+ * samples) lie in one scale far from its border take that scale, and a
+ * border's edge terms are 0 there. */
+#define KB 4
+static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, const float *wy, const float *tr,
+                       const float *hr, const int *cid, const float *cgap, float *R, float *G, float *B, float *H) {
+    const float grey[3] = {160, 158, 150}, grey2[3] = {118, 118, 112};
+    const float orange[3] = {190, 120, 74}, brown[3] = {140, 104, 78};
+    const float sx = (float)S->gx / (float)n, sy = (float)S->gy / (float)n;
+    const int cw = n / KB + 1, by = r / KB;
+    for (int x = 0; x < n; x++) {
+        float gap;
+        int id, bx = x / KB;
+        int c00 = by * cw + bx, c01 = c00 + 1, c10 = c00 + cw, c11 = c10 + 1;
+        id = cid[c00];
+        if (cid[c01] == id && cid[c10] == id && cid[c11] == id && cgap[c00] > 0.35f && cgap[c01] > 0.35f &&
+            cgap[c10] > 0.35f && cgap[c11] > 0.35f) {
+            gap = 1.0f; /* far inside one scale: no border term */
+        } else {
+            float f1, f2;
+            int p;
+            scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &p);
+            gap = f2 - f1, id = S->id[p];
+        }
+        float v = S->vals[id];
+        float edge = 1.0f - tex_smooth(0.0f, 0.07f, gap); /* the border between two scales */
+        float t = tr[x];
+        float g = tex_clampf(0.5f + 0.9f * t + (v - 0.5f) * 0.5f, 0.0f, 1.0f);
+        float rr, gg, b, h;
+        if (v < KEYAKI_SHED) {
+            /* Shed: fresh (orange) to older (duller brown), mottled; the
+             * scales around it end in a torn, shadowed edge. */
+            float fresh = tex_clampf(v / KEYAKI_SHED * 1.4f - 0.2f + 0.8f * t, 0.0f, 1.0f);
+            float m = (0.88f + 0.24f * tex_clampf(0.5f + 1.5f * hr[x], 0.0f, 1.0f)) * (1.0f - 0.3f * edge);
+            rr = tex_mix(brown[0], orange[0], fresh) * m;
+            gg = tex_mix(brown[1], orange[1], fresh) * m;
+            b = tex_mix(brown[2], orange[2], fresh) * m;
+            h = 0.1f * hr[x] - 0.35f - 0.2f * edge;
+        } else {
+            /* Grey bark: continuous over the scale borders (they show only
+             * where a scale has gone), a faint seam at most. */
+            float dark = 1.0f - 0.05f * edge;
+            rr = tex_mix(grey2[0], grey[0], g) * dark;
+            gg = tex_mix(grey2[1], grey[1], g) * dark;
+            b = tex_mix(grey2[2], grey[2], g) * dark;
+            h = 0.25f * hr[x] - 0.1f * edge;
+        }
+        R[x] = rr, G[x] = gg, B[x] = b, H[x] = h;
+    }
+}
 
 int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *patch = field(n), *tone = field(n);
-    if (!patch || !tone) goto fail;
-    /* Scales: patches elongated along the trunk (fewer lattice cells in v). */
-    if (tex_fbm_add(patch, n, 4, 2, 6, 1.0f, 0.55f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 8, 8, 5, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(c->height, n, 8, 4, 6, 0.25f, 0.6f, rng)) goto fail;
-    const float grey[3] = {152, 150, 142}, grey2[3] = {118, 118, 112};
-    const float orange[3] = {182, 112, 62}, brown[3] = {140, 92, 58};
-    const float thr = 0.32f; /* about a fifth of the bark has shed */
-    for (size_t i = 0; i < (size_t)n * n; i++) {
-        float p = patch[i], t = tone[i];
-        float m = tex_smooth(thr - 0.02f, thr + 0.02f, p);       /* inside a shed patch */
-        float rim = tex_smooth(thr - 0.10f, thr - 0.02f, p) * (1.0f - m); /* curled edge of the old scale */
-        float g = tex_clampf(0.5f + 0.9f * t, 0.0f, 1.0f);
-        float o = tex_clampf(0.5f + 1.4f * t, 0.0f, 1.0f);
-        uint8_t *px = c->rgba + 4 * i;
-        for (int ch = 0; ch < 3; ch++) {
-            float bark = tex_mix(grey2[ch], grey[ch], g) * (1.0f - 0.25f * rim);
-            float under = tex_mix(brown[ch], orange[ch], o);
-            px[ch] = tex_byte(tex_mix(bark, under, m));
-        }
-        px[3] = 255;
-        c->height[i] += 0.6f * (1.0f - m) + 0.35f * rim;
+    /* Warp (x, y), the grey's tone, fine relief. */
+    static const float spec[4][4] = {{8, 8, 4, 0.55f}, {8, 8, 4, 0.55f}, {8, 8, 5, 0.6f}, {16, 16, 4, 0.6f}};
+    fields F;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
+    scales S;
+    if (scales_init(&S, 12, 8, rng)) {
+        fields_free(&F);
+        return -1;
     }
-    /* Lenticels: short pale dashes across the trunk. */
-    int count = 420;
+    const int cw = n / KB + 1, ch = TEX_BAND / KB + 1;
+    int *cid = malloc(sizeof(int) * (size_t)cw * ch);
+    float *cgap = malloc(sizeof(float) * (size_t)cw * ch);
+    if (!cid || !cgap) {
+        free(cid);
+        free(cgap);
+        scales_free(&S);
+        fields_free(&F);
+        return -1;
+    }
+    const float sx = (float)S.gx / (float)n, sy = (float)S.gy / (float)n;
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *wx = fields_rows(&F, 0, y0), *wy = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
+                    *hf = fields_rows(&F, 3, y0);
+        /* Coarse samples every KB pixels (the band's last row stands in
+         * for the next band's first: only the test above reads them). */
+        for (int j = 0; j < ch; j++) {
+            int r = j * KB < TEX_BAND ? j * KB : TEX_BAND - 1;
+            for (int i = 0; i < cw; i++) {
+                int x = (i * KB) & (n - 1);
+                size_t o = (size_t)r * n + x;
+                float f1, f2;
+                int p;
+                scales_at(&S, ((float)(i * KB) + 0.5f) * sx + 0.5f * wx[o], ((float)(y0 + r) + 0.5f) * sy + 0.5f * wy[o],
+                          &f1, &f2, &p);
+                cid[j * cw + i] = S.id[p];
+                cgap[j * cw + i] = f2 - f1;
+            }
+        }
+        for (int r = 0; r < TEX_BAND; r++) {
+            size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
+            keyaki_row(n, y0 + r, r, &S, wx + o, wy + o, tone + o, hf + o, cid, cgap, F.rgb, F.rgb + n,
+                       F.rgb + 2 * n, c->height + row);
+            tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
+        }
+    }
+    free(cid);
+    free(cgap);
+    /* Lenticels: short pale dashes across the trunk, on the grey scales. */
     float s = (float)n / 1024.0f;
-    const float lcol[3] = {178, 168, 150};
-    for (int k = 0; k < count; k++) {
+    const float lcol[3] = {184, 172, 152};
+    for (int k = 0; k < 500; k++) {
         float cx = tex_unif(rng, 0, (float)n), cy = tex_unif(rng, 0, (float)n);
         float rx = tex_unif(rng, 2.5f, 6.0f) * s, ry = tex_unif(rng, 0.7f, 1.3f) * s;
-        size_t i = (size_t)((int)cy & (n - 1)) * n + (size_t)((int)cx & (n - 1));
-        if (patch[i] > thr - 0.05f) continue; /* none on the fresh under-bark */
+        float f1, f2;
+        int p;
+        scales_at(&S, cx * S.gx / (float)n + 0.5f * tex_fbm_at(&F.f[0], cx, cy),
+                  cy * S.gy / (float)n + 0.5f * tex_fbm_at(&F.f[1], cx, cy), &f1, &f2, &p);
+        if (S.val[p] < KEYAKI_SHED) continue; /* none on the under-bark */
         mark(c, cx, cy, rx < 1.0f ? 1.0f : rx, ry < 0.6f ? 0.6f : ry, lcol, 0.8f, 0.25f);
     }
     c->relief = 6.0f * s;
     c->wrap = 1;
-    free(patch);
-    free(tone);
+    scales_free(&S);
+    fields_free(&F);
     return 0;
-fail:
-    free(patch);
-    free(tone);
-    return -1;
 }
 
 int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *warp = field(n), *seg = field(n), *tone = field(n);
-    if (!warp || !seg || !tone) goto fail;
-    if (tex_fbm_add(warp, n, 4, 4, 4, 1.0f, 0.5f, rng)) goto fail;
-    if (tex_fbm_add(seg, n, 16, 32, 3, 1.0f, 0.5f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 4, 4, 6, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(c->height, n, 16, 16, 4, 0.05f, 0.5f, rng)) goto fail;
+    static const float spec[4][4] = {{4, 4, 4, 0.5f}, {16, 32, 3, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
+    fields F;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
     const float pale[3] = {170, 160, 145}, dark[3] = {132, 122, 108}, crease[3] = {98, 88, 76};
     const int rings = 40; /* wrinkles per tile along the root */
     /* cos^k profile of one wrinkle as a table over its period. */
@@ -104,17 +280,28 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
         float cs = cosf(6.2831853f * (float)k / 256.0f);
         prof[k] = cs > 0 ? powf(cs, 10.0f) : 0.0f;
     }
-    for (int y = 0; y < n; y++) {
-        for (int x = 0; x < n; x++) {
-            size_t i = (size_t)y * n + x;
-            float w = (float)y * rings / (float)n + 1.2f * warp[i];
-            float f = w - floorf(w);
-            float wr = prof[(int)(f * 256.0f) & 255] * tex_smooth(-0.1f, 0.35f, seg[i]);
-            float t = tex_clampf(0.5f + 0.8f * tone[i], 0.0f, 1.0f);
-            uint8_t *px = c->rgba + 4 * i;
-            for (int ch = 0; ch < 3; ch++) px[ch] = tex_byte(tex_mix(tex_mix(dark[ch], pale[ch], t), crease[ch], 0.7f * wr));
-            px[3] = 255;
-            c->height[i] -= 0.5f * wr;
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
+                    *hf = fields_rows(&F, 3, y0);
+        float *restrict R = F.rgb, *restrict G = R + n, *restrict B = G + n;
+        for (int r = 0; r < TEX_BAND; r++) {
+            int y = y0 + r;
+            size_t row = (size_t)y * n;
+            const float *restrict wr_ = warp + (size_t)r * n, *restrict sr = seg + (size_t)r * n,
+                                  *restrict tr = tone + (size_t)r * n, *restrict hr = hf + (size_t)r * n;
+            float *restrict hout = c->height + row;
+            const float ring = (float)y * rings / (float)n;
+            for (int x = 0; x < n; x++) {
+                float w = ring + 1.2f * wr_[x] + 64.0f; /* positive: truncation is floor */
+                int wi = (int)(w * 256.0f);
+                float wr = prof[wi & 255] * tex_smooth(-0.1f, 0.35f, sr[x]);
+                float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f);
+                R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], 0.7f * wr);
+                G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], 0.7f * wr);
+                B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], 0.7f * wr);
+                hout[x] = 0.05f * hr[x] - 0.5f * wr;
+            }
+            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
         }
     }
     float s = (float)n / 1024.0f;
@@ -126,38 +313,39 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     }
     c->relief = 4.0f * s;
     c->wrap = 1;
-    free(warp);
-    free(seg);
-    free(tone);
+    fields_free(&F);
     return 0;
-fail:
-    free(warp);
-    free(seg);
-    free(tone);
-    return -1;
+}
+
+/* One row: fibres (f), fissures along the zero lines of a field (cr), tone (t). */
+static void stem_row(int n, const float *restrict fr, const float *restrict crr, const float *restrict tr,
+                     float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
+    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
+    for (int x = 0; x < n; x++) {
+        float f = fr[x], cr = crr[x];
+        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
+        float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
+        float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
+        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
+        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
+        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
+        H[x] = 0.6f * f - 0.8f * fis;
+    }
 }
 
 int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    float *fib = field(n), *crack = field(n), *tone = field(n);
-    if (!fib || !crack || !tone) goto fail;
     /* Fibres run along the stem: many lattice cells around, few along. */
-    if (tex_fbm_add(fib, n, 32, 2, 5, 1.0f, 0.6f, rng)) goto fail;
-    if (tex_fbm_add(crack, n, 8, 1, 5, 1.0f, 0.55f, rng)) goto fail;
-    if (tex_fbm_add(tone, n, 4, 4, 5, 1.0f, 0.6f, rng)) goto fail;
-    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
-    for (size_t i = 0; i < (size_t)n * n; i++) {
-        float f = fib[i], cr = crack[i];
-        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
-        float t = tex_clampf(0.5f + 0.9f * tone[i], 0.0f, 1.0f);
-        float sh = tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
-        uint8_t *px = c->rgba + 4 * i;
-        for (int ch = 0; ch < 3; ch++) {
-            float base = tex_mix(wood[ch], grey[ch], t) * (0.8f + 0.35f * sh);
-            px[ch] = tex_byte(tex_mix(base, groove[ch], 0.8f * fis));
+    static const float spec[3][4] = {{32, 2, 5, 0.6f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
+    fields F;
+    if (fields_init(&F, n, 3, spec, rng)) return -1;
+    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+        const float *fib = fields_rows(&F, 0, y0), *crack = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0);
+        for (int r = 0; r < TEX_BAND; r++) {
+            size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
+            stem_row(n, fib + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
-        px[3] = 255;
-        c->height[i] = 0.6f * f - 0.8f * fis;
     }
     float s = (float)n / 1024.0f;
     const float lcol[3] = {160, 130, 100};
@@ -168,13 +356,6 @@ int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     }
     c->relief = 5.0f * s;
     c->wrap = 1;
-    free(fib);
-    free(crack);
-    free(tone);
+    fields_free(&F);
     return 0;
-fail:
-    free(fib);
-    free(crack);
-    free(tone);
-    return -1;
 }

@@ -12,6 +12,7 @@
  * outside leaves get the cell's mean leaf colour at alpha 0, so mipmaps
  * and texture filtering do not bleed a dark fringe. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,16 +21,99 @@
 
 #define PI_F 3.14159265f
 
+static inline float tex_maxf(float a, float b) { return a > b ? a : b; }
+static inline float tex_minf(float a, float b) { return a < b ? a : b; }
+
 /* A cell of the atlas in pixels: u right, v up, both 0..1 over the cell. */
 typedef struct cell {
     tex_canvas *c;
     int x0, y0, size; /* top-left pixel, side */
     int margin;       /* pixels kept clear at the cell's border */
+    int *xmin, *xmax; /* size entries each: a shape's pixel span per row of the cell (spans below) */
+    int lo, hi;       /* rows (of the cell) the span covers */
 } cell;
+
+/* ---------------------------------------------------------------- spans
+ * A leaf's outline rasterised into one [xmin, xmax] pixel interval per
+ * row: the per-pixel shape test then runs only there, not over the whole
+ * bounding box (most of which is empty around a lobed or slanted leaf). */
+static void span_begin(cell *k) {
+    for (int r = 0; r < k->size; r++) k->xmin[r] = INT32_MAX, k->xmax[r] = INT32_MIN;
+    k->lo = INT32_MAX, k->hi = INT32_MIN;
+}
+
+/* An outline edge from (u0, v0) to (u1, v1), cell units. */
+static void span_edge(cell *k, float u0, float v0, float u1, float v1) {
+    float s = (float)k->size;
+    float X0 = u0 * s, Y0 = (1.0f - v0) * s, X1 = u1 * s, Y1 = (1.0f - v1) * s;
+    if (Y0 > Y1) {
+        float t = X0; X0 = X1; X1 = t;
+        t = Y0; Y0 = Y1; Y1 = t;
+    }
+    int r0 = (int)floorf(Y0), r1 = (int)floorf(Y1);
+    if (r0 < 0) r0 = 0;
+    if (r1 > k->size - 1) r1 = k->size - 1;
+    float dy = Y1 - Y0, slope = dy > 1e-6f ? (X1 - X0) / dy : 0.0f;
+    for (int r = r0; r <= r1; r++) {
+        float ya = tex_clampf((float)r, Y0, Y1), yb = tex_clampf((float)r + 1.0f, Y0, Y1);
+        float xa = X0 + (ya - Y0) * slope, xb = X0 + (yb - Y0) * slope;
+        if (dy <= 1e-6f) xa = X0, xb = X1;
+        int lo = (int)floorf(tex_minf(xa, xb)), hi = (int)ceilf(tex_maxf(xa, xb));
+        if (lo < k->xmin[r]) k->xmin[r] = lo;
+        if (hi > k->xmax[r]) k->xmax[r] = hi;
+        if (r < k->lo) k->lo = r;
+        if (r > k->hi) k->hi = r;
+    }
+}
+
+/* Widens each row's span by the rows next to it and 2 pixels, for the
+ * antialiased edge; returns the absolute pixel rows to visit. */
+static void span_end(cell *k, int *y0, int *y1) {
+    if (k->lo > k->hi) {
+        *y0 = 1, *y1 = 0;
+        return;
+    }
+    int lo = k->lo > 0 ? k->lo - 1 : 0, hi = k->hi < k->size - 1 ? k->hi + 1 : k->size - 1;
+    int pmin = INT32_MAX, pmax = INT32_MIN; /* the previous row's span before widening */
+    for (int r = lo; r <= hi; r++) {
+        int cmin = k->xmin[r], cmax = k->xmax[r];
+        int nmin = r + 1 <= hi ? k->xmin[r + 1] : INT32_MAX, nmax = r + 1 <= hi ? k->xmax[r + 1] : INT32_MIN;
+        int a = cmin < pmin ? cmin : pmin, b = cmax > pmax ? cmax : pmax;
+        if (nmin < a) a = nmin;
+        if (nmax > b) b = nmax;
+        pmin = cmin, pmax = cmax;
+        k->xmin[r] = a == INT32_MAX ? INT32_MAX : a - 2;
+        k->xmax[r] = b == INT32_MIN ? INT32_MIN : b + 2;
+    }
+    int m = k->margin;
+    for (int r = lo; r <= hi; r++) {
+        if (k->xmin[r] < m) k->xmin[r] = m;
+        if (k->xmax[r] > k->size - 1 - m) k->xmax[r] = k->size - 1 - m;
+    }
+    *y0 = lo < m ? m : lo;
+    *y1 = hi > k->size - 1 - m ? k->size - 1 - m : hi;
+}
+
+/* Every pixel of the cell: the colour `rgb` at alpha 0, so texture
+ * filtering and mipmaps next to a leaf blend towards the leaf's colour
+ * instead of black; height 0. Leaves are drawn over it. */
+static void fill_cell(const cell *k, const float rgb[3]) {
+    uint8_t px[4] = {tex_byte(rgb[0]), tex_byte(rgb[1]), tex_byte(rgb[2]), 0};
+    for (int y = k->y0; y < k->y0 + k->size; y++) {
+        uint8_t *p = k->c->rgba + 4 * ((size_t)y * k->c->n + k->x0);
+        for (int x = 0; x < k->size; x++) memcpy(p + 4 * x, px, 4);
+        memset(k->c->height + (size_t)y * k->c->n + k->x0, 0, sizeof(float) * (size_t)k->size);
+    }
+}
 
 /* Straight-alpha "over" of one covered pixel. */
 static inline void put(tex_canvas *c, size_t i, float cov, const float col[3], float h) {
     uint8_t *p = c->rgba + 4 * i;
+    if (cov >= 1.0f) {
+        p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
+        c->height[i] = h;
+        return;
+    }
     float a0 = (float)p[3] * (1.0f / 255.0f);
     float a = cov + a0 * (1.0f - cov);
     if (a <= 0.0f) return;
@@ -64,7 +148,7 @@ static void stroke(const cell *k, float ax, float ay, float bx, float by, float 
                    float h) {
     float pad = (wa > wb ? wa : wb) + 2.0f / (float)k->size;
     int x0, x1, y0, y1;
-    bounds(k, fminf(ax, bx) - pad, fmaxf(ax, bx) + pad, fminf(ay, by) - pad, fmaxf(ay, by) + pad, &x0, &x1, &y0,
+    bounds(k, tex_minf(ax, bx) - pad, tex_maxf(ax, bx) + pad, tex_minf(ay, by) - pad, tex_maxf(ay, by) + pad, &x0, &x1, &y0,
            &y1);
     float dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
     if (l2 <= 0.0f) return;
@@ -99,6 +183,8 @@ typedef struct kleaf {
     float ymax;           /* widest point, 0..1 along the blade */
     float acum;           /* acuminate tip: > 0 makes the tip's sides concave */
     float col[3], vein[3], edge[3];
+    float tooth;          /* tooth depth / length (keyaki 0.028) */
+    float env0, env1;     /* teeth grow in from env0 along the blade and fade out by env1 */
     float blot;           /* autumn: strength of brown blotches */
     float blotcol[3];
 } kleaf;
@@ -138,8 +224,8 @@ static void keyaki_table(const kleaf *L, ktab *T) {
             float t = (y - sk) / (1.0f - sk);
             float w0 = sc * keyaki_w0(L, t);
             float ph = (y - w0 * L->slope - T->q0) / T->dq; /* vein index reaching the margin here */
-            float env = tex_smooth(0.10f, 0.26f, y) * (1.0f - tex_smooth(0.86f, 0.99f, y));
-            float depth = 0.028f * env;
+            float env = tex_smooth(L->env0, L->env0 + 0.16f, y) * (1.0f - tex_smooth(L->env1 - 0.13f, L->env1, y));
+            float depth = tex_minf(L->tooth * env, 0.35f * w0); /* no tooth cuts a thin tip off */
             float w = w0 - depth * (1.0f - keyaki_tooth(ph));
             T->w[side][i] = w > 0.0f ? w : 0.0f;
         }
@@ -151,24 +237,34 @@ static void keyaki_table(const kleaf *L, ktab *T) {
     }
 }
 
-static void keyaki_leaf(const cell *k, const kleaf *L, const tex_noise *grain) {
+static void keyaki_leaf(cell *k, const kleaf *L) {
     ktab T;
     keyaki_table(L, &T);
     const float s = (float)k->size, lp = L->len * s; /* blade length in pixels */
     const int n = k->c->n;
+    const int tile = n < TEX_TILE ? n : TEX_TILE, tm = tile - 1;
+    int msh = 0; /* mottle: image pixel to tile pixel shift */
+    while ((tile << msh) < n) msh++;
     float nx = L->dy, ny = -L->dx; /* to the right of the midrib */
-    /* Box of the blade: base, tip and the widest points. */
-    float hw = L->half * L->len * 1.05f;
-    float tipx = L->bx + L->dx * L->len, tipy = L->by + L->dy * L->len;
-    float umin = fminf(L->bx, tipx) - hw, umax = fmaxf(L->bx, tipx) + hw;
-    float vmin = fminf(L->by, tipy) - hw, vmax = fmaxf(L->by, tipy) + hw;
-    int x0, x1, y0, y1;
-    bounds(k, umin, umax, vmin, vmax, &x0, &x1, &y0, &y1);
-    const float vslope = sqrtf(1.0f + L->slope * L->slope);
-    for (int yy = y0; yy <= y1; yy++) {
-        for (int xx = x0; xx <= x1; xx++) {
+    /* The outline (both margins, base to tip) into row spans. */
+    span_begin(k);
+    for (int side = 0; side < 2; side++) {
+        float pu0 = L->bx, pv0 = L->by;
+        for (int i = 1; i <= KT; i++) {
+            float y = (float)i / KT, x = (side ? 1.0f : -1.0f) * T.w[side][i];
+            float pu1 = L->bx + (L->dx * y + nx * x) * L->len, pv1 = L->by + (L->dy * y + ny * x) * L->len;
+            span_edge(k, pu0, pv0, pu1, pv1);
+            pu0 = pu1, pv0 = pv1;
+        }
+    }
+    int r0, r1;
+    span_end(k, &r0, &r1);
+    const float ivslope = 1.0f / sqrtf(1.0f + L->slope * L->slope), il = 1.0f / L->len;
+    for (int r = r0; r <= r1; r++) {
+        int yy = k->y0 + r;
+        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
             float u = pu(k, xx) - L->bx, v = pv(k, yy) - L->by;
-            float y = (u * L->dx + v * L->dy) / L->len, x = (u * nx + v * ny) / L->len;
+            float y = (u * L->dx + v * L->dy) * il, x = (u * nx + v * ny) * il;
             if (y <= 0.0f || y >= 1.0f) continue;
             int side = x > 0.0f;
             float ax = fabsf(x);
@@ -179,7 +275,8 @@ static void keyaki_leaf(const cell *k, const kleaf *L, const tex_noise *grain) {
             float w = T.w[side][i] + (T.w[side][i + 1] - T.w[side][i]) * fr;
             float g = T.g[side][i] + (T.g[side][i + 1] - T.g[side][i]) * fr;
             float dpx = (w - ax) * lp * g; /* signed distance to the margin, pixels */
-            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f);
+            /* A blade thinner than a pixel (the drawn-out tip) fades out. */
+            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(w * lp, 0.0f, 1.0f);
             if (cov <= 0.0f) continue;
             /* Veins: midrib, then the straight laterals (q = const lines). */
             float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
@@ -188,22 +285,22 @@ static void keyaki_leaf(const cell *k, const kleaf *L, const tex_noise *grain) {
             float j = (q - T.q0) / T.dq;
             float vl = 0.0f;
             if (j > -0.3f && j < (float)L->veins - 0.2f) {
-                float dj = fabsf(j - floorf(j + 0.5f)) * T.dq / vslope * lp; /* px to the nearest lateral */
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T.dq * ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
                 float rel = w > 1e-5f ? ax / w : 1.0f;
                 float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
                 vl = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
                 vl *= tex_smooth(0.0f, 0.05f, ax);
             }
-            float vein = fmaxf(vm, 0.75f * vl);
+            float vein = tex_maxf(vm, 0.75f * vl);
             float rel = w > 1e-5f ? ax / w : 1.0f;
-            float gr = tex_noise_at(grain, (float)xx * 0.25f, (float)yy * 0.25f);
+            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
             float shade = (side ? 0.96f : 1.0f) * (0.93f + 0.07f * gr);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);           /* a dark rim */
             float toward = tex_smooth(0.55f, 1.0f, rel) * 0.35f;        /* darker toward the margin */
             float col[3];
             float bl = 0.0f;
             if (L->blot > 0.0f) {
-                float b = tex_noise_at(grain, (float)xx * 0.06f + 17.0f, (float)yy * 0.06f + 5.0f);
+                float b = k->c->mottle[(size_t)((yy >> msh) & tm) * tile + (size_t)((xx >> msh) & tm)];
                 bl = L->blot * tex_smooth(0.15f, 0.55f, b);
             }
             for (int ch = 0; ch < 3; ch++) {
@@ -236,9 +333,9 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         return;
     }
     /* Autumn: each spray leans to one tone (trees differ), leaves mix. */
-    static const float pal[4][3] = {{212, 168, 48}, {214, 118, 36}, {156, 76, 36}, {128, 46, 34}};
+    static const float pal[4][3] = {{224, 180, 46}, {216, 122, 38}, {160, 80, 38}, {134, 50, 36}};
     int t2 = (int)rng_below(r, 4);
-    float m = tex_unif(r, 0.0f, 0.6f);
+    float m = tex_unif(r, 0.0f, 0.45f);
     float b = tex_unif(r, 0.9f, 1.07f);
     for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[t2][i], m) * b;
     float green = rng_uniform(r) < 0.15 ? tex_unif(r, 0.15f, 0.4f) : 0.0f; /* a leaf still turning */
@@ -250,45 +347,43 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         L->edge[i] = c[i] * 0.7f;
         L->blotcol[i] = c[i] * 0.62f;
     }
-    L->blot = tex_unif(r, 0.0f, 0.5f);
+    L->blot = tex_unif(r, 0.0f, 0.35f);
 }
 
-/* One spray: a zigzag twiglet from the cell's bottom centre with leaves
- * alternate on it (two-ranked), largest below the middle, small at the
- * tip; one or two side twiglets. Built in cell units, then scaled about
- * the base so everything fits the cell. */
-#define KMAX 40
+/* One spray: a zigzag shoot from the cell's bottom centre with leaves
+ * alternate on it in one plane (two-ranked), and side shoots from the
+ * axils of its lower leaves, each the same in small; leaves largest below
+ * the middle of a shoot, small at its tip. Built in cell units, then
+ * scaled about the base so everything fits the cell. */
+#define KMAX 64
 typedef struct kseg { float ax, ay, bx, by, wa, wb; } kseg;
+typedef struct kaxis { float x, y, a, len, lmax, w; int nodes, depth; } kaxis;
 
-static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *grain) {
+static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
     kleaf leaves[KMAX];
-    kseg segs[KMAX];
-    int nl = 0, ns = 0;
-    int tone = (int)rng_below(r, 3);
-    /* Axes: 0 main, then side twiglets from the lower nodes. */
-    struct axis { float x, y, a; int nodes; float lmax, w; } axes[3];
-    int na = 1;
-    axes[0].x = 0.5f, axes[0].y = 0.0f, axes[0].a = tex_unif(r, -0.12f, 0.12f);
-    axes[0].nodes = 7 + (int)rng_below(r, 3), axes[0].lmax = tex_unif(r, 0.17f, 0.21f), axes[0].w = 0.0085f;
-    int sides = 1 + (int)rng_below(r, 2);
-    float side_sign = rng_uniform(r) < 0.5 ? -1.0f : 1.0f;
-    for (int ax = 0; ax < na && ax < 3; ax++) {
-        float x = axes[ax].x, y = axes[ax].y, a = axes[ax].a, w = axes[ax].w;
-        int nodes = axes[ax].nodes;
-        float internode = (ax == 0 ? 0.86f : 0.42f) / (float)(nodes + 1);
-        /* A bare stretch before the first leaf. */
-        float first = ax == 0 ? 0.10f : 0.03f;
-        float nxp = x + sinf(a) * first, nyp = y + cosf(a) * first;
-        segs[ns++] = (kseg){x, y, nxp, nyp, w, w * 0.95f};
-        x = nxp, y = nyp, w *= 0.95f;
+    kseg segs[KMAX + 8];
+    kaxis axes[6];
+    int nl = 0, ns = 0, na = 1;
+    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.18f, 0.2f), 0.0085f,
+                      11 + (int)rng_below(r, 3), 0};
+    /* Side shoots at four or five of nodes 1..8 (a fan that fills the card). */
+    int want = 4 + (int)rng_below(r, 2);
+    for (int ax = 0; ax < na; ax++) {
+        kaxis A = axes[ax];
+        float x = A.x, y = A.y, a = A.a, w = A.w;
+        float first = A.depth == 0 ? 0.07f : 0.025f; /* a bare stretch before the first leaf */
+        float internode = (A.len - first) / (float)(A.nodes - 0.5f);
+        float x2 = x + sinf(a) * first, y2 = y + cosf(a) * first;
+        segs[ns++] = (kseg){x, y, x2, y2, w, w * 0.97f};
+        x = x2, y = y2, w *= 0.97f;
         float side = rng_uniform(r) < 0.5 ? -1.0f : 1.0f;
-        for (int i = 0; i < nodes && nl < KMAX - 1 && ns < KMAX - 1; i++) {
-            float t = (float)i / (float)(nodes - 1 > 0 ? nodes - 1 : 1);
+        for (int i = 0; i < A.nodes && nl < KMAX && ns < KMAX + 7; i++) {
+            float t = (float)i / (float)(A.nodes - 1 > 0 ? A.nodes - 1 : 1);
             kleaf *L = &leaves[nl++];
-            float size = axes[ax].lmax * (0.62f + 0.38f * sinf(PI_F * (0.25f + 0.6f * t))) * (1.0f - 0.45f * t * t);
-            size *= tex_unif(r, 0.9f, 1.08f);
-            float la = a + side * tex_unif(r, 0.55f, 0.95f);       /* leaf angle off the twig, forward */
-            float pet = size * tex_unif(r, 0.04f, 0.08f);          /* short petiole */
+            float size = A.lmax * (0.55f + 0.45f * sinf(PI_F * (0.2f + 0.65f * t))) * (1.0f - 0.4f * t * t);
+            size *= tex_unif(r, 0.88f, 1.1f);
+            float la = a + side * tex_unif(r, 0.6f, 1.05f); /* leaf angle off the shoot, forward */
+            float pet = size * tex_unif(r, 0.04f, 0.08f);   /* short petiole */
             float dx = sinf(la), dy = cosf(la);
             L->bx = x + dx * pet, L->by = y + dy * pet, L->dx = dx, L->dy = dy;
             L->len = size;
@@ -297,26 +392,22 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
             L->acum = tex_unif(r, 0.7f, 1.5f);
             L->veins = 8 + (int)rng_below(r, 6);
             L->slope = tex_unif(r, 0.75f, 1.05f);
-            L->skew = tex_unif(r, 0.0f, 0.05f) * (side > 0 ? 1.0f : -1.0f);
-            if (L->skew < 0) L->skew = -L->skew; /* the lower half on the twig's outer side */
+            L->skew = tex_unif(r, 0.0f, 0.05f);
+            L->tooth = 0.028f, L->env0 = 0.10f, L->env1 = 0.99f;
             keyaki_colours(L, season, tone, r);
-            /* Side twiglet from this node's axil (main axis, lower nodes). */
-            if (ax == 0 && na < 1 + sides && i >= 1 && i <= 3 && rng_uniform(r) < 0.6) {
-                axes[na].x = x, axes[na].y = y;
-                axes[na].a = a + side_sign * tex_unif(r, 0.5f, 0.8f);
-                side_sign = -side_sign;
-                axes[na].nodes = 3 + (int)rng_below(r, 3);
-                axes[na].lmax = axes[0].lmax * 0.85f;
-                axes[na].w = w * 0.6f;
-                na++;
+            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 8 && rng_uniform(r) < 0.75) {
+                float sa = a + side * tex_unif(r, 0.7f, 1.0f);
+                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.42f, 0.5f) * (1.0f - 0.45f * t),
+                                     A.lmax * 0.9f, w * 0.6f, 6 + (int)rng_below(r, 3), 1};
             }
-            /* Zigzag: the twig bends away from the leaf at each node. */
-            a -= side * tex_unif(r, 0.08f, 0.2f);
-            a = tex_clampf(a, axes[ax].a - 0.35f, axes[ax].a + 0.35f);
+            if (i == A.nodes - 1) break; /* the shoot ends in its last leaf (and a bud) */
+            /* Zigzag: the shoot bends away from the leaf at each node. */
+            a -= side * tex_unif(r, 0.06f, 0.16f);
+            a = tex_clampf(a, A.a - 0.3f, A.a + 0.3f);
             float l = internode * tex_unif(r, 0.85f, 1.15f);
-            float x2 = x + sinf(a) * l, y2 = y + cosf(a) * l;
-            segs[ns++] = (kseg){x, y, x2, y2, w, w * 0.9f};
-            x = x2, y = y2, w *= 0.9f;
+            x2 = x + sinf(a) * l, y2 = y + cosf(a) * l;
+            segs[ns++] = (kseg){x, y, x2, y2, w, w * 0.92f};
+            x = x2, y = y2, w *= 0.92f;
             side = -side;
         }
     }
@@ -330,12 +421,16 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
                        L->by + L->dy * L->len * 0.35f + L->dx * L->half * L->len};
         for (int j = 0; j < 3; j++) {
             float ex = fabsf(px[j] - 0.5f), ey = py[j];
-            if (ex * sc > 0.45f) sc = 0.45f / ex;
-            if (ey * sc > 0.95f) sc = 0.95f / ey;
+            if (ex * sc > 0.46f) sc = 0.46f / ex;
+            if (ey * sc > 0.96f) sc = 0.96f / ey;
         }
     }
     const float twig[3] = {112, 92, 72};
     const float pcol[3] = {120, 130, 60};
+    float mean[3] = {0, 0, 0};
+    for (int i = 0; i < nl; i++)
+        for (int c = 0; c < 3; c++) mean[c] += leaves[i].col[c] / (float)(nl > 0 ? nl : 1);
+    fill_cell(k, mean);
     for (int i = 0; i < nl; i++) {
         kleaf *L = &leaves[i];
         float ox = 0.5f + (L->bx - L->dx * L->len * 0.06f - 0.5f) * sc, oy = (L->by - L->dy * L->len * 0.06f) * sc;
@@ -343,7 +438,7 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
         float pc[3];
         for (int c = 0; c < 3; c++) pc[c] = tex_mix(pcol[c], L->col[c], 0.5f);
         stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.5f);
-        keyaki_leaf(k, L, grain);
+        keyaki_leaf(k, L);
     }
     for (int i = 0; i < ns; i++) {
         kseg g = segs[i];
@@ -354,119 +449,174 @@ static void keyaki_spray(const cell *k, int season, pcg32 *r, const tex_noise *g
 
 /* ---------------------------------------------------------------- ivy */
 
-#define IT 1024 /* polar samples around an ivy blade */
-
+/* A Boston ivy blade: three lobes from the petiole junction, each shaped
+ * like a keyaki blade (ovate, acuminate, a coarse forward tooth at the end
+ * of each secondary vein), their union the leaf. The side lobes' lower
+ * halves reach below the junction: the heart-shaped base. Young leaves of
+ * long shoots: short broad side lobes, so the outline is a toothed heart. */
 typedef struct ivleaf {
-    float jx, jy;       /* petiole junction (cell units) */
-    float R;            /* scale of the radius profile, cell units */
+    float jx, jy;      /* petiole junction (cell units) */
     int lobed;
-    float lob_a, lob_c; /* angle of the side lobes from the tip (rad), their relative length */
+    kleaf lobe[3];     /* central, right, left; bx, by = the junction */
+    ktab tab[3];
+    float basal;       /* basal veins: angle off the side lobes' axes, towards the base */
     float col[3], vein[3], edge[3], inner[3];
 } ivleaf;
 
-static float ivy_radius(const ivleaf *L, float phi, float teeth_amp, int nt) {
-    float a = fabsf(phi);
-    /* Round core, cordate base: the radius falls into the petiole sinus. */
-    float core = (L->lobed ? 0.50f : 0.62f) * (1.0f - 0.92f * powf(tex_smooth(0.62f * PI_F, PI_F, a), 0.6f));
-    float r4 = powf(core, 4.0f);
-    /* Pointed lobes: radius linear in the angle off the lobe's axis (a cusp). */
-    float wc = L->lobed ? 0.55f : 1.2f;
-    float dc = a / wc;
-    if (dc < 1.0f) r4 += powf(1.0f * powf(1.0f - dc, L->lobed ? 1.25f : 1.6f), 4.0f);
+/* Lobe shapes in units of the central lobe's length, junction at 0. */
+static void ivy_shape(ivleaf *L, pcg32 *r) {
+    float side_a, side_len, side_half, c_half;
     if (L->lobed) {
-        float ds = fabsf(a - L->lob_a) / 0.55f;
-        if (ds < 1.0f) r4 += powf(L->lob_c * powf(1.0f - ds, 1.25f), 4.0f);
+        side_a = tex_unif(r, 0.92f, 1.08f), side_len = tex_unif(r, 0.72f, 0.85f);
+        side_half = tex_unif(r, 0.36f, 0.42f), c_half = tex_unif(r, 0.29f, 0.34f);
+    } else {
+        /* One broad ovate blade; the "side lobes" are its rounded basal lobes. */
+        side_a = tex_unif(r, 1.45f, 1.6f), side_len = tex_unif(r, 0.40f, 0.46f);
+        side_half = tex_unif(r, 0.5f, 0.56f), c_half = tex_unif(r, 0.44f, 0.5f);
     }
-    float r = powf(r4, 0.25f);
-    /* Coarse teeth, none along the basal sinus. */
-    float f = (a / PI_F) * (float)nt;
-    f -= floorf(f);
-    float tooth = powf(1.0f - fabsf(2.0f * f - 1.0f), 0.8f);
-    float env = 1.0f - tex_smooth(0.7f * PI_F, 0.85f * PI_F, a);
-    return r * (1.0f - teeth_amp * env * (1.0f - tooth));
+    int teeth = L->lobed ? 6 + (int)rng_below(r, 3) : 8 + (int)rng_below(r, 3);
+    float depth = L->lobed ? tex_unif(r, 0.045f, 0.06f) : tex_unif(r, 0.035f, 0.045f);
+    for (int i = 0; i < 3; i++) {
+        kleaf *B = &L->lobe[i];
+        float a = i == 0 ? tex_unif(r, -0.04f, 0.04f) : (i == 1 ? 1.0f : -1.0f) * side_a * tex_unif(r, 0.95f, 1.05f);
+        B->dx = sinf(a), B->dy = cosf(a);
+        B->len = i == 0 ? 1.0f : side_len * tex_unif(r, 0.95f, 1.05f);
+        B->half = i == 0 ? c_half : side_half;
+        B->ymax = i == 0 ? (L->lobed ? tex_unif(r, 0.36f, 0.44f) : tex_unif(r, 0.3f, 0.36f)) : tex_unif(r, 0.3f, 0.38f);
+        B->acum = L->lobed ? (i == 0 ? tex_unif(r, 0.9f, 1.4f) : tex_unif(r, 0.6f, 1.0f))
+                           : (i == 0 ? tex_unif(r, 0.5f, 0.9f) : 0.2f);
+        B->veins = i == 0 ? teeth : L->lobed ? teeth - 1 : 4;
+        B->slope = tex_unif(r, 0.85f, 1.1f);
+        B->skew = 0.0f;
+        B->tooth = depth / B->len;
+        B->env0 = i == 0 ? 0.28f : 0.12f, B->env1 = 0.97f;
+        B->bx = B->by = 0.0f;
+    }
+    L->basal = 0.8f;
 }
 
-/* atan2 good to ~1e-4 rad. */
-static inline float fast_atan2(float y, float x) {
-    float ax = fabsf(x), ay = fabsf(y);
-    float mn = fminf(ax, ay), mx = fmaxf(ax, ay);
-    if (mx == 0.0f) return 0.0f;
-    float a = mn / mx, s = a * a;
-    float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
-    if (ay > ax) r = 1.57079637f - r;
-    if (x < 0) r = PI_F - r;
-    if (y < 0) r = -r;
-    return r;
+/* Scales the lobes (lengths in cell units) and places the junction. */
+static void ivy_place(ivleaf *L, float scale, float jx, float jy) {
+    L->jx = jx, L->jy = jy;
+    for (int i = 0; i < 3; i++) {
+        L->lobe[i].len *= scale;
+        L->lobe[i].bx = jx, L->lobe[i].by = jy;
+        keyaki_table(&L->lobe[i], &L->tab[i]);
+    }
 }
 
-static void ivy_leaf(const cell *k, const ivleaf *L, int nt, float teeth_amp, const tex_noise *grain) {
-    static const int NV = 5;
-    float rt[IT + 1], gt[IT + 1];
-    float rmax = 0.0f;
-    for (int i = 0; i <= IT; i++) {
-        float phi = -PI_F + 2.0f * PI_F * (float)i / IT;
-        rt[i] = ivy_radius(L, phi, teeth_amp, nt);
-        if (rt[i] > rmax) rmax = rt[i];
-    }
-    for (int i = 0; i <= IT; i++) {
-        int a = i > 0 ? i - 1 : 0, b = i < IT ? i + 1 : IT;
-        float d = (rt[b] - rt[a]) / ((float)(b - a) * 2.0f * PI_F / IT);
-        float rr = rt[i] > 1e-4f ? rt[i] : 1e-4f;
-        gt[i] = 1.0f / sqrtf(1.0f + (d / rr) * (d / rr));
-    }
-    /* Primary veins: to the three lobe tips and into the basal lobes. */
-    float va[5] = {0.0f, L->lob_a, -L->lob_a, L->lob_a + 0.75f, -(L->lob_a + 0.75f)};
-    if (!L->lobed) va[1] = 0.9f, va[2] = -0.9f, va[3] = 1.75f, va[4] = -1.75f;
-    float vx[5], vy[5];
-    for (int i = 0; i < NV; i++) vx[i] = sinf(va[i]), vy[i] = cosf(va[i]);
-    const float s = (float)k->size, Rp = L->R * s;
-    const int n = k->c->n;
-    float ext = rmax * L->R + 2.0f / s;
-    int x0, x1, y0, y1;
-    bounds(k, L->jx - ext, L->jx + ext, L->jy - ext, L->jy + ext, &x0, &x1, &y0, &y1);
-    for (int yy = y0; yy <= y1; yy++) {
-        for (int xx = x0; xx <= x1; xx++) {
-            float u = (pu(k, xx) - L->jx) / L->R, v = (pv(k, yy) - L->jy) / L->R;
-            float rho = sqrtf(u * u + v * v);
-            if (rho > rmax + 2.0f / Rp) continue;
-            float phi = fast_atan2(u, v); /* 0 = up, + to the right */
-            float fi = (phi + PI_F) * (IT / (2.0f * PI_F));
-            int i = (int)fi;
-            if (i >= IT) i = IT - 1;
-            if (i < 0) i = 0;
-            float fr = fi - (float)i;
-            float r = rt[i] + (rt[i + 1] - rt[i]) * fr, g = gt[i] + (gt[i + 1] - gt[i]) * fr;
-            float dpx = (r - rho) * Rp * g;
-            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f);
-            if (cov <= 0.0f) continue;
-            /* Nearest primary vein by angle; distance to it; secondaries
-             * leave it at about 50 degrees towards the margin. */
-            int best = 0;
-            float bc = -2.0f;
-            for (int j = 0; j < NV; j++) {
-                float c = (u * vx[j] + v * vy[j]);
-                if (c > bc) bc = c, best = j;
+/* Extents of the lobes' outlines around the junction (units of the
+ * lobes' lengths as set). */
+static void ivy_extent(ivleaf *L, float *side, float *up, float *down) {
+    *side = *up = *down = 0.0f;
+    for (int i = 0; i < 3; i++) {
+        kleaf *B = &L->lobe[i];
+        ktab T;
+        keyaki_table(B, &T);
+        float nx = B->dy, ny = -B->dx;
+        for (int j = 0; j <= KT; j += 4)
+            for (int sd = 0; sd < 2; sd++) {
+                float y = (float)j / KT, x = (sd ? 1.0f : -1.0f) * T.w[sd][j];
+                float pu = (B->dx * y + nx * x) * B->len, pv = (B->dy * y + ny * x) * B->len;
+                *side = tex_maxf(*side, fabsf(pu));
+                *up = tex_maxf(*up, pv);
+                *down = tex_maxf(*down, -pv);
             }
-            float along = bc, perp = u * vy[best] - v * vx[best];
-            float ap = fabsf(perp);
-            float rel = rho / (r > 1e-4f ? r : 1e-4f);
-            float pw = ((best == 0 ? 0.016f : best < 3 ? 0.013f : 0.008f) * (1.0f - 0.8f * rel) + 0.002f) * Rp;
-            float vp = along > 0.0f ? 1.0f - tex_smooth(pw, pw + 0.9f, ap * Rp) : 0.0f;
-            vp *= 1.0f - tex_smooth(0.85f, 1.0f, rel);
-            float q = (along - ap * 0.9f) / 0.11f;
-            float dq = fabsf(q - floorf(q + 0.5f)) * 0.11f / 1.345f * Rp;
-            float sw = 0.0035f * Rp * (1.0f - 0.7f * rel);
-            float vs = along > 0.05f ? (1.0f - tex_smooth(sw, sw + 0.8f, dq)) * (1.0f - tex_smooth(0.75f, 0.97f, rel)) : 0.0f;
-            vs *= tex_smooth(0.0f, 0.06f, ap);
-            float vein = fmaxf(vp, 0.6f * vs);
-            float gr = tex_noise_at(grain, (float)xx * 0.3f, (float)yy * 0.3f);
-            float toward = tex_smooth(0.5f, 1.0f, rel);
+    }
+}
+
+static void ivy_leaf(cell *k, const ivleaf *L) {
+    const float s = (float)k->size;
+    const int n = k->c->n;
+    const int tile = n < TEX_TILE ? n : TEX_TILE, tm = tile - 1;
+    span_begin(k);
+    for (int i = 0; i < 3; i++) {
+        const kleaf *B = &L->lobe[i];
+        float nx = B->dy, ny = -B->dx;
+        for (int sd = 0; sd < 2; sd++) {
+            float pu0 = B->bx, pv0 = B->by;
+            for (int j = 1; j <= KT; j++) {
+                float y = (float)j / KT, x = (sd ? 1.0f : -1.0f) * L->tab[i].w[sd][j];
+                float pu1 = B->bx + (B->dx * y + nx * x) * B->len, pv1 = B->by + (B->dy * y + ny * x) * B->len;
+                span_edge(k, pu0, pv0, pu1, pv1);
+                pu0 = pu1, pv0 = pv1;
+            }
+        }
+    }
+    float inv_len[3], lens[3], vslope[3]; /* per lobe: 1 / length, length in pixels, 1 / |(1, slope)| */
+    for (int i = 0; i < 3; i++) {
+        inv_len[i] = 1.0f / L->lobe[i].len;
+        lens[i] = L->lobe[i].len * s;
+        vslope[i] = 1.0f / sqrtf(1.0f + L->lobe[i].slope * L->lobe[i].slope);
+    }
+    /* Basal veins: from the junction into the lower halves of the side lobes. */
+    float bvx[2], bvy[2], blen[2];
+    for (int sd = 0; sd < 2; sd++) {
+        const kleaf *B = &L->lobe[1 + sd];
+        float a = atan2f(B->dx, B->dy) + (sd ? -1.0f : 1.0f) * L->basal;
+        bvx[sd] = sinf(a), bvy[sd] = cosf(a), blen[sd] = 0.42f * B->len;
+    }
+    int r0, r1;
+    span_end(k, &r0, &r1);
+    for (int r = r0; r <= r1; r++) {
+        int yy = k->y0 + r;
+        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
+            float u = pu(k, xx) - L->jx, v = pv(k, yy) - L->jy;
+            /* The lobe the pixel is deepest inside: its distance is the leaf's. */
+            float best = -1e9f, by = 0.0f, bx = 0.0f, bw = 1.0f;
+            int bi = 0;
+            for (int i = 0; i < 3; i++) {
+                const kleaf *B = &L->lobe[i];
+                float il = inv_len[i];
+                float y = (u * B->dx + v * B->dy) * il, x = (u * B->dy - v * B->dx) * il;
+                if (y <= 0.0f || y >= 1.0f) continue;
+                int side = x > 0.0f;
+                float fi = y * KT;
+                int ti = (int)fi;
+                float fr = fi - (float)ti;
+                if (ti >= KT) ti = KT - 1, fr = 1.0f;
+                const ktab *T = &L->tab[i];
+                float w = T->w[side][ti] + (T->w[side][ti + 1] - T->w[side][ti]) * fr;
+                float g = T->g[side][ti] + (T->g[side][ti + 1] - T->g[side][ti]) * fr;
+                float d = (w - fabsf(x)) * lens[i] * g;
+                if (d > best) best = d, bi = i, by = y, bx = x, bw = w;
+            }
+            float dpx = best;
+            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(bw * L->lobe[bi].len * s, 0.0f, 1.0f);
+            if (cov <= 0.0f) continue;
+            const kleaf *B = &L->lobe[bi];
+            const float lp = B->len * s;
+            float ax = fabsf(bx), rel = bw > 1e-5f ? ax / bw : 1.0f;
+            /* Primary vein: the lobe's midrib; secondaries: straight to the teeth. */
+            float mid_w = (0.011f * (1.0f - by) + 0.003f) * lp;
+            float vp = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
+            const ktab *T = &L->tab[bi];
+            float q = by - ax * B->slope, j = (q - T->q0) / T->dq;
+            float vs = 0.0f;
+            if (j > -0.3f && j < (float)B->veins - 0.2f) {
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T->dq * vslope[bi] * lp; /* j > -0.3: int() floors */
+                float lw = 0.004f * (1.0f - 0.6f * rel) * lp;
+                vs = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.8f, 1.0f, rel)) *
+                     tex_smooth(0.0f, 0.04f, ax);
+            }
+            /* Basal veins (the two lowest of the five from the junction). */
+            for (int sd = 0; sd < 2; sd++) {
+                float al = u * bvx[sd] + v * bvy[sd];
+                if (al <= 0.0f || al > blen[sd]) continue;
+                float pd = fabsf(u * bvy[sd] - v * bvx[sd]) * s;
+                float bw2 = (0.006f * (1.0f - al / blen[sd]) + 0.002f) * lp;
+                vp = tex_maxf(vp, (1.0f - tex_smooth(bw2, bw2 + 0.9f, pd)) * (1.0f - tex_smooth(0.7f, 1.0f, al / blen[sd])));
+            }
+            float vein = tex_maxf(vp, 0.6f * vs);
+            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
+            float rho = sqrtf(u * u + v * v) / L->lobe[0].len; /* 0 at the junction, 1 at the tip */
+            float toward = tex_smooth(0.55f, 1.0f, rel);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);
             float col[3];
             for (int ch = 0; ch < 3; ch++) {
-                float cc = tex_mix(L->inner[ch], L->col[ch], tex_smooth(0.0f, 0.5f, rel));
-                cc = tex_mix(cc, L->edge[ch], toward * 0.45f) * (0.93f + 0.07f * gr);
-                cc = tex_mix(cc, L->vein[ch], vein * 0.75f);
+                float cc = tex_mix(L->inner[ch], L->col[ch], tex_smooth(0.0f, 0.45f, rho));
+                cc = tex_mix(cc, L->edge[ch], toward * 0.4f) * (0.93f + 0.07f * gr);
+                cc = tex_mix(cc, L->vein[ch], vein * 0.7f);
                 col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
             }
             /* Puckered between the veins: veins sunken, blade domed. */
@@ -517,42 +667,56 @@ static void ivy_colours(ivleaf *L, int season, pcg32 *r) {
 
 /* ------------------------------------------------------------ atlases */
 
-/* Alpha-0 pixels of a cell take the mean colour of its leaf pixels. */
-static void fill_background(tex_canvas *c, const cell *k) {
-    double sum[3] = {0, 0, 0};
-    double wsum = 0;
-    for (int y = k->y0; y < k->y0 + k->size; y++)
-        for (int x = k->x0; x < k->x0 + k->size; x++) {
-            const uint8_t *p = c->rgba + 4 * ((size_t)y * c->n + x);
-            if (p[3] < 128) continue;
-            for (int ch = 0; ch < 3; ch++) sum[ch] += p[ch];
-            wsum += 1;
-        }
-    uint8_t mean[3] = {64, 96, 40};
-    if (wsum > 0)
-        for (int ch = 0; ch < 3; ch++) mean[ch] = (uint8_t)(sum[ch] / wsum + 0.5);
-    for (int y = k->y0; y < k->y0 + k->size; y++)
-        for (int x = k->x0; x < k->x0 + k->size; x++) {
-            uint8_t *p = c->rgba + 4 * ((size_t)y * c->n + x);
-            if (p[3] == 0) p[0] = mean[0], p[1] = mean[1], p[2] = mean[2];
-        }
+/* The grain (cells of 4 px) and mottle tiles, TEX_TILE pixels a side (or
+ * the image's side when smaller): grain repeats across the atlas, mottle
+ * is stretched over it. */
+static void free_fields(tex_canvas *c) {
+    free(c->grain);
+    free(c->mottle);
+    c->grain = c->mottle = NULL;
+}
+
+static int leaf_fields(tex_canvas *c, pcg32 *rng) {
+    const int t = c->n < TEX_TILE ? c->n : TEX_TILE;
+    c->grain = malloc(sizeof(float) * (size_t)t * t);
+    c->mottle = malloc(sizeof(float) * (size_t)t * t);
+    tex_fbm g, m;
+    memset(&g, 0, sizeof g);
+    memset(&m, 0, sizeof m);
+    int rc = !c->grain || !c->mottle || tex_fbm_init(&g, t, t / 4, t / 4, 1, 1.0f, 0.5f, 4, rng) ||
+             tex_fbm_init(&m, t, 8, 8, 3, 1.0f, 0.5f, 4, rng);
+    if (!rc) {
+        tex_fbm_rows(&g, c->grain, 0, t);
+        tex_fbm_rows(&m, c->mottle, 0, t);
+    }
+    tex_fbm_free(&g);
+    tex_fbm_free(&m);
+    if (rc) free_fields(c);
+    return rc ? -1 : 0;
 }
 
 int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int cols, rows;
     float aspect;
     tex_leaf_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, &aspect);
-    tex_noise grain;
-    if (tex_noise_init(&grain, 64, 64, rng)) return -1;
+    if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
+    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
+    if (!spans) {
+        free_fields(c);
+        return -1;
+    }
+    /* Autumn: each spray leans to one tone, the cells cycle through
+     * yellow, orange and rust (trees differ; an atlas shows all three). */
+    int tone0 = (int)rng_below(rng, 3);
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1};
-            keyaki_spray(&k, season, rng, &grain);
-            fill_background(c, &k);
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
+            keyaki_spray(&k, season, (tone0 + i + j * cols) % 3, rng);
         }
-    tex_noise_free(&grain);
-    c->relief = 0.6f;
+    free(spans);
+    free_fields(c);
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }
@@ -561,41 +725,37 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int cols, rows;
     float aspect;
     tex_leaf_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, &aspect);
-    tex_noise grain;
-    if (tex_noise_init(&grain, 64, 64, rng)) return -1;
+    if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
+    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
+    if (!spans) {
+        free_fields(c);
+        return -1;
+    }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
             ivleaf L;
             /* A quarter of the cells: young unlobed leaves (long shoots). */
             L.lobed = ((i + j * cols) % 4) != 3;
-            L.lob_a = tex_unif(rng, 0.85f, 1.05f);
-            L.lob_c = tex_unif(rng, 0.72f, 0.9f);
-            int nt = 9 + (int)rng_below(rng, 5);
-            float amp = L.lobed ? tex_unif(rng, 0.05f, 0.08f) : tex_unif(rng, 0.03f, 0.05f);
+            ivy_shape(&L, rng);
             ivy_colours(&L, season, rng);
-            /* Fit: widest extent sideways and upwards, junction placed so the
-             * tip reaches 4 % below the top; a petiole stub below it. */
-            float side = 0.0f, up = 0.0f, down = 0.0f;
-            for (int t = 0; t < 256; t++) {
-                float phi = -PI_F + 2.0f * PI_F * (float)t / 256.0f;
-                float rr = ivy_radius(&L, phi, 0.0f, nt);
-                side = fmaxf(side, fabsf(sinf(phi)) * rr);
-                up = fmaxf(up, cosf(phi) * rr);
-                down = fmaxf(down, -cosf(phi) * rr);
-            }
-            float R = fminf(0.44f / side, 0.80f / (up + down)) * tex_unif(rng, 0.9f, 1.0f);
-            L.R = R;
-            L.jx = 0.5f;
-            L.jy = 0.96f - up * R;
+            /* Fit: the widest extent sideways and the height, junction placed
+             * so the tip reaches 4 % below the top; a petiole stub below it. */
+            float side, up, down;
+            ivy_extent(&L, &side, &up, &down);
+            float R = tex_minf(0.45f / side, 0.80f / (up + down)) * tex_unif(rng, 0.92f, 1.0f);
+            ivy_place(&L, R, 0.5f, 0.96f - up * R);
             const float pet[3] = {season ? 150.0f : 96.0f, season ? 60.0f : 110.0f, season ? 40.0f : 50.0f};
-            stroke(&k, 0.5f, 0.0f, L.jx, L.jy - down * R * 0.2f, 0.012f, 0.008f, pet, 0.6f);
-            ivy_leaf(&k, &L, nt, amp, &grain);
-            fill_background(c, &k);
+            float mean[3];
+            for (int ch = 0; ch < 3; ch++) mean[ch] = 0.5f * (L.col[ch] + L.inner[ch]);
+            fill_cell(&k, mean);
+            stroke(&k, 0.5f, 0.0f, L.jx, L.jy, 0.011f, 0.008f, pet, 0.6f);
+            ivy_leaf(&k, &L);
         }
-    tex_noise_free(&grain);
-    c->relief = 0.6f;
+    free(spans);
+    free_fields(c);
+    c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
     return 0;
 }

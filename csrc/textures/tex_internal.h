@@ -8,8 +8,15 @@
 #define BANYAN_TEX_INTERNAL_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "core/rng.h"
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#  error "tex_pack_rgba assumes a little-endian machine"
+#endif
+
+#define TEX_TILE 256
 
 typedef struct tex_canvas {
     int n;            /* pixels per side (power of two) */
@@ -17,6 +24,8 @@ typedef struct tex_canvas {
     float *height;    /* n * n, arbitrary units: metres of relief / pixel pitch come from `relief` */
     float relief;     /* normal-map strength: slope = relief * height difference per pixel */
     int wrap;         /* 1: tileable (bark), Sobel wraps around the edges */
+    float *grain;     /* TEX_TILE^2 fine noise about [-1, 1] for leaf surfaces, tiled (leaf painters make it) */
+    float *mottle;    /* TEX_TILE^2 noise a few spots per leaf (autumn blotches), stretched over the image */
 } tex_canvas;
 
 /* Leaf atlases (leaves.c) and bark (bark.c); season only for leaves.
@@ -31,33 +40,60 @@ int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng);
 void tex_leaf_grid(int kind, int *cols, int *rows, float *aspect);
 
 /* ---------------------------------------------------------- periodic noise
- * Value noise on a lattice of fx x fy cells that wraps around, so an image
- * of n pixels made of it tiles when fx and fy divide n. The lattice values
- * are drawn from the rng once (no hashing), uniform in [-1, 1]. */
+ * Value noise on a lattice of fx x fy cells (powers of two dividing the
+ * image size n) that wraps around, so it tiles. The lattice values are
+ * drawn from the rng once (no hashing), uniform in [-1, 1]. */
 typedef struct tex_noise {
-    int fx, fy;
-    float *v; /* fx * fy */
+    int fx, fy, n;
+    float *v;   /* fx * fy lattice values */
+    float *w;   /* n / fx smoothstep weights across a cell */
+    float *col; /* fx + 1 scratch: one lattice row interpolated */
 } tex_noise;
 
-int tex_noise_init(tex_noise *t, int fx, int fy, pcg32 *rng);
+int tex_noise_init(tex_noise *t, int fx, int fy, int n, pcg32 *rng);
 void tex_noise_free(tex_noise *t);
-/* Adds amp * noise over the whole n x n buffer (fx, fy divide n). */
-void tex_noise_add(const tex_noise *t, float *buf, int n, float amp);
 /* Noise at a point in lattice units (wraps). */
 float tex_noise_at(const tex_noise *t, float x, float y);
-/* Fractal sum: octaves of value noise starting at f0 x (f0 * ay) cells,
- * doubling, gain per octave; added into buf. */
-int tex_fbm_add(float *buf, int n, int f0x, int f0y, int octaves, float amp, float gain, pcg32 *rng);
+
+/* Fractal sum: octaves from f0x x f0y cells, doubling, amplitude times
+ * gain each; octaves finer than min_cell pixels a cell are left out. */
+#define TEX_MAX_OCTAVES 8
+typedef struct tex_fbm {
+    int n, octaves;
+    tex_noise t[TEX_MAX_OCTAVES];
+    float amp[TEX_MAX_OCTAVES];
+} tex_fbm;
+int tex_fbm_init(tex_fbm *f, int n, int f0x, int f0y, int octaves, float amp, float gain, int min_cell,
+                 pcg32 *rng);
+/* Rows y0 .. y0 + rows - 1 of the field into band (rows x n, overwritten). */
+void tex_fbm_rows(tex_fbm *f, float *band, int y0, int rows);
+void tex_fbm_free(tex_fbm *f);
+/* The field at one pixel position (x, y), as tex_fbm_rows gives it. */
+float tex_fbm_at(const tex_fbm *f, float x, float y);
+
+/* Rows a painter makes at once (scratch of a few fields stays in cache). */
+#define TEX_BAND 16
 
 static inline float tex_clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 static inline float tex_smooth(float e0, float e1, float x) {
-    float t = tex_clampf((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    float t = tex_clampf((x - e0) * (1.0f / (e1 - e0)), 0.0f, 1.0f); /* constant edges fold to a multiply */
     return t * t * (3.0f - 2.0f * t);
 }
 static inline float tex_mix(float a, float b, float t) { return a + (b - a) * t; }
 static inline uint8_t tex_byte(float v) { /* 0..255 float to byte, rounded */
     v = tex_clampf(v, 0.0f, 255.0f);
     return (uint8_t)(v + 0.5f);
+}
+/* Packs float channels (0..255) of `count` pixels into opaque RGBA8,
+ * rounded; loops the compiler vectorises. */
+static inline void tex_pack_rgba(uint8_t *dst, const float *r, const float *g, const float *b, int count) {
+    for (int i = 0; i < count; i++) {
+        uint32_t R = (uint32_t)(int32_t)(tex_clampf(r[i], 0.0f, 255.0f) + 0.5f);
+        uint32_t G = (uint32_t)(int32_t)(tex_clampf(g[i], 0.0f, 255.0f) + 0.5f);
+        uint32_t B = (uint32_t)(int32_t)(tex_clampf(b[i], 0.0f, 255.0f) + 0.5f);
+        uint32_t v = R | G << 8 | B << 16 | 0xff000000u; /* little-endian: bytes R, G, B, A */
+        memcpy(dst + 4 * (size_t)i, &v, 4);
+    }
 }
 static inline float tex_unif(pcg32 *r, float a, float b) { return (float)rng_range(r, a, b); }
 

@@ -1144,6 +1144,55 @@ static void good_presets(void) {
     }
 }
 
+/* Textures (issue 17): size, kind, season; the two image out pointers
+ * come back NULL. */
+static int images_null(banyan_image *a, banyan_image *b) { return a == NULL && b == NULL; }
+
+static void texture_cases(void) {
+    static const struct {
+        const char *klass, *input;
+        int32_t kind, season, size;
+        const char *needle;
+    } rows[] = {
+        {"zero", "size = 0", BANYAN_TEX_KEYAKI_LEAF, 0, 0, "size"},
+        {"not a power of two", "size = 1000", BANYAN_TEX_KEYAKI_LEAF, 0, 1000, "power of two"},
+        {"below range", "size = 32", BANYAN_TEX_IVY_LEAF, 0, 32, "[64, 8192]"},
+        {"above range", "size = 16384", BANYAN_TEX_KEYAKI_BARK, 0, 16384, "[64, 8192]"},
+        {"negative", "size = -1024", BANYAN_TEX_FIG_BARK, 0, -1024, "size"},
+        {"above range", "kind = 7", 7, 0, 1024, "kind"},
+        {"below range", "kind = -1 (BANYAN_TEX_NONE)", BANYAN_TEX_NONE, 0, 1024, "kind"},
+        {"above range", "season = 3", BANYAN_TEX_KEYAKI_LEAF, 3, 1024, "season"},
+        {"negative", "season = -1", BANYAN_TEX_IVY_STEM, -1, 1024, "season"},
+    };
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+        banyan_texture_params p;
+        banyan_texture_params_init(&p);
+        p.kind = rows[i].kind;
+        p.season = rows[i].season;
+        p.size = rows[i].size;
+        banyan_image *bc = SENTINEL, *nm = SENTINEL;
+        RUN("textures", "banyan_texture_generate", rows[i].klass, rows[i].input, BANYAN_E_RANGE, rows[i].needle,
+            banyan_texture_generate(&p, &bc, &nm, &e), images_null(bc, nm));
+    }
+    banyan_image *bc = SENTINEL, *nm = SENTINEL;
+    RUN("textures", "banyan_texture_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
+        banyan_texture_generate(NULL, &bc, &nm, &e), images_null(bc, nm));
+    banyan_atlas_layout layout;
+    RUN("textures", "banyan_texture_layout", "above range", "kind = 5", BANYAN_E_RANGE, "kind",
+        banyan_texture_layout(5, &layout, &e), 1);
+    RUN("textures", "banyan_texture_layout", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
+        banyan_texture_layout(0, NULL, &e), 1);
+    uint8_t *png = SENTINEL;
+    size_t len = 1;
+    RUN("textures", "banyan_image_png", "NULL", "image = NULL", BANYAN_E_INVALID_ARG, "image",
+        banyan_image_png(NULL, &png, &len, &e), png == NULL && len == 0);
+    uint8_t px[4] = {0, 0, 0, 0};
+    banyan_image empty = {0, 0, 4, px};
+    png = SENTINEL;
+    RUN("textures", "banyan_image_png", "zero", "width = height = 0", BANYAN_E_RANGE, "width",
+        banyan_image_png(&empty, &png, &len, &e), png == NULL);
+}
+
 int main(int argc, char **argv) {
     table_mode = argc > 1 && strcmp(argv[1], "--table") == 0;
     if (table_mode) {
@@ -1157,6 +1206,7 @@ int main(int argc, char **argv) {
     input_cases();
     preset_cases();
     good_presets();
+    texture_cases();
     if (table_mode) {
         fprintf(stderr, "test_bad_input: %d passed, %d failed\n", check_passed, check_failed);
         return check_failed ? 1 : 0;

@@ -19,6 +19,11 @@ expect 1 "must look like key=value" -- "$bin" tube --set sides
 expect 1 "writing $out/x.obj" -- "$bin" tube -o "$out/x.obj"
 expect 2 "unexpected argument" -- "$bin" tube --bogus
 expect 1 "cannot read preset" -- "$bin" tube --preset /nonexistent.json
+# Textures: every PNG written, bad sizes refused by the library's message.
+expect 0 "keyaki_leaf_summer_color.png" -- "$bin" textures -o "$out" --size 64
+expect 1 "size = 1000 must be a power of two within [64, 8192]" -- "$bin" textures -o "$out" --size 1000
+expect 2 "usage: banyan textures" -- "$bin" textures --size 64
+expect 2 "usage: banyan textures" -- "$bin" textures -o "$out" --size big
 # Every generator: defaults write a glb, stats are JSON, --list documents
 # the table, and --set refuses unknown keys and out-of-range values.
 for g in roots keyaki avenue ivy segments; do
