@@ -208,7 +208,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         L->vertex_offset = v0 - base;
         mb_set_attr(mb, attr[1], n[L->first].level);
         mb_set_attr(mb, attr[2], n[L->first].order);
-        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL};
+        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL, 0};
         tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
         /* Ring i > 0 closes branch ids[i]; the end cap belongs to the tip. */
         uint32_t ring = (uint32_t)L->sides + 1;
