@@ -14,9 +14,9 @@ typedef struct leaf_look {
     double tint[4];        /* linear RGBA multiplier, each in [0, 1] */
 } leaf_look;
 
-/* The atlas grid of a leaf texture (banyan_texture_layout); 1 x 1 when
- * the kind has none. */
-void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows);
+/* The atlas grid of a leaf texture (banyan_texture_layout) and its cells'
+ * width / height (aspect may be NULL); 1 x 1 and 1 when the kind has none. */
+void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect);
 
 /* The look of leaf `index` of a plant grown from `seed`. */
 void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);

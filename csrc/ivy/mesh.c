@@ -190,7 +190,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             ov[k + 1] = (ox[k] - xmin) / (xmax - xmin);
         }
         int32_t cols, rows;
-        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows);
+        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
         const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
         for (int32_t i = 0; i < iv->n && !mb.status; i++) {
             if (mesh_progress(iv, i, 1.0)) {
