@@ -267,41 +267,40 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     return 0;
 }
 
+#define FIG_RINGS 40 /* wrinkles per tile along the root */
+
+/* One row: wavy horizontal wrinkles (ring coordinate `ring` + warp),
+ * broken into segments (seg), tone, fine relief. */
+static void fig_row(int n, float ring, const float *restrict warp, const float *restrict seg,
+                    const float *restrict tr, const float *restrict hr, float *restrict R, float *restrict G,
+                    float *restrict B, float *restrict H) {
+    const float pale[3] = {170, 160, 145}, dark[3] = {132, 122, 108}, crease[3] = {98, 88, 76};
+    for (int x = 0; x < n; x++) {
+        float w = ring + 1.2f * warp[x] + 64.0f; /* positive: truncation floors */
+        float f = w - (float)(int)w, e = f < 0.5f ? f : 1.0f - f; /* distance to the wrinkle's line */
+        float k = tex_clampf(1.0f - e * e * (1.0f / (0.12f * 0.12f)), 0.0f, 1.0f);
+        float wr = k * k * k * tex_smooth(-0.1f, 0.35f, seg[x]);
+        float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f);
+        R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], 0.7f * wr);
+        G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], 0.7f * wr);
+        B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], 0.7f * wr);
+        H[x] = 0.05f * hr[x] - 0.5f * wr;
+    }
+}
+
 int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
     static const float spec[4][4] = {{4, 4, 4, 0.5f}, {16, 32, 3, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
     fields F;
     if (fields_init(&F, n, 4, spec, rng)) return -1;
-    const float pale[3] = {170, 160, 145}, dark[3] = {132, 122, 108}, crease[3] = {98, 88, 76};
-    const int rings = 40; /* wrinkles per tile along the root */
-    /* cos^k profile of one wrinkle as a table over its period. */
-    float prof[256];
-    for (int k = 0; k < 256; k++) {
-        float cs = cosf(6.2831853f * (float)k / 256.0f);
-        prof[k] = cs > 0 ? powf(cs, 10.0f) : 0.0f;
-    }
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
         const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
                     *hf = fields_rows(&F, 3, y0);
-        float *restrict R = F.rgb, *restrict G = R + n, *restrict B = G + n;
         for (int r = 0; r < TEX_BAND; r++) {
-            int y = y0 + r;
-            size_t row = (size_t)y * n;
-            const float *restrict wr_ = warp + (size_t)r * n, *restrict sr = seg + (size_t)r * n,
-                                  *restrict tr = tone + (size_t)r * n, *restrict hr = hf + (size_t)r * n;
-            float *restrict hout = c->height + row;
-            const float ring = (float)y * rings / (float)n;
-            for (int x = 0; x < n; x++) {
-                float w = ring + 1.2f * wr_[x] + 64.0f; /* positive: truncation is floor */
-                int wi = (int)(w * 256.0f);
-                float wr = prof[wi & 255] * tex_smooth(-0.1f, 0.35f, sr[x]);
-                float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f);
-                R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], 0.7f * wr);
-                G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], 0.7f * wr);
-                B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], 0.7f * wr);
-                hout[x] = 0.05f * hr[x] - 0.5f * wr;
-            }
-            tex_pack_rgba(c->rgba + 4 * row, R, G, B, n);
+            size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
+            fig_row(n, (float)(y0 + r) * FIG_RINGS / (float)n, warp + o, seg + o, tone + o, hf + o, F.rgb, F.rgb + n,
+                    F.rgb + 2 * n, c->height + row);
+            tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
     float s = (float)n / 1024.0f;
@@ -317,33 +316,41 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     return 0;
 }
 
-/* One row: fibres (f), fissures along the zero lines of a field (cr), tone (t). */
-static void stem_row(int n, const float *restrict fr, const float *restrict crr, const float *restrict tr,
-                     float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
-    const float wood[3] = {122, 96, 70}, grey[3] = {128, 116, 100}, groove[3] = {70, 52, 38};
+/* One row: fibres as wavy ridges along the stem (stripe coordinate
+ * across it, warped: fw), their strength (fs), fissures along the zero
+ * lines of a field (cr), tone (t). */
+static void stem_row(int n, const float *restrict fw, const float *restrict fs, const float *restrict crr,
+                     const float *restrict tr, float *restrict R, float *restrict G, float *restrict B,
+                     float *restrict H) {
+    const float wood[3] = {124, 100, 76}, grey[3] = {132, 122, 108}, groove[3] = {64, 48, 36};
+    const int stripes = 56; /* fibres around the stem */
     for (int x = 0; x < n; x++) {
-        float f = fr[x], cr = crr[x];
-        float fis = 1.0f - tex_smooth(0.0f, 0.06f, fabsf(cr)); /* fissure along a zero line */
+        float w = (float)x * stripes / (float)n + 2.0f * fw[x] + 64.0f; /* positive: truncation floors */
+        /* One fibre's cross-section: a broad rounded ridge, a narrow groove at its edge. */
+        float d = fabsf(2.0f * (w - (float)(int)w) - 1.0f);
+        float ridge = d * (2.0f - d) * tex_clampf(0.6f + 0.8f * fs[x], 0.0f, 1.0f);
+        float fis = 1.0f - tex_smooth(0.0f, 0.05f, fabsf(crr[x])); /* fissure along a zero line */
         float t = tex_clampf(0.5f + 0.9f * tr[x], 0.0f, 1.0f);
-        float sh = 0.8f + 0.35f * tex_clampf(0.5f + 0.8f * f, 0.0f, 1.0f);
-        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.8f * fis);
-        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.8f * fis);
-        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.8f * fis);
-        H[x] = 0.6f * f - 0.8f * fis;
+        float sh = 0.78f + 0.3f * ridge;
+        R[x] = tex_mix(tex_mix(wood[0], grey[0], t) * sh, groove[0], 0.85f * fis);
+        G[x] = tex_mix(tex_mix(wood[1], grey[1], t) * sh, groove[1], 0.85f * fis);
+        B[x] = tex_mix(tex_mix(wood[2], grey[2], t) * sh, groove[2], 0.85f * fis);
+        H[x] = 0.5f * ridge - 0.9f * fis + 0.1f * tr[x];
     }
 }
 
 int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    /* Fibres run along the stem: many lattice cells around, few along. */
-    static const float spec[3][4] = {{32, 2, 5, 0.6f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
+    /* Fibre warp (smooth, longer along the stem), fibre strength, fissures, tone. */
+    static const float spec[4][4] = {{8, 2, 4, 0.5f}, {16, 4, 3, 0.5f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
     fields F;
-    if (fields_init(&F, n, 3, spec, rng)) return -1;
+    if (fields_init(&F, n, 4, spec, rng)) return -1;
     for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
-        const float *fib = fields_rows(&F, 0, y0), *crack = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0);
+        const float *fw = fields_rows(&F, 0, y0), *fs = fields_rows(&F, 1, y0), *crack = fields_rows(&F, 2, y0),
+                    *tone = fields_rows(&F, 3, y0);
         for (int r = 0; r < TEX_BAND; r++) {
             size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
-            stem_row(n, fib + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
+            stem_row(n, fw + o, fs + o, crack + o, tone + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
             tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }

@@ -309,7 +309,8 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
                 cc = tex_mix(cc, L->vein[ch], vein * 0.8f);
                 col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
             }
-            float h = 2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr;
+            /* Domed across; a blade under a few pixels wide (the tip) stays low. */
+            float h = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
             put(k->c, (size_t)yy * n + xx, cov, col, h);
         }
     }
@@ -437,13 +438,13 @@ static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
         L->bx = 0.5f + (L->bx - 0.5f) * sc, L->by *= sc, L->len *= sc;
         float pc[3];
         for (int c = 0; c < 3; c++) pc[c] = tex_mix(pcol[c], L->col[c], 0.5f);
-        stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.5f);
+        stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.2f);
         keyaki_leaf(k, L);
     }
     for (int i = 0; i < ns; i++) {
         kseg g = segs[i];
         stroke(k, 0.5f + (g.ax - 0.5f) * sc, g.ay * sc, 0.5f + (g.bx - 0.5f) * sc, g.by * sc, g.wa * sc, g.wb * sc,
-               twig, 1.0f);
+               twig, 0.2f);
     }
 }
 
@@ -620,7 +621,7 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
                 col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
             }
             /* Puckered between the veins: veins sunken, blade domed. */
-            float h = 1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr;
+            float h = (1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr) * tex_clampf(bw * lp * 0.25f, 0.0f, 1.0f);
             put(k->c, (size_t)yy * n + xx, cov, col, h);
         }
     }
@@ -750,7 +751,7 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
             float mean[3];
             for (int ch = 0; ch < 3; ch++) mean[ch] = 0.5f * (L.col[ch] + L.inner[ch]);
             fill_cell(&k, mean);
-            stroke(&k, 0.5f, 0.0f, L.jx, L.jy, 0.011f, 0.008f, pet, 0.6f);
+            stroke(&k, 0.5f, 0.0f, L.jx, L.jy, 0.011f, 0.008f, pet, 0.2f);
             ivy_leaf(&k, &L);
         }
     free(spans);

@@ -1,5 +1,5 @@
 /* test_textures.c - the texture calls of banyan/textures.h (issue #17),
- * by invariants: image sizes and channels; leaf atlases have alpha where
+ * by invariants, at 64, 256 and 1024 pixels: image sizes and channels; leaf atlases have alpha where
  * each cell's leaf is (its centre, or for the keyaki sprays some pixel of
  * the cell's middle third) and alpha 0 at every cell corner and along its
  * border; bark is opaque and tiles (the wrap-around column and row steps
@@ -170,7 +170,8 @@ static void check_normals(int kind, const banyan_image *nm) {
         if (z < 0.995) tilted++; /* about 6 degrees */
     }
     CHECK(bad == 0, "%s normal map: %zu texels not unit / not facing out", names[kind], bad);
-    CHECK(tilted > n / 100, "%s normal map: only %zu of %zu texels tilt", names[kind], tilted, n);
+    /* At 64 pixels the veins and wrinkles are under a texel: no relief to ask for. */
+    if (nm->width >= 256) CHECK(tilted > n / 100, "%s normal map: only %zu of %zu texels tilt", names[kind], tilted, n);
 }
 
 static void check_png(const banyan_image *im, const char *what) {
@@ -239,8 +240,8 @@ int main(void) {
     CHECK(banyan_sizeof_texture_params() == sizeof(banyan_texture_params), "sizeof params");
 
     /* Every kind and season at two sizes. */
-    const int sizes[] = {256, 1024};
-    for (int si = 0; si < 2; si++)
+    const int sizes[] = {64, 256, 1024};
+    for (int si = 0; si < 3; si++)
         for (int kind = 0; kind < BANYAN_TEX_COUNT; kind++)
             for (int season = 0; season < (is_leaf(kind) ? 2 : 1); season++) {
                 banyan_image *bc = NULL, *nm = NULL;
