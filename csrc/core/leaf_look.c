@@ -10,12 +10,14 @@
 #define LEAF_LOOK_SALT 0x1eaf100cULL
 #define LEAF_LOOK_MUL 0x9E3779B97F4A7C15ULL
 
-void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows) {
+void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect) {
     banyan_atlas_layout L;
     *cols = *rows = 1;
+    if (aspect) *aspect = 1.0;
     if (banyan_texture_layout(kind, &L, NULL) == BANYAN_OK && L.cols >= 1 && L.rows >= 1) {
         *cols = L.cols;
         *rows = L.rows;
+        if (aspect && L.leaf_aspect > 0.05f && L.leaf_aspect < 20.0f) *aspect = L.leaf_aspect;
     }
 }
 

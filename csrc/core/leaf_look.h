@@ -14,9 +14,17 @@ typedef struct leaf_look {
     double tint[4];        /* linear RGBA multiplier, each in [0, 1] */
 } leaf_look;
 
-/* The atlas grid of a leaf texture (banyan_texture_layout); 1 x 1 when
- * the kind has none. */
-void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows);
+/* The atlas grid of a leaf texture (banyan_texture_layout) and its cells'
+ * width / height (aspect may be NULL); 1 x 1 and 1 when the kind has none. */
+void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect);
+
+/* Where an ivy atlas cell's blade lies (csrc/textures/leaves.c fits each
+ * blade within 0.45 of the cell's centre line sideways and 0.80 tall, its
+ * tip 4 % below the top, a petiole stub below): ivy cards map their
+ * outline's bounds to this box, so the drawn blade and the card agree. */
+#define LEAF_IVY_BLADE_V0 0.16
+#define LEAF_IVY_BLADE_V1 0.96
+#define LEAF_IVY_BLADE_HALF_U 0.45
 
 /* The look of leaf `index` of a plant grown from `seed`. */
 void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);

@@ -180,6 +180,28 @@ static void put_ring(float *P, float *N, float *UV, const v3 *ring, const v3 *nr
     for (int j = 0; j <= sides; j++) put3(N + 3 * j, nrm[j < sides ? j : 0]);
 }
 
+/* Perimeter of ring (sides vertices, closed) and, when u is not NULL, the
+ * arc-length fraction of each vertex (u[sides] = 1, the seam). */
+static double ring_perimeter(const v3 *ring, int sides, float *u) {
+    double c = 0;
+    for (int j = 0; j < sides; j++) {
+        if (u) u[j] = (float)c;
+        c += v3_dist(ring[j], ring[j + 1 < sides ? j + 1 : 0]);
+    }
+    if (u) {
+        for (int j = 0; j < sides; j++) u[j] = c > 1e-12 ? (float)(u[j] / c) : (float)j / (float)sides;
+        u[sides] = 1.0f;
+    }
+    return c;
+}
+
+/* Overwrites a ring's u (sides + 1 uv pairs) with arc-length fractions. */
+static void arc_u(float *UV, const v3 *ring, int sides) {
+    float us[257];
+    ring_perimeter(ring, sides, us);
+    for (int j = 0; j <= sides; j++) UV[2 * j] = us[j];
+}
+
 void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256) return;
@@ -199,7 +221,12 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
     v3 derived[256];
     for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
-        if (i) {
+        if (i && o->arc_uv) { /* the perimeter stands for the circumference */
+            double l = v3_dist(centres[i], centres[i - 1]);
+            double pa = ring_perimeter(rings + (size_t)(i - 1) * sides, sides, NULL);
+            double pb = ring_perimeter(rings + (size_t)i * sides, sides, NULL);
+            vv_acc += tube_dv(l, pa / 6.283185307179586, pb / 6.283185307179586, r_mean);
+        } else if (i) {
             vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), v3_dist(rings[(size_t)(i - 1) * sides], centres[i - 1]),
                               v3_dist(rings[(size_t)i * sides], centres[i]), r_mean);
         }
@@ -209,6 +236,7 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
         float vv = (float)vv_acc;
         if (o->ring_normals) {
             put_ring(P, N, UV, ring, o->ring_normals + (size_t)i * sides, sides, vv);
+            if (o->arc_uv) arc_u(UV, ring, sides);
             continue;
         }
         /* A taper tilts the normals along the tube: n = (radial - dr T) /
@@ -228,6 +256,7 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
             derived[j] = v3_scale(v3_madd(radial, T, -dr), k);
         }
         put_ring(P, N, UV, ring, derived, sides, vv);
+        if (o->arc_uv) arc_u(UV, ring, sides);
         r_prev = r_cur;
         r_cur = r_next;
     }

@@ -21,6 +21,10 @@ typedef struct tube_opts {
     /* tube_sweep_rings only: unit normals per ring vertex (n * sides), for
      * rings that are not circles about their centre; NULL derives them. */
     const v3 *ring_normals;
+    /* tube_sweep_rings only: u by arc length round each ring and v by
+     * the rings' perimeters, so texels stay square on rings pressed flat
+     * against a surface (the roots'); 0: u by vertex, v by radius. */
+    int arc_uv;
 } tube_opts;
 
 /* Vertices and indices one tube of n points adds; for mb_reserve. */

@@ -173,9 +173,9 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             ox[k] = rad[k] * cos(leaf_angle[k]); /* the outline, per unit of leaf diameter */
             oy[k] = rad[k] * sin(leaf_angle[k]);
         }
-        /* Card uvs: the outline's bounds fill one atlas cell, the notch
-         * (petiole) at the cell's bottom centre, the tip at its top, as the
-         * atlas draws its leaves. */
+        /* Card uvs: the outline's bounds fill the blade's box in one atlas
+         * cell (leaf_look.h), the basal lobes low, the tip at the top, as
+         * the atlas draws its leaves. */
         double ymax = 0, xmin = 0, xmax = 0;
         for (int k = 0; k < LEAF_OUTLINE; k++) {
             if (fabs(oy[k]) > ymax) ymax = fabs(oy[k]);
@@ -183,14 +183,15 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             if (ox[k] > xmax) xmax = ox[k];
         }
         double ou[LEAF_OUTLINE + 1], ov[LEAF_OUTLINE + 1]; /* the centre, then the outline, in 0..1 */
+        const double bv = LEAF_IVY_BLADE_V1 - LEAF_IVY_BLADE_V0;
         ou[0] = 0.5;
-        ov[0] = -xmin / (xmax - xmin);
+        ov[0] = LEAF_IVY_BLADE_V0 + bv * -xmin / (xmax - xmin);
         for (int k = 0; k < LEAF_OUTLINE; k++) {
-            ou[k + 1] = 0.5 + 0.5 * oy[k] / ymax;
-            ov[k + 1] = (ox[k] - xmin) / (xmax - xmin);
+            ou[k + 1] = 0.5 + LEAF_IVY_BLADE_HALF_U * oy[k] / ymax;
+            ov[k + 1] = LEAF_IVY_BLADE_V0 + bv * (ox[k] - xmin) / (xmax - xmin);
         }
         int32_t cols, rows;
-        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows);
+        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
         const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
         for (int32_t i = 0; i < iv->n && !mb.status; i++) {
             if (mesh_progress(iv, i, 1.0)) {

@@ -126,6 +126,7 @@ static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32
 typedef struct card_looks {
     uint64_t seed, next; /* next: the index of the tree's next card */
     int32_t cols, rows, season;
+    double aspect; /* cell width / height: the card's width is leaf_size x aspect */
 } card_looks;
 
 /* The cards of branch x: vertices v0.. and indices I were made room for
@@ -148,7 +149,7 @@ static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double 
             w = v3_neg(w);
             nrm = v3_neg(nrm);
         }
-        double hw = 0.5 * size;
+        double hw = 0.5 * size * looks->aspect; /* aspect 1 (today's atlas): the square card, same bytes */
         v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
         v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
         leaf_look lk;
@@ -208,7 +209,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         L->vertex_offset = v0 - base;
         mb_set_attr(mb, attr[1], n[L->first].level);
         mb_set_attr(mb, attr[2], n[L->first].order);
-        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL};
+        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL, 0};
         tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
         /* Ring i > 0 closes branch ids[i]; the end cap belongs to the tip. */
         uint32_t ring = (uint32_t)L->sides + 1;
@@ -224,8 +225,8 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     if (body->vertices > body->bark_vertices) {
         mb_begin_part(mb, leaf_mat, group);
         const double size = p->leaf_size * p->unit;
-        card_looks looks = {p->seed, 0, 1, 1, p->season};
-        leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &looks.cols, &looks.rows);
+        card_looks looks = {p->seed, 0, 1, 1, p->season, 1.0};
+        leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &looks.cols, &looks.rows, &looks.aspect);
         for (int32_t i = 0; i < count; i++) {
             if (!body->leaf_count[i]) continue;
             mb_set_attr(mb, attr[1], n[i].level);

@@ -676,6 +676,36 @@ static void null_cases(void) {
         RUN("common", "banyan_gltf_write", "NaN", "positions[4] = NaN", BANYAN_E_RANGE, "positions",
             banyan_gltf_write("x.glb", &one, NULL, 1, &e), 1);
         tube->positions[4] = keep_p;
+        /* Texture options and a material's texture fields (issue #17). */
+        banyan_gltf_options go;
+        struct { const char *klass, *input, *needle; int32_t textures, size; } opt_rows[] = {
+            {"zero", "opt->texture_size = 0", "texture_size", 1, 0},
+            {"not a power of two", "opt->texture_size = 100", "texture_size", 1, 100},
+            {"above range", "opt->texture_size = 16384", "texture_size", 1, 16384},
+            {"below range", "opt->texture_size = 32", "texture_size", 1, 32},
+            {"above range", "opt->textures = 2", "textures", 2, 1024},
+        };
+        for (size_t i = 0; i < sizeof opt_rows / sizeof opt_rows[0]; i++) {
+            banyan_gltf_options_init(&go);
+            go.textures = opt_rows[i].textures;
+            go.texture_size = opt_rows[i].size;
+            RUN("common", "banyan_gltf_write_ex", opt_rows[i].klass, opt_rows[i].input, BANYAN_E_RANGE,
+                opt_rows[i].needle, banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
+        }
+        banyan_gltf_options_init(&go);
+        int32_t keep_t = tube->materials[0].texture;
+        tube->materials[0].texture = BANYAN_TEX_COUNT;
+        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].texture = 5", BANYAN_E_RANGE,
+            "materials[0].texture", banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
+        tube->materials[0].texture = keep_t;
+        tube->materials[0].season = 2;
+        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].season = 2", BANYAN_E_RANGE,
+            "materials[0].season", banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
+        tube->materials[0].season = 0;
+        tube->materials[0].alpha_cutoff = NAN;
+        RUN("common", "banyan_gltf_write_ex", "NaN", "materials[0].alpha_cutoff = NaN", BANYAN_E_RANGE,
+            "alpha_cutoff", banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
+        tube->materials[0].alpha_cutoff = 0;
         banyan_mesh_free(tube);
     } else {
         CHECK(0, "tube: %s", te.message);

@@ -324,6 +324,37 @@ static void check_cards(const banyan_mesh *m, int32_t kind, const char *what) {
     CHECK(distinct > cards / 2, "%s: %ld colour changes over %ld cards: no per-leaf variation", what, distinct, cards);
 }
 
+/* Alpha where the leaves are: the ivy atlas, sampled at each leaf card's
+ * centre and halfway from it to the tip (outline point 6 is the tip), is
+ * opaque; sampled at the card's outline corners it is mostly clear. */
+static void check_ivy_alpha(const banyan_mesh *m, const char *file) {
+    glb g;
+    if (!m || m->part_count < 2 || !glb_read(out_path(file), &g)) {
+        CHECK(0, "%s: cannot read", file);
+        return;
+    }
+    int w = 0, h = 0, ch = 0;
+    unsigned char *px = texture_pixels(&g, base_texture(material_named(&g, "ivy_leaf")), &w, &h, &ch, NULL);
+    CHECK(px && ch == 4, "%s: ivy atlas", file);
+    const banyan_part *leaf = &m->parts[1];
+    long inside = 0, cards = 0;
+    for (uint32_t c0 = leaf->vertex_offset; px && ch == 4 && c0 + 13 <= leaf->vertex_offset + leaf->vertex_count;
+         c0 += 13, cards++) {
+        const float *uc = m->uvs + 2 * c0, *ut = m->uvs + 2 * (c0 + 1 + 6);
+        double s[2][2] = {{uc[0], uc[1]}, {0.5 * (uc[0] + ut[0]), 0.5 * (uc[1] + ut[1])}};
+        for (int k = 0; k < 2; k++) {
+            int x = (int)(s[k][0] * w), y = (int)((1.0 - s[k][1]) * h); /* banyan v runs up the image */
+            x = x < 0 ? 0 : x >= w ? w - 1 : x;
+            y = y < 0 ? 0 : y >= h ? h - 1 : y;
+            inside += px[4 * ((size_t)y * w + x) + 3] >= 128;
+        }
+    }
+    CHECK(cards > 0 && inside >= (long)(2 * cards * 0.95), "%s: %ld of %ld leaf centre samples opaque", file, inside,
+          2 * cards);
+    stbi_image_free(px);
+    glb_free(&g);
+}
+
 /* Positions, normals, indices and counts equal: the same geometry. */
 static int same_geometry(const banyan_mesh *a, const banyan_mesh *b) {
     return a && b && a->vertex_count == b->vertex_count && a->index_count == b->index_count &&
@@ -392,6 +423,7 @@ int main(int argc, char **argv) {
     check_materials("tex_keyaki_summer.glb", "keyaki_leaf", "keyaki_bark", BANYAN_TEX_KEYAKI_LEAF);
     check_materials("tex_keyaki_autumn.glb", "keyaki_leaf", "keyaki_bark", BANYAN_TEX_KEYAKI_LEAF);
     check_materials("tex_ivy_summer.glb", "ivy_leaf", "ivy_stem", BANYAN_TEX_IVY_LEAF);
+    check_ivy_alpha(is, "tex_ivy_summer.glb");
     CHECK(count_of("tex_keyaki_summer.glb", "images") == 4, "keyaki: %d images, want leaf + bark, base + normal",
           count_of("tex_keyaki_summer.glb", "images"));
     {
