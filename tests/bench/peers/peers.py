@@ -11,6 +11,7 @@ in one Blender process, on one machine, ratios from the same run:
   4. memory   build/tests/bench_tube: the tube sweeper against a store loop
   5. hosts    build/tests/bench_hosts, bench_roots_hosts, bench_ivy, and
               ivy_suzanne.py: ivy on Suzanne against IvyGen (issue 15)
+  6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
 
 Every time is the median of RUNS runs with min and max; banyan and the
 peer alternate within each run so both see the same machine load. Writes
@@ -352,6 +353,13 @@ def section_memory():
     return json.loads(line[5:]), res.stdout
 
 
+def section_textures():
+    """Issue 17: bench_textures' output (the library's textures at 1024, one thread)."""
+    exe = os.path.join(BUILD, "tests", "bench_textures")
+    res = subprocess.run([exe, "1024", str(RUNS)], capture_output=True, text=True, check=True)
+    return res.stdout
+
+
 def section_hosts():
     """Issue 15: the C host benchmarks' output, and ivy on Suzanne against
     IvyGen (ivy_suzanne.py)."""
@@ -412,7 +420,7 @@ def verdict(ok):
     return "**met**" if ok else "**missed**"
 
 
-def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed):
+def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=""):
     ban_i, peers_i = ivy
     ban_t, peers_t = tree
     model, cores = machine()
@@ -617,6 +625,19 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed):
       "its mesh (*bare*: positions and indices by `foreach_set`, Blender computing the edges). The add-on "
       "hands Blender its edges (`banyan_triangle_edges`), so its end to end can come in under that floor.")
     w("")
+    # ---- textures
+    w("## 6. Textures (issue 17)")
+    w("")
+    w("`build/tests/bench_textures 1024 %d` (tests/bench/bench_textures.c): every texture the library draws "
+      "(keyaki and Boston ivy leaf atlases in both seasons, keyaki, fig and ivy-stem bark; base colour and "
+      "normal map each) at 1024 x 1024 on one thread, then their PNG encoding once. Target: the set under "
+      "150 ms on one core. The add-on draws a material's textures once per .blend (shared materials), so only "
+      "the first plant of a kind pays them; the glTF writer pays them once per file." % RUNS)
+    w("")
+    w("```")
+    w(textures.strip())
+    w("```")
+    w("")
     notes = os.path.join(HERE, "profile.md")
     if os.path.exists(notes):
         with open(notes) as f:
@@ -642,7 +663,10 @@ def main():
     ivy = section_ivy()
     print("ivy done", flush=True)
     hosts = section_hosts()
-    text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0)
+    textures = section_textures()
+    print(textures, flush=True)
+    text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0,
+                  textures)
     with open(OUT, "w") as f:
         f.write(text)
     print(text)

@@ -14,7 +14,7 @@ build=$(cd "${1:-$src/build}" && pwd)
 runs=${2:-5}
 script=${3:-peers.py}
 blender=${BLENDER:-blender}
-cmake --build "$build" --target banyan bench_tube bench_hosts bench_roots_hosts bench_ivy
+cmake --build "$build" --target banyan bench_tube bench_hosts bench_roots_hosts bench_ivy bench_textures
 
 scripts=$(mktemp -d)
 trap 'rm -rf "$scripts"' EXIT
