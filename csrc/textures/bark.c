@@ -163,21 +163,19 @@ static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, co
      * larger image): the same bytes as searching every pixel. */
     const float kb_gap = 0.08f + 0.06f * 1024.0f / (float)n;
     /* Pass 1: each pixel's scale value (into B) and gap (into H). */
-    for (int x = 0; x < n; x++) {
-        float gap;
-        int id, bx = x / KB;
-        int c00 = by * cw + bx, c01 = c00 + 1, c10 = c00 + cw, c11 = c10 + 1;
-        id = cid[c00];
+    for (int bx = 0; bx < n / KB; bx++) {
+        int c00 = by * cw + bx, c01 = c00 + 1, c10 = c00 + cw, c11 = c10 + 1, id = cid[c00];
         if (cid[c01] == id && cid[c10] == id && cid[c11] == id && cgap[c00] > kb_gap && cgap[c01] > kb_gap &&
             cgap[c10] > kb_gap && cgap[c11] > kb_gap) {
-            gap = 1.0f; /* far inside one scale: no border term */
-        } else {
+            for (int x = bx * KB; x < bx * KB + KB; x++) B[x] = S->vals[id], H[x] = 1.0f; /* inside one scale */
+            continue;
+        }
+        for (int x = bx * KB; x < bx * KB + KB; x++) {
             float f1, f2;
             int p;
             scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &p);
-            gap = f2 - f1, id = S->id[p];
+            B[x] = S->vals[S->id[p]], H[x] = f2 - f1;
         }
-        B[x] = S->vals[id], H[x] = gap;
     }
     /* Pass 2: shading, both looks computed and one picked (no branch: the
      * loop vectorises). */
