@@ -99,9 +99,12 @@ static void span_end(cell *k, int *y0, int *y1) {
  * instead of black; height 0. Leaves are drawn over it. */
 static void fill_cell(const cell *k, const float rgb[3]) {
     uint8_t px[4] = {tex_byte(rgb[0]), tex_byte(rgb[1]), tex_byte(rgb[2]), 0};
+    /* The first row texel by texel, the others copied from it. */
+    uint8_t *first = k->c->rgba + 4 * ((size_t)k->y0 * k->c->n + k->x0);
+    for (int x = 0; x < k->size; x++) memcpy(first + 4 * x, px, 4);
     for (int y = k->y0; y < k->y0 + k->size; y++) {
         uint8_t *p = k->c->rgba + 4 * ((size_t)y * k->c->n + k->x0);
-        for (int x = 0; x < k->size; x++) memcpy(p + 4 * x, px, 4);
+        if (y > k->y0) memcpy(p, first, 4 * (size_t)k->size);
         memset(k->c->height + (size_t)y * k->c->n + k->x0, 0, sizeof(float) * (size_t)k->size);
     }
 }

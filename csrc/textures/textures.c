@@ -126,6 +126,9 @@ void banyan_image_free(banyan_image *image) {
     free(image);
 }
 
+/* Texels a normal-map row is made in (divides every size, >= 64). */
+#define NM_CHUNK 32
+
 static inline int32_t tex_to_byte_i(float v) { return (int32_t)(v < 255.0f ? v : 255.0f); }
 
 /* Tangent-space normals from the height field: Sobel gradient, glTF's
@@ -138,13 +141,12 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
     const float *h = c->height;
     const float k = c->relief / 8.0f;
     float *pad = malloc(sizeof(float) * 3 * (size_t)(n + 2));
-    int32_t *gxr = malloc(sizeof(int32_t) * 3 * (size_t)n);
-    if (!pad || !gxr) {
+    uint32_t *px = malloc(sizeof(uint32_t) * (size_t)n); /* a row's texels as R | G << 8 | B << 16 */
+    if (!pad || !px) {
         free(pad);
-        free(gxr);
+        free(px);
         return -1;
     }
-    int32_t *gyr = gxr + n, *inv = gyr + n;
     for (int y = 0; y < n; y++) {
         int rows[3] = {y - 1, y, y + 1};
         for (int r = 0; r < 3; r++) {
@@ -157,29 +159,38 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
             p[n + 1] = c->wrap ? p[1] : p[n];
         }
         const float *r0 = pad + 1, *r1 = pad + 1 + (n + 2), *r2 = pad + 1 + 2 * (n + 2);
-        for (int x = 0; x < n; x++) {
-            float gx = (r0[x + 1] + 2.0f * r1[x + 1] + r2[x + 1]) - (r0[x - 1] + 2.0f * r1[x - 1] + r2[x - 1]);
-            float gy = (r2[x - 1] + 2.0f * r2[x] + r2[x + 1]) - (r0[x - 1] + 2.0f * r0[x] + r0[x + 1]); /* down the rows */
-            float nx = -k * gx, ny = k * gy; /* dh/dv = -dh/drow */
-            float iv = 1.0f / sqrtf(nx * nx + ny * ny + 1.0f);
-            /* (n * 0.5 + 0.5) * 255 + 0.5, truncated: rounded to a byte */
-            gxr[x] = tex_to_byte_i(nx * iv * 127.5f + 128.0f);
-            gyr[x] = tex_to_byte_i(ny * iv * 127.5f + 128.0f);
-            inv[x] = tex_to_byte_i(iv * 127.5f + 128.0f);
-        }
-        /* Three bytes a texel: four texels as three little-endian words
-         * (n is a multiple of 4; tex_internal.h checks the byte order). */
         uint8_t *o = out + (size_t)y * n * 3;
-        for (int x = 0; x < n; x += 4) {
-            const int32_t *a = gxr + x, *b = gyr + x, *z = inv + x;
-            uint32_t w[3] = {(uint32_t)a[0] | (uint32_t)b[0] << 8 | (uint32_t)z[0] << 16 | (uint32_t)a[1] << 24,
-                             (uint32_t)b[1] | (uint32_t)z[1] << 8 | (uint32_t)a[2] << 16 | (uint32_t)b[2] << 24,
-                             (uint32_t)z[2] | (uint32_t)a[3] << 8 | (uint32_t)b[3] << 16 | (uint32_t)z[3] << 24};
-            memcpy(o + 3 * (size_t)x, w, 12);
+        /* Chunks of NM_CHUNK texels whose 3 x 3 neighbourhoods are all at
+         * height 0 (around the leaves of an atlas) are flat: (128, 128,
+         * 255) exactly as the Sobel below gives them, written directly. */
+        for (int x0 = 0; x0 < n; x0 += NM_CHUNK) {
+            int any = 0;
+            for (int x = x0 - 1; x < x0 + NM_CHUNK + 1; x++) any |= (r0[x] != 0.0f) | (r1[x] != 0.0f) | (r2[x] != 0.0f);
+            if (!any) {
+                for (int x = x0; x < x0 + NM_CHUNK; x++) o[3 * x] = 128, o[3 * x + 1] = 128, o[3 * x + 2] = 255;
+                continue;
+            }
+            for (int x = x0; x < x0 + NM_CHUNK; x++) {
+                float gx = (r0[x + 1] + 2.0f * r1[x + 1] + r2[x + 1]) - (r0[x - 1] + 2.0f * r1[x - 1] + r2[x - 1]);
+                float gy = (r2[x - 1] + 2.0f * r2[x] + r2[x + 1]) - (r0[x - 1] + 2.0f * r0[x] + r0[x + 1]); /* down the rows */
+                float nx = -k * gx, ny = k * gy; /* dh/dv = -dh/drow */
+                float iv = 1.0f / sqrtf(nx * nx + ny * ny + 1.0f);
+                /* (n * 0.5 + 0.5) * 255 + 0.5, truncated: rounded to a byte */
+                px[x] = (uint32_t)tex_to_byte_i(nx * iv * 127.5f + 128.0f) |
+                        (uint32_t)tex_to_byte_i(ny * iv * 127.5f + 128.0f) << 8 |
+                        (uint32_t)tex_to_byte_i(iv * 127.5f + 128.0f) << 16;
+            }
+            /* Three bytes a texel: four texels as three little-endian words
+             * (tex_internal.h checks the byte order). */
+            for (int x = x0; x < x0 + NM_CHUNK; x += 4) {
+                const uint32_t *q = px + x;
+                uint32_t w[3] = {q[0] | q[1] << 24, q[1] >> 8 | q[2] << 16, q[2] >> 16 | q[3] << 8};
+                memcpy(o + 3 * (size_t)x, w, 12);
+            }
         }
     }
     free(pad);
-    free(gxr);
+    free(px);
     return 0;
 }
 
