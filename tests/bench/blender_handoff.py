@@ -48,7 +48,10 @@ def clear_generated(keep):
         if m.users == 0:
             bpy.data.meshes.remove(m)
     for m in list(bpy.data.materials):
-        if m.users == 0:
+        # The add-on's shared "Banyan ..." materials (issue 17) stay, as they do
+        # in a user's .blend: only the first plant of a kind draws their
+        # textures, and peers.py reports that cost on its own.
+        if m.users == 0 and not m.name.startswith("Banyan "):
             bpy.data.materials.remove(m)
     for c in list(bpy.data.curves):  # peers.py: what IvyGen and Sapling leave
         if c.users == 0:
