@@ -17,6 +17,7 @@
 
 #include "banyan.h"
 #include "check.h"
+#include "test_files.h"
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
@@ -55,25 +56,9 @@ static void glb_free(glb *g) {
 
 static uint32_t rd32(const unsigned char *p) { return p[0] | p[1] << 8 | p[2] << 16 | (uint32_t)p[3] << 24; }
 
-static unsigned char *read_all(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *d = n > 0 ? malloc((size_t)n) : NULL;
-    if (d && fread(d, 1, (size_t)n, f) != (size_t)n) {
-        free(d);
-        d = NULL;
-    }
-    fclose(f);
-    *size = d ? (size_t)n : 0;
-    return d;
-}
-
 static int glb_read(const char *path, glb *g) {
     memset(g, 0, sizeof *g);
-    g->data = read_all(path, &g->size);
+    g->data = (unsigned char *)test_read_file(path, &g->size);
     if (!g->data || g->size < 20 || rd32(g->data) != 0x46546C67u) return 0;
     size_t off = 12;
     while (off + 8 <= g->size) {
@@ -366,7 +351,7 @@ static int same_geometry(const banyan_mesh *a, const banyan_mesh *b) {
 
 static int files_equal(const char *x, const char *y) {
     size_t n1 = 0, n2 = 0;
-    unsigned char *a = read_all(x, &n1), *b = read_all(y, &n2);
+    char *a = test_read_file(x, &n1), *b = test_read_file(y, &n2);
     int eq = a && b && n1 == n2 && !memcmp(a, b, n1);
     free(a);
     free(b);
@@ -491,7 +476,7 @@ int main(int argc, char **argv) {
         }
         glb_free(&g);
         size_t n_off = 0, n_on = 0;
-        unsigned char *a = read_all(out_path("tex_keyaki_off.glb"), &n_off), *b = read_all(out_path("tex_keyaki_summer.glb"), &n_on);
+        char *a = test_read_file(out_path("tex_keyaki_off.glb"), &n_off), *b = test_read_file(out_path("tex_keyaki_summer.glb"), &n_on);
         CHECK(a && b && n_off < n_on, "textures off (%zu bytes) is not smaller than on (%zu)", n_off, n_on);
         free(a);
         free(b);
