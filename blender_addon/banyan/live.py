@@ -19,7 +19,7 @@ on except for the slow generators (SLOW).
 """
 from bpy.props import BoolProperty
 
-from .core.errors import BanyanError
+from .core.errors import EXPECTED, report_error
 
 SLOW = frozenset(("ivy", "avenue"))  # seconds per run on ordinary hosts
 LIVE = "live_update"
@@ -83,9 +83,8 @@ def wrap(execute):
             elif not getattr(props, LIVE, True):
                 try:
                     self.load_preset_if_changed()  # so the panel shows a newly chosen preset's values
-                except (BanyanError, FileNotFoundError, ValueError) as e:
-                    self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
-                    return {'CANCELLED'}
+                except EXPECTED as e:
+                    return report_error(self.report, e)
                 self.report({'INFO'}, "Banyan: values changed; press Update to regrow")
                 return {'CANCELLED'}
         RUNS[idname] = RUNS.get(idname, 0) + 1

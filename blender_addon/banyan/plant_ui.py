@@ -1,14 +1,13 @@
 """The sidebar's "Plant" panel (View3D > Sidebar > Banyan) for an active
 Banyan plant, and its operators: Regenerate, Randomize Seed, Copy as
 Preset. The data and the rebuilding are plant.py's."""
-import traceback
 
 import bpy
 from bpy.props import StringProperty
 
 from . import plant as PL
 from . import props as PP
-from .core.errors import BanyanError
+from .core.errors import BanyanError, report_error
 
 GENERATOR_LABELS = {"roots": "Strangler roots", "keyaki": "Keyaki tree", "avenue": "Keyaki avenue",
                     "ivy": "Ivy", "segments": "Segment twigs"}
@@ -44,13 +43,8 @@ class BANYAN_OT_regenerate(bpy.types.Operator):
         obj = _active_plant(context)
         try:
             objs = PL.regenerate(obj)
-        except (BanyanError, FileNotFoundError, ValueError) as e:
-            self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
-            return {'CANCELLED'}
         except Exception as e:  # the object is left as it was
-            traceback.print_exc()
-            self.report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
-            return {'CANCELLED'}
+            return report_error(self.report, e)
         nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
         self.report({'INFO'}, "Banyan: regenerated %d object(s), %d vertices" % (len(objs), nv))
         return {'FINISHED'}

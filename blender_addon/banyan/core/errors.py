@@ -46,3 +46,21 @@ class Cancelled(BanyanError):
 
     def __init__(self, message="cancelled by the progress callback"):
         super().__init__(self.STATUS, message, "BANYAN_E_CANCELLED")
+
+
+# What an operator reports as a plain error: the library's message, a
+# missing file, a bad value. Anything else is a bug, reported with its type
+# and traceback (the scene is left as it was either way).
+EXPECTED = (BanyanError, FileNotFoundError, ValueError)
+
+
+def report_error(report, e):
+    """Reports exception e through an operator's report(); returns
+    {'CANCELLED'} for the operator to return."""
+    if isinstance(e, EXPECTED):
+        report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
+    else:
+        import traceback
+        traceback.print_exception(type(e), e, e.__traceback__)
+        report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
+    return {'CANCELLED'}

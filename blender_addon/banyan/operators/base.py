@@ -24,7 +24,7 @@ from .. import panels
 from .. import presets as PR
 from .. import props as PP
 from ..core import lib as LIB
-from ..core.errors import BanyanError
+from ..core.errors import BanyanError, report_error
 from ..core.params import Params
 
 NO_PRESET = "NONE"
@@ -157,12 +157,8 @@ class BanyanOperatorMixin:
         restore_mode(context, getattr(self, "_mode", None))
         if api.is_cancelled(e):
             self.report({'INFO'}, "Banyan: cancelled; nothing was added")
-        elif isinstance(e, (BanyanError, FileNotFoundError, ValueError)):
-            self.report({'ERROR'}, "Banyan: %s" % (e.message if isinstance(e, BanyanError) else e))
-        else:  # never leave a half-built scene or crash
-            traceback.print_exception(type(e), e, e.__traceback__)
-            self.report({'ERROR'}, "Banyan: unexpected %s: %s" % (type(e).__name__, e))
-        return {'CANCELLED'}
+            return {'CANCELLED'}
+        return report_error(self.report, e)
 
     def _finish(self, context, params, job):
         """Main thread, the job computed: the objects, then the report."""
