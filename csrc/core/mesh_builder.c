@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "error.h"
 
 void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color) {
@@ -20,9 +21,9 @@ void mb_free(mesh_builder *mb) {
     memset(mb, 0, sizeof *mb);
 }
 
-/* realloc that leaves *p untouched on failure. */
+/* realloc that leaves *p untouched on failure; big arrays get huge pages. */
 static int grow(void **p, size_t count, size_t elem) {
-    void *q = realloc(*p, count * elem);
+    void *q = big_realloc(*p, count * elem);
     if (!q) return 0;
     *p = q;
     return 1;

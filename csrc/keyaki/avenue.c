@@ -24,6 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/big_alloc.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "keyaki_internal.h"
@@ -283,11 +284,11 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     if (!o) return NULL;
     o->vertex_count = (uint32_t)nv;
     o->index_count = (uint32_t)ni;
-    o->positions = malloc(sizeof(float) * 3 * nv);
-    o->normals = malloc(sizeof(float) * 3 * nv);
-    o->uvs = malloc(sizeof(float) * 2 * nv);
-    o->colors = malloc(sizeof(float) * 4 * nv);
-    o->indices = malloc(sizeof(uint32_t) * ni);
+    o->positions = big_malloc(sizeof(float) * 3 * nv);
+    o->normals = big_malloc(sizeof(float) * 3 * nv);
+    o->uvs = big_malloc(sizeof(float) * 2 * nv);
+    o->colors = big_malloc(sizeof(float) * 4 * nv);
+    o->indices = big_malloc(sizeof(uint32_t) * ni);
     o->attribute_count = 3;
     o->attributes = calloc(3, sizeof(banyan_attribute));
     o->material_count = 2;
@@ -304,7 +305,7 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
              o->skel_points && o->skel_radius && o->skel_tag && o->skel_edges;
     for (uint32_t a = 0; ok && a < 3; a++) {
         strcpy(o->attributes[a].name, attrs[a]);
-        if (!(o->attributes[a].data = malloc(sizeof(float) * nv))) ok = 0;
+        if (!(o->attributes[a].data = big_malloc(sizeof(float) * nv))) ok = 0;
     }
     if (!ok) {
         banyan_mesh_free(o);
