@@ -152,6 +152,7 @@ static int add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, 
 }
 
 banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
+    (void)p; /* #18: the pipe model and smooth paths read it */
     const int N = net->N, B = net->B, nb = net->nb;
     size_t longest = (size_t)B + 1;
     if ((size_t)net->S1 > longest) longest = (size_t)net->S1;
@@ -170,8 +171,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         rad[0] = net->r;
         for (int b = 0; b < B; b++) {
             src[b + 1] = net->M[(size_t)a * B + b];
-            double t = (double)(b + 1) / B;
-            rad[b + 1] = p->main_taper ? net->r * (1.0 + (p->taper_end - 1.0) * t) : net->r;
+            rad[b + 1] = net->r; /* #18: the pipe model sets radii */
         }
         uint32_t off = net->n_pts;
         uint32_t n = polyline(&bd, src, rad, (uint32_t)B + 1, idx, NULL);

@@ -370,7 +370,7 @@ int main(int argc, char **argv) {
             if (seed % 11 == 0) p.correction = 0;
             if (seed % 13 == 0) p.smoothing = 0;
             if (seed % 17 == 0) p.second_branches = 0;
-            if (seed % 23 == 0) p.main_taper = 1;
+            if (seed % 23 == 0) p.maturity = 1.0;
             if (seed % 29 == 0) p.bezier_uniform = 1;
             if (seed % 31 == 0) p.ground = 0;
             run(&p, layouts[L].hosts, layouts[L].n, &nr, &tr, seed % 8 == 0);

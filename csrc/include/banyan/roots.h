@@ -55,14 +55,33 @@ typedef struct banyan_roots_params {
     double junction_reach;        /* multiples of r, 1 .. 1e4: a junction loop reaches at most this far
                                      along the main root from the junction (0.8x at the far end) [8] */
     double junction_falloff;      /* 0.1 .. 10: exponent of the loop-to-round blend along the branch [3] */
-    int32_t main_taper;           /* bool: main roots thin away from G [0] */
-    double taper_end;             /* 0.05 .. 1: radius at a main root's tip, times r [0.5] */
     double germination[3];        /* m, each -1e6 .. 1e6: G when germination_auto is 0 */
     int32_t germination_auto;     /* bool: G = top centre of hosts[0] lifted by r [1] */
     int32_t ground;               /* bool: the ground half-space z < ground_z is solid [1] */
     double ground_z;              /* m, -1e6 .. 1e6 [0] */
     int32_t max_vertices;         /* 1 .. 2^30: refuse (BANYAN_E_LIMIT) beyond this [4000000] */
+    /* Issue #18: the look of a real strangler fig (docs/roots.md). */
+    int32_t surface;              /* banyan_roots_surface: one fused closed surface (OpenVDB) or the
+                                     plain tubes [FUSED] */
+    double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.4] */
+    double fuse_radius;           /* multiples of r, 0 .. 4: fillet where roots merge (smooth union) [1] */
+    double maturity;              /* 0 .. 1: young separate cords (0) to an old fused sleeve (1): how
+                                     much roots thicken with the flow and fuse [0.6] */
+    double pipe_exponent;         /* 1.5 .. 4: pipe model r^e = sum of what feeds in (2 = da Vinci) [2.5] */
+    double tip_radius;            /* 0.05 .. 1: radius at growing tips and branch ends, times r [0.6] */
+    int32_t soil_entry;           /* bool: a root that reaches the ground enters the soil near the host
+                                     with a buttress flare, instead of crawling outward [1] */
+    double soil_reach;            /* multiples of r, 0 .. 100: how far past the host a root may run on
+                                     the ground before it goes in [3] */
+    double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.8] */
+    int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
 } banyan_roots_params;
+
+/* banyan_roots_params.surface */
+typedef enum banyan_roots_surface {
+    BANYAN_ROOTS_FUSED = 0, /* one closed surface: touching roots merge with fillets */
+    BANYAN_ROOTS_TUBES = 1  /* a tube per root (fast: distance, games) */
+} banyan_roots_surface;
 
 /* Measures of one generation (docs/roots.md, "Stats"). */
 typedef struct banyan_roots_stats {
