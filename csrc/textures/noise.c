@@ -62,10 +62,18 @@ static void noise_rows(tex_noise *t, float *band, int y0, int rows, float amp, i
             float a0 = col[ix], d = col[ix + 1] - a0;
             float *restrict oo = o + (size_t)ix * cx;
             const float *restrict ww = t->w;
+            /* cx is a power of two >= 4 (tex_fbm_init's min_cell): four
+             * texels a step, one vector op each, no loop remainder. */
             if (first)
-                for (int k = 0; k < cx; k++) oo[k] = a0 + d * ww[k];
+                for (int k = 0; k < cx; k += 4) {
+                    oo[k] = a0 + d * ww[k], oo[k + 1] = a0 + d * ww[k + 1];
+                    oo[k + 2] = a0 + d * ww[k + 2], oo[k + 3] = a0 + d * ww[k + 3];
+                }
             else
-                for (int k = 0; k < cx; k++) oo[k] += a0 + d * ww[k];
+                for (int k = 0; k < cx; k += 4) {
+                    oo[k] += a0 + d * ww[k], oo[k + 1] += a0 + d * ww[k + 1];
+                    oo[k + 2] += a0 + d * ww[k + 2], oo[k + 3] += a0 + d * ww[k + 3];
+                }
         }
     }
 }
@@ -75,6 +83,7 @@ int tex_fbm_init(tex_fbm *f, int n, int f0x, int f0y, int octaves, float amp, fl
     memset(f, 0, sizeof *f);
     f->n = n;
     int fx = f0x, fy = f0y;
+    if (min_cell < 4) min_cell = 4; /* noise_rows makes four texels a step */
     /* Octaves finer than min_cell pixels a cell: left out (they cost the
      * most per pixel and add little but aliasing). */
     for (int o = 0; o < octaves && o < TEX_MAX_OCTAVES && fx * min_cell <= n && fy * min_cell <= n; o++) {
