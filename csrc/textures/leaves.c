@@ -142,9 +142,10 @@ static void bounds(const cell *k, float umin, float umax, float vmin, float vmax
     if (*y1 > hi_y) *y1 = hi_y;
 }
 
-/* Cell coordinates of a pixel centre. */
-static inline float pu(const cell *k, int x) { return ((float)(x - k->x0) + 0.5f) / (float)k->size; }
-static inline float pv(const cell *k, int y) { return 1.0f - ((float)(y - k->y0) + 0.5f) / (float)k->size; }
+/* Cell coordinates of a pixel centre. The side is a power of two, so
+ * times its reciprocal is exactly the division. */
+static inline float pu(const cell *k, int x) { return ((float)(x - k->x0) + 0.5f) * (1.0f / (float)k->size); }
+static inline float pv(const cell *k, int y) { return 1.0f - ((float)(y - k->y0) + 0.5f) * (1.0f / (float)k->size); }
 
 /* A tapered round stroke (twig, petiole) from a to b, widths in cell units. */
 static void stroke(const cell *k, float ax, float ay, float bx, float by, float wa, float wb, const float col[3],
@@ -192,10 +193,10 @@ typedef struct kleaf {
     float blotcol[3];
 } kleaf;
 
-/* Smooth half-width (without teeth) at t in 0..1 for one side. */
-static float keyaki_w0(const kleaf *L, float t) {
+/* Smooth half-width (without teeth) at t in 0..1 for one side; p puts
+ * the widest point at ymax. */
+static float keyaki_w0(const kleaf *L, float p, float t) {
     if (t <= 0.0f || t >= 1.0f) return 0.0f;
-    float p = logf(0.5f) / logf(L->ymax);
     float f = sinf(PI_F * powf(t, p));
     f = powf(f, 1.0f + L->acum * tex_smooth(0.45f, 1.0f, t));
     return L->half * f;
@@ -220,12 +221,13 @@ typedef struct ktab {
 static void keyaki_table(const kleaf *L, ktab *T) {
     T->q0 = 0.06f;
     T->dq = (0.93f - T->q0) / (float)L->veins;
+    const float p = logf(0.5f) / logf(L->ymax); /* the widest point's exponent, once a leaf */
     for (int side = 0; side < 2; side++) {
         float sk = side ? L->skew : 0.0f, sc = side ? 0.95f : 1.0f;
         for (int i = 0; i <= KT; i++) {
             float y = (float)i / KT;
             float t = (y - sk) / (1.0f - sk);
-            float w0 = sc * keyaki_w0(L, t);
+            float w0 = sc * keyaki_w0(L, p, t);
             float ph = (y - w0 * L->slope - T->q0) / T->dq; /* vein index reaching the margin here */
             float env = tex_smooth(L->env0, L->env0 + 0.16f, y) * (1.0f - tex_smooth(L->env1 - 0.13f, L->env1, y));
             float depth = tex_minf(L->tooth * env, 0.35f * w0); /* no tooth cuts a thin tip off */
@@ -504,23 +506,22 @@ static void ivy_place(ivleaf *L, float scale, float jx, float jy) {
     L->jx = jx, L->jy = jy;
     for (int i = 0; i < 3; i++) {
         L->lobe[i].len *= scale;
-        L->lobe[i].bx = jx, L->lobe[i].by = jy;
-        keyaki_table(&L->lobe[i], &L->tab[i]);
+        L->lobe[i].bx = jx, L->lobe[i].by = jy; /* the tables (ivy_extent) do not depend on these */
     }
 }
 
-/* Extents of the lobes' outlines around the junction (units of the
- * lobes' lengths as set). */
+/* The lobes' tables, and the extents of their outlines around the
+ * junction (units of the lobes' lengths as set). */
 static void ivy_extent(ivleaf *L, float *side, float *up, float *down) {
     *side = *up = *down = 0.0f;
     for (int i = 0; i < 3; i++) {
         kleaf *B = &L->lobe[i];
-        ktab T;
-        keyaki_table(B, &T);
+        ktab *T = &L->tab[i];
+        keyaki_table(B, T); /* in units of the length: ivy_place keeps it */
         float nx = B->dy, ny = -B->dx;
         for (int j = 0; j <= KT; j += 4)
             for (int sd = 0; sd < 2; sd++) {
-                float y = (float)j / KT, x = (sd ? 1.0f : -1.0f) * T.w[sd][j];
+                float y = (float)j / KT, x = (sd ? 1.0f : -1.0f) * T->w[sd][j];
                 float pu = (B->dx * y + nx * x) * B->len, pv = (B->dy * y + ny * x) * B->len;
                 *side = tex_maxf(*side, fabsf(pu));
                 *up = tex_maxf(*up, pv);
@@ -560,72 +561,133 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
         float a = atan2f(B->dx, B->dy) + (sd ? -1.0f : 1.0f) * L->basal;
         bvx[sd] = sinf(a), bvy[sd] = cosf(a), blen[sd] = 0.42f * B->len;
     }
+    /* Lobe i can only matter where 0 < y < 1 and its distance is over
+     * -0.5 px (else coverage is 0, whichever lobe is nearest): |x| under
+     * wmax + 0.5 px / (length * gmin), the table's largest half-width and
+     * smallest slope factor (interpolation stays within them). Per row
+     * that is a span of columns; one pixel more each way covers rounding. */
+    float wlim[3];
+    for (int i = 0; i < 3; i++) {
+        float wm = 0.0f, gm = 1.0f;
+        for (int sd = 0; sd < 2; sd++)
+            for (int j = 0; j <= KT; j++) wm = tex_maxf(wm, L->tab[i].w[sd][j]), gm = tex_minf(gm, L->tab[i].g[sd][j]);
+        wlim[i] = wm + 1.0f / (lens[i] * gm);
+    }
+    tex_canvas *const cv = k->c;
+    uint8_t *const rgba = cv->rgba;
+    float *const height = cv->height;
+    const float *const grain = cv->grain;
+    const float len0 = L->lobe[0].len;
+    float ldx[3], ldy[3], lslope[3], lq0[3], ldq[3], lveins[3], llen[3];
+    for (int i = 0; i < 3; i++) {
+        ldx[i] = L->lobe[i].dx, ldy[i] = L->lobe[i].dy, lslope[i] = L->lobe[i].slope, llen[i] = L->lobe[i].len;
+        lq0[i] = L->tab[i].q0, ldq[i] = L->tab[i].dq, lveins[i] = (float)L->lobe[i].veins - 0.2f;
+    }
+    float lcol[3], ledge[3], lvein[3], linner[3];
+    for (int ch = 0; ch < 3; ch++) lcol[ch] = L->col[ch], ledge[ch] = L->edge[ch], lvein[ch] = L->vein[ch], linner[ch] = L->inner[ch];
     int r0, r1;
     span_end(k, &r0, &r1);
     for (int r = r0; r <= r1; r++) {
-        int yy = k->y0 + r;
-        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
-            float u = pu(k, xx) - L->jx, v = pv(k, yy) - L->jy;
+        const int yy = k->y0 + r;
+        const float v = pv(k, yy) - L->jy;
+        const int xa = k->x0 + k->xmin[r], xb = k->x0 + k->xmax[r];
+        float vdy[3], vdx[3];
+        int lo[3], hi[3];
+        for (int i = 0; i < 3; i++) {
+            vdy[i] = v * ldy[i], vdx[i] = v * ldx[i];
+            /* u range with 0 < (u dx + v dy) / len < 1 and |u dy - v dx| / len < wlim. */
+            float ulo = -1e9f, uhi = 1e9f;
+            const float c[2] = {ldx[i], ldy[i]}, b[2] = {vdy[i], -vdx[i]};
+            const float lim_lo[2] = {0.0f, -wlim[i] * llen[i]}, lim_hi[2] = {llen[i], wlim[i] * llen[i]};
+            for (int e = 0; e < 2; e++) {
+                if (fabsf(c[e]) < 1e-6f) {
+                    if (b[e] < lim_lo[e] - 1e-4f || b[e] > lim_hi[e] + 1e-4f) ulo = 1e9f, uhi = -1e9f;
+                    continue;
+                }
+                float t0 = (lim_lo[e] - b[e]) / c[e], t1 = (lim_hi[e] - b[e]) / c[e];
+                ulo = tex_maxf(ulo, tex_minf(t0, t1)), uhi = tex_minf(uhi, tex_maxf(t0, t1));
+            }
+            if (ulo > uhi) {
+                lo[i] = 1, hi[i] = 0;
+                continue;
+            }
+            /* u = (xx - x0 + 0.5) / s - jx */
+            float xl = (ulo + L->jx) * s + (float)k->x0 - 0.5f, xh = (uhi + L->jx) * s + (float)k->x0 - 0.5f;
+            lo[i] = xl < (float)xa ? xa : (int)floorf(xl) - 1;
+            hi[i] = xh > (float)xb ? xb : (int)ceilf(xh) + 1;
+        }
+        const float vbx[2] = {v * bvx[0], v * bvx[1]}, vby[2] = {v * bvy[0], v * bvy[1]};
+        const float vv = v * v;
+        const float *grow = grain + (size_t)(yy & tm) * tile;
+        for (int xx = xa; xx <= xb; xx++) {
+            float u = pu(k, xx) - L->jx;
             /* The lobe the pixel is deepest inside: its distance is the leaf's. */
             float best = -1e9f, by = 0.0f, bx = 0.0f, bw = 1.0f;
             int bi = 0;
             for (int i = 0; i < 3; i++) {
-                const kleaf *B = &L->lobe[i];
+                if (xx < lo[i] || xx > hi[i]) continue;
                 float il = inv_len[i];
-                float y = (u * B->dx + v * B->dy) * il, x = (u * B->dy - v * B->dx) * il;
+                float y = (u * ldx[i] + vdy[i]) * il, x = (u * ldy[i] - vdx[i]) * il;
                 if (y <= 0.0f || y >= 1.0f) continue;
                 int side = x > 0.0f;
                 float fi = y * KT;
                 int ti = (int)fi;
                 float fr = fi - (float)ti;
                 if (ti >= KT) ti = KT - 1, fr = 1.0f;
-                const ktab *T = &L->tab[i];
-                float w = T->w[side][ti] + (T->w[side][ti + 1] - T->w[side][ti]) * fr;
-                float g = T->g[side][ti] + (T->g[side][ti + 1] - T->g[side][ti]) * fr;
+                const float *tw = L->tab[i].w[side], *tg = L->tab[i].g[side];
+                float w = tw[ti] + (tw[ti + 1] - tw[ti]) * fr;
+                float g = tg[ti] + (tg[ti + 1] - tg[ti]) * fr;
                 float d = (w - fabsf(x)) * lens[i] * g;
                 if (d > best) best = d, bi = i, by = y, bx = x, bw = w;
             }
             float dpx = best;
-            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(bw * L->lobe[bi].len * s, 0.0f, 1.0f);
+            if (dpx + 0.5f <= 0.0f) continue; /* coverage 0 */
+            float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(bw * llen[bi] * s, 0.0f, 1.0f);
             if (cov <= 0.0f) continue;
-            const kleaf *B = &L->lobe[bi];
-            const float lp = B->len * s;
+            const float lp = lens[bi];
             float ax = fabsf(bx), rel = bw > 1e-5f ? ax / bw : 1.0f;
             /* Primary vein: the lobe's midrib; secondaries: straight to the teeth. */
             float mid_w = (0.011f * (1.0f - by) + 0.003f) * lp;
             float vp = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
-            const ktab *T = &L->tab[bi];
-            float q = by - ax * B->slope, j = (q - T->q0) / T->dq;
+            float q = by - ax * lslope[bi], j = (q - lq0[bi]) / ldq[bi];
             float vs = 0.0f;
-            if (j > -0.3f && j < (float)B->veins - 0.2f) {
-                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T->dq * vslope[bi] * lp; /* j > -0.3: int() floors */
+            if (j > -0.3f && j < lveins[bi]) {
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * ldq[bi] * vslope[bi] * lp; /* j > -0.3: int() floors */
                 float lw = 0.004f * (1.0f - 0.6f * rel) * lp;
                 vs = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.8f, 1.0f, rel)) *
                      tex_smooth(0.0f, 0.04f, ax);
             }
             /* Basal veins (the two lowest of the five from the junction). */
             for (int sd = 0; sd < 2; sd++) {
-                float al = u * bvx[sd] + v * bvy[sd];
+                float al = u * bvx[sd] + vby[sd];
                 if (al <= 0.0f || al > blen[sd]) continue;
-                float pd = fabsf(u * bvy[sd] - v * bvx[sd]) * s;
-                float bw2 = (0.006f * (1.0f - al / blen[sd]) + 0.002f) * lp;
-                vp = tex_maxf(vp, (1.0f - tex_smooth(bw2, bw2 + 0.9f, pd)) * (1.0f - tex_smooth(0.7f, 1.0f, al / blen[sd])));
+                float pd = fabsf(u * bvy[sd] - vbx[sd]) * s;
+                float ab = al / blen[sd];
+                float bw2 = (0.006f * (1.0f - ab) + 0.002f) * lp;
+                vp = tex_maxf(vp, (1.0f - tex_smooth(bw2, bw2 + 0.9f, pd)) * (1.0f - tex_smooth(0.7f, 1.0f, ab)));
             }
             float vein = tex_maxf(vp, 0.6f * vs);
-            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
-            float rho = sqrtf(u * u + v * v) / L->lobe[0].len; /* 0 at the junction, 1 at the tip */
+            float gr = grow[xx & tm];
+            float rho = sqrtf(u * u + vv) / len0; /* 0 at the junction, 1 at the tip */
             float toward = tex_smooth(0.55f, 1.0f, rel);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);
+            float tin = tex_smooth(0.0f, 0.45f, rho), sh = 0.93f + 0.07f * gr;
             float col[3];
             for (int ch = 0; ch < 3; ch++) {
-                float cc = tex_mix(L->inner[ch], L->col[ch], tex_smooth(0.0f, 0.45f, rho));
-                cc = tex_mix(cc, L->edge[ch], toward * 0.4f) * (0.93f + 0.07f * gr);
-                cc = tex_mix(cc, L->vein[ch], vein * 0.7f);
-                col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
+                float cc = tex_mix(linner[ch], lcol[ch], tin);
+                cc = tex_mix(cc, ledge[ch], toward * 0.4f) * sh;
+                cc = tex_mix(cc, lvein[ch], vein * 0.7f);
+                col[ch] = tex_mix(cc, ledge[ch] * 0.8f, edge * 0.6f);
             }
             /* Puckered between the veins: veins sunken, blade domed. */
             float h = (1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr) * tex_clampf(bw * lp * 0.25f, 0.0f, 1.0f);
-            put(k->c, (size_t)yy * n + xx, cov, col, h);
+            size_t pi = (size_t)yy * n + xx;
+            if (cov >= 1.0f) { /* put(), opaque: no blend */
+                uint8_t *p = rgba + 4 * pi;
+                p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
+                height[pi] = h;
+            } else
+                put(cv, pi, cov, col, h);
         }
     }
 }
