@@ -134,39 +134,68 @@ static inline int32_t tex_to_byte_i(float v) { return (int32_t)(v < 255.0f ? v :
 /* Tangent-space normals from the height field: Sobel gradient, glTF's
  * convention (+X towards +u, +Y towards +v; rows run top to bottom, so
  * v grows upwards = towards row - 1). Edges wrap for tiles, clamp else.
- * Rows are copied with one pixel of padding each side so the inner loop
- * has no branches (it vectorises). */
+ * Rows are copied once each, with one pixel of padding each side, into
+ * three buffers that take turns, so the inner loop has no branches (it
+ * vectorises). */
+typedef struct nm_row {
+    int y;          /* image row held, -1 none */
+    float *p;       /* n + 2 padded heights */
+    uint8_t *flat;  /* per chunk: 1 when the chunk and its neighbours either side are all height 0 */
+} nm_row;
+
+static const nm_row *nm_fetch(const tex_canvas *c, nm_row slot[3], int yy, int keep0, int keep1) {
+    const int n = c->n;
+    for (int i = 0; i < 3; i++)
+        if (slot[i].y == yy) return &slot[i];
+    int i = 0;
+    while (slot[i].y == keep0 || slot[i].y == keep1) i++; /* a slot no other row of this one needs */
+    nm_row *s = &slot[i];
+    s->y = yy;
+    float *p = s->p;
+    memcpy(p + 1, c->height + (size_t)yy * n, sizeof(float) * (size_t)n);
+    p[0] = c->wrap ? p[n] : p[1];
+    p[n + 1] = c->wrap ? p[1] : p[n];
+    if (!c->wrap) /* tiles have relief everywhere: no flat chunks to look for */
+        for (int x0 = 0; x0 < n; x0 += NM_CHUNK) {
+            int any = 0;
+            for (int x = x0; x < x0 + NM_CHUNK + 2; x++) any |= p[x] != 0.0f;
+            s->flat[x0 / NM_CHUNK] = !any;
+        }
+    return s;
+}
+
 static int normal_map(const tex_canvas *c, uint8_t *out) {
     const int n = c->n;
-    const float *h = c->height;
     const float k = c->relief / 8.0f;
     float *pad = malloc(sizeof(float) * 3 * (size_t)(n + 2));
+    uint8_t *flat = malloc(3 * (size_t)(n / NM_CHUNK));
     uint32_t *px = malloc(sizeof(uint32_t) * (size_t)n); /* a row's texels as R | G << 8 | B << 16 */
-    if (!pad || !px) {
+    if (!pad || !flat || !px) {
         free(pad);
+        free(flat);
         free(px);
         return -1;
     }
+    nm_row slot[3];
+    for (int i = 0; i < 3; i++)
+        slot[i] = (nm_row){-1, pad + (size_t)i * (n + 2), flat + (size_t)i * (n / NM_CHUNK)};
     for (int y = 0; y < n; y++) {
         int rows[3] = {y - 1, y, y + 1};
         for (int r = 0; r < 3; r++) {
-            int yy = rows[r];
-            if (c->wrap) yy = (yy + n) & (n - 1);
-            else yy = yy < 0 ? 0 : yy >= n ? n - 1 : yy;
-            float *p = pad + (size_t)r * (n + 2);
-            memcpy(p + 1, h + (size_t)yy * n, sizeof(float) * (size_t)n);
-            p[0] = c->wrap ? p[n] : p[1];
-            p[n + 1] = c->wrap ? p[1] : p[n];
+            if (c->wrap) rows[r] = (rows[r] + n) & (n - 1);
+            else rows[r] = rows[r] < 0 ? 0 : rows[r] >= n ? n - 1 : rows[r];
         }
-        const float *r0 = pad + 1, *r1 = pad + 1 + (n + 2), *r2 = pad + 1 + 2 * (n + 2);
+        const nm_row *s0 = nm_fetch(c, slot, rows[0], rows[1], rows[2]);
+        const nm_row *s1 = nm_fetch(c, slot, rows[1], rows[0], rows[2]);
+        const nm_row *s2 = nm_fetch(c, slot, rows[2], rows[0], rows[1]);
+        const float *r0 = s0->p + 1, *r1 = s1->p + 1, *r2 = s2->p + 1;
         uint8_t *o = out + (size_t)y * n * 3;
-        /* Chunks of NM_CHUNK texels whose 3 x 3 neighbourhoods are all at
-         * height 0 (around the leaves of an atlas) are flat: (128, 128,
-         * 255) exactly as the Sobel below gives them, written directly. */
         for (int x0 = 0; x0 < n; x0 += NM_CHUNK) {
-            int any = 0;
-            for (int x = x0 - 1; x < x0 + NM_CHUNK + 1; x++) any |= (r0[x] != 0.0f) | (r1[x] != 0.0f) | (r2[x] != 0.0f);
-            if (!any) {
+            /* Chunks of NM_CHUNK texels whose 3 x 3 neighbourhoods are all at
+             * height 0 (around the leaves of an atlas) are flat: (128, 128,
+             * 255) exactly as the Sobel below gives them, written directly. */
+            int ci = x0 / NM_CHUNK;
+            if (!c->wrap && s0->flat[ci] && s1->flat[ci] && s2->flat[ci]) {
                 for (int x = x0; x < x0 + NM_CHUNK; x++) o[3 * x] = 128, o[3 * x + 1] = 128, o[3 * x + 2] = 255;
                 continue;
             }
@@ -190,6 +219,7 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
         }
     }
     free(pad);
+    free(flat);
     free(px);
     return 0;
 }
