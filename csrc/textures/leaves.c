@@ -265,11 +265,23 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     int r0, r1;
     span_end(k, &r0, &r1);
     const float ivslope = 1.0f / sqrtf(1.0f + L->slope * L->slope), il = 1.0f / L->len;
+    /* Locals: the canvas stores below could otherwise alias the leaf. */
+    tex_canvas *const cv = k->c;
+    uint8_t *const rgba = cv->rgba;
+    float *const height = cv->height;
+    const float ldx = L->dx, ldy = L->dy, bx0 = L->bx, slope = L->slope, blot = L->blot;
+    const float veins = (float)L->veins - 0.2f, q0 = T.q0, dq = T.dq;
+    float lcol[3], ledge[3], lvein[3], lblot[3];
+    for (int ch = 0; ch < 3; ch++) lcol[ch] = L->col[ch], ledge[ch] = L->edge[ch], lvein[ch] = L->vein[ch], lblot[ch] = L->blotcol[ch];
     for (int r = r0; r <= r1; r++) {
-        int yy = k->y0 + r;
-        for (int xx = k->x0 + k->xmin[r]; xx <= k->x0 + k->xmax[r]; xx++) {
-            float u = pu(k, xx) - L->bx, v = pv(k, yy) - L->by;
-            float y = (u * L->dx + v * L->dy) * il, x = (u * nx + v * ny) * il;
+        const int yy = k->y0 + r;
+        const float v = pv(k, yy) - L->by, vdy = v * ldy, vny = v * ny;
+        const float *grow = cv->grain + (size_t)(yy & tm) * tile;
+        const float *mrow = cv->mottle + (size_t)((yy >> msh) & tm) * tile;
+        const int xa = k->x0 + k->xmin[r], xb = k->x0 + k->xmax[r];
+        for (int xx = xa; xx <= xb; xx++) {
+            float u = pu(k, xx) - bx0;
+            float y = (u * ldx + vdy) * il, x = (u * nx + vny) * il;
             if (y <= 0.0f || y >= 1.0f) continue;
             int side = x > 0.0f;
             float ax = fabsf(x);
@@ -277,46 +289,50 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
             int i = (int)fi;
             float fr = fi - (float)i;
             if (i >= KT) i = KT - 1, fr = 1.0f;
-            float w = T.w[side][i] + (T.w[side][i + 1] - T.w[side][i]) * fr;
-            float g = T.g[side][i] + (T.g[side][i + 1] - T.g[side][i]) * fr;
+            const float *tw = T.w[side], *tg = T.g[side];
+            float w = tw[i] + (tw[i + 1] - tw[i]) * fr;
+            float g = tg[i] + (tg[i + 1] - tg[i]) * fr;
             float dpx = (w - ax) * lp * g; /* signed distance to the margin, pixels */
+            if (dpx + 0.5f <= 0.0f) continue; /* coverage 0 */
             /* A blade thinner than a pixel (the drawn-out tip) fades out. */
             float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(w * lp, 0.0f, 1.0f);
             if (cov <= 0.0f) continue;
+            float rel = w > 1e-5f ? ax / w : 1.0f;
             /* Veins: midrib, then the straight laterals (q = const lines). */
             float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
             float vm = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
-            float q = y - ax * L->slope;
-            float j = (q - T.q0) / T.dq;
+            float q = y - ax * slope;
+            float j = (q - q0) / dq;
             float vl = 0.0f;
-            if (j > -0.3f && j < (float)L->veins - 0.2f) {
-                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * T.dq * ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
-                float rel = w > 1e-5f ? ax / w : 1.0f;
+            if (j > -0.3f && j < veins) {
+                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * dq * ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
                 float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
                 vl = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
                 vl *= tex_smooth(0.0f, 0.05f, ax);
             }
             float vein = tex_maxf(vm, 0.75f * vl);
-            float rel = w > 1e-5f ? ax / w : 1.0f;
-            float gr = k->c->grain[(size_t)(yy & tm) * tile + (size_t)(xx & tm)];
+            float gr = grow[xx & tm];
             float shade = (side ? 0.96f : 1.0f) * (0.93f + 0.07f * gr);
             float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);           /* a dark rim */
             float toward = tex_smooth(0.55f, 1.0f, rel) * 0.35f;        /* darker toward the margin */
             float col[3];
             float bl = 0.0f;
-            if (L->blot > 0.0f) {
-                float b = k->c->mottle[(size_t)((yy >> msh) & tm) * tile + (size_t)((xx >> msh) & tm)];
-                bl = L->blot * tex_smooth(0.15f, 0.55f, b);
-            }
+            if (blot > 0.0f) bl = blot * tex_smooth(0.15f, 0.55f, mrow[(xx >> msh) & tm]);
             for (int ch = 0; ch < 3; ch++) {
-                float cc = tex_mix(L->col[ch], L->edge[ch], toward) * shade;
-                cc = tex_mix(cc, L->blotcol[ch], bl);
-                cc = tex_mix(cc, L->vein[ch], vein * 0.8f);
-                col[ch] = tex_mix(cc, L->edge[ch] * 0.8f, edge * 0.6f);
+                float cc = tex_mix(lcol[ch], ledge[ch], toward) * shade;
+                cc = tex_mix(cc, lblot[ch], bl);
+                cc = tex_mix(cc, lvein[ch], vein * 0.8f);
+                col[ch] = tex_mix(cc, ledge[ch] * 0.8f, edge * 0.6f);
             }
             /* Domed across; a blade under a few pixels wide (the tip) stays low. */
             float h = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
-            put(k->c, (size_t)yy * n + xx, cov, col, h);
+            size_t pi = (size_t)yy * n + xx;
+            if (cov >= 1.0f) { /* put(), opaque: no blend */
+                uint8_t *p = rgba + 4 * pi;
+                p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
+                height[pi] = h;
+            } else
+                put(cv, pi, cov, col, h);
         }
     }
 }
