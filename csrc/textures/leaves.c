@@ -31,7 +31,14 @@ typedef struct cell {
     int margin;       /* pixels kept clear at the cell's border */
     int *xmin, *xmax; /* size entries each: a shape's pixel span per row of the cell (spans below) */
     int lo, hi;       /* rows (of the cell) the span covers */
+    float *scr;       /* LEAF_SCR * size floats: one row's covered pixels, shaded together */
+    int *cols;        /* size entries: their columns */
 } cell;
+
+/* Per covered pixel of a row, the blade painters first find the leaf's
+ * distance (a table lookup each: scalar), then shade the row's covered
+ * pixels in one branch-free loop over these arrays (it vectorises). */
+#define LEAF_SCR 16
 
 /* ---------------------------------------------------------------- spans
  * A leaf's outline rasterised into one [xmin, xmax] pixel interval per
@@ -546,6 +553,70 @@ static void ivy_extent(ivleaf *L, float *side, float *up, float *down) {
     }
 }
 
+/* A basal vein's darkening folded into vp (pass 2 of ivy_leaf). */
+static inline float ivy_basal(float vp, float u, float bvx, float bvy, float vby, float vbx, float blen, float s,
+                              float lp) {
+    float al = u * bvx + vby;
+    float pd = fabsf(u * bvy - vbx) * s;
+    float ab = al / blen;
+    float bw2 = (0.006f * (1.0f - ab) + 0.002f) * lp;
+    float vb = tex_maxf(vp, (1.0f - tex_smooth(bw2, bw2 + 0.9f, pd)) * (1.0f - tex_smooth(0.7f, 1.0f, ab)));
+    return (al <= 0.0f) | (al > blen) ? vp : vb;
+}
+
+/* One colour channel of an ivy blade pixel. */
+static inline float ivy_shade(float inner, float col, float edge_c, float vein_c, float tin, float toward, float sh,
+                              float vein, float edge) {
+    float cc = tex_mix(inner, col, tin);
+    cc = tex_mix(cc, edge_c, toward * 0.4f) * sh;
+    cc = tex_mix(cc, vein_c, vein * 0.7f);
+    return tex_mix(cc, edge_c * 0.8f, edge * 0.6f);
+}
+
+/* Constants of one row of an ivy blade for its shading pass. */
+typedef struct ivy_consts {
+    float bvx[2], bvy[2], vbx[2], vby[2], blen[2]; /* basal veins: directions, v times them, lengths */
+    float inner[3], col[3], edge[3], vein[3];
+    float s, vv, len0; /* cell side px, v^2, the central lobe's length */
+} ivy_consts;
+
+/* Pass 2 of ivy_leaf over the row's m covered pixels (separate, with
+ * restrict arrays, so it vectorises): colour into r, g, b, height into u. */
+static void ivy_shade_row(const ivy_consts *Cp, int m, float *restrict sU, const float *restrict sD,
+                          const float *restrict sY, const float *restrict sX, const float *restrict sW,
+                          const float *restrict sLp, const float *restrict sSl, const float *restrict sQ0,
+                          const float *restrict sDq, const float *restrict sVe, const float *restrict sVs,
+                          const float *restrict sGr, float *restrict sR, float *restrict sG, float *restrict sB) {
+    const ivy_consts C = *Cp;
+    const float s = C.s, vv = C.vv, len0 = C.len0;
+    for (int i = 0; i < m; i++) {
+        const float u = sU[i], dpx = sD[i], by = sY[i], bw = sW[i], lp = sLp[i], gr = sGr[i];
+        float ax = fabsf(sX[i]), rel = bw > 1e-5f ? ax / bw : 1.0f;
+        /* Primary vein: the lobe's midrib; secondaries: straight to the teeth. */
+        float mid_w = (0.011f * (1.0f - by) + 0.003f) * lp;
+        float vp = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
+        float q = by - ax * sSl[i], j = (q - sQ0[i]) / sDq[i];
+        float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * sDq[i] * sVs[i] * lp; /* j > -0.3: int() floors */
+        float lw = 0.004f * (1.0f - 0.6f * rel) * lp;
+        float vs0 = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.8f, 1.0f, rel)) *
+                    tex_smooth(0.0f, 0.04f, ax);
+        float vs = (j > -0.3f) & (j < sVe[i]) ? vs0 : 0.0f;
+        /* Basal veins (the two lowest of the five from the junction). */
+        vp = ivy_basal(vp, u, C.bvx[0], C.bvy[0], C.vby[0], C.vbx[0], C.blen[0], s, lp);
+        vp = ivy_basal(vp, u, C.bvx[1], C.bvy[1], C.vby[1], C.vbx[1], C.blen[1], s, lp);
+        float vein = tex_maxf(vp, 0.6f * vs);
+        float rho = sqrtf(u * u + vv) / len0; /* 0 at the junction, 1 at the tip */
+        float toward = tex_smooth(0.55f, 1.0f, rel);
+        float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);
+        float tin = tex_smooth(0.0f, 0.45f, rho), sh = 0.93f + 0.07f * gr;
+        sR[i] = ivy_shade(C.inner[0], C.col[0], C.edge[0], C.vein[0], tin, toward, sh, vein, edge);
+        sG[i] = ivy_shade(C.inner[1], C.col[1], C.edge[1], C.vein[1], tin, toward, sh, vein, edge);
+        sB[i] = ivy_shade(C.inner[2], C.col[2], C.edge[2], C.vein[2], tin, toward, sh, vein, edge);
+        /* Puckered between the veins: veins sunken, blade domed. */
+        sU[i] = (1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr) * tex_clampf(bw * lp * 0.25f, 0.0f, 1.0f);
+    }
+}
+
 static void ivy_leaf(cell *k, const ivleaf *L) {
     const float s = (float)k->size;
     const int n = k->c->n;
@@ -635,6 +706,14 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
         const float vbx[2] = {v * bvx[0], v * bvx[1]}, vby[2] = {v * bvy[0], v * bvy[1]};
         const float vv = v * v;
         const float *grow = grain + (size_t)(yy & tm) * tile;
+        /* Pass 1: the nearest lobe of each pixel; covered ones listed. */
+        float *const sU = k->scr, *const sD = sU + k->size, *const sY = sD + k->size, *const sX = sY + k->size;
+        float *const sW = sX + k->size, *const sCov = sW + k->size, *const sLp = sCov + k->size;
+        float *const sSl = sLp + k->size, *const sQ0 = sSl + k->size, *const sDq = sQ0 + k->size;
+        float *const sVe = sDq + k->size, *const sVs = sVe + k->size, *const sGr = sVs + k->size;
+        float *const sR = sGr + k->size, *const sG = sR + k->size, *const sB = sG + k->size;
+        int *const sXX = k->cols;
+        int m = 0;
         for (int xx = xa; xx <= xb; xx++) {
             float u = pu(k, xx) - L->jx;
             /* The lobe the pixel is deepest inside: its distance is the leaf's. */
@@ -660,43 +739,20 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
             if (dpx + 0.5f <= 0.0f) continue; /* coverage 0 */
             float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(bw * llen[bi] * s, 0.0f, 1.0f);
             if (cov <= 0.0f) continue;
-            const float lp = lens[bi];
-            float ax = fabsf(bx), rel = bw > 1e-5f ? ax / bw : 1.0f;
-            /* Primary vein: the lobe's midrib; secondaries: straight to the teeth. */
-            float mid_w = (0.011f * (1.0f - by) + 0.003f) * lp;
-            float vp = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
-            float q = by - ax * lslope[bi], j = (q - lq0[bi]) / ldq[bi];
-            float vs = 0.0f;
-            if (j > -0.3f && j < lveins[bi]) {
-                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * ldq[bi] * vslope[bi] * lp; /* j > -0.3: int() floors */
-                float lw = 0.004f * (1.0f - 0.6f * rel) * lp;
-                vs = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.8f, 1.0f, rel)) *
-                     tex_smooth(0.0f, 0.04f, ax);
-            }
-            /* Basal veins (the two lowest of the five from the junction). */
-            for (int sd = 0; sd < 2; sd++) {
-                float al = u * bvx[sd] + vby[sd];
-                if (al <= 0.0f || al > blen[sd]) continue;
-                float pd = fabsf(u * bvy[sd] - vbx[sd]) * s;
-                float ab = al / blen[sd];
-                float bw2 = (0.006f * (1.0f - ab) + 0.002f) * lp;
-                vp = tex_maxf(vp, (1.0f - tex_smooth(bw2, bw2 + 0.9f, pd)) * (1.0f - tex_smooth(0.7f, 1.0f, ab)));
-            }
-            float vein = tex_maxf(vp, 0.6f * vs);
-            float gr = grow[xx & tm];
-            float rho = sqrtf(u * u + vv) / len0; /* 0 at the junction, 1 at the tip */
-            float toward = tex_smooth(0.55f, 1.0f, rel);
-            float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);
-            float tin = tex_smooth(0.0f, 0.45f, rho), sh = 0.93f + 0.07f * gr;
-            float col[3];
-            for (int ch = 0; ch < 3; ch++) {
-                float cc = tex_mix(linner[ch], lcol[ch], tin);
-                cc = tex_mix(cc, ledge[ch], toward * 0.4f) * sh;
-                cc = tex_mix(cc, lvein[ch], vein * 0.7f);
-                col[ch] = tex_mix(cc, ledge[ch] * 0.8f, edge * 0.6f);
-            }
-            /* Puckered between the veins: veins sunken, blade domed. */
-            float h = (1.5f * (1.0f - rel * rel) - 1.0f * vp - 0.6f * vs + 0.12f * gr) * tex_clampf(bw * lp * 0.25f, 0.0f, 1.0f);
+            sU[m] = u, sD[m] = dpx, sY[m] = by, sX[m] = bx, sW[m] = bw, sCov[m] = cov, sLp[m] = lens[bi];
+            sSl[m] = lslope[bi], sQ0[m] = lq0[bi], sDq[m] = ldq[bi], sVe[m] = lveins[bi], sVs[m] = vslope[bi];
+            sGr[m] = grow[xx & tm];
+            sXX[m++] = xx;
+        }
+        /* Pass 2: shading, no branches. */
+        const ivy_consts C = {{bvx[0], bvx[1]}, {bvy[0], bvy[1]}, {vbx[0], vbx[1]}, {vby[0], vby[1]}, {blen[0], blen[1]},
+                              {linner[0], linner[1], linner[2]}, {lcol[0], lcol[1], lcol[2]},
+                              {ledge[0], ledge[1], ledge[2]}, {lvein[0], lvein[1], lvein[2]}, s, vv, len0};
+        ivy_shade_row(&C, m, sU, sD, sY, sX, sW, sLp, sSl, sQ0, sDq, sVe, sVs, sGr, sR, sG, sB);
+        /* Pass 3: into the canvas. */
+        for (int i = 0; i < m; i++) {
+            const int xx = sXX[i];
+            const float col[3] = {sR[i], sG[i], sB[i]}, h = sU[i], cov = sCov[i];
             size_t pi = (size_t)yy * n + xx;
             if (cov >= 1.0f) { /* put(), opaque: no blend */
                 uint8_t *p = rgba + 4 * pi;
@@ -783,8 +839,11 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
     tex_leaf_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, &aspect);
     if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
-    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
-    if (!spans) {
+    int *spans = malloc(sizeof(int) * 3 * (size_t)cs);
+    float *scr = malloc(sizeof(float) * LEAF_SCR * (size_t)cs);
+    if (!spans || !scr) {
+        free(spans);
+        free(scr);
         free_fields(c);
         return -1;
     }
@@ -793,10 +852,11 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int tone0 = (int)rng_below(rng, 3);
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
             keyaki_spray(&k, season, (tone0 + i + j * cols) % 3, rng);
         }
     free(spans);
+    free(scr);
     free_fields(c);
     c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
@@ -809,14 +869,17 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
     tex_leaf_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, &aspect);
     if (leaf_fields(c, rng)) return -1;
     int cs = c->n / cols;
-    int *spans = malloc(sizeof(int) * 2 * (size_t)cs);
-    if (!spans) {
+    int *spans = malloc(sizeof(int) * 3 * (size_t)cs);
+    float *scr = malloc(sizeof(float) * LEAF_SCR * (size_t)cs);
+    if (!spans || !scr) {
+        free(spans);
+        free(scr);
         free_fields(c);
         return -1;
     }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
             ivleaf L;
             /* A quarter of the cells: young unlobed leaves (long shoots). */
             L.lobed = ((i + j * cols) % 4) != 3;
@@ -836,6 +899,7 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
             ivy_leaf(&k, &L);
         }
     free(spans);
+    free(scr);
     free_fields(c);
     c->relief = 1.2f * (float)c->n / 1024.0f; /* the same slopes at every size */
     c->wrap = 0;
