@@ -249,6 +249,55 @@ static void keyaki_table(const kleaf *L, ktab *T) {
     }
 }
 
+/* Constants of one keyaki blade for its shading pass. */
+typedef struct keyaki_consts {
+    float col[3], edge[3], vein[3], blot[3];
+    float lp, slope, q0, dq, veins, ivslope, blot_k; /* length px; laterals; blotch strength */
+} keyaki_consts;
+
+/* One colour channel of a keyaki blade pixel. */
+static inline float keyaki_shade(float col, float edge_c, float blot_c, float vein_c, float toward, float shade,
+                                 float bl, float vein, float edge) {
+    float cc = tex_mix(col, edge_c, toward) * shade;
+    cc = tex_mix(cc, blot_c, bl);
+    cc = tex_mix(cc, vein_c, vein * 0.8f);
+    return tex_mix(cc, edge_c * 0.8f, edge * 0.6f);
+}
+
+/* Pass 2 of keyaki_leaf over a row's m covered pixels (separate, with
+ * restrict arrays, so it vectorises): colour into r, g, b, height into h. */
+static void keyaki_shade_row(const keyaki_consts *Cp, int m, const float *restrict sY, const float *restrict sA,
+                             const float *restrict sS, const float *restrict sW, const float *restrict sD,
+                             const float *restrict sGr, const float *restrict sMb, float *restrict sR,
+                             float *restrict sG, float *restrict sB, float *restrict sH) {
+    const keyaki_consts C = *Cp;
+    const float lp = C.lp;
+    for (int i = 0; i < m; i++) {
+        const float y = sY[i], ax = sA[i], w = sW[i], dpx = sD[i], gr = sGr[i];
+        float rel = w > 1e-5f ? ax / w : 1.0f;
+        /* Veins: midrib, then the straight laterals (q = const lines). */
+        float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
+        float vm = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
+        float q = y - ax * C.slope;
+        float j = (q - C.q0) / C.dq;
+        float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * C.dq * C.ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
+        float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
+        float vl0 = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
+        vl0 *= tex_smooth(0.0f, 0.05f, ax);
+        float vl = (j > -0.3f) & (j < C.veins) ? vl0 : 0.0f;
+        float vein = tex_maxf(vm, 0.75f * vl);
+        float shade = sS[i] * (0.93f + 0.07f * gr);
+        float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);           /* a dark rim */
+        float toward = tex_smooth(0.55f, 1.0f, rel) * 0.35f;        /* darker toward the margin */
+        float bl = C.blot_k * tex_smooth(0.15f, 0.55f, sMb[i]); /* blot_k >= 0; 0 in summer */
+        sR[i] = keyaki_shade(C.col[0], C.edge[0], C.blot[0], C.vein[0], toward, shade, bl, vein, edge);
+        sG[i] = keyaki_shade(C.col[1], C.edge[1], C.blot[1], C.vein[1], toward, shade, bl, vein, edge);
+        sB[i] = keyaki_shade(C.col[2], C.edge[2], C.blot[2], C.vein[2], toward, shade, bl, vein, edge);
+        /* Domed across; a blade under a few pixels wide (the tip) stays low. */
+        sH[i] = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
+    }
+}
+
 static void keyaki_leaf(cell *k, const kleaf *L) {
     ktab T;
     keyaki_table(L, &T);
@@ -280,12 +329,21 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     const float veins = (float)L->veins - 0.2f, q0 = T.q0, dq = T.dq;
     float lcol[3], ledge[3], lvein[3], lblot[3];
     for (int ch = 0; ch < 3; ch++) lcol[ch] = L->col[ch], ledge[ch] = L->edge[ch], lvein[ch] = L->vein[ch], lblot[ch] = L->blotcol[ch];
+    const keyaki_consts C = {{lcol[0], lcol[1], lcol[2]}, {ledge[0], ledge[1], ledge[2]}, {lvein[0], lvein[1], lvein[2]},
+                             {lblot[0], lblot[1], lblot[2]}, lp, slope, q0, dq, veins, ivslope, blot};
     for (int r = r0; r <= r1; r++) {
         const int yy = k->y0 + r;
         const float v = pv(k, yy) - L->by, vdy = v * ldy, vny = v * ny;
         const float *grow = cv->grain + (size_t)(yy & tm) * tile;
         const float *mrow = cv->mottle + (size_t)((yy >> msh) & tm) * tile;
         const int xa = k->x0 + k->xmin[r], xb = k->x0 + k->xmax[r];
+        /* Pass 1: the covered pixels and their distances; pass 2 shades them. */
+        float *const sY = k->scr, *const sA = sY + k->size, *const sS = sA + k->size, *const sW = sS + k->size;
+        float *const sD = sW + k->size, *const sCov = sD + k->size, *const sGr = sCov + k->size;
+        float *const sMb = sGr + k->size, *const sR = sMb + k->size, *const sG = sR + k->size;
+        float *const sB = sG + k->size, *const sH = sB + k->size;
+        int *const sXX = k->cols;
+        int m = 0;
         for (int xx = xa; xx <= xb; xx++) {
             float u = pu(k, xx) - bx0;
             float y = (u * ldx + vdy) * il, x = (u * nx + vny) * il;
@@ -304,35 +362,14 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
             /* A blade thinner than a pixel (the drawn-out tip) fades out. */
             float cov = tex_clampf(dpx + 0.5f, 0.0f, 1.0f) * tex_clampf(w * lp, 0.0f, 1.0f);
             if (cov <= 0.0f) continue;
-            float rel = w > 1e-5f ? ax / w : 1.0f;
-            /* Veins: midrib, then the straight laterals (q = const lines). */
-            float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
-            float vm = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
-            float q = y - ax * slope;
-            float j = (q - q0) / dq;
-            float vl = 0.0f;
-            if (j > -0.3f && j < veins) {
-                float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * dq * ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
-                float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
-                vl = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
-                vl *= tex_smooth(0.0f, 0.05f, ax);
-            }
-            float vein = tex_maxf(vm, 0.75f * vl);
-            float gr = grow[xx & tm];
-            float shade = (side ? 0.96f : 1.0f) * (0.93f + 0.07f * gr);
-            float edge = 1.0f - tex_smooth(0.5f, 3.0f, dpx);           /* a dark rim */
-            float toward = tex_smooth(0.55f, 1.0f, rel) * 0.35f;        /* darker toward the margin */
-            float col[3];
-            float bl = 0.0f;
-            if (blot > 0.0f) bl = blot * tex_smooth(0.15f, 0.55f, mrow[(xx >> msh) & tm]);
-            for (int ch = 0; ch < 3; ch++) {
-                float cc = tex_mix(lcol[ch], ledge[ch], toward) * shade;
-                cc = tex_mix(cc, lblot[ch], bl);
-                cc = tex_mix(cc, lvein[ch], vein * 0.8f);
-                col[ch] = tex_mix(cc, ledge[ch] * 0.8f, edge * 0.6f);
-            }
-            /* Domed across; a blade under a few pixels wide (the tip) stays low. */
-            float h = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
+            sY[m] = y, sA[m] = ax, sS[m] = side ? 0.96f : 1.0f, sW[m] = w, sD[m] = dpx, sCov[m] = cov;
+            sGr[m] = grow[xx & tm], sMb[m] = blot > 0.0f ? mrow[(xx >> msh) & tm] : 0.0f;
+            sXX[m++] = xx;
+        }
+        keyaki_shade_row(&C, m, sY, sA, sS, sW, sD, sGr, sMb, sR, sG, sB, sH);
+        for (int i = 0; i < m; i++) {
+            const int xx = sXX[i];
+            const float col[3] = {sR[i], sG[i], sB[i]}, h = sH[i], cov = sCov[i];
             size_t pi = (size_t)yy * n + xx;
             if (cov >= 1.0f) { /* put(), opaque: no blend */
                 uint8_t *p = rgba + 4 * pi;
