@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "banyan.h"
+#include "core/big_alloc.h"
 #include "core/error.h"
 #include "textures/tex_internal.h"
 
@@ -112,7 +113,7 @@ static banyan_image *image_new(uint32_t n, uint32_t channels) {
     if (!im) return NULL;
     im->width = im->height = n;
     im->channels = channels;
-    im->pixels = malloc((size_t)n * n * channels);
+    im->pixels = big_malloc((size_t)n * n * channels); /* written whole: huge pages, fewer faults */
     if (!im->pixels) {
         free(im);
         return NULL;
@@ -239,7 +240,7 @@ banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_ima
     const int n = p->size;
     tex_canvas c = {n, NULL, NULL, 1.0f, 0, NULL, NULL};
     banyan_image *bc = image_new((uint32_t)n, 4), *nm = normal ? image_new((uint32_t)n, 3) : NULL;
-    c.height = malloc((size_t)n * n * sizeof *c.height); /* every painter writes all of it */
+    c.height = big_malloc((size_t)n * n * sizeof *c.height); /* every painter writes all of it */
     if (!bc || (normal && !nm) || !c.height) goto nomem;
     c.rgba = bc->pixels; /* every painter writes all of it */
 
