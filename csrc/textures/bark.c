@@ -145,6 +145,31 @@ static inline void scales_at(const scales *S, float px, float py, float *f1, flo
     *f1 = sqrtf(d1), *f2 = sqrtf(d2), *pid = best;
 }
 
+/* scales_at for four points with the same nearest cell (KB = 4 pixels
+ * of a block), one vector lane each, branch-free but step for step the
+ * scalar search (so the same results, ties included): the scale value
+ * into B[x0 ..] and the gap f2 - f1 into H[x0 ..]. */
+static void scales_at4(const scales *S, const float qx[4], const float qy[4], int x0, float *B, float *H) {
+    int i0 = (int)(qx[0] + (float)SPAD) - SPAD, j0 = (int)(qy[0] + (float)SPAD) - SPAD; /* floor */
+    const tex_v4 PX = v4_load(qx), PY = v4_load(qy);
+    tex_v4 d1 = {1e9f, 1e9f, 1e9f, 1e9f}, d2 = d1;
+    tex_v4i best = {0, 0, 0, 0};
+    for (int dj = -1; dj <= 1; dj++) {
+        int base = (j0 + dj + SPAD) * S->pw + i0 + SPAD;
+        for (int di = -1; di <= 1; di++) {
+            int p = base + di;
+            tex_v4 dx = S->px[p] - PX, dy = S->py[p] - PY;
+            tex_v4 d = dx * dx + dy * dy;
+            tex_v4i lt1 = d < d1, lt2 = d < d2;
+            /* if (d < d1) d2 = d1, d1 = d, best = p; else if (d < d2) d2 = d; */
+            d2 = v4_sel(lt1, d1, v4_sel(lt2, d, d2));
+            d1 = v4_sel(lt1, d, d1);
+            best = (lt1 & p) | (~lt1 & best);
+        }
+    }
+    for (int l = 0; l < 4; l++) B[x0 + l] = S->vals[S->id[best[l]]], H[x0 + l] = sqrtf(d2[l]) - sqrtf(d1[l]);
+}
+
 /* One row: scales (cellular, warped by fields wx, wy), tone t, relief h.
  * The scale search (nine cells) runs only where a block of 4 x 4 pixels
  * may hold a border: blocks whose corners (cid, cgap: the band's coarse
@@ -170,10 +195,22 @@ static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, co
             for (int x = bx * KB; x < bx * KB + KB; x++) B[x] = S->vals[id], H[x] = 1.0f; /* inside one scale */
             continue;
         }
-        for (int x = bx * KB; x < bx * KB + KB; x++) {
+        const int x0 = bx * KB;
+        float qx[KB], qy[KB];
+        int same = 1;
+        for (int l = 0; l < KB; l++) {
+            qx[l] = ((float)(x0 + l) + 0.5f) * sx + 0.5f * wx[x0 + l], qy[l] = ((float)y + 0.5f) * sy + 0.5f * wy[x0 + l];
+            same &= (int)(qx[l] + (float)SPAD) == (int)(qx[0] + (float)SPAD) &&
+                    (int)(qy[l] + (float)SPAD) == (int)(qy[0] + (float)SPAD);
+        }
+        if (same) { /* one 3 x 3 neighbourhood for the block: its four pixels at once */
+            scales_at4(S, qx, qy, x0, B, H);
+            continue;
+        }
+        for (int x = x0; x < x0 + KB; x++) {
             float f1, f2;
             int p;
-            scales_at(S, ((float)x + 0.5f) * sx + 0.5f * wx[x], ((float)y + 0.5f) * sy + 0.5f * wy[x], &f1, &f2, &p);
+            scales_at(S, qx[x - x0], qy[x - x0], &f1, &f2, &p);
             B[x] = S->vals[S->id[p]], H[x] = f2 - f1;
         }
     }

@@ -44,17 +44,6 @@ float tex_noise_at(const tex_noise *t, float x, float y) {
     return a + (b - a) * ty;
 }
 
-/* Four floats in one SSE / NEON register (GCC and Clang vector
- * extension; lane by lane the same IEEE operations as the scalar code,
- * so the same bytes). Loads and stores go through memcpy: unaligned. */
-typedef float tex_v4 __attribute__((vector_size(16)));
-static inline tex_v4 v4_load(const float *p) {
-    tex_v4 v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-static inline void v4_store(float *p, tex_v4 v) { memcpy(p, &v, sizeof v); }
-
 /* One row of one octave: per lattice cell cx texels (a power of two >= 4)
  * of a0 + d * w[k], written (first) or added. Inlined with cx and first
  * constant, the small cells unroll completely. */

@@ -97,4 +97,18 @@ static inline void tex_pack_rgba(uint8_t *dst, const float *r, const float *g, c
 }
 static inline float tex_unif(pcg32 *r, float a, float b) { return (float)rng_range(r, a, b); }
 
+/* Four floats (ints) in one SSE / NEON register: the GCC and Clang vector
+ * extension, lane by lane the same IEEE operations as scalar code, so
+ * the same bytes. Loads and stores go through memcpy: unaligned. */
+typedef float tex_v4 __attribute__((vector_size(16)));
+typedef int32_t tex_v4i __attribute__((vector_size(16)));
+static inline tex_v4 v4_load(const float *p) {
+    tex_v4 v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+static inline void v4_store(float *p, tex_v4 v) { memcpy(p, &v, sizeof v); }
+/* m ? a : b lane by lane, m a comparison's result (all bits set or none). */
+static inline tex_v4 v4_sel(tex_v4i m, tex_v4 a, tex_v4 b) { return (tex_v4)(((tex_v4i)a & m) | ((tex_v4i)b & ~m)); }
+
 #endif
