@@ -205,7 +205,8 @@ typedef struct kleaf {
 static float keyaki_w0(const kleaf *L, float p, float t) {
     if (t <= 0.0f || t >= 1.0f) return 0.0f;
     float f = sinf(PI_F * powf(t, p));
-    f = powf(f, 1.0f + L->acum * tex_smooth(0.45f, 1.0f, t));
+    float e = 1.0f + L->acum * tex_smooth(0.45f, 1.0f, t);
+    if (e != 1.0f) f = powf(f, e); /* below 0.45 it is 1: powf would return f */
     return L->half * f;
 }
 
