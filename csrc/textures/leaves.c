@@ -688,9 +688,10 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
     }
     /* Lobe i can only matter where 0 < y < 1 and its distance is over
      * -0.5 px (else coverage is 0, whichever lobe is nearest): |x| under
-     * wmax + 0.5 px / (length * gmin), the table's largest half-width and
-     * smallest slope factor (interpolation stays within them). Per row
-     * that is a span of columns; one pixel more each way covers rounding. */
+     * wmax + 0.5 px / (length * gmin), wmax and gmin the table's largest
+     * half-width and smallest slope factor (interpolation stays within
+     * them); 1 px is used. Per row that is a span of columns, one pixel
+     * wider each way for rounding. */
     float wlim[3];
     for (int i = 0; i < 3; i++) {
         float wm = 0.0f, gm = 1.0f;
