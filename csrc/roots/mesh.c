@@ -270,7 +270,9 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
             tube_round_rings(P, net->rad + pl->off, pl->n, wk.T, wk.N, wk.cs, wk.sn, sides, wk.rings, wk.normals,
                              wk.extent);
         }
-        press_rings(&wk, &net->w, P, pl->n);
+        /* A root entering the soil goes below the ground: only the hosts press it. */
+        roots_world soil_w = roots_soil_world(&net->w);
+        press_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
         tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
     }
 

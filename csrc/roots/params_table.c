@@ -79,7 +79,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .branch_spacing = 5,
         .branch_vertical = 15,
         .branch_samples = 21,
-        .branch_jitter = 1.5,
+        .branch_jitter = 0, /* #18: smooth paths, no zigzag (the paper: 1.5) */
         .second_lateral = 20,
         .second_samples = 6,
         .bezier_uniform = 0,
