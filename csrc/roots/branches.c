@@ -155,14 +155,29 @@ static int press(const roots_world *w, const banyan_roots_params *p, v3 *q) {
 }
 
 void roots_press_first(roots_net *net, const banyan_roots_params *p) {
-    if (!p->hugging) return;
     const int N = net->N, nb = net->nb, S1 = net->S1;
+    const roots_world *w = &net->w;
     for (int slot = 0; slot < N * nb; slot++) {
         if (!net->K_valid[slot]) continue;
         v3 *K = net->K + (size_t)slot * S1;
         uint8_t *ok = net->K_ok + (size_t)slot * S1;
-        for (int i = 1; i + 1 < S1; i++)
-            if (press(&net->w, p, &K[i])) ok[i] = ok[i + 1] = 0; /* steps to check again: segment repair */
+        /* Re-routing turns a point about the vertical through the last one,
+         * and the re-planned curve runs back into the host, so a root round
+         * a trunk zigzags point by point. Relaxing each point halfway to its
+         * neighbours' middle (pushed back out when that cuts into a host)
+         * irons that out; the ends stay. */
+        if (p->smooth_paths)
+            for (int it = 0; it < 12; it++)
+                for (int i = 1; i + 1 < S1; i++) {
+                    v3 q = v3_lerp(K[i], v3_lerp(K[i - 1], K[i + 1], 0.5), 0.5);
+                    if (!world_free(w, q)) world_push_out(w, &q);
+                    if (!world_free(w, q)) continue;
+                    K[i] = q;
+                    ok[i] = ok[i + 1] = 0; /* steps to check again: segment repair */
+                }
+        if (p->hugging)
+            for (int i = 1; i + 1 < S1; i++)
+                if (press(w, p, &K[i])) ok[i] = ok[i + 1] = 0;
     }
 }
 

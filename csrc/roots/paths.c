@@ -239,6 +239,62 @@ static void thin_ends(double *R, const double *arc, uint32_t n, double tip, doub
     }
 }
 
+/* Drops path points closer than 0.4 r to the last kept one (smooth
+ * paths: curve samples pushed out round a corner bunch up there, and a
+ * tube's rings that close together fold at any bend) or where the path
+ * turns back on itself, unless a junction
+ * or an end sits on them or the step over them would sag into a host.
+ * Indices into pts (M_at, K_mid_at, polylines) follow. */
+static int decimate(roots_net *net) {
+    uint32_t n = net->n_pts;
+    uint8_t *keep = calloc(n ? n : 1, 1);
+    uint32_t *to = malloc(sizeof(uint32_t) * (n ? n : 1));
+    if (!keep || !to) {
+        free(keep); free(to);
+        return 0;
+    }
+    size_t NB = (size_t)net->N * net->B, slots = (size_t)net->N * net->nb;
+    for (size_t i = 0; i < NB; i++) keep[net->M_at[i]] = 1;
+    for (size_t s = 0; s < slots; s++)
+        if (net->K_valid[s]) keep[net->K_mid_at[s]] = 1;
+    const roots_world *w = &net->w;
+    double gap = 0.4 * w->r, stop = w->r * (1.0 - REPAIR_SAG);
+    uint32_t out = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        roots_poly *pl = &net->poly[t];
+        uint32_t off = out, soil = UINT32_MAX;
+        for (uint32_t i = 0; i < pl->n; i++) {
+            uint32_t k = pl->off + i;
+            int must = keep[k] || i == 0 || i + 1 == pl->n || i + 1 >= pl->soil_from;
+            int drop = 0;
+            if (!must) {
+                v3 in = v3_sub(net->pts[k], net->pts[out - 1]), on = v3_sub(net->pts[k + 1], net->pts[k]);
+                int back = v3_dot(in, on) < -0.3 * v3_len(in) * v3_len(on); /* the path turns back here */
+                drop = (v3_len(in) < gap || back) &&
+                       world_segment_clearance(w, net->pts[out - 1], net->pts[k + 1], stop) >= stop;
+            }
+            if (drop) {
+                to[k] = out - 1;
+                continue;
+            }
+            if (i == pl->soil_from) soil = out - off;
+            net->pts[out] = net->pts[k];
+            to[k] = out++;
+        }
+        pl->off = off;
+        pl->n = out - off;
+        if (soil != UINT32_MAX) pl->soil_from = soil;
+        else pl->soil_from = pl->n;
+    }
+    for (size_t i = 0; i < NB; i++) net->M_at[i] = to[net->M_at[i]];
+    for (size_t s = 0; s < slots; s++)
+        if (net->K_valid[s]) net->K_mid_at[s] = to[net->K_mid_at[s]];
+    net->n_pts = out;
+    free(keep);
+    free(to);
+    return 1;
+}
+
 /* The pipe model (see the header). */
 static int set_radii(roots_net *net, const banyan_roots_params *p) {
     const int N = net->N, B = net->B, nb = net->nb;
@@ -376,6 +432,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         }
     free(src);
     free(idx);
+    if (!bd.oom && p->smooth_paths && !decimate(net)) bd.oom = 1;
     if (!bd.oom && !set_radii(net, p)) bd.oom = 1;
     return bd.oom ? BANYAN_E_NOMEM : BANYAN_OK;
 }
