@@ -138,7 +138,7 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
  * from it (along the distance-field normal; less when the full pull
  * would leave it unfree), so branch roots lie on the bark instead of
  * standing off it like tents. Returns 1 when it moved. */
-static int press(const roots_world *w, const banyan_roots_params *p, v3 *q) {
+int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q) {
     double r = w->r, range = p->hug_range * r;
     v3 n;
     int which;
@@ -177,7 +177,7 @@ void roots_press_first(roots_net *net, const banyan_roots_params *p) {
                 }
         if (p->hugging)
             for (int i = 1; i + 1 < S1; i++)
-                if (press(w, p, &K[i])) ok[i] = ok[i + 1] = 0;
+                if (roots_press_point(w, p, &K[i])) ok[i] = ok[i + 1] = 0;
     }
 }
 
@@ -236,7 +236,7 @@ void roots_grow_second(roots_net *net, const banyan_roots_params *p) {
             for (int j = 1; j < m; j++) {
                 v3 q = bezier3(P0, P1, P2, P3, (double)j / m);
                 if (world_push_out(w, &q)) net->stats.second_pushouts++;
-                if (p->hugging) press(w, p, &q);
+                if (p->hugging) roots_press_point(w, p, &q);
                 Q[j] = q;
             }
             Q[m] = P3;

@@ -22,10 +22,18 @@
  * stops its walk there (its later growth points repeat that point) and
  * gets an underground end: it runs on outwards, away from the host, for
  * up to soil_reach r past the host's surface and dips a few r below the
- * ground (ROOTS_SOIL_PTS points, clear of the hosts only). */
+ * ground (ROOTS_SOIL_PTS points, clear of the hosts only). With it, a
+ * root that hangs free (no host face within hug_range, not crawling)
+ * keeps only a slight outward pull (ROOTS_HANG) instead of S - Lambda:
+ * aerial roots hang down towards the soil instead of spreading like an
+ * umbrella. */
 #include "roots_internal.h"
 
 static const v3 UP = {0, 0, 1};
+
+/* Outward pull of a root hanging free under soil_entry, times `descent`:
+ * about 3 degrees off the vertical. */
+#define ROOTS_HANG 0.05
 
 /* The underground end of main root a entering the soil at E: along the
  * ground outwards (the host's normal, else away from G) for the rest of
@@ -127,6 +135,10 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                      * vertical edges. */
                     if (hugged) V = v3_scale(hn, v3_dot(V, hn) > 0 ? v3_dot(V, hn) : 0.0);
                 }
+                /* Soil entry's fig: a root hanging free (no host face near,
+                 * nothing under it) hangs, as aerial roots do, instead of
+                 * flying outward like an umbrella. */
+                if (p->soil_entry && !crawl && !hugged) V = v3_scale(v3_norm_or(V, head), ROOTS_HANG * p->descent);
                 if (!crawl) V.z -= p->descent;
                 if (hugged && p->hug_pull > 0) {
                     /* Down projected onto the face's plane. */

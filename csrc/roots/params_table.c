@@ -94,7 +94,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .ground_step = 0.3,
         .junction_start_scale = 1.15,
         .junction_end_scale = 1.08,
-        .junction_reach = 8,
+        .junction_reach = 2, /* #18: was 8; thick main roots (pipe model) make the junction, long loops folded the tubes */
         .junction_falloff = 3,
         .surface = 0,
         .voxel_size = 0.4,

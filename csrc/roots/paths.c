@@ -51,6 +51,7 @@ typedef struct builder {
     uint32_t start;       /* first point of the polyline being built */
     int oom;
     int smooth;           /* smooth_paths */
+    const banyan_roots_params *press; /* branch roots when hugging: curve samples pressed onto the host */
 } builder;
 
 /* Appends q unless it repeats the previous point; returns its index.
@@ -175,6 +176,7 @@ static void smooth_between(builder *bd, const v3 *src, uint32_t n, uint32_t i, v
     for (int j = 1; j <= k; j++) {
         v3 q = catmull_rom(p0, src[i - 1], src[i], p3, (double)j / (k + 1));
         if (!world_free(w, q)) world_push_out(w, &q);
+        if (bd->press) roots_press_point(w, bd->press, &q);
         repair(bd, *prev, q, 0, 0, 0);
         put(bd, q, 0, 0);
         *prev = q;
@@ -381,7 +383,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
     v3 *src = malloc(sizeof(v3) * longest);
     uint32_t *idx = malloc(sizeof(uint32_t) * longest);
     roots_world soil_w = roots_soil_world(&net->w);
-    builder bd = {net, &net->w, 0, 0, p->smooth_paths};
+    builder bd = {net, &net->w, 0, 0, p->smooth_paths, NULL};
     if (!src || !idx || !reserve_pts(net, (uint32_t)(N * (B + 1) + N * nb * (net->S1 + net->S2)) + 64)) {
         free(src); free(idx);
         return BANYAN_E_NOMEM;
@@ -412,6 +414,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         if (!add_poly(net, off, n, ROOT_MAIN, id++, a, -1)) bd.oom = 1;
         else if (soil_from != UINT32_MAX) net->poly[net->n_poly - 1].soil_from = soil_from;
     }
+    bd.press = p->hugging ? p : NULL;
     for (int a = 0; a < N && !bd.oom; a++)
         for (int k = 0; k < nb; k++) {
             int slot = a * nb + k;
