@@ -256,7 +256,8 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
             /* Still folded (a loop bent over itself): a small round ring
              * across the segment, its vertices in the same directions. */
             v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
-            double rad = 0.5 * wk->rad[i];
+            double rad = 0.5 * wk->rad[i], c = world_clearance_in(w, P[i], 1, rad, NULL, NULL);
+            if (rad > 0.95 * c) rad = 0.95 * c; /* stays out of the hosts */
             for (int j = 0; j < sides; j++) {
                 v3 d = v3_sub(ring[j], P[i]);
                 d = v3_norm_or(v3_madd(d, t, -v3_dot(d, t)), nr[j]);
