@@ -134,12 +134,14 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
 }
 
 /* Hugging (issue #18): a branch point farther than 1.5 r from the host
- * it runs over, but within hug_range r of it, goes back to distance r
+ * it runs over, but within 4 hug_range r of it, goes back to distance r
  * from it (along the distance-field normal; less when the full pull
  * would leave it unfree), so branch roots lie on the bark instead of
  * standing off it like tents. Returns 1 when it moved. */
 int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q) {
-    double r = w->r, range = p->hug_range * r;
+    /* Four times the main roots' hug range: a second branch root's wide
+     * sideways draw (+-20 u) otherwise leaves loops of rope in the air. */
+    double r = w->r, range = 4.0 * p->hug_range * r;
     v3 n;
     int which;
     double c = world_clearance_in(w, *q, 0, range, &n, &which);

@@ -20,9 +20,9 @@
  * ground goes into it close to the host and thickens into a buttress; it
  * does not wander off over the soil. So a root that touches the ground
  * stops its walk there (its later growth points repeat that point) and
- * gets an underground end: it runs on outwards, away from the host, for
- * up to soil_reach r past the host's surface and dips a few r below the
- * ground (ROOTS_SOIL_PTS points, clear of the hosts only). With it, a
+ * gets an underground end: it dips a few r below the ground and runs on
+ * outwards, away from the host, for up to soil_reach r past the host's
+ * surface (ROOTS_SOIL_PTS points, clear of the hosts only). With it, a
  * root that hangs free (no host face within hug_range, not crawling)
  * keeps only a slight outward pull (ROOTS_HANG) instead of S - Lambda:
  * aerial roots hang down towards the soil instead of spreading like an
@@ -35,9 +35,11 @@ static const v3 UP = {0, 0, 1};
  * about 3 degrees off the vertical. */
 #define ROOTS_HANG 0.05
 
-/* The underground end of main root a entering the soil at E: along the
- * ground outwards (the host's normal, else away from G) for the rest of
- * soil_reach, then down to 3 r below the ground on a parabola. */
+/* The underground end of main root a entering the soil at E: outwards
+ * (the host's normal, else away from G) for the rest of soil_reach (plus
+ * 1.5 r), and down to 3 r below the ground on a parabola that dives
+ * first, so the thick flared end goes into the soil at once instead of
+ * running over it like a boot. */
 static void soil_end(roots_net *net, const banyan_roots_params *p, int a, v3 E, v3 head) {
     const roots_world *w = &net->w;
     roots_world sw = roots_soil_world(w);
@@ -54,7 +56,7 @@ static void soil_end(roots_net *net, const banyan_roots_params *p, int a, v3 E, 
     for (int j = 0; j < ROOTS_SOIL_PTS; j++) {
         double t = (double)(j + 1) / ROOTS_SOIL_PTS;
         v3 q = v3_madd(E, h, run * t);
-        q.z = E.z - drop * t * t;
+        q.z = E.z - drop * (1.0 - (1.0 - t) * (1.0 - t)); /* steep at first: into the soil, then outwards */
         world_push_out(&sw, &q); /* a host that reaches below the ground */
         net->soil_pts[(size_t)a * ROOTS_SOIL_PTS + j] = q;
     }

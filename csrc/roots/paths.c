@@ -22,7 +22,8 @@
  *   downwards from G by what joins it (plus its own cord of r, reached 8 r
  *   below G). Radius = r flow^(1/e), smoothed along the root; growing tips
  *   and branch ends thin to tip_radius r, and the last stretch above the
- *   ground flares to `flare` times the radius above. */
+ *   ground (max(12 r, 4 R), widening like a cone) flares to `flare` times
+ *   the radius above. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -365,9 +366,12 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
         /* The buttress: up to `flare` times over the last stretch above the
          * ground, kept (a little less at the end) below it. */
         uint32_t ie = pl->soil_from - 1;
-        double Re = R[ie], len = 6.0 * r > 3.0 * Re ? 6.0 * r : 3.0 * Re;
-        for (uint32_t i = 0; i <= ie; i++) R[i] *= 1.0 + (p->flare - 1.0) * smoothstep(1.0 - (arc[ie] - arc[i]) / len);
-        for (uint32_t i = ie + 1; i < n; i++) R[i] = Re * p->flare * (1.0 - 0.2 * (arc[i] - arc[ie]) / (arc[n - 1] - arc[ie]));
+        double Re = R[ie], len = 12.0 * r > 4.0 * Re ? 12.0 * r : 4.0 * Re;
+        for (uint32_t i = 0; i <= ie; i++) {
+            double x = 1.0 - (arc[ie] - arc[i]) / len;
+            R[i] *= 1.0 + (p->flare - 1.0) * (x > 0 ? x * x : 0.0); /* a cone that widens towards the ground */
+        }
+        for (uint32_t i = ie + 1; i < n; i++) R[i] = Re * p->flare * (1.0 - 0.5 * (arc[i] - arc[ie]) / (arc[n - 1] - arc[ie]));
     }
     free(arc);
     free(F);

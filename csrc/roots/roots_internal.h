@@ -184,7 +184,7 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p);
 void roots_correct_mains(roots_net *net, const banyan_roots_params *p);
 void roots_grow_second(roots_net *net, const banyan_roots_params *p);
 void roots_press_first(roots_net *net, const banyan_roots_params *p);
-/* Hugging: a point 1.5 r .. hug_range r off a host goes back to about r
+/* Hugging: a point 1.5 r .. 4 hug_range r off a host goes back to about r
  * from it (when free there); returns 1 when it moved. */
 int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q);
 banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p);
