@@ -243,10 +243,12 @@ static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int 
  * a wide junction loop, a ring pressed flat) shrink towards their centre,
  * a quarter at a time, as far as the hosts let each vertex go. */
 static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
-    int sides = wk->sides;
+    int sides = wk->sides, any = 0;
     for (uint32_t i = 1; i < n; i++) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *prev = ring - sides, *np = nr - sides;
+        if (!ring_folds(prev, ring, np, nr, sides)) continue;
+        any = 1;
         for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
             for (int j = 0; j < sides; j++) {
                 v3 q = v3_lerp(P[i], ring[j], 0.75);
@@ -266,8 +268,9 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
             }
         }
     }
-    /* Then backwards: a wide ring before a narrow one shrinks too. */
-    for (uint32_t i = n - 1; i-- > 0;) {
+    /* Then backwards: a wide ring before a narrow one shrinks too (only
+     * in a tube that had folds: most have none). */
+    for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *next = ring + sides, *nn = nr + sides;
         for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)

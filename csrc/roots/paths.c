@@ -165,13 +165,17 @@ static v3 neighbour(const v3 *src, uint32_t n, uint32_t i, int dir, double tiny)
     return v3_sub(v3_scale(src[i], 2.0), src[o]);
 }
 
+/* Spacing of the smooth curve's samples, times r: finer looks no
+ * smoother on a tube of 8 to 16 sides and costs vertices. */
+#define ROOTS_SMOOTH_STEP 2.0
+
 /* The smooth curve's samples strictly between src[i-1] and src[i]:
- * about one every 2 r (at most 8), each free of the hosts. */
+ * about one every ROOTS_SMOOTH_STEP r (at most 8), each free of the hosts. */
 static void smooth_between(builder *bd, const v3 *src, uint32_t n, uint32_t i, v3 *prev) {
     const roots_world *w = bd->w;
     double len = v3_dist(src[i - 1], src[i]), tiny = 1e-6 * w->r;
-    if (len < 2.5 * w->r) return;
-    int k = (int)ceil(len / (2.0 * w->r)) - 1;
+    if (len < ROOTS_SMOOTH_STEP * 1.25 * w->r) return;
+    int k = (int)ceil(len / (ROOTS_SMOOTH_STEP * w->r)) - 1;
     if (k > 8) k = 8;
     v3 p0 = neighbour(src, n, i - 1, -1, tiny), p3 = neighbour(src, n, i, +1, tiny);
     for (int j = 1; j <= k; j++) {
