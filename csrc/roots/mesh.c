@@ -373,7 +373,9 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         /* A root entering the soil goes below the ground: only the hosts press it. */
         roots_world soil_w = roots_soil_world(&net->w);
         press_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
-        unfold_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
+        /* Round rings are eased at bends already (ease_bends): only junction
+         * loops are checked ring by ring, which costs as much as the sweep. */
+        if (smooth) unfold_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
         tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
     }
 
