@@ -167,6 +167,62 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
     }
 }
 
+/* 1 when a triangle of the sweep between rings a and b faces against
+ * its vertex normals. */
+static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int sides) {
+    for (int j = 0; j < sides; j++) {
+        int k = (j + 1) % sides;
+        v3 p00 = a[j], p01 = a[k], p10 = b[j], p11 = b[k];
+        /* the sweep's two triangles: (p00, p01, p11) and (p00, p11, p10) */
+        v3 f1 = v3_cross(v3_sub(p01, p00), v3_sub(p11, p00)), f2 = v3_cross(v3_sub(p11, p00), v3_sub(p10, p00));
+        v3 n1 = v3_add(v3_add(na[j], na[k]), nb[k]), n2 = v3_add(v3_add(na[j], nb[k]), nb[j]);
+        if ((v3_len2(f1) > 1e-24 && v3_dot(f1, n1) <= 0) || (v3_len2(f2) > 1e-24 && v3_dot(f2, n2) <= 0)) return 1;
+    }
+    return 0;
+}
+
+/* Rings that fold the tube back over the ring before them (a tight bend,
+ * a wide junction loop, a ring pressed flat) shrink towards their centre,
+ * a quarter at a time, as far as the hosts let each vertex go. */
+static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
+    int sides = wk->sides, any = 0;
+    for (uint32_t i = 1; i < n; i++) {
+        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+        const v3 *prev = ring - sides, *np = nr - sides;
+        if (!ring_folds(prev, ring, np, nr, sides)) continue;
+        any = 1;
+        for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
+            for (int j = 0; j < sides; j++) {
+                v3 q = v3_lerp(P[i], ring[j], 0.75);
+                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+            }
+        if (ring_folds(prev, ring, np, nr, sides)) {
+            /* Still folded (a loop bent over itself): a small round ring
+             * across the segment, its vertices in the same directions. */
+            v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
+            double rad = 0.5 * wk->rad[i], c = world_clearance_in(w, P[i], 1, rad, NULL, NULL);
+            if (rad > 0.95 * c) rad = 0.95 * c; /* stays out of the hosts */
+            for (int j = 0; j < sides; j++) {
+                v3 d = v3_sub(ring[j], P[i]);
+                d = v3_norm_or(v3_madd(d, t, -v3_dot(d, t)), nr[j]);
+                ring[j] = v3_madd(P[i], d, rad);
+                nr[j] = d;
+            }
+        }
+    }
+    /* Then backwards: a wide ring before a narrow one shrinks too (only
+     * in a tube that had folds: most have none). */
+    for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
+        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+        const v3 *next = ring + sides, *nn = nr + sides;
+        for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)
+            for (int j = 0; j < sides; j++) {
+                v3 q = v3_lerp(P[i], ring[j], 0.75);
+                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+            }
+    }
+}
+
 /* Ring vertices that a bend's stretch or a junction loop put inside a host
  * or under the ground go onto its surface: the tube flattens against the
  * bark instead of entering it (onto a mesh: back along the spoke from the
@@ -222,62 +278,6 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
             }
             ring[j] = q;
         }
-    }
-}
-
-/* 1 when a triangle of the sweep between rings a and b faces against
- * its vertex normals. */
-static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int sides) {
-    for (int j = 0; j < sides; j++) {
-        int k = (j + 1) % sides;
-        v3 p00 = a[j], p01 = a[k], p10 = b[j], p11 = b[k];
-        /* the sweep's two triangles: (p00, p01, p11) and (p00, p11, p10) */
-        v3 f1 = v3_cross(v3_sub(p01, p00), v3_sub(p11, p00)), f2 = v3_cross(v3_sub(p11, p00), v3_sub(p10, p00));
-        v3 n1 = v3_add(v3_add(na[j], na[k]), nb[k]), n2 = v3_add(v3_add(na[j], nb[k]), nb[j]);
-        if ((v3_len2(f1) > 1e-24 && v3_dot(f1, n1) <= 0) || (v3_len2(f2) > 1e-24 && v3_dot(f2, n2) <= 0)) return 1;
-    }
-    return 0;
-}
-
-/* Rings that fold the tube back over the ring before them (a tight bend,
- * a wide junction loop, a ring pressed flat) shrink towards their centre,
- * a quarter at a time, as far as the hosts let each vertex go. */
-static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
-    int sides = wk->sides, any = 0;
-    for (uint32_t i = 1; i < n; i++) {
-        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
-        const v3 *prev = ring - sides, *np = nr - sides;
-        if (!ring_folds(prev, ring, np, nr, sides)) continue;
-        any = 1;
-        for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
-            }
-        if (ring_folds(prev, ring, np, nr, sides)) {
-            /* Still folded (a loop bent over itself): a small round ring
-             * across the segment, its vertices in the same directions. */
-            v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
-            double rad = 0.5 * wk->rad[i], c = world_clearance_in(w, P[i], 1, rad, NULL, NULL);
-            if (rad > 0.95 * c) rad = 0.95 * c; /* stays out of the hosts */
-            for (int j = 0; j < sides; j++) {
-                v3 d = v3_sub(ring[j], P[i]);
-                d = v3_norm_or(v3_madd(d, t, -v3_dot(d, t)), nr[j]);
-                ring[j] = v3_madd(P[i], d, rad);
-                nr[j] = d;
-            }
-        }
-    }
-    /* Then backwards: a wide ring before a narrow one shrinks too (only
-     * in a tube that had folds: most have none). */
-    for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
-        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
-        const v3 *next = ring + sides, *nn = nr + sides;
-        for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
-            }
     }
 }
 
