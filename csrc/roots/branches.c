@@ -95,7 +95,7 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
         for (int k = 0; k < nb; k++) {
             int b = roots_branch_b(p, k);
             int slot = a * nb + k;
-            if (b < 0 || b >= B) continue;
+            if (b < 0 || b >= B || !roots_slot_open(net, p, a, k)) continue;
             pcg32 g;
             pcg32_seed(&g, p->seed, (uint64_t)STREAM_FIRST + (uint64_t)slot);
             v3 P0 = net->M_grown[(size_t)a * B + b], P3 = net->M_grown[(size_t)((a + 1) % N) * B + b];
@@ -133,6 +133,56 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
     }
 }
 
+/* Hugging (issue #18): a branch point farther than 1.5 r from the host
+ * it runs over, but within 4 hug_range r of it, goes back to distance r
+ * from it (along the distance-field normal; less when the full pull
+ * would leave it unfree), so branch roots lie on the bark instead of
+ * standing off it like tents. Returns 1 when it moved. */
+int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q) {
+    /* Four times the main roots' hug range: a second branch root's wide
+     * sideways draw (+-20 u) otherwise leaves loops of rope in the air. */
+    double r = w->r, range = 4.0 * p->hug_range * r;
+    v3 n;
+    int which;
+    double c = world_clearance_in(w, *q, 0, range, &n, &which);
+    if (which < 0 || c <= 1.5 * r || c >= range) return 0;
+    for (double f = 1.0; f > 0.1; f -= 0.25) {
+        v3 t = v3_madd(*q, n, -(c - r * 1.02) * f);
+        if (world_free(w, t)) {
+            *q = t;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+void roots_press_first(roots_net *net, const banyan_roots_params *p) {
+    const int N = net->N, nb = net->nb, S1 = net->S1;
+    const roots_world *w = &net->w;
+    for (int slot = 0; slot < N * nb; slot++) {
+        if (!net->K_valid[slot]) continue;
+        v3 *K = net->K + (size_t)slot * S1;
+        uint8_t *ok = net->K_ok + (size_t)slot * S1;
+        /* Re-routing turns a point about the vertical through the last one,
+         * and the re-planned curve runs back into the host, so a root round
+         * a trunk zigzags point by point. Relaxing each point halfway to its
+         * neighbours' middle (pushed back out when that cuts into a host)
+         * irons that out; the ends stay. */
+        if (p->smooth_paths)
+            for (int it = 0; it < 12; it++)
+                for (int i = 1; i + 1 < S1; i++) {
+                    v3 q = v3_lerp(K[i], v3_lerp(K[i - 1], K[i + 1], 0.5), 0.5);
+                    if (!world_free(w, q)) world_push_out(w, &q);
+                    if (!world_free(w, q)) continue;
+                    K[i] = q;
+                    ok[i] = ok[i + 1] = 0; /* steps to check again: segment repair */
+                }
+        if (p->hugging)
+            for (int i = 1; i + 1 < S1; i++)
+                if (roots_press_point(w, p, &K[i])) ok[i] = ok[i + 1] = 0;
+    }
+}
+
 /* Spec 3: where a first branch root leaves M(a,b) the main root follows
  * the Bezier M(a,b), K^1 + 2e, M(a,b+2), M(a,b+5), e = M(a,b+1) - K^1,
  * sampled at t = j/5. Generalised to any spacing s >= 2: P3 = M(a,b+s),
@@ -146,7 +196,7 @@ void roots_correct_mains(roots_net *net, const banyan_roots_params *p) {
         v3 *M = net->M + (size_t)a * B;
         for (int k = 0; k < nb; k++) {
             int slot = a * nb + k, b = roots_branch_b(p, k);
-            if (!net->K_valid[slot] || b + s > B - 1) continue;
+            if (!net->K_valid[slot] || b + s > B - 1 || b + s > net->soil_b[a]) continue;
             v3 K1 = net->K[(size_t)slot * net->S1 + 1];
             v3 e = v3_sub(Mg[b + 1], K1);
             v3 P0 = Mg[b], P1 = v3_madd(K1, e, 2.0), P2 = Mg[b + 2], P3 = Mg[b + s];
@@ -188,6 +238,7 @@ void roots_grow_second(roots_net *net, const banyan_roots_params *p) {
             for (int j = 1; j < m; j++) {
                 v3 q = bezier3(P0, P1, P2, P3, (double)j / m);
                 if (world_push_out(w, &q)) net->stats.second_pushouts++;
+                if (p->hugging) roots_press_point(w, p, &q);
                 Q[j] = q;
             }
             Q[m] = P3;

@@ -25,6 +25,8 @@ void roots_net_free(roots_net *net) {
     free(net->Q);
     free(net->Q_valid);
     free(net->ground_hit);
+    free(net->soil_b);
+    free(net->soil_pts);
     free(net->pts);
     free(net->rad);
     free(net->poly);
@@ -220,10 +222,12 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     net->Q = malloc(sizeof(v3) * slots * (size_t)net->S2);
     net->Q_valid = calloc(slots, sizeof(int32_t));
     net->ground_hit = calloc(N, sizeof(int32_t));
+    net->soil_b = malloc(sizeof(int32_t) * N);
+    net->soil_pts = malloc(sizeof(v3) * N * ROOTS_SOIL_PTS);
     net->M_at = malloc(sizeof(uint32_t) * N * B);
     net->K_mid_at = calloc(slots, sizeof(uint32_t));
     if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
-        !net->M_at || !net->K_mid_at) {
+        !net->soil_b || !net->soil_pts || !net->M_at || !net->K_mid_at) {
         roots_net_free(net);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots net");
     }
@@ -233,6 +237,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     memcpy(net->M, net->M_grown, sizeof(v3) * N * B);
     roots_grow_first(net, p);
     roots_correct_mains(net, p);
+    roots_press_first(net, p);
     if (prog_at(g, ROOTS_AT_FIRST)) goto cancelled;
     roots_grow_second(net, p);
     if (prog_at(g, ROOTS_AT_SECOND)) goto cancelled;
@@ -247,14 +252,19 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     st->main_points = (uint32_t)(N * B);
     st->radius = net->r;
     st->min_clearance = 1e300;
-    for (uint32_t i = 0; i < net->n_pts; i++) {
-        /* Only values below the least so far count (keeps mesh queries
-         * short). Every skeleton point passed a free test or a push-out,
-         * so it is outside every mesh: unsigned mesh distances (an inside
-         * test costs rays). */
-        double c = world_clearance_outside(&net->w, net->pts[i],
-                                           st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
-        if (c < st->min_clearance) st->min_clearance = c;
+    roots_world soil_w = roots_soil_world(&net->w);
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        for (uint32_t i = 0; i < pl->n; i++) {
+            /* Only values below the least so far count (keeps mesh queries
+             * short). Every skeleton point passed a free test or a push-out,
+             * so it is outside every mesh: unsigned mesh distances (an inside
+             * test costs rays). The underground ends of soil-entering roots
+             * keep clear of the hosts only. */
+            double c = world_clearance_outside(i >= pl->soil_from ? &soil_w : &net->w, net->pts[pl->off + i],
+                                               st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
+            if (c < st->min_clearance) st->min_clearance = c;
+        }
     }
     for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;
     for (uint32_t t = 0; t < net->n_poly; t++) {

@@ -14,10 +14,53 @@
  * the host and wrap over its edges (the distance-field normal turns round
  * an edge).
  * In both modes a root that lands on the ground or on an upward face
- * crawls; it grows down again once nothing supports it. */
+ * crawls; it grows down again once nothing supports it.
+ *
+ * Soil entry (issue #18, on by default): a real fig root that reaches the
+ * ground goes into it close to the host and thickens into a buttress; it
+ * does not wander off over the soil. So a root that touches the ground
+ * stops its walk there (its later growth points repeat that point) and
+ * gets an underground end: it dips a few r below the ground and runs on
+ * outwards, away from the host, for up to soil_reach r past the host's
+ * surface (ROOTS_SOIL_PTS points, clear of the hosts only). With it, a
+ * root that hangs free (no host face within hug_range, not crawling)
+ * keeps only a slight outward pull (ROOTS_HANG) instead of S - Lambda:
+ * aerial roots hang down towards the soil instead of spreading like an
+ * umbrella. */
 #include "roots_internal.h"
 
 static const v3 UP = {0, 0, 1};
+
+/* Outward pull of a root hanging free under soil_entry, times `descent`:
+ * about 3 degrees off the vertical. */
+#define ROOTS_HANG 0.05
+
+/* The underground end of main root a entering the soil at E: outwards
+ * (the host's normal, else away from G) for the rest of soil_reach (plus
+ * 1.5 r), and down to 3 r below the ground on a parabola that dives
+ * first, so the thick flared end goes into the soil at once instead of
+ * running over it like a boot. */
+static void soil_end(roots_net *net, const banyan_roots_params *p, int a, v3 E, v3 head) {
+    const roots_world *w = &net->w;
+    roots_world sw = roots_soil_world(w);
+    double r = net->r;
+    v3 n;
+    int which;
+    double ch = world_clearance_in(w, E, 0, HUGE_VAL, &n, &which);
+    v3 h = which >= 0 ? v3_make(n.x, n.y, 0) : v3_make(E.x - net->G.x, E.y - net->G.y, 0);
+    h = v3_norm_or(h, head);
+    double run = p->soil_reach * r - ch;
+    if (run < 0) run = 0;
+    run += 1.5 * r;
+    double drop = E.z - (w->ground_z - 3.0 * r);
+    for (int j = 0; j < ROOTS_SOIL_PTS; j++) {
+        double t = (double)(j + 1) / ROOTS_SOIL_PTS;
+        v3 q = v3_madd(E, h, run * t);
+        q.z = E.z - drop * (1.0 - (1.0 - t) * (1.0 - t)); /* steep at first: into the soil, then outwards */
+        world_push_out(&sw, &q); /* a host that reaches below the ground */
+        net->soil_pts[(size_t)a * ROOTS_SOIL_PTS + j] = q;
+    }
+}
 
 /* Within `support` below p lies the ground or a host. (q is within the
  * free ball of p, so outside every mesh, when support < r: the hugging
@@ -72,6 +115,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
         v3 *M = net->M_grown + (size_t)a * B;
         M[0] = S;
         int crawl = 0, ground = 0;
+        net->soil_b[a] = B;
         int pressed = 0; /* hugging: the last move ended pressed against a host */
         int cached = 0;  /* hc, hn0, hw hold the nearest host of the current S */
         double hc = 0;
@@ -93,6 +137,10 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                      * vertical edges. */
                     if (hugged) V = v3_scale(hn, v3_dot(V, hn) > 0 ? v3_dot(V, hn) : 0.0);
                 }
+                /* Soil entry's fig: a root hanging free (no host face near,
+                 * nothing under it) hangs, as aerial roots do, instead of
+                 * flying outward like an umbrella. */
+                if (p->soil_entry && !crawl && !hugged) V = v3_scale(v3_norm_or(V, head), ROOTS_HANG * p->descent);
                 if (!crawl) V.z -= p->descent;
                 if (hugged && p->hug_pull > 0) {
                     /* Down projected onto the face's plane. */
@@ -125,6 +173,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                 } else {
                     slide(w, &S, D, &crawl, &ground);
                 }
+                if (p->soil_entry && w->ground && ground) break; /* into the soil here */
                 if (crawl && !supported(w, S, support)) crawl = 0;
                 if (p->hugging) {
                     v3 n;
@@ -165,6 +214,12 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
             }
             M[b] = S;
             if (w->ground && S.z - w->ground_z <= r * (1.0 + 1e-6)) ground = 1;
+            if (p->soil_entry && w->ground && ground) {
+                net->soil_b[a] = b;
+                soil_end(net, p, a, S, head);
+                for (int c = b + 1; c < B; c++) M[c] = S;
+                break;
+            }
         }
         net->ground_hit[a] = ground;
         if (prog_at(net->prog, ROOTS_AT_MAINS * (a + 1) / N)) return; /* cancelled */

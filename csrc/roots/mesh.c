@@ -29,6 +29,7 @@ typedef struct work {
     v3 *rings, *normals;  /* per point * sides */
     double *arc;          /* arc length per point */
     double *extent;       /* per point: the farthest ring vertex from the centre */
+    double *rad;          /* per point: the ring radius (net->rad, eased at tight bends) */
     v3 *ls, *le, *ds, *de;/* loop offsets from the end point and loop directions, world */
 } work;
 
@@ -51,8 +52,12 @@ static void end_loop(work *wk, v3 P, v3 T, v3 N, v3 C1, v3 C2, double rl, v3 *of
     for (int j = 0; j < wk->sides; j++) {
         v3 d = v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j]));
         v3 C = v3_dot(d, e) >= 0 ? C1 : C2;
-        off[j] = v3_sub(v3_madd(C, d, rl), P);
-        dir[j] = d;
+        v3 o = v3_sub(v3_madd(C, d, rl), P);
+        /* In the frame's own coordinates: applied in each ring's frame, the
+         * loop stays in order however far the branch turns (a world offset
+         * projected onto a ring across it flattens and folds). */
+        off[j] = v3_make(v3_dot(o, N), v3_dot(o, Bv), 0);
+        dir[j] = v3_make(v3_dot(d, N), v3_dot(d, Bv), 0);
     }
 }
 
@@ -60,6 +65,47 @@ static v3 clamp_reach(v3 from, v3 to, double reach) {
     v3 d = v3_sub(to, from);
     double l = v3_len(d);
     return l > reach ? v3_madd(from, d, reach / l) : to;
+}
+
+/* Ring i of a junction-smoothed first branch root: the round ring of
+ * radius rad blended with the start loop (weight ws) and the end loop (we). */
+static void junction_ring(work *wk, v3 Pi, uint32_t i, double ws, double we, double rad) {
+    int sides = wk->sides;
+    if (ws < 1e-4) ws = 0; /* below a hundredth of a millimetre at r = 4 cm */
+    if (we < 1e-4) we = 0;
+    double wr = 1.0 - ws - we;
+    v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
+    v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+    for (int j = 0; j < sides; j++) {
+        v3 dir = v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j]));
+        if (ws == 0 && we == 0) { /* round */
+            ring[j] = v3_madd(Pi, dir, rad);
+            nr[j] = dir;
+            continue;
+        }
+        v3 o = v3_scale(dir, wr * rad), d = v3_scale(dir, wr);
+        /* Loop offsets in the ring's plane only: along the tangent
+         * they would slide rings past each other. */
+        if (ws > 0) {
+            v3 lo = wk->ls[j], ld = wk->ds[j];
+            o = v3_madd(o, v3_add(v3_scale(N, lo.x), v3_scale(Bv, lo.y)), ws);
+            d = v3_madd(d, v3_add(v3_scale(N, ld.x), v3_scale(Bv, ld.y)), ws);
+        }
+        if (we > 0) {
+            v3 lo = wk->le[j], ld = wk->de[j];
+            o = v3_madd(o, v3_add(v3_scale(N, lo.x), v3_scale(Bv, lo.y)), we);
+            d = v3_madd(d, v3_add(v3_scale(N, ld.x), v3_scale(Bv, ld.y)), we);
+        }
+        ring[j] = v3_add(Pi, o);
+        nr[j] = v3_norm_or(d, dir);
+    }
+    if (ws == 0 && we == 0) return;
+    /* Normals from the loop's own outline (counter-clockwise about T),
+     * so they agree with the faces however the blend bends it. */
+    for (int j = 0; j < sides; j++) {
+        v3 tj = v3_sub(ring[(j + 1) % sides], ring[(j + sides - 1) % sides]);
+        nr[j] = v3_norm_or(v3_cross(tj, T), nr[j]);
+    }
 }
 
 /* Rings of a first branch root with junction smoothing; also their
@@ -88,40 +134,92 @@ static void junction_rings(work *wk, const roots_net *net, const banyan_roots_pa
         double we = half > 0 && L - s < half ? pow(1.0 - (L - s) / half, p->junction_falloff) : 0.0;
         if (i == 0) ws = 1.0, we = 0.0;
         if (i == n - 1) we = 1.0, ws = 0.0;
-        if (ws < 1e-4) ws = 0; /* below a hundredth of a millimetre at r = 4 cm */
-        if (we < 1e-4) we = 0;
-        double wr = 1.0 - ws - we, rad = net->rad[pl->off + i];
-        v3 T = wk->T[i], N = wk->N[i], Bv = v3_cross(T, N);
-        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
-        for (int j = 0; j < sides; j++) {
-            v3 dir = v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j]));
-            if (ws == 0 && we == 0) { /* round */
-                ring[j] = v3_madd(P[i], dir, rad);
-                nr[j] = dir;
-                continue;
-            }
-            v3 o = v3_scale(dir, wr * rad), d = v3_scale(dir, wr);
-            /* Loop offsets in the ring's plane only: along the tangent
-             * they would slide rings past each other. */
-            if (ws > 0) {
-                v3 lo = wk->ls[j];
-                o = v3_madd(o, v3_madd(lo, T, -v3_dot(lo, T)), ws);
-                d = v3_madd(d, wk->ds[j], ws);
-            }
-            if (we > 0) {
-                v3 lo = wk->le[j];
-                o = v3_madd(o, v3_madd(lo, T, -v3_dot(lo, T)), we);
-                d = v3_madd(d, wk->de[j], we);
-            }
-            ring[j] = v3_add(P[i], o);
-            nr[j] = v3_norm_or(d, dir);
-        }
+        double rad = wk->rad[i];
+        v3 *ring = wk->rings + (size_t)i * sides;
+        junction_ring(wk, P[i], i, ws, we, rad);
         double e2 = rad * rad;
         for (int j = 0; j < sides; j++) {
             double l2 = v3_len2(v3_sub(ring[j], P[i]));
             if (l2 > e2) e2 = l2;
         }
         wk->extent[i] = sqrt(e2);
+    }
+}
+
+/* Ring radii that keep a bend's inside from folding: rings i and i+1 on
+ * a segment of length d, tilted by half their turning angles, meet on the
+ * inside once R_i tan(th_i / 2) + R_i+1 tan(th_i+1 / 2) > d. So each ring
+ * is kept to 0.45 d / tan(th / 2) of its shorter segment (not below
+ * `floor`). Only the tubes: the fused surface has no rings to fold. */
+static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, double floor) {
+    for (uint32_t i = 0; i < n; i++) {
+        out[i] = rad[i];
+        if (i == 0 || i + 1 == n) continue;
+        v3 a = v3_sub(P[i], P[i - 1]), b = v3_sub(P[i + 1], P[i]);
+        double la = v3_len(a), lb = v3_len(b);
+        if (la < 1e-12 || lb < 1e-12) continue;
+        double c = v3_dot(a, b) / (la * lb);
+        if (c > 0.9999) continue;
+        if (c < -1) c = -1;
+        double th = acos(c), lim = 0.45 * (la < lb ? la : lb) / tan(0.5 * (th < 3.0 ? th : 3.0));
+        if (lim < floor) lim = floor;
+        if (out[i] > lim) out[i] = lim;
+    }
+}
+
+/* 1 when a triangle of the sweep between rings a and b faces against
+ * its vertex normals. */
+static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int sides) {
+    for (int j = 0; j < sides; j++) {
+        int k = (j + 1) % sides;
+        v3 p00 = a[j], p01 = a[k], p10 = b[j], p11 = b[k];
+        /* the sweep's two triangles: (p00, p01, p11) and (p00, p11, p10) */
+        v3 f1 = v3_cross(v3_sub(p01, p00), v3_sub(p11, p00)), f2 = v3_cross(v3_sub(p11, p00), v3_sub(p10, p00));
+        v3 n1 = v3_add(v3_add(na[j], na[k]), nb[k]), n2 = v3_add(v3_add(na[j], nb[k]), nb[j]);
+        if ((v3_len2(f1) > 1e-24 && v3_dot(f1, n1) <= 0) || (v3_len2(f2) > 1e-24 && v3_dot(f2, n2) <= 0)) return 1;
+    }
+    return 0;
+}
+
+/* Rings that fold the tube back over the ring before them (a tight bend,
+ * a wide junction loop, a ring pressed flat) shrink towards their centre,
+ * a quarter at a time, as far as the hosts let each vertex go. */
+static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
+    int sides = wk->sides, any = 0;
+    for (uint32_t i = 1; i < n; i++) {
+        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+        const v3 *prev = ring - sides, *np = nr - sides;
+        if (!ring_folds(prev, ring, np, nr, sides)) continue;
+        any = 1;
+        for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
+            for (int j = 0; j < sides; j++) {
+                v3 q = v3_lerp(P[i], ring[j], 0.75);
+                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+            }
+        if (ring_folds(prev, ring, np, nr, sides)) {
+            /* Still folded (a loop bent over itself): a small round ring
+             * across the segment, its vertices in the same directions. */
+            v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
+            double rad = 0.5 * wk->rad[i], c = world_clearance_in(w, P[i], 1, rad, NULL, NULL);
+            if (rad > 0.95 * c) rad = 0.95 * c; /* stays out of the hosts */
+            for (int j = 0; j < sides; j++) {
+                v3 d = v3_sub(ring[j], P[i]);
+                d = v3_norm_or(v3_madd(d, t, -v3_dot(d, t)), nr[j]);
+                ring[j] = v3_madd(P[i], d, rad);
+                nr[j] = d;
+            }
+        }
+    }
+    /* Then backwards: a wide ring before a narrow one shrinks too (only
+     * in a tube that had folds: most have none). */
+    for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
+        v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
+        const v3 *next = ring + sides, *nn = nr + sides;
+        for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)
+            for (int j = 0; j < sides; j++) {
+                v3 q = v3_lerp(P[i], ring[j], 0.75);
+                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+            }
     }
 }
 
@@ -209,7 +307,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.sides = sides;
     size_t nr = (size_t)longest * sides;
     void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 2 * longest + sizeof(v3) * 2 * nr +
-                         sizeof(double) * 2 * longest + sizeof(v3) * 4 * sides);
+                         sizeof(double) * 3 * longest + sizeof(v3) * 4 * sides);
     if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots mesh workspace");
     wk.cs = block;
     wk.sn = wk.cs + sides;
@@ -223,6 +321,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.de = wk.le + sides;
     wk.arc = (double *)(wk.de + sides);
     wk.extent = wk.arc + longest;
+    wk.rad = wk.extent + longest;
     for (int j = 0; j < sides; j++) {
         /* Half-step offset: each half of a junction loop is symmetric. */
         double ang = 2.0 * BANYAN_PI * (j + 0.5) / sides;
@@ -259,6 +358,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
             first_normal = v3_cross(UP, h);
         }
         tube_frames(P, pl->n, first_normal, wk.T, wk.N);
+        ease_bends(wk.rad, P, net->rad + pl->off, pl->n, 0.25 * net->r);
         /* Both ring kinds come with their normals. */
         tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, wk.normals, 1}; /* pressed rings: arc-length uvs */
         if (smooth) {
@@ -267,10 +367,15 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
             junction_rings(&wk, net, p, pl);
         } else {
             /* Round rings (spec 5 "Rings"). */
-            tube_round_rings(P, net->rad + pl->off, pl->n, wk.T, wk.N, wk.cs, wk.sn, sides, wk.rings, wk.normals,
+            tube_round_rings(P, wk.rad, pl->n, wk.T, wk.N, wk.cs, wk.sn, sides, wk.rings, wk.normals,
                              wk.extent);
         }
-        press_rings(&wk, &net->w, P, pl->n);
+        /* A root entering the soil goes below the ground: only the hosts press it. */
+        roots_world soil_w = roots_soil_world(&net->w);
+        press_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
+        /* Round rings are eased at bends already (ease_bends): only junction
+         * loops are checked ring by ring, which costs as much as the sweep. */
+        if (smooth) unfold_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
         tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
     }
 

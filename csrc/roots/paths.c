@@ -5,7 +5,25 @@
  * main root wraps an edge within one growth point's moves; a branch chord
  * ends on the far side of a trunk). Such a segment is split at its deepest
  * point, pushed out to distance r, and both parts are checked again, so
- * the tube follows the host round the corner instead of through it. */
+ * the tube follows the host round the corner instead of through it.
+ *
+ * Issue #18 (docs/roots.md, "The look of a real fig"):
+ * - smooth_paths: the polyline is a centripetal Catmull-Rom curve through
+ *   the growth points (which it keeps exactly, so junctions stay shared),
+ *   resampled about every 2 r; a sample closer than r to a host is pushed
+ *   out, and segment repair runs on the samples as before.
+ * - A main root that entered the soil (growth.c) gets its underground end
+ *   after its entry point, repaired against the hosts only.
+ * - Radii by the pipe model: a root is as thick as what feeds into it.
+ *   Flow is counted in units of a cord of radius r (r^e, e =
+ *   pipe_exponent): a first branch root carries tip^e for itself and for
+ *   each second branch root joined to it, scaled up by 2 maturity; half
+ *   of it goes into each main root it joins, and a main root's flow grows
+ *   downwards from G by what joins it (plus its own cord of r, reached 8 r
+ *   below G). Radius = r flow^(1/e), smoothed along the root; growing tips
+ *   and branch ends thin to tip_radius r, and the last stretch above the
+ *   ground (max(12 r, 4 R), widening like a cone) flares to `flare` times
+ *   the radius above. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -30,8 +48,11 @@ static int reserve_pts(roots_net *net, uint32_t more) {
 
 typedef struct builder {
     roots_net *net;
-    uint32_t start; /* first point of the polyline being built */
+    const roots_world *w; /* what segment repair keeps clear of */
+    uint32_t start;       /* first point of the polyline being built */
     int oom;
+    int smooth;           /* smooth_paths */
+    const banyan_roots_params *press; /* branch roots when hugging: curve samples pressed onto the host */
 } builder;
 
 /* Appends q unless it repeats the previous point; returns its index.
@@ -101,7 +122,7 @@ static v3 split_point(const roots_world *w, v3 a, v3 b, v3 m0) {
 }
 
 static void repair(builder *bd, v3 a, v3 b, double ra, double rb, int depth) {
-    const roots_world *w = &bd->net->w;
+    const roots_world *w = bd->w;
     double stop = w->r * (1.0 - REPAIR_SAG);
     if (depth >= REPAIR_DEPTH || v3_dist(a, b) < 0.05 * w->r) return;
     if (world_segment_clearance(w, a, b, stop) >= stop) return;
@@ -119,14 +140,66 @@ static void repair(builder *bd, v3 a, v3 b, double ra, double rb, int depth) {
     repair(bd, m, b, rm, rb, depth + 1);
 }
 
-/* Appends the polyline src[0..n-1] with repair; idx[i] (when non-NULL)
- * gets where src[i] landed; ok[i] (when non-NULL) marks steps into src[i]
- * already checked with the same test. Returns the number of points added. */
-static uint32_t polyline(builder *bd, const v3 *src, const double *rad, uint32_t n, uint32_t *idx, const uint8_t *ok) {
+/* Centripetal Catmull-Rom (alpha 0.5, Barry-Goldman) on p1-p2 at u in [0,1]. */
+static v3 catmull_rom(v3 p0, v3 p1, v3 p2, v3 p3, double u) {
+    double d01 = sqrt(v3_dist(p0, p1)), d12 = sqrt(v3_dist(p1, p2)), d23 = sqrt(v3_dist(p2, p3));
+    if (d01 < 1e-9) d01 = d12;
+    if (d23 < 1e-9) d23 = d12;
+    double t0 = 0, t1 = d01, t2 = t1 + d12, t3 = t2 + d23, t = t1 + u * d12;
+    v3 a1 = v3_add(v3_scale(p0, (t1 - t) / (t1 - t0)), v3_scale(p1, (t - t0) / (t1 - t0)));
+    v3 a2 = v3_add(v3_scale(p1, (t2 - t) / (t2 - t1)), v3_scale(p2, (t - t1) / (t2 - t1)));
+    v3 a3 = v3_add(v3_scale(p2, (t3 - t) / (t3 - t2)), v3_scale(p3, (t - t2) / (t3 - t2)));
+    v3 b1 = v3_add(v3_scale(a1, (t2 - t) / (t2 - t0)), v3_scale(a2, (t - t0) / (t2 - t0)));
+    v3 b2 = v3_add(v3_scale(a2, (t3 - t) / (t3 - t1)), v3_scale(a3, (t - t1) / (t3 - t1)));
+    return v3_add(v3_scale(b1, (t2 - t) / (t2 - t1)), v3_scale(b2, (t - t1) / (t2 - t1)));
+}
+
+/* The neighbour of src[i] on the side `dir`, skipping repeats; mirrored
+ * past the ends. */
+static v3 neighbour(const v3 *src, uint32_t n, uint32_t i, int dir, double tiny) {
+    for (long j = (long)i + dir; j >= 0 && j < (long)n; j += dir)
+        if (v3_dist(src[j], src[i]) > tiny) return src[j];
+    long o = (long)i - dir;
+    while (o >= 0 && o < (long)n && v3_dist(src[o], src[i]) <= tiny) o -= dir;
+    if (o < 0 || o >= (long)n) return src[i];
+    return v3_sub(v3_scale(src[i], 2.0), src[o]);
+}
+
+/* Spacing of the smooth curve's samples, times r: finer looks no
+ * smoother on a tube of 8 to 16 sides and costs vertices. */
+#define ROOTS_SMOOTH_STEP 2.0
+
+/* The smooth curve's samples strictly between src[i-1] and src[i]:
+ * about one every ROOTS_SMOOTH_STEP r (at most 8), each free of the hosts. */
+static void smooth_between(builder *bd, const v3 *src, uint32_t n, uint32_t i, v3 *prev) {
+    const roots_world *w = bd->w;
+    double len = v3_dist(src[i - 1], src[i]), tiny = 1e-6 * w->r;
+    if (len < ROOTS_SMOOTH_STEP * 1.25 * w->r) return;
+    int k = (int)ceil(len / (ROOTS_SMOOTH_STEP * w->r)) - 1;
+    if (k > 8) k = 8;
+    v3 p0 = neighbour(src, n, i - 1, -1, tiny), p3 = neighbour(src, n, i, +1, tiny);
+    for (int j = 1; j <= k; j++) {
+        v3 q = catmull_rom(p0, src[i - 1], src[i], p3, (double)j / (k + 1));
+        if (!world_free(w, q)) world_push_out(w, &q);
+        if (bd->press) roots_press_point(w, bd->press, &q);
+        repair(bd, *prev, q, 0, 0, 0);
+        put(bd, q, 0, 0);
+        *prev = q;
+    }
+}
+
+/* Appends the polyline src[0..n-1] with repair (and smoothing); idx[i]
+ * (when non-NULL) gets where src[i] landed; ok[i] (when non-NULL) marks
+ * steps into src[i] already checked with the same test. Returns the
+ * number of points added. */
+static uint32_t polyline(builder *bd, const v3 *src, uint32_t n, uint32_t *idx, const uint8_t *ok) {
     bd->start = bd->net->n_pts;
+    v3 prev = src[0];
     for (uint32_t i = 0; i < n; i++) {
-        if (i && !(ok && ok[i])) repair(bd, src[i - 1], src[i], rad[i - 1], rad[i], 0);
-        uint32_t k = put(bd, src[i], rad[i], i == 0 || i + 1 == n);
+        if (i && bd->smooth) smooth_between(bd, src, n, i, &prev);
+        if (i && (!(ok && ok[i]) || v3_dist(prev, src[i - 1]) > 0)) repair(bd, prev, src[i], 0, 0, 0);
+        uint32_t k = put(bd, src[i], 0, i == 0 || i + 1 == n);
+        prev = src[i];
         if (idx) idx[i] = k;
     }
     return bd->net->n_pts - bd->start;
@@ -148,43 +221,214 @@ static int add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, 
     pl->a = a;
     pl->k = k;
     pl->ring_off = UINT32_MAX;
+    pl->soil_from = n;
+    return 1;
+}
+
+static double smoothstep(double x) {
+    x = x < 0 ? 0 : (x > 1 ? 1 : x);
+    return x * x * (3.0 - 2.0 * x);
+}
+
+/* Arc length along a polyline, into arc[0..n-1]. */
+static void arc_of(const v3 *P, uint32_t n, double *arc) {
+    arc[0] = 0;
+    for (uint32_t i = 1; i < n; i++) arc[i] = arc[i - 1] + v3_dist(P[i - 1], P[i]);
+}
+
+/* Thins both ends of a branch root to tip r over `len`. */
+static void thin_ends(double *R, const double *arc, uint32_t n, double tip, double len) {
+    double L = arc[n - 1];
+    for (uint32_t i = 0; i < n; i++) {
+        double d = arc[i] < L - arc[i] ? arc[i] : L - arc[i];
+        double f = smoothstep(d / len);
+        R[i] = tip + (R[i] - tip) * f;
+    }
+}
+
+/* Drops path points closer than 0.4 r to the last kept one (smooth
+ * paths: curve samples pushed out round a corner bunch up there, and a
+ * tube's rings that close together fold at any bend) or where the path
+ * turns back on itself, unless a junction
+ * or an end sits on them or the step over them would sag into a host.
+ * Indices into pts (M_at, K_mid_at, polylines) follow. */
+static int decimate(roots_net *net) {
+    uint32_t n = net->n_pts;
+    uint8_t *keep = calloc(n ? n : 1, 1);
+    uint32_t *to = malloc(sizeof(uint32_t) * (n ? n : 1));
+    if (!keep || !to) {
+        free(keep); free(to);
+        return 0;
+    }
+    size_t NB = (size_t)net->N * net->B, slots = (size_t)net->N * net->nb;
+    for (size_t i = 0; i < NB; i++) keep[net->M_at[i]] = 1;
+    for (size_t s = 0; s < slots; s++)
+        if (net->K_valid[s]) keep[net->K_mid_at[s]] = 1;
+    const roots_world *w = &net->w;
+    double gap = 0.4 * w->r, stop = w->r * (1.0 - REPAIR_SAG);
+    uint32_t out = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        roots_poly *pl = &net->poly[t];
+        uint32_t off = out, soil = UINT32_MAX;
+        for (uint32_t i = 0; i < pl->n; i++) {
+            uint32_t k = pl->off + i;
+            int must = keep[k] || i == 0 || i + 1 == pl->n || i + 1 >= pl->soil_from;
+            int drop = 0;
+            if (!must) {
+                v3 in = v3_sub(net->pts[k], net->pts[out - 1]), on = v3_sub(net->pts[k + 1], net->pts[k]);
+                int back = v3_dot(in, on) < -0.3 * v3_len(in) * v3_len(on); /* the path turns back here */
+                drop = (v3_len(in) < gap || back) &&
+                       world_segment_clearance(w, net->pts[out - 1], net->pts[k + 1], stop) >= stop;
+            }
+            if (drop) {
+                to[k] = out - 1;
+                continue;
+            }
+            if (i == pl->soil_from) soil = out - off;
+            net->pts[out] = net->pts[k];
+            to[k] = out++;
+        }
+        pl->off = off;
+        pl->n = out - off;
+        if (soil != UINT32_MAX) pl->soil_from = soil;
+        else pl->soil_from = pl->n;
+    }
+    for (size_t i = 0; i < NB; i++) net->M_at[i] = to[net->M_at[i]];
+    for (size_t s = 0; s < slots; s++)
+        if (net->K_valid[s]) net->K_mid_at[s] = to[net->K_mid_at[s]];
+    net->n_pts = out;
+    free(keep);
+    free(to);
+    return 1;
+}
+
+/* The pipe model (see the header). */
+static int set_radii(roots_net *net, const banyan_roots_params *p) {
+    const int N = net->N, B = net->B, nb = net->nb;
+    const double r = net->r, e = p->pipe_exponent, tipf = pow(p->tip_radius, e), tip = p->tip_radius * r;
+    const double gain = 2.0 * p->maturity;
+    uint32_t longest = 2;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].n > longest) longest = net->poly[t].n;
+    double *arc = malloc(sizeof(double) * longest), *F = malloc(sizeof(double) * longest);
+    double *f1 = malloc(sizeof(double) * (size_t)(N * (nb ? nb : 1)));
+    if (!arc || !F || !f1) {
+        free(arc); free(F); free(f1);
+        return 0;
+    }
+    for (int a = 0; a < N; a++)
+        for (int k = 0; k < nb; k++) {
+            int slot = a * nb + k;
+            int n2 = net->Q_valid[slot] + (k > 0 ? net->Q_valid[slot - 1] : 0);
+            f1[slot] = net->K_valid[slot] ? tipf * (1.0 + gain * (1.0 + n2)) : 0.0;
+        }
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        const v3 *P = net->pts + pl->off;
+        double *R = net->rad + pl->off;
+        uint32_t n = pl->n;
+        arc_of(P, n, arc);
+        if (pl->kind == ROOT_MAIN) {
+            int a = pl->a, ap = (a + N - 1) % N;
+            for (uint32_t i = 0; i < n; i++) F[i] = 0;
+            for (int k = 0; k < nb; k++) {
+                int b = roots_branch_b(p, k);
+                if (b < 0 || b >= B) continue;
+                uint32_t at = net->M_at[(size_t)a * B + b] - pl->off;
+                double f = 0.5 * f1[a * nb + k] + (N > 1 ? 0.5 * f1[ap * nb + k] : 0.0);
+                if (at < n) F[at] += gain * f;
+            }
+            double sum = 0;
+            for (uint32_t i = 0; i < n; i++) {
+                sum += F[i];
+                double own = tipf + (1.0 - tipf) * (arc[i] / (8.0 * r) < 1 ? arc[i] / (8.0 * r) : 1.0);
+                R[i] = r * pow(own + sum, 1.0 / e);
+            }
+        } else {
+            double f = pl->kind == ROOT_FIRST ? f1[pl->a * nb + pl->k] : tipf * (1.0 + gain);
+            for (uint32_t i = 0; i < n; i++) R[i] = r * pow(f, 1.0 / e);
+        }
+        /* No steps where branches join: three passes of a [1 2 1] filter. */
+        for (int pass = 0; pass < 3 && n > 2; pass++) {
+            double prev = R[0];
+            for (uint32_t i = 1; i + 1 < n; i++) {
+                double cur = R[i];
+                R[i] = 0.25 * prev + 0.5 * cur + 0.25 * R[i + 1];
+                prev = cur;
+            }
+        }
+        if (pl->kind != ROOT_MAIN) {
+            thin_ends(R, arc, n, tip, 3.0 * r);
+            continue;
+        }
+        if (pl->soil_from >= n) {
+            /* A growing tip: thins to tip r over its last 6 r. */
+            double L = arc[n - 1];
+            for (uint32_t i = 0; i < n; i++) R[i] = tip + (R[i] - tip) * smoothstep((L - arc[i]) / (6.0 * r));
+            continue;
+        }
+        /* The buttress: up to `flare` times over the last stretch above the
+         * ground, kept (a little less at the end) below it. */
+        uint32_t ie = pl->soil_from - 1;
+        double Re = R[ie], len = 12.0 * r > 4.0 * Re ? 12.0 * r : 4.0 * Re;
+        for (uint32_t i = 0; i <= ie; i++) {
+            double x = 1.0 - (arc[ie] - arc[i]) / len;
+            R[i] *= 1.0 + (p->flare - 1.0) * (x > 0 ? x * x : 0.0); /* a cone that widens towards the ground */
+        }
+        for (uint32_t i = ie + 1; i < n; i++) R[i] = Re * p->flare * (1.0 - 0.5 * (arc[i] - arc[ie]) / (arc[n - 1] - arc[ie]));
+    }
+    free(arc);
+    free(F);
+    free(f1);
     return 1;
 }
 
 banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
-    (void)p; /* #18: the pipe model and smooth paths read it */
     const int N = net->N, B = net->B, nb = net->nb;
     size_t longest = (size_t)B + 1;
     if ((size_t)net->S1 > longest) longest = (size_t)net->S1;
     if ((size_t)net->S2 > longest) longest = (size_t)net->S2;
     v3 *src = malloc(sizeof(v3) * longest);
-    double *rad = malloc(sizeof(double) * longest);
     uint32_t *idx = malloc(sizeof(uint32_t) * longest);
-    builder bd = {net, 0, 0};
-    if (!src || !rad || !idx || !reserve_pts(net, (uint32_t)(N * (B + 1) + N * nb * (net->S1 + net->S2)) + 64)) {
-        free(src); free(rad); free(idx);
+    roots_world soil_w = roots_soil_world(&net->w);
+    builder bd = {net, &net->w, 0, 0, p->smooth_paths, NULL};
+    if (!src || !idx || !reserve_pts(net, (uint32_t)(N * (B + 1) + N * nb * (net->S1 + net->S2)) + 64)) {
+        free(src); free(idx);
         return BANYAN_E_NOMEM;
     }
     int id = 0;
     for (int a = 0; a < N && !bd.oom; a++) {
         src[0] = net->G;
-        rad[0] = net->r;
-        for (int b = 0; b < B; b++) {
-            src[b + 1] = net->M[(size_t)a * B + b];
-            rad[b + 1] = net->r; /* #18: the pipe model sets radii */
-        }
+        for (int b = 0; b < B; b++) src[b + 1] = net->M[(size_t)a * B + b];
         uint32_t off = net->n_pts;
-        uint32_t n = polyline(&bd, src, rad, (uint32_t)B + 1, idx, NULL);
+        bd.w = &net->w;
+        polyline(&bd, src, (uint32_t)B + 1, idx, NULL);
         memcpy(net->M_at + (size_t)a * B, idx + 1, sizeof(uint32_t) * B);
+        uint32_t soil_from = UINT32_MAX;
+        if (net->soil_b[a] < B) {
+            /* The underground end: clear of the hosts only. */
+            bd.w = &soil_w;
+            v3 prev = net->pts[net->n_pts - 1];
+            soil_from = net->n_pts - off;
+            for (int j = 0; j < ROOTS_SOIL_PTS; j++) {
+                v3 q = net->soil_pts[(size_t)a * ROOTS_SOIL_PTS + j];
+                repair(&bd, prev, q, 0, 0, 0);
+                put(&bd, q, 0, j + 1 == ROOTS_SOIL_PTS);
+                prev = q;
+            }
+            bd.w = &net->w;
+        }
+        uint32_t n = net->n_pts - off;
         if (!add_poly(net, off, n, ROOT_MAIN, id++, a, -1)) bd.oom = 1;
+        else if (soil_from != UINT32_MAX) net->poly[net->n_poly - 1].soil_from = soil_from;
     }
+    bd.press = p->hugging ? p : NULL;
     for (int a = 0; a < N && !bd.oom; a++)
         for (int k = 0; k < nb; k++) {
             int slot = a * nb + k;
             if (!net->K_valid[slot]) continue;
-            for (int i = 0; i < net->S1; i++) rad[i] = net->r;
             uint32_t off = net->n_pts;
-            uint32_t n = polyline(&bd, net->K + (size_t)slot * net->S1, rad, (uint32_t)net->S1, idx,
+            uint32_t n = polyline(&bd, net->K + (size_t)slot * net->S1, (uint32_t)net->S1, idx,
                                   net->K_ok + (size_t)slot * net->S1);
             net->K_mid_at[slot] = idx[(net->S1 - 1) / 2];
             if (!add_poly(net, off, n, ROOT_FIRST, id++, a, k)) bd.oom = 1;
@@ -193,13 +437,13 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         for (int k = 0; k < nb; k++) {
             int slot = a * nb + k;
             if (!net->Q_valid[slot]) continue;
-            for (int i = 0; i < net->S2; i++) rad[i] = net->r;
             uint32_t off = net->n_pts;
-            uint32_t n = polyline(&bd, net->Q + (size_t)slot * net->S2, rad, (uint32_t)net->S2, NULL, NULL);
+            uint32_t n = polyline(&bd, net->Q + (size_t)slot * net->S2, (uint32_t)net->S2, NULL, NULL);
             if (!add_poly(net, off, n, ROOT_SECOND, id++, a, k)) bd.oom = 1;
         }
     free(src);
-    free(rad);
     free(idx);
+    if (!bd.oom && p->smooth_paths && !decimate(net)) bd.oom = 1;
+    if (!bd.oom && !set_radii(net, p)) bd.oom = 1;
     return bd.oom ? BANYAN_E_NOMEM : BANYAN_OK;
 }

@@ -104,7 +104,22 @@ typedef struct roots_poly {
     int32_t id;        /* root_id, see docs/roots.md */
     int32_t a, k;      /* main root (0-based) and branch number along it */
     uint32_t ring_off; /* junction loops: index into net->loops, or UINT32_MAX */
+    uint32_t soil_from; /* main roots that enter the soil: the first point of the underground end
+                           (pts[off + soil_from ..] lie below the ground, soil_from - 1 is where the
+                           root enters it); n when the root stays above ground */
 } roots_poly;
+
+/* Points of a main root's underground end (soil_entry): it runs on
+ * outwards and dips below the ground. */
+#define ROOTS_SOIL_PTS 4
+
+/* The world without the ground: the underground ends of soil-entering
+ * roots keep clear of the hosts only. */
+static inline roots_world roots_soil_world(const roots_world *w) {
+    roots_world s = *w;
+    s.ground = 0;
+    return s;
+}
 
 typedef struct roots_net {
     /* Inputs, resolved. */
@@ -126,10 +141,13 @@ typedef struct roots_net {
     v3 *Q;             /* N * nb * S2 second branch points, slot [a*nb + k] joins k and k+1 */
     int32_t *Q_valid;  /* N * nb */
     int32_t *ground_hit; /* N: main root a reached the ground */
+    int32_t *soil_b;   /* N: growth index where main root a enters the soil (its later growth points
+                          repeat that one), B when it does not */
+    v3 *soil_pts;      /* N * ROOTS_SOIL_PTS: the underground end after M(a, soil_b) */
 
     /* Final polylines. */
     v3 *pts;
-    double *rad;       /* per point radius (taper) */
+    double *rad;       /* per point radius (the pipe model, paths.c) */
     uint32_t n_pts, cap_pts;
     roots_poly *poly;
     uint32_t n_poly, cap_poly;
@@ -165,11 +183,22 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p);
 void roots_grow_first(roots_net *net, const banyan_roots_params *p);
 void roots_correct_mains(roots_net *net, const banyan_roots_params *p);
 void roots_grow_second(roots_net *net, const banyan_roots_params *p);
+void roots_press_first(roots_net *net, const banyan_roots_params *p);
+/* Hugging: a point 1.5 r .. 4 hug_range r off a host goes back to about r
+ * from it (when free there); returns 1 when it moved. */
+int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q);
 banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p);
 
 /* First-branch slot k of a main root starts at growth index (0-based). */
 static inline int roots_branch_b(const banyan_roots_params *p, int k) {
     return p->branch_start - 1 + k * p->branch_spacing;
+}
+
+/* A first branch root grows in slot (a, k) only where both its ends lie
+ * above the soil entry of their main roots (soil_entry). */
+static inline int roots_slot_open(const roots_net *net, const banyan_roots_params *p, int a, int k) {
+    int b = roots_branch_b(p, k);
+    return b < net->soil_b[a] && b < net->soil_b[(a + 1) % net->N];
 }
 
 /* A segment between two free sphere centres may sag this far (times r)

@@ -2,7 +2,11 @@
  * layouts, not snapshots.
  *   - Clearance: every skeleton point of every kind of root, in hugging and
  *     paper mode, is at least r - tol from every host and the ground
- *     (tol = 1e-3 r; the skeleton is stored in float).
+ *     (tol = 1e-3 r; the skeleton is stored in float); the underground ends
+ *     of roots entering the soil (issue #18, soil_entry) keep clear of the
+ *     hosts only, and their tubes may go below the ground.
+ *   - Branch slots whose ends lie past a main root's soil entry grow no
+ *     first branch root (issue #18 overturned "all N x nb present").
  *   - Every first branch root starts exactly on M(a,b) and ends exactly on
  *     M(a+1,b); every second branch root joins the middles of its two first
  *     branch roots; none is missing; no step sags into a host; the skeleton
@@ -176,13 +180,27 @@ typedef struct net_report {
     double deepest;
 } net_report;
 
-static double clearance(const roots_world *w, const obb *hosts, uint32_t n, v3 p) {
-    double c = w->ground ? p.z - w->ground_z : 1e300;
+static double clearance_g(const roots_world *w, const obb *hosts, uint32_t n, v3 p, int ground) {
+    double c = w->ground && ground ? p.z - w->ground_z : 1e300;
     for (uint32_t i = 0; i < n; i++) {
         double d = obb_signed_distance(&hosts[i], p);
         if (d < c) c = d;
     }
     return c;
+}
+
+static double clearance(const roots_world *w, const obb *hosts, uint32_t n, v3 p) {
+    return clearance_g(w, hosts, n, p, 1);
+}
+
+/* p is one of the points of an underground end (soil_entry), to float precision. */
+static int in_soil_end(const roots_net *net, v3 p) {
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        for (uint32_t i = pl->soil_from; i < pl->n; i++)
+            if (v3_dist(net->pts[pl->off + i], p) < 1e-5) return 1;
+    }
+    return 0;
 }
 
 static void check_net(const roots_net *net, const banyan_roots_params *p, const banyan_mesh *m,
@@ -194,20 +212,34 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
     for (uint32_t i = 0; i < m->skel_point_count; i++) {
         v3 q = v3_make(m->skel_points[3 * i], m->skel_points[3 * i + 1], m->skel_points[3 * i + 2]);
         double c = clearance(w, w->hosts, w->n_hosts, q);
+        if (c < r - TOL * r && in_soil_end(net, q)) c = clearance_g(w, w->hosts, w->n_hosts, q, 0);
         if (c / r < rep->worst) rep->worst = c / r;
         if (c < r - TOL * r) rep->clearance_bad++;
     }
-    for (uint32_t i = 0; i < net->n_pts; i++)
-        if (clearance(w, w->hosts, w->n_hosts, net->pts[i]) < r * (1 - 1e-6)) rep->pts_bad++;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        for (uint32_t i = 0; i < pl->n; i++)
+            if (clearance_g(w, w->hosts, w->n_hosts, net->pts[pl->off + i], i < pl->soil_from) < r * (1 - 1e-6))
+                rep->pts_bad++;
+    }
     /* No mesh vertex enters a host or the ground (the tube surface, not only
-     * its axis; 0.1 mm for float storage). */
-    for (uint32_t v = 0; v < m->vertex_count; v++) {
-        const float *q = m->positions + 3 * (size_t)v;
-        double c = clearance(w, w->hosts, w->n_hosts, v3_make(q[0], q[1], q[2]));
-        if (c < -1e-4) {
-            rep->verts_inside++;
-            if (-c > rep->deepest) rep->deepest = -c;
+     * its axis; 0.1 mm for float storage), except the tubes of roots that
+     * enter the soil, which go below the ground (tubes follow the polylines
+     * in order, n (sides + 1) + 2 (sides + 2) vertices each). */
+    uint32_t vbase = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2) continue;
+        uint32_t nv = pl->n * (uint32_t)(p->sides + 1) + 2 * (uint32_t)(p->sides + 2);
+        for (uint32_t v = vbase; v < vbase + nv && v < m->vertex_count; v++) {
+            const float *q = m->positions + 3 * (size_t)v;
+            double c = clearance_g(w, w->hosts, w->n_hosts, v3_make(q[0], q[1], q[2]), pl->soil_from >= pl->n);
+            if (c < -1e-4) {
+                rep->verts_inside++;
+                if (-c > rep->deepest) rep->deepest = -c;
+            }
         }
+        vbase += nv;
     }
     /* Segments: none sags more than 0.2 r into a host (sampled densely). */
     for (uint32_t t = 0; t < net->n_poly; t++) {
@@ -217,7 +249,9 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
             rep->segments++;
             int bad = 0;
             for (int k = 1; k < 16 && !bad; k++)
-                if (clearance(w, w->hosts, w->n_hosts, v3_lerp(a, b, k / 16.0)) < 0.8 * r - TOL * r) bad = 1;
+                if (clearance_g(w, w->hosts, w->n_hosts, v3_lerp(a, b, k / 16.0), i < pl->soil_from) <
+                    0.8 * r - TOL * r)
+                    bad = 1;
             rep->sag_bad += bad;
         }
     }
@@ -242,8 +276,14 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
                 rep->second_bad_ends++;
         }
     }
-    int want_first = p->first_branches && N >= 2 ? N * nb : 0;
-    int want_second = want_first && p->second_branches && nb > 1 ? N * (nb - 1) : 0;
+    /* Slots open on both main roots (above their soil entries). */
+    int want_first = 0, want_second = 0;
+    for (int a = 0; a < N && p->first_branches && N >= 2; a++)
+        for (int k = 0; k < nb; k++) {
+            if (!roots_slot_open(net, p, a, k)) continue;
+            want_first++;
+            if (p->second_branches && k + 1 < nb && roots_slot_open(net, p, a, k + 1)) want_second++;
+        }
     if (firsts != want_first) rep->first_missing++;
     if (seconds != want_second) rep->second_missing++;
     if (mc_skeleton_pieces(m) != 1) rep->disconnected++; /* one connected graph */
@@ -325,8 +365,9 @@ static void roots_preset(const char *path, const char *name, void *ctx) {
     banyan_error err;
     CHECK(banyan_roots_generate_stats(&p, hosts, n, &m, &st, &err) == BANYAN_OK, "%s: %s", name, err.message);
     if (!strcmp(name, "roots_paper")) CHECK(p.hugging == 0, "the paper preset must turn hugging off");
-    if (!strcmp(name, "roots_young_fig"))
-        CHECK(m && st.mains_on_ground == 0, "young fig: %u main roots reached the ground", st.mains_on_ground);
+    /* Issue #18: every shipped preset touches the ground (the young fig's
+     * cords have just reached it). */
+    CHECK(m && st.mains_on_ground > 0, "%s: no main root reached the ground", name);
     if (!strcmp(name, "roots_trunk") || !strcmp(name, "roots_ruin"))
         CHECK(m && st.mains_on_ground == (uint32_t)p.main_roots, "%s: %u of %d main roots reached the ground", name,
               st.mains_on_ground, p.main_roots);
@@ -509,16 +550,19 @@ int main(int argc, char **argv) {
             }
             CHECK(m->index_count == want_i && m->vertex_count == want_v, "n = 4: %u indices, %u vertices (want %llu, %llu)",
                   m->index_count, m->vertex_count, (unsigned long long)want_i, (unsigned long long)want_v);
-            /* The first ring of the first main root: a square of side r sqrt 2 round G. */
+            /* The first ring of the first main root: a square of side rad sqrt 2
+             * round G (rad: the pipe model's radius there, tip_radius r). */
             v3 g = net.pts[0];
+            double r0 = net.rad[0];
             int square = 1;
             for (int j = 0; j < 4; j++) {
                 const float *a = P(m, (uint32_t)j), *b = P(m, (uint32_t)(j + 1) % 4);
                 double ra = sqrt((a[0] - g.x) * (a[0] - g.x) + (a[1] - g.y) * (a[1] - g.y) + (a[2] - g.z) * (a[2] - g.z));
                 double side = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-                if (fabs(ra - net.r) > 1e-5 || fabs(side - net.r * sqrt(2.0)) > 1e-5) square = 0;
+                if (fabs(ra - r0) > 1e-5 || fabs(side - r0 * sqrt(2.0)) > 1e-5) square = 0;
             }
-            CHECK(square, "n = 4: the first ring is not a square of radius r");
+            CHECK(square && fabs(r0 - p.tip_radius * net.r) < 1e-9, "n = 4: the first ring is not a square of radius "
+                  "tip_radius r");
             tube_report tr;
             memset(&tr, 0, sizeof tr);
             check_tubes(&net, &p, m, &tr);
@@ -592,7 +636,11 @@ int main(int argc, char **argv) {
         memset(kinds, 0, sizeof kinds);
         roots_net_build(&p, &host, 1, &net, &err);
         for (uint32_t t = 0; t < net.n_poly; t++) kinds[net.poly[t].kind]++;
-        CHECK(kinds[1] == 48 && kinds[2] == 0, "second_branches off: kinds %d %d %d", kinds[0], kinds[1], kinds[2]);
+        int open = 0;
+        for (int a = 0; a < net.N; a++)
+            for (int k = 0; k < net.nb; k++) open += roots_slot_open(&net, &p, a, k);
+        CHECK(kinds[1] == open && open > 0 && kinds[2] == 0, "second_branches off: kinds %d %d %d (%d open slots)",
+              kinds[0], kinds[1], kinds[2], open);
         roots_net_free(&net);
         banyan_roots_params_init(&p);
         p.correction = 0;

@@ -66,10 +66,13 @@ static banyan_mesh *grow_check(const banyan_hosts *H, const banyan_roots_params 
     if (s) return NULL;
     double r = p->radius * p->unit;
     rep->nets++;
-    /* Skeleton points: clearance >= r (less float storage). */
+    /* Skeleton points: clearance >= r (less float storage); below the
+     * ground only the underground ends of roots entering the soil (issue
+     * #18, soil_entry), which keep clear of the hosts only. */
     for (uint32_t i = 0; i < m->skel_point_count; i++) {
         v3 q = v3_make(m->skel_points[3 * i], m->skel_points[3 * i + 1], m->skel_points[3 * i + 2]);
-        double c = host_clearance(H, p, q, 1);
+        int under = p->soil_entry && p->ground && q.z < p->ground_z + r * (1.0 - TOL);
+        double c = host_clearance(H, p, q, !under);
         if (c / r < rep->worst_skel) rep->worst_skel = c / r;
         if (c < r * (1.0 - TOL)) rep->skel_close++;
         double qd[3] = {q.x, q.y, q.z};

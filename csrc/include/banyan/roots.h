@@ -53,7 +53,7 @@ typedef struct banyan_roots_params {
     double junction_start_scale;  /* 0.1 .. 10: loop radius at a first branch's start, times r [1.15] */
     double junction_end_scale;    /* 0.1 .. 10: loop radius at a first branch's end, times r [1.08] */
     double junction_reach;        /* multiples of r, 1 .. 1e4: a junction loop reaches at most this far
-                                     along the main root from the junction (0.8x at the far end) [8] */
+                                     along the main root from the junction (0.8x at the far end) [2] */
     double junction_falloff;      /* 0.1 .. 10: exponent of the loop-to-round blend along the branch [3] */
     double germination[3];        /* m, each -1e6 .. 1e6: G when germination_auto is 0 */
     int32_t germination_auto;     /* bool: G = top centre of hosts[0] lifted by r [1] */
