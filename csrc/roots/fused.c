@@ -18,6 +18,9 @@
  * tubes' uvs; a triangle across u's wrap gets its own copies of the
  * vertices), `root_kind` and `root_id` of the nearest capsule, and the
  * tubes' colour, material and skeleton. */
+#ifdef FUSED_TIMING
+#define _POSIX_C_SOURCE 199309L
+#endif
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,12 +29,26 @@
 #include "core/tube.h"
 #include "fused_vdb.h"
 #include "roots_internal.h"
+/* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
+#ifdef FUSED_TIMING
+#include <stdio.h>
+#include <time.h>
+static double stage_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+#define STAGE(i) stage_t[i] = stage_ms()
+#else
+#define STAGE(i) (void)0
+#endif
 
 #define BIG 1e30f
 #define BLK 512
-/* Band half-width in voxels: the field is 1-Lipschitz, so |v| < 2 h holds
- * at least two voxels on each side of the surface. */
-#define BAND_VOXELS 2.0
+/* Band half-width in voxels. Only the signs outside it matter: the field
+ * is about 1-Lipschitz (a tapered capsule's a little more), so the two
+ * voxels of an edge that the surface crosses both lie within h of it. */
+#define BAND_VOXELS 1.25
 /* Roots stop this far (times r) outside a host: marching's linear
  * interpolation then keeps vertices out of a curved host too. */
 #define HOST_GAP 0.02
@@ -252,6 +269,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     const float k = (float)(p->fuse_radius * r * (0.25 + 0.75 * p->maturity));
     const double band = BAND_VOXELS * h;
     banyan_status st = BANYAN_OK;
+#ifdef FUSED_TIMING
+    double stage_t[6];
+#endif
 
     /* Capsules, and an estimate of the vertices: a tube's side over h^2. */
     uint32_t n_caps = 0;
@@ -299,6 +319,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         goto done;
     }
 
+    STAGE(0);
     /* The field: per polyline the minimum of its capsules, then the smooth
      * union of the polylines in order. Capsules only reach voxels where
      * they are nearer than band + k: farther, smin leaves the band alone. */
@@ -323,6 +344,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         }
     }
 
+    STAGE(1);
     /* Host difference and the soil's floor; then the band's clamp. */
     {
         const roots_world *w = &net->w;
@@ -346,6 +368,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
                     double c = world_clearance_in(w, q, 0, range, NULL, NULL);
                     if (gap - c > d) d = (float)(gap - c);
                 }
+                /* An exact zero puts several cells' vertices on one point (a
+                 * face of zero area): it counts as just outside. */
+                if (d == 0) d = 1e-6f * (float)h;
                 acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
             }
             origin[3 * b] = m->bx * 8, origin[3 * b + 1] = m->by * 8, origin[3 * b + 2] = m->bz * 8;
@@ -354,6 +379,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             st = prog_fail(err, "fused roots surface");
             goto done;
         }
+        STAGE(2);
         fused_vdb_in vi = {origin, g.acc, g.n, (float)band, 0.0};
         int vs = fused_vdb_mesh(&vi, &vo);
         if (vs == FUSED_VDB_NOMEM) goto nomem;
@@ -364,13 +390,65 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             goto done;
         }
     }
+    STAGE(3);
     if (vo.n_pos == 0 || vo.n_tri == 0) {
         st = banyan_fail(err, BANYAN_E_INTERNAL, "the fused roots surface is empty");
         goto done;
     }
 
-    /* Orientation: OpenVDB's winding, made outward by the signed volume. */
+    /* OpenVDB may put two vertices of one face on the same point (a face
+     * of zero area, seen where a cell is split into two sheets): those
+     * vertices become one, the faces that collapse go, and the vertices
+     * are renumbered densely. */
     uint32_t nv = vo.n_pos, nt = vo.n_tri;
+    {
+        uint32_t *map = malloc(sizeof *map * nv);
+        if (!map) goto nomem;
+        for (uint32_t i = 0; i < nv; i++) map[i] = i;
+        int any = 0;
+        for (uint32_t f = 0; f < nt; f++)
+            for (int j = 0; j < 3; j++) {
+                uint32_t a = vo.tri[3 * f + j], b = vo.tri[3 * f + (j + 1) % 3];
+                if (!memcmp(vo.pos + 3 * (size_t)a, vo.pos + 3 * (size_t)b, 3 * sizeof(float))) {
+                    while (map[a] != a) a = map[a];
+                    while (map[b] != b) b = map[b];
+                    if (a != b) map[a > b ? a : b] = a < b ? a : b;
+                    any = 1;
+                }
+            }
+        if (any) {
+            uint32_t mt = 0, mv = 0;
+            for (uint32_t i = 0; i < nv; i++) {
+                uint32_t a = i;
+                while (map[a] != a) a = map[a];
+                map[i] = a;
+            }
+            for (uint32_t f = 0; f < nt; f++) {
+                uint32_t a = map[vo.tri[3 * f]], b = map[vo.tri[3 * f + 1]], c = map[vo.tri[3 * f + 2]];
+                if (a == b || b == c || a == c) continue;
+                vo.tri[3 * mt] = a, vo.tri[3 * mt + 1] = b, vo.tri[3 * mt + 2] = c;
+                mt++;
+            }
+            /* dense numbering: a root (map[i] == i) keeps its order */
+            uint32_t *nid = malloc(sizeof *nid * nv);
+            if (!nid) {
+                free(map);
+                goto nomem;
+            }
+            for (uint32_t i = 0; i < nv; i++)
+                if (map[i] == i) {
+                    nid[i] = mv;
+                    memmove(vo.pos + 3 * (size_t)mv, vo.pos + 3 * (size_t)i, 3 * sizeof(float));
+                    mv++;
+                }
+            for (uint32_t t = 0; t < 3 * mt; t++) vo.tri[t] = nid[vo.tri[t]];
+            free(nid);
+            nv = mv, nt = mt;
+        }
+        free(map);
+    }
+
+    /* Orientation: OpenVDB's winding, made outward by the signed volume. */
     double vol = 0;
     for (uint32_t f = 0; f < nt; f++) {
         const float *A = vo.pos + 3 * (size_t)vo.tri[3 * f], *B = vo.pos + 3 * (size_t)vo.tri[3 * f + 1],
@@ -384,6 +462,19 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             vo.tri[3 * f + 1] = vo.tri[3 * f + 2];
             vo.tri[3 * f + 2] = x;
         }
+
+    /* Marching cuts the crease where the roots meet a host's edge: a
+     * vertex there may sit a little inside (up to about h / 3). It goes
+     * back out along the distance field's normal, to half the gap. */
+    for (uint32_t i = 0; i < nv; i++) {
+        float *f = vo.pos + 3 * (size_t)i;
+        v3 q = v3_make(f[0] * h, f[1] * h, f[2] * h), n;
+        int which;
+        double c = world_clearance_in(&net->w, q, 0, HOST_GAP * r, &n, &which);
+        if (c >= 0.5 * HOST_GAP * r || which < 0) continue;
+        q = v3_madd(q, n, 0.5 * HOST_GAP * r - c);
+        f[0] = (float)(q.x / h), f[1] = (float)(q.y / h), f[2] = (float)(q.z / h);
+    }
 
     /* Smooth normals (area-weighted face normals), uvs and attributes. */
     nacc = calloc((size_t)3 * nv, sizeof(double));
@@ -437,6 +528,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         goto done;
     }
 
+    STAGE(4);
     int a_kind, a_id;
     roots_mesh_init(&mb, p, &a_kind, &a_id);
     mb_live = 1;
@@ -461,6 +553,12 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             stats->triangles = mi / 3;
         }
     }
+#ifdef FUSED_TIMING
+    STAGE(5);
+    fprintf(stderr, "fused: field %.1f, host and soil %.1f, OpenVDB %.1f, uvs and attributes %.1f, builder %.1f ms; "
+            "%u blocks, %u capsules, %u vertices\n", stage_t[1] - stage_t[0], stage_t[2] - stage_t[1],
+            stage_t[3] - stage_t[2], stage_t[4] - stage_t[3], stage_t[5] - stage_t[4], g.n, n_caps, nv + extra);
+#endif
     goto done;
 
 nomem:

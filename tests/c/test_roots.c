@@ -254,6 +254,11 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
 
 static void run(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n, net_report *nr, tube_report *tr,
                 int mesh_checks) {
+    /* The tube checks read the tubes' layout: tube mode (test_roots_fused
+     * checks the fused surface). */
+    banyan_roots_params tubes = *p;
+    tubes.surface = BANYAN_ROOTS_TUBES;
+    p = &tubes;
     roots_net net;
     banyan_error err;
     banyan_status s = roots_net_build(p, hosts, n, &net, &err);
@@ -494,6 +499,7 @@ int main(int argc, char **argv) {
         banyan_roots_params p;
         banyan_roots_params_init(&p);
         p.sides = 4;
+        p.surface = BANYAN_ROOTS_TUBES;
         banyan_box host = banyan_box_make(0, 0, 4, 0.4, 0.4, 4);
         roots_net net;
         banyan_error err;
