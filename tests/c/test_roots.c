@@ -609,8 +609,10 @@ int main(int argc, char **argv) {
         roots_net_build(&p, &host, 1, &net, &err);
         CHECK(memcmp(net.M, net.M_grown, sizeof(v3) * (size_t)net.N * net.B) != 0, "correction on moved nothing");
         roots_net_free(&net);
-        /* Smoothing off: round first rings (all at distance r from their centre). */
+        /* Smoothing off: round first rings (all at distance r from their centre);
+         * junction smoothing shapes the tubes (the fused surface has fillets). */
         banyan_roots_params_init(&p);
+        p.surface = BANYAN_ROOTS_TUBES;
         banyan_mesh *a = NULL, *b = NULL;
         banyan_roots_generate(&p, &host, 1, &a, NULL);
         p.smoothing = 0;
