@@ -69,6 +69,7 @@ typedef struct blk_meta {
 
 typedef struct fgrid {
     double h, cut;
+    double list_cut; /* a capsule this near a voxel joins its block's list */
     blk_meta *meta;
     float *acc, *tmp;
     uint32_t n, cap;
@@ -216,11 +217,23 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                 int32_t z0 = bz * 8 > i0[2] ? bz * 8 : i0[2], z1 = bz * 8 + 7 < i1[2] ? bz * 8 + 7 : i1[2];
                 uint32_t b = UINT32_MAX;
                 float *tmp = NULL;
+                /* Along a column, p - a and t are linear in z: the squared
+                 * distance to the axis comes without a sqrt, which only the
+                 * voxels within reach pay. */
+                v3 ba = v3_sub(c->b, c->a);
+                double l2 = v3_len2(ba), il2 = l2 > 0 ? 1.0 / l2 : 0, dr = c->rb - c->ra;
                 for (int32_t x = x0; x <= x1; x++)
-                    for (int32_t y = y0; y <= y1; y++)
+                    for (int32_t y = y0; y <= y1; y++) {
+                        double px = x * h - c->a.x, py = y * h - c->a.y;
+                        double dxy = px * ba.x + py * ba.y, pxy2 = px * px + py * py;
                         for (int32_t z = z0; z <= z1; z++) {
-                            double d = capsule_dist(c, v3_make(x * h, y * h, z * h), NULL);
-                            if (d >= g->cut) continue;
+                            double pz = z * h - c->a.z, dt = dxy + pz * ba.z;
+                            double t = dt * il2;
+                            t = t < 0 ? 0 : (t > 1 ? 1 : t);
+                            double q2 = pxy2 + pz * pz - t * (2 * dt - t * l2), tr = c->ra + dr * t;
+                            double reach = g->cut + tr;
+                            if (q2 >= reach * reach) continue;
+                            double d = sqrt(q2 > 0 ? q2 : 0) - tr;
                             if (b == UINT32_MAX) {
                                 b = grid_get(g, bx, by, bz);
                                 if (b == UINT32_MAX) return;
@@ -231,11 +244,12 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                                     for (int v = 0; v < BLK; v++) tmp[v] = BIG;
                                     g->touched[g->n_touched++] = b;
                                 }
-                                grid_list_add(g, b, ci);
                             }
+                            if (d < g->list_cut) grid_list_add(g, b, ci);
                             int v = ((x - bx * 8) << 6) | ((y - by * 8) << 3) | (z - bz * 8);
                             if ((float)d < tmp[v]) tmp[v] = (float)d;
                         }
+                    }
             }
 }
 
@@ -325,6 +339,10 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
      * they are nearer than band + k: farther, smin leaves the band alone. */
     g.h = h;
     g.cut = band + k;
+    /* A vertex's field is 0, so some capsule is within k / 4 of it (smin
+     * goes at most k / 4 below the minimum), and it lies within 0.87 h of
+     * the voxel whose block it looks in. */
+    g.list_cut = 0.25 * k + 1.25 * h;
     if (grid_rehash(&g, 4096)) goto nomem;
     for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
         const roots_poly *pl = &net->poly[t];
@@ -350,7 +368,11 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         const roots_world *w = &net->w;
         double gap = HOST_GAP * r, floor_z = net->w.ground_z - SOIL_DEPTH * r;
         double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
-        int32_t *origin = (int32_t *)g.tmp; /* tmp is free now: 3 ints per block fit in 512 floats */
+        /* A block wholly outside is left to the background; the others go
+         * to OpenVDB (packed to the front of acc). tmp is free now: it
+         * takes their origins (3 ints per block, in 512 floats per block). */
+        int32_t *origin = (int32_t *)g.tmp;
+        uint32_t n_surf = 0;
         for (uint32_t b = 0; b < g.n; b++) {
             const blk_meta *m = &g.meta[b];
             float *acc = g.acc + (size_t)b * BLK;
@@ -373,14 +395,22 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
                 if (d == 0) d = 1e-6f * (float)h;
                 acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
             }
-            origin[3 * b] = m->bx * 8, origin[3 * b + 1] = m->by * 8, origin[3 * b + 2] = m->bz * 8;
+            int outside = 1;
+            for (int v = 0; v < BLK; v++) outside &= acc[v] >= band;
+            if (outside) continue;
+            origin[3 * n_surf] = m->bx * 8, origin[3 * n_surf + 1] = m->by * 8, origin[3 * n_surf + 2] = m->bz * 8;
+            if (n_surf != b) memmove(g.acc + (size_t)n_surf * BLK, acc, sizeof(float) * BLK);
+            n_surf++;
         }
         if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) {
             st = prog_fail(err, "fused roots surface");
             goto done;
         }
         STAGE(2);
-        fused_vdb_in vi = {origin, g.acc, g.n, (float)band, 0.0};
+#ifdef FUSED_TIMING
+        fprintf(stderr, "fused: %u of %u blocks to OpenVDB\n", n_surf, g.n);
+#endif
+        fused_vdb_in vi = {origin, g.acc, n_surf, (float)band, 0.0};
         int vs = fused_vdb_mesh(&vi, &vo);
         if (vs == FUSED_VDB_NOMEM) goto nomem;
         if (vs != FUSED_VDB_OK) {

@@ -398,6 +398,16 @@ int main(int argc, char **argv) {
         check_net("maturity 1, fuse_radius 4", &p, &host, 1, NULL, 1, NULL, &t);
         p.fuse_radius = 0;
         check_net("fuse_radius 0", &p, &host, 1, NULL, 1, NULL, &t);
+
+        /* The finest and the coarsest voxels, on a small net. */
+        banyan_roots_params_init(&p);
+        p.main_roots = 3;
+        p.growth_points = 12;
+        p.voxel_size = 0.1;
+        p.maturity = 1;
+        check_net("voxel_size 0.1", &p, &host, 1, NULL, 1, NULL, &t);
+        p.voxel_size = 2;
+        check_net("voxel_size 2", &p, &host, 1, NULL, 2, NULL, &t);
     }
 
     /* 2. Every shipped roots preset, box and mesh hosts. */
