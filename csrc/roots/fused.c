@@ -222,11 +222,30 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                  * voxels within reach pay. */
                 v3 ba = v3_sub(c->b, c->a);
                 double l2 = v3_len2(ba), il2 = l2 > 0 ? 1.0 / l2 : 0, dr = c->rb - c->ra;
+                double ua = ba.x * ba.x + ba.y * ba.y;
                 for (int32_t x = x0; x <= x1; x++)
                     for (int32_t y = y0; y <= y1; y++) {
                         double px = x * h - c->a.x, py = y * h - c->a.y;
                         double dxy = px * ba.x + py * ba.y, pxy2 = px * px + py * py;
-                        for (int32_t z = z0; z <= z1; z++) {
+                        /* The column only meets the reach round the axis points
+                         * s in [s0, s1] horizontally within R, at heights within
+                         * R of theirs: a conservative z range, no voxel lost. */
+                        double s0 = 0, s1 = 1;
+                        if (ua > 1e-12 * l2) {
+                            double disc = dxy * dxy - ua * (pxy2 - R * R);
+                            if (disc < 0) continue;
+                            disc = sqrt(disc);
+                            s0 = (dxy - disc) / ua, s1 = (dxy + disc) / ua;
+                            s0 = s0 < 0 ? 0 : s0, s1 = s1 > 1 ? 1 : s1;
+                            if (s0 > s1) continue;
+                        } else if (pxy2 > R * R) {
+                            continue;
+                        }
+                        double za = c->a.z + s0 * ba.z, zb = c->a.z + s1 * ba.z;
+                        int32_t zl = (int32_t)ceil((fmin(za, zb) - R) / h), zh = (int32_t)floor((fmax(za, zb) + R) / h);
+                        if (zl < z0) zl = z0;
+                        if (zh > z1) zh = z1;
+                        for (int32_t z = zl; z <= zh; z++) {
                             double pz = z * h - c->a.z, dt = dxy + pz * ba.z;
                             double t = dt * il2;
                             t = t < 0 ? 0 : (t > 1 ? 1 : t);

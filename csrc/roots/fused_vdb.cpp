@@ -29,12 +29,16 @@ extern "C" int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out) {
             const int32_t *o = in->origin + 3 * b;
             const float *v = in->values + (size_t)512 * b;
             openvdb::FloatTree::LeafNodeType *leaf = tree.touchLeaf(openvdb::Coord(o[0], o[1], o[2]));
+            /* Every voxel of a block holds its value (clamped to +-background
+             * outside the band, inactive there): no flood fill to guess signs. */
+            float *dst = leaf->buffer().data();
+            openvdb::FloatTree::LeafNodeType::NodeMaskType mask;
             for (openvdb::Index i = 0; i < 512; i++) {
-                /* Every voxel of a block holds its value (clamped to +-background
-                 * outside the band, inactive there): no flood fill to guess signs. */
-                if (v[i] > -in->background && v[i] < in->background) leaf->setValueOn(i, v[i]);
-                else leaf->setValueOff(i, v[i] < 0 ? -in->background : in->background);
+                bool on = v[i] > -in->background && v[i] < in->background;
+                dst[i] = on ? v[i] : (v[i] < 0 ? -in->background : in->background);
+                if (on) mask.setOn(i);
             }
+            leaf->setValueMask(mask);
         }
         std::vector<openvdb::Vec3s> points;
         std::vector<openvdb::Vec3I> tris;
