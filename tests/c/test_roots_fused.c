@@ -428,6 +428,22 @@ int main(int argc, char **argv) {
         banyan_status s = banyan_roots_generate(&p, &host, 1, &m, &err);
         CHECK(s == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"), "limit: status %d, '%s'", s,
               err.message);
+        /* One vertex short of the mesh: refused on the final count. */
+        banyan_roots_params_init(&p);
+        p.main_roots = 3;
+        p.growth_points = 12;
+        s = banyan_roots_generate(&p, &host, 1, &m, &err);
+        uint32_t n = m ? m->vertex_count : 0;
+        banyan_mesh_free(m);
+        m = NULL;
+        p.max_vertices = (int32_t)n - 1;
+        banyan_status s2 = banyan_roots_generate(&p, &host, 1, &m, &err);
+        CHECK(s == BANYAN_OK && n > 1 && s2 == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"),
+              "limit n - 1 = %u: status %d, '%s'", n - 1, s2, err.message);
+        p.max_vertices = (int32_t)n;
+        s2 = banyan_roots_generate(&p, &host, 1, &m, &err);
+        CHECK(s2 == BANYAN_OK && m && m->vertex_count == n, "limit n = %u: status %d", n, s2);
+        banyan_mesh_free(m);
     }
     return check_done("test_roots_fused");
 }
