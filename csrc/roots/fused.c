@@ -431,6 +431,11 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 #endif
         fused_vdb_in vi = {origin, g.acc, n_surf, (float)band, 0.0};
         int vs = fused_vdb_mesh(&vi, &vo);
+        /* The field is done with (the lists stay for the nearest capsule):
+         * its memory goes before the mesh's arrives, lowering the peak. */
+        free(g.acc);
+        free(g.tmp);
+        g.acc = g.tmp = NULL;
         if (vs == FUSED_VDB_NOMEM) goto nomem;
         if (vs != FUSED_VDB_OK) {
             st = banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
