@@ -129,7 +129,7 @@ static void stitch(mesh_builder *mb, uint32_t first, uint32_t n, int sides) {
  * a texel stays as tall as it is wide (u runs once around whatever the
  * radius) and bark textures do not stretch. A radius that is not
  * positive falls back to r_mean. */
-static double tube_dv(double l, double r0, double r1, double r_mean) {
+double tube_dv(double l, double r0, double r1, double r_mean) {
     const double two_pi = 6.283185307179586;
     /* v counts tiles: one tile spans BANYAN_BARK_TILE_ASPECT circumferences */
     if (!(r0 > 1e-12 && r1 > 1e-12)) return (r_mean > 1e-12 ? l / (two_pi * r_mean) : l) / BANYAN_BARK_TILE_ASPECT;

@@ -52,6 +52,10 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
  * where rings are not circles (the roots' junction smoothing). */
 void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o);
 
+/* v (in bark tiles) gained over a segment of length l whose radius goes
+ * linearly from r0 to r1, so that a texel stays as tall as it is wide. */
+double tube_dv(double l, double r0, double r1, double r_mean);
+
 /* Radius slope per metre at point i (central difference). A tapering
  * round tube's normal at ring direction d is (d - slope T) / sqrt(1 +
  * slope^2). */

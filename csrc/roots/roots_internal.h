@@ -10,6 +10,7 @@
 #include "core/progress.h"
 #include "banyan.h"
 #include "core/hosts.h"
+#include "core/mesh_builder.h"
 #include "core/obb.h"
 #include "core/rng.h"
 #include "core/vec.h"
@@ -177,6 +178,17 @@ void roots_net_free(roots_net *net);
 /* Sweeps the net into a mesh (spec 5). */
 banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                              banyan_roots_stats *stats, banyan_error *err);
+
+/* The fused surface (fused.c, issue #18): one closed surface of the whole
+ * net through an OpenVDB level set; roots_net_mesh calls it when
+ * p->surface is BANYAN_ROOTS_FUSED. */
+banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
+                                   banyan_roots_stats *stats, banyan_error *err);
+/* Shared by both surfaces (mesh.c): the builder with the roots' attributes
+ * (`root_kind`, `root_id`), colour and fig-bark material; the skeleton
+ * (returns -1 when out of memory). */
+void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id);
+int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roots_params *p);
 
 /* Stages (each file's header comment names its spec section). */
 void roots_grow_mains(roots_net *net, const banyan_roots_params *p);

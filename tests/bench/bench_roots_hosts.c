@@ -24,6 +24,7 @@ typedef struct figures {
 static figures measure(const banyan_hosts *H, const banyan_box *box, int runs) {
     banyan_roots_params p;
     banyan_roots_params_init(&p);
+    p.surface = BANYAN_ROOTS_TUBES; /* the tube mesh on a mesh host against a box (bench_roots has the fused surface) */
     p.sides = 16;
     double *t = malloc(sizeof(double) * (size_t)runs), *tn = malloc(sizeof(double) * (size_t)runs);
     figures f = {0, 0, 0};

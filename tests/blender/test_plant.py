@@ -75,7 +75,7 @@ def save_reload(name):
 def test_roots():
     bt.reset_scene()
     cube = bpy.data.objects["Cube"]
-    objs = build("roots", sides=6)
+    objs = build("roots", sides=6, surface="tubes")  # sides shape the tubes (the fused surface has voxels)
     bt.check(len(objs) == 1, "roots: one object")
     obj = objs[0]
     pl = obj.banyan_plant

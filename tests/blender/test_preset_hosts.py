@@ -70,7 +70,11 @@ def test_shipped():
         a = grow(hosts=objs, preset=name, name="OnObjects")[0]
         b = grow(preset=name, name="OnPresetSet")[0]
         na, nb = len(a.data.vertices), len(b.data.vertices)
-        bt.check(na == nb and na > 0, "%s: %d vertices on the objects, %d on the preset's host set" % (name, na, nb))
+        # The fused roots surface is a level set: the objects' float32 copy
+        # of the host moves a few voxels' signs (docs/roots.md "Fused surface").
+        fused = gen == "roots" and json.loads(text)["params"].get("surface", "fused") == "fused"
+        same = abs(na - nb) <= 1e-3 * nb if fused else na == nb
+        bt.check(same and na > 0, "%s: %d vertices on the objects, %d on the preset's host set" % (name, na, nb))
         if na == nb and na:
             from array import array
             pa, pb = array("f", bytes(12 * na)), array("f", bytes(12 * nb))

@@ -117,8 +117,13 @@ def check_preset(path):
     if not bt.check(res == {'FINISHED'} and objs, "%s: operator finished (%s)" % (key, res)):
         return
     nv, nt = counts(objs)
-    bt.check((nv, nt) == (ref["vertices"], ref["triangles"]), "%s: %d vertices, %d triangles; the CLI %d, %d"
-             % (key, nv, nt, ref["vertices"], ref["triangles"]))
+    if gen == "roots" and kw.get("host_shape") != 'BOX' and doc["params"].get("surface", "fused") == "fused":
+        # The fused surface is a level set: a mesh host as Blender holds it
+        # (float32) moves a few voxels' signs, and the counts with them.
+        close = abs(nv - ref["vertices"]) <= 1e-3 * ref["vertices"] and abs(nt - ref["triangles"]) <= 1e-3 * ref["triangles"]
+    else:
+        close = (nv, nt) == (ref["vertices"], ref["triangles"])
+    bt.check(close, "%s: %d vertices, %d triangles; the CLI %d, %d" % (key, nv, nt, ref["vertices"], ref["triangles"]))
     if gen == "avenue":
         check_avenue(key, doc, ref, objs)
     if gen == "ivy":

@@ -294,6 +294,11 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
 
 static void run(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n, net_report *nr, tube_report *tr,
                 int mesh_checks) {
+    /* The tube checks read the tubes' layout: tube mode (test_roots_fused
+     * checks the fused surface). */
+    banyan_roots_params tubes = *p;
+    tubes.surface = BANYAN_ROOTS_TUBES;
+    p = &tubes;
     roots_net net;
     banyan_error err;
     banyan_status s = roots_net_build(p, hosts, n, &net, &err);
@@ -535,6 +540,7 @@ int main(int argc, char **argv) {
         banyan_roots_params p;
         banyan_roots_params_init(&p);
         p.sides = 4;
+        p.surface = BANYAN_ROOTS_TUBES;
         banyan_box host = banyan_box_make(0, 0, 4, 0.4, 0.4, 4);
         roots_net net;
         banyan_error err;
@@ -651,8 +657,10 @@ int main(int argc, char **argv) {
         roots_net_build(&p, &host, 1, &net, &err);
         CHECK(memcmp(net.M, net.M_grown, sizeof(v3) * (size_t)net.N * net.B) != 0, "correction on moved nothing");
         roots_net_free(&net);
-        /* Smoothing off: round first rings (all at distance r from their centre). */
+        /* Smoothing off: round first rings (all at distance r from their centre);
+         * junction smoothing shapes the tubes (the fused surface has fillets). */
         banyan_roots_params_init(&p);
+        p.surface = BANYAN_ROOTS_TUBES;
         banyan_mesh *a = NULL, *b = NULL;
         banyan_roots_generate(&p, &host, 1, &a, NULL);
         p.smoothing = 0;

@@ -170,6 +170,10 @@ static void test_cylinder(const char *dir) {
     }
     banyan_roots_params p;
     banyan_roots_params_init(&p);
+    /* How closely the roots wrap, counted on the tubes' vertices (rings
+     * evenly along each root); the fused surface spreads its vertices by
+     * area, fillets included (test_roots_fused checks it on hosts). */
+    p.surface = BANYAN_ROOTS_TUBES;
     double r = p.radius * p.unit;
     report rep = {0};
     rep.worst_skel = 1e300;

@@ -1,0 +1,633 @@
+/* The fused roots surface (issue #18 "Fused surface"; spec roots.md 5,
+ * docs/roots.md "Fused surface"): the whole net as one closed surface in
+ * which touching roots merge with smooth fillets, as a strangler fig's
+ * roots fuse (anastomosis). Method: every segment of the final polylines
+ * is a tapered capsule (a-b, radii ra-rb from net->rad, the pipe model's);
+ * on the voxels of a narrow band round them (voxel h = voxel_size r) the
+ * signed distance of each polyline is the plain minimum over its capsules
+ * (a smooth minimum there would bulge every joint), and the polylines
+ * are merged by the polynomial smooth minimum with
+ * k = fuse_radius r (0.25 + 0.75 maturity), folded in polyline order so
+ * the bytes do not depend on anything else. Near a host the field takes
+ * the CSG difference with it (max(d, gap - clearance)): roots press flat
+ * onto the bark instead of entering it; below the ground they go on into
+ * the soil and the surface is closed by the plane 2 r under ground_z.
+ * OpenVDB meshes the level set (fused_vdb.cpp, tools::volumeToMesh);
+ * here the mesh gets outward smooth normals, bark uvs from the nearest
+ * capsule (u round it, v its arc length over the circumference, as the
+ * tubes' uvs; a triangle across u's wrap gets its own copies of the
+ * vertices), `root_kind` and `root_id` of the nearest capsule, and the
+ * tubes' colour, material and skeleton. */
+#ifdef FUSED_TIMING
+#define _POSIX_C_SOURCE 199309L
+#endif
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tube.h"
+#include "fused_vdb.h"
+#include "roots_internal.h"
+/* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
+#ifdef FUSED_TIMING
+#include <stdio.h>
+#include <time.h>
+static double stage_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+#define STAGE(i) stage_t[i] = stage_ms()
+#else
+#define STAGE(i) (void)0
+#endif
+
+#define BIG 1e30f
+#define BLK 512
+/* Band half-width in voxels. Only the signs outside it matter: the field
+ * is about 1-Lipschitz (a tapered capsule's a little more), so the two
+ * voxels of an edge that the surface crosses both lie within h of it. */
+#define BAND_VOXELS 1.25
+/* Roots stop this far (times r) outside a host: marching's linear
+ * interpolation then keeps vertices out of a curved host too. */
+#define HOST_GAP 0.02
+/* The surface is closed this far (times r) under the ground. */
+#define SOIL_DEPTH 2.0
+
+typedef struct capsule {
+    v3 a, b;
+    double ra, rb;
+    uint32_t poly, at; /* polyline, its point index in net->pts of a */
+} capsule;
+
+typedef struct blk_meta {
+    int32_t bx, by, bz;
+    uint32_t stamp;      /* last polyline that touched the block, + 1 */
+    uint32_t head, tail; /* list of capsules touching the block (caps_next chain) */
+} blk_meta;
+
+typedef struct fgrid {
+    double h, cut;
+    double list_cut; /* a capsule this near a voxel joins its block's list */
+    blk_meta *meta;
+    float *acc, *tmp;
+    uint32_t n, cap;
+    uint32_t *table; /* open addressing: block index + 1, 0 = empty */
+    uint32_t table_mask;
+    uint32_t *lc, *lnext; /* capsule list entries */
+    uint32_t nl, capl;
+    uint32_t *touched;
+    uint32_t n_touched;
+    int nomem;
+} fgrid;
+
+static inline int32_t floor_div8(int32_t i) { return i >= 0 ? i / 8 : -((-i + 7) / 8); }
+
+static inline uint32_t hash3(int32_t x, int32_t y, int32_t z) {
+    uint32_t h = (uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ (uint32_t)z * 83492791u;
+    return h ^ (h >> 15);
+}
+
+static uint32_t grid_find(const fgrid *g, int32_t bx, int32_t by, int32_t bz) {
+    for (uint32_t s = hash3(bx, by, bz) & g->table_mask;; s = (s + 1) & g->table_mask) {
+        uint32_t e = g->table[s];
+        if (!e) return UINT32_MAX;
+        const blk_meta *m = &g->meta[e - 1];
+        if (m->bx == bx && m->by == by && m->bz == bz) return e - 1;
+    }
+}
+
+static int grid_rehash(fgrid *g, uint32_t size) {
+    uint32_t *t = calloc(size, sizeof *t);
+    if (!t) return -1;
+    free(g->table);
+    g->table = t;
+    g->table_mask = size - 1;
+    for (uint32_t i = 0; i < g->n; i++) {
+        uint32_t s = hash3(g->meta[i].bx, g->meta[i].by, g->meta[i].bz) & g->table_mask;
+        while (t[s]) s = (s + 1) & g->table_mask;
+        t[s] = i + 1;
+    }
+    return 0;
+}
+
+static uint32_t grid_get(fgrid *g, int32_t bx, int32_t by, int32_t bz) {
+    uint32_t i = grid_find(g, bx, by, bz);
+    if (i != UINT32_MAX) return i;
+    if (g->n == g->cap) {
+        uint32_t nc = g->cap ? 2 * g->cap : 1024;
+        blk_meta *m = realloc(g->meta, sizeof *m * nc);
+        if (m) g->meta = m;
+        float *a = m ? realloc(g->acc, sizeof(float) * BLK * nc) : NULL;
+        if (a) g->acc = a;
+        float *t = a ? realloc(g->tmp, sizeof(float) * BLK * nc) : NULL;
+        if (t) g->tmp = t;
+        uint32_t *tc = t ? realloc(g->touched, sizeof(uint32_t) * nc) : NULL;
+        if (tc) g->touched = tc;
+        if (!tc) {
+            g->nomem = 1;
+            return UINT32_MAX;
+        }
+        g->cap = nc;
+    }
+    if (2 * (g->n + 1) > g->table_mask + 1 && grid_rehash(g, 2 * (g->table_mask + 1))) {
+        g->nomem = 1;
+        return UINT32_MAX;
+    }
+    i = g->n++;
+    blk_meta *m = &g->meta[i];
+    m->bx = bx, m->by = by, m->bz = bz;
+    m->stamp = 0;
+    m->head = m->tail = UINT32_MAX;
+    for (int v = 0; v < BLK; v++) g->acc[(size_t)i * BLK + v] = BIG;
+    uint32_t s = hash3(bx, by, bz) & g->table_mask;
+    while (g->table[s]) s = (s + 1) & g->table_mask;
+    g->table[s] = i + 1;
+    return i;
+}
+
+static void grid_list_add(fgrid *g, uint32_t b, uint32_t c) {
+    blk_meta *m = &g->meta[b];
+    if (m->tail != UINT32_MAX && g->lc[m->tail] == c) return;
+    if (g->nl == g->capl) {
+        uint32_t nc = g->capl ? 2 * g->capl : 4096;
+        uint32_t *a = realloc(g->lc, sizeof(uint32_t) * nc);
+        if (a) g->lc = a;
+        uint32_t *n = a ? realloc(g->lnext, sizeof(uint32_t) * nc) : NULL;
+        if (n) g->lnext = n;
+        if (!n) {
+            g->nomem = 1;
+            return;
+        }
+        g->capl = nc;
+    }
+    uint32_t e = g->nl++;
+    g->lc[e] = c;
+    g->lnext[e] = UINT32_MAX;
+    if (m->tail == UINT32_MAX) m->head = e;
+    else g->lnext[m->tail] = e;
+    m->tail = e;
+}
+
+static void grid_free(fgrid *g) {
+    free(g->meta);
+    free(g->acc);
+    free(g->tmp);
+    free(g->table);
+    free(g->lc);
+    free(g->lnext);
+    free(g->touched);
+}
+
+/* Signed distance to a tapered capsule: distance to the axis point at the
+ * projection's t, less the radius there (near enough to exact for the
+ * tapers of a root, and 1-Lipschitz up to the taper's slope). *t_out gets t. */
+static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
+    v3 ba = v3_sub(c->b, c->a), pa = v3_sub(p, c->a);
+    double l2 = v3_len2(ba), t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    if (t_out) *t_out = t;
+    return v3_len(v3_madd(pa, ba, -t)) - (c->ra + (c->rb - c->ra) * t);
+}
+
+/* Polynomial smooth minimum (fillet radius about k). */
+static inline float smin(float a, float b, float k) {
+    float d = a - b, h = k - fabsf(d);
+    if (h <= 0) return a < b ? a : b;
+    h /= k;
+    return (a < b ? a : b) - h * h * k * 0.25f;
+}
+
+/* Rasterises capsule c (of polyline stamp - 1) into the blocks' tmp. */
+static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t stamp) {
+    double h = g->h, R = (c->ra > c->rb ? c->ra : c->rb) + g->cut;
+    v3 lo = v3_make(fmin(c->a.x, c->b.x) - R, fmin(c->a.y, c->b.y) - R, fmin(c->a.z, c->b.z) - R);
+    v3 hi = v3_make(fmax(c->a.x, c->b.x) + R, fmax(c->a.y, c->b.y) + R, fmax(c->a.z, c->b.z) + R);
+    int32_t i0[3] = {(int32_t)ceil(lo.x / h), (int32_t)ceil(lo.y / h), (int32_t)ceil(lo.z / h)};
+    int32_t i1[3] = {(int32_t)floor(hi.x / h), (int32_t)floor(hi.y / h), (int32_t)floor(hi.z / h)};
+    double half_diag = 8 * h * 0.8660254037844386;
+    for (int32_t bx = floor_div8(i0[0]); bx <= floor_div8(i1[0]); bx++)
+        for (int32_t by = floor_div8(i0[1]); by <= floor_div8(i1[1]); by++)
+            for (int32_t bz = floor_div8(i0[2]); bz <= floor_div8(i1[2]); bz++) {
+                v3 centre = v3_make((bx * 8 + 3.5) * h, (by * 8 + 3.5) * h, (bz * 8 + 3.5) * h);
+                if (capsule_dist(c, centre, NULL) - half_diag >= g->cut) continue;
+                int32_t x0 = bx * 8 > i0[0] ? bx * 8 : i0[0], x1 = bx * 8 + 7 < i1[0] ? bx * 8 + 7 : i1[0];
+                int32_t y0 = by * 8 > i0[1] ? by * 8 : i0[1], y1 = by * 8 + 7 < i1[1] ? by * 8 + 7 : i1[1];
+                int32_t z0 = bz * 8 > i0[2] ? bz * 8 : i0[2], z1 = bz * 8 + 7 < i1[2] ? bz * 8 + 7 : i1[2];
+                uint32_t b = UINT32_MAX;
+                float *tmp = NULL;
+                /* Along a column, p - a and t are linear in z: the squared
+                 * distance to the axis comes without a sqrt, which only the
+                 * voxels within reach pay. */
+                v3 ba = v3_sub(c->b, c->a);
+                double l2 = v3_len2(ba), il2 = l2 > 0 ? 1.0 / l2 : 0, dr = c->rb - c->ra;
+                double ua = ba.x * ba.x + ba.y * ba.y;
+                for (int32_t x = x0; x <= x1; x++)
+                    for (int32_t y = y0; y <= y1; y++) {
+                        double px = x * h - c->a.x, py = y * h - c->a.y;
+                        double dxy = px * ba.x + py * ba.y, pxy2 = px * px + py * py;
+                        /* The column only meets the reach round the axis points
+                         * s in [s0, s1] horizontally within R, at heights within
+                         * R of theirs: a conservative z range, no voxel lost. */
+                        double s0 = 0, s1 = 1;
+                        if (ua > 1e-12 * l2) {
+                            double disc = dxy * dxy - ua * (pxy2 - R * R);
+                            if (disc < 0) continue;
+                            disc = sqrt(disc);
+                            s0 = (dxy - disc) / ua, s1 = (dxy + disc) / ua;
+                            s0 = s0 < 0 ? 0 : s0, s1 = s1 > 1 ? 1 : s1;
+                            if (s0 > s1) continue;
+                        } else if (pxy2 > R * R) {
+                            continue;
+                        }
+                        double za = c->a.z + s0 * ba.z, zb = c->a.z + s1 * ba.z;
+                        int32_t zl = (int32_t)ceil((fmin(za, zb) - R) / h), zh = (int32_t)floor((fmax(za, zb) + R) / h);
+                        if (zl < z0) zl = z0;
+                        if (zh > z1) zh = z1;
+                        for (int32_t z = zl; z <= zh; z++) {
+                            double pz = z * h - c->a.z, dt = dxy + pz * ba.z;
+                            double t = dt * il2;
+                            t = t < 0 ? 0 : (t > 1 ? 1 : t);
+                            double q2 = pxy2 + pz * pz - t * (2 * dt - t * l2), tr = c->ra + dr * t;
+                            double reach = g->cut + tr;
+                            if (q2 >= reach * reach) continue;
+                            double d = sqrt(q2 > 0 ? q2 : 0) - tr;
+                            if (b == UINT32_MAX) {
+                                b = grid_get(g, bx, by, bz);
+                                if (b == UINT32_MAX) return;
+                                blk_meta *m = &g->meta[b];
+                                tmp = g->tmp + (size_t)b * BLK;
+                                if (m->stamp != stamp) {
+                                    m->stamp = stamp;
+                                    for (int v = 0; v < BLK; v++) tmp[v] = BIG;
+                                    g->touched[g->n_touched++] = b;
+                                }
+                            }
+                            if (d < g->list_cut) grid_list_add(g, b, ci);
+                            int v = ((x - bx * 8) << 6) | ((y - by * 8) << 3) | (z - bz * 8);
+                            if ((float)d < tmp[v]) tmp[v] = (float)d;
+                        }
+                    }
+            }
+}
+
+/* The nearest capsule to p: the block's list, else every capsule. */
+static uint32_t nearest_capsule(const fgrid *g, const capsule *caps, uint32_t n_caps, v3 p, double *t_out) {
+    int32_t x = (int32_t)floor(p.x / g->h + 0.5), y = (int32_t)floor(p.y / g->h + 0.5),
+            z = (int32_t)floor(p.z / g->h + 0.5);
+    uint32_t b = grid_find(g, floor_div8(x), floor_div8(y), floor_div8(z)), best = UINT32_MAX;
+    double bd = HUGE_VAL, t;
+    if (b != UINT32_MAX)
+        for (uint32_t e = g->meta[b].head; e != UINT32_MAX; e = g->lnext[e]) {
+            double d = capsule_dist(&caps[g->lc[e]], p, &t);
+            if (d < bd) bd = d, best = g->lc[e], *t_out = t;
+        }
+    if (best == UINT32_MAX)
+        for (uint32_t c = 0; c < n_caps; c++) {
+            double d = capsule_dist(&caps[c], p, &t);
+            if (d < bd) bd = d, best = c, *t_out = t;
+        }
+    return best;
+}
+
+typedef struct fvert {
+    double u, v;
+    int32_t kind, id;
+} fvert;
+
+banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
+                                   banyan_roots_stats *stats, banyan_error *err) {
+    const double r = net->r, h = p->voxel_size * r;
+    const float k = (float)(p->fuse_radius * r * (0.25 + 0.75 * p->maturity));
+    const double band = BAND_VOXELS * h;
+    banyan_status st = BANYAN_OK;
+#ifdef FUSED_TIMING
+    double stage_t[6];
+#endif
+
+    /* Capsules, and an estimate of the vertices: a tube's side over h^2. */
+    uint32_t n_caps = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].n >= 2) n_caps += net->poly[t].n - 1;
+    if (n_caps == 0) return banyan_fail(err, BANYAN_E_INTERNAL, "the roots net has no root to mesh");
+    capsule *caps = malloc(sizeof *caps * n_caps);
+    v3 *T = malloc(sizeof(v3) * 2 * (net->n_pts ? net->n_pts : 1));
+    double *vcum = malloc(sizeof(double) * (net->n_pts ? net->n_pts : 1));
+    fgrid g;
+    memset(&g, 0, sizeof g);
+    fused_vdb_out vo;
+    memset(&vo, 0, sizeof vo);
+    fvert *fv = NULL;
+    uint32_t *dup = NULL, *dsrc = NULL;
+    double *nacc = NULL;
+    mesh_builder mb;
+    int mb_live = 0;
+    if (!caps || !T || !vcum) goto nomem;
+    v3 *N = T + net->n_pts;
+    double area = 0;
+    n_caps = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2) continue;
+        tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
+        vcum[pl->off] = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++) {
+            uint32_t at = pl->off + i;
+            capsule *c = &caps[n_caps++];
+            c->a = net->pts[at], c->b = net->pts[at + 1];
+            c->ra = net->rad[at], c->rb = net->rad[at + 1];
+            c->poly = t, c->at = at;
+            double l = v3_dist(c->a, c->b);
+            vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
+            area += BANYAN_PI * (c->ra + c->rb) * l;
+        }
+    }
+    double est = area / (h * h);
+    if (est > 2.0 * p->max_vertices) {
+        st = banyan_fail(err, BANYAN_E_LIMIT,
+                         "the fused roots surface needs about %.0f vertices, more than max_vertices = %d; raise "
+                         "max_vertices or voxel_size, or use surface = tubes",
+                         est, p->max_vertices);
+        goto done;
+    }
+
+    STAGE(0);
+    /* The field: per polyline the minimum of its capsules, then the smooth
+     * union of the polylines in order. Capsules only reach voxels where
+     * they are nearer than band + k: farther, smin leaves the band alone. */
+    g.h = h;
+    g.cut = band + k;
+    /* A vertex's field is 0, so some capsule is within k / 4 of it (smin
+     * goes at most k / 4 below the minimum), and it lies within 0.87 h of
+     * the voxel whose block it looks in. */
+    g.list_cut = 0.25 * k + 1.25 * h;
+    if (grid_rehash(&g, 4096)) goto nomem;
+    for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2) continue;
+        if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
+            st = prog_fail(err, "fused roots surface");
+            goto done;
+        }
+        g.n_touched = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++, ci++) raster_capsule(&g, &caps[ci], ci, t + 1);
+        if (g.nomem) goto nomem;
+        for (uint32_t j = 0; j < g.n_touched; j++) {
+            size_t b = (size_t)g.touched[j] * BLK;
+            float *acc = g.acc + b, *tmp = g.tmp + b;
+            for (int v = 0; v < BLK; v++)
+                if (tmp[v] < BIG) acc[v] = k > 0 ? smin(acc[v], tmp[v], k) : (acc[v] < tmp[v] ? acc[v] : tmp[v]);
+        }
+    }
+
+    STAGE(1);
+    /* Host difference and the soil's floor; then the band's clamp. */
+    {
+        const roots_world *w = &net->w;
+        double gap = HOST_GAP * r, floor_z = net->w.ground_z - SOIL_DEPTH * r;
+        double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
+        /* A block wholly outside is left to the background; the others go
+         * to OpenVDB (packed to the front of acc). tmp is free now: it
+         * takes their origins (3 ints per block, in 512 floats per block). */
+        int32_t *origin = (int32_t *)g.tmp;
+        uint32_t n_surf = 0;
+        for (uint32_t b = 0; b < g.n; b++) {
+            const blk_meta *m = &g.meta[b];
+            float *acc = g.acc + (size_t)b * BLK;
+            v3 centre = v3_make((m->bx * 8 + 3.5) * h, (m->by * 8 + 3.5) * h, (m->bz * 8 + 3.5) * h);
+            int near_host = world_clearance_in(w, centre, 0, half_diag + range, NULL, NULL) < half_diag + range;
+            for (int v = 0; v < BLK; v++) {
+                float d = acc[v];
+                if (d >= band) {
+                    acc[v] = (float)band;
+                    continue;
+                }
+                v3 q = v3_make((m->bx * 8 + (v >> 6)) * h, (m->by * 8 + ((v >> 3) & 7)) * h, (m->bz * 8 + (v & 7)) * h);
+                if (net->w.ground && floor_z - q.z > d) d = (float)(floor_z - q.z);
+                if (near_host) {
+                    double c = world_clearance_in(w, q, 0, range, NULL, NULL);
+                    if (gap - c > d) d = (float)(gap - c);
+                }
+                /* An exact zero puts several cells' vertices on one point (a
+                 * face of zero area): it counts as just outside. */
+                if (d == 0) d = 1e-6f * (float)h;
+                acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
+            }
+            int outside = 1;
+            for (int v = 0; v < BLK; v++) outside &= acc[v] >= band;
+            if (outside) continue;
+            origin[3 * n_surf] = m->bx * 8, origin[3 * n_surf + 1] = m->by * 8, origin[3 * n_surf + 2] = m->bz * 8;
+            if (n_surf != b) memmove(g.acc + (size_t)n_surf * BLK, acc, sizeof(float) * BLK);
+            n_surf++;
+        }
+        if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) {
+            st = prog_fail(err, "fused roots surface");
+            goto done;
+        }
+        STAGE(2);
+#ifdef FUSED_TIMING
+        fprintf(stderr, "fused: %u of %u blocks to OpenVDB\n", n_surf, g.n);
+#endif
+        fused_vdb_in vi = {origin, g.acc, n_surf, (float)band, 0.0};
+        int vs = fused_vdb_mesh(&vi, &vo);
+        /* The field is done with (the lists stay for the nearest capsule):
+         * its memory goes before the mesh's arrives, lowering the peak. */
+        free(g.acc);
+        free(g.tmp);
+        g.acc = g.tmp = NULL;
+        if (vs == FUSED_VDB_NOMEM) goto nomem;
+        if (vs != FUSED_VDB_OK) {
+            st = banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
+                             "OpenVDB could not mesh the fused roots surface (%s)",
+                             vs == FUSED_VDB_TOO_BIG ? "too many vertices" : "volumeToMesh failed");
+            goto done;
+        }
+    }
+    STAGE(3);
+    if (vo.n_pos == 0 || vo.n_tri == 0) {
+        st = banyan_fail(err, BANYAN_E_INTERNAL, "the fused roots surface is empty");
+        goto done;
+    }
+
+    /* OpenVDB may put two vertices of one face on the same point (a face
+     * of zero area, seen where a cell is split into two sheets): those
+     * vertices become one, the faces that collapse go, and the vertices
+     * are renumbered densely. */
+    uint32_t nv = vo.n_pos, nt = vo.n_tri;
+    {
+        uint32_t *map = malloc(sizeof *map * nv);
+        if (!map) goto nomem;
+        for (uint32_t i = 0; i < nv; i++) map[i] = i;
+        int any = 0;
+        for (uint32_t f = 0; f < nt; f++)
+            for (int j = 0; j < 3; j++) {
+                uint32_t a = vo.tri[3 * f + j], b = vo.tri[3 * f + (j + 1) % 3];
+                if (!memcmp(vo.pos + 3 * (size_t)a, vo.pos + 3 * (size_t)b, 3 * sizeof(float))) {
+                    while (map[a] != a) a = map[a];
+                    while (map[b] != b) b = map[b];
+                    if (a != b) map[a > b ? a : b] = a < b ? a : b;
+                    any = 1;
+                }
+            }
+        if (any) {
+            uint32_t mt = 0, mv = 0;
+            for (uint32_t i = 0; i < nv; i++) {
+                uint32_t a = i;
+                while (map[a] != a) a = map[a];
+                map[i] = a;
+            }
+            for (uint32_t f = 0; f < nt; f++) {
+                uint32_t a = map[vo.tri[3 * f]], b = map[vo.tri[3 * f + 1]], c = map[vo.tri[3 * f + 2]];
+                if (a == b || b == c || a == c) continue;
+                vo.tri[3 * mt] = a, vo.tri[3 * mt + 1] = b, vo.tri[3 * mt + 2] = c;
+                mt++;
+            }
+            /* dense numbering: a root (map[i] == i) keeps its order */
+            uint32_t *nid = malloc(sizeof *nid * nv);
+            if (!nid) {
+                free(map);
+                goto nomem;
+            }
+            for (uint32_t i = 0; i < nv; i++)
+                if (map[i] == i) {
+                    nid[i] = mv;
+                    memmove(vo.pos + 3 * (size_t)mv, vo.pos + 3 * (size_t)i, 3 * sizeof(float));
+                    mv++;
+                }
+            for (uint32_t t = 0; t < 3 * mt; t++) vo.tri[t] = nid[vo.tri[t]];
+            free(nid);
+            nv = mv, nt = mt;
+        }
+        free(map);
+    }
+
+    /* Orientation: OpenVDB's winding, made outward by the signed volume. */
+    double vol = 0;
+    for (uint32_t f = 0; f < nt; f++) {
+        const float *A = vo.pos + 3 * (size_t)vo.tri[3 * f], *B = vo.pos + 3 * (size_t)vo.tri[3 * f + 1],
+                    *C = vo.pos + 3 * (size_t)vo.tri[3 * f + 2];
+        vol += A[0] * ((double)B[1] * C[2] - (double)B[2] * C[1]) - A[1] * ((double)B[0] * C[2] - (double)B[2] * C[0]) +
+               A[2] * ((double)B[0] * C[1] - (double)B[1] * C[0]);
+    }
+    if (vol < 0)
+        for (uint32_t f = 0; f < nt; f++) {
+            uint32_t x = vo.tri[3 * f + 1];
+            vo.tri[3 * f + 1] = vo.tri[3 * f + 2];
+            vo.tri[3 * f + 2] = x;
+        }
+
+    /* Marching cuts the crease where the roots meet a host's edge: a
+     * vertex there may sit a little inside (up to about h / 3). It goes
+     * back out along the distance field's normal, to half the gap. */
+    for (uint32_t i = 0; i < nv; i++) {
+        float *f = vo.pos + 3 * (size_t)i;
+        v3 q = v3_make(f[0] * h, f[1] * h, f[2] * h), n;
+        int which;
+        double c = world_clearance_in(&net->w, q, 0, HOST_GAP * r, &n, &which);
+        if (c >= 0.5 * HOST_GAP * r || which < 0) continue;
+        q = v3_madd(q, n, 0.5 * HOST_GAP * r - c);
+        f[0] = (float)(q.x / h), f[1] = (float)(q.y / h), f[2] = (float)(q.z / h);
+    }
+
+    /* Smooth normals (area-weighted face normals), uvs and attributes. */
+    nacc = calloc((size_t)3 * nv, sizeof(double));
+    fv = malloc(sizeof *fv * nv);
+    dup = malloc(sizeof *dup * nv);
+    dsrc = malloc(sizeof *dsrc * nv);
+    if (!nacc || !fv || !dup || !dsrc) goto nomem;
+    for (uint32_t f = 0; f < nt; f++) {
+        const uint32_t *I = vo.tri + 3 * (size_t)f;
+        v3 A = v3_make(vo.pos[3 * I[0]], vo.pos[3 * I[0] + 1], vo.pos[3 * I[0] + 2]);
+        v3 B = v3_make(vo.pos[3 * I[1]], vo.pos[3 * I[1] + 1], vo.pos[3 * I[1] + 2]);
+        v3 C = v3_make(vo.pos[3 * I[2]], vo.pos[3 * I[2] + 1], vo.pos[3 * I[2] + 2]);
+        v3 n = v3_cross(v3_sub(B, A), v3_sub(C, A));
+        for (int j = 0; j < 3; j++) {
+            nacc[3 * I[j]] += n.x, nacc[3 * I[j] + 1] += n.y, nacc[3 * I[j] + 2] += n.z;
+        }
+    }
+    uint32_t extra = 0;
+    for (uint32_t i = 0; i < nv; i++) {
+        v3 q = v3_make(vo.pos[3 * i] * h, vo.pos[3 * i + 1] * h, vo.pos[3 * i + 2] * h);
+        double t = 0;
+        uint32_t c = nearest_capsule(&g, caps, n_caps, q, &t);
+        const capsule *cp = &caps[c];
+        v3 e = v3_norm_or(v3_sub(cp->b, cp->a), T[cp->at]);
+        v3 n0 = v3_norm_or_perp(v3_madd(N[cp->at], e, -v3_dot(N[cp->at], e)), e), b0 = v3_cross(e, n0);
+        v3 o = v3_sub(q, v3_lerp(cp->a, cp->b, t));
+        double l = v3_dist(cp->a, cp->b), rt = cp->ra + (cp->rb - cp->ra) * t;
+        fv[i].u = atan2(v3_dot(o, b0), v3_dot(o, n0)) / (2 * BANYAN_PI) + 0.5;
+        fv[i].v = vcum[cp->at] + tube_dv(t * l, cp->ra, rt, r);
+        fv[i].kind = net->poly[cp->poly].kind;
+        fv[i].id = net->poly[cp->poly].id;
+        dup[i] = UINT32_MAX;
+    }
+    /* A triangle across u's wrap takes copies of its low-u vertices at u + 1. */
+    for (uint32_t f = 0; f < nt; f++) {
+        uint32_t *I = vo.tri + 3 * (size_t)f;
+        double u0 = fv[I[0]].u, u1 = fv[I[1]].u, u2 = fv[I[2]].u;
+        double lo = fmin(u0, fmin(u1, u2)), hi = fmax(u0, fmax(u1, u2));
+        if (hi - lo <= 0.5) continue;
+        for (int j = 0; j < 3; j++)
+            if (fv[I[j]].u < 0.5) {
+                if (dup[I[j]] == UINT32_MAX) dsrc[extra] = I[j], dup[I[j]] = nv + extra++;
+                I[j] = dup[I[j]];
+            }
+    }
+    if ((uint64_t)nv + extra > (uint64_t)p->max_vertices) {
+        st = banyan_fail(err, BANYAN_E_LIMIT,
+                         "the fused roots surface has %llu vertices, more than max_vertices = %d; raise "
+                         "max_vertices or voxel_size, or use surface = tubes",
+                         (unsigned long long)nv + extra, p->max_vertices);
+        goto done;
+    }
+
+    STAGE(4);
+    int a_kind, a_id;
+    roots_mesh_init(&mb, p, &a_kind, &a_id);
+    mb_live = 1;
+    mb_reserve(&mb, nv + extra, 3 * nt);
+    for (int pass = 0; pass < 2; pass++)
+        for (uint32_t j = 0; j < (pass ? extra : nv); j++) {
+            uint32_t i = pass ? dsrc[j] : j;
+            v3 q = v3_make(vo.pos[3 * i] * h, vo.pos[3 * i + 1] * h, vo.pos[3 * i + 2] * h);
+            v3 n = v3_norm(v3_make(nacc[3 * i], nacc[3 * i + 1], nacc[3 * i + 2]));
+            mb_set_attr(&mb, a_kind, fv[i].kind);
+            mb_set_attr(&mb, a_id, fv[i].id);
+            mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
+        }
+    for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
+    if (roots_mesh_skeleton(&mb, net, p)) goto nomem;
+    {
+        uint32_t mv = mb.nv, mi = mb.ni;
+        mb_live = 0;
+        st = mb_finish(&mb, out, err);
+        if (st == BANYAN_OK && stats) {
+            stats->vertices = mv;
+            stats->triangles = mi / 3;
+        }
+    }
+#ifdef FUSED_TIMING
+    STAGE(5);
+    fprintf(stderr, "fused: field %.1f, host and soil %.1f, OpenVDB %.1f, uvs and attributes %.1f, builder %.1f ms; "
+            "%u blocks, %u capsules, %u vertices\n", stage_t[1] - stage_t[0], stage_t[2] - stage_t[1],
+            stage_t[3] - stage_t[2], stage_t[4] - stage_t[3], stage_t[5] - stage_t[4], g.n, n_caps, nv + extra);
+#endif
+    goto done;
+
+nomem:
+    st = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the fused roots surface");
+done:
+    if (mb_live) mb_free(&mb);
+    free(caps);
+    free(T);
+    free(vcum);
+    grid_free(&g);
+    free(vo.pos);
+    free(vo.tri);
+    free(fv);
+    free(dup);
+    free(dsrc);
+    free(nacc);
+    return st;
+}

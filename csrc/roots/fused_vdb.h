@@ -1,0 +1,37 @@
+/* fused_vdb.h - the C side of the OpenVDB shim (fused_vdb.cpp): meshes a
+ * narrow-band level set given as 8^3 blocks aligned to multiples of 8, in
+ * index space (voxel (i,j,k) sits at (i,j,k); the caller scales). */
+#ifndef BANYAN_FUSED_VDB_H
+#define BANYAN_FUSED_VDB_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fused_vdb_in {
+    const int32_t *origin; /* 3 per block: the block's first voxel, multiples of 8 */
+    const float *values;   /* 512 per block, voxel (x,y,z) at x*64 + y*8 + z (OpenVDB's leaf order) */
+    size_t n_blocks;
+    float background;      /* band half-width: |v| >= background is outside the band */
+    double adaptivity;     /* 0 .. 1, volumeToMesh's */
+} fused_vdb_in;
+
+typedef struct fused_vdb_out {
+    float *pos;    /* 3 per vertex, index space; malloc'd, the caller frees */
+    uint32_t *tri; /* 3 per triangle; malloc'd */
+    uint32_t n_pos, n_tri;
+} fused_vdb_out;
+
+enum { FUSED_VDB_OK = 0, FUSED_VDB_NOMEM = 1, FUSED_VDB_TOO_BIG = 2, FUSED_VDB_FAILED = 3 };
+
+/* Returns FUSED_VDB_*; on failure out is zeroed and nothing is held. */
+int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
