@@ -21,9 +21,8 @@
  *   of it goes into each main root it joins, and a main root's flow grows
  *   downwards from G by what joins it (plus its own cord of r, reached 8 r
  *   below G). Radius = r flow^(1/e), smoothed along the root; growing tips
- *   and branch ends thin to tip_radius r, and the last stretch above the
- *   ground (max(12 r, 4 R), widening like a cone) flares to `flare` times
- *   the radius above. */
+ *   and branch ends thin to tip_radius r; a root entering the soil ends
+ *   in a buttress (buttress() below). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -302,6 +301,38 @@ static int decimate(roots_net *net) {
     return 1;
 }
 
+/* The buttress of a main root entering the soil (see the header): over
+ * the last stretch above the ground (max(12 r, 4 Re), Re the radius there)
+ * the root widens like a trumpet to `flare` times Re, and its underground
+ * end goes on down into the soil, drifting a little away from the host,
+ * to 1.5 flare Re under the ground: the ground cuts a flared foot, as at a
+ * tree's base. (An end that turned outward at the ground showed as a dome
+ * or a boot.) Points keep their number, so the net's indices hold; they
+ * stay clear of the hosts only. */
+static void buttress(roots_net *net, const banyan_roots_params *p, const roots_poly *pl, const double *arc) {
+    v3 *P = net->pts + pl->off;
+    double *R = net->rad + pl->off;
+    const uint32_t n = pl->n, ie = pl->soil_from - 1;
+    const double r = net->r, Re = R[ie], Rf = Re * p->flare;
+    const double len = 12.0 * r > 4.0 * Re ? 12.0 * r : 4.0 * Re;
+    for (uint32_t i = 0; i <= ie; i++) {
+        double x = 1.0 - (arc[ie] - arc[i]) / len;
+        R[i] *= 1.0 + (p->flare - 1.0) * (x > 0 ? x * x * x : 0.0); /* concave: a trumpet */
+    }
+    const v3 E = P[ie];
+    v3 h = v3_norm_or(v3_make(P[n - 1].x - E.x, P[n - 1].y - E.y, 0), v3_make(1, 0, 0));
+    const double gz = net->w.ground_z, depth = 1.5 * Rf, drift = 0.6 * Rf;
+    roots_world sw = roots_soil_world(&net->w);
+    for (uint32_t i = ie + 1; i < n; i++) {
+        double t = (double)(i - ie) / (double)(n - 1 - ie);
+        v3 q = v3_madd(E, h, drift * t * t);
+        q.z = gz + (E.z - gz) * (1.0 - t) - depth * t;
+        world_push_out(&sw, &q); /* a host that reaches below the ground */
+        P[i] = q;
+        R[i] = Rf * (1.0 - 0.3 * t);
+    }
+}
+
 /* The pipe model (see the header). */
 static int set_radii(roots_net *net, const banyan_roots_params *p) {
     const int N = net->N, B = net->B, nb = net->nb;
@@ -367,15 +398,7 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
             for (uint32_t i = 0; i < n; i++) R[i] = tip + (R[i] - tip) * smoothstep((L - arc[i]) / (6.0 * r));
             continue;
         }
-        /* The buttress: up to `flare` times over the last stretch above the
-         * ground, kept (a little less at the end) below it. */
-        uint32_t ie = pl->soil_from - 1;
-        double Re = R[ie], len = 12.0 * r > 4.0 * Re ? 12.0 * r : 4.0 * Re;
-        for (uint32_t i = 0; i <= ie; i++) {
-            double x = 1.0 - (arc[ie] - arc[i]) / len;
-            R[i] *= 1.0 + (p->flare - 1.0) * (x > 0 ? x * x : 0.0); /* a cone that widens towards the ground */
-        }
-        for (uint32_t i = ie + 1; i < n; i++) R[i] = Re * p->flare * (1.0 - 0.5 * (arc[i] - arc[ie]) / (arc[n - 1] - arc[ie]));
+        buttress(net, p, pl, arc);
     }
     free(arc);
     free(F);
