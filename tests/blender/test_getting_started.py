@@ -96,8 +96,12 @@ def test_guide():
         bt.check(g["result"] == ["FINISHED"] and g["objects"] == 1 and g["vertices"] > 1000,
                  "%s: one roots object (%s)" % (key, g))
         bt.check(g["inside"] == 0, "%s: no vertex inside the cube (%d)" % (key, g["inside"]))
-        bt.check(min(g["sides"]) > 0 and g["on_top"] > 0, "%s: roots on all four sides %s and on top (%d)"
-                 % (key, g["sides"], g["on_top"]))
+        # Issue #18: roots that reach the ground go into the soil there
+        # instead of crawling round the foot, and the cube stands 1 m above
+        # the ground: the six main roots fan over the top and down, and one
+        # face of the four may be left to none (seeds 1, 2, 5 of 1..5).
+        bt.check(sum(1 for n in g["sides"] if n > 0) >= 3 and g["on_top"] > 0,
+                 "%s: roots on at least three sides %s and on top (%d)" % (key, g["sides"], g["on_top"]))
     # The tweak keeps the roots close round the cube.
     t = out["tweak"]
     bt.check(t["near"] > 0.5 * t["vertices"], "tweak: most vertices within 0.5 m of the cube (%d of %d)"
