@@ -31,6 +31,7 @@ typedef struct work {
     double *extent;       /* per point: the farthest ring vertex from the centre */
     double *rad;          /* per point: the ring radius (net->rad, eased at tight bends) */
     v3 *ls, *le, *ds, *de;/* loop offsets from the end point and loop directions, world */
+    unsigned char *clear; /* per point: unfold_rings' pairs known not to fold */
 } work;
 
 /* Loop for one end of a first branch root: for every ring direction d of
@@ -161,6 +162,10 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
         double c = v3_dot(a, b) / (la * lb);
         if (c > 0.9999) continue;
         if (c < -1) c = -1;
+        /* tan(th / 2) = sqrt((1 - c) / (1 + c)) (>= the clamped one below):
+         * a ring well inside that bound is left without acos and tan. */
+        double m = la < lb ? la : lb;
+        if (c > -0.999 && out[i] * (1.0 + 1e-6) < 0.45 * m * sqrt((1.0 + c) / (1.0 - c))) continue;
         double th = acos(c), lim = 0.45 * (la < lb ? la : lb) / tan(0.5 * (th < 3.0 ? th : 3.0));
         if (lim < floor) lim = floor;
         if (out[i] > lim) out[i] = lim;
@@ -181,22 +186,37 @@ static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int 
     return 0;
 }
 
+/* One step of unfold_rings: each vertex a quarter of the way in, if free. */
+static void shrink_ring(v3 *ring, const roots_world *w, v3 c, int sides) {
+    for (int j = 0; j < sides; j++) {
+        v3 q = v3_lerp(c, ring[j], 0.75);
+        if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+    }
+}
+
 /* Rings that fold the tube back over the ring before them (a tight bend,
  * a wide junction loop, a ring pressed flat) shrink towards their centre,
  * a quarter at a time, as far as the hosts let each vertex go. */
 static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
     int sides = wk->sides, any = 0;
+    /* clear[i]: the pair (i - 1, i) is known not to fold once ring i is
+     * done (so the backward pass need not test it again unless ring i
+     * changes there). */
+    unsigned char *clear = wk->clear;
+    clear[0] = 1;
     for (uint32_t i = 1; i < n; i++) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *prev = ring - sides, *np = nr - sides;
+        clear[i] = 1;
         if (!ring_folds(prev, ring, np, nr, sides)) continue;
         any = 1;
-        for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
-            }
-        if (ring_folds(prev, ring, np, nr, sides)) {
+        int folds = 1;
+        for (int tries = 0; tries < 6 && folds;) {
+            shrink_ring(ring, w, P[i], sides);
+            folds = ++tries < 6 ? ring_folds(prev, ring, np, nr, sides) : -1; /* -1: not tested */
+        }
+        if (folds && ring_folds(prev, ring, np, nr, sides)) {
+            clear[i] = 0;
             /* Still folded (a loop bent over itself): a small round ring
              * across the segment, its vertices in the same directions. */
             v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
@@ -212,14 +232,17 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
     }
     /* Then backwards: a wide ring before a narrow one shrinks too (only
      * in a tube that had folds: most have none). */
+    int next_moved = 0; /* ring i + 1 shrank in this pass */
     for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *next = ring + sides, *nn = nr + sides;
-        for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+        int moved = 0;
+        if (!clear[i + 1] || next_moved)
+            for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++) {
+                shrink_ring(ring, w, P[i], sides);
+                moved = 1;
             }
+        next_moved = moved;
     }
 }
 
@@ -348,7 +371,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.sides = sides;
     size_t nr = (size_t)longest * sides;
     void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 2 * longest + sizeof(v3) * 2 * nr +
-                         sizeof(double) * 3 * longest + sizeof(v3) * 4 * sides);
+                         sizeof(double) * 3 * longest + sizeof(v3) * 4 * sides + longest);
     if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots mesh workspace");
     wk.cs = block;
     wk.sn = wk.cs + sides;
@@ -363,6 +386,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.arc = (double *)(wk.de + sides);
     wk.extent = wk.arc + longest;
     wk.rad = wk.extent + longest;
+    wk.clear = (unsigned char *)(wk.rad + longest);
     for (int j = 0; j < sides; j++) {
         /* Half-step offset: each half of a junction loop is symmetric. */
         double ang = 2.0 * BANYAN_PI * (j + 0.5) / sides;
