@@ -346,7 +346,8 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
             }
         } else {
             double f = pl->kind == ROOT_FIRST ? f1[pl->a * nb + pl->k] : tipf * (1.0 + gain);
-            for (uint32_t i = 0; i < n; i++) R[i] = r * pow(f, 1.0 / e);
+            double Rf = r * pow(f, 1.0 / e);
+            for (uint32_t i = 0; i < n; i++) R[i] = Rf;
         }
         /* No steps where branches join: three passes of a [1 2 1] filter. */
         for (int pass = 0; pass < 3 && n > 2; pass++) {
