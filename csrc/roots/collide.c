@@ -489,6 +489,9 @@ int world_push_out(const roots_world *w, v3 *p) {
                 e[k] = (f & 1 ? 1.0 : -1.0) * (o->h[k] + w->r);
                 if ((f & 1) ? lc[k] > e[k] : lc[k] < e[k]) continue; /* already beyond that face */
                 v3 q = obb_to_world(o, v3_make(e[0], e[1], e[2]));
+                /* The score is the distance plus a penalty >= 0: a face no
+                 * nearer than the best score cannot beat it (no query). */
+                if (v3_dist(*p, q) >= bs) continue;
                 double s = push_score(w, *p, q);
                 if (s < bs) {
                     bs = s;
