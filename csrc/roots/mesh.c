@@ -104,7 +104,7 @@ static void junction_ring(work *wk, v3 Pi, uint32_t i, double ws, double we, dou
     /* Normals from the loop's own outline (counter-clockwise about T),
      * so they agree with the faces however the blend bends it. */
     for (int j = 0; j < sides; j++) {
-        v3 tj = v3_sub(ring[(j + 1) % sides], ring[(j + sides - 1) % sides]);
+        v3 tj = v3_sub(ring[j + 1 < sides ? j + 1 : 0], ring[j ? j - 1 : sides - 1]);
         nr[j] = v3_norm_or(v3_cross(tj, T), nr[j]);
     }
 }
@@ -176,12 +176,14 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
  * its vertex normals. */
 static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int sides) {
     for (int j = 0; j < sides; j++) {
-        int k = (j + 1) % sides;
+        int k = j + 1 < sides ? j + 1 : 0;
         v3 p00 = a[j], p01 = a[k], p10 = b[j], p11 = b[k];
         /* the sweep's two triangles: (p00, p01, p11) and (p00, p11, p10) */
-        v3 f1 = v3_cross(v3_sub(p01, p00), v3_sub(p11, p00)), f2 = v3_cross(v3_sub(p11, p00), v3_sub(p10, p00));
+        v3 e = v3_sub(p11, p00);
+        v3 f1 = v3_cross(v3_sub(p01, p00), e), f2 = v3_cross(e, v3_sub(p10, p00));
         v3 n1 = v3_add(v3_add(na[j], na[k]), nb[k]), n2 = v3_add(v3_add(na[j], nb[k]), nb[j]);
-        if ((v3_len2(f1) > 1e-24 && v3_dot(f1, n1) <= 0) || (v3_len2(f2) > 1e-24 && v3_dot(f2, n2) <= 0)) return 1;
+        /* facing tested first: the sizes only for the rare one against */
+        if ((v3_dot(f1, n1) <= 0 && v3_len2(f1) > 1e-24) || (v3_dot(f2, n2) <= 0 && v3_len2(f2) > 1e-24)) return 1;
     }
     return 0;
 }
