@@ -277,15 +277,17 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
              * first surface it crosses (one ray; the Lipschitz bound above
              * leaves many vertices to look at). */
             if (w->n_meshes) q = world_spoke(w, P[i], q);
-            if (world_clearance_boxes(w, q) >= 0) {
+            /* Boxes and the ground only: world_clearance has the sign of
+             * world_clearance_boxes, so one query serves both. */
+            v3 nrm;
+            int which;
+            double d = w->n_meshes ? world_clearance_boxes(w, q) : world_clearance(w, q, &nrm, &which);
+            if (d >= 0) {
                 ring[j] = q;
                 continue;
             }
-            double d = -1;
             for (int it = 0; it < 4; it++) {
-                v3 nrm;
-                int which;
-                d = world_clearance(w, q, &nrm, &which);
+                if (it || w->n_meshes) d = world_clearance(w, q, &nrm, &which);
                 if (d >= 0) break;
                 /* onto a mesh's surface the sign is a coin toss: a hair beyond */
                 q = v3_madd(q, nrm, -d + (which >= (int)w->n_hosts ? w->eps : 0.0));
