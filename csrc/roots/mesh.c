@@ -188,11 +188,16 @@ static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int 
     return 0;
 }
 
-/* One step of unfold_rings: each vertex a quarter of the way in, if free. */
-static void shrink_ring(v3 *ring, const roots_world *w, v3 c, int sides) {
+/* One step of unfold_rings: each vertex a quarter of the way in, if free.
+ * With boxes and the ground only (exact distances), a vertex closer to
+ * the centre c than c's clearance *cc (asked once per ring, < 0 until
+ * then) is free without a query. */
+static void shrink_ring(v3 *ring, const roots_world *w, v3 c, int sides, double *cc) {
+    if (!w->n_meshes && *cc < 0) *cc = world_clearance_in(w, c, 1, HUGE_VAL, NULL, NULL);
+    double sure = w->n_meshes ? -1.0 : *cc - 1e-9 * w->r; /* rounding's margin */
     for (int j = 0; j < sides; j++) {
         v3 q = v3_lerp(c, ring[j], 0.75);
-        if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+        if ((sure > 0 && v3_dist(q, c) < sure) || world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
     }
 }
 
@@ -213,8 +218,9 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
         if (!ring_folds(prev, ring, np, nr, sides)) continue;
         any = 1;
         int folds = 1;
+        double cc = -1;
         for (int tries = 0; tries < 6 && folds;) {
-            shrink_ring(ring, w, P[i], sides);
+            shrink_ring(ring, w, P[i], sides, &cc);
             folds = ++tries < 6 ? ring_folds(prev, ring, np, nr, sides) : -1; /* -1: not tested */
         }
         if (folds && ring_folds(prev, ring, np, nr, sides)) {
@@ -239,9 +245,10 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *next = ring + sides, *nn = nr + sides;
         int moved = 0;
+        double cc = -1;
         if (!clear[i + 1] || next_moved)
             for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++) {
-                shrink_ring(ring, w, P[i], sides);
+                shrink_ring(ring, w, P[i], sides, &cc);
                 moved = 1;
             }
         next_moved = moved;
