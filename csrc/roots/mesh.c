@@ -98,14 +98,16 @@ static void junction_ring(work *wk, v3 Pi, uint32_t i, double ws, double we, dou
             d = v3_madd(d, v3_add(v3_scale(N, ld.x), v3_scale(Bv, ld.y)), we);
         }
         ring[j] = v3_add(Pi, o);
-        nr[j] = v3_norm_or(d, dir);
+        nr[j] = d; /* normalised below only where the outline's fails */
     }
     if (ws == 0 && we == 0) return;
     /* Normals from the loop's own outline (counter-clockwise about T),
      * so they agree with the faces however the blend bends it. */
     for (int j = 0; j < sides; j++) {
-        v3 tj = v3_sub(ring[j + 1 < sides ? j + 1 : 0], ring[j ? j - 1 : sides - 1]);
-        nr[j] = v3_norm_or(v3_cross(tj, T), nr[j]);
+        v3 tj = v3_sub(ring[j + 1 < sides ? j + 1 : 0], ring[j ? j - 1 : sides - 1]), c = v3_cross(tj, T);
+        double l = v3_len(c);
+        nr[j] = l > 1e-300 ? v3_scale(c, 1.0 / l)
+                           : v3_norm_or(nr[j], v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j])));
     }
 }
 
