@@ -169,12 +169,14 @@ static void cap(mesh_builder *mb, const v3 *ring, v3 centre, v3 normal, int side
 }
 
 /* Writes one ring's sides + 1 vertices (the seam repeats vertex 0): its
- * positions, normals and uvs (u round the ring, v given). */
-static void put_ring(float *P, float *N, float *UV, const v3 *ring, const v3 *nrm, int sides, float v) {
+ * positions, normals and uvs (u round the ring: us, or even steps when
+ * NULL; v given). */
+static void put_ring(float *P, float *N, float *UV, const v3 *ring, const v3 *nrm, int sides, float v,
+                     const float *us) {
     float du = 1.0f / (float)sides;
     for (int j = 0; j <= sides; j++) {
         put3(P + 3 * j, ring[j < sides ? j : 0]);
-        UV[2 * j] = (float)j * du;
+        UV[2 * j] = us ? us[j] : (float)j * du;
         UV[2 * j + 1] = v;
     }
     for (int j = 0; j <= sides; j++) put3(N + 3 * j, nrm[j < sides ? j : 0]);
@@ -195,13 +197,6 @@ static double ring_perimeter(const v3 *ring, int sides, float *u) {
     return c;
 }
 
-/* Overwrites a ring's u (sides + 1 uv pairs) with arc-length fractions. */
-static void arc_u(float *UV, const v3 *ring, int sides) {
-    float us[257];
-    ring_perimeter(ring, sides, us);
-    for (int j = 0; j <= sides; j++) UV[2 * j] = us[j];
-}
-
 void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint32_t n, const tube_opts *o) {
     int sides = o->sides;
     if (n < 2 || sides < 3 || sides > 256) return;
@@ -220,25 +215,28 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     double vv_acc = o->v_offset, r_prev = v3_dist(rings[0], centres[0]), r_cur = r_prev;
     v3 prevT = v3_norm(v3_sub(centres[n - 1], centres[0]));
     v3 derived[256];
+    /* Arc-length uvs: each ring's perimeter and u made once, kept for the
+     * next ring's v. */
+    float us_buf[257], *us = o->arc_uv ? us_buf : NULL;
+    double pa = 0;
     for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
-        if (i && o->arc_uv) { /* the perimeter stands for the circumference */
-            double l = v3_dist(centres[i], centres[i - 1]);
-            double pa = ring_perimeter(rings + (size_t)(i - 1) * sides, sides, NULL);
-            double pb = ring_perimeter(rings + (size_t)i * sides, sides, NULL);
-            vv_acc += tube_dv(l, pa / 6.283185307179586, pb / 6.283185307179586, r_mean);
+        if (o->arc_uv) { /* the perimeter stands for the circumference */
+            double pb = ring_perimeter(rings + (size_t)i * sides, sides, us);
+            if (i) vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), pa / 6.283185307179586,
+                                     pb / 6.283185307179586, r_mean);
+            pa = pb;
         } else if (i) {
             vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), v3_dist(rings[(size_t)(i - 1) * sides], centres[i - 1]),
                               v3_dist(rings[(size_t)i * sides], centres[i]), r_mean);
         }
-        v3 T = tangent_at(centres, n, i, prevT);
-        prevT = T;
         const v3 *ring = rings + (size_t)i * sides;
         float vv = (float)vv_acc;
-        if (o->ring_normals) {
-            put_ring(P, N, UV, ring, o->ring_normals + (size_t)i * sides, sides, vv);
-            if (o->arc_uv) arc_u(UV, ring, sides);
+        if (o->ring_normals) { /* no tangents but the caps' (below) */
+            put_ring(P, N, UV, ring, o->ring_normals + (size_t)i * sides, sides, vv, us);
             continue;
         }
+        v3 T = tangent_at(centres, n, i, prevT);
+        prevT = T;
         /* A taper tilts the normals along the tube: n = (radial - dr T) /
          * sqrt(1 + dr^2), with dr the radius slope per metre. */
         uint32_t a = i ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
@@ -255,12 +253,19 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
             radial = l2 > 1e-300 ? v3_scale(radial, 1.0 / sqrt(l2)) : fallback;
             derived[j] = v3_scale(v3_madd(radial, T, -dr), k);
         }
-        put_ring(P, N, UV, ring, derived, sides, vv);
-        if (o->arc_uv) arc_u(UV, ring, sides);
+        put_ring(P, N, UV, ring, derived, sides, vv, us);
         r_prev = r_cur;
         r_cur = r_next;
     }
     stitch(mb, first, n, sides);
+    if (o->ring_normals) {
+        /* The last tangent, which the caps fall back on: its own segment's
+         * direction, or where that is degenerate the walk's. */
+        v3 d = v3_sub(centres[n - 1], centres[n - 2]);
+        if (v3_len(d) > 1e-300) prevT = tangent_at(centres, n, n - 1, prevT);
+        else
+            for (uint32_t i = 0; i < n; i++) prevT = tangent_at(centres, n, i, prevT);
+    }
     if (o->cap_start) cap(mb, rings, centres[0], v3_neg(tangent_at(centres, n, 0, prevT)), sides, 0);
     if (o->cap_end)
         cap(mb, rings + (size_t)(n - 1) * sides, centres[n - 1], tangent_at(centres, n, n - 1, prevT), sides, 1);

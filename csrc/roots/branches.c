@@ -172,8 +172,10 @@ void roots_press_first(roots_net *net, const banyan_roots_params *p) {
             for (int it = 0; it < 12; it++)
                 for (int i = 1; i + 1 < S1; i++) {
                     v3 q = v3_lerp(K[i], v3_lerp(K[i - 1], K[i + 1], 0.5), 0.5);
-                    if (!world_free(w, q)) world_push_out(w, &q);
-                    if (!world_free(w, q)) continue;
+                    if (!world_free(w, q)) { /* most are free: tested once */
+                        world_push_out(w, &q);
+                        if (!world_free(w, q)) continue;
+                    }
                     K[i] = q;
                     ok[i] = ok[i + 1] = 0; /* steps to check again: segment repair */
                 }

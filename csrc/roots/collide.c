@@ -483,12 +483,19 @@ int world_push_out(const roots_world *w, v3 *p) {
             const obb *o = &w->hosts[which];
             v3 l = obb_to_local(o, *p);
             double lc[3] = {l.x, l.y, l.z}, bs = push_score(w, *p, best);
+            /* the exit's distance is |e[k] - lc[k]| up to rounding: this
+             * margin (far above it) lets far faces go without their point */
+            double slack = 1e-9 * (fabs(l.x) + fabs(l.y) + fabs(l.z) + o->h[0] + o->h[1] + o->h[2] + w->r);
             for (int f = 0; f < 6; f++) {
                 int k = f / 2;
                 double e[3] = {lc[0], lc[1], lc[2]};
                 e[k] = (f & 1 ? 1.0 : -1.0) * (o->h[k] + w->r);
                 if ((f & 1) ? lc[k] > e[k] : lc[k] < e[k]) continue; /* already beyond that face */
+                if (fabs(e[k] - lc[k]) - slack >= bs) continue;
                 v3 q = obb_to_world(o, v3_make(e[0], e[1], e[2]));
+                /* The score is the distance plus a penalty >= 0: a face no
+                 * nearer than the best score cannot beat it (no query). */
+                if (v3_dist(*p, q) >= bs) continue;
                 double s = push_score(w, *p, q);
                 if (s < bs) {
                     bs = s;

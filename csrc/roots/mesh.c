@@ -31,6 +31,7 @@ typedef struct work {
     double *extent;       /* per point: the farthest ring vertex from the centre */
     double *rad;          /* per point: the ring radius (net->rad, eased at tight bends) */
     v3 *ls, *le, *ds, *de;/* loop offsets from the end point and loop directions, world */
+    unsigned char *clear; /* per point: unfold_rings' pairs known not to fold */
 } work;
 
 /* Loop for one end of a first branch root: for every ring direction d of
@@ -97,14 +98,16 @@ static void junction_ring(work *wk, v3 Pi, uint32_t i, double ws, double we, dou
             d = v3_madd(d, v3_add(v3_scale(N, ld.x), v3_scale(Bv, ld.y)), we);
         }
         ring[j] = v3_add(Pi, o);
-        nr[j] = v3_norm_or(d, dir);
+        nr[j] = d; /* normalised below only where the outline's fails */
     }
     if (ws == 0 && we == 0) return;
     /* Normals from the loop's own outline (counter-clockwise about T),
      * so they agree with the faces however the blend bends it. */
     for (int j = 0; j < sides; j++) {
-        v3 tj = v3_sub(ring[(j + 1) % sides], ring[(j + sides - 1) % sides]);
-        nr[j] = v3_norm_or(v3_cross(tj, T), nr[j]);
+        v3 tj = v3_sub(ring[j + 1 < sides ? j + 1 : 0], ring[j ? j - 1 : sides - 1]), c = v3_cross(tj, T);
+        double l = v3_len(c);
+        nr[j] = l > 1e-300 ? v3_scale(c, 1.0 / l)
+                           : v3_norm_or(nr[j], v3_add(v3_scale(N, wk->cs[j]), v3_scale(Bv, wk->sn[j])));
     }
 }
 
@@ -161,6 +164,10 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
         double c = v3_dot(a, b) / (la * lb);
         if (c > 0.9999) continue;
         if (c < -1) c = -1;
+        /* tan(th / 2) = sqrt((1 - c) / (1 + c)) (>= the clamped one below):
+         * a ring well inside that bound is left without acos and tan. */
+        double m = la < lb ? la : lb;
+        if (c > -0.999 && out[i] * (1.0 + 1e-6) < 0.45 * m * sqrt((1.0 + c) / (1.0 - c))) continue;
         double th = acos(c), lim = 0.45 * (la < lb ? la : lb) / tan(0.5 * (th < 3.0 ? th : 3.0));
         if (lim < floor) lim = floor;
         if (out[i] > lim) out[i] = lim;
@@ -171,14 +178,29 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
  * its vertex normals. */
 static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int sides) {
     for (int j = 0; j < sides; j++) {
-        int k = (j + 1) % sides;
+        int k = j + 1 < sides ? j + 1 : 0;
         v3 p00 = a[j], p01 = a[k], p10 = b[j], p11 = b[k];
         /* the sweep's two triangles: (p00, p01, p11) and (p00, p11, p10) */
-        v3 f1 = v3_cross(v3_sub(p01, p00), v3_sub(p11, p00)), f2 = v3_cross(v3_sub(p11, p00), v3_sub(p10, p00));
+        v3 e = v3_sub(p11, p00);
+        v3 f1 = v3_cross(v3_sub(p01, p00), e), f2 = v3_cross(e, v3_sub(p10, p00));
         v3 n1 = v3_add(v3_add(na[j], na[k]), nb[k]), n2 = v3_add(v3_add(na[j], nb[k]), nb[j]);
-        if ((v3_len2(f1) > 1e-24 && v3_dot(f1, n1) <= 0) || (v3_len2(f2) > 1e-24 && v3_dot(f2, n2) <= 0)) return 1;
+        /* facing tested first: the sizes only for the rare one against */
+        if ((v3_dot(f1, n1) <= 0 && v3_len2(f1) > 1e-24) || (v3_dot(f2, n2) <= 0 && v3_len2(f2) > 1e-24)) return 1;
     }
     return 0;
+}
+
+/* One step of unfold_rings: each vertex a quarter of the way in, if free.
+ * With boxes and the ground only (exact distances), a vertex closer to
+ * the centre c than c's clearance *cc (asked once per ring, < 0 until
+ * then) is free without a query. */
+static void shrink_ring(v3 *ring, const roots_world *w, v3 c, int sides, double *cc) {
+    if (!w->n_meshes && *cc < 0) *cc = world_clearance_in(w, c, 1, HUGE_VAL, NULL, NULL);
+    double sure = w->n_meshes ? -1.0 : *cc - 1e-9 * w->r; /* rounding's margin */
+    for (int j = 0; j < sides; j++) {
+        v3 q = v3_lerp(c, ring[j], 0.75);
+        if ((sure > 0 && v3_dist(q, c) < sure) || world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+    }
 }
 
 /* Rings that fold the tube back over the ring before them (a tight bend,
@@ -186,17 +208,25 @@ static int ring_folds(const v3 *a, const v3 *b, const v3 *na, const v3 *nb, int 
  * a quarter at a time, as far as the hosts let each vertex go. */
 static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n) {
     int sides = wk->sides, any = 0;
+    /* clear[i]: the pair (i - 1, i) is known not to fold once ring i is
+     * done (so the backward pass need not test it again unless ring i
+     * changes there). */
+    unsigned char *clear = wk->clear;
+    clear[0] = 1;
     for (uint32_t i = 1; i < n; i++) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *prev = ring - sides, *np = nr - sides;
+        clear[i] = 1;
         if (!ring_folds(prev, ring, np, nr, sides)) continue;
         any = 1;
-        for (int tries = 0; tries < 6 && ring_folds(prev, ring, np, nr, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
-            }
-        if (ring_folds(prev, ring, np, nr, sides)) {
+        int folds = 1;
+        double cc = -1;
+        for (int tries = 0; tries < 6 && folds;) {
+            shrink_ring(ring, w, P[i], sides, &cc);
+            folds = ++tries < 6 ? ring_folds(prev, ring, np, nr, sides) : -1; /* -1: not tested */
+        }
+        if (folds && ring_folds(prev, ring, np, nr, sides)) {
+            clear[i] = 0;
             /* Still folded (a loop bent over itself): a small round ring
              * across the segment, its vertices in the same directions. */
             v3 t = v3_norm_or(v3_sub(P[i], P[i - 1]), v3_make(0, 0, 1));
@@ -212,14 +242,18 @@ static void unfold_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n
     }
     /* Then backwards: a wide ring before a narrow one shrinks too (only
      * in a tube that had folds: most have none). */
+    int next_moved = 0; /* ring i + 1 shrank in this pass */
     for (uint32_t i = any ? n - 1 : 0; i-- > 0;) {
         v3 *ring = wk->rings + (size_t)i * sides, *nr = wk->normals + (size_t)i * sides;
         const v3 *next = ring + sides, *nn = nr + sides;
-        for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++)
-            for (int j = 0; j < sides; j++) {
-                v3 q = v3_lerp(P[i], ring[j], 0.75);
-                if (world_clearance_in(w, q, 1, w->r, NULL, NULL) >= 0) ring[j] = q;
+        int moved = 0;
+        double cc = -1;
+        if (!clear[i + 1] || next_moved)
+            for (int tries = 0; tries < 6 && ring_folds(ring, next, nr, nn, sides); tries++) {
+                shrink_ring(ring, w, P[i], sides, &cc);
+                moved = 1;
             }
+        next_moved = moved;
     }
 }
 
@@ -252,15 +286,17 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
              * first surface it crosses (one ray; the Lipschitz bound above
              * leaves many vertices to look at). */
             if (w->n_meshes) q = world_spoke(w, P[i], q);
-            if (world_clearance_boxes(w, q) >= 0) {
+            /* Boxes and the ground only: world_clearance has the sign of
+             * world_clearance_boxes, so one query serves both. */
+            v3 nrm;
+            int which;
+            double d = w->n_meshes ? world_clearance_boxes(w, q) : world_clearance(w, q, &nrm, &which);
+            if (d >= 0) {
                 ring[j] = q;
                 continue;
             }
-            double d = -1;
             for (int it = 0; it < 4; it++) {
-                v3 nrm;
-                int which;
-                d = world_clearance(w, q, &nrm, &which);
+                if (it || w->n_meshes) d = world_clearance(w, q, &nrm, &which);
                 if (d >= 0) break;
                 /* onto a mesh's surface the sign is a coin toss: a hair beyond */
                 q = v3_madd(q, nrm, -d + (which >= (int)w->n_hosts ? w->eps : 0.0));
@@ -348,7 +384,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.sides = sides;
     size_t nr = (size_t)longest * sides;
     void *block = malloc(sizeof(double) * 2 * sides + sizeof(v3) * 2 * longest + sizeof(v3) * 2 * nr +
-                         sizeof(double) * 3 * longest + sizeof(v3) * 4 * sides);
+                         sizeof(double) * 3 * longest + sizeof(v3) * 4 * sides + longest);
     if (!block) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots mesh workspace");
     wk.cs = block;
     wk.sn = wk.cs + sides;
@@ -363,6 +399,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     wk.arc = (double *)(wk.de + sides);
     wk.extent = wk.arc + longest;
     wk.rad = wk.extent + longest;
+    wk.clear = (unsigned char *)(wk.rad + longest);
     for (int j = 0; j < sides; j++) {
         /* Half-step offset: each half of a junction loop is symmetric. */
         double ang = 2.0 * BANYAN_PI * (j + 0.5) / sides;

@@ -369,15 +369,18 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
                 double f = 0.5 * f1[a * nb + k] + (N > 1 ? 0.5 * f1[ap * nb + k] : 0.0);
                 if (at < n) F[at] += gain * f;
             }
-            double sum = 0;
+            double sum = 0, x_prev = -1, R_prev = 0; /* x is constant along most of a root: one pow per run */
             for (uint32_t i = 0; i < n; i++) {
                 sum += F[i];
                 double own = tipf + (1.0 - tipf) * (arc[i] / (8.0 * r) < 1 ? arc[i] / (8.0 * r) : 1.0);
-                R[i] = r * pow(own + sum, 1.0 / e);
+                double x = own + sum;
+                if (x != x_prev) R_prev = r * pow(x, 1.0 / e), x_prev = x;
+                R[i] = R_prev;
             }
         } else {
             double f = pl->kind == ROOT_FIRST ? f1[pl->a * nb + pl->k] : tipf * (1.0 + gain);
-            for (uint32_t i = 0; i < n; i++) R[i] = r * pow(f, 1.0 / e);
+            double Rf = r * pow(f, 1.0 / e);
+            for (uint32_t i = 0; i < n; i++) R[i] = Rf;
         }
         /* No steps where branches join: three passes of a [1 2 1] filter. */
         for (int pass = 0; pass < 3 && n > 2; pass++) {

@@ -15,7 +15,8 @@
  *            loop in an editor);
  * the split between building the net and sweeping the mesh, triangles per
  * second, and the output rate against this machine's memory write
- * bandwidth (bench.h).
+ * bandwidth (bench.h). Then the default params as they are (n = 8 sides,
+ * tubes), fresh and reused.
  *   bench_roots [runs]   (default 200) */
 #include "bench.h"
 
@@ -24,11 +25,12 @@
 #include "banyan.h"
 #include "roots/roots_internal.h"
 
-static double run(int runs, int keep_previous, banyan_box *host, uint32_t *tris, uint32_t *verts, size_t *bytes) {
+static double run(int runs, int keep_previous, int sides, banyan_box *host, uint32_t *tris, uint32_t *verts,
+                  size_t *bytes) {
     banyan_roots_params p;
     banyan_roots_params_init(&p);
     p.surface = BANYAN_ROOTS_TUBES;
-    p.sides = 16;
+    if (sides) p.sides = sides; /* 0: the params' default */
     double *t = malloc(sizeof(double) * (size_t)runs);
     banyan_mesh *prev = NULL;
     for (int i = 0; i < runs + 5; i++) {
@@ -125,8 +127,15 @@ int main(int argc, char **argv) {
     fused(&host);
     uint32_t tris = 0, verts = 0;
     size_t bytes = 0;
-    double fresh = run(runs, 0, &host, &tris, &verts, &bytes);
-    double reused = run(runs, 1, &host, NULL, NULL, NULL);
+    double fresh = run(runs, 0, 16, &host, &tris, &verts, &bytes);
+    double reused = run(runs, 1, 16, &host, NULL, NULL, NULL);
+    /* The default params as they are (n = 8 sides). */
+    uint32_t tris8 = 0, verts8 = 0;
+    size_t bytes8 = 0;
+    double fresh8 = run(runs, 0, 0, &host, &tris8, &verts8, &bytes8);
+    double reused8 = run(runs, 1, 0, &host, NULL, NULL, NULL);
+    banyan_roots_params p8;
+    banyan_roots_params_init(&p8);
 
     /* The net alone (growth, branches, correction, repair), no mesh. */
     banyan_roots_params p;
@@ -156,5 +165,8 @@ int main(int argc, char **argv) {
     printf("  memory write bandwidth: %.3g B/s\n", bw);
     printf("  output rate / bandwidth: %.1f%% fresh, %.1f%% reused\n", 100.0 * bytes / fresh / bw,
            100.0 * bytes / reused / bw);
+    printf("bench_roots: default params, tubes (n = %d), %d runs per figure, 1 thread\n", p8.sides, runs);
+    printf("  mesh (seed 1):          %u vertices, %u triangles, %.2f MB of output\n", verts8, tris8, bytes8 / 1e6);
+    printf("  median per net:         %.3f ms fresh, %.3f ms reused\n", fresh8 * 1e3, reused8 * 1e3);
     return 0;
 }
