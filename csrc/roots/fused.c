@@ -57,6 +57,8 @@ static double stage_ms(void) {
 
 typedef struct capsule {
     v3 a, b;
+    v3 ba;     /* b - a, and its squared length: kept for the many queries */
+    double l2;
     double ra, rb;
     uint32_t poly, at; /* polyline, its point index in net->pts of a */
 } capsule;
@@ -195,8 +197,8 @@ static void grid_free(fgrid *g) {
  * projection's t, less the radius there (near enough to exact for the
  * tapers of a root, and 1-Lipschitz up to the taper's slope). *t_out gets t. */
 static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
-    v3 ba = v3_sub(c->b, c->a), pa = v3_sub(p, c->a);
-    double l2 = v3_len2(ba), t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
+    v3 ba = c->ba, pa = v3_sub(p, c->a);
+    double l2 = c->l2, t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
     t = t < 0 ? 0 : (t > 1 ? 1 : t);
     if (t_out) *t_out = t;
     return v3_len(v3_madd(pa, ba, -t)) - (c->ra + (c->rb - c->ra) * t);
@@ -293,8 +295,7 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
 
 /* The nearest capsule to p: the block's list, else every capsule. */
 static uint32_t nearest_capsule(const fgrid *g, const capsule *caps, uint32_t n_caps, v3 p, double *t_out) {
-    int32_t x = (int32_t)floor(p.x / g->h + 0.5), y = (int32_t)floor(p.y / g->h + 0.5),
-            z = (int32_t)floor(p.z / g->h + 0.5);
+    int32_t x = ifloor(p.x / g->h + 0.5), y = ifloor(p.y / g->h + 0.5), z = ifloor(p.z / g->h + 0.5);
     uint32_t b = grid_find(g, floor_div8(x), floor_div8(y), floor_div8(z)), best = UINT32_MAX;
     double bd = HUGE_VAL, t;
     if (b != UINT32_MAX)
@@ -355,6 +356,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             uint32_t at = pl->off + i;
             capsule *c = &caps[n_caps++];
             c->a = net->pts[at], c->b = net->pts[at + 1];
+            c->ba = v3_sub(c->b, c->a), c->l2 = v3_len2(c->ba);
             c->ra = net->rad[at], c->rb = net->rad[at + 1];
             c->poly = t, c->at = at;
             double l = v3_dist(c->a, c->b);
