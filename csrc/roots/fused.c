@@ -57,6 +57,8 @@ static double stage_ms(void) {
 
 typedef struct capsule {
     v3 a, b;
+    v3 ba;     /* b - a, and its squared length: kept for the many queries */
+    double l2;
     double ra, rb;
     uint32_t poly, at; /* polyline, its point index in net->pts of a */
 } capsule;
@@ -81,6 +83,17 @@ typedef struct fgrid {
     uint32_t n_touched;
     int nomem;
 } fgrid;
+
+/* floor and ceil to int without libm's calls (x86-64's baseline has no
+ * rounding instruction): the raster asks for four per voxel column. */
+static inline int32_t ifloor(double x) {
+    int32_t i = (int32_t)x;
+    return i - (x < i);
+}
+static inline int32_t iceil(double x) {
+    int32_t i = (int32_t)x;
+    return i + (x > i);
+}
 
 static inline int32_t floor_div8(int32_t i) { return i >= 0 ? i / 8 : -((-i + 7) / 8); }
 
@@ -184,8 +197,8 @@ static void grid_free(fgrid *g) {
  * projection's t, less the radius there (near enough to exact for the
  * tapers of a root, and 1-Lipschitz up to the taper's slope). *t_out gets t. */
 static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
-    v3 ba = v3_sub(c->b, c->a), pa = v3_sub(p, c->a);
-    double l2 = v3_len2(ba), t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
+    v3 ba = c->ba, pa = v3_sub(p, c->a);
+    double l2 = c->l2, t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
     t = t < 0 ? 0 : (t > 1 ? 1 : t);
     if (t_out) *t_out = t;
     return v3_len(v3_madd(pa, ba, -t)) - (c->ra + (c->rb - c->ra) * t);
@@ -193,15 +206,14 @@ static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
 
 /* Polynomial smooth minimum (fillet radius about k). */
 static inline float smin(float a, float b, float k) {
-    float d = a - b, h = k - fabsf(d);
-    if (h <= 0) return a < b ? a : b;
-    h /= k;
+    float h = k - fabsf(a - b);
+    h = (h > 0 ? h : 0) / k; /* no branch: the merge loop vectorises */
     return (a < b ? a : b) - h * h * k * 0.25f;
 }
 
 /* Rasterises capsule c (of polyline stamp - 1) into the blocks' tmp. */
 static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t stamp) {
-    double h = g->h, R = (c->ra > c->rb ? c->ra : c->rb) + g->cut;
+    double h = g->h, ih = 1.0 / h, R = (c->ra > c->rb ? c->ra : c->rb) + g->cut;
     v3 lo = v3_make(fmin(c->a.x, c->b.x) - R, fmin(c->a.y, c->b.y) - R, fmin(c->a.z, c->b.z) - R);
     v3 hi = v3_make(fmax(c->a.x, c->b.x) + R, fmax(c->a.y, c->b.y) + R, fmax(c->a.z, c->b.z) + R);
     int32_t i0[3] = {(int32_t)ceil(lo.x / h), (int32_t)ceil(lo.y / h), (int32_t)ceil(lo.z / h)};
@@ -217,12 +229,14 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                 int32_t z0 = bz * 8 > i0[2] ? bz * 8 : i0[2], z1 = bz * 8 + 7 < i1[2] ? bz * 8 + 7 : i1[2];
                 uint32_t b = UINT32_MAX;
                 float *tmp = NULL;
+                int listed = 0; /* the block's list has the capsule */
+                const double list_cut = g->list_cut;
                 /* Along a column, p - a and t are linear in z: the squared
                  * distance to the axis comes without a sqrt, which only the
                  * voxels within reach pay. */
                 v3 ba = v3_sub(c->b, c->a);
                 double l2 = v3_len2(ba), il2 = l2 > 0 ? 1.0 / l2 : 0, dr = c->rb - c->ra;
-                double ua = ba.x * ba.x + ba.y * ba.y;
+                double ua = ba.x * ba.x + ba.y * ba.y, iua = ua > 1e-12 * l2 ? 1.0 / ua : 0;
                 for (int32_t x = x0; x <= x1; x++)
                     for (int32_t y = y0; y <= y1; y++) {
                         double px = x * h - c->a.x, py = y * h - c->a.y;
@@ -235,14 +249,18 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                             double disc = dxy * dxy - ua * (pxy2 - R * R);
                             if (disc < 0) continue;
                             disc = sqrt(disc);
-                            s0 = (dxy - disc) / ua, s1 = (dxy + disc) / ua;
+                            s0 = (dxy - disc) * iua, s1 = (dxy + disc) * iua;
                             s0 = s0 < 0 ? 0 : s0, s1 = s1 > 1 ? 1 : s1;
                             if (s0 > s1) continue;
                         } else if (pxy2 > R * R) {
                             continue;
                         }
                         double za = c->a.z + s0 * ba.z, zb = c->a.z + s1 * ba.z;
-                        int32_t zl = (int32_t)ceil((fmin(za, zb) - R) / h), zh = (int32_t)floor((fmax(za, zb) + R) / h);
+                        if (za > zb) {
+                            double sw = za;
+                            za = zb, zb = sw;
+                        }
+                        int32_t zl = iceil((za - R) * ih), zh = ifloor((zb + R) * ih);
                         if (zl < z0) zl = z0;
                         if (zh > z1) zh = z1;
                         for (int32_t z = zl; z <= zh; z++) {
@@ -264,7 +282,10 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                                     g->touched[g->n_touched++] = b;
                                 }
                             }
-                            if (d < g->list_cut) grid_list_add(g, b, ci);
+                            if (!listed && d < list_cut) {
+                                grid_list_add(g, b, ci);
+                                listed = 1;
+                            }
                             int v = ((x - bx * 8) << 6) | ((y - by * 8) << 3) | (z - bz * 8);
                             if ((float)d < tmp[v]) tmp[v] = (float)d;
                         }
@@ -274,8 +295,7 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
 
 /* The nearest capsule to p: the block's list, else every capsule. */
 static uint32_t nearest_capsule(const fgrid *g, const capsule *caps, uint32_t n_caps, v3 p, double *t_out) {
-    int32_t x = (int32_t)floor(p.x / g->h + 0.5), y = (int32_t)floor(p.y / g->h + 0.5),
-            z = (int32_t)floor(p.z / g->h + 0.5);
+    int32_t x = ifloor(p.x / g->h + 0.5), y = ifloor(p.y / g->h + 0.5), z = ifloor(p.z / g->h + 0.5);
     uint32_t b = grid_find(g, floor_div8(x), floor_div8(y), floor_div8(z)), best = UINT32_MAX;
     double bd = HUGE_VAL, t;
     if (b != UINT32_MAX)
@@ -336,6 +356,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             uint32_t at = pl->off + i;
             capsule *c = &caps[n_caps++];
             c->a = net->pts[at], c->b = net->pts[at + 1];
+            c->ba = v3_sub(c->b, c->a), c->l2 = v3_len2(c->ba);
             c->ra = net->rad[at], c->rb = net->rad[at + 1];
             c->poly = t, c->at = at;
             double l = v3_dist(c->a, c->b);
@@ -376,8 +397,10 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         for (uint32_t j = 0; j < g.n_touched; j++) {
             size_t b = (size_t)g.touched[j] * BLK;
             float *acc = g.acc + b, *tmp = g.tmp + b;
-            for (int v = 0; v < BLK; v++)
-                if (tmp[v] < BIG) acc[v] = k > 0 ? smin(acc[v], tmp[v], k) : (acc[v] < tmp[v] ? acc[v] : tmp[v]);
+            if (k > 0)
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < BIG ? smin(acc[v], tmp[v], k) : acc[v];
+            else
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < acc[v] ? tmp[v] : acc[v];
         }
     }
 
@@ -387,13 +410,8 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         const roots_world *w = &net->w;
         double gap = HOST_GAP * r, floor_z = net->w.ground_z - SOIL_DEPTH * r;
         double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
-        /* A block wholly outside is left to the background; the others go
-         * to OpenVDB (packed to the front of acc). tmp is free now: it
-         * takes their origins (3 ints per block, in 512 floats per block). */
-        int32_t *origin = (int32_t *)g.tmp;
-        uint32_t n_surf = 0;
         for (uint32_t b = 0; b < g.n; b++) {
-            const blk_meta *m = &g.meta[b];
+            blk_meta *m = &g.meta[b];
             float *acc = g.acc + (size_t)b * BLK;
             v3 centre = v3_make((m->bx * 8 + 3.5) * h, (m->by * 8 + 3.5) * h, (m->bz * 8 + 3.5) * h);
             int near_host = world_clearance_in(w, centre, 0, half_diag + range, NULL, NULL) < half_diag + range;
@@ -414,9 +432,40 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
                 if (d == 0) d = 1e-6f * (float)h;
                 acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
             }
-            int outside = 1;
-            for (int v = 0; v < BLK; v++) outside &= acc[v] >= band;
-            if (outside) continue;
+            int inside = 0;
+            for (int v = 0; v < BLK; v++) inside |= acc[v] < 0;
+            m->stamp = (uint32_t)inside; /* the stamps are done with */
+        }
+        /* A block with no voxel inside only meets the surface on an edge
+         * to an inside voxel of a face neighbour, its voxel there within
+         * the band; without such an edge OpenVDB's background (outside,
+         * +band) stands in for the block: the same signs, the same values
+         * on every edge the surface crosses, so the same mesh from fewer
+         * leaves to scan (about a third of the blocks stay). The others
+         * go to OpenVDB, packed to the front of acc; tmp is free now: it
+         * takes their origins (3 ints per block, in 512 floats per block). */
+        for (uint32_t b = 0; b < g.n; b++) {
+            blk_meta *m = &g.meta[b];
+            const float *acc = g.acc + (size_t)b * BLK;
+            int keep = m->stamp & 1;
+            for (int f = 0; f < 6 && !keep; f++) {
+                int ax = f >> 1, shift = 6 - 3 * ax, theirs = f & 1 ? 0 : 7;
+                int32_t nb[3] = {m->bx, m->by, m->bz};
+                nb[ax] += f & 1 ? 1 : -1;
+                uint32_t o = grid_find(&g, nb[0], nb[1], nb[2]);
+                if (o == UINT32_MAX || !(g.meta[o].stamp & 1)) continue;
+                const float *nacc = g.acc + (size_t)o * BLK;
+                for (int v = 0; v < BLK && !keep; v++)
+                    keep = ((v >> shift) & 7) == theirs && nacc[v] < 0 && acc[v ^ (7 << shift)] < band;
+            }
+            m->stamp |= (uint32_t)keep << 1;
+        }
+        int32_t *origin = (int32_t *)g.tmp;
+        uint32_t n_surf = 0;
+        for (uint32_t b = 0; b < g.n; b++) {
+            const blk_meta *m = &g.meta[b];
+            float *acc = g.acc + (size_t)b * BLK;
+            if (!(m->stamp & 2)) continue;
             origin[3 * n_surf] = m->bx * 8, origin[3 * n_surf + 1] = m->by * 8, origin[3 * n_surf + 2] = m->bz * 8;
             if (n_surf != b) memmove(g.acc + (size_t)n_surf * BLK, acc, sizeof(float) * BLK);
             n_surf++;
