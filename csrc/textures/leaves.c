@@ -133,6 +133,16 @@ static inline void put(tex_canvas *c, size_t i, float cov, const float col[3], f
     c->height[i] = h * cov + c->height[i] * (1.0f - cov);
 }
 
+/* A row's shaded pixels (x, colour, height, coverage) into the canvas at
+ * row offset `row`: put() for each. */
+static void put_row(tex_canvas *c, size_t row, int m, const int *x, const float *r, const float *g, const float *b,
+                    const float *h, const float *cov) {
+    for (int i = 0; i < m; i++) {
+        const float col[3] = {r[i], g[i], b[i]};
+        put(c, row + (size_t)x[i], cov[i], col, h[i]);
+    }
+}
+
 /* Pixel bounds of a box in cell units, clipped to the cell's inner area. */
 static void bounds(const cell *k, float umin, float umax, float vmin, float vmax, int *x0, int *x1, int *y0,
                    int *y1) {
@@ -324,8 +334,6 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     const float ivslope = 1.0f / sqrtf(1.0f + L->slope * L->slope), il = 1.0f / L->len;
     /* Locals: the canvas stores below could otherwise alias the leaf. */
     tex_canvas *const cv = k->c;
-    uint8_t *const rgba = cv->rgba;
-    float *const height = cv->height;
     const float ldx = L->dx, ldy = L->dy, bx0 = L->bx, slope = L->slope, blot = L->blot;
     const float veins = (float)L->veins - 0.2f, q0 = T.q0, dq = T.dq;
     float lcol[3], ledge[3], lvein[3], lblot[3];
@@ -368,17 +376,7 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
             sXX[m++] = xx;
         }
         keyaki_shade_row(&C, m, sY, sA, sS, sW, sD, sGr, sMb, sR, sG, sB, sH);
-        for (int i = 0; i < m; i++) {
-            const int xx = sXX[i];
-            const float col[3] = {sR[i], sG[i], sB[i]}, h = sH[i], cov = sCov[i];
-            size_t pi = (size_t)yy * n + xx;
-            if (cov >= 1.0f) { /* put(), opaque: no blend */
-                uint8_t *p = rgba + 4 * pi;
-                p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
-                height[pi] = h;
-            } else
-                put(cv, pi, cov, col, h);
-        }
+        put_row(cv, (size_t)yy * n, m, sXX, sR, sG, sB, sH, sCov);
     }
 }
 
@@ -700,8 +698,6 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
         wlim[i] = wm + 1.0f / (lens[i] * gm);
     }
     tex_canvas *const cv = k->c;
-    uint8_t *const rgba = cv->rgba;
-    float *const height = cv->height;
     const float *const grain = cv->grain;
     const float len0 = L->lobe[0].len;
     float ldx[3], ldy[3], lslope[3], lq0[3], ldq[3], lveins[3], llen[3];
@@ -789,17 +785,7 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
                               {ledge[0], ledge[1], ledge[2]}, {lvein[0], lvein[1], lvein[2]}, s, vv, len0};
         ivy_shade_row(&C, m, sU, sD, sY, sX, sW, sLp, sSl, sQ0, sDq, sVe, sVs, sGr, sR, sG, sB);
         /* Pass 3: into the canvas. */
-        for (int i = 0; i < m; i++) {
-            const int xx = sXX[i];
-            const float col[3] = {sR[i], sG[i], sB[i]}, h = sU[i], cov = sCov[i];
-            size_t pi = (size_t)yy * n + xx;
-            if (cov >= 1.0f) { /* put(), opaque: no blend */
-                uint8_t *p = rgba + 4 * pi;
-                p[0] = tex_byte(col[0]), p[1] = tex_byte(col[1]), p[2] = tex_byte(col[2]), p[3] = 255;
-                height[pi] = h;
-            } else
-                put(cv, pi, cov, col, h);
-        }
+        put_row(cv, (size_t)yy * n, m, sXX, sR, sG, sB, sU, sCov);
     }
 }
 
