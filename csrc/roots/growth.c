@@ -35,11 +35,11 @@ static const v3 UP = {0, 0, 1};
  * about 3 degrees off the vertical. */
 #define ROOTS_HANG 0.05
 
-/* The underground end of main root a entering the soil at E: outwards
- * (the host's normal, else away from G) for the rest of soil_reach (plus
- * 1.5 r), and down to 3 r below the ground on a parabola that dives
- * first, so the thick flared end goes into the soil at once instead of
- * running over it like a boot. */
+/* The underground end of main root a entering the soil at E, drafted:
+ * outwards (the host's normal, else away from G) for the rest of
+ * soil_reach (plus 1.5 r), and down to 3 r below the ground. Its points
+ * give the end's heading and its place in the polyline; paths.c's
+ * buttress() sets their final positions once the radii are known. */
 static void soil_end(roots_net *net, const banyan_roots_params *p, int a, v3 E, v3 head) {
     const roots_world *w = &net->w;
     roots_world sw = roots_soil_world(w);

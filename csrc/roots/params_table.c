@@ -104,7 +104,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .tip_radius = 0.6,
         .soil_entry = 1,
         .soil_reach = 3,
-        .flare = 1.8,
+        .flare = 1.4,
         .smooth_paths = 1,
         .germination = {0, 0, 0},
         .germination_auto = 1,

@@ -73,7 +73,7 @@ typedef struct banyan_roots_params {
                                      with a buttress flare, instead of crawling outward [1] */
     double soil_reach;            /* multiples of r, 0 .. 100: how far past the host a root may run on
                                      the ground before it goes in [3] */
-    double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.8] */
+    double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.4] */
     int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
 } banyan_roots_params;
 
