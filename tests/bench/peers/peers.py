@@ -12,6 +12,7 @@ in one Blender process, on one machine, ratios from the same run:
   5. hosts    build/tests/bench_hosts, bench_roots_hosts, bench_ivy, and
               ivy_suzanne.py: ivy on Suzanne against IvyGen (issue 15)
   6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
+  7. roots C  build/tests/bench_roots: the fused surface and the tubes (issue 18)
 
 Every time is the median of RUNS runs with min and max; banyan and the
 peer alternate within each run so both see the same machine load. Writes
@@ -384,6 +385,25 @@ def section_textures():
     return res.stdout, first_plant(max(3, RUNS // 2))
 
 
+def section_roots_c():
+    """Issue 18: bench_roots' output (fused surface and tubes, one thread)."""
+    exe = os.path.join(BUILD, "tests", "bench_roots")
+    out = subprocess.run([exe], capture_output=True, text=True, check=True).stdout
+    print(out, flush=True)
+    return out
+
+
+def roots_c_figures(out):
+    """(fused ms, fused peak MB, tubes n = 16 reused ms, tubes defaults reused ms) from bench_roots."""
+    def find(pattern):
+        m = re.search(pattern, out)
+        return float(m.group(1)) if m else float("nan")
+    return (find(r"fused surface.*\n(?:.*\n)*?\s+median per net:\s+([0-9.]+) ms"),
+            find(r"memory peak of a call:\s+([0-9.]+) MB"),
+            find(r"median per net, reused:\s+([0-9.]+) ms"),
+            find(r"median per net:\s+[0-9.]+ ms fresh, ([0-9.]+) ms reused"))
+
+
 def section_hosts():
     """Issue 15: the C host benchmarks' output, and ivy on Suzanne against
     IvyGen (ivy_suzanne.py)."""
@@ -444,7 +464,7 @@ def verdict(ok):
     return "**met**" if ok else "**missed**"
 
 
-def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=("", (0.0, 0.0))):
+def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=("", (0.0, 0.0)), roots_c=""):
     ban_i, peers_i = ivy
     ban_t, peers_t = tree
     model, cores = machine()
@@ -669,6 +689,27 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "1-3 time plants after the first (the shared materials stay between runs, as in a user's file)."
       % (max(3, RUNS // 2), first, later, first - later))
     w("")
+    # ---- roots, C
+    fused_ms, fused_mb, tube16, tube8 = roots_c_figures(roots_c)
+    w("## 7. Roots: fused surface and tubes (issue 18)")
+    w("")
+    w("`build/tests/bench_roots` (tests/bench/bench_roots.c): the default net on the default trunk, one thread; "
+      "the fused surface (OpenVDB, the default) and the plain tubes. Absolute times follow this shared VM's "
+      "phases (docs/roots.md \"Speed\" compares builds in alternating runs).")
+    w("")
+    w("| target | figure | verdict |")
+    w("|---|---|---|")
+    w("| fused surface, default net < 250 ms on one core | %.1f ms (median of 10 seeds) | %s |" % (
+        fused_ms, verdict(fused_ms < 250)))
+    w("| fused surface memory peak | %.1f MB (peak resident set growth of one call) | reference |" % fused_mb)
+    w("| tube mode, default net < 2 ms (n = 16, the history's figure) | %.3f ms reused | %s |" % (
+        tube16, verdict(tube16 < 2)))
+    w("| tube mode, default params (n = 8) | %.3f ms reused | reference |" % tube8)
+    w("")
+    w("```")
+    w(roots_c.strip())
+    w("```")
+    w("")
     notes = os.path.join(HERE, "profile.md")
     if os.path.exists(notes):
         with open(notes) as f:
@@ -696,8 +737,9 @@ def main():
     hosts = section_hosts()
     textures = section_textures()
     print(textures[0], textures[1], flush=True)
+    roots_c = section_roots_c()
     text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0,
-                  textures)
+                  textures, roots_c)
     with open(OUT, "w") as f:
         f.write(text)
     print(text)
