@@ -509,3 +509,41 @@ double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) 
 double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) {
     return shade(iv, p, self, stop, vl, iv);
 }
+
+/* Does the internode a-b cross a stem, seen along n? Only internodes
+ * parent(j) -> j whose end bud j lies within `layer` of a across n (the
+ * same surface's stems) count, and none that shares bud `self` (the bud
+ * a-b grows from). An internode of length l that crosses a-b ends within
+ * 1.5 l of its midpoint, so the cells around that ball are read. */
+int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+    const double l = iv->p.internode, r = 1.5 * l, r2 = r * r, ic = iv->inv_cell;
+    const v3 m = v3_scale(v3_add(a, b), 0.5);
+    /* 2D frame of the surface: u, w across n. */
+    const v3 u = v3_any_perp(n), w = v3_cross(n, u);
+    const double ax = v3_dot(a, u), ay = v3_dot(a, w), bx = v3_dot(b, u), by = v3_dot(b, w);
+    const double ex = bx - ax, ey = by - ay;
+    int32_t x0 = cell_coord(m.x - r, ic), x1 = cell_coord(m.x + r, ic), y0 = cell_coord(m.y - r, ic),
+            y1 = cell_coord(m.y + r, ic), z0 = cell_coord(m.z - r, ic), z1 = cell_coord(m.z + r, ic);
+    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
+        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
+            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
+                uint32_t k = bucket_of(iv, x, y, z);
+                if (!((iv->occupied[k >> 6] >> (k & 63)) & 1)) continue;
+                for (int32_t j = iv->head[k]; j >= 0; j = iv->gn[j].next) {
+                    const ivy_gnode *g = &iv->gn[j];
+                    if (g->cell[0] != x || g->cell[1] != y || g->cell[2] != z) continue;
+                    const int32_t pj = iv->buds[j].parent;
+                    if (pj < 0 || j == self || pj == self) continue;
+                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
+                    v3 c = iv->buds[pj].P;
+                    const double cx = v3_dot(c, u), cy = v3_dot(c, w), dx = v3_dot(g->P, u) - cx,
+                                 dy = v3_dot(g->P, w) - cy;
+                    /* Proper intersection: each segment's ends on opposite sides of the other. */
+                    double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
+                    if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
+                    double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
+                    if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
+                }
+            }
+    return 0;
+}

@@ -57,34 +57,30 @@ static int cmp_cand(const void *x, const void *y) {
     return cand_before(a, b) ? -1 : cand_before(b, a) ? 1 : 0;
 }
 
-/* The directed random walk from bud i along `base`: K candidates, host
- * collisions discarded, the best of the weighted five fitness terms kept.
- * Appends the new bud (state `st`, nourishment `N`) as child `slot` of
- * bud i and returns its index, or -1 when every candidate collided. */
-static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, double N, int slot) {
-    const banyan_ivy_params *p = &iv->p;
-    ivy_bud *b = &iv->buds[i];
-    const int sucker = st != BANYAN_IVY_A2; /* the third apical bud has none */
-    const double l = p->internode, D = p->sucker_length, tm = deg2rad(p->theta_max);
-    const int grav_on = (b->run + 1) * l > p->free_length;
-    if (p->helio_in_plane) {
-        /* Stems on a wall spread along it: light comes off the wall for
-         * every bud alike, so only the tangential part of V_l steers. */
-        ivy_near nr = ivy_nearest_within(iv, b->P, D);
-        if (nr.dist <= D) vl = v3_sub(vl, v3_scale(nr.normal, v3_dot(vl, nr.normal)));
-    }
-    double vlen = v3_len(vl);
-    const int helio_on = vlen > 1e-12;
-    v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
+/* The walk's winner so far. */
+typedef struct walk_best {
+    double f, dist;
+    int32_t k;
+    int crosses;
+    v3 q, d;
+} walk_best;
 
+/* One round of the directed random walk from bud i along `base`: K
+ * candidates turned up to tm (radians) about each axis, host collisions
+ * discarded, the best weighted sum of the fitness terms kept in *w. */
+static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int grav_on, v3 vlh, int helio_on,
+                 v3 surf_n, double w_cross, double w_tendril, walk_best *w) {
+    const banyan_ivy_params *p = &iv->p;
+    const ivy_bud *b = &iv->buds[i];
+    const double l = p->internode, D = p->sucker_length;
     const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
     /* Every candidate's free terms first, with the most it could score
-     * (f_d and f_grav at their most: a free candidate is at least
-     * clearance off every surface, so f_d <= 1). Then the host queries,
-     * the costly part, in order of that bound, best first: once the bound
-     * cannot beat the best found, no later candidate can. The winner is
-     * the one the spec's order gives: the highest score, and on a tie the
-     * first drawn. */
+     * (f_d, f_grav and f_cross at their most: a free candidate is at
+     * least clearance off every surface, so f_d <= 1). Then the host
+     * queries, the costly part, in order of that bound, best first: once
+     * the bound cannot beat the best found, no later candidate can. The
+     * winner is the one the spec's order gives: the highest score, and on
+     * a tie the first drawn. */
     ivy_cand *cd = iv->cand;
     const int32_t K = p->candidates;
     for (int32_t k = 0; k < K; k++) {
@@ -96,13 +92,12 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         c->fv = (v3_dot(base, d) + 1.0) * 0.5;
         c->fgeo = (1.0 + d.z) * 0.5;                      /* G = (0, 0, -1): (1 - G.V')/2 */
         c->fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
+        c->ftendril = w_tendril > 0 ? (1.0 - v3_dot(surf_n, d)) * 0.5 : 0.0;
         double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
-        c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max + p->w_helio * c->fhelio;
+        c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max +
+                   p->w_helio * c->fhelio + w_tendril * c->ftendril + w_cross;
     }
     if (K > 32) qsort(cd, (size_t)K, sizeof *cd, cmp_cand);
-    double best = -HUGE_VAL, best_dist = 0;
-    int32_t best_k = -1;
-    v3 best_q = b->P, best_d = base;
     for (int32_t n = 0; n < K; n++) {
         if (K <= 32) { /* pick the next by selection: most plants stop after two or three */
             int32_t m = n;
@@ -115,24 +110,84 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
             }
         }
         const ivy_cand *c = &cd[n];
-        if (!(c->f_max >= best)) break; /* (NaN too) */
-        if (c->f_max == best && c->k > best_k) continue; /* at most a tie, drawn later */
+        if (!(c->f_max >= w->f)) break; /* (NaN too) */
+        if (c->f_max == w->f && c->k > w->k) continue; /* at most a tie, drawn later */
         v3 d = c->d, q = v3_madd(b->P, d, l);
         double dist;
         if (ivy_blocked(iv, b->P, q, D, &dist)) continue;
         int attach = sucker && dist <= D;
         double fd = attach && D > 0 ? 1.0 - dist / D : 0.0;
         double fgrav = !attach && grav_on ? (1.0 - d.z) * 0.5 : 0.0;
-        double f = p->w_d * fd + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav + p->w_helio * c->fhelio;
-        if (f > best || (f == best && c->k < best_k)) {
-            best = f;
-            best_k = c->k;
-            best_q = q;
-            best_d = d;
-            best_dist = dist;
+        double f = p->w_d * fd + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav + p->w_helio * c->fhelio +
+                   w_tendril * c->ftendril;
+        /* f_cross = 1 when the internode crosses no stem; asked only when
+         * it can decide the winner (the stem query is the costly part). */
+        int crosses = 0;
+        if (w_cross > 0) {
+            double top = f + w_cross;
+            if (!(top > w->f || (top == w->f && c->k < w->k))) continue;
+            crosses = ivy_crosses(iv, b->P, q, surf_n, i, D);
+            if (!crosses) f = top;
+        }
+        if (f > w->f || (f == w->f && c->k < w->k)) {
+            w->f = f;
+            w->k = c->k;
+            w->q = q;
+            w->d = d;
+            w->dist = dist;
+            w->crosses = crosses;
         }
     }
-    if (best == -HUGE_VAL) return -1;
+}
+
+/* The directed random walk from bud i along `base` (spec "Placement",
+ * with the additions of docs/ivy.md "Stem architecture"). Appends the new
+ * bud (state `st`, nourishment `N`) as child `slot` of bud i and returns
+ * its index, or -1 when every candidate collided. */
+static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, double N, int slot) {
+    const banyan_ivy_params *p = &iv->p;
+    ivy_bud *b = &iv->buds[i];
+    const int sucker = st != BANYAN_IVY_A2; /* the third apical bud has none */
+    const double D = p->sucker_length;
+    const int grav_on = (b->run + 1) * p->internode > p->free_length;
+    /* The surface the bud is near (within surface_reach): light is taken
+     * along it, f_cross sees stems along its normal, and a free bud's
+     * tendrils reach for it. */
+    int near_surface = 0;
+    double surf_dist = HUGE_VAL;
+    v3 surf_n = v3_make(0, 0, 1);
+    const double reach = p->surface_reach > D ? p->surface_reach : D;
+    if (p->helio_in_plane || p->w_cross > 0 || p->w_tendril > 0) {
+        ivy_near nr = ivy_nearest_within(iv, b->P, reach);
+        near_surface = nr.dist <= reach;
+        surf_dist = nr.dist;
+        surf_n = nr.normal;
+    }
+    if (p->helio_in_plane && near_surface) {
+        /* Stems on a wall spread along it: light comes off the wall for
+         * every bud alike, so only the tangential part of V_l steers. */
+        vl = v3_sub(vl, v3_scale(surf_n, v3_dot(vl, surf_n)));
+    }
+    double vlen = v3_len(vl);
+    const int helio_on = vlen > 1e-12;
+    v3 vlh = helio_on ? v3_scale(vl, 1.0 / vlen) : vl;
+    const double w_cross = near_surface ? p->w_cross : 0.0;
+    const double w_tendril = sucker && near_surface && surf_dist > 0.5 * D ? p->w_tendril : 0.0;
+
+    walk_best w = {-HUGE_VAL, 0, -1, 0, b->P, base};
+    const double tm = deg2rad(p->theta_max);
+    walk(iv, i, base, tm, sucker, grav_on, vlh, helio_on, surf_n, w_cross, w_tendril, &w);
+    if (w.crosses) {
+        /* Every candidate crossed a stem: look again with turns twice as
+         * wide, so a tip meeting a stem can turn alongside it. */
+        walk_best w2 = {-HUGE_VAL, 0, -1, 0, b->P, base};
+        walk(iv, i, base, fmin(2.0 * tm, 0.5 * BANYAN_PI), sucker, grav_on, vlh, helio_on, surf_n, w_cross, w_tendril,
+             &w2);
+        if (w2.k >= 0 && !w2.crosses) w = w2;
+    }
+    if (w.k < 0) return -1;
+    v3 best_q = w.q, best_d = w.d;
+    double best_dist = w.dist;
 
     if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
         /* The sucker draws the stem onto the surface: aim the internode at
@@ -140,7 +195,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         ivy_near nr = ivy_nearest_within(iv, best_q, D + p->clearance);
         v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
         v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
-        v3 q = v3_madd(b->P, d, l);
+        v3 q = v3_madd(b->P, d, p->internode);
         double dist;
         if (!ivy_blocked(iv, b->P, q, D, &dist)) {
             best_q = q;
@@ -228,6 +283,13 @@ static void rules(banyan_ivy *iv) {
             }
             /* p3 when H1 <= t0: H0 here plus H0 at the h1_buds buds before. */
             if (b->shaded) continue;
+            if (!p->ground_branching && p->ground == 1 && b->P.z <= p->ground_z + p->sucker_length &&
+                ivy_grip_distance(iv, b->P, p->sucker_length) > p->sucker_length) {
+                /* Lying on the ground, away from every host: the ground is
+                 * crossed, not carpeted, so this bud never sprouts. */
+                end_bud(iv, b);
+                continue;
+            }
             ivy_test_begin(iv);
             double H = ivy_shade_watch(iv, b->P, i, p->t0, &vl);
             int32_t a = b->parent;
@@ -508,7 +570,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     v3 V = v3_sub(up, v3_scale(nr.normal, v3_dot(up, nr.normal)));
     V = v3_len(V) > 1e-6 ? v3_norm(V) : v3_any_perp(nr.normal);
 
-    if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024, err)) != BANYAN_OK) {
+    if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024 + params->start_stems, err)) != BANYAN_OK) {
         banyan_ivy_free(iv);
         return s;
     }
@@ -526,22 +588,35 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     }
     pcg32_seed(&iv->rng, params->seed, 0x1517);
 
-    ivy_bud *b = &iv->buds[0];
-    memset(b, 0, sizeof *b);
-    b->P = P;
-    b->V = V;
-    b->N = params->n_start;
-    b->state = BANYAN_IVY_A0;
-    b->sucker = 1;
-    b->attached = nr.dist <= params->sucker_length;
-    b->run = b->attached ? 0 : 1;
-    b->step_d = -1;
-    b->parent = b->child[0] = b->child[1] = -1;
-    iv->n = 1;
-    iv->active = 1;
-    iv->act[0] = 0;
-    iv->n_act = 1;
-    ivy_grid_insert(iv, 0);
+    /* The leading stems: start_stems first buds at the start, their
+     * directions fanned over +-start_fan about up along the surface, each
+     * jittered within its share of the fan. One stem keeps the paper's
+     * single first bud (and draws no random number). */
+    const int32_t ns = params->start_stems < params->max_buds ? params->start_stems : params->max_buds;
+    const double fan = deg2rad(params->start_fan);
+    for (int32_t k = 0; k < ns; k++) {
+        v3 Vk = V;
+        if (ns > 1) {
+            double share = 2.0 * fan / ns, a = -fan + share * (k + 0.5) + rng_range(&iv->rng, -0.35, 0.35) * share;
+            Vk = v3_norm_or(v3_rotate(V, nr.normal, a), V);
+        }
+        ivy_bud *b = &iv->buds[k];
+        memset(b, 0, sizeof *b);
+        b->P = P;
+        b->V = Vk;
+        b->N = params->n_start;
+        b->state = BANYAN_IVY_A0;
+        b->L = k & 1;
+        b->sucker = 1;
+        b->attached = nr.dist <= params->sucker_length;
+        b->run = b->attached ? 0 : 1;
+        b->step_d = -1;
+        b->parent = b->child[0] = b->child[1] = -1;
+        iv->n = k + 1;
+        iv->act[k] = k;
+        ivy_grid_insert(iv, k);
+    }
+    iv->active = iv->n_act = ns;
     *out = iv;
     banyan_error_clear(err);
     return BANYAN_OK;

@@ -23,7 +23,7 @@
 /* A random-walk candidate being scored (growth.c). */
 typedef struct ivy_cand {
     v3 d;             /* direction */
-    double fv, fgeo, fhelio;
+    double fv, fgeo, fhelio, ftendril;
     double f_max;     /* the most its score can be */
     int32_t k;        /* the order it was drawn in */
 } ivy_cand;
@@ -207,6 +207,10 @@ double ivy_shade(const banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
 void ivy_test_begin(banyan_ivy *iv);
 double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl);
 void ivy_sleep(banyan_ivy *iv, int32_t i);
+/* Does internode a-b cross, seen along the unit normal n, an internode
+ * whose end bud lies within `layer` of a across n and that does not share
+ * bud `self`? (grid.c; f_cross of the random walk) */
+int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
 /* Diameter of bud i's leaf (and shadow) at the current step. */
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
 double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);

@@ -35,7 +35,13 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, w_geo, "Climb upwards", "Climbing", "", 0, 100, "weight of f_geo, growing against gravity (w_geo in the paper)"),
     BP_DOUBLE(S, w_grav, "Droop", "Climbing", "", 0, 100, "weight of f_grav, long unattached stems falling (w_grav in the paper)"),
     BP_DOUBLE(S, w_helio, "Seek light", "Climbing", "", 0, 100, "weight of f_helio, growing towards light, curbing crossings (w_helio in the paper)"),
-    BP_BOOL(S, helio_in_plane, "Light along the surface", "Climbing", "for a bud within sucker reach, the light vector is taken along the surface"),
+    BP_DOUBLE(S, w_cross, "Avoid crossing stems", "Climbing", "", 0, 100, "weight of f_cross: a new internode that crosses no stem, seen along the surface, scores it (stems run side by side instead of crossing)"),
+    BP_DOUBLE(S, w_tendril, "Reach for surfaces", "Climbing", "", 0, 100, "weight of f_tendril: a free bud with a sucker within surface_reach of a surface turns towards it (tendrils grow away from light, into the wall)"),
+    BP_DOUBLE(S, surface_reach, "Surface reach", "Climbing", "m", 0, 10, "within this of a surface a bud takes light along it, avoids crossing stems on it, and its tendrils reach for it"),
+    BP_INT(S, start_stems, "Leading stems", "Growth", 1, 64, "stems growing from the start point, fanned out along the surface"),
+    BP_DOUBLE(S, start_fan, "Leading stem spread", "Growth", "deg", 0, 180, "the leading stems spread over this angle either side of up"),
+    BP_BOOL(S, ground_branching, "Branch on the ground", "Branching", "dormant buds lying on the ground (when it is an obstacle) may sprout laterals"),
+    BP_BOOL(S, helio_in_plane, "Light along the surface", "Climbing", "for a bud within surface_reach of a surface, the light vector is taken along it"),
     BP_DOUBLE(S, t0, "Shade tolerance", "Climbing", "", 0, 1e6, "light threshold on H0 and H1: larger lets buds grow in more shade (t0 in the paper, which uses 15 or 20)"),
     BP_DOUBLE(S, alpha, "Apical dominance", "Branching", "", 0.5, 1, "apical dominance: share of nourishment the apex keeps at p2 (alpha in the paper, which uses 0.8)"),
     BP_DOUBLE(S, t1, "Tip growth threshold", "Branching", "", 0, 1e6, "nourishment an apical bud needs to grow (t1 in the paper, which uses 0.2)"),
@@ -71,7 +77,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->steps = 450;
     p->max_buds = 2000000;
     p->candidates = 10;
-    p->h1_buds = 2;
+    p->h1_buds = 4;
     p->leaf_growth_steps = 20;
     p->sucker_pull = 1;
     p->leaves = 1;
@@ -93,13 +99,19 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->alpha = 0.8;
     p->beta = 0.05;
     p->n_start = 2.0;
-    p->theta_max = 30.0;
+    p->theta_max = 20.0;
     p->branch_angle = 45.0;
     p->w_d = 1.0;
-    p->w_v = 1.0;
-    p->w_geo = 1.0;
+    p->w_v = 2.0;
+    p->w_geo = 0.25;
     p->w_grav = 1.0;
     p->w_helio = 1.0;
+    p->w_cross = 1.0;
+    p->start_stems = 5;
+    p->start_fan = 60.0;
+    p->w_tendril = 1.0;
+    p->surface_reach = 0.15;
+    p->ground_branching = 0;
     p->free_length = 0.1;
     p->bmax = 0.6;
     p->gravity = 9.8;

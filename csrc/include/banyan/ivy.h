@@ -77,6 +77,12 @@ typedef struct banyan_ivy_params {
     double w_geo;               /* weight of f_geo (grow up), 0 .. 100 */
     double w_grav;              /* weight of f_grav (long free stems fall), 0 .. 100 */
     double w_helio;             /* weight of f_helio (grow towards light), 0 .. 100 */
+    double w_cross;             /* weight of f_cross (a new internode crosses no stem, seen along the surface), 0 .. 100 */
+    int32_t start_stems;        /* leading stems from the start, 1 .. 64 (docs/ivy.md, "Stem architecture") */
+    int32_t ground_branching;   /* 0/1: dormant buds lying on an obstacle ground may sprout laterals */
+    double w_tendril;           /* weight of f_tendril (a free bud near a surface turns towards it), 0 .. 100 */
+    double surface_reach;       /* a bud within this of a surface: light along it, f_cross and f_tendril act, m, 0 .. 10 */
+    double start_fan;           /* the leading stems spread over +-start_fan from up along the start surface, deg, 0 .. 180 */
     double free_length;         /* unattached length after which f_grav acts and the free tip turns up, m, 0 .. 100 */
     double bmax;                /* Bmax: an unattached run longer than this ends (p6), m, 0 .. 100 */
 
