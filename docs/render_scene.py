@@ -55,8 +55,10 @@ def import_banyan():
 
 
 def script_args():
-    """The arguments after Blender's `--`."""
-    return sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    """The arguments after Blender's `--` (a second `--`, as in
+    `tools/render_docs.sh roots -- --tag after`, is dropped)."""
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    return args[1:] if args[:1] == ["--"] else args
 
 
 def reset():
