@@ -112,7 +112,7 @@ static void invariants(const banyan_ivy *iv, const char *what) {
                     iv->buds[a->parent].sucker)
                     bad_pattern++;
             }
-        } else if (i != 0) bad_tree++;
+        } else if (i >= iv->p.start_stems) bad_tree++; /* only the leading stems' first buds are roots */
         if (b->child[1] >= 0) {
             branches++;
             if (b->state != BANYAN_IVY_Z) bad_state++; /* p3 ends the dormant bud */
@@ -272,6 +272,7 @@ static void test_nourishment(void) {
     banyan_ivy_params p;
     banyan_ivy_params_init(&p);
     banyan_box w = wall_box();
+    p.start_stems = 1; /* the paper's single first bud */
     /* From N = 0 the first bud waits while N accumulates by beta to t1. */
     p.n_start = 0.0;
     banyan_ivy *iv = grow(&p, &w, 1, 3);
@@ -287,6 +288,7 @@ static void test_nourishment(void) {
     banyan_ivy_free(iv);
     /* Apical growth: three internodes, then the split of p2. */
     banyan_ivy_params_init(&p);
+    p.start_stems = 1;
     iv = grow(&p, &w, 1, 3);
     CHECK(iv && iv->n == 4 && iv->buds[3].state == BANYAN_IVY_A0 && iv->buds[2].state == BANYAN_IVY_D &&
               fabs(iv->buds[3].N - p.alpha * p.n_start) < 1e-12 && fabs(iv->buds[2].N - (1 - p.alpha) * p.n_start) < 1e-12,
@@ -337,7 +339,7 @@ static void test_scenes(void) {
         banyan_ivy_params_init(&p);
         p.start[0] = 0;
         p.start[1] = -0.2;
-        p.start[2] = 0.3;
+        p.start[2] = 0.8;
         for (uint64_t seed = 1; seed <= 2; seed++) {
             p.seed = seed;
             banyan_ivy *iv = grow(&p, hb, 2, 220);
@@ -371,9 +373,10 @@ static void test_mesh(const char *outdir) {
     banyan_box w = wall_box();
     banyan_mesh *m = NULL, *m2 = NULL;
     banyan_error err0;
-    /* Zero steps: the first bud alone still makes a mesh. */
+    /* Zero steps: the leading stems' first buds alone still make a mesh. */
     p.steps = 0;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err0) == BANYAN_OK && m && m->vertex_count > 0 && m->skel_point_count == 1,
+    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err0) == BANYAN_OK && m && m->vertex_count > 0 &&
+              m->skel_point_count == (uint32_t)p.start_stems,
           "zero steps: %s", err0.message);
     banyan_mesh_free(m);
     m = NULL;
@@ -458,8 +461,8 @@ static void test_mesh(const char *outdir) {
                     bad_tri++;
         CHECK(bad_tri == 0, "%d indices outside their part", bad_tri);
     }
-    CHECK(m->skel_point_count > 100 && m->skel_edge_count == m->skel_point_count - 1, "skeleton %u points %u edges",
-          m->skel_point_count, m->skel_edge_count);
+    CHECK(m->skel_point_count > 100 && m->skel_edge_count == m->skel_point_count - (uint32_t)p.start_stems,
+          "skeleton %u points %u edges (one root per leading stem)", m->skel_point_count, m->skel_edge_count);
     int bad_tag = 0;
     for (uint32_t i = 0; i < m->skel_point_count; i++)
         if (m->skel_tag[i] < 0 || m->skel_tag[i] > 4 || !(m->skel_radius[i] > 0)) bad_tag++;
