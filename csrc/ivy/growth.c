@@ -143,7 +143,8 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
 /* The directed random walk from bud i along `base` (spec "Placement",
  * with the additions of docs/ivy.md "Stem architecture"). Appends the new
  * bud (state `st`, nourishment `N`) as child `slot` of bud i and returns
- * its index, or -1 when every candidate collided. */
+ * its index; -1 when every candidate collided (the bud waits), -2 when
+ * every free one crosses a stem and crossing_ends is set (it ends). */
 static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, double N, int slot) {
     const banyan_ivy_params *p = &iv->p;
     ivy_bud *b = &iv->buds[i];
@@ -186,6 +187,9 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         if (w2.k >= 0 && !w2.crosses) w = w2;
     }
     if (w.k < 0) return -1;
+    /* Stems meet side by side: a bud whose every way on crosses a stem
+     * ends (the caller makes it Z). */
+    if (w.crosses && p->crossing_ends && !(b->leader && slot == 0)) return -2;
     v3 best_q = w.q, best_d = w.d;
     double best_dist = w.dist;
 
@@ -219,6 +223,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     c->step_c = iv->step;
     c->step_d = -1;
     c->parent = i;
+    c->leader = slot == 0 && b->leader;
     c->child[0] = c->child[1] = -1;
     b->child[slot] = j;
     ivy_grid_insert(iv, j);
@@ -302,7 +307,9 @@ static void rules(banyan_ivy *iv) {
             v3 axis = ivy_nearest_any(iv, b->P).normal;
             double ang = deg2rad(p->branch_angle) * (b->L ? 1.0 : -1.0);
             v3 base = v3_norm_or(v3_rotate(b->V, axis, ang), b->V);
-            if (place(iv, i, base, vl, BANYAN_IVY_A0, b->N, 1) < 0) continue;
+            int32_t r = place(iv, i, base, vl, BANYAN_IVY_A0, b->N, 1);
+            if (r == -2) end_bud(iv, &iv->buds[i]);
+            if (r < 0) continue;
             b = &iv->buds[i];
             end_bud(iv, b); /* D -> Z, the new A0 takes its place among the active */
             iv->active++;
@@ -321,7 +328,9 @@ static void rules(banyan_ivy *iv) {
             }
             int32_t st = b->state;
             double keep = st == BANYAN_IVY_A2 ? p->alpha * b->N : b->N;
-            if (place(iv, i, b->V, vl, (st + 1) % 3, keep, 0) < 0) continue;
+            int32_t r = place(iv, i, b->V, vl, (st + 1) % 3, keep, 0);
+            if (r == -2) end_bud(iv, &iv->buds[i]);
+            if (r < 0) continue;
             b = &iv->buds[i];
             iv->active++;
             if (st == BANYAN_IVY_A2) { /* p2: the suckerless bud stays as a dormant bud */
@@ -607,6 +616,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         b->N = params->n_start;
         b->state = BANYAN_IVY_A0;
         b->L = k & 1;
+        b->leader = 1;
         b->sucker = 1;
         b->attached = nr.dist <= params->sucker_length;
         b->run = b->attached ? 0 : 1;

@@ -46,6 +46,7 @@ typedef struct ivy_bud {
      * counted moves (grid.c). */
     int32_t shaded;
     int32_t mark;     /* scratch of the sag correction */
+    int32_t leader;   /* on a leading stem (a first bud's continuation line): it crosses rather than ends */
 } ivy_bud;
 
 /* One sleeper that counted a bud: valid while that sleeper's `shaded`

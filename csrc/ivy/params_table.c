@@ -36,6 +36,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, w_grav, "Droop", "Climbing", "", 0, 100, "weight of f_grav, long unattached stems falling (w_grav in the paper)"),
     BP_DOUBLE(S, w_helio, "Seek light", "Climbing", "", 0, 100, "weight of f_helio, growing towards light, curbing crossings (w_helio in the paper)"),
     BP_DOUBLE(S, w_cross, "Avoid crossing stems", "Climbing", "", 0, 100, "weight of f_cross: a new internode that crosses no stem, seen along the surface, scores it (stems run side by side instead of crossing)"),
+    BP_BOOL(S, crossing_ends, "Stems stop at stems", "Climbing", "a bud whose every way on would cross a stem ends instead (stems meet side by side rather than crossing)"),
     BP_DOUBLE(S, w_tendril, "Reach for surfaces", "Climbing", "", 0, 100, "weight of f_tendril: a free bud with a sucker within surface_reach of a surface turns towards it (tendrils grow away from light, into the wall)"),
     BP_DOUBLE(S, surface_reach, "Surface reach", "Climbing", "m", 0, 10, "within this of a surface a bud takes light along it, avoids crossing stems on it, and its tendrils reach for it"),
     BP_INT(S, start_stems, "Leading stems", "Growth", 1, 64, "stems growing from the start point, fanned out along the surface"),
@@ -77,7 +78,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->steps = 450;
     p->max_buds = 2000000;
     p->candidates = 10;
-    p->h1_buds = 4;
+    p->h1_buds = 2;
     p->leaf_growth_steps = 20;
     p->sucker_pull = 1;
     p->leaves = 1;
@@ -110,6 +111,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->start_stems = 5;
     p->start_fan = 60.0;
     p->w_tendril = 1.0;
+    p->crossing_ends = 1;
     p->surface_reach = 0.15;
     p->ground_branching = 0;
     p->free_length = 0.1;
