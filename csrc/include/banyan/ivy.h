@@ -89,8 +89,13 @@ typedef struct banyan_ivy_params {
     double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
     double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
     double stem_radius_max;     /* radius cap, m, >= stem_radius, 1e-5 .. 1 */
-    double leaf_scale;          /* drawn leaf size / shadow diameter, 0 .. 10 */
-    double leaf_lift;           /* leaf card offset off its stem along the surface normal, m, 0 .. 1 */
+    double leaf_scale;          /* overall multiplier of the drawn blade sizes, 0 .. 10 */
+    double leaf_size_min;       /* drawn blade size (across the side lobes) of a new leaf, m, 0.001 .. 1 */
+    double leaf_size_max;       /* drawn blade size of a full-grown leaf, m, >= leaf_size_min, 0.001 .. 1 */
+    double leaf_petiole;        /* petiole length over blade size, 0 .. 5 */
+    double leaf_tilt;           /* mean turn of a blade off the surface towards the sky, deg, 0 .. 90 */
+    double leaf_spread;         /* per-leaf random spread of that turn and of the blade's heading, deg, 0 .. 90 */
+    int32_t leaf_size_steps;    /* steps of age a drawn blade takes to reach leaf_size_max, 1 .. 100000 */
     double stem_color[4];       /* linear RGBA of material "ivy_stem" */
     double leaf_color[4];       /* linear RGBA of material "ivy_leaf" in summer (its flat colour, textures off) */
     int32_t season;             /* banyan_season: the leaf material (texture and flat colour), not the geometry */
