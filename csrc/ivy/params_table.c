@@ -15,9 +15,9 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, internode, "Leaf spacing", "Growth", "m", 0.001, 10, "l, internode length (paper 30 mm)"),
     BP_DOUBLE(S, branch_angle, "Branch angle", "Growth", "deg", 0, 180, "R(theta) of rule p3: angle of a lateral branch off its stem"),
     BP_DOUBLE(S, theta_max, "Wander angle", "Growth", "deg", 0, 180, "largest turn about each axis of a random-walk candidate"),
-    BP_BOOL(S, leaves, "Leaves", "Leaves", "emit leaf cards"),
-    BP_DOUBLE(S, leaf_max, "Leaf size", "Leaves", "m", 0.001, 10, "d_max, largest leaf and shadow diameter; light look-up radius (paper 60 mm)"),
-    BP_INT(S, leaf_growth_steps, "Leaf growing time", "Leaves", 1, 100000, "steps a leaf and its shadow take to reach leaf_max"),
+    BP_BOOL(S, leaves, "Leaves", "Leaves", "emit leaves: a petiole and a blade per bud"),
+    BP_DOUBLE(S, leaf_max, "Leaf shadow size", "Leaves", "m", 0.001, 10, "d_max, largest leaf shadow diameter of the light model; light look-up radius (paper 60 mm); drawn blades have their own sizes"),
+    BP_INT(S, leaf_growth_steps, "Leaf shadow growing time", "Leaves", 1, 100000, "steps a leaf's shadow takes to reach leaf_max"),
     BP_DOUBLE(S, leaf_size_min, "Young leaf size", "Leaves", "m", 0.001, 1, "drawn blade size (across the side lobes) of a new leaf near a growing tip (real 5 cm)"),
     BP_DOUBLE(S, leaf_size_max, "Old leaf size", "Leaves", "m", 0.001, 1, "drawn blade size of a full-grown leaf (real up to 20 cm); at least leaf_size_min"),
     BP_INT(S, leaf_size_steps, "Leaf size age", "Leaves", 1, 100000, "steps of age a drawn blade takes to grow from leaf_size_min to leaf_size_max"),
@@ -120,7 +120,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_size_max = 0.16;
     p->leaf_size_steps = 200;
     p->leaf_petiole = 0.7;
-    p->leaf_tilt = 35.0;
+    p->leaf_tilt = 40.0;
     p->leaf_spread = 20.0;
     const double stem[4] = {0.20, 0.12, 0.07, 1.0}, leaf[4] = {0.10, 0.30, 0.05, 1.0};
     memcpy(p->stem_color, stem, sizeof stem);

@@ -206,6 +206,7 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
         else leaves_ok = 0;
     }
     CHECK(leaves_ok, "%s: %u leaves for %d buds, each on a petiole from its bud", what, nbl, iv->n);
+    printf("  %-22s %u leaves for %d buds\n", what, nbl, iv->n);
     /* No blade or petiole vertex inside a closed host or below the ground. */
     int leaf_inside = 0;
     for (uint32_t v = 0; leaves_ok && v < 19u * nbl; v++) {

@@ -47,7 +47,7 @@ static v3 vert(const banyan_mesh *m, uint32_t v) {
 typedef struct figures {
     double *cosv, *dist, *size;
     size_t ncos, nsize;
-    int near_host, inside, pet_inside, bad_normal, blades;
+    int near_host, inside, pet_inside, bad_normal, blades, buds;
 } figures;
 
 /* Measures one plant's mesh into f (arrays grown by the caller's bound). */
@@ -153,18 +153,20 @@ int main(void) {
                 f.size = realloc(f.size, sizeof(double) * cap);
             }
             measure(iv, m, &f);
+            f.buds += iv->n;
             banyan_mesh_free(m);
             banyan_ivy_free(iv);
         }
         double c90 = quantile(f.cosv, f.ncos, 0.9), dmed = quantile(f.dist, f.ncos, 0.5);
         double s10 = quantile(f.size, f.nsize, 0.1), s90 = quantile(f.size, f.nsize, 0.9);
         double smin = f.nsize ? f.size[0] : NAN, smax = f.nsize ? f.size[f.nsize - 1] : NAN;
-        printf("%s, 5 seeds: %d blades (%zu off a host face): |cos| to the host normal p90 %.3f; centre distance "
+        printf("%s, 5 seeds: %d buds, %d blades (%zu off a host face): |cos| to the host normal p90 %.3f; centre distance "
                "median %.3f m; size p10 %.3f p90 %.3f m (ratio %.2f, min %.3f max %.3f); %d blade vertices within "
                "clearance, %d inside, %d petiole vertices inside, %d normals not unit\n",
-               presets[k], f.blades, f.ncos, c90, dmed, s10, s90, s90 / s10, smin, smax, f.near_host, f.inside,
+               presets[k], f.buds, f.blades, f.ncos, c90, dmed, s10, s90, s90 / s10, smin, smax, f.near_host, f.inside,
                f.pet_inside, f.bad_normal);
-        CHECK(f.blades > 1000 && f.ncos > 500, "%s: %d blades, %zu off a host face", presets[k], f.blades, f.ncos);
+        CHECK(f.blades > 1000 && f.ncos > 500 && f.blades * 100 >= 99 * f.buds,
+              "%s: %d blades for %d buds, %zu off a host face", presets[k], f.blades, f.buds, f.ncos);
         CHECK(c90 <= 0.97, "%s: p90 of |cos| to the host normal %.3f > 0.97 (blades lie flat)", presets[k], c90);
         CHECK(dmed >= 0.04, "%s: median blade centre %.3f m off the host, under 4 cm", presets[k], dmed);
         CHECK(s90 / s10 >= 2, "%s: blade size p90 / p10 = %.2f < 2", presets[k], s90 / s10);

@@ -49,7 +49,7 @@ typedef struct banyan_ivy_params {
     int32_t h1_buds;            /* buds before a dormant bud whose H0 adds into H1, 0 .. 64 */
     int32_t leaf_growth_steps;  /* steps a leaf (and its shadow) takes to reach leaf_max, 1 .. 100000 */
     int32_t sucker_pull;        /* 0/1: a bud that attaches is drawn to `clearance` off the surface */
-    int32_t leaves;             /* 0/1: emit leaf cards in the mesh */
+    int32_t leaves;             /* 0/1: emit leaves (a petiole and a blade per bud) in the mesh */
     int32_t stem_sides;         /* sides of a stem tube, 3 .. 64 */
     int32_t helio_in_plane;     /* 0/1: for a bud within sucker reach, V_l is taken along the surface (docs/ivy.md) */
     int32_t ground;             /* plane z = ground_z: 0 none, 1 obstacle (stems rest on it, suckers do
@@ -156,8 +156,9 @@ BANYAN_API banyan_status banyan_ivy_create(const banyan_ivy_params *params, cons
  * before it are kept and the plant stays usable. */
 BANYAN_API banyan_status banyan_ivy_step(banyan_ivy *ivy, int32_t n, banyan_error *err);
 
-/* Meshes the plant as it is now: stem tubes (part 0, material "ivy_stem")
- * and leaf cards (part 1, material "ivy_leaf", double-sided); attributes
+/* Meshes the plant as it is now: stem tubes, then one petiole per leaf
+ * (part 0, material "ivy_stem") and leaf blades (part 1, material
+ * "ivy_leaf", double-sided, in bud order); attributes
  * `birth_step` and `part` (0 stem, 1 leaf); skeleton of bud positions,
  * internode edges, stem radii, skel_tag = banyan_ivy_bud_state. */
 BANYAN_API banyan_status banyan_ivy_mesh(const banyan_ivy *ivy, banyan_mesh **out, banyan_error *err);
