@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/leaf_look.h"
 #include "core/mesh_builder.h"
+#include "core/obb.h"
 #include "core/tube.h"
 #include "ivy_internal.h"
 
@@ -129,6 +130,64 @@ static double leaf_intrusion(const banyan_ivy *iv, const leaf_geo *g, const leaf
     return worst;
 }
 
+/* Does triangle abc (in a box's local frame) meet the box of half
+ * extents h centred at the origin? Separating axes (Akenine-Moller): the
+ * box's 3, the triangle's normal and the 9 edge crosses. */
+static int tri_box(v3 a, v3 b, v3 c, const double h[3]) {
+    const v3 e[3] = {v3_sub(b, a), v3_sub(c, b), v3_sub(a, c)};
+    const v3 u[3] = {v3_make(1, 0, 0), v3_make(0, 1, 0), v3_make(0, 0, 1)};
+    for (int i = 0; i < 3; i++) {
+        double pa = i == 0 ? a.x : (i == 1 ? a.y : a.z), pb = i == 0 ? b.x : (i == 1 ? b.y : b.z),
+               pc = i == 0 ? c.x : (i == 1 ? c.y : c.z);
+        if (fmin(pa, fmin(pb, pc)) > h[i] || fmax(pa, fmax(pb, pc)) < -h[i]) return 0;
+    }
+    v3 axes[10];
+    axes[0] = v3_cross(e[0], e[1]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) axes[1 + 3 * i + j] = v3_cross(u[i], e[j]);
+    for (int k = 0; k < 10; k++) {
+        v3 x = axes[k];
+        double pa = v3_dot(a, x), pb = v3_dot(b, x), pc = v3_dot(c, x);
+        double r = h[0] * fabs(x.x) + h[1] * fabs(x.y) + h[2] * fabs(x.z);
+        if (fmin(pa, fmin(pb, pc)) > r || fmax(pa, fmax(pb, pc)) < -r) return 0;
+    }
+    return 1;
+}
+
+/* Does the blade's surface (not only its vertices) come within `margin`
+ * of a box, or cross a mesh host? A blade over a box's edge (a pillar's
+ * corner) can have every vertex clear and a triangle through the box.
+ * Boxes: exact, against the box grown by margin; meshes: the fan's edges.
+ * *dir: the way out, the normal of the surface nearest the centre. */
+static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
+    const double tf = tan(LEAF_FOLD), span = sh->reach * g->size * 1.05 + margin;
+    v3 q[LEAF_OUTLINE];
+    int have = 0, hit = 0;
+    for (uint32_t hb = 0; hb < iv->n_hosts && !hit; hb++) {
+        if (ivy_far_from(iv, hb, g->c, span)) continue;
+        const obb *o = &iv->hosts[hb];
+        if (!have) {
+            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+            have = 1;
+        }
+        const double h[3] = {o->h[0] + margin, o->h[1] + margin, o->h[2] + margin};
+        v3 lc = obb_to_local(o, g->c);
+        for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
+            hit = tri_box(lc, obb_to_local(o, q[k]), obb_to_local(o, q[(k + 1) % LEAF_OUTLINE]), h);
+    }
+    for (uint32_t m = 0; m < iv->n_mesh && !hit; m++) {
+        if (ivy_far_from(iv, iv->mesh0 + m, g->c, span)) continue;
+        if (!have) {
+            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+            have = 1;
+        }
+        for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
+            hit = ivy_segment_meets_mesh(iv, g->c, q[k]) || ivy_segment_meets_mesh(iv, q[k], q[(k + 1) % LEAF_OUTLINE]);
+    }
+    if (hit) *dir = ivy_nearest_any(iv, g->c).normal;
+    return hit;
+}
+
 /* Places bud i's leaf (module comment); returns 0 when it has no size. */
 static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, leaf_geo *g) {
     const banyan_ivy_params *p = &iv->p;
@@ -192,14 +251,18 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
             g->base = v3_madd(b->P, pd, p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet));
             g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);
         }
-        for (int it = 0; it < 4; it++) {
+        for (int it = 0; it < 5; it++) {
             v3 dir = n;
             double in = leaf_intrusion(iv, g, sh, margin, &dir);
-            if (in <= 0) return 1;
-            leaf_shift(g, v3_scale(dir, in + 1e-4));
+            if (in > 0) {
+                leaf_shift(g, v3_scale(dir, in + 1e-4));
+                continue;
+            }
+            if (!leaf_overlaps(iv, g, sh, margin, &dir)) return 1;
+            leaf_shift(g, v3_scale(dir, 0.25 * margin + 0.005)); /* a triangle over an edge: step out */
         }
         v3 dir;
-        if (leaf_intrusion(iv, g, sh, margin, &dir) <= 0) return 1;
+        if (leaf_intrusion(iv, g, sh, margin, &dir) <= 0 && !leaf_overlaps(iv, g, sh, margin, &dir)) return 1;
     }
     return 0;
 }

@@ -47,7 +47,7 @@ static v3 vert(const banyan_mesh *m, uint32_t v) {
 typedef struct figures {
     double *cosv, *dist, *size;
     size_t ncos, nsize;
-    int near_host, inside, pet_inside, bad_normal, blades, buds;
+    int near_host, inside, tri_inside, pet_inside, bad_normal, blades, buds;
 } figures;
 
 /* Measures one plant's mesh into f (arrays grown by the caller's bound). */
@@ -67,6 +67,15 @@ static void measure(const banyan_ivy *iv, const banyan_mesh *m, figures *f) {
         v3 a = vert(m, m->indices[t]), b = vert(m, m->indices[t + 1]), c = vert(m, m->indices[t + 2]);
         uint32_t r = find(up, m->indices[t] - v0);
         nsum[r] = v3_add(nsum[r], v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    }
+    /* Triangles too: edge midpoints and centroids (a blade over a box's
+     * edge can have every vertex outside and a triangle through it). */
+    for (uint32_t t = lp->index_offset; t + 2 < lp->index_offset + lp->index_count; t += 3) {
+        v3 a = vert(m, m->indices[t]), b = vert(m, m->indices[t + 1]), c = vert(m, m->indices[t + 2]);
+        v3 q[4] = {v3_lerp(a, b, 0.5), v3_lerp(b, c, 0.5), v3_lerp(c, a, 0.5),
+                   v3_scale(v3_add(v3_add(a, b), c), 1.0 / 3)};
+        for (int j = 0; j < 4; j++)
+            if (ivy_nearest_any(iv, q[j]).dist < 0) f->tri_inside++;
     }
     int blades = 0;
     for (uint32_t s = 0; s < nv;) {
@@ -162,9 +171,9 @@ int main(void) {
         double smin = f.nsize ? f.size[0] : NAN, smax = f.nsize ? f.size[f.nsize - 1] : NAN;
         printf("%s, 5 seeds: %d buds, %d blades (%zu off a host face): |cos| to the host normal p90 %.3f; centre distance "
                "median %.3f m; size p10 %.3f p90 %.3f m (ratio %.2f, min %.3f max %.3f); %d blade vertices within "
-               "clearance, %d inside, %d petiole vertices inside, %d normals not unit\n",
+               "clearance, %d inside, %d triangle points inside, %d petiole vertices inside, %d normals not unit\n",
                presets[k], f.buds, f.blades, f.ncos, c90, dmed, s10, s90, s90 / s10, smin, smax, f.near_host, f.inside,
-               f.pet_inside, f.bad_normal);
+               f.tri_inside, f.pet_inside, f.bad_normal);
         CHECK(f.blades > 1000 && f.ncos > 500 && f.blades * 100 >= 99 * f.buds,
               "%s: %d blades for %d buds, %zu off a host face", presets[k], f.blades, f.buds, f.ncos);
         CHECK(c90 <= 0.97, "%s: p90 of |cos| to the host normal %.3f > 0.97 (blades lie flat)", presets[k], c90);
@@ -173,6 +182,8 @@ int main(void) {
         CHECK(s10 >= 0.04 && s90 <= 0.22, "%s: blade sizes p10 %.3f p90 %.3f m outside 4-22 cm", presets[k], s10, s90);
         CHECK(f.near_host == 0 && f.inside == 0, "%s: %d blade vertices within clearance of a host, %d inside",
               presets[k], f.near_host, f.inside);
+        CHECK(f.tri_inside == 0, "%s: %d triangle edge midpoints or centroids of blades inside a host", presets[k],
+              f.tri_inside);
         CHECK(f.pet_inside == 0, "%s: %d petiole vertices inside a host or the ground", presets[k], f.pet_inside);
         CHECK(f.bad_normal == 0, "%s: %d normals not unit length", presets[k], f.bad_normal);
         free(f.cosv);
