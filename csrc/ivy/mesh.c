@@ -218,9 +218,11 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
     sky = v3_len2(sky) > 0.04 ? v3_norm(sky) : side;
     const double spread = deg2rad(p->leaf_spread);
     /* Blade normal: the surface's, turned towards the sky by the tilt,
-     * the turn's heading spread twice as wide as its angle. */
-    double th = deg2rad(p->leaf_tilt) + spread * (2 * u_tilt - 1);
-    th = th < 0 ? 0 : (th > BANYAN_PI / 2 ? BANYAN_PI / 2 : th);
+     * the turn's heading spread twice as wide as its angle. A free stem's
+     * normal already looks up and out: the tilt fades with w, the
+     * spread stays. */
+    double th = deg2rad(p->leaf_tilt) * (1 - w) + spread * (2 * u_tilt - 1);
+    th = th < -BANYAN_PI / 2 ? -BANYAN_PI / 2 : (th > BANYAN_PI / 2 ? BANYAN_PI / 2 : th);
     v3 toward = v3_rotate(sky, n, 2 * spread * (2 * u_az - 1));
     g->nb = v3_norm_or(v3_add(v3_scale(n, cos(th)), v3_scale(toward, sin(th))), n);
     /* Tip: down the blade (it hangs on its petiole), leaning to the leaf's side. */
