@@ -94,7 +94,7 @@ typedef struct leaf_geo {
     v3 c;          /* the blade's centre (the fan's hub) */
     v3 a, bb, nb;  /* tip direction, across (nb x a), blade normal */
     double size;   /* largest extent, m */
-    int ok;        /* 0: no leaf (zero size) */
+    int ok;        /* 0: no leaf (zero size, or no room clear of the hosts) */
 } leaf_geo;
 
 /* Outline point (x, y) per unit of size, the halves folded up by tf. */
@@ -188,7 +188,8 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
     return hit;
 }
 
-/* Places bud i's leaf (module comment); returns 0 when it has no size. */
+/* Places bud i's leaf (module comment); returns 0 when it has no size
+ * or finds no room clear of the hosts. */
 static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, leaf_geo *g) {
     const banyan_ivy_params *p = &iv->p;
     const ivy_bud *b = &iv->buds[i];
