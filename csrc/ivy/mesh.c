@@ -197,10 +197,13 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
     pcg32_seed(&r, p->seed, ((uint64_t)i + 1) * 0x9E3779B97F4A7C15ULL ^ LEAF_STREAM);
     double u_size = rng_uniform(&r), u_pet = rng_uniform(&r), u_tilt = rng_uniform(&r), u_az = rng_uniform(&r),
            u_head = rng_uniform(&r);
-    /* Size by age: young leaves at the growing tips small, old ones large. */
+    /* Size by age: young leaves at the growing tips small, old ones large
+     * (as x^1.5: they stay small a while), and leaves of one age differ
+     * (plants.md: long-shoot leaves are smaller than spur leaves). */
     double age = (double)(iv->step - b->step_c) / p->leaf_size_steps;
     age = age < 0 ? 0 : (age > 1 ? 1 : age);
-    g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age) * p->leaf_scale * (0.85 + 0.35 * u_size);
+    g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age * sqrt(age)) * p->leaf_scale *
+              (0.8 + 0.45 * u_size);
     if (!(g->size > 0)) return 0;
 
     const v3 up = v3_make(0, 0, 1);
