@@ -220,7 +220,7 @@ double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
 void ivy_sag(banyan_ivy *iv);
 
 /* Fewest mesh vertices a plant of n buds can need: every bud is one ring
- * of its chain's tube, plus one leaf card each (as banyan_ivy_mesh
+ * of its chain's tube, plus one leaf (blade and petiole) each (as banyan_ivy_mesh
  * counts). It only grows with n, so a one-shot generation can stop as
  * soon as it passes max_vertices instead of growing to the end (mesh.c). */
 uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);

@@ -1,24 +1,34 @@
 /* Ivy geometry (spec/ivy.md, "Geometry"). Stems: the bud tree split into
  * chains (the first bud's stem, then each lateral branch from its dormant
  * bud), each swept as one tube through the shared sweeper with radius
- * r = r0 + k * age, capped. Leaves: one leaf-shaped card per bud (the
- * leaf of the internode that ends there), a three-lobed Boston ivy outline
- * fanned from its centre, sized by age, on alternating sides, facing away
- * from the nearest host surface, or up and out when the stem hangs free;
- * its uvs fit the outline into one cell of the ivy leaf atlas and its
- * vertex colour is a per-leaf tint (leaf_look.h).
+ * r = r0 + k * age, capped. Leaves: one leaf per bud (the leaf of the
+ * internode that ends there), as Boston ivy shows them (reference
+ * plants.md section 2): a petiole, a thin three-sided tube in the stem
+ * part, from the bud out from the surface to the blade's base; the blade a
+ * three-lobed outline fanned from its centre, folded a little along the
+ * midrib, sized by age (young small, old large), turned off the surface
+ * towards the sky with its tip hanging down and out, kept `clearance` off
+ * every surface; up and out when the stem hangs free. Its uvs fit the
+ * outline into one cell of the ivy leaf atlas and its vertex colour is a
+ * per-leaf tint (leaf_look.h), bronze while young. Per-leaf choices come
+ * from a PCG32 stream of the leaf's own, so the growth is not disturbed.
  * Every vertex carries `birth_step` (the step its bud was created) and
- * `part` (0 stem, 1 leaf). */
+ * `part` (0 stem and petiole, 1 leaf blade). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "core/leaf_look.h"
 #include "core/mesh_builder.h"
+#include "core/obb.h"
 #include "core/tube.h"
 #include "ivy_internal.h"
 
 #define LEAF_OUTLINE 12 /* outline points; the card has LEAF_OUTLINE + 1 vertices */
+#define PETIOLE_SIDES 3 /* a petiole is two rings of 3, no caps: 1 mm across, a triangle reads as round */
+#define PETIOLE_VERTS (2 * PETIOLE_SIDES)
+#define LEAF_FOLD 0.25  /* rad each half of a blade turns up about the midrib: a flat card reads as paper */
+#define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
 
 /* Outline angles from the leaf tip (radians, increasing): the notch, the
  * base, the side lobe, the sinus, the tip's shoulder and the tip. */
@@ -35,8 +45,248 @@ static double leaf_radius(double th) {
     return 1.1 * r;
 }
 
+/* The blade outline, its uvs and the shape constants, shared by all leaves. */
+typedef struct leaf_shape {
+    double ox[LEAF_OUTLINE], oy[LEAF_OUTLINE]; /* outline per unit of blade size (its largest extent) */
+    double ou[LEAF_OUTLINE + 1], ov[LEAF_OUTLINE + 1]; /* the centre, then the outline, in 0..1 of a cell */
+    double rnotch, reach; /* centre to notch, centre to the farthest point, per unit of size */
+} leaf_shape;
+
+static void leaf_shape_init(leaf_shape *sh) {
+    double ext = 0;
+    for (int k = 0; k < LEAF_OUTLINE; k++) {
+        double r = leaf_radius(leaf_angle[k]);
+        sh->ox[k] = r * cos(leaf_angle[k]);
+        sh->oy[k] = r * sin(leaf_angle[k]);
+    }
+    for (int k = 0; k < LEAF_OUTLINE; k++)
+        for (int j = k + 1; j < LEAF_OUTLINE; j++)
+            ext = fmax(ext, hypot(sh->ox[k] - sh->ox[j], sh->oy[k] - sh->oy[j]));
+    /* Per unit of extent: `size` is what one would measure across the side lobes. */
+    sh->reach = 0;
+    for (int k = 0; k < LEAF_OUTLINE; k++) {
+        sh->ox[k] /= ext;
+        sh->oy[k] /= ext;
+        sh->reach = fmax(sh->reach, hypot(sh->ox[k], sh->oy[k]));
+    }
+    sh->rnotch = leaf_radius(BANYAN_PI) / ext;
+    /* Card uvs: the outline's bounds fill the blade's box in one atlas
+     * cell (leaf_look.h), the basal lobes low, the tip at the top, as
+     * the atlas draws its leaves. */
+    double ymax = 0, xmin = 0, xmax = 0;
+    for (int k = 0; k < LEAF_OUTLINE; k++) {
+        if (fabs(sh->oy[k]) > ymax) ymax = fabs(sh->oy[k]);
+        if (sh->ox[k] < xmin) xmin = sh->ox[k];
+        if (sh->ox[k] > xmax) xmax = sh->ox[k];
+    }
+    const double bv = LEAF_IVY_BLADE_V1 - LEAF_IVY_BLADE_V0;
+    sh->ou[0] = 0.5;
+    sh->ov[0] = LEAF_IVY_BLADE_V0 + bv * -xmin / (xmax - xmin);
+    for (int k = 0; k < LEAF_OUTLINE; k++) {
+        sh->ou[k + 1] = 0.5 + LEAF_IVY_BLADE_HALF_U * sh->oy[k] / ymax;
+        sh->ov[k + 1] = LEAF_IVY_BLADE_V0 + bv * (sh->ox[k] - xmin) / (xmax - xmin);
+    }
+}
+
+/* One leaf as placed. */
+typedef struct leaf_geo {
+    v3 base;       /* the blade's base (the outline's notch): the petiole's end */
+    v3 c;          /* the blade's centre (the fan's hub) */
+    v3 a, bb, nb;  /* tip direction, across (nb x a), blade normal */
+    double size;   /* largest extent, m */
+    int ok;        /* 0: no leaf (zero size, or no room clear of the hosts) */
+} leaf_geo;
+
+/* Outline point (x, y) per unit of size, the halves folded up by tf. */
+static inline v3 leaf_vertex(const leaf_geo *g, double x, double y, double tf) {
+    return v3_madd(v3_madd(v3_madd(g->c, g->a, x * g->size), g->bb, y * g->size), g->nb, fabs(y) * tf * g->size);
+}
+
+static double petiole_radius(const banyan_ivy_params *p) { return 0.6 * p->stem_radius; }
+
+/* Moves the blade by d (its petiole follows: it ends at base). */
+static void leaf_shift(leaf_geo *g, v3 d) {
+    g->base = v3_add(g->base, d);
+    g->c = v3_add(g->c, d);
+}
+
+/* Deepest a blade vertex reaches into the `margin` around the nearest
+ * surface (<= 0: none), with that surface's normal. A point whose centre
+ * is clear by the blade's reach needs no vertex query (distance is
+ * 1-Lipschitz). */
+static double leaf_intrusion(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
+    const double tf = tan(LEAF_FOLD);
+    ivy_near nc = ivy_nearest_any(iv, g->c);
+    if (nc.dist - sh->reach * g->size * 1.05 >= margin) return 0;
+    double worst = 0;
+    for (int k = -1; k < LEAF_OUTLINE; k++) {
+        v3 q = k < 0 ? g->c : leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+        ivy_near nr = k < 0 ? nc : ivy_nearest_any(iv, q);
+        if (margin - nr.dist > worst) {
+            worst = margin - nr.dist;
+            *dir = nr.normal;
+        }
+    }
+    return worst;
+}
+
+/* Does triangle abc (in a box's local frame) meet the box of half
+ * extents h centred at the origin? Separating axes (Akenine-Moller): the
+ * box's 3, the triangle's normal and the 9 edge crosses. */
+static int tri_box(v3 a, v3 b, v3 c, const double h[3]) {
+    const v3 e[3] = {v3_sub(b, a), v3_sub(c, b), v3_sub(a, c)};
+    const v3 u[3] = {v3_make(1, 0, 0), v3_make(0, 1, 0), v3_make(0, 0, 1)};
+    for (int i = 0; i < 3; i++) {
+        double pa = i == 0 ? a.x : (i == 1 ? a.y : a.z), pb = i == 0 ? b.x : (i == 1 ? b.y : b.z),
+               pc = i == 0 ? c.x : (i == 1 ? c.y : c.z);
+        if (fmin(pa, fmin(pb, pc)) > h[i] || fmax(pa, fmax(pb, pc)) < -h[i]) return 0;
+    }
+    v3 axes[10];
+    axes[0] = v3_cross(e[0], e[1]);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) axes[1 + 3 * i + j] = v3_cross(u[i], e[j]);
+    for (int k = 0; k < 10; k++) {
+        v3 x = axes[k];
+        double pa = v3_dot(a, x), pb = v3_dot(b, x), pc = v3_dot(c, x);
+        double r = h[0] * fabs(x.x) + h[1] * fabs(x.y) + h[2] * fabs(x.z);
+        if (fmin(pa, fmin(pb, pc)) > r || fmax(pa, fmax(pb, pc)) < -r) return 0;
+    }
+    return 1;
+}
+
+/* Does the blade's surface (not only its vertices) come within `margin`
+ * of a box, or cross a mesh host? A blade over a box's edge (a pillar's
+ * corner) can have every vertex clear and a triangle through the box.
+ * Boxes: exact, against the box grown by margin; meshes: the fan's edges.
+ * *dir: the way out, the normal of the surface nearest the centre. */
+static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
+    const double tf = tan(LEAF_FOLD), span = sh->reach * g->size * 1.05 + margin;
+    v3 q[LEAF_OUTLINE];
+    int have = 0, hit = 0;
+    for (uint32_t hb = 0; hb < iv->n_hosts && !hit; hb++) {
+        if (ivy_far_from(iv, hb, g->c, span)) continue;
+        const obb *o = &iv->hosts[hb];
+        if (!have) {
+            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+            have = 1;
+        }
+        const double h[3] = {o->h[0] + margin, o->h[1] + margin, o->h[2] + margin};
+        v3 lc = obb_to_local(o, g->c);
+        for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
+            hit = tri_box(lc, obb_to_local(o, q[k]), obb_to_local(o, q[(k + 1) % LEAF_OUTLINE]), h);
+    }
+    for (uint32_t m = 0; m < iv->n_mesh && !hit; m++) {
+        if (ivy_far_from(iv, iv->mesh0 + m, g->c, span)) continue;
+        if (!have) {
+            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+            have = 1;
+        }
+        for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
+            hit = ivy_segment_meets_mesh(iv, g->c, q[k]) || ivy_segment_meets_mesh(iv, q[k], q[(k + 1) % LEAF_OUTLINE]);
+    }
+    if (hit) *dir = ivy_nearest_any(iv, g->c).normal;
+    return hit;
+}
+
+/* Places bud i's leaf (module comment); returns 0 when it has no size
+ * or finds no room clear of the hosts. */
+static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, leaf_geo *g) {
+    const banyan_ivy_params *p = &iv->p;
+    const ivy_bud *b = &iv->buds[i];
+    pcg32 r; /* the leaf's own stream: draws here move no stem */
+    pcg32_seed(&r, p->seed, ((uint64_t)i + 1) * 0x9E3779B97F4A7C15ULL ^ LEAF_STREAM);
+    double u_size = rng_uniform(&r), u_pet = rng_uniform(&r), u_tilt = rng_uniform(&r), u_az = rng_uniform(&r),
+           u_head = rng_uniform(&r);
+    /* Size by age: young leaves at the growing tips small, old ones large
+     * (as x^1.5: they stay small a while), and leaves of one age differ
+     * (plants.md: long-shoot leaves are smaller than spur leaves). */
+    double age = (double)(iv->step - b->step_c) / p->leaf_size_steps;
+    age = age < 0 ? 0 : (age > 1 ? 1 : age);
+    g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age * sqrt(age)) * p->leaf_scale *
+              (0.8 + 0.45 * u_size);
+    if (!(g->size > 0)) return 0;
+
+    const v3 up = v3_make(0, 0, 1);
+    const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
+    ivy_near nr = ivy_nearest_any(iv, b->P);
+    /* The surface's normal, blending towards "up and out" as the stem leaves it. */
+    double w = (nr.dist - p->sucker_length) / (4.0 * reach);
+    w = w < 0 ? 0 : (w > 1 ? 1 : w);
+    v3 free_n = v3_norm(v3_add(v3_scale(nr.normal, 0.5), up));
+    v3 n = v3_norm_or(v3_lerp(nr.normal, free_n, w), nr.normal);
+    v3 t = b->parent >= 0 ? v3_norm_or(v3_sub(b->P, iv->buds[b->parent].P), b->V) : b->V;
+    v3 side = v3_norm_or(v3_cross(n, t), v3_any_perp(n));
+    if (!b->L) side = v3_neg(side);
+    /* The sky along the surface; on a floor or under a ceiling the leaf's side. */
+    v3 sky = v3_sub(up, v3_scale(n, v3_dot(n, up)));
+    sky = v3_len2(sky) > 0.04 ? v3_norm(sky) : side;
+    const double spread = deg2rad(p->leaf_spread);
+    /* Blade normal: the surface's, turned towards the sky by the tilt,
+     * the turn's heading spread twice as wide as its angle. A free stem's
+     * normal already looks up and out: the tilt fades with w, the
+     * spread stays. */
+    double th = deg2rad(p->leaf_tilt) * (1 - w) + spread * (2 * u_tilt - 1);
+    th = th < -BANYAN_PI / 2 ? -BANYAN_PI / 2 : (th > BANYAN_PI / 2 ? BANYAN_PI / 2 : th);
+    v3 toward = v3_rotate(sky, n, 2 * spread * (2 * u_az - 1));
+    g->nb = v3_norm_or(v3_add(v3_scale(n, cos(th)), v3_scale(toward, sin(th))), n);
+    /* Tip: down the blade (it hangs on its petiole), leaning to the leaf's side. */
+    v3 down = v3_sub(v3_neg(up), v3_scale(g->nb, -v3_dot(g->nb, up)));
+    if (v3_len2(down) < 0.04) down = v3_sub(side, v3_scale(g->nb, v3_dot(g->nb, side)));
+    down = v3_norm_or_perp(down, g->nb);
+    double lean = v3_dot(side, v3_cross(g->nb, down)) >= 0 ? 0.3 : -0.3;
+    g->a = v3_norm_or_perp(v3_rotate(down, g->nb, lean + spread * (2 * u_head - 1)), g->nb);
+    g->a = v3_norm_or_perp(v3_sub(g->a, v3_scale(g->nb, v3_dot(g->nb, g->a))), g->nb);
+    g->bb = v3_cross(g->nb, g->a);
+    /* Petiole: out from the surface, a little up and to the leaf's side. */
+    v3 pd = v3_norm(v3_add(v3_add(n, v3_scale(sky, 0.3)), v3_scale(side, 0.35)));
+    double lp = p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet);
+    g->base = v3_madd(b->P, pd, lp);
+    g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);
+    /* Keep clear of every surface (the ground too): push the blade out
+     * along the normal of the surface it reaches into. In a corner (the
+     * wall's foot) pushes can chase each other: then the blade turns its
+     * tip up, then also halves, and as a last resort the leaf is left out. */
+    const double margin = p->clearance + petiole_radius(p);
+    const leaf_geo first = *g;
+    for (int attempt = 0; attempt < 3; attempt++) {
+        if (attempt) {
+            *g = first;
+            g->a = v3_neg(g->a);
+            g->bb = v3_neg(g->bb);
+            if (attempt == 2) g->size *= 0.5;
+            g->base = v3_madd(b->P, pd, p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet));
+            g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);
+        }
+        for (int it = 0; it < 5; it++) {
+            v3 dir = n;
+            double in = leaf_intrusion(iv, g, sh, margin, &dir);
+            if (in > 0) {
+                leaf_shift(g, v3_scale(dir, in + 1e-4));
+                continue;
+            }
+            if (!leaf_overlaps(iv, g, sh, margin, &dir)) return 1;
+            leaf_shift(g, v3_scale(dir, 0.25 * margin + 0.005)); /* a triangle over an edge: step out */
+        }
+        v3 dir;
+        if (leaf_intrusion(iv, g, sh, margin, &dir) <= 0 && !leaf_overlaps(iv, g, sh, margin, &dir)) return 1;
+    }
+    return 0;
+}
+
+/* Young Boston ivy leaves flush reddish-bronze, old ones are dark
+ * (plants.md): the summer tint loses green and blue while a leaf is
+ * young, and darkens a little with age. Autumn has its own spread. */
+static void leaf_age_tint(const banyan_ivy *iv, const ivy_bud *b, int32_t season, double tint[4]) {
+    if (season == BANYAN_SEASON_AUTUMN) return;
+    double age = (double)(iv->step - b->step_c);
+    double young = exp(-age / 15.0), old = fmin(1.0, age / iv->p.leaf_size_steps);
+    tint[0] *= 1.0 - 0.15 * old;
+    tint[1] *= (1.0 - 0.45 * young) * (1.0 - 0.10 * old);
+    tint[2] *= (1.0 - 0.50 * young) * (1.0 - 0.15 * old);
+}
+
 uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n) {
-    uint64_t per_bud = (uint64_t)p->stem_sides + 1 + (p->leaves ? LEAF_OUTLINE + 1 : 0);
+    uint64_t per_bud = (uint64_t)p->stem_sides + 1 + (p->leaves ? LEAF_OUTLINE + 1 + PETIOLE_VERTS : 0);
     return (uint64_t)(n > 0 ? n : 0) * per_bud;
 }
 
@@ -82,8 +332,8 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         need_i += ix;
     }
     if (p->leaves) {
-        need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1);
-        need_i += (uint64_t)iv->n * LEAF_OUTLINE * 3;
+        need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1 + PETIOLE_VERTS);
+        need_i += (uint64_t)iv->n * (LEAF_OUTLINE + 2 * PETIOLE_SIDES) * 3;
     }
     /* need_v >= ivy_mesh_vertex_floor(p, iv->n): the floor must stay a floor. */
     if (need_v > (uint64_t)p->max_vertices) {
@@ -159,81 +409,71 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         for (; v < mb.nv; v++) attr[v] = birth[n - 1];
     }
 
-    /* Leaves. */
+    /* Leaves: every blade placed first (its petiole goes in the stem
+     * part, which is still open), then the petioles, then the blades. */
+    leaf_geo *lg = NULL;
     if (p->leaves && !mb.status && !cancelled) {
-        mb_begin_part(&mb, m_leaf, 0);
-        mb_set_attr(&mb, a_part, 1.0);
-        pcg32 rng;
-        pcg32_seed(&rng, p->seed, 0x1eaf);
-        const v3 up = v3_make(0, 0, 1);
-        double rnotch = leaf_radius(BANYAN_PI);
-        double rad[LEAF_OUTLINE], ox[LEAF_OUTLINE], oy[LEAF_OUTLINE];
-        for (int k = 0; k < LEAF_OUTLINE; k++) {
-            rad[k] = leaf_radius(leaf_angle[k]);
-            ox[k] = rad[k] * cos(leaf_angle[k]); /* the outline, per unit of leaf diameter */
-            oy[k] = rad[k] * sin(leaf_angle[k]);
+        lg = malloc(sizeof(leaf_geo) * ((size_t)iv->n + 1));
+        if (!lg) {
+            free(pts); free(P); free(R); free(birth);
+            mb_free(&mb);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
         }
-        /* Card uvs: the outline's bounds fill the blade's box in one atlas
-         * cell (leaf_look.h), the basal lobes low, the tip at the top, as
-         * the atlas draws its leaves. */
-        double ymax = 0, xmin = 0, xmax = 0;
-        for (int k = 0; k < LEAF_OUTLINE; k++) {
-            if (fabs(oy[k]) > ymax) ymax = fabs(oy[k]);
-            if (ox[k] < xmin) xmin = ox[k];
-            if (ox[k] > xmax) xmax = ox[k];
-        }
-        double ou[LEAF_OUTLINE + 1], ov[LEAF_OUTLINE + 1]; /* the centre, then the outline, in 0..1 */
-        const double bv = LEAF_IVY_BLADE_V1 - LEAF_IVY_BLADE_V0;
-        ou[0] = 0.5;
-        ov[0] = LEAF_IVY_BLADE_V0 + bv * -xmin / (xmax - xmin);
-        for (int k = 0; k < LEAF_OUTLINE; k++) {
-            ou[k + 1] = 0.5 + LEAF_IVY_BLADE_HALF_U * oy[k] / ymax;
-            ov[k + 1] = LEAF_IVY_BLADE_V0 + bv * (ox[k] - xmin) / (xmax - xmin);
-        }
-        int32_t cols, rows;
-        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
-        const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
-        for (int32_t i = 0; i < iv->n && !mb.status; i++) {
+        leaf_shape sh;
+        leaf_shape_init(&sh);
+        for (int32_t i = 0; i < iv->n; i++) {
             if (mesh_progress(iv, i, 1.0)) {
                 cancelled = 1;
                 break;
             }
+            lg[i].ok = leaf_place(iv, i, &sh, &lg[i]);
+        }
+        const double rp = petiole_radius(p);
+        for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
+            if (!lg[i].ok) continue;
+            v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
+            v3 e1 = v3_any_perp(ax), e2 = v3_cross(ax, e1);
+            mb_set_attr(&mb, a_birth, (double)iv->buds[i].step_c);
+            uint32_t vc = mb_vertices(&mb, PETIOLE_VERTS);
+            uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
+            if (!I) break;
+            for (int k = 0; k < PETIOLE_SIDES; k++) {
+                double th = 2 * BANYAN_PI * k / PETIOLE_SIDES;
+                v3 rn = v3_add(v3_scale(e1, cos(th)), v3_scale(e2, sin(th)));
+                mb_put(&mb, vc + (uint32_t)k, v3_madd(a0, rn, rp), rn, (double)k / PETIOLE_SIDES, 0.0);
+                mb_put(&mb, vc + PETIOLE_SIDES + (uint32_t)k, v3_madd(lg[i].base, rn, rp), rn, (double)k / PETIOLE_SIDES, 1.0);
+                uint32_t k1 = (uint32_t)(k + 1) % PETIOLE_SIDES, q0 = vc + (uint32_t)k, q1 = vc + k1;
+                I[6 * k + 0] = q0; I[6 * k + 1] = q1; I[6 * k + 2] = q1 + PETIOLE_SIDES;
+                I[6 * k + 3] = q0; I[6 * k + 4] = q1 + PETIOLE_SIDES; I[6 * k + 5] = q0 + PETIOLE_SIDES;
+            }
+        }
+
+        mb_begin_part(&mb, m_leaf, 0);
+        mb_set_attr(&mb, a_part, 1.0);
+        int32_t cols, rows;
+        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
+        const double tf = tan(LEAF_FOLD);
+        for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
+            const leaf_geo *g = &lg[i];
+            if (!g->ok) continue;
             const ivy_bud *b = &iv->buds[i];
-            double jitter = rng_range(&rng, -0.35, 0.35); /* one draw per bud: leaves keep their look as the plant grows */
-            double d = ivy_leaf_diameter(iv, b) * p->leaf_scale;
-            if (!(d > 0)) continue;
-            ivy_near nr = ivy_nearest_any(iv, b->P);
-            double w = (nr.dist - p->sucker_length) / (4.0 * reach);
-            w = w < 0 ? 0 : (w > 1 ? 1 : w);
-            v3 free_n = v3_norm(v3_add(v3_scale(nr.normal, 0.5), up)); /* up and out */
-            v3 n = v3_norm_or(v3_lerp(nr.normal, free_n, w), nr.normal);
-            v3 t = b->parent >= 0 ? v3_norm_or(v3_sub(b->P, iv->buds[b->parent].P), b->V) : b->V;
-            v3 side = v3_norm_or(v3_cross(n, t), v3_any_perp(n));
-            if (!b->L) side = v3_neg(side);
-            v3 t_in = v3_norm_or(v3_sub(t, v3_scale(n, v3_dot(n, t))), v3_cross(side, n));
-            v3 a = v3_rotate(v3_norm(v3_madd(side, t_in, 0.7)), n, jitter);
-            a = v3_norm_or(v3_sub(a, v3_scale(n, v3_dot(n, a))), side);
-            v3 bb = v3_cross(n, a);
-            v3 base = v3_madd(b->P, n, p->leaf_lift);
-            v3 c = v3_madd(base, a, rnotch * d);
             mb_set_attr(&mb, a_birth, (double)b->step_c);
             uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
             uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
             if (!I) break;
-            float *pos = mb.pos + 3 * (size_t)vc, *nrm = mb.nrm + 3 * (size_t)vc, *uv = mb.uv + 2 * (size_t)vc;
             float *col = mb.col + 4 * (size_t)vc; /* the builder was made with colours */
-            const float fn[3] = {(float)n.x, (float)n.y, (float)n.z};
             leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
             leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);
-            const float tint[4] = {(float)lk.tint[0], (float)lk.tint[1], (float)lk.tint[2], (float)lk.tint[3]};
-            for (int k = 0; k <= LEAF_OUTLINE; k++, pos += 3, nrm += 3, uv += 2, col += 4) {
+            leaf_age_tint(iv, b, p->season, lk.tint);
+            /* The fold: each half turns up about the midrib, so its normal leans away from it. */
+            v3 n_pos = v3_norm(v3_madd(g->nb, g->bb, -tf)), n_neg = v3_norm(v3_madd(g->nb, g->bb, tf));
+            for (int k = 0; k <= LEAF_OUTLINE; k++, col += 4) {
                 /* The centre, then the outline. */
-                v3 q = k ? v3_madd(v3_madd(c, a, ox[k - 1] * d), bb, oy[k - 1] * d) : c;
-                pos[0] = (float)q.x; pos[1] = (float)q.y; pos[2] = (float)q.z;
-                memcpy(nrm, fn, sizeof fn);
-                uv[0] = (float)(lk.u0 + ou[k] * lk.du);
-                uv[1] = (float)(lk.v0 + ov[k] * lk.dv);
-                memcpy(col, tint, sizeof tint);
+                double x = k ? sh.ox[k - 1] : 0, y = k ? sh.oy[k - 1] : 0;
+                v3 q = leaf_vertex(g, x, y, tf);
+                v3 nn = fabs(y) < 1e-9 ? g->nb : (y > 0 ? n_pos : n_neg);
+                mb_put(&mb, vc + (uint32_t)k, q, nn, lk.u0 + sh.ou[k] * lk.du, lk.v0 + sh.ov[k] * lk.dv);
+                for (int j = 0; j < 4; j++) col[j] = (float)lk.tint[j];
             }
             for (uint32_t k = 0; k < LEAF_OUTLINE; k++, I += 3) {
                 I[0] = vc;
@@ -242,6 +482,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             }
         }
     }
+    free(lg);
 
     /* Skeleton: one point per bud, one edge per internode. */
     for (int32_t i = 0; i < iv->n && !mb.status; i++)

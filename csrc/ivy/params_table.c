@@ -15,11 +15,16 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, internode, "Leaf spacing", "Growth", "m", 0.001, 10, "l, internode length (paper 30 mm)"),
     BP_DOUBLE(S, branch_angle, "Branch angle", "Growth", "deg", 0, 180, "R(theta) of rule p3: angle of a lateral branch off its stem"),
     BP_DOUBLE(S, theta_max, "Wander angle", "Growth", "deg", 0, 180, "largest turn about each axis of a random-walk candidate"),
-    BP_BOOL(S, leaves, "Leaves", "Leaves", "emit leaf cards"),
-    BP_DOUBLE(S, leaf_max, "Leaf size", "Leaves", "m", 0.001, 10, "d_max, largest leaf and shadow diameter; light look-up radius (paper 60 mm)"),
-    BP_DOUBLE(S, leaf_scale, "Leaf card scale", "Leaves", "", 0, 10, "drawn leaf size over shadow diameter"),
-    BP_INT(S, leaf_growth_steps, "Leaf growing time", "Leaves", 1, 100000, "steps a leaf and its shadow take to reach leaf_max"),
-    BP_DOUBLE(S, leaf_lift, "Leaf stalk length", "Leaves", "m", 0, 1, "leaf card offset off its stem along the surface normal (petiole)"),
+    BP_BOOL(S, leaves, "Leaves", "Leaves", "emit leaves: a petiole and a blade per bud"),
+    BP_DOUBLE(S, leaf_max, "Leaf shadow size", "Leaves", "m", 0.001, 10, "d_max, largest leaf shadow diameter of the light model; light look-up radius (paper 60 mm); drawn blades have their own sizes"),
+    BP_INT(S, leaf_growth_steps, "Leaf shadow growing time", "Leaves", 1, 100000, "steps a leaf's shadow takes to reach leaf_max"),
+    BP_DOUBLE(S, leaf_size_min, "Young leaf size", "Leaves", "m", 0.001, 1, "drawn blade size (across the side lobes) of a new leaf near a growing tip (real 5 cm)"),
+    BP_DOUBLE(S, leaf_size_max, "Old leaf size", "Leaves", "m", 0.001, 1, "drawn blade size of a full-grown leaf (real up to 20 cm); at least leaf_size_min"),
+    BP_INT(S, leaf_size_steps, "Leaf size age", "Leaves", 1, 100000, "steps of age a drawn blade takes to grow from leaf_size_min to leaf_size_max"),
+    BP_DOUBLE(S, leaf_scale, "Leaf size scale", "Leaves", "", 0, 10, "multiplier of every drawn blade size (not of the light model's leaf_max)"),
+    BP_DOUBLE(S, leaf_petiole, "Leaf stalk length", "Leaves", "", 0, 5, "petiole length over blade size (about the blade's length at 0.7): how far blades stand off the stem"),
+    BP_DOUBLE(S, leaf_tilt, "Leaf tilt", "Leaves", "deg", 0, 90, "mean turn of a blade off its surface towards the sky"),
+    BP_DOUBLE(S, leaf_spread, "Leaf spread", "Leaves", "deg", 0, 90, "per-leaf random spread of the tilt and of the blade's heading"),
     BP_COLOR(S, leaf_color, "Leaf color", "Leaves", "summer flat colour of material ivy_leaf, without textures (linear RGBA)"),
     BP_ENUM(S, season, "Season", "Leaves", "summer|autumn", "leaf material: summer green or autumn crimson; the geometry stays"),
     BP_DOUBLE(S, stem_radius, "Stem thickness", "Stems", "m", 1e-5, 1, "r0, stem radius at birth"),
@@ -125,7 +130,12 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->stem_radius_growth = 0.00002;
     p->stem_radius_max = 0.008;
     p->leaf_scale = 1.0;
-    p->leaf_lift = 0.012;
+    p->leaf_size_min = 0.05;
+    p->leaf_size_max = 0.16;
+    p->leaf_size_steps = 200;
+    p->leaf_petiole = 0.7;
+    p->leaf_tilt = 40.0;
+    p->leaf_spread = 20.0;
     const double stem[4] = {0.20, 0.12, 0.07, 1.0}, leaf[4] = {0.10, 0.30, 0.05, 1.0};
     memcpy(p->stem_color, stem, sizeof stem);
     memcpy(p->leaf_color, leaf, sizeof leaf);
@@ -146,5 +156,8 @@ banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err) {
     if (p->stem_radius_max < p->stem_radius)
         return banyan_fail(err, BANYAN_E_RANGE, "stem_radius_max = %g must be >= stem_radius = %g m",
                            p->stem_radius_max, p->stem_radius);
+    if (p->leaf_size_max < p->leaf_size_min)
+        return banyan_fail(err, BANYAN_E_RANGE, "leaf_size_max = %g must be >= leaf_size_min = %g m",
+                           p->leaf_size_max, p->leaf_size_min);
     return BANYAN_OK;
 }

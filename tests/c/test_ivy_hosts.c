@@ -8,7 +8,8 @@
  *     shells (a head with two eyes, standing in for Suzanne): the median distance of
  *     attached buds to the real surface is within sucker reach, no stem
  *     point is inside a closed host, no internode passes through a
- *     surface, leaves lie on the real surface normal, and the ivy grows
+ *     surface, leaf blades turn off the real surface normal by the tilt
+ *     (leaf_tilt +- leaf_spread), and the ivy grows
  *     round the curve (attached buds on most sides of the sphere and the
  *     cylinder, up the cylinder, over the sphere's shoulder).
  *   - Same seed, same bytes; another seed, other bytes; two threads
@@ -188,10 +189,32 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
 
     double *ad = malloc(sizeof(double) * (size_t)iv->n);
     int na = 0, sector[8] = {0};
-    /* Leaves: one 13-vertex card per bud, in bud order, in part 1. */
+    /* Leaves: 13-vertex blades in bud order in part 1, each with a
+     * 6-vertex petiole at the end of part 0 starting at its bud; a bud
+     * may have none when no room is clear of the hosts (mesh.c). */
     const banyan_part *lp = m && m->part_count > 1 ? &m->parts[1] : NULL;
-    int leaves_ok = lp && lp->vertex_count == 13u * (uint32_t)iv->n;
-    CHECK(leaves_ok, "%s: one leaf card per bud", what);
+    uint32_t nbl = lp ? lp->vertex_count / 13u : 0;
+    int32_t *blade_of = malloc(sizeof(int32_t) * (size_t)iv->n);
+    for (int32_t i = 0; i < iv->n; i++) blade_of[i] = -1;
+    int leaves_ok = lp && lp->vertex_count == 13u * nbl && nbl <= (uint32_t)iv->n && nbl * 100 >= 99u * (uint32_t)iv->n &&
+                    m->parts[0].vertex_count > 6u * nbl;
+    for (uint32_t j = 0, i = 0; leaves_ok && j < nbl; j++) {
+        const float *q = m->positions + 3 * (size_t)(m->parts[0].vertex_offset + m->parts[0].vertex_count - 6u * (nbl - j));
+        v3 c = v3_scale(v3_make(q[0] + q[3] + q[6], q[1] + q[4] + q[7], q[2] + q[5] + q[8]), 1.0 / 3);
+        while (i < (uint32_t)iv->n && v3_dist(iv->buds[i].P, c) > 1e-5) i++;
+        if (i < (uint32_t)iv->n) blade_of[i++] = (int32_t)j;
+        else leaves_ok = 0;
+    }
+    CHECK(leaves_ok, "%s: %u leaves for %d buds, each on a petiole from its bud", what, nbl, iv->n);
+    printf("  %-22s %u leaves for %d buds\n", what, nbl, iv->n);
+    /* No blade or petiole vertex inside a closed host or below the ground. */
+    int leaf_inside = 0;
+    for (uint32_t v = 0; leaves_ok && v < 19u * nbl; v++) {
+        uint32_t k = v < 13u * nbl ? lp->vertex_offset + v : m->parts[0].vertex_offset + m->parts[0].vertex_count - 6u * nbl + (v - 13u * nbl);
+        v3 q = v3_make(m->positions[3 * k], m->positions[3 * k + 1], m->positions[3 * k + 2]);
+        if (oracle_inside(o, q, 1) || (p->ground && q.z < p->ground_z)) leaf_inside++;
+    }
+    CHECK(leaf_inside == 0, "%s: %d blade or petiole vertices inside a host or below the ground", what, leaf_inside);
     for (int32_t i = 0; i < iv->n; i++) {
         const ivy_bud *b = &iv->buds[i];
         v3 dir = v3_make(0, 0, 1);
@@ -212,11 +235,14 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
         double az = atan2(b->P.y - cy, b->P.x - cx);
         int sec = (int)floor((az + BANYAN_PI) / (2 * BANYAN_PI) * 8);
         sector[sec < 0 ? 0 : sec > 7 ? 7 : sec]++;
-        /* The leaf of a bud within reach faces along the real surface's normal. */
-        if (leaves_ok && d <= p->sucker_length) {
-            const float *n = m->normals + 3 * (size_t)(lp->vertex_offset + 13u * (uint32_t)i);
+        /* The blade of a bud within reach is turned off the real surface's
+         * normal by leaf_tilt +- leaf_spread (mesh.c), within 8 deg. */
+        if (leaves_ok && d <= p->sucker_length && blade_of[i] >= 0) {
+            const float *n = m->normals + 3 * (size_t)(lp->vertex_offset + 13u * (uint32_t)blade_of[i]);
+            double c = n[0] * dir.x + n[1] * dir.y + n[2] * dir.z, ang = acos(c < -1 ? -1 : (c > 1 ? 1 : c)) * 180 / BANYAN_PI;
+            double lo = fmax(0, p->leaf_tilt - p->leaf_spread), hi = fmin(90, p->leaf_tilt + p->leaf_spread);
             r.leaves_checked++;
-            if (n[0] * dir.x + n[1] * dir.y + n[2] * dir.z < 0.99) r.leaf_off++;
+            if (ang < lo - 8 || ang > hi + 8) r.leaf_off++;
         }
     }
     r.buds = iv->n;
@@ -227,8 +253,9 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     }
     for (int k = 0; k < 8; k++) r.sectors += sector[k] > 0;
     free(ad);
+    free(blade_of);
     printf("  %-22s %6d buds, %6d attached, median d %.4f m (worst %.4f), %d inside, %d crossing, "
-           "%d/%d leaves off the normal, %d sectors, top z %.2f, covered %.2f m^2 (%.2f s)\n",
+           "%d/%d leaves off the tilt band, %d sectors, top z %.2f, covered %.2f m^2 (%.2f s)\n",
            what, r.buds, r.attached, r.median_attached_dist, r.worst_attached_dist, r.inside, r.crossed, r.leaf_off,
            r.leaves_checked, r.sectors, r.top_z, r.covered_area, iv->step_seconds);
     /* The shared invariants. */
@@ -236,7 +263,7 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
           what, r.median_attached_dist, p->sucker_length);
     CHECK(r.inside == 0, "%s: %d stem points inside a closed host", what, r.inside);
     CHECK(r.crossed == 0, "%s: %d internodes pass through a surface", what, r.crossed);
-    CHECK(r.leaf_off * 100 <= r.leaves_checked, "%s: %d of %d leaves off the surface normal", what, r.leaf_off,
+    CHECK(r.leaf_off * 100 <= r.leaves_checked, "%s: %d of %d blades not turned leaf_tilt +- leaf_spread off the surface normal", what, r.leaf_off,
           r.leaves_checked);
     banyan_mesh_free(m);
     banyan_ivy_free(iv);

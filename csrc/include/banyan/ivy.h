@@ -49,7 +49,7 @@ typedef struct banyan_ivy_params {
     int32_t h1_buds;            /* buds before a dormant bud whose H0 adds into H1, 0 .. 64 */
     int32_t leaf_growth_steps;  /* steps a leaf (and its shadow) takes to reach leaf_max, 1 .. 100000 */
     int32_t sucker_pull;        /* 0/1: a bud that attaches is drawn to `clearance` off the surface */
-    int32_t leaves;             /* 0/1: emit leaf cards in the mesh */
+    int32_t leaves;             /* 0/1: emit leaves (a petiole and a blade per bud) in the mesh */
     int32_t stem_sides;         /* sides of a stem tube, 3 .. 64 */
     int32_t helio_in_plane;     /* 0/1: for a bud within sucker reach, V_l is taken along the surface (docs/ivy.md) */
     int32_t ground;             /* plane z = ground_z: 0 none, 1 obstacle (stems rest on it, suckers do
@@ -96,8 +96,13 @@ typedef struct banyan_ivy_params {
     double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
     double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
     double stem_radius_max;     /* radius cap, m, >= stem_radius, 1e-5 .. 1 */
-    double leaf_scale;          /* drawn leaf size / shadow diameter, 0 .. 10 */
-    double leaf_lift;           /* leaf card offset off its stem along the surface normal, m, 0 .. 1 */
+    double leaf_scale;          /* overall multiplier of the drawn blade sizes, 0 .. 10 */
+    double leaf_size_min;       /* drawn blade size (across the side lobes) of a new leaf, m, 0.001 .. 1 */
+    double leaf_size_max;       /* drawn blade size of a full-grown leaf, m, >= leaf_size_min, 0.001 .. 1 */
+    double leaf_petiole;        /* petiole length over blade size, 0 .. 5 */
+    double leaf_tilt;           /* mean turn of a blade off the surface towards the sky, deg, 0 .. 90 */
+    double leaf_spread;         /* per-leaf random spread of that turn and of the blade's heading, deg, 0 .. 90 */
+    int32_t leaf_size_steps;    /* steps of age a drawn blade takes to reach leaf_size_max, 1 .. 100000 */
     double stem_color[4];       /* linear RGBA of material "ivy_stem" */
     double leaf_color[4];       /* linear RGBA of material "ivy_leaf" in summer (its flat colour, textures off) */
     int32_t season;             /* banyan_season: the leaf material (texture and flat colour), not the geometry */
@@ -158,8 +163,9 @@ BANYAN_API banyan_status banyan_ivy_create(const banyan_ivy_params *params, cons
  * before it are kept and the plant stays usable. */
 BANYAN_API banyan_status banyan_ivy_step(banyan_ivy *ivy, int32_t n, banyan_error *err);
 
-/* Meshes the plant as it is now: stem tubes (part 0, material "ivy_stem")
- * and leaf cards (part 1, material "ivy_leaf", double-sided); attributes
+/* Meshes the plant as it is now: stem tubes, then one petiole per leaf
+ * (part 0, material "ivy_stem") and leaf blades (part 1, material
+ * "ivy_leaf", double-sided, in bud order); attributes
  * `birth_step` and `part` (0 stem, 1 leaf); skeleton of bud positions,
  * internode edges, stem radii, skel_tag = banyan_ivy_bud_state. */
 BANYAN_API banyan_status banyan_ivy_mesh(const banyan_ivy *ivy, banyan_mesh **out, banyan_error *err);

@@ -511,7 +511,7 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "branch; growth stops there) chosen in this run by a secant search so that its total stem length, "
       "then its triangle count, matches banyan's `ivy_wall` preset. Stem length: the sum of the curve "
       "splines' lengths (IvyGen), of the skeleton's internode edges (banyan). Leaves: IvyGen's leaf quads; "
-      "banyan's 12-triangle leaf cards (one per bud)." % (WALL_CURSOR,))
+      "banyan's 12-triangle leaf blades on 6-triangle petioles (one per bud)." % (WALL_CURSOR,))
     w("")
     w("| run | setting | stem m | leaves | vertices | triangles | operator / library | growth | end to end | "
       "m stem/s | M tris/s e2e |")
