@@ -1,12 +1,16 @@
-/* ivy_look.h - the look measures of issue #19 on a grown ivy (docs/ivy.md,
- * "How the look is measured"): the stem architecture seen on one face
- * and the share of leaf area lying on the ground. */
+/* ivy_look.h - the look measures of issue #19 on a grown ivy and its mesh
+ * (docs/ivy.md, "How the look is measured"): the stem architecture seen
+ * on the wall's face, and the leaf blades (connected components of the
+ * leaf part, in the order mesh.c emits them, each with the petiole that
+ * carries it from its bud). */
 #ifndef BANYAN_IVY_LOOK_H
 #define BANYAN_IVY_LOOK_H
 
 #include <stdlib.h>
 
 #include "ivy/ivy_internal.h"
+
+#define IVY_LOOK_PETIOLE_VERTS 6 /* 3 sides x 2 rings, the last part-0 vertices, one per blade (mesh.c) */
 
 /* Stem length of the attached internodes on the faces whose outward normal
  * is within 25 deg of `face_n` (an internode belongs to its end bud's
@@ -36,60 +40,92 @@ static inline ivy_stem_angles ivy_look_stem_angles(const banyan_ivy *iv, v3 face
     return a;
 }
 
-/* Leaf blades: the connected components of the leaf part's triangles.
- * Returns the share of the blades' area whose blade centre lies nearer
- * the ground than any host (0 when the plant has no ground or no leaf). */
-static inline int32_t ivy_look_find(int32_t *up, int32_t x) {
-    while (up[x] != x) x = up[x] = up[up[x]];
-    return x;
+/* One leaf blade. */
+typedef struct ivy_blade {
+    uint32_t first, count; /* its vertices (consecutive) */
+    double area;           /* m^2 */
+    v3 centre;             /* mean of its vertices */
+    v3 normal;             /* area-weighted, from positions; unit */
+    double size;           /* largest vertex-to-vertex distance */
+    v3 base;               /* its petiole's first ring centre: the bud it grows from */
+} ivy_blade;
+
+static inline uint32_t ivy_look_find(uint32_t *up, uint32_t a) {
+    while (up[a] != a) a = up[a] = up[up[a]];
+    return a;
 }
 
-static inline double ivy_look_ground_leaf_share(const banyan_ivy *iv, const banyan_mesh *m) {
-    const float *part = banyan_mesh_attribute(m, "part");
-    if (!part || !iv->p.ground) return 0.0;
-    int32_t nv = (int32_t)m->vertex_count;
-    int32_t *up = malloc(sizeof(int32_t) * (size_t)nv);
-    double *acc = calloc((size_t)nv * 4, sizeof(double)); /* area, area-weighted centre */
-    if (!up || !acc) {
-        free(up);
-        free(acc);
-        return -1.0;
+static inline v3 ivy_look_vert(const banyan_mesh *m, uint32_t v) {
+    return v3_make(m->positions[3 * v], m->positions[3 * v + 1], m->positions[3 * v + 2]);
+}
+
+/* The blades of an ivy mesh (parts: 0 stems and petioles, 1 blades), in
+ * emission order; *n their count. NULL (and *n = 0) without a leaf part
+ * or memory. The caller frees. */
+static inline ivy_blade *ivy_look_blades(const banyan_mesh *m, uint32_t *n) {
+    *n = 0;
+    if (m->part_count < 2) return NULL;
+    const banyan_part *lp = &m->parts[1], *sp = &m->parts[0];
+    const uint32_t v0 = lp->vertex_offset, nv = lp->vertex_count;
+    uint32_t *up = malloc(sizeof(uint32_t) * (nv ? nv : 1));
+    v3 *nsum = calloc(nv ? nv : 1, sizeof(v3));
+    double *area = calloc(nv ? nv : 1, sizeof(double));
+    ivy_blade *bl = malloc(sizeof(ivy_blade) * (nv ? nv : 1));
+    if (!up || !nsum || !area || !bl) {
+        free(up), free(nsum), free(area), free(bl);
+        return NULL;
     }
-    for (int32_t v = 0; v < nv; v++) up[v] = v;
-    for (uint32_t t = 0; t + 2 < m->index_count; t += 3) {
-        const uint32_t *I = m->indices + t;
-        if (part[I[0]] != 1.0f) continue;
-        int32_t a = ivy_look_find(up, (int32_t)I[0]);
-        for (int k = 1; k < 3; k++) {
-            int32_t b = ivy_look_find(up, (int32_t)I[k]);
-            if (a != b) up[b] = a;
+    for (uint32_t k = 0; k < nv; k++) up[k] = k;
+    for (uint32_t t = lp->index_offset; t + 2 < lp->index_offset + lp->index_count; t += 3)
+        for (int e = 1; e < 3; e++) {
+            uint32_t a = ivy_look_find(up, m->indices[t] - v0), b = ivy_look_find(up, m->indices[t + e] - v0);
+            if (a != b) up[a] = b;
         }
+    for (uint32_t t = lp->index_offset; t + 2 < lp->index_offset + lp->index_count; t += 3) {
+        v3 a = ivy_look_vert(m, m->indices[t]), b = ivy_look_vert(m, m->indices[t + 1]), c = ivy_look_vert(m, m->indices[t + 2]);
+        uint32_t r = ivy_look_find(up, m->indices[t] - v0);
+        v3 x = v3_cross(v3_sub(b, a), v3_sub(c, a));
+        nsum[r] = v3_add(nsum[r], x);
+        area[r] += 0.5 * v3_len(x);
     }
-    for (uint32_t t = 0; t + 2 < m->index_count; t += 3) {
-        const uint32_t *I = m->indices + t;
-        if (part[I[0]] != 1.0f) continue;
-        v3 p[3];
-        for (int k = 0; k < 3; k++) p[k] = v3_make(m->positions[3 * I[k]], m->positions[3 * I[k] + 1], m->positions[3 * I[k] + 2]);
-        double area = 0.5 * v3_len(v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0])));
-        double *c = acc + 4 * (size_t)ivy_look_find(up, (int32_t)I[0]);
-        c[0] += area;
-        for (int k = 0; k < 3; k++) {
-            c[1] += area * (&p[k].x)[0] / 3;
-            c[2] += area * (&p[k].x)[1] / 3;
-            c[3] += area * (&p[k].x)[2] / 3;
+    /* A blade's vertices are consecutive: walk runs of one root. */
+    uint32_t nb = 0;
+    for (uint32_t s = 0; s < nv;) {
+        uint32_t r = ivy_look_find(up, s), e = s;
+        while (e < nv && ivy_look_find(up, e) == r) e++;
+        ivy_blade *b = &bl[nb++];
+        b->first = v0 + s;
+        b->count = e - s;
+        b->area = area[r];
+        b->normal = v3_norm_or(nsum[r], v3_make(0, 0, 1));
+        v3 c = v3_make(0, 0, 0);
+        double big = 0;
+        for (uint32_t k = s; k < e; k++) {
+            v3 q = ivy_look_vert(m, v0 + k);
+            c = v3_add(c, q);
+            for (uint32_t j = k + 1; j < e; j++) {
+                double d = v3_dist(q, ivy_look_vert(m, v0 + j));
+                if (d > big) big = d;
+            }
         }
+        b->centre = v3_scale(c, 1.0 / (e - s));
+        b->size = big;
+        s = e;
     }
-    double total = 0, ground = 0;
-    for (int32_t v = 0; v < nv; v++) {
-        const double *c = acc + 4 * (size_t)v;
-        if (up[v] != v || !(c[0] > 0)) continue;
-        v3 centre = v3_make(c[1] / c[0], c[2] / c[0], c[3] / c[0]);
-        total += c[0];
-        if ((uint32_t)ivy_nearest_any(iv, centre).host == iv->n_given) ground += c[0];
+    /* Petioles: the last IVY_LOOK_PETIOLE_VERTS * nb vertices of part 0,
+     * in blade order; the first ring (3 vertices) sits at the bud. */
+    uint64_t np = (uint64_t)IVY_LOOK_PETIOLE_VERTS * nb;
+    for (uint32_t k = 0; k < nb; k++) {
+        bl[k].base = bl[k].centre;
+        if (np > sp->vertex_count) continue;
+        uint32_t v = sp->vertex_offset + sp->vertex_count - (uint32_t)np + IVY_LOOK_PETIOLE_VERTS * k;
+        bl[k].base = v3_scale(v3_add(v3_add(ivy_look_vert(m, v), ivy_look_vert(m, v + 1)), ivy_look_vert(m, v + 2)), 1.0 / 3);
     }
     free(up);
-    free(acc);
-    return total > 0 ? ground / total : 0.0;
+    free(nsum);
+    free(area);
+    *n = nb;
+    return bl;
 }
 
 #endif
