@@ -237,8 +237,10 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
     g->a = v3_norm_or_perp(v3_rotate(down, g->nb, lean + spread * (2 * u_head - 1)), g->nb);
     g->a = v3_norm_or_perp(v3_sub(g->a, v3_scale(g->nb, v3_dot(g->nb, g->a))), g->nb);
     g->bb = v3_cross(g->nb, g->a);
-    /* Petiole: out from the surface, a little up and to the leaf's side. */
-    v3 pd = v3_norm(v3_add(v3_add(n, v3_scale(sky, 0.3)), v3_scale(side, 0.35)));
+    /* Petiole: it rises from the node out, up and to the leaf's side,
+     * about 45 deg off the surface (straight out it read as a ladder
+     * from the side). */
+    v3 pd = v3_norm(v3_add(v3_add(v3_scale(n, 0.8), v3_scale(sky, 0.55)), v3_scale(side, 0.45)));
     double lp = p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet);
     g->base = v3_madd(b->P, pd, lp);
     g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);

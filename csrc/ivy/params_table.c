@@ -134,8 +134,8 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_size_max = 0.16;
     p->leaf_size_steps = 200;
     p->leaf_petiole = 0.7;
-    p->leaf_tilt = 40.0;
-    p->leaf_spread = 20.0;
+    p->leaf_tilt = 30.0;
+    p->leaf_spread = 15.0;
     const double stem[4] = {0.20, 0.12, 0.07, 1.0}, leaf[4] = {0.10, 0.30, 0.05, 1.0};
     memcpy(p->stem_color, stem, sizeof stem);
     memcpy(p->leaf_color, leaf, sizeof leaf);
