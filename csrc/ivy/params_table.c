@@ -112,7 +112,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->tip_elevation = 20.0;
     p->sag_stiffening = 3.0;
     p->tip_hook_length = 0.15;
-    p->tip_hook_angle = 50.0;
+    p->tip_hook_angle = 70.0;
     p->stem_radius = 0.0015;
     p->stem_radius_growth = 0.00002;
     p->stem_radius_max = 0.008;

@@ -304,8 +304,6 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
              * not be asked again while nothing above them turns. */
             int32_t settled = 0;
             int moved = 0;
-            if (sc->hook > 0 && iv->buds[tip].run * p->internode > p->free_length)
-                moved = hook_tip(iv, sc, chain, m, q, qv);
             for (int pass = 0, turned = 1; turned && pass < SAG_PASSES; pass++) {
                 turned = 0;
                 for (int32_t k = m - 1; k >= 1; k--) {
@@ -320,6 +318,8 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                     }
                 }
             }
+            if (sc->hook > 0 && iv->buds[tip].run * p->internode > p->free_length && hook_tip(iv, sc, chain, m, q, qv))
+                moved = 1;
             /* Move once (when anything turned); grip where a sucker now
              * reaches a surface; runs follow (preorder: parents first). */
             if (moved) ivy_grid_move_many(iv, set, q, n);

@@ -93,6 +93,11 @@ typedef struct figures {
     double straight, tip_angle, pair_angle;
 } figures;
 
+/* Overrides key=value from the command line (after the output folder):
+ * to see the figures of other settings; the checks then stay off. */
+static int n_set;
+static char **sets;
+
 static figures measure(const char *name) {
     figures f;
     memset(&f, 0, sizeof f);
@@ -111,6 +116,14 @@ static figures measure(const char *name) {
               banyan_preset_hosts(text, len, path, hosts, 8, &nh, &err) == BANYAN_OK,
           "%s: %s", name, err.message);
     free(text);
+    for (int k = 0; k < n_set; k++) {
+        char key[64];
+        const char *eq = strchr(sets[k], '=');
+        if (!eq || eq - sets[k] >= (int)sizeof key) continue;
+        memcpy(key, sets[k], (size_t)(eq - sets[k]));
+        key[eq - sets[k]] = 0;
+        CHECK(banyan_param_set_text(BANYAN_GEN_IVY, &base, key, eq + 1, &err) == BANYAN_OK, "%s", err.message);
+    }
     enum { CAP = 4096 };
     run *r = malloc(sizeof *r * CAP);
     double *straight = malloc(sizeof(double) * CAP), *tip = malloc(sizeof(double) * CAP);
@@ -159,7 +172,9 @@ static figures measure(const char *name) {
     return f;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+    n_set = argc > 2 ? argc - 2 : 0;
+    sets = argv + 2;
     const char *names[2] = {"ivy_pillar", "ivy_wall"};
     for (int k = 0; k < 2; k++) {
         figures f = measure(names[k]);
