@@ -253,12 +253,15 @@ static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *c
             hk = v3_len(hk) > 0.5 * len ? v3_norm(hk) : h;
             v3 dir = v3_add(v3_scale(hk, cos(el)), v3_make(0, 0, sin(el)));
             to = v3_add(prev_new, v3_scale(dir, len));
-            qv[iv->buds[chain[k]].mark] = dir;
         }
         if (v3_dist(to, *P) > 1e-12) {
             *P = ivy_move_out(iv, *P, to);
             moved = 1;
         }
+        /* V is the bud's internode; the tip's is its growth direction,
+         * left to rule 7 (at least tip_elevation): growing on up the hook
+         * would climb the free stems back up and grow a larger plant. */
+        if (k > 0) qv[iv->buds[chain[k]].mark] = v3_norm_or(v3_sub(*P, prev_new), qv[iv->buds[chain[k]].mark]);
         prev_new = *P;
     }
 #undef QP
@@ -328,8 +331,17 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                     }
                 }
             }
-            if (sc->hook > 0 && iv->buds[tip].run * p->internode > p->free_length && hook_tip(iv, sc, chain, m, q, qv))
+            /* The tip hook comes last, as the spec's tip turning up; the
+             * pivot P0 then holds the hooked stem (one rigid turn: the
+             * hook keeps its shape), so F about P0 is within its
+             * strength as the spec asks. */
+            if (sc->hook > 0 && iv->buds[tip].run * p->internode > p->free_length &&
+                hook_tip(iv, sc, chain, m, q, qv)) {
                 moved = 1;
+                int32_t lo = iv->buds[chain[m - 2]].mark;
+                sag_pivot(iv, sc, iv->buds[chain[m - 1]].P, joint_strength(iv, &iv->buds[chain[m - 1]]), q + lo,
+                          qv + lo, qn, size[lo], set + lo, lo);
+            }
             /* Move once (when anything turned); grip where a sucker now
              * reaches a surface; runs follow (preorder: parents first). */
             if (moved) ivy_grid_move_many(iv, set, q, n);
