@@ -225,19 +225,11 @@ static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *c
         if (iv->buds[chain[k]].child[1] >= 0) { K = k; break; } /* a lateral would be left behind */
     if (K < 1) return 0;
 #define QP(c) q[iv->buds[c].mark]
-    v3 root = QP(chain[K]), h = v3_sub(QP(chain[m - 2]), iv->buds[chain[m - 1]].P);
+    /* The hook's heading: where the hook already points, else the tip's
+     * (a new hook of a plumb stem). */
+    v3 root = QP(chain[K]), h = v3_sub(QP(chain[0]), root);
     h.z = 0;
-    {
-        /* The heading the stem left its anchor with, turned by a yaw of
-         * this stem's own (keyed by its first free bud, from a stream of
-         * its own, so the growth's draws are not disturbed): neighbours
-         * that hang side by side do not hook as copies of each other. */
-        h = v3_norm_or(h, v3_norm_or(v3_make(iv->buds[chain[0]].V.x, iv->buds[chain[0]].V.y, 0), v3_make(1, 0, 0)));
-        pcg32 r;
-        pcg32_seed(&r, iv->p.seed, 0x9e3779b97f4a7c15ull ^ (uint64_t)chain[m - 2]);
-        double yaw = deg2rad(iv->p.hang_twist) * rng_range(&r, -1, 1), c = cos(yaw), s = sin(yaw);
-        h = v3_make(c * h.x - s * h.y, s * h.x + c * h.y, 0);
-    }
+    if (v3_len(h) < 0.1 * iv->p.internode) h = v3_make(iv->buds[chain[0]].V.x, iv->buds[chain[0]].V.y, 0);
     h = v3_norm_or(h, v3_make(1, 0, 0));
     int moved = 0;
     v3 prev_old = root, prev_new = root;

@@ -88,7 +88,6 @@ typedef struct banyan_ivy_params {
     double sag_stiffening;      /* a joint holds moment_max * (r / stem_radius)^this (r: its stem radius by age), 0 .. 6 */
     double tip_hook_length;     /* the last this much of a free stem bends up into a hook (a J), m, 0 .. 10 */
     double tip_hook_angle;      /* elevation the hook's last internode reaches, deg, -90 .. 90 */
-    double hang_twist;          /* a new hook heads off the tip's heading by up to this yaw, per stem, deg, 0 .. 180 */
 
     double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
     double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
