@@ -3,14 +3,18 @@
  * P1..Pnum the unattached buds after it (with any branches hanging from
  * them). While the moment of their weight about P0,
  *     F = |C - P0| M g sin(phi) = M g * (horizontal distance of C from P0),
- * exceeds moment_max, they rotate down about P0 in sag_step increments
- * (the last one cut to the angle that reaches moment_max);
+ * exceeds the joint's strength (moment_max x (r / r0)^sag_stiffening, r
+ * the pivot's stem radius by age: older stems are stiffer), they rotate
+ * down about P0 in sag_step increments (the last one cut to the angle
+ * that reaches the strength);
  * then the pivot moves to P1, and so on towards the tip. A bud that would
  * enter a host is put back on its surface (clearance off it; a bud whose
  * turn would carry it through a mesh surface, which a thin open mesh
  * cannot tell by its inside, stops short of it), and a bud
- * with a sucker that ends within reach of a surface grips it. Last, a
- * free tip turns up to at least tip_elevation (geotropism).
+ * with a sucker that ends within reach of a surface grips it. Last, the
+ * tip turns up (geotropism): the last tip_hook_length of a free stem
+ * bends up into a hook (a J; P0 then holds the hooked stem), and the
+ * tip's growth direction rises to at least tip_elevation.
  *
  * P0 is the first bud up from the tip that is held: attached, lying on
  * the ground, or held by its other branch (so a lateral hanging from a

@@ -6,7 +6,8 @@
  *     the light cache skips is still too shaded.
  *   - No stem point inside a host; attached buds within sucker reach.
  *   - Sag: long free stems hang below their anchor with tips turned up,
- *     and their moment about the anchor is within moment_max.
+ *     and their moment about the anchor is within the anchor's joint
+ *     strength (moment_max x (r / r0)^sag_stiffening).
  *   - Stats: crossings equal a brute-force count; parts add up.
  *   - Mesh: materials, parts, `part` and `birth_step` attributes, leaves
  *     facing away from their surface, skeleton; same seed, same bytes;
