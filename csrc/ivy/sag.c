@@ -216,12 +216,12 @@ static double joint_strength(const banyan_ivy *iv, const ivy_bud *b) {
 }
 
 /* The tip hook (geotropism of the growing end): on the copies q, the last
- * K = sc->hook internodes of a long free stem rise to at least a ramp of
+ * K = sc->hook internodes of a hanging stem rise to at least a ramp of
  * elevations, from straight down at the hook's root to tip_hook_angle at
- * the tip, each keeping its length and heading (a hanging one takes the
- * hook's). So a hanging stem ends in a J, not an L. It runs before the
- * sweeps, so the sag still has the last word on the moment. chain[0] is
- * the tip, chain[m-1] P0. Returns whether a bud moved. */
+ * the tip, each keeping its length and heading (a plumb one takes the
+ * hook's). So a hanging stem ends in a J, not an L. It runs after the
+ * sweeps (before them, they flattened it again). chain[0] is the tip,
+ * chain[m-1] P0. Returns whether a bud moved. */
 static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *chain, int32_t m, v3 *q, v3 *qv) {
     int32_t K = sc->hook;
     if (K > m - 2) K = m - 2; /* the hook's root chain[K] is in the moving set */
@@ -255,8 +255,8 @@ static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *c
             moved = 1;
         }
         /* V is the bud's internode; the tip's is its growth direction,
-         * left to rule 7 (at least tip_elevation): growing on up the hook
-         * would climb the free stems back up and grow a larger plant. */
+         * left to the geotropism below (at least tip_elevation): growing
+         * on up the hook climbed the free stems back up (15 % more buds). */
         if (k > 0) qv[iv->buds[chain[k]].mark] = v3_norm_or(v3_sub(*P, prev_new), qv[iv->buds[chain[k]].mark]);
         prev_new = *P;
     }
@@ -329,7 +329,7 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
             }
             /* The tip hook comes last, as the spec's tip turning up, on a
              * stem that hangs (its tip below P0: a free stem standing
-             * out keeps its tip as rule 8 leaves it; hooked, it crossed
+             * out keeps its tip as the geotropism leaves it; hooked, it crossed
              * more stems on the wall, density +18 % instead of +9 %); the
              * pivot P0 then holds the hooked stem (one rigid turn: the
              * hook keeps its shape), so F about P0 is within its
