@@ -126,9 +126,10 @@ static int angle_below(v3 a, v3 a2, double t, double tan_t) {
 enum { SAG_TURNED = 1, SAG_UNSETTLED = 2 };
 
 /* Turns the copies q[0..n-1] (directions qv) down about the pivot in
- * sag_step increments while their moment passes moment_max. A turn that a
- * surface undoes (the push-out brings C back) ends it: the stem rests on
- * that surface. qn is scratch for n positions. */
+ * sag_step increments while their moment passes the strength of the
+ * joint at bud `joint`. A turn that a surface undoes (the push-out brings
+ * C back) ends it: the stem rests on that surface. qn is scratch for n
+ * positions. */
 /* Would the turn of q[0..n-1] (a subtree in preorder, set[0..n-1] its
  * buds, set[0] hanging from the pivot) to qn carry an internode through a
  * mesh surface? Bud paths are stopped by ivy_move_out, but an internode
@@ -146,11 +147,24 @@ static int turn_crosses_mesh(const banyan_ivy *iv, const int32_t *set, int32_t l
     return 0;
 }
 
-static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, double mmax, v3 *q, v3 *qv, v3 *qn,
+/* The joint at bud b holds moment_max * (r / r0)^sag_stiffening, r its
+ * stem radius by age (the mesh's): bending strength goes with the cube of
+ * the radius, so the old base of a free stem holds it out from the edge
+ * while the young part droops, an arch instead of a plumb line. */
+static double joint_strength(const banyan_ivy *iv, const ivy_bud *b) {
+    const banyan_ivy_params *p = &iv->p;
+    if (p->sag_stiffening <= 0) return p->moment_max;
+    double x = ivy_stem_radius(iv, b) / p->stem_radius;
+    return p->moment_max * (p->sag_stiffening == 3 ? x * x * x : pow(x, p->sag_stiffening));
+}
+
+static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, const ivy_bud *joint, v3 *q, v3 *qv, v3 *qn,
                      int32_t n, const int32_t *set, int32_t lo) {
     const double step = sc->step;
     v3 C, *cur = q, *nxt = qn; /* the positions now and after the turn being tried */
     double F = moment(iv, pivot, q, n, &C);
+    if (F <= iv->p.moment_max) return 0; /* within the least a joint holds */
+    double mmax = joint_strength(iv, joint);
     int turned = 0, it = 0;
     for (; it < sc->max_iter && F > mmax && sc->budget > 0; it++) {
         v3 a = v3_sub(C, pivot);
@@ -203,16 +217,6 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, double mmax
     }
     if (cur != q) memcpy(q, cur, sizeof(v3) * (size_t)n);
     return turned | ((it == sc->max_iter || sc->budget <= 0) && F > mmax ? SAG_UNSETTLED : 0);
-}
-
-/* The joint at bud b holds moment_max * (r / r0)^sag_stiffening, r its
- * stem radius by age (the mesh's): bending strength goes with the cube of
- * the radius, so the old base of a free stem holds it out from the edge
- * while the young part droops, an arch instead of a plumb line. */
-static double joint_strength(const banyan_ivy *iv, const ivy_bud *b) {
-    const banyan_ivy_params *p = &iv->p;
-    if (p->sag_stiffening <= 0) return p->moment_max;
-    return p->moment_max * pow(ivy_stem_radius(iv, b) / p->stem_radius, p->sag_stiffening);
 }
 
 /* The tip hook (geotropism of the growing end): on the copies q, the last
@@ -319,8 +323,7 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                     if (!turned && k <= settled) break;
                     v3 pivot = k == m - 1 ? iv->buds[chain[k]].P : q[iv->buds[chain[k]].mark];
                     int32_t lo = iv->buds[chain[k - 1]].mark;
-                    double mmax = joint_strength(iv, &iv->buds[chain[k]]);
-                    int r = sag_pivot(iv, sc, pivot, mmax, q + lo, qv + lo, qn, size[lo], set + lo, lo);
+                    int r = sag_pivot(iv, sc, pivot, &iv->buds[chain[k]], q + lo, qv + lo, qn, size[lo], set + lo, lo);
                     if (r & SAG_TURNED) {
                         turned = moved = 1;
                         settled = r & SAG_UNSETTLED ? k - 1 : k;
@@ -330,7 +333,7 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
             /* The tip hook comes last, as the spec's tip turning up, on a
              * stem that hangs (its tip below P0: a free stem standing
              * out keeps its tip as the geotropism leaves it; hooked, it crossed
-             * more stems on the wall, density +18 % instead of +9 %); the
+             * more stems on the wall, density +18 % instead of +7 %); the
              * pivot P0 then holds the hooked stem (one rigid turn: the
              * hook keeps its shape), so F about P0 is within its
              * strength as the spec asks. */
@@ -339,7 +342,7 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                 hook_tip(iv, sc, chain, m, q, qv)) {
                 moved = 1;
                 int32_t lo = iv->buds[chain[m - 2]].mark;
-                sag_pivot(iv, sc, iv->buds[chain[m - 1]].P, joint_strength(iv, &iv->buds[chain[m - 1]]), q + lo,
+                sag_pivot(iv, sc, iv->buds[chain[m - 1]].P, &iv->buds[chain[m - 1]], q + lo,
                           qv + lo, qn, size[lo], set + lo, lo);
             }
             /* Move once (when anything turned); grip where a sucker now
