@@ -59,6 +59,9 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, free_length, "Free length before drooping", "Hanging stems", "m", 0, 100, "unattached length after which f_grav acts and the free tip turns up"),
     BP_DOUBLE(S, bmax, "Longest free run", "Hanging stems", "m", 0, 100, "Bmax: a longer unattached run ends (rule p6)"),
     BP_DOUBLE(S, tip_elevation, "Tip lift angle", "Hanging stems", "deg", -90, 90, "a free stem tip turns up to at least this angle above horizontal"),
+    BP_DOUBLE(S, sag_stiffening, "Stiffening with age", "Hanging stems", "", 0, 6, "a joint holds Joint strength x (stem radius / radius at birth)^this: old stems arch, young tips droop"),
+    BP_DOUBLE(S, tip_hook_length, "Tip hook length", "Hanging stems", "m", 0, 10, "the last this much of a free stem bends up (a J, not an L)"),
+    BP_DOUBLE(S, tip_hook_angle, "Tip hook angle", "Hanging stems", "deg", -90, 90, "elevation the last internode of the hook reaches"),
     BP_DOUBLE(S, gravity, "Gravity", "Hanging stems", "m/s^2", 0, 1000, "g (paper 9.8)"),
     BP_DOUBLE(S, internode_mass, "Mass per leaf", "Hanging stems", "kg", 0, 1000, "mass of one internode with its leaf"),
     BP_DOUBLE(S, moment_max, "Joint strength", "Hanging stems", "N m", 0, 1e6, "moment a joint holds before an unattached stem sags"),
@@ -126,6 +129,9 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->moment_max = 0.003;
     p->sag_step = 4.0;
     p->tip_elevation = 20.0;
+    p->sag_stiffening = 3.0;
+    p->tip_hook_length = 0.15;
+    p->tip_hook_angle = 70.0;
     p->stem_radius = 0.0015;
     p->stem_radius_growth = 0.00002;
     p->stem_radius_max = 0.008;

@@ -3,14 +3,18 @@
  * P1..Pnum the unattached buds after it (with any branches hanging from
  * them). While the moment of their weight about P0,
  *     F = |C - P0| M g sin(phi) = M g * (horizontal distance of C from P0),
- * exceeds moment_max, they rotate down about P0 in sag_step increments
- * (the last one cut to the angle that reaches moment_max);
+ * exceeds the joint's strength (moment_max x (r / r0)^sag_stiffening, r
+ * the pivot's stem radius by age: older stems are stiffer), they rotate
+ * down about P0 in sag_step increments (the last one cut to the angle
+ * that reaches the strength);
  * then the pivot moves to P1, and so on towards the tip. A bud that would
  * enter a host is put back on its surface (clearance off it; a bud whose
  * turn would carry it through a mesh surface, which a thin open mesh
  * cannot tell by its inside, stops short of it), and a bud
- * with a sucker that ends within reach of a surface grips it. Last, a
- * free tip turns up to at least tip_elevation (geotropism).
+ * with a sucker that ends within reach of a surface grips it. Last, the
+ * tip turns up (geotropism): the last tip_hook_length of a free stem
+ * bends up into a hook (a J; P0 then holds the hooked stem), and the
+ * tip's growth direction rises to at least tip_elevation.
  *
  * P0 is the first bud up from the tip that is held: attached, lying on
  * the ground, or held by its other branch (so a lateral hanging from a
@@ -91,6 +95,8 @@ typedef struct sag_consts {
     int max_iter;
     double el_s, el_c;
     int64_t budget;
+    int32_t hook;        /* internodes of the tip hook (tip_hook_length / internode) */
+    double hook_el;      /* elevation of its last internode, rad */
 } sag_consts;
 
 /* Bud turns (a bud moved by one increment) per step: at least
@@ -120,9 +126,10 @@ static int angle_below(v3 a, v3 a2, double t, double tan_t) {
 enum { SAG_TURNED = 1, SAG_UNSETTLED = 2 };
 
 /* Turns the copies q[0..n-1] (directions qv) down about the pivot in
- * sag_step increments while their moment passes moment_max. A turn that a
- * surface undoes (the push-out brings C back) ends it: the stem rests on
- * that surface. qn is scratch for n positions. */
+ * sag_step increments while their moment passes the strength of the
+ * joint at bud `joint`. A turn that a surface undoes (the push-out brings
+ * C back) ends it: the stem rests on that surface. qn is scratch for n
+ * positions. */
 /* Would the turn of q[0..n-1] (a subtree in preorder, set[0..n-1] its
  * buds, set[0] hanging from the pivot) to qn carry an internode through a
  * mesh surface? Bud paths are stopped by ivy_move_out, but an internode
@@ -140,14 +147,26 @@ static int turn_crosses_mesh(const banyan_ivy *iv, const int32_t *set, int32_t l
     return 0;
 }
 
-static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *qv, v3 *qn, int32_t n,
-                     const int32_t *set, int32_t lo) {
+/* The joint at bud b holds moment_max * (r / r0)^sag_stiffening, r its
+ * stem radius by age (the mesh's): bending strength goes with the cube of
+ * the radius, so the old base of a free stem holds it out from the edge
+ * while the young part droops, an arch instead of a plumb line. */
+static double joint_strength(const banyan_ivy *iv, const ivy_bud *b) {
     const banyan_ivy_params *p = &iv->p;
+    if (p->sag_stiffening <= 0) return p->moment_max;
+    double x = ivy_stem_radius(iv, b) / p->stem_radius;
+    return p->moment_max * (p->sag_stiffening == 3 ? x * x * x : pow(x, p->sag_stiffening));
+}
+
+static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, const ivy_bud *joint, v3 *q, v3 *qv, v3 *qn,
+                     int32_t n, const int32_t *set, int32_t lo) {
     const double step = sc->step;
     v3 C, *cur = q, *nxt = qn; /* the positions now and after the turn being tried */
     double F = moment(iv, pivot, q, n, &C);
+    if (F <= iv->p.moment_max) return 0; /* within the least a joint holds */
+    double mmax = joint_strength(iv, joint);
     int turned = 0, it = 0;
-    for (; it < sc->max_iter && F > p->moment_max && sc->budget > 0; it++) {
+    for (; it < sc->max_iter && F > mmax && sc->budget > 0; it++) {
         v3 a = v3_sub(C, pivot);
         v3 axis = v3_make(-a.y, a.x, 0); /* a x G with G = (0, 0, -1): turns a towards G */
         double al = v3_len(axis);
@@ -167,7 +186,7 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *
         if (a.z < 0) {
             double arm = v3_len(a);
             double weight = F / al; /* below the horizontal F = weight * horizontal arm */
-            double s_eq = p->moment_max / (weight * arm), s1 = s_eq < 1 ? s_eq : 1;
+            double s_eq = mmax / (weight * arm), s1 = s_eq < 1 ? s_eq : 1;
             /* need < step asks sin(phi - step) < s1 (asin is steeper than
              * 1): when it is clearly not so, skip atan2 and asin. */
             if (al * sc->cs + a.z * sc->sn < (s1 + 1e-7) * arm) {
@@ -197,7 +216,56 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, v3 *q, v3 *
         turned = SAG_TURNED;
     }
     if (cur != q) memcpy(q, cur, sizeof(v3) * (size_t)n);
-    return turned | ((it == sc->max_iter || sc->budget <= 0) && F > p->moment_max ? SAG_UNSETTLED : 0);
+    return turned | ((it == sc->max_iter || sc->budget <= 0) && F > mmax ? SAG_UNSETTLED : 0);
+}
+
+/* The tip hook (geotropism of the growing end): on the copies q, the last
+ * K = sc->hook internodes of a hanging stem rise to at least a ramp of
+ * elevations, from straight down at the hook's root to tip_hook_angle at
+ * the tip, each keeping its length and heading (a plumb one takes the
+ * hook's). So a hanging stem ends in a J, not an L. It runs after the
+ * sweeps (before them, they flattened it again). chain[0] is the tip,
+ * chain[m-1] P0. Returns whether a bud moved. */
+static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *chain, int32_t m, v3 *q, v3 *qv) {
+    int32_t K = sc->hook;
+    if (K > m - 2) K = m - 2; /* the hook's root chain[K] is in the moving set */
+    for (int32_t k = 1; k < K; k++)
+        if (iv->buds[chain[k]].child[1] >= 0) { K = k; break; } /* a lateral would be left behind */
+    if (K < 1) return 0;
+#define QP(c) q[iv->buds[c].mark]
+    /* The hook's heading: where the hook already points, else the tip's
+     * (a new hook of a plumb stem). */
+    v3 root = QP(chain[K]), h = v3_sub(QP(chain[0]), root);
+    h.z = 0;
+    if (v3_len(h) < 0.1 * iv->p.internode) h = v3_make(iv->buds[chain[0]].V.x, iv->buds[chain[0]].V.y, 0);
+    h = v3_norm_or(h, v3_make(1, 0, 0));
+    int moved = 0;
+    v3 prev_old = root, prev_new = root;
+    for (int32_t k = K - 1; k >= 0; k--) {
+        v3 *P = &QP(chain[k]);
+        v3 d = v3_sub(*P, prev_old);
+        double len = v3_len(d);
+        prev_old = *P;
+        double el = -0.5 * BANYAN_PI + (sc->hook_el + 0.5 * BANYAN_PI) * (double)(K - k) / K;
+        v3 to = v3_add(prev_new, d);
+        if (len > 1e-12 && d.z < len * sin(el)) {
+            v3 hk = v3_make(d.x, d.y, 0);
+            hk = v3_len(hk) > 0.5 * len ? v3_norm(hk) : h;
+            v3 dir = v3_add(v3_scale(hk, cos(el)), v3_make(0, 0, sin(el)));
+            to = v3_add(prev_new, v3_scale(dir, len));
+        }
+        if (v3_dist(to, *P) > 1e-12) {
+            *P = ivy_move_out(iv, *P, to);
+            moved = 1;
+        }
+        /* V is the bud's internode; the tip's is its growth direction,
+         * left to the geotropism below (at least tip_elevation): growing
+         * on up the hook climbed the free stems back up (15 % more buds). */
+        if (k > 0) qv[iv->buds[chain[k]].mark] = v3_norm_or(v3_sub(*P, prev_new), qv[iv->buds[chain[k]].mark]);
+        prev_new = *P;
+    }
+#undef QP
+    return moved;
 }
 
 static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
@@ -255,12 +323,27 @@ static void sag_tip(banyan_ivy *iv, sag_consts *sc, int32_t tip) {
                     if (!turned && k <= settled) break;
                     v3 pivot = k == m - 1 ? iv->buds[chain[k]].P : q[iv->buds[chain[k]].mark];
                     int32_t lo = iv->buds[chain[k - 1]].mark;
-                    int r = sag_pivot(iv, sc, pivot, q + lo, qv + lo, qn, size[lo], set + lo, lo);
+                    int r = sag_pivot(iv, sc, pivot, &iv->buds[chain[k]], q + lo, qv + lo, qn, size[lo], set + lo, lo);
                     if (r & SAG_TURNED) {
                         turned = moved = 1;
                         settled = r & SAG_UNSETTLED ? k - 1 : k;
                     }
                 }
+            }
+            /* The tip hook comes last, as the spec's tip turning up, on a
+             * stem that hangs (its tip below P0: a free stem standing
+             * out keeps its tip as the geotropism leaves it; hooked, it crossed
+             * more stems on the wall, density +18 % instead of +7 %); the
+             * pivot P0 then holds the hooked stem (one rigid turn: the
+             * hook keeps its shape), so F about P0 is within its
+             * strength as the spec asks. */
+            if (sc->hook > 0 && iv->buds[tip].run * p->internode > p->free_length &&
+                q[iv->buds[tip].mark].z < iv->buds[chain[m - 1]].P.z - p->internode &&
+                hook_tip(iv, sc, chain, m, q, qv)) {
+                moved = 1;
+                int32_t lo = iv->buds[chain[m - 2]].mark;
+                sag_pivot(iv, sc, iv->buds[chain[m - 1]].P, &iv->buds[chain[m - 1]], q + lo,
+                          qv + lo, qn, size[lo], set + lo, lo);
             }
             /* Move once (when anything turned); grip where a sucker now
              * reaches a surface; runs follow (preorder: parents first). */
@@ -297,6 +380,8 @@ void ivy_sag(banyan_ivy *iv) {
     double el = deg2rad(p->tip_elevation);
     sc.el_s = sin(el);
     sc.el_c = cos(el);
+    sc.hook = (int32_t)floor(p->tip_hook_length / p->internode + 0.5);
+    sc.hook_el = deg2rad(p->tip_hook_angle);
     sc.budget = (int64_t)SAG_BUDGET_PER_BUD * (iv->n > SAG_BUDGET_MIN / SAG_BUDGET_PER_BUD ? iv->n : SAG_BUDGET_MIN / SAG_BUDGET_PER_BUD);
     for (int32_t k = 0; k < iv->n_act; k++) {
         int32_t i = iv->act[k];

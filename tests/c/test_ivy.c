@@ -6,7 +6,8 @@
  *     the light cache skips is still too shaded.
  *   - No stem point inside a host; attached buds within sucker reach.
  *   - Sag: long free stems hang below their anchor with tips turned up,
- *     and their moment about the anchor is within moment_max.
+ *     and their moment about the anchor is within the anchor's joint
+ *     strength (moment_max x (r / r0)^sag_stiffening).
  *   - Stats: crossings equal a brute-force count; parts add up.
  *   - Mesh: materials, parts, `part` and `birth_step` attributes, leaf blades
  *     facing out from the wall but tilted off it, skeleton; same seed, same bytes;
@@ -227,7 +228,10 @@ static void sag_check(const banyan_ivy *iv, sag_tally *t) {
         t->chains++;
         t->droop += zmin < P0.z - p->internode;
         t->tip_up += tip->V.z > 0;
-        t->moment_ok += F <= p->moment_max * 1.01; /* the sweeps stop after SAG_PASSES */
+        /* The anchor's joint holds moment_max * (r / r0)^sag_stiffening
+         * (r its stem radius by age), which grows; still a bound. */
+        double strength = p->moment_max * pow(ivy_stem_radius(iv, &iv->buds[j]) / p->stem_radius, p->sag_stiffening);
+        t->moment_ok += F <= strength * 1.01; /* the sweeps stop after SAG_PASSES */
     }
 }
 

@@ -92,6 +92,9 @@ typedef struct banyan_ivy_params {
     double moment_max;          /* moment a joint holds before the stem sags, N m, 0 .. 1e6 */
     double sag_step;            /* rotation increment of the sag correction, deg, 0.01 .. 90 */
     double tip_elevation;       /* a free tip turns up to at least this angle above horizontal, deg, -90 .. 90 */
+    double sag_stiffening;      /* a joint holds moment_max * (r / stem_radius)^this (r: its stem radius by age), 0 .. 6 */
+    double tip_hook_length;     /* the last this much of a free stem bends up into a hook (a J), m, 0 .. 10 */
+    double tip_hook_angle;      /* elevation the hook's last internode reaches, deg, -90 .. 90 */
 
     double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
     double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
