@@ -626,7 +626,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         iv->act[k] = k;
         ivy_grid_insert(iv, k);
     }
-    iv->active = iv->n_act = ns;
+    iv->active = iv->n_act = iv->roots = ns;
     *out = iv;
     banyan_error_clear(err);
     return BANYAN_OK;

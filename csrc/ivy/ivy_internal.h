@@ -83,6 +83,7 @@ struct banyan_ivy {
     ivy_bud *buds;
     int32_t n, cap;
     int32_t active;        /* buds in A0, A1, A2 or D */
+    int32_t roots;         /* the leading stems' first buds: buds 0 .. roots - 1 */
     int32_t *act, n_act;   /* those that are awake, in creation order (plus ones that ended or
                               fell asleep this step): a bud known too shaded sleeps until
                               the light cache forgets it */

@@ -75,8 +75,10 @@ static double cross2(const double *o, const double *a, const double *b) {
 }
 
 int32_t ivy_growth_check(const banyan_ivy *iv) {
-    int32_t need = iv->step < BANYAN_IVY_MIN_INTERNODES ? iv->step : BANYAN_IVY_MIN_INTERNODES;
-    int32_t internodes = iv->n - 1; /* every bud but the first ends one */
+    /* Per leading stem: five stems boxed in after one internode each have
+     * not grown either. */
+    int64_t need = (int64_t)(iv->step < BANYAN_IVY_MIN_INTERNODES ? iv->step : BANYAN_IVY_MIN_INTERNODES) * iv->roots;
+    int32_t internodes = iv->n - iv->roots; /* every bud but the first buds ends one */
     if (internodes >= need) return BANYAN_IVY_GREW;
     return internodes == 0 ? BANYAN_IVY_BLOCKED : BANYAN_IVY_STUNTED;
 }

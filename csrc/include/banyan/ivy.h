@@ -112,14 +112,15 @@ typedef struct banyan_ivy_params {
     double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
 } banyan_ivy_params;
 
-/* Fewest internodes a plant must have after its steps (or after every
- * step, when it has fewer than this many) to count as grown. */
+/* Fewest internodes per leading stem (start_stems) a plant must have
+ * after its steps (or one per step, when it has fewer than this many) to
+ * count as grown. */
 #define BANYAN_IVY_MIN_INTERNODES 5
 
 /* Why a plant could not grow (banyan_ivy_stats.cannot_grow). */
 typedef enum banyan_ivy_growth {
-    BANYAN_IVY_GREW = 0,    /* at least min(steps, BANYAN_IVY_MIN_INTERNODES) internodes */
-    BANYAN_IVY_BLOCKED = 1, /* the first bud never grew: every direction from the start is blocked */
+    BANYAN_IVY_GREW = 0,    /* at least min(steps, BANYAN_IVY_MIN_INTERNODES) internodes per leading stem */
+    BANYAN_IVY_BLOCKED = 1, /* no first bud grew: every direction from the start is blocked */
     BANYAN_IVY_STUNTED = 2  /* it grew, but fewer internodes than that: boxed in right away */
 } banyan_ivy_growth;
 
