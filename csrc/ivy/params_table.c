@@ -118,12 +118,12 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->w_cross = 1.0;
     p->start_stems = 5;
     p->start_fan = 60.0;
-    p->w_tendril = 1.0;
+    p->w_tendril = 2.0;
     p->crossing_ends = 1;
     p->surface_reach = 0.15;
     p->ground_branching = 0;
     p->free_length = 0.1;
-    p->bmax = 0.6;
+    p->bmax = 0.45;
     p->gravity = 9.8;
     p->internode_mass = 0.001;
     p->moment_max = 0.003;
@@ -138,7 +138,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_scale = 1.0;
     p->leaf_size_min = 0.05;
     p->leaf_size_max = 0.16;
-    p->leaf_size_steps = 200;
+    p->leaf_size_steps = 300;
     p->leaf_petiole = 0.7;
     p->leaf_tilt = 30.0;
     p->leaf_spread = 15.0;

@@ -191,12 +191,13 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     int na = 0, sector[8] = {0};
     /* Leaves: 13-vertex blades in bud order in part 1, each with a
      * 6-vertex petiole at the end of part 0 starting at its bud; a bud
-     * may have none when no room is clear of the hosts (mesh.c). */
+     * may have none when no room is clear of the hosts (mesh.c): on the
+     * sphere resting on the ground, 1.2 % near where it touches. */
     const banyan_part *lp = m && m->part_count > 1 ? &m->parts[1] : NULL;
     uint32_t nbl = lp ? lp->vertex_count / 13u : 0;
     int32_t *blade_of = malloc(sizeof(int32_t) * (size_t)iv->n);
     for (int32_t i = 0; i < iv->n; i++) blade_of[i] = -1;
-    int leaves_ok = lp && lp->vertex_count == 13u * nbl && nbl <= (uint32_t)iv->n && nbl * 100 >= 99u * (uint32_t)iv->n &&
+    int leaves_ok = lp && lp->vertex_count == 13u * nbl && nbl <= (uint32_t)iv->n && nbl * 100 >= 98u * (uint32_t)iv->n &&
                     m->parts[0].vertex_count > 6u * nbl;
     for (uint32_t j = 0, i = 0; leaves_ok && j < nbl; j++) {
         const float *q = m->positions + 3 * (size_t)(m->parts[0].vertex_offset + m->parts[0].vertex_count - 6u * (nbl - j));
