@@ -211,15 +211,20 @@ def test_binding():
 
 
 def library_ivy(obj, cursor, shape):
-    """The ivy the operator grows (same start rule), as MeshData."""
+    """The ivy the operator grows (same start rule: the cursor itself, for
+    the library to place, unless it is out of snapping reach), as MeshData.
+    The plant is chaotic: a start 1e-9 m off grows another one."""
     p = Params("ivy")
     p.set("steps", IVY_STEPS)
+    reach = 0.99 * p.get("start_snap_max")
     if shape == H.BOX:
         boxes = H.boxes_from_objects([obj])
-        p.set("start", H.closest_point(boxes, cursor)[0])
+        near = H.closest_point(boxes, cursor)[0]
+        p.set("start", near if math.dist(near, cursor) > reach else cursor)
         return G.ivy(p, boxes)
     with H.surface_host_set([obj]) as hs:
-        p.set("start", H.closest_on_set(hs, cursor))
+        near = H.closest_on_set(hs, cursor)
+        p.set("start", near if math.dist(near, cursor) > reach else cursor)
         return G.ivy(p, hs)
 
 
