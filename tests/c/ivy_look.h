@@ -6,9 +6,21 @@
 #ifndef BANYAN_IVY_LOOK_H
 #define BANYAN_IVY_LOOK_H
 
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "ivy/ivy_internal.h"
+#include "test_files.h"
+
+/* The ivy preset presets/<name>.json on the defaults: params and its
+ * boxes (at most cap). */
+static inline banyan_status ivy_look_preset(const char *name, banyan_ivy_params *p, banyan_box *hosts, uint32_t cap,
+                                            uint32_t *n_hosts, banyan_error *err) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
+    banyan_ivy_params_init(p);
+    return test_load_preset(BANYAN_GEN_IVY, p, path, hosts, cap, n_hosts, err);
+}
 
 #define IVY_LOOK_PETIOLE_VERTS 6 /* 3 sides x 2 rings, the last part-0 vertices, one per blade (mesh.c) */
 

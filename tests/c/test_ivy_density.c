@@ -12,26 +12,20 @@
 #include <string.h>
 
 #include "check.h"
+#include "ivy_look.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
 
 
 int main(void) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/presets/ivy_wall.json", BANYAN_SOURCE_DIR);
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return check_done("test_ivy_density");
     banyan_ivy_params base;
     banyan_box hosts[4];
     uint32_t nh = 0;
     banyan_error err = {0, ""};
-    banyan_ivy_params_init(&base);
-    CHECK(banyan_preset_apply(BANYAN_GEN_IVY, &base, text, len, path, &err) == BANYAN_OK &&
-              banyan_preset_hosts(text, len, path, hosts, 4, &nh, &err) == BANYAN_OK,
-          "preset: %s", err.message);
-    free(text);
+    if (ivy_look_preset("ivy_wall", &base, hosts, 4, &nh, &err) != BANYAN_OK) {
+        CHECK(0, "preset: %s", err.message);
+        return check_done("test_ivy_density");
+    }
 
     const double t0s[4] = {10, 15, 20, 25};
     double mean[4];

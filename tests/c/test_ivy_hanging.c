@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "ivy_look.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
 
@@ -113,21 +114,14 @@ static const char *plumb[2] = {"sag_stiffening=0", "tip_hook_length=0"};
 static figures measure(const char *name, int n_over, char *const *over) {
     figures f;
     memset(&f, 0, sizeof f);
-    char path[1024];
-    snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
-    size_t len;
-    char *text = test_read_file(path, &len);
-    CHECK(text != NULL, "cannot read %s", path);
-    if (!text) return f;
     banyan_ivy_params base;
     banyan_box hosts[8];
     uint32_t nh = 0;
     banyan_error err = {0, ""};
-    banyan_ivy_params_init(&base);
-    CHECK(banyan_preset_apply(BANYAN_GEN_IVY, &base, text, len, path, &err) == BANYAN_OK &&
-              banyan_preset_hosts(text, len, path, hosts, 8, &nh, &err) == BANYAN_OK,
-          "%s: %s", name, err.message);
-    free(text);
+    if (ivy_look_preset(name, &base, hosts, 8, &nh, &err) != BANYAN_OK) {
+        CHECK(0, "%s: %s", name, err.message);
+        return f;
+    }
     for (int k = 0; k < n_over; k++) {
         char key[64];
         const char *eq = strchr(over[k], '=');

@@ -112,21 +112,14 @@ static void measure_leaves(const banyan_ivy *iv, const banyan_mesh *m, figures *
 int main(void) {
     const char *names[2] = {"ivy_wall", "ivy_pillar"};
     for (int pi = 0; pi < 2; pi++) {
-        char path[1024];
-        snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, names[pi]);
-        size_t len;
-        char *text = test_read_file(path, &len);
-        CHECK(text != NULL, "cannot read %s", path);
-        if (!text) continue;
         banyan_ivy_params base;
         banyan_box hosts[8];
         uint32_t nh = 0;
         banyan_error err = {0, ""};
-        banyan_ivy_params_init(&base);
-        CHECK(banyan_preset_apply(BANYAN_GEN_IVY, &base, text, len, path, &err) == BANYAN_OK &&
-                  banyan_preset_hosts(text, len, path, hosts, 8, &nh, &err) == BANYAN_OK,
-              "%s: %s", names[pi], err.message);
-        free(text);
+        if (ivy_look_preset(names[pi], &base, hosts, 8, &nh, &err) != BANYAN_OK) {
+            CHECK(0, "%s: %s", names[pi], err.message);
+            continue;
+        }
         figures f;
         memset(&f, 0, sizeof f);
         for (uint64_t seed = 1; seed <= 5; seed++) {
