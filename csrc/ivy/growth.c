@@ -584,7 +584,8 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     v3 V = v3_sub(up, v3_scale(nr.normal, v3_dot(up, nr.normal)));
     V = v3_len(V) > 1e-6 ? v3_norm(V) : v3_any_perp(nr.normal);
 
-    if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024 + params->start_stems, err)) != BANYAN_OK) {
+    /* 1024 buds hold the leading stems (start_stems <= 64). */
+    if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024, err)) != BANYAN_OK) {
         banyan_ivy_free(iv);
         return s;
     }

@@ -154,6 +154,11 @@ static int tri_box(v3 a, v3 b, v3 c, const double h[3]) {
     return 1;
 }
 
+/* The blade's outline points, folded by tf. */
+static void leaf_outline(const leaf_geo *g, const leaf_shape *sh, double tf, v3 q[LEAF_OUTLINE]) {
+    for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+}
+
 /* Does the blade's surface (not only its vertices) come within `margin`
  * of a box, or cross a mesh host? A blade over a box's edge (a pillar's
  * corner) can have every vertex clear and a triangle through the box.
@@ -166,10 +171,7 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
     for (uint32_t hb = 0; hb < iv->n_hosts && !hit; hb++) {
         if (ivy_far_from(iv, hb, g->c, span)) continue;
         const obb *o = &iv->hosts[hb];
-        if (!have) {
-            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
-            have = 1;
-        }
+        if (!have++) leaf_outline(g, sh, tf, q);
         const double h[3] = {o->h[0] + margin, o->h[1] + margin, o->h[2] + margin};
         v3 lc = obb_to_local(o, g->c);
         for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
@@ -177,10 +179,7 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
     }
     for (uint32_t m = 0; m < iv->n_mesh && !hit; m++) {
         if (ivy_far_from(iv, iv->mesh0 + m, g->c, span)) continue;
-        if (!have) {
-            for (int k = 0; k < LEAF_OUTLINE; k++) q[k] = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
-            have = 1;
-        }
+        if (!have++) leaf_outline(g, sh, tf, q);
         for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
             hit = ivy_segment_meets_mesh(iv, g->c, q[k]) || ivy_segment_meets_mesh(iv, q[k], q[(k + 1) % LEAF_OUTLINE]);
     }
