@@ -23,7 +23,10 @@
     BP_INT(S, F(levels), "Fork levels", "Tree", 1, BANYAN_KEYAKI_MAX_LEVELS, "L_max: fork levels from trunk to tip"), \
     BP_DOUBLE(S, F(trunk_length), "Trunk height", "Tree", "unit", 0.01, 100, "bole length below the level-1 fork"), \
     BP_DOUBLE(S, F(segment_length), "Branch length", "Tree", "unit", 0.01, 100, "length of one level's branch (rule 4)"), \
-    BP_DOUBLE(S, F(unit), "Scale", "Tree", "m", 1e-3, 1e3, "length of one paper unit: scales every length marked 'unit'")
+    BP_DOUBLE(S, F(unit), "Scale", "Tree", "m", 1e-3, 1e3, "length of one paper unit: scales every length marked 'unit'"), \
+    BP_INT(S, F(limbs), "Limbs", "Tree", 1, 12, "limbs the trunk splits into at trunk_length (1: the paper's single trunk)"), \
+    BP_DOUBLE(S, F(limb_angle), "Limb lean", "Tree", "deg", 0, 80, "a limb's lean from vertical where it leaves the trunk"), \
+    BP_DOUBLE(S, F(limb_zone), "Limb zone", "Tree", "unit", 0, 10, "height over which the limbs leave the trunk, from trunk_length up")
 
 #define KEYAKI_BRANCHING_ROWS(S, F) \
     BP_DOUBLE(S, F(fork_angle), "Fork angle", "Branching", "deg", 0, 90, "angle of each child from its parent at level 1 (rule 3)"), \
@@ -50,15 +53,29 @@
     BP_DOUBLE(S, F(tip_radius), "Twig thickness", "Thickness", "unit", 1e-4, 10, "pipe-model radius of a tip branch"), \
     BP_DOUBLE(S, F(pipe_exponent), "Thickening exponent", "Thickness", "", 1, 4, "p in r_parent^p = sum of r_child^p"), \
     BP_DOUBLE(S, F(tip_taper), "Tip taper", "Thickness", "", 0.05, 1, "end radius of a tip as a fraction of tip_radius"), \
+    BP_DOUBLE(S, F(flare), "Root flare", "Thickness", "", 0, 3, "extra trunk radius at the ground, a fraction of the trunk's"), \
+    BP_DOUBLE(S, F(flare_height), "Flare height", "Thickness", "unit", 0.01, 10, "height over which the flare fades into the trunk"), \
+    BP_INT(S, F(flare_lobes), "Flare buttresses", "Thickness", 0, 16, "root buttresses round the flare (0: round)"), \
+    BP_DOUBLE(S, F(bark_tile), "Bark tile", "Thickness", "m", 0.01, 10, "side of one bark texture tile on the bark"), \
     BP_INT(S, F(sides_max), "Trunk sides", "Thickness", 3, 64, "tube sides of the trunk"), \
     BP_INT(S, F(sides_min), "Twig sides", "Thickness", 3, 64, "tube sides of the thinnest branches"), \
     BP_COLOR(S, F(bark_color), "Bark color", "Thickness", "bark material colour (linear RGBA)")
 
 #define KEYAKI_LEAVES_ROWS(S, F) \
-    BP_BOOL(S, F(leaves), "Leaves", "Leaves", "leaf cards on the last levels"), \
-    BP_INT(S, F(leaf_levels), "Leafy levels", "Leaves", 0, BANYAN_KEYAKI_MAX_LEVELS, "branches within this many levels of a tip carry leaves"), \
-    BP_DOUBLE(S, F(leaf_density), "Leaf density", "Leaves", "1/unit", 0, 100, "leaf cards per unit of branch length"), \
-    BP_DOUBLE(S, F(leaf_size), "Leaf size", "Leaves", "unit", 0.01, 10, "leaf card edge"), \
+    BP_INT(S, F(twig_levels), "Twig orders", "Twigs", 0, 3, "orders of side twigs below the skeleton's outer branches"), \
+    BP_DOUBLE(S, F(twig_length), "Twig length", "Twigs", "m", 0.01, 5, "length of a first-order twig"), \
+    BP_DOUBLE(S, F(twig_ratio), "Twig length ratio", "Twigs", "", 0.05, 1, "a twig's length as a fraction of its parent twig's"), \
+    BP_DOUBLE(S, F(twig_spacing), "Twig spacing", "Twigs", "m", 0.005, 5, "distance between successive side twigs on a shoot"), \
+    BP_DOUBLE(S, F(twig_angle), "Twig angle", "Twigs", "deg", 0, 90, "a side twig's angle from its parent"), \
+    BP_DOUBLE(S, F(twig_radius), "Twig tip radius", "Twigs", "m", 1e-4, 0.1, "radius of a twig's tip"), \
+    BP_BOOL(S, F(light), "Light and crowding", "Twigs", "twig clusters shaded from above steer, stop or drop"), \
+    BP_DOUBLE(S, F(shade_layers), "Shade layers", "Twigs", "", 0.1, 20, "leaf clusters above a spot that shade it fully"), \
+    BP_DOUBLE(S, F(light_steer), "Turn to light", "Twigs", "deg", 0, 90, "largest turn of a twig cluster towards its lit side"), \
+    BP_BOOL(S, F(leaves), "Leaves", "Leaves", "leaves along the twigs"), \
+    BP_INT(S, F(leaf_levels), "Leafy levels", "Leaves", 0, BANYAN_KEYAKI_MAX_LEVELS, "skeleton branches within this many levels of a tip carry twigs and leaves"), \
+    BP_DOUBLE(S, F(leaf_density), "Leaf density", "Leaves", "1/m", 0, 1000, "leaves per metre of leafy twig (two ranks)"), \
+    BP_DOUBLE(S, F(leaf_size), "Leaf size", "Leaves", "m", 0.005, 1, "median blade length"), \
+    BP_DOUBLE(S, F(leaf_size_spread), "Leaf size spread", "Leaves", "", 0, 1, "blade lengths vary by up to this fraction either way"), \
     BP_COLOR(S, F(leaf_color), "Leaf color", "Leaves", "summer leaves' flat colour, without textures (linear RGBA)"), \
     BP_ENUM(S, F(season), "Season", "Leaves", "summer|autumn", "leaf material: summer green or autumn yellow to rust; the geometry stays")
 
@@ -150,15 +167,32 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->distribution = BANYAN_KEYAKI_UNIFORM;
     p->alpha = 1.3;
     p->springback = 1.0;
+    p->limbs = 1;
+    p->limb_angle = 35.0;
+    p->limb_zone = 0.8;
     p->tip_radius = 0.045;
     p->pipe_exponent = 2.5;
     p->tip_taper = 0.5;
+    p->flare = 0.5;
+    p->flare_height = 0.6;
+    p->flare_lobes = 5;
+    p->bark_tile = 0.4;
     p->sides_max = 14;
     p->sides_min = 4;
+    p->twig_levels = 2;
+    p->twig_length = 0.45;
+    p->twig_ratio = 0.4;
+    p->twig_spacing = 0.12;
+    p->twig_angle = 50.0;
+    p->twig_radius = 0.0025;
+    p->light = 1;
+    p->shade_layers = 2.0;
+    p->light_steer = 35.0;
     p->leaves = 1;
     p->leaf_levels = 4;
-    p->leaf_density = 4.0;
-    p->leaf_size = 0.5;
+    p->leaf_density = 28.0;
+    p->leaf_size = 0.05;
+    p->leaf_size_spread = 0.3;
     static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};
     memcpy(p->bark_color, bark, sizeof bark);
     memcpy(p->leaf_color, leaf, sizeof leaf);

@@ -115,16 +115,45 @@ typedef struct banyan_keyaki_params {
     double alpha;            /* 1.001 .. 10: break threshold T(l) = alpha^-l. Default 1.3 */
     double springback;       /* 0 .. 1: s; a survivor's angle is angle * (1 - s * (1 - l / L_max)). Default 1 */
 
+    /* --- first branching (beyond the paper; docs/keyaki.md "First branching") */
+    int32_t limbs;           /* 1 .. 12: limbs the trunk splits into, the first at trunk_length; each limb then
+                                grows as the model's tree of `levels` levels. 1: the paper's single trunk. Default 1 */
+    double limb_angle;       /* deg, 0 .. 80: a limb's lean from vertical where it leaves the trunk. Default 35 */
+    double limb_zone;        /* unit, 0 .. 10: height over which the limbs leave, from trunk_length up. Default 0.8 */
+
     /* --- body (beyond the paper) */
     double tip_radius;       /* unit, 1e-4 .. 10: pipe-model radius of a tip branch. Default 0.045 */
     double pipe_exponent;    /* 1 .. 4: p in r_parent^p = sum r_child^p. Default 2.5 */
     double tip_taper;        /* 0.05 .. 1: end radius of a tip as a fraction of tip_radius. Default 0.5 */
+    double flare;            /* 0 .. 3: extra trunk radius at the ground, a fraction of the trunk's radius
+                                (root flare). Default 0.5 */
+    double flare_height;     /* unit, 0.01 .. 10: height over which the flare fades into the trunk. Default 0.6 */
+    int32_t flare_lobes;     /* 0 .. 16: root buttresses round the flare (0: a round flare). Default 5 */
+    double bark_tile;        /* m, 0.01 .. 10: side of one bark texture tile on the surface (u wraps a whole
+                                number of tiles round a tube). Default 0.4 */
     int32_t sides_max;       /* 3 .. 64: tube sides of the trunk. Default 14 */
     int32_t sides_min;       /* 3 .. 64, <= sides_max: tube sides of the thinnest branches. Default 4 */
-    int32_t leaves;          /* bool: leaf cards. Default true */
-    int32_t leaf_levels;     /* 0 .. 30: branches within this many levels of a tip carry leaves. Default 4 */
-    double leaf_density;     /* cards per unit of branch length (per metre at unit 1), 0 .. 100. Default 4 */
-    double leaf_size;        /* unit, 0.01 .. 10: card edge. Default 0.5 */
+    /* twigs and leaves (beyond the paper; docs/keyaki.md "Twigs and leaves"). Twig and leaf sizes are
+       metres, not "unit": a keyaki's leaf is 3-7 cm on a young tree and an old one alike. */
+    int32_t twig_levels;     /* 0 .. 3: orders of side twigs below the skeleton's outer branches (0: none, the
+                                leaves sit on the skeleton). Default 2 */
+    double twig_length;      /* m, 0.01 .. 5: length of a first-order twig; each finer order is twig_ratio of
+                                its parent. Default 0.45 */
+    double twig_ratio;       /* 0.05 .. 1: a twig's length as a fraction of its parent twig's. Default 0.4 */
+    double twig_spacing;     /* m, 0.005 .. 5: distance between successive side twigs on a shoot. Default 0.12 */
+    double twig_angle;       /* deg, 0 .. 90: a side twig's angle from its parent. Default 50 */
+    double twig_radius;      /* m, 1e-4 .. 0.1: radius of a twig's tip (5 mm across by default). Default 0.0025 */
+    int32_t light;           /* bool: light and crowding model: twig clusters shaded from above steer, stop or
+                                drop (docs/keyaki.md "Light and crowding"). Default true */
+    double shade_layers;     /* 0.1 .. 20: leaf clusters above a spot that shade it fully. Default 2 */
+    double light_steer;      /* deg, 0 .. 90: largest turn of a twig cluster towards its lit side. Default 35 */
+    int32_t leaves;          /* bool: leaves. Default true */
+    int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
+                                leaves. Default 4 */
+    double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
+                                Default 28 */
+    double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.05 */
+    double leaf_size_spread; /* 0 .. 1: blade lengths vary by up to this fraction either way. Default 0.3 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
     double leaf_color[4];    /* linear RGBA: the summer leaves' flat colour (textures off). Default green */
     int32_t season;          /* banyan_season: the leaf material (texture and flat colour); the geometry
