@@ -26,6 +26,17 @@ void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect)
 #define LEAF_IVY_BLADE_V1 0.96
 #define LEAF_IVY_BLADE_HALF_U 0.45
 
+/* Where a keyaki atlas cell's leaf lies (issue #20: one real-size leaf a
+ * cell, 4 x 4 cells): the blade's midrib runs up the cell's centre line
+ * u = 0.5, its petiole from v = 0 to LEAF_KEYAKI_BLADE_V0, the blade from
+ * there to its tip at LEAF_KEYAKI_BLADE_V1; blade and teeth stay within
+ * LEAF_KEYAKI_HALF_U of the centre line. A leaf quad therefore maps the
+ * cell's strip u in [0.5 - HALF_U, 0.5 + HALF_U], v in [0, 1]: its length
+ * is petiole + blade and its width 2 HALF_U times that. */
+#define LEAF_KEYAKI_BLADE_V0 0.08
+#define LEAF_KEYAKI_BLADE_V1 0.98
+#define LEAF_KEYAKI_HALF_U 0.25
+
 /* The look of leaf `index` of a plant grown from `seed`. */
 void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);
 
