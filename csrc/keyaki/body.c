@@ -30,7 +30,7 @@
 void keyaki_body_free(keyaki_body *b) {
     if (!b) return;
     free(b->limbs);
-    free(b->leaf_count);
+    keyaki_crown_free(&b->crown);
     memset(b, 0, sizeof *b);
 }
 
@@ -51,8 +51,7 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     for (int32_t i = 0; i < count; i++)
         if (i == 0 || main_child(n, n[i].parent) != i) limbs++;
     body->limbs = malloc(sizeof *body->limbs * (size_t)limbs);
-    body->leaf_count = malloc(sizeof *body->leaf_count * (size_t)count);
-    if (!body->limbs || !body->leaf_count) {
+    if (!body->limbs) {
         keyaki_body_free(body);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory planning %d branches", count);
     }
@@ -87,25 +86,15 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     keyaki_twigs_plan(p, n, count, &twv, &twi);
     bv += twv;
     bi += twi;
-    /* Depth to the nearest tip, children first (leaf_count as scratch). */
-    int32_t *depth = body->leaf_count;
-    for (int32_t i = count - 1; i >= 0; i--) {
-        int32_t a = n[i].child[0], b = n[i].child[1];
-        if (a < 0 && b < 0) depth[i] = 0;
-        else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
-        else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
+    /* The crown: twigs (bark part) and leaves, grown into flat arrays. */
+    banyan_status cs = keyaki_crown_grow(p, n, count, &body->crown, err);
+    if (cs) {
+        keyaki_body_free(body);
+        return cs;
     }
-    pcg32_seed(&body->leaf_rng, p->seed, KEYAKI_STREAM_LEAVES);
-    uint64_t cards = 0;
-    for (int32_t i = 0; i < count; i++) {
-        int32_t c = 0;
-        if (p->leaves && depth[i] < p->leaf_levels && p->leaf_density > 0) {
-            double want = p->leaf_density * n[i].length / p->unit + rng_uniform(&body->leaf_rng);
-            c = want > 1e6 ? 1000000 : (int32_t)floor(want);
-        }
-        body->leaf_count[i] = c;
-        cards += (uint64_t)c;
-    }
+    bv += body->crown.vertices;
+    bi += body->crown.indices;
+    uint64_t cards = (uint64_t)body->crown.n_leaves;
     uint64_t tv = bv + 4 * cards, ti = bi + 6 * cards;
     body->bark_vertices = bv > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)bv;
     body->bark_indices = bi > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)bi;
@@ -119,50 +108,6 @@ static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32
     for (uint32_t v = from; v < to; v++) {
         mb->attr[attr[1]][v] = (float)x->level;
         mb->attr[attr[2]][v] = (float)x->order;
-    }
-}
-
-/* What the cards need to pick their atlas cells and tints. */
-typedef struct card_looks {
-    uint64_t seed, next; /* next: the index of the tree's next card */
-    int32_t cols, rows, season;
-    double aspect; /* cell width / height: the card's width is leaf_size x aspect */
-} card_looks;
-
-/* The cards of branch x: vertices v0.. and indices I were made room for
- * (4 and 6 a card); N0, B0 span the plane across the branch. Each card
- * shows one atlas cell, petiole end (v = 0) at the branch, and carries
- * its tint as vertex colour. */
-static void leaf_cards(mesh_builder *mb, pcg32 *r, const keyaki_node *x, double size, int32_t cards, uint32_t v0,
-                       uint32_t *I, card_looks *looks) {
-    v3 N0 = v3_any_perp(x->dir), B0 = v3_cross(x->dir, N0);
-    for (int32_t c = 0; c < cards; c++, v0 += 4, I += 6) {
-        double t = rng_uniform(r), phi = rng_uniform(r) * 2.0 * BANYAN_PI, roll = rng_range(r, -1.0, 1.0);
-        v3 side = v3_add(v3_scale(N0, cos(phi)), v3_scale(B0, sin(phi)));
-        v3 at = v3_madd(v3_madd(x->start, x->dir, x->length * t), side, x->radius);
-        /* The card reaches out from the branch, a little forward and up. */
-        v3 a = v3_norm(v3_add(v3_add(side, v3_scale(x->dir, 0.6)), v3_make(0, 0, 0.4)));
-        v3 w = v3_norm_or_perp(v3_cross(a, v3_make(0, 0, 1)), a);
-        w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
-        v3 nrm = v3_norm(v3_cross(w, a));
-        if (nrm.z < 0) { /* face the sky: lit like a crown from above */
-            w = v3_neg(w);
-            nrm = v3_neg(nrm);
-        }
-        double hw = 0.5 * size * looks->aspect; /* aspect 1 (today's atlas): the square card, same bytes */
-        v3 p0 = v3_madd(at, w, -hw), p1 = v3_madd(at, w, hw);
-        v3 p2 = v3_madd(p1, a, size), p3 = v3_madd(p0, a, size);
-        leaf_look lk;
-        leaf_look_of(looks->seed, looks->next++, looks->cols, looks->rows, looks->season, &lk);
-        double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
-        mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);
-        mb_put(mb, v0 + 1, p1, nrm, u1, lk.v0);
-        mb_put(mb, v0 + 2, p2, nrm, u1, v1);
-        mb_put(mb, v0 + 3, p3, nrm, lk.u0, v1);
-        for (uint32_t k = 0; k < 4 && mb->with_color; k++)
-            for (int j = 0; j < 4; j++) mb->col[4 * ((size_t)v0 + k) + j] = (float)lk.tint[j];
-        I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
-        I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;
     }
 }
 
@@ -222,20 +167,10 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     free(ids);
     keyaki_twigs_mesh(p, n, count, mb, attr);
 
+    keyaki_crown_mesh_twigs(&body->crown, mb, attr);
     if (body->vertices > body->bark_vertices) {
         mb_begin_part(mb, leaf_mat, group);
-        const double size = p->leaf_size * p->unit;
-        card_looks looks = {p->seed, 0, 1, 1, p->season, 1.0};
-        leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &looks.cols, &looks.rows, &looks.aspect);
-        for (int32_t i = 0; i < count; i++) {
-            if (!body->leaf_count[i]) continue;
-            mb_set_attr(mb, attr[1], n[i].level);
-            mb_set_attr(mb, attr[2], n[i].order);
-            uint32_t c = (uint32_t)body->leaf_count[i], v0 = mb_vertices(mb, 4 * c);
-            uint32_t *I = mb_indices(mb, 6 * c);
-            if (v0 == UINT32_MAX || !I) break;
-            leaf_cards(mb, &body->leaf_rng, &n[i], size, (int32_t)c, v0, I, &looks);
-        }
+        keyaki_crown_mesh_leaves(p, &body->crown, mb, attr);
     }
 
     /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i. */

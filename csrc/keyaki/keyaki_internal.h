@@ -86,13 +86,62 @@ typedef struct keyaki_limb {
     uint32_t vertex_offset; /* first ring's first vertex in the mesh (tree-local) */
 } keyaki_limb;
 
+/* The crown (crown.c, docs/keyaki.md "Twigs and leaves", "Light and
+ * crowding"): twigs below the skeleton and the leaves on them, generated
+ * into flat arrays (grown by doubling) before meshing so they are counted
+ * exactly. */
+typedef struct keyaki_twig {
+    int32_t first, count; /* its polyline: points first .. first + count - 1 of pts / rad */
+    int32_t parent;       /* parent twig; -1: sits on skeleton branch `node` */
+    int32_t node;         /* the skeleton branch its cluster grows from */
+    int32_t order;        /* 1 = first-order twig (on the skeleton) .. twig_levels */
+    int32_t level;        /* level attribute: the branch's level + order */
+    int32_t sides;        /* tube sides */
+    int32_t children;     /* sub-twigs on it (0: a twig tip) */
+} keyaki_twig;
+
+typedef struct keyaki_leaf {
+    v3 base;        /* petiole end (quad's v = 0 edge centre), on the twig's axis */
+    v3 axis;        /* unit, petiole towards the blade's tip */
+    v3 width;       /* unit, across the quad; width x axis is the face normal (z >= 0) */
+    v3 tangent;     /* unit, the twig's direction at the base */
+    double length;  /* m, quad length: petiole + blade */
+    double blade;   /* m, blade length */
+    int32_t twig;   /* twig it grows on; -1: on skeleton branch `node` or a segment line there */
+    int32_t node;
+    int32_t side;   /* +1 / -1: its rank, alternating along the twig */
+    int32_t level;
+} keyaki_leaf;
+
+typedef struct keyaki_crown {
+    keyaki_twig *twigs;
+    v3 *pts;
+    double *rad;
+    keyaki_leaf *leaves;
+    int32_t n_twigs, cap_twigs, n_pts, cap_pts, n_leaves, cap_leaves;
+    int32_t tips;                               /* twigs without sub-twigs */
+    int32_t clusters, grown, steered, stopped, dropped; /* the light model's tally */
+    uint64_t vertices, indices;                 /* the twig tubes' mesh */
+} keyaki_crown;
+
+/* Grows the crown of a grown skeleton (radii set) into c (zeroed first;
+ * free with keyaki_crown_free). Own PCG32 streams ("twigs", "leaves")
+ * keyed by (seed, cluster): never the growth stream. BANYAN_E_NOMEM. */
+banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_crown *c,
+                                banyan_error *err);
+void keyaki_crown_free(keyaki_crown *c);
+/* Appends the twig tubes to the current part (c->vertices exactly). */
+void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]);
+/* Appends the leaf quads (4 vertices, 6 indices each) to the current part. */
+void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
+                              const int attr[3]);
+
 typedef struct keyaki_body {
     keyaki_limb *limbs;
     int32_t limb_count;
-    int32_t *leaf_count;  /* per node */
+    keyaki_crown crown;
     uint32_t vertices, indices;         /* totals: bark + leaves */
     uint32_t bark_vertices, bark_indices;
-    pcg32 leaf_rng;       /* leaf placement continues the stream that drew leaf_count */
 } keyaki_body;
 
 void keyaki_body_free(keyaki_body *b);
@@ -145,6 +194,7 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
 /* PCG32 stream numbers of one tree. */
 #define KEYAKI_STREAM_GROWTH 0x6b6579616b69ull /* "keyaki" */
 #define KEYAKI_STREAM_LEAVES 0x6c6561766573ull /* "leaves" */
+#define KEYAKI_STREAM_TWIGS 0x7477696773ull    /* "twigs" */
 #define AVENUE_STREAM_JITTER 0x6a6974746572ull /* "jitter" */
 
 #endif

@@ -1,0 +1,582 @@
+/* crown.c - the keyaki's twigs, leaves and the light-and-crowding model
+ * (beyond the paper; spec/keyaki.md "Sun model" is its proposed future
+ * work; docs/keyaki.md "Twigs and leaves", "Light and crowding").
+ *
+ * Below the edaore skeleton: the skeleton branches within leaf_levels of a
+ * tip carry first-order twigs every twig_spacing, alternating sides along
+ * the branch's horizontal perpendicular, at twig_angle; every skeleton tip
+ * continues in one. A first-order twig with its sub-twigs and leaves is a
+ * cluster: a flat, zigzag spray (+-12 deg at each node) carrying the next
+ * order every twig_spacing x twig_ratio^k, twig_ratio^k as long, to
+ * twig_levels orders. Radii follow the pipe model inside the cluster from
+ * twig_radius at every tip, never above 0.8 of the branch they sit on.
+ * Leaves: one quad each, two-ranked (left, right, ...) every
+ * 1 / leaf_density along the finest twigs and the distal part of coarser
+ * ones, the last at the tip, so no twig sticks out bare.
+ *
+ * Light and crowding: a cluster is approximated by its plan-view
+ * rectangle (what it shades under a zenith sun). Clusters grow from the
+ * highest down over a plan grid of 0.2 m cells counting the clusters
+ * above; a cell is shaded once it holds >= shade_layers. Before growing,
+ * a cluster measures the shaded fraction of its rectangle's left and
+ * right halves: lit -> grows, on into empty cells past its length (holes
+ * fill); one side shaded -> turns up to light_steer towards the lit side;
+ * both shaded -> a short leafy spur; all shaded -> dropped. Then its
+ * rectangle is stamped. The skeleton is never touched: its Strahler
+ * statistics stay the paper's.
+ *
+ * Everything lands in flat arrays first (counted exactly for
+ * keyaki_body_plan), then meshed. Random draws come from the "twigs" and
+ * "leaves" streams keyed by (seed, cluster), so light on or off changes
+ * no other cluster's draws. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/leaf_look.h"
+#include "core/tube.h"
+#include "keyaki_internal.h"
+#include "segments/segment_core.h"
+
+#define ZIGZAG_DEG 12.0     /* a twig's turn at each node, alternately */
+#define CELL 0.2            /* m, the light grid's cell */
+#define MAX_TWIG_PTS 64     /* points of one twig's polyline */
+#define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
+
+void keyaki_crown_free(keyaki_crown *c) {
+    if (!c) return;
+    free(c->twigs);
+    free(c->pts);
+    free(c->rad);
+    free(c->leaves);
+    memset(c, 0, sizeof *c);
+}
+
+/* Room for `more` items in a doubling array. */
+static int grow_array(void **a, int32_t *cap, int32_t need, size_t size) {
+    if (need <= *cap) return 0;
+    int64_t nc = *cap ? *cap : 256;
+    while (nc < need) nc *= 2;
+    if (nc > INT32_MAX / 2) return 1;
+    void *p = realloc(*a, (size_t)nc * size);
+    if (!p) return 1;
+    *a = p;
+    *cap = (int32_t)nc;
+    return 0;
+}
+
+static int add_points(keyaki_crown *c, int32_t k) {
+    int32_t cap = c->cap_pts;
+    if (grow_array((void **)&c->pts, &cap, c->n_pts + k, sizeof(v3))) return 1;
+    cap = c->cap_pts;
+    if (grow_array((void **)&c->rad, &cap, c->n_pts + k, sizeof(double))) return 1;
+    c->cap_pts = cap;
+    return 0;
+}
+
+/* The grown state one cluster needs. */
+typedef struct ctx {
+    const banyan_keyaki_params *p;
+    keyaki_crown *c;
+    pcg32 tw, lf; /* twig and leaf draws of this cluster */
+    int32_t node, base_level;
+    int oom;
+} ctx;
+
+static inline double clampd(double x, double a, double b) { return x < a ? a : x > b ? b : x; }
+
+/* Point and unit tangent at arc length s along polyline pts[0..n-1]. */
+static v3 along(const v3 *pts, int32_t n, double s, v3 *t) {
+    for (int32_t i = 0; i + 1 < n; i++) {
+        double l = v3_dist(pts[i], pts[i + 1]);
+        if (s <= l || i + 2 == n) {
+            *t = v3_norm_or(v3_sub(pts[i + 1], pts[i]), v3_make(0, 0, 1));
+            return v3_madd(pts[i], *t, l > 0 ? clampd(s, 0, l) : 0);
+        }
+        s -= l;
+    }
+    *t = v3_make(0, 0, 1);
+    return pts[0];
+}
+
+static double poly_length(const v3 *pts, int32_t n) {
+    double l = 0;
+    for (int32_t i = 0; i + 1 < n; i++) l += v3_dist(pts[i], pts[i + 1]);
+    return l;
+}
+
+/* Two-ranked leaves along pts[0..n-1] from arc length s0 to the end (the
+ * last at the end), every 1 / leaf_density; `up` is the spray's normal:
+ * the ranks lie left and right of the twig in the spray plane. */
+static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int32_t twig, int32_t level) {
+    const banyan_keyaki_params *p = x->p;
+    if (!p->leaves || p->leaf_density <= 0 || n < 2) return;
+    double L = poly_length(pts, n), step = 1.0 / p->leaf_density;
+    if (L <= 0) return;
+    int32_t k = (int32_t)floor((L - s0) / step) + 1;
+    if (k < 1) k = 1;
+    if (k > 100000) k = 100000;
+    keyaki_crown *c = x->c;
+    if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + k, sizeof(keyaki_leaf))) {
+        x->oom = 1;
+        return;
+    }
+    int side = rng_uniform(&x->lf) < 0.5 ? 1 : -1;
+    const v3 Z = v3_make(0, 0, 1);
+    double V = LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0;
+    for (int32_t j = 0; j < k; j++, side = -side) {
+        double s = L - j * step;
+        v3 t, at = along(pts, n, s, &t);
+        v3 sv = v3_norm_or_perp(v3_cross(up, t), t);
+        /* Out from the twig at 45-70 deg on its side, drooping a little. */
+        double th = deg2rad(rng_range(&x->lf, 45.0, 70.0));
+        v3 a = v3_add(v3_scale(t, cos(th)), v3_scale(sv, side * sin(th)));
+        a = v3_norm(v3_madd(a, Z, -0.15));
+        /* Blade facing the sky, tilted +-20 deg about its midrib. */
+        v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
+        double roll = deg2rad(rng_range(&x->lf, -20.0, 20.0));
+        w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
+        if (v3_cross(w, a).z < 0) w = v3_neg(w);
+        /* Smaller near the twig's base and tip. */
+        double f = 0.8 + 0.25 * sin(BANYAN_PI * clampd(s / L, 0, 1));
+        double blade = p->leaf_size * f * (1.0 + p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
+        keyaki_leaf *q = &c->leaves[c->n_leaves++];
+        q->base = at;
+        q->axis = a;
+        q->width = w;
+        q->tangent = t;
+        q->blade = blade;
+        q->length = blade / V;
+        q->twig = twig;
+        q->node = x->node;
+        q->side = side;
+        q->level = level;
+    }
+}
+
+/* Grows one twig of `order` from point `at` (on its parent's axis, whose
+ * radius there is r_host) along d in the spray plane of normal `up`,
+ * `len` long; appends its sub-twigs and leaves. Returns the tips in its
+ * subtree (0 on failure). The tube starts on the parent's axis with
+ * KEYAKI_SIDE_START of its base radius and reaches its full radius at
+ * the parent's surface, as the body's side limbs do. */
+static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 up, double len, double r_host,
+                         int leafy_only) {
+    const banyan_keyaki_params *p = x->p;
+    keyaki_crown *c = x->c;
+    int finest = order >= p->twig_levels || leafy_only;
+    double sub_spacing = p->twig_spacing * pow(p->twig_ratio, order);
+    double sub_len = len * p->twig_ratio;
+    /* Nodes: where sub-twigs attach (coarse) or every few leaves (finest). */
+    int32_t segs;
+    if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 3.0 + 0.5), 1, 4);
+    else segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 1, MAX_TWIG_PTS - 3);
+    int32_t np = segs + 2; /* axis point, surface point, segs nodes */
+    if (grow_array((void **)&c->twigs, &c->cap_twigs, c->n_twigs + 1, sizeof(keyaki_twig)) || add_points(c, np)) {
+        x->oom = 1;
+        return 0;
+    }
+    int32_t me = c->n_twigs++;
+    keyaki_twig *T = &c->twigs[me];
+    T->first = c->n_pts;
+    T->count = np;
+    T->parent = parent;
+    T->node = x->node;
+    T->order = order;
+    T->level = x->base_level + order;
+    T->sides = order <= 1 && !finest ? 4 : 3;
+    T->children = 0;
+    c->n_pts += np;
+    v3 *P = c->pts + T->first;
+    double *R = c->rad + T->first;
+    double seg = len / segs;
+    P[0] = at;
+    P[1] = v3_madd(at, d, r_host < seg * 0.45 ? r_host : seg * 0.45); /* on the parent's surface */
+    int zig = rng_uniform(&x->tw) < 0.5 ? 1 : -1;
+    v3 dir = d;
+    for (int32_t i = 0; i < segs; i++, zig = -zig) {
+        v3 di = v3_rotate(dir, up, deg2rad(zig * ZIGZAG_DEG * rng_range(&x->tw, 0.8, 1.2)));
+        P[2 + i] = v3_madd(P[1 + i], di, seg);
+    }
+    /* Sub-twigs at the nodes up to 0.7 of the length, alternating sides,
+     * each on the outer side of the zigzag's bend. */
+    int32_t sub_tips[MAX_TWIG_PTS];
+    memset(sub_tips, 0, sizeof sub_tips);
+    int32_t tips = 1; /* its own end */
+    if (!finest) {
+        int side = rng_uniform(&x->tw) < 0.5 ? 1 : -1;
+        for (int32_t i = 1; i <= segs && !x->oom; i++, side = -side) {
+            if (i * seg > 0.7 * len + 1e-9 && i > 1) break;
+            int32_t k = 1 + i; /* point index of node i */
+            v3 t = v3_norm(v3_sub(P[k], P[k - 1]));
+            v3 sd = v3_rotate(t, up, deg2rad(side * p->twig_angle * rng_range(&x->tw, 0.85, 1.15)));
+            double l = sub_len * rng_range(&x->tw, 0.8, 1.2);
+            /* The parent's radius here is not known yet: the pipe model
+             * of what it carries; twig_radius is its floor. */
+            int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0);
+            P = c->pts + c->twigs[me].first; /* the arrays may have moved */
+            R = c->rad + c->twigs[me].first;
+            sub_tips[k] = st;
+            tips += st;
+            c->twigs[me].children++;
+        }
+    }
+    /* Pipe radii from the tip back: ring k carries the sub-twigs attached
+     * beyond it. */
+    double pe = p->pipe_exponent;
+    int32_t carried = 1;
+    for (int32_t k = np - 1; k >= 1; k--) {
+        R[k] = p->twig_radius * pow((double)carried, 1.0 / pe);
+        carried += sub_tips[k];
+    }
+    double cap = TWIG_SETBACK_CAP * r_host;
+    for (int32_t k = 1; k < np; k++)
+        if (parent < 0 && R[k] > cap && cap >= p->twig_radius) R[k] = cap;
+    R[0] = KEYAKI_SIDE_START * R[1];
+    /* Leaves: all along a finest twig, the distal 35 % of a coarser one. */
+    double L = poly_length(P + 1, np - 1);
+    int32_t level = c->twigs[me].level;
+    v3 pts_copy[MAX_TWIG_PTS];
+    memcpy(pts_copy, P + 1, sizeof(v3) * (size_t)(np - 1));
+    leaves_along(x, pts_copy, np - 1, finest ? 0.1 * L : 0.65 * L, up, me, level);
+    if (c->twigs[me].children == 0) c->tips++;
+    return tips;
+}
+
+/* A cluster waiting to grow: a first-order twig planned on the skeleton. */
+typedef struct cand {
+    v3 at, d, h;     /* start (on the branch's axis), direction, horizontal side vector */
+    double len, r_host, z;
+    int32_t node, index;
+    int tip;         /* a skeleton tip's continuation: never dropped */
+} cand;
+
+static int cand_cmp(const void *a, const void *b) {
+    const cand *A = a, *B = b;
+    if (A->z != B->z) return A->z > B->z ? -1 : 1;
+    return A->index < B->index ? -1 : A->index > B->index;
+}
+
+/* The plan-view shade grid. */
+typedef struct grid {
+    double x0, y0;
+    int32_t nx, ny;
+    int32_t *n;
+} grid;
+
+/* A cluster's plan rectangle: from o along unit a (2D) for `len`, half
+ * width w either side. */
+typedef struct rect {
+    double ox, oy, ax, ay, len, w;
+} rect;
+
+static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len) {
+    rect r;
+    double hx = sqrt(d.x * d.x + d.y * d.y);
+    r.ox = at.x;
+    r.oy = at.y;
+    if (hx > 0.2) {
+        r.ax = d.x / hx;
+        r.ay = d.y / hx;
+    } else { /* a steep cluster: its spray spreads along h */
+        double hh = sqrt(h.x * h.x + h.y * h.y);
+        r.ax = hh > 1e-9 ? h.x / hh : 1.0;
+        r.ay = hh > 1e-9 ? h.y / hh : 0.0;
+    }
+    double reach = p->leaf_size * 1.2;
+    double sub = p->twig_levels >= 2 ? len * p->twig_ratio * sin(deg2rad(p->twig_angle)) : 0.0;
+    r.w = sub + reach;
+    r.len = len * (hx > 0.2 ? hx : 0.2) + reach;
+    if (r.len < r.w) r.len = r.w;
+    return r;
+}
+
+/* Visits the cells whose centres lie in r: side -1 left half, +1 right. */
+#define FOR_RECT_CELLS(g, r, BODY)                                                                                 \
+    do {                                                                                                           \
+        double ex_ = fabs((r).ax) * (r).len + fabs((r).ay) * (r).w, ey_ = fabs((r).ay) * (r).len + fabs((r).ax) * (r).w; \
+        double cx_ = (r).ox + 0.5 * (r).ax * (r).len, cy_ = (r).oy + 0.5 * (r).ay * (r).len;                       \
+        int32_t i0_ = (int32_t)floor((cx_ - ex_ / 2 - (r).w - (g)->x0) / CELL), i1_ = (int32_t)ceil((cx_ + ex_ / 2 + (r).w - (g)->x0) / CELL); \
+        int32_t j0_ = (int32_t)floor((cy_ - ey_ / 2 - (r).w - (g)->y0) / CELL), j1_ = (int32_t)ceil((cy_ + ey_ / 2 + (r).w - (g)->y0) / CELL); \
+        if (i0_ < 0) i0_ = 0;                                                                                      \
+        if (j0_ < 0) j0_ = 0;                                                                                      \
+        if (i1_ > (g)->nx - 1) i1_ = (g)->nx - 1;                                                                  \
+        if (j1_ > (g)->ny - 1) j1_ = (g)->ny - 1;                                                                  \
+        for (int32_t j_ = j0_; j_ <= j1_; j_++)                                                                    \
+            for (int32_t i_ = i0_; i_ <= i1_; i_++) {                                                              \
+                double qx_ = (g)->x0 + (i_ + 0.5) * CELL - (r).ox, qy_ = (g)->y0 + (j_ + 0.5) * CELL - (r).oy;     \
+                double along_ = qx_ * (r).ax + qy_ * (r).ay, across_ = -qx_ * (r).ay + qy_ * (r).ax;               \
+                if (along_ < 0 || along_ > (r).len || fabs(across_) > (r).w) continue;                             \
+                int side = across_ > 0 ? -1 : 1;                                                                   \
+                int32_t *cell = &(g)->n[(size_t)j_ * (size_t)(g)->nx + (size_t)i_];                                \
+                (void)side;                                                                                        \
+                BODY;                                                                                              \
+            }                                                                                                      \
+    } while (0)
+
+/* Shaded fractions of r's left and right halves. */
+static void shade_of(const grid *g, rect r, double layers, double *fl, double *fr) {
+    int32_t nl = 0, nr = 0, sl = 0, sr = 0;
+    FOR_RECT_CELLS(g, r, {
+        int sh = *cell >= layers;
+        if (side < 0) { nl++; sl += sh; } else { nr++; sr += sh; }
+    });
+    *fl = nl ? (double)sl / nl : 0.0;
+    *fr = nr ? (double)sr / nr : 0.0;
+}
+
+static void stamp(grid *g, rect r) { FOR_RECT_CELLS(g, r, { (*cell)++; }); }
+
+/* Is the cell at (x, y) empty (no cluster above it, inside the grid)? */
+static int empty_at(const grid *g, double x, double y) {
+    int32_t i = (int32_t)floor((x - g->x0) / CELL), j = (int32_t)floor((y - g->y0) / CELL);
+    if (i < 0 || j < 0 || i >= g->nx || j >= g->ny) return 0;
+    return g->n[(size_t)j * (size_t)g->nx + (size_t)i] == 0;
+}
+
+/* Radius of branch x at arc length s (as body.c tapers it). */
+static double branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x, double s) {
+    double r0 = x->parent >= 0 ? n[x->parent].radius : x->radius;
+    int tip = x->child[0] < 0 && x->child[1] < 0;
+    double r1 = tip ? x->radius * p->tip_taper : x->radius;
+    double t = x->length > 0 ? clampd(s / x->length, 0, 1) : 1;
+    return r0 + (r1 - r0) * t;
+}
+
+static v3 horizontal_perp(v3 d) {
+    v3 h = v3_cross(d, v3_make(0, 0, 1));
+    return v3_len2(h) > 1e-12 ? v3_norm(h) : v3_make(1, 0, 0);
+}
+
+/* Leaves along the segment lines of skeleton tip x (twigs_from_segments). */
+static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
+    banyan_segment_params sp;
+    keyaki_twig_params(x->p, &sp);
+    banyan_segment_input in;
+    keyaki_twig_input(x->p, &n[i], &in);
+    float xyz[3 * BANYAN_SEGMENT_MAX_VERTICES];
+    uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
+    int32_t nv = 0;
+    if (banyan_segment_generate(&in, &sp, xyz, lev, &nv, NULL)) return;
+    for (int32_t j = 2; j + 1 < nv && !x->oom; j += 2) {
+        v3 ab[2] = {v3_make(xyz[3 * j], xyz[3 * j + 1], xyz[3 * j + 2]),
+                    v3_make(xyz[3 * j + 3], xyz[3 * j + 4], xyz[3 * j + 5])};
+        double l = v3_dist(ab[0], ab[1]);
+        if (l < 1e-6) continue;
+        v3 t = v3_scale(v3_sub(ab[1], ab[0]), 1.0 / l);
+        v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(t), t), t);
+        if (up.z < 0) up = v3_neg(up);
+        leaves_along(x, ab, 2, 0.1 * l, up, -1, n[i].level + lev[j]);
+    }
+}
+
+banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_crown *c,
+                                banyan_error *err) {
+    memset(c, 0, sizeof *c);
+    if (count <= 0 || p->leaf_levels <= 0) return BANYAN_OK;
+    int32_t *depth = malloc(sizeof(int32_t) * (size_t)count);
+    if (!depth) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    for (int32_t i = count - 1; i >= 0; i--) {
+        int32_t a = n[i].child[0], b = n[i].child[1];
+        if (a < 0 && b < 0) depth[i] = 0;
+        else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
+        else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
+    }
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0};
+    banyan_status st = BANYAN_OK;
+    if (p->twigs_from_segments || p->twig_levels == 0) {
+        /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
+        for (int32_t i = 0; i < count && !x.oom; i++) {
+            int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
+            x.node = i;
+            pcg32_seed(&x.lf, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)i, KEYAKI_STREAM_LEAVES);
+            if (p->twigs_from_segments) {
+                if (tip) segment_leaves(&x, n, i);
+            } else if (depth[i] < p->leaf_levels) {
+                v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
+                v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
+                if (up.z < 0) up = v3_neg(up);
+                leaves_along(&x, ab, 2, 0.0, up, -1, n[i].level);
+            }
+        }
+        free(depth);
+        if (x.oom) {
+            keyaki_crown_free(c);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+        }
+        return BANYAN_OK;
+    }
+    /* The clusters planned on the skeleton, from the "twigs" stream. */
+    pcg32 plan;
+    pcg32_seed(&plan, p->seed, KEYAKI_STREAM_TWIGS);
+    cand *cs = NULL;
+    int32_t nc = 0, cap = 0;
+    double tw = p->twig_angle;
+    for (int32_t i = 0; i < count; i++) {
+        if (depth[i] >= p->leaf_levels) continue;
+        const keyaki_node *b = &n[i];
+        int tip = b->child[0] < 0 && b->child[1] < 0;
+        v3 h = horizontal_perp(b->dir);
+        int side = rng_uniform(&plan) < 0.5 ? 1 : -1;
+        double s = p->twig_spacing * rng_uniform(&plan);
+        int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
+        if (k < 0) k = 0;
+        if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
+            free(depth);
+            free(cs);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+        }
+        for (; s < b->length; s += p->twig_spacing, side = -side) {
+            cand *q = &cs[nc];
+            double a = deg2rad(tw * rng_range(&plan, 0.85, 1.15));
+            q->at = v3_madd(b->start, b->dir, s);
+            q->d = v3_norm(v3_add(v3_scale(b->dir, cos(a)), v3_scale(h, side * sin(a))));
+            q->h = h;
+            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
+            q->r_host = branch_radius(p, n, b, s);
+            q->node = i;
+            q->index = nc;
+            q->tip = 0;
+            nc++;
+        }
+        if (tip) {
+            cand *q = &cs[nc];
+            q->at = v3_madd(b->start, b->dir, b->length);
+            q->d = b->dir;
+            q->h = h;
+            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
+            q->r_host = branch_radius(p, n, b, b->length);
+            q->node = i;
+            q->index = nc;
+            q->tip = 1;
+            nc++;
+        }
+    }
+    free(depth);
+    for (int32_t k = 0; k < nc; k++) {
+        v3 e = v3_madd(cs[k].at, cs[k].d, 0.5 * cs[k].len);
+        cs[k].z = e.z;
+    }
+    qsort(cs, (size_t)nc, sizeof(cand), cand_cmp);
+    /* The plan grid over every cluster's reach. */
+    grid g = {0, 0, 0, 0, NULL};
+    if (p->light && nc > 0) {
+        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+        for (int32_t k = 0; k < nc; k++) {
+            x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
+            y0 = fmin(y0, cs[k].at.y), y1 = fmax(y1, cs[k].at.y);
+        }
+        double m = 3.0 * p->twig_length + 1.0;
+        g.x0 = x0 - m;
+        g.y0 = y0 - m;
+        g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
+        g.ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
+        if ((double)g.nx * g.ny > 5e7) g.nx = g.ny = 0; /* absurd sizes: no light model */
+        else g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
+        if (g.nx && !g.n) {
+            free(cs);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+        }
+    }
+    c->clusters = nc;
+    for (int32_t k = 0; k < nc && !x.oom; k++) {
+        cand q = cs[k];
+        x.node = q.node;
+        x.base_level = n[q.node].level;
+        pcg32_seed(&x.tw, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)q.index, KEYAKI_STREAM_TWIGS);
+        pcg32_seed(&x.lf, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)q.index, KEYAKI_STREAM_LEAVES);
+        v3 up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
+        if (up.z < 0) up = v3_neg(up);
+        double len = q.len;
+        int spur = 0;
+        if (g.n) {
+            rect r = cluster_rect(p, q.at, q.d, q.h, len);
+            double fl, fr;
+            shade_of(&g, r, p->shade_layers, &fl, &fr);
+            double lo = fmin(fl, fr), hi = fmax(fl, fr);
+            if (lo >= 0.9 && !q.tip) { /* all shaded: the cluster breaks */
+                c->dropped++;
+                continue;
+            }
+            if (lo >= 0.5) { /* both sides shaded: a short leafy spur */
+                spur = 1;
+                len = fmin(len, fmax(0.3 * len, 3.0 / fmax(p->leaf_density, 1e-9)));
+                c->stopped++;
+            } else if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
+                double turn = p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0);
+                /* left is +90 deg about z from the plan axis: turning left is a positive angle */
+                double a = deg2rad(turn);
+                q.d = v3_rotate_z(q.d, a);
+                q.h = v3_rotate_z(q.h, a);
+                up = v3_rotate_z(up, a);
+                c->steered++;
+            } else { /* lit: grow, on into empty cells beyond the nominal length */
+                double ext = 0;
+                rect r2 = cluster_rect(p, q.at, q.d, q.h, len);
+                while (ext < q.len && empty_at(&g, r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL),
+                                                  r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL)))
+                    ext += p->twig_spacing;
+                len += ext;
+                c->grown++;
+            }
+            stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len));
+        }
+        grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur);
+    }
+    free(g.n);
+    free(cs);
+    if (x.oom) {
+        keyaki_crown_free(c);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    }
+    for (int32_t t = 0; t < c->n_twigs; t++) {
+        uint32_t v, i;
+        tube_counts((uint32_t)c->twigs[t].count, c->twigs[t].sides, 0, c->twigs[t].children > 0, &v, &i);
+        c->vertices += v;
+        c->indices += i;
+    }
+    (void)st;
+    return BANYAN_OK;
+}
+
+void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]) {
+    mb_set_attr(mb, attr[2], 0); /* order 0: finer than any skeleton branch */
+    for (int32_t t = 0; t < c->n_twigs && !mb->status; t++) {
+        const keyaki_twig *T = &c->twigs[t];
+        mb_set_attr(mb, attr[1], T->level);
+        /* A twig tip's end is hidden in its last leaves: no cap. */
+        tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0};
+        tube_sweep(mb, c->pts + T->first, c->rad + T->first, (uint32_t)T->count, &o);
+    }
+}
+
+void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
+                              const int attr[3]) {
+    int32_t cols = 1, rows = 1;
+    leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
+    mb_set_attr(mb, attr[2], 0);
+    const double hu = LEAF_KEYAKI_HALF_U;
+    for (int32_t k = 0; k < c->n_leaves && !mb->status; k++) {
+        const keyaki_leaf *q = &c->leaves[k];
+        mb_set_attr(mb, attr[1], q->level);
+        uint32_t v0 = mb_vertices(mb, 4);
+        uint32_t *I = mb_indices(mb, 6);
+        if (v0 == UINT32_MAX || !I) return;
+        leaf_look lk;
+        leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
+        double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
+        v3 nrm = v3_cross(q->width, q->axis);
+        v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
+        v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
+        double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
+        mb_put(mb, v0, p0, nrm, ua, lk.v0);
+        mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
+        mb_put(mb, v0 + 2, p2, nrm, ub, v1);
+        mb_put(mb, v0 + 3, p3, nrm, ua, v1);
+        for (uint32_t j = 0; j < 4 && mb->with_color; j++)
+            for (int m = 0; m < 4; m++) mb->col[4 * ((size_t)v0 + j) + m] = (float)lk.tint[m];
+        I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
+        I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;
+    }
+}
