@@ -335,6 +335,49 @@ static int empty_at(const grid *g, double x, double y) {
     return g->n[(size_t)j * (size_t)g->nx + (size_t)i] == 0;
 }
 
+/* The plan outline the crown is planned to fill: the convex hull
+ * (monotone chain, counter-clockwise) of the clusters' planned starts and
+ * ends. Extension into empty cells stays inside it, so growth fills holes
+ * without pushing the crown's outline out. */
+typedef struct hull {
+    double *xy;
+    int32_t n;
+} hull;
+
+static int xy_cmp(const void *a, const void *b) {
+    const double *A = a, *B = b;
+    if (A[0] != B[0]) return A[0] < B[0] ? -1 : 1;
+    return A[1] < B[1] ? -1 : A[1] > B[1];
+}
+
+static double turn2(const double *o, const double *a, const double *b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+/* pts: m points (x, y), sorted in place; h->xy needs room for 2 m + 2. */
+static void hull_of(double *pts, int32_t m, hull *h) {
+    qsort(pts, (size_t)m, 2 * sizeof(double), xy_cmp);
+    double *H = h->xy;
+    int32_t k = 0;
+    for (int32_t i = 0; i < m; i++) {
+        while (k >= 2 && turn2(H + 2 * (k - 2), H + 2 * (k - 1), pts + 2 * i) <= 0) k--;
+        H[2 * k] = pts[2 * i], H[2 * k + 1] = pts[2 * i + 1], k++;
+    }
+    for (int32_t i = m - 2, t = k + 1; i >= 0; i--) {
+        while (k >= t && turn2(H + 2 * (k - 2), H + 2 * (k - 1), pts + 2 * i) <= 0) k--;
+        H[2 * k] = pts[2 * i], H[2 * k + 1] = pts[2 * i + 1], k++;
+    }
+    h->n = k > 1 ? k - 1 : k;
+}
+
+static int hull_inside(const hull *h, double x, double y) {
+    if (h->n < 3) return 0;
+    double q[2] = {x, y};
+    for (int32_t e = 0; e < h->n; e++)
+        if (turn2(h->xy + 2 * e, h->xy + 2 * ((e + 1) % h->n), q) < 0) return 0;
+    return 1;
+}
+
 /* Radius of branch x at arc length s (as body.c tapers it). */
 static double branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x, double s) {
     double r0 = x->parent >= 0 ? n[x->parent].radius : x->radius;
@@ -461,7 +504,22 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     qsort(cs, (size_t)nc, sizeof(cand), cand_cmp);
     /* The plan grid over every cluster's reach. */
     grid g = {0, 0, 0, 0, NULL};
+    hull hl = {NULL, 0};
     if (p->light && nc > 0) {
+        double *xy = malloc(sizeof(double) * 4 * (size_t)nc);
+        hl.xy = malloc(sizeof(double) * (4 * (size_t)nc + 4));
+        if (!xy || !hl.xy) {
+            free(xy);
+            free(hl.xy);
+            free(cs);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+        }
+        for (int32_t k = 0; k < nc; k++) {
+            v3 e = v3_madd(cs[k].at, cs[k].d, cs[k].len);
+            xy[4 * k] = cs[k].at.x, xy[4 * k + 1] = cs[k].at.y, xy[4 * k + 2] = e.x, xy[4 * k + 3] = e.y;
+        }
+        hull_of(xy, 2 * nc, &hl);
+        free(xy);
         double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
         for (int32_t k = 0; k < nc; k++) {
             x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
@@ -476,6 +534,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
         if (g.nx && !g.n) {
             free(cs);
+            free(hl.xy);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
     }
@@ -503,28 +562,33 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 spur = 1;
                 len = fmin(len, fmax(0.3 * len, 3.0 / fmax(p->leaf_density, 1e-9)));
                 c->stopped++;
-            } else if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
-                double turn = p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0);
-                /* left is +90 deg about z from the plan axis: turning left is a positive angle */
-                double a = deg2rad(turn);
-                q.d = v3_rotate_z(q.d, a);
-                q.h = v3_rotate_z(q.h, a);
-                up = v3_rotate_z(up, a);
-                c->steered++;
-            } else { /* lit: grow, on into empty cells beyond the nominal length */
+            } else {
+                if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
+                    /* left is +90 deg about z from the plan axis: turning left is a positive angle */
+                    double a = deg2rad(p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0));
+                    q.d = v3_rotate_z(q.d, a);
+                    q.h = v3_rotate_z(q.h, a);
+                    up = v3_rotate_z(up, a);
+                    c->steered++;
+                } else {
+                    c->grown++;
+                }
+                /* Lit ahead: grow on into empty cells inside the outline. */
                 double ext = 0;
                 rect r2 = cluster_rect(p, q.at, q.d, q.h, len);
-                while (ext < q.len && empty_at(&g, r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL),
-                                                  r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL)))
+                for (;;) {
+                    double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL), ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
+                    if (ext >= q.len || !empty_at(&g, ex, ey) || !hull_inside(&hl, ex, ey)) break;
                     ext += p->twig_spacing;
+                }
                 len += ext;
-                c->grown++;
             }
             stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len));
         }
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur);
     }
     free(g.n);
+    free(hl.xy);
     free(cs);
     if (x.oom) {
         keyaki_crown_free(c);

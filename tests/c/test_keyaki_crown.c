@@ -1,0 +1,232 @@
+/* keyaki crown (issue #20; docs/keyaki.md "Twigs and leaves", "Light and
+ * crowding"): on keyaki_mature and keyaki_young, seeds 1..10: every twig
+ * starts on or in its parent (skeleton branch or twig), twig tips have
+ * twig_radius, every leaf's petiole end lies on its twig, leaf lengths in
+ * range, successive leaves alternate sides, the plan's counts are exact,
+ * the same seed gives the same bytes, and the light model thins the most
+ * crowded plan cells without opening holes in the crown. Prints the
+ * crown's figures on keyaki_mature. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "keyaki_crown_checks.h"
+#include "test_files.h"
+
+/* Distance from q to segment ab. */
+static double seg_dist(v3 q, v3 a, v3 b) {
+    v3 ab = v3_sub(b, a);
+    double l2 = v3_len2(ab), t = l2 > 0 ? v3_dot(v3_sub(q, a), ab) / l2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return v3_dist(q, v3_madd(a, ab, t));
+}
+
+static double poly_dist(v3 q, const v3 *pts, int32_t n) {
+    double d = 1e300;
+    for (int32_t i = 0; i + 1 < n; i++) {
+        double e = seg_dist(q, pts[i], pts[i + 1]);
+        if (e < d) d = e;
+    }
+    return d;
+}
+
+static int dbl_cmp(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The preset's skeleton with the library's crown defaults (the presets
+ * leave the crown fields to them). */
+static int load(const char *name, banyan_keyaki_params *p) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
+    banyan_keyaki_params_init(p);
+    banyan_error err = {0};
+    banyan_status s = test_load_preset(BANYAN_GEN_KEYAKI, p, path, NULL, 0, NULL, &err);
+    CHECK(s == BANYAN_OK, "%s loads: %s", name, err.message);
+    banyan_keyaki_params d;
+    banyan_keyaki_params_init(&d);
+    p->twig_levels = d.twig_levels;
+    p->twig_length = d.twig_length;
+    p->twig_ratio = d.twig_ratio;
+    p->twig_spacing = d.twig_spacing;
+    p->twig_angle = d.twig_angle;
+    p->twig_radius = d.twig_radius;
+    p->light = d.light;
+    p->shade_layers = d.shade_layers;
+    p->light_steer = d.light_steer;
+    p->leaves = d.leaves;
+    p->leaf_levels = d.leaf_levels;
+    p->leaf_density = d.leaf_density;
+    p->leaf_size = d.leaf_size;
+    p->leaf_size_spread = d.leaf_size_spread;
+    return s == BANYAN_OK;
+}
+
+static int grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_crown *c) {
+    if (keyaki_grow(p, sk, NULL) || keyaki_strahler(sk->nodes, sk->count)) return 1;
+    return keyaki_crown_grow(p, sk->nodes, sk->count, c, NULL) != BANYAN_OK;
+}
+
+typedef struct fails {
+    int start, tip, petiole, alternate, level, radius_cap;
+} fails;
+
+static void check_crown(const banyan_keyaki_params *p, const keyaki_skeleton *sk, const keyaki_crown *c, fails *f,
+                        double *lengths) {
+    const keyaki_node *n = sk->nodes;
+    for (int32_t t = 0; t < c->n_twigs; t++) {
+        const keyaki_twig *T = &c->twigs[t];
+        const v3 *P = c->pts + T->first;
+        const double *R = c->rad + T->first;
+        double d, r;
+        if (T->parent < 0) {
+            const keyaki_node *b = &n[T->node];
+            v3 e = v3_madd(b->start, b->dir, b->length);
+            d = seg_dist(P[0], b->start, e);
+            r = b->radius > 0 ? (b->parent >= 0 ? fmax(b->radius, n[b->parent].radius) : b->radius) : 0;
+            if (R[1] > r) f->radius_cap++; /* never thicker than its branch */
+        } else {
+            const keyaki_twig *Q = &c->twigs[T->parent];
+            d = poly_dist(P[0], c->pts + Q->first, Q->count);
+            r = 0;
+            for (int32_t k = 0; k < Q->count; k++) r = fmax(r, c->rad[Q->first + k]);
+            if (T->level != Q->level + 1) f->level++;
+        }
+        if (d > r + 1e-9) f->start++;
+        if (T->children == 0 && fabs(R[T->count - 1] - p->twig_radius) > 1e-9 * p->twig_radius) f->tip++;
+        if (T->level != n[T->node].level + T->order) f->level++;
+    }
+    for (int32_t k = 0; k < c->n_leaves; k++) {
+        const keyaki_leaf *q = &c->leaves[k];
+        lengths[k] = q->blade;
+        if (q->twig < 0) {
+            f->petiole++;
+            continue;
+        }
+        const keyaki_twig *T = &c->twigs[q->twig];
+        if (poly_dist(q->base, c->pts + T->first, T->count) > 1e-9) f->petiole++;
+        if (q->level != T->level) f->level++;
+        if (k > 0 && c->leaves[k - 1].twig == q->twig) {
+            const keyaki_leaf *o = &c->leaves[k - 1];
+            v3 a = v3_madd(q->axis, q->tangent, -v3_dot(q->axis, q->tangent));
+            v3 b = v3_madd(o->axis, o->tangent, -v3_dot(o->axis, o->tangent));
+            if (q->side != -o->side || v3_dot(a, b) >= 0) f->alternate++;
+        }
+    }
+}
+
+/* Seeds 1..10 of one preset: the invariants, counts and bytes, light on vs off. */
+static void preset_seeds(const char *name) {
+    banyan_keyaki_params p;
+    if (!load(name, &p)) return;
+    keyaki_skeleton sk = {0};
+    int more_holes = 0, more_crowded = 0;
+    for (uint64_t seed = 1; seed <= 10; seed++) {
+        p.seed = seed;
+        p.light = 1;
+        keyaki_crown c;
+        if (grow(&p, &sk, &c)) {
+            CHECK(0, "%s seed %d: crown grows", name, (int)seed);
+            continue;
+        }
+        fails f = {0};
+        double *len = malloc(sizeof(double) * (size_t)(c.n_leaves + 1));
+        check_crown(&p, &sk, &c, &f, len);
+        CHECK(f.start == 0, "%s seed %d: %d twigs start off their parent", name, (int)seed, f.start);
+        CHECK(f.tip == 0, "%s seed %d: %d twig tips without twig_radius", name, (int)seed, f.tip);
+        CHECK(f.radius_cap == 0, "%s seed %d: %d twigs thicker than their branch", name, (int)seed, f.radius_cap);
+        CHECK(f.petiole == 0, "%s seed %d: %d leaves off their twig", name, (int)seed, f.petiole);
+        CHECK(f.alternate == 0, "%s seed %d: %d leaf pairs on one side", name, (int)seed, f.alternate);
+        CHECK(f.level == 0, "%s seed %d: %d levels wrong", name, (int)seed, f.level);
+        CHECK(c.n_leaves > 1000 && c.tips > 100, "%s seed %d: %d leaves, %d tips", name, (int)seed, c.n_leaves,
+              c.tips);
+        qsort(len, (size_t)c.n_leaves, sizeof(double), dbl_cmp);
+        double p10 = len[c.n_leaves / 10], p90 = len[(c.n_leaves * 9) / 10];
+        CHECK(p10 >= 0.03 && p90 <= 0.08, "%s seed %d: leaf length p10 %.4f p90 %.4f", name, (int)seed, p10, p90);
+        free(len);
+        /* Light off: every cluster as planned. */
+        crown_plan on, off;
+        crown_plan_measure(&c, 0.5, &on);
+        keyaki_crown_free(&c);
+        p.light = 0;
+        if (grow(&p, &sk, &c)) {
+            CHECK(0, "%s seed %d: crown grows without light", name, (int)seed);
+            continue;
+        }
+        crown_plan_measure(&c, 0.5, &off);
+        keyaki_crown_free(&c);
+        more_crowded += on.p95 >= off.p95;
+        more_holes += on.inside - on.filled > off.inside - off.filled;
+        if (seed == 1)
+            printf("%s seed 1: light on p95 %.0f max %d empty %d/%d; off p95 %.0f max %d empty %d/%d\n", name,
+                   on.p95, on.max, on.inside - on.filled, on.inside, off.p95, off.max, off.inside - off.filled,
+                   off.inside);
+        /* Counts exact, same seed same bytes. */
+        p.light = 1;
+        keyaki_counts cn;
+        CHECK(keyaki_count(&p, &sk, &cn, NULL) == BANYAN_OK, "%s seed %d: counts", name, (int)seed);
+        banyan_mesh *m1 = NULL, *m2 = NULL;
+        banyan_error err = {0};
+        CHECK(banyan_keyaki_generate(&p, &m1, &err) == BANYAN_OK, "%s seed %d: generate: %s", name, (int)seed,
+              err.message);
+        CHECK(banyan_keyaki_generate(&p, &m2, &err) == BANYAN_OK, "%s seed %d: generate again", name, (int)seed);
+        if (m1 && m2) {
+            CHECK(m1->vertex_count == cn.vertices && m1->index_count == cn.indices, "%s seed %d: plan %u/%u mesh %u/%u",
+                  name, (int)seed, cn.vertices, cn.indices, m1->vertex_count, m1->index_count);
+            CHECK(m1->vertex_count == m2->vertex_count &&
+                      !memcmp(m1->positions, m2->positions, sizeof(float) * 3 * m1->vertex_count) &&
+                      !memcmp(m1->uvs, m2->uvs, sizeof(float) * 2 * m1->vertex_count),
+                  "%s seed %d: same seed, same bytes", name, (int)seed);
+        }
+        banyan_mesh_free(m1);
+        banyan_mesh_free(m2);
+    }
+    CHECK(more_crowded == 0, "%s: light left the most crowded cells as full on %d seeds", name, more_crowded);
+    CHECK(more_holes == 0, "%s: light opened holes on %d seeds", name, more_holes);
+    keyaki_skeleton_free(&sk);
+}
+
+/* The skeleton is the light model's input, never its output: its
+ * statistics do not move with light on or off. */
+static void skeleton_untouched(void) {
+    banyan_keyaki_params p;
+    if (!load("keyaki_mature", &p)) return;
+    banyan_keyaki_statistics a, b;
+    p.light = 1;
+    CHECK(banyan_keyaki_stats(&p, &a, NULL) == BANYAN_OK, "stats");
+    p.light = 0;
+    CHECK(banyan_keyaki_stats(&p, &b, NULL) == BANYAN_OK, "stats");
+    CHECK(!memcmp(&a, &b, sizeof a), "skeleton statistics the same with light on and off");
+}
+
+/* The figures on keyaki_mature as the preset stands (its seed). */
+static void figures(void) {
+    banyan_keyaki_params p;
+    if (!load("keyaki_mature", &p)) return;
+    keyaki_skeleton sk = {0};
+    keyaki_crown c;
+    if (grow(&p, &sk, &c)) {
+        CHECK(0, "keyaki_mature grows");
+        return;
+    }
+    crown_plan pl;
+    crown_plan_measure(&c, 0.5, &pl);
+    keyaki_counts cn;
+    CHECK(keyaki_count(&p, &sk, &cn, NULL) == BANYAN_OK, "counts");
+    printf("keyaki_mature: %d leaves, %d twigs, %d twig tips, %u vertices, %u triangles; clusters %d: grown %d, "
+           "steered %d, stopped %d, dropped %d; plan cells filled %d/%d (%.1f %%), p95 %.0f leaves a cell\n",
+           c.n_leaves, c.n_twigs, c.tips, cn.vertices, cn.indices / 3, c.clusters, c.grown, c.steered, c.stopped,
+           c.dropped, pl.filled, pl.inside, 100.0 * pl.filled / (pl.inside ? pl.inside : 1), pl.p95);
+    keyaki_crown_free(&c);
+    keyaki_skeleton_free(&sk);
+}
+
+int main(void) {
+    figures();
+    skeleton_untouched();
+    preset_seeds("keyaki_mature");
+    preset_seeds("keyaki_young");
+    return check_done("test_keyaki_crown");
+}
