@@ -96,6 +96,7 @@ static void add_child(keyaki_node *nodes, int32_t *count, int32_t parent, v3 dir
     c->plane = plane;
     c->length = length;
     c->energy = energy;
+    c->share = P->share;
     c->angle = angle;
     c->radius = 0;
     c->parent = parent;
@@ -117,6 +118,53 @@ static void energy_lengths(double seg, double fs, double cap, double *ls, double
         *ls = seg * 2.0 * fw;
         *lw = seg * 2.0 * fs;
     }
+}
+
+/* The first split (beyond the paper; docs/keyaki.md "First branching"):
+ * the trunk (node 0, trunk_length) ends where the first limb leaves; a
+ * chain of vertical trunk pieces (KN_TRUNK) climbs limb_zone, each ending
+ * in a binary fork into the next piece and one limb, the last fork into
+ * the last two limbs, so the skeleton stays binary and Strahler works
+ * unchanged. Limbs are level 0 with an equal share of the energy: each
+ * then grows under the model exactly as the paper's whole tree does from
+ * its trunk (rules read energy / share), so the model's statistics hold
+ * above the split. Limb j leans limb_angle (+-15 %) from vertical at
+ * azimuth heading + 2 pi slot(j) / limbs (+-25 % of a slot), the slots
+ * stepping about 0.38 of a turn so that successive limbs face apart; its
+ * plane is the vertical plane through it turned +-twist about it, so its
+ * forks raise one child (the limb curves up) and lean the other out. */
+static banyan_status first_split(const banyan_keyaki_params *p, keyaki_skeleton *sk, pcg32 *r, banyan_error *err) {
+    const int k = p->limbs;
+    banyan_status s = reserve(sk, 2 * k - 1, p->max_nodes, err);
+    if (s) return s;
+    int step = (int)floor(0.382 * k + 0.5);
+    if (step < 1) step = 1;
+    while (k % step == 0 && step > 1) step--; /* coprime with k: every slot taken once */
+    const double unit = p->unit, zone = p->limb_zone * unit, share = 1.0 / k;
+    const double phi0 = atan2(sk->nodes[0].plane.y, sk->nodes[0].plane.x);
+    int32_t piece = 0; /* the trunk piece whose end is the next fork */
+    for (int j = 0; j < k; j++) {
+        double az = phi0 + 2.0 * BANYAN_PI * (((j * step) % k) + rng_range(r, -0.25, 0.25)) / k;
+        double lean = deg2rad(p->limb_angle * (1.0 + rng_range(r, -0.15, 0.15)));
+        double turn = deg2rad(p->twist * rng_range(r, -1.0, 1.0));
+        v3 d = v3_make(sin(lean) * cos(az), sin(lean) * sin(az), cos(lean));
+        v3 n = v3_make(-sin(az), cos(az), 0); /* normal of the vertical plane through d */
+        n = v3_norm(v3_add(v3_scale(n, cos(turn)), v3_scale(v3_cross(d, n), sin(turn))));
+        add_child(sk->nodes, &sk->count, piece, d, n, p->segment_length * unit, share, p->limb_angle, 0);
+        keyaki_node *limb = &sk->nodes[sk->count - 1];
+        limb->level = 0;
+        limb->share = share;
+        if (j < k - 2) { /* the trunk climbs on to the next fork */
+            double len = k > 2 ? zone / (k - 2) : 0.0;
+            add_child(sk->nodes, &sk->count, piece, v3_make(0, 0, 1), sk->nodes[piece].plane, len > 1e-6 ? len : 1e-6,
+                      1.0 - share * (j + 1), 0.0, KN_TRUNK);
+            keyaki_node *next = &sk->nodes[sk->count - 1];
+            next->level = 0;
+            piece = sk->count - 1;
+        }
+    }
+    sk->nodes[0].flags |= KN_TRUNK;
+    return BANYAN_OK;
 }
 
 banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err) {
@@ -153,6 +201,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
     trunk->plane = v3_make(cos(phi), sin(phi), 0);
     trunk->length = p->trunk_length * unit;
     trunk->energy = 1.0;
+    trunk->share = 1.0;
     trunk->angle = 0;
     trunk->radius = 0;
     trunk->parent = -1;
@@ -161,12 +210,13 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
     trunk->order = 0;
     trunk->flags = 0;
     sk->count = 1;
+    if (p->limbs > 1 && (s = first_split(p, sk, &r, err))) return s;
 
     for (int32_t i = 0; i < sk->count; i++) {
         int level = sk->nodes[i].level;
-        if (level >= L) continue;
+        if (level >= L || (sk->nodes[i].flags & KN_TRUNK)) continue;
         if ((model == BANYAN_KEYAKI_STRONG_WEAK || model == BANYAN_KEYAKI_TWISTED) &&
-            sk->nodes[i].energy < p->stop_energy) {
+            sk->nodes[i].energy / sk->nodes[i].share < p->stop_energy) {
             sk->nodes[i].flags |= KN_STOPPED;
             continue;
         }
@@ -175,7 +225,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
         const int l = level + 1;
         const v3 d = P->dir;
         const v3 n0 = perp_to(P->plane, d, v3_any_perp(d));
-        const double E = P->energy;
+        const double E = P->energy, Er = E / P->share; /* Er: the limb's own scale (rule 8) */
         v3 n;
         double fs = 0.5, ls = seg, lw = seg, c = t.c[l], sn = t.s[l], angle = t.angle[l];
         int strong = 0, broken = 0, strong_upper = 1;
@@ -220,7 +270,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
             double ratio = 0.05 + 0.1 * k;
             fs = ratio > 0.5 ? ratio : 1.0 - ratio;
             strong = 1;
-            if (E * (1.0 - fs) < t.threshold[l]) {
+            if (Er * (1.0 - fs) < t.threshold[l]) {
                 broken = 1;
                 n = n0; /* a fork that breaks never twists */
                 c = t.cs[l];

@@ -16,6 +16,8 @@
 #define KN_SPRUNG 2u  /* this branch survived a break and its angle sprang back (rule 9) */
 #define KN_STRONG 4u  /* this branch is the strong child of a strong/weak fork */
 #define KN_STOPPED 8u /* this branch stopped forking: energy below stop_energy (models 2-3) */
+#define KN_TRUNK 16u  /* a piece of the trunk below or between the limbs' departures (first split): the
+                         model does not fork it; its children are set when the tree starts */
 
 /* One branch: a straight segment from `start` along `dir` for `length`.
  * Nodes are stored parents first (child index > parent index), level by
@@ -26,6 +28,8 @@ typedef struct keyaki_node {
     v3 plane;        /* unit normal of the fork plane this branch was made in (trunk: a random vertical plane) */
     double length;   /* m */
     double energy;   /* share of the trunk's energy (trunk 1) */
+    double share;    /* energy of the limb this branch grows on (1 with one limb): the model's rules read
+                        energy / share, so every limb grows as the model's whole tree would */
     double angle;    /* deg between this branch and its parent (0 for the trunk) */
     double radius;   /* m, pipe model (keyaki_radii) */
     int32_t parent;  /* -1 for the trunk */

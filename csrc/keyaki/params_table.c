@@ -249,7 +249,7 @@ banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error
     if (p->model == BANYAN_KEYAKI_SIMPLE) {
         /* Model 1 never stops: 2^(levels+1) - 1 branches, known up front. */
         int grown = p->levels; /* twigs from segments too: the full tree is grown, then cut */
-        double nodes = ldexp(1.0, grown + 1) - 1;
+        double nodes = p->limbs * (ldexp(1.0, grown + 1) - 1) + (p->limbs > 1 ? p->limbs - 1 : 0);
         if (nodes > p->max_nodes)
             return banyan_fail(err, BANYAN_E_LIMIT,
                                "model simple with levels = %d makes %.0f branches, more than max_nodes = %d; lower "
