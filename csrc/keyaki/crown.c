@@ -39,6 +39,7 @@
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"
 
+#define EXTEND 3.0         /* a cluster grows at most this x its length on into empty cells */
 #define ZIGZAG_DEG 12.0     /* a twig's turn at each node, alternately */
 #define CELL 0.2            /* m, the light grid's cell */
 #define MAX_TWIG_PTS 64     /* points of one twig's polyline */
@@ -170,9 +171,13 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double sub_len = len * p->twig_ratio;
     /* Nodes: where sub-twigs attach (coarse) or every few leaves (finest). */
     int32_t segs;
-    if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 3.0 + 0.5), 1, 4);
+    if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 4.0 + 0.5), 1, 3);
     else segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 1, MAX_TWIG_PTS - 3);
-    int32_t np = segs + 2; /* axis point, surface point, segs nodes */
+    /* A first-order twig leaves a thick branch: an axis point inside it,
+     * then one on its surface. A sub-twig's parent is a few mm thick: its
+     * first node is the point where it leaves the parent's axis. */
+    int surface = parent < 0;
+    int32_t np = segs + 1 + surface;
     if (grow_array((void **)&c->twigs, &c->cap_twigs, c->n_twigs + 1, sizeof(keyaki_twig)) || add_points(c, np)) {
         x->oom = 1;
         return 0;
@@ -192,12 +197,12 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double *R = c->rad + T->first;
     double seg = len / segs;
     P[0] = at;
-    P[1] = v3_madd(at, d, r_host < seg * 0.45 ? r_host : seg * 0.45); /* on the parent's surface */
+    if (surface) P[1] = v3_madd(at, d, r_host < seg * 0.45 ? r_host : seg * 0.45);
     int zig = rng_uniform(&x->tw) < 0.5 ? 1 : -1;
     v3 dir = d;
     for (int32_t i = 0; i < segs; i++, zig = -zig) {
         v3 di = v3_rotate(dir, up, deg2rad(zig * ZIGZAG_DEG * rng_range(&x->tw, 0.8, 1.2)));
-        P[2 + i] = v3_madd(P[1 + i], di, seg);
+        P[surface + 1 + i] = v3_madd(P[surface + i], di, seg);
     }
     /* Sub-twigs at the nodes up to 0.7 of the length, alternating sides,
      * each on the outer side of the zigzag's bend. */
@@ -208,7 +213,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
         int side = rng_uniform(&x->tw) < 0.5 ? 1 : -1;
         for (int32_t i = 1; i <= segs && !x->oom; i++, side = -side) {
             if (i * seg > 0.7 * len + 1e-9 && i > 1) break;
-            int32_t k = 1 + i; /* point index of node i */
+            int32_t k = surface + i; /* point index of node i */
             v3 t = v3_norm(v3_sub(P[k], P[k - 1]));
             v3 sd = v3_rotate(t, up, deg2rad(side * p->twig_angle * rng_range(&x->tw, 0.85, 1.15)));
             double l = sub_len * rng_range(&x->tw, 0.8, 1.2);
@@ -226,20 +231,20 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
      * beyond it. */
     double pe = p->pipe_exponent;
     int32_t carried = 1;
-    for (int32_t k = np - 1; k >= 1; k--) {
+    for (int32_t k = np - 1; k >= 0; k--) {
         R[k] = p->twig_radius * pow((double)carried, 1.0 / pe);
         carried += sub_tips[k];
     }
     double cap = TWIG_SETBACK_CAP * r_host;
-    for (int32_t k = 1; k < np; k++)
+    for (int32_t k = 0; k < np; k++)
         if (parent < 0 && R[k] > cap && cap >= p->twig_radius) R[k] = cap;
-    R[0] = KEYAKI_SIDE_START * R[1];
+    if (surface) R[0] = KEYAKI_SIDE_START * R[1];
     /* Leaves: all along a finest twig, the distal 35 % of a coarser one. */
-    double L = poly_length(P + 1, np - 1);
+    double L = poly_length(P + surface, np - surface);
     int32_t level = c->twigs[me].level;
     v3 pts_copy[MAX_TWIG_PTS];
-    memcpy(pts_copy, P + 1, sizeof(v3) * (size_t)(np - 1));
-    leaves_along(x, pts_copy, np - 1, finest ? 0.1 * L : 0.65 * L, up, me, level);
+    memcpy(pts_copy, P + surface, sizeof(v3) * (size_t)(np - surface));
+    leaves_along(x, pts_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level);
     if (c->twigs[me].children == 0) c->tips++;
     return tips;
 }
@@ -573,15 +578,29 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 } else {
                     c->grown++;
                 }
-                /* Lit ahead: grow on into empty cells inside the outline. */
-                double ext = 0;
-                rect r2 = cluster_rect(p, q.at, q.d, q.h, len);
-                for (;;) {
-                    double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL), ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
-                    if (ext >= q.len || !empty_at(&g, ex, ey) || !hull_inside(&hl, ex, ey)) break;
-                    ext += p->twig_spacing;
+                /* Lit ahead: grow on into empty cells inside the outline, up
+                 * to EXTEND x the length, heading straight on or up to
+                 * light_steer aside, whichever reaches furthest into the
+                 * hole (straight on a tie). */
+                double best = 0, best_a = 0;
+                for (int h = 0; h < 5; h++) {
+                    double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
+                    rect r2 = cluster_rect(p, q.at, v3_rotate_z(q.d, a), v3_rotate_z(q.h, a), len);
+                    double ext = 0;
+                    for (;;) {
+                        double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL);
+                        double ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
+                        if (ext >= EXTEND * q.len || !empty_at(&g, ex, ey) || !hull_inside(&hl, ex, ey)) break;
+                        ext += p->twig_spacing;
+                    }
+                    if (ext > best) best = ext, best_a = a;
                 }
-                len += ext;
+                if (best_a != 0) {
+                    q.d = v3_rotate_z(q.d, best_a);
+                    q.h = v3_rotate_z(q.h, best_a);
+                    up = v3_rotate_z(up, best_a);
+                }
+                len += best;
             }
             stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len));
         }

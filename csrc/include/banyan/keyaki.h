@@ -139,19 +139,19 @@ typedef struct banyan_keyaki_params {
                                 leaves sit on the skeleton). Default 2 */
     double twig_length;      /* m, 0.01 .. 5: length of a first-order twig; each finer order is twig_ratio of
                                 its parent. Default 0.45 */
-    double twig_ratio;       /* 0.05 .. 1: a twig's length as a fraction of its parent twig's. Default 0.4 */
-    double twig_spacing;     /* m, 0.005 .. 5: distance between successive side twigs on a shoot. Default 0.12 */
+    double twig_ratio;       /* 0.05 .. 1: a twig's length as a fraction of its parent twig's. Default 0.3 */
+    double twig_spacing;     /* m, 0.005 .. 5: distance between successive side twigs on a shoot. Default 0.2 */
     double twig_angle;       /* deg, 0 .. 90: a side twig's angle from its parent. Default 50 */
     double twig_radius;      /* m, 1e-4 .. 0.1: radius of a twig's tip (5 mm across by default). Default 0.0025 */
     int32_t light;           /* bool: light and crowding model: twig clusters shaded from above steer, stop or
                                 drop (docs/keyaki.md "Light and crowding"). Default true */
-    double shade_layers;     /* 0.1 .. 20: leaf clusters above a spot that shade it fully. Default 2 */
+    double shade_layers;     /* 0.1 .. 20: leaf clusters above a spot that shade it fully. Default 1 */
     double light_steer;      /* deg, 0 .. 90: largest turn of a twig cluster towards its lit side. Default 35 */
     int32_t leaves;          /* bool: leaves. Default true */
     int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
                                 leaves. Default 4 */
     double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
-                                Default 28 */
+                                Default 20 */
     double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.05 */
     double leaf_size_spread; /* 0 .. 1: blade lengths vary by up to this fraction either way. Default 0.3 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
