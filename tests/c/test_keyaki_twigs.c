@@ -164,7 +164,8 @@ static void mesh_checks(uint64_t seed, int model) {
     if (!tid || !lev || !ord) goto done;
     const banyan_part *bark = &m->parts[0];
     uint32_t zero_order = 0;
-    for (uint32_t v = 0; v < m->vertex_count; v++) zero_order += ord[v] == 0;
+    /* The bark part's order-0 vertices: the twigs (leaves are order 0 too, in part 1). */
+    for (uint32_t v = bark->vertex_offset; v < bark->vertex_offset + bark->vertex_count; v++) zero_order += ord[v] == 0;
     CHECK(bark->vertex_count > twig_v && zero_order == twig_v,
           "seed %llu: %u vertices of order 0, want %u twig vertices (%u tips x %d lines x %u)", (unsigned long long)seed,
           zero_order, twig_v, tips, lines, tv);
