@@ -44,8 +44,8 @@ static int32_t main_child(const keyaki_node *n, int32_t i) {
 
 static inline v3 node_end(const keyaki_node *x) { return v3_madd(x->start, x->dir, x->length); }
 
-banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
-                               banyan_error *err) {
+banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
+                               keyaki_body *body, banyan_error *err) {
     memset(body, 0, sizeof *body);
     int32_t limbs = 0;
     for (int32_t i = 0; i < count; i++)
@@ -87,7 +87,7 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     bv += twv;
     bi += twi;
     /* The crown: twigs (bark part) and leaves, grown into flat arrays. */
-    banyan_status cs = keyaki_crown_grow(p, n, count, &body->crown, err);
+    banyan_status cs = keyaki_crown_grow(p, n, count, count_only, &body->crown, err);
     if (cs) {
         keyaki_body_free(body);
         return cs;
@@ -187,18 +187,18 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
 
 /* Grows the skeleton, orders it and plans its body: what counting and
  * building share. */
-static banyan_status grow_and_plan(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_body *body,
-                                   banyan_error *err) {
+static banyan_status grow_and_plan(const banyan_keyaki_params *p, keyaki_skeleton *sk, int count_only,
+                                   keyaki_body *body, banyan_error *err) {
     banyan_status s = keyaki_grow(p, sk, err);
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
-    return keyaki_body_plan(p, sk->nodes, sk->count, body, err);
+    return keyaki_body_plan(p, sk->nodes, sk->count, count_only, body, err);
 }
 
 banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
     keyaki_body body;
-    banyan_status s = grow_and_plan(p, sk, &body, err);
+    banyan_status s = grow_and_plan(p, sk, 1, &body, err); /* sizes only: leaves counted, not placed */
     if (s) return s;
     c->vertices = body.vertices;
     c->indices = body.indices;
@@ -212,7 +212,7 @@ banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32
                            banyan_mesh **out, banyan_error *err) {
     *out = NULL;
     keyaki_body body;
-    banyan_status s = grow_and_plan(p, sk, &body, err);
+    banyan_status s = grow_and_plan(p, sk, 0, &body, err);
     if (s) return s;
     if (body.vertices > (uint32_t)p->max_vertices) {
         uint32_t v = body.vertices;

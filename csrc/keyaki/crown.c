@@ -119,6 +119,10 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
     if (k < 1) k = 1;
     if (k > 100000) k = 100000;
     keyaki_crown *c = x->c;
+    if (c->count_only) { /* the same k as placing them: only the twig decides it */
+        c->n_leaves += k;
+        return;
+    }
     if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + k, sizeof(keyaki_leaf))) {
         x->oom = 1;
         return;
@@ -146,8 +150,6 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
         q->base = at;
         q->axis = a;
         q->width = w;
-        q->tangent = t;
-        q->blade = blade;
         q->length = blade / V;
         q->twig = twig;
         q->node = x->node;
@@ -419,9 +421,10 @@ static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
     }
 }
 
-banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_crown *c,
-                                banyan_error *err) {
+banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
+                                keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
+    c->count_only = count_only;
     if (count <= 0 || p->leaf_levels <= 0) return BANYAN_OK;
     int32_t *depth = malloc(sizeof(int32_t) * (size_t)count);
     if (!depth) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");

@@ -108,9 +108,7 @@ typedef struct keyaki_leaf {
     v3 base;        /* petiole end (quad's v = 0 edge centre), on the twig's axis */
     v3 axis;        /* unit, petiole towards the blade's tip */
     v3 width;       /* unit, across the quad; width x axis is the face normal (z >= 0) */
-    v3 tangent;     /* unit, the twig's direction at the base */
-    double length;  /* m, quad length: petiole + blade */
-    double blade;   /* m, blade length */
+    double length;  /* m, quad length: petiole + blade (blade: length x (LEAF_KEYAKI_BLADE_V1 - V0)) */
     int32_t twig;   /* twig it grows on; -1: on skeleton branch `node` or a segment line there */
     int32_t node;
     int32_t side;   /* +1 / -1: its rank, alternating along the twig */
@@ -124,15 +122,18 @@ typedef struct keyaki_crown {
     keyaki_leaf *leaves;
     int32_t n_twigs, cap_twigs, n_pts, cap_pts, n_leaves, cap_leaves;
     int32_t tips;                               /* twigs without sub-twigs */
+    int count_only;                             /* n_leaves counted, leaves[] not filled */
     int32_t clusters, grown, steered, stopped, dropped; /* the light model's tally */
     uint64_t vertices, indices;                 /* the twig tubes' mesh */
 } keyaki_crown;
 
 /* Grows the crown of a grown skeleton (radii set) into c (zeroed first;
  * free with keyaki_crown_free). Own PCG32 streams ("twigs", "leaves")
- * keyed by (seed, cluster): never the growth stream. BANYAN_E_NOMEM. */
-banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_crown *c,
-                                banyan_error *err);
+ * keyed by (seed, cluster): never the growth stream. count_only: the
+ * same twigs and counts, but the leaves only counted (sizing a tree).
+ * BANYAN_E_NOMEM. */
+banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
+                                keyaki_crown *c, banyan_error *err);
 void keyaki_crown_free(keyaki_crown *c);
 /* Appends the twig tubes to the current part (c->vertices exactly). */
 void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]);
@@ -151,9 +152,10 @@ typedef struct keyaki_body {
 void keyaki_body_free(keyaki_body *b);
 
 /* Plans the body of a grown skeleton (radii, orders set): limbs, sides,
- * leaf counts (drawn from the tree's leaf stream) and exact totals, so the
- * caller can refuse past max_vertices before meshing. */
-banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count,
+ * the crown (keyaki_crown_grow) and exact totals, so the caller can
+ * refuse past max_vertices before meshing. count_only: leaves counted,
+ * not placed (the body can then only be measured, not meshed). */
+banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count, int count_only,
                                keyaki_body *body, banyan_error *err);
 
 /* Meshes a planned body into mb: bark part (material bark_mat, group) then

@@ -347,7 +347,7 @@ static void crack_free(uint64_t seed, int model) {
     keyaki_strahler(sk.nodes, sk.count);
     keyaki_radii(sk.nodes, sk.count, p.tip_radius * p.unit, p.pipe_exponent);
     keyaki_body body;
-    CHECK(keyaki_body_plan(&p, sk.nodes, sk.count, &body, NULL) == BANYAN_OK, "plan");
+    CHECK(keyaki_body_plan(&p, sk.nodes, sk.count, 0, &body, NULL) == BANYAN_OK, "plan");
     mesh_builder mb;
     mb_init(&mb, 1u << 26, 0);
     int attr[3] = {mb_add_attr(&mb, "tree_id"), mb_add_attr(&mb, "level"), mb_add_attr(&mb, "order")};

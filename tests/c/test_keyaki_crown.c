@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "core/leaf_look.h"
 #include "keyaki_crown_checks.h"
 #include "test_files.h"
 
@@ -29,6 +30,17 @@ static double poly_dist(v3 q, const v3 *pts, int32_t n) {
         if (e < d) d = e;
     }
     return d;
+}
+
+/* Direction of the segment of pts nearest q. */
+static v3 nearest_tangent(v3 q, const v3 *pts, int32_t n) {
+    double d = 1e300;
+    v3 t = v3_make(0, 0, 1);
+    for (int32_t i = 0; i + 1 < n; i++) {
+        double e = seg_dist(q, pts[i], pts[i + 1]);
+        if (e < d && v3_dist(pts[i], pts[i + 1]) > 1e-12) d = e, t = v3_norm(v3_sub(pts[i + 1], pts[i]));
+    }
+    return t;
 }
 
 static int dbl_cmp(const void *a, const void *b) {
@@ -66,7 +78,7 @@ static int load(const char *name, banyan_keyaki_params *p) {
 
 static int grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_crown *c) {
     if (keyaki_grow(p, sk, NULL) || keyaki_strahler(sk->nodes, sk->count)) return 1;
-    return keyaki_crown_grow(p, sk->nodes, sk->count, c, NULL) != BANYAN_OK;
+    return keyaki_crown_grow(p, sk->nodes, sk->count, 0, c, NULL) != BANYAN_OK;
 }
 
 typedef struct fails {
@@ -98,20 +110,23 @@ static void check_crown(const banyan_keyaki_params *p, const keyaki_skeleton *sk
         if (T->children == 0 && fabs(R[T->count - 1] - p->twig_radius) > 1e-9 * p->twig_radius) f->tip++;
         if (T->level != n[T->node].level + T->order) f->level++;
     }
+    v3 q_tangent[2] = {{0, 0, 1}, {0, 0, 1}}; /* the twig's direction at this leaf and the one before */
     for (int32_t k = 0; k < c->n_leaves; k++) {
         const keyaki_leaf *q = &c->leaves[k];
-        lengths[k] = q->blade;
+        lengths[k] = q->length * (LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0); /* the blade */
         if (q->twig < 0) {
             f->petiole++;
             continue;
         }
         const keyaki_twig *T = &c->twigs[q->twig];
         if (poly_dist(q->base, c->pts + T->first, T->count) > 1e-9) f->petiole++;
+        q_tangent[k % 2] = nearest_tangent(q->base, c->pts + T->first, T->count);
         if (q->level != T->level) f->level++;
         if (k > 0 && c->leaves[k - 1].twig == q->twig) {
             const keyaki_leaf *o = &c->leaves[k - 1];
-            v3 a = v3_madd(q->axis, q->tangent, -v3_dot(q->axis, q->tangent));
-            v3 b = v3_madd(o->axis, o->tangent, -v3_dot(o->axis, o->tangent));
+            v3 tq = q_tangent[k % 2], to = q_tangent[(k + 1) % 2];
+            v3 a = v3_madd(q->axis, tq, -v3_dot(q->axis, tq));
+            v3 b = v3_madd(o->axis, to, -v3_dot(o->axis, to));
             if (q->side != -o->side || v3_dot(a, b) >= 0) f->alternate++;
         }
     }
