@@ -180,7 +180,7 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->sides_max = 14;
     p->sides_min = 4;
     p->twig_levels = 2;
-    p->twig_length = 0.45;
+    p->twig_length = 0.5;
     p->twig_ratio = 0.3;
     p->twig_spacing = 0.2;
     p->twig_angle = 50.0;
@@ -190,7 +190,7 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->light_steer = 35.0;
     p->leaves = 1;
     p->leaf_levels = 4;
-    p->leaf_density = 20.0;
+    p->leaf_density = 18.0;
     p->leaf_size = 0.05;
     p->leaf_size_spread = 0.3;
     static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};

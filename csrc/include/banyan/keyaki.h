@@ -138,7 +138,7 @@ typedef struct banyan_keyaki_params {
     int32_t twig_levels;     /* 0 .. 3: orders of side twigs below the skeleton's outer branches (0: none, the
                                 leaves sit on the skeleton). Default 2 */
     double twig_length;      /* m, 0.01 .. 5: length of a first-order twig; each finer order is twig_ratio of
-                                its parent. Default 0.45 */
+                                its parent. Default 0.5 */
     double twig_ratio;       /* 0.05 .. 1: a twig's length as a fraction of its parent twig's. Default 0.3 */
     double twig_spacing;     /* m, 0.005 .. 5: distance between successive side twigs on a shoot. Default 0.2 */
     double twig_angle;       /* deg, 0 .. 90: a side twig's angle from its parent. Default 50 */
@@ -151,7 +151,7 @@ typedef struct banyan_keyaki_params {
     int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
                                 leaves. Default 4 */
     double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
-                                Default 20 */
+                                Default 18 */
     double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.05 */
     double leaf_size_spread; /* 0 .. 1: blade lengths vary by up to this fraction either way. Default 0.3 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
