@@ -295,12 +295,12 @@ static void keyaki_shade_row(const keyaki_consts *Cp, int m, const float *restri
         const float y = sY[i], ax = sA[i], w = sW[i], dpx = sD[i], gr = sGr[i];
         float rel = w > 1e-5f ? ax / w : 1.0f;
         /* Veins: midrib, then the straight laterals (q = const lines). */
-        float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
+        float mid_w = (0.0075f * (1.0f - y) + 0.0025f) * lp;
         float vm = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
         float q = y - ax * C.slope;
         float j = (q - C.q0) / C.dq;
         float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * C.dq * C.ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
-        float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
+        float lw = (0.0036f * (1.0f - 0.6f * rel)) * lp;
         float vl0 = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
         vl0 *= tex_smooth(0.0f, 0.05f, ax);
         float vl = (j > -0.3f) & (j < C.veins) ? vl0 : 0.0f;
@@ -313,7 +313,7 @@ static void keyaki_shade_row(const keyaki_consts *Cp, int m, const float *restri
         sG[i] = keyaki_shade(C.col[1], C.edge[1], C.blot[1], C.vein[1], toward, shade, bl, vein, edge);
         sB[i] = keyaki_shade(C.col[2], C.edge[2], C.blot[2], C.vein[2], toward, shade, bl, vein, edge);
         /* Domed across; a blade under a few pixels wide (the tip) stays low. */
-        sH[i] = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
+        sH[i] = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.3f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
     }
 }
 
@@ -412,7 +412,7 @@ static void keyaki_colours(kleaf *L, int season, int tone, float light, pcg32 *r
         memcpy(L->blotcol, L->col, sizeof c);
         return;
     }
-    static const float pal[5][3] = {{224, 180, 46}, {214, 118, 36}, {158, 78, 36}, {128, 40, 56}, {128, 40, 56}};
+    static const float pal[5][3] = {{224, 180, 46}, {214, 118, 36}, {158, 78, 36}, {136, 40, 46}, {136, 40, 46}};
     float b = 0.88f + 0.09f * (light + 1.0f);
     float m = tex_unif(r, 0.0f, 0.15f); /* a little towards the next tone: still one tone */
     for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[tone + 1][i], m) * b;
