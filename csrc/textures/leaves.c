@@ -1,4 +1,4 @@
-/* leaves.c - leaf atlases (issue #17; docs/materials.md "Leaves"):
+/* leaves.c - leaf atlases (issues #17, #20; docs/materials.md, "Keyaki leaves"):
  * keyaki (Zelkova serrata) and Boston ivy (Parthenocissus tricuspidata).
  * Each leaf is an implicit shape evaluated per pixel inside its bounding
  * box: keyaki blades by a half-width profile along the midrib (ovate,
@@ -7,10 +7,13 @@
  * blades by a polar radius around the petiole junction (three pointed
  * lobes or one, cordate base, coarse teeth) with five palmate primary
  * veins. Profiles are tabulated per leaf, the edge is antialiased from its
- * distance in pixels. Keyaki cells hold a small spray (leaves alternate on
- * a zigzag twiglet), ivy cells one leaf. Colour is straight alpha; pixels
- * outside leaves get the cell's mean leaf colour at alpha 0, so mipmaps
- * and texture filtering do not bleed a dark fringe. */
+ * distance in pixels. Both atlases are 4 x 4 cells of one leaf each; a
+ * keyaki leaf fills the box core/leaf_look.h gives its mesh quad (issue
+ * #20: midrib up the cell's centre, petiole below, blade and teeth within
+ * LEAF_KEYAKI_HALF_U of it), so the drawn leaf and the quad have the same
+ * length. Colour is straight alpha; pixels outside leaves get the cell's
+ * mean leaf colour at alpha 0, so mipmaps and texture filtering do not
+ * bleed a dark fringe. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>

@@ -95,7 +95,7 @@ static void check_atlas(int kind, int season, const banyan_image *im) {
             for (int y = y0; y <= y1; y++)
                 for (int x = x0; x <= x1; x++) covered += alpha_at(im, x, y) > 127;
             double frac = (double)covered / ((double)cw * ch);
-            CHECK(frac > 0.10 && frac < 0.8, "%s s%d cell %d,%d: leaf covers %.2f of the cell", names[kind], season, i,
+            CHECK(frac > 0.12 && frac < 0.8, "%s s%d cell %d,%d: leaf covers %.2f of the cell", names[kind], season, i,
                   j, frac);
         }
 }
