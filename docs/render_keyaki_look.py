@@ -10,7 +10,8 @@ writes docs/img/keyaki/look_<tag>_<view>.png:
           into limbs, the limbs, the twigs and the leaves against the sky);
   tree    keyaki_mature from 20 m at eye height, the whole tree in frame;
   avenue  the avenue preset (--avenue, default avenue_boulevard) from the
-          street between its rows at eye height, looking along it;
+          street between its rows at eye height, looking along it (a
+          one-row avenue such as avenue_street: from 7 m to its side);
   young   keyaki_young from 10 m at eye height (it must not read as a
           lollipop).
 --values merges params into the keyaki views, --avenue-values into the
@@ -38,9 +39,17 @@ from render_ivy_look import palette_png  # noqa: E402
 # Look: ("at", target) aims at a point; ("pitch", yaw deg, pitch deg) turns from +x; ("fit", None) aims at
 # the plant's bounds centre and picks the lens that frames them.
 _Y = math.radians(-52)  # the horizontal direction the whole-tree views come from (RS.VIEWS["keyaki"]'s)
+
+
+def under(side, turn, pitch):
+    """The under view's eye and look: standing 2 m from the trunk at `side` degrees round it (from +x), 1.6 m
+    high, facing the trunk turned by `turn` degrees, pitched up by `pitch`."""
+    a = math.radians(side)
+    return (2.0 * math.cos(a), 2.0 * math.sin(a), 1.6), ("pitch", side + 180 - turn, pitch)
+
+
 VIEWS = {
-    "under": ("keyaki", "keyaki_mature", (2.0 * math.cos(_Y), 2.0 * math.sin(_Y), 1.6),
-              ("pitch", math.degrees(_Y) + 180 - 30, 42.0), 18.0),
+    "under": ("keyaki", "keyaki_mature") + under(-142, 25, 45) + (18.0,),
     "tree": ("keyaki", "keyaki_mature", (20.0 * math.cos(_Y), 20.0 * math.sin(_Y), 1.6), ("fit", None), None),
     "avenue": ("avenue", None, (-6.0, 0.0, 1.6), ("pitch", 0.0, 9.0), 20.0),
     "young": ("keyaki", "keyaki_young", (10.0 * math.cos(_Y), 10.0 * math.sin(_Y), 1.6), ("fit", None), None),
@@ -96,14 +105,20 @@ def main():
     ap.add_argument("--values", default="{}", help="keyaki params as JSON, e.g. {\"leaf_density\": 28}")
     ap.add_argument("--avenue-values", default="{}", help="avenue params as JSON")
     ap.add_argument("--views", default=",".join(VIEWS), help="comma-separated, of %s" % ", ".join(VIEWS))
+    ap.add_argument("--under", default=None, help="the under view's side,turn,pitch in degrees (default -142,25,45)")
     ap.add_argument("--size", default="640x400")
     ap.add_argument("--samples", type=int, default=8)
     ap.add_argument("--colors", type=int, default=256, help="palette size of the PNG (0: RGB)")
     ap.add_argument("--out", default=os.path.join(RS.REPO, "docs", "img", "keyaki"))
     a = ap.parse_args(RS.script_args())
     w, h = (int(v) for v in a.size.split("x"))
+    if a.under:
+        VIEWS["under"] = VIEWS["under"][:2] + under(*(float(v) for v in a.under.split(","))) + VIEWS["under"][4:]
     for name in a.views.split(","):
         gen, preset, eye, look, lens = VIEWS[name]
+        if gen == "avenue" and RS.import_banyan().make_params("avenue", preset=a.avenue).get("rows") < 2:
+            # A single row (avenue_street) stands on the view's line: stand 7 m to its side, turned towards it.
+            eye, look = (eye[0], eye[1] - 7.0, eye[2]), (look[0], look[1] + 8.0, look[2])
         values = json.loads(a.avenue_values if gen == "avenue" else a.values)
         t0 = time.perf_counter()
         RS.reset()
