@@ -123,10 +123,10 @@ def main():
         VIEWS["under"] = VIEWS["under"][:2] + under(*(float(v) for v in a.under.split(","))) + VIEWS["under"][4:]
     for name in a.views.split(","):
         gen, preset, eye, look, lens = VIEWS[name]
-        if gen == "avenue" and RS.import_banyan().make_params("avenue", preset=a.avenue).get("rows") < 2:
-            # A single row (avenue_street) stands on the view's line: stand 7 m to its side, turned 20 degrees towards it.
-            eye, look = (eye[0], eye[1] - 7.0, eye[2]), (look[0], look[1] + 20.0, look[2])
         values = json.loads(a.avenue_values if gen == "avenue" else a.values)
+        if gen == "avenue" and RS.import_banyan().make_params("avenue", preset=a.avenue, values=values).get("rows") < 2:
+            # One row (avenue_street) stands on the view's line: stand 7 m to its side, turned 20 degrees to it.
+            eye, look = (eye[0], eye[1] - 7.0, eye[2]), (look[0], look[1] + 20.0, look[2])
         t0 = time.perf_counter()
         RS.reset()
         plant, _ = RS.grow(gen, preset=preset or a.avenue, values=values)
