@@ -54,11 +54,11 @@ static inline v3 node_end(const keyaki_node *x) { return v3_madd(x->start, x->di
  * Along the trunk's first branch, s from the ground and t = s / h with h
  * = flare_height (at most 0.8 of the branch): the mean radius is r0 (1 +
  * flare (1 - t)^2) and each ring's radius is modulated by 1 + a cos(lobes
- * theta + phase), a = amp (1 - t)^3 with amp = 0.6 flare / (1 + flare):
- * ridges to r0 (1 + 1.6 flare) and hollows to r0 (1 + 0.4 flare) at the
- * ground, so the hollows never dip under the trunk. Rings at t = 0, 1/F,
- * .., 1, and one more sunk 0.15 r0 below the ground (as wide as the
- * ground ring) so uneven ground shows no gap. The phase comes from a
+ * theta + phase), a = amp (1 - t)^3 with amp = 0.6 flare / (1 + flare)
+ * (at most 2 / lobes): ridges to r0 (1 + 1.6 flare) and hollows to r0 (1 +
+ * 0.4 flare) at the ground, so the hollows never dip under the trunk. Rings at t = 0, 1/F,
+ * .., 1, and one more sunk 0.15 r0 below the ground (the same curves,
+ * carried on) so uneven ground shows no gap. The phase comes from a
  * stream of its own: the growth never sees it. */
 #define FLARE_RINGS 8                        /* F: rings from the ground (t = 0) up to t = (F - 1) / F */
 #define KEYAKI_STREAM_FLARE 0x666c617265ull /* "flare" */
@@ -85,20 +85,23 @@ static void flare_setup(const banyan_keyaki_params *p, const keyaki_node *trunk,
     f->flare = p->flare;
     f->lobes = p->flare_lobes;
     f->amp = f->lobes > 0 ? 0.6 * p->flare / (1.0 + p->flare) : 0.0;
+    /* Many lobes: shallower, so a ridge's flank is at most 2:1 round the
+     * trunk (rho_theta / rho = amp lobes) and the rings still sample it. */
+    if (f->amp * f->lobes > 2.0) f->amp = 2.0 / f->lobes;
     pcg32 r;
     pcg32_seed(&r, p->seed, KEYAKI_STREAM_FLARE);
     f->phase = rng_uniform(&r) * 2.0 * BANYAN_PI;
 }
 
-/* The flare's points and mean radii: pts[0] sunk, pts[1 + i] at t = i / F
- * (i = 0 .. F); pts[F + 1] is the trunk at r0. */
+/* t of flare ring i: ring 0 sunk, ring 1 + i at i / F (i = 0 .. F). */
+static double flare_t(const flare_shape *f, int i) { return i == 0 ? -f->sink / f->h : (double)(i - 1) / FLARE_RINGS; }
+
+/* The flare's points and mean radii; pts[F + 1] is the trunk at r0. */
 static void flare_points_put(const flare_shape *f, const keyaki_node *trunk, v3 *pts, double *rad) {
-    pts[0] = v3_madd(trunk->start, trunk->dir, -f->sink);
-    rad[0] = f->r0 * (1.0 + f->flare);
-    for (int i = 0; i <= FLARE_RINGS; i++) {
-        double t = (double)i / FLARE_RINGS, w = 1.0 - t;
-        pts[1 + i] = v3_madd(trunk->start, trunk->dir, f->h * t);
-        rad[1 + i] = f->r0 * (1.0 + f->flare * w * w);
+    for (int i = 0; i <= FLARE_RINGS + 1; i++) {
+        double t = flare_t(f, i), w = 1.0 - t;
+        pts[i] = v3_madd(trunk->start, trunk->dir, f->h * t);
+        rad[i] = f->r0 * (1.0 + f->flare * w * w);
     }
 }
 
@@ -109,9 +112,9 @@ static void flare_points_put(const flare_shape *f, const keyaki_node *trunk, v3 
 static void flare_ridge(const flare_shape *f, const v3 *pts, const v3 *T, const v3 *N, int sides, v3 *rings,
                         v3 *normals) {
     for (int i = 0; i <= FLARE_RINGS + 1; i++) {
-        double t = i == 0 ? 0.0 : (double)(i - 1) / FLARE_RINGS, w = 1.0 - t;
-        double R = f->r0 * (1.0 + f->flare * w * w), dR = i == 0 ? 0.0 : -2.0 * f->r0 * f->flare * w / f->h;
-        double a = f->amp * w * w * w, da = i == 0 ? 0.0 : -3.0 * f->amp * w * w / f->h;
+        double t = flare_t(f, i), w = 1.0 - t;
+        double R = f->r0 * (1.0 + f->flare * w * w), dR = -2.0 * f->r0 * f->flare * w / f->h;
+        double a = f->amp * w * w * w, da = -3.0 * f->amp * w * w / f->h;
         v3 B = v3_cross(T[i], N[i]);
         for (int j = 0; j < sides; j++) {
             double th = 2.0 * BANYAN_PI * j / sides, c = cos(th), sn = sin(th);
