@@ -71,10 +71,10 @@ typedef struct flare_shape {
 /* Extra trunk rings the flare adds (the sunk ring and t = 1/F .. 1). */
 static int32_t flare_points(const banyan_keyaki_params *p) { return p->flare > 0 ? FLARE_RINGS + 1 : 0; }
 
-/* Trunk sides: at least 4 a buttress, so each ridge and hollow shows. */
+/* Trunk sides: at least 6 a buttress, so each ridge and hollow is round. */
 static int trunk_sides(const banyan_keyaki_params *p, int sides) {
-    int want = p->flare > 0 && p->flare_lobes > 0 ? 4 * p->flare_lobes : 0;
-    return want > sides ? (want > 64 ? 64 : want) : sides;
+    int want = p->flare > 0 && p->flare_lobes > 0 ? 6 * p->flare_lobes : 0;
+    return want > sides ? want : sides; /* <= 96 (16 lobes) */
 }
 
 static void flare_setup(const banyan_keyaki_params *p, const keyaki_node *trunk, flare_shape *f) {
