@@ -128,11 +128,33 @@ static void flare_ridge(const flare_shape *f, const v3 *pts, const v3 *T, const 
     }
 }
 
+/* v of the trunk's rings from ring `first` of the mesh: the sweeper's
+ * (arc length over each ring's perimeter, times the tiles) but over the
+ * flare's slant length, sqrt(ds^2 + dr^2) with r the perimeter / 2 pi,
+ * so the bark is not drawn out along a steep foot. */
+static void flare_v(mesh_builder *mb, uint32_t first, const v3 *pts, const v3 *rings, uint32_t np, int sides,
+                    int tiles) {
+    double v = 0, r_prev = 0;
+    for (uint32_t i = 0; i < np; i++) {
+        const v3 *ring = rings + (size_t)i * sides;
+        double c = 0;
+        for (int j = 0; j < sides; j++) c += v3_dist(ring[j], ring[j + 1 < sides ? j + 1 : 0]);
+        double r = c / (2.0 * BANYAN_PI);
+        if (i) {
+            double ds = v3_dist(pts[i], pts[i - 1]), dr = i <= FLARE_RINGS + 1 ? r - r_prev : 0.0;
+            v += tiles * tube_dv(sqrt(ds * ds + dr * dr), r_prev, r, r_prev);
+        }
+        r_prev = r;
+        float *uv = mb->uv + 2 * ((size_t)first + (size_t)i * (size_t)(sides + 1));
+        for (int j = 0; j <= sides; j++) uv[2 * j + 1] = (float)v;
+    }
+}
+
 /* Sweeps the trunk (limb 0, np points of which the first F + 2 are the
  * flare's) as given rings: round rings on rotation-minimising frames
  * (tube_round_rings: the bytes tube_sweep would make above the flare),
  * the flare's ridged; u by arc length round each ring (ridges do not
- * stretch the bark). */
+ * stretch the bark), v by flare_v. */
 static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, const double *rad, uint32_t np,
                         int sides, int tiles) {
     v3 *T = malloc(sizeof(v3) * 2 * np), *rings = malloc(sizeof(v3) * 2 * (size_t)np * (size_t)sides);
@@ -153,7 +175,9 @@ static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, c
     tube_round_rings(pts, rad, np, T, N, cs, sn, sides, rings, normals, NULL);
     flare_ridge(f, pts, T, N, sides, rings, normals);
     tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, normals, 1, tiles};
+    uint32_t first = mb->nv;
     tube_sweep_rings(mb, pts, rings, np, &o);
+    if (!mb->status) flare_v(mb, first, pts, rings, np, sides, tiles);
     free(T);
     free(rings);
 }

@@ -230,6 +230,25 @@ static void bark_uvs(uint64_t seed, double unit, double tile, double flare) {
     CHECK(fabs(across / along - 1) < 0.05, "unit %g tile %g: trunk texel aspect %g (tile %g across, %g along)", unit,
           tile, across / along, across, along);
     CHECK(fabs(across / tile - 1) < 0.3, "unit %g: trunk tile %g m across, want %g +- 30 %%", unit, across, tile);
+    /* On the flare's foot too: across its rings' perimeter, along the
+     * slant between them. */
+    for (int32_t r = 1; flare > 0 && r <= 8; r++) {
+        uint32_t a = L->vertex_offset + (uint32_t)r * (uint32_t)(sides + 1), b = a + (uint32_t)(sides + 1);
+        double pa = 0, pb = 0;
+        v3 c1 = v3_make(0, 0, 0), c2 = c1;
+        for (int j = 0; j < sides; j++) {
+            uint32_t jn = (uint32_t)(j + 1) % (uint32_t)sides;
+            pa += v3_dist(vert(&t.mb, a + (uint32_t)j), vert(&t.mb, a + jn));
+            pb += v3_dist(vert(&t.mb, b + (uint32_t)j), vert(&t.mb, b + jn));
+            c1 = v3_add(c1, v3_scale(vert(&t.mb, a + (uint32_t)j), 1.0 / sides));
+            c2 = v3_add(c2, v3_scale(vert(&t.mb, b + (uint32_t)j), 1.0 / sides));
+        }
+        double dz = v3_dist(c1, c2), dr = (pb - pa) / (2 * BANYAN_PI), slant = sqrt(dz * dz + dr * dr);
+        double dvf = t.mb.uv[2 * (size_t)b + 1] - t.mb.uv[2 * (size_t)a + 1];
+        double asp = (0.5 * (pa + pb) / k) / (slant / dvf);
+        CHECK(fabs(asp - 1) < 0.05, "unit %g tile %g: texel aspect %g between foot rings %d and %d", unit, tile, asp, r,
+              r + 1);
+    }
     CHECK(finite_mesh(&t.mb) == 0, "NaN in the mesh");
     release(&t);
 }
@@ -264,6 +283,7 @@ int main(void) {
     bark_uvs(4, 1.0, 0.4, 0.0);
     bark_uvs(5, 1.0, 0.25, 0.5);
     bark_uvs(6, 2.0, 0.6, 0.5);
+    bark_uvs(7, 1.0, 0.4, 3.0);
     same_bytes();
     return check_done("test_keyaki_trunk");
 }
