@@ -123,4 +123,5 @@ def main():
             palette_png(path, min(a.colors, 256))
 
 
-main()
+if __name__ == "__main__":  # docs/render_keyaki_look.py imports palette_png
+    main()

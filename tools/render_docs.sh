@@ -6,7 +6,8 @@
 #   bash tools/render_docs.sh            # everything
 #   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
 #   (also: params, start, avenue, hosts, roots (issue #18 look views),
-#   ivy (issue #19 look views: front, close, stems, pillar); extra arguments go to the script)
+#   ivy (issue #19 look views: front, close, stems, pillar), keyaki (issue #20
+#   look views: under, tree, avenue, young); extra arguments go to the script)
 #   bash tools/render_docs.sh ui         # docs/screenshots.py in a real window on Xvfb
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -30,6 +31,7 @@ case $what in
   hosts) run docs/render_hosts.py -- "$@" ;;
   roots) run docs/render_roots_look.py -- "$@" ;;
   ivy) run docs/render_ivy_look.py -- "$@" ;;
+  keyaki) run docs/render_keyaki_look.py -- "$@" ;;
   ui) # A real window: Blender on a virtual X display; a .blend on the command line skips the splash.
     command -v xvfb-run >/dev/null || { echo "ui needs Xvfb: apt-get install xvfb xauth"; exit 1; }
     blend="$scripts/start.blend"
@@ -44,5 +46,5 @@ case $what in
     run docs/render_getting_started.py
     run docs/render_hosts.py
     run docs/examples/render_avenue.py -- --out docs/img/avenue.png ;;
-  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts|roots|ivy|ui] [script args]"; exit 2 ;;
+  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts|roots|ivy|keyaki|ui] [script args]"; exit 2 ;;
 esac

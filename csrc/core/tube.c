@@ -11,6 +11,16 @@ void tube_counts(uint32_t n, int sides, int cap_start, int cap_end, uint32_t *ve
     *indices = (n - 1) * (uint32_t)sides * 6 + caps * (uint32_t)sides * 3;
 }
 
+int tube_bark_tiles(double r, double tile) {
+    double k = tile > 0 ? floor(6.283185307179586 * r / tile + 0.5) : 1.0;
+    return k > 1 ? (k < 1e6 ? (int)k : 1000000) : 1;
+}
+
+/* u for `sides` + 1 vertices spread evenly over ku tiles. */
+static void even_u(float *us, int sides, int ku) {
+    for (int j = 0; j <= sides; j++) us[j] = (float)((double)ku * j / sides);
+}
+
 static v3 tangent_at(const v3 *p, uint32_t n, uint32_t i, v3 prev) {
     v3 d;
     if (i == 0) d = v3_sub(p[1], p[0]);
@@ -217,17 +227,22 @@ void tube_sweep_rings(mesh_builder *mb, const v3 *centres, const v3 *rings, uint
     v3 derived[256];
     /* Arc-length uvs: each ring's perimeter and u made once, kept for the
      * next ring's v. */
-    float us_buf[257], *us = o->arc_uv ? us_buf : NULL;
+    int ku = o->u_tiles > 1 ? o->u_tiles : 1;
+    float us_buf[257], *us = o->arc_uv || ku > 1 ? us_buf : NULL;
+    if (!o->arc_uv && ku > 1) even_u(us_buf, sides, ku);
     double pa = 0;
     for (uint32_t i = 0; i < n; i++, P += 3 * ring_len, N += 3 * ring_len, UV += 2 * ring_len) {
         if (o->arc_uv) { /* the perimeter stands for the circumference */
             double pb = ring_perimeter(rings + (size_t)i * sides, sides, us);
-            if (i) vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), pa / 6.283185307179586,
-                                     pb / 6.283185307179586, r_mean);
+            if (ku > 1)
+                for (int j = 0; j <= sides; j++) us[j] *= (float)ku;
+            if (i) vv_acc += ku * tube_dv(v3_dist(centres[i], centres[i - 1]), pa / 6.283185307179586,
+                                          pb / 6.283185307179586, r_mean);
             pa = pb;
         } else if (i) {
-            vv_acc += tube_dv(v3_dist(centres[i], centres[i - 1]), v3_dist(rings[(size_t)(i - 1) * sides], centres[i - 1]),
-                              v3_dist(rings[(size_t)i * sides], centres[i]), r_mean);
+            vv_acc += ku * tube_dv(v3_dist(centres[i], centres[i - 1]),
+                                   v3_dist(rings[(size_t)(i - 1) * sides], centres[i - 1]),
+                                   v3_dist(rings[(size_t)i * sides], centres[i]), r_mean);
         }
         const v3 *ring = rings + (size_t)i * sides;
         float vv = (float)vv_acc;
@@ -371,7 +386,15 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     tube_counts(n, sides, o->cap_start, o->cap_end, &nv, &ni);
     uint32_t first = mb_reserve(mb, nv, ni) ? UINT32_MAX : mb_vertices(mb, n * ring_len);
     if (first == UINT32_MAX) return;
-    /* v: tube_dv, arc length over the local circumference. */
+    /* u: once round, or over u_tiles tiles; v: tube_dv, arc length over
+     * the local circumference, times the tiles. */
+    int ku = o->u_tiles > 1 ? o->u_tiles : 1;
+    float us_k[257];
+    const float *us = mb->ring_u;
+    if (ku > 1) {
+        even_u(us_k, sides, ku);
+        us = us_k;
+    }
     double rsum = 0, vv = o->v_offset;
     for (uint32_t i = 0; i < n; i++) rsum += radii[i];
     double r_mean = rsum / n;
@@ -381,11 +404,11 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     walk_start(&w, pts, n, o->first_normal);
     v3 T0 = w.T, N0 = w.N;
     for (uint32_t i = 0;; i++) {
-        if (i) vv += tube_dv(w.l0, radii[i - 1], radii[i], r_mean);
+        if (i) vv += ku * tube_dv(w.l0, radii[i - 1], radii[i], r_mean);
         size_t at = (size_t)first + (size_t)i * ring_len;
         ring_geom g;
         ring_setup(&g, pts, radii, n, i, w.T, w.N, w.l0 > 1e-300 ? w.u0 : w.T, w.l > 1e-300 ? w.u : w.T);
-        put_round_ring(&g, cs, sn, mb->ring_u, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
+        put_round_ring(&g, cs, sn, us, sides, mb->pos + 3 * at, mb->nrm + 3 * at, mb->uv + 2 * at,
                        (float)vv);
         if (i + 1 >= n) break;
         walk_next(&w);

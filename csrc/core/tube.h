@@ -4,9 +4,10 @@
  * (plus one seam vertex so u runs 0..1), joined by quads split into two
  * triangles, wound counter-clockwise from outside. Frames are
  * rotation-minimising (double reflection, Wang et al. 2008), so rings do
- * not twist. u goes around the tube once, v along it: the integral of
- * arc length over the local circumference, so texels stay square where
- * the tube tapers too (bark textures keep their aspect). */
+ * not twist. u goes around the tube once (or u_tiles times), v along it:
+ * the integral of arc length over the local circumference (times
+ * u_tiles), so texels stay square where the tube tapers too (bark
+ * textures keep their aspect). */
 #ifndef BANYAN_TUBE_H
 #define BANYAN_TUBE_H
 
@@ -25,7 +26,18 @@ typedef struct tube_opts {
      * the rings' perimeters, so texels stay square on rings pressed flat
      * against a surface (the roots'); 0: u by vertex, v by radius. */
     int arc_uv;
+    /* Bark tiles round the tube: u runs 0..u_tiles round every ring and v
+     * gains u_tiles times as fast, so a texel stays square and one tile
+     * is a circumference / u_tiles across (tube_bark_tiles picks it).
+     * Keep it whole, or the seam shows; 0 or 1: once round (u 0..1). */
+    int u_tiles;
 } tube_opts;
+
+/* Whole bark tiles round a tube of radius r (m) so that one tile is about
+ * `tile` (m) across: max(1, round(2 pi r / tile)). Pick it once per tube,
+ * from its thickest (first) ring, so the seam does not tear where the
+ * radius changes along it. */
+int tube_bark_tiles(double r, double tile);
 
 /* Vertices and indices one tube of n points adds; for mb_reserve. */
 void tube_counts(uint32_t n, int sides, int cap_start, int cap_end, uint32_t *verts, uint32_t *indices);

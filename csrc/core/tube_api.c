@@ -41,7 +41,7 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
     }
     mesh_builder mb;
     mb_init(&mb, BANYAN_TUBE_MAX_VERTICES, 0);
-    tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL, 0};
+    tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL, 0, 1};
     tube_sweep(&mb, pts, radii, point_count, &o);
     mb_skel_reserve(&mb, point_count, point_count - 1);
     for (uint32_t i = 0; i < point_count; i++) {

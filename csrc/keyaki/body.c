@@ -16,6 +16,12 @@
  * sqrt(r / r_trunk). Leaf cards (textured quads, each showing one cell of
  * the leaf atlas, leaf_look.h) hang from the branches within leaf_levels
  * of a tip, leaf_density per unit of length.
+ * Root flare (docs/keyaki.md "Trunk: flare and bark"): the trunk tube
+ * gains FLARE_RINGS + 1 rings at its foot, widened by `flare` with a
+ * (1 - t)^2 fall-off over flare_height and ridged by flare_lobes
+ * buttresses, swept as given rings with their surface's normals. Bark
+ * uvs: every tube wraps a whole number of bark_tile-wide tiles round
+ * (tube_bark_tiles of its first branch's radius), v in the same tiles.
  * Everything is counted exactly before meshing (keyaki_body_plan) so the
  * vertex limit is checked before any mesh memory is allocated. */
 #include <math.h>
@@ -44,6 +50,138 @@ static int32_t main_child(const keyaki_node *n, int32_t i) {
 
 static inline v3 node_end(const keyaki_node *x) { return v3_madd(x->start, x->dir, x->length); }
 
+/* --- root flare --------------------------------------------------------
+ * Along the trunk's first branch, s from the ground and t = s / h with h
+ * = flare_height (at most 0.8 of the branch): the mean radius is r0 (1 +
+ * flare (1 - t)^2) and each ring's radius is modulated by 1 + a cos(lobes
+ * theta + phase), a = amp (1 - t)^3 with amp = 0.6 flare / (1 + flare)
+ * (at most 2 / lobes): ridges to r0 (1 + 1.6 flare) and hollows to r0 (1 +
+ * 0.4 flare) at the ground, so the hollows never dip under the trunk. Rings at t = 0, 1/F,
+ * .., 1, and one more sunk 0.15 r0 below the ground (the same curves,
+ * carried on) so uneven ground shows no gap. The phase comes from a
+ * stream of its own: the growth never sees it. */
+#define FLARE_RINGS 8                        /* F: rings from the ground (t = 0) up to t = (F - 1) / F */
+#define KEYAKI_STREAM_FLARE 0x666c617265ull /* "flare" */
+
+typedef struct flare_shape {
+    double r0, h, sink, flare, amp, phase;
+    int lobes;
+} flare_shape;
+
+/* Extra trunk rings the flare adds (the sunk ring and t = 1/F .. 1). */
+static int32_t flare_points(const banyan_keyaki_params *p) { return p->flare > 0 ? FLARE_RINGS + 1 : 0; }
+
+/* Trunk sides: at least 6 a buttress, so each ridge and hollow is round. */
+static int trunk_sides(const banyan_keyaki_params *p, int sides) {
+    int want = p->flare > 0 && p->flare_lobes > 0 ? 6 * p->flare_lobes : 0;
+    return want > sides ? want : sides; /* <= 96 (16 lobes) */
+}
+
+static void flare_setup(const banyan_keyaki_params *p, const keyaki_node *trunk, flare_shape *f) {
+    f->r0 = trunk->radius;
+    f->h = p->flare_height * p->unit;
+    if (f->h > 0.8 * trunk->length) f->h = 0.8 * trunk->length;
+    f->sink = 0.15 * f->r0;
+    f->flare = p->flare;
+    f->lobes = p->flare_lobes;
+    f->amp = f->lobes > 0 ? 0.6 * p->flare / (1.0 + p->flare) : 0.0;
+    /* Many lobes: shallower, so a ridge's flank is at most 2:1 round the
+     * trunk (rho_theta / rho = amp lobes) and the rings still sample it. */
+    if (f->amp * f->lobes > 2.0) f->amp = 2.0 / f->lobes;
+    pcg32 r;
+    pcg32_seed(&r, p->seed, KEYAKI_STREAM_FLARE);
+    f->phase = rng_uniform(&r) * 2.0 * BANYAN_PI;
+}
+
+/* t of flare ring i: ring 0 sunk, ring 1 + i at i / F (i = 0 .. F). */
+static double flare_t(const flare_shape *f, int i) { return i == 0 ? -f->sink / f->h : (double)(i - 1) / FLARE_RINGS; }
+
+/* The flare's points and mean radii; pts[F + 1] is the trunk at r0. */
+static void flare_points_put(const flare_shape *f, const keyaki_node *trunk, v3 *pts, double *rad) {
+    for (int i = 0; i <= FLARE_RINGS + 1; i++) {
+        double t = flare_t(f, i), w = 1.0 - t;
+        pts[i] = v3_madd(trunk->start, trunk->dir, f->h * t);
+        rad[i] = f->r0 * (1.0 + f->flare * w * w);
+    }
+}
+
+/* Ridges the flare's rings (0 .. F + 1 of rings / normals, round rings
+ * from tube_round_rings on frames T, N) and gives each vertex the normal
+ * of the surface p = c + rho(theta, s) d(theta): n ~ rho d - rho_theta
+ * d_perp - rho rho_s T. */
+static void flare_ridge(const flare_shape *f, const v3 *pts, const v3 *T, const v3 *N, int sides, v3 *rings,
+                        v3 *normals) {
+    for (int i = 0; i <= FLARE_RINGS + 1; i++) {
+        double t = flare_t(f, i), w = 1.0 - t;
+        double R = f->r0 * (1.0 + f->flare * w * w), dR = -2.0 * f->r0 * f->flare * w / f->h;
+        double a = f->amp * w * w * w, da = -3.0 * f->amp * w * w / f->h;
+        v3 B = v3_cross(T[i], N[i]);
+        for (int j = 0; j < sides; j++) {
+            double th = 2.0 * BANYAN_PI * j / sides, c = cos(th), sn = sin(th);
+            double ph = f->lobes * th + f->phase, m = 1.0 + a * cos(ph);
+            double rho = R * m, rho_th = -R * a * f->lobes * sin(ph), rho_s = dR * m + R * da * cos(ph);
+            v3 d = v3_add(v3_scale(N[i], c), v3_scale(B, sn)), dp = v3_add(v3_scale(N[i], -sn), v3_scale(B, c));
+            rings[(size_t)i * sides + j] = v3_madd(pts[i], d, rho);
+            v3 nr = v3_madd(v3_madd(v3_scale(d, rho), dp, -rho_th), T[i], -rho * rho_s);
+            normals[(size_t)i * sides + j] = v3_norm_or(nr, d);
+        }
+    }
+}
+
+/* v of the trunk's rings from ring `first` of the mesh: the sweeper's
+ * (arc length over each ring's perimeter, times the tiles) but over the
+ * flare's slant length, sqrt(ds^2 + dr^2) with r the perimeter / 2 pi,
+ * so the bark is not drawn out along a steep foot. */
+static void flare_v(mesh_builder *mb, uint32_t first, const v3 *pts, const v3 *rings, uint32_t np, int sides,
+                    int tiles) {
+    double v = 0, r_prev = 0;
+    for (uint32_t i = 0; i < np; i++) {
+        const v3 *ring = rings + (size_t)i * sides;
+        double c = 0;
+        for (int j = 0; j < sides; j++) c += v3_dist(ring[j], ring[j + 1 < sides ? j + 1 : 0]);
+        double r = c / (2.0 * BANYAN_PI);
+        if (i) {
+            double ds = v3_dist(pts[i], pts[i - 1]), dr = i <= FLARE_RINGS + 1 ? r - r_prev : 0.0;
+            v += tiles * tube_dv(sqrt(ds * ds + dr * dr), r_prev, r, r_prev);
+        }
+        r_prev = r;
+        float *uv = mb->uv + 2 * ((size_t)first + (size_t)i * (size_t)(sides + 1));
+        for (int j = 0; j <= sides; j++) uv[2 * j + 1] = (float)v;
+    }
+}
+
+/* Sweeps the trunk (limb 0, np points of which the first F + 2 are the
+ * flare's) as given rings: round rings on rotation-minimising frames
+ * (tube_round_rings: the bytes tube_sweep would make above the flare),
+ * the flare's ridged; u by arc length round each ring (ridges do not
+ * stretch the bark), v by flare_v. */
+static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, const double *rad, uint32_t np,
+                        int sides, int tiles) {
+    v3 *T = malloc(sizeof(v3) * 2 * np), *rings = malloc(sizeof(v3) * 2 * (size_t)np * (size_t)sides);
+    if (!T || !rings) {
+        free(T);
+        free(rings);
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    v3 *N = T + np, *normals = rings + (size_t)np * sides;
+    double cs[256], sn[256];
+    for (int j = 0; j < sides; j++) {
+        double a = 6.283185307179586 * j / sides;
+        cs[j] = cos(a);
+        sn[j] = sin(a);
+    }
+    tube_frames(pts, np, v3_make(0, 0, 0), T, N);
+    tube_round_rings(pts, rad, np, T, N, cs, sn, sides, rings, normals, NULL);
+    flare_ridge(f, pts, T, N, sides, rings, normals);
+    tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, normals, 1, tiles};
+    uint32_t first = mb->nv;
+    tube_sweep_rings(mb, pts, rings, np, &o);
+    if (!mb->status) flare_v(mb, first, pts, rings, np, sides, tiles);
+    free(T);
+    free(rings);
+}
+
 banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                keyaki_body *body, banyan_error *err) {
     memset(body, 0, sizeof *body);
@@ -63,10 +201,11 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
         int32_t m = 1;
         for (int32_t j = main_child(n, i); j >= 0; j = main_child(n, j)) m++;
         L->first = i;
-        L->points = m + 1 + (i != 0);
+        L->points = m + 1 + (i != 0) + (i == 0 ? flare_points(p) : 0);
         double f = r_trunk > 0 ? sqrt(n[i].radius / r_trunk) : 1.0;
         int sides = (int)floor(p->sides_min + (p->sides_max - p->sides_min) * f + 0.5);
         L->sides = sides < p->sides_min ? p->sides_min : sides > p->sides_max ? p->sides_max : sides;
+        if (i == 0) L->sides = trunk_sides(p, L->sides);
         if (i == 0) {
             L->start = n[0].start;
         } else {
@@ -135,6 +274,13 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         pts[0] = L->start;
         rad[0] = L->start_radius;
         ids[0] = L->first;
+        flare_shape fl;
+        if (L->first == 0 && flare_points(p)) { /* the foot's rings, all of the trunk's branch */
+            flare_setup(p, &n[0], &fl);
+            flare_points_put(&fl, &n[0], pts, rad);
+            m = FLARE_RINGS + 1;
+            for (int32_t i = 1; i <= m; i++) ids[i] = 0;
+        }
         if (L->first != 0) { /* the fork point, at the child's full radius */
             m = 1;
             pts[1] = n[L->first].start;
@@ -154,8 +300,13 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         L->vertex_offset = v0 - base;
         mb_set_attr(mb, attr[1], n[L->first].level);
         mb_set_attr(mb, attr[2], n[L->first].order);
-        tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL, 0};
-        tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
+        int tiles = tube_bark_tiles(n[L->first].radius, p->bark_tile);
+        if (L->first == 0 && flare_points(p)) {
+            flare_sweep(mb, &fl, pts, rad, (uint32_t)(m + 1), L->sides, tiles);
+        } else {
+            tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL, 0, tiles};
+            tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
+        }
         /* Ring i > 0 closes branch ids[i]; the end cap belongs to the tip. */
         uint32_t ring = (uint32_t)L->sides + 1;
         for (int32_t i = 1; i <= m; i++) set_attrs(mb, attr, v0 + i * ring, v0 + (i + 1) * ring, &n[ids[i]]);

@@ -632,7 +632,7 @@ void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int 
         const keyaki_twig *T = &c->twigs[t];
         mb_set_attr(mb, attr[1], T->level);
         /* A twig tip's end is hidden in its last leaves: no cap. */
-        tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0};
+        tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0, 1}; /* a twig: one bark tile round */
         tube_sweep(mb, c->pts + T->first, c->rad + T->first, (uint32_t)T->count, &o);
     }
 }

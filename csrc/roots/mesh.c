@@ -435,7 +435,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         tube_frames(P, pl->n, first_normal, wk.T, wk.N);
         ease_bends(wk.rad, P, net->rad + pl->off, pl->n, 0.25 * net->r);
         /* Both ring kinds come with their normals. */
-        tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, wk.normals, 1}; /* pressed rings: arc-length uvs */
+        tube_opts o = {sides, 1, 1, {0, 0, 0}, 0.0, wk.normals, 1, 1}; /* pressed rings: arc-length uvs */
         if (smooth) {
             wk.arc[0] = 0;
             for (uint32_t i = 1; i < pl->n; i++) wk.arc[i] = wk.arc[i - 1] + v3_dist(P[i], P[i - 1]);

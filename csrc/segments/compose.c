@@ -133,7 +133,7 @@ void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
     tube_frames(pts, 2, v3_make(0, 0, 0), T, N);
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < sides; j++) rings[i * sides + j] = tube_ring_point(pts[i], T[i], N[i], r, j, sides);
-    tube_opts o = {sides, 0, 1, {0, 0, 0}, 0.0, NULL, 0};
+    tube_opts o = {sides, 0, 1, {0, 0, 0}, 0.0, NULL, 0, 1};
     tube_sweep_rings(mb, pts, rings, 2, &o);
 }
 

@@ -1,4 +1,4 @@
-/* leaves.c - leaf atlases (issue #17; docs/materials.md "Leaves"):
+/* leaves.c - leaf atlases (issues #17, #20; docs/materials.md, "Keyaki leaves"):
  * keyaki (Zelkova serrata) and Boston ivy (Parthenocissus tricuspidata).
  * Each leaf is an implicit shape evaluated per pixel inside its bounding
  * box: keyaki blades by a half-width profile along the midrib (ovate,
@@ -7,16 +7,20 @@
  * blades by a polar radius around the petiole junction (three pointed
  * lobes or one, cordate base, coarse teeth) with five palmate primary
  * veins. Profiles are tabulated per leaf, the edge is antialiased from its
- * distance in pixels. Keyaki cells hold a small spray (leaves alternate on
- * a zigzag twiglet), ivy cells one leaf. Colour is straight alpha; pixels
- * outside leaves get the cell's mean leaf colour at alpha 0, so mipmaps
- * and texture filtering do not bleed a dark fringe. */
+ * distance in pixels. Both atlases are 4 x 4 cells of one leaf each; a
+ * keyaki leaf fills the box core/leaf_look.h gives its mesh quad (issue
+ * #20: midrib up the cell's centre, petiole below, blade and teeth within
+ * LEAF_KEYAKI_HALF_U of it), so the drawn leaf and the quad have the same
+ * length. Colour is straight alpha; pixels outside leaves get the cell's
+ * mean leaf colour at alpha 0, so mipmaps and texture filtering do not
+ * bleed a dark fringe. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "banyan.h"
+#include "core/leaf_look.h"
 #include "textures/tex_internal.h"
 
 #define PI_F 3.14159265f
@@ -206,6 +210,8 @@ typedef struct kleaf {
     float col[3], vein[3], edge[3];
     float tooth;          /* tooth depth / length (keyaki 0.028) */
     float env0, env1;     /* teeth grow in from env0 along the blade and fade out by env1 */
+    float bend;           /* midrib curved sideways by bend * y^2 (units of length; 0 = straight) */
+    float minw;           /* the drawn-out tip keeps this half-width (units of length) to near its end */
     float blot;           /* autumn: strength of brown blotches */
     float blotcol[3];
 } kleaf;
@@ -231,8 +237,9 @@ static float keyaki_tooth(float ph) {
 }
 
 typedef struct ktab {
-    float w[2][KT + 1]; /* half-widths with teeth, left (0) and right (1) */
-    float g[2][KT + 1]; /* 1 / sqrt(1 + w'^2): edge distance from the horizontal one */
+    float w[2][KT + 1]; /* half-widths with teeth, left (0) and right (1), from the midrib */
+    float m[KT + 1];    /* the midrib's sideways offset (bend) */
+    float g[2][KT + 1]; /* 1 / sqrt(1 + x'^2), x the margin m -+ w: edge distance from the horizontal one */
     float q0, dq;       /* lateral veins: q = y - |x| * slope, vein j at q0 + j * dq */
 } ktab;
 
@@ -250,11 +257,15 @@ static void keyaki_table(const kleaf *L, ktab *T) {
             float env = tex_smooth(L->env0, L->env0 + 0.16f, y) * (1.0f - tex_smooth(L->env1 - 0.13f, L->env1, y));
             float depth = tex_minf(L->tooth * env, 0.35f * w0); /* no tooth cuts a thin tip off */
             float w = w0 - depth * (1.0f - keyaki_tooth(ph));
+            /* A hair-thin tip would fade out below a pixel before its end. */
+            if (y > 0.5f) w = tex_maxf(w, L->minw * tex_clampf((1.0f - y) * 40.0f, 0.0f, 1.0f));
             T->w[side][i] = w > 0.0f ? w : 0.0f;
+            T->m[i] = L->bend * y * y;
         }
+        const float sg = side ? 1.0f : -1.0f;
         for (int i = 0; i <= KT; i++) {
             int a = i > 0 ? i - 1 : 0, b = i < KT ? i + 1 : KT;
-            float d = (T->w[side][b] - T->w[side][a]) * KT / (float)(b - a);
+            float d = ((T->m[b] + sg * T->w[side][b]) - (T->m[a] + sg * T->w[side][a])) * KT / (float)(b - a);
             T->g[side][i] = 1.0f / sqrtf(1.0f + d * d);
         }
     }
@@ -287,12 +298,12 @@ static void keyaki_shade_row(const keyaki_consts *Cp, int m, const float *restri
         const float y = sY[i], ax = sA[i], w = sW[i], dpx = sD[i], gr = sGr[i];
         float rel = w > 1e-5f ? ax / w : 1.0f;
         /* Veins: midrib, then the straight laterals (q = const lines). */
-        float mid_w = (0.010f * (1.0f - y) + 0.003f) * lp;
+        float mid_w = (0.0075f * (1.0f - y) + 0.0025f) * lp;
         float vm = 1.0f - tex_smooth(mid_w, mid_w + 0.9f, ax * lp);
         float q = y - ax * C.slope;
         float j = (q - C.q0) / C.dq;
         float dj = fabsf(j - (float)(int)(j + 1.5f) + 1.0f) * C.dq * C.ivslope * lp; /* px to the nearest lateral; j > -0.3: int() floors */
-        float lw = (0.0045f * (1.0f - 0.6f * rel)) * lp;
+        float lw = (0.0036f * (1.0f - 0.6f * rel)) * lp;
         float vl0 = (1.0f - tex_smooth(lw, lw + 0.9f, dj)) * (1.0f - tex_smooth(0.82f, 1.0f, rel));
         vl0 *= tex_smooth(0.0f, 0.05f, ax);
         float vl = (j > -0.3f) & (j < C.veins) ? vl0 : 0.0f;
@@ -305,7 +316,7 @@ static void keyaki_shade_row(const keyaki_consts *Cp, int m, const float *restri
         sG[i] = keyaki_shade(C.col[1], C.edge[1], C.blot[1], C.vein[1], toward, shade, bl, vein, edge);
         sB[i] = keyaki_shade(C.col[2], C.edge[2], C.blot[2], C.vein[2], toward, shade, bl, vein, edge);
         /* Domed across; a blade under a few pixels wide (the tip) stays low. */
-        sH[i] = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.15f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
+        sH[i] = (2.0f * (1.0f - rel * rel) - 1.2f * vl - 0.8f * vm + 0.3f * gr) * tex_clampf(w * lp * 0.25f, 0.0f, 1.0f);
     }
 }
 
@@ -323,7 +334,7 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     for (int side = 0; side < 2; side++) {
         float pu0 = L->bx, pv0 = L->by;
         for (int i = 1; i <= KT; i++) {
-            float y = (float)i / KT, x = (side ? 1.0f : -1.0f) * T.w[side][i];
+            float y = (float)i / KT, x = T.m[i] + (side ? 1.0f : -1.0f) * T.w[side][i];
             float pu1 = L->bx + (L->dx * y + nx * x) * L->len, pv1 = L->by + (L->dy * y + ny * x) * L->len;
             span_edge(k, pu0, pv0, pu1, pv1);
             pu0 = pu1, pv0 = pv1;
@@ -357,12 +368,13 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
             float u = pu(k, xx) - bx0;
             float y = (u * ldx + vdy) * il, x = (u * nx + vny) * il;
             if (y <= 0.0f || y >= 1.0f) continue;
-            int side = x > 0.0f;
-            float ax = fabsf(x);
             float fi = y * KT;
             int i = (int)fi;
             float fr = fi - (float)i;
             if (i >= KT) i = KT - 1, fr = 1.0f;
+            x -= T.m[i] + (T.m[i + 1] - T.m[i]) * fr; /* from the (bent) midrib */
+            int side = x > 0.0f;
+            float ax = fabsf(x);
             const float *tw = T.w[side], *tg = T.g[side];
             float w = tw[i] + (tw[i + 1] - tw[i]) * fr;
             float g = tg[i] + (tg[i + 1] - tg[i]) * fr;
@@ -380,14 +392,20 @@ static void keyaki_leaf(cell *k, const kleaf *L) {
     }
 }
 
-/* Colours (sRGB 0..255). */
-static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
+/* Colours (sRGB 0..255). Summer: `light` in -1..1 from a darker, bluer
+ * green (shade) through mid green to a lighter, yellower one (sun); tone 1
+ * a young leaf, light yellow-green. Autumn: tone 0..3 yellow, orange,
+ * rust, red-purple [plants.md 3: S 43, 57], `light` the brightness. */
+static void keyaki_colours(kleaf *L, int season, int tone, float light, pcg32 *r) {
     float c[3];
     if (season == BANYAN_SEASON_SUMMER) {
-        /* Mid green; some leaves yellower (sun), some bluer and darker. */
-        const float mid[3] = {78, 118, 44}, yel[3] = {112, 140, 52}, blu[3] = {56, 96, 50};
-        float a = tex_unif(r, -1.0f, 1.0f), b = tex_unif(r, 0.88f, 1.08f);
-        for (int i = 0; i < 3; i++) c[i] = (a > 0 ? tex_mix(mid[i], yel[i], a * 0.8f) : tex_mix(mid[i], blu[i], -a)) * b;
+        const float mid[3] = {78, 118, 44}, yel[3] = {112, 140, 52}, blu[3] = {50, 88, 46}, young[3] = {136, 160, 62};
+        float b = tex_unif(r, 0.94f, 1.06f);
+        for (int i = 0; i < 3; i++) {
+            c[i] = light > 0 ? tex_mix(mid[i], yel[i], light * 0.8f) : tex_mix(mid[i], blu[i], -light);
+            if (tone == 1) c[i] = tex_mix(young[i], yel[i], tex_unif(r, 0.0f, 0.3f));
+            c[i] *= b;
+        }
         for (int i = 0; i < 3; i++) {
             L->col[i] = c[i];
             L->vein[i] = tex_mix(c[i], 200.0f - (float)i * 40.0f, 0.30f);
@@ -397,13 +415,11 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
         memcpy(L->blotcol, L->col, sizeof c);
         return;
     }
-    /* Autumn: each spray leans to one tone (trees differ), leaves mix. */
-    static const float pal[4][3] = {{224, 180, 46}, {216, 122, 38}, {160, 80, 38}, {134, 50, 36}};
-    int t2 = (int)rng_below(r, 4);
-    float m = tex_unif(r, 0.0f, 0.45f);
-    float b = tex_unif(r, 0.9f, 1.07f);
-    for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[t2][i], m) * b;
-    float green = rng_uniform(r) < 0.15 ? tex_unif(r, 0.15f, 0.4f) : 0.0f; /* a leaf still turning */
+    static const float pal[5][3] = {{224, 180, 46}, {214, 118, 36}, {158, 78, 36}, {136, 40, 46}, {136, 40, 46}};
+    float b = 0.88f + 0.09f * (light + 1.0f);
+    float m = tex_unif(r, 0.0f, 0.15f); /* a little towards the next tone: still one tone */
+    for (int i = 0; i < 3; i++) c[i] = tex_mix(pal[tone][i], pal[tone + 1][i], m) * b;
+    float green = rng_uniform(r) < 0.15 ? tex_unif(r, 0.1f, 0.3f) : 0.0f; /* a leaf still turning */
     const float g[3] = {110, 128, 50};
     for (int i = 0; i < 3; i++) {
         c[i] = tex_mix(c[i], g[i], green);
@@ -415,101 +431,46 @@ static void keyaki_colours(kleaf *L, int season, int tone, pcg32 *r) {
     L->blot = tex_unif(r, 0.0f, 0.35f);
 }
 
-/* One spray: a zigzag shoot from the cell's bottom centre with leaves
- * alternate on it in one plane (two-ranked), and side shoots from the
- * axils of its lower leaves, each the same in small; leaves largest below
- * the middle of a shoot, small at its tip. Built in cell units, then
- * scaled about the base so everything fits the cell. */
-#define KMAX 64
-typedef struct kseg { float ax, ay, bx, by, wa, wb; } kseg;
-typedef struct kaxis { float x, y, a, len, lmax, w; int nodes, depth; } kaxis;
-
-static void keyaki_spray(cell *k, int season, int tone, pcg32 *r) {
-    kleaf leaves[KMAX];
-    kseg segs[KMAX + 8];
-    kaxis axes[6];
-    int nl = 0, ns = 0, na = 1;
-    axes[0] = (kaxis){0.5f, 0.0f, tex_unif(r, -0.08f, 0.08f), 0.92f, tex_unif(r, 0.18f, 0.2f), 0.0085f,
-                      11 + (int)rng_below(r, 3), 0};
-    /* Side shoots at four or five of nodes 1..8 (a fan that fills the card). */
-    int want = 4 + (int)rng_below(r, 2);
-    for (int ax = 0; ax < na; ax++) {
-        kaxis A = axes[ax];
-        float x = A.x, y = A.y, a = A.a, w = A.w;
-        float first = A.depth == 0 ? 0.07f : 0.025f; /* a bare stretch before the first leaf */
-        float internode = (A.len - first) / (float)(A.nodes - 0.5f);
-        float x2 = x + sinf(a) * first, y2 = y + cosf(a) * first;
-        segs[ns++] = (kseg){x, y, x2, y2, w, w * 0.97f};
-        x = x2, y = y2, w *= 0.97f;
-        float side = rng_uniform(r) < 0.5 ? -1.0f : 1.0f;
-        for (int i = 0; i < A.nodes && nl < KMAX && ns < KMAX + 7; i++) {
-            float t = (float)i / (float)(A.nodes - 1 > 0 ? A.nodes - 1 : 1);
-            kleaf *L = &leaves[nl++];
-            float size = A.lmax * (0.55f + 0.45f * sinf(PI_F * (0.2f + 0.65f * t))) * (1.0f - 0.4f * t * t);
-            size *= tex_unif(r, 0.88f, 1.1f);
-            float la = a + side * tex_unif(r, 0.6f, 1.05f); /* leaf angle off the shoot, forward */
-            float pet = size * tex_unif(r, 0.04f, 0.08f);   /* short petiole */
-            float dx = sinf(la), dy = cosf(la);
-            L->bx = x + dx * pet, L->by = y + dy * pet, L->dx = dx, L->dy = dy;
-            L->len = size;
-            L->half = tex_unif(r, 0.19f, 0.25f);
-            L->ymax = tex_unif(r, 0.28f, 0.38f);
-            L->acum = tex_unif(r, 0.7f, 1.5f);
-            L->veins = 8 + (int)rng_below(r, 6);
-            L->slope = tex_unif(r, 0.75f, 1.05f);
-            L->skew = tex_unif(r, 0.0f, 0.05f);
-            L->tooth = 0.028f, L->env0 = 0.10f, L->env1 = 0.99f;
-            keyaki_colours(L, season, tone, r);
-            if (A.depth == 0 && na < 1 + want && na < 6 && i >= 1 && i <= 8 && rng_uniform(r) < 0.75) {
-                float sa = a + side * tex_unif(r, 0.7f, 1.0f);
-                axes[na++] = (kaxis){x, y, sa, A.len * tex_unif(r, 0.42f, 0.5f) * (1.0f - 0.45f * t),
-                                     A.lmax * 0.9f, w * 0.6f, 6 + (int)rng_below(r, 3), 1};
-            }
-            if (i == A.nodes - 1) break; /* the shoot ends in its last leaf (and a bud) */
-            /* Zigzag: the shoot bends away from the leaf at each node. */
-            a -= side * tex_unif(r, 0.06f, 0.16f);
-            a = tex_clampf(a, A.a - 0.3f, A.a + 0.3f);
-            float l = internode * tex_unif(r, 0.85f, 1.15f);
-            x2 = x + sinf(a) * l, y2 = y + cosf(a) * l;
-            segs[ns++] = (kseg){x, y, x2, y2, w, w * 0.92f};
-            x = x2, y = y2, w *= 0.92f;
-            side = -side;
-        }
+/* One keyaki leaf filling its cell's box (leaf_look.h): midrib up u = 0.5,
+ * blade from LEAF_KEYAKI_BLADE_V0 to its tip at LEAF_KEYAKI_BLADE_V1,
+ * petiole below; `ratio` its length / width, `lance` narrows the widest
+ * point towards the base, `bend` curves the midrib. Blade and antialiased
+ * edge stay within LEAF_KEYAKI_HALF_U of the centre line: a broad or bent
+ * leaf that would reach past it is narrowed (half-width and bend scaled). */
+static void keyaki_cell(cell *k, int season, int tone, float light, float ratio, int lance, float bend, pcg32 *r) {
+    kleaf L;
+    memset(&L, 0, sizeof L);
+    const float cs = (float)k->size;
+    L.bx = 0.5f, L.by = (float)LEAF_KEYAKI_BLADE_V0, L.dx = 0.0f, L.dy = 1.0f;
+    L.len = (float)(LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0);
+    L.half = 1.0f / (1.95f * ratio); /* the right half is 0.95 of the left (keyaki_table) */
+    L.ymax = lance ? tex_unif(r, 0.26f, 0.32f) : tex_unif(r, 0.30f, 0.40f);
+    L.acum = lance ? tex_unif(r, 1.0f, 1.6f) : tex_unif(r, 0.7f, 1.4f);
+    L.veins = 8 + (int)rng_below(r, 8); /* 8-15 pairs */
+    L.slope = tex_unif(r, 0.75f, 1.05f);
+    L.skew = tex_unif(r, 0.01f, 0.05f);
+    L.tooth = 0.028f, L.env0 = 0.10f, L.env1 = 0.99f;
+    L.bend = bend;
+    L.minw = 0.8f / (L.len * cs); /* 0.8 px: the tip stays visible to within 2.5 % of its end */
+    keyaki_colours(&L, season, tone, light, r);
+    /* Fit sideways: margin extents from the table, antialiased edge 0.75 px. */
+    const float lim = ((float)LEAF_KEYAKI_HALF_U - 0.75f / cs) / L.len;
+    ktab T;
+    for (int it = 0; it < 6; it++) {
+        keyaki_table(&L, &T);
+        float ext = 0.0f;
+        for (int i = 0; i <= KT; i++) ext = tex_maxf(ext, tex_maxf(T.m[i] + T.w[1][i], T.w[0][i] - T.m[i]));
+        if (ext <= lim) break;
+        float f = lim / ext * 0.998f;
+        L.half *= f, L.bend *= f;
     }
-    /* Fit: scale about the base (0.5, 0) so blades stay inside the cell. */
-    float sc = 1.0f;
-    for (int i = 0; i < nl; i++) {
-        const kleaf *L = &leaves[i];
-        float px[3] = {L->bx + L->dx * L->len, L->bx + L->dx * L->len * 0.35f + L->dy * L->half * L->len,
-                       L->bx + L->dx * L->len * 0.35f - L->dy * L->half * L->len};
-        float py[3] = {L->by + L->dy * L->len, L->by + L->dy * L->len * 0.35f - L->dx * L->half * L->len,
-                       L->by + L->dy * L->len * 0.35f + L->dx * L->half * L->len};
-        for (int j = 0; j < 3; j++) {
-            float ex = fabsf(px[j] - 0.5f), ey = py[j];
-            if (ex * sc > 0.46f) sc = 0.46f / ex;
-            if (ey * sc > 0.96f) sc = 0.96f / ey;
-        }
-    }
-    const float twig[3] = {112, 92, 72};
-    const float pcol[3] = {120, 130, 60};
-    float mean[3] = {0, 0, 0};
-    for (int i = 0; i < nl; i++)
-        for (int c = 0; c < 3; c++) mean[c] += leaves[i].col[c] / (float)(nl > 0 ? nl : 1);
-    fill_cell(k, mean);
-    for (int i = 0; i < nl; i++) {
-        kleaf *L = &leaves[i];
-        float ox = 0.5f + (L->bx - L->dx * L->len * 0.06f - 0.5f) * sc, oy = (L->by - L->dy * L->len * 0.06f) * sc;
-        L->bx = 0.5f + (L->bx - 0.5f) * sc, L->by *= sc, L->len *= sc;
-        float pc[3];
-        for (int c = 0; c < 3; c++) pc[c] = tex_mix(pcol[c], L->col[c], 0.5f);
-        stroke(k, ox, oy, L->bx + L->dx * 0.01f, L->by + L->dy * 0.01f, 0.0032f, 0.0025f, pc, 0.2f);
-        keyaki_leaf(k, L);
-    }
-    for (int i = 0; i < ns; i++) {
-        kseg g = segs[i];
-        stroke(k, 0.5f + (g.ax - 0.5f) * sc, g.ay * sc, 0.5f + (g.bx - 0.5f) * sc, g.by * sc, g.wa * sc, g.wb * sc,
-               twig, 0.2f);
-    }
+    fill_cell(k, L.col);
+    /* Petiole: short, darker and browner than the blade, into the midrib. */
+    const float pb[3] = {season ? 116.0f : 92.0f, season ? 80.0f : 88.0f, season ? 42.0f : 42.0f};
+    float pc[3];
+    for (int ch = 0; ch < 3; ch++) pc[ch] = tex_mix(pb[ch], L.col[ch], 0.35f);
+    stroke(k, 0.5f, 0.0f, 0.5f, (float)LEAF_KEYAKI_BLADE_V0 + 0.03f, 0.009f, 0.007f, pc, 0.2f);
+    keyaki_leaf(k, &L);
 }
 
 /* ---------------------------------------------------------------- ivy */
@@ -555,6 +516,7 @@ static void ivy_shape(ivleaf *L, pcg32 *r) {
         B->skew = 0.0f;
         B->tooth = depth / B->len;
         B->env0 = i == 0 ? 0.28f : 0.12f, B->env1 = 0.97f;
+        B->bend = B->minw = 0.0f;
         B->bx = B->by = 0.0f;
     }
     L->basal = 0.8f;
@@ -872,13 +834,29 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         free_fields(c);
         return -1;
     }
-    /* Autumn: each spray leans to one tone, the cells cycle through
-     * yellow, orange and rust (trees differ; an atlas shows all three). */
-    int tone0 = (int)rng_below(rng, 3);
+    /* 16 leaves, each its own: length / width and summer lightness spread
+     * evenly over their ranges (shuffled over the cells), three young
+     * leaves in summer, a bent midrib in about a third; in autumn atlas
+     * row j (from the top) is tone j: yellow, orange, rust, red-purple. */
+    int nc = cols * rows, pr[64], pl[64], py[64];
+    for (int i = 0; i < nc && i < 64; i++) pr[i] = pl[i] = py[i] = i;
+    for (int i = nc - 1; i > 0; i--) {
+        int a = (int)rng_below(rng, (uint32_t)i + 1), b = (int)rng_below(rng, (uint32_t)i + 1),
+            d = (int)rng_below(rng, (uint32_t)i + 1), t;
+        t = pr[i], pr[i] = pr[a], pr[a] = t;
+        t = pl[i], pl[i] = pl[b], pl[b] = t;
+        t = py[i], py[i] = py[d], py[d] = t;
+    }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols; i++) {
+            int id = i + j * cols;
             cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
-            keyaki_spray(&k, season, (tone0 + i + j * cols) % 3, rng);
+            float ratio = 1.85f + 1.05f * ((float)pr[id] + tex_unif(rng, 0.0f, 1.0f)) / (float)nc;
+            float light = -1.0f + 2.0f * ((float)pl[id] + tex_unif(rng, 0.0f, 1.0f)) / (float)nc;
+            float bend = rng_uniform(rng) < 0.35 ? (rng_uniform(rng) < 0.5 ? -1.0f : 1.0f) * tex_unif(rng, 0.025f, 0.06f)
+                                                 : tex_unif(rng, -0.008f, 0.008f);
+            int tone = season == BANYAN_SEASON_SUMMER ? py[id] < 3 : j % 4;
+            keyaki_cell(&k, season, tone, light, ratio, ratio > 2.45f, bend, rng);
         }
     free(spans);
     free(scr);

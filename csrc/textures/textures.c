@@ -55,10 +55,9 @@ static unsigned char *tex_deflate(unsigned char *data, int len, int *out_len, in
 #define TEX_MAX_SIZE 8192
 
 void tex_leaf_grid(int kind, int *cols, int *rows, float *aspect) {
-    /* Keyaki: 2 x 2 cells, each a spray of leaves on a twiglet (the cards
-     * are 0.5 m; docs/materials.md). Ivy: 4 x 4 single leaves. */
-    if (kind == BANYAN_TEX_KEYAKI_LEAF) *cols = 2, *rows = 2, *aspect = 1.0f;
-    else if (kind == BANYAN_TEX_IVY_LEAF) *cols = 4, *rows = 4, *aspect = 1.0f;
+    /* Keyaki and ivy: 4 x 4 square cells of one leaf each (keyaki's placed
+     * as core/leaf_look.h says; docs/materials.md). */
+    if (kind == BANYAN_TEX_KEYAKI_LEAF || kind == BANYAN_TEX_IVY_LEAF) *cols = 4, *rows = 4, *aspect = 1.0f;
     else *cols = 1, *rows = 1, *aspect = 1.0f;
 }
 

@@ -58,7 +58,7 @@ static void workload_make(workload *w, const char *name, uint32_t tubes, uint32_
 }
 
 static void sweep_all(mesh_builder *mb, const workload *w) {
-    tube_opts o = {SIDES, 0, 0, {0, 0, 0}, 0.0, NULL, 0};
+    tube_opts o = {SIDES, 0, 0, {0, 0, 0}, 0.0, NULL, 0, 1};
     for (uint32_t k = 0; k < w->tubes; k++)
         tube_sweep(mb, w->pts + (size_t)k * w->points, w->radii + (size_t)k * w->points, w->points, &o);
 }

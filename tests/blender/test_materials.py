@@ -282,7 +282,7 @@ def test_render_clip():
     img = bpy.data.images.load(path, check_existing=False)
     a = pixels(img)[3::4]
     clear = sum(1 for v in a if v < 0.05)
-    solid = sum(1 for v in a if v > 0.95)  # the keyaki atlas is sprays: about 10% of a cell is leaf
+    solid = sum(1 for v in a if v > 0.95)  # the keyaki atlas: one leaf a cell, 15-25% of it
     bt.check(clear > 0.5 * len(a) and solid > 0.01 * len(a),
              "Cycles render of the leaf atlas: %d clear, %d opaque of %d pixels" % (clear, solid, len(a)))
 

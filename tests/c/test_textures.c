@@ -1,8 +1,9 @@
 /* test_textures.c - the texture calls of banyan/textures.h (issue #17),
  * by invariants, at 64, 256 and 1024 pixels: image sizes and channels; leaf atlases have alpha where
- * each cell's leaf is (its centre, or for the keyaki sprays some pixel of
- * the cell's middle third) and alpha 0 at every cell corner and along its
- * border; bark is opaque and tiles (the wrap-around column and row steps
+ * each cell's leaf is (its centre, or for keyaki some pixel of the cell's
+ * middle third) and alpha 0 at every cell corner and along its border;
+ * keyaki's 4 x 4 leaves lie in the box core/leaf_look.h gives the mesh
+ * (issue #20) and are 1.8-3.2 times longer than wide; bark is opaque and tiles (the wrap-around column and row steps
  * are like the steps inside); normal maps are unit vectors pointing out;
  * the PNG decodes (stb_image) to the same pixels; the same params give the
  * same bytes (twice, and from two threads at once), another seed other
@@ -15,6 +16,7 @@
 
 #include "banyan.h"
 #include "check.h"
+#include "core/leaf_look.h"
 
 #if defined(__GNUC__)
 #  pragma GCC diagnostic push
@@ -72,7 +74,7 @@ static void check_atlas(int kind, int season, const banyan_image *im) {
                 CHECK(alpha_at(im, cx, cy) == 255, "%s s%d cell %d,%d: centre alpha %d", names[kind], season, i, j,
                       alpha_at(im, cx, cy));
             } else {
-                /* A spray: leaves or twig somewhere in the middle third. */
+                /* A keyaki leaf is narrower than the cell: somewhere in its middle third. */
                 int found = 0;
                 for (int y = y0 + ch / 3; y < y0 + 2 * ch / 3 && !found; y++)
                     for (int x = x0 + cw / 3; x < x0 + 2 * cw / 3; x++)
@@ -96,6 +98,66 @@ static void check_atlas(int kind, int season, const banyan_image *im) {
             CHECK(frac > 0.12 && frac < 0.8, "%s s%d cell %d,%d: leaf covers %.2f of the cell", names[kind], season, i,
                   j, frac);
         }
+}
+
+/* Keyaki (issue #20): 4 x 4 cells of one leaf each, where leaf_look.h says
+ * the mesh expects it. Per cell (u right, v up, pixel centres): every
+ * pixel with any alpha lies within LEAF_KEYAKI_HALF_U of u = 0.5 and below
+ * LEAF_KEYAKI_BLADE_V1, a 1.5 pixel allowance for the antialiased edge;
+ * the opaque (alpha > 0.5) blade's top is near BLADE_V1 and its lowest row
+ * (wider than the petiole) near BLADE_V0; the blade is 1.8-3.2 times longer
+ * than its widest extent, which reaches half of the box's width or more,
+ * and the broadest leaf of the atlas reaches 80 % of it. */
+static void check_keyaki_cells(int season, const banyan_image *im) {
+    banyan_atlas_layout L;
+    CHECK(banyan_texture_layout(BANYAN_TEX_KEYAKI_LEAF, &L, NULL) == BANYAN_OK, "keyaki layout");
+    CHECK(L.cols == 4 && L.rows == 4 && L.leaf_aspect == 1.0f, "keyaki layout %d x %d, aspect %g", L.cols, L.rows,
+          L.leaf_aspect);
+    if (L.cols != 4 || L.rows != 4) return;
+    const int cw = (int)im->width / 4;
+    const double px = 1.0 / cw, allow = 1.5 * px, hu = LEAF_KEYAKI_HALF_U;
+    double broadest = 0.0;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++) {
+            int x0 = i * cw, y0 = j * cw, opaque = 0, outside = 0;
+            double top = -1.0, umin = 1.0, umax = 0.0, base = 2.0;
+            for (int y = y0; y < y0 + cw; y++) {
+                double v = 1.0 - (y - y0 + 0.5) * px, rmin = 1.0, rmax = 0.0;
+                for (int x = x0; x < x0 + cw; x++) {
+                    uint8_t a = alpha_at(im, x, y);
+                    if (!a) continue;
+                    double u = (x - x0 + 0.5) * px;
+                    if (fabs(u - 0.5) > hu + allow || v > LEAF_KEYAKI_BLADE_V1 + allow) outside++;
+                    if (a <= 127) continue;
+                    opaque++;
+                    if (v > top) top = v;
+                    rmin = u < rmin ? u : rmin, rmax = u > rmax ? u : rmax;
+                }
+                if (rmax < rmin) continue;
+                umin = rmin < umin ? rmin : umin, umax = rmax > umax ? rmax : umax;
+                /* A row wider than the petiole (under 0.03 of the cell) is blade. */
+                if (rmax - rmin + px > 0.05 + 2 * px && v < base) base = v;
+            }
+            CHECK(opaque > 0 && outside == 0, "keyaki s%d %d px cell %d,%d: %d opaque pixels, %d outside the leaf box",
+                  season, (int)im->width, i, j, opaque, outside);
+            if (!opaque) continue;
+            double tol = 0.03 + 2 * px;
+            CHECK(top > LEAF_KEYAKI_BLADE_V1 - tol, "keyaki s%d %d px cell %d,%d: the tip at v %.3f, not near %.2f",
+                  season, (int)im->width, i, j, top, LEAF_KEYAKI_BLADE_V1);
+            CHECK(fabs(base - LEAF_KEYAKI_BLADE_V0) < tol, "keyaki s%d %d px cell %d,%d: the blade starts at v %.3f, not near %.2f",
+                  season, (int)im->width, i, j, base, LEAF_KEYAKI_BLADE_V0);
+            double width = umax - umin + px, length = top - base + px;
+            broadest = width > broadest ? width : broadest;
+            /* Below 64 pixels a cell the blade is too few pixels for widths and ratios. */
+            if (cw < 64) continue;
+            CHECK(width > 0.5 * 2 * hu, "keyaki s%d %d px cell %d,%d: %.3f wide, under half the box's %.2f", season,
+                  (int)im->width, i, j, width, 2 * hu);
+            CHECK(length / width >= 1.8 && length / width <= 3.2, "keyaki s%d %d px cell %d,%d: length / width %.2f",
+                  season, (int)im->width, i, j, length / width);
+        }
+    if (cw >= 64)
+        CHECK(broadest > 0.8 * 2 * hu, "keyaki s%d %d px: the broadest leaf is %.3f wide, under 0.8 of the box's %.2f",
+              season, (int)im->width, broadest, 2 * hu);
 }
 
 /* Mean absolute step between two columns (or rows) a and b, all channels. */
@@ -251,8 +313,10 @@ int main(void) {
                       names[kind], bc->width, bc->height, bc->channels);
                 CHECK(nm->width == bc->width && nm->height == bc->height && nm->channels == 3, "%s nm %ux%ux%u",
                       names[kind], nm->width, nm->height, nm->channels);
-                if (is_leaf(kind)) check_atlas(kind, season, bc);
-                else {
+                if (is_leaf(kind)) {
+                    check_atlas(kind, season, bc);
+                    if (kind == BANYAN_TEX_KEYAKI_LEAF) check_keyaki_cells(season, bc);
+                } else {
                     check_opaque(kind, bc);
                     check_tiles(kind, bc, "colour");
                     check_tiles(kind, nm, "normal");

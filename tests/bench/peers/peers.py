@@ -323,6 +323,10 @@ def section_tree():
             sapling_once(run, kw)
     ban.stem = skeleton_length(ban.d)
     ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["keyaki"]
+    leaf_verts = sum(p["vertex_count"] for p in ban.d.parts if p["material"] == 1)
+    if leaf_verts != 4 * ban.leaves:  # the count above assumes one quad a leaf (issue #20: ~30,000 of them)
+        print("peers.py: WARNING keyaki leaves are not one quad each (%d leaf vertices for %d leaves); "
+              "the leaves column is wrong: update LEAF_CARD_TRIS" % (leaf_verts, ban.leaves), flush=True)
     return ban, [r for r, _ in configs]
 
 
