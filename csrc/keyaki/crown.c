@@ -82,8 +82,23 @@ typedef struct ctx {
     keyaki_crown *c;
     pcg32 tw, lf; /* twig and leaf draws of this cluster */
     int32_t node, base_level;
-    int oom;
+    int oom; /* 1: out of memory, 2: past max_vertices */
 } ctx;
+
+/* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
+ * most 6 a twig point): huge settings are refused before they fill
+ * memory, as the body's plan refuses them before meshing. */
+static int64_t budget(const banyan_keyaki_params *p, int count_only) {
+    /* Sizing stores no leaves and must give the exact count (an avenue
+     * sums its trees' before refusing): only the mesh ceiling bounds it. */
+    return count_only ? (int64_t)MB_VERTEX_CEILING : (int64_t)p->max_vertices;
+}
+
+static int over_budget(ctx *x, int64_t more_leaves, int64_t more_points) {
+    int64_t v = 4 * ((int64_t)x->c->n_leaves + more_leaves) + 6 * ((int64_t)x->c->n_pts + more_points);
+    if (v > budget(x->p, x->c->count_only)) x->oom = 2;
+    return x->oom != 0;
+}
 
 static inline double clampd(double x, double a, double b) { return x < a ? a : x > b ? b : x; }
 
@@ -119,6 +134,7 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
     if (k < 1) k = 1;
     if (k > 100000) k = 100000;
     keyaki_crown *c = x->c;
+    if (over_budget(x, k, 0)) return;
     if (c->count_only) { /* the same k as placing them: only the twig decides it */
         c->n_leaves += k;
         return;
@@ -180,6 +196,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
      * first node is the point where it leaves the parent's axis. */
     int surface = parent < 0;
     int32_t np = segs + 1 + surface;
+    if (over_budget(x, 0, np)) return 0;
     if (grow_array((void **)&c->twigs, &c->cap_twigs, c->n_twigs + 1, sizeof(keyaki_twig)) || add_points(c, np)) {
         x->oom = 1;
         return 0;
@@ -421,6 +438,17 @@ static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
     }
 }
 
+static banyan_status crown_fail(keyaki_crown *c, int why, const banyan_keyaki_params *p, banyan_error *err) {
+    int count_only = c->count_only;
+    keyaki_crown_free(c);
+    if (why == 2)
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the tree's twigs and leaves need more than max_vertices = %lld vertices; raise "
+                           "max_vertices or lower leaf_density, leaf_levels, twig_levels or raise twig_spacing",
+                           (long long)budget(p, count_only));
+    return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+}
+
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                 keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
@@ -452,10 +480,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             }
         }
         free(depth);
-        if (x.oom) {
-            keyaki_crown_free(c);
-            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
-        }
+        if (x.oom) return crown_fail(c, x.oom, p, err);
         return BANYAN_OK;
     }
     /* The clusters planned on the skeleton, from the "twigs" stream. */
@@ -473,6 +498,13 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         double s = p->twig_spacing * rng_uniform(&plan);
         int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
         if (k < 0) k = 0;
+        /* Every cluster, even one the light drops, would be a tube of 8
+         * vertices or more: refuse absurd counts before storing them. */
+        if (8.0 * ((double)nc + k) > (double)budget(p, count_only)) {
+            free(depth);
+            free(cs);
+            return crown_fail(c, 2, p, err);
+        }
         if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
             free(depth);
             free(cs);
@@ -538,7 +570,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         g.y0 = y0 - m;
         g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
         g.ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
-        if ((double)g.nx * g.ny > 5e7) g.nx = g.ny = 0; /* absurd sizes: no light model */
+        if ((double)g.nx * g.ny > 4e6) g.nx = g.ny = 0; /* a crown over ~400 m across: no light model */
         else g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
         if (g.nx && !g.n) {
             free(cs);
@@ -612,10 +644,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     free(g.n);
     free(hl.xy);
     free(cs);
-    if (x.oom) {
-        keyaki_crown_free(c);
-        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
-    }
+    if (x.oom) return crown_fail(c, x.oom, p, err);
     for (int32_t t = 0; t < c->n_twigs; t++) {
         uint32_t v, i;
         tube_counts((uint32_t)c->twigs[t].count, c->twigs[t].sides, 0, c->twigs[t].children > 0, &v, &i);
