@@ -244,7 +244,20 @@ static void figures(void) {
     keyaki_skeleton_free(&sk);
 }
 
+/* Absurd twig settings are refused with the limit, before memory fills. */
+static void refused(void) {
+    banyan_keyaki_params p;
+    if (!load("keyaki_mature", &p)) return;
+    p.twig_spacing = 0.005, p.twig_levels = 3, p.twig_length = 5, p.leaf_density = 1000;
+    banyan_mesh *m = NULL;
+    banyan_error err = {0};
+    banyan_status s = banyan_keyaki_generate(&p, &m, &err);
+    CHECK(s == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"), "absurd twigs refused: %d %s", s,
+          err.message);
+}
+
 int main(void) {
+    refused();
     figures();
     skeleton_untouched();
     preset_seeds("keyaki_mature");
