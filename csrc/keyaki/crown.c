@@ -287,6 +287,7 @@ typedef struct grid {
     double x0, y0;
     int32_t nx, ny;
     int32_t *n;
+    uint8_t *in; /* 1: the cell's centre lies inside the crown's planned outline */
 } grid;
 
 /* A cluster's plan rectangle: from o along unit a (2D) for `len`, half
@@ -352,11 +353,12 @@ static void shade_of(const grid *g, rect r, double layers, double *fl, double *f
 
 static void stamp(grid *g, rect r) { FOR_RECT_CELLS(g, r, { (*cell)++; }); }
 
-/* Is the cell at (x, y) empty (no cluster above it, inside the grid)? */
-static int empty_at(const grid *g, double x, double y) {
+/* Is the cell at (x, y) a hole: inside the outline, no cluster above it? */
+static int hole_at(const grid *g, double x, double y) {
     int32_t i = (int32_t)floor((x - g->x0) / CELL), j = (int32_t)floor((y - g->y0) / CELL);
     if (i < 0 || j < 0 || i >= g->nx || j >= g->ny) return 0;
-    return g->n[(size_t)j * (size_t)g->nx + (size_t)i] == 0;
+    size_t k = (size_t)j * (size_t)g->nx + (size_t)i;
+    return g->in[k] && g->n[k] == 0;
 }
 
 /* The plan outline the crown is planned to fill: the convex hull
@@ -394,12 +396,23 @@ static void hull_of(double *pts, int32_t m, hull *h) {
     h->n = k > 1 ? k - 1 : k;
 }
 
-static int hull_inside(const hull *h, double x, double y) {
-    if (h->n < 3) return 0;
-    double q[2] = {x, y};
-    for (int32_t e = 0; e < h->n; e++)
-        if (turn2(h->xy + 2 * e, h->xy + 2 * ((e + 1) % h->n), q) < 0) return 0;
-    return 1;
+/* Marks the grid cells whose centres lie inside the convex hull h: one
+ * interval a row (the hull is convex). */
+static void hull_mask(const hull *h, grid *g) {
+    for (int32_t j = 0; j < g->ny; j++) {
+        double y = g->y0 + (j + 0.5) * CELL, xl = 1e300, xr = -1e300;
+        for (int32_t e = 0; e < h->n && h->n >= 3; e++) {
+            const double *A = h->xy + 2 * e, *B = h->xy + 2 * ((e + 1) % h->n);
+            if ((A[1] > y && B[1] > y) || (A[1] < y && B[1] < y)) continue;
+            double x = A[1] == B[1] ? A[0] : A[0] + (y - A[1]) * (B[0] - A[0]) / (B[1] - A[1]);
+            double x2 = A[1] == B[1] ? B[0] : x;
+            xl = fmin(xl, fmin(x, x2)), xr = fmax(xr, fmax(x, x2));
+        }
+        for (int32_t i = 0; i < g->nx; i++) {
+            double x = g->x0 + (i + 0.5) * CELL;
+            g->in[(size_t)j * (size_t)g->nx + (size_t)i] = x >= xl && x <= xr;
+        }
+    }
 }
 
 /* Radius of branch x at arc length s (as body.c tapers it). */
@@ -543,7 +556,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     qsort(cs, (size_t)nc, sizeof(cand), cand_cmp);
     /* The plan grid over every cluster's reach. */
-    grid g = {0, 0, 0, 0, NULL};
+    grid g = {0, 0, 0, 0, NULL, NULL};
     hull hl = {NULL, 0};
     if (p->light && nc > 0) {
         double *xy = malloc(sizeof(double) * 4 * (size_t)nc);
@@ -571,12 +584,18 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
         g.ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
         if ((double)g.nx * g.ny > 4e6) g.nx = g.ny = 0; /* a crown over ~400 m across: no light model */
-        else g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
-        if (g.nx && !g.n) {
+        else {
+            g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
+            g.in = malloc((size_t)g.nx * (size_t)g.ny);
+        }
+        if (g.nx && (!g.n || !g.in)) {
+            free(g.n);
+            free(g.in);
             free(cs);
             free(hl.xy);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
+        if (g.nx) hull_mask(&hl, &g);
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
@@ -625,7 +644,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                     for (;;) {
                         double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL);
                         double ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
-                        if (ext >= EXTEND * q.len || !empty_at(&g, ex, ey) || !hull_inside(&hl, ex, ey)) break;
+                        if (ext >= EXTEND * q.len || !hole_at(&g, ex, ey)) break;
                         ext += p->twig_spacing;
                     }
                     if (ext > best) best = ext, best_a = a;
@@ -642,6 +661,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur);
     }
     free(g.n);
+    free(g.in);
     free(hl.xy);
     free(cs);
     if (x.oom) return crown_fail(c, x.oom, p, err);
