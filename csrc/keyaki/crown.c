@@ -320,10 +320,11 @@ static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, doubl
 /* Visits the cells whose centres lie in r: side -1 left half, +1 right. */
 #define FOR_RECT_CELLS(g, r, BODY)                                                                                 \
     do {                                                                                                           \
-        double ex_ = fabs((r).ax) * (r).len + fabs((r).ay) * (r).w, ey_ = fabs((r).ay) * (r).len + fabs((r).ax) * (r).w; \
+        /* the rectangle's bounding box: half extents about its centre */                                        \
+        double ex_ = 0.5 * fabs((r).ax) * (r).len + fabs((r).ay) * (r).w, ey_ = 0.5 * fabs((r).ay) * (r).len + fabs((r).ax) * (r).w; \
         double cx_ = (r).ox + 0.5 * (r).ax * (r).len, cy_ = (r).oy + 0.5 * (r).ay * (r).len;                       \
-        int32_t i0_ = (int32_t)floor((cx_ - ex_ / 2 - (r).w - (g)->x0) / CELL), i1_ = (int32_t)ceil((cx_ + ex_ / 2 + (r).w - (g)->x0) / CELL); \
-        int32_t j0_ = (int32_t)floor((cy_ - ey_ / 2 - (r).w - (g)->y0) / CELL), j1_ = (int32_t)ceil((cy_ + ey_ / 2 + (r).w - (g)->y0) / CELL); \
+        int32_t i0_ = (int32_t)floor((cx_ - ex_ - (g)->x0) / CELL), i1_ = (int32_t)floor((cx_ + ex_ - (g)->x0) / CELL); \
+        int32_t j0_ = (int32_t)floor((cy_ - ey_ - (g)->y0) / CELL), j1_ = (int32_t)floor((cy_ + ey_ - (g)->y0) / CELL); \
         if (i0_ < 0) i0_ = 0;                                                                                      \
         if (j0_ < 0) j0_ = 0;                                                                                      \
         if (i1_ > (g)->nx - 1) i1_ = (g)->nx - 1;                                                                  \
