@@ -13,9 +13,29 @@ void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color) {
     for (int i = 0; i < 4; i++) mb->cur_color[i] = 1.0f;
 }
 
+void mb_init_external(mesh_builder *mb, uint32_t cap_v, uint32_t cap_i, float *pos, float *nrm, float *uv, float *col,
+                      uint32_t *idx, float *const *attr, const char *const *attr_names, uint32_t n_attr) {
+    mb_init(mb, cap_v, col != NULL);
+    mb->external = 1;
+    mb->pos = pos, mb->nrm = nrm, mb->uv = uv, mb->col = col, mb->idx = idx;
+    mb->cap_v = cap_v, mb->cap_i = cap_i;
+    if (n_attr > MB_MAX_ATTRS) {
+        mb->status = BANYAN_E_INTERNAL;
+        return;
+    }
+    for (uint32_t i = 0; i < n_attr; i++) {
+        mb->attr[i] = attr[i];
+        strncpy(mb->attr_name[i], attr_names[i], BANYAN_NAME_MAX - 1);
+        mb->attr_name[i][BANYAN_NAME_MAX - 1] = '\0';
+    }
+    mb->n_attr = n_attr;
+}
+
 void mb_free(mesh_builder *mb) {
-    free(mb->pos); free(mb->nrm); free(mb->uv); free(mb->col); free(mb->idx);
-    for (uint32_t i = 0; i < mb->n_attr; i++) free(mb->attr[i]);
+    if (!mb->external) {
+        free(mb->pos); free(mb->nrm); free(mb->uv); free(mb->col); free(mb->idx);
+        for (uint32_t i = 0; i < mb->n_attr; i++) free(mb->attr[i]);
+    }
     free(mb->mat); free(mb->part);
     free(mb->skel_pos); free(mb->skel_rad); free(mb->skel_tag); free(mb->skel_edge);
     memset(mb, 0, sizeof *mb);
@@ -30,6 +50,12 @@ static int grow(void **p, size_t count, size_t elem) {
 }
 
 int mb_add_attr(mesh_builder *mb, const char *name) {
+    if (mb->external) {
+        for (uint32_t i = 0; i < mb->n_attr; i++)
+            if (!strncmp(mb->attr_name[i], name, BANYAN_NAME_MAX)) return (int)i;
+        if (!mb->status) mb->status = BANYAN_E_INTERNAL;
+        return 0;
+    }
     if (mb->n_attr >= MB_MAX_ATTRS || mb->nv > 0) {
         if (!mb->status) mb->status = BANYAN_E_INTERNAL;
         return 0;
@@ -114,12 +140,14 @@ static int resize_vertices(mesh_builder *mb, size_t c) {
 /* On failure at the generous capacity, tries the exact need. */
 static int grow_vertices(mesh_builder *mb, uint32_t need) {
     if (need <= mb->cap_v) return 1;
+    if (mb->external) return 0;
     uint64_t cap = grown(mb->cap_v, need, 256, mb->max_vertices);
     return resize_vertices(mb, (size_t)cap) || (cap > need && resize_vertices(mb, need));
 }
 
 static int grow_indices(mesh_builder *mb, uint64_t need) {
     if (need <= mb->cap_i) return 1;
+    if (mb->external) return 0;
     uint64_t cap = grown(mb->cap_i, need, 768, 0xFFFFFFF0u);
     if (!grow((void **)&mb->idx, (size_t)cap, sizeof(uint32_t)) &&
         (cap == need || !grow((void **)&mb->idx, (size_t)(cap = need), sizeof(uint32_t))))
@@ -132,7 +160,8 @@ banyan_status mb_reserve(mesh_builder *mb, uint32_t n_vertices, uint32_t n_indic
     if (mb->status) return mb->status;
     uint64_t need_v = (uint64_t)mb->nv + n_vertices, need_i = (uint64_t)mb->ni + n_indices;
     if (need_v > mb->max_vertices || need_i > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
-    if (!grow_vertices(mb, (uint32_t)need_v) || !grow_indices(mb, need_i)) return mb->status = BANYAN_E_NOMEM;
+    if (!grow_vertices(mb, (uint32_t)need_v) || !grow_indices(mb, need_i))
+        return mb->status = mb->external ? BANYAN_E_INTERNAL : BANYAN_E_NOMEM;
     return BANYAN_OK;
 }
 
@@ -197,6 +226,21 @@ void mb_skel_edge_grow(mesh_builder *mb, uint32_t a, uint32_t b) {
     mb_skel_edge(mb, a, b);
 }
 
+void mb_close(mesh_builder *mb) {
+    static const double white[4] = {0.8, 0.8, 0.8, 1.0};
+    if (mb->n_mat == 0) mb_add_material(mb, "banyan", white, 0.8, 0);
+    if (mb->n_part == 0) {
+        /* One part over everything. */
+        uint32_t nv = mb->nv, ni = mb->ni;
+        mb->nv = mb->ni = 0;
+        mb_begin_part(mb, 0, 0);
+        mb->nv = nv;
+        mb->ni = ni;
+    }
+    close_part(mb);
+    if (mb->n_part > 1 && mb->part[mb->n_part - 1].vertex_count == 0) mb->n_part--;
+}
+
 banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
     *out = NULL;
     if (mb->status) {
@@ -213,21 +257,10 @@ banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) 
         mb_free(mb);
         return banyan_fail(err, BANYAN_E_INTERNAL, "the generator produced an empty mesh");
     }
-    static const double white[4] = {0.8, 0.8, 0.8, 1.0};
-    if (mb->n_mat == 0) mb_add_material(mb, "banyan", white, 0.8, 0);
-    if (mb->n_part == 0) {
-        /* One part over everything. */
-        uint32_t nv = mb->nv, ni = mb->ni;
-        mb->nv = mb->ni = 0;
-        mb_begin_part(mb, 0, 0);
-        mb->nv = nv;
-        mb->ni = ni;
-    }
-    close_part(mb);
+    mb_close(mb);
     /* Hand over no slack: shrinking in place costs no copy. */
     if (mb->cap_v > mb->nv) resize_vertices(mb, mb->nv);
     if (mb->cap_i > mb->ni && grow((void **)&mb->idx, mb->ni, sizeof(uint32_t))) mb->cap_i = mb->ni;
-    if (mb->n_part > 1 && mb->part[mb->n_part - 1].vertex_count == 0) mb->n_part--;
     banyan_mesh *m = calloc(1, sizeof *m);
     banyan_attribute *attrs = mb->n_attr ? calloc(mb->n_attr, sizeof *attrs) : NULL;
     if (!m || mb->status || (mb->n_attr && !attrs)) {

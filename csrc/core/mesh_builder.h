@@ -40,6 +40,10 @@ typedef struct mesh_builder {
     uint32_t n_edge, cap_edge;
 
     banyan_status status; /* first failure, sticky */
+    /* The big arrays (pos, nrm, uv, col, idx, attr) belong to the caller
+     * and hold exactly cap_v vertices and cap_i indices (mb_init_external):
+     * never grown, trimmed nor freed here. */
+    int external;
 
     /* tube_sweep's ring angles (cosines, sines) and u per ring vertex for
      * ring_sides sides, kept across the tubes of one mesh; 0 = none yet. */
@@ -51,6 +55,20 @@ typedef struct mesh_builder {
 /* max_vertices: the generator's limit (1 .. MB_VERTEX_CEILING). */
 void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color);
 void mb_free(mesh_builder *mb);
+
+/* A builder writing straight into the caller's arrays, sized exactly
+ * (cap_v vertices, cap_i indices; col NULL: no colours), e.g. one tree's
+ * slice of an avenue's merged mesh, so nothing is copied and no page is
+ * touched twice. attr[k] is the array of the attribute attr_names[k];
+ * mb_add_attr then returns the slot of the name it is given. Needing more
+ * room than given fails with BANYAN_E_INTERNAL (the caller's plan was
+ * wrong). Finish with mb_close, not mb_finish; mb_free frees only the
+ * builder's own small arrays (parts, materials, skeleton). */
+void mb_init_external(mesh_builder *mb, uint32_t cap_v, uint32_t cap_i, float *pos, float *nrm, float *uv, float *col,
+                      uint32_t *idx, float *const *attr, const char *const *attr_names, uint32_t n_attr);
+/* Closes the current part and drops a trailing empty one (mb_finish does
+ * this too). */
+void mb_close(mesh_builder *mb);
 
 /* Declares a per-vertex float attribute; returns its slot. Declare all
  * attributes before adding vertices. */

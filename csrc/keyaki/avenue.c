@@ -204,35 +204,48 @@ typedef struct avenue_job {
  * it: the count pass's part of the time (bench_progress, 100 trees). */
 #define AVENUE_COUNT_SHARE 0.06
 
-/* Copies tree i's mesh into its slice of the merged mesh. Slices are
- * disjoint, so workers copy in parallel without locks. */
-static banyan_status place(avenue_job *J, uint32_t i, const banyan_mesh *t, banyan_error *err) {
+/* Builds tree i straight into its slice of the merged mesh (sized by
+ * the count pass: nothing is copied, no page is touched twice), then
+ * moves its indices, parts and skeleton to their merged places. Slices
+ * are disjoint, so workers write in parallel without locks. */
+static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *sk, banyan_error *err) {
     banyan_mesh *o = J->out;
     const keyaki_counts *c = &J->counts[i];
-    if (t->vertex_count != c->vertices || t->index_count != c->indices || t->part_count != c->parts ||
-        t->skel_point_count != c->nodes + 1 || t->skel_edge_count != c->nodes || t->attribute_count != o->attribute_count)
-        return banyan_fail(err, BANYAN_E_INTERNAL, "planned and built sizes differ");
     uint64_t v = J->voff[i], x = J->ioff[i], s = J->soff[i], e = J->soff[i] - i, pp = J->poff[i];
-    memcpy(o->positions + 3 * v, t->positions, sizeof(float) * 3 * t->vertex_count);
-    memcpy(o->normals + 3 * v, t->normals, sizeof(float) * 3 * t->vertex_count);
-    memcpy(o->uvs + 2 * v, t->uvs, sizeof(float) * 2 * t->vertex_count);
-    if (!t->colors) return banyan_fail(err, BANYAN_E_INTERNAL, "a tree came without vertex colours");
-    memcpy(o->colors + 4 * v, t->colors, sizeof(float) * 4 * t->vertex_count);
-    for (uint32_t a = 0; a < o->attribute_count; a++)
-        memcpy(o->attributes[a].data + v, t->attributes[a].data, sizeof(float) * t->vertex_count);
-    for (uint32_t k = 0; k < t->index_count; k++) o->indices[x + k] = t->indices[k] + (uint32_t)v;
-    for (uint32_t k = 0; k < t->part_count; k++) {
-        banyan_part q = t->parts[k];
-        q.vertex_offset += (uint32_t)v;
-        q.index_offset += (uint32_t)x;
-        o->parts[pp + k] = q;
+    float *attr[3];
+    const char *names[3];
+    for (uint32_t a = 0; a < 3 && a < o->attribute_count; a++) {
+        attr[a] = o->attributes[a].data + v;
+        names[a] = o->attributes[a].name;
     }
-    memcpy(o->skel_points + 3 * s, t->skel_points, sizeof(float) * 3 * t->skel_point_count);
-    memcpy(o->skel_radius + s, t->skel_radius, sizeof(float) * t->skel_point_count);
-    memcpy(o->skel_tag + s, t->skel_tag, sizeof(int32_t) * t->skel_point_count);
-    for (uint32_t k = 0; k < 2 * t->skel_edge_count; k++) o->skel_edges[2 * e + k] = t->skel_edges[k] + (uint32_t)s;
-    if (i == 0) memcpy(o->materials, t->materials, sizeof(banyan_material) * o->material_count);
-    return BANYAN_OK;
+    mesh_builder mb;
+    mb_init_external(&mb, c->vertices, c->indices, o->positions + 3 * v, o->normals + 3 * v, o->uvs + 2 * v,
+                     o->colors + 4 * v, o->indices + x, attr, names, o->attribute_count < 3 ? o->attribute_count : 3);
+    banyan_status st = keyaki_build_into(&J->trees[i], (double)i, i, sk, &mb, err);
+    if (!st && !mb.status) mb_close(&mb);
+    if (!st && mb.status)
+        st = banyan_fail(err, mb.status, mb.status == BANYAN_E_NOMEM ? "out of memory while building the mesh"
+                                                                      : "internal error while building the mesh");
+    if (!st && (mb.nv != c->vertices || mb.ni != c->indices || mb.n_part != c->parts || mb.n_skel != c->nodes + 1 ||
+                mb.n_edge != c->nodes || mb.n_attr != o->attribute_count))
+        st = banyan_fail(err, BANYAN_E_INTERNAL, "planned and built sizes differ");
+    if (!st) {
+        uint32_t *I = o->indices + x;
+        for (uint32_t k = 0; k < mb.ni; k++) I[k] += (uint32_t)v;
+        for (uint32_t k = 0; k < mb.n_part; k++) {
+            banyan_part q = mb.part[k];
+            q.vertex_offset += (uint32_t)v;
+            q.index_offset += (uint32_t)x;
+            o->parts[pp + k] = q;
+        }
+        memcpy(o->skel_points + 3 * s, mb.skel_pos, sizeof(float) * 3 * mb.n_skel);
+        memcpy(o->skel_radius + s, mb.skel_rad, sizeof(float) * mb.n_skel);
+        memcpy(o->skel_tag + s, mb.skel_tag, sizeof(int32_t) * mb.n_skel);
+        for (uint32_t k = 0; k < 2 * mb.n_edge; k++) o->skel_edges[2 * e + k] = mb.skel_edge[k] + (uint32_t)s;
+        if (i == 0) memcpy(o->materials, mb.mat, sizeof(banyan_material) * o->material_count);
+    }
+    mb_free(&mb);
+    return st;
 }
 
 static void work(avenue_job *J, int caller) {
@@ -248,10 +261,7 @@ static void work(avenue_job *J, int caller) {
                 atomic_fetch_add(&J->counted, J->counts[i].vertices) + J->counts[i].vertices > J->max_vertices)
                 atomic_store(&J->stop, 1);
         } else {
-            banyan_mesh *t = NULL;
-            J->status[i] = keyaki_build(&J->trees[i], (double)i, i, &sk, &t, &J->errs[i]);
-            if (!J->status[i]) J->status[i] = place(J, i, t, &J->errs[i]);
-            banyan_mesh_free(t);
+            J->status[i] = build_in_place(J, i, &sk, &J->errs[i]);
         }
         unsigned done = atomic_fetch_add(&J->finished, 1u) + 1u;
         if (caller && J->prog && prog_at(J->prog, J->base + J->share * done / J->n)) atomic_store(&J->cancel, 1);

@@ -359,9 +359,8 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
     return BANYAN_OK;
 }
 
-banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
-                           banyan_mesh **out, banyan_error *err) {
-    *out = NULL;
+banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
+                                mesh_builder *mb, banyan_error *err) {
     keyaki_body body;
     banyan_status s = grow_and_plan(p, sk, 0, &body, err);
     if (s) return s;
@@ -373,21 +372,32 @@ banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32
                            "leaf_density, sides_max or levels",
                            v, p->max_vertices);
     }
-    mesh_builder mb;
-    mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white bark, tinted leaves */
-    uint32_t bark = mb_add_material(&mb, "keyaki_bark", p->bark_color, 0.9, 0);
-    uint32_t leaf = mb_add_material(&mb, "keyaki_leaf", p->leaf_color, 0.6, 1);
-    if (!mb.status) {
-        bark_material_set(&mb.mat[bark], BANYAN_TEX_KEYAKI_BARK);
-        leaf_material_set(&mb.mat[leaf], BANYAN_TEX_KEYAKI_LEAF, p->season, p->leaf_color);
+    uint32_t bark = mb_add_material(mb, "keyaki_bark", p->bark_color, 0.9, 0);
+    uint32_t leaf = mb_add_material(mb, "keyaki_leaf", p->leaf_color, 0.6, 1);
+    if (!mb->status) {
+        bark_material_set(&mb->mat[bark], BANYAN_TEX_KEYAKI_BARK);
+        leaf_material_set(&mb->mat[leaf], BANYAN_TEX_KEYAKI_LEAF, p->season, p->leaf_color);
     }
     int attr[3];
-    attr[0] = mb_add_attr(&mb, "tree_id");
-    attr[1] = mb_add_attr(&mb, "level");
-    attr[2] = mb_add_attr(&mb, "order");
-    keyaki_body_mesh(p, sk->nodes, sk->count, &body, &mb, attr, bark, leaf, group, tree_id);
+    attr[0] = mb_add_attr(mb, "tree_id");
+    attr[1] = mb_add_attr(mb, "level");
+    attr[2] = mb_add_attr(mb, "order");
+    keyaki_body_mesh(p, sk->nodes, sk->count, &body, mb, attr, bark, leaf, group, tree_id);
     uint32_t planned = body.vertices;
     keyaki_body_free(&body);
-    if (!mb.status && mb.nv != planned) mb.status = BANYAN_E_INTERNAL; /* the plan must be exact */
+    if (!mb->status && mb->nv != planned) mb->status = BANYAN_E_INTERNAL; /* the plan must be exact */
+    return BANYAN_OK;
+}
+
+banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
+                           banyan_mesh **out, banyan_error *err) {
+    *out = NULL;
+    mesh_builder mb;
+    mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white bark, tinted leaves */
+    banyan_status s = keyaki_build_into(p, tree_id, group, sk, &mb, err);
+    if (s) {
+        mb_free(&mb);
+        return s;
+    }
     return mb_finish(&mb, out, err);
 }

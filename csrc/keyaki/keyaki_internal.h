@@ -189,6 +189,14 @@ void keyaki_twigs_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int3
 banyan_status keyaki_build(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
                            banyan_mesh **out, banyan_error *err);
 
+/* The same into a builder the caller made (mb_init, or mb_init_external
+ * on a slice of an avenue's merged mesh, sized by keyaki_count): grows,
+ * plans, refuses past max_vertices, adds the materials, the attributes
+ * tree_id, level, order and the body. A failure in the builder is left
+ * in mb->status (BANYAN_E_INTERNAL when the plan was not exact). */
+banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, uint32_t group, keyaki_skeleton *sk,
+                                mesh_builder *mb, banyan_error *err);
+
 /* Grows + plans without meshing: the exact sizes of a tree's mesh. */
 typedef struct keyaki_counts {
     uint32_t vertices, indices;
