@@ -189,7 +189,7 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->shade_layers = 1.0;
     p->light_steer = 35.0;
     p->leaves = 1;
-    p->leaf_levels = 4;
+    p->leaf_levels = 5;
     p->leaf_density = 18.0;
     p->leaf_size = 0.05;
     p->leaf_size_spread = 0.3;

@@ -17,6 +17,8 @@
 
 #include "check.h"
 #include "keyaki/keyaki_internal.h"
+#include "core/leaf_look.h"
+#include "keyaki_crown_checks.h"
 #include "test_files.h"
 
 #define SEEDS 10
@@ -186,6 +188,54 @@ static void limb_statistics(void) {
     CHECK(fabs(limb_tips - tree_tips) < 0.2 * tree_tips, "limb tips %.1f vs whole tree %.1f", limb_tips, tree_tips);
 }
 
+static int dbl_cmp(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Twigs, leaves and the crown's plan on a preset over the seeds: counts
+ * (when min_tips / min_leaves > 0), blade lengths and plan coverage. */
+static void crown(const char *name, int min_tips, int min_leaves, double min_filled) {
+    int tips_lo = 1 << 30, leaves_lo = 1 << 30;
+    double p10_lo = 1, p90_hi = 0, filled_lo = 1;
+    for (uint64_t seed = 1; seed <= SEEDS; seed++) {
+        banyan_keyaki_params p;
+        if (!load(name, seed, &p)) return;
+        keyaki_skeleton sk = {NULL, 0, 0};
+        keyaki_crown c;
+        if (keyaki_grow(&p, &sk, NULL) || keyaki_strahler(sk.nodes, sk.count) ||
+            keyaki_crown_grow(&p, sk.nodes, sk.count, 0, &c, NULL)) {
+            CHECK(0, "%s seed %d: crown grows", name, (int)seed);
+            keyaki_skeleton_free(&sk);
+            continue;
+        }
+        double *len = malloc(sizeof(double) * (size_t)(c.n_leaves + 1));
+        const double blade = LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0;
+        for (int32_t i = 0; i < c.n_leaves; i++) len[i] = c.leaves[i].length * blade;
+        qsort(len, (size_t)c.n_leaves, sizeof(double), dbl_cmp);
+        double p10 = c.n_leaves ? len[c.n_leaves / 10] : 0, p90 = c.n_leaves ? len[(c.n_leaves * 9) / 10] : 1;
+        crown_plan pl;
+        crown_plan_measure(&c, 0.5, &pl);
+        double filled = pl.inside ? (double)pl.filled / pl.inside : 0;
+        CHECK(p10 >= 0.03 && p90 <= 0.08, "%s seed %d: blade length p10 %.4f p90 %.4f m", name, (int)seed, p10, p90);
+        CHECK(filled >= min_filled, "%s seed %d: %.1f %% of the 0.5 m plan cells in the crown's outline hold leaves",
+              name, (int)seed, 100 * filled);
+        if (min_tips) CHECK(c.tips >= min_tips, "%s seed %d: %d twig tips", name, (int)seed, c.tips);
+        if (min_leaves) CHECK(c.n_leaves >= min_leaves, "%s seed %d: %d leaves", name, (int)seed, c.n_leaves);
+        if (c.tips < tips_lo) tips_lo = c.tips;
+        if (c.n_leaves < leaves_lo) leaves_lo = c.n_leaves;
+        if (p10 < p10_lo) p10_lo = p10;
+        if (p90 > p90_hi) p90_hi = p90;
+        if (filled < filled_lo) filled_lo = filled;
+        free(len);
+        keyaki_crown_free(&c);
+        keyaki_skeleton_free(&sk);
+    }
+    printf("%s (seeds 1..%d): at least %d twig tips and %d leaves; blade p10 >= %.1f cm, p90 <= %.1f cm; "
+           "plan cells filled >= %.1f %%\n",
+           name, SEEDS, tips_lo, leaves_lo, 100 * p10_lo, 100 * p90_hi, 100 * filled_lo);
+}
+
 int main(int argc, char **argv) {
     (void)argc;
     (void)argv;
@@ -196,5 +246,8 @@ int main(int argc, char **argv) {
                             "keyaki_model_edaore", "keyaki_mature", "keyaki_young"};
     for (int i = 0; i < 6; i++) body_keeps_skeleton(models[i]);
     limb_statistics();
+    crown("keyaki_mature", 3000, 20000, 0.85);
+    crown("keyaki_young", 0, 0, 0.85);
+    for (int i = 0; i < 4; i++) crown(models[i], 0, 0, 0.85);
     return check_done("test_keyaki_look");
 }

@@ -149,7 +149,7 @@ typedef struct banyan_keyaki_params {
     double light_steer;      /* deg, 0 .. 90: largest turn of a twig cluster towards its lit side. Default 35 */
     int32_t leaves;          /* bool: leaves. Default true */
     int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
-                                leaves. Default 4 */
+                                leaves. Default 5 */
     double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
                                 Default 18 */
     double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.05 */
