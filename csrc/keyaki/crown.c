@@ -288,7 +288,21 @@ typedef struct grid {
     int32_t nx, ny;
     int32_t *n;
     uint8_t *in; /* 1: the cell's centre lies inside the crown's planned outline */
+    int32_t *sky; /* SKY_OBLIQUE more count layers, one per oblique sky direction (NULL: zenith only) */
+    double zref;  /* m: the height whose plan the oblique layers share */
 } grid;
+
+/* The sky: light from the zenith (weight SKY_ZENITH_WEIGHT) and from
+ * SKY_OBLIQUE directions SKY_ELEVATION_DEG above the horizon, evenly round
+ * (the rest of the weight shared). A cluster seen along an oblique
+ * direction is its plan rectangle shifted by (z - zref) cot(elevation)
+ * away from that direction's light; a layer counts those shifted
+ * rectangles. So a cluster on the crown's flank, under others but open
+ * to the side, keeps the side's light, as on a real tree whose crown is
+ * a leafy shell lit by the whole sky, not a cap lit from above. */
+#define SKY_OBLIQUE 4
+#define SKY_ELEVATION_DEG 45.0
+#define SKY_ZENITH_WEIGHT 0.4
 
 /* A cluster's plan rectangle: from o along unit a (2D) for `len`, half
  * width w either side. */
@@ -353,6 +367,45 @@ static void shade_of(const grid *g, rect r, double layers, double *fl, double *f
 }
 
 static void stamp(grid *g, rect r) { FOR_RECT_CELLS(g, r, { (*cell)++; }); }
+
+/* Oblique layer k of g as a grid of its own, and r as that layer sees a
+ * cluster at height z. */
+static grid sky_layer(const grid *g, int k, rect r, double z, rect *rk) {
+    grid gk = *g;
+    gk.n = g->sky + (size_t)k * (size_t)g->nx * (size_t)g->ny;
+    double a = 2.0 * BANYAN_PI * k / SKY_OBLIQUE, t = (z - g->zref) / tan(deg2rad(SKY_ELEVATION_DEG));
+    *rk = r;
+    rk->ox -= t * cos(a);
+    rk->oy -= t * sin(a);
+    return gk;
+}
+
+/* Shaded fractions of r's halves under the whole sky: the weighted mean
+ * of the zenith's and every oblique direction's. */
+static void sky_shade(const grid *g, rect r, double z, double layers, double *fl, double *fr) {
+    shade_of(g, r, layers, fl, fr);
+    if (!g->sky) return;
+    double wo = (1.0 - SKY_ZENITH_WEIGHT) / SKY_OBLIQUE;
+    *fl *= SKY_ZENITH_WEIGHT;
+    *fr *= SKY_ZENITH_WEIGHT;
+    for (int k = 0; k < SKY_OBLIQUE; k++) {
+        rect rk;
+        grid gk = sky_layer(g, k, r, z, &rk);
+        double l, q;
+        shade_of(&gk, rk, layers, &l, &q);
+        *fl += wo * l;
+        *fr += wo * q;
+    }
+}
+
+static void sky_stamp(grid *g, rect r, double z) {
+    stamp(g, r);
+    for (int k = 0; g->sky && k < SKY_OBLIQUE; k++) {
+        rect rk;
+        grid gk = sky_layer(g, k, r, z, &rk);
+        stamp(&gk, rk);
+    }
+}
 
 /* Is the cell at (x, y) a hole: inside the outline, no cluster above it? */
 static int hole_at(const grid *g, double x, double y) {
@@ -557,7 +610,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     qsort(cs, (size_t)nc, sizeof(cand), cand_cmp);
     /* The plan grid over every cluster's reach. */
-    grid g = {0, 0, 0, 0, NULL, NULL};
+    grid g = {0, 0, 0, 0, NULL, NULL, NULL, 0};
     hull hl = {NULL, 0};
     if (p->light && nc > 0) {
         double *xy = malloc(sizeof(double) * 4 * (size_t)nc);
@@ -579,7 +632,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
             y0 = fmin(y0, cs[k].at.y), y1 = fmax(y1, cs[k].at.y);
         }
-        double m = 3.0 * p->twig_length + 1.0;
+        double z0 = 1e300, z1 = -1e300;
+        for (int32_t k = 0; k < nc; k++) z0 = fmin(z0, cs[k].z), z1 = fmax(z1, cs[k].z);
+        g.zref = 0.5 * (z0 + z1);
+        /* Room for the oblique layers' shifts, at most half the crown's depth. */
+        double m = 3.0 * p->twig_length + 1.0 + 0.5 * (z1 - z0) / tan(deg2rad(SKY_ELEVATION_DEG));
         g.x0 = x0 - m;
         g.y0 = y0 - m;
         g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
@@ -588,10 +645,12 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else {
             g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
             g.in = malloc((size_t)g.nx * (size_t)g.ny);
+            g.sky = calloc((size_t)SKY_OBLIQUE * (size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
         }
-        if (g.nx && (!g.n || !g.in)) {
+        if (g.nx && (!g.n || !g.in || !g.sky)) {
             free(g.n);
             free(g.in);
+            free(g.sky);
             free(cs);
             free(hl.xy);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
@@ -612,7 +671,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         if (g.n) {
             rect r = cluster_rect(p, q.at, q.d, q.h, len);
             double fl, fr;
-            shade_of(&g, r, p->shade_layers, &fl, &fr);
+            sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
             double lo = fmin(fl, fr), hi = fmax(fl, fr);
             if (lo >= 0.9 && !q.tip) { /* all shaded: the cluster breaks */
                 c->dropped++;
@@ -657,12 +716,13 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 }
                 len += best;
             }
-            stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len));
+            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
         }
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur);
     }
     free(g.n);
     free(g.in);
+    free(g.sky);
     free(hl.xy);
     free(cs);
     if (x.oom) return crown_fail(c, x.oom, p, err);

@@ -186,12 +186,12 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->twig_angle = 50.0;
     p->twig_radius = 0.0025;
     p->light = 1;
-    p->shade_layers = 1.0;
+    p->shade_layers = 2.0;
     p->light_steer = 35.0;
     p->leaves = 1;
     p->leaf_levels = 5;
-    p->leaf_density = 18.0;
-    p->leaf_size = 0.05;
+    p->leaf_density = 24.0;
+    p->leaf_size = 0.055;
     p->leaf_size_spread = 0.3;
     static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};
     memcpy(p->bark_color, bark, sizeof bark);

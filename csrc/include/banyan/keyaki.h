@@ -143,16 +143,17 @@ typedef struct banyan_keyaki_params {
     double twig_spacing;     /* m, 0.005 .. 5: distance between successive side twigs on a shoot. Default 0.2 */
     double twig_angle;       /* deg, 0 .. 90: a side twig's angle from its parent. Default 50 */
     double twig_radius;      /* m, 1e-4 .. 0.1: radius of a twig's tip (5 mm across by default). Default 0.0025 */
-    int32_t light;           /* bool: light and crowding model: twig clusters shaded from above steer, stop or
+    int32_t light;           /* bool: light and crowding model: twig clusters shaded from the sky steer, stop or
                                 drop (docs/keyaki.md "Light and crowding"). Default true */
-    double shade_layers;     /* 0.1 .. 20: leaf clusters above a spot that shade it fully. Default 1 */
+    double shade_layers;     /* 0.1 .. 20: leaf clusters between a spot and the sky that shade it fully
+                                (docs/keyaki.md "Light and crowding"). Default 2 */
     double light_steer;      /* deg, 0 .. 90: largest turn of a twig cluster towards its lit side. Default 35 */
     int32_t leaves;          /* bool: leaves. Default true */
     int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
                                 leaves. Default 5 */
     double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
-                                Default 18 */
-    double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.05 */
+                                Default 24 */
+    double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.055 */
     double leaf_size_spread; /* 0 .. 1: blade lengths vary by up to this fraction either way. Default 0.3 */
     double bark_color[4];    /* linear RGBA. Default grey-brown */
     double leaf_color[4];    /* linear RGBA: the summer leaves' flat colour (textures off). Default green */
