@@ -153,10 +153,12 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
         /* Out from the twig at 45-70 deg on its side, drooping a little. */
         double th = deg2rad(rng_range(&x->lf, 45.0, 70.0));
         v3 a = v3_add(v3_scale(t, cos(th)), v3_scale(sv, side * sin(th)));
-        a = v3_norm(v3_madd(a, Z, -0.15));
-        /* Blade facing the sky, tilted +-20 deg about its midrib. */
+        a = v3_norm(v3_madd(a, Z, -rng_range(&x->lf, 0.0, 0.4)));
+        /* Blade facing the sky, rolled up to +-45 deg about its midrib: a
+         * crown of only level blades is edge-on, nearly invisible, from
+         * the side; real blades turn every way to the light. */
         v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
-        double roll = deg2rad(rng_range(&x->lf, -20.0, 20.0));
+        double roll = deg2rad(rng_range(&x->lf, -45.0, 45.0));
         w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
         if (v3_cross(w, a).z < 0) w = v3_neg(w);
         /* Smaller near the twig's base and tip. */
