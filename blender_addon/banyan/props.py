@@ -51,6 +51,7 @@ UNITS = {
     "N m": ({}, "N\u00b7m"),
     "unit": ({}, "paper units (times Scale)"),
     "1/unit": ({}, "per paper unit"),
+    "1/m": ({}, "per metre"),
     "r": ({}, "root radii"),
 }
 

@@ -210,7 +210,7 @@ void banyan_avenue_params_init(banyan_avenue_params *p) {
     memset(p, 0, sizeof *p);
     banyan_keyaki_params_init(&p->tree);
     p->seed = 1;
-    p->max_vertices = 4000000;
+    p->max_vertices = 32000000; /* a tree with its crown is ~0.1-0.8 M vertices */
     p->end[0] = 60.0;
     p->rows = 2;
     p->row_offset = 12.0;

@@ -223,7 +223,7 @@ typedef enum banyan_avenue_placement {
 
 typedef struct banyan_avenue_params {
     uint64_t seed;           /* base seed: tree i uses seed + i */
-    int32_t max_vertices;    /* 1 .. 2^30, over the whole avenue. Default 4,000,000 */
+    int32_t max_vertices;    /* 1 .. 2^30, over the whole avenue (about 66 bytes each). Default 32,000,000 */
     double start[3];         /* m: the path's first point when no polyline is given. Default (0,0,0) */
     double end[3];           /* m: its last point. Default (60,0,0) */
     int32_t rows;            /* 1 .. 2. Default 2 */
