@@ -241,17 +241,21 @@ void mb_close(mesh_builder *mb) {
     if (mb->n_part > 1 && mb->part[mb->n_part - 1].vertex_count == 0) mb->n_part--;
 }
 
+banyan_status mb_fail(const mesh_builder *mb, banyan_error *err) {
+    banyan_status s = mb->status;
+    if (s == BANYAN_E_LIMIT)
+        return banyan_fail(err, s, "max_vertices = %u would be exceeded; raise max_vertices or lower the detail",
+                           mb->max_vertices);
+    if (s == BANYAN_E_NOMEM) return banyan_fail(err, s, "out of memory while building the mesh");
+    return banyan_fail(err, s, "internal error while building the mesh");
+}
+
 banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
     *out = NULL;
     if (mb->status) {
-        banyan_status s = mb->status;
-        uint32_t limit = mb->max_vertices;
+        banyan_status s = mb_fail(mb, err);
         mb_free(mb);
-        if (s == BANYAN_E_LIMIT)
-            return banyan_fail(err, s, "max_vertices = %u would be exceeded; raise max_vertices or lower the "
-                               "detail", limit);
-        if (s == BANYAN_E_NOMEM) return banyan_fail(err, s, "out of memory while building the mesh");
-        return banyan_fail(err, s, "internal error while building the mesh");
+        return s;
     }
     if (mb->nv == 0 || mb->ni == 0) {
         mb_free(mb);

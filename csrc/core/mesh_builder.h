@@ -69,6 +69,9 @@ void mb_init_external(mesh_builder *mb, uint32_t cap_v, uint32_t cap_i, float *p
 /* Closes the current part and drops a trailing empty one (mb_finish does
  * this too). */
 void mb_close(mesh_builder *mb);
+/* Reports the builder's sticky failure (mb->status, nonzero) in err, as
+ * mb_finish does, and returns it. */
+banyan_status mb_fail(const mesh_builder *mb, banyan_error *err);
 
 /* Declares a per-vertex float attribute; returns its slot. Declare all
  * attributes before adding vertices. */

@@ -223,9 +223,7 @@ static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *
                      o->colors + 4 * v, o->indices + x, attr, names, o->attribute_count < 3 ? o->attribute_count : 3);
     banyan_status st = keyaki_build_into(&J->trees[i], (double)i, i, sk, &mb, err);
     if (!st && !mb.status) mb_close(&mb);
-    if (!st && mb.status)
-        st = banyan_fail(err, mb.status, mb.status == BANYAN_E_NOMEM ? "out of memory while building the mesh"
-                                                                      : "internal error while building the mesh");
+    if (!st && mb.status) st = mb_fail(&mb, err);
     if (!st && (mb.nv != c->vertices || mb.ni != c->indices || mb.n_part != c->parts || mb.n_skel != c->nodes + 1 ||
                 mb.n_edge != c->nodes || mb.n_attr != o->attribute_count))
         st = banyan_fail(err, BANYAN_E_INTERNAL, "planned and built sizes differ");

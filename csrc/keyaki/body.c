@@ -1,5 +1,6 @@
 /* body.c - the keyaki's body (spec/keyaki.md, "Body and leaves", beyond
- * the paper): tapered tubes through the shared sweeper and leaf cards.
+ * the paper): tapered tubes through the shared sweeper, and the crown
+ * (crown.c: twigs and leaves) planned and meshed with them.
  *
  * Crack-free forks: every chain of branches that always continues into
  * the thicker child (a "limb") is swept as ONE tube, so a limb bends at a
@@ -13,9 +14,8 @@
  * radius, so each branch tapers from its parent's radius to its own;
  * tips narrow to tip_taper x tip_radius and are capped.
  * Tube sides fall with the radius: sides_min + (sides_max - sides_min)
- * sqrt(r / r_trunk). Leaf cards (textured quads, each showing one cell of
- * the leaf atlas, leaf_look.h) hang from the branches within leaf_levels
- * of a tip, leaf_density per unit of length.
+ * sqrt(r / r_trunk). The crown's twig tubes close the bark part; its
+ * leaves (one atlas quad each, leaf_look.h) make the leaf part.
  * Root flare (docs/keyaki.md "Trunk: flare and bark"): the trunk tube
  * gains FLARE_RINGS + 1 rings at its foot, widened by `flare` with a
  * (1 - t)^2 fall-off over flare_height and ridged by flare_lobes

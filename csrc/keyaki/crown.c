@@ -507,6 +507,19 @@ static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
     }
 }
 
+/* The draws of cluster (or skeleton branch) `index`: a stream of its
+ * own, so dropping or reshaping one cluster moves no other's. */
+static void cluster_stream(pcg32 *r, const banyan_keyaki_params *p, int32_t index, uint64_t stream) {
+    pcg32_seed(r, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)index, stream);
+}
+
+/* Turns a cluster's twig, side vector and spray normal about the vertical. */
+static void turn_cluster(cand *q, v3 *up, double a) {
+    q->d = v3_rotate_z(q->d, a);
+    q->h = v3_rotate_z(q->h, a);
+    *up = v3_rotate_z(*up, a);
+}
+
 static banyan_status crown_fail(keyaki_crown *c, int why, const banyan_keyaki_params *p, banyan_error *err) {
     int count_only = c->count_only;
     keyaki_crown_free(c);
@@ -532,13 +545,12 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
     ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0};
-    banyan_status st = BANYAN_OK;
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
             int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
             x.node = i;
-            pcg32_seed(&x.lf, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)i, KEYAKI_STREAM_LEAVES);
+            cluster_stream(&x.lf, p, i, KEYAKI_STREAM_LEAVES);
             if (p->twigs_from_segments) {
                 if (tip) segment_leaves(&x, n, i);
             } else if (depth[i] < p->leaf_levels) {
@@ -664,8 +676,8 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         cand q = cs[k];
         x.node = q.node;
         x.base_level = n[q.node].level;
-        pcg32_seed(&x.tw, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)q.index, KEYAKI_STREAM_TWIGS);
-        pcg32_seed(&x.lf, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)q.index, KEYAKI_STREAM_LEAVES);
+        cluster_stream(&x.tw, p, q.index, KEYAKI_STREAM_TWIGS);
+        cluster_stream(&x.lf, p, q.index, KEYAKI_STREAM_LEAVES);
         v3 up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
         if (up.z < 0) up = v3_neg(up);
         double len = q.len;
@@ -687,9 +699,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
                     /* left is +90 deg about z from the plan axis: turning left is a positive angle */
                     double a = deg2rad(p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0));
-                    q.d = v3_rotate_z(q.d, a);
-                    q.h = v3_rotate_z(q.h, a);
-                    up = v3_rotate_z(up, a);
+                    turn_cluster(&q, &up, a);
                     c->steered++;
                 } else {
                     c->grown++;
@@ -711,11 +721,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                     }
                     if (ext > best) best = ext, best_a = a;
                 }
-                if (best_a != 0) {
-                    q.d = v3_rotate_z(q.d, best_a);
-                    q.h = v3_rotate_z(q.h, best_a);
-                    up = v3_rotate_z(up, best_a);
-                }
+                if (best_a != 0) turn_cluster(&q, &up, best_a);
                 len += best;
             }
             sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
@@ -734,7 +740,6 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         c->vertices += v;
         c->indices += i;
     }
-    (void)st;
     return BANYAN_OK;
 }
 
