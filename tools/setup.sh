@@ -15,7 +15,7 @@ cd "$here"
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc).
-packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libcjson-dev libembree-dev
+packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libstb-dev libcjson-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth)

@@ -1,14 +1,33 @@
-/* progress.c - the progress / cancel callback helper (progress.h). */
+/* progress.c - the progress / cancel callback and the run's budget
+ * (progress.h). */
 #include "progress.h"
 
+#include <stdio.h>
 #include <time.h>
 
 #include "error.h"
+
+#define PROG_MEM_EVERY 0.02 /* seconds between reads of the resident size */
 
 static double now_seconds(void) {
     struct timespec t;
     if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
     return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+double prog_rss_mb(void) {
+#if defined(__linux__)
+    /* statm's second field: resident pages. Counts every thread's memory,
+     * which is what a budget for threads must see. */
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f) return 0.0;
+    unsigned long long size = 0, res = 0;
+    int n = fscanf(f, "%llu %llu", &size, &res);
+    fclose(f);
+    return n == 2 ? (double)res * 4096.0 / (1024.0 * 1024.0) : 0.0;
+#else
+    return 0.0;
+#endif
 }
 
 banyan_status prog_check(const banyan_progress *p, banyan_error *err) {
@@ -23,30 +42,84 @@ void prog_init(prog *g, const banyan_progress *p) {
     g->user = p ? p->user : NULL;
     g->last = 0.0;
     g->t_last = g->fn ? now_seconds() : 0.0;
-    g->cancelled = 0;
+    g->cancelled = PROG_RUNNING;
+    g->t_start = g->max_seconds = g->max_mb = 0.0;
+    g->rss0_mb = g->t_mem = g->over_value = 0.0;
+}
+
+void prog_budget(prog *g, double max_seconds, double max_memory_mb) {
+    g->max_seconds = max_seconds;
+    g->max_mb = max_memory_mb;
+    g->t_start = g->t_mem = now_seconds();
+    g->rss0_mb = prog_rss_mb();
+}
+
+int prog_reserve(prog *g, double bytes) {
+    if (!g || g->max_mb <= 0.0) return 0;
+    if (g->cancelled) return 1;
+    double mb = prog_rss_mb() - g->rss0_mb + bytes / (1024.0 * 1024.0);
+    if (mb > g->max_mb) {
+        g->cancelled = PROG_OVER_MEMORY;
+        g->over_value = mb;
+    }
+    return g->cancelled != PROG_RUNNING;
+}
+
+/* 1 when the budget is spent; reads the clock every call and the resident
+ * size every PROG_MEM_EVERY seconds. */
+static int over_budget(prog *g, double t) {
+    if (g->max_seconds > 0.0 && t - g->t_start > g->max_seconds) {
+        g->cancelled = PROG_OVER_TIME;
+        g->over_value = t - g->t_start;
+        return 1;
+    }
+    if (g->max_mb > 0.0 && t - g->t_mem >= PROG_MEM_EVERY) {
+        g->t_mem = t;
+        double mb = prog_rss_mb() - g->rss0_mb;
+        if (mb > g->max_mb) {
+            g->cancelled = PROG_OVER_MEMORY;
+            g->over_value = mb;
+            return 1;
+        }
+    }
+    return 0;
 }
 
 int prog_at(prog *g, double done) {
-    if (!g || !g->fn) return 0;
+    if (!g) return 0;
     if (g->cancelled) return 1;
+    int budget = g->max_seconds > 0.0 || g->max_mb > 0.0;
+    if (!g->fn && !budget) return 0;
+    double t = now_seconds();
+    if (budget && over_budget(g, t)) return 1;
+    if (!g->fn) return 0;
     if (!(done >= g->last)) done = g->last; /* NaN too */
     if (done > 0.999) done = 0.999;          /* 1.0 only on success */
-    double t = now_seconds();
     if (done < g->last + 0.01 && t - g->t_last < PROG_HEARTBEAT) return 0;
     g->last = done;
     g->t_last = t;
-    if (g->fn(g->user, done)) g->cancelled = 1;
-    return g->cancelled;
+    if (g->fn(g->user, done)) g->cancelled = PROG_CANCELLED;
+    return g->cancelled != PROG_RUNNING;
 }
 
 int prog_finish(prog *g) {
-    if (!g || !g->fn) return 0;
+    if (!g || !g->fn) return g && g->cancelled;
     if (g->cancelled) return 1;
     g->last = 1.0;
-    if (g->fn(g->user, 1.0)) g->cancelled = 1;
-    return g->cancelled;
+    if (g->fn(g->user, 1.0)) g->cancelled = PROG_CANCELLED;
+    return g->cancelled != PROG_RUNNING;
 }
 
-banyan_status prog_fail(banyan_error *err, const char *what) {
+banyan_status prog_fail(const prog *g, banyan_error *err, const char *what) {
+    if (g && g->cancelled == PROG_OVER_TIME)
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "%s stopped after %.2f s, past max_seconds = %g (%g .. %g); raise max_seconds "
+                           "or ask for less work", what, g->over_value, g->max_seconds,
+                           PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX);
+    if (g && g->cancelled == PROG_OVER_MEMORY)
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "%s needs %.0f MB, past max_memory_mb = %g (%g .. %g); raise max_memory_mb "
+                           "or ask for less work", what, g->over_value, g->max_mb,
+                           PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
     return banyan_fail(err, BANYAN_E_CANCELLED, "%s cancelled by the progress callback", what);
 }

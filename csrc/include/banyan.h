@@ -43,7 +43,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 9
+#define BANYAN_ABI_VERSION 10
 
 /* ---------------------------------------------------------------- status */
 
@@ -184,6 +184,15 @@ typedef struct banyan_mesh {
     int32_t *skel_tag;          /* skel_point_count; generator-defined (root kind, level...) */
     uint32_t skel_edge_count;
     uint32_t *skel_edges;       /* 2 * skel_edge_count point indices */
+
+    /* The mesh's local origin in world metres (Z up). positions and
+     * skel_points are relative to it: world = origin + position, added in
+     * double. It is (0, 0, 0) for scenes near the world origin and a whole
+     * number of metres near the hosts otherwise, so float positions keep
+     * millimetres far away (docs/reliability.md "Far from the origin"). The
+     * glTF writer puts it in the node's translation; the add-on in the
+     * object's location. */
+    double origin[3];
 } banyan_mesh;
 
 /* Frees a mesh and every array it owns. Accepts NULL. */

@@ -430,7 +430,7 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
         rules(iv);
         if (prog_stopped(iv->prog)) {
             iv->step_seconds += now_seconds() - t0;
-            return prog_fail(err, "ivy growth");
+            return prog_fail(iv->prog, err, "ivy growth");
         }
         ivy_sag(iv);
         iv->work += n0 + 1.0;
@@ -696,14 +696,14 @@ banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, c
     iv->grow_share = IVY_GROW_SHARE;
     iv->mesh_from = IVY_GROW_SHARE + (stats ? IVY_STATS_SHARE : 0.0);
     s = ivy_grow(iv, params->steps, 1, err);
-    if (!s && prog_at(iv->prog, IVY_GROW_SHARE)) s = prog_fail(err, "ivy");
+    if (!s && prog_at(iv->prog, IVY_GROW_SHARE)) s = prog_fail(iv->prog, err, "ivy");
     if (!s && stats) s = banyan_ivy_get_stats(iv, stats, err);
-    if (!s && prog_at(iv->prog, iv->mesh_from)) s = prog_fail(err, "ivy");
+    if (!s && prog_at(iv->prog, iv->mesh_from)) s = prog_fail(iv->prog, err, "ivy");
     if (!s) s = banyan_ivy_mesh(iv, out, err);
     if (!s && prog_finish(iv->prog)) {
         banyan_mesh_free(*out);
         *out = NULL;
-        s = prog_fail(err, "ivy");
+        s = prog_fail(iv->prog, err, "ivy");
     }
     banyan_ivy_free(iv);
     if (s && stats) memset(stats, 0, sizeof *stats);

@@ -494,7 +494,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     free(pts); free(P); free(R); free(birth);
     if (cancelled) {
         mb_free(&mb);
-        return prog_fail(err, "ivy mesh");
+        return prog_fail(iv->prog, err, "ivy mesh");
     }
     return mb_finish(&mb, out, err);
 }

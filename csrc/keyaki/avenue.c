@@ -370,7 +370,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.share = AVENUE_COUNT_SHARE;
     run_job(&J, t);
     if (atomic_load(&J.cancel)) {
-        s = prog_fail(err, "avenue");
+        s = prog_fail(J.prog, err, "avenue");
         goto done;
     }
     if (atomic_load(&J.stop)) {
@@ -422,7 +422,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.share = 1.0 - AVENUE_COUNT_SHARE;
     run_job(&J, t);
     if (atomic_load(&J.cancel)) {
-        s = prog_fail(err, "avenue");
+        s = prog_fail(J.prog, err, "avenue");
         goto done;
     }
     for (uint32_t i = 0; i < n; i++) {
@@ -432,7 +432,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         }
     }
     if (prog_finish(J.prog)) {
-        s = prog_fail(err, "avenue");
+        s = prog_fail(J.prog, err, "avenue");
         goto done;
     }
     *out = J.out;

@@ -388,7 +388,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         const roots_poly *pl = &net->poly[t];
         if (pl->n < 2) continue;
         if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
-            st = prog_fail(err, "fused roots surface");
+            st = prog_fail(net->prog, err, "fused roots surface");
             goto done;
         }
         g.n_touched = 0;
@@ -471,7 +471,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             n_surf++;
         }
         if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) {
-            st = prog_fail(err, "fused roots surface");
+            st = prog_fail(net->prog, err, "fused roots surface");
             goto done;
         }
         STAGE(2);

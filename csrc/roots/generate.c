@@ -280,7 +280,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     return BANYAN_OK;
 cancelled:
     roots_net_free(net);
-    return prog_fail(err, "roots");
+    return prog_fail(g, err, "roots");
 }
 
 static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_params *params, banyan_mesh **out,
@@ -308,7 +308,7 @@ banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, con
         banyan_mesh_free(*out);
         *out = NULL;
         if (stats) memset(stats, 0, sizeof *stats);
-        s = prog_fail(err, "roots");
+        s = prog_fail(&g, err, "roots");
     }
     return s;
 }

@@ -416,7 +416,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         if (prog_at(net->prog, ROOTS_AT_MESH + (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
             free(block);
             mb_free(&mb);
-            return prog_fail(err, "roots mesh");
+            return prog_fail(net->prog, err, "roots mesh");
         }
         const roots_poly *pl = &net->poly[t];
         if (pl->n < 2) continue;

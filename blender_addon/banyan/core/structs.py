@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 9      # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 10     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -68,6 +68,7 @@ class Mesh(C.Structure):
         ("skel_tag", C.POINTER(C.c_int32)),
         ("skel_edge_count", C.c_uint32),
         ("skel_edges", C.POINTER(C.c_uint32)),
+        ("origin", C.c_double * 3),
     ]
 
 
