@@ -147,7 +147,9 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
     const v3 Z = v3_make(0, 0, 1);
     double V = LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0;
     for (int32_t j = 0; j < k; j++, side = -side) {
-        double s = L - j * step;
+        /* j = 0 apart: a density so small (1e-317) that step overflows to
+         * inf gives k = 1, and 0 x inf would be NaN. */
+        double s = j ? L - j * step : L;
         v3 t, at = along(pts, n, s, &t);
         v3 sv = v3_norm_or_perp(v3_cross(up, t), t);
         /* Out from the twig at 45-70 deg on its side, drooping a little. */

@@ -4,8 +4,9 @@
  * twig_radius, every leaf's petiole end lies on its twig, leaf lengths in
  * range, successive leaves alternate sides, the plan's counts are exact,
  * the same seed gives the same bytes, and the light model thins the most
- * crowded plan cells without opening holes in the crown. Prints the
- * crown's figures on keyaki_mature. */
+ * crowded plan cells without opening holes in the crown; a leaf density
+ * of 1e-317 gives finite meshes. Prints the crown's figures on
+ * keyaki_mature. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -258,7 +259,55 @@ static void refused(void) {
           err.message);
 }
 
+static int mesh_finite(const banyan_mesh *m) {
+    for (size_t i = 0; i < 3 * (size_t)m->vertex_count; i++)
+        if (!isfinite(m->positions[i]) || !isfinite(m->normals[i])) return 0;
+    for (size_t i = 0; i < 2 * (size_t)m->vertex_count; i++)
+        if (!isfinite(m->uvs[i])) return 0;
+    return 1;
+}
+
+/* A leaf density so small that 1 / density overflows to inf (the fuzz
+ * crasher tests/fuzz/regressions/fuzz_keyaki/nan-leaf-density-1e-317: an
+ * avenue of 2-level trees at 1e-317 leaves a metre made NaN positions):
+ * every twig still ends in its one leaf, and every number is finite, on
+ * each path that places leaves (twigs, skeleton, segment lines). */
+static void tiny_density(void) {
+    const double densities[] = {4.9406564584124654e-324, 1e-317, 2.2250738585072014e-308, 1e-300, 1e-9};
+    for (int path = 0; path < 3; path++)
+        for (size_t k = 0; k < sizeof densities / sizeof densities[0]; k++) {
+            banyan_keyaki_params p;
+            if (!load("keyaki_young", &p)) return;
+            p.leaf_density = densities[k];
+            if (path == 1) p.twig_levels = 0;
+            if (path == 2) p.twigs_from_segments = 1;
+            banyan_mesh *m = NULL;
+            banyan_error err = {0};
+            banyan_status s = banyan_keyaki_generate(&p, &m, &err);
+            CHECK(s == BANYAN_OK, "path %d, leaf_density %g: %s", path, densities[k], err.message);
+            if (s) continue;
+            CHECK(mesh_finite(m), "path %d, leaf_density %g: every position, normal and uv finite", path,
+                  densities[k]);
+            CHECK(m->part_count == 2, "path %d, leaf_density %g: leaves made (%u parts)", path, densities[k],
+                  m->part_count);
+            banyan_mesh_free(m);
+        }
+    /* The crasher's own case: an avenue of 2-level trees. */
+    banyan_avenue_params a;
+    banyan_avenue_params_init(&a);
+    a.tree.levels = 2;
+    a.tree.leaf_density = 1e-317;
+    a.placement = BANYAN_AVENUE_COUNT;
+    a.count = 2;
+    banyan_mesh *m = NULL;
+    banyan_error err = {0};
+    banyan_status s = banyan_avenue_generate(&a, NULL, 0, 1, &m, NULL, &err);
+    CHECK(s == BANYAN_OK && mesh_finite(m), "avenue, tree.leaf_density 1e-317: %s", err.message);
+    banyan_mesh_free(m);
+}
+
 int main(void) {
+    tiny_density();
     refused();
     figures();
     skeleton_untouched();
