@@ -90,6 +90,16 @@ Choices made where the issue left one open:
   every value of the right type and range. cJSON is given the length, so it
   never reads past the buffer; its parse calls are serialised because
   cJSON 1.7 records the last error position in a global.
+- **Output files are replaced whole or not at all.** The glTF writer, the
+  CLI's PNGs and the add-on's presets write a temporary
+  `.<name>.XXXXXX.tmp` in the target's folder, sync it and rename it over
+  the target; a full disk, a file size limit or an unwritable folder
+  leaves the old file byte for byte and no temporary file (a killed
+  process may leave the temporary file, never a cut target). A symlink
+  stays a link, its target replaced. The CLI checks `-o` (extension,
+  folder exists and is writable, not a folder) before generating.
+  `test_atomic_write` and `cli_output` check each case
+  ([formats.md, Writing files](formats.md#writing-files)).
 - **Threads.** Every call is reentrant on distinct arguments; `test_threads`
   runs every generator and the preset reader from 4 threads and compares
   mesh hashes with sequential runs, under ThreadSanitizer as well.

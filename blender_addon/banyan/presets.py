@@ -9,6 +9,7 @@ import json
 import os
 
 from .core import lib
+from .core.atomic_file import write_atomic
 from .core.errors import PresetNotFound
 
 
@@ -158,8 +159,7 @@ def save(generator, name, text):
     safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in name.strip()[:NAME_MAX]) or "preset"
     key = safe if safe.startswith(generator + "_") else "%s_%s" % (generator, safe)
     path = os.path.join(d, key + ".json")
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(text)
+    write_atomic(path, text)  # a failed save keeps the old preset of that name
     return path
 
 

@@ -2,12 +2,12 @@
  * the library draws (banyan/textures.h) as PNG files into DIR, named
  * <kind>[_<season>]_{color,normal}.png; docs/img/materials/ is made with
  * it. It is not a mesh generator, so main() hands it argv directly. */
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "banyan.h"
+#include "core/atomic_file.h"
 
 static const char *const kind_names[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
                                                          "ivy_stem"};
@@ -22,12 +22,10 @@ static int write_png(const char *dir, const char *name, const banyan_image *im) 
     }
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.png", dir, name);
-    FILE *f = fopen(path, "wb");
-    int bad = !f || fwrite(png, 1, len, f) != len;
-    if (f && fclose(f) != 0) bad = 1;
+    int bad = atomic_write(path, png, len); /* a failed write leaves the old PNG */
     banyan_png_free(png);
     if (bad) {
-        fprintf(stderr, "banyan textures: cannot write %s: %s\n", path, strerror(errno));
+        fprintf(stderr, "banyan textures: cannot write %s: %s\n", path, strerror(bad));
         return 1;
     }
     printf("%s\n", path);
@@ -61,6 +59,13 @@ int cli_textures_main(int argc, char **argv) {
     if (!dir) {
         fprintf(stderr, "usage: banyan textures -o DIR [--size N] [--seed N]\n");
         return 2;
+    }
+    /* The folder is checked before any texture is drawn. */
+    char first[4096], why[4400];
+    snprintf(first, sizeof first, "%s/%s_summer_color.png", dir, kind_names[0]);
+    if (atomic_check(first, why, sizeof why)) {
+        fprintf(stderr, "banyan textures: -o %s: %s\n", dir, why);
+        return 1;
     }
     for (int k = 0; k < BANYAN_TEX_COUNT; k++) {
         int leaf = k == BANYAN_TEX_KEYAKI_LEAF || k == BANYAN_TEX_IVY_LEAF;

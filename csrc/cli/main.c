@@ -13,10 +13,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "core/atomic_file.h"
 
 static double now_ms(void) {
     struct timespec t;
@@ -174,6 +176,22 @@ static int read_host_args(const cli_command *cmd, const char **specs, int n, ban
     return 1;
 }
 
+/* -o names a .glb or .gltf file (the library's rule) that can be
+ * written: its folder exists and is writable, it is not a folder. */
+static int out_path_ok(const cli_command *cmd, const char *path) {
+    size_t n = strlen(path);
+    if (!((n >= 4 && !strcasecmp(path + n - 4, ".glb")) || (n >= 5 && !strcasecmp(path + n - 5, ".gltf")))) {
+        fprintf(stderr, "banyan %s: -o %s: must end in .glb (binary) or .gltf (JSON)\n", cmd->name, path);
+        return 0;
+    }
+    char why[8400];
+    if (atomic_check(path, why, sizeof why)) {
+        fprintf(stderr, "banyan %s: -o %s: %s\n", cmd->name, path, why);
+        return 0;
+    }
+    return 1;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -248,6 +266,12 @@ int main(int argc, char **argv) {
         free(sets);
         free(host_args);
         return 0;
+    }
+    /* A bad -o is reported now, not after a long generation. */
+    if (out_path && !out_path_ok(cmd, out_path)) {
+        free(sets);
+        free(host_args);
+        return 1;
     }
 
     int rc = 1;

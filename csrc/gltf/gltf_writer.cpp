@@ -28,10 +28,12 @@
  *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK.
  * The skeleton is not exported.
  *
- * Nothing is created on disk until every input has been checked. A write
- * that fails part-way removes the file. No exception leaves this file.
+ * Nothing is created on disk until every input has been checked. The file
+ * is written through core/atomic_file.h: a write that fails part-way
+ * leaves the old file as it was. No exception leaves this file.
  */
 #include "banyan.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 #include <tiny_gltf.h>
@@ -732,38 +734,19 @@ class FileBuf : public std::streambuf {
     int error_ = 0;
 };
 
-/* Closes and removes the output file unless commit() was called. */
+/* The temporary output file (core/atomic_file.h), removed unless
+ * commit() succeeded. */
 class OutFile {
   public:
-    explicit OutFile(const char *path) : path_(path) {}
-    ~OutFile() {
-        if (f_) {
-            std::fclose(f_);
-            std::remove(path_);
-        }
-    }
-    bool open() {
-        errno = 0;
-        f_ = std::fopen(path_, "wb");
-        return f_ != nullptr;
-    }
-    std::FILE *get() { return f_; }
-    /* Flushes and closes; returns 0 or an errno value. The file is removed
-     * on failure. */
-    int close() {
-        int e = 0;
-        errno = 0;
-        if (std::fflush(f_) != 0 || std::ferror(f_)) e = errno ? errno : EIO;
-        errno = 0;
-        if (std::fclose(f_) != 0 && e == 0) e = errno ? errno : EIO;
-        f_ = nullptr;
-        if (e != 0) std::remove(path_);
-        return e;
-    }
+    OutFile() : af_{nullptr, nullptr, nullptr} {}
+    ~OutFile() { atomic_abort(&af_); }
+    int open(const char *path) { return atomic_open(&af_, path); }
+    std::FILE *get() { return af_.f; }
+    /* Flushes, syncs and renames over the target; 0 or an errno value. */
+    int commit() { return atomic_commit(&af_); }
 
   private:
-    const char *path_;
-    std::FILE *f_ = nullptr;
+    atomic_file af_;
 };
 
 banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
@@ -943,10 +926,9 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     buffer.data.swap(bin);
     model.buffers.push_back(std::move(buffer));
 
-    OutFile out(path);
-    if (!out.open())
-        return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path,
-                    std::strerror(errno));
+    OutFile out;
+    if (int oe = out.open(path))
+        return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
     FileBuf fb(out.get());
     std::ostream os(&fb);
     tinygltf::TinyGLTF writer;
@@ -956,7 +938,7 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(fb.error()));
     if (!ok || !os)
         return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': the glTF serialiser failed", path);
-    int e = out.close();
+    int e = out.commit();
     if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
     return BANYAN_OK;
 }

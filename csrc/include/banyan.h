@@ -431,7 +431,11 @@ BANYAN_API size_t banyan_sizeof_gltf_options(void);
  * that uses it; its baseColorFactor is then white (the texture carries
  * the colour; base_color is the flat colour for textures off). Materials
  * with alpha_cutoff > 0 are alphaMode MASK at that cutoff. opt NULL: the
- * defaults. Refuses a bad option naming it and its range. */
+ * defaults. Refuses a bad option naming it and its range.
+ * The file is replaced whole or not at all: the bytes go to a temporary
+ * ".<name>.XXXXXX.tmp" in the same folder, renamed over path once
+ * written and synced; a failed write leaves the old file (docs/formats.md,
+ * "Writing files"). A symlink stays; its target is replaced. */
 BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
                                               const banyan_mesh *const *meshes,
                                               const char *const *names, uint32_t count,

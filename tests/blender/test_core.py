@@ -85,9 +85,46 @@ def test_params(gen):
         bt.check(e.status == 11, "%s: unknown key -> BANYAN_E_UNKNOWN_KEY" % gen)
 
 
+def test_atomic_file():
+    """write_atomic (user presets): a failed write (a full disk: a child
+    with a 64 KiB file size limit) keeps the old file byte for byte and
+    leaves no temporary file; a symlink stays a link; the mode is kept."""
+    import shutil
+    import stat
+    import tempfile
+    from banyan.core.atomic_file import write_atomic
+    d = tempfile.mkdtemp(prefix="atomic_", dir=bt.OUT_DIR if os.path.isdir(bt.OUT_DIR) else None)
+    try:
+        path, link = os.path.join(d, "p.json"), os.path.join(d, "link.json")
+        write_atomic(path, "old")
+        os.chmod(path, 0o640)
+        os.symlink("p.json", link)
+        write_atomic(link, b"new")
+        bt.check(os.path.islink(link) and os.readlink(link) == "p.json", "a symlink stays a link")
+        bt.check(open(path, "rb").read() == b"new", "its target replaced")
+        bt.check(stat.S_IMODE(os.stat(path).st_mode) == 0o640, "the mode kept")
+        addon_parent = os.path.join(bt.SOURCE_DIR, "blender_addon")
+        code = ("import resource, signal, sys; sys.path.insert(0, %r)\n"
+                "from banyan.core.atomic_file import write_atomic\n"
+                "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+                "resource.setrlimit(resource.RLIMIT_FSIZE, (65536, 65536))\n"
+                "try:\n    write_atomic(%r, b'x' * (1 << 20))\n"
+                "except OSError as e:\n    print('refused', e.errno)\n" % (addon_parent, link))
+        r = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True)
+        import errno
+        bt.check("refused %d" % errno.EFBIG in r.stdout, "a full disk is an OSError EFBIG: %r %r" % (r.stdout, r.stderr[-300:]))
+        bt.check(open(path, "rb").read() == b"new", "the old file kept after a full disk")
+        bt.check(os.path.islink(link), "the link kept after a full disk")
+        left = [n for n in os.listdir(d) if n.endswith(".tmp")]
+        bt.check(not left, "no temporary file left: %s" % left)
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
+
+
 bt.run(test_plain_python)
 bt.run(test_loader)
 bt.run(test_tube_copy)
+bt.run(test_atomic_file)
 for g in S.GENERATORS:
     if bt.generator(g):
         bt.run(lambda: test_params(g))
