@@ -219,8 +219,8 @@ int main(int argc, char **argv) {
             s->s = 1;
         }
         banyan_status st;
-        uint32_t a = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 0, un, &st);
-        uint32_t b = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 1, un2, &st);
+        uint32_t a = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 0, un, &st, NULL);
+        uint32_t b = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 1, un2, &st, NULL);
         if (a != b || memcmp(un, un2, sizeof *un * a)) bad_grid++;
         flagged += (int)a;
     }
