@@ -53,6 +53,8 @@ UNITS = {
     "1/unit": ({}, "per paper unit"),
     "1/m": ({}, "per metre"),
     "r": ({}, "root radii"),
+    "s": ({}, "seconds"),
+    "MB": ({}, "MB of resident memory"),
 }
 
 

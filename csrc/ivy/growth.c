@@ -278,7 +278,7 @@ static void rules(banyan_ivy *iv) {
     wake_up(iv);
     const int32_t n0 = iv->n_act;
     for (int32_t k = 0; k < n0; k++) {
-        if (iv->prog && (k & 31) == 0 && ivy_progress(iv, k, n0)) return;
+        if ((k & 31) == 0 && ivy_progress(iv, k, n0)) return;
         const int32_t i = iv->act[k];
         ivy_bud *b = &iv->buds[i];
         if (b->run > 0 && b->run * p->internode > p->bmax) { /* p6 */
@@ -361,6 +361,9 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     int64_t cap = iv->cap > 256 ? iv->cap : 256;
     while (cap < need) cap *= 2;
     if (cap > iv->p.max_buds) cap = need > iv->p.max_buds ? need : iv->p.max_buds;
+    /* The per-bud arrays below, known before they grow. */
+    const double per_bud = sizeof(ivy_bud) + sizeof(ivy_gnode) + 10 * sizeof(int32_t) + 3 * sizeof(v3);
+    if (prog_reserve(iv->prog, (double)(cap - iv->cap) * per_bud)) return prog_fail(iv->prog, err, "ivy growth");
     ivy_bud *b = realloc(iv->buds, sizeof(ivy_bud) * (size_t)cap);
     if (!b) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     iv->buds = b;
@@ -402,6 +405,8 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
     if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
     banyan_status s = banyan_check_int(err, "n (steps)", n, 0, BANYAN_IVY_MAX_STEPS);
     if (s) return s;
+    ivy_budget_start(iv);
+    if (prog_stopped(iv->prog)) return prog_fail(iv->prog, err, "ivy growth");
     double t0 = now_seconds();
     for (int32_t k = 0; k < n; k++) {
         /* Every growing bud adds at most one bud per step. */
@@ -440,7 +445,16 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
     return BANYAN_OK;
 }
 
-banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) { return ivy_grow(iv, n, 0, err); }
+void ivy_budget_start(const banyan_ivy *iv) {
+    prog *g = iv->prog;
+    if (g != &iv->own || g->cancelled) return;
+    prog_budget(g, iv->p.max_seconds, iv->p.max_memory_mb);
+    g->t_start -= iv->step_seconds;
+    g->rss0_mb = iv->rss0_mb;
+}
+
+/* The step API keeps max_vertices as it grows, like the one shot (#21). */
+banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) { return ivy_grow(iv, n, 1, err); }
 
 void banyan_ivy_free(banyan_ivy *iv) {
     if (!iv) return;
@@ -516,6 +530,9 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     banyan_ivy *iv = calloc(1, sizeof *iv);
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     iv->p = *params;
+    iv->rss0_mb = prog_rss_mb();
+    prog_init(&iv->own, NULL);
+    iv->prog = &iv->own;
     iv->set = set;
     iv->meshes = set ? set->meshes : NULL;
     iv->n_mesh = set ? set->n_meshes : 0;
@@ -687,11 +704,12 @@ banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, c
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = prog_check(progress, err);
     if (s) return s;
+    prog g; /* with or without a callback: it keeps the budget, from the start */
+    prog_init(&g, progress);
+    if (params) prog_budget(&g, params->max_seconds, params->max_memory_mb);
     banyan_ivy *iv = NULL;
     if ((s = banyan_ivy_create_hosts(params, hosts, &iv, err))) return s;
-    prog g;
-    prog_init(&g, progress);
-    iv->prog = progress ? &g : NULL;
+    iv->prog = &g;
     iv->goal = params->steps;
     iv->grow_share = IVY_GROW_SHARE;
     iv->mesh_from = IVY_GROW_SHARE + (stats ? IVY_STATS_SHARE : 0.0);

@@ -115,10 +115,13 @@ struct banyan_ivy {
 
     ivy_cand *cand;        /* params.candidates of them */
 
-    /* Progress of a one-shot generation (NULL otherwise): growth is
-     * counted in bud visits, and the steps left are guessed at the
-     * current visits per step (ivy_progress). */
+    /* Progress and budget: a one-shot generation's, else `own` (the
+     * handle's budget, ivy_budget_start). Growth is counted in bud visits,
+     * and the steps left are guessed at the current visits per step
+     * (ivy_progress). */
     prog *prog;
+    prog own;
+    double rss0_mb;        /* resident MB when the handle was made */
     double work;           /* bud visits of the steps done */
     int32_t goal;          /* the step the generation ends at */
     double grow_share;     /* the part of the call that growth is */
@@ -225,6 +228,12 @@ void ivy_sag(banyan_ivy *iv);
  * counts). It only grows with n, so a one-shot generation can stop as
  * soon as it passes max_vertices instead of growing to the end (mesh.c). */
 uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);
+
+/* Starts the handle's own budget for a step or mesh call: its clock as if
+ * it had run through every step call so far (step_seconds), memory from
+ * banyan_ivy_create. A stopped handle stays stopped (a stop can fall in
+ * the middle of a step). No-op for a one-shot generation's prog. */
+void ivy_budget_start(const banyan_ivy *iv);
 
 /* Grows n steps; stops with BANYAN_E_LIMIT as soon as the plant could no
  * longer be meshed within max_vertices when vertex_stop is set. */

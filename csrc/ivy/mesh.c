@@ -308,7 +308,7 @@ static int chain_start(const banyan_ivy *iv, int32_t i) {
 /* Progress of the mesh of a one-shot generation: stems then leaves, by
  * bud, every 256 buds, from iv->mesh_from to 1. Returns 1 once cancelled. */
 static int mesh_progress(const banyan_ivy *iv, int32_t i, double half) {
-    if (!iv->prog || (i & 255)) return 0;
+    if (i & 255) return 0;
     return prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * 0.5 * (half + (double)i / iv->n));
 }
 
@@ -343,6 +343,13 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
                            "the ivy mesh needs %llu vertices, over max_vertices = %d; raise max_vertices or lower "
                            "steps or stem_sides",
                            (unsigned long long)need_v, p->max_vertices);
+    }
+    /* The budget, and the mesh's memory before it is allocated (about 64
+     * bytes a vertex with its attributes, 4 an index). */
+    ivy_budget_start(iv);
+    if (prog_stopped(iv->prog) || prog_reserve(iv->prog, (double)need_v * 64.0 + (double)need_i * 4.0)) {
+        free(pts);
+        return prog_fail(iv->prog, err, "ivy mesh");
     }
     v3 *P = malloc(sizeof(v3) * max_pts);
     double *R = malloc(sizeof(double) * max_pts);

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "banyan.h"
+#include "core/progress.h"
 
 typedef struct param_table {
     const banyan_param_info *rows;
@@ -51,5 +52,13 @@ int preset_line_at(const char *text, size_t len, size_t offset);
 #define BP_COLOR(S, field, label, group, desc) BP_ROW(S, field, label, group, BANYAN_PT_COLOR, "", 0, 1, NULL, desc)
 #define BP_SEED(S, field, label, group, desc) \
     BP_ROW(S, field, label, group, BANYAN_PT_SEED, "", 0, 18446744073709551615.0, NULL, desc)
+/* The run's budget (core/progress.h), the same two rows in every table:
+ * max_seconds and max_memory_mb, ranges from the PROG_MAX_* constants. */
+#define BP_BUDGET(S, group)                                                                                      \
+    BP_DOUBLE(S, max_seconds, "Time limit", group, "s", PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX,             \
+              "wall time a run may take; past it the run stops with BANYAN_E_LIMIT"),                             \
+    BP_DOUBLE(S, max_memory_mb, "Memory limit", group, "MB", PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX,          \
+              "resident memory a run may add to what the process held when it began; past it the run stops "   \
+              "with BANYAN_E_LIMIT")
 
 #endif

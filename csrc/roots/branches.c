@@ -93,6 +93,7 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
     }
     for (int a = 0; a < N; a++) {
         for (int k = 0; k < nb; k++) {
+            if (roots_stop(net)) return;
             int b = roots_branch_b(p, k);
             int slot = a * nb + k;
             if (b < 0 || b >= B || !roots_slot_open(net, p, a, k)) continue;
@@ -160,6 +161,7 @@ void roots_press_first(roots_net *net, const banyan_roots_params *p) {
     const int N = net->N, nb = net->nb, S1 = net->S1;
     const roots_world *w = &net->w;
     for (int slot = 0; slot < N * nb; slot++) {
+        if (roots_stop(net)) return;
         if (!net->K_valid[slot]) continue;
         v3 *K = net->K + (size_t)slot * S1;
         uint8_t *ok = net->K_ok + (size_t)slot * S1;
@@ -194,6 +196,7 @@ void roots_correct_mains(roots_net *net, const banyan_roots_params *p) {
     if (!p->correction || s < 2) return;
     const roots_world *w = &net->w;
     for (int a = 0; a < N; a++) {
+        if (roots_stop(net)) return;
         const v3 *Mg = net->M_grown + (size_t)a * B;
         v3 *M = net->M + (size_t)a * B;
         for (int k = 0; k < nb; k++) {
@@ -220,6 +223,7 @@ void roots_grow_second(roots_net *net, const banyan_roots_params *p) {
     const double u = net->u;
     for (int a = 0; a < N; a++) {
         for (int k = 0; k + 1 < nb; k++) {
+            if (roots_stop(net)) return;
             int slot = a * nb + k;
             if (!net->K_valid[slot] || !net->K_valid[slot + 1]) continue;
             pcg32 g;

@@ -372,6 +372,12 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
                          est, p->max_vertices);
         goto done;
     }
+    /* Known before the work: at least the band's voxels about the surface
+     * (two floats each) and the mesh's vertices (about 64 bytes each). */
+    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + 64.0))) {
+        st = prog_fail(net->prog, err, "fused roots surface");
+        goto done;
+    }
 
     STAGE(0);
     /* The field: per polyline the minimum of its capsules, then the smooth
@@ -411,6 +417,10 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         double gap = HOST_GAP * r, floor_z = net->w.ground_z - SOIL_DEPTH * r;
         double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
         for (uint32_t b = 0; b < g.n; b++) {
+            if ((b & 63) == 0 && roots_stop(net)) { /* a voxel's host query each: slow among many hosts */
+                st = prog_fail(net->prog, err, "fused roots surface");
+                goto done;
+            }
             blk_meta *m = &g.meta[b];
             float *acc = g.acc + (size_t)b * BLK;
             v3 centre = v3_make((m->bx * 8 + 3.5) * h, (m->by * 8 + 3.5) * h, (m->bz * 8 + 3.5) * h);
@@ -494,6 +504,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         }
     }
     STAGE(3);
+    if (roots_stop(net)) goto stopped; /* OpenVDB itself cannot be stopped: the budget is read after it */
     if (vo.n_pos == 0 || vo.n_tri == 0) {
         st = banyan_fail(err, BANYAN_E_INTERNAL, "the fused roots surface is empty");
         goto done;
@@ -570,6 +581,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
      * vertex there may sit a little inside (up to about h / 3). It goes
      * back out along the distance field's normal, to half the gap. */
     for (uint32_t i = 0; i < nv; i++) {
+        if ((i & 1023) == 0 && roots_stop(net)) goto stopped; /* a host query per vertex */
         float *f = vo.pos + 3 * (size_t)i;
         v3 q = v3_make(f[0] * h, f[1] * h, f[2] * h), n;
         int which;
@@ -597,6 +609,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     }
     uint32_t extra = 0;
     for (uint32_t i = 0; i < nv; i++) {
+        if ((i & 1023) == 0 && roots_stop(net)) goto stopped;
         v3 q = v3_make(vo.pos[3 * i] * h, vo.pos[3 * i + 1] * h, vo.pos[3 * i + 2] * h);
         double t = 0;
         uint32_t c = nearest_capsule(&g, caps, n_caps, q, &t);
@@ -632,6 +645,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     }
 
     STAGE(4);
+    if (roots_stop(net)) goto stopped;
     int a_kind, a_id;
     roots_mesh_init(&mb, p, &a_kind, &a_id);
     mb_live = 1;
@@ -666,6 +680,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 
 nomem:
     st = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the fused roots surface");
+    goto done;
+stopped:
+    st = prog_fail(net->prog, err, "fused roots surface");
 done:
     if (mb_live) mb_free(&mb);
     free(caps);

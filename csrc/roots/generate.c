@@ -85,9 +85,9 @@ static double host_distance(const roots_world *w, uint32_t h, v3 p, double cap) 
     return d;
 }
 
-banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
-                              roots_net *net, banyan_error *err) {
-    memset(net, 0, sizeof *net);
+/* The box entry points' checks, then their box-only host set. */
+static banyan_status box_hosts(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
+                               banyan_hosts **H, banyan_error *err) {
     banyan_status s = check_params(p, err);
     if (s) return s;
     if (n_hosts == 0)
@@ -96,8 +96,15 @@ banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *ho
     if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
     if (n_hosts > BANYAN_MAX_HOSTS)
         return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
+    return hosts_from_boxes(hosts, n_hosts, H, err);
+}
+
+banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
+                              roots_net *net, banyan_error *err) {
+    memset(net, 0, sizeof *net);
     banyan_hosts *H = NULL;
-    if ((s = hosts_from_boxes(hosts, n_hosts, &H, err))) return s;
+    banyan_status s = box_hosts(p, hosts, n_hosts, &H, err);
+    if (s) return s;
     if ((s = roots_net_build_hosts(p, H, net, err))) {
         banyan_hosts_free(H);
         return s;
@@ -133,6 +140,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
         return banyan_fail(err, BANYAN_E_NO_HOSTS, "the host set is empty: strangler-fig roots need a host");
     net->hosts = hosts;
     net->prog = g;
+    if (g) prog_budget(g, p->max_seconds, p->max_memory_mb);
     net->u = p->unit;
     net->r = p->radius * p->unit;
     net->w.hosts = hosts->boxes;
@@ -236,7 +244,9 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     if (prog_stopped(g)) goto cancelled;
     memcpy(net->M, net->M_grown, sizeof(v3) * N * B);
     roots_grow_first(net, p);
+    if (prog_stopped(g)) goto cancelled;
     roots_correct_mains(net, p);
+    if (prog_stopped(g)) goto cancelled;
     roots_press_first(net, p);
     if (prog_at(g, ROOTS_AT_FIRST)) goto cancelled;
     roots_grow_second(net, p);
@@ -254,6 +264,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     st->min_clearance = 1e300;
     roots_world soil_w = roots_soil_world(&net->w);
     for (uint32_t t = 0; t < net->n_poly; t++) {
+        if (roots_stop(net)) goto cancelled;
         const roots_poly *pl = &net->poly[t];
         for (uint32_t i = 0; i < pl->n; i++) {
             /* Only values below the least so far count (keeps mesh queries
@@ -300,11 +311,11 @@ banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, con
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = prog_check(progress, err);
     if (s) return s;
-    prog g;
+    prog g; /* with or without a callback: it keeps the budget */
     prog_init(&g, progress);
     roots_net net;
-    s = finish(&net, build_hosts(params, hosts, &net, progress ? &g : NULL, err), params, out, stats, err);
-    if (!s && prog_finish(progress ? &g : NULL)) {
+    s = finish(&net, build_hosts(params, hosts, &net, &g, err), params, out, stats, err);
+    if (!s && prog_finish(&g)) {
         banyan_mesh_free(*out);
         *out = NULL;
         if (stats) memset(stats, 0, sizeof *stats);
@@ -318,8 +329,12 @@ banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, con
                                           banyan_error *err) {
     if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
-    roots_net net;
-    return finish(&net, roots_net_build(params, hosts, n_hosts, &net, err), params, out, stats, err);
+    banyan_hosts *H = NULL;
+    banyan_status s = box_hosts(params, hosts, n_hosts, &H, err);
+    if (s) return s;
+    s = banyan_roots_generate_hosts(params, H, out, stats, NULL, err);
+    banyan_hosts_free(H);
+    return s;
 }
 
 banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts, uint32_t n_hosts,

@@ -122,6 +122,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
         v3 hn0 = UP;
         int hw = -2;
         for (int b = 1; b < B; b++) {
+            if (roots_stop(net)) return;
             for (int i = 0; i < p->moves; i++) {
                 v3 V = v3_make(S.x - net->G.x, S.y - net->G.y, 0.0); /* S - Lambda */
                 int hugged = 0; /* a host face lies within hug_range before the move */

@@ -55,6 +55,7 @@ const banyan_param_info roots_table_rows[] = {
     BP_DOUBLE(S, ground_z, "Ground height", "Start and ground", "m", -1e6, 1e6, "height of the ground plane"),
     BP_BOOL(S, bezier_uniform, "Even curve offsets", "Advanced", "draw Bezier offsets uniformly in [-v, v] instead of picking -v or +v"),
     BP_INT(S, max_vertices, "Vertex limit", "Advanced", 1, 1073741824, "refuse meshes with more vertices"),
+    BP_BUDGET(S, "Advanced"),
 };
 
 const int32_t roots_table_row_count = (int32_t)(sizeof roots_table_rows / sizeof roots_table_rows[0]);
@@ -111,6 +112,8 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .ground = 1,
         .ground_z = 0,
         .max_vertices = 4000000,
+        .max_seconds = PROG_MAX_SECONDS_DEFAULT,
+        .max_memory_mb = PROG_MAX_MEMORY_DEFAULT,
     };
     *p = d;
 }

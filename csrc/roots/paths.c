@@ -195,6 +195,7 @@ static uint32_t polyline(builder *bd, const v3 *src, uint32_t n, uint32_t *idx, 
     bd->start = bd->net->n_pts;
     v3 prev = src[0];
     for (uint32_t i = 0; i < n; i++) {
+        if ((i & 63) == 0 && roots_stop(bd->net)) break; /* the caller drops the net */
         if (i && bd->smooth) smooth_between(bd, src, n, i, &prev);
         if (i && (!(ok && ok[i]) || v3_dist(prev, src[i - 1]) > 0)) repair(bd, prev, src[i], 0, 0, 0);
         uint32_t k = put(bd, src[i], 0, i == 0 || i + 1 == n);
@@ -429,6 +430,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         uint32_t off = net->n_pts;
         bd.w = &net->w;
         polyline(&bd, src, (uint32_t)B + 1, idx, NULL);
+        if (prog_stopped(net->prog)) break;
         memcpy(net->M_at + (size_t)a * B, idx + 1, sizeof(uint32_t) * B);
         uint32_t soil_from = UINT32_MAX;
         if (net->soil_b[a] < B) {
@@ -456,6 +458,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
             uint32_t off = net->n_pts;
             uint32_t n = polyline(&bd, net->K + (size_t)slot * net->S1, (uint32_t)net->S1, idx,
                                   net->K_ok + (size_t)slot * net->S1);
+            if (prog_stopped(net->prog)) break;
             net->K_mid_at[slot] = idx[(net->S1 - 1) / 2];
             if (!add_poly(net, off, n, ROOT_FIRST, id++, a, k)) bd.oom = 1;
         }
@@ -469,6 +472,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
         }
     free(src);
     free(idx);
+    if (prog_stopped(net->prog)) return BANYAN_OK; /* build_hosts reports the stop */
     if (!bd.oom && p->smooth_paths && !decimate(net)) bd.oom = 1;
     if (!bd.oom && !set_radii(net, p)) bd.oom = 1;
     return bd.oom ? BANYAN_E_NOMEM : BANYAN_OK;

@@ -157,8 +157,13 @@ typedef struct roots_net {
     uint32_t *K_mid_at; /* N * nb: where each first branch root's middle point K^mid sits */
 
     banyan_roots_stats stats;
-    prog *prog;        /* progress of banyan_roots_generate_hosts, else NULL */
+    prog *prog;        /* progress and budget of a generation; NULL for the tests' nets */
 } roots_net;
+
+/* Inside a stage: keeps the budget and hears a cancel (the fraction stays
+ * where the stage began); 1 once the run is stopped. The stages return
+ * early then and the caller frees the net. */
+static inline int roots_stop(const roots_net *net) { return prog_at(net->prog, 0.0); }
 
 /* The progress fraction at the end of the main roots and at the start of
  * the mesh, which takes most of the time (bench_progress on the default

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../core/progress.h"
 #include "../core/vec.h"
 #include "segment_core.h"
 
@@ -81,9 +82,10 @@ static void sample_axis(grid *g, const banyan_segment_input *s, uint32_t j, uint
 }
 
 static uint32_t brute_scan(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
-                           uint32_t *out) {
+                           uint32_t *out, prog *g) {
     uint32_t n = 0;
     for (uint32_t i = 0; i < count; i++) {
+        if ((i & 63) == 0 && prog_at(g, 0.0)) return 0;
         int ok = on_trunk(segs, i, trunk, tol);
         v3 p = v3_load(segs[i].S);
         for (uint32_t j = 0; j < i && !ok; j++) ok = dist_to_axis(p, &segs[j]) <= tol;
@@ -96,9 +98,13 @@ static uint32_t brute_scan(const banyan_segment_input *segs, uint32_t count, con
 }
 
 uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
-                             int brute, uint32_t *out, banyan_status *status) {
+                             int brute, uint32_t *out, banyan_status *status, prog *pg) {
     *status = BANYAN_OK;
-    if (brute || count <= BRUTE_MAX) return brute_scan(segs, count, trunk, tol, out);
+    if (brute || count <= BRUTE_MAX) {
+        uint32_t n = brute_scan(segs, count, trunk, tol, out, pg);
+        if (prog_stopped(pg)) *status = BANYAN_E_LIMIT;
+        return n;
+    }
 
     /* Bounds of every axis and the total axis length. */
     v3 lo = v3_load(segs[0].S), hi = lo;
@@ -144,6 +150,10 @@ uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, c
 
     uint32_t n = 0;
     for (uint32_t i = 0; i < count; i++) {
+        if (prog_at(pg, 0.0)) { /* a point may test every axis: each one */
+            *status = BANYAN_E_LIMIT;
+            break;
+        }
         v3 p = v3_load(segs[i].S);
         int ok = on_trunk(segs, i, trunk, tol);
         int c[3];

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "../core/error.h"
+#include "../core/progress.h"
 #include "../core/tube.h"
 #include "segment_core.h"
 
@@ -58,7 +59,7 @@ banyan_status banyan_segments_find_unattached(const banyan_segments_params *para
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 0, &k, err);
     if (s) return s;
-    uint32_t n = seg_find_unattached(segs, count, trunk, params->attach_tolerance, 0, unattached, &s);
+    uint32_t n = seg_find_unattached(segs, count, trunk, params->attach_tolerance, 0, unattached, &s, NULL);
     if (s) return banyan_fail(err, s, "out of memory while checking %u segments", count);
     if (n_unattached) *n_unattached = n;
     banyan_error_clear(err);
@@ -154,6 +155,9 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
     banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
     if (s) return s;
     const banyan_segments_params *p = params;
+    prog g; /* no callback here, only the run's budget */
+    prog_init(&g, NULL);
+    prog_budget(&g, p->max_seconds, p->max_memory_mb);
 
     /* Pass 1: lines, levels, budget hits and the vertex estimate. */
     banyan_segments_stats st;
@@ -169,6 +173,7 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
         lines++;
     }
     for (uint32_t i = 0; i < count; i++) {
+        if ((i & 63) == 0 && prog_at(&g, 0.0)) return prog_fail(&g, err, "segments");
         int nv = seg_run(&k, &segs[i], buf, lev);
         if (2 + 2 * (int64_t)segs[i].n + 4 * forks_wanted(segs[i].n, segs[i].s) > BANYAN_SEGMENT_MAX_VERTICES)
             st.budget_hits++;
@@ -186,7 +191,11 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
         return banyan_fail(err, BANYAN_E_LIMIT,
                            "the tree of %u segments needs %llu vertices; max_vertices = %d (raise it, or lower sides "
                            "= %d)", count, (unsigned long long)verts, p->max_vertices, p->sides);
-    st.unattached = seg_find_unattached(segs, count, trunk, p->attach_tolerance, 0, unattached, &s);
+    /* The mesh's memory, known before it is allocated: about 64 bytes a
+     * vertex with its attributes, 4 an index. */
+    if (prog_reserve(&g, (double)verts * 64.0 + (double)(verts / tv) * ti * 4.0)) return prog_fail(&g, err, "segments");
+    st.unattached = seg_find_unattached(segs, count, trunk, p->attach_tolerance, 0, unattached, &s, &g);
+    if (prog_stopped(&g)) return prog_fail(&g, err, "segments");
     if (s) return banyan_fail(err, s, "out of memory while checking %u segments", count);
 
     /* Pass 2: the mesh. */
@@ -210,6 +219,10 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
         mb_skel_edge(&mb, q, q + 1);
     }
     for (uint32_t i = 0; i < count && !mb.status; i++) {
+        if ((i & 63) == 0 && prog_at(&g, 0.0)) {
+            mb_free(&mb);
+            return prog_fail(&g, err, "segments");
+        }
         int nv = seg_run(&k, &segs[i], buf, lev);
         mb_set_attr(&mb, a_seg, (double)i);
         for (int j = 0; j < nv; j += 2) {

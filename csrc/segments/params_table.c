@@ -24,6 +24,7 @@ const banyan_param_info segments_table_rows[] = {
     BP_DOUBLE(S, demo_height, "Demo height", "Demo tree", "m", 0.01, 1000, "trunk height of the random demo tree"),
     BP_DOUBLE(S, attach_tolerance, "Attach tolerance", "Limits", "m", 0, 1e6, "how far a segment's start may lie from an earlier axis and still count as attached"),
     BP_INT(S, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse meshes with more vertices than this"),
+    BP_BUDGET(S, "Limits"),
 };
 #undef S
 const int32_t segments_table_row_count = (int32_t)(sizeof segments_table_rows / sizeof segments_table_rows[0]);
@@ -47,6 +48,8 @@ void banyan_segments_params_init(banyan_segments_params *p) {
     p->attach_tolerance = 0.001;
     p->demo_segments = 24;
     p->demo_height = 4.0;
+    p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
+    p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
 }
 
 size_t banyan_sizeof_segments_params(void) { return sizeof(banyan_segments_params); }

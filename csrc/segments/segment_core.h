@@ -32,9 +32,12 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
  * line (6 doubles or NULL; without it segment 0 is the root) into out (may
  * be NULL) in increasing order and returns how many. A uniform grid finds
  * candidates; brute != 0 forces the O(count^2) scan (tests compare the
- * two). Inputs must be checked. *status gets BANYAN_E_NOMEM or OK. */
+ * two). Inputs must be checked. *status gets BANYAN_E_NOMEM or OK, or
+ * BANYAN_E_LIMIT when g (NULL: none) stops the run: the scan can take
+ * count^2 / cells distance tests. */
+struct prog;
 uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
-                             int brute, uint32_t *out, banyan_status *status);
+                             int brute, uint32_t *out, banyan_status *status, struct prog *g);
 
 /* Tube meshing of a segment's lines, shared by the composer (compose.c)
  * and the keyaki's twigs (keyaki/twigs.c). */

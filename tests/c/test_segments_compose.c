@@ -134,7 +134,7 @@ int main(int argc, char **argv) {
     banyan_segments_params_init(&p);
     banyan_error err;
     CHECK(banyan_params_check(BANYAN_GEN_SEGMENTS, &p, &err) == BANYAN_OK, "defaults pass the table: %s", err.message);
-    CHECK(banyan_param_count(BANYAN_GEN_SEGMENTS) == 16 && banyan_param_find(BANYAN_GEN_SEGMENTS, "attach_tolerance"),
+    CHECK(banyan_param_count(BANYAN_GEN_SEGMENTS) == 18 && banyan_param_find(BANYAN_GEN_SEGMENTS, "attach_tolerance"),
           "param table");
 
     /* --- Demo trees are fully attached; moved segments are flagged. */
@@ -219,8 +219,8 @@ int main(int argc, char **argv) {
             s->s = 1;
         }
         banyan_status st;
-        uint32_t a = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 0, un, &st);
-        uint32_t b = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 1, un2, &st);
+        uint32_t a = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 0, un, &st, NULL);
+        uint32_t b = seg_find_unattached(segs, cnt, trial % 2 ? tr : NULL, tol, 1, un2, &st, NULL);
         if (a != b || memcmp(un, un2, sizeof *un * a)) bad_grid++;
         flagged += (int)a;
     }

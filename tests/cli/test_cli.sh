@@ -19,6 +19,13 @@ expect 1 "must look like key=value" -- "$bin" tube --set sides
 expect 1 "-o $out/x.obj: must end in .glb" -- "$bin" tube -o "$out/x.obj"
 expect 2 "unexpected argument" -- "$bin" tube --bogus
 expect 1 "cannot read preset" -- "$bin" tube --preset /nonexistent.json
+# Issue #21: the CLI's ivy (the step API) keeps max_vertices while it
+# grows and every run keeps its time budget.
+expect 1 "over max_vertices = 200000" -- "$bin" ivy --set t0=1000000 --set steps=100000 --set max_vertices=200000
+expect 1 "past max_seconds = 1" -- "$bin" ivy --set t0=1000000 --set steps=100000 --set max_vertices=1000000000 \
+  --set max_buds=50000000 --set max_seconds=1
+expect 1 "past max_seconds = 1" -- "$bin" roots --set growth_points=10000 --set moves=100 --set main_roots=64 \
+  --set max_vertices=1000000000 --set ground=0 --set max_seconds=1
 # Textures: every PNG written, bad sizes refused by the library's message.
 expect 0 "keyaki_leaf_summer_color.png" -- "$bin" textures -o "$out" --size 64
 expect 1 "size = 1000 must be a power of two within [64, 8192]" -- "$bin" textures -o "$out" --size 1000

@@ -110,6 +110,12 @@ typedef struct banyan_ivy_params {
     double leaf_color[4];       /* linear RGBA of material "ivy_leaf" in summer (its flat colour, textures off) */
     int32_t season;             /* banyan_season: the leaf material (texture and flat colour), not the geometry */
     double stats_cell;          /* grid cell for the covered-area measure, m, 0.001 .. 100 */
+    /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT
+     * naming it. For a handle, the time of all its banyan_ivy_step calls
+     * together (step_seconds), and memory above what the process held at
+     * banyan_ivy_create. */
+    double max_seconds;         /* s, 0.01 .. 604800 [600] */
+    double max_memory_mb;       /* MB of resident memory, 16 .. 1048576 [16384] */
 } banyan_ivy_params;
 
 /* Fewest internodes per leading stem (start_stems) a plant must have

@@ -159,7 +159,9 @@ BANYAN_API const char *banyan_segment_shader_source(int32_t stage);
  *   attach_tolerance  how far S may lie from an earlier axis (or the
  *                     trunk) and still count as attached, m (0.001).
  *   demo_segments     segments in banyan_segments_demo's random tree (24).
- *   demo_height       trunk height of the demo tree, m (4). */
+ *   demo_height       trunk height of the demo tree, m (4).
+ *   max_seconds, max_memory_mb   the run's budget of banyan_segments_generate:
+ *                     past either, BANYAN_E_LIMIT naming it. */
 typedef struct banyan_segments_params {
     uint64_t seed;
     int32_t max_vertices;
@@ -177,6 +179,8 @@ typedef struct banyan_segments_params {
     double attach_tolerance;
     int32_t demo_segments;
     double demo_height;
+    double max_seconds;   /* budget (docs/api.md, "Budgets"): s, 0.01 .. 604800 (600) */
+    double max_memory_mb; /* MB of resident memory above the process's at the call, 16 .. 1048576 (16384) */
 } banyan_segments_params;
 
 BANYAN_API void banyan_segments_params_init(banyan_segments_params *params);
