@@ -68,6 +68,13 @@ Choices made where the issue left one open:
   `start_snap_max` from every host is refused with `BANYAN_E_START_FAR`.
 - **Segments: a segment far from every axis is not an error**: it is built
   and reported in `stats.unattached` and the `unattached` list.
+- **Far from the origin.** Meshes keep float32 positions relative to
+  `banyan_mesh.origin` (0 near the world origin, whole metres near the
+  plant beyond 4096 m; docs/api.md). What one mesh cannot keep to 1 mm,
+  inputs reaching more than 8192 m from that origin (a tube's points,
+  segments, an avenue's trees, a roots G or ivy start that far in its host
+  set's frame), is refused with `BANYAN_E_RANGE` naming the input and its
+  span, asking to split the scene; never silently rounded.
 - **Memory.** Every generator has `max_vertices` (default 4,000,000; at most
   2^30). Roots estimate their vertex count before the net is grown; keyaki
   plans the exact count from the skeleton (bounded by `max_nodes`) before

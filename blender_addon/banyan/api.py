@@ -37,8 +37,10 @@ Placement. origin='BASE' (the default) puts each object's origin where
 the plant stands, its mesh local to it: a tree at its trunk foot, ivy and
 roots at the bottom centre of the first host's world bounds (or the
 start), a merged avenue at its path's start, each avenue tree at its
-foot; origin=None keeps the library's world coordinates (identity
-matrix); a point puts the origin there.
+foot; origin=None keeps the library's coordinates: the object at the
+mesh's own origin (the world's, identity matrix, unless the plant stands
+farther than 4096 m out: then a whole-metre point near it, so floats keep
+millimetres); a point puts the origin there.
 
 Jobs. Each call is also a *_job(...) returning a Job: made on the main
 thread (the scene read), compute(progress) on any thread (the library

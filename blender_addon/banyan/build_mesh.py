@@ -7,6 +7,7 @@ gathered by the library (banyan_mesh_corner_uvs), and splitting a mesh
 into one object per group runs in C too (banyan_group_localize), and so
 does the edge list Blender would otherwise derive (banyan_triangle_edges).
 """
+import struct
 from array import array
 
 import bpy
@@ -173,10 +174,31 @@ def material_indices(parts, tri_offset=0, part_material=None):
     return out
 
 
+def as_location(p):
+    """p as an object's location holds it: Blender keeps locations in
+    float32 (6 cm steps at 1e6 m; whole metres are exact)."""
+    return struct.unpack("3f", struct.pack("3f", *p))
+
+
+def place(me, obj, at, mesh_origin):
+    """Puts obj at `at` (world, snapped to float32) with me, whose vertices
+    are relative to mesh_origin (world, double), moved so that they stay
+    where they are: by mesh_origin - location, a short move in double when
+    `at` is near the plant (docs/addon.md, "Far from the origin")."""
+    loc = as_location(at)
+    shift = tuple(mesh_origin[k] - loc[k] for k in range(3))
+    if any(shift):
+        from mathutils import Matrix
+        me.transform(Matrix.Translation(shift))
+    if any(loc):
+        obj.location = loc
+
+
 def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=True, smooth=True, origin=None):
-    """One object holding all of MeshData d (world coordinates). origin: a
-    world point that becomes the object's location, the mesh moved to be
-    local to it (Mesh.transform, in C), or None (origin at the world's)."""
+    """One object holding all of MeshData d (world = d.origin + position).
+    origin: a world point that becomes the object's location, the mesh
+    moved to be local to it (Mesh.transform, in C), or None (the object at
+    d.origin: the world's origin, unless the plant is far from it)."""
     me = created.add(bpy.data.meshes.new(name))
     mats = materials if materials is not None else [
         make_material(m, created, name, d.colors is not None) for m in d.materials]
@@ -184,12 +206,9 @@ def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=Tr
         me.materials.append(m)
     fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
               attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth)
-    if origin is not None:
-        from mathutils import Matrix
-        me.transform(Matrix.Translation((-origin[0], -origin[1], -origin[2])))
     obj = created.add(bpy.data.objects.new(name, me))
-    if origin is not None:
-        obj.location = origin
+    mesh_origin = getattr(d, "origin", (0.0, 0.0, 0.0))
+    place(me, obj, mesh_origin if origin is None else origin, mesh_origin)
     collection.objects.link(obj)
     return obj
 
@@ -229,7 +248,12 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
                   material_index=material_indices(local_parts), smooth=smooth)
         obj = created.add(bpy.data.objects.new(me.name, me))
-        obj.location = base
+        mo = getattr(d, "origin", (0.0, 0.0, 0.0))
+        foot = tuple(mo[k] + base[k] for k in range(3))  # base is in the mesh's frame
+        if any(mo):
+            place(me, obj, foot, foot)
+        else:
+            obj.location = base
         collection.objects.link(obj)
         objs.append(obj)
         if progress:

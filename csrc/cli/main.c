@@ -389,6 +389,14 @@ int main(int argc, char **argv) {
         snprintf(buf, sizeof buf, "{\"boxes\": %u, \"meshes\": %u, \"triangles\": %" PRIu64 "}", nb, nm, tris);
         cli_stat_raw(&st, "host_set", buf);
     }
+    for (uint32_t i = 0; i < count && i < 1; i++) {
+        const double *o = meshes[i]->origin;
+        if (o[0] != 0 || o[1] != 0 || o[2] != 0) { /* far from the world's origin: where the mesh's zero is */
+            char buf[128];
+            snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", o[0], o[1], o[2]);
+            cli_stat_raw(&st, "origin", buf);
+        }
+    }
     double t2 = t1;
     if (out_path) {
         if (banyan_gltf_write_ex(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names, count,

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "frame.h"
 
 #define MAX_VERTICES 33554432u /* 2^25 over the whole set */
 
@@ -391,15 +392,21 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     return BANYAN_OK;
 }
 
-static void box_bounds(const obb *o, v3 *lo, v3 *hi) {
-    v3 e = v3_make(0, 0, 0);
-    for (int k = 0; k < 3; k++) {
-        e.x += fabs(o->ax[k].x) * o->h[k];
-        e.y += fabs(o->ax[k].y) * o->h[k];
-        e.z += fabs(o->ax[k].z) * o->h[k];
+/* Moves the set into its frame (frame.h), picked from all the hosts'
+ * bounds; each subtraction is of nearby doubles, so exact or nearly. */
+static void set_frame(banyan_hosts *H) {
+    uint32_t n = H->n_boxes + H->n_meshes;
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, H->lo[i]), frame_add(&lo, &hi, H->hi[i]);
+    v3 o = H->origin = frame_pick(lo, hi);
+    if (o.x == 0 && o.y == 0 && o.z == 0) return;
+    for (uint32_t i = 0; i < n; i++) H->lo[i] = v3_sub(H->lo[i], o), H->hi[i] = v3_sub(H->hi[i], o);
+    for (uint32_t i = 0; i < H->n_boxes; i++) H->boxes[i].c = v3_sub(H->boxes[i].c, o);
+    for (uint32_t i = 0; i < H->n_meshes; i++) {
+        host_mesh *m = &H->meshes[i];
+        m->origin = v3_sub(m->origin, o), m->lo = v3_sub(m->lo, o), m->hi = v3_sub(m->hi, o);
     }
-    *lo = v3_sub(o->c, e);
-    *hi = v3_add(o->c, e);
 }
 
 banyan_status banyan_hosts_create(const banyan_box *boxes, uint32_t n_boxes, const banyan_host_mesh *meshes,
@@ -443,7 +450,7 @@ banyan_status banyan_hosts_create(const banyan_box *boxes, uint32_t n_boxes, con
     }
     for (uint32_t i = 0; i < n_boxes; i++) {
         if ((s = obb_from_box(&boxes[i], i, &H->boxes[i], err))) goto fail;
-        box_bounds(&H->boxes[i], &H->lo[i], &H->hi[i]);
+        obb_bounds(&H->boxes[i], &H->lo[i], &H->hi[i]);
         H->n_boxes = i + 1;
     }
     if (n_meshes) {
@@ -461,6 +468,7 @@ banyan_status banyan_hosts_create(const banyan_box *boxes, uint32_t n_boxes, con
             H->hi[n_boxes + i] = H->meshes[i].hi;
         }
     }
+    set_frame(H);
     *out = H;
     banyan_error_clear(err);
     return BANYAN_OK;
@@ -493,8 +501,9 @@ banyan_status banyan_hosts_info(const banyan_hosts *H, uint32_t index, banyan_ho
         out->boundary_edges = m->boundary_edges;
         out->shells = m->shells;
     }
-    const double lo[3] = {H->lo[index].x, H->lo[index].y, H->lo[index].z};
-    const double hi[3] = {H->hi[index].x, H->hi[index].y, H->hi[index].z};
+    v3 wl = v3_add(H->lo[index], H->origin), wh = v3_add(H->hi[index], H->origin);
+    const double lo[3] = {wl.x, wl.y, wl.z};
+    const double hi[3] = {wh.x, wh.y, wh.z};
     memcpy(out->lo, lo, sizeof lo);
     memcpy(out->hi, hi, sizeof hi);
     banyan_error_clear(err);
@@ -520,6 +529,12 @@ static void hit_store(banyan_host_hit *hit, int32_t host, uint32_t prim, double 
     hit->distance = dist;
     hit->point[0] = point.x, hit->point[1] = point.y, hit->point[2] = point.z;
     hit->normal[0] = normal.x, hit->normal[1] = normal.y, hit->normal[2] = normal.z;
+}
+
+/* A hit found in the set's frame, back in the world's. */
+static void hit_world(const banyan_hosts *H, banyan_host_hit *hit) {
+    if (hit->host < 0) return;
+    for (int k = 0; k < 3; k++) hit->point[k] += (&H->origin.x)[k];
 }
 
 /* The box face whose plane p lies farthest outside of (or least inside). */
@@ -577,7 +592,8 @@ banyan_status banyan_hosts_closest(const banyan_hosts *H, const double p[3], dou
     if (s) return s;
     if (isnan(max_distance) || !(max_distance > 0))
         return banyan_fail(err, BANYAN_E_RANGE, "max_distance = %g must be > 0 (HUGE_VAL for any)", max_distance);
-    set_nearest(H, v3_load(p), max_distance, hit);
+    set_nearest(H, v3_sub(v3_load(p), H->origin), max_distance, hit);
+    hit_world(H, hit);
     banyan_error_clear(err);
     return BANYAN_OK;
 }
@@ -616,7 +632,7 @@ banyan_status banyan_hosts_raycast(const banyan_hosts *H, const double origin[3]
     banyan_status s = check_point("origin", origin, err);
     if (s) return s;
     if (!dir) return banyan_fail(err, BANYAN_E_INVALID_ARG, "dir is NULL");
-    v3 a = v3_load(origin), d = v3_load(dir);
+    v3 a = v3_sub(v3_load(origin), H->origin), d = v3_load(dir);
     if (!v3_finite(d) || !(v3_len(d) > 0))
         return banyan_fail(err, BANYAN_E_RANGE, "dir = (%g, %g, %g) must be finite and not zero", d.x, d.y, d.z);
     if (isnan(max_t) || !(max_t > 0))
@@ -640,6 +656,7 @@ banyan_status banyan_hosts_raycast(const banyan_hosts *H, const double origin[3]
             hit_store(hit, (int32_t)(H->n_boxes + i), 0, best, q, n);
         }
     }
+    hit_world(H, hit);
     banyan_error_clear(err);
     return BANYAN_OK;
 }
@@ -653,7 +670,7 @@ banyan_status banyan_hosts_sweep_sphere(const banyan_hosts *H, const double from
     if (s) return s;
     if (!isfinite(radius) || !(radius > 0) || radius > 1e6)
         return banyan_fail(err, BANYAN_E_RANGE, "radius = %g must be within (0, 1e6] m", radius);
-    v3 p = v3_load(from), d = v3_sub(v3_load(to), p);
+    v3 p = v3_sub(v3_load(from), H->origin), d = v3_sub(v3_sub(v3_load(to), H->origin), p);
     double L = v3_len(d), tol = 1e-9 * (radius + L), best = 1.0;
     int which = -1;
     for (uint32_t i = 0; i < H->n_boxes; i++) { /* sphere tracing on the exact box distance */
@@ -682,6 +699,7 @@ banyan_status banyan_hosts_sweep_sphere(const banyan_hosts *H, const double from
         v3 at = v3_madd(p, d, best);
         set_nearest(H, at, HUGE_VAL, &near);
         hit_store(hit, which, near.primitive, best, v3_load(near.point), v3_load(near.normal));
+        hit_world(H, hit);
     }
     banyan_error_clear(err);
     return BANYAN_OK;
@@ -689,7 +707,7 @@ banyan_status banyan_hosts_sweep_sphere(const banyan_hosts *H, const double from
 
 int32_t banyan_hosts_inside(const banyan_hosts *H, const double p[3]) {
     if (!H || !p) return 0;
-    v3 q = v3_load(p);
+    v3 q = v3_sub(v3_load(p), H->origin);
     if (!v3_finite(q)) return 0;
     for (uint32_t i = 0; i < H->n_boxes; i++)
         if (obb_signed_distance(&H->boxes[i], q) < 0) return 1;

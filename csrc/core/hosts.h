@@ -13,7 +13,7 @@
 /* One mesh host, in world space relative to `origin` (kept in double, so
  * a mesh far from the world origin keeps float precision near itself). */
 typedef struct host_mesh {
-    v3 origin;              /* world position of the local frame's zero */
+    v3 origin;              /* its vertices' zero, in the set's frame */
     uint32_t nv, nt;        /* vertices, triangles kept */
     float *pos;             /* 4 * nv (Embree reads 16-byte vertices): x, y, z, 0 relative to origin */
     uint32_t *tri;          /* 3 * nt */
@@ -25,15 +25,19 @@ typedef struct host_mesh {
     int sign_by_rays;       /* the pseudonormal sign is not to be trusted (holes, several shells,
                                inconsistent winding): inside is decided by rays */
     uint32_t dropped, boundary_edges, shells;
-    v3 lo, hi;              /* world bounds */
+    v3 lo, hi;              /* bounds, in the set's frame */
     void *scene;            /* RTCScene */
 } host_mesh;
 
 struct banyan_hosts {
+    /* World position of the set's frame (frame.h): everything below is
+     * relative to it, and the generators run in it; the public queries
+     * translate in double. 0 for scenes near the world origin. */
+    v3 origin;
     uint32_t n_boxes, n_meshes;
     obb *boxes;             /* n_boxes */
     host_mesh *meshes;      /* n_meshes */
-    v3 *lo, *hi;            /* world bounds per host (boxes, then meshes) */
+    v3 *lo, *hi;            /* bounds per host (boxes, then meshes) */
     void *device;           /* RTCDevice, NULL without meshes */
 };
 

@@ -100,6 +100,8 @@ uint64_t banyan_mesh_hash(const banyan_mesh *m) {
     if (m->skel_radius) h = fnv(h, m->skel_radius, ns * sizeof(float));
     if (m->skel_tag) h = fnv(h, m->skel_tag, ns * sizeof(int32_t));
     if (m->skel_edges) h = fnv(h, m->skel_edges, 2 * (size_t)m->skel_edge_count * sizeof(uint32_t));
+    /* Only when set: meshes near the world origin keep the hashes they had. */
+    if (m->origin[0] != 0 || m->origin[1] != 0 || m->origin[2] != 0) h = fnv(h, m->origin, sizeof m->origin);
     return h;
 }
 

@@ -153,3 +153,15 @@ int obb_segment_hit(const obb *o, v3 a, v3 b, double *t_enter) {
     if (t_enter) *t_enter = t0;
     return 1;
 }
+
+void obb_bounds(const obb *o, v3 *lo, v3 *hi) {
+    v3 e = v3_make(0, 0, 0);
+    for (int k = 0; k < 3; k++) {
+        e.x += fabs(o->ax[k].x) * o->h[k];
+        e.y += fabs(o->ax[k].y) * o->h[k];
+        e.z += fabs(o->ax[k].z) * o->h[k];
+    }
+    *lo = v3_sub(o->c, e);
+    *hi = v3_add(o->c, e);
+}
+

@@ -29,6 +29,8 @@ static inline v3 obb_to_world(const obb *o, v3 l) {
     return v3_madd(r, o->ax[2], l.z);
 }
 
+/* The axis-aligned bounds of the box. */
+void obb_bounds(const obb *o, v3 *lo, v3 *hi);
 /* p inside the box grown by `margin` on every side (margin may be < 0). */
 int obb_contains(const obb *o, v3 p, double margin);
 /* Closest point of the solid box to p (p itself when inside). */

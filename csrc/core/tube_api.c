@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "error.h"
+#include "frame.h"
 #include "tube.h"
 
 banyan_status banyan_tube_generate(const double *points, const double *radii, uint32_t point_count, int32_t sides,
@@ -39,6 +40,19 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
             s = banyan_fail(err, BANYAN_E_RANGE, "points[%u] repeats points[%u]; consecutive points must differ", i, i - 1);
         if (s) return s;
     }
+    /* The frame (frame.h): points moved near 0 when they lie far from it. */
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < point_count; i++) frame_add(&lo, &hi, pts[i]);
+    v3 O = frame_pick(lo, hi);
+    if ((s = frame_check(lo, hi, O, "points", err))) return s;
+    v3 *local = NULL;
+    if (O.x != 0 || O.y != 0 || O.z != 0) {
+        if (!(local = malloc(sizeof *local * point_count)))
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
+        for (uint32_t i = 0; i < point_count; i++) local[i] = v3_sub(pts[i], O);
+        pts = local;
+    }
     mesh_builder mb;
     mb_init(&mb, BANYAN_TUBE_MAX_VERTICES, 0);
     tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL, 0, 1};
@@ -48,5 +62,8 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         uint32_t k = mb_skel_point(&mb, pts[i], radii[i], 0);
         if (i) mb_skel_edge(&mb, k - 1, k);
     }
-    return mb_finish(&mb, out, err);
+    free(local);
+    s = mb_finish(&mb, out, err);
+    if (!s) frame_set(*out, O);
+    return s;
 }

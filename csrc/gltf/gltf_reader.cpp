@@ -142,6 +142,12 @@ struct reader {
     std::vector<float> pos;       /* 3 per vertex, Z up */
     std::vector<uint32_t> tri;    /* 3 per triangle */
     std::unordered_map<vkey, uint32_t, vkey_hash> weld;
+    /* pos is relative to off (Z up, whole metres): 0 unless the first mesh
+     * node stands farther than 4096 m out (core/frame.h's FRAME_NEAR), so a
+     * far mesh keeps its float precision; read_host folds off into the
+     * transform, in double. */
+    double off[3] = {0, 0, 0};
+    bool have_off = false;
     uint64_t primitives = 0, skipped = 0; /* primitives seen; of those, not triangles */
 
     reader(const char *p, const tinygltf::Model &m, banyan_error *e) : path(p), model(m), err(e) {}
@@ -206,6 +212,12 @@ struct reader {
         if (nv > UINT32_MAX)
             return banyan_fail(err, BANYAN_E_LIMIT, "%s: mesh %d primitive %zu: %zu vertices", path, mesh, pi, nv);
 
+        if (!have_off) {
+            const double t[3] = {world.m[12], -world.m[14], world.m[13]};
+            if (std::fabs(t[0]) > 4096 || std::fabs(t[1]) > 4096 || std::fabs(t[2]) > 4096)
+                for (int r = 0; r < 3; ++r) off[r] = std::round(t[r]);
+            have_off = true;
+        }
         /* This primitive's vertices, transformed and merged. */
         std::vector<uint32_t> local(nv);
         for (size_t k = 0; k < nv; ++k) {
@@ -214,7 +226,8 @@ struct reader {
             double w[3];
             for (int r = 0; r < 3; ++r)
                 w[r] = world.m[r] * f[0] + world.m[4 + r] * f[1] + world.m[8 + r] * f[2] + world.m[12 + r];
-            float z[3] = {static_cast<float>(w[0]), static_cast<float>(-w[2]), static_cast<float>(w[1])};
+            float z[3] = {static_cast<float>(w[0] - off[0]), static_cast<float>(-w[2] - off[1]),
+                          static_cast<float>(w[1] - off[2])};
             vkey key;
             for (int r = 0; r < 3; ++r) {
                 if (!std::isfinite(z[r]))
@@ -446,6 +459,9 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     m->triangle_count = static_cast<uint32_t>(nt);
     static const double identity[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     std::memcpy(m->transform, transform ? transform : identity, sizeof m->transform);
+    for (int row = 0; row < 3 && (r.off[0] != 0 || r.off[1] != 0 || r.off[2] != 0); ++row) /* pos is relative to off */
+        m->transform[4 * row + 3] += m->transform[4 * row] * r.off[0] + m->transform[4 * row + 1] * r.off[1] +
+                                     m->transform[4 * row + 2] * r.off[2];
     m->closed = closed;
     m->reserved = 0;
     *out = m;

@@ -180,6 +180,10 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
 
     banyan_status s;
     if ((s = check_finite(m->positions, vc, 3, mi, "positions", err)) != BANYAN_OK) return s;
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(m->origin[k]) || std::fabs(m->origin[k]) > 1e7)
+            return banyan_fail(err, BANYAN_E_RANGE, "meshes[%u].origin[%d] = %g must be finite, within [-1e7, 1e7] m", mi,
+                               k, m->origin[k]);
     if (m->normals && (s = check_finite(m->normals, vc, 3, mi, "normals", err)) != BANYAN_OK)
         return s;
     if (m->uvs && (s = check_finite(m->uvs, vc, 2, mi, "uvs", err)) != BANYAN_OK) return s;
@@ -908,6 +912,8 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
         tinygltf::Node node;
         node.name = name;
         node.mesh = static_cast<int>(model.meshes.size() - 1);
+        if (m->origin[0] != 0 || m->origin[1] != 0 || m->origin[2] != 0) /* the local origin, Y up, in double */
+            node.translation = {m->origin[0], m->origin[2], -m->origin[1]};
         model.nodes.push_back(node);
         scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
     }

@@ -189,7 +189,7 @@ typedef struct banyan_mesh {
      * skel_points are relative to it: world = origin + position, added in
      * double. It is (0, 0, 0) for scenes near the world origin and a whole
      * number of metres near the hosts otherwise, so float positions keep
-     * millimetres far away (docs/reliability.md "Far from the origin"). The
+     * millimetres far away (docs/api.md "Far from the origin"). The
      * glTF writer puts it in the node's translation; the add-on in the
      * object's location. */
     double origin[3];
@@ -457,7 +457,9 @@ BANYAN_API banyan_status banyan_gltf_write(const char *path,
  *   sides   3 .. 256.  caps: 0 or 1.
  * The tube has no max_vertices of its own: point_count * (sides + 1) (plus
  * the caps) past BANYAN_TUBE_MAX_VERTICES is refused with BANYAN_E_LIMIT
- * before anything is allocated. */
+ * before anything is allocated. Points reaching more than 8192 m from
+ * their bounds' centre are refused with BANYAN_E_RANGE (one mesh keeps 1
+ * mm only that far from its origin: split the tube). */
 #define BANYAN_TUBE_MAX_VERTICES 16000000u
 BANYAN_API banyan_status banyan_tube_generate(const double *points, const double *radii,
                                               uint32_t point_count, int32_t sides,

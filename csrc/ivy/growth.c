@@ -556,11 +556,23 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     } else if (nb) {
         memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
     }
+    /* The frame: the set's, or one picked from the boxes (core/frame.h). */
+    v3 O = set ? set->origin : v3_make(0, 0, 0);
+    if (!set) {
+        v3 lo, hi, a, b;
+        frame_empty(&lo, &hi);
+        for (uint32_t h = 0; h < nb; h++) obb_bounds(&iv->hosts[h], &a, &b), frame_add(&lo, &hi, a), frame_add(&lo, &hi, b);
+        O = frame_pick(lo, hi);
+        for (uint32_t h = 0; h < nb; h++) iv->hosts[h].c = v3_sub(iv->hosts[h].c, O);
+    }
+    iv->origin = O;
+    for (int k = 0; k < 3; k++) iv->p.start[k] -= (&O.x)[k];
+    iv->p.ground_z -= O.z;
     /* The meshes' bounds (boxes and ground follow, after the ground). */
     ivy_host_boxes(iv);
 
     /* Snap the start to the nearest given host surface, `clearance` off it. */
-    v3 start = v3_load(params->start);
+    v3 start = v3_load(iv->p.start);
     ivy_near nr = ivy_nearest(iv, start);
     if (nr.dist > params->start_snap_max) {
         /* Host numbers as the caller gave them: boxes, then meshes. */
@@ -569,14 +581,30 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         return banyan_fail(err, BANYAN_E_START_FAR,
                            "start = (%g, %g, %g) is %g m from the nearest host surface (hosts[%d]); it must be within "
                            "start_snap_max = %g m",
-                           start.x, start.y, start.z, nr.dist, host, params->start_snap_max);
+                           params->start[0], params->start[1], params->start[2], nr.dist, host,
+                           params->start_snap_max);
+    }
+    if (fmax(fmax(fabs(start.x), fabs(start.y)), fabs(start.z)) > FRAME_KEEP) { /* the plant grows near its start */
+        v3 lo, hi;
+        frame_empty(&lo, &hi);
+        frame_add(&lo, &hi, v3_load(params->start));
+        for (uint32_t h = 0; h < nb; h++) {
+            v3 a, b;
+            obb_bounds(&iv->hosts[h], &a, &b);
+            frame_add(&lo, &hi, v3_add(a, O)), frame_add(&lo, &hi, v3_add(b, O));
+        }
+        for (uint32_t m = 0; m < iv->n_mesh; m++)
+            frame_add(&lo, &hi, v3_add(iv->meshes[m].lo, O)), frame_add(&lo, &hi, v3_add(iv->meshes[m].hi, O));
+        s = frame_check(lo, hi, O, "the hosts and start", err);
+        banyan_ivy_free(iv);
+        return s;
     }
     if (params->ground) {
         /* The ground: the top face of a box far larger than the hosts. */
         obb *g = &iv->hosts[iv->n_hosts++];
         const double G = 1e5, depth = 1e3;
         v3 mid = nb ? iv->hosts[0].c : v3_scale(v3_add(iv->meshes[0].lo, iv->meshes[0].hi), 0.5);
-        g->c = v3_make(mid.x, mid.y, params->ground_z - depth);
+        g->c = v3_make(mid.x, mid.y, iv->p.ground_z - depth);
         g->ax[0] = v3_make(1, 0, 0);
         g->ax[1] = v3_make(0, 1, 0);
         g->ax[2] = v3_make(0, 0, 1);

@@ -8,6 +8,7 @@
 #define BANYAN_IVY_INTERNAL_H
 
 #include "banyan.h"
+#include "core/frame.h"
 #include "core/hosts.h"
 #include "core/obb.h"
 #include "core/progress.h"
@@ -65,7 +66,8 @@ typedef struct ivy_gnode {
 } ivy_gnode;
 
 struct banyan_ivy {
-    banyan_ivy_params p;
+    banyan_ivy_params p;   /* start and ground_z moved into the frame below */
+    v3 origin;             /* world position of the frame the plant grows in (core/frame.h) */
     obb *hosts;
     uint32_t n_hosts;      /* the given boxes, then the ground when params.ground: stems keep out of all */
     uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */

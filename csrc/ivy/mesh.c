@@ -503,5 +503,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         mb_free(&mb);
         return prog_fail(iv->prog, err, "ivy mesh");
     }
-    return mb_finish(&mb, out, err);
+    banyan_status s = mb_finish(&mb, out, err);
+    if (!s) frame_set(*out, iv->origin);
+    return s;
 }

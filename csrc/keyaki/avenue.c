@@ -26,6 +26,7 @@
 
 #include "core/big_alloc.h"
 #include "core/error.h"
+#include "core/frame.h"
 #include "core/progress.h"
 #include "keyaki_internal.h"
 
@@ -352,6 +353,14 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.soff = J.ioff + n;
     J.poff = J.soff + n;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
+    /* The trees grow in a frame picked from their feet (core/frame.h). */
+    v3 lo, hi, O;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
+    O = frame_pick(lo, hi);
+    if ((s = frame_check(lo, hi, O, path_xyz ? "the path's trees" : "the trees from start to end", err))) goto done;
+    for (uint32_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
     J.trees = trees;
     J.n = n;
     int t = threads;
@@ -435,6 +444,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         s = prog_fail(J.prog, err, "avenue");
         goto done;
     }
+    frame_set(J.out, O);
     *out = J.out;
     J.out = NULL;
     banyan_error_clear(err);

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/frame.h"
 #include "roots_internal.h"
 
 void roots_net_free(roots_net *net) {
@@ -154,12 +155,13 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
         memset(net->w.hint, 0xff, sizeof(uint32_t) * hosts->n_meshes);
     }
     net->w.ground = p->ground;
-    net->w.ground_z = p->ground_z;
+    const v3 O = hosts->origin; /* the set's frame: G and ground_z move into it */
+    net->w.ground_z = p->ground_z - O.z;
     net->w.r = net->r;
     net->w.eps = 1e-9 * net->r;
 
     /* Germination point. */
-    v3 G = !p->germination_auto  ? v3_load(p->germination)
+    v3 G = !p->germination_auto  ? v3_sub(v3_load(p->germination), O)
            : hosts->n_boxes      ? top_centre(&hosts->boxes[0], net->r)
                                  : mesh_top(hosts, 0, net->r);
     for (uint32_t i = 0; i < n_hosts; i++) {
@@ -168,17 +170,17 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
             return banyan_fail(err, BANYAN_E_START_INSIDE,
                                "germination point G = (%g, %g, %g) m is inside hosts[%u]; G must lie outside every "
                                "host%s",
-                               G.x, G.y, G.z, i,
+                               G.x + O.x, G.y + O.y, G.z + O.z, i,
                                p->germination_auto ? " (G is the top of hosts[0]: list the topmost host first, or "
                                                      "set germination_auto = false and germination)"
                                                    : "");
         }
     }
-    if (p->ground && G.z < p->ground_z) {
+    if (p->ground && G.z < net->w.ground_z) {
         roots_net_free(net);
         return banyan_fail(err, BANYAN_E_START_INSIDE,
-                           "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x, G.y, G.z,
-                           p->ground_z);
+                           "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x + O.x, G.y + O.y,
+                           G.z + O.z, p->ground_z);
     }
     /* A main root moves at most `moves` steps of length sqrt(forward_max^2
      * + lateral^2) per growth point from its start circle (pushes out of a
@@ -198,7 +200,18 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
                            "germination point G = (%g, %g, %g) m is %g m from the nearest host (hosts[%u]); the roots "
                            "reach at most %g m (start_radius + (growth_points - 1) x moves x step), so none would "
                            "touch a host: move G within %g m of a host",
-                           G.x, G.y, G.z, nearest, nearest_i, reach, reach);
+                           G.x + O.x, G.y + O.y, G.z + O.z, nearest, nearest_i, reach, reach);
+    }
+    /* Roots grow near G: G beyond the frame would lose millimetres. */
+    if (fmax(fmax(fabs(G.x), fabs(G.y)), fabs(G.z)) > FRAME_KEEP) {
+        v3 lo, hi;
+        frame_empty(&lo, &hi);
+        frame_add(&lo, &hi, v3_add(G, O));
+        for (uint32_t i = 0; i < n_hosts; i++)
+            frame_add(&lo, &hi, v3_add(hosts->lo[i], O)), frame_add(&lo, &hi, v3_add(hosts->hi[i], O));
+        s = frame_check(lo, hi, O, "the hosts and germination point G", err);
+        roots_net_free(net);
+        return s;
     }
     world_push_out(&net->w, &G); /* closer than r to a host: out to r */
     net->G = G;
@@ -299,6 +312,7 @@ static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_
     if (s) return s;
     banyan_roots_stats st = net->stats;
     s = roots_net_mesh(net, params, out, &st, err);
+    if (!s) frame_set(*out, net->hosts->origin);
     roots_net_free(net);
     if (s == BANYAN_OK && stats) *stats = st;
     return s;

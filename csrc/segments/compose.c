@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "../core/error.h"
+#include "../core/frame.h"
 #include "../core/progress.h"
 #include "../core/tube.h"
 #include "segment_core.h"
@@ -146,9 +147,10 @@ static void level_color(int level, double rgba[4]) {
     rgba[3] = 1.0;
 }
 
-banyan_status banyan_segments_generate(const banyan_segments_params *params, const banyan_segment_input *segs,
-                                       uint32_t count, const double *trunk, banyan_mesh **out,
-                                       banyan_segments_stats *stats, uint32_t *unattached, banyan_error *err) {
+/* banyan_segments_generate in the segments' own frame. */
+static banyan_status compose(const banyan_segments_params *params, const banyan_segment_input *segs, uint32_t count,
+                             const double *trunk, banyan_mesh **out, banyan_segments_stats *stats,
+                             uint32_t *unattached, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (stats) memset(stats, 0, sizeof *stats);
     seg_consts k;
@@ -247,4 +249,38 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
     if (s) return s;
     if (stats) *stats = st;
     return BANYAN_OK;
+}
+
+banyan_status banyan_segments_generate(const banyan_segments_params *params, const banyan_segment_input *segs,
+                                       uint32_t count, const double *trunk, banyan_mesh **out,
+                                       banyan_segments_stats *stats, uint32_t *unattached, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (stats) memset(stats, 0, sizeof *stats);
+    seg_consts k;
+    banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
+    if (s) return s;
+    /* The frame (core/frame.h) from the axes' ends and the trunk. */
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < count; i++) {
+        v3 S = v3_load(segs[i].S);
+        frame_add(&lo, &hi, S);
+        frame_add(&lo, &hi, v3_madd(S, v3_load(segs[i].A), segs[i].l));
+    }
+    if (trunk) frame_add(&lo, &hi, v3_load(trunk)), frame_add(&lo, &hi, v3_load(trunk + 3));
+    v3 O = frame_pick(lo, hi);
+    if ((s = frame_check(lo, hi, O, "the segments (S, S + l A and trunk)", err))) return s;
+    if (O.x == 0 && O.y == 0 && O.z == 0) return compose(params, segs, count, trunk, out, stats, unattached, err);
+    banyan_segment_input *local = malloc(sizeof *local * count);
+    if (!local) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    double tl[6];
+    for (uint32_t i = 0; i < count; i++) {
+        local[i] = segs[i];
+        for (int c = 0; c < 3; c++) local[i].S[c] -= (&O.x)[c];
+    }
+    for (int c = 0; trunk && c < 6; c++) tl[c] = trunk[c] - (&O.x)[c % 3];
+    s = compose(params, local, count, trunk ? tl : NULL, out, stats, unattached, err);
+    free(local);
+    if (!s) frame_set(*out, O);
+    return s;
 }

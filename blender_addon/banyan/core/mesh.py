@@ -28,7 +28,10 @@ class MeshData:
     takes, gathered in C), colors 4n 'f' or None, indices 'I' (uint32 as
     in C; Blender's loop indices are unsigned properties), attributes
     {name: 'f' n}, materials [dict], parts [dict], skeleton arrays
-    ('f'/'i') or None. Vertex normals and per-vertex uvs are copied only
+    ('f'/'i') or None. positions and skel_points are relative to origin
+    (world metres, 3 floats = doubles): (0, 0, 0) near the world origin,
+    a whole-metre point near the plant far from it (banyan_mesh.origin).
+    Vertex normals and per-vertex uvs are copied only
     when asked for (vertex_arrays=True): Blender computes its own normals
     and takes uvs per corner.
     """
@@ -38,6 +41,7 @@ class MeshData:
         self.index_count = 0
         self.positions = self.normals = self.uvs = self.corner_uvs = self.colors = self.indices = None
         self.hash = None
+        self.origin = (0.0, 0.0, 0.0)
         self.attributes = {}
         self.materials = []
         self.parts = []
@@ -60,6 +64,7 @@ class MeshData:
             n = d.vertex_count = m.vertex_count
             d.index_count = m.index_count
             d.hash = lib.banyan_mesh_hash(mesh_ptr) if want_hash else None
+            d.origin = tuple(m.origin)
             d.positions = _copy(m.positions, 3 * n, "f")
             if vertex_arrays:
                 d.normals = _copy(m.normals, 3 * n, "f")

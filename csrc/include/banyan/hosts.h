@@ -60,7 +60,10 @@ typedef struct banyan_hosts banyan_hosts;
  * (all BANYAN_E_BAD_HOST), more than BANYAN_HOSTS_MAX_TRIANGLES triangles
  * (BANYAN_E_LIMIT). Needs Embree for meshes (BANYAN_E_UNSUPPORTED in a
  * build without it); boxes alone never touch Embree. On failure *out ==
- * NULL. The set is immutable and may be used from many threads at once. */
+ * NULL. The set is immutable and may be used from many threads at once.
+ * Far from the world origin it keeps its hosts relative to a whole-metre
+ * point near them (docs/api.md, "Far from the origin"); every query below
+ * still takes and returns world coordinates. */
 BANYAN_API banyan_status banyan_hosts_create(const banyan_box *boxes, uint32_t n_boxes,
                                              const banyan_host_mesh *meshes, uint32_t n_meshes,
                                              banyan_hosts **out, banyan_error *err);
