@@ -45,8 +45,6 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     (void)job;
     const banyan_keyaki_params *p = params;
     banyan_keyaki_statistics st;
-    banyan_status s = banyan_keyaki_stats(p, &st, err);
-    if (s) return s;
     banyan_mesh **m = calloc(1, sizeof *m);
     char **nm = calloc(1, sizeof *nm);
     if (!m || !nm) {
@@ -54,7 +52,11 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         free(nm);
         return BANYAN_E_NOMEM;
     }
-    if ((s = banyan_keyaki_generate(p, &m[0], err))) {
+    /* The mesh first: it refuses a tree too large while growing it, where
+     * the statistics would grow the whole skeleton first. */
+    banyan_status s = banyan_keyaki_generate(p, &m[0], err);
+    if (!s && (s = banyan_keyaki_stats(p, &st, err))) banyan_mesh_free(m[0]);
+    if (s) {
         free(m);
         free(nm);
         return s;

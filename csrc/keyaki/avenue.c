@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/big_alloc.h"
@@ -30,7 +31,6 @@
 #include "core/progress.h"
 #include "keyaki_internal.h"
 
-#define AVENUE_MAX_THREADS 256
 #define AVENUE_MAX_PATH_POINTS 1000000u
 
 typedef struct path_walk {
@@ -136,6 +136,8 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
             *t = p->tree;
             t->seed = p->seed + i;
             t->max_vertices = p->max_vertices;
+            t->max_seconds = p->max_seconds; /* the avenue's budget covers its trees */
+            t->max_memory_mb = p->max_memory_mb;
             pcg32 r;
             pcg32_seed(&r, p->seed + i, AVENUE_STREAM_JITTER);
             t->heading = rng_range(&r, -p->heading_jitter, p->heading_jitter);
@@ -190,16 +192,27 @@ typedef struct avenue_job {
      * pass max_vertices: the answer is then BANYAN_E_LIMIT either way, and
      * thousands of trees are not grown for nothing. */
     uint64_t max_vertices;
-    atomic_ullong counted; /* vertices of the trees counted so far */
+    atomic_ullong counted; /* vertices of the trees counted so far, and promised by those growing (keyaki_run) */
     atomic_int stop;
-    /* Progress (NULL: none): the calling thread, itself a worker, reports
-     * the trees finished by all after each tree it finishes; a cancel
-     * stops every worker before its next tree. */
+    /* Progress and budget: the calling thread, itself a worker, keeps the
+     * budget inside its trees and, once its own work is done, while it
+     * waits for the others; it reports the trees finished by all after
+     * each tree it finishes. A cancel or a spent budget sets `cancel`,
+     * which every worker's tree watches in its loops. */
     prog *prog;
     atomic_uint finished; /* trees of this pass done */
     atomic_int cancel;
+    atomic_int running;   /* threads other than the caller still working */
     double base, share;   /* this pass's part of the fraction */
 } avenue_job;
+
+/* Building, each thread holds one tree's skeleton, crown and body plan:
+ * about this many bytes a vertex of its tree (measured: 22-30 on
+ * avenue_boulevard and the default avenue). Threads beyond the first are
+ * used only while their scratch stays within AVENUE_SCRATCH_SHARE of the
+ * merged mesh, so the peak does not multiply with --threads. */
+#define AVENUE_SCRATCH_PER_VERTEX 32.0
+#define AVENUE_SCRATCH_SHARE 0.15
 
 /* Sizing a tree grows its skeleton; building grows it again and meshes
  * it: the count pass's part of the time (bench_progress, 100 trees). */
@@ -248,17 +261,26 @@ static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *
 }
 
 static void work(avenue_job *J, int caller) {
-    keyaki_skeleton sk = {NULL, 0, 0};
+    /* Counting, every tree promises into J->counted what it is sure to
+     * need while it grows, so the refusal comes at the same total on any
+     * number of threads, each tree stopped part way. */
+    keyaki_run run = {caller ? J->prog : NULL, &J->cancel, J->phase == 0 ? &J->counted : NULL,
+                      J->phase == 0 ? J->max_vertices : UINT64_MAX, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, &run};
     for (;;) {
         if (atomic_load(&J->cancel)) break;
         uint32_t i = atomic_fetch_add(&J->next, 1u);
         if (i >= J->n) break;
         if (J->phase == 0) {
             if (atomic_load(&J->stop)) break;
+            run.promised = 0;
             J->status[i] = keyaki_count(&J->trees[i], &sk, &J->counts[i], &J->errs[i]);
-            if (J->status[i] ||
-                atomic_fetch_add(&J->counted, J->counts[i].vertices) + J->counts[i].vertices > J->max_vertices)
-                atomic_store(&J->stop, 1);
+            uint64_t v = J->counts[i].vertices, total = 0;
+            if (!J->status[i] && v >= run.promised)
+                total = atomic_fetch_add(&J->counted, v - run.promised) + (v - run.promised);
+            else if (!J->status[i])
+                total = atomic_fetch_sub(&J->counted, run.promised - v) - (run.promised - v);
+            if (J->status[i] || total > J->max_vertices) atomic_store(&J->stop, 1);
         } else {
             J->status[i] = build_in_place(J, i, &sk, &J->errs[i]);
         }
@@ -269,20 +291,31 @@ static void work(avenue_job *J, int caller) {
 }
 
 static void *worker(void *arg) {
-    work(arg, 0);
+    avenue_job *J = arg;
+    work(J, 0);
+    atomic_fetch_sub(&J->running, 1);
     return NULL;
 }
 
 /* Runs the job on `threads` threads: the caller plus threads - 1 more.
- * A thread that cannot be started only means fewer workers. */
+ * A thread that cannot be started only means fewer workers. The caller,
+ * done with its own trees, keeps the budget (and the callback's
+ * heartbeat) every few ms until the others finish. */
 static void run_job(avenue_job *J, int threads) {
-    pthread_t tid[AVENUE_MAX_THREADS];
+    pthread_t tid[BANYAN_AVENUE_MAX_THREADS];
     int started = 0;
     atomic_store(&J->next, 0u);
     atomic_store(&J->finished, 0u);
+    atomic_store(&J->running, threads - 1);
     for (int t = 1; t < threads; t++)
         if (pthread_create(&tid[started], NULL, worker, J) == 0) started++;
+    atomic_fetch_sub(&J->running, threads - 1 - started);
     work(J, 1);
+    const struct timespec pause = {0, 2000000}; /* 2 ms */
+    while (atomic_load(&J->running) > 0) {
+        if (prog_at(J->prog, J->prog->last)) atomic_store(&J->cancel, 1);
+        nanosleep(&pause, NULL);
+    }
     for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
 }
 
@@ -329,7 +362,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     BANYAN_CHECK_OUT(out, err);
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     banyan_status s;
-    if ((s = banyan_check_int(err, "threads", threads, 0, AVENUE_MAX_THREADS))) return s;
+    if ((s = banyan_check_int(err, "threads", threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
     if ((s = prog_check(progress, err))) return s;
     uint32_t n = 0;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
@@ -338,7 +371,8 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     memset(&J, 0, sizeof J);
     prog g;
     prog_init(&g, progress);
-    J.prog = progress ? &g : NULL;
+    prog_budget(&g, p->max_seconds, p->max_memory_mb);
+    J.prog = &g;
     atomic_store(&J.cancel, 0);
     banyan_keyaki_params *trees = malloc(sizeof *trees * n);
     J.counts = calloc(n, sizeof *J.counts);
@@ -366,7 +400,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     int t = threads;
     if (t == 0) {
         long c = sysconf(_SC_NPROCESSORS_ONLN);
-        t = c < 1 ? 1 : c > AVENUE_MAX_THREADS ? AVENUE_MAX_THREADS : (int)c;
+        t = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
     }
     if ((uint32_t)t > n) t = (int)n;
 
@@ -392,14 +426,15 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
                 goto done;
             }
         s = banyan_fail(err, BANYAN_E_LIMIT,
-                        "the avenue's %u trees need more than max_vertices = %d vertices (%llu counted before "
-                        "stopping); raise max_vertices or lower tree.leaf_density, tree.sides_max, tree.levels or "
+                        "the avenue's %u trees need more than max_vertices = %d vertices (at least %llu counted "
+                        "before stopping); raise max_vertices or lower tree.leaf_density, tree.sides_max, tree.levels or "
                         "the tree count",
                         n, p->max_vertices, (unsigned long long)atomic_load(&J.counted));
         goto done;
     }
-    uint64_t nv = 0, ni = 0, ns = 0, np = 0;
+    uint64_t nv = 0, ni = 0, ns = 0, np = 0, vmax = 1;
     for (uint32_t i = 0; i < n; i++) {
+        if (J.counts[i].vertices > vmax) vmax = J.counts[i].vertices;
         if (J.status[i]) {
             s = banyan_fail(err, J.status[i], "tree %u: %s", i, J.errs[i].message);
             goto done;
@@ -421,11 +456,17 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         goto done;
     }
     /* Pass 2: every tree built, then copied into its slice in parallel. */
+    if (prog_reserve(&g, keyaki_mesh_bytes(nv, ni))) {
+        s = prog_fail(&g, err, "avenue");
+        goto done;
+    }
     J.out = alloc_merged(nv, ni, ns, ns - n, np);
     if (!J.out) {
         s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the avenue's %llu vertices", (unsigned long long)nv);
         goto done;
     }
+    double extra = AVENUE_SCRATCH_SHARE * keyaki_mesh_bytes(nv, ni) / (AVENUE_SCRATCH_PER_VERTEX * (double)vmax);
+    if (t - 1 > extra) t = 1 + (int)extra;
     J.phase = 1;
     J.base = AVENUE_COUNT_SHARE;
     J.share = 1.0 - AVENUE_COUNT_SHARE;

@@ -183,8 +183,9 @@ static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, c
 }
 
 banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
-                               keyaki_body *body, banyan_error *err) {
+                               keyaki_run *run, keyaki_body *body, banyan_error *err) {
     memset(body, 0, sizeof *body);
+    body->run = run;
     int32_t limbs = 0;
     for (int32_t i = 0; i < count; i++)
         if (i == 0 || main_child(n, n[i].parent) != i) limbs++;
@@ -196,6 +197,10 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     uint64_t bv = 0, bi = 0;
     double r_trunk = n[0].radius;
     for (int32_t i = 0; i < count; i++) {
+        if ((i & 4095) == 0 && keyaki_stopped(run)) {
+            keyaki_body_free(body);
+            return keyaki_stop_status(err);
+        }
         if (!(i == 0 || main_child(n, n[i].parent) != i)) continue;
         keyaki_limb *L = &body->limbs[body->limb_count++];
         int32_t m = 1;
@@ -225,8 +230,14 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     keyaki_twigs_plan(p, n, count, &twv, &twi);
     bv += twv;
     bi += twi;
+    /* The bark is known exactly: refuse before growing the crown. */
+    banyan_status cs = keyaki_promise(run, bv, "the tree's bark", "levels or sides_max", err);
+    if (cs) {
+        keyaki_body_free(body);
+        return cs;
+    }
     /* The crown: twigs (bark part) and leaves, grown into flat arrays. */
-    banyan_status cs = keyaki_crown_grow(p, n, count, count_only, &body->crown, err);
+    cs = keyaki_crown_grow(p, n, count, count_only, run, &body->crown, err);
     if (cs) {
         keyaki_body_free(body);
         return cs;
@@ -269,6 +280,10 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     mb_begin_part(mb, bark_mat, group);
     mb_set_attr(mb, attr[0], tree_id);
     for (int32_t k = 0; k < body->limb_count; k++) {
+        if ((k & 255) == 0 && keyaki_stopped(body->run)) {
+            mb->status = BANYAN_E_CANCELLED;
+            break;
+        }
         keyaki_limb *L = &body->limbs[k];
         int32_t m = 0;
         pts[0] = L->start;
@@ -316,6 +331,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     free(pts);
     free(rad);
     free(ids);
+    if (mb->status) return;
     keyaki_twigs_mesh(p, n, count, mb, attr);
 
     keyaki_crown_mesh_twigs(&body->crown, mb, attr);
@@ -344,7 +360,7 @@ static banyan_status grow_and_plan(const banyan_keyaki_params *p, keyaki_skeleto
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
-    return keyaki_body_plan(p, sk->nodes, sk->count, count_only, body, err);
+    return keyaki_body_plan(p, sk->nodes, sk->count, count_only, sk->run, body, err);
 }
 
 banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
@@ -371,6 +387,12 @@ banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, u
                            "the tree needs %u vertices, more than max_vertices = %d; raise max_vertices or lower "
                            "leaf_density, sides_max or levels",
                            v, p->max_vertices);
+    }
+    /* The mesh's memory, before it is allocated (an avenue's merged mesh
+     * was reserved whole by the avenue). */
+    if (!mb->external && keyaki_reserve_bytes(sk->run, keyaki_mesh_bytes(body.vertices, body.indices))) {
+        keyaki_body_free(&body);
+        return keyaki_stop_status(err);
     }
     uint32_t bark = mb_add_material(mb, "keyaki_bark", p->bark_color, 0.9, 0);
     uint32_t leaf = mb_add_material(mb, "keyaki_leaf", p->leaf_color, 0.6, 1);

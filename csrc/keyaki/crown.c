@@ -82,7 +82,10 @@ typedef struct ctx {
     keyaki_crown *c;
     pcg32 tw, lf; /* twig and leaf draws of this cluster */
     int32_t node, base_level;
-    int oom; /* 1: out of memory, 2: past max_vertices */
+    int oom; /* 1: out of memory, 2: past max_vertices, 3: the run stopped, 4: refused (err set) */
+    keyaki_run *run;
+    uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
+    banyan_status st; /* the refusal of oom 4 */
 } ctx;
 
 /* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
@@ -97,6 +100,19 @@ static int64_t budget(const banyan_keyaki_params *p, int count_only) {
 static int over_budget(ctx *x, int64_t more_leaves, int64_t more_points) {
     int64_t v = 4 * ((int64_t)x->c->n_leaves + more_leaves) + 6 * ((int64_t)x->c->n_pts + more_points);
     if (v > budget(x->p, x->c->count_only)) x->oom = 2;
+    return x->oom != 0;
+}
+
+/* The run's budget, every few clusters: its stop, and the crown so far
+ * (at least 4 vertices a twig point, a ring of 3 sides or more, and 4 a
+ * leaf) promised with the rest of the tree. */
+static int keep_budget(ctx *x, banyan_error *err) {
+    if (!x->run || x->oom) return x->oom != 0;
+    if (keyaki_stopped(x->run)) x->oom = 3;
+    else if ((x->st = keyaki_promise(x->run, x->base + 4 * ((uint64_t)x->c->n_pts + (uint64_t)x->c->n_leaves),
+                            "the tree with the twigs and leaves grown so far",
+                            "leaf_density, leaf_levels, twig_levels or raise twig_spacing", err)))
+        x->oom = 4;
     return x->oom != 0;
 }
 
@@ -439,8 +455,8 @@ static double turn2(const double *o, const double *a, const double *b) {
 }
 
 /* pts: m points (x, y), sorted in place; h->xy needs room for 2 m + 2. */
-static void hull_of(double *pts, int32_t m, hull *h) {
-    qsort(pts, (size_t)m, 2 * sizeof(double), xy_cmp);
+static int hull_of(double *pts, int32_t m, hull *h, keyaki_run *run) {
+    if (keyaki_sort(pts, (size_t)m, 2 * sizeof(double), xy_cmp, run)) return 1;
     double *H = h->xy;
     int32_t k = 0;
     for (int32_t i = 0; i < m; i++) {
@@ -452,6 +468,7 @@ static void hull_of(double *pts, int32_t m, hull *h) {
         H[2 * k] = pts[2 * i], H[2 * k + 1] = pts[2 * i + 1], k++;
     }
     h->n = k > 1 ? k - 1 : k;
+    return 0;
 }
 
 /* Marks the grid cells whose centres lie inside the convex hull h: one
@@ -522,9 +539,12 @@ static void turn_cluster(cand *q, v3 *up, double a) {
     *up = v3_rotate_z(*up, a);
 }
 
-static banyan_status crown_fail(keyaki_crown *c, int why, const banyan_keyaki_params *p, banyan_error *err) {
+static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, const banyan_keyaki_params *p,
+                                banyan_error *err) {
     int count_only = c->count_only;
     keyaki_crown_free(c);
+    if (why == 3) return keyaki_stop_status(err);
+    if (why == 4) return st;
     if (why == 2)
         return banyan_fail(err, BANYAN_E_LIMIT,
                            "the tree's twigs and leaves need more than max_vertices = %lld vertices; raise "
@@ -534,9 +554,10 @@ static banyan_status crown_fail(keyaki_crown *c, int why, const banyan_keyaki_pa
 }
 
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
-                                keyaki_crown *c, banyan_error *err) {
+                                keyaki_run *run, keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
     c->count_only = count_only;
+    c->run = run;
     if (count <= 0 || p->leaf_levels <= 0) return BANYAN_OK;
     int32_t *depth = malloc(sizeof(int32_t) * (size_t)count);
     if (!depth) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
@@ -546,10 +567,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
+            if ((i & 255) == 0 && keep_budget(&x, err)) break;
             int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
             x.node = i;
             cluster_stream(&x.lf, p, i, KEYAKI_STREAM_LEAVES);
@@ -563,7 +585,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             }
         }
         free(depth);
-        if (x.oom) return crown_fail(c, x.oom, p, err);
+        if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
         return BANYAN_OK;
     }
     /* The clusters planned on the skeleton, from the "twigs" stream. */
@@ -573,6 +595,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     int32_t nc = 0, cap = 0;
     double tw = p->twig_angle;
     for (int32_t i = 0; i < count; i++) {
+        if ((i & 4095) == 0 && keyaki_stopped(run)) {
+            free(depth);
+            free(cs);
+            return crown_fail(c, 3, BANYAN_OK, p, err);
+        }
         if (depth[i] >= p->leaf_levels) continue;
         const keyaki_node *b = &n[i];
         int tip = b->child[0] < 0 && b->child[1] < 0;
@@ -586,7 +613,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         if (8.0 * ((double)nc + k) > (double)budget(p, count_only)) {
             free(depth);
             free(cs);
-            return crown_fail(c, 2, p, err);
+            return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
         }
         if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
             free(depth);
@@ -624,7 +651,10 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         v3 e = v3_madd(cs[k].at, cs[k].d, 0.5 * cs[k].len);
         cs[k].z = e.z;
     }
-    qsort(cs, (size_t)nc, sizeof(cand), cand_cmp);
+    if (keyaki_sort(cs, (size_t)nc, sizeof(cand), cand_cmp, run)) {
+        free(cs);
+        return crown_fail(c, 3, BANYAN_OK, p, err);
+    }
     /* The plan grid over every cluster's reach. */
     grid g = {0, 0, 0, 0, NULL, NULL, NULL, 0};
     hull hl = {NULL, 0};
@@ -641,8 +671,13 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             v3 e = v3_madd(cs[k].at, cs[k].d, cs[k].len);
             xy[4 * k] = cs[k].at.x, xy[4 * k + 1] = cs[k].at.y, xy[4 * k + 2] = e.x, xy[4 * k + 3] = e.y;
         }
-        hull_of(xy, 2 * nc, &hl);
+        int stopped = hull_of(xy, 2 * nc, &hl, run);
         free(xy);
+        if (stopped) {
+            free(hl.xy);
+            free(cs);
+            return crown_fail(c, 3, BANYAN_OK, p, err);
+        }
         double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
         for (int32_t k = 0; k < nc; k++) {
             x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
@@ -675,6 +710,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
+        if ((k & 31) == 0 && keep_budget(&x, err)) break;
         cand q = cs[k];
         x.node = q.node;
         x.base_level = n[q.node].level;
@@ -735,7 +771,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     free(g.sky);
     free(hl.xy);
     free(cs);
-    if (x.oom) return crown_fail(c, x.oom, p, err);
+    if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
     for (int32_t t = 0; t < c->n_twigs; t++) {
         uint32_t v, i;
         tube_counts((uint32_t)c->twigs[t].count, c->twigs[t].sides, 0, c->twigs[t].children > 0, &v, &i);
@@ -748,6 +784,10 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
 void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]) {
     mb_set_attr(mb, attr[2], 0); /* order 0: finer than any skeleton branch */
     for (int32_t t = 0; t < c->n_twigs && !mb->status; t++) {
+        if ((t & 1023) == 0 && keyaki_stopped(c->run)) {
+            mb->status = BANYAN_E_CANCELLED;
+            break;
+        }
         const keyaki_twig *T = &c->twigs[t];
         mb_set_attr(mb, attr[1], T->level);
         /* A twig tip's end is hidden in its last leaves: no cap. */
@@ -763,6 +803,10 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
     mb_set_attr(mb, attr[2], 0);
     const double hu = LEAF_KEYAKI_HALF_U;
     for (int32_t k = 0; k < c->n_leaves && !mb->status; k++) {
+        if ((k & 4095) == 0 && keyaki_stopped(c->run)) {
+            mb->status = BANYAN_E_CANCELLED;
+            return;
+        }
         const keyaki_leaf *q = &c->leaves[k];
         mb_set_attr(mb, attr[1], q->level);
         uint32_t v0 = mb_vertices(mb, 4);

@@ -24,6 +24,7 @@
  * with it every random draw, is fixed by the seed alone. No allocation
  * per node: one flat array that grows by doubling and is reused. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "core/error.h"
@@ -44,6 +45,7 @@ static banyan_status reserve(keyaki_skeleton *sk, int32_t need, int32_t max_node
     int64_t cap = sk->cap ? (int64_t)sk->cap * 2 : 1024;
     while (cap < need) cap *= 2;
     if (cap > max_nodes) cap = max_nodes;
+    if (keyaki_reserve_bytes(sk->run, (double)sizeof(keyaki_node) * (double)(cap - sk->cap))) return keyaki_stop_status(err);
     keyaki_node *n = realloc(sk->nodes, sizeof(keyaki_node) * (size_t)cap);
     if (!n) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld skeleton branches", (long long)cap);
     sk->nodes = n;
@@ -212,8 +214,23 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
     sk->count = 1;
     if (p->limbs > 1 && (s = first_split(p, sk, &r, err))) return s;
 
+    const int G = keyaki_grown_levels(p);
     for (int32_t i = 0; i < sk->count; i++) {
         int level = sk->nodes[i].level;
+        /* The budget, and the size known so far: before level G every
+         * branch is kept and is at least one ring of sides_min + 1
+         * vertices, so a tree past max_vertices stops here, not after a
+         * whole skeleton. */
+        if ((i & 1023) == 0 && sk->run) {
+            if (keyaki_stopped(sk->run)) return keyaki_stop_status(err);
+            if (level < G) {
+                char what[64];
+                snprintf(what, sizeof what, "the skeleton's first %d branches", sk->count);
+                if ((s = keyaki_promise(sk->run, (uint64_t)sk->count * (uint64_t)(p->sides_min + 1), what,
+                                        "levels (or sides_min)", err)))
+                    return s;
+            }
+        }
         if (level >= L || (sk->nodes[i].flags & KN_TRUNK)) continue;
         if ((model == BANYAN_KEYAKI_STRONG_WEAK || model == BANYAN_KEYAKI_TWISTED) &&
             sk->nodes[i].energy / sk->nodes[i].share < p->stop_energy) {

@@ -16,9 +16,16 @@ banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh 
     banyan_keyaki_params q = *p;
     v3 at = v3_load(p->position), O = frame_pick(at, at);
     for (int k = 0; k < 3; k++) q.position[k] -= (&O.x)[k];
-    keyaki_skeleton sk = {NULL, 0, 0};
+    /* The budget: time and memory inside every loop, max_vertices while
+     * the skeleton and the crown grow (docs/keyaki.md "Budget"). */
+    prog g;
+    prog_init(&g, NULL);
+    prog_budget(&g, p->max_seconds, p->max_memory_mb);
+    keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_build(&q, 0.0, 0, &sk, out, err);
     keyaki_skeleton_free(&sk);
+    if (s && prog_stopped(&g)) s = prog_fail(&g, err, "keyaki");
     if (!s) frame_set(*out, O);
     return s;
 }
@@ -30,8 +37,13 @@ banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_s
     memset(out, 0, sizeof *out);
     banyan_status s = keyaki_params_validate(p, err);
     if (s) return s;
-    keyaki_skeleton sk = {NULL, 0, 0};
+    prog g; /* the budget; no vertex estimate: nothing is meshed */
+    prog_init(&g, NULL);
+    prog_budget(&g, p->max_seconds, p->max_memory_mb);
+    keyaki_run run = {&g, NULL, NULL, UINT64_MAX, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_grow(p, &sk, err);
+    if (s && prog_stopped(&g)) s = prog_fail(&g, err, "keyaki statistics");
     if (!s && keyaki_strahler(sk.nodes, sk.count))
         s = banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
     if (!s) {

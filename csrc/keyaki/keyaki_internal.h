@@ -4,10 +4,12 @@
 #ifndef BANYAN_KEYAKI_INTERNAL_H
 #define BANYAN_KEYAKI_INTERNAL_H
 
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "banyan.h"
 #include "core/mesh_builder.h"
+#include "core/progress.h"
 #include "core/rng.h"
 #include "core/vec.h"
 
@@ -39,10 +41,48 @@ typedef struct keyaki_node {
     uint32_t flags;  /* KN_* */
 } keyaki_node;
 
-/* A growable skeleton; reuse one across calls to avoid allocations. */
+/* A run's budget as the tree's loops see it (budget.c, docs/keyaki.md
+ * "Budget"). Alone, g is the call's prog. In an avenue the calling thread
+ * holds g and every thread watches `stop`; `tally` sums the vertices every
+ * tree has counted or is already sure to need, so a refused avenue stops
+ * at the same total whatever the thread count. */
+typedef struct keyaki_run {
+    prog *g;               /* the caller's budget and callback; NULL in an avenue's other threads */
+    atomic_int *stop;      /* avenue: set once any thread stops; NULL alone */
+    atomic_ullong *tally;  /* avenue's count pass: vertices counted or promised by all trees; NULL alone */
+    uint64_t max_vertices; /* what the tree (alone) or the tally may reach; UINT64_MAX: no estimate */
+    uint64_t promised;     /* this tree's part of the tally so far */
+} keyaki_run;
+
+/* 1 once the run must stop (budget spent, cancelled, or another thread
+ * stopped); cheap: a clock read. Loops call it every few hundred items. */
+int keyaki_stopped(keyaki_run *r);
+/* Status of a loop that saw keyaki_stopped; the public call replaces it
+ * with prog_fail's message. */
+banyan_status keyaki_stop_status(banyan_error *err);
+/* The tree is already sure to need `vertices` (a lower bound that only
+ * grows): BANYAN_E_LIMIT, naming max_vertices and `lower` (the fields to
+ * lower), once that passes max_vertices, alone or with the avenue's tally. */
+banyan_status keyaki_promise(keyaki_run *r, uint64_t vertices, const char *what, const char *lower,
+                             banyan_error *err);
+/* An allocation of `bytes` about to be made: 1 (and the run stopped) when
+ * it would pass max_memory_mb. Only where g is set; elsewhere the caller's
+ * polls of the resident size keep the budget. */
+int keyaki_reserve_bytes(keyaki_run *r, double bytes);
+/* qsort that keeps the run: checks keyaki_stopped as it merges a large
+ * array; 1 when stopped (the array is then left part sorted). cmp must be
+ * a total order: the result is then qsort's. */
+int keyaki_sort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *), keyaki_run *r);
+/* Bytes of a mesh of v vertices and i indices (with colours and the three
+ * attributes), for keyaki_reserve_bytes. */
+static inline double keyaki_mesh_bytes(uint64_t v, uint64_t i) { return 60.0 * (double)v + 4.0 * (double)i; }
+
+/* A growable skeleton; reuse one across calls to avoid allocations.
+ * run: the budget its growth and meshing keep (NULL: none). */
 typedef struct keyaki_skeleton {
     keyaki_node *nodes;
     int32_t count, cap;
+    keyaki_run *run;
 } keyaki_skeleton;
 
 void keyaki_skeleton_free(keyaki_skeleton *sk);
@@ -59,7 +99,10 @@ banyan_status keyaki_params_validate(const banyan_keyaki_params *p, banyan_error
 /* Grows the skeleton of p (validated) into sk, replacing its contents,
  * and sets the pipe-model radii (keyaki_radii). With twigs_from_segments
  * the full tree is grown, radii set, then cut to keyaki_grown_levels
- * (keyaki_truncate). BANYAN_E_LIMIT past max_nodes, BANYAN_E_NOMEM. */
+ * (keyaki_truncate). BANYAN_E_LIMIT past max_nodes, or as soon as the
+ * branches grown so far need more than sk->run's max_vertices (each is at
+ * least one ring of sides_min + 1 vertices), BANYAN_E_NOMEM; stops when
+ * sk->run does (keyaki_stop_status). */
 banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err);
 
 /* Strahler orders of every node (tips 1; equal orders meeting give k + 1,
@@ -125,6 +168,7 @@ typedef struct keyaki_crown {
     int count_only;                             /* n_leaves counted, leaves[] not filled */
     int32_t clusters, grown, steered, stopped, dropped; /* the light model's tally */
     uint64_t vertices, indices;                 /* the twig tubes' mesh */
+    keyaki_run *run;                            /* the budget its growth and meshing keep (NULL: none) */
 } keyaki_crown;
 
 /* Grows the crown of a grown skeleton (radii set) into c (zeroed first;
@@ -133,7 +177,7 @@ typedef struct keyaki_crown {
  * same twigs and counts, but the leaves only counted (sizing a tree).
  * BANYAN_E_NOMEM. */
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
-                                keyaki_crown *c, banyan_error *err);
+                                keyaki_run *run, keyaki_crown *c, banyan_error *err);
 void keyaki_crown_free(keyaki_crown *c);
 /* Appends the twig tubes to the current part (c->vertices exactly). */
 void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]);
@@ -147,6 +191,7 @@ typedef struct keyaki_body {
     keyaki_crown crown;
     uint32_t vertices, indices;         /* totals: bark + leaves */
     uint32_t bark_vertices, bark_indices;
+    keyaki_run *run;                    /* the budget meshing keeps (from keyaki_body_plan) */
 } keyaki_body;
 
 void keyaki_body_free(keyaki_body *b);
@@ -156,7 +201,7 @@ void keyaki_body_free(keyaki_body *b);
  * refuse past max_vertices before meshing. count_only: leaves counted,
  * not placed (the body can then only be measured, not meshed). */
 banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *nodes, int32_t count, int count_only,
-                               keyaki_body *body, banyan_error *err);
+                               keyaki_run *run, keyaki_body *body, banyan_error *err);
 
 /* Meshes a planned body into mb: bark part (material bark_mat, group) then
  * leaf part (leaf_mat, group); sets the tree_id/level/order attributes in

@@ -6,11 +6,13 @@
  * (offsetof(banyan_avenue_params, tree.levels) is plain C), so an avenue
  * preset or `--set tree.levels=14` sets every tree at once. The tree's
  * seed, max_vertices, position and heading are not in the avenue table:
- * the avenue sets them per tree. */
+ * the avenue sets them per tree; nor are its max_seconds and max_memory_mb:
+ * the avenue's own budget covers the whole avenue. */
 #include <math.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "keyaki_internal.h"
 #include "params/params.h"
 
@@ -89,6 +91,11 @@
 #define KEYAKI_LIMITS_ROWS(S, F) \
     BP_INT(S, F(max_nodes), "Branch limit", "Limits", 1, 16777216, "skeleton branches allowed before refusing (BANYAN_E_LIMIT)")
 
+/* The run's budget: the tree's own, or the avenue's (never tree.*). */
+#define KEYAKI_BUDGET_ROWS(S) \
+    BP_DOUBLE(S, max_seconds, "Time limit", "Limits", "s", PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, "stop (BANYAN_E_LIMIT) past this much wall time"), \
+    BP_DOUBLE(S, max_memory_mb, "Memory limit", "Limits", "MB", PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX, "stop (BANYAN_E_LIMIT) past this much added resident memory")
+
 #define KEYAKI_TREE_GROUPS(S, F) \
     KEYAKI_TREE_MAIN_ROWS(S, F), \
     KEYAKI_BRANCHING_ROWS(S, F), \
@@ -108,6 +115,7 @@ const banyan_param_info keyaki_table_rows[] = {
     KEYAKI_TREE_GROUPS(K, KEYAKI_F),
     BP_INT(K, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(K, KEYAKI_F),
+    KEYAKI_BUDGET_ROWS(K),
 };
 #undef K
 const int32_t keyaki_table_row_count = (int32_t)(sizeof keyaki_table_rows / sizeof keyaki_table_rows[0]);
@@ -133,6 +141,7 @@ const banyan_param_info avenue_table_rows[] = {
     KEYAKI_TREE_GROUPS(A, AVENUE_F),
     BP_INT(A, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(A, AVENUE_F),
+    KEYAKI_BUDGET_ROWS(A),
 };
 #undef A
 const int32_t avenue_table_row_count = (int32_t)(sizeof avenue_table_rows / sizeof avenue_table_rows[0]);
@@ -201,6 +210,8 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->segment_twig_length = 0.8;
     p->segment_twigs = 4;
     p->segment_depth = 1;
+    p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
+    p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
 }
 
 size_t banyan_sizeof_keyaki_params(void) { return sizeof(banyan_keyaki_params); }
@@ -221,6 +232,8 @@ void banyan_avenue_params_init(banyan_avenue_params *p) {
     p->heading_jitter = 180.0;
     p->height_jitter = 0.15;
     p->position_jitter = 0.3;
+    p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
+    p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
 }
 
 size_t banyan_sizeof_avenue_params(void) { return sizeof(banyan_avenue_params); }

@@ -131,7 +131,7 @@ static int upper_side; /* run with strong_side = upper */
 static void rules_over_seeds(int model, int dist, int fork_plane, int levels, int seeds) {
     rule_fail f;
     memset(&f, 0, sizeof f);
-    keyaki_skeleton sk = {NULL, 0, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, NULL};
     int grown = 0, breaks = 0, sprung = 0;
     for (int s = 0; s < seeds; s++) {
         banyan_keyaki_params p;
@@ -299,7 +299,7 @@ static int rec_order(const keyaki_node *n, int32_t i) {
 }
 
 static void strahler_grown(void) {
-    keyaki_skeleton sk = {NULL, 0, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, NULL};
     int bad = 0;
     for (int s = 0; s < 20; s++) {
         banyan_keyaki_params p;
@@ -342,12 +342,12 @@ static void crack_free(uint64_t seed, int model) {
     p.seed = seed;
     p.model = model;
     if (model == BANYAN_KEYAKI_SIMPLE) p.levels = 6;
-    keyaki_skeleton sk = {NULL, 0, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, NULL};
     CHECK(keyaki_grow(&p, &sk, NULL) == BANYAN_OK, "grow");
     keyaki_strahler(sk.nodes, sk.count);
     keyaki_radii(sk.nodes, sk.count, p.tip_radius * p.unit, p.pipe_exponent);
     keyaki_body body;
-    CHECK(keyaki_body_plan(&p, sk.nodes, sk.count, 0, &body, NULL) == BANYAN_OK, "plan");
+    CHECK(keyaki_body_plan(&p, sk.nodes, sk.count, 0, NULL, &body, NULL) == BANYAN_OK, "plan");
     mesh_builder mb;
     mb_init(&mb, 1u << 26, 0);
     int attr[3] = {mb_add_attr(&mb, "tree_id"), mb_add_attr(&mb, "level"), mb_add_attr(&mb, "order")};
@@ -551,7 +551,7 @@ static void determinism_variety(void) {
     for (int model = 0; model < 4; model++) {
         enum { S = 100 };
         double tips[S], width[S];
-        keyaki_skeleton s1 = {NULL, 0, 0}, s2 = {NULL, 0, 0};
+        keyaki_skeleton s1 = {NULL, 0, 0, NULL}, s2 = {NULL, 0, 0, NULL};
         int same_skeleton = 0;
         for (int s = 0; s < S; s++) {
             banyan_keyaki_params q;
@@ -584,7 +584,7 @@ static void determinism_variety(void) {
  * `heading` turns the whole skeleton about the trunk (the rules only look
  * at the vertical, so growth commutes with turns about Z). */
 static void fractions_and_heading(void) {
-    keyaki_skeleton sk = {NULL, 0, 0}, sk2 = {NULL, 0, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, NULL}, sk2 = {NULL, 0, 0, NULL};
     long forks = 0, sw = 0;
     for (int s = 0; s < 40; s++) {
         banyan_keyaki_params p;

@@ -79,7 +79,7 @@ static int load(const char *name, banyan_keyaki_params *p) {
 
 static int grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_crown *c) {
     if (keyaki_grow(p, sk, NULL) || keyaki_strahler(sk->nodes, sk->count)) return 1;
-    return keyaki_crown_grow(p, sk->nodes, sk->count, 0, c, NULL) != BANYAN_OK;
+    return keyaki_crown_grow(p, sk->nodes, sk->count, 0, NULL, c, NULL) != BANYAN_OK;
 }
 
 typedef struct fails {

@@ -70,7 +70,7 @@ static void limbs(const char *name) {
     for (uint64_t seed = 1; seed <= SEEDS; seed++) {
         banyan_keyaki_params p;
         if (!load(name, seed, &p)) return;
-        keyaki_skeleton sk = {NULL, 0, 0};
+        keyaki_skeleton sk = {NULL, 0, 0, NULL};
         CHECK(keyaki_grow(&p, &sk, NULL) == BANYAN_OK, "%s: grow", name);
         double top = p.position[2];
         for (int32_t i = 0; i < sk.count; i++)
@@ -90,7 +90,7 @@ static void limbs_measure_sees_the_paper_tree(void) {
     for (uint64_t seed = 1; seed <= SEEDS; seed++) {
         banyan_keyaki_params p;
         if (!load("keyaki_model_edaore", seed, &p)) return;
-        keyaki_skeleton sk = {NULL, 0, 0};
+        keyaki_skeleton sk = {NULL, 0, 0, NULL};
         CHECK(keyaki_grow(&p, &sk, NULL) == BANYAN_OK, "grow");
         int k = big_limbs(sk.nodes, 0.35 * 17.0);
         if (k > most) most = k;
@@ -149,7 +149,7 @@ static void limb_statistics(void) {
     for (uint64_t seed = 1; seed <= SEEDS; seed++) {
         banyan_keyaki_params p;
         if (!load("keyaki_mature", seed, &p)) return;
-        keyaki_skeleton sk = {NULL, 0, 0};
+        keyaki_skeleton sk = {NULL, 0, 0, NULL};
         CHECK(keyaki_grow(&p, &sk, NULL) == BANYAN_OK, "grow");
         keyaki_node *sub = malloc(sizeof *sub * (size_t)sk.count);
         int32_t *map = malloc(sizeof *map * (size_t)sk.count);
@@ -201,10 +201,10 @@ static void crown(const char *name, int min_tips, int min_leaves, double min_fil
     for (uint64_t seed = 1; seed <= SEEDS; seed++) {
         banyan_keyaki_params p;
         if (!load(name, seed, &p)) return;
-        keyaki_skeleton sk = {NULL, 0, 0};
+        keyaki_skeleton sk = {NULL, 0, 0, NULL};
         keyaki_crown c;
         if (keyaki_grow(&p, &sk, NULL) || keyaki_strahler(sk.nodes, sk.count) ||
-            keyaki_crown_grow(&p, sk.nodes, sk.count, 0, &c, NULL)) {
+            keyaki_crown_grow(&p, sk.nodes, sk.count, 0, NULL, &c, NULL)) {
             CHECK(0, "%s seed %d: crown grows", name, (int)seed);
             keyaki_skeleton_free(&sk);
             continue;

@@ -27,7 +27,7 @@ static int build(trunk_mesh *t) {
     if (keyaki_grow(&t->p, &t->sk, NULL) != BANYAN_OK) return 0;
     keyaki_strahler(t->sk.nodes, t->sk.count);
     keyaki_radii(t->sk.nodes, t->sk.count, t->p.tip_radius * t->p.unit, t->p.pipe_exponent);
-    if (keyaki_body_plan(&t->p, t->sk.nodes, t->sk.count, 0, &t->body, NULL) != BANYAN_OK) return 0;
+    if (keyaki_body_plan(&t->p, t->sk.nodes, t->sk.count, 0, NULL, &t->body, NULL) != BANYAN_OK) return 0;
     mb_init(&t->mb, 1u << 26, 0);
     int attr[3] = {mb_add_attr(&t->mb, "tree_id"), mb_add_attr(&t->mb, "level"), mb_add_attr(&t->mb, "order")};
     keyaki_body_mesh(&t->p, t->sk.nodes, t->sk.count, &t->body, &t->mb, attr, 0, 0, 0, 0);

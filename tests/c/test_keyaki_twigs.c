@@ -36,7 +36,7 @@ static v3 tip_of(const keyaki_node *x) { return v3_madd(x->start, x->dir, x->len
 static void skeleton_and_segments(uint64_t seed, int model) {
     banyan_keyaki_params p = twig_params(seed, model), q = p;
     q.twigs_from_segments = 0;
-    keyaki_skeleton cut = {NULL, 0, 0}, full = {NULL, 0, 0};
+    keyaki_skeleton cut = {NULL, 0, 0, NULL}, full = {NULL, 0, 0, NULL};
     CHECK(keyaki_params_validate(&p, NULL) == BANYAN_OK, "validate");
     if (keyaki_grow(&p, &cut, NULL) || keyaki_grow(&q, &full, NULL)) {
         CHECK(0, "grow seed %llu model %d", (unsigned long long)seed, model);
@@ -147,7 +147,7 @@ static void mesh_checks(uint64_t seed, int model) {
         CHECK(0, "generate seed %llu: %s", (unsigned long long)seed, err.message);
         return;
     }
-    keyaki_skeleton sk = {NULL, 0, 0};
+    keyaki_skeleton sk = {NULL, 0, 0, NULL};
     keyaki_grow(&p, &sk, NULL);
     keyaki_strahler(sk.nodes, sk.count);
     banyan_segment_params sp;

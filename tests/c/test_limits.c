@@ -223,7 +223,8 @@ int main(void) {
     m = NULL;
     s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1000", s, m, &e);
-    CHECK(strstr(e.message, "counted before stopping") != NULL, "the avenue stopped counting early: %s", e.message);
+    CHECK(strstr(e.message, "counted before stopping") != NULL || strstr(e.message, "with the other trees") != NULL,
+          "the avenue stopped counting early: %s", e.message);
     ap.max_vertices = 1000000;
     reset();
     m = NULL;

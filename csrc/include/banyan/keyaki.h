@@ -77,6 +77,7 @@ typedef enum banyan_keyaki_strong_side {
 #define BANYAN_KEYAKI_MAX_LEVELS 30  /* levels 1 .. 30 */
 #define BANYAN_KEYAKI_MAX_ORDER 32   /* Strahler orders never exceed levels + 1 */
 #define BANYAN_AVENUE_MAX_TREES 10000
+#define BANYAN_AVENUE_MAX_THREADS 64 /* threads of banyan_avenue_generate: 0 (all cores) .. 64 */
 
 typedef struct banyan_keyaki_params {
     uint64_t seed;           /* any value; the tree's PCG32 streams derive from it */
@@ -168,6 +169,12 @@ typedef struct banyan_keyaki_params {
     int32_t segment_twigs;   /* 0 .. 63: n, twigs per segment. Default 4 */
     int32_t segment_depth;   /* 0 .. 16: s, fork depth of the first twig (twig i forks to s + i - 1; the
                                 128-vertex budget cuts the rest). Default 1 */
+
+    /* --- the run's budget (docs/keyaki.md "Budget"): checked inside growth, crown and meshing; past
+       either the call stops with BANYAN_E_LIMIT naming it. In an avenue's `tree` they are not used: the
+       avenue's own budget covers every tree. */
+    double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
+    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add. Default 16384 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
@@ -238,6 +245,9 @@ typedef struct banyan_avenue_params {
     int32_t levels_jitter;   /* 0 .. 29: levels lowered by a uniform whole number in [0, this] (never below 1),
                                 so trees of mixed ages stand side by side. Default 0 */
     banyan_keyaki_params tree; /* every tree; seed, max_vertices, position and heading are set per tree */
+    /* The avenue's budget, over every tree and thread (docs/keyaki.md "Budget"). */
+    double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
+    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add, every thread's. Default 16384 */
 } banyan_avenue_params;
 
 BANYAN_API void banyan_avenue_params_init(banyan_avenue_params *p);
@@ -253,7 +263,8 @@ BANYAN_API banyan_status banyan_avenue_layout(const banyan_avenue_params *p, con
                                               uint32_t capacity, uint32_t *tree_count, banyan_error *err);
 
 /* Grows every tree of the avenue on `threads` threads (0 = all cores,
- * 1 .. 256 otherwise) and merges them into one mesh. The output does not
+ * 1 .. BANYAN_AVENUE_MAX_THREADS otherwise; fewer are used when the trees
+ * are few or large, so scratch memory does not multiply with them) and merges them into one mesh. The output does not
  * depend on the thread count. Tree i's vertices are contiguous; its parts
  * (bark, material 0; leaves, material 1) have group = i; attribute
  * tree_id = i. The skeletons are merged the same way. */
