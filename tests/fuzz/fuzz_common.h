@@ -21,6 +21,9 @@
  *                l u8 / 32 m, n u8 % 70, s u8 % 70.
  *   0xF4         the trunk line, raw: 6 doubles.
  *   0xF5         a control byte for the harness (threads, stepping).
+ *   0xF6         real size: the harness keeps the input's sizes (levels,
+ *                steps, growth points...) instead of shrinking them, and
+ *                relies on the run budget (fz_budget) to stop in time.
  *   others       skipped.
  * tests/fuzz/fuzz_seeds.c writes presets in this format. */
 #ifndef BANYAN_FUZZ_COMMON_H
@@ -38,7 +41,7 @@
 #define FZ_MAX_SEGS 256
 #define FZ_MAX_CONTROL 8
 
-enum { FZ_HOST_COMPACT = 0xF0, FZ_HOST_RAW, FZ_SEG_RAW, FZ_SEG_COMPACT, FZ_TRUNK, FZ_CONTROL };
+enum { FZ_HOST_COMPACT = 0xF0, FZ_HOST_RAW, FZ_SEG_RAW, FZ_SEG_COMPACT, FZ_TRUNK, FZ_CONTROL, FZ_REAL };
 
 typedef struct fz_input {
     banyan_box hosts[FZ_MAX_HOSTS];
@@ -49,6 +52,7 @@ typedef struct fz_input {
     int has_trunk;
     uint8_t control[FZ_MAX_CONTROL];
     int n_control;
+    int real; /* an FZ_REAL record: keep the input's sizes */
 } fz_input;
 
 typedef struct fz_reader {
@@ -201,6 +205,8 @@ static inline void fz_read(banyan_generator g, void *params, const uint8_t *data
         } else if (tag == FZ_CONTROL) {
             uint8_t c = fz_u8(&r);
             if (in->n_control < FZ_MAX_CONTROL) in->control[in->n_control++] = c;
+        } else if (tag == FZ_REAL) {
+            in->real = 1;
         }
     }
 }
@@ -279,5 +285,36 @@ static inline void fz_check(banyan_status s, const banyan_error *e, banyan_mesh 
 }
 
 static inline int32_t fz_clamp_i32(int32_t v, int32_t hi) { return v > hi ? hi : v; }
+
+/* ------------------------------------------------------------ run budget */
+
+/* Seconds one generator call may run before its budget stops it with
+ * BANYAN_E_LIMIT: well under tools/fuzz.sh's per-input limit (libFuzzer
+ * -timeout), which is for hangs the budget cannot see. */
+#define FZ_MAX_SECONDS "5"
+/* Resident memory a call may add: under libFuzzer's -rss_limit_mb 2048
+ * with ASan's own overhead on top. */
+#define FZ_MAX_MEMORY_MB "1024"
+/* Vertex cap of a real-size input: a real keyaki tree, ivy or root net
+ * fits; an avenue of many trees is refused after counting (the time and
+ * memory of building it under ASan are past the per-input limit). */
+#define FZ_REAL_MAX_VERTICES 2000000
+
+/* Sets the run budget on params of generator g when its table has it
+ * (max_seconds, max_memory_mb): by name, so the harness builds with and
+ * without those fields. Every harness calls it
+ * after reading its input, so the input cannot lift the budget. */
+static inline void fz_budget(banyan_generator g, void *params) {
+    banyan_error e;
+    if (banyan_param_find(g, "max_seconds")) banyan_param_set_text(g, params, "max_seconds", FZ_MAX_SECONDS, &e);
+    if (banyan_param_find(g, "max_memory_mb"))
+        banyan_param_set_text(g, params, "max_memory_mb", FZ_MAX_MEMORY_MB, &e);
+}
+
+/* Did the run budget stop the call? Then a repeat of it (another thread
+ * count, stepping against one shot) may end differently. */
+static inline int fz_budget_stop(banyan_status s, const banyan_error *e) {
+    return s == BANYAN_E_LIMIT && (strstr(e->message, "max_seconds") || strstr(e->message, "max_memory_mb"));
+}
 
 #endif

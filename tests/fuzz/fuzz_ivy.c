@@ -4,7 +4,8 @@
  * c >= 128, mesh in between - then the mesh must equal a one-shot
  * generation of as many steps - then free. Kept small: steps at most 80,
  * max_buds at most 5,000, candidates at most 16, max_vertices at most
- * 50,000. */
+ * 50,000; with an FZ_REAL record, the input's sizes under the run budget
+ * (max_vertices at most FZ_REAL_MAX_VERTICES). */
 #include "fuzz_common.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -14,10 +15,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     banyan_ivy_params_init(&p);
     fz_input in;
     fz_read(BANYAN_GEN_IVY, &p, data, size, &in);
-    p.steps = fz_clamp_i32(p.steps, 80);
-    p.max_buds = fz_clamp_i32(p.max_buds, 5000);
-    p.candidates = fz_clamp_i32(p.candidates, 16);
-    p.max_vertices = fz_clamp_i32(p.max_vertices, 50000);
+    if (!in.real) {
+        p.steps = fz_clamp_i32(p.steps, 80);
+        p.max_buds = fz_clamp_i32(p.max_buds, 5000);
+        p.candidates = fz_clamp_i32(p.candidates, 16);
+    }
+    p.max_vertices = fz_clamp_i32(p.max_vertices, in.real ? FZ_REAL_MAX_VERTICES : 50000);
+    fz_budget(BANYAN_GEN_IVY, &p);
     if (in.n_hosts == 0) {
         in.hosts[0] = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5); /* the CLI's wall */
         in.n_hosts = 1;
@@ -44,6 +48,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         s = banyan_ivy_step(iv, n, &e);
         if (s) {
             FZ_ASSERT(s == BANYAN_E_LIMIT || s == BANYAN_E_NOMEM, "step: %s", e.message);
+            fz_check_failure(s, &e, NULL);
             limited = 1;
             break;
         }
@@ -57,16 +62,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             s = banyan_ivy_mesh(iv, &m, &e);
             FZ_ASSERT(s == BANYAN_OK || s == BANYAN_E_LIMIT, "mesh: %s", e.message);
             fz_check(s, &e, m, max_v);
+            if (fz_budget_stop(s, &e)) limited = 1; /* the one shot below may end otherwise */
         }
     }
     /* Growing in pieces gives the plant grown at once (banyan/ivy.h). */
     if (!limited) {
         banyan_mesh *a = NULL, *b = NULL;
+        banyan_error eb;
         banyan_status sa = banyan_ivy_mesh(iv, &a, &e);
         banyan_ivy_params once = p;
         once.steps = grown;
-        banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &e);
-        FZ_ASSERT(sa == sb, "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
+        banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &eb);
+        FZ_ASSERT(sa == sb || fz_budget_stop(sa, &e) || fz_budget_stop(sb, &eb), "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
         if (sa == BANYAN_OK)
             FZ_ASSERT(banyan_mesh_hash(a) == banyan_mesh_hash(b), "%d steps in pieces differ from one shot", grown);
         banyan_mesh_free(a);

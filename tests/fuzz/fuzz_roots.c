@@ -2,7 +2,9 @@
  * parameter table) and hosts -> banyan_roots_generate_stats -> free.
  * Generation is kept small - max_vertices at most 50,000, moves at most
  * 5, growth_points at most 200 - since time, not memory, is the fuzzer's
- * budget; the code paths are the same as for large nets. */
+ * budget; the code paths are the same as for large nets. An input with an
+ * FZ_REAL record keeps its sizes (a preset's real net) under the run
+ * budget, max_vertices at most FZ_REAL_MAX_VERTICES. */
 #include "fuzz_common.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -12,9 +14,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     banyan_roots_params_init(&p);
     fz_input in;
     fz_read(BANYAN_GEN_ROOTS, &p, data, size, &in);
-    p.max_vertices = fz_clamp_i32(p.max_vertices, 50000);
-    p.moves = fz_clamp_i32(p.moves, 5);
-    p.growth_points = fz_clamp_i32(p.growth_points, 200);
+    p.max_vertices = fz_clamp_i32(p.max_vertices, in.real ? FZ_REAL_MAX_VERTICES : 50000);
+    if (!in.real) {
+        p.moves = fz_clamp_i32(p.moves, 5);
+        p.growth_points = fz_clamp_i32(p.growth_points, 200);
+    }
+    fz_budget(BANYAN_GEN_ROOTS, &p);
     if (in.n_hosts == 0 && !(in.n_control && in.control[0] & 1)) {
         in.hosts[0] = banyan_box_make(0, 0, 1, 0.3, 0.3, 1); /* a trunk, unless the input wants none */
         in.n_hosts = 1;

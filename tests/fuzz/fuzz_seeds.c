@@ -2,6 +2,8 @@
  * presets: each preset is applied to its generator's defaults and every
  * field that differs becomes a raw parameter record, every host a raw host
  * record, every segment and the trunk raw records (format: fuzz_common.h).
+ * Each preset gives two seeds: <name>, which the harness shrinks, and
+ * <name>.real with an FZ_REAL record, run at the preset's real size.
  * Also one seed of plain defaults per harness, and an ivy seed that steps.
  *   fuzz_seeds PRESET_DIR OUT_DIR   writes OUT_DIR/fuzz_<harness>/<name> */
 #define _DEFAULT_SOURCE
@@ -103,6 +105,10 @@ static void preset_seed(const char *out, const char *name, banyan_generator g, c
         }
     }
     write_seed(out, harness_of(g), name, &s);
+    char real[512];
+    snprintf(real, sizeof real, "%s.real", name);
+    put8(&s, FZ_REAL);
+    write_seed(out, harness_of(g), real, &s);
     free(s.b);
 }
 

@@ -5,7 +5,8 @@
  * each segment (its count must be banyan_segment_vertex_count), the batch
  * (it must match the single calls byte for byte), the line set (count,
  * then filled), the attachment check and the tube mesh (max_vertices at
- * most 50,000). */
+ * most 50,000; with an FZ_REAL record FZ_REAL_MAX_VERTICES, and the run
+ * budget). */
 #include "fuzz_common.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -21,7 +22,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     banyan_segments_params p;
     banyan_segments_params_init(&p);
     fz_read(BANYAN_GEN_SEGMENTS, &p, data, size, &in);
-    p.max_vertices = fz_clamp_i32(p.max_vertices, 50000);
+    p.max_vertices = fz_clamp_i32(p.max_vertices, in.real ? FZ_REAL_MAX_VERTICES : 50000);
+    fz_budget(BANYAN_GEN_SEGMENTS, &p);
     p.demo_segments = fz_clamp_i32(p.demo_segments, FZ_MAX_SEGS);
     banyan_error e;
     memset(&e, 0, sizeof e);
