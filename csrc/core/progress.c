@@ -113,12 +113,12 @@ int prog_finish(prog *g) {
 banyan_status prog_fail(const prog *g, banyan_error *err, const char *what) {
     if (g && g->cancelled == PROG_OVER_TIME)
         return banyan_fail(err, BANYAN_E_LIMIT,
-                           "%s stopped after %.2f s, past max_seconds = %g (%g .. %g); raise max_seconds "
+                           "%s stopped after %.2f s, past max_seconds = %g (%g .. %.0f); raise max_seconds "
                            "or ask for less work", what, g->over_value, g->max_seconds,
                            PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX);
     if (g && g->cancelled == PROG_OVER_MEMORY)
         return banyan_fail(err, BANYAN_E_LIMIT,
-                           "%s needs %.0f MB, past max_memory_mb = %g (%g .. %g); raise max_memory_mb "
+                           "%s needs %.0f MB, past max_memory_mb = %g (%.0f .. %.0f); raise max_memory_mb "
                            "or ask for less work", what, g->over_value, g->max_mb,
                            PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
     return banyan_fail(err, BANYAN_E_CANCELLED, "%s cancelled by the progress callback", what);

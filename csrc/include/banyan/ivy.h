@@ -115,7 +115,7 @@ typedef struct banyan_ivy_params {
      * together (step_seconds), and memory above what the process held at
      * banyan_ivy_create. */
     double max_seconds;         /* s, 0.01 .. 604800 [600] */
-    double max_memory_mb;       /* MB of resident memory, 16 .. 1048576 [16384] */
+    double max_memory_mb;       /* MB of resident memory, 16 .. 1048576 [8192] */
 } banyan_ivy_params;
 
 /* Fewest internodes per leading stem (start_stems) a plant must have

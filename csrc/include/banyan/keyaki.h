@@ -174,7 +174,7 @@ typedef struct banyan_keyaki_params {
        either the call stops with BANYAN_E_LIMIT naming it. In an avenue's `tree` they are not used: the
        avenue's own budget covers every tree. */
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
-    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add. Default 16384 */
+    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add. Default 8192 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
@@ -247,7 +247,7 @@ typedef struct banyan_avenue_params {
     banyan_keyaki_params tree; /* every tree; seed, max_vertices, position and heading are set per tree */
     /* The avenue's budget, over every tree and thread (docs/keyaki.md "Budget"). */
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
-    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add, every thread's. Default 16384 */
+    double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add, every thread's. Default 8192 */
 } banyan_avenue_params;
 
 BANYAN_API void banyan_avenue_params_init(banyan_avenue_params *p);

@@ -180,7 +180,7 @@ typedef struct banyan_segments_params {
     int32_t demo_segments;
     double demo_height;
     double max_seconds;   /* budget (docs/api.md, "Budgets"): s, 0.01 .. 604800 (600) */
-    double max_memory_mb; /* MB of resident memory above the process's at the call, 16 .. 1048576 (16384) */
+    double max_memory_mb; /* MB of resident memory above the process's at the call, 16 .. 1048576 (8192) */
 } banyan_segments_params;
 
 BANYAN_API void banyan_segments_params_init(banyan_segments_params *params);
