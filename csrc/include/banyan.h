@@ -230,8 +230,9 @@ BANYAN_API banyan_status banyan_group_localize(float *positions, uint32_t vertex
  * the lower first, edges numbered by the first corner that uses them;
  * *edge_count = their number, at most edge_capacity (index_count always
  * suffices). face_starts, when not NULL, gets index_count / 3 entries 0,
- * 3, 6, ... (each triangle's first corner). On failure the outputs'
- * contents are unspecified and *edge_count is 0. */
+ * 3, 6, ... (each triangle's first corner). Memory grows with
+ * index_count, not vertex_count (unused vertices cost nothing). On
+ * failure the outputs' contents are unspecified and *edge_count is 0. */
 BANYAN_API banyan_status banyan_triangle_edges(const uint32_t *indices, uint64_t index_count, uint32_t vertex_count,
                                                uint32_t *corner_edges, uint32_t *edges, uint64_t edge_capacity,
                                                uint64_t *edge_count, uint32_t *face_starts, banyan_error *err);
