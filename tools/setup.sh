@@ -15,7 +15,7 @@ cd "$here"
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc).
-packages=(build-essential cmake ninja-build pkg-config libtinygltf-dev libstb-dev libcjson-dev libembree-dev
+packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth)
@@ -33,6 +33,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# A comma-decimal locale for the locale tests (numbers must read the same
+# under it): de_DE.UTF-8, generated once.
+if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
+  sudo=""
+  [ "$(id -u)" = 0 ] || sudo="sudo"
+  echo "setup: generating the de_DE.UTF-8 locale"
+  $sudo localedef -i de_DE -f UTF-8 de_DE.UTF-8
 fi
 
 # The Khronos glTF validator, pinned in tests/gltf/package-lock.json.

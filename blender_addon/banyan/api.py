@@ -320,7 +320,8 @@ def preset_host_bounds(gen, preset):
 def _preset_has_hosts(text):
     import json
     try:
-        return bool(json.loads(text).get("hosts"))
+        # "hosts": [] counts as given: the library refuses an empty list.
+        return json.loads(text).get("hosts") is not None
     except (ValueError, AttributeError):
         return False
 

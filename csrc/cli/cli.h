@@ -19,7 +19,7 @@ typedef struct cli_job {
      * grows on it instead of `hosts`. With boxes only it stays NULL, so
      * box scenes take the box calls and keep their bytes. */
     const banyan_hosts *host_set;
-    int threads;                 /* --threads N, 0 = all cores */
+    int threads;                 /* --threads N, 0 = all cores, at most CLI_MAX_THREADS */
     /* A "\r<command> 42 %" line on stderr when it is a terminal, else
      * NULL; run() hands it to the library call (or calls it itself). */
     const banyan_progress *progress;
@@ -35,6 +35,10 @@ typedef struct cli_stats {
      * CLI_EXIT_WARNING. */
     char warning[512];
 } cli_stats;
+
+/* --threads range: the avenue's (banyan_avenue_generate), which checks
+ * it again. */
+#define CLI_MAX_THREADS BANYAN_AVENUE_MAX_THREADS
 
 /* Exit codes: 0 done, 1 refused or failed, 2 bad command line,
  * 3 written with a warning (docs/ivy.md, "Hosts and start"). */

@@ -7,7 +7,9 @@
 #include <string.h>
 
 #include "banyan.h"
+#include "cli.h"
 #include "core/atomic_file.h"
+#include "core/numparse.h"
 
 static const char *const kind_names[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
                                                          "ivy_stem"};
@@ -32,13 +34,9 @@ static int write_png(const char *dir, const char *name, const banyan_image *im) 
     return 0;
 }
 
-/* A decimal number of at most 18 digits (no sign, no trailing junk). */
-static int whole(const char *s) {
-    size_t n = strlen(s);
-    if (n == 0 || n > 18) return 0;
-    for (size_t i = 0; i < n; i++)
-        if (s[i] < '0' || s[i] > '9') return 0;
-    return 1;
+static int usage_textures(void) {
+    fprintf(stderr, "usage: banyan textures -o DIR [--size N] [--seed N]\n");
+    return 2;
 }
 
 int cli_textures_main(int argc, char **argv) {
@@ -49,17 +47,24 @@ int cli_textures_main(int argc, char **argv) {
         const char *a = argv[i];
         int has = i + 1 < argc;
         if ((!strcmp(a, "-o") || !strcmp(a, "--out")) && has) dir = argv[++i];
-        else if (!strcmp(a, "--size") && has && whole(argv[i + 1])) p.size = (int32_t)strtol(argv[++i], NULL, 10);
-        else if (!strcmp(a, "--seed") && has && whole(argv[i + 1])) p.seed = strtoull(argv[++i], NULL, 10);
-        else {
-            fprintf(stderr, "usage: banyan textures -o DIR [--size N] [--seed N]\n");
-            return 2;
-        }
+        else if (!strcmp(a, "--size") && has) {
+            long long n; /* the library checks the range, with its message */
+            if (!num_parse_int(argv[++i], 0, INT32_MAX, &n)) {
+                fprintf(stderr, "banyan textures: --size '%s' must be a whole number (a power of two in [64, 8192])\n",
+                        argv[i]);
+                return 2;
+            }
+            p.size = (int32_t)n;
+        } else if (!strcmp(a, "--seed") && has) {
+            if (!num_parse_u64(argv[++i], &p.seed)) {
+                fprintf(stderr, "banyan textures: --seed '%s' must be a whole number in [0, 2^64-1] (digits only)\n",
+                        argv[i]);
+                return 2;
+            }
+        } else
+            return usage_textures();
     }
-    if (!dir) {
-        fprintf(stderr, "usage: banyan textures -o DIR [--size N] [--seed N]\n");
-        return 2;
-    }
+    if (!dir) return usage_textures();
     /* The folder is checked before any texture is drawn. */
     char first[4096], why[4400];
     snprintf(first, sizeof first, "%s/%s_summer_color.png", dir, kind_names[0]);

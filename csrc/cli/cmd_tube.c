@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "core/numparse.h"
 
 typedef struct tube_demo_params {
     int32_t sides;
@@ -40,13 +41,12 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
 }
 
 static banyan_status set(void *params, const char *key, const char *value, banyan_error *err) {
-    char *end;
-    long v = strtol(value, &end, 10);
+    long long v;
     if (strcmp(key, "sides") != 0) {
         if (err) snprintf(err->message, sizeof err->message, "unknown tube parameter '%s' (only sides)", key);
         return BANYAN_E_UNKNOWN_KEY;
     }
-    if (*end || end == value || v < 3 || v > 256) {
+    if (!num_parse_int(value, 3, 256, &v)) {
         if (err) snprintf(err->message, sizeof err->message, "sides = '%s' must be a whole number within [3, 256]", value);
         return BANYAN_E_RANGE;
     }

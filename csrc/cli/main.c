@@ -19,6 +19,7 @@
 
 #include "cli.h"
 #include "core/atomic_file.h"
+#include "core/numparse.h"
 
 static double now_ms(void) {
     struct timespec t;
@@ -64,22 +65,32 @@ static int usage(FILE *f) {
     return f == stdout ? 0 : 2;
 }
 
-static char *read_file(const char *path, size_t *len) {
+/* The preset at path, malloc'd (*len bytes), or NULL with the reason in
+ * msg. Reading stops past the library's limit, so a huge file is refused
+ * without being read whole. */
+static char *read_preset(const char *path, size_t *len, char *msg, size_t cap) {
     FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    for (size_t r; buf && (r = fread(buf + n, 1, cap - n, f)) > 0;) {
-        n += r;
-        if (n == cap) {
-            char *b = cap < (64u << 20) ? realloc(buf, cap *= 2) : NULL;
-            if (!b) { free(buf); buf = NULL; }
-            else buf = b;
-        }
+    if (!f) {
+        snprintf(msg, cap, "cannot read preset %s: %s", path, strerror(errno));
+        return NULL;
     }
+    size_t max = BANYAN_PRESET_MAX_BYTES, n = 0, r;
+    char *buf = malloc(max + 1);
+    errno = 0;
+    while (buf && n <= max && (r = fread(buf + n, 1, max + 1 - n, f)) > 0) n += r;
+    int failed = ferror(f), e = errno;
     fclose(f);
-    *len = n;
-    return buf;
+    if (!buf) snprintf(msg, cap, "cannot read preset %s: out of memory", path);
+    else if (failed) snprintf(msg, cap, "cannot read preset %s: %s", path, e ? strerror(e) : "read error");
+    else if (n > max)
+        snprintf(msg, cap, "preset %s is larger than the %u-byte limit for presets (BANYAN_PRESET_MAX_BYTES)", path,
+                 BANYAN_PRESET_MAX_BYTES);
+    else {
+        *len = n;
+        return buf;
+    }
+    free(buf);
+    return NULL;
 }
 
 static void list_params(const cli_command *c) {
@@ -136,12 +147,11 @@ static int host_spec(const char *spec, char *path, size_t cap, double t[3]) {
     const char *at = strrchr(spec, '@');
     size_t n = strlen(spec);
     if (at && at[1] && strchr("+-.0123456789", at[1])) {
-        char *end;
         const char *q = at + 1;
         for (int k = 0; k < 3; k++) {
-            t[k] = strtod(q, &end);
-            if (end == q || !(t[k] >= -1e6 && t[k] <= 1e6) || (k < 2 && *end != ',') || (k == 2 && *end))
-                return 0;
+            size_t len = num_scan_double(q, &t[k]);
+            const char *end = q + len;
+            if (!len || !(t[k] >= -1e6 && t[k] <= 1e6) || (k < 2 && *end != ',') || (k == 2 && *end)) return 0;
             q = end + 1;
         }
         n = (size_t)(at - spec);
@@ -228,28 +238,31 @@ int main(int argc, char **argv) {
         else if (!strcmp(a, "--set") && has_val) sets[n_sets++] = argv[++i];
         else if (!strcmp(a, "--host") && has_val) host_args[n_host_args++] = argv[++i];
         else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) out_path = argv[++i];
-        else if (!strcmp(a, "--threads") && has_val) job.threads = atoi(argv[++i]);
+        else if (!strcmp(a, "--threads") && has_val) {
+            const char *v = argv[++i];
+            long long t;
+            if (!num_parse_int(v, 0, CLI_MAX_THREADS, &t)) {
+                fprintf(stderr, "banyan %s: --threads '%s' must be a whole number in [0, %d] (0: all cores)\n",
+                        cmd->name, v, CLI_MAX_THREADS);
+                goto bad_flag;
+            }
+            job.threads = (int)t;
+        }
         else if (!strcmp(a, "--stats")) stats = 1;
         else if (!strcmp(a, "--textures") && has_val) {
             const char *v = argv[++i];
             if (strcmp(v, "on") && strcmp(v, "off")) {
                 fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
-                free(sets);
-                free(host_args);
-                return 2;
+                goto bad_flag;
             }
             gltf_opt.textures = !strcmp(v, "on");
         } else if (!strcmp(a, "--texture-size") && has_val) {
             const char *v = argv[++i];
-            char *end = NULL;
-            errno = 0;
-            long n = strtol(v, &end, 10);
-            if (errno || end == v || *end || n < 64 || n > 8192 || (n & (n - 1))) {
+            long long n;
+            if (!num_parse_int(v, 64, 8192, &n) || (n & (n - 1))) {
                 fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
                         v);
-                free(sets);
-                free(host_args);
-                return 2;
+                goto bad_flag;
             }
             gltf_opt.texture_size = (int32_t)n;
         }
@@ -260,6 +273,11 @@ int main(int argc, char **argv) {
             free(host_args);
             return usage(stderr);
         }
+        continue;
+    bad_flag:
+        free(sets);
+        free(host_args);
+        return 2;
     }
     if (list) {
         list_params(cmd);
@@ -292,9 +310,10 @@ int main(int argc, char **argv) {
     cmd->init(params);
     banyan_generator g = (banyan_generator)cmd->generator;
     if (job.preset_path) {
-        text = read_file(job.preset_path, &job.preset_len);
+        char why[4200];
+        text = read_preset(job.preset_path, &job.preset_len, why, sizeof why);
         if (!text) {
-            fprintf(stderr, "banyan %s: cannot read preset %s: %s\n", cmd->name, job.preset_path, strerror(errno));
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, why);
             goto out;
         }
         job.preset_text = text;

@@ -127,6 +127,34 @@ static int by_buckets(const uint32_t *indices, uint32_t n, uint32_t vertex_count
     return 0;
 }
 
+static int u32_cmp(const void *pa, const void *pb) {
+    uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
+    return (a > b) - (a < b);
+}
+
+/* The vertices the n corners use, in order, into *ids (*m of them) and
+ * each corner's rank among them into *ranked: for a vertex_count far
+ * above the corners (one triangle of a 1e9-vertex mesh), which the
+ * per-vertex tables of by_lists and by_buckets would be sized by. The
+ * ranks keep the vertices' order, so lower stays lower and the edges come
+ * out the same. 0 when there is no memory. */
+static int compact(const uint32_t *indices, uint32_t n, uint32_t **ranked, uint32_t **ids, uint32_t *m) {
+    *ranked = malloc((size_t)n * sizeof **ranked + 1);
+    *ids = malloc((size_t)n * sizeof **ids + 1);
+    if (!*ranked || !*ids) return 0;
+    memcpy(*ids, indices, (size_t)n * sizeof **ids);
+    qsort(*ids, n, sizeof **ids, u32_cmp);
+    uint32_t u = 0;
+    for (uint32_t k = 0; k < n; k++)
+        if (u == 0 || (*ids)[u - 1] != (*ids)[k]) (*ids)[u++] = (*ids)[k];
+    for (uint32_t k = 0; k < n; k++) {
+        const uint32_t *hit = bsearch(&indices[k], *ids, u, sizeof **ids, u32_cmp);
+        (*ranked)[k] = (uint32_t)(hit - *ids);
+    }
+    *m = u;
+    return 1;
+}
+
 banyan_status banyan_triangle_edges(const uint32_t *indices, uint64_t index_count, uint32_t vertex_count,
                                     uint32_t *corner_edges, uint32_t *edges, uint64_t edge_capacity,
                                     uint64_t *edge_count, uint32_t *face_starts, banyan_error *err) {
@@ -146,9 +174,24 @@ banyan_status banyan_triangle_edges(const uint32_t *indices, uint64_t index_coun
                                vertex_count);
     uint64_t ne = 0;
     int nomem = 0;
-    int rc = by_lists(indices, n, vertex_count, corner_edges, edges, edge_capacity, &ne, 16 * (uint64_t)n + 4096,
-                      &nomem);
-    if (rc == 1 || nomem) rc = by_buckets(indices, n, vertex_count, corner_edges, edges, edge_capacity, &ne, &nomem);
+    /* Tables per vertex cost 4 to 8 bytes a vertex: past twice the corners
+     * (plus some slack for small meshes) number the used vertices instead,
+     * so memory follows index_count whatever vertex_count says. */
+    uint32_t *ranked = NULL, *ids = NULL, used = vertex_count;
+    const uint32_t *idx = indices;
+    if ((uint64_t)vertex_count > 2 * (uint64_t)n + 4096) {
+        nomem = !compact(indices, n, &ranked, &ids, &used);
+        idx = ranked;
+    }
+    int rc = 0;
+    if (!nomem) {
+        rc = by_lists(idx, n, used, corner_edges, edges, edge_capacity, &ne, 16 * (uint64_t)n + 4096, &nomem);
+        if (rc == 1 || nomem) rc = by_buckets(idx, n, used, corner_edges, edges, edge_capacity, &ne, &nomem);
+    }
+    if (ids && !nomem && rc == 0)
+        for (uint64_t e = 0; e < 2 * ne; e++) edges[e] = ids[edges[e]];
+    free(ranked);
+    free(ids);
     if (nomem) return banyan_fail(err, BANYAN_E_NOMEM, "no memory for the edges of %u corners", n);
     if (rc == 2)
         return banyan_fail(err, BANYAN_E_RANGE, "the triangles have more than edge_capacity = %llu edges",

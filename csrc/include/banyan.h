@@ -15,7 +15,9 @@
  *     leaks nothing.
  *   - Ownership: a banyan_mesh returned through `banyan_mesh **out` belongs
  *     to the caller, who frees it with banyan_mesh_free(). Nothing else the
- *     library returns needs freeing unless its doc says so.
+ *     library returns needs freeing unless its doc says so. Every *_free
+ *     accepts NULL (and does nothing); freeing a handle twice, or using it
+ *     after it is freed, is undefined behaviour, as with free().
  *   - No global state: every call is reentrant and thread-safe on distinct
  *     arguments. The same params and seed give byte-identical output.
  */
@@ -230,8 +232,9 @@ BANYAN_API banyan_status banyan_group_localize(float *positions, uint32_t vertex
  * the lower first, edges numbered by the first corner that uses them;
  * *edge_count = their number, at most edge_capacity (index_count always
  * suffices). face_starts, when not NULL, gets index_count / 3 entries 0,
- * 3, 6, ... (each triangle's first corner). On failure the outputs'
- * contents are unspecified and *edge_count is 0. */
+ * 3, 6, ... (each triangle's first corner). Memory grows with
+ * index_count, not vertex_count (unused vertices cost nothing). On
+ * failure the outputs' contents are unspecified and *edge_count is 0. */
 BANYAN_API banyan_status banyan_triangle_edges(const uint32_t *indices, uint64_t index_count, uint32_t vertex_count,
                                                uint32_t *corner_edges, uint32_t *edges, uint64_t edge_capacity,
                                                uint64_t *edge_count, uint32_t *face_starts, banyan_error *err);
@@ -327,8 +330,13 @@ BANYAN_API banyan_status banyan_params_check(banyan_generator g, const void *par
  *                  | "rotation_euler_deg": [rx,ry,rz]    (optional, XYZ) }
  *                | { "mesh": "file.glb", ... } (banyan_preset_host_set) ] }
  * Unknown keys at any level, wrong types and values out of range are
- * refused; messages start with "<source>:<line>:" where known. */
+ * refused; messages start with "<source>:<line>:" where known. A list key
+ * ("hosts", "segments") that is given must not be empty: leave the key
+ * out for the generator's default. A text longer than
+ * BANYAN_PRESET_MAX_BYTES is refused. Numbers are read the same whatever
+ * the process locale. */
 #define BANYAN_PRESET_SCHEMA 1
+#define BANYAN_PRESET_MAX_BYTES (4u << 20)
 #define BANYAN_MAX_HOSTS 256
 
 /* Applies a preset's "params" to `params` (which should hold defaults from

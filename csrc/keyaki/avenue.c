@@ -124,6 +124,7 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
                            per_row * p->rows, BANYAN_AVENUE_MAX_TREES);
     }
     uint32_t n_row = (uint32_t)per_row, total = 0;
+    const banyan_param_info *trunk = banyan_param_find(BANYAN_GEN_KEYAKI, "trunk_length");
     for (int row = 0; row < p->rows; row++) {
         double shift = row == 1 && p->stagger ? 0.5 * step : 0.0;
         double offset = p->rows == 2 ? (row == 0 ? 0.5 : -0.5) * p->row_offset : 0.0;
@@ -141,7 +142,10 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
             pcg32 r;
             pcg32_seed(&r, p->seed + i, AVENUE_STREAM_JITTER);
             t->heading = rng_range(&r, -p->heading_jitter, p->heading_jitter);
-            t->trunk_length = p->tree.trunk_length * (1.0 + rng_range(&r, -p->height_jitter, p->height_jitter));
+            /* Jittered within the trunk's own range, so that tree.trunk_length
+             * at its min or max still gives valid trees. */
+            double h = p->tree.trunk_length * (1.0 + rng_range(&r, -p->height_jitter, p->height_jitter));
+            t->trunk_length = h < trunk->min ? trunk->min : h > trunk->max ? trunk->max : h;
             double jr = p->position_jitter * sqrt(rng_uniform(&r)), ja = 2.0 * BANYAN_PI * rng_uniform(&r);
             v3 at, left;
             path_at(&w, sdist, &at, &left);

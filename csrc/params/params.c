@@ -2,13 +2,13 @@
 #include "params.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../core/error.h"
+#include "../core/numparse.h"
 
 static const char *const generator_names[BANYAN_GEN_COUNT] = {"roots", "keyaki", "avenue", "ivy", "segments"};
 
@@ -125,6 +125,21 @@ banyan_status param_assign(const banyan_param_info *info, void *params, const do
     return BANYAN_OK;
 }
 
+/* [+-]nan, [+-]inf or [+-]infinity (any case) at s: its length and value,
+ * else 0. */
+static size_t nonfinite_word(const char *s, double *out) {
+    size_t i = s[0] == '+' || s[0] == '-';
+    static const char *const words[] = {"infinity", "inf", "nan"};
+    for (int w = 0; w < 3; w++) {
+        size_t n = strlen(words[w]), k = 0;
+        while (k < n && tolower((unsigned char)s[i + k]) == words[w][k]) k++;
+        if (k < n) continue;
+        *out = w < 2 ? (s[0] == '-' ? -INFINITY : INFINITY) : NAN;
+        return i + n;
+    }
+    return 0;
+}
+
 static banyan_status unknown_key(banyan_generator g, const char *key, banyan_error *err) {
     return banyan_fail(err, BANYAN_E_UNKNOWN_KEY, "unknown %s parameter '%s' (see `banyan %s --list`)",
                        banyan_generator_name(g) ? banyan_generator_name(g) : "?", key,
@@ -152,28 +167,30 @@ banyan_status banyan_param_set_text(banyan_generator g, void *params, const char
         vals[0] = idx;
         n = 1;
     } else if (info->type == BANYAN_PT_SEED) {
-        char *end;
-        errno = 0;
-        unsigned long long s = strtoull(value, &end, 10);
-        if (errno || end == value || *end || value[0] == '-')
-            return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' must be a whole number in [0, 2^64-1]", key, value);
-        memcpy((char *)params + info->offset, &(uint64_t){s}, sizeof(uint64_t));
+        uint64_t seed;
+        if (!num_parse_u64(value, &seed))
+            return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' must be a whole number in [0, 2^64-1] (digits only)",
+                               key, value);
+        memcpy((char *)params + info->offset, &seed, sizeof seed);
         return BANYAN_OK;
     } else {
+        /* Decimal numbers in the C locale's spelling, comma separated
+         * (spaces allowed after a comma); "nan" and "inf" are read so that
+         * the range check can say the value must be finite. */
         const char *p = value;
         for (;;) {
-            char *end;
-            double v = strtod(p, &end);
-            /* strtod also reads hexadecimal ("0x10"); parameters are decimal. */
-            int hex = 0;
-            for (const char *q = p; q < end; q++) hex |= *q == 'x' || *q == 'X';
-            if (end == p || hex)
-                return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' is not a decimal number%s", key, value,
-                                   components(info->type) > 1 ? " list like 1,2,3" : "");
             if (n >= 4) return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' has too many numbers", key, value);
-            vals[n++] = v;
-            while (isspace((unsigned char)*end)) end++;
-            if (*end == ',') { p = end + 1; continue; }
+            size_t len = num_scan_double(p, &vals[n]);
+            if (!len) len = nonfinite_word(p, &vals[n]);
+            if (!len)
+                return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' is not a decimal number%s", key, value,
+                                   components(info->type) > 1 ? " list like 1,2,3" : " like 0.5");
+            n++;
+            const char *end = p + len;
+            if (*end == ',') {
+                for (p = end + 1; *p == ' '; p++) {}
+                continue;
+            }
             if (*end) return banyan_fail(err, BANYAN_E_TYPE, "%s = '%s' has trailing text '%s'", key, value, end);
             break;
         }

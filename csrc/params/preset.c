@@ -15,8 +15,6 @@
 #include "../core/vec.h"
 #include "params.h"
 
-/* Presets are small; a larger text is a mistake, not a preset. */
-#define PRESET_MAX_BYTES (4u << 20)
 #define PRESET_MAX_DEPTH 16
 
 int preset_line_at(const char *text, size_t len, size_t offset) {
@@ -124,9 +122,9 @@ banyan_status preset_parse(const char *text, size_t len, const char *source, cJS
     if (!source) source = "<preset>";
     if (!text) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s: text is NULL", source);
     if (len == 0) return banyan_fail(err, BANYAN_E_PARSE, "%s: the file is empty; a preset is a JSON object", source);
-    if (len > PRESET_MAX_BYTES)
+    if (len > BANYAN_PRESET_MAX_BYTES)
         return banyan_fail(err, BANYAN_E_PARSE, "%s: %zu bytes is over the %u-byte preset limit", source, len,
-                           PRESET_MAX_BYTES);
+                           BANYAN_PRESET_MAX_BYTES);
     banyan_status s = prescan(text, len, source, err);
     if (s) return s;
     const char *end = NULL;
@@ -411,6 +409,14 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
     return BANYAN_OK;
 }
 
+/* An explicit "hosts": [] would otherwise read as no key at all and grow
+ * on the generator's default hosts: refuse it (hosts may be NULL). */
+static banyan_status not_empty(const cJSON *hosts, const char *w, banyan_error *err) {
+    if (!hosts || hosts->child) return BANYAN_OK;
+    return banyan_fail(err, BANYAN_E_NO_HOSTS, "%shosts is an empty list; give at least one host or leave the key out "
+                       "for the default hosts", w);
+}
+
 banyan_status banyan_preset_hosts(const char *text, size_t length, const char *source, banyan_box *out, uint32_t cap,
                                   uint32_t *count, banyan_error *err) {
     if (!count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is NULL");
@@ -425,6 +431,7 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
     where(w, sizeof w, source, text, length, "hosts");
     if (hosts && !cJSON_IsArray(hosts)) {
         s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes", w);
+    } else if ((s = not_empty(hosts, w, err))) {
     } else {
         uint32_t n = (uint32_t)cJSON_GetArraySize(hosts);
         uint32_t i = 0;
@@ -464,6 +471,7 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
         s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes and meshes", w);
         goto done;
     }
+    if ((s = not_empty(hosts, w, err))) goto done;
     if ((uint64_t)n + n_extra > BANYAN_MAX_HOSTS) {
         s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts (%u in the preset, %u more) is more than the %u allowed", w,
                         n + n_extra, n, n_extra, BANYAN_MAX_HOSTS);

@@ -36,7 +36,7 @@ void roots_net_free(roots_net *net) {
     memset(net, 0, sizeof *net);
 }
 
-static banyan_status check_params(const banyan_roots_params *p, banyan_error *err) {
+banyan_status roots_params_check(const banyan_roots_params *p, banyan_error *err) {
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     /* The ones the issue names first, with messages of their own. */
     if (isnan(p->radius) || !(p->radius > 0))
@@ -89,7 +89,7 @@ static double host_distance(const roots_world *w, uint32_t h, v3 p, double cap) 
 /* The box entry points' checks, then their box-only host set. */
 static banyan_status box_hosts(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
                                banyan_hosts **H, banyan_error *err) {
-    banyan_status s = check_params(p, err);
+    banyan_status s = roots_params_check(p, err);
     if (s) return s;
     if (n_hosts == 0)
         return banyan_fail(err, BANYAN_E_NO_HOSTS,
@@ -131,7 +131,7 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
 static banyan_status build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net, prog *g,
                                  banyan_error *err) {
     memset(net, 0, sizeof *net);
-    banyan_status s = check_params(p, err);
+    banyan_status s = roots_params_check(p, err);
     if (s) return s;
     if (!hosts)
         return banyan_fail(err, BANYAN_E_NO_HOSTS,

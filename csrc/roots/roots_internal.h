@@ -228,4 +228,8 @@ static inline int roots_slot_open(const roots_net *net, const banyan_roots_param
 /* Per-entity random streams (pcg32_seed's stream argument). */
 enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000 };
 
+/* The params checks of banyan_roots_generate: the table, then the rules
+ * that tie fields together (generate.c). */
+banyan_status roots_params_check(const banyan_roots_params *p, banyan_error *err);
+
 #endif

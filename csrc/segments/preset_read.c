@@ -235,6 +235,11 @@ banyan_status banyan_segments_preset_read(const char *text, size_t length, const
         goto done;
     }
     uint32_t n = (uint32_t)cJSON_GetArraySize(list);
+    if (n == 0) { /* read as no list, it would grow the random demo tree */
+        s = banyan_fail(err, BANYAN_E_RANGE, "%s:%d: segments is an empty list; give at least one segment or leave "
+                        "the key out for the random tree of the params", source, preset_line_at(text, length, r.list));
+        goto done;
+    }
     if (n > BANYAN_SEGMENTS_MAX_COUNT) {
         s = banyan_fail(err, BANYAN_E_RANGE, "%s:%d: %u segments is more than the %u allowed", source,
                         preset_line_at(text, length, r.list), n, BANYAN_SEGMENTS_MAX_COUNT);

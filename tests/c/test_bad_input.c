@@ -633,6 +633,17 @@ static void null_cases(void) {
         "sides", banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "sides", "4294967304", &e), rp.sides == 8);
     RUN("common", "banyan_param_set_text", "wrong type", "seed = '-1'", BANYAN_E_TYPE, "seed",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", "-1", &e), 1);
+    /* Issue 21: whole tokens in the C locale's spelling, nothing around them. */
+    RUN("common", "banyan_param_set_text", "wrong type", "seed = ' -1' (a space before)", BANYAN_E_TYPE, "seed",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", " -1", &e), 1);
+    RUN("common", "banyan_param_set_text", "wrong type", "seed = '+1'", BANYAN_E_TYPE, "seed",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", "+1", &e), 1);
+    RUN("common", "banyan_param_set_text", "wrong type", "radius = '0,5' (a decimal comma)", BANYAN_E_TYPE, "radius",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "radius", "0,5", &e), rp.radius == 0.8);
+    RUN("common", "banyan_param_set_text", "wrong type", "radius = ' 0.5' (a space before)", BANYAN_E_TYPE, "radius",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "radius", " 0.5", &e), rp.radius == 0.8);
+    RUN("common", "banyan_param_set_text", "wrong type", "radius = '0.5 ' (a space after)", BANYAN_E_TYPE, "radius",
+        banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "radius", "0.5 ", &e), rp.radius == 0.8);
     RUN("common", "banyan_param_set_text", "wrong type", "seed = '18446744073709551616' (2^64)", BANYAN_E_TYPE, "seed",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", "18446744073709551616", &e), 1);
     RUN("common", "banyan_param_set_text", "wrong type", "germination = '1,2' (two of three)", BANYAN_E_TYPE,
@@ -1013,6 +1024,9 @@ static void preset_cases(void) {
         {HOSTS, "unknown key", "host key 'size'", "{\"hosts\": [{\"half\": [1,1,1],\n\"size\": 2}]}", NULL, 0,
          BANYAN_E_TYPE, "hosts[0].size"},
         {HOSTS, "wrong type", "hosts is an object", "{\"hosts\": {}}", NULL, 0, BANYAN_E_TYPE, "array"},
+        /* Issue 21: an explicit empty list is not the default hosts. */
+        {HOSTS, "empty list", "hosts is []", "{\"hosts\": []}", NULL, 0, BANYAN_E_NO_HOSTS,
+         "t.json:1: hosts is an empty list"},
         {HOSTS, "wrong type", "host without half", "{\"hosts\": [{\"center\": [0,0,0]}]}", NULL, 0, BANYAN_E_TYPE,
          "needs \"half\""},
         {HOSTS, "zero", "host half[1] = 0", "{\"hosts\": [{\"half\": [1, 0, 1]}]}", NULL, 0, BANYAN_E_BAD_HOST,
@@ -1113,6 +1127,8 @@ static void preset_cases(void) {
          BANYAN_E_PARSE, "needs \"s\""},
         {"wrong type", "trunk without end", "{\"trunk\": {\"start\": [0,0,0]}}", BANYAN_E_TYPE, "trunk"},
         {"unknown key", "top-level 'segmnets'", "{\"segmnets\": []}", BANYAN_E_UNKNOWN_KEY, "segmnets"},
+        /* Issue 21: an explicit empty list is not the random demo tree. */
+        {"empty list", "segments is []", "{\"segments\":\n[]}", BANYAN_E_RANGE, "t.json:2: segments is an empty list"},
     };
     for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
         size_t len = strlen(S[i].text);

@@ -2,8 +2,13 @@
  * fans and degenerate triangles included) and on a swept tube, every
  * corner's edge joins that corner and the next, edges are distinct pairs
  * with the lower vertex first, each is used, they are numbered by first use
- * and their number matches a sort-based count; bad input is refused. */
+ * and their number matches a sort-based count; bad input is refused.
+ * Memory follows the corners, not vertex_count: one triangle of a
+ * 1e9-vertex mesh runs under a 256 MB address-space cap, and a sparse list
+ * gives the same edges with a vertex_count far above its indices. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <string.h>
 
 #include <stdio.h>
@@ -162,6 +167,82 @@ static void refused(void) {
           "index_count past 32 bits");
 }
 
+/* Caps the address space at what the test has now plus 256 MB, so that
+ * tables sized by vertex_count (a regression) fail with NOMEM instead of
+ * taking gigabytes. 1 when capped (not under the sanitizers, which
+ * reserve terabytes of shadow up front); uncap with the saved limit. */
+static int cap_memory(struct rlimit *old) {
+    int capped = 0;
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+    unsigned long pages = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f && fscanf(f, "%lu", &pages) == 1 && getrlimit(RLIMIT_AS, old) == 0) {
+        struct rlimit cap = {(rlim_t)pages * 4096 + (256u << 20), old->rlim_max};
+        capped = setrlimit(RLIMIT_AS, &cap) == 0;
+    }
+    if (f) fclose(f);
+#else
+    (void)old;
+#endif
+    return capped;
+}
+
+/* The same indices with vertex_count just enough and far above: the
+ * outputs are equal (the second numbers the used vertices first). */
+static void sparse(void) {
+    struct rlimit old;
+    int capped = cap_memory(&old);
+    pcg32 r;
+    pcg32_seed(&r, 11, 1);
+    for (int round = 0; round < 12; round++) {
+        uint32_t nv = 3 + rng_below(&r, round < 6 ? 12 : 3000), n = 3 * (1 + rng_below(&r, 3000));
+        uint32_t *idx = malloc(sizeof(uint32_t) * n), *ce[2], *ed[2];
+        uint64_t ne[2] = {0, 0};
+        banyan_error err;
+        for (int k = 0; k < 2; k++) {
+            ce[k] = malloc(sizeof(uint32_t) * n);
+            ed[k] = malloc(sizeof(uint32_t) * 2 * n);
+        }
+        if (!idx || !ce[0] || !ce[1] || !ed[0] || !ed[1]) abort();
+        for (uint32_t k = 0; k < n; k++) idx[k] = rng_below(&r, nv);
+        CHECK(banyan_triangle_edges(idx, n, nv, ce[0], ed[0], n, &ne[0], NULL, &err) == BANYAN_OK, "%s", err.message);
+        CHECK(banyan_triangle_edges(idx, n, UINT32_MAX, ce[1], ed[1], n, &ne[1], NULL, &err) == BANYAN_OK, "%s",
+              err.message);
+        CHECK(ne[0] == ne[1] && !memcmp(ce[0], ce[1], sizeof(uint32_t) * n) &&
+                  !memcmp(ed[0], ed[1], sizeof(uint32_t) * 2 * ne[0]),
+              "sparse %d: %llu and %llu edges, or other edges with vertex_count 2^32-1", round,
+              (unsigned long long)ne[0], (unsigned long long)ne[1]);
+        /* spread over the whole 32-bit range, crowded fans included */
+        for (uint32_t k = 0; k < n; k++) idx[k] = idx[k] * (UINT32_MAX / nv);
+        char what[64];
+        snprintf(what, sizeof what, "spread %d (%u corners)", round, n);
+        check_edges(what, idx, n, UINT32_MAX);
+        for (int k = 0; k < 2; k++) {
+            free(ce[k]);
+            free(ed[k]);
+        }
+        free(idx);
+    }
+    if (capped) setrlimit(RLIMIT_AS, &old);
+}
+
+/* One triangle of a 1e9-vertex mesh (3.9 GB of tables before issue 21)
+ * within 256 MB more address space than the test has. */
+static void one_triangle_of_many(void) {
+    const uint32_t tri[3] = {999999999u, 7, 500000000u};
+    uint32_t ce[3], ed[6];
+    uint64_t ne = 0;
+    banyan_error err;
+    struct rlimit old;
+    int capped = cap_memory(&old);
+    banyan_status st = banyan_triangle_edges(tri, 3, 1000000000u, ce, ed, 3, &ne, NULL, &err);
+    if (capped) setrlimit(RLIMIT_AS, &old);
+    CHECK(st == BANYAN_OK && ne == 3 && ed[0] == 7 && ed[1] == 999999999u && ed[2] == 7 && ed[3] == 500000000u &&
+              ed[4] == 500000000u && ed[5] == 999999999u && ce[0] == 0 && ce[1] == 1 && ce[2] == 2,
+          "one triangle of 1e9 vertices%s: %s %s", capped ? " (256 MB cap)" : "", banyan_status_name(st),
+          err.message);
+}
+
 int main(int argc, char **argv) {
     (void)argc;
     (void)argv;
@@ -169,5 +250,7 @@ int main(int argc, char **argv) {
     random_lists();
     tube();
     refused();
+    sparse();
+    one_triangle_of_many();
     return check_done("test_mesh_edges");
 }

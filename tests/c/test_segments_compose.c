@@ -415,8 +415,13 @@ int main(int argc, char **argv) {
     CHECK(banyan_preset_apply(BANYAN_GEN_SEGMENTS, &p, bad_text, strlen(bad_text), "y.json", &err) == BANYAN_E_UNKNOWN_KEY,
           "a misspelt key passed");
     int32_t ht = 9;
-    CHECK(banyan_segments_preset_read(ok_text, strlen(ok_text), "y.json", segs, 4, &n, trunk, &ht, &err) == BANYAN_OK &&
-              n == 0 && ht == 1 && trunk[5] == 1, "empty list with trunk");
+    /* An empty list is refused (it would read as none: the demo tree). */
+    CHECK(banyan_segments_preset_read(ok_text, strlen(ok_text), "y.json", segs, 4, &n, trunk, &ht, &err) ==
+                  BANYAN_E_RANGE && n == 0 && ht == 0 && strstr(err.message, "y.json:1: segments is an empty list"),
+          "empty list with trunk: %s", err.message);
+    const char *trunk_only = "{\"generator\": \"segments\", \"trunk\": {\"start\": [0,0,0], \"end\": [0,0,1]}}";
+    CHECK(banyan_segments_preset_read(trunk_only, strlen(trunk_only), "y.json", segs, 4, &n, trunk, &ht, &err) ==
+                  BANYAN_OK && n == 0 && ht == 1 && trunk[5] == 1, "no list, a trunk: %s", err.message);
     const char *two = "{\"segments\": [{\"S\": [0,0,0], \"A\": [1,0,0], \"l\": 1, \"n\": 2, \"s\": 1},"
                       "{\"S\": [1,0,0], \"A\": [0,0,1], \"l\": 2, \"n\": 63, \"s\": 64}]}";
     CHECK(banyan_segments_preset_read(two, strlen(two), "z.json", segs, 1, &n, NULL, NULL, &err) == BANYAN_E_RANGE,

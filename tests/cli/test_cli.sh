@@ -30,7 +30,9 @@ expect 1 "past max_seconds = 1" -- "$bin" roots --set growth_points=10000 --set 
 expect 0 "keyaki_leaf_summer_color.png" -- "$bin" textures -o "$out" --size 64
 expect 1 "size = 1000 must be a power of two within [64, 8192]" -- "$bin" textures -o "$out" --size 1000
 expect 2 "usage: banyan textures" -- "$bin" textures --size 64
-expect 2 "usage: banyan textures" -- "$bin" textures -o "$out" --size big
+expect 2 "--size 'big' must be a whole number" -- "$bin" textures -o "$out" --size big
+expect 2 "--size ' 64' must be a whole number" -- "$bin" textures -o "$out" --size " 64"
+expect 2 "--seed '-1' must be a whole number in [0, 2^64-1]" -- "$bin" textures -o "$out" --seed -1
 # Every generator: defaults write a glb, stats are JSON, --list documents
 # the table, and --set refuses unknown keys and out-of-range values.
 for g in roots keyaki avenue ivy segments; do
@@ -144,5 +146,44 @@ if command -v script >/dev/null; then
     else fail=$((fail+1)); echo "FAIL: no progress line for $g on a terminal: $msg"; fi
   done
 fi
+# Strict flags (issue 21): the whole token a base-10 number in range, the
+# range in the message; no spaces, no sign where negative is invalid.
+expect 2 "--threads 'abc' must be a whole number in [0, 64]" -- "$bin" avenue --threads abc
+expect 2 "--threads '-1' must be a whole number in [0, 64]" -- "$bin" avenue --threads -1
+expect 2 "--threads ' 2' must be a whole number in [0, 64]" -- "$bin" avenue --threads " 2"
+expect 2 "--threads '2x' must be a whole number in [0, 64]" -- "$bin" avenue --threads 2x
+expect 2 "--threads '65' must be a whole number in [0, 64]" -- "$bin" avenue --threads 65
+expect 0 '"command": "avenue"' -- "$bin" avenue --threads 1 --set tree.levels=4 --stats
+expect 1 "--seed: seed = ' -1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed " -1"
+expect 1 "--seed: seed = '-1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed -1
+expect 1 "--seed: seed = '18446744073709551616' must be a whole number" -- "$bin" roots --seed 18446744073709551616
+expect 2 "--texture-size ' 64' must be a power of two in [64, 8192]" -- "$bin" tube --texture-size " 64"
+expect 1 "sides = '+8' must be a whole number within [3, 256]" -- "$bin" tube --set sides=+8
+expect 1 "radius = ' 0.5' is not a decimal number" -- "$bin" roots --set "radius= 0.5"
+expect 1 "radius needs 1 number, got 2" -- "$bin" roots --set radius=0,5
+expect 1 "radius = '0x1' has trailing text 'x1'" -- "$bin" roots --set radius=0x1
+expect 1 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$out/x.glb@1,2,0x3"
+# Numbers read the same under a comma-decimal locale (the CLI itself keeps
+# the C locale; the library must not care either way).
+if locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
+  expect 0 '"triangles"' -- env LC_ALL=de_DE.UTF-8 "$bin" roots --set radius=0.5 --set forward_max=2.5 --stats
+else
+  echo "SKIP: de_DE.UTF-8 is not installed (tools/setup.sh generates it)"
+fi
+# Explicit empty lists are refused, naming the key; a missing key keeps
+# the default.
+printf '{"generator": "roots", "hosts": []}' > "$out/cli_empty_hosts.json"
+expect 1 "cli_empty_hosts.json:1: hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json"
+expect 1 "hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json" --host "$hosts/column.glb"
+printf '{"generator": "ivy", "hosts": []}' > "$out/cli_empty_hosts_ivy.json"
+expect 1 "hosts is an empty list" -- "$bin" ivy --preset "$out/cli_empty_hosts_ivy.json"
+printf '{"generator": "segments",\n "segments": []}' > "$out/cli_empty_segments.json"
+expect 1 "cli_empty_segments.json:2: segments is an empty list" -- "$bin" segments --preset "$out/cli_empty_segments.json"
+# A huge preset is refused by size, naming the limit, not read whole.
+truncate -s 200M "$out/cli_huge_preset.json"
+expect 1 "cli_huge_preset.json is larger than the 4194304-byte limit for presets" -- \
+  "$bin" roots --preset "$out/cli_huge_preset.json"
+rm -f "$out/cli_huge_preset.json"
+expect 1 "cannot read preset $out: Is a directory" -- "$bin" roots --preset "$out"
 echo "cli: $pass passed, $fail failed"
 [ $fail = 0 ]

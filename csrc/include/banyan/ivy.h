@@ -90,7 +90,7 @@ typedef struct banyan_ivy_params {
     double gravity;             /* g, m/s^2, 0 .. 1000 (paper 9.8) */
     double internode_mass;      /* mass of one internode with its leaf, kg, 0 .. 1000 */
     double moment_max;          /* moment a joint holds before the stem sags, N m, 0 .. 1e6 */
-    double sag_step;            /* rotation increment of the sag correction, deg, 0.01 .. 90 */
+    double sag_step;            /* rotation increment of the sag correction, deg, 0.5 .. 90 */
     double tip_elevation;       /* a free tip turns up to at least this angle above horizontal, deg, -90 .. 90 */
     double sag_stiffening;      /* a joint holds moment_max * (r / stem_radius)^this (r: its stem radius by age), 0 .. 6 */
     double tip_hook_length;     /* the last this much of a free stem bends up into a hook (a J), m, 0 .. 10 */

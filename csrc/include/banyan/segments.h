@@ -250,7 +250,8 @@ BANYAN_API banyan_status banyan_segments_demo(const banyan_segments_params *para
  *   "trunk": {"start": [x,y,z], "end": [x,y,z]}           (optional)
  * All five keys of an entry are required; others are refused. Messages
  * start with "<source>:<line>: segments[i]". With out == NULL and cap == 0
- * only *count is set; otherwise more than cap entries is refused. trunk
+ * only *count is set; otherwise more than cap entries is refused. Without
+ * "segments" *count is 0; an empty list is refused (BANYAN_E_RANGE). trunk
  * (6 doubles) and *has_trunk (0 or 1) may be NULL. */
 BANYAN_API banyan_status banyan_segments_preset_read(const char *text, size_t length, const char *source,
                                                      banyan_segment_input *out, uint32_t cap, uint32_t *count,
