@@ -15,10 +15,14 @@ void frame_add(v3 *lo, v3 *hi, v3 p) {
     *hi = v3_make(fmax(hi->x, p.x), fmax(hi->y, p.y), fmax(hi->z, p.z));
 }
 
+/* One axis: 0 while the axis stays near, else its centre in whole metres. */
+static double pick_axis(double lo, double hi) {
+    if (!(fmax(fabs(lo), fabs(hi)) > FRAME_NEAR)) return 0.0; /* also empty bounds */
+    return round(0.5 * (lo + hi));
+}
+
 v3 frame_pick(v3 lo, v3 hi) {
-    double m = fmax(fmax(fmax(fabs(lo.x), fabs(hi.x)), fmax(fabs(lo.y), fabs(hi.y))), fmax(fabs(lo.z), fabs(hi.z)));
-    if (!(m > FRAME_NEAR)) return v3_make(0, 0, 0); /* also empty bounds */
-    return v3_make(round(0.5 * (lo.x + hi.x)), round(0.5 * (lo.y + hi.y)), round(0.5 * (lo.z + hi.z)));
+    return v3_make(pick_axis(lo.x, hi.x), pick_axis(lo.y, hi.y), pick_axis(lo.z, hi.z));
 }
 
 banyan_status frame_check(v3 lo, v3 hi, v3 origin, const char *what, banyan_error *err) {

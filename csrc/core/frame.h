@@ -18,9 +18,11 @@
 /* Grows [lo, hi] by p (start with lo = +inf, hi = -inf: frame_empty). */
 void frame_empty(v3 *lo, v3 *hi);
 void frame_add(v3 *lo, v3 *hi, v3 p);
-/* The origin for world bounds [lo, hi]: 0 when they lie within FRAME_NEAR
- * of 0, else their centre rounded to whole metres (exact in double, so a
- * scene moved by whole metres runs on the same local numbers). */
+/* The origin for world bounds [lo, hi], axis by axis: 0 on an axis whose
+ * bounds lie within FRAME_NEAR of 0, else their centre on it rounded to
+ * whole metres (exact in double). Per axis, so a scene moved far along x
+ * alone keeps its local y and z, and a scene centred on 0 moved by whole
+ * metres runs on the same local numbers. */
 v3 frame_pick(v3 lo, v3 hi);
 /* Refuses (BANYAN_E_RANGE) bounds reaching farther than FRAME_KEEP from
  * origin: `what` names the input ("hosts", "points", "the path"). */

@@ -15,7 +15,7 @@ import bt  # noqa: E402
 import bpy  # noqa: E402
 from banyan import api as B  # noqa: E402
 
-FAR = (999999.0, -500000.0, 1000.0)
+FAR = (999999.0, -500000.0, 5000.0)
 SMALL = {"main_roots": 4, "growth_points": 16}
 
 

@@ -1,6 +1,6 @@
 /* test_far_origin.c - precision far from the world origin (issue 21 item
  * 5, docs/api.md "Far from the origin"). Every generator grows the same
- * plant at the origin and moved to (999999, -500000, 1000) m: the moved
+ * plant at the origin and moved to (999999, -500000, 5000) m: the moved
  * mesh carries a whole-metre origin, and its world positions (origin +
  * position, in double) match the near plant's moved, vertex by vertex, to
  * 1 mm; the near plant keeps origin 0. A scene wider than one mesh can keep
@@ -18,7 +18,11 @@
 #include "check.h"
 #include "host_meshes.h"
 
-static const double FAR[3] = {999999.0, -500000.0, 1000.0};
+static const double FAR[3] = {999999.0, -500000.0, 5000.0};
+/* The issue's own case: a trunk standing on the ground moved to x = 999,999
+ * m alone; the near axes keep a 0 origin, so nothing but x moves. */
+static const double FAR_X[3] = {999999.0, 0.0, 0.0};
+static const double *shift = FAR; /* the move same_world compares */
 static const char *outdir = ".";
 
 static const char *out_path(const char *name) {
@@ -39,7 +43,7 @@ static void same_world(const char *what, banyan_mesh *near, banyan_mesh *far) {
           near->origin[0], near->origin[1], near->origin[2]);
     CHECK(!origin_zero(far), "%s: far away, origin is 0", what);
     for (int k = 0; k < 3; k++)
-        CHECK(far->origin[k] == floor(far->origin[k]) && fabs(far->origin[k] - FAR[k]) < 8192, "%s: origin[%d] = %.17g",
+        CHECK(far->origin[k] == floor(far->origin[k]) && fabs(far->origin[k] - shift[k]) < 8192, "%s: origin[%d] = %.17g",
               what, k, far->origin[k]);
     CHECK(near->vertex_count == far->vertex_count && near->index_count == far->index_count &&
               near->skel_point_count == far->skel_point_count,
@@ -48,12 +52,12 @@ static void same_world(const char *what, banyan_mesh *near, banyan_mesh *far) {
     if (near->vertex_count != far->vertex_count || near->skel_point_count != far->skel_point_count) goto done;
     double worst = 0, worst_skel = 0, local = 0;
     for (uint32_t i = 0; i < 3 * near->vertex_count; i++) {
-        double a = (double)near->positions[i] + FAR[i % 3], b = far->origin[i % 3] + (double)far->positions[i];
+        double a = (double)near->positions[i] + shift[i % 3], b = far->origin[i % 3] + (double)far->positions[i];
         worst = fmax(worst, fabs(a - b));
         local = fmax(local, fabs((double)far->positions[i]));
     }
     for (uint32_t i = 0; i < 3 * near->skel_point_count; i++) {
-        double a = (double)near->skel_points[i] + FAR[i % 3], b = far->origin[i % 3] + (double)far->skel_points[i];
+        double a = (double)near->skel_points[i] + shift[i % 3], b = far->origin[i % 3] + (double)far->skel_points[i];
         worst_skel = fmax(worst_skel, fabs(a - b));
     }
     printf("%s: %u vertices, world positions within %.3g m (skeleton %.3g m), local coordinates up to %.1f m\n", what,
@@ -92,6 +96,18 @@ static banyan_mesh *roots_boxes(const double at[3], int surface) {
     banyan_error e;
     banyan_status s = banyan_roots_generate(&p, &trunk, 1, &m, &e);
     CHECK(s == BANYAN_OK, "roots at (%g, %g, %g): %s", at[0], at[1], at[2], e.message);
+    return m;
+}
+
+/* A trunk standing on the ground at `at` (not centred on it). */
+static banyan_mesh *roots_standing(const double at[3]) {
+    banyan_roots_params p;
+    small_roots(&p);
+    p.ground_z = at[2];
+    banyan_box trunk = box_at(at, 0, 0, 1.5, 0.4, 0.4, 1.5);
+    banyan_mesh *m = NULL;
+    banyan_error e;
+    CHECK(banyan_roots_generate(&p, &trunk, 1, &m, &e) == BANYAN_OK, "standing roots: %s", e.message);
     return m;
 }
 
@@ -338,6 +354,9 @@ int main(int argc, char **argv) {
     same_world("avenue", avenue_at(zero), avenue_at(FAR));
     same_world("segments", segments_at(zero), segments_at(FAR));
     same_world("tube", tube_at(zero), tube_at(FAR));
+    shift = FAR_X;
+    same_world("roots (standing trunk, fused, x only)", roots_standing(zero), roots_standing(FAR_X));
+    shift = FAR;
     refusals();
     gltf_far();
     return check_done("test_far_origin");
