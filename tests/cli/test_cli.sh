@@ -43,7 +43,7 @@ for g in roots keyaki avenue ivy segments; do
 done
 expect 1 "must be within" -- "$bin" roots --set sides=2
 # Far from the origin: the mesh's origin in the stats, the glb's node moved there.
-expect 0 '"origin": [999999, -500000, 1000]' -- "$bin" keyaki --set position=999999.25,-500000,1000 --set levels=8 \
+expect 0 '"origin": [999999, -500000, 5000]' -- "$bin" keyaki --set position=999999.25,-500000,5000 --set levels=8 \
   --textures off --stats -o "$out/cli_keyaki_far.glb"
 expect 1 "roots_trunk.json" -- "$bin" keyaki --preset "$src/presets/roots_trunk.json"
 # Textures (issue #17): on by default, size and on/off checked, named.
