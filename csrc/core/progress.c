@@ -47,11 +47,16 @@ void prog_init(prog *g, const banyan_progress *p) {
     g->rss0_mb = g->t_mem = g->over_value = 0.0;
 }
 
-void prog_budget(prog *g, double max_seconds, double max_memory_mb) {
+void prog_budget_resume(prog *g, double max_seconds, double max_memory_mb, double spent, double rss0_mb) {
     g->max_seconds = max_seconds;
     g->max_mb = max_memory_mb;
-    g->t_start = g->t_mem = now_seconds();
-    g->rss0_mb = prog_rss_mb();
+    g->t_mem = now_seconds();
+    g->t_start = g->t_mem - spent;
+    g->rss0_mb = rss0_mb;
+}
+
+void prog_budget(prog *g, double max_seconds, double max_memory_mb) {
+    prog_budget_resume(g, max_seconds, max_memory_mb, 0.0, prog_rss_mb());
 }
 
 int prog_reserve(prog *g, double bytes) {

@@ -47,6 +47,9 @@ void prog_init(prog *g, const banyan_progress *p);
  * time, or max_memory_mb of resident memory above what the process held at
  * this call, prog_at returns 1 and prog_fail reports BANYAN_E_LIMIT. */
 void prog_budget(prog *g, double max_seconds, double max_memory_mb);
+/* The same budget resumed across calls (the ivy's step API): `spent`
+ * seconds already used by earlier calls, memory counted from rss0_mb. */
+void prog_budget_resume(prog *g, double max_seconds, double max_memory_mb, double spent, double rss0_mb);
 /* An estimate made before the work: 1 (and the run stopped as over its
  * memory) when `bytes` more would pass max_memory_mb. */
 int prog_reserve(prog *g, double bytes);

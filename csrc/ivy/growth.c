@@ -448,9 +448,7 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
 void ivy_budget_start(const banyan_ivy *iv) {
     prog *g = iv->prog;
     if (g != &iv->own || g->cancelled) return;
-    prog_budget(g, iv->p.max_seconds, iv->p.max_memory_mb);
-    g->t_start -= iv->step_seconds;
-    g->rss0_mb = iv->rss0_mb;
+    prog_budget_resume(g, iv->p.max_seconds, iv->p.max_memory_mb, iv->step_seconds, iv->rss0_mb);
 }
 
 /* The step API keeps max_vertices as it grows, like the one shot (#21). */
