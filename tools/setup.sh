@@ -16,7 +16,7 @@ cd "$here"
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc).
 packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libembree-dev
-          libopenvdb-dev libboost-dev libtbb-dev libimath-dev
+          libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth)
 missing=()

@@ -14,6 +14,10 @@ void banyan_mesh_free(banyan_mesh *m) {
     free(m->attributes);
     free(m->materials); free(m->parts);
     free(m->skel_points); free(m->skel_radius); free(m->skel_tag); free(m->skel_edges);
+    if (m->images)
+        for (uint32_t i = 0; i < m->image_count; i++) free(m->images[i].pixels);
+    free(m->images);
+    free(m->instances);
     free(m);
 }
 
@@ -102,6 +106,12 @@ uint64_t banyan_mesh_hash(const banyan_mesh *m) {
     if (m->skel_edges) h = fnv(h, m->skel_edges, 2 * (size_t)m->skel_edge_count * sizeof(uint32_t));
     /* Only when set: meshes near the world origin keep the hashes they had. */
     if (m->origin[0] != 0 || m->origin[1] != 0 || m->origin[2] != 0) h = fnv(h, m->origin, sizeof m->origin);
+    for (uint32_t i = 0; m->images && i < m->image_count; i++) {
+        const banyan_image *im = &m->images[i];
+        h = fnv(h, im, 3 * sizeof(uint32_t));
+        if (im->pixels) h = fnv(h, im->pixels, (size_t)im->width * im->height * im->channels);
+    }
+    if (m->instances) h = fnv(h, m->instances, m->instance_count * sizeof(banyan_instance));
     return h;
 }
 
@@ -126,3 +136,4 @@ size_t banyan_sizeof_material(void) { return sizeof(banyan_material); }
 size_t banyan_sizeof_part(void) { return sizeof(banyan_part); }
 size_t banyan_sizeof_mesh(void) { return sizeof(banyan_mesh); }
 size_t banyan_sizeof_param_info(void) { return sizeof(banyan_param_info); }
+size_t banyan_sizeof_instance(void) { return sizeof(banyan_instance); }

@@ -86,6 +86,7 @@ uint32_t mb_add_material(mesh_builder *mb, const char *name, const double rgba[4
     m->roughness = (float)roughness;
     m->double_sided = double_sided ? 1 : 0;
     m->texture = BANYAN_TEX_NONE; /* generators set their texture after adding the material */
+    m->image = -1;
     return mb->n_mat++;
 }
 

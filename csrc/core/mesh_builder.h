@@ -11,7 +11,7 @@
 #include "banyan.h"
 #include "vec.h"
 
-#define MB_MAX_ATTRS 8
+#define MB_MAX_ATTRS 16
 /* Hard ceiling on vertices in one mesh, whatever max_vertices asks. */
 #define MB_VERTEX_CEILING 0x40000000u
 

@@ -961,6 +961,16 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }
 
+extern "C" BANYAN_API size_t banyan_sizeof_gltf_node(void) { return sizeof(banyan_gltf_node); }
+
+/* Contract stub (issue #22): the glTF work replaces it. */
+extern "C" BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes,
+                                                            uint32_t count, const banyan_gltf_options *opt,
+                                                            banyan_error *err) {
+    (void)path; (void)nodes; (void)count; (void)opt;
+    return banyan_fail(err, BANYAN_E_INTERNAL, "banyan_gltf_write_nodes is not built yet");
+}
+
 extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
                                                       const banyan_mesh *const *meshes,
                                                       const char *const *names, uint32_t count,

@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 10
+#define BANYAN_ABI_VERSION 11
 
 /* ---------------------------------------------------------------- status */
 
@@ -131,6 +131,42 @@ typedef struct banyan_attribute {
     float *data;                /* vertex_count floats */
 } banyan_attribute;
 
+/* Wind and growth attributes (issue #22; docs/game-engines.md). Every
+ * generator's mesh carries them when its params' `wind` is 1 (the
+ * default); `birth` is always there.
+ *   wind_pivot_x/y/z  the point the vertex sways about, in the mesh's
+ *                     frame (like positions): the base of its branch, of
+ *                     its twig, or a leaf's petiole base; on the plant's own
+ *                     skeleton.
+ *   wind_level        branch order: 0 trunk (ivy: main stem; roots: the
+ *                     root), 1 its branches, ...; a leaf is its twig's + 1.
+ *   wind_stiffness    0..1: 1 does not move (trunk base, a stem stuck to
+ *                     a wall), falling toward the tips; never larger at a
+ *                     branch's tip than at its base.
+ *   wind_phase        0..1, one value per branch (all of its vertices),
+ *                     random from the branch: branches do not sway in step.
+ *   wind_flutter      0..1: leaf flutter weight (1 on a leaf blade, 0 on
+ *                     wood).
+ *   birth             0..1: when the vertex appears as the plant grows (0
+ *                     the first wood, 1 the last); growth animation shows
+ *                     the vertices with birth <= t. */
+#define BANYAN_ATTR_WIND_PIVOT_X "wind_pivot_x"
+#define BANYAN_ATTR_WIND_PIVOT_Y "wind_pivot_y"
+#define BANYAN_ATTR_WIND_PIVOT_Z "wind_pivot_z"
+#define BANYAN_ATTR_WIND_LEVEL "wind_level"
+#define BANYAN_ATTR_WIND_STIFFNESS "wind_stiffness"
+#define BANYAN_ATTR_WIND_PHASE "wind_phase"
+#define BANYAN_ATTR_WIND_FLUTTER "wind_flutter"
+#define BANYAN_ATTR_BIRTH "birth"
+
+/* An 8-bit image, rows top to bottom. channels 4 (RGBA, sRGB colour,
+ * straight alpha) for base colour, 3 (RGB, tangent-space normal, glTF's
+ * convention: +X right, +Y up in uv space) for normal maps. */
+typedef struct banyan_image {
+    uint32_t width, height, channels;
+    uint8_t *pixels;         /* width * height * channels bytes */
+} banyan_image;
+
 /* A material: glTF metallic-roughness; a base colour factor and,
  * optionally, one of the library's textures (banyan/textures.h), which
  * the glTF writer embeds and the add-on packs. */
@@ -145,7 +181,19 @@ typedef struct banyan_material {
     int32_t season;             /* banyan_season of a leaf texture; 0 otherwise */
     float alpha_cutoff;         /* > 0: alpha-tested (glTF MASK) at this cutoff, leaves 0.5; 0: opaque */
     float translucency;         /* 0..1: light through a back-lit leaf (Blender's material; glTF ignores it) */
+    int32_t image;              /* index into the mesh's images (its base colour, RGBA), e.g. a billboard's
+                                   picture; -1 for none. When >= 0 it replaces `texture` */
 } banyan_material;
+
+/* One placed copy of a variant (instancing, issue #22): the parts whose
+ * group is `variant`, turned by rotation_z about +Z, scaled by scale,
+ * then moved by translation (metres, in the mesh's frame). */
+typedef struct banyan_instance {
+    uint32_t variant;
+    float translation[3];
+    float rotation_z;           /* radians, counter-clockwise seen from above */
+    float scale;                /* uniform, > 0 */
+} banyan_instance;
 
 /* A part is a contiguous run of vertices and of indices drawn with one
  * material. Parts never share vertices. Ivy has a stem part and a leaf
@@ -195,6 +243,17 @@ typedef struct banyan_mesh {
      * glTF writer puts it in the node's translation; the add-on in the
      * object's location. */
     double origin[3];
+
+    /* Images the materials name (banyan_material.image), owned by the
+     * mesh; 0 / NULL for none. */
+    uint32_t image_count;
+    banyan_image *images;
+
+    /* Instancing. 0 / NULL: the mesh is drawn as it is. Otherwise the
+     * parts of group g are variant g, standing at the frame's origin (its
+     * foot), and each instance draws one variant where it stands. */
+    uint32_t instance_count;
+    banyan_instance *instances;
 } banyan_mesh;
 
 /* Frees a mesh and every array it owns. Accepts NULL. */
@@ -254,6 +313,7 @@ BANYAN_API size_t banyan_sizeof_material(void);
 BANYAN_API size_t banyan_sizeof_part(void);
 BANYAN_API size_t banyan_sizeof_mesh(void);
 BANYAN_API size_t banyan_sizeof_param_info(void);
+BANYAN_API size_t banyan_sizeof_instance(void);
 
 /* ------------------------------------------------------ parameter tables */
 
@@ -448,6 +508,34 @@ BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
                                               const banyan_mesh *const *meshes,
                                               const char *const *names, uint32_t count,
                                               const banyan_gltf_options *opt, banyan_error *err);
+
+/* One node of banyan_gltf_write_nodes: a mesh, its coarser levels of
+ * detail and how it is placed.
+ *   lods, lod_count    coarser meshes (banyan_mesh_lod), finest first,
+ *                      0 .. 7: written as MSFT_lod on the node, with
+ *                      "MSFT_screencoverage" in the node's extras.
+ *   lod_coverage       lod_count + 1 falling screen coverages in (0, 1], or
+ *                      NULL for 0.5, 0.25, 0.1, ... halving.
+ * A mesh with instances (banyan_mesh.instance_count > 0) becomes one
+ * mesh per variant, each on a node with EXT_mesh_gpu_instancing
+ * (TRANSLATION, ROTATION, SCALE accessors, Y up). */
+typedef struct banyan_gltf_node {
+    const banyan_mesh *mesh;
+    const char *name;                  /* NULL: "banyan_<i>" */
+    uint32_t lod_count;
+    const banyan_mesh *const *lods;
+    const double *lod_coverage;
+} banyan_gltf_node;
+
+BANYAN_API size_t banyan_sizeof_gltf_node(void);
+
+/* Writes nodes (count 1 .. 65536) as one glTF asset, as banyan_gltf_write_ex
+ * does for plain meshes (same options, same atomic write). Besides the
+ * "_NAME" scalars, the wind attributes go out packed as engines read them:
+ * _WIND_PIVOT (VEC3, Y up, the node's frame) and _WIND_PARAMS (VEC4:
+ * level, stiffness, phase, flutter); docs/game-engines.md. */
+BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes, uint32_t count,
+                                                 const banyan_gltf_options *opt, banyan_error *err);
 
 /* banyan_gltf_write_ex with the default options (textures at 1024). */
 BANYAN_API banyan_status banyan_gltf_write(const char *path,

@@ -74,6 +74,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_INT(S, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "mesh vertex cap; a larger mesh is refused with BANYAN_E_LIMIT"),
     BP_INT(S, max_buds, "Bud limit", "Limits", 1, 50000000, "bud cap; a step that could pass it is refused with BANYAN_E_LIMIT"),
     BP_BUDGET(S, "Limits"),
+    BP_WIND(S, BP_F_SELF, "Limits"),
     BP_DOUBLE(S, stats_cell, "Coverage cell size", "Limits", "m", 0.001, 100, "grid cell of the covered-area measure"),
 };
 const int32_t ivy_table_row_count = (int32_t)(sizeof ivy_table_rows / sizeof ivy_table_rows[0]);
@@ -88,6 +89,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->max_buds = 2000000;
     p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
     p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
+    p->wind = 1;
     p->candidates = 10;
     p->h1_buds = 2;
     p->leaf_growth_steps = 20;

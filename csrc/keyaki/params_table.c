@@ -102,7 +102,8 @@
     KEYAKI_TWIST_ROWS(S, F), \
     KEYAKI_THICKNESS_ROWS(S, F), \
     KEYAKI_LEAVES_ROWS(S, F), \
-    KEYAKI_SEGMENT_TWIGS_ROWS(S, F)
+    KEYAKI_SEGMENT_TWIGS_ROWS(S, F), \
+    BP_WIND(S, F, "Output")
 
 #define KEYAKI_F(x) x
 #define AVENUE_F(x) tree.x
@@ -138,6 +139,8 @@ const banyan_param_info avenue_table_rows[] = {
               "trunk moved uniformly within a disc of this radius"),
     BP_INT(A, levels_jitter, "Random age", "Variation", 0, BANYAN_KEYAKI_MAX_LEVELS - 1,
            "tree.levels lowered by a uniform whole number in [0, this], never below 1: trees of mixed ages"),
+    BP_INT(A, variants, "Variants", "Variation", 0, BANYAN_AVENUE_MAX_VARIANTS,
+           "0: every tree unique; else this many distinct trees placed as instances"),
     KEYAKI_TREE_GROUPS(A, AVENUE_F),
     BP_INT(A, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(A, AVENUE_F),
@@ -210,6 +213,7 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->segment_twig_length = 0.8;
     p->segment_twigs = 4;
     p->segment_depth = 1;
+    p->wind = 1;
     p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
     p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
 }

@@ -61,4 +61,12 @@ int preset_line_at(const char *text, size_t len, size_t offset);
               "resident memory a run may add to what the process held when it began; past it the run stops "   \
               "with BANYAN_E_LIMIT")
 
+/* The wind attributes switch (banyan.h, BANYAN_ATTR_WIND_*), the same
+ * row in every generator's table. F: the field wrapper (x or tree.x). */
+#define BP_WIND(S, F, group)                                                                                     \
+    BP_BOOL(S, F(wind), "Wind data", group,                                                                      \
+            "per-vertex wind attributes: pivot, branch level, stiffness, phase and leaf flutter (game engines, "  \
+            "Blender's wind setup)")
+#define BP_F_SELF(x) x
+
 #endif

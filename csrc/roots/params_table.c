@@ -56,6 +56,7 @@ const banyan_param_info roots_table_rows[] = {
     BP_BOOL(S, bezier_uniform, "Even curve offsets", "Advanced", "draw Bezier offsets uniformly in [-v, v] instead of picking -v or +v"),
     BP_INT(S, max_vertices, "Vertex limit", "Advanced", 1, 1073741824, "refuse meshes with more vertices"),
     BP_BUDGET(S, "Advanced"),
+    BP_WIND(S, BP_F_SELF, "Advanced"),
 };
 
 const int32_t roots_table_row_count = (int32_t)(sizeof roots_table_rows / sizeof roots_table_rows[0]);
@@ -114,6 +115,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .max_vertices = 4000000,
         .max_seconds = PROG_MAX_SECONDS_DEFAULT,
         .max_memory_mb = PROG_MAX_MEMORY_DEFAULT,
+        .wind = 1,
     };
     *p = d;
 }

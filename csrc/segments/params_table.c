@@ -25,6 +25,7 @@ const banyan_param_info segments_table_rows[] = {
     BP_DOUBLE(S, attach_tolerance, "Attach tolerance", "Limits", "m", 0, 1e6, "how far a segment's start may lie from an earlier axis and still count as attached"),
     BP_INT(S, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse meshes with more vertices than this"),
     BP_BUDGET(S, "Limits"),
+    BP_WIND(S, BP_F_SELF, "Limits"),
 };
 #undef S
 const int32_t segments_table_row_count = (int32_t)(sizeof segments_table_rows / sizeof segments_table_rows[0]);
@@ -50,6 +51,7 @@ void banyan_segments_params_init(banyan_segments_params *p) {
     p->demo_height = 4.0;
     p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
     p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
+    p->wind = 1;
 }
 
 size_t banyan_sizeof_segments_params(void) { return sizeof(banyan_segments_params); }

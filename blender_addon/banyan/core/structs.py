@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 10     # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 11     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -38,13 +38,24 @@ class Attribute(C.Structure):
 class Material(C.Structure):
     _fields_ = [("name", C.c_char * NAME_MAX), ("base_color", C.c_float * 4),
                 ("roughness", C.c_float), ("double_sided", C.c_int32), ("texture", C.c_int32),
-                ("season", C.c_int32), ("alpha_cutoff", C.c_float), ("translucency", C.c_float)]
+                ("season", C.c_int32), ("alpha_cutoff", C.c_float), ("translucency", C.c_float),
+                ("image", C.c_int32)]
 
 
 class Part(C.Structure):
     _fields_ = [("vertex_offset", C.c_uint32), ("vertex_count", C.c_uint32),
                 ("index_offset", C.c_uint32), ("index_count", C.c_uint32),
                 ("material", C.c_uint32), ("group", C.c_uint32)]
+
+
+class Image(C.Structure):
+    _fields_ = [("width", C.c_uint32), ("height", C.c_uint32), ("channels", C.c_uint32),
+                ("pixels", C.POINTER(C.c_uint8))]
+
+
+class Instance(C.Structure):
+    _fields_ = [("variant", C.c_uint32), ("translation", C.c_float * 3), ("rotation_z", C.c_float),
+                ("scale", C.c_float)]
 
 
 class Mesh(C.Structure):
@@ -69,6 +80,10 @@ class Mesh(C.Structure):
         ("skel_edge_count", C.c_uint32),
         ("skel_edges", C.POINTER(C.c_uint32)),
         ("origin", C.c_double * 3),
+        ("image_count", C.c_uint32),
+        ("images", C.POINTER(Image)),
+        ("instance_count", C.c_uint32),
+        ("instances", C.POINTER(Instance)),
     ]
 
 
@@ -156,9 +171,6 @@ class AtlasLayout(C.Structure):
     _fields_ = [("cols", C.c_int32), ("rows", C.c_int32), ("leaf_aspect", C.c_float)]
 
 
-class Image(C.Structure):
-    _fields_ = [("width", C.c_uint32), ("height", C.c_uint32), ("channels", C.c_uint32),
-                ("pixels", C.POINTER(C.c_uint8))]
 
 
 class TextureParams(C.Structure):
@@ -169,4 +181,4 @@ class TextureParams(C.Structure):
 # Checked against banyan_sizeof_<key>() at load.
 SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
          "part": Part, "mesh": Mesh, "param_info": ParamInfo, "host_mesh": HostMesh, "host_hit": HostHit,
-         "host_info": HostInfo, "image": Image, "texture_params": TextureParams}
+         "host_info": HostInfo, "image": Image, "texture_params": TextureParams, "instance": Instance}

@@ -7,4 +7,5 @@
 #include "keyaki.h"
 #include "ivy.h"
 #include "roots.h"
+#include "lod.h"
 #endif

@@ -116,6 +116,7 @@ typedef struct banyan_ivy_params {
      * banyan_ivy_create. */
     double max_seconds;         /* s, 0.01 .. 604800 [600] */
     double max_memory_mb;       /* MB of resident memory, 16 .. 1048576 [8192] */
+    int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
 } banyan_ivy_params;
 
 /* Fewest internodes per leading stem (start_stems) a plant must have

@@ -175,6 +175,7 @@ typedef struct banyan_keyaki_params {
        avenue's own budget covers every tree. */
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
     double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add. Default 8192 */
+    int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
@@ -228,6 +229,9 @@ typedef enum banyan_avenue_placement {
     BANYAN_AVENUE_COUNT = 1    /* `count` trees per row, first and last at the path's ends */
 } banyan_avenue_placement;
 
+/* Most distinct trees of an instanced avenue (banyan_avenue_params.variants). */
+#define BANYAN_AVENUE_MAX_VARIANTS 4096
+
 typedef struct banyan_avenue_params {
     uint64_t seed;           /* base seed: tree i uses seed + i */
     int32_t max_vertices;    /* 1 .. 2^30, over the whole avenue (about 66 bytes each). Default 32,000,000 */
@@ -248,6 +252,9 @@ typedef struct banyan_avenue_params {
     /* The avenue's budget, over every tree and thread (docs/keyaki.md "Budget"). */
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
     double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add, every thread's. Default 8192 */
+    int32_t variants;        /* 0: every tree unique, merged into one mesh. 1 .. 4096: that many distinct
+                                trees (variant k grown with seed + k), placed as instances (banyan_instance):
+                                the same positions and headings as the unique avenue. Default 0 */
 } banyan_avenue_params;
 
 BANYAN_API void banyan_avenue_params_init(banyan_avenue_params *p);

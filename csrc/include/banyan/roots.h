@@ -78,6 +78,7 @@ typedef struct banyan_roots_params {
     /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT naming it. */
     double max_seconds;           /* s, 0.01 .. 604800: wall time of one call [600] */
     double max_memory_mb;         /* MB, 16 .. 1048576: resident memory above the process's at the call [8192] */
+    int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
 } banyan_roots_params;
 
 /* banyan_roots_params.surface */

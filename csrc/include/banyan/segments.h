@@ -181,6 +181,7 @@ typedef struct banyan_segments_params {
     double demo_height;
     double max_seconds;   /* budget (docs/api.md, "Budgets"): s, 0.01 .. 604800 (600) */
     double max_memory_mb; /* MB of resident memory above the process's at the call, 16 .. 1048576 (8192) */
+    int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
 } banyan_segments_params;
 
 BANYAN_API void banyan_segments_params_init(banyan_segments_params *params);

@@ -42,13 +42,7 @@ typedef struct banyan_atlas_layout {
 
 BANYAN_API banyan_status banyan_texture_layout(int32_t kind, banyan_atlas_layout *out, banyan_error *err);
 
-/* An 8-bit image, rows top to bottom. channels 4 (RGBA, sRGB colour,
- * straight alpha) for base colour, 3 (RGB, tangent-space normal, glTF's
- * convention: +X right, +Y up in uv space) for normal maps. */
-typedef struct banyan_image {
-    uint32_t width, height, channels;
-    uint8_t *pixels;         /* width * height * channels bytes */
-} banyan_image;
+/* banyan_image is declared in banyan.h (meshes carry images too). */
 
 typedef struct banyan_texture_params {
     int32_t kind;            /* banyan_texture_kind, not NONE */

@@ -1,0 +1,40 @@
+/* Levels of detail (issue #22; docs/game-engines.md "Levels of detail").
+ * banyan_mesh_lod makes a coarser copy of any generator's mesh: wood is
+ * simplified with meshoptimizer, leaves are thinned whole (survivors grow
+ * about their petiole so the leaf area stays), or, with `billboard`, the
+ * plant becomes crossed vertical cards carrying a picture of it drawn by
+ * the library (an image of the output mesh). */
+#ifndef BANYAN_LOD_H
+#define BANYAN_LOD_H
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct banyan_lod_params {
+    double ratio;             /* share of the triangles kept, 0.001 .. 1. Default 0.5 */
+    int32_t billboard;        /* bool: crossed cards instead (ratio ignored). Default 0 */
+    int32_t billboard_planes; /* vertical cards about the plant's axis, 2 .. 8. Default 2 (a cross) */
+    int32_t billboard_size;   /* pixels of the picture's longer side: a power of two, 32 .. 4096. Default 256 */
+    int32_t reserved;
+    uint64_t seed;            /* which leaves stay. Default 1 */
+} banyan_lod_params;
+
+BANYAN_API void banyan_lod_params_init(banyan_lod_params *p);
+BANYAN_API size_t banyan_sizeof_lod_params(void);
+
+/* A coarser copy of `mesh` (any generator's, an avenue's too; instances and
+ * images are carried over): about ratio * its triangles (within 10 %
+ * where the simplifier can reach it), the same parts, materials, groups,
+ * attributes (wind, birth) and origin, and a bounding box within 5 % of
+ * the original's. *out is the caller's to free with banyan_mesh_free; on
+ * failure *out is NULL. */
+BANYAN_API banyan_status banyan_mesh_lod(const banyan_mesh *mesh, const banyan_lod_params *p, banyan_mesh **out,
+                                         banyan_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
