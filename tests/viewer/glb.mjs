@@ -49,8 +49,9 @@ export function hasWindAttributes(json) {
 // bottom centre), stiffness falls from 1 at the ground to 0 at the top,
 // leaves (alpha-masked materials) flutter. Crude, but with the same
 // layout and frame as the real ones, for developing the viewer.
-// instances: also place the scene's first mesh node twice with
-// EXT_mesh_gpu_instancing (at 0 and 40 m along banyan's +y).
+// instances: when the file has no EXT_mesh_gpu_instancing (the writer's
+// instancing not yet there either), also place the first mesh node twice
+// with it (at 0 and 40 m along banyan's +y).
 export function withStandInWind(buffer, { instances = false } = {}) {
   const { json, bin } = readGlb(buffer);
   const parts = [bin];
@@ -88,7 +89,7 @@ export function withStandInWind(buffer, { instances = false } = {}) {
     done.set(p.attributes.POSITION, attrs);
     Object.assign(p.attributes, attrs);
   }
-  if (instances) {
+  if (instances && !(json.extensionsUsed || []).includes('EXT_mesh_gpu_instancing')) {
     const n = json.nodes.find((x) => x.mesh !== undefined);
     n.extensions = { ...(n.extensions || {}), EXT_mesh_gpu_instancing: { attributes: {
       TRANSLATION: add(new Float32Array([0, 0, 0, 0, 0, -40]), 'VEC3', 2) } } };
