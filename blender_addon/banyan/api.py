@@ -830,3 +830,13 @@ def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segmen
               lambda d, c: _single(name, d, collection, uv, c))
     job.params = p
     return _setups(job, "segments", wind)
+
+
+# ------------------------------------------------------ levels of detail
+def make_lods(obj, ratios=(0.5, 0.15), billboard=True, billboard_size=256, collection=None):
+    """obj's levels of detail in a collection "<name> LODs" (lod.py):
+    <name>_LOD0 (obj's mesh), one level per ratio (share of the
+    triangles), then crossed billboard cards when billboard. Returns the
+    objects; raises BanyanError with nothing left behind."""
+    from .lod import make_lods as _make_lods
+    return _make_lods(obj, ratios, billboard=billboard, billboard_size=billboard_size, collection=collection)

@@ -44,10 +44,11 @@ def _level_object(name, d, coll, created, job, obj, index):
     me = src.data
     pl = obj.banyan_plant
     where = obj.matrix_world.copy()
+    built_at = src.matrix_basis.copy()  # a new object's matrix_world waits for the depsgraph; it has no parent
     if pl.generator in PL.HOSTED:
-        W.transform_mesh(me, obj.matrix_world.inverted_safe() @ src.matrix_world)
+        W.transform_mesh(me, obj.matrix_world.inverted_safe() @ built_at)
     elif pl.generator in PL.FOLLOWS:  # as Regenerate: where the generator put it, moved as the artist moved it
-        where = obj.matrix_world @ PL._matrix(pl.frame).inverted_safe() @ src.matrix_world
+        where = obj.matrix_world @ PL._matrix(pl.frame).inverted_safe() @ built_at
     for o in built:
         for c in list(o.users_collection):
             c.objects.unlink(o)
@@ -83,12 +84,13 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
     parent = collection or (obj.users_collection[0] if obj.users_collection else bpy.context.scene.collection)
     params = PL.stored_params(obj)
     base = obj.name
+    if obj.name in bpy.context.view_layer.objects:
+        bpy.context.view_layer.update()  # obj.matrix_world after a move made by a script
 
     def build(created):
         coll = created.add(bpy.data.collections.new("%s LODs" % base))
         lod0 = created.add(obj.copy())  # shares obj's mesh: LOD0 is the plant as it is
         lod0.name = "%s_LOD0" % base
-        lod0.matrix_world = obj.matrix_world.copy()
         if PL.is_plant(lod0):
             lod0.banyan_plant.schema = 0  # a copy of the plant's mesh, not a second plant to regenerate
         coll.objects.link(lod0)
