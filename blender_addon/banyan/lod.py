@@ -9,7 +9,6 @@ from where obj is now, as Regenerate does). obj's wind and growth
 modifiers are copied onto the levels that carry the attributes."""
 import bpy
 
-from . import build_mesh as BM
 from . import plant as PL
 from . import wind as W
 from .core import mesh as M
