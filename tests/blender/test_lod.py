@@ -52,6 +52,7 @@ def check_lods(obj, gen, billboard):
     size = max(hi0[k] - lo0[k] for k in range(3))
     for o, r in zip(objs[1:3], (0.5, 0.15)):
         got = tris(o) / t0
+        print("%s: %s keeps %.3f of %d triangles" % (gen, o.name, got, t0))
         bt.check(abs(got - r) <= 0.1 * r, "%s: %s keeps %.3f of %d triangles (asked %.2f, 10 %%)"
                  % (gen, o.name, got, t0, r))
         lo, hi = bounds(o)
