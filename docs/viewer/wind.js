@@ -12,9 +12,10 @@
 //
 // about the horizontal axis perpendicular to the wind (so a tip leans
 // downwind and swings about that lean), then moves it along its normal by
-//   flutter * flutter_weight * sin(2 pi (6 f t + phase))
-// (leaves only: wood has flutter weight 0). The normal turns with the
-// vertex. One pivot per vertex: a branch sways about its own base but does
+//   flutter * flutter_weight * sin(2 pi (3.7 f t + phase))
+// along its rest normal (leaves only: wood has flutter weight 0). The
+// normal turns with the vertex. Defaults and the flutter rate are the
+// add-on's (blender_addon/banyan/wind.py). One pivot per vertex: a branch sways about its own base but does
 // not carry its children with it (Pivot Painter 2 chains up to four
 // levels), which is why the angles stay small.
 import * as THREE from 'three';
@@ -26,9 +27,9 @@ export const WIND_PARAMS = ['wind_level', 'wind_stiffness', 'wind_phase', 'wind_
 // frequency in Hz, direction in degrees counter-clockwise from banyan's +x
 // seen from above (z up), flutter in metres.
 export const WIND_DEFAULTS = Object.freeze({
-  strength: 0.05, gust: 0.5, frequency: 0.5, direction: 0, flutter: 0.01,
+  strength: 0.06, gust: 0.6, frequency: 0.35, direction: 0, flutter: 0.01,
 });
-const FLUTTER_RATE = 6;   // leaves flutter this many times faster than the gusts
+const FLUTTER_RATE = 3.7;   // leaves flutter this many times faster than the gusts (the add-on's FLUTTER_RATIO)
 
 export function hasWind(geometry) {
   const a = geometry.attributes;
@@ -79,7 +80,7 @@ const MOVE = /* glsl */`
 // identity, and the file's positions come through bit for bit.
 vec3 banyanArm = transformed - _wind_pivot;
 transformed += banyanTurn * banyanArm - banyanArm;
-transformed += banyanTurn * banyanRestNormal * (banyanWindFlutter * _wind_params.w *
+transformed += banyanRestNormal * (banyanWindFlutter * _wind_params.w *
                sin(6.28318531 * (banyanWindFlutterCycle + banyanPhase)));
 `;
 
