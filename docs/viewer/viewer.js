@@ -313,7 +313,7 @@ function fillInfo(gltf, name) {
   row('colours', state.colors ? 'vertex colours (COLOR_0)' : 'material colours only');
   if (state.instances) row('instances', `${state.instances.toLocaleString('en')} (EXT_mesh_gpu_instancing)`);
   if (state.lods) row('levels of detail', `MSFT_lod on ${state.lods} node(s): three.js shows LOD0 only`);
-  row('wind', state.windMeshes ? `${state.windMeshes} mesh(es) with _WIND_PIVOT + _WIND_PARAMS` : 'no wind attributes');
+  row('wind', state.windMeshes ? `${state.windMeshes} primitive(s) with _WIND_PIVOT + _WIND_PARAMS` : 'no wind attributes');
   for (const [key, [lo, hi]] of Object.entries(state.attributes)) row(key, `${fmt(lo)} … ${fmt(hi)}`);
   $('info').replaceChildren(...rows);
 
