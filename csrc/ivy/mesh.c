@@ -368,10 +368,10 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
                            (unsigned long long)need_v, p->max_vertices);
     }
     /* The budget, and the mesh's memory before it is allocated (about 64
-     * bytes a vertex with its attributes, 28 more with the wind's, 4 an
+     * bytes a vertex with its attributes; 4 more for birth, 32 with the wind too; 4 an
      * index). */
     ivy_budget_start(iv);
-    double per_v = p->wind ? 92.0 : 64.0;
+    double per_v = p->wind ? 96.0 : 68.0;
     if (prog_stopped(iv->prog) || prog_reserve(iv->prog, (double)need_v * per_v + (double)need_i * 4.0)) {
         free(pts);
         return prog_fail(iv->prog, err, "ivy mesh");

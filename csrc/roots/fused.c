@@ -379,9 +379,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         goto done;
     }
     /* Known before the work: at least the band's voxels about the surface
-     * (two floats each) and the mesh's vertices (about 64 bytes each, 28
-     * more with the wind attributes). */
-    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + (p->wind ? 92.0 : 64.0)))) {
+     * (two floats each) and the mesh's vertices (about 64 bytes each; 4
+     * more for birth, 32 with the wind attributes too). */
+    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + (p->wind ? 96.0 : 68.0)))) {
         st = prog_fail(net->prog, err, "fused roots surface");
         goto done;
     }

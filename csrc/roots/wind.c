@@ -122,12 +122,14 @@ int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_w
             double s0 = st[parent_point(net, p, pl, 0)], s1 = st[parent_point(net, p, pl, 1)];
             s[0] = s0, s[pl->n - 1] = s1;
         }
+        double *k = arc; /* k[i]: the fall over segment i-1 .. i, one exp each */
         for (uint32_t i = 1; i < pl->n; i++) {
-            double v = s[i - 1] * exp(-v3_dist(P[i], P[i - 1]) * fall);
+            k[i] = exp(-v3_dist(P[i], P[i - 1]) * fall);
+            double v = s[i - 1] * k[i];
             if (v > s[i]) s[i] = v;
         }
         for (uint32_t i = pl->n - 1; i-- > 0;) {
-            double v = s[i + 1] * exp(-v3_dist(P[i], P[i + 1]) * fall);
+            double v = s[i + 1] * k[i + 1];
             if (v > s[i]) s[i] = v;
         }
         uint32_t end = pl->kind == ROOT_MAIN ? pl->n : pl->n - 1; /* a branch's ends are its parents' */
