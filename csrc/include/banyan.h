@@ -555,7 +555,9 @@ BANYAN_API banyan_status banyan_gltf_write(const char *path,
  * the caps) past BANYAN_TUBE_MAX_VERTICES is refused with BANYAN_E_LIMIT
  * before anything is allocated. Points reaching more than 8192 m from
  * their bounds' centre are refused with BANYAN_E_RANGE (one mesh keeps 1
- * mm only that far from its origin: split the tube). */
+ * mm only that far from its origin: split the tube). The mesh always
+ * carries the wind attributes and birth: pivot points[0], level 0,
+ * stiffness sqrt(radius / the largest), birth by arc length 0 .. 1. */
 #define BANYAN_TUBE_MAX_VERTICES 16000000u
 BANYAN_API banyan_status banyan_tube_generate(const double *points, const double *radii,
                                               uint32_t point_count, int32_t sides,
