@@ -141,8 +141,9 @@ typedef struct banyan_attribute {
  *   wind_level        branch order: 0 trunk (ivy: main stem; roots: the
  *                     root), 1 its branches, ...; a leaf is its twig's + 1.
  *   wind_stiffness    0..1: 1 does not move (trunk base, a stem stuck to
- *                     a wall), falling toward the tips; never larger at a
- *                     branch's tip than at its base.
+ *                     a wall, a root gripping its host), falling toward
+ *                     the free tips; where a root or stem holds on again
+ *                     further out, it is 1 there again.
  *   wind_phase        0..1, one value per branch (all of its vertices),
  *                     random from the branch: branches do not sway in step.
  *   wind_flutter      0..1: leaf flutter weight (1 on a leaf blade, 0 on
