@@ -483,6 +483,8 @@ typedef struct banyan_gltf_options {
     int32_t textures;        /* 0/1: embed the textures the materials name (banyan/textures.h). Default 1 */
     int32_t texture_size;    /* pixels per side: a power of two, 64 .. 8192. Default 1024 */
     uint64_t texture_seed;   /* seed of the drawn textures. Default 1 */
+    int32_t engine_uvs;      /* 0/1: also write the wind data as TEXCOORD_1 .. 4 for importers that read only UV
+                                sets (docs/gltf.md "Wind"). Default 0 */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
