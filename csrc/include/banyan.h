@@ -518,7 +518,7 @@ BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
  *                      0 .. 7: written as MSFT_lod on the node, with
  *                      "MSFT_screencoverage" in the node's extras.
  *   lod_coverage       lod_count + 1 falling screen coverages in (0, 1], or
- *                      NULL for 0.5, 0.25, 0.1, ... halving.
+ *                      NULL for 0.5, 0.25, 0.125, ... (halving).
  * A mesh with instances (banyan_mesh.instance_count > 0) becomes one
  * mesh per variant, each on a node with EXT_mesh_gpu_instancing
  * (TRANSLATION, ROTATION, SCALE accessors, Y up). */
