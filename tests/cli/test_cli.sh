@@ -157,6 +157,15 @@ expect 0 '"command": "avenue"' -- "$bin" avenue --threads 1 --set tree.levels=4 
 # Instanced avenue (issue #22): the writer places the variants; --stats counts them.
 expect 0 '"variants": 3, "instances": 16' -- "$bin" avenue --set variants=3 --set tree.levels=4 --texture-size 64 --stats \
   -o "$out/cli_avenue_variants.glb"
+# Levels of detail (issue #22): --lod writes MSFT_lod; the first level's triangles are about half.
+expect 0 '"lod_triangles": [' -- "$bin" keyaki --set levels=8 --texture-size 64 --lod 0.5,0.15,billboard --stats \
+  -o "$out/cli_keyaki_lod.glb"
+expect 0 '"lod_triangles": [' -- "$bin" avenue --set variants=2 --set tree.levels=4 --texture-size 64 --lod 0.3,billboard \
+  --stats -o "$out/cli_avenue_variants_lod.glb"
+expect 2 "--lod '0.5,0.6' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,0.6
+expect 2 "--lod 'billboard,0.5' must be up to 7 falling ratios" -- "$bin" keyaki --lod billboard,0.5
+expect 2 "--lod '0.5,' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,
+expect 2 "--lod 'nan' must be up to 7 falling ratios" -- "$bin" keyaki --lod nan
 expect 1 "--seed: seed = ' -1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed " -1"
 expect 1 "--seed: seed = '-1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed -1
 expect 1 "--seed: seed = '18446744073709551616' must be a whole number" -- "$bin" roots --seed 18446744073709551616
