@@ -465,8 +465,9 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     if (mb->status || body->ws.birth < 0) return;
     float *bt = mb->attr[body->ws.birth], top = 0;
     for (uint32_t v = base; v < leaves_from; v++) top = bt[v] > top ? bt[v] : top;
+    double inv = top > 0 ? 1.0 / top : 0.0; /* top * inv rounds to 1.0f */
     for (uint32_t v = base; v < mb->nv; v++) {
-        double b = (top > 0 ? (double)bt[v] / top : 0.0) + (v >= leaves_from ? LEAF_DELAY : 0.0);
+        double b = bt[v] * inv + (v >= leaves_from ? LEAF_DELAY : 0.0);
         bt[v] = (float)(b < 1.0 ? b : 1.0);
     }
 }

@@ -119,17 +119,21 @@ static int keep_budget(ctx *x, banyan_error *err) {
 
 static inline double clampd(double x, double a, double b) { return x < a ? a : x > b ? b : x; }
 
-/* Point and unit tangent at arc length s along polyline pts[0..n-1]. */
-static v3 along(const v3 *pts, int32_t n, double s, v3 *t) {
+/* Point and unit tangent at arc length s along polyline pts[0..n-1];
+ * *r (may be NULL) the radius there, rad linear between points. */
+static v3 along_r(const v3 *pts, const double *rad, int32_t n, double s, v3 *t, double *r) {
     for (int32_t i = 0; i + 1 < n; i++) {
         double l = v3_dist(pts[i], pts[i + 1]);
         if (s <= l || i + 2 == n) {
             *t = v3_norm_or(v3_sub(pts[i + 1], pts[i]), v3_make(0, 0, 1));
-            return v3_madd(pts[i], *t, l > 0 ? clampd(s, 0, l) : 0);
+            double u = l > 0 ? clampd(s, 0, l) : 0;
+            if (r) *r = rad[i] + (rad[i + 1] - rad[i]) * (l > 0 ? u / l : 0);
+            return v3_madd(pts[i], *t, u);
         }
         s -= l;
     }
     *t = v3_make(0, 0, 1);
+    if (r) *r = rad[0];
     return pts[0];
 }
 
@@ -137,19 +141,6 @@ static double poly_length(const v3 *pts, int32_t n) {
     double l = 0;
     for (int32_t i = 0; i + 1 < n; i++) l += v3_dist(pts[i], pts[i + 1]);
     return l;
-}
-
-/* Radius at arc length s along polyline pts[0..n-1] of radii rad. */
-static double radius_along(const v3 *pts, const double *rad, int32_t n, double s) {
-    for (int32_t i = 0; i + 1 < n; i++) {
-        double l = v3_dist(pts[i], pts[i + 1]);
-        if (s <= l || i + 2 == n) {
-            double t = l > 0 ? clampd(s / l, 0, 1) : 0;
-            return rad[i] + (rad[i + 1] - rad[i]) * t;
-        }
-        s -= l;
-    }
-    return rad[0];
 }
 
 /* Two-ranked leaves along pts[0..n-1] from arc length s0 to the end (the
@@ -183,7 +174,8 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         /* j = 0 apart: a density so small (1e-317) that step overflows to
          * inf gives k = 1, and 0 x inf would be NaN. */
         double s = j ? L - j * step : L;
-        v3 t, at = along(pts, n, s, &t);
+        double r_at;
+        v3 t, at = along_r(pts, rad, n, s, &t, &r_at);
         v3 sv = v3_norm_or_perp(v3_cross(up, t), t);
         /* Out from the twig at 45-70 deg on its side, drooping a little. */
         double th = deg2rad(rng_range(&x->lf, 45.0, 70.0));
@@ -209,7 +201,7 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         q->side = side;
         q->level = level;
         q->path = (float)(path0 + s);
-        q->r_attach = (float)radius_along(pts, rad, n, s);
+        q->r_attach = (float)r_at;
     }
 }
 
