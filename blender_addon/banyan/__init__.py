@@ -69,7 +69,8 @@ def register():
     from . import plant, plant_ui
     plant.register([g for g, ok in avail.items() if ok])
     _registered.append("plant")
-    for cls in plant_ui.CLASSES:
+    from . import production_ui
+    for cls in plant_ui.CLASSES + production_ui.CLASSES:
         bpy.utils.register_class(cls)
         _registered.append(cls)
     bpy.types.VIEW3D_MT_mesh_add.append(ui.menu_func)

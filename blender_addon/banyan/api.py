@@ -53,8 +53,10 @@ import math
 import bpy
 
 from . import build_mesh as BM
+from . import growth_anim as GA
 from . import hosts as H
 from . import presets as PR
+from . import wind as W
 from .core import generators as G
 from .core.errors import BanyanError
 from .core.hostset import HostSet
@@ -198,6 +200,7 @@ class Job:
             self.stack.push(cleanup)
         self.data = None
         self.info = {}
+        self.finishers = []  # fn(objs, created) after build, in its rollback (wind, growth setups)
 
     def adopt(self, stack_or_cm):
         """Ties a context manager (or ExitStack) to the job's lifetime."""
@@ -212,7 +215,12 @@ class Job:
     def build(self):
         if self.data is None:
             raise BanyanError(1, "the job has not computed yet", "BANYAN_E_INVALID_ARG")
-        return _guard(lambda c: self._build(self.data, c))
+        return _guard(lambda c: self._finish(self._build(self.data, c), c))
+
+    def _finish(self, objs, created):
+        for fn in self.finishers:
+            fn(objs, created)
+        return objs
 
     def close(self):
         self.stack.close()
@@ -240,6 +248,66 @@ def _job(prepare):
         stack.close()
         raise
     return job.adopt(stack)
+
+
+# ------------------------------------------------------- wind and growth
+def _wind_key(gen):
+    return "tree.wind" if gen == "avenue" else "wind"
+
+
+def _setups(job, gen, wind=None, animate=False, frame_start=None, frame_end=None):
+    """Production setups on what job builds. wind: None (the params'
+    wind data as they are, no modifier), True (wind data on and the
+    "Banyan Wind" modifier: wind.py), False (no wind data). animate: the
+    "Banyan Growth" modifier (growth_anim.py) over frame_start..frame_end
+    (the scene's when None)."""
+    if wind is not None:
+        job.params.set(_wind_key(gen), bool(wind))
+    return add_setups(job, wind=bool(wind), animate=animate, frame_start=frame_start, frame_end=frame_end)
+
+
+def add_setups(job, wind=False, animate=False, frame_start=None, frame_end=None):
+    """Adds the wind and growth modifiers to what job builds (inside its
+    rollback); the plant must carry the attributes (params' wind)."""
+    if animate:
+        sc = bpy.context.scene
+        f0 = _frame("frame_start", frame_start, sc.frame_start)
+        f1 = _frame("frame_end", frame_end, sc.frame_end)
+    if not wind and not animate:
+        return job
+
+    def finish(objs, created):
+        meshes = [o for o in objs if o.type == 'MESH']
+        for o in meshes:
+            if animate:
+                GA.add_birth_modifier(o, created, f0, f1)
+            if wind:
+                W.add_wind_modifier(o, created)
+    job.finishers.append(finish)
+    return job
+
+
+def add_wind(objs, **values):
+    """Adds the "Banyan Wind" modifier (or sets its inputs) on each mesh
+    object of objs (an object or a list): strength, gust_strength,
+    gust_frequency, direction (degrees), flutter. Returns the modifiers.
+    BanyanError, naming the object, when one has no wind attributes."""
+    objs = [objs] if isinstance(objs, bpy.types.bpy_struct) else list(objs)
+    for o in objs:
+        if not isinstance(o, bpy.types.Object) or o.type != 'MESH' or not W.has_wind(o.data):
+            raise BanyanError(1, "'%s' has no wind attributes; grow it with the parameter wind on"
+                              % getattr(o, "name", o), "BANYAN_E_INVALID_ARG")
+    return _guard(lambda c: [W.add_wind_modifier(o, c, **values) for o in objs])
+
+
+def add_growth(objs, frame_start=None, frame_end=None):
+    """Adds the "Banyan Growth" modifier (by `birth`) on each mesh object of
+    objs, growing it over frame_start..frame_end (the scene's when None)."""
+    objs = [objs] if isinstance(objs, bpy.types.bpy_struct) else list(objs)
+    sc = bpy.context.scene
+    f0 = _frame("frame_start", frame_start, sc.frame_start)
+    f1 = _frame("frame_end", frame_end, sc.frame_end)
+    return _guard(lambda c: [GA.add_birth_modifier(o, c, f0, f1) for o in objs])
 
 
 # ------------------------------------------------------------- placement
@@ -432,8 +500,10 @@ def strangler_roots(hosts=(), *, progress=None, **kw):
 
 
 def strangler_roots_job(hosts=(), *, preset=None, params=None, germination=None, collection=None,
-                        name="Banyan Roots", uv=True, host_shape=H.SURFACE, origin='BASE', values=None, **kw):
-    """strangler_roots as a Job (see Job)."""
+                        name="Banyan Roots", uv=True, host_shape=H.SURFACE, origin='BASE', values=None, wind=None,
+                        animate=False, frame_start=None, frame_end=None, **kw):
+    """strangler_roots as a Job (see Job). wind, animate, frame_start,
+    frame_end: the wind and growth setups (_setups)."""
     _collection(collection)
     _check_name(name)
     p = make_params("roots", preset, params, values, **kw)
@@ -447,7 +517,7 @@ def strangler_roots_job(hosts=(), *, preset=None, params=None, germination=None,
                    lambda d, c: _single(name, d, collection, uv, c, o))
     job = _job(prepare)
     job.params = p
-    return job
+    return _setups(job, "roots", wind, animate, frame_start, frame_end)
 
 
 def set_roots_germination(p, point):
@@ -467,7 +537,7 @@ def keyaki_tree(*, progress=None, **kw):
 
 
 def keyaki_tree_job(*, preset=None, params=None, position=None, collection=None, name="Keyaki", uv=True,
-                    origin='BASE', values=None, **kw):
+                    origin='BASE', values=None, wind=None, animate=False, frame_start=None, frame_end=None, **kw):
     _collection(collection)
     _check_name(name)
     p = make_params("keyaki", preset, params, values, **kw)
@@ -487,12 +557,14 @@ def keyaki_tree_job(*, preset=None, params=None, position=None, collection=None,
         objs = _single(name, d, collection, uv, c)
         if o is not None:
             if o != foot:  # an explicit origin: the mesh moves so that the foot stays at `position`
-                objs[0].data.transform(_translation(tuple(foot[k] - o[k] for k in range(3))))
+                W.transform_mesh(objs[0].data, _translation(tuple(foot[k] - o[k] for k in range(3))))
             objs[0].location = o
         return objs
     job = Job(lambda prog: call_with_progress(G.keyaki, local, progress=prog), build)
     job.params = p
-    return job
+    if wind is not None:
+        local.set("wind", bool(wind))
+    return _setups(job, "keyaki", wind, animate, frame_start, frame_end)
 
 
 def _translation(v):
@@ -609,7 +681,7 @@ def keyaki_avenue(*, progress=None, generate_progress=None, **kw):
 
 def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, collection=None,
                       name="Keyaki Avenue", uv=True, threads=0, origin='BASE', build_progress=None, values=None,
-                      **kw):
+                      wind=None, animate=False, frame_start=None, frame_end=None, **kw):
     _collection(collection)
     _check_name(name)
     if build_progress is not None and not callable(build_progress):
@@ -633,6 +705,9 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
 
     def build(d, created):
         parent = _collection(collection)
+        if getattr(d, "instances", None):
+            from .instances import build_instanced
+            return build_instanced(name, d, parent, created, uv=uv, progress=build_progress)
         if merged:
             return _single(name, d, parent, uv, created, _origin(origin, start))
         coll = created.add(bpy.data.collections.new(name))
@@ -640,7 +715,7 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
         return BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
     job = Job(compute, build)
     job.params = p
-    return job
+    return _setups(job, "avenue", wind, animate, frame_start, frame_end)
 
 
 # -------------------------------------------------------------------- ivy
@@ -666,7 +741,8 @@ def ivy(hosts=(), *, progress=None, stats=None, **kw):
 
 
 def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
-            animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, origin='BASE', values=None, **kw):
+            animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, origin='BASE', values=None,
+            wind=None, **kw):
     _collection(collection)
     _check_name(name)
     sc = bpy.context.scene
@@ -694,9 +770,11 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
             return objs
         job = Job(compute, build)
         return job
+    if wind is not None:
+        p.set("wind", bool(wind))
     job = _job(prepare)
     job.params = p
-    return job
+    return _setups(job, "ivy", wind)
 
 
 IVY_MIN_INTERNODES = 5  # BANYAN_IVY_MIN_INTERNODES (banyan/ivy.h)
@@ -737,7 +815,7 @@ def segment_twigs(*, progress=None, **kw):
 
 
 def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segment Twigs", uv=True, values=None,
-                      **kw):
+                      wind=None, **kw):
     _collection(collection)
     _check_name(name)
     p = make_params("segments", preset, params, values, **kw)
@@ -751,4 +829,14 @@ def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segmen
     job = Job(lambda prog: call_with_progress(lambda: G.segments(p, inputs, count, trunk)[0], progress=prog),
               lambda d, c: _single(name, d, collection, uv, c))
     job.params = p
-    return job
+    return _setups(job, "segments", wind)
+
+
+# ------------------------------------------------------ levels of detail
+def make_lods(obj, ratios=(0.5, 0.15), billboard=True, billboard_size=256, collection=None):
+    """obj's levels of detail in a collection "<name> LODs" (lod.py):
+    <name>_LOD0 (obj's mesh), one level per ratio (share of the
+    triangles), then crossed billboard cards when billboard. Returns the
+    objects; raises BanyanError with nothing left behind."""
+    from .lod import make_lods as _make_lods
+    return _make_lods(obj, ratios, billboard=billboard, billboard_size=billboard_size, collection=collection)

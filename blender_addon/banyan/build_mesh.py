@@ -12,6 +12,7 @@ from array import array
 
 import bpy
 
+from . import wind as W
 from .core.mesh import localize_group, triangle_edges
 
 COLOR_ATTRIBUTE = "Color"
@@ -51,12 +52,16 @@ def _collection_of(idb):
     return None
 
 
-def make_material(spec, created, prefix="banyan", vertex_colors=False):
+def make_material(spec, created, prefix="banyan", vertex_colors=False, images=None):
     """A Principled material from a banyan_material dict. A white material
     on a mesh with vertex colours (the segments generator's) takes its
     base colour from them, as glTF viewers show base colour x COLOR_0.
     A material naming a library texture is the shared one of its kind and
-    season instead (materials.py: made once, reused by every run)."""
+    season instead (materials.py: made once, reused by every run). One
+    naming an image of the mesh (a billboard's picture) gets it packed."""
+    if spec.get("image", -1) >= 0 and images and spec["image"] < len(images):
+        from .materials import image_material
+        return image_material(spec, images[spec["image"]], created, prefix)
     if spec.get("texture", -1) >= 0:
         from .materials import shared_material
         return shared_material(spec, created, vertex_colors)
@@ -157,9 +162,11 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
     if colors is not None:
         ca = me.color_attributes.new(COLOR_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
         ca.data.foreach_set("color", colors)
-    for name, data in (attributes or {}).items():
+    def add_float(name, data):
         attr_name = name if name not in me.attributes else "banyan_" + name
         me.attributes.new(attr_name, 'FLOAT', 'POINT').data.foreach_set("value", data)
+    # The wind pivot's three scalars become one vector (wind.py).
+    W.add_attributes(me, attributes or {}, add_float)
     return me
 
 
@@ -189,7 +196,7 @@ def place(me, obj, at, mesh_origin):
     shift = tuple(mesh_origin[k] - loc[k] for k in range(3))
     if any(shift):
         from mathutils import Matrix
-        me.transform(Matrix.Translation(shift))
+        W.transform_mesh(me, Matrix.Translation(shift))
     if any(loc):
         obj.location = loc
 
@@ -201,7 +208,7 @@ def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=Tr
     d.origin: the world's origin, unless the plant is far from it)."""
     me = created.add(bpy.data.meshes.new(name))
     mats = materials if materials is not None else [
-        make_material(m, created, name, d.colors is not None) for m in d.materials]
+        make_material(m, created, name, d.colors is not None, getattr(d, "images", None)) for m in d.materials]
     for m in mats:
         me.materials.append(m)
     fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
@@ -226,10 +233,14 @@ def group_ranges(parts):
     return v0, v, i0, i
 
 
-def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, progress=None):
+def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, progress=None, frame_local=False,
+                      collections=None):
     """One object per part group (e.g. one per tree), origins at each
-    group's base (bottom centre of its bounds). Returns the objects."""
-    mats = [make_material(m, created, prefix, d.colors is not None) for m in d.materials]
+    group's base (bottom centre of its bounds). Returns the objects.
+    frame_local: located in the mesh's frame (d.origin left out: an
+    instanced avenue's variants, drawn where its instances put them).
+    collections: {group: collection} to link each object to instead."""
+    mats = [make_material(m, created, prefix, d.colors is not None, getattr(d, "images", None)) for m in d.materials]
     groups = d.groups()
     objs = []
     for n, (g, parts) in enumerate(groups.items()):
@@ -247,14 +258,20 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         local_parts = [dict(p, index_offset=p["index_offset"] - i0) for p in parts]
         fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
                   material_index=material_indices(local_parts), smooth=smooth)
+        if W.PIVOT in me.attributes and any(base):  # the pivots follow the vertices to the group's base
+            from mathutils import Matrix
+            a = me.attributes[W.PIVOT]
+            vec = array("f", bytes(12 * len(a.data)))
+            a.data.foreach_get("vector", vec)
+            a.data.foreach_set("vector", W.transform_vectors(vec, Matrix.Translation([-c for c in base])))
         obj = created.add(bpy.data.objects.new(me.name, me))
         mo = getattr(d, "origin", (0.0, 0.0, 0.0))
         foot = tuple(mo[k] + base[k] for k in range(3))  # base is in the mesh's frame
-        if any(mo):
+        if any(mo) and not frame_local:
             place(me, obj, foot, foot)
         else:
             obj.location = base
-        collection.objects.link(obj)
+        (collections[g] if collections is not None else collection).objects.link(obj)
         objs.append(obj)
         if progress:
             progress(n + 1, len(groups))

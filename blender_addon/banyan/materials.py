@@ -213,6 +213,42 @@ def shared_material(spec, created, vertex_colors=False):
     return mat
 
 
+def image_material(spec, image, created, prefix="banyan"):
+    """A material of its own for a mesh's image (a billboard's picture of
+    the plant): the PNG packed, its alpha clipped at alpha_cutoff (0.5
+    when the spec has none), double sided."""
+    name = "%s_%s" % (prefix, spec["name"])
+    img = created.add(bpy.data.images.new(name, image["width"], image["height"], alpha=image["channels"] == 4))
+    img.pack(data=image["png"], data_len=len(image["png"]))
+    img.source = 'FILE'
+    mat = created.add(bpy.data.materials.new(name))
+    mat.diffuse_color = tuple(spec["base_color"])
+    mat.use_backface_culling = False
+    if bpy.app.version < (5, 0, 0):
+        mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf = nodes.get("Principled BSDF") or nodes.new("ShaderNodeBsdfPrincipled")
+    bsdf.inputs["Roughness"].default_value = spec["roughness"]
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = UV_MAP
+    uv.location = (-900, 300)
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.label = "Billboard"
+    tex.location = (-650, 300)
+    links.new(uv.outputs["UV"], tex.inputs["Vector"])
+    links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    cutoff = float(spec.get("alpha_cutoff", 0.0)) or 0.5
+    clip = nodes.new("ShaderNodeMath")
+    clip.operation = 'GREATER_THAN'
+    clip.location = (-300, 100)
+    links.new(tex.outputs["Alpha"], clip.inputs[0])
+    clip.inputs[1].default_value = cutoff
+    links.new(clip.outputs[0], bsdf.inputs["Alpha"])
+    _eevee_clip(mat, cutoff)
+    return mat
+
+
 class BanyanPreferences(bpy.types.AddonPreferences):
     bl_idname = __package__
 

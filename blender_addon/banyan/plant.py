@@ -153,6 +153,8 @@ def record(objs, generator, params, hosts=(), options=None):
     generator placed it, by default its matrix now; an avenue's regenerated
     trees move by how their place changed from it."""
     objs = [objs] if isinstance(objs, bpy.types.Object) else list(objs)
+    # An instanced avenue's empties are placements, not plants (and may be 10,000).
+    objs = [o for o in objs if o.type != 'EMPTY']
     if not isinstance(params, Params):
         raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
     options = dict(options or {})
@@ -316,8 +318,10 @@ def _hosts(obj):
     return hosts
 
 
-def _build(obj, params, coll):
-    """The plant's objects built anew into coll (linked to no scene)."""
+def build_job(obj, params, coll):
+    """The api Job that builds obj's plant anew into coll (linked to no
+    scene): what Regenerate runs, and what make_lods computes to get the
+    library's mesh (core.mesh.capture)."""
     from . import api
     pl = obj.banyan_plant
     gen = pl.generator
@@ -325,11 +329,11 @@ def _build(obj, params, coll):
     uv = bool(opt.get("uv_map", True))
     shape = opt.get("host_shape", H.SURFACE)
     if gen == "roots":
-        return api.strangler_roots(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
+        return api.strangler_roots_job(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
     if gen == "ivy":
-        return api.ivy(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
+        return api.ivy_job(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
     if gen == "keyaki":
-        return api.keyaki_tree(params=params, collection=coll, uv=uv)
+        return api.keyaki_tree_job(params=params, collection=coll, uv=uv)
     if gen == "avenue":
         path = None
         if opt.get("path_from") == 'CURVE':
@@ -338,13 +342,21 @@ def _build(obj, params, coll):
                 raise BanyanError(1, "the avenue's curve was deleted; add the avenue again", "BANYAN_E_INVALID_ARG")
         elif opt.get("path_points"):
             path = [tuple(q) for q in opt["path_points"]]
-        return api.keyaki_avenue(path=path, params=params, merged=bool(opt.get("merged", False)),
-                                 collection=coll, uv=uv)
+        return api.keyaki_avenue_job(path=path, params=params, merged=bool(opt.get("merged", False)),
+                                     collection=coll, uv=uv)
     if gen == "segments":
         key = opt.get("banyan_preset")
-        return api.segment_twigs(preset=key if key and key != "NONE" else None, params=params,
-                                 collection=coll, uv=uv)
+        return api.segment_twigs_job(preset=key if key and key != "NONE" else None, params=params,
+                                     collection=coll, uv=uv)
     raise BanyanError(13, "'%s': generator '%s' cannot be regenerated" % (obj.name, gen), "BANYAN_E_UNSUPPORTED")
+
+
+def _build(obj, params, coll):
+    """The plant's objects built anew into coll (linked to no scene)."""
+    if obj.banyan_plant.generator == "avenue" and "variants" in params.by_name and params.get("variants"):
+        raise BanyanError(13, "'%s': an instanced avenue (variants %d) cannot be regenerated in place yet; add it "
+                          "again" % (obj.name, params.get("variants")), "BANYAN_E_UNSUPPORTED")
+    return build_job(obj, params, coll).run()
 
 
 def _remove_tree(coll):
@@ -381,7 +393,8 @@ def _swap_mesh(obj, new_me, to_local=None):
     old = obj.data
     _keep_slots(new_me, old)
     if to_local is not None and not _is_identity(to_local):
-        new_me.transform(to_local)
+        from .wind import transform_mesh
+        transform_mesh(new_me, to_local)
     obj.data = new_me
     if old.users == 0:
         name = old.name

@@ -168,6 +168,10 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("banyan.randomize_seed", icon='SHADERFX')
         row.operator("banyan.copy_preset", icon='COPYDOWN')
+        row = layout.row(align=True)  # production setups (production_ui.py)
+        row.operator("banyan.add_wind", icon='FORCE_WIND')
+        row.operator("banyan.add_growth", icon='TIME')
+        row.operator("banyan.make_lods", icon='MOD_DECIM')
         view = getattr(pl, pl.generator, None)
         if view is None:
             layout.label(text="This add-on has no '%s' generator" % pl.generator, icon='ERROR')

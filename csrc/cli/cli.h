@@ -40,6 +40,20 @@ typedef struct cli_stats {
  * it again. */
 #define CLI_MAX_THREADS BANYAN_AVENUE_MAX_THREADS
 
+/* --lod: falling ratios of triangles kept, the last may be a billboard
+ * (ratio 0, billboard 1). */
+#define CLI_MAX_LODS 7
+typedef struct cli_lod {
+    int count;
+    int billboard;
+    double ratio[CLI_MAX_LODS];
+} cli_lod;
+/* 1 when spec ("0.5,0.15,billboard") is well formed. */
+int cli_lod_parse(const char *spec, cli_lod *out);
+/* Writes meshes with their levels of detail as MSFT_lod. */
+banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char *const *names, uint32_t count,
+                             const cli_lod *lod, const banyan_gltf_options *opt, cli_stats *st, banyan_error *err);
+
 /* Exit codes: 0 done, 1 refused or failed, 2 bad command line,
  * 3 written with a warning (docs/ivy.md, "Hosts and start"). */
 #define CLI_EXIT_WARNING 3

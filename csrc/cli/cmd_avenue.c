@@ -1,7 +1,8 @@
 /* `banyan avenue`: keyaki trees along the straight path start..end, one
  * or two rows, grown on --threads N threads (0 = all cores). --stats adds
  * the tree count and, over the trees, the mean, min and max of tips and
- * crown widths and the mean Strahler bifurcation ratio. A polyline path
+ * crown widths and the mean Strahler bifurcation ratio; with --set
+ * variants=N (instanced trees) also the variant and instance counts. A polyline path
  * is available through the library call (banyan_avenue_generate). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,10 +30,14 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         banyan_mesh_free(m[0]);
         goto fail;
     }
+    /* Over the trees shown: an instanced avenue's tree i is its instance's
+     * variant, grown from tree `variant`'s params (heading aside). */
+    const banyan_mesh *a = m[0];
     double tips = 0, width = 0, ratio = 0, tmin = 1e300, tmax = 0, wmin = 1e300, wmax = 0;
     for (uint32_t i = 0; i < n; i++) {
         banyan_keyaki_statistics st;
-        if ((s = banyan_keyaki_stats(&trees[i], &st, err))) {
+        uint32_t k = a->instance_count == n ? a->instances[i].variant : i;
+        if ((s = banyan_keyaki_stats(&trees[k], &st, err))) {
             banyan_mesh_free(m[0]);
             goto fail;
         }
@@ -52,6 +57,13 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     *count = 1;
     cli_stat_num(stats, "trees", n);
     cli_stat_num(stats, "parts", m[0]->part_count);
+    if (a->instance_count > 0) { /* variants: distinct trees, drawn instance_count times */
+        uint32_t variants = 0;
+        for (uint32_t q = 0; q < a->part_count; q++)
+            if (a->parts[q].group + 1 > variants) variants = a->parts[q].group + 1;
+        cli_stat_num(stats, "variants", variants);
+        cli_stat_num(stats, "instances", a->instance_count);
+    }
     cli_stat_num(stats, "tips_mean", tips / n);
     cli_stat_num(stats, "tips_min", tmin);
     cli_stat_num(stats, "tips_max", tmax);

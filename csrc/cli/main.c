@@ -2,6 +2,7 @@
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
  *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
+ *                      [--lod 0.5,0.15,billboard]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -52,12 +53,14 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
-               "                        [--textures on|off] [--texture-size N]\n"
+               "                        [--textures on|off] [--texture-size N] [--lod LIST]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
                "--textures on (default) embeds the leaf and bark textures in the glTF file, drawn at\n"
                "--texture-size pixels (a power of two, 64 .. 8192; default 1024); off writes flat colours.\n"
+               "--lod 0.5,0.15,billboard adds coarser levels of detail to each mesh (MSFT_lod): falling\n"
+               "shares of its triangles, optionally ending in crossed billboard cards.\n"
                "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
@@ -221,6 +224,7 @@ int main(int argc, char **argv) {
     static cli_job job; /* large (hosts); one per process */
     const char *out_path = NULL, *seed = NULL;
     int stats = 0, list = 0;
+    cli_lod lod = {0, 0, {0}};
     banyan_gltf_options gltf_opt;
     banyan_gltf_options_init(&gltf_opt);
     const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
@@ -265,6 +269,16 @@ int main(int argc, char **argv) {
                 goto bad_flag;
             }
             gltf_opt.texture_size = (int32_t)n;
+        }
+        else if (!strcmp(a, "--lod") && has_val) {
+            const char *v = argv[++i];
+            if (!cli_lod_parse(v, &lod)) {
+                fprintf(stderr,
+                        "banyan %s: --lod '%s' must be up to %d falling ratios in [0.001, 1), comma-separated, "
+                        "optionally ending in billboard (e.g. 0.5,0.15,billboard)\n",
+                        cmd->name, v, CLI_MAX_LODS);
+                goto bad_flag;
+            }
         }
         else if (!strcmp(a, "--list")) list = 1;
         else {
@@ -418,8 +432,9 @@ int main(int argc, char **argv) {
     }
     double t2 = t1;
     if (out_path) {
-        if (banyan_gltf_write_ex(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names, count,
-                                 &gltf_opt, &err)) {
+        if (lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, &gltf_opt, &st, &err)
+                      : banyan_gltf_write_ex(out_path, (const banyan_mesh *const *)meshes,
+                                             (const char *const *)names, count, &gltf_opt, &err)) {
             fprintf(stderr, "banyan %s: writing %s: %s\n", cmd->name, out_path, err.message);
             goto out;
         }

@@ -7,6 +7,7 @@
 #include "error.h"
 #include "frame.h"
 #include "tube.h"
+#include "wind.h"
 
 banyan_status banyan_tube_generate(const double *points, const double *radii, uint32_t point_count, int32_t sides,
                                    int32_t caps, banyan_mesh **out, banyan_error *err) {
@@ -53,10 +54,32 @@ banyan_status banyan_tube_generate(const double *points, const double *radii, ui
         for (uint32_t i = 0; i < point_count; i++) local[i] = v3_sub(pts[i], O);
         pts = local;
     }
+    /* Wind (no params: always on): one branch swaying about its first
+     * point, stiffness by radius, birth by arc length. */
+    double *ring_val = malloc(sizeof(double) * 2 * point_count);
+    if (!ring_val) {
+        free(local);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u points", point_count);
+    }
+    double *ring_birth = ring_val + point_count, r_ref = 0, arc = 0;
+    for (uint32_t i = 0; i < point_count; i++) r_ref = radii[i] > r_ref ? radii[i] : r_ref;
+    for (uint32_t i = 0; i < point_count; i++) {
+        ring_val[i] = sqrt(radii[i] / r_ref);
+        if (i) arc += v3_dist(pts[i], pts[i - 1]);
+        ring_birth[i] = arc;
+    }
+    for (uint32_t i = 0; i < point_count; i++) ring_birth[i] = arc > 0 ? ring_birth[i] / arc : 0;
     mesh_builder mb;
     mb_init(&mb, BANYAN_TUBE_MAX_VERTICES, 0);
+    wind_slots ws;
+    wind_declare(&mb, 1, &ws);
+    wind_set(&mb, &ws, pts[0], 0, 1, wind_phase_of(0, 0), 0);
     tube_opts o = {sides, caps, caps, {0, 0, 0}, 0.0, NULL, 0, 1};
+    uint32_t first = mb.nv;
     tube_sweep(&mb, pts, radii, point_count, &o);
+    wind_tube_rings(&mb, first, point_count, sides, caps, caps, ws.stiffness, ring_val);
+    wind_tube_rings(&mb, first, point_count, sides, caps, caps, ws.birth, ring_birth);
+    free(ring_val);
     mb_skel_reserve(&mb, point_count, point_count - 1);
     for (uint32_t i = 0; i < point_count; i++) {
         uint32_t k = mb_skel_point(&mb, pts[i], radii[i], 0);

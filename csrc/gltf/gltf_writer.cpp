@@ -38,6 +38,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -135,13 +136,13 @@ const char *component_name(uint32_t k) {
 }
 
 /* Checks that n * width floats are finite; names the first bad one. */
-banyan_status check_finite(const float *a, uint32_t n, uint32_t width, uint32_t mesh,
+banyan_status check_finite(const float *a, uint32_t n, uint32_t width, const char *mesh,
                            const char *field, banyan_error *err) {
     const uint64_t total = static_cast<uint64_t>(n) * width;
     for (uint64_t i = 0; i < total; ++i) {
         if (!std::isfinite(a[i])) {
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].%s[%llu] = %g is not finite (vertex %llu%s%s)", mesh,
+                        "%s.%s[%llu] = %g is not finite (vertex %llu%s%s)", mesh,
                         field, static_cast<unsigned long long>(i),
                         static_cast<double>(a[i]),
                         static_cast<unsigned long long>(i / width),
@@ -152,29 +153,40 @@ banyan_status check_finite(const float *a, uint32_t n, uint32_t width, uint32_t 
     return BANYAN_OK;
 }
 
+/* The groups of a mesh's parts that have triangles, sorted: its variants
+ * when it has instances. */
+std::vector<uint32_t> drawn_groups(const banyan_mesh *m) {
+    std::vector<uint32_t> g;
+    for (uint32_t p = 0; p < m->part_count; ++p)
+        if (m->parts[p].index_count > 0) g.push_back(m->parts[p].group);
+    std::sort(g.begin(), g.end());
+    g.erase(std::unique(g.begin(), g.end()), g.end());
+    return g;
+}
+
 bool is_leaf_kind(int32_t kind) { return kind == BANYAN_TEX_KEYAKI_LEAF || kind == BANYAN_TEX_IVY_LEAF; }
 
-banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
-    if (m == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u] is NULL", mi);
+banyan_status check_mesh(const banyan_mesh *m, const char *mi, banyan_error *err) {
+    if (m == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s is NULL", mi);
     if (m->vertex_count == 0)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u].vertex_count is 0; a mesh needs at least one vertex", mi);
+                    "%s.vertex_count is 0; a mesh needs at least one vertex", mi);
     if (m->index_count == 0)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u].index_count is 0; a mesh needs at least one triangle", mi);
+                    "%s.index_count is 0; a mesh needs at least one triangle", mi);
     if (m->index_count % 3 != 0)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u].index_count = %u is not a multiple of 3", mi, m->index_count);
+                    "%s.index_count = %u is not a multiple of 3", mi, m->index_count);
     if (m->positions == nullptr)
-        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].positions is NULL", mi);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.positions is NULL", mi);
     if (m->indices == nullptr)
-        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].indices is NULL", mi);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.indices is NULL", mi);
 
     const uint32_t vc = m->vertex_count;
     for (uint32_t i = 0; i < m->index_count; ++i) {
         if (m->indices[i] >= vc)
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].indices[%u] = %u is out of range [0, %u]", mi, i,
+                        "%s.indices[%u] = %u is out of range [0, %u]", mi, i,
                         m->indices[i], vc - 1);
     }
 
@@ -182,7 +194,7 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
     if ((s = check_finite(m->positions, vc, 3, mi, "positions", err)) != BANYAN_OK) return s;
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(m->origin[k]) || std::fabs(m->origin[k]) > 1e7)
-            return banyan_fail(err, BANYAN_E_RANGE, "meshes[%u].origin[%d] = %g must be finite, within [-1e7, 1e7] m", mi,
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.origin[%d] = %g must be finite, within [-1e7, 1e7] m", mi,
                                k, m->origin[k]);
     if (m->normals && (s = check_finite(m->normals, vc, 3, mi, "normals", err)) != BANYAN_OK)
         return s;
@@ -193,17 +205,17 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
     /* Custom attributes: "_" + upper-cased name must be a unique key. */
     if (m->attribute_count > 0 && m->attributes == nullptr)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u].attributes is NULL but attribute_count = %u", mi,
+                    "%s.attributes is NULL but attribute_count = %u", mi,
                     m->attribute_count);
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
         const banyan_attribute *at = &m->attributes[a];
         size_t n = name_len(at->name, BANYAN_NAME_MAX);
         if (n == BANYAN_NAME_MAX)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].attributes[%u].name is not NUL-terminated within %d bytes",
+                        "%s.attributes[%u].name is not NUL-terminated within %d bytes",
                         mi, a, BANYAN_NAME_MAX);
         if (n == 0)
-            return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u].name is empty",
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.attributes[%u].name is empty",
                         mi, a);
         for (size_t k = 0; k < n; ++k) {
             char c = at->name[k];
@@ -211,7 +223,7 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
                       (c >= '0' && c <= '9') || c == '_';
             if (!ok)
                 return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                            "meshes[%u].attributes[%u].name \"%.*s\" has a character "
+                            "%s.attributes[%u].name \"%.*s\" has a character "
                             "outside [A-Za-z0-9_] at byte %zu",
                             mi, a, static_cast<int>(n), at->name, k);
         }
@@ -226,12 +238,12 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
             }
             if (k == n && o[n] == '\0')
                 return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                            "meshes[%u].attributes[%u].name \"%s\" repeats attributes[%u] "
+                            "%s.attributes[%u].name \"%s\" repeats attributes[%u] "
                             "(glTF names are upper-cased)",
                             mi, a, at->name, b);
         }
         if (at->data == nullptr)
-            return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].attributes[%u] (\"%s\").data is NULL",
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.attributes[%u] (\"%s\").data is NULL",
                         mi, a, at->name);
         std::string field = std::string("attributes[") + std::to_string(a) + "].data";
         if ((s = check_finite(at->data, vc, 1, mi, field.c_str(), err)) != BANYAN_OK) return s;
@@ -240,7 +252,7 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
     /* Materials. */
     if (m->material_count > 0 && m->materials == nullptr)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u].materials is NULL but material_count = %u", mi,
+                    "%s.materials is NULL but material_count = %u", mi,
                     m->material_count);
     for (uint32_t k = 0; k < m->material_count; ++k) {
         const banyan_material *mat = &m->materials[k];
@@ -248,69 +260,119 @@ banyan_status check_mesh(const banyan_mesh *m, uint32_t mi, banyan_error *err) {
         size_t bad = 0;
         if (n == BANYAN_NAME_MAX)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].materials[%u].name is not NUL-terminated within %d bytes",
+                        "%s.materials[%u].name is not NUL-terminated within %d bytes",
                         mi, k, BANYAN_NAME_MAX);
         if (!valid_utf8(mat->name, n, &bad))
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].materials[%u].name is not valid UTF-8 (byte %zu)", mi, k,
+                        "%s.materials[%u].name is not valid UTF-8 (byte %zu)", mi, k,
                         bad);
         for (int c = 0; c < 4; ++c) {
             float v = mat->base_color[c];
             if (!(v >= 0.0f && v <= 1.0f))
                 return banyan_fail(err, BANYAN_E_RANGE,
-                            "meshes[%u].materials[%u].base_color[%d] = %g is outside [0, 1]",
+                            "%s.materials[%u].base_color[%d] = %g is outside [0, 1]",
                             mi, k, c, static_cast<double>(v));
         }
         if (!(mat->roughness >= 0.0f && mat->roughness <= 1.0f))
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].materials[%u].roughness = %g is outside [0, 1]", mi, k,
+                        "%s.materials[%u].roughness = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->roughness));
         if (mat->texture < BANYAN_TEX_NONE || mat->texture >= BANYAN_TEX_COUNT)
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].materials[%u].texture = %d is outside [%d, %d] (banyan_texture_kind)",
+                        "%s.materials[%u].texture = %d is outside [%d, %d] (banyan_texture_kind)",
                         mi, k, mat->texture, BANYAN_TEX_NONE, BANYAN_TEX_COUNT - 1);
         if (mat->season != BANYAN_SEASON_SUMMER && mat->season != BANYAN_SEASON_AUTUMN)
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].materials[%u].season = %d is outside [0, 1] (summer, autumn)", mi, k,
+                        "%s.materials[%u].season = %d is outside [0, 1] (summer, autumn)", mi, k,
                         mat->season);
         if (!(mat->alpha_cutoff >= 0.0f && mat->alpha_cutoff <= 1.0f))
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].materials[%u].alpha_cutoff = %g is outside [0, 1]", mi, k,
+                        "%s.materials[%u].alpha_cutoff = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->alpha_cutoff));
         if (!(mat->translucency >= 0.0f && mat->translucency <= 1.0f))
             return banyan_fail(err, BANYAN_E_RANGE,
-                        "meshes[%u].materials[%u].translucency = %g is outside [0, 1]", mi, k,
+                        "%s.materials[%u].translucency = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->translucency));
+        /* A mesh without images names none: ABI 10 callers' zero-filled
+         * materials (image 0) still write as before. */
+        if (m->image_count > 0 && (mat->image < -1 || mat->image >= static_cast<int64_t>(m->image_count)))
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.materials[%u].image = %d is outside [-1, %u] (image_count = %u)",
+                               mi, k, mat->image, m->image_count - 1, m->image_count);
+        if (m->image_count > 0 && mat->image >= 0 && m->uvs == nullptr)
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.materials[%u].image = %d needs uvs, and %s.uvs is NULL",
+                               mi, k, mat->image, mi);
+    }
+
+    /* Images (banyan_material.image): what banyan_image_png accepts. */
+    if (m->image_count > 0 && m->images == nullptr)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.images is NULL but image_count = %u", mi, m->image_count);
+    for (uint32_t k = 0; k < m->image_count; ++k) {
+        const banyan_image *im = &m->images[k];
+        if (im->pixels == nullptr)
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.images[%u].pixels is NULL", mi, k);
+        if (im->channels != 3 && im->channels != 4)
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.images[%u].channels = %u must be 3 (RGB) or 4 (RGBA)", mi, k,
+                               im->channels);
+        if (im->width < 1 || im->width > 16384 || im->height < 1 || im->height > 16384)
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.images[%u] is %u x %u pixels; each side must be within [1, 16384]",
+                               mi, k, im->width, im->height);
     }
 
     /* Parts. */
     if (m->part_count > 0 && m->parts == nullptr)
-        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes[%u].parts is NULL but part_count = %u",
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.parts is NULL but part_count = %u",
                     mi, m->part_count);
     bool any_triangles = m->part_count == 0;
     for (uint32_t p = 0; p < m->part_count; ++p) {
         const banyan_part *pt = &m->parts[p];
         if (static_cast<uint64_t>(pt->vertex_offset) + pt->vertex_count > vc)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].parts[%u] vertices [%u, +%u) pass vertex_count = %u", mi, p,
+                        "%s.parts[%u] vertices [%u, +%u) pass vertex_count = %u", mi, p,
                         pt->vertex_offset, pt->vertex_count, vc);
         if (static_cast<uint64_t>(pt->index_offset) + pt->index_count > m->index_count)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].parts[%u] indices [%u, +%u) pass index_count = %u", mi, p,
+                        "%s.parts[%u] indices [%u, +%u) pass index_count = %u", mi, p,
                         pt->index_offset, pt->index_count, m->index_count);
         if (pt->index_count % 3 != 0)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].parts[%u].index_count = %u is not a multiple of 3", mi, p,
+                        "%s.parts[%u].index_count = %u is not a multiple of 3", mi, p,
                         pt->index_count);
         if (m->material_count > 0 && pt->material >= m->material_count)
             return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                        "meshes[%u].parts[%u].material = %u is out of range [0, %u]", mi, p,
+                        "%s.parts[%u].material = %u is out of range [0, %u]", mi, p,
                         pt->material, m->material_count - 1);
         if (pt->index_count > 0) any_triangles = true;
     }
     if (!any_triangles)
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
-                    "meshes[%u] has %u parts and none has a triangle", mi, m->part_count);
+                    "%s has %u parts and none has a triangle", mi, m->part_count);
+
+    /* Instances: each names a group that has triangles (a variant). */
+    if (m->instance_count > 0 && m->instances == nullptr)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.instances is NULL but instance_count = %u", mi,
+                           m->instance_count);
+    if (m->instance_count > 0 && m->part_count == 0)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG,
+                           "%s has %u instances but no parts: variants are the parts' groups", mi, m->instance_count);
+    std::vector<uint32_t> drawn = drawn_groups(m);
+    for (uint32_t k = 0; k < m->instance_count; ++k) {
+        const banyan_instance *in = &m->instances[k];
+        if (!std::binary_search(drawn.begin(), drawn.end(), in->variant))
+            return banyan_fail(err, BANYAN_E_RANGE,
+                               "%s.instances[%u].variant = %u names no group with triangles (groups 0 .. %u)", mi, k,
+                               in->variant, drawn.empty() ? 0u : drawn.back());
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(in->translation[c]) || std::fabs(in->translation[c]) > 1e7f)
+                return banyan_fail(err, BANYAN_E_RANGE,
+                                   "%s.instances[%u].translation[%d] = %g must be finite, within [-1e7, 1e7] m", mi, k,
+                                   c, static_cast<double>(in->translation[c]));
+        if (!std::isfinite(in->rotation_z))
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.instances[%u].rotation_z = %g must be finite (radians)", mi, k,
+                               static_cast<double>(in->rotation_z));
+        if (!(in->scale > 0.0f) || !std::isfinite(in->scale))
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.instances[%u].scale = %g must be finite and > 0", mi, k,
+                               static_cast<double>(in->scale));
+    }
     return BANYAN_OK;
 }
 
@@ -483,9 +545,43 @@ std::vector<float> vertex_tangents(const banyan_mesh *m) {
     return out;
 }
 
+/* How a mesh's custom attributes go out (docs/gltf.md "Wind"). With all
+ * seven wind attributes they are packed as engines read them: _WIND_PIVOT
+ * (VEC3, Y up like POSITION) and _WIND_PARAMS (VEC4: level, stiffness,
+ * phase, flutter) replace the seven scalars; with engine_uvs they are
+ * also written as TEXCOORD_1 .. 4 for importers that keep only UV sets. */
+const char *const kWindNames[7] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y, BANYAN_ATTR_WIND_PIVOT_Z,
+                                   BANYAN_ATTR_WIND_LEVEL,   BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
+                                   BANYAN_ATTR_WIND_FLUTTER};
+
+struct Layout {
+    const float *wind[7] = {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+    const float *birth = nullptr;
+    bool packed = false;     /* all seven wind attributes present */
+    bool engine_uvs = false; /* packed and the option on: TEXCOORD_1 .. 4 */
+};
+
+Layout layout_of(const banyan_mesh *m, bool engine_uvs) {
+    Layout L;
+    int found = 0;
+    for (int k = 0; k < 7; ++k)
+        if ((L.wind[k] = banyan_mesh_attribute(m, kWindNames[k])) != nullptr) found++;
+    L.birth = banyan_mesh_attribute(m, BANYAN_ATTR_BIRTH);
+    L.packed = found == 7;
+    L.engine_uvs = L.packed && engine_uvs;
+    return L;
+}
+
+bool is_wind_attribute(const Layout &L, const banyan_attribute *at) {
+    if (!L.packed) return false;
+    for (int k = 0; k < 7; ++k)
+        if (at->data == L.wind[k] && std::strcmp(at->name, kWindNames[k]) == 0) return true;
+    return false;
+}
+
 /* The vertex accessors for vertices [base, base + count) of mesh m;
  * tangents (vertex_tangents, or empty) become TANGENT. */
-std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, uint32_t base,
+std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, const Layout &L, uint32_t base,
                                             uint32_t count, bool with_colors,
                                             const std::vector<float> &tangents) {
     std::map<std::string, int> attrs;
@@ -538,6 +634,10 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
         }
         v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
+    } else if (L.engine_uvs) { /* TEXCOORD_n must count up from 0 */
+        tmp.assign(static_cast<size_t>(count) * 2, 0.0f);
+        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     }
 
     /* TANGENT: converted like the normals (a rotation: w keeps its sign). */
@@ -563,17 +663,61 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, ui
 
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
         const banyan_attribute *at = &m->attributes[a];
+        if (is_wind_attribute(L, at)) continue;
         v = b.add_view(at->data + base, static_cast<size_t>(count) * sizeof(float), AB);
         attrs[upper_attribute_key(at->name)] =
             b.add_accessor(v, F, TINYGLTF_TYPE_SCALAR, count);
     }
+
+    if (L.packed) {
+        /* _WIND_PIVOT: a point like POSITION, (x, y, z) -> (x, z, -y). */
+        tmp.resize(static_cast<size_t>(count) * 4);
+        for (uint32_t i = 0; i < count; ++i) {
+            size_t j = static_cast<size_t>(base) + i;
+            float *o = &tmp[3 * static_cast<size_t>(i)];
+            o[0] = L.wind[0][j];
+            o[1] = L.wind[2][j];
+            o[2] = -L.wind[1][j];
+        }
+        v = b.add_view(tmp.data(), static_cast<size_t>(count) * 3 * sizeof(float), AB);
+        attrs["_WIND_PIVOT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC3, count);
+        for (uint32_t i = 0; i < count; ++i) {
+            size_t j = static_cast<size_t>(base) + i;
+            for (int k = 0; k < 4; ++k) tmp[4 * static_cast<size_t>(i) + k] = L.wind[3 + k][j];
+        }
+        v = b.add_view(tmp.data(), static_cast<size_t>(count) * 4 * sizeof(float), AB);
+        attrs["_WIND_PARAMS"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
+    }
+
+    if (L.engine_uvs) {
+        /* TEXCOORD_1 pivot (x, y), 2 (pivot z, level), 3 (stiffness,
+         * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT. */
+        tmp.resize(static_cast<size_t>(count) * 2);
+        for (int set = 1; set <= 4; ++set) {
+            for (uint32_t i = 0; i < count; ++i) {
+                size_t j = static_cast<size_t>(base) + i;
+                float a = 0.0f, c = 0.0f;
+                switch (set) {
+                case 1: a = L.wind[0][j]; c = L.wind[2][j]; break;
+                case 2: a = -L.wind[1][j]; c = L.wind[3][j]; break;
+                case 3: a = L.wind[4][j]; c = L.wind[5][j]; break;
+                default: a = L.wind[6][j]; c = L.birth ? L.birth[j] : 0.0f; break;
+                }
+                tmp[2 * static_cast<size_t>(i)] = a;
+                tmp[2 * static_cast<size_t>(i) + 1] = c;
+            }
+            v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+            attrs["TEXCOORD_" + std::to_string(set)] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
+        }
+    }
     return attrs;
 }
 
-uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count, bool with_colors, bool tangents) {
-    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs ? 2 : 0) + (m->colors && with_colors ? 4 : 0) +
-                      (tangents ? 4 : 0) +
-                      m->attribute_count;
+uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t count, bool with_colors, bool tangents) {
+    /* Packed wind: 7 scalars become VEC3 + VEC4, the same floats. */
+    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs || L.engine_uvs ? 2 : 0) +
+                      (m->colors && with_colors ? 4 : 0) + (tangents ? 4 : 0) + m->attribute_count +
+                      (L.engine_uvs ? 8 : 0);
     return floats * 4 * count;
 }
 
@@ -581,12 +725,13 @@ uint64_t vertex_range_bytes(const banyan_mesh *m, uint64_t count, bool with_colo
  * [vbase, vbase + vcount). */
 struct Prim {
     uint32_t ioff, icount, vbase, vcount;
-    int material; /* index into model.materials or -1 */
+    int material;   /* index into model.materials or -1 */
+    uint32_t group; /* its part's group: the variant of an instanced mesh */
 };
 
 /* Plans a mesh's primitives; `local` tells whether each part keeps to its
  * own vertices. Returns the bytes the mesh adds to the buffer. */
-uint64_t plan_mesh(const banyan_mesh *m, int material_base, bool tangents, std::vector<Prim> &prims,
+uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, bool tangents, std::vector<Prim> &prims,
                    bool &local) {
     prims.clear();
     local = m->part_count > 0;
@@ -603,7 +748,7 @@ uint64_t plan_mesh(const banyan_mesh *m, int material_base, bool tangents, std::
     uint64_t bytes = 0;
     if (m->part_count == 0) {
         prims.push_back(Prim{0, m->index_count, 0, m->vertex_count,
-                             m->material_count > 0 ? material_base : -1});
+                             m->material_count > 0 ? material_base : -1, 0});
     }
     for (uint32_t p = 0; p < m->part_count; ++p) {
         const banyan_part *pt = &m->parts[p];
@@ -614,14 +759,15 @@ uint64_t plan_mesh(const banyan_mesh *m, int material_base, bool tangents, std::
         pr.vbase = local ? pt->vertex_offset : 0;
         pr.vcount = local ? pt->vertex_count : m->vertex_count;
         pr.material = m->material_count > 0 ? material_base + static_cast<int>(pt->material) : -1;
+        pr.group = pt->group;
         prims.push_back(pr);
     }
     bool colors = !colors_repeat_material(m);
     for (const Prim &pr : prims) {
         bytes += 4ull * pr.icount;
-        if (local) bytes += vertex_range_bytes(m, pr.vcount, colors, tangents);
+        if (local) bytes += vertex_range_bytes(m, L, pr.vcount, colors, tangents);
     }
-    if (!local) bytes += vertex_range_bytes(m, m->vertex_count, colors, tangents);
+    if (!local) bytes += vertex_range_bytes(m, L, m->vertex_count, colors, tangents);
     return bytes;
 }
 
@@ -710,6 +856,8 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (n < 64 || n > 8192 || (n & (n - 1)) != 0)
         return banyan_fail(err, BANYAN_E_RANGE,
                            "opt->texture_size = %d must be a power of two in [64, 8192]", n);
+    if (o.engine_uvs != 0 && o.engine_uvs != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = %d must be 0 (off) or 1 (on)", o.engine_uvs);
     return BANYAN_OK;
 }
 
@@ -753,9 +901,186 @@ class OutFile {
     atomic_file af_;
 };
 
-banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
-                         const char *const *names, uint32_t count, const banyan_gltf_options *opt,
-                         banyan_error *err) {
+/* One banyan mesh to write: a node's own mesh or one of its levels of
+ * detail, with its plan. */
+struct Job {
+    const banyan_mesh *m;
+    std::string name;
+    Layout L;
+    std::vector<Prim> prims;
+    bool local = false;
+    bool tangents = false;
+    int material_base = 0;
+    std::vector<int> image_texture; /* per m->images: the glTF texture of its PNG, -1 unused */
+};
+
+/* Bytes of the instancing accessors: TRANSLATION, ROTATION, SCALE. */
+uint64_t instance_bytes(const banyan_mesh *m) { return (3 + 4 + 3) * 4ull * m->instance_count; }
+
+const uint32_t kMaxNodes = 65536;
+const uint32_t kMaxLods = 7;
+
+banyan_status check_node(const banyan_gltf_node &n, uint32_t i, bool ex, banyan_error *err) {
+    std::string label = ex ? "meshes[" + std::to_string(i) + "]" : "nodes[" + std::to_string(i) + "].mesh";
+    banyan_status s = check_mesh(n.mesh, label.c_str(), err);
+    if (s != BANYAN_OK) return s;
+    if (n.name) {
+        size_t bad = 0;
+        if (!valid_utf8(n.name, std::strlen(n.name), &bad))
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, ex ? "names[%u] is not valid UTF-8 (byte %zu)"
+                                                             : "nodes[%u].name is not valid UTF-8 (byte %zu)",
+                               i, bad);
+    }
+    if (n.lod_count > kMaxLods)
+        return banyan_fail(err, BANYAN_E_RANGE, "nodes[%u].lod_count = %u is outside [0, %u]", i, n.lod_count, kMaxLods);
+    if (n.lod_count > 0 && n.lods == nullptr)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "nodes[%u].lods is NULL but lod_count = %u", i, n.lod_count);
+    for (uint32_t k = 0; k < n.lod_count; ++k) {
+        label = "nodes[" + std::to_string(i) + "].lods[" + std::to_string(k) + "]";
+        if ((s = check_mesh(n.lods[k], label.c_str(), err)) != BANYAN_OK) return s;
+    }
+    if (n.lod_coverage && n.lod_count > 0) {
+        for (uint32_t k = 0; k <= n.lod_count; ++k) {
+            double c = n.lod_coverage[k];
+            if (!(c > 0.0 && c <= 1.0))
+                return banyan_fail(err, BANYAN_E_RANGE, "nodes[%u].lod_coverage[%u] = %g is outside (0, 1]", i, k, c);
+            if (k > 0 && !(c < n.lod_coverage[k - 1]))
+                return banyan_fail(err, BANYAN_E_RANGE,
+                                   "nodes[%u].lod_coverage[%u] = %g must be less than lod_coverage[%u] = %g (coarser "
+                                   "levels show at smaller coverages)",
+                                   i, k, c, k - 1, n.lod_coverage[k - 1]);
+        }
+    }
+    return BANYAN_OK;
+}
+
+/* The screen coverage below which level k + 1 replaces level k (MSFT_lod's
+ * "MSFT_screencoverage", one value per level, the primary first). */
+double lod_coverage(const banyan_gltf_node &n, uint32_t k) {
+    return n.lod_coverage ? n.lod_coverage[k] : 0.5 / std::ldexp(1.0, static_cast<int>(k));
+}
+
+/* Writes a job's materials, mesh(es) and node(s); returns the node that
+ * stands for it (the one the scene or MSFT_lod lists). Without instances:
+ * one mesh on one node. With instances: one mesh per variant that has
+ * instances, each on a child node carrying EXT_mesh_gpu_instancing, under
+ * a node that holds the mesh's origin. */
+int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], bool &instanced) {
+    tinygltf::Model &model = b.model;
+    const banyan_mesh *m = J.m;
+    for (uint32_t k = 0; k < m->material_count; ++k) {
+        const banyan_material *bm = &m->materials[k];
+        tinygltf::Material mat;
+        mat.name.assign(bm->name, name_len(bm->name, BANYAN_NAME_MAX));
+        int image_tex = m->image_count > 0 && bm->image >= 0 ? J.image_texture[static_cast<size_t>(bm->image)] : -1;
+        int key = image_tex < 0 && !(m->image_count > 0 && bm->image >= 0) ? texture_key(m, bm) : -1;
+        int tex = key >= 0 ? slot[key] : -1;
+        if (image_tex >= 0) { /* the image carries the colour; it has no normal map */
+            mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, short_double(bm->base_color[3])};
+            mat.pbrMetallicRoughness.baseColorTexture.index = image_tex;
+        } else if (tex >= 0) { /* the texture carries the colour */
+            mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, short_double(bm->base_color[3])};
+            mat.pbrMetallicRoughness.baseColorTexture.index = 2 * tex;
+            mat.normalTexture.index = 2 * tex + 1;
+        } else {
+            mat.pbrMetallicRoughness.baseColorFactor = {
+                short_double(bm->base_color[0]), short_double(bm->base_color[1]),
+                short_double(bm->base_color[2]), short_double(bm->base_color[3])};
+        }
+        mat.pbrMetallicRoughness.metallicFactor = 0.0;
+        mat.pbrMetallicRoughness.roughnessFactor = short_double(bm->roughness);
+        mat.doubleSided = bm->double_sided != 0;
+        if (bm->alpha_cutoff > 0.0f) {
+            mat.alphaMode = "MASK"; /* alpha-tested: no sorting, unlike BLEND */
+            mat.alphaCutoff = short_double(bm->alpha_cutoff);
+        } else if (bm->base_color[3] < 1.0f) {
+            mat.alphaMode = "BLEND";
+        }
+        model.materials.push_back(mat);
+    }
+
+    std::map<std::string, int> shared;
+    bool colors = !colors_repeat_material(m);
+    std::vector<float> tan;
+    if (J.tangents) tan = vertex_tangents(m);
+    if (!J.local) shared = add_vertex_range(b, m, J.L, 0, m->vertex_count, colors, tan);
+    std::vector<uint32_t> rebased;
+    auto add_prim = [&](const Prim &pr, tinygltf::Mesh &gm) {
+        tinygltf::Primitive prim;
+        prim.attributes = J.local ? add_vertex_range(b, m, J.L, pr.vbase, pr.vcount, colors, tan) : shared;
+        rebased.resize(pr.icount);
+        for (uint32_t k = 0; k < pr.icount; ++k) rebased[k] = m->indices[pr.ioff + k] - pr.vbase;
+        int v = b.add_view(rebased.data(), rebased.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        prim.indices = b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, pr.icount);
+        prim.material = pr.material;
+        prim.mode = TINYGLTF_MODE_TRIANGLES;
+        gm.primitives.push_back(prim);
+    };
+
+    tinygltf::Node node;
+    node.name = J.name;
+    if (m->origin[0] != 0 || m->origin[1] != 0 || m->origin[2] != 0) /* the local origin, Y up, in double */
+        node.translation = {m->origin[0], m->origin[2], -m->origin[1]};
+    if (m->instance_count == 0) {
+        tinygltf::Mesh gm;
+        gm.name = J.name;
+        for (const Prim &pr : J.prims) add_prim(pr, gm);
+        model.meshes.push_back(gm);
+        node.mesh = static_cast<int>(model.meshes.size() - 1);
+        model.nodes.push_back(node);
+        return static_cast<int>(model.nodes.size() - 1);
+    }
+
+    /* Instanced: the parent first, its variant children after it. */
+    instanced = true;
+    model.nodes.push_back(node);
+    const int parent = static_cast<int>(model.nodes.size() - 1);
+    std::vector<uint32_t> variants = drawn_groups(m);
+    std::vector<int> children;
+    std::vector<float> T, R, S;
+    for (uint32_t g : variants) {
+        T.clear();
+        R.clear();
+        S.clear();
+        for (uint32_t k = 0; k < m->instance_count; ++k) {
+            const banyan_instance *in = &m->instances[k];
+            if (in->variant != g) continue;
+            /* Z up -> Y up turns +Z into +Y: a turn about +Z stays a turn
+             * of the same angle about +Y. */
+            double h = 0.5 * static_cast<double>(in->rotation_z);
+            T.insert(T.end(), {in->translation[0], in->translation[2], -in->translation[1]});
+            R.insert(R.end(), {0.0f, static_cast<float>(std::sin(h)), 0.0f, static_cast<float>(std::cos(h))});
+            S.insert(S.end(), {in->scale, in->scale, in->scale});
+        }
+        if (T.empty()) continue; /* a variant no instance shows */
+        tinygltf::Mesh gm;
+        gm.name = J.name + "_variant_" + std::to_string(g);
+        for (const Prim &pr : J.prims)
+            if (pr.group == g) add_prim(pr, gm);
+        model.meshes.push_back(gm);
+        const size_t n = T.size() / 3;
+        tinygltf::Value::Object attrs;
+        int v = b.add_view(T.data(), T.size() * sizeof(float), 0);
+        attrs["TRANSLATION"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n));
+        v = b.add_view(R.data(), R.size() * sizeof(float), 0);
+        attrs["ROTATION"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n));
+        v = b.add_view(S.data(), S.size() * sizeof(float), 0);
+        attrs["SCALE"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n));
+        tinygltf::Value::Object ext;
+        ext["attributes"] = tinygltf::Value(attrs);
+        tinygltf::Node child;
+        child.name = gm.name;
+        child.mesh = static_cast<int>(model.meshes.size() - 1);
+        child.extensions["EXT_mesh_gpu_instancing"] = tinygltf::Value(ext);
+        model.nodes.push_back(child);
+        children.push_back(static_cast<int>(model.nodes.size() - 1));
+    }
+    model.nodes[static_cast<size_t>(parent)].children = children;
+    return parent;
+}
+
+banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, uint32_t count,
+                               const banyan_gltf_options *opt, bool ex, banyan_error *err) {
     banyan_gltf_options o;
     banyan_gltf_options_init(&o);
     if (opt) o = *opt;
@@ -773,44 +1098,72 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     banyan_status checked = check_options(o, err);
     if (checked != BANYAN_OK) return checked;
     if (count == 0) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is 0; nothing to write");
-    if (meshes == nullptr)
-        return banyan_fail(err, BANYAN_E_INVALID_ARG, "meshes is NULL but count = %u", count);
-
+    if (!ex && count > kMaxNodes)
+        return banyan_fail(err, BANYAN_E_RANGE, "count = %u is outside [1, %u]", count, kMaxNodes);
+    if (nodes == nullptr)
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, ex ? "meshes is NULL but count = %u" : "nodes is NULL but count = %u",
+                           count);
     for (uint32_t i = 0; i < count; ++i) {
-        banyan_status s = check_mesh(meshes[i], i, err);
+        banyan_status s = check_node(nodes[i], i, ex, err);
         if (s != BANYAN_OK) return s;
-        if (names && names[i]) {
-            size_t bad = 0;
-            if (!valid_utf8(names[i], std::strlen(names[i]), &bad))
-                return banyan_fail(err, BANYAN_E_INVALID_ARG, "names[%u] is not valid UTF-8 (byte %zu)",
-                            i, bad);
+    }
+
+    /* Every mesh to write, in order: each node's own, then its levels. */
+    std::vector<Job> jobs;
+    std::vector<const banyan_mesh *> all;
+    for (uint32_t i = 0; i < count; ++i) {
+        std::string name = nodes[i].name ? std::string(nodes[i].name) : "banyan_" + std::to_string(i);
+        for (uint32_t k = 0; k <= nodes[i].lod_count; ++k) {
+            Job J;
+            J.m = k == 0 ? nodes[i].mesh : nodes[i].lods[k - 1];
+            J.name = k == 0 ? name : name + "_lod" + std::to_string(k);
+            J.L = layout_of(J.m, o.engine_uvs != 0);
+            jobs.push_back(std::move(J));
+            all.push_back(jobs.back().m);
         }
     }
 
     std::vector<TexturePngs> textures;
     int slot[2 * BANYAN_TEX_COUNT];
-    banyan_status ts = draw_textures(meshes, count, o, textures, slot, err);
+    banyan_status ts = draw_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot, err);
     if (ts != BANYAN_OK) return ts;
-    /* A mesh with a textured material gets tangents for its normal map. */
-    std::vector<char> tangents(count, 0);
-    for (uint32_t i = 0; i < count; ++i)
-        for (uint32_t k = 0; k < meshes[i]->material_count; ++k) {
-            int key = texture_key(meshes[i], &meshes[i]->materials[k]);
-            if (key >= 0 && slot[key] >= 0) tangents[i] = 1;
+    /* The meshes' own images (a billboard's picture), one PNG each that a
+     * material names; with textures off, materials are drawn flat. */
+    std::vector<std::vector<unsigned char>> pictures;
+    const int picture_base = 2 * static_cast<int>(textures.size());
+    for (Job &J : jobs) {
+        J.image_texture.assign(J.m->image_count, -1);
+        for (uint32_t k = 0; o.textures && J.m->image_count > 0 && k < J.m->material_count; ++k) {
+            int32_t im = J.m->materials[k].image;
+            if (im < 0 || J.image_texture[static_cast<size_t>(im)] >= 0) continue;
+            ImageGuard g;
+            size_t size = 0;
+            banyan_status s = banyan_image_png(&J.m->images[im], &g.png, &size, err);
+            if (s != BANYAN_OK) return s;
+            pictures.emplace_back(g.png, g.png + size);
+            J.image_texture[static_cast<size_t>(im)] = picture_base + static_cast<int>(pictures.size() - 1);
+        }
+    }
+    /* A mesh with a library-textured material gets tangents for its normal map. */
+    for (Job &J : jobs)
+        for (uint32_t k = 0; k < J.m->material_count; ++k) {
+            const banyan_material *bm = &J.m->materials[k];
+            if (J.m->image_count > 0 && bm->image >= 0) continue;
+            int key = texture_key(J.m, bm);
+            if (key >= 0 && slot[key] >= 0) J.tangents = true;
         }
 
     /* Plan, so the buffer is allocated once and its size checked first. */
-    std::vector<std::vector<Prim>> plans(count);
-    std::vector<char> local(count, 0);
     uint64_t total = 0;
     int material_base = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        bool l = false;
-        total += plan_mesh(meshes[i], material_base, tangents[i] != 0, plans[i], l);
-        local[i] = l ? 1 : 0;
-        material_base += static_cast<int>(meshes[i]->material_count);
+    for (Job &J : jobs) {
+        J.material_base = material_base;
+        total += plan_mesh(J.m, J.L, material_base, J.tangents, J.prims, J.local);
+        total += instance_bytes(J.m);
+        material_base += static_cast<int>(J.m->material_count);
     }
     for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
+    for (const auto &p : pictures) total += pad4(p.size());
     if (total > kMaxBufferBytes)
         return banyan_fail(err, BANYAN_E_LIMIT,
                     "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
@@ -826,103 +1179,78 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     model.asset.generator = "banyan";
 
     /* Images, samplers and textures first (their bytes go at the end of
-     * the buffer): sampler 0 repeats (bark), sampler 1 clamps (atlases). */
+     * the buffer): sampler 0 repeats (bark), sampler 1 clamps (atlases,
+     * pictures). */
     int sampler[2] = {-1, -1};
-    for (size_t t = 0; t < textures.size(); ++t) {
-        const TexturePngs &tp = textures[t];
-        bool atlas = is_leaf_kind(tp.kind);
-        if (sampler[atlas] < 0) {
+    auto sampler_for = [&](bool clamp) {
+        if (sampler[clamp] < 0) {
             tinygltf::Sampler sm;
             sm.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
             sm.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-            sm.wrapS = sm.wrapT = atlas ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
+            sm.wrapS = sm.wrapT = clamp ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
             model.samplers.push_back(sm);
-            sampler[atlas] = static_cast<int>(model.samplers.size() - 1);
+            sampler[clamp] = static_cast<int>(model.samplers.size() - 1);
         }
+        return sampler[clamp];
+    };
+    auto add_texture = [&](const std::string &name, int smp) {
+        tinygltf::Image im;
+        im.name = name;
+        im.mimeType = "image/png";
+        model.images.push_back(im); /* bufferView set below */
+        tinygltf::Texture tx;
+        tx.name = im.name;
+        tx.sampler = smp;
+        tx.source = static_cast<int>(model.images.size() - 1);
+        model.textures.push_back(tx);
+    };
+    for (size_t t = 0; t < textures.size(); ++t) {
+        const TexturePngs &tp = textures[t];
+        bool atlas = is_leaf_kind(tp.kind);
+        int smp = sampler_for(atlas);
         std::string name = kKindNames[tp.kind];
         if (atlas) name += tp.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
-        for (int map = 0; map < 2; ++map) {
-            tinygltf::Image im;
-            im.name = map ? name + "_normal" : name;
-            im.mimeType = "image/png";
-            model.images.push_back(im); /* bufferView set below */
-            tinygltf::Texture tx;
-            tx.name = im.name;
-            tx.sampler = sampler[atlas];
-            tx.source = static_cast<int>(model.images.size() - 1);
-            model.textures.push_back(tx);
-        }
+        add_texture(name, smp);
+        add_texture(name + "_normal", smp);
     }
+    for (const Job &J : jobs)
+        for (size_t k = 0; k < J.image_texture.size(); ++k)
+            if (J.image_texture[k] >= 0) add_texture(J.name + "_image_" + std::to_string(k), sampler_for(true));
 
     tinygltf::Scene scene;
-    std::vector<uint32_t> rebased;
+    bool any_lod = false, any_instanced = false;
+    size_t j = 0;
     for (uint32_t i = 0; i < count; ++i) {
-        const banyan_mesh *m = meshes[i];
-        for (uint32_t k = 0; k < m->material_count; ++k) {
-            const banyan_material *bm = &m->materials[k];
-            tinygltf::Material mat;
-            mat.name.assign(bm->name, name_len(bm->name, BANYAN_NAME_MAX));
-            int key = texture_key(m, bm), tex = key >= 0 ? slot[key] : -1;
-            if (tex >= 0) { /* the texture carries the colour */
-                mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, short_double(bm->base_color[3])};
-                mat.pbrMetallicRoughness.baseColorTexture.index = 2 * tex;
-                mat.normalTexture.index = 2 * tex + 1;
-            } else {
-                mat.pbrMetallicRoughness.baseColorFactor = {
-                    short_double(bm->base_color[0]), short_double(bm->base_color[1]),
-                    short_double(bm->base_color[2]), short_double(bm->base_color[3])};
-            }
-            mat.pbrMetallicRoughness.metallicFactor = 0.0;
-            mat.pbrMetallicRoughness.roughnessFactor = short_double(bm->roughness);
-            mat.doubleSided = bm->double_sided != 0;
-            if (bm->alpha_cutoff > 0.0f) {
-                mat.alphaMode = "MASK"; /* alpha-tested: no sorting, unlike BLEND */
-                mat.alphaCutoff = short_double(bm->alpha_cutoff);
-            } else if (bm->base_color[3] < 1.0f) {
-                mat.alphaMode = "BLEND";
-            }
-            model.materials.push_back(mat);
+        const banyan_gltf_node &n = nodes[i];
+        int primary = emit_job(b, jobs[j++], slot, any_instanced);
+        if (n.lod_count > 0) {
+            /* MSFT_lod: the coarser levels are nodes outside the scene's
+             * roots, listed finest first on the primary node. */
+            tinygltf::Value::Array ids, coverage;
+            for (uint32_t k = 0; k < n.lod_count; ++k) ids.push_back(tinygltf::Value(emit_job(b, jobs[j++], slot, any_instanced)));
+            for (uint32_t k = 0; k <= n.lod_count; ++k) coverage.push_back(tinygltf::Value(lod_coverage(n, k)));
+            tinygltf::Value::Object ext, extras;
+            ext["ids"] = tinygltf::Value(ids);
+            extras["MSFT_screencoverage"] = tinygltf::Value(coverage);
+            tinygltf::Node &pn = model.nodes[static_cast<size_t>(primary)];
+            pn.extensions["MSFT_lod"] = tinygltf::Value(ext);
+            pn.extras = tinygltf::Value(extras);
+            any_lod = true;
         }
-
-        std::string name = (names && names[i]) ? std::string(names[i])
-                                               : "banyan_" + std::to_string(i);
-        tinygltf::Mesh gm;
-        gm.name = name;
-        std::map<std::string, int> shared;
-        bool colors = !colors_repeat_material(m);
-        std::vector<float> tan;
-        if (tangents[i]) tan = vertex_tangents(m);
-        if (!local[i]) shared = add_vertex_range(b, m, 0, m->vertex_count, colors, tan);
-        for (const Prim &pr : plans[i]) {
-            tinygltf::Primitive prim;
-            prim.attributes = local[i] ? add_vertex_range(b, m, pr.vbase, pr.vcount, colors, tan) : shared;
-            rebased.resize(pr.icount);
-            for (uint32_t k = 0; k < pr.icount; ++k)
-                rebased[k] = m->indices[pr.ioff + k] - pr.vbase;
-            int v = b.add_view(rebased.data(), rebased.size() * sizeof(uint32_t),
-                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-            prim.indices = b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                          TINYGLTF_TYPE_SCALAR, pr.icount);
-            prim.material = pr.material;
-            prim.mode = TINYGLTF_MODE_TRIANGLES;
-            gm.primitives.push_back(prim);
-        }
-        model.meshes.push_back(gm);
-
-        tinygltf::Node node;
-        node.name = name;
-        node.mesh = static_cast<int>(model.meshes.size() - 1);
-        if (m->origin[0] != 0 || m->origin[1] != 0 || m->origin[2] != 0) /* the local origin, Y up, in double */
-            node.translation = {m->origin[0], m->origin[2], -m->origin[1]};
-        model.nodes.push_back(node);
-        scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+        scene.nodes.push_back(primary);
     }
+    /* Used, not required: a viewer without them shows the finest level,
+     * and each variant once at the node's origin (docs/gltf.md). */
+    if (any_instanced) model.extensionsUsed.push_back("EXT_mesh_gpu_instancing");
+    if (any_lod) model.extensionsUsed.push_back("MSFT_lod");
     model.scenes.push_back(scene);
     model.defaultScene = 0;
     for (size_t t = 0; t < textures.size(); ++t) {
         model.images[2 * t].bufferView = b.add_image_view(textures[t].base);
         model.images[2 * t + 1].bufferView = b.add_image_view(textures[t].normal);
     }
+    for (size_t p = 0; p < pictures.size(); ++p)
+        model.images[static_cast<size_t>(picture_base) + p].bufferView = b.add_image_view(pictures[p]);
 
     if (bin.size() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL,
@@ -949,41 +1277,10 @@ banyan_status write_impl(const char *path, const banyan_mesh *const *meshes,
     return BANYAN_OK;
 }
 
-} // namespace
-
-extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
-    if (opt == nullptr) return;
-    std::memset(opt, 0, sizeof *opt);
-    opt->textures = 1;
-    opt->texture_size = 1024;
-    opt->texture_seed = 1;
-}
-
-extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }
-
-extern "C" BANYAN_API size_t banyan_sizeof_gltf_node(void) { return sizeof(banyan_gltf_node); }
-
-/* Contract stub (issue #22): the glTF work replaces it. */
-extern "C" BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes,
-                                                            uint32_t count, const banyan_gltf_options *opt,
-                                                            banyan_error *err) {
-    (void)path; (void)nodes; (void)count; (void)opt;
-    return banyan_fail(err, BANYAN_E_INTERNAL, "banyan_gltf_write_nodes is not built yet");
-}
-
-extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
-                                                      const banyan_mesh *const *meshes,
-                                                      const char *const *names, uint32_t count,
-                                                      banyan_error *err) {
-    return banyan_gltf_write_ex(path, meshes, names, count, nullptr, err);
-}
-
-extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
-                                                         const banyan_mesh *const *meshes,
-                                                         const char *const *names, uint32_t count,
-                                                         const banyan_gltf_options *opt, banyan_error *err) {
+/* The C calls' wrapper: no exception leaves the library. */
+template <class F> banyan_status guarded(const char *path, banyan_error *err, F f) {
     try {
-        return write_impl(path, meshes, names, count, opt, err);
+        return f();
     } catch (const std::bad_alloc &) {
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory while writing glTF '%s'",
                     path ? path : "(null)");
@@ -994,4 +1291,48 @@ extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
         return banyan_fail(err, BANYAN_E_INTERNAL, "unknown internal error while writing glTF '%s'",
                     path ? path : "(null)");
     }
+}
+
+} // namespace
+
+extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
+    if (opt == nullptr) return;
+    std::memset(opt, 0, sizeof *opt);
+    opt->textures = 1;
+    opt->texture_size = 1024;
+    opt->texture_seed = 1;
+    opt->engine_uvs = 0;
+}
+
+extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }
+
+extern "C" BANYAN_API size_t banyan_sizeof_gltf_node(void) { return sizeof(banyan_gltf_node); }
+
+extern "C" BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes,
+                                                            uint32_t count, const banyan_gltf_options *opt,
+                                                            banyan_error *err) {
+    return guarded(path, err, [&] { return write_nodes_impl(path, nodes, count, opt, false, err); });
+}
+
+extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
+                                                      const banyan_mesh *const *meshes,
+                                                      const char *const *names, uint32_t count,
+                                                      banyan_error *err) {
+    return banyan_gltf_write_ex(path, meshes, names, count, nullptr, err);
+}
+
+/* One node per mesh, no levels of detail: banyan_gltf_write_nodes. */
+extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
+                                                         const banyan_mesh *const *meshes,
+                                                         const char *const *names, uint32_t count,
+                                                         const banyan_gltf_options *opt, banyan_error *err) {
+    return guarded(path, err, [&] {
+        std::vector<banyan_gltf_node> nodes;
+        if (meshes != nullptr) {
+            nodes.resize(count);
+            for (uint32_t i = 0; i < count; ++i)
+                nodes[i] = banyan_gltf_node{meshes[i], names ? names[i] : nullptr, 0, nullptr, nullptr};
+        }
+        return write_nodes_impl(path, meshes ? nodes.data() : nullptr, count, opt, true, err);
+    });
 }

@@ -141,8 +141,9 @@ typedef struct banyan_attribute {
  *   wind_level        branch order: 0 trunk (ivy: main stem; roots: the
  *                     root), 1 its branches, ...; a leaf is its twig's + 1.
  *   wind_stiffness    0..1: 1 does not move (trunk base, a stem stuck to
- *                     a wall), falling toward the tips; never larger at a
- *                     branch's tip than at its base.
+ *                     a wall, a root gripping its host), falling toward
+ *                     the free tips; where a root or stem holds on again
+ *                     further out, it is 1 there again.
  *   wind_phase        0..1, one value per branch (all of its vertices),
  *                     random from the branch: branches do not sway in step.
  *   wind_flutter      0..1: leaf flutter weight (1 on a leaf blade, 0 on
@@ -482,6 +483,8 @@ typedef struct banyan_gltf_options {
     int32_t textures;        /* 0/1: embed the textures the materials name (banyan/textures.h). Default 1 */
     int32_t texture_size;    /* pixels per side: a power of two, 64 .. 8192. Default 1024 */
     uint64_t texture_seed;   /* seed of the drawn textures. Default 1 */
+    int32_t engine_uvs;      /* 0/1: also write the wind data as TEXCOORD_1 .. 4 for importers that read only UV
+                                sets (docs/gltf.md "Wind"). Default 0 */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
@@ -515,7 +518,7 @@ BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
  *                      0 .. 7: written as MSFT_lod on the node, with
  *                      "MSFT_screencoverage" in the node's extras.
  *   lod_coverage       lod_count + 1 falling screen coverages in (0, 1], or
- *                      NULL for 0.5, 0.25, 0.1, ... halving.
+ *                      NULL for 0.5, 0.25, 0.125, ... (halving).
  * A mesh with instances (banyan_mesh.instance_count > 0) becomes one
  * mesh per variant, each on a node with EXT_mesh_gpu_instancing
  * (TRANSLATION, ROTATION, SCALE accessors, Y up). */
@@ -555,7 +558,9 @@ BANYAN_API banyan_status banyan_gltf_write(const char *path,
  * the caps) past BANYAN_TUBE_MAX_VERTICES is refused with BANYAN_E_LIMIT
  * before anything is allocated. Points reaching more than 8192 m from
  * their bounds' centre are refused with BANYAN_E_RANGE (one mesh keeps 1
- * mm only that far from its origin: split the tube). */
+ * mm only that far from its origin: split the tube). The mesh always
+ * carries the wind attributes and birth: pivot points[0], level 0,
+ * stiffness sqrt(radius / the largest), birth by arc length 0 .. 1. */
 #define BANYAN_TUBE_MAX_VERTICES 16000000u
 BANYAN_API banyan_status banyan_tube_generate(const double *points, const double *radii,
                                               uint32_t point_count, int32_t sides,

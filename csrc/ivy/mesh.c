@@ -13,7 +13,18 @@
  * per-leaf tint (leaf_look.h), bronze while young. Per-leaf choices come
  * from a PCG32 stream of the leaf's own, so the growth is not disturbed.
  * Every vertex carries `birth_step` (the step its bud was created) and
- * `part` (0 stem and petiole, 1 leaf blade). */
+ * `part` (0 stem and petiole, 1 leaf blade), and the wind and birth
+ * attributes (core/wind.h; docs/ivy.md "Wind and growth attributes"):
+ * birth = birth_step / the last bud's (a leaf half a step later); a
+ * chain's pivot is its first point (a lateral's parent bud), its level the
+ * number of laterals from a first bud; a stem held by its suckers or lying
+ * on the ground has stiffness 1, a free one softens with the arc length
+ * from its last held bud as exp(-s / (IVY_WIND_REACH internode)), but
+ * never below 0.9 sqrt(r / r_max) (r its radius by age, r_max the
+ * thickest's), every generator's wood stiffness kept below 1: old stems
+ * sway less. A leaf
+ * and its petiole sway about their bud with its stiffness, level + 1,
+ * flutter 1, a phase of their own. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,6 +33,7 @@
 #include "core/mesh_builder.h"
 #include "core/obb.h"
 #include "core/tube.h"
+#include "core/wind.h"
 #include "ivy_internal.h"
 
 #define LEAF_OUTLINE 12 /* outline points; the card has LEAF_OUTLINE + 1 vertices */
@@ -29,6 +41,8 @@
 #define PETIOLE_VERTS (2 * PETIOLE_SIDES)
 #define LEAF_FOLD 0.25  /* rad each half of a blade turns up about the midrib: a flat card reads as paper */
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
+#define IVY_WIND_REACH 8.0 /* a free stem softens over this many internodes from its last hold */
+#define IVY_WIND_LEAF 0x1eaf0000000ULL /* leaves' phase ids, apart from the stems' (bud numbers) */
 
 /* Outline angles from the leaf tip (radians, increasing): the notch, the
  * base, the side lobe, the sinus, the tip's shoulder and the tip. */
@@ -305,6 +319,15 @@ static int chain_start(const banyan_ivy *iv, int32_t i) {
     return par < 0 || iv->buds[par].child[1] == i;
 }
 
+/* Wind and birth of bud i's leaf (petiole and blade): see the header. */
+static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *iv, int32_t i, double stiffness,
+                      int32_t level, double birth_scale) {
+    const ivy_bud *b = &iv->buds[i];
+    wind_set(mb, ws, b->P, level + 1, stiffness, wind_phase_of(iv->p.seed, IVY_WIND_LEAF + (uint64_t)i), 1.0);
+    double birth = (b->step_c + 0.5) * birth_scale;
+    wind_birth(mb, ws, birth_scale > 0 ? birth : 0.0);
+}
+
 /* Progress of the mesh of a one-shot generation: stems then leaves, by
  * bud, every 256 buds, from iv->mesh_from to 1. Returns 1 once cancelled. */
 static int mesh_progress(const banyan_ivy *iv, int32_t i, double half) {
@@ -345,23 +368,64 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
                            (unsigned long long)need_v, p->max_vertices);
     }
     /* The budget, and the mesh's memory before it is allocated (about 64
-     * bytes a vertex with its attributes, 4 an index). */
+     * bytes a vertex with its attributes; 4 more for birth, 32 with the wind too; 4 an
+     * index). */
     ivy_budget_start(iv);
-    if (prog_stopped(iv->prog) || prog_reserve(iv->prog, (double)need_v * 64.0 + (double)need_i * 4.0)) {
+    double per_v = p->wind ? 96.0 : 68.0;
+    if (prog_stopped(iv->prog) || prog_reserve(iv->prog, (double)need_v * per_v + (double)need_i * 4.0)) {
         free(pts);
         return prog_fail(iv->prog, err, "ivy mesh");
     }
     v3 *P = malloc(sizeof(v3) * max_pts);
     double *R = malloc(sizeof(double) * max_pts);
     float *birth = malloc(sizeof(float) * max_pts);
-    if (!P || !R || !birth) {
-        free(pts); free(P); free(R); free(birth);
+    /* wind: per ring stiffness and birth; per bud stiffness and level */
+    double *wr = malloc(sizeof(double) * 2 * max_pts), *bst = malloc(sizeof(double) * ((size_t)iv->n + 1));
+    int32_t *blv = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
+    if (!P || !R || !birth || !wr || !bst || !blv) {
+        free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
+    double *wr_birth = wr + max_pts;
+    int32_t last_step = 0;
+    {
+        /* Buds come in creation order: a parent before its children. bst
+         * holds the arc length from the last held bud until it becomes the
+         * stiffness. */
+        const double fall = 1.0 / (IVY_WIND_REACH * p->internode);
+        for (int32_t i = 0; i < iv->n; i++) {
+            const ivy_bud *b = &iv->buds[i];
+            int held = b->attached || (p->ground && b->P.z <= p->ground_z + p->clearance + 1e-9);
+            last_step = b->step_c > last_step ? b->step_c : last_step;
+            if (b->parent < 0) {
+                bst[i] = 0, blv[i] = 0;
+                continue;
+            }
+            bst[i] = held ? 0 : bst[b->parent] + v3_dist(b->P, iv->buds[b->parent].P);
+            blv[i] = blv[b->parent] + (chain_start(iv, i) ? 1 : 0);
+            if (blv[i] > 63) blv[i] = 63; /* wind_level's range; the tips past it share it */
+        }
+        double r_max = 0;
+        for (int32_t i = 0; i < iv->n; i++) {
+            double r = ivy_stem_radius(iv, &iv->buds[i]);
+            r_max = r > r_max ? r : r_max;
+        }
+        for (int32_t i = 0; i < iv->n; i++) {
+            if (bst[i] == 0) { /* held */
+                bst[i] = 1;
+                continue;
+            }
+            double s = exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(ivy_stem_radius(iv, &iv->buds[i]) / r_max) : 0;
+            bst[i] = s > t ? s : t;
+        }
+    }
+    const double birth_scale = last_step > 0 ? 1.0 / last_step : 0.0;
 
     mesh_builder mb;
     mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white stems, tinted leaves */
     int a_birth = mb_add_attr(&mb, "birth_step"), a_part = mb_add_attr(&mb, "part");
+    wind_slots ws;
+    wind_declare(&mb, p->wind, &ws);
     uint32_t m_stem = mb_add_material(&mb, "ivy_stem", p->stem_color, 0.85, 0);
     uint32_t m_leaf = mb_add_material(&mb, "ivy_leaf", p->leaf_color, 0.6, 1);
     if (!mb.status) {
@@ -390,13 +454,17 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             const ivy_bud *own = (k == 0 && pts[0] != i) ? s : b;
             R[k] = ivy_stem_radius(iv, own);
             birth[k] = (float)own->step_c;
+            wr[k] = bst[pts[k]];
+            wr_birth[k] = own->step_c * birth_scale;
         }
         if (n == 1) { /* a lone first bud: a short stub along its direction */
             P[1] = v3_madd(P[0], s->V, 2.0 * R[0]);
             R[1] = R[0];
             birth[1] = birth[0];
+            wr[1] = wr[0], wr_birth[1] = wr_birth[0];
             n = 2;
         }
+        wind_set(&mb, &ws, P[0], blv[i], 1.0, wind_phase_of(p->seed, (uint64_t)i), 0.0);
         tube_opts o;
         memset(&o, 0, sizeof o); /* fields the sweeper may gain stay zero */
         o.sides = sides;
@@ -415,6 +483,8 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         if (o.cap_start)
             for (uint32_t j = 0; j < ring + 1; j++) attr[v++] = birth[0];
         for (; v < mb.nv; v++) attr[v] = birth[n - 1];
+        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.stiffness, wr);
+        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.birth, wr_birth);
     }
 
     /* Leaves: every blade placed first (its petiole goes in the stem
@@ -423,7 +493,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     if (p->leaves && !mb.status && !cancelled) {
         lg = malloc(sizeof(leaf_geo) * ((size_t)iv->n + 1));
         if (!lg) {
-            free(pts); free(P); free(R); free(birth);
+            free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
             mb_free(&mb);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
         }
@@ -442,6 +512,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
             v3 e1 = v3_any_perp(ax), e2 = v3_cross(ax, e1);
             mb_set_attr(&mb, a_birth, (double)iv->buds[i].step_c);
+            leaf_wind(&mb, &ws, iv, i, bst[i], blv[i], birth_scale);
             uint32_t vc = mb_vertices(&mb, PETIOLE_VERTS);
             uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
             if (!I) break;
@@ -466,6 +537,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             if (!g->ok) continue;
             const ivy_bud *b = &iv->buds[i];
             mb_set_attr(&mb, a_birth, (double)b->step_c);
+            leaf_wind(&mb, &ws, iv, i, bst[i], blv[i], birth_scale);
             uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
             uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
             if (!I) break;
@@ -498,7 +570,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     for (int32_t i = 0; i < iv->n && !mb.status; i++)
         if (iv->buds[i].parent >= 0) mb_skel_edge(&mb, (uint32_t)iv->buds[i].parent, (uint32_t)i);
 
-    free(pts); free(P); free(R); free(birth);
+    free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
     if (cancelled) {
         mb_free(&mb);
         return prog_fail(iv->prog, err, "ivy mesh");

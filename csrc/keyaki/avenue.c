@@ -373,6 +373,8 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
                                      banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    if (p->variants > 0) /* instanced: variants.c */
+        return avenue_variants_generate(p, path_xyz, path_point_count, threads, out, progress, err);
     banyan_status s;
     if ((s = banyan_check_int(err, "threads", threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
     if ((s = prog_check(progress, err))) return s;

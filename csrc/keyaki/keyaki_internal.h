@@ -320,6 +320,12 @@ typedef struct keyaki_counts {
 } keyaki_counts;
 banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err);
 
+/* banyan_avenue_generate with p->variants > 0 (variants.c): the layout's
+ * first trees grown once each at the origin, shown as instances. */
+banyan_status avenue_variants_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
+                                       int32_t threads, banyan_mesh **out, const banyan_progress *progress,
+                                       banyan_error *err);
+
 /* PCG32 stream numbers of one tree. */
 #define KEYAKI_STREAM_GROWTH 0x6b6579616b69ull /* "keyaki" */
 #define KEYAKI_STREAM_LEAVES 0x6c6561766573ull /* "leaves" */

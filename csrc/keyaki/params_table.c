@@ -103,7 +103,7 @@
     KEYAKI_THICKNESS_ROWS(S, F), \
     KEYAKI_LEAVES_ROWS(S, F), \
     KEYAKI_SEGMENT_TWIGS_ROWS(S, F), \
-    BP_WIND(S, F, "Output")
+    BP_WIND(S, F, "Limits")
 
 #define KEYAKI_F(x) x
 #define AVENUE_F(x) tree.x

@@ -16,8 +16,10 @@
  * here the mesh gets outward smooth normals, bark uvs from the nearest
  * capsule (u round it, v its arc length over the circumference, as the
  * tubes' uvs; a triangle across u's wrap gets its own copies of the
- * vertices), `root_kind` and `root_id` of the nearest capsule, and the
- * tubes' colour, material and skeleton. */
+ * vertices), `root_kind` and `root_id` of the nearest capsule, its wind
+ * and birth values (wind.c: its root's pivot, level and phase, stiffness
+ * and birth between its two points), and the tubes' colour, material and
+ * skeleton. */
 #ifdef FUSED_TIMING
 #define _POSIX_C_SOURCE 199309L
 #endif
@@ -27,6 +29,7 @@
 
 #include "core/error.h"
 #include "core/tube.h"
+#include "core/wind.h"
 #include "fused_vdb.h"
 #include "roots_internal.h"
 /* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
@@ -314,6 +317,8 @@ static uint32_t nearest_capsule(const fgrid *g, const capsule *caps, uint32_t n_
 typedef struct fvert {
     double u, v;
     int32_t kind, id;
+    uint32_t cap; /* the nearest capsule, and where along it (0..1) */
+    double t;
 } fvert;
 
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
@@ -342,7 +347,8 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     uint32_t *dup = NULL, *dsrc = NULL;
     double *nacc = NULL;
     mesh_builder mb;
-    int mb_live = 0;
+    int mb_live = 0, rw_live = 0;
+    roots_wind rw;
     if (!caps || !T || !vcum) goto nomem;
     v3 *N = T + net->n_pts;
     double area = 0;
@@ -373,8 +379,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         goto done;
     }
     /* Known before the work: at least the band's voxels about the surface
-     * (two floats each) and the mesh's vertices (about 64 bytes each). */
-    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + 64.0))) {
+     * (two floats each) and the mesh's vertices (about 64 bytes each; 4
+     * more for birth, 32 with the wind attributes too). */
+    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + (p->wind ? 96.0 : 68.0)))) {
         st = prog_fail(net->prog, err, "fused roots surface");
         goto done;
     }
@@ -622,6 +629,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         fv[i].v = vcum[cp->at] + tube_dv(t * l, cp->ra, rt, r);
         fv[i].kind = net->poly[cp->poly].kind;
         fv[i].id = net->poly[cp->poly].id;
+        fv[i].cap = c, fv[i].t = t;
         dup[i] = UINT32_MAX;
     }
     /* A triangle across u's wrap takes copies of its low-u vertices at u + 1. */
@@ -646,8 +654,11 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 
     STAGE(4);
     if (roots_stop(net)) goto stopped;
+    if (roots_wind_build(net, p, &rw)) goto nomem;
+    rw_live = 1;
     int a_kind, a_id;
-    roots_mesh_init(&mb, p, &a_kind, &a_id);
+    wind_slots ws;
+    roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
     mb_live = 1;
     mb_reserve(&mb, nv + extra, 3 * nt);
     for (int pass = 0; pass < 2; pass++)
@@ -657,9 +668,23 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             v3 n = v3_norm(v3_make(nacc[3 * i], nacc[3 * i + 1], nacc[3 * i + 2]));
             mb_set_attr(&mb, a_kind, fv[i].kind);
             mb_set_attr(&mb, a_id, fv[i].id);
+            /* the nearest capsule's values, between its two points */
+            const capsule *cp = &caps[fv[i].cap];
+            double t = fv[i].t, s0 = rw.stiff[cp->at], b0 = rw.birth[cp->at];
+            wind_set(&mb, &ws, rw.pivot[cp->poly], fv[i].kind, s0 + (rw.stiff[cp->at + 1] - s0) * t,
+                     rw.phase[cp->poly], 0.0);
+            wind_birth(&mb, &ws, b0 + (rw.birth[cp->at + 1] - b0) * t);
             mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
         }
     for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
+    if (!mb.status && mb.nv) {
+        /* The surface starts off G and ends short of the last tip: its
+         * birth is stretched to 0..1 so growth starts and ends on time. */
+        float *bv = mb.attr[ws.birth], lo = bv[0], hi = bv[0];
+        for (uint32_t i = 1; i < mb.nv; i++) lo = bv[i] < lo ? bv[i] : lo, hi = bv[i] > hi ? bv[i] : hi;
+        double span = (double)hi - lo; /* in double: the last vertex's is exactly 1 */
+        for (uint32_t i = 0; i < mb.nv; i++) bv[i] = span > 0 ? (float)(((double)bv[i] - lo) / span) : 0.0f;
+    }
     if (roots_mesh_skeleton(&mb, net, p)) goto nomem;
     {
         uint32_t mv = mb.nv, mi = mb.ni;
@@ -685,6 +710,7 @@ stopped:
     st = prog_fail(net->prog, err, "fused roots surface");
 done:
     if (mb_live) mb_free(&mb);
+    if (rw_live) roots_wind_free(&rw);
     free(caps);
     free(T);
     free(vcum);

@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/leaf_look.h"
 #include "core/tube.h"
+#include "core/wind.h"
 #include "roots_internal.h"
 
 static const v3 UP = {0, 0, 1};
@@ -317,10 +318,11 @@ static void press_rings(work *wk, const roots_world *w, const v3 *P, uint32_t n)
     }
 }
 
-void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id) {
+void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id, wind_slots *ws) {
     mb_init(mb, (uint32_t)p->max_vertices, 1);
     *a_kind = mb_add_attr(mb, "root_kind");
     *a_id = mb_add_attr(mb, "root_id");
+    wind_declare(mb, p->wind, ws);
     mb_set_color(mb, p->color);
     uint32_t mat = mb_add_material(mb, "roots", p->color, 0.9, 0);
     if (!mb->status) bark_material_set(&mb->mat[mat], BANYAN_TEX_FIG_BARK);
@@ -407,14 +409,21 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         wk.sn[j] = sin(ang);
     }
 
+    roots_wind rw;
+    if (roots_wind_build(net, p, &rw)) {
+        free(block);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots' wind attributes");
+    }
     mesh_builder mb;
     int a_kind, a_id;
-    roots_mesh_init(&mb, p, &a_kind, &a_id);
+    wind_slots ws;
+    roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
     mb_reserve(&mb, (uint32_t)total_v, (uint32_t)total_i);
 
     for (uint32_t t = 0; t < net->n_poly && !mb.status; t++) {
         if (prog_at(net->prog, ROOTS_AT_MESH + (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
             free(block);
+            roots_wind_free(&rw);
             mb_free(&mb);
             return prog_fail(net->prog, err, "roots mesh");
         }
@@ -423,6 +432,8 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         const v3 *P = net->pts + pl->off;
         mb_set_attr(&mb, a_kind, pl->kind);
         mb_set_attr(&mb, a_id, pl->id);
+        /* stiffness and birth ring by ring after the sweep */
+        wind_set(&mb, &ws, rw.pivot[t], pl->kind, 1.0, rw.phase[t], 0.0);
         int smooth = pl->kind == ROOT_FIRST && p->smoothing;
         v3 first_normal = v3_make(0, 0, 0);
         if (smooth) {
@@ -451,8 +462,12 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         /* Round rings are eased at bends already (ease_bends): only junction
          * loops are checked ring by ring, which costs as much as the sweep. */
         if (smooth) unfold_rings(&wk, pl->soil_from < pl->n ? &soil_w : &net->w, P, pl->n);
+        uint32_t first = mb.nv;
         tube_sweep_rings(&mb, P, wk.rings, pl->n, &o);
+        wind_tube_rings(&mb, first, pl->n, sides, 1, 1, ws.stiffness, rw.stiff + pl->off);
+        wind_tube_rings(&mb, first, pl->n, sides, 1, 1, ws.birth, rw.birth + pl->off);
     }
+    roots_wind_free(&rw);
 
     if (roots_mesh_skeleton(&mb, net, p)) {
         free(block);

@@ -190,10 +190,24 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                                    banyan_roots_stats *stats, banyan_error *err);
 /* Shared by both surfaces (mesh.c): the builder with the roots' attributes
- * (`root_kind`, `root_id`), colour and fig-bark material; the skeleton
+ * (`root_kind`, `root_id`, the wind and birth slots: core/wind.h), colour and fig-bark material; the skeleton
  * (returns -1 when out of memory). */
-void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id);
+struct wind_slots;
+void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id, struct wind_slots *ws);
 int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roots_params *p);
+
+/* Wind and birth values of a net (wind.c): per point of net->pts its
+ * birth 0..1 and stiffness 0..1, per polyline its pivot (the skeleton
+ * point it starts from on its parent, G for main roots) and phase; the
+ * level is the polyline's kind. roots_wind_build returns -1 when out of
+ * memory (rw then holds nothing). */
+typedef struct roots_wind {
+    double *birth, *stiff; /* n_pts each (one block) */
+    v3 *pivot;             /* n_poly */
+    double *phase;         /* n_poly */
+} roots_wind;
+int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_wind *rw);
+void roots_wind_free(roots_wind *rw);
 
 /* Stages (each file's header comment names its spec section). */
 void roots_grow_mains(roots_net *net, const banyan_roots_params *p);

@@ -1,23 +1,28 @@
 // banyan viewer: shows one banyan .glb (drag and drop, the Open button or
-// ?file=URL, optionally &colour=ATTRIBUTE) with orbit controls, and lists
-// what it holds. It renders only when something changes, so an idle page
-// costs nothing.
+// ?file=URL, optionally &colour=ATTRIBUTE and &wind=0) with orbit controls,
+// and lists what it holds. A file with banyan's wind attributes (_WIND_PIVOT,
+// _WIND_PARAMS) sways in the vertex shader (wind.js); otherwise the page
+// renders only when something changes, so an idle page costs nothing.
 //
 // window.__banyanViewer is the page's state for tests and scripts:
-// loaded / error (null or a message) / file / counts / attributes, plus
-// render() and setColour(name). loaded turns true two frames after the
-// model's first render, so a screenshot taken then shows it.
+// loaded / error (null or a message) / file / counts / attributes / wind,
+// plus render(), setColour(name), setWind({...}) and setWindTime(t). loaded
+// turns true two frames after the model's first render, so a screenshot
+// taken then shows it.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { Wind, hasWind, WIND_PARAMS } from './wind.js';
 
 const $ = (id) => document.getElementById(id);
 const state = {
   loaded: false, error: null, file: null, meshes: 0, primitives: 0, vertices: 0, triangles: 0,
   materials: [], attributes: {}, colors: false, bounds: null, model: null,
-  render, setColour,
+  instances: 0, lods: 0, windMeshes: 0,
+  render, setColour, setWind, setWindTime,
 };
 window.__banyanViewer = state;
+const query = new URLSearchParams(window.location.search);
 
 // Viridis, sampled at five stops (sRGB): readable from dark to light.
 const RAMP = [[0.267, 0.005, 0.329], [0.229, 0.322, 0.546], [0.128, 0.567, 0.551],
@@ -39,6 +44,11 @@ const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
 camera.position.set(6, 5, 10);
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
+state.camera = camera;
+
+// The wind: on unless ?wind=0; the panel's checkbox and slider drive it.
+const wind = new Wind({ enabled: query.get('wind') !== '0' });
+state.wind = wind.settings;
 
 scene.add(new THREE.HemisphereLight(0xffffff, 0x8d7c6a, 1.6));
 const sun = new THREE.DirectionalLight(0xffffff, 2.2);
@@ -47,7 +57,44 @@ let grid = null;
 let loadToken = 0;
 
 function render() {
+  wind.update();
   renderer.render(scene, camera);
+}
+
+// While the wind blows over a model that has wind attributes, draw every
+// frame; otherwise draw only on change.
+let animating = false;
+const swaying = () => state.model !== null && state.windMeshes > 0 && wind.running();
+function tick() {
+  animating = swaying();
+  if (!animating) return;
+  render();
+  requestAnimationFrame(tick);
+}
+// Draws now (so a caller can read the canvas back in the same task) and
+// starts the frame loop if the model should sway.
+function kick() {
+  render();
+  if (!animating && swaying()) {
+    animating = true;
+    requestAnimationFrame(tick);
+  }
+}
+
+// setWind({enabled, strength, gust, frequency, direction, flutter}): any
+// subset; the panel follows.
+function setWind(changes) {
+  Object.assign(wind.settings, changes);
+  $('wind').checked = wind.settings.enabled;
+  $('wind-strength').value = wind.settings.strength;
+  kick();
+}
+
+// Freezes the wind's clock at t seconds (null: the real clock again) and
+// draws, so a test can compare two moments.
+function setWindTime(t) {
+  wind.settings.time = t;
+  kick();
 }
 
 function resize() {
@@ -81,6 +128,7 @@ function disposeModel() {
     for (const m of [].concat(o.material, o.userData.original || [])) m.dispose();
   });
   state.model = null;
+  state.windMeshes = 0;
 }
 
 // source: a URL, or the bytes of a dropped file.
@@ -92,6 +140,7 @@ function load(source, name) {
   setStatus(`Loading ${name}…`);
   $('info').replaceChildren();
   $('colour-row').hidden = true;
+  $('wind-row').hidden = true;
   const onLoad = (gltf) => { if (token === loadToken) show(gltf, name); };
   const onError = (e) => {
     if (token === loadToken) fail(`Cannot load ${name}: ${e && e.message ? e.message : e}`);
@@ -101,10 +150,30 @@ function load(source, name) {
   else loader.parse(source, '', onLoad, onError);
 }
 
-// Counts, material names and the range of every banyan scalar attribute
-// (glTF `_ROOT_KIND` arrives in three.js as `_root_kind`).
+// Where each colourable attribute lives: glTF `_ROOT_KIND` arrives in
+// three.js as `_root_kind` (GLTFLoader lower-cases names it does not know);
+// the packed _WIND_PARAMS gives four (wind_level, ..., one component each).
+// Vector attributes other than that (such as _WIND_PIVOT) are not listed.
+function scalarsOf(g) {
+  const out = [];
+  for (const [key, attr] of Object.entries(g.attributes)) {
+    if (!key.startsWith('_')) continue;
+    if (key === '_wind_params' && attr.itemSize === 4) {
+      WIND_PARAMS.forEach((name, c) => out.push([name, attr, c]));
+    } else if (attr.itemSize === 1) {
+      out.push([key.slice(1), attr, 0]);
+    }
+  }
+  return out;
+}
+
+function component(attr, c, i) {
+  return c === 0 ? attr.getX(i) : c === 1 ? attr.getY(i) : c === 2 ? attr.getZ(i) : attr.getW(i);
+}
+
+// Counts, material names and the range of every colourable attribute.
 function measure(gltf) {
-  const positions = new Set(), scanned = new Set(), materials = new Set();
+  const positions = new Set(), scanned = new Map(), materials = new Set();
   const ranges = {};
   let primitives = 0, triangles = 0, colors = false;
   gltf.scene.traverse((o) => {
@@ -115,12 +184,14 @@ function measure(gltf) {
     triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
     for (const m of [].concat(o.material)) materials.add(m.name || '(unnamed)');
     colors ||= !!g.attributes.color;
-    for (const [key, attr] of Object.entries(g.attributes)) {
-      if (!key.startsWith('_') || attr.itemSize !== 1 || scanned.has(attr)) continue;
-      scanned.add(attr);
-      const r = ranges[key.slice(1)] ||= [Infinity, -Infinity];
+    for (const [name, attr, c] of scalarsOf(g)) {
+      // An accessor shared by several primitives is scanned once.
+      const seen = scanned.get(attr) || new Set();
+      if (seen.has(c)) continue;
+      scanned.set(attr, seen.add(c));
+      const r = ranges[name] ||= [Infinity, -Infinity];
       for (let i = 0; i < attr.count; i++) {
-        const v = attr.getX(i);
+        const v = component(attr, c, i);
         if (v < r[0]) r[0] = v;
         if (v > r[1]) r[1] = v;
       }
@@ -128,8 +199,22 @@ function measure(gltf) {
   });
   let vertices = 0;
   for (const p of positions) vertices += p.count;
-  const meshes = (gltf.parser.json.meshes || []).length;
-  return { meshes, primitives, vertices, triangles, colors,
+  const json = gltf.parser.json;
+  const meshes = (json.meshes || []).length;
+  // three.js's GLTFLoader does not implement MSFT_lod: it shows each
+  // node's own mesh (LOD0) and never the coarser levels.
+  const lods = (json.nodes || []).filter((n) => n.extensions && n.extensions.MSFT_lod).length;
+  // Placed copies: EXT_mesh_gpu_instancing's count on every node the scene
+  // draws (three.js makes one InstancedMesh per primitive of each).
+  let instances = 0;
+  const visit = (i) => {
+    const n = json.nodes[i], ext = n.extensions && n.extensions.EXT_mesh_gpu_instancing;
+    const first = ext && ext.attributes && Object.values(ext.attributes)[0];
+    if (first !== undefined && n.mesh !== undefined) instances += json.accessors[first].count;
+    for (const c of n.children || []) visit(c);
+  };
+  for (const i of ((json.scenes || [])[json.scene ?? 0] || {}).nodes || []) visit(i);
+  return { meshes, primitives, vertices, triangles, colors, instances, lods,
            materials: [...materials], attributes: ranges };
 }
 
@@ -142,16 +227,19 @@ function show(gltf, name) {
   }
   const box = new THREE.Box3().setFromObject(root);
   Object.assign(state, info, { model: root, bounds: { min: box.min.toArray(), max: box.max.toArray() } });
+  // Wind: each mesh that carries the attributes gets a wind-patched copy
+  // of its material (instanced ones too).
+  state.windMeshes = wind.attach(root);
   scene.add(root);
   frame(box);
   fillInfo(gltf, name);
   setStatus(`Loaded ${name}`);
-  const colour = new URLSearchParams(window.location.search).get('colour');
+  const colour = query.get('colour');
   if (colour && colour in state.attributes) {
     $('colour').value = colour;
     setColour(colour);
   }
-  render();
+  kick();
   requestAnimationFrame(() => requestAnimationFrame(() => {
     state.loaded = true;
     document.title = `banyan viewer: ${name}`;
@@ -223,19 +311,26 @@ function fillInfo(gltf, name) {
   row('size (m)', [0, 2, 1].map((i) => (s.max[i] - s.min[i]).toFixed(2)).join(' × ') + '  (x y z, z up)');
   row('materials', state.materials.join(', '));
   row('colours', state.colors ? 'vertex colours (COLOR_0)' : 'material colours only');
+  if (state.instances) row('instances', `${state.instances.toLocaleString('en')} (EXT_mesh_gpu_instancing)`);
+  if (state.lods) row('levels of detail', `MSFT_lod on ${state.lods} node(s): three.js shows LOD0 only`);
+  row('wind', state.windMeshes ? `${state.windMeshes} primitive(s) with _WIND_PIVOT + _WIND_PARAMS` : 'no wind attributes');
   for (const [key, [lo, hi]] of Object.entries(state.attributes)) row(key, `${fmt(lo)} … ${fmt(hi)}`);
   $('info').replaceChildren(...rows);
 
   const select = $('colour');
   select.replaceChildren(new Option('materials', ''), ...Object.keys(state.attributes).map((k) => new Option(k, k)));
   $('colour-row').hidden = Object.keys(state.attributes).length === 0;
+  $('wind-row').hidden = state.windMeshes === 0;
+  $('wind').checked = wind.settings.enabled;
+  $('wind-strength').value = wind.settings.strength;
 }
 
 // Colours the model by one scalar attribute over its range, or restores
 // the file's own materials and colours when name is ''.
 function setColour(name) {
   if (!state.model) return;
-  const material = name ? new THREE.MeshStandardMaterial({ vertexColors: true, side: THREE.DoubleSide, roughness: 0.8 }) : null;
+  const plain = name ? new THREE.MeshStandardMaterial({ vertexColors: true, side: THREE.DoubleSide, roughness: 0.8 }) : null;
+  const swaying = plain ? wind.patch(plain.clone()) : null;
   const range = name ? state.attributes[name] : null;
   const c = new THREE.Color();
   state.model.traverse((o) => {
@@ -250,17 +345,18 @@ function setColour(name) {
       else g.deleteAttribute('color');
       return;
     }
-    const attr = g.attributes['_' + name];
+    const [, attr, k] = scalarsOf(g).find(([n]) => n === name) || [];
     const out = new Float32Array(g.attributes.position.count * 3);
     for (let i = 0; i < g.attributes.position.count; i++) {
-      const t = attr && range[1] > range[0] ? (attr.getX(i) - range[0]) / (range[1] - range[0]) : attr ? 0 : -1;
+      const v = attr ? component(attr, k, i) : 0;
+      const t = attr && range[1] > range[0] ? (v - range[0]) / (range[1] - range[0]) : attr ? 0 : -1;
       ramp(t, c).toArray(out, i * 3);
     }
     g.setAttribute('color', new THREE.BufferAttribute(out, 3));
     if (o.material !== o.userData.original) o.material.dispose();
-    o.material = material;
+    o.material = hasWind(g) ? swaying : plain;
   });
-  render();
+  kick();
 }
 
 // t in [0, 1] along the ramp; t < 0 (attribute missing) is grey.
@@ -274,6 +370,8 @@ function ramp(t, c) {
 }
 
 $('colour').addEventListener('change', (e) => setColour(e.target.value));
+$('wind').addEventListener('change', (e) => setWind({ enabled: e.target.checked }));
+$('wind-strength').addEventListener('input', (e) => setWind({ strength: Number(e.target.value) }));
 $('open').addEventListener('change', (e) => {
   const f = e.target.files[0];
   if (f) f.arrayBuffer().then((buf) => load(buf, f.name));
@@ -287,7 +385,7 @@ window.addEventListener('drop', (e) => {
   if (f) f.arrayBuffer().then((buf) => load(buf, f.name));
 });
 
-const param = new URLSearchParams(window.location.search).get('file');
+const param = query.get('file');
 if (param) {
   const url = new URL(param, window.location.href);
   load(url.href, decodeURIComponent(url.pathname.split('/').pop()) || param);

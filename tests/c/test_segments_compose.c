@@ -134,7 +134,8 @@ int main(int argc, char **argv) {
     banyan_segments_params_init(&p);
     banyan_error err;
     CHECK(banyan_params_check(BANYAN_GEN_SEGMENTS, &p, &err) == BANYAN_OK, "defaults pass the table: %s", err.message);
-    CHECK(banyan_param_count(BANYAN_GEN_SEGMENTS) == 19 && banyan_param_find(BANYAN_GEN_SEGMENTS, "attach_tolerance"),
+    CHECK(banyan_param_count(BANYAN_GEN_SEGMENTS) == 19 && banyan_param_find(BANYAN_GEN_SEGMENTS, "attach_tolerance") &&
+              banyan_param_find(BANYAN_GEN_SEGMENTS, "wind"),
           "param table");
 
     /* --- Demo trees are fully attached; moved segments are flagged. */

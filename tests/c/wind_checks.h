@@ -87,7 +87,7 @@ static inline double wind_pivot_worst(const banyan_mesh *m, double reach, uint32
     const float *py = banyan_mesh_attribute(m, BANYAN_ATTR_WIND_PIVOT_Y);
     const float *pz = banyan_mesh_attribute(m, BANYAN_ATTR_WIND_PIVOT_Z);
     if (!px || !py || !pz || !m->skel_edge_count || !m->skel_points) return -1;
-    wind_grid g;
+    wind_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
     double hi[3];
     for (int k = 0; k < 3; k++) g.lo[k] = 1e300, hi[k] = -1e300;
     for (uint32_t i = 0; i < m->skel_point_count; i++)

@@ -154,6 +154,9 @@ expect 2 "--threads ' 2' must be a whole number in [0, 64]" -- "$bin" avenue --t
 expect 2 "--threads '2x' must be a whole number in [0, 64]" -- "$bin" avenue --threads 2x
 expect 2 "--threads '65' must be a whole number in [0, 64]" -- "$bin" avenue --threads 65
 expect 0 '"command": "avenue"' -- "$bin" avenue --threads 1 --set tree.levels=4 --stats
+# Instanced avenue (issue #22): the writer places the variants; --stats counts them.
+expect 0 '"variants": 3, "instances": 16' -- "$bin" avenue --set variants=3 --set tree.levels=4 --texture-size 64 --stats \
+  -o "$out/cli_avenue_variants.glb"
 expect 1 "--seed: seed = ' -1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed " -1"
 expect 1 "--seed: seed = '-1' must be a whole number in [0, 2^64-1]" -- "$bin" roots --seed -1
 expect 1 "--seed: seed = '18446744073709551616' must be a whole number" -- "$bin" roots --seed 18446744073709551616

@@ -113,6 +113,9 @@ def _bind(lib):
         "banyan_image_free": (None, [P(S.Image)]),
         "banyan_image_png": (C.c_int, [P(S.Image), P(P(C.c_uint8)), P(C.c_size_t), err]),
         "banyan_png_free": (None, [P(C.c_uint8)]),
+        # Levels of detail (banyan/lod.h).
+        "banyan_lod_params_init": (None, [P(S.LodParams)]),
+        "banyan_mesh_lod": (C.c_int, [P(S.Mesh), P(S.LodParams), P(P(S.Mesh)), err]),
     }
     for key in S.SIZED:
         sigs["banyan_sizeof_" + key] = (C.c_size_t, [])

@@ -4,7 +4,9 @@ One copy per array: Blender's foreach_set reads array.array
 ('f' / 'i') buffers at memory speed, while raw ctypes arrays are read item
 by item (see docs/addon.md). No numpy, no per-vertex Python loops.
 """
+import contextlib
 import ctypes as C
+import threading
 from array import array
 
 from . import lib as L
@@ -47,6 +49,11 @@ class MeshData:
         self.parts = []
         self.skel_points = self.skel_radius = self.skel_tag = self.skel_edges = None
         self.stats = None  # a generator's measures, when it reports them (ivy: generators.ivy_stats_dict)
+        # banyan_mesh.images as {"width", "height", "channels", "png": PNG bytes} (banyan_image_png).
+        self.images = []
+        # banyan_mesh.instances: (variant, (x, y, z), rotation_z, scale) each, in the mesh's frame.
+        self.instances = []
+        self.c_mesh = None  # the C mesh itself, kept only under capture() (which frees it)
 
     @property
     def triangle_count(self):
@@ -86,7 +93,18 @@ class MeshData:
                 d.materials.append({"name": mat.name.decode(), "base_color": tuple(mat.base_color),
                                     "roughness": mat.roughness, "double_sided": bool(mat.double_sided),
                                     "texture": mat.texture, "season": mat.season,
-                                    "alpha_cutoff": mat.alpha_cutoff, "translucency": mat.translucency})
+                                    "alpha_cutoff": mat.alpha_cutoff, "translucency": mat.translucency,
+                                    "image": mat.image})
+            for i in range(m.image_count):
+                d.images.append(_image_png(lib, m.images[i]))
+            if m.instance_count:
+                raw = (C.c_char * (m.instance_count * C.sizeof(S.Instance))).from_address(
+                    C.cast(m.instances, C.c_void_p).value)
+                f, u = array("f"), array("I")
+                f.frombytes(raw)
+                u.frombytes(raw)
+                d.instances = [(u[k], (f[k + 1], f[k + 2], f[k + 3]), f[k + 4], f[k + 5])
+                               for k in range(0, len(f), 6)]
             for i in range(m.part_count):
                 p = m.parts[i]
                 d.parts.append({k: getattr(p, k) for k, _ in S.Part._fields_})
@@ -95,9 +113,15 @@ class MeshData:
             d.skel_radius = _copy(m.skel_radius, ns, "f")
             d.skel_tag = _copy(m.skel_tag, ns, "i")
             d.skel_edges = _copy(m.skel_edges, 2 * m.skel_edge_count, "i")
+            kept = getattr(_capture, "meshes", None)
+            if kept is not None:
+                d.c_mesh = mesh_ptr
+                kept.append(mesh_ptr)
+                mesh_ptr = None
             return d
         finally:
-            lib.banyan_mesh_free(mesh_ptr)
+            if mesh_ptr is not None:
+                lib.banyan_mesh_free(mesh_ptr)
 
     def groups(self):
         """{group: [part dicts]} in order of first appearance."""
@@ -105,6 +129,40 @@ class MeshData:
         for p in self.parts:
             out.setdefault(p["group"], []).append(p)
         return out
+
+
+_capture = threading.local()
+
+
+@contextlib.contextmanager
+def capture():
+    """Within the block, MeshData.take keeps the C mesh alive as d.c_mesh
+    (for calls that take a banyan_mesh, e.g. banyan_mesh_lod) instead of
+    freeing it; all are freed when the block ends (this thread only)."""
+    outer = getattr(_capture, "meshes", None)
+    _capture.meshes = []
+    try:
+        yield
+    finally:
+        kept, _capture.meshes = _capture.meshes, outer
+        lib = L.load()
+        for ptr in kept:
+            lib.banyan_mesh_free(ptr)
+
+
+def _image_png(lib, img):
+    """A banyan_image as PNG bytes (the library's encoder), with its size."""
+    data = C.POINTER(C.c_uint8)()
+    size = C.c_size_t(0)
+    err = S.Error()
+    st = lib.banyan_image_png(C.byref(img), C.byref(data), C.byref(size), C.byref(err))
+    if st:
+        L.raise_for(st, err)
+    try:
+        png = C.string_at(data, size.value)
+    finally:
+        lib.banyan_png_free(data)
+    return {"width": img.width, "height": img.height, "channels": img.channels, "png": png}
 
 
 def localize_group(positions, indices, first_vertex):
@@ -169,3 +227,23 @@ def tube(points, radii, sides=12, caps=True):
     if nr != n:
         raise L.BanyanError(1, "%d radii for %d points" % (nr, n), "BANYAN_E_INVALID_ARG")
     return call_generate(L.load().banyan_tube_generate, pts, rad, n, A.int32("sides", sides), int(bool(caps)))
+
+
+def lod(d, ratio=0.5, billboard=False, planes=None, size=None, seed=None):
+    """banyan_mesh_lod of MeshData d taken under capture() (d.c_mesh):
+    a coarser MeshData, about ratio of the triangles, or the crossed
+    billboard cards (planes, size: the picture's pixels) with billboard."""
+    if d.c_mesh is None:
+        raise L.BanyanError(1, "the mesh was not kept (take it under core.mesh.capture())", "BANYAN_E_INVALID_ARG")
+    lib = L.load()
+    p = S.LodParams()
+    lib.banyan_lod_params_init(C.byref(p))
+    p.ratio = float(ratio)
+    p.billboard = int(bool(billboard))
+    if planes is not None:
+        p.billboard_planes = int(planes)
+    if size is not None:
+        p.billboard_size = int(size)
+    if seed is not None:
+        p.seed = int(seed)
+    return call_generate(lib.banyan_mesh_lod, d.c_mesh, C.byref(p))

@@ -178,7 +178,14 @@ class TextureParams(C.Structure):
                 ("seed", C.c_uint64)]
 
 
+class LodParams(C.Structure):
+    """banyan_lod_params (banyan/lod.h)."""
+    _fields_ = [("ratio", C.c_double), ("billboard", C.c_int32), ("billboard_planes", C.c_int32),
+                ("billboard_size", C.c_int32), ("reserved", C.c_int32), ("seed", C.c_uint64)]
+
+
 # Checked against banyan_sizeof_<key>() at load.
 SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
          "part": Part, "mesh": Mesh, "param_info": ParamInfo, "host_mesh": HostMesh, "host_hit": HostHit,
-         "host_info": HostInfo, "image": Image, "texture_params": TextureParams, "instance": Instance}
+         "host_info": HostInfo, "image": Image, "texture_params": TextureParams, "instance": Instance,
+         "lod_params": LodParams}

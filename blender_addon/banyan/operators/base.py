@@ -146,7 +146,11 @@ class BanyanOperatorMixin:
         try:
             self.load_preset_if_changed()
             params = self.params()
-            return params, self.prepare(context, params)
+            job = self.prepare(context, params)
+            # The wind and growth setups (the ivy animates by its own birth_step).
+            api.add_setups(job, wind=bool(getattr(self, "wind_setup", False)),
+                           animate=bool(getattr(self, "animate", False)) and self.generator != "ivy")
+            return params, job
         except BaseException as e:
             self._fail(context, e)
             return None
@@ -513,6 +517,13 @@ def make_operator(mixin, idname, label, description, gen, extra, placement=False
                                         description="A JSON preset from presets/; applied once when chosen")
     ann["banyan_preset_loaded"] = StringProperty(default=NO_PRESET, options={'HIDDEN'})
     extra = dict(extra)
+    extra["wind_setup"] = BoolProperty(name="Wind setup", default=False,
+                                       description="Add the Banyan Wind modifier (Geometry Nodes: strength, gusts, "
+                                                   "direction, flutter), driven by the plant's wind data")
+    if "animate" not in extra:
+        extra["animate"] = BoolProperty(name="Growth animation", default=False,
+                                        description="Add a Geometry Nodes modifier growing the plant by its birth "
+                                                    "attribute over the scene's frame range")
     extra["uv_map"] = BoolProperty(name="UV map", default=True,
                                    description="Copy the library's UVs into a UV map (costs about 0.1 us per "
                                                "triangle corner on top of Blender's own mesh building)")

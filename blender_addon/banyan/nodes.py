@@ -1,0 +1,102 @@
+"""Small helpers for the add-on's Geometry Nodes groups (wind, growth):
+group sockets across Blender's interface API change (4.0), typed output
+sockets of nodes whose outputs change with their data type, and shared
+groups made once per .blend."""
+import bpy
+
+
+def socket(node, kind, stype):
+    """node's first enabled input ("in") or output ("out") of type stype."""
+    socks = node.outputs if kind == "out" else node.inputs
+    return next(s for s in socks if s.type == stype and s.enabled)
+
+
+def new_socket(ng, name, in_out, stype, default=None, lo=None, hi=None, description=""):
+    """A group input or output; its identifier keys the modifier's value."""
+    if hasattr(ng, "interface"):  # Blender 4.0+
+        s = ng.interface.new_socket(name, in_out=in_out, socket_type=stype)
+    else:
+        s = (ng.inputs if in_out == 'INPUT' else ng.outputs).new(stype, name)
+    if default is not None:
+        s.default_value = default
+    if lo is not None:
+        s.min_value = lo
+    if hi is not None:
+        s.max_value = hi
+    if description and hasattr(s, "description"):
+        s.description = description
+    return s
+
+
+def group_inputs(ng):
+    """{name: identifier} of a group's inputs."""
+    if hasattr(ng, "interface"):
+        return {i.name: i.identifier for i in ng.interface.items_tree
+                if getattr(i, "item_type", "SOCKET") == 'SOCKET' and i.in_out == 'INPUT'}
+    return {s.name: s.identifier for s in ng.inputs}
+
+
+def shared_group(key, version, name, build, created):
+    """The node group tagged key == version in this .blend, else a new one
+    made by build(ng) (recorded in created for rollback)."""
+    for ng in bpy.data.node_groups:
+        if ng.get(key) == version and ng.bl_idname == 'GeometryNodeTree':
+            return ng
+    ng = bpy.data.node_groups.new(name, 'GeometryNodeTree')
+    if created is not None:
+        created.add(ng)
+    ng[key] = version
+    build(ng)
+    return ng
+
+
+def set_inputs(mod, values):
+    """Sets a Geometry Nodes modifier's inputs by socket name."""
+    ids = group_inputs(mod.node_group)
+    for k, v in values.items():
+        if v is None:
+            continue
+        if k not in ids:
+            raise KeyError("the node group '%s' has no input '%s'" % (mod.node_group.name, k))
+        mod[ids[k]] = v
+    mod.id_data.update_tag()  # an ID property write alone does not re-evaluate the modifier
+
+
+def get_input(mod, name):
+    return mod[group_inputs(mod.node_group)[name]]
+
+
+class Builder:
+    """Adds nodes to a tree in a row, linking by socket objects."""
+
+    def __init__(self, ng):
+        self.ng = ng
+        self.n = 0
+
+    def node(self, kind, **props):
+        nd = self.ng.nodes.new(kind)
+        for k, v in props.items():
+            setattr(nd, k, v)
+        nd.location = (180 * (self.n // 6), -160 * (self.n % 6))
+        self.n += 1
+        return nd
+
+    def link(self, a, b):
+        self.ng.links.new(a, b)
+
+    def math(self, op, a, b=None, c=None):
+        """A Math node: a, b, c are sockets or numbers; returns its output."""
+        nd = self.node('ShaderNodeMath', operation=op)
+        for i, x in enumerate((a, b, c)):
+            if x is None:
+                continue
+            if isinstance(x, (int, float)):
+                nd.inputs[i].default_value = float(x)
+            else:
+                self.link(x, nd.inputs[i])
+        return nd.outputs[0]
+
+    def attribute(self, name, data_type='FLOAT'):
+        nd = self.node('GeometryNodeInputNamedAttribute', data_type=data_type)
+        nd.inputs["Name"].default_value = name
+        return socket(nd, "out", 'VALUE' if data_type == 'FLOAT' else 'VECTOR')

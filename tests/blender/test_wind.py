@@ -1,0 +1,154 @@
+"""Wind (issue #22): every generator's object carries the wind attributes
+(wind_pivot as one vector, wind_level/stiffness/phase/flutter, the three
+pivot scalars gone), and the Banyan Wind modifier sways tips, not trunk
+bases: evaluated at two frames, the top 10 % of the vertices by height
+move more than 5x the bottom 10 %, and the bottom's lowest vertices less
+than 1 mm. First on a synthetic plant (the node group alone), then on a
+keyaki and an ivy grown by the library."""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bt  # noqa: E402
+import gens  # noqa: E402
+import prod_util as U  # noqa: E402
+
+import bpy  # noqa: E402
+from banyan import api  # noqa: E402
+from banyan import build_mesh as BM  # noqa: E402
+from banyan import wind as W  # noqa: E402
+from banyan.core.errors import BanyanError  # noqa: E402
+
+FRAMES = (1, 37)
+
+
+def check_sways(obj, what):
+    rest = U.rest_coords(obj)
+    a, b = (U.evaluated_coords(obj, f) for f in FRAMES)
+    bt.check(len(a) == len(rest) == len(b), "%s: the wind keeps every vertex" % what)
+    top_a, bot_a, _ = U.displacement_by_height(a, b)
+    bt.check(top_a > 0.0, "%s: the tips move between frames %s (%.4g m)" % (what, FRAMES, top_a))
+    bt.check(top_a > 5.0 * bot_a, "%s: tips move > 5x the bottom 10 %% (%.4g vs %.4g m)" % (what, top_a, bot_a))
+    # The base: the lowest vertices (1 % by height) against the rest pose, at both frames.
+    for moved in (a, b):
+        _t, _b, base_max = U.displacement_by_height(rest, moved, 0.01)
+        bt.check(base_max < 1e-3, "%s: trunk base moves < 1 mm (%.3g m)" % (what, base_max))
+    return top_a, bot_a
+
+
+def test_synthetic():
+    bt.reset_scene()
+    c = BM.Created()
+    d = U.synthetic_plant()
+    obj = BM.object_from_mesh_data("Synthetic", d, bpy.context.scene.collection, c, origin=(3.0, -2.0, 0.5))
+    names = set(obj.data.attributes.keys())
+    bt.check(W.PIVOT in names and not names & set(W.SCALARS), "pivot is one vector attribute: %s" % sorted(names))
+    bt.check(obj.data.attributes[W.PIVOT].data_type == 'FLOAT_VECTOR'
+             and obj.data.attributes[W.PIVOT].domain == 'POINT', "wind_pivot: FLOAT_VECTOR on points")
+    piv = U.attribute(obj.data, W.PIVOT)
+    # The pivot (world 0, 0, 0) moved into the object's frame with the vertices.
+    bt.check(max(abs(piv[0] + 3.0), abs(piv[1] - 2.0), abs(piv[2] + 0.5)) < 1e-6,
+             "pivots follow the vertices into the object's frame: %s" % list(piv[:3]))
+    mods = api.add_wind([obj], strength=0.1)
+    bt.check(len(mods) == 1 and obj.modifiers[0].name == W.MODIFIER, "add_wind adds the Banyan Wind modifier")
+    check_sways(obj, "synthetic")
+    obj2 = BM.object_from_mesh_data("Synthetic2", U.synthetic_plant(), bpy.context.scene.collection, c)
+    api.add_wind(obj2)
+    groups = [g for g in bpy.data.node_groups if g.get(W.GROUP_KEY)]
+    bt.check(len(groups) == 1 and obj2.modifiers[0].node_group == groups[0], "one wind node group per .blend")
+    # Strength 0: nothing moves; direction turns the lean.
+    api.add_wind(obj, strength=0.0, flutter=0.0)
+    still = U.evaluated_coords(obj, FRAMES[1])
+    rest = U.rest_coords(obj)
+    bt.check(max(abs(x - y) for x, y in zip(still, rest)) < 1e-6, "strength 0: no motion")
+    for deg, axis in ((0.0, 0), (90.0, 1)):
+        api.add_wind(obj, strength=0.1, gust_strength=0.0, direction=deg)
+        moved = U.evaluated_coords(obj, FRAMES[0])
+        top = len(rest) - 3
+        dx = [moved[top + k] - rest[top + k] for k in range(3)]
+        bt.check(dx[axis] > 0.5 and abs(dx[1 - axis]) < 1e-3,
+                 "direction %g deg leans the top toward +%s: %s" % (deg, "XY"[axis], dx))
+    no = BM.object_from_mesh_data("NoWind", U.synthetic_plant(), bpy.context.scene.collection, c)
+    for k in list(no.data.attributes.keys()):
+        if k.startswith("wind_"):
+            no.data.attributes.remove(no.data.attributes[k])
+    try:
+        api.add_wind(no)
+        bt.check(False, "a mesh without wind data is refused")
+    except BanyanError as e:
+        bt.check("NoWind" in e.message, "the refusal names the object: %s" % e.message)
+
+
+def test_every_generator_has_wind():
+    for gen in gens.OPS:
+        if not bt.generator(gen):
+            continue
+        bt.reset_scene()
+        gens.prepare(gen)
+        before = {o.name for o in bpy.data.objects}
+        res = gens.op(gen)(**gens.KWARGS[gen])
+        objs = [o for o in bpy.data.objects if o.name not in before and o.type == 'MESH']
+        bt.check(res == {'FINISHED'} and objs, "%s: built" % gen)
+        for o in objs[:3]:
+            names = set(o.data.attributes.keys())
+            bt.check(W.has_wind(o.data) and not names & set(W.SCALARS),
+                     "%s: '%s' has wind_pivot + %s: %s" % (gen, o.name, ", ".join(W.FLOATS), sorted(names)))
+            if W.has_wind(o.data):
+                st = U.attribute(o.data, "wind_stiffness")
+                bt.check(0.0 <= min(st) and max(st) <= 1.0, "%s: stiffness in 0..1" % gen)
+
+
+def test_keyaki_and_ivy_sway():
+    if bt.generator("keyaki"):
+        bt.reset_scene()
+        objs = api.keyaki_tree(wind=True, levels=6)
+        bt.check([m.name for m in objs[0].modifiers] == [W.MODIFIER], "keyaki wind=True: the wind modifier")
+        top, bot = check_sways(objs[0], "keyaki")
+        print("keyaki: top 10 %% %.4g m, bottom 10 %% %.4g m" % (top, bot))
+    if bt.generator("ivy"):
+        bt.reset_scene()
+        cube = bpy.data.objects["Cube"]
+        objs = api.ivy(hosts=[cube], start=(0.0, -1.0, -0.9), steps=80, wind=True)
+        bt.check(W.MODIFIER in [m.name for m in objs[0].modifiers], "ivy wind=True: the wind modifier")
+        top, bot = check_sways(objs[0], "ivy")
+        print("ivy: top 10 %% %.4g m, bottom 10 %% %.4g m" % (top, bot))
+
+
+def test_operator_option():
+    if not bt.generator("keyaki"):
+        return
+    bt.reset_scene()
+    before = {o.name for o in bpy.data.objects}
+    res = gens.op("keyaki")(wind_setup=True, levels=5)
+    objs = [o for o in bpy.data.objects if o.name not in before]
+    bt.check(res == {'FINISHED'} and objs and W.MODIFIER in [m.name for m in objs[0].modifiers],
+             "the operator's Wind setup adds the modifier")
+    bt.reset_scene()
+    before = {o.name for o in bpy.data.objects}
+    try:
+        res = gens.op("keyaki")(wind_setup=True, wind=False, levels=5)
+    except RuntimeError:
+        res = {'CANCELLED'}
+    bt.check(res == {'CANCELLED'} and not [o for o in bpy.data.objects if o.name not in before],
+             "Wind setup without wind data: refused, nothing left")
+    if bt.generator("roots"):
+        bt.reset_scene()
+        objs = api.strangler_roots(hosts=[bpy.data.objects["Cube"]], growth_points=8)
+        bt.check(bpy.ops.banyan.add_wind.poll() is False or True, "poll runs")
+        for o in bpy.context.selected_objects:
+            o.select_set(False)
+        objs[0].select_set(True)
+        bpy.context.view_layer.objects.active = objs[0]
+        res = bpy.ops.banyan.add_wind(strength=0.2) if bpy.ops.banyan.add_wind.poll() else {'CANCELLED'}
+        bt.check(res == {'FINISHED'} and W.MODIFIER in [m.name for m in objs[0].modifiers],
+                 "Add Wind on a selected plant")
+        if W.MODIFIER in objs[0].modifiers:
+            from banyan import nodes as N
+            bt.check(math.isclose(N.get_input(objs[0].modifiers[W.MODIFIER], "Strength"), 0.2, rel_tol=1e-6),
+                     "Add Wind sets Strength")
+
+
+for t in (test_synthetic, test_every_generator_has_wind, test_keyaki_and_ivy_sway, test_operator_option):
+    bt.run(t)
+bt.done()
