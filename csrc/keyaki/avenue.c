@@ -32,6 +32,7 @@
 #include "keyaki_internal.h"
 
 #define AVENUE_MAX_PATH_POINTS 1000000u
+#define AVENUE_ATTRS 11 /* the merged mesh's attributes with wind (alloc_merged) */
 
 typedef struct path_walk {
     const v3 *pts;
@@ -188,7 +189,7 @@ typedef struct avenue_job {
     int phase; /* 0: count, 1: build and copy into out */
     atomic_uint next;
     keyaki_counts *counts;
-    uint64_t *voff, *ioff, *soff, *poff; /* where tree i goes in out (skeleton edges: soff - i) */
+    uint64_t *voff, *ioff, *soff, *poff, *eoff; /* where tree i goes in out (skeleton points soff, edges eoff) */
     banyan_mesh *out;
     banyan_status *status;
     banyan_error *errs;
@@ -229,21 +230,22 @@ typedef struct avenue_job {
 static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *sk, banyan_error *err) {
     banyan_mesh *o = J->out;
     const keyaki_counts *c = &J->counts[i];
-    uint64_t v = J->voff[i], x = J->ioff[i], s = J->soff[i], e = J->soff[i] - i, pp = J->poff[i];
-    float *attr[3];
-    const char *names[3];
-    for (uint32_t a = 0; a < 3 && a < o->attribute_count; a++) {
+    uint64_t v = J->voff[i], x = J->ioff[i], s = J->soff[i], e = J->eoff[i], pp = J->poff[i];
+    float *attr[AVENUE_ATTRS];
+    const char *names[AVENUE_ATTRS];
+    uint32_t na = o->attribute_count < AVENUE_ATTRS ? o->attribute_count : AVENUE_ATTRS;
+    for (uint32_t a = 0; a < na; a++) {
         attr[a] = o->attributes[a].data + v;
         names[a] = o->attributes[a].name;
     }
     mesh_builder mb;
     mb_init_external(&mb, c->vertices, c->indices, o->positions + 3 * v, o->normals + 3 * v, o->uvs + 2 * v,
-                     o->colors + 4 * v, o->indices + x, attr, names, o->attribute_count < 3 ? o->attribute_count : 3);
+                     o->colors + 4 * v, o->indices + x, attr, names, na);
     banyan_status st = keyaki_build_into(&J->trees[i], (double)i, i, sk, &mb, err);
     if (!st && !mb.status) mb_close(&mb);
     if (!st && mb.status) st = mb_fail(&mb, err);
-    if (!st && (mb.nv != c->vertices || mb.ni != c->indices || mb.n_part != c->parts || mb.n_skel != c->nodes + 1 ||
-                mb.n_edge != c->nodes || mb.n_attr != o->attribute_count))
+    if (!st && (mb.nv != c->vertices || mb.ni != c->indices || mb.n_part != c->parts || mb.n_skel != c->skel_points ||
+                mb.n_edge != c->skel_edges || mb.n_attr != o->attribute_count))
         st = banyan_fail(err, BANYAN_E_INTERNAL, "planned and built sizes differ");
     if (!st) {
         uint32_t *I = o->indices + x;
@@ -323,9 +325,15 @@ static void run_job(avenue_job *J, int threads) {
     for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
 }
 
-/* The merged mesh's arrays, sized exactly; NULL when out of memory. */
-static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t ne, uint64_t np) {
-    static const char *const attrs[3] = {"tree_id", "level", "order"};
+/* The merged mesh's arrays, sized exactly; NULL when out of memory. The
+ * attributes as keyaki_build_into declares them: tree_id, level, order,
+ * birth, then with wind the seven wind ones. */
+static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t ne, uint64_t np, int wind) {
+    static const char *const attrs[AVENUE_ATTRS] = {
+        "tree_id", "level", "order", BANYAN_ATTR_BIRTH, BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y,
+        BANYAN_ATTR_WIND_PIVOT_Z, BANYAN_ATTR_WIND_LEVEL, BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
+        BANYAN_ATTR_WIND_FLUTTER};
+    const uint32_t na = wind ? AVENUE_ATTRS : 4;
     banyan_mesh *o = calloc(1, sizeof *o);
     if (!o) return NULL;
     o->vertex_count = (uint32_t)nv;
@@ -335,8 +343,8 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     o->uvs = big_malloc(sizeof(float) * 2 * nv);
     o->colors = big_malloc(sizeof(float) * 4 * nv);
     o->indices = big_malloc(sizeof(uint32_t) * ni);
-    o->attribute_count = 3;
-    o->attributes = calloc(3, sizeof(banyan_attribute));
+    o->attribute_count = na;
+    o->attributes = calloc(na, sizeof(banyan_attribute));
     o->material_count = 2;
     o->materials = calloc(2, sizeof(banyan_material));
     o->part_count = (uint32_t)np;
@@ -349,7 +357,7 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     o->skel_edges = malloc(sizeof(uint32_t) * 2 * ne);
     int ok = o->positions && o->normals && o->uvs && o->colors && o->indices && o->attributes && o->materials && o->parts &&
              o->skel_points && o->skel_radius && o->skel_tag && o->skel_edges;
-    for (uint32_t a = 0; ok && a < 3; a++) {
+    for (uint32_t a = 0; ok && a < na; a++) {
         strcpy(o->attributes[a].name, attrs[a]);
         if (!(o->attributes[a].data = big_malloc(sizeof(float) * nv))) ok = 0;
     }
@@ -382,7 +390,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     atomic_store(&J.cancel, 0);
     banyan_keyaki_params *trees = malloc(sizeof *trees * n);
     J.counts = calloc(n, sizeof *J.counts);
-    J.voff = calloc(4 * (size_t)n, sizeof *J.voff);
+    J.voff = calloc(5 * (size_t)n, sizeof *J.voff);
     J.status = calloc(n, sizeof *J.status);
     J.errs = calloc(n, sizeof *J.errs);
     if (!trees || !J.counts || !J.voff || !J.status || !J.errs) {
@@ -392,6 +400,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.ioff = J.voff + n;
     J.soff = J.ioff + n;
     J.poff = J.soff + n;
+    J.eoff = J.poff + n;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
     /* The trees grow in a frame picked from their feet (core/frame.h). */
     v3 lo, hi, O;
@@ -438,7 +447,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
                         n, p->max_vertices, (unsigned long long)atomic_load(&J.counted));
         goto done;
     }
-    uint64_t nv = 0, ni = 0, ns = 0, np = 0, vmax = 1;
+    uint64_t nv = 0, ni = 0, ns = 0, ne = 0, np = 0, vmax = 1;
     for (uint32_t i = 0; i < n; i++) {
         if (J.counts[i].vertices > vmax) vmax = J.counts[i].vertices;
         if (J.status[i]) {
@@ -449,12 +458,14 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         J.ioff[i] = ni;
         J.soff[i] = ns;
         J.poff[i] = np;
+        J.eoff[i] = ne;
         nv += J.counts[i].vertices;
         ni += J.counts[i].indices;
-        ns += J.counts[i].nodes + 1;
+        ns += J.counts[i].skel_points;
+        ne += J.counts[i].skel_edges;
         np += J.counts[i].parts;
     }
-    if (nv > (uint64_t)p->max_vertices || ni > 0xFFFFFFF0u || ns > 0xFFFFFFF0u) {
+    if (nv > (uint64_t)p->max_vertices || ni > 0xFFFFFFF0u || ns > 0xFFFFFFF0u || ne > 0xFFFFFFF0u) {
         s = banyan_fail(err, BANYAN_E_LIMIT,
                         "the avenue's %u trees need %llu vertices, more than max_vertices = %d; raise max_vertices or "
                         "lower tree.leaf_density, tree.sides_max, tree.levels or the tree count",
@@ -462,16 +473,16 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         goto done;
     }
     /* Pass 2: every tree built, then copied into its slice in parallel. */
-    if (prog_reserve(&g, keyaki_mesh_bytes(nv, ni))) {
+    if (prog_reserve(&g, keyaki_mesh_bytes(nv, ni, p->tree.wind))) {
         s = prog_fail(&g, err, "avenue");
         goto done;
     }
-    J.out = alloc_merged(nv, ni, ns, ns - n, np);
+    J.out = alloc_merged(nv, ni, ns, ne, np, p->tree.wind);
     if (!J.out) {
         s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the avenue's %llu vertices", (unsigned long long)nv);
         goto done;
     }
-    double extra = AVENUE_SCRATCH_SHARE * keyaki_mesh_bytes(nv, ni) / (AVENUE_SCRATCH_PER_VERTEX * (double)vmax);
+    double extra = AVENUE_SCRATCH_SHARE * keyaki_mesh_bytes(nv, ni, p->tree.wind) / (AVENUE_SCRATCH_PER_VERTEX * (double)vmax);
     if (t - 1 > extra) t = 1 + (int)extra;
     J.phase = 1;
     J.base = AVENUE_COUNT_SHARE;

@@ -23,7 +23,18 @@
  * uvs: every tube wraps a whole number of bark_tile-wide tiles round
  * (tube_bark_tiles of its first branch's radius), v in the same tiles.
  * Everything is counted exactly before meshing (keyaki_body_plan) so the
- * vertex limit is checked before any mesh memory is allocated. */
+ * vertex limit is checked before any mesh memory is allocated.
+ * Wind and birth (docs/keyaki.md "Wind and growth attributes"), after
+ * Pivot Painter 2's sub-objects: a wind branch is what one tube sweeps
+ * (a limb continuing into its thicker child keeps its pivot, level and
+ * phase), except that the trunk (branch 0 and the trunk pieces below the
+ * limbs) is one of its own, level 0; the limbs are level 1, a side
+ * branch its parent's + 1; its pivot is where it leaves its parent (a
+ * skeleton point). Stiffness ring by ring: sqrt(r / r_trunk base).
+ * Birth: path length from the trunk base along the skeleton, ring by
+ * ring, over the tree's longest; a leaf its wood's + LEAF_DELAY. The
+ * crown's twigs and the segment twig lines join the mesh's skeleton (tag
+ * KEYAKI_SKEL_TWIG), so every pivot lies on it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,6 +43,9 @@
 #include "core/leaf_look.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"
+
+/* A leaf appears this much (of the tree's growth) after its wood. */
+#define LEAF_DELAY 0.03
 
 void keyaki_body_free(keyaki_body *b) {
     if (!b) return;
@@ -182,10 +196,17 @@ static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, c
     free(rings);
 }
 
+static void no_wind(wind_slots *ws) {
+    memset(ws, 0, sizeof *ws);
+    ws->birth = ws->level = ws->stiffness = ws->phase = ws->flutter = -1;
+    for (int k = 0; k < 3; k++) ws->pivot[k] = -1;
+}
+
 banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                keyaki_run *run, keyaki_body *body, banyan_error *err) {
     memset(body, 0, sizeof *body);
     body->run = run;
+    no_wind(&body->ws);
     int32_t limbs = 0;
     for (int32_t i = 0; i < count; i++)
         if (i == 0 || main_child(n, n[i].parent) != i) limbs++;
@@ -226,8 +247,8 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
         bv += tv;
         bi += ti;
     }
-    uint64_t twv, twi; /* twigs from segments join the bark part */
-    keyaki_twigs_plan(p, n, count, &twv, &twi);
+    uint64_t twv, twi, lines; /* twigs from segments join the bark part */
+    keyaki_twigs_plan(p, n, count, &twv, &twi, &lines);
     bv += twv;
     bi += twi;
     /* The bark is known exactly: refuse before growing the crown. */
@@ -250,7 +271,84 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
     body->bark_indices = bi > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)bi;
     body->vertices = tv > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)tv;
     body->indices = ti > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)ti;
+    /* Skeleton: branches, twig lines (2 points, 2 edges each), twigs. */
+    uint64_t sp, se;
+    keyaki_crown_skel_counts(&body->crown, &sp, &se);
+    sp += (uint64_t)count + 1 + 2 * lines;
+    se += (uint64_t)count + 2 * lines;
+    body->skel_points = sp > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)sp;
+    body->skel_edges = se > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)se;
     return BANYAN_OK;
+}
+
+/* The wind branches of every skeleton branch (keyaki_wind). */
+static int wind_setup(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, const wind_slots *ws,
+                      uint32_t skel0, keyaki_wind *w) {
+    memset(w, 0, sizeof *w);
+    w->ws = ws;
+    w->n = n;
+    w->seed = p->seed;
+    w->skel0 = skel0;
+    w->r_ref = count > 0 ? n[0].radius : 1.0;
+    w->root = malloc(sizeof(int32_t) * 2 * ((size_t)count + 1));
+    w->path = malloc(sizeof(double) * ((size_t)count + 1));
+    if (!w->root || !w->path) {
+        free(w->root);
+        free(w->path);
+        return 1;
+    }
+    w->level = w->root + count + 1;
+    keyaki_node_paths(n, count, w->path);
+    for (int32_t i = 0; i < count; i++) {
+        int32_t P = n[i].parent;
+        int trunk = i == 0 || (n[i].flags & KN_TRUNK);
+        if (P < 0 || trunk) { /* the trunk: one branch from its base */
+            w->root[i] = 0;
+            w->level[i] = 0;
+        } else if (main_child(n, P) == i && !(P == 0 || (n[P].flags & KN_TRUNK))) { /* the tube goes on */
+            w->root[i] = w->root[P];
+            w->level[i] = w->level[P];
+        } else { /* a new tube, or a limb leaving the trunk */
+            w->root[i] = i;
+            w->level[i] = w->level[P] + 1;
+        }
+    }
+    return 0;
+}
+
+static void wind_free(keyaki_wind *w) {
+    free(w->root);
+    free(w->path);
+    w->root = w->level = NULL;
+    w->path = NULL;
+}
+
+/* Wind and birth of the limb just swept from vertex v0: ring i closes
+ * branch ids[i] at pts[i], radius rad[i]. */
+static void wind_limb(mesh_builder *mb, const keyaki_wind *w, const keyaki_limb *L, uint32_t v0, const v3 *pts,
+                      const double *rad, const int32_t *ids, int32_t m, double *vals) {
+    if (mb->status || (w->ws->birth < 0 && !w->ws->on)) return;
+    const keyaki_node *n = w->n;
+    uint32_t np = (uint32_t)(m + 1);
+    int cs = L->first == 0;
+    double *bt = vals, *st = vals + np, *lv = vals + 2 * np, *ph = vals + 3 * np, *px = vals + 4 * np;
+    for (uint32_t i = 0; i < np; i++) {
+        const keyaki_node *x = &n[ids[i]];
+        double t = v3_dot(v3_sub(pts[i], x->start), x->dir);
+        bt[i] = w->path[ids[i]] + (t < 0 ? 0 : t > x->length ? x->length : t);
+        /* a side limb's set-back first ring lies inside its parent: the fork's radius */
+        st[i] = keyaki_stiffness(w, i == 0 && !cs && np > 1 ? rad[1] : rad[i]);
+        int32_t r = w->root[ids[i]];
+        lv[i] = w->level[ids[i]];
+        ph[i] = wind_phase_of(w->seed, (uint64_t)r);
+        for (int k = 0; k < 3; k++) px[(size_t)k * np + i] = (&n[r].start.x)[k];
+    }
+    wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->birth, bt);
+    if (!w->ws->on) return;
+    wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->stiffness, st);
+    wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->level, lv);
+    wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->phase, ph);
+    for (int k = 0; k < 3; k++) wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->pivot[k], px + (size_t)k * np);
 }
 
 static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32_t to, const keyaki_node *x) {
@@ -272,11 +370,25 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     v3 *pts = malloc(sizeof(v3) * (size_t)max_pts);
     double *rad = malloc(sizeof(double) * (size_t)max_pts);
     int32_t *ids = malloc(sizeof(int32_t) * (size_t)max_pts);
-    if (!pts || !rad || !ids) {
-        free(pts); free(rad); free(ids);
+    double *vals = malloc(sizeof(double) * 7 * (size_t)max_pts); /* wind_limb's per-ring values */
+    keyaki_wind w;
+    int no_w = wind_setup(p, n, count, &body->ws, mb->n_skel, &w);
+    if (!pts || !rad || !ids || !vals || no_w) {
+        free(pts); free(rad); free(ids); free(vals);
+        if (!no_w) wind_free(&w);
         mb->status = BANYAN_E_NOMEM;
         return;
     }
+    /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i;
+     * then the twig lines and twigs as they are meshed. */
+    mb_skel_reserve(mb, body->skel_points, body->skel_edges);
+    for (int32_t i = -1; i < count; i++) {
+        const keyaki_node *x = &n[i < 0 ? 0 : i];
+        int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);
+        mb_skel_point(mb, i < 0 ? x->start : node_end(x), x->radius, tag);
+    }
+    for (int32_t i = 0; i < count; i++)
+        mb_skel_edge(mb, w.skel0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), w.skel0 + (uint32_t)i + 1);
     mb_begin_part(mb, bark_mat, group);
     mb_set_attr(mb, attr[0], tree_id);
     for (int32_t k = 0; k < body->limb_count; k++) {
@@ -315,6 +427,8 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         L->vertex_offset = v0 - base;
         mb_set_attr(mb, attr[1], n[L->first].level);
         mb_set_attr(mb, attr[2], n[L->first].order);
+        int32_t wr = w.root[L->first];
+        wind_set(mb, &body->ws, n[wr].start, w.level[L->first], 1, wind_phase_of(w.seed, (uint64_t)wr), 0);
         int tiles = tube_bark_tiles(n[L->first].radius, p->bark_tile);
         if (L->first == 0 && flare_points(p)) {
             flare_sweep(mb, &fl, pts, rad, (uint32_t)(m + 1), L->sides, tiles);
@@ -327,29 +441,35 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         for (int32_t i = 1; i <= m; i++) set_attrs(mb, attr, v0 + i * ring, v0 + (i + 1) * ring, &n[ids[i]]);
         uint32_t caps_from = v0 + (uint32_t)(m + 1) * ring + (L->first == 0 ? ring + 1 : 0);
         set_attrs(mb, attr, caps_from, caps_from + ring + 1, &n[ids[m]]);
+        wind_limb(mb, &w, L, v0, pts, rad, ids, m, vals);
     }
     free(pts);
     free(rad);
     free(ids);
-    if (mb->status) return;
-    keyaki_twigs_mesh(p, n, count, mb, attr);
+    free(vals);
+    if (mb->status) {
+        wind_free(&w);
+        return;
+    }
+    keyaki_twigs_mesh(p, n, count, mb, attr, &w);
 
-    keyaki_crown_mesh_twigs(&body->crown, mb, attr);
+    keyaki_crown_mesh_twigs(&body->crown, mb, attr, &w);
+    uint32_t leaves_from = mb->nv;
     if (body->vertices > body->bark_vertices) {
         mb_begin_part(mb, leaf_mat, group);
-        keyaki_crown_mesh_leaves(p, &body->crown, mb, attr);
+        keyaki_crown_mesh_leaves(p, &body->crown, mb, attr, &w);
     }
-
-    /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i. */
-    uint32_t s0 = mb->n_skel;
-    mb_skel_reserve(mb, (uint32_t)count + 1, (uint32_t)count);
-    for (int32_t i = -1; i < count; i++) {
-        const keyaki_node *x = &n[i < 0 ? 0 : i];
-        int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);
-        mb_skel_point(mb, i < 0 ? x->start : node_end(x), x->radius, tag);
+    wind_free(&w);
+    /* Birth was written as path length (m): the longest wood is 1, a leaf
+     * comes LEAF_DELAY after its wood. */
+    if (mb->status || body->ws.birth < 0) return;
+    float *bt = mb->attr[body->ws.birth], top = 0;
+    for (uint32_t v = base; v < leaves_from; v++) top = bt[v] > top ? bt[v] : top;
+    double inv = top > 0 ? 1.0 / top : 0.0; /* top * inv rounds to 1.0f */
+    for (uint32_t v = base; v < mb->nv; v++) {
+        double b = bt[v] * inv + (v >= leaves_from ? LEAF_DELAY : 0.0);
+        bt[v] = (float)(b < 1.0 ? b : 1.0);
     }
-    for (int32_t i = 0; i < count; i++)
-        mb_skel_edge(mb, s0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), s0 + (uint32_t)i + 1);
 }
 
 /* Grows the skeleton, orders it and plans its body: what counting and
@@ -370,6 +490,8 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
     c->vertices = body.vertices;
     c->indices = body.indices;
     c->nodes = (uint32_t)sk->count;
+    c->skel_points = body.skel_points;
+    c->skel_edges = body.skel_edges;
     c->parts = body.vertices > body.bark_vertices ? 2 : 1;
     keyaki_body_free(&body);
     return BANYAN_OK;
@@ -390,7 +512,7 @@ banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, u
     }
     /* The mesh's memory, before it is allocated (an avenue's merged mesh
      * was reserved whole by the avenue). */
-    if (!mb->external && keyaki_reserve_bytes(sk->run, keyaki_mesh_bytes(body.vertices, body.indices))) {
+    if (!mb->external && keyaki_reserve_bytes(sk->run, keyaki_mesh_bytes(body.vertices, body.indices, p->wind))) {
         keyaki_body_free(&body);
         return keyaki_stop_status(err);
     }
@@ -404,6 +526,7 @@ banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, u
     attr[0] = mb_add_attr(mb, "tree_id");
     attr[1] = mb_add_attr(mb, "level");
     attr[2] = mb_add_attr(mb, "order");
+    wind_declare(mb, p->wind, &body.ws);
     keyaki_body_mesh(p, sk->nodes, sk->count, &body, mb, attr, bark, leaf, group, tree_id);
     uint32_t planned = body.vertices;
     keyaki_body_free(&body);

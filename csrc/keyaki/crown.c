@@ -86,6 +86,7 @@ typedef struct ctx {
     keyaki_run *run;
     uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
     banyan_status st; /* the refusal of oom 4 */
+    const double *npath; /* per skeleton branch: path length from the trunk base to its start, m */
 } ctx;
 
 /* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
@@ -118,17 +119,21 @@ static int keep_budget(ctx *x, banyan_error *err) {
 
 static inline double clampd(double x, double a, double b) { return x < a ? a : x > b ? b : x; }
 
-/* Point and unit tangent at arc length s along polyline pts[0..n-1]. */
-static v3 along(const v3 *pts, int32_t n, double s, v3 *t) {
+/* Point and unit tangent at arc length s along polyline pts[0..n-1];
+ * *r (may be NULL) the radius there, rad linear between points. */
+static v3 along_r(const v3 *pts, const double *rad, int32_t n, double s, v3 *t, double *r) {
     for (int32_t i = 0; i + 1 < n; i++) {
         double l = v3_dist(pts[i], pts[i + 1]);
         if (s <= l || i + 2 == n) {
             *t = v3_norm_or(v3_sub(pts[i + 1], pts[i]), v3_make(0, 0, 1));
-            return v3_madd(pts[i], *t, l > 0 ? clampd(s, 0, l) : 0);
+            double u = l > 0 ? clampd(s, 0, l) : 0;
+            if (r) *r = rad[i] + (rad[i + 1] - rad[i]) * (l > 0 ? u / l : 0);
+            return v3_madd(pts[i], *t, u);
         }
         s -= l;
     }
     *t = v3_make(0, 0, 1);
+    if (r) *r = rad[0];
     return pts[0];
 }
 
@@ -140,8 +145,11 @@ static double poly_length(const v3 *pts, int32_t n) {
 
 /* Two-ranked leaves along pts[0..n-1] from arc length s0 to the end (the
  * last at the end), every 1 / leaf_density; `up` is the spray's normal:
- * the ranks lie left and right of the twig in the spray plane. */
-static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int32_t twig, int32_t level) {
+ * the ranks lie left and right of the twig in the spray plane. rad: the
+ * wood's radius at each point, path0: the path length from the trunk
+ * base to pts[0] (a leaf's stiffness and birth). */
+static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, double s0, v3 up, int32_t twig,
+                         int32_t level, double path0) {
     const banyan_keyaki_params *p = x->p;
     if (!p->leaves || p->leaf_density <= 0 || n < 2) return;
     double L = poly_length(pts, n), step = 1.0 / p->leaf_density;
@@ -166,7 +174,8 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
         /* j = 0 apart: a density so small (1e-317) that step overflows to
          * inf gives k = 1, and 0 x inf would be NaN. */
         double s = j ? L - j * step : L;
-        v3 t, at = along(pts, n, s, &t);
+        double r_at;
+        v3 t, at = along_r(pts, rad, n, s, &t, &r_at);
         v3 sv = v3_norm_or_perp(v3_cross(up, t), t);
         /* Out from the twig at 45-70 deg on its side, drooping a little. */
         double th = deg2rad(rng_range(&x->lf, 45.0, 70.0));
@@ -191,6 +200,8 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
         q->node = x->node;
         q->side = side;
         q->level = level;
+        q->path = (float)(path0 + s);
+        q->r_attach = (float)r_at;
     }
 }
 
@@ -201,7 +212,7 @@ static void leaves_along(ctx *x, const v3 *pts, int32_t n, double s0, v3 up, int
  * KEYAKI_SIDE_START of its base radius and reaches its full radius at
  * the parent's surface, as the body's side limbs do. */
 static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 up, double len, double r_host,
-                         int leafy_only) {
+                         int leafy_only, double path0) {
     const banyan_keyaki_params *p = x->p;
     keyaki_crown *c = x->c;
     int finest = order >= p->twig_levels || leafy_only;
@@ -231,6 +242,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     T->level = x->base_level + order;
     T->sides = order <= 1 && !finest ? 4 : 3;
     T->children = 0;
+    T->path0 = path0;
     c->n_pts += np;
     v3 *P = c->pts + T->first;
     double *R = c->rad + T->first;
@@ -247,6 +259,9 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
      * each on the outer side of the zigzag's bend. */
     int32_t sub_tips[MAX_TWIG_PTS];
     memset(sub_tips, 0, sizeof sub_tips);
+    double cum[MAX_TWIG_PTS]; /* path length at each point */
+    cum[0] = path0;
+    for (int32_t k = 1; k < np; k++) cum[k] = cum[k - 1] + v3_dist(P[k - 1], P[k]);
     int32_t tips = 1; /* its own end */
     if (!finest) {
         int side = rng_uniform(&x->tw) < 0.5 ? 1 : -1;
@@ -258,7 +273,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
             double l = sub_len * rng_range(&x->tw, 0.8, 1.2);
             /* The parent's radius here is not known yet: the pipe model
              * of what it carries; twig_radius is its floor. */
-            int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0);
+            int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0, cum[k]);
             P = c->pts + c->twigs[me].first; /* the arrays may have moved */
             R = c->rad + c->twigs[me].first;
             sub_tips[k] = st;
@@ -282,8 +297,10 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double L = poly_length(P + surface, np - surface);
     int32_t level = c->twigs[me].level;
     v3 pts_copy[MAX_TWIG_PTS];
+    double rad_copy[MAX_TWIG_PTS];
     memcpy(pts_copy, P + surface, sizeof(v3) * (size_t)(np - surface));
-    leaves_along(x, pts_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level);
+    memcpy(rad_copy, R + surface, sizeof(double) * (size_t)(np - surface));
+    leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
     if (c->twigs[me].children == 0) c->tips++;
     return tips;
 }
@@ -292,6 +309,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
 typedef struct cand {
     v3 at, d, h;     /* start (on the branch's axis), direction, horizontal side vector */
     double len, r_host, z;
+    double path;     /* m: path length from the trunk base to `at` */
     int32_t node, index;
     int tip;         /* a skeleton tip's continuation: never dropped */
 } cand;
@@ -506,14 +524,10 @@ static v3 horizontal_perp(v3 d) {
 
 /* Leaves along the segment lines of skeleton tip x (twigs_from_segments). */
 static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
-    banyan_segment_params sp;
-    keyaki_twig_params(x->p, &sp);
-    banyan_segment_input in;
-    keyaki_twig_input(x->p, &n[i], &in);
     float xyz[3 * BANYAN_SEGMENT_MAX_VERTICES];
-    uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
-    int32_t nv = 0;
-    if (banyan_segment_generate(&in, &sp, xyz, lev, &nv, NULL)) return;
+    uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES], par[BANYAN_SEGMENT_MAX_VERTICES / 2];
+    double path[BANYAN_SEGMENT_MAX_VERTICES / 2];
+    int32_t nv = keyaki_twig_lines(x->p, &n[i], x->npath[i], xyz, lev, par, path);
     for (int32_t j = 2; j + 1 < nv && !x->oom; j += 2) {
         v3 ab[2] = {v3_make(xyz[3 * j], xyz[3 * j + 1], xyz[3 * j + 2]),
                     v3_make(xyz[3 * j + 3], xyz[3 * j + 4], xyz[3 * j + 5])};
@@ -522,7 +536,8 @@ static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
         v3 t = v3_scale(v3_sub(ab[1], ab[0]), 1.0 / l);
         v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(t), t), t);
         if (up.z < 0) up = v3_neg(up);
-        leaves_along(x, ab, 2, 0.1 * l, up, -1, n[i].level + lev[j]);
+        double r = keyaki_twig_radius(x->p, &n[i], lev[j]), rr[2] = {r, r};
+        leaves_along(x, ab, rr, 2, 0.1 * l, up, -1, n[i].level + lev[j], path[j / 2]);
     }
 }
 
@@ -560,14 +575,20 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     c->run = run;
     if (count <= 0 || p->leaf_levels <= 0) return BANYAN_OK;
     int32_t *depth = malloc(sizeof(int32_t) * (size_t)count);
-    if (!depth) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    double *npath = malloc(sizeof(double) * (size_t)count);
+    if (!depth || !npath) {
+        free(depth);
+        free(npath);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    }
+    keyaki_node_paths(n, count, npath);
     for (int32_t i = count - 1; i >= 0; i--) {
         int32_t a = n[i].child[0], b = n[i].child[1];
         if (a < 0 && b < 0) depth[i] = 0;
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK, npath};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -581,10 +602,12 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
                 v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
                 if (up.z < 0) up = v3_neg(up);
-                leaves_along(&x, ab, 2, 0.0, up, -1, n[i].level);
+                double rr[2] = {branch_radius(p, n, &n[i], 0), branch_radius(p, n, &n[i], n[i].length)};
+                leaves_along(&x, ab, rr, 2, 0.0, up, -1, n[i].level, npath[i]);
             }
         }
         free(depth);
+        free(npath);
         if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
         return BANYAN_OK;
     }
@@ -597,6 +620,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     for (int32_t i = 0; i < count; i++) {
         if ((i & 4095) == 0 && keyaki_stopped(run)) {
             free(depth);
+            free(npath);
             free(cs);
             return crown_fail(c, 3, BANYAN_OK, p, err);
         }
@@ -612,11 +636,13 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
          * vertices or more: refuse absurd counts before storing them. */
         if (8.0 * ((double)nc + k) > (double)budget(p, count_only)) {
             free(depth);
+            free(npath);
             free(cs);
             return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
         }
         if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
             free(depth);
+            free(npath);
             free(cs);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
@@ -628,6 +654,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->h = h;
             q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
             q->r_host = branch_radius(p, n, b, s);
+            q->path = npath[i] + s;
             q->node = i;
             q->index = nc;
             q->tip = 0;
@@ -640,6 +667,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->h = h;
             q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
             q->r_host = branch_radius(p, n, b, b->length);
+            q->path = npath[i] + b->length;
             q->node = i;
             q->index = nc;
             q->tip = 1;
@@ -647,6 +675,8 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         }
     }
     free(depth);
+    free(npath);
+    x.npath = NULL;
     for (int32_t k = 0; k < nc; k++) {
         v3 e = v3_madd(cs[k].at, cs[k].d, 0.5 * cs[k].len);
         cs[k].z = e.z;
@@ -764,7 +794,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             }
             sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
         }
-        grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur);
+        grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur, q.path);
     }
     free(g.n);
     free(g.in);
@@ -781,23 +811,92 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     return BANYAN_OK;
 }
 
-void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]) {
+void keyaki_crown_skel_counts(const keyaki_crown *c, uint64_t *points, uint64_t *edges) {
+    /* A first-order twig: its points, its edges and one joining it along
+     * its branch; a sub-twig starts on a point of its parent's. */
+    uint64_t p = 0, e = 0;
+    for (int32_t t = 0; t < c->n_twigs; t++) {
+        int32_t k = c->twigs[t].count, first = c->twigs[t].parent < 0;
+        p += (uint64_t)(k - 1 + first);
+        e += (uint64_t)(k - 1 + first);
+    }
+    *points = p;
+    *edges = e;
+}
+
+void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3], const keyaki_wind *w) {
     mb_set_attr(mb, attr[2], 0); /* order 0: finer than any skeleton branch */
+    /* Skeleton: point k >= 1 of twig t is skel[t] + k; point 0 is skel0[t]. */
+    uint32_t *skel = w ? malloc(sizeof(uint32_t) * 2 * ((size_t)c->n_twigs + 1)) : NULL;
+    if (w && !skel) {
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    uint32_t *skel0 = skel ? skel + c->n_twigs + 1 : NULL;
     for (int32_t t = 0; t < c->n_twigs && !mb->status; t++) {
         if ((t & 1023) == 0 && keyaki_stopped(c->run)) {
             mb->status = BANYAN_E_CANCELLED;
             break;
         }
         const keyaki_twig *T = &c->twigs[t];
+        const v3 *P = c->pts + T->first;
+        const double *R = c->rad + T->first;
         mb_set_attr(mb, attr[1], T->level);
+        uint32_t first = mb->nv;
+        double ph = 0;
+        int32_t level = 0;
+        if (w) {
+            /* A branch of its own: pivot its base on the parent, level its
+             * branch's wind level + its order. */
+            level = w->level[T->node] + (T->level - w->n[T->node].level);
+            ph = wind_phase_of(w->seed, KEYAKI_PHASE_TWIG + (uint64_t)t);
+            wind_set(mb, w->ws, P[0], level, keyaki_stiffness(w, R[0]), ph, 0);
+        }
         /* A twig tip's end is hidden in its last leaves: no cap. */
         tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0, 1}; /* a twig: one bark tile round */
-        tube_sweep(mb, c->pts + T->first, c->rad + T->first, (uint32_t)T->count, &o);
+        tube_sweep(mb, P, R, (uint32_t)T->count, &o);
+        if (!w || mb->status) continue;
+        /* Per ring: stiffness by radius (the set-back first ring of a
+         * first-order twig takes the second's), birth by path length. */
+        double st[MAX_TWIG_PTS], bt[MAX_TWIG_PTS];
+        for (int32_t k = 0; k < T->count; k++) {
+            double r = k == 0 && T->parent < 0 && T->count > 1 ? R[1] : R[k];
+            st[k] = keyaki_stiffness(w, r);
+            bt[k] = k ? bt[k - 1] + v3_dist(P[k - 1], P[k]) : T->path0;
+        }
+        wind_tube_rings(mb, first, (uint32_t)T->count, T->sides, 0, T->children > 0, w->ws->stiffness, st);
+        wind_tube_rings(mb, first, (uint32_t)T->count, T->sides, 0, T->children > 0, w->ws->birth, bt);
+        /* Skeleton: a first-order twig joined along its branch from the
+         * branch's start; a sub-twig from its parent's point it leaves. */
+        int32_t tag = T->level | KEYAKI_SKEL_TWIG;
+        uint32_t from;
+        if (T->parent < 0) {
+            from = keyaki_skel_start(w, T->node);
+            skel0[t] = mb_skel_point(mb, P[0], R[0], tag);
+            mb_skel_edge(mb, from, skel0[t]);
+        } else {
+            const keyaki_twig *U = &c->twigs[T->parent];
+            const v3 *Q = c->pts + U->first;
+            int32_t best = 0;
+            double bd = HUGE_VAL;
+            for (int32_t k = 0; k < U->count; k++) {
+                double d = v3_dist(Q[k], P[0]);
+                if (d < bd) bd = d, best = k;
+            }
+            skel0[t] = best == 0 ? skel0[T->parent] : skel[T->parent] + (uint32_t)best;
+        }
+        skel[t] = mb->n_skel - 1;
+        for (int32_t k = 1; k < T->count; k++) {
+            uint32_t a = k == 1 ? skel0[t] : mb->n_skel - 1;
+            uint32_t b = mb_skel_point(mb, P[k], R[k], tag);
+            mb_skel_edge(mb, a, b);
+        }
     }
+    free(skel);
 }
 
 void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
-                              const int attr[3]) {
+                              const int attr[3], const keyaki_wind *w) {
     int32_t cols = 1, rows = 1;
     leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
     mb_set_attr(mb, attr[2], 0);
@@ -809,6 +908,13 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
         }
         const keyaki_leaf *q = &c->leaves[k];
         mb_set_attr(mb, attr[1], q->level);
+        if (w) {
+            /* Pivot the petiole base, on its wood; level and stiffness that
+             * wood's (+ 1); birth its path, delayed when the tree is done. */
+            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1,
+                     keyaki_stiffness(w, q->r_attach), wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k), 1);
+            if (w->ws->birth >= 0) mb_set_attr(mb, w->ws->birth, q->path);
+        }
         uint32_t v0 = mb_vertices(mb, 4);
         uint32_t *I = mb_indices(mb, 6);
         if (v0 == UINT32_MAX || !I) return;

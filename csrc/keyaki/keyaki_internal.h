@@ -4,12 +4,14 @@
 #ifndef BANYAN_KEYAKI_INTERNAL_H
 #define BANYAN_KEYAKI_INTERNAL_H
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stdint.h>
 
 #include "banyan.h"
 #include "core/mesh_builder.h"
 #include "core/progress.h"
+#include "core/wind.h"
 #include "core/rng.h"
 #include "core/vec.h"
 
@@ -73,9 +75,12 @@ int keyaki_reserve_bytes(keyaki_run *r, double bytes);
  * array; 1 when stopped (the array is then left part sorted). cmp must be
  * a total order: the result is then qsort's. */
 int keyaki_sort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *), keyaki_run *r);
-/* Bytes of a mesh of v vertices and i indices (with colours and the three
- * attributes), for keyaki_reserve_bytes. */
-static inline double keyaki_mesh_bytes(uint64_t v, uint64_t i) { return 60.0 * (double)v + 4.0 * (double)i; }
+/* Bytes of a mesh of v vertices and i indices (with colours, the three
+ * attributes, birth and, with wind, the seven wind attributes), for
+ * keyaki_reserve_bytes. */
+static inline double keyaki_mesh_bytes(uint64_t v, uint64_t i, int wind) {
+    return (64.0 + (wind ? 28.0 : 0.0)) * (double)v + 4.0 * (double)i;
+}
 
 /* A growable skeleton; reuse one across calls to avoid allocations.
  * run: the budget its growth and meshing keep (NULL: none). */
@@ -133,6 +138,8 @@ typedef struct keyaki_limb {
     uint32_t vertex_offset; /* first ring's first vertex in the mesh (tree-local) */
 } keyaki_limb;
 
+typedef struct keyaki_wind keyaki_wind; /* below, with the body */
+
 /* The crown (crown.c, docs/keyaki.md "Twigs and leaves", "Light and
  * crowding"): twigs below the skeleton and the leaves on them, generated
  * into flat arrays (grown by doubling) before meshing so they are counted
@@ -145,6 +152,7 @@ typedef struct keyaki_twig {
     int32_t level;        /* level attribute: the branch's level + order */
     int32_t sides;        /* tube sides */
     int32_t children;     /* sub-twigs on it (0: a twig tip) */
+    double path0;         /* m: path length from the trunk base to its first point (birth) */
 } keyaki_twig;
 
 typedef struct keyaki_leaf {
@@ -156,6 +164,8 @@ typedef struct keyaki_leaf {
     int32_t node;
     int32_t side;   /* +1 / -1: its rank, alternating along the twig */
     int32_t level;
+    float path;     /* m: path length from the trunk base to `base` along the wood (birth) */
+    float r_attach; /* m: the wood's radius at `base` (the leaf's wind stiffness) */
 } keyaki_leaf;
 
 typedef struct keyaki_crown {
@@ -179,11 +189,15 @@ typedef struct keyaki_crown {
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                 keyaki_run *run, keyaki_crown *c, banyan_error *err);
 void keyaki_crown_free(keyaki_crown *c);
-/* Appends the twig tubes to the current part (c->vertices exactly). */
-void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3]);
-/* Appends the leaf quads (4 vertices, 6 indices each) to the current part. */
+/* Appends the twig tubes to the current part (c->vertices exactly), with
+ * their wind and birth, and the twigs to the skeleton (w: NULL for none). */
+void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3], const keyaki_wind *w);
+/* Appends the leaf quads (4 vertices, 6 indices each) to the current
+ * part, with their wind and birth (w: NULL for none). */
 void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
-                              const int attr[3]);
+                              const int attr[3], const keyaki_wind *w);
+/* Skeleton points and edges the crown's twigs add. */
+void keyaki_crown_skel_counts(const keyaki_crown *c, uint64_t *points, uint64_t *edges);
 
 typedef struct keyaki_body {
     keyaki_limb *limbs;
@@ -191,8 +205,54 @@ typedef struct keyaki_body {
     keyaki_crown crown;
     uint32_t vertices, indices;         /* totals: bark + leaves */
     uint32_t bark_vertices, bark_indices;
+    uint32_t skel_points, skel_edges;   /* the mesh's skeleton: branches, twigs and segment lines */
     keyaki_run *run;                    /* the budget meshing keeps (from keyaki_body_plan) */
+    wind_slots ws;                      /* the wind and birth slots (none after keyaki_body_plan) */
 } keyaki_body;
+
+/* skel_tag bit of the points below the skeleton proper (crown twigs and
+ * segment twig lines): their tag is level | KEYAKI_SKEL_TWIG, no order.
+ * Readers of the branch skeleton skip them. */
+#define KEYAKI_SKEL_TWIG (1 << 17)
+
+/* Path lengths from the trunk base to each branch's start, m (parents
+ * first). */
+static inline void keyaki_node_paths(const keyaki_node *n, int32_t count, double *path) {
+    for (int32_t i = 0; i < count; i++) path[i] = n[i].parent < 0 ? 0.0 : path[n[i].parent] + n[n[i].parent].length;
+}
+
+/* Wind while one tree is meshed (body.c; docs/keyaki.md "Wind and growth
+ * attributes"). A wind branch is the run of skeleton branches one body
+ * tube sweeps through, except that the trunk (branch 0 and the trunk
+ * pieces) is one of its own: its pivot is its first branch's start,
+ * its phase that branch's. Births are written as path lengths (m) and
+ * scaled to 0..1 once the tree is meshed. */
+struct keyaki_wind {
+    const wind_slots *ws;
+    const keyaki_node *n;
+    int32_t *root;     /* per branch: the first branch of its wind branch */
+    int32_t *level;    /* per branch: its wind branch's level (trunk 0, limbs 1, a side branch its parent's + 1) */
+    double *path;      /* per branch: path length from the trunk base to its start, m */
+    double r_ref;      /* m: the trunk's base radius (stiffness 1) */
+    uint64_t seed;
+    uint32_t skel0;    /* the tree's first skeleton point (point skel0 + i + 1 ends branch i) */
+};
+
+/* Stiffness of wood of radius r: sqrt(r / r_ref), at most 1. */
+static inline double keyaki_stiffness(const keyaki_wind *w, double r) {
+    return w->r_ref > 0 && r < w->r_ref ? sqrt(r > 0 ? r / w->r_ref : 0.0) : 1.0;
+}
+
+/* The skeleton point where branch i starts. */
+static inline uint32_t keyaki_skel_start(const keyaki_wind *w, int32_t i) {
+    return w->skel0 + (uint32_t)(w->n[i].parent < 0 ? 0 : w->n[i].parent + 1);
+}
+
+/* Phase ids: branches are their index; twigs, leaves and segment lines
+ * get ids of their own kinds. */
+#define KEYAKI_PHASE_TWIG (1ull << 40)
+#define KEYAKI_PHASE_LEAF (2ull << 40)
+#define KEYAKI_PHASE_LINE (3ull << 40)
 
 void keyaki_body_free(keyaki_body *b);
 
@@ -221,13 +281,22 @@ void keyaki_twig_input(const banyan_keyaki_params *p, const keyaki_node *x, bany
 /* Tube radius of a line of segment level code level_code >= 1 on the
  * segment whose axis is tip branch x, m. */
 double keyaki_twig_radius(const banyan_keyaki_params *p, const keyaki_node *x, int level_code);
-/* Exact vertex and index counts of the twig tubes (0 without the flag). */
+/* Exact vertex and index counts of the twig tubes, and the lines (each
+ * 2 skeleton points and 2 edges) (0 without the flag). */
 void keyaki_twigs_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, uint64_t *vertices,
-                       uint64_t *indices);
+                       uint64_t *indices, uint64_t *lines);
+/* The segment of tip branch x (line 0 its axis): xyz and level codes as
+ * banyan_segment_generate gives them, parent[j] the line that line j
+ * leaves, and path[j] the path length from the trunk base to line j's
+ * start (path_x: to x's start), m. Returns the vertex count (2 a line),
+ * 0 on failure. */
+int32_t keyaki_twig_lines(const banyan_keyaki_params *p, const keyaki_node *x, double path_x, float *xyz,
+                          uint8_t *level, uint8_t *parent, double *path);
 /* Appends the twig tubes to the current part of mb (attr[1] level,
- * attr[2] order; tree_id as set). */
+ * attr[2] order; tree_id as set), with their wind and birth, and their
+ * lines to the skeleton (w: NULL for none). */
 void keyaki_twigs_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, mesh_builder *mb,
-                       const int attr[3]);
+                       const int attr[3], const keyaki_wind *w);
 
 /* The whole pipeline for one tree into a fresh mesh (used by keyaki and
  * avenue). sk is a scratch skeleton (may be reused). */
@@ -245,7 +314,8 @@ banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, u
 /* Grows + plans without meshing: the exact sizes of a tree's mesh. */
 typedef struct keyaki_counts {
     uint32_t vertices, indices;
-    uint32_t nodes; /* skeleton: nodes + 1 points, nodes edges */
+    uint32_t nodes; /* skeleton branches */
+    uint32_t skel_points, skel_edges; /* the mesh's skeleton with twigs (edges = points - 1) */
     uint32_t parts; /* 1 (bark) or 2 (bark, leaves) */
 } keyaki_counts;
 banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err);

@@ -119,7 +119,8 @@ static banyan_status merge(banyan_mesh *const *v, uint32_t n, prog *g, banyan_me
     if (ni > 0xFFFFFFF0u || nv > MB_VERTEX_CEILING)
         return banyan_fail(err, BANYAN_E_LIMIT, "the variants need %llu vertices and %llu indices together; lower variants",
                            (unsigned long long)nv, (unsigned long long)ni);
-    if (prog_reserve(g, keyaki_mesh_bytes(nv, ni))) return prog_fail(g, err, "avenue");
+    /* more than tree_id, level, order and birth: the wind attributes */
+    if (prog_reserve(g, keyaki_mesh_bytes(nv, ni, a->attribute_count > 4))) return prog_fail(g, err, "avenue");
     banyan_mesh *o = calloc(1, sizeof *o);
     if (!o) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the avenue's variants");
     o->vertex_count = (uint32_t)nv;

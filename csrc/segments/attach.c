@@ -81,14 +81,40 @@ static void sample_axis(grid *g, const banyan_segment_input *s, uint32_t j, uint
     }
 }
 
+/* The nearest parent so far of segment i: axis j at distance d (within
+ * tol) replaces it when nearer, or as near with a lower j; the trunk
+ * (-1, set first) wins ties. */
+static void nearer(int32_t *best, double *best_d, uint32_t j, double d) {
+    if (d < *best_d || (d == *best_d && *best >= 0 && (int32_t)j < *best)) *best = (int32_t)j, *best_d = d;
+}
+
+/* Segment i's start: 1 if on the trunk (parent -1) or, without one, the
+ * root; best and best_d start the search. */
+static int start_of(const banyan_segment_input *segs, uint32_t i, const double *trunk, double tol, int32_t *best,
+                    double *best_d) {
+    *best = -2;
+    *best_d = HUGE_VAL;
+    if (!on_trunk(segs, i, trunk, tol)) return 0;
+    if (trunk) *best = -1, *best_d = dist_to_line(v3_load(segs[i].S), trunk);
+    return 1;
+}
+
 static uint32_t brute_scan(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
-                           uint32_t *out, prog *g) {
+                           uint32_t *out, int32_t *parent, prog *g) {
     uint32_t n = 0;
     for (uint32_t i = 0; i < count; i++) {
         if ((i & 63) == 0 && prog_at(g, 0.0)) return 0;
-        int ok = on_trunk(segs, i, trunk, tol);
+        int32_t best;
+        double best_d;
+        int ok = start_of(segs, i, trunk, tol, &best, &best_d);
         v3 p = v3_load(segs[i].S);
-        for (uint32_t j = 0; j < i && !ok; j++) ok = dist_to_axis(p, &segs[j]) <= tol;
+        for (uint32_t j = 0; j < i && (!ok || parent); j++) {
+            double d = dist_to_axis(p, &segs[j]);
+            if (d > tol) continue;
+            ok = 1;
+            nearer(&best, &best_d, j, d);
+        }
+        if (parent) parent[i] = best;
         if (!ok) {
             if (out) out[n] = i;
             n++;
@@ -99,9 +125,14 @@ static uint32_t brute_scan(const banyan_segment_input *segs, uint32_t count, con
 
 uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
                              int brute, uint32_t *out, banyan_status *status, prog *pg) {
+    return seg_attach_parents(segs, count, trunk, tol, brute, NULL, out, status, pg);
+}
+
+uint32_t seg_attach_parents(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
+                            int brute, int32_t *parent, uint32_t *out, banyan_status *status, prog *pg) {
     *status = BANYAN_OK;
     if (brute || count <= BRUTE_MAX) {
-        uint32_t n = brute_scan(segs, count, trunk, tol, out, pg);
+        uint32_t n = brute_scan(segs, count, trunk, tol, out, parent, pg);
         if (prog_stopped(pg)) *status = BANYAN_E_LIMIT;
         return n;
     }
@@ -155,20 +186,29 @@ uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, c
             break;
         }
         v3 p = v3_load(segs[i].S);
-        int ok = on_trunk(segs, i, trunk, tol);
+        int32_t best;
+        double best_d;
+        int ok = start_of(segs, i, trunk, tol, &best, &best_d);
         int c[3];
         cell_of(&g, p, c);
-        for (int dz = -1; dz <= 1 && !ok; dz++)
-            for (int dy = -1; dy <= 1 && !ok; dy++)
-                for (int dx = -1; dx <= 1 && !ok; dx++) {
+        /* With parents wanted, every candidate is measured (the nearest
+         * wins, whatever the cells' order). */
+        for (int dz = -1; dz <= 1 && (!ok || parent); dz++)
+            for (int dy = -1; dy <= 1 && (!ok || parent); dy++)
+                for (int dx = -1; dx <= 1 && (!ok || parent); dx++) {
                     int x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
                     if (x < 0 || y < 0 || z < 0 || x >= g.dim[0] || y >= g.dim[1] || z >= g.dim[2]) continue;
                     size_t cell = ((size_t)z * g.dim[1] + y) * g.dim[0] + x;
-                    for (uint32_t e = g.start[cell]; e < g.start[cell + 1] && !ok; e++) {
+                    for (uint32_t e = g.start[cell]; e < g.start[cell + 1] && (!ok || parent); e++) {
                         uint32_t j = g.items[e];
-                        ok = j < i && dist_to_axis(p, &segs[j]) <= tol;
+                        if (j >= i) continue;
+                        double d = dist_to_axis(p, &segs[j]);
+                        if (d > tol) continue;
+                        ok = 1;
+                        nearer(&best, &best_d, j, d);
                     }
                 }
+        if (parent) parent[i] = best;
         if (!ok) {
             if (out) out[n] = i;
             n++;

@@ -17,6 +17,7 @@
 #include "../core/frame.h"
 #include "../core/progress.h"
 #include "../core/tube.h"
+#include "../core/wind.h"
 #include "segment_core.h"
 
 #define MIN_TUBE_LENGTH 1e-9
@@ -147,6 +148,84 @@ static void level_color(int level, double rgba[4]) {
     rgba[3] = 1.0;
 }
 
+/* Wind and birth of a composed tree (docs/segments.md "Wind and growth
+ * attributes"). Each line is a branch in Pivot Painter's sense: its pivot
+ * is its start, on its parent line (a segment's axis starts on the axis
+ * it is attached to, or the trunk); its level is its segment's depth
+ * (the trunk 0, a segment on the trunk 1, on a depth-d axis d + 1;
+ * without a trunk the root segment 0) plus the line's level code (a
+ * twig +1, a fork of depth k +1 + k). Radii follow the level code only,
+ * so a deep segment is as thick as one on the trunk; the stiffness
+ * therefore takes the radius the line would have if radii fell with the
+ * whole tree's level: radius x radius_ratio^(level - root level), never
+ * below radius_min, as sqrt(r / r_ref) with r_ref the thickest radius
+ * (the trunk's, else radius). Birth: the path length from the root to
+ * each ring, over the longest. */
+typedef struct seg_wind {
+    wind_slots ws;
+    int32_t *parent; /* per segment (seg_attach_parents) */
+    int32_t *depth;  /* per segment: its axis's level */
+    double *path;    /* per segment: path length from the root to S, m */
+    double r_ref, radius, ratio, radius_min;
+    int root_level;  /* 1 with a trunk, else 0 */
+} seg_wind;
+
+static int seg_wind_init(seg_wind *w, const banyan_segments_params *p, const banyan_segment_input *segs,
+                         uint32_t count, const double *trunk) {
+    (void)segs;
+    memset(w, 0, sizeof *w);
+    w->parent = malloc(sizeof(int32_t) * count);
+    w->depth = malloc(sizeof(int32_t) * count);
+    w->path = malloc(sizeof(double) * count);
+    w->radius = p->radius;
+    w->ratio = p->radius_ratio;
+    w->radius_min = p->radius_min;
+    w->root_level = trunk ? 1 : 0;
+    w->r_ref = trunk && p->trunk_radius > p->radius ? p->trunk_radius : p->radius;
+    if (w->parent && w->depth && w->path) return 0;
+    free(w->parent);
+    free(w->depth);
+    free(w->path);
+    memset(w, 0, sizeof *w);
+    return 1;
+}
+
+static void seg_wind_free(seg_wind *w) {
+    free(w->parent);
+    free(w->depth);
+    free(w->path);
+    w->parent = w->depth = NULL;
+    w->path = NULL;
+}
+
+/* Depths and paths from the parents (every parent precedes its child). */
+static void seg_wind_tree(seg_wind *w, const banyan_segment_input *segs, uint32_t count, const double *trunk) {
+    for (uint32_t i = 0; i < count; i++) {
+        int32_t q = w->parent[i];
+        v3 S = v3_load(segs[i].S);
+        if (q >= 0) {
+            v3 u = v3_norm(v3_load(segs[q].A));
+            double t = v3_dot(v3_sub(S, v3_load(segs[q].S)), u);
+            w->depth[i] = w->depth[q] + 1;
+            w->path[i] = w->path[q] + (t < 0 ? 0 : t > segs[q].l ? segs[q].l : t);
+        } else if (q == -1) {
+            v3 a = v3_load(trunk), ab = v3_sub(v3_load(trunk + 3), a);
+            double L = v3_len(ab), t = L > 0 ? v3_dot(v3_sub(S, a), ab) / L : 0;
+            w->depth[i] = 1;
+            w->path[i] = t < 0 ? 0 : t > L ? L : t;
+        } else { /* the root, or unattached: a root of its own */
+            w->depth[i] = w->root_level;
+            w->path[i] = 0;
+        }
+    }
+}
+
+static double seg_stiffness(const seg_wind *w, int level) {
+    if (level < w->root_level) return 1.0; /* the trunk */
+    double r = seg_level_radius(w->radius, w->ratio, w->radius_min, level - w->root_level);
+    return sqrt(r < w->r_ref ? r / w->r_ref : 1.0);
+}
+
 /* banyan_segments_generate in the segments' own frame. */
 static banyan_status compose(const banyan_segments_params *params, const banyan_segment_input *segs, uint32_t count,
                              const double *trunk, banyan_mesh **out, banyan_segments_stats *stats,
@@ -193,17 +272,28 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         return banyan_fail(err, BANYAN_E_LIMIT,
                            "the tree of %u segments needs %llu vertices; max_vertices = %d (raise it, or lower sides "
                            "= %d)", count, (unsigned long long)verts, p->max_vertices, p->sides);
-    /* The mesh's memory, known before it is allocated: about 64 bytes a
-     * vertex with its attributes, 4 an index. */
-    if (prog_reserve(&g, (double)verts * 64.0 + (double)(verts / tv) * ti * 4.0)) return prog_fail(&g, err, "segments");
-    st.unattached = seg_find_unattached(segs, count, trunk, p->attach_tolerance, 0, unattached, &s, &g);
-    if (prog_stopped(&g)) return prog_fail(&g, err, "segments");
-    if (s) return banyan_fail(err, s, "out of memory while checking %u segments", count);
+    /* The mesh's memory, known before it is allocated: about 68 bytes a
+     * vertex with its attributes and birth (96 with wind), 4 an index. */
+    if (prog_reserve(&g, (double)verts * (p->wind ? 96.0 : 68.0) + (double)(verts / tv) * ti * 4.0))
+        return prog_fail(&g, err, "segments");
+    seg_wind sw;
+    if (seg_wind_init(&sw, p, segs, count, trunk)) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    st.unattached = seg_attach_parents(segs, count, trunk, p->attach_tolerance, 0, sw.parent, unattached, &s, &g);
+    if (prog_stopped(&g)) {
+        seg_wind_free(&sw);
+        return prog_fail(&g, err, "segments");
+    }
+    if (s) {
+        seg_wind_free(&sw);
+        return banyan_fail(err, s, "out of memory while checking %u segments", count);
+    }
+    seg_wind_tree(&sw, segs, count, trunk);
 
     /* Pass 2: the mesh. */
     mesh_builder mb;
     mb_init(&mb, (uint32_t)p->max_vertices, 1);
     int a_level = mb_add_attr(&mb, "level"), a_seg = mb_add_attr(&mb, "segment");
+    wind_declare(&mb, p->wind, &sw.ws);
     static const double white[4] = {1, 1, 1, 1};
     mb_add_material(&mb, "segments", white, 0.8, 0);
     /* A failure is sticky; mb_finish reports it. */
@@ -215,7 +305,11 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         mb_set_attr(&mb, a_seg, -1);
         level_color(-1, rgba);
         mb_set_color(&mb, rgba);
+        double bt[2] = {0.0, v3_dist(a, b)};
+        uint32_t first = mb.nv;
+        wind_set(&mb, &sw.ws, a, 0, seg_stiffness(&sw, 0), wind_phase_of(p->seed, 0), 0);
         seg_line_tube(&mb, a, b, p->trunk_radius, p->sides);
+        wind_tube_rings(&mb, first, 2, p->sides, 0, 1, sw.ws.birth, bt);
         uint32_t q = mb_skel_point(&mb, a, p->trunk_radius, -1);
         mb_skel_point(&mb, b, p->trunk_radius, -1);
         mb_skel_edge(&mb, q, q + 1);
@@ -223,9 +317,12 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     for (uint32_t i = 0; i < count && !mb.status; i++) {
         if ((i & 63) == 0 && prog_at(&g, 0.0)) {
             mb_free(&mb);
+            seg_wind_free(&sw);
             return prog_fail(&g, err, "segments");
         }
-        int nv = seg_run(&k, &segs[i], buf, lev);
+        uint8_t par[BANYAN_SEGMENT_MAX_VERTICES / 2];
+        double path[BANYAN_SEGMENT_MAX_VERTICES / 2];
+        int nv = seg_run_tree(&k, &segs[i], buf, lev, par);
         mb_set_attr(&mb, a_seg, (double)i);
         for (int j = 0; j < nv; j += 2) {
             v3 a = v3_make(buf[3 * j], buf[3 * j + 1], buf[3 * j + 2]);
@@ -234,7 +331,18 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
             mb_set_attr(&mb, a_level, lev[j]);
             level_color(lev[j], rgba);
             mb_set_color(&mb, rgba);
+            /* Birth: the path from the root to the line's start, along its
+             * parent line (the axis: from S; a fork: from its line's start). */
+            int pl = par[j / 2];
+            path[j / 2] =
+                j == 0 ? sw.path[i] : path[pl] + v3_dist(a, v3_make(buf[6 * pl], buf[6 * pl + 1], buf[6 * pl + 2]));
+            int level = sw.depth[i] + lev[j];
+            double bt[2] = {path[j / 2], path[j / 2] + v3_dist(a, b)};
+            wind_set(&mb, &sw.ws, a, level, seg_stiffness(&sw, level),
+                     wind_phase_of(p->seed, ((uint64_t)i << 8 | (uint64_t)(j / 2)) + 1), 0);
+            uint32_t first = mb.nv;
             if (v3_dist(a, b) >= MIN_TUBE_LENGTH) seg_line_tube(&mb, a, b, r, p->sides);
+            if (mb.nv > first) wind_tube_rings(&mb, first, 2, p->sides, 0, 1, sw.ws.birth, bt);
             uint32_t q = mb_skel_point(&mb, a, r, lev[j]);
             mb_skel_point(&mb, b, r, lev[j]);
             mb_skel_edge(&mb, q, q + 1);
@@ -242,8 +350,16 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     }
     if (!mb.status && mb.nv == 0) {
         mb_free(&mb);
+        seg_wind_free(&sw);
         return banyan_fail(err, BANYAN_E_RANGE, "every line of the %u segments is shorter than %g m: nothing to mesh",
                            count, MIN_TUBE_LENGTH);
+    }
+    seg_wind_free(&sw);
+    /* Birth was written as path length (m): the longest path is 1. */
+    if (!mb.status && sw.ws.birth >= 0) {
+        float *bt = mb.attr[sw.ws.birth], top = 0;
+        for (uint32_t v = 0; v < mb.nv; v++) top = bt[v] > top ? bt[v] : top;
+        for (uint32_t v = 0; v < mb.nv; v++) bt[v] = top > 0 ? (float)((double)bt[v] / top) : 0.0f;
     }
     s = mb_finish(&mb, out, err);
     if (s) return s;

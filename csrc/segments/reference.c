@@ -143,6 +143,10 @@ static inline void put(float *xyz, int v, f3 p) {
 }
 
 int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uint8_t *level) {
+    return seg_run_tree(k, in, xyz, level, NULL);
+}
+
+int seg_run_tree(const seg_consts *k, const banyan_segment_input *in, float *xyz, uint8_t *level, uint8_t *parent) {
     /* Per line: start, end, unit direction, depth below its twig (0 for
      * the twig itself) and the depth its twig forks to. */
     f3 p0[SEG_MAX_LINES], p1[SEG_MAX_LINES], dir[SEG_MAX_LINES];
@@ -161,6 +165,7 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
     p1[0] = B2;
     dir[0] = C;
     depth[0] = limit[0] = 0;
+    if (parent) parent[0] = 0;
 
     /* 2. Twigs: D_i on the axis at i / (n + 1), E_i = D_i + m R_z(+-alpha) C1. */
     for (int i = 1; i <= n; i++) {
@@ -173,6 +178,7 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
         dir[i] = F;
         depth[i] = 0;
         limit[i] = s + i - 1;
+        if (parent) parent[i] = 0;
     }
 
     /* 3-4. Hierarchy, breadth-first over the line list, budget first. */
@@ -193,12 +199,14 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
         dir[nl] = J1;
         depth[nl] = depth[q] + 1;
         limit[nl] = limit[q];
+        if (parent) parent[nl] = (uint8_t)q;
         nl++;
         p0[nl] = G2;
         p1[nl] = H2;
         dir[nl] = J2;
         depth[nl] = depth[q] + 1;
         limit[nl] = limit[q];
+        if (parent) parent[nl] = (uint8_t)q;
         nl++;
     }
 

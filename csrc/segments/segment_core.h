@@ -26,6 +26,11 @@ banyan_status seg_check_input(const banyan_segment_input *in, const char *prefix
  * be NULL) one level code per vertex. Returns the vertex count (2..128).
  * Allocates nothing. */
 int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uint8_t *level);
+/* seg_run that also gives each line's parent line (parent[j], one per
+ * line, at most 64): the axis (line 0) is its own, a twig's is the axis,
+ * a fork's the line it leaves (its start lies on that line). parent may
+ * be NULL. */
+int seg_run_tree(const seg_consts *k, const banyan_segment_input *in, float *xyz, uint8_t *level, uint8_t *parent);
 
 /* Attachment (spec "Composing a tree"): writes the indices of segments
  * whose S is farther than tol from every earlier axis and from the trunk
@@ -38,6 +43,12 @@ int seg_run(const seg_consts *k, const banyan_segment_input *in, float *xyz, uin
 struct prog;
 uint32_t seg_find_unattached(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
                              int brute, uint32_t *out, banyan_status *status, struct prog *g);
+/* seg_find_unattached that also gives every segment's parent (`parent`,
+ * count entries): the nearest axis j < i within tol (a tie: the lower j),
+ * -1 for the trunk (preferred on a tie), -2 for an unattached segment and,
+ * without a trunk, for segment 0 (the root). */
+uint32_t seg_attach_parents(const banyan_segment_input *segs, uint32_t count, const double *trunk, double tol,
+                            int brute, int32_t *parent, uint32_t *out, banyan_status *status, struct prog *g);
 
 /* Tube meshing of a segment's lines, shared by the composer (compose.c)
  * and the keyaki's twigs (keyaki/twigs.c). */

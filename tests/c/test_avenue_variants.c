@@ -49,6 +49,12 @@ static double skeleton_match(const banyan_mesh *m, const uint32_t *mb, uint32_t 
                              const float t[3], const banyan_mesh *u, const uint32_t *ub, uint32_t un, uint32_t k2) {
     uint32_t a0 = mb[k], a1 = k + 1 < mn ? mb[k + 1] : m->skel_point_count;
     uint32_t b0 = ub[k2], b1 = k2 + 1 < un ? ub[k2 + 1] : u->skel_point_count;
+    /* The branches only: the twig points after them (skel_tag bit 17,
+     * docs/keyaki.md) are grown at heading 0 and differ in detail. */
+    for (uint32_t i = a0; i < a1; i++)
+        if (m->skel_tag[i] & (1 << 17)) { a1 = i; break; }
+    for (uint32_t i = b0; i < b1; i++)
+        if (u->skel_tag[i] & (1 << 17)) { b1 = i; break; }
     if (a1 - a0 != b1 - b0 || a1 == a0) return -1;
     double c = cos(rz), s = sin(rz), worst = 0;
     for (uint32_t i = 0; i < a1 - a0; i++) {

@@ -208,11 +208,20 @@ static void mesh_checks(uint64_t seed, int model) {
         for (int k = 0; k < 3; k++) bad_n += !isfinite(m->positions[3 * v + k]);
     }
     bad_wind += mc_wound_against_normals(m, 1e-14);
-    for (uint32_t s = 0; s < m->skel_point_count; s++)
+    /* The branch skeleton: the points without KEYAKI_SKEL_TWIG (twig lines
+     * follow it, two points and two edges a line). */
+    uint32_t branch_points = 0, twig_points = 0;
+    for (uint32_t s = 0; s < m->skel_point_count; s++) {
+        if (m->skel_tag[s] & KEYAKI_SKEL_TWIG) {
+            twig_points++;
+            continue;
+        }
+        branch_points++;
         if ((m->skel_tag[s] & 0xff) > skel_max) skel_max = m->skel_tag[s] & 0xff;
+    }
     CHECK(bad_n == 0 && bad_wind == 0, "seed %llu: %d bad normals, %d triangles wound against them",
           (unsigned long long)seed, bad_n, bad_wind);
-    CHECK(m->skel_point_count == (uint32_t)sk.count + 1 && m->skel_edge_count == (uint32_t)sk.count &&
+    CHECK(branch_points == (uint32_t)sk.count + 1 && m->skel_edge_count == (uint32_t)sk.count + twig_points &&
               (model != BANYAN_KEYAKI_EDAORE || skel_max == p.levels - p.segment_levels),
           "seed %llu: skeleton %u points, max level %d", (unsigned long long)seed, m->skel_point_count, skel_max);
 done:

@@ -126,10 +126,15 @@ def curve_length(cu):
     return sum(s.calc_length() for s in cu.splines)
 
 
-def skeleton_length(d):
-    """Total branch / stem length: the sum of the skeleton's edge lengths."""
-    p, e = d.skel_points, d.skel_edges
-    return sum(math.dist(p[3 * e[k]:3 * e[k] + 3], p[3 * e[k + 1]:3 * e[k + 1] + 3]) for k in range(0, len(e), 2))
+KEYAKI_SKEL_TWIG = 1 << 17  # keyaki_internal.h: crown twig and segment line points of the skeleton
+
+
+def skeleton_length(d, skip_tag=0):
+    """Total branch / stem length: the sum of the skeleton's edge lengths
+    (edges with an end whose skel_tag has a skip_tag bit left out)."""
+    p, e, tag = d.skel_points, d.skel_edges, d.skel_tag
+    return sum(math.dist(p[3 * e[k]:3 * e[k] + 3], p[3 * e[k + 1]:3 * e[k + 1] + 3]) for k in range(0, len(e), 2)
+               if not skip_tag or not ((tag[e[k]] | tag[e[k + 1]]) & skip_tag))
 
 
 def part_tris(d, material):
@@ -321,7 +326,7 @@ def section_tree():
             ban.once(lambda: G.keyaki(p), lambda: B.keyaki_tree(preset="keyaki_mature"))
         for run, kw in configs:
             sapling_once(run, kw)
-    ban.stem = skeleton_length(ban.d)
+    ban.stem = skeleton_length(ban.d, KEYAKI_SKEL_TWIG)  # the branches, as before twigs joined the skeleton
     ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["keyaki"]
     leaf_verts = sum(p["vertex_count"] for p in ban.d.parts if p["material"] == 1)
     if leaf_verts != 4 * ban.leaves:  # the count above assumes one quad a leaf (issue #20: ~30,000 of them)
