@@ -7,7 +7,8 @@
 #   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
 #   (also: params, start, avenue, hosts, roots (issue #18 look views),
 #   ivy (issue #19 look views: front, close, stems, pillar), keyaki (issue #20
-#   look views: under, tree, avenue, young); extra arguments go to the script)
+#   look views: under, tree, avenue, young), production (issue #22: LOD chain,
+#   growth frames); extra arguments go to the script)
 #   bash tools/render_docs.sh ui         # docs/screenshots.py in a real window on Xvfb
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -32,6 +33,7 @@ case $what in
   roots) run docs/render_roots_look.py -- "$@" ;;
   ivy) run docs/render_ivy_look.py -- "$@" ;;
   keyaki) run docs/render_keyaki_look.py -- "$@" ;;
+  production) run docs/render_production.py -- "$@" ;;
   ui) # A real window: Blender on a virtual X display; a .blend on the command line skips the splash.
     command -v xvfb-run >/dev/null || { echo "ui needs Xvfb: apt-get install xvfb xauth"; exit 1; }
     blend="$scripts/start.blend"

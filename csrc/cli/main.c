@@ -2,7 +2,7 @@
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
  *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
- *                      [--lod 0.5,0.15,billboard]
+ *                      [--lod 0.5,0.15,billboard] [--engine-uvs]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -53,7 +53,7 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
-               "                        [--textures on|off] [--texture-size N] [--lod LIST]\n"
+               "                        [--textures on|off] [--texture-size N] [--lod LIST] [--engine-uvs]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
@@ -61,6 +61,8 @@ static int usage(FILE *f) {
                "--texture-size pixels (a power of two, 64 .. 8192; default 1024); off writes flat colours.\n"
                "--lod 0.5,0.15,billboard adds coarser levels of detail to each mesh (MSFT_lod): falling\n"
                "shares of its triangles, optionally ending in crossed billboard cards.\n"
+               "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
+               "(docs/game-engines.md).\n"
                "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
@@ -280,6 +282,7 @@ int main(int argc, char **argv) {
                 goto bad_flag;
             }
         }
+        else if (!strcmp(a, "--engine-uvs")) gltf_opt.engine_uvs = 1;
         else if (!strcmp(a, "--list")) list = 1;
         else {
             fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
