@@ -120,40 +120,21 @@ static void *xcalloc(size_t n, size_t s) {
     return p;
 }
 
-static void add_attribute(banyan_mesh *m, const char *name, const float *data) {
-    m->attributes = realloc(m->attributes, sizeof(banyan_attribute) * (m->attribute_count + 1));
-    if (!m->attributes) abort();
-    banyan_attribute *a = &m->attributes[m->attribute_count++];
-    memset(a, 0, sizeof *a);
-    snprintf(a->name, sizeof a->name, "%s", name);
-    a->data = xcalloc(m->vertex_count, sizeof(float));
-    memcpy(a->data, data, sizeof(float) * m->vertex_count);
-}
+/* The eight wind attributes every generator writes (banyan.h). */
+static const char *const WIND_NAMES[8] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y, BANYAN_ATTR_WIND_PIVOT_Z,
+                                          BANYAN_ATTR_WIND_LEVEL,   BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
+                                          BANYAN_ATTR_WIND_FLUTTER, BANYAN_ATTR_BIRTH};
 
-/* Stand-in wind values when the generator does not write them yet: a
- * pivot with y != 0 (so the Y-up change shows), levels, stiffness, phase,
- * flutter by part and birth by height. */
-static void ensure_wind(banyan_mesh *m) {
-    if (banyan_mesh_attribute(m, BANYAN_ATTR_WIND_PIVOT_X)) return;
-    static const char *const names[8] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y, BANYAN_ATTR_WIND_PIVOT_Z,
-                                         BANYAN_ATTR_WIND_LEVEL,   BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
-                                         BANYAN_ATTR_WIND_FLUTTER, BANYAN_ATTR_BIRTH};
-    float *v = xcalloc(m->vertex_count, sizeof(float));
+/* 1 when the generator wrote all eight; a failure naming each missing one
+ * otherwise (nothing is made up in their place). */
+static int has_wind(const banyan_mesh *m, const char *what) {
+    int ok = 1;
     for (int k = 0; k < 8; k++) {
-        if (banyan_mesh_attribute(m, names[k])) continue;
-        for (uint32_t i = 0; i < m->vertex_count; i++) {
-            const float *p = m->positions + 3 * (size_t)i;
-            float x = k < 3 ? (k == 0 ? 0.5f * p[0] + 1 : k == 1 ? 0.5f * p[1] - 2 : 0.25f * p[2])
-                            : k == 3 ? (float)(i % 5)
-                            : k == 4 ? 1.0f / (1.0f + (float)(i % 7))
-                            : k == 5 ? (float)(i % 97) / 97.0f
-                            : k == 6 ? (i >= m->parts[0].vertex_count ? 1.0f : 0.0f)
-                                     : (float)(i % 101) / 100.0f;
-            v[i] = x;
-        }
-        add_attribute(m, names[k], v);
+        int here = banyan_mesh_attribute(m, WIND_NAMES[k]) != NULL;
+        CHECK(here, "%s: the generator wrote no %s attribute", what, WIND_NAMES[k]);
+        ok &= here;
     }
-    free(v);
+    return ok;
 }
 
 static banyan_mesh *keyaki(int levels) {
@@ -229,7 +210,10 @@ static banyan_gltf_options small_textures(void) {
 static void wind(void) {
     banyan_mesh *m = keyaki(8);
     if (!m) return;
-    ensure_wind(m);
+    if (!has_wind(m, "keyaki")) {
+        banyan_mesh_free(m);
+        return;
+    }
     banyan_gltf_options o = small_textures();
     o.engine_uvs = 1;
     banyan_error err;
@@ -239,10 +223,23 @@ static void wind(void) {
     glb g;
     CHECK(glb_load(path, &g), "cannot read %s back", path);
     const float *W[7], *B = banyan_mesh_attribute(m, BANYAN_ATTR_BIRTH);
-    static const char *const wn[7] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y, BANYAN_ATTR_WIND_PIVOT_Z,
-                                      BANYAN_ATTR_WIND_LEVEL,   BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
-                                      BANYAN_ATTR_WIND_FLUTTER};
+    const char *const *wn = WIND_NAMES;
     for (int k = 0; k < 7; k++) W[k] = banyan_mesh_attribute(m, wn[k]);
+    /* The generator's values must be able to show a wrong packing: pivots
+     * off the ground (y != 0, so (x, z, -y) differs from (x, y, z)) and
+     * more than one level, phase and birth. */
+    {
+        uint32_t lifted = 0, lv = 0, ph = 0, br = 0;
+        for (uint32_t i = 0; i < m->vertex_count; i++) {
+            lifted += W[1][i] != 0 && W[1][i] != W[2][i];
+            lv += W[3][i] != W[3][0];
+            ph += W[5][i] != W[5][0];
+            br += B[i] != B[0];
+        }
+        CHECK(lifted > 0 && lv > 0 && ph > 0 && br > 0,
+              "keyaki's wind values cannot show a packing error: %u pivots with y != 0, %u/%u/%u vertices whose "
+              "level/phase/birth differ from vertex 0's", lifted, lv, ph, br);
+    }
     int prims = cJSON_GetArraySize(arr(item(&g, "meshes", 0), "primitives"));
     CHECK(g.json && prims == (int)m->part_count, "%d primitives for %u parts", prims, m->part_count);
     for (int p = 0; g.json && p < prims && p < (int)m->part_count; p++) {
@@ -281,7 +278,7 @@ static void wind(void) {
             bad += tc[1][2 * i] != W[0][j] || tc[1][2 * i + 1] != W[2][j];
             bad += tc[2][2 * i] != -W[1][j] || tc[2][2 * i + 1] != W[3][j];
             bad += tc[3][2 * i] != W[4][j] || tc[3][2 * i + 1] != W[5][j];
-            bad += tc[4][2 * i] != W[6][j] || tc[4][2 * i + 1] != (B ? B[j] : 0.0f);
+            bad += tc[4][2 * i] != W[6][j] || tc[4][2 * i + 1] != B[j];
         }
         CHECK(bad == 0, "prim %d: %d engine UV values off the documented packing", p, bad);
     }
@@ -295,7 +292,9 @@ static void wind(void) {
           "engine_uvs 0 still writes TEXCOORD_1, or no _WIND_PIVOT");
     glb_free(&g);
 
-    /* Only some wind attributes: they stay scalars. */
+    /* Only some wind attributes: they stay scalars. Synthetic (flutter
+     * renamed away), since no generator writes a partial set: it tests the
+     * writer's fallback for meshes from elsewhere. */
     for (uint32_t a = 0; a < m->attribute_count; a++)
         if (!strcmp(m->attributes[a].name, BANYAN_ATTR_WIND_FLUTTER)) strcpy(m->attributes[a].name, "flutter_x");
     path = out_path("test_gltf_nodes_wind_partial.glb");
@@ -307,22 +306,32 @@ static void wind(void) {
     banyan_mesh_free(m);
 }
 
-/* Coarser levels: banyan_mesh_lod where it is built, else smaller trees
- * as stand-ins. */
-static banyan_mesh *coarser(const banyan_mesh *m, double ratio, int levels) {
+/* Primitives of the file without _WIND_PIVOT and _WIND_PARAMS (real
+ * generators' meshes, and banyan_mesh_lod's levels of them, carry wind). */
+static int windless_prims(const glb *g) {
+    int bad = 0;
+    for (int mi = 0; mi < cJSON_GetArraySize(arr(g->json, "meshes")); mi++)
+        for (int p = 0; p < cJSON_GetArraySize(arr(item(g, "meshes", mi), "primitives")); p++)
+            bad += prim_attr(g, mi, p, "_WIND_PIVOT") < 0 || prim_attr(g, mi, p, "_WIND_PARAMS") < 0;
+    return bad;
+}
+
+/* A coarser level from banyan_mesh_lod; NULL, with a failure, if it
+ * refuses. */
+static banyan_mesh *coarser(const banyan_mesh *m, double ratio) {
     banyan_lod_params lp;
     banyan_lod_params_init(&lp);
     lp.ratio = ratio;
     banyan_mesh *out = NULL;
     banyan_error err;
-    if (banyan_mesh_lod(m, &lp, &out, &err) == BANYAN_OK) return out;
-    return keyaki(levels);
+    CHECK(banyan_mesh_lod(m, &lp, &out, &err) == BANYAN_OK, "banyan_mesh_lod ratio %g: %s", ratio, err.message);
+    return out;
 }
 
 static void lods(void) {
     banyan_mesh *m = keyaki(9);
     if (!m) return;
-    banyan_mesh *l1 = coarser(m, 0.5, 7), *l2 = coarser(m, 0.15, 5);
+    banyan_mesh *l1 = coarser(m, 0.5), *l2 = coarser(m, 0.15);
     if (!l1 || !l2) goto out;
     const banyan_mesh *chain[2] = {l1, l2};
     const double cover[3] = {0.6, 0.3, 0.05};
@@ -358,6 +367,7 @@ static void lods(void) {
             CHECK(fabs(cJSON_GetArrayItem(cov, k)->valuedouble - want[r][k]) < 1e-12, "node %d coverage %d = %g, not %g",
                   ni, k, cJSON_GetArrayItem(cov, k)->valuedouble, want[r][k]);
     }
+    CHECK(windless_prims(&g) == 0, "lod: %d primitives (of the tree or its levels) without wind", windless_prims(&g));
     glb_free(&g);
 out:
     banyan_mesh_free(m);
@@ -409,8 +419,9 @@ static void instanced(void) {
     banyan_mesh *lod = NULL;
     banyan_lod_params lp;
     banyan_lod_params_init(&lp);
-    if (banyan_mesh_lod(m, &lp, &lod, &err) != BANYAN_OK) lod = NULL; /* not built yet: the mesh stands in */
-    const banyan_mesh *chain[1] = {lod ? lod : m};
+    CHECK(banyan_mesh_lod(m, &lp, &lod, &err) == BANYAN_OK, "banyan_mesh_lod of the avenue: %s", err.message);
+    if (!lod) goto out;
+    const banyan_mesh *chain[1] = {lod};
     banyan_gltf_node node = {m, "avenue", 1, chain, NULL};
     banyan_gltf_options o = small_textures();
     const char *path = out_path("test_gltf_nodes_instanced.glb");
@@ -449,6 +460,8 @@ static void instanced(void) {
         CHECK(total == (int)mm->instance_count, "node %d: %d instances written of %u", parent, total,
               mm->instance_count);
     }
+    CHECK(windless_prims(&g) == 0, "instanced: %d primitives (of the variants or their level) without wind",
+          windless_prims(&g));
     glb_free(&g);
 out:
     banyan_mesh_free(lod);
@@ -494,7 +507,7 @@ static void images(void) {
 static void one_writer(void) {
     banyan_mesh *m = keyaki(7);
     if (!m) return;
-    ensure_wind(m);
+    has_wind(m, "keyaki(7)"); /* the same bytes with the wind packing in */
     banyan_gltf_options o = small_textures();
     banyan_error err;
     const char *a = out_path("test_gltf_nodes_ex.glb"), *b = out_path("test_gltf_nodes_same.glb");
