@@ -17,7 +17,6 @@
  * the merged arrays are allocated once, before any mesh is built. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +27,7 @@
 #include "core/big_alloc.h"
 #include "core/error.h"
 #include "core/frame.h"
+#include "core/pool.h"
 #include "core/progress.h"
 #include "keyaki_internal.h"
 
@@ -207,7 +207,6 @@ typedef struct avenue_job {
     prog *prog;
     atomic_uint finished; /* trees of this pass done */
     atomic_int cancel;
-    atomic_int running;   /* threads other than the caller still working */
     double base, share;   /* this pass's part of the fraction */
 } avenue_job;
 
@@ -296,33 +295,13 @@ static void work(avenue_job *J, int caller) {
     keyaki_skeleton_free(&sk);
 }
 
-static void *worker(void *arg) {
-    avenue_job *J = arg;
-    work(J, 0);
-    atomic_fetch_sub(&J->running, 1);
-    return NULL;
-}
+static void work_any(void *job, int caller) { work(job, caller); }
 
-/* Runs the job on `threads` threads: the caller plus threads - 1 more.
- * A thread that cannot be started only means fewer workers. The caller,
- * done with its own trees, keeps the budget (and the callback's
- * heartbeat) every few ms until the others finish. */
+/* Runs one pass on `threads` threads (core/pool.h). */
 static void run_job(avenue_job *J, int threads) {
-    pthread_t tid[BANYAN_AVENUE_MAX_THREADS];
-    int started = 0;
     atomic_store(&J->next, 0u);
     atomic_store(&J->finished, 0u);
-    atomic_store(&J->running, threads - 1);
-    for (int t = 1; t < threads; t++)
-        if (pthread_create(&tid[started], NULL, worker, J) == 0) started++;
-    atomic_fetch_sub(&J->running, threads - 1 - started);
-    work(J, 1);
-    const struct timespec pause = {0, 2000000}; /* 2 ms */
-    while (atomic_load(&J->running) > 0) {
-        if (prog_at(J->prog, J->prog->last)) atomic_store(&J->cancel, 1);
-        nanosleep(&pause, NULL);
-    }
-    for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
+    pool_run(threads, work_any, J, J->prog, &J->cancel);
 }
 
 /* The merged mesh's arrays, sized exactly; NULL when out of memory. The

@@ -22,16 +22,15 @@
  * vertices, not the instances'. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "core/big_alloc.h"
 #include "core/error.h"
 #include "core/frame.h"
+#include "core/pool.h"
 #include "core/progress.h"
 #include "keyaki_internal.h"
 
@@ -50,7 +49,6 @@ typedef struct variant_job {
     atomic_uint next, finished;
     atomic_ullong vertices; /* of the variants grown so far */
     atomic_int cancel;      /* budget spent, cancelled, or a variant failed */
-    atomic_int running;     /* threads other than the caller still working */
 } variant_job;
 
 static void work(variant_job *J, int caller) {
@@ -73,28 +71,7 @@ static void work(variant_job *J, int caller) {
     keyaki_skeleton_free(&sk);
 }
 
-static void *worker(void *arg) {
-    variant_job *J = arg;
-    work(J, 0);
-    atomic_fetch_sub(&J->running, 1);
-    return NULL;
-}
-
-static void run_job(variant_job *J, int threads) {
-    pthread_t tid[BANYAN_AVENUE_MAX_THREADS];
-    int started = 0;
-    atomic_store(&J->running, threads - 1);
-    for (int t = 1; t < threads; t++)
-        if (pthread_create(&tid[started], NULL, worker, J) == 0) started++;
-    atomic_fetch_sub(&J->running, threads - 1 - started);
-    work(J, 1);
-    const struct timespec pause = {0, 2000000}; /* 2 ms */
-    while (atomic_load(&J->running) > 0) {
-        if (prog_at(J->prog, J->prog->last)) atomic_store(&J->cancel, 1);
-        nanosleep(&pause, NULL);
-    }
-    for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
-}
+static void work_any(void *job, int caller) { work(job, caller); }
 
 /* The variants' meshes as one: vertices, indices, parts, skeletons in
  * variant order; materials from variant 0 (every variant has the same). */
@@ -256,7 +233,7 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
     J.vars = vars;
     J.n = nv;
     J.max_vertices = (uint64_t)p->max_vertices;
-    run_job(&J, t);
+    pool_run(t, work_any, &J, J.prog, &J.cancel);
     /* Which variants ran depends on the threads; the status does not: the
      * budget or a cancel first, then a failed variant (its own limit or
      * memory), then the sum past max_vertices. */

@@ -1,0 +1,39 @@
+/* pool.c - see pool.h. */
+#define _POSIX_C_SOURCE 200809L
+#include "pool.h"
+
+#include <pthread.h>
+#include <time.h>
+
+#include "banyan.h"
+
+typedef struct pool {
+    void (*work)(void *job, int caller);
+    void *job;
+    atomic_int running; /* threads other than the caller still working */
+} pool;
+
+static void *worker(void *arg) {
+    pool *P = arg;
+    P->work(P->job, 0);
+    atomic_fetch_sub(&P->running, 1);
+    return NULL;
+}
+
+void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog *g, atomic_int *cancel) {
+    pthread_t tid[BANYAN_AVENUE_MAX_THREADS];
+    pool P = {work, job, 0};
+    int started = 0;
+    if (threads > BANYAN_AVENUE_MAX_THREADS) threads = BANYAN_AVENUE_MAX_THREADS;
+    atomic_store(&P.running, threads - 1);
+    for (int t = 1; t < threads; t++)
+        if (pthread_create(&tid[started], NULL, worker, &P) == 0) started++;
+    atomic_fetch_sub(&P.running, threads - 1 - started);
+    work(job, 1);
+    const struct timespec pause = {0, 2000000}; /* 2 ms */
+    while (atomic_load(&P.running) > 0) {
+        if (g && prog_at(g, g->last)) atomic_store(cancel, 1);
+        nanosleep(&pause, NULL);
+    }
+    for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
+}

@@ -1,0 +1,17 @@
+/* pool.h - the caller plus threads - 1 pthreads on one job (the avenue's
+ * trees, an instanced avenue's variants): each thread runs work(job,
+ * caller) and takes items from the job's own atomic counter. The caller,
+ * once done with its share, keeps the budget (and the progress callback's
+ * heartbeat) every 2 ms until the others finish, and sets *cancel when
+ * prog_at says stop. A thread that cannot be started only means fewer
+ * workers. */
+#ifndef BANYAN_POOL_H
+#define BANYAN_POOL_H
+
+#include <stdatomic.h>
+
+#include "progress.h"
+
+void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog *g, atomic_int *cancel);
+
+#endif
