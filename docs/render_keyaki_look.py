@@ -145,4 +145,5 @@ def main():
               % (path, preset or a.avenue, tris, t1 - t0, time.perf_counter() - t1), flush=True)
 
 
-main()
+if __name__ == "__main__":  # docs/render_production.py imports camera
+    main()
