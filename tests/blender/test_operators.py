@@ -11,6 +11,7 @@ import gens  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import props as PP  # noqa: E402
+from banyan import wind as W  # noqa: E402
 
 
 def new_objects(before):
@@ -27,6 +28,10 @@ def check_mesh_objects(what, objs, lib_mesh):
         me = o.data
         bt.check(me.validate(verbose=False) is False, "%s: %s validates without fixes" % (what, o.name))
         for name in lib_mesh.attributes:
+            if name in W.SCALARS:
+                # The library's pivot scalars become one vector attribute (wind.py).
+                bt.check(name not in me.attributes, "%s: %s has no attribute %s" % (what, o.name, name))
+                name = W.PIVOT
             bt.check(name in me.attributes, "%s: %s has attribute %s" % (what, o.name, name))
         bt.check(len(me.uv_layers) == 1, "%s: %s has a UV map" % (what, o.name))
         bt.check(len(me.materials) == len(lib_mesh.materials), "%s: %s material slots" % (what, o.name))
