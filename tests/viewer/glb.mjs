@@ -1,15 +1,22 @@
-// Small .glb helpers for the viewer tests: read the JSON chunk, and
-// (only while the CLI's glTF writer does not yet emit them) add stand-in
-// wind attributes to a CLI-made .glb.
-import { readFileSync } from 'node:fs';
+// Small .glb helpers for the viewer tests: read the JSON chunk, write a
+// .glb, list the meshes the scene draws, tell whether a file carries the
+// writer's wind attributes.
+import { closeSync, openSync, readSync } from 'node:fs';
 
+// The JSON chunk of a .glb file. Only the header and the JSON are read:
+// preset files can pass 2 GiB (avenue_boulevard with its wind
+// attributes), more than one Node Buffer holds.
 export function readGlb(file) {
-  const b = Buffer.isBuffer(file) ? file : readFileSync(file);
-  const jsonLen = b.readUInt32LE(12);
-  const json = JSON.parse(b.subarray(20, 20 + jsonLen).toString('utf8'));
-  const binAt = 20 + jsonLen;
-  const bin = binAt + 8 <= b.length ? b.subarray(binAt + 8, binAt + 8 + b.readUInt32LE(binAt)) : Buffer.alloc(0);
-  return { json, bin };
+  const fd = openSync(file, 'r');
+  try {
+    const head = Buffer.alloc(20);
+    readSync(fd, head, 0, 20, 0);
+    const text = Buffer.alloc(head.readUInt32LE(12));
+    readSync(fd, text, 0, text.length, 20);
+    return { json: JSON.parse(text.toString('utf8')) };
+  } finally {
+    closeSync(fd);
+  }
 }
 
 export function writeGlb(json, bin) {
@@ -42,59 +49,4 @@ export function sceneMeshes(json) {
 
 export function hasWindAttributes(json) {
   return (json.meshes || []).some((m) => m.primitives.some((p) => '_WIND_PIVOT' in p.attributes && '_WIND_PARAMS' in p.attributes));
-}
-
-// A stand-in for the writer's wind attributes on a single tree: every
-// vertex sways about the foot of the plant's vertical axis (the bounds'
-// bottom centre), stiffness falls from 1 at the ground to 0 at the top,
-// leaves (alpha-masked materials) flutter. Crude, but with the same
-// layout and frame as the real ones, for developing the viewer.
-// instances: when the file has no EXT_mesh_gpu_instancing (the writer's
-// instancing not yet there either), also place the first mesh node twice
-// with it (at 0 and 40 m along banyan's +y).
-export function withStandInWind(buffer, { instances = false } = {}) {
-  const { json, bin } = readGlb(buffer);
-  const parts = [bin];
-  let length = bin.length;
-  const add = (floats, type, count) => {
-    const bytes = Buffer.from(floats.buffer);
-    json.bufferViews.push({ buffer: 0, byteOffset: length, byteLength: bytes.length });
-    json.accessors.push({ bufferView: json.bufferViews.length - 1, componentType: 5126, count, type });
-    parts.push(bytes);
-    length += bytes.length;
-    return json.accessors.length - 1;
-  };
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (const m of json.meshes) for (const p of m.primitives) {
-    const a = json.accessors[p.attributes.POSITION];
-    for (let k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], a.min[k]); hi[k] = Math.max(hi[k], a.max[k]); }
-  }
-  const foot = [(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2];
-  const height = Math.max(hi[1] - lo[1], 1e-6);
-  const done = new Map();
-  for (const m of json.meshes) for (const p of m.primitives) {
-    if (done.has(p.attributes.POSITION)) { Object.assign(p.attributes, done.get(p.attributes.POSITION)); continue; }
-    const a = json.accessors[p.attributes.POSITION];
-    const v = json.bufferViews[a.bufferView];
-    const stride = v.byteStride || 12;
-    const leaf = p.material !== undefined && json.materials[p.material].alphaMode === 'MASK';
-    const pivot = new Float32Array(a.count * 3), params = new Float32Array(a.count * 4);
-    for (let i = 0; i < a.count; i++) {
-      const y = bin.readFloatLE((v.byteOffset || 0) + (a.byteOffset || 0) + i * stride + 4);
-      pivot.set(foot, i * 3);
-      params.set([leaf ? 1 : 0, Math.sqrt(1 - Math.min(Math.max((y - lo[1]) / height, 0), 1)),
-                  ((i >> 6) * 0.618034) % 1, leaf ? 1 : 0], i * 4);
-    }
-    const attrs = { _WIND_PIVOT: add(pivot, 'VEC3', a.count), _WIND_PARAMS: add(params, 'VEC4', a.count) };
-    done.set(p.attributes.POSITION, attrs);
-    Object.assign(p.attributes, attrs);
-  }
-  if (instances && !(json.extensionsUsed || []).includes('EXT_mesh_gpu_instancing')) {
-    const n = json.nodes.find((x) => x.mesh !== undefined);
-    n.extensions = { ...(n.extensions || {}), EXT_mesh_gpu_instancing: { attributes: {
-      TRANSLATION: add(new Float32Array([0, 0, 0, 0, 0, -40]), 'VEC3', 2) } } };
-    json.extensionsUsed = [...new Set([...(json.extensionsUsed || []), 'EXT_mesh_gpu_instancing'])];
-  }
-  json.buffers[0].byteLength = length;
-  return writeGlb(json, Buffer.concat(parts));
 }

@@ -12,8 +12,9 @@
 // must NOT pass: a text file, a truncated .glb and a missing URL must end
 // in the viewer's error state, and a valid .glb whose only triangle is a
 // point must be judged blank.
-// Wind (docs/game-engines.md): every preset whose .glb carries _WIND_PIVOT
-// and _WIND_PARAMS must sway (two frozen moments draw differently) and
+// Wind (docs/game-engines.md): every preset's .glb must carry _WIND_PIVOT
+// and _WIND_PARAMS (the run fails before the browser if one does not) and
+// must sway (two frozen moments draw differently) and
 // stand still with the wind off (the same two moments draw the same). A
 // single keyaki must sway in its crown while its trunk base and the ground
 // do not move; the same file opened with ?wind=0 must be static; an
@@ -29,7 +30,7 @@ import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, 
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { launchChromium } from './cdp.mjs';
-import { readGlb, sceneMeshes, hasWindAttributes, withStandInWind } from './glb.mjs';
+import { readGlb, sceneMeshes, hasWindAttributes } from './glb.mjs';
 
 const [cli, repo, outDir] = process.argv.slice(2).map((a) => a && path.resolve(a));
 if (!outDir) {
@@ -145,7 +146,14 @@ for (const name of presets) {
     console.log(`FAIL ${name}: banyan ${generator} exited ${r.status}: ${r.stderr}`);
     process.exit(1);
   }
-  cases.push({ name: path.basename(glb, '.glb'), file: path.basename(glb), kind: 'preset', expect: expected(glb),
+  const expect = expected(glb);
+  // Every generator writes the wind attributes, and the writer packs them:
+  // a preset without them is a regression, not a file to skip the wind on.
+  if (!expect.wind) {
+    console.log(`FAIL ${name}: the CLI wrote no _WIND_PIVOT/_WIND_PARAMS`);
+    process.exit(1);
+  }
+  cases.push({ name: path.basename(glb, '.glb'), file: path.basename(glb), kind: 'preset', expect,
                tree: generator === 'keyaki' });
 }
 writeFileSync(path.join(glbDir, 'bad_text.glb'), 'this is not a glTF file\n');
@@ -159,10 +167,8 @@ cases.push({ name: 'bad_text', file: 'bad_text.glb', kind: 'error' },
            { name: 'bad_point', file: 'bad_point.glb', kind: 'blank' });
 
 // The wind cases, from the CLI: a young keyaki (swaying, and again with
-// ?wind=0) and a short instanced avenue of such trees (8 trees, 3 variants).
-// Until the glTF writer emits the wind attributes, stand-in ones are
-// added here (tests/viewer/glb.mjs) and the run says so: the stand-ins
-// exercise the viewer, not the library.
+// ?wind=0) and a short instanced avenue of such trees (8 trees, 3 variants),
+// with the wind attributes the generators and the writer made.
 function cliGlb(name, args) {
   const glb = path.join(glbDir, `${name}.glb`);
   const r = spawnSync(cli, [...args, '-o', glb], { encoding: 'utf8' });
@@ -171,8 +177,8 @@ function cliGlb(name, args) {
     process.exit(1);
   }
   if (!hasWindAttributes(readGlb(glb).json)) {
-    console.log(`NOTE ${name}: the CLI wrote no _WIND_PIVOT/_WIND_PARAMS; testing stand-in wind attributes`);
-    writeFileSync(glb, withStandInWind(readFileSync(glb), { instances: args[0] === 'avenue' }));
+    console.log(`FAIL ${name}: the CLI wrote no _WIND_PIVOT/_WIND_PARAMS`);
+    process.exit(1);
   }
   return `${name}.glb`;
 }
@@ -180,20 +186,17 @@ const keyakiWind = cliGlb('wind_keyaki', ['keyaki', '--preset', path.join(repo, 
 const avenueWind = cliGlb('wind_avenue', ['avenue', '--preset', path.join(repo, 'presets/avenue_young.json'),
                                           '--set', 'end=18,0,0', '--set', 'variants=3']);
 // Levels of detail: three.js ignores MSFT_lod, so the viewer must show
-// (and count) LOD0 alone and say the file has levels. Skipped, with a
-// NOTE, only while the library's banyan_mesh_lod is the contract's stub.
+// (and count) LOD0 alone and say the file has levels.
 {
   const glb = path.join(glbDir, 'lod_keyaki.glb');
   const r = spawnSync(cli, ['keyaki', '--preset', path.join(repo, 'presets/keyaki_young.json'), '--lod', '0.5,0.15',
                             '-o', glb], { encoding: 'utf8' });
-  if (r.status === 0) {
-    cases.push({ name: 'lod_keyaki', file: 'lod_keyaki.glb', kind: 'preset', expect: expected(glb), lod: true });
-  } else if (/not built yet/.test(r.stderr)) {
-    console.log(`NOTE lod_keyaki: skipped, ${r.stderr.trim()}`);
-  } else {
+  if (r.status !== 0) {
     console.log(`FAIL lod_keyaki: banyan keyaki --lod exited ${r.status}: ${r.stderr}`);
     process.exit(1);
   }
+  cases.push({ name: 'lod_keyaki', file: 'lod_keyaki.glb', kind: 'preset', expect: expected(glb), lod: true,
+               tree: true });
 }
 cases.push({ name: 'wind_keyaki', file: keyakiWind, kind: 'wind', tree: true },
            { name: 'wind_off', file: keyakiWind, kind: 'wind', query: '&wind=0' },
