@@ -7,8 +7,9 @@ keyaki_young's growth animation at three frames, through the add-on
 writes docs/img/production/:
   lod_<distance>m.png   LOD0 (the tree), 0.5, 0.15 and the crossed
                         billboards, each from <distance> m at eye height
-                        (the same camera for all four), one image per
-                        distance, the levels left to right;
+                        (the same camera for all four; the first distance
+                        frames the tree, the others keep its lens), one
+                        image per distance, the levels left to right;
   growth.png            keyaki_young at 30 %, 60 % and 100 % of its growth
                         (frames of the growth modifier), from 10 m.
 --distances, --size (of one panel), --samples, --out."""
@@ -59,7 +60,9 @@ def solo(objs, keep):
 def render_lods(a, w, h):
     api = RS.import_banyan()
     RS.reset()
-    plant, _ = RS.grow("keyaki", preset="keyaki_mature")
+    # Through the operator: make_lods grows a recorded plant again from its parameters.
+    bpy.ops.mesh.banyan_keyaki_tree(banyan_preset="keyaki_mature")
+    plant = [o for o in bpy.context.scene.objects if o.type == 'MESH']
     RS.plant_materials(plant)
     t0 = time.perf_counter()
     levels = api.make_lods(plant[0], ratios=(0.5, 0.15), billboard=True, billboard_size=512)
@@ -68,9 +71,11 @@ def render_lods(a, w, h):
     for o in levels[1:]:  # the levels stand where the tree stands
         o.location = plant[0].location
     RS.studio(levels)
+    lens = None
     for d in (float(v) for v in a.distances.split(",")):
         eye = (d * math.cos(_Y), d * math.sin(_Y), 1.6)
-        camera(eye, ("fit", None), None, [levels[0]], w, h)
+        # The first distance frames the tree; the others keep its lens, so the tree shrinks as it would.
+        lens = camera(eye, ("fit", None), lens, [levels[0]], w, h).data.lens
         paths = []
         for k, o in enumerate(levels):
             solo(list(plant) + list(levels), o)
@@ -90,8 +95,9 @@ def render_growth(a, w, h):
     RS.plant_materials(objs)
     RS.studio(objs)
     eye = (10.0 * math.cos(_Y), 10.0 * math.sin(_Y), 1.6)
-    camera(eye, ("fit", None), None, objs, w, h)
     sc = bpy.context.scene
+    sc.frame_set(100)  # framed on the grown tree (bound boxes are the evaluated mesh's)
+    camera(eye, ("fit", None), None, objs, w, h)
     paths = []
     for k, frame in enumerate((30, 60, 100)):
         sc.frame_set(frame)
