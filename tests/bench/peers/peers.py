@@ -13,6 +13,7 @@ in one Blender process, on one machine, ratios from the same run:
               ivy_suzanne.py: ivy on Suzanne against IvyGen (issue 15)
   6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
   7. roots C  build/tests/bench_roots: the fused surface and the tubes (issue 18)
+  8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md (issue 22)
 
 Every time is the median of RUNS runs with min and max; banyan and the
 peer alternate within each run so both see the same machine load. Writes
@@ -719,6 +720,13 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
     w(roots_c.strip())
     w("```")
     w("")
+    # Sections measured by hand (too long for this run), kept beside it and copied in.
+    for kept in ("instancing.md",):
+        path = os.path.join(HERE, kept)
+        if os.path.exists(path):
+            with open(path) as f:
+                w(f.read().rstrip())
+            w("")
     notes = os.path.join(HERE, "profile.md")
     if os.path.exists(notes):
         with open(notes) as f:
