@@ -27,13 +27,15 @@ from .core.errors import BanyanError
 PIVOT = "wind_pivot"
 SCALARS = ("wind_pivot_x", "wind_pivot_y", "wind_pivot_z")
 FLOATS = ("wind_level", "wind_stiffness", "wind_phase", "wind_flutter")
-GROUP_KEY, GROUP_VERSION = "banyan_wind", 1
+GROUP_KEY, GROUP_VERSION = "banyan_wind", 2
 MODIFIER = "Banyan Wind"
 FLUTTER_RATIO = 3.7  # leaf flutter frequency / gust frequency
+SWAY, SWAY_RATIO = 0.25, 2.3  # secondary sway: its share of Strength, its frequency / gust frequency
+PLANT_PHASE = (0.0713, 0.1371)  # phi_plant = fract(0.0713 x - 0.1371 y) of the object's location
 
 # name: (default, min, max, description)
 INPUTS = {
-    "Strength": (0.06, 0.0, 1.0, "Steady lean of a free tip, radians (scaled by 1 - stiffness)"),
+    "Strength": (0.06, 0.0, 1.0, "Steady lean of free wood (stiffness 0): metres downwind per metre of height"),
     "Gust strength": (0.6, 0.0, 4.0, "Sway about the steady lean, as a share of Strength"),
     "Gust frequency": (0.35, 0.0, 10.0, "Sways per second (Hz)"),
     "Direction": (0.0, -360.0, 360.0, "Where the wind blows to, degrees counter-clockwise from +X"),
@@ -99,6 +101,22 @@ def transform_mesh(me, matrix):
         a.data.foreach_set("vector", transform_vectors(vec, matrix))
 
 
+def _plant_phase(b):
+    """phi_plant: one phase per object, from where it stands (the viewer's
+    per-instance phase: fract(0.0713 x - 0.1371 y) of its location); 0
+    where the Self Object node is missing."""
+    try:
+        me = b.node('GeometryNodeSelfObject')
+    except RuntimeError:
+        return 0.0
+    info = b.node('GeometryNodeObjectInfo')
+    b.link(me.outputs[0], info.inputs["Object"])
+    loc = b.node('ShaderNodeSeparateXYZ')
+    b.link(info.outputs["Location"], loc.inputs[0])
+    return b.math('FRACT', b.math('MULTIPLY_ADD', loc.outputs["Y"], -PLANT_PHASE[1],
+                                  b.math('MULTIPLY', loc.outputs["X"], PLANT_PHASE[0])))
+
+
 def _build_group(ng):
     N.new_socket(ng, "Geometry", 'INPUT', 'NodeSocketGeometry')
     for name, (dflt, lo, hi, desc) in INPUTS.items():
@@ -109,36 +127,56 @@ def _build_group(ng):
     gout = b.node('NodeGroupOutput')
     g = gin.outputs
     t = b.node('GeometryNodeInputSceneTime').outputs["Seconds"]
-    stiff = b.attribute("wind_stiffness")
+    free = b.math('SUBTRACT', 1.0, b.attribute("wind_stiffness"))
     phase = b.attribute("wind_phase")
     flutter = b.attribute("wind_flutter")
     pivot = b.attribute(PIVOT, 'FLOAT_VECTOR')
+    pos = b.node('GeometryNodeInputPosition').outputs[0]
     two_pi = 6.283185307179586
-    # angle = Strength * (1 - stiffness) * (1 + Gust * sin(2 pi (f t + phase)))
-    wave = b.math('SINE', b.math('MULTIPLY', b.math('MULTIPLY_ADD', g["Gust frequency"], t, phase), two_pi))
-    osc = b.math('MULTIPLY_ADD', wave, g["Gust strength"], 1.0)
-    angle = b.math('MULTIPLY', b.math('MULTIPLY', g["Strength"], b.math('SUBTRACT', 1.0, stiff)), osc)
-    # Axis: horizontal, perpendicular to the wind d = (cos a, sin a, 0): z x d, so a tip leans toward d.
+    ft = b.math('MULTIPLY', g["Gust frequency"], t)
     rad = b.math('RADIANS', g["Direction"])
+    cos_d, sin_d = b.math('COSINE', rad), b.math('SINE', rad)
+    # 1. Main bend: along d = (cos a, sin a, 0) by
+    #    Strength * (1 - s)^2 * h * (1 + Gust * sin(2 pi (f t + phi_plant))), h above the lowest point.
+    box = b.node('GeometryNodeBoundBox')
+    b.link(g[0], box.inputs[0])
+    low = b.node('ShaderNodeSeparateXYZ')
+    b.link(box.outputs["Min"], low.inputs[0])
+    here = b.node('ShaderNodeSeparateXYZ')
+    b.link(pos, here.inputs[0])
+    h = b.math('SUBTRACT', here.outputs["Z"], low.outputs["Z"])
+    gust = b.math('MULTIPLY_ADD', b.math('SINE', b.math('MULTIPLY', b.math('ADD', ft, _plant_phase(b)), two_pi)),
+                  g["Gust strength"], 1.0)
+    bend = b.math('MULTIPLY', b.math('MULTIPLY', b.math('MULTIPLY', g["Strength"], b.math('MULTIPLY', free, free)),
+                                     h), gust)
+    push = b.node('ShaderNodeCombineXYZ')
+    b.link(b.math('MULTIPLY', cos_d, bend), push.inputs["X"])
+    b.link(b.math('MULTIPLY', sin_d, bend), push.inputs["Y"])
+    # 2. Secondary sway: about the vertex's pivot, about the horizontal axis z x d (a tip leans toward d), by
+    #    SWAY * Strength * (1 - s) * sin(2 pi (SWAY_RATIO f t + phase)).
     axis = b.node('ShaderNodeCombineXYZ')
-    b.link(b.math('MULTIPLY', b.math('SINE', rad), -1.0), axis.inputs["X"])
-    b.link(b.math('COSINE', rad), axis.inputs["Y"])
+    b.link(b.math('MULTIPLY', sin_d, -1.0), axis.inputs["X"])
+    b.link(cos_d, axis.inputs["Y"])
+    sway = b.math('SINE', b.math('MULTIPLY', b.math('MULTIPLY_ADD', ft, SWAY_RATIO, phase), two_pi))
+    angle = b.math('MULTIPLY', b.math('MULTIPLY', b.math('MULTIPLY', g["Strength"], SWAY), free), sway)
     rot = b.node('ShaderNodeVectorRotate', rotation_type='AXIS_ANGLE')
-    b.link(b.node('GeometryNodeInputPosition').outputs[0], rot.inputs["Vector"])
+    b.link(pos, rot.inputs["Vector"])
     b.link(pivot, rot.inputs["Center"])
     b.link(axis.outputs[0], rot.inputs["Axis"])
     b.link(angle, rot.inputs["Angle"])
-    # Leaf flutter: along the normal, faster than the sway.
-    fwave = b.math('SINE', b.math('MULTIPLY', b.math('MULTIPLY_ADD', b.math('MULTIPLY', g["Gust frequency"],
-                                                                              FLUTTER_RATIO), t, phase), two_pi))
+    # 3. Leaf flutter: along the normal, faster than the sway.
+    fwave = b.math('SINE', b.math('MULTIPLY', b.math('MULTIPLY_ADD', ft, FLUTTER_RATIO, phase), two_pi))
     amp = b.math('MULTIPLY', b.math('MULTIPLY', g["Flutter"], flutter), fwave)
     off = b.node('ShaderNodeVectorMath', operation='SCALE')
     b.link(b.node('GeometryNodeInputNormal').outputs[0], off.inputs[0])
     b.link(amp, off.inputs["Scale"])
+    total = b.node('ShaderNodeVectorMath', operation='ADD')
+    b.link(push.outputs[0], total.inputs[0])
+    b.link(off.outputs[0], total.inputs[1])
     setp = b.node('GeometryNodeSetPosition')
     b.link(g[0], setp.inputs["Geometry"])
     b.link(rot.outputs[0], setp.inputs["Position"])
-    b.link(off.outputs[0], setp.inputs["Offset"])
+    b.link(total.outputs[0], setp.inputs["Offset"])
     b.link(setp.outputs[0], gout.inputs[0])
 
 

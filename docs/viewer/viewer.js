@@ -330,7 +330,7 @@ function fillInfo(gltf, name) {
 function setColour(name) {
   if (!state.model) return;
   const plain = name ? new THREE.MeshStandardMaterial({ vertexColors: true, side: THREE.DoubleSide, roughness: 0.8 }) : null;
-  const swaying = plain ? wind.patch(plain.clone()) : null;
+  const swaying = new Map();   // one swaying copy per plant base (wind.js)
   const range = name ? state.attributes[name] : null;
   const c = new THREE.Color();
   state.model.traverse((o) => {
@@ -354,7 +354,13 @@ function setColour(name) {
     }
     g.setAttribute('color', new THREE.BufferAttribute(out, 3));
     if (o.material !== o.userData.original) o.material.dispose();
-    o.material = hasWind(g) ? swaying : plain;
+    if (hasWind(g)) {
+      const base = wind.baseOf(o);
+      if (!swaying.has(base)) swaying.set(base, wind.patch(plain.clone(), base));
+      o.material = swaying.get(base);
+    } else {
+      o.material = plain;
+    }
   });
   kick();
 }

@@ -4,20 +4,19 @@
 //
 // Every vertex of a plant carries the point it sways about (glTF
 // _WIND_PIVOT, VEC3, the node's frame) and _WIND_PARAMS (VEC4: level,
-// stiffness, phase, flutter); GLTFLoader keeps them as the geometry
+// stiffness s, phase, flutter); GLTFLoader keeps them as the geometry
 // attributes `_wind_pivot` and `_wind_params` (it lower-cases names it does
-// not know). The vertex shader turns the vertex about its pivot by
-//
-//   angle = strength * (1 - stiffness) * (sin(2 pi (f t + phase)) * gust + 1)
-//
-// about the horizontal axis perpendicular to the wind (so a tip leans
-// downwind and swings about that lean), then moves it along its normal by
-//   flutter * flutter_weight * sin(2 pi (3.7 f t + phase))
-// along its rest normal (leaves only: wood has flutter weight 0). The
-// normal turns with the vertex. Defaults and the flutter rate are the
-// add-on's (blender_addon/banyan/wind.py). One pivot per vertex: a branch sways about its own base but does
-// not carry its children with it (Pivot Painter 2 chains up to four
-// levels), which is why the angles stay small.
+// not know). The vertex shader, with d the wind's horizontal direction:
+//  1. main bend, along d by
+//       strength * (1 - s)^2 * h * (1 + gust * sin(2 pi (f t + phi_plant)))
+//     h the height above the plant's lowest point (the bounding box of the
+//     meshes of one glTF node), phi_plant one phase per instance;
+//  2. secondary sway, a turn about the vertex's own pivot, about up x d, by
+//       0.25 * strength * (1 - s) * sin(2 pi (2.3 f t + phase));
+//  3. leaf flutter along the rest normal by
+//       flutter * flutter_weight * sin(2 pi (3.7 f t + phase)).
+// The normal turns with 2 (and leans with the shear of 1). Defaults and
+// rates are the add-on's (blender_addon/banyan/wind.py).
 import * as THREE from 'three';
 
 export const WIND_PARAMS = ['wind_level', 'wind_stiffness', 'wind_phase', 'wind_flutter'];
@@ -30,6 +29,7 @@ export const WIND_DEFAULTS = Object.freeze({
   strength: 0.06, gust: 0.6, frequency: 0.35, direction: 0, flutter: 0.01,
 });
 const FLUTTER_RATE = 3.7;   // leaves flutter this many times faster than the gusts (the add-on's FLUTTER_RATIO)
+const SWAY_RATE = 2.3;      // the secondary sway's rate (the add-on's SWAY_RATIO; its share SWAY 0.25 is in the shader)
 
 export function hasWind(geometry) {
   const a = geometry.attributes;
@@ -41,6 +41,8 @@ attribute vec3 _wind_pivot;
 attribute vec4 _wind_params;   // level, stiffness, phase, flutter
 uniform vec3 banyanWindAxis;   // world axis the wind turns things about (unit, horizontal)
 uniform float banyanWindStrength, banyanWindGust, banyanWindCycle, banyanWindFlutter, banyanWindFlutterCycle;
+uniform float banyanWindSwayCycle;
+uniform float banyanWindBase;   // the plant's lowest y (its own frame)
 
 // Rotation by angle a (radians) about the unit axis k (Rodrigues).
 mat3 banyanWindRotation(vec3 k, float a) {
@@ -51,37 +53,46 @@ mat3 banyanWindRotation(vec3 k, float a) {
 }
 `;
 
-// After beginnormal_vertex (objectNormal exists, positions not yet):
-// the angle, in the mesh's own frame. The world wind axis goes into that
-// frame through the model (and instance) matrix, so turned or instanced
-// trees all lean downwind. Instances differ in phase by where they stand,
+// After beginnormal_vertex (objectNormal exists, positions not yet), in
+// the mesh's own frame (y up, glTF). The world wind goes into that frame
+// through the model (and instance) matrix, so turned or instanced trees
+// all lean downwind. Instances differ in phi_plant by where they stand,
 // so copies of one variant do not sway in step.
 const ANGLE = /* glsl */`
 mat3 banyanToWorld = mat3(modelMatrix);
-float banyanPhase = _wind_params.z;
+float banyanPlant = 0.0;
 #ifdef USE_INSTANCING
   banyanToWorld = banyanToWorld * mat3(instanceMatrix);
-  banyanPhase += fract(dot(instanceMatrix[3].xyz, vec3(0.0713, 0.0, 0.1371)));
+  banyanPlant = fract(dot(instanceMatrix[3].xyz, vec3(0.0713, 0.0, 0.1371)));
 #endif
-vec3 banyanAxis = normalize(transpose(banyanToWorld) * banyanWindAxis);
-float banyanAngle = banyanWindStrength * (1.0 - _wind_params.y) *
-                    (sin(6.28318531 * (banyanWindCycle + banyanPhase)) * banyanWindGust + 1.0);
+mat3 banyanToLocal = transpose(banyanToWorld);
+vec3 banyanAxis = normalize(banyanToLocal * banyanWindAxis);
+// d = axis x up in the mesh frame: the wind's horizontal direction.
+vec3 banyanDir = normalize(cross(banyanAxis, vec3(0.0, 1.0, 0.0)));
+float banyanFree = 1.0 - _wind_params.y;
+float banyanBend = banyanWindStrength * banyanFree * banyanFree *
+                   (sin(6.28318531 * fract(banyanWindCycle + banyanPlant)) * banyanWindGust + 1.0);
+float banyanAngle = 0.25 * banyanWindStrength * banyanFree *
+                    sin(6.28318531 * (banyanWindSwayCycle + _wind_params.z));
 mat3 banyanTurn = banyanWindRotation(banyanAxis, banyanAngle);
 vec3 banyanRestNormal = objectNormal;
-objectNormal = banyanTurn * objectNormal;
+// The bend is the shear x += bend h d: normals by its inverse transpose.
+objectNormal = banyanTurn * (objectNormal - banyanBend * dot(objectNormal, banyanDir) * vec3(0.0, 1.0, 0.0));
 #ifdef USE_TANGENT
   objectTangent = banyanTurn * objectTangent;
 #endif
 `;
 
-// After begin_vertex: turn the position about the pivot, then flutter.
+// After begin_vertex: turn about the pivot, bend, flutter. R d - d rather
+// than pivot + R d: with the wind off every term is exactly 0, and the
+// file's positions come through bit for bit.
 const MOVE = /* glsl */`
-// R d - d rather than pivot + R d: with the wind off R is exactly the
-// identity, and the file's positions come through bit for bit.
 vec3 banyanArm = transformed - _wind_pivot;
+float banyanH = transformed.y - banyanWindBase;
 transformed += banyanTurn * banyanArm - banyanArm;
+transformed += banyanDir * (banyanBend * banyanH);
 transformed += banyanRestNormal * (banyanWindFlutter * _wind_params.w *
-               sin(6.28318531 * (banyanWindFlutterCycle + banyanPhase)));
+               sin(6.28318531 * (banyanWindFlutterCycle + _wind_params.z)));
 `;
 
 export class Wind {
@@ -96,8 +107,10 @@ export class Wind {
       banyanWindCycle: { value: 0 },
       banyanWindFlutter: { value: 0 },
       banyanWindFlutterCycle: { value: 0 },
+      banyanWindSwayCycle: { value: 0 },
     };
     this.patched = new Map();
+    this.bases = new WeakMap();   // mesh: its plant's lowest y (attach)
   }
 
   // True while the picture changes by itself.
@@ -125,12 +138,14 @@ export class Wind {
     const t = this.now();
     u.banyanWindCycle.value = (s.frequency * t) % 1;
     u.banyanWindFlutterCycle.value = (FLUTTER_RATE * s.frequency * t) % 1;
+    u.banyanWindSwayCycle.value = (SWAY_RATE * s.frequency * t) % 1;
   }
 
   // Makes material sway (it must be used only on geometry with the wind
-  // attributes). Returns it.
-  patch(material) {
-    const uniforms = this.uniforms;
+  // attributes); base: the plant's lowest y in the geometry's frame.
+  // Returns it.
+  patch(material, base = 0) {
+    const uniforms = { ...this.uniforms, banyanWindBase: { value: base } };
     material.onBeforeCompile = (shader) => {
       if (!shader.vertexShader.includes('#include <beginnormal_vertex>') ||
           !shader.vertexShader.includes('#include <begin_vertex>')) return;
@@ -140,21 +155,41 @@ export class Wind {
         .replace('#include <beginnormal_vertex>', `#include <beginnormal_vertex>\n${ANGLE}`)
         .replace('#include <begin_vertex>', `#include <begin_vertex>\n${MOVE}`);
     };
-    material.customProgramCacheKey = () => 'banyan-wind-1';
+    material.customProgramCacheKey = () => 'banyan-wind-2';
     material.needsUpdate = true;
     return material;
   }
 
+  // The plant base attach() found for mesh (0 when it did not see it).
+  baseOf(mesh) {
+    return this.bases.get(mesh) ?? 0;
+  }
+
   // Gives every mesh under root that has the attributes a swaying copy of
-  // its material (one copy per material); returns how many meshes sway.
+  // its material (one copy per material and plant base); returns how many
+  // meshes sway. A plant's base is the lowest y of its meshes: the
+  // primitives of one glTF mesh (GLTFLoader's children of one node, at
+  // the node's own frame) share it, so wood and leaves bend alike.
   attach(root) {
     let n = 0;
     const copies = new Map();
+    const bases = new Map();
+    const plant = (o) => (o.parent && o.position.lengthSq() === 0 && o.quaternion.w === 1 &&
+                          o.scale.x === 1 && o.scale.y === 1 && o.scale.z === 1) ? o.parent : o;
     root.traverse((o) => {
       if (!o.isMesh || !hasWind(o.geometry)) return;
+      if (!o.geometry.boundingBox) o.geometry.computeBoundingBox();
+      const k = plant(o), y = o.geometry.boundingBox.min.y;
+      bases.set(k, Math.min(bases.get(k) ?? Infinity, y));
+    });
+    root.traverse((o) => {
+      if (!o.isMesh || !hasWind(o.geometry)) return;
+      const base = bases.get(plant(o));
+      this.bases.set(o, base);
       const one = (m) => {
-        if (!copies.has(m)) copies.set(m, this.patch(m.clone()));
-        return copies.get(m);
+        const key = `${m.uuid}:${base}`;
+        if (!copies.has(key)) copies.set(key, this.patch(m.clone(), base));
+        return copies.get(key);
       };
       o.material = Array.isArray(o.material) ? o.material.map(one) : one(o.material);
       // The swaying mesh leaves its rest bounds a little; never cull it.

@@ -162,6 +162,99 @@ def test_keyaki_and_ivy_sway():
         print("ivy: top 10 %% %.4g m, bottom 10 %% %.4g m" % (top, bot))
 
 
+def _groups(idx, piv, phase, level):
+    """{(pivot, phase, level): [vertex]} over idx: one branch, twig or leaf each."""
+    out = {}
+    for i in idx:
+        key = (round(piv[3 * i], 5), round(piv[3 * i + 1], 5), round(piv[3 * i + 2], 5),
+               round(phase[i], 5), round(level[i]))
+        out.setdefault(key, []).append(i)
+    return out
+
+
+def continuity(obj, frame):
+    """How far a leaf leaves its twig and a branch its parent under the
+    wind (Flutter 0 so the flutter does not count), as shares of the
+    largest wood displacement: (worst leaf, worst fork, numbers of each,
+    largest wood displacement). A leaf: the vertices sharing a pivot,
+    phase and level with flutter 1; its vertex nearest the pivot against
+    the vertex of the wood it hangs on (level - 1) nearest that pivot. A fork:
+    each branch (wood sharing pivot, phase, level >= 1), its vertex
+    nearest its pivot against the nearest vertex of its parent's level."""
+    from mathutils import Vector, kdtree
+    me = obj.data
+    rest = U.rest_coords(obj)
+    moved = U.evaluated_coords(obj, frame)
+    n = len(rest) // 3
+    piv, phase = U.attribute(me, W.PIVOT), U.attribute(me, "wind_phase")
+    level, flutter = U.attribute(me, "wind_level"), U.attribute(me, "wind_flutter")
+    disp = [Vector(moved[3 * i:3 * i + 3]) - Vector(rest[3 * i:3 * i + 3]) for i in range(n)]
+    co = [Vector(rest[3 * i:3 * i + 3]) for i in range(n)]
+    wood = [i for i in range(n) if flutter[i] == 0.0]
+    leaves = [i for i in range(n) if flutter[i] > 0.0]
+    dmax = max(disp[i].length for i in wood)
+
+    def tree(idx):
+        kd = kdtree.KDTree(len(idx))
+        for i in idx:
+            kd.insert(co[i], i)
+        kd.balance()
+        return kd
+    by_level = {}
+    for i in wood:
+        by_level.setdefault(round(level[i]), []).append(i)
+    parent = {lv: tree(v) for lv, v in by_level.items()}
+    leaf_worst = 0.0
+    leaf_groups = _groups(leaves, piv, phase, level)
+    for key, vs in leaf_groups.items():
+        p = Vector(key[:3])
+        near = min(vs, key=lambda i: (co[i] - p).length)
+        if key[4] - 1 not in parent:
+            continue
+        _c, w, _d = parent[key[4] - 1].find(p)
+        r = (disp[near] - disp[w]).length / dmax
+        leaf_worst = max(leaf_worst, r)
+    fork_worst = 0.0
+    forks = 0
+    for key, vs in _groups(wood, piv, phase, level).items():
+        if key[4] < 1 or key[4] - 1 not in parent:
+            continue
+        p = Vector(key[:3])
+        near = min(vs, key=lambda i: (co[i] - p).length)
+        _c, w, _d = parent[key[4] - 1].find(co[near])
+        r = (disp[near] - disp[w]).length / dmax
+        fork_worst = max(fork_worst, r)
+        forks += 1
+    return leaf_worst, fork_worst, len(leaf_groups), forks, dmax
+
+
+def test_keyaki_continuity():
+    """Leaves stay on their twigs: at each leaf the leaf and its twig move
+    alike (their displacements differ by < 25 % of the largest wood
+    displacement; the old rotation-per-vertex model: up to 100 %), on a
+    keyaki. Forks are measured (see below)."""
+    if not bt.generator("keyaki"):
+        return
+    bt.reset_scene()
+    objs = api.keyaki_tree(wind=True, levels=6)
+    api.add_wind(objs[0], flutter=0.0)
+    for frame in FRAMES:
+        leaf, fork, nl, nf, dmax = continuity(objs[0], frame)
+        print("keyaki continuity frame %d: %d leaves worst %.3f, %d forks worst %.3f (of %.4g m)"
+              % (frame, nl, leaf, nf, fork, dmax))
+        bt.check(nl > 10 and nf > 10, "keyaki: leaves and forks to check (%d, %d)" % (nl, nf))
+        bt.check(leaf < 0.25, "frame %d: every leaf moves with the wood it hangs on (worst %.3f of %.4g m)"
+                 % (frame, leaf, dmax))
+        # Forks: measured, not yet required. The library's wind_stiffness
+        # jumps at a fork (a branch's base takes sqrt(r / r_base) of its own
+        # thinner radius: keyaki 0.31 against the parent's 0.62-0.87 a few
+        # mm away), so the bend (1 - s)^2 h cannot match there (worst 0.53;
+        # the old rotation model 0.84-1.0). BANYAN_WIND_FORKS=1 requires it.
+        if os.environ.get("BANYAN_WIND_FORKS"):
+            bt.check(fork < 0.25, "frame %d: every branch base moves with its parent (worst %.3f of %.4g m)"
+                     % (frame, fork, dmax))
+
+
 def test_operator_option():
     if not bt.generator("keyaki"):
         return
@@ -196,6 +289,7 @@ def test_operator_option():
                      "Add Wind sets Strength")
 
 
-for t in (test_synthetic, test_every_generator_has_wind, test_keyaki_and_ivy_sway, test_operator_option):
+for t in (test_synthetic, test_every_generator_has_wind, test_keyaki_and_ivy_sway, test_keyaki_continuity,
+          test_operator_option):
     bt.run(t)
 bt.done()
