@@ -245,14 +245,11 @@ def test_keyaki_continuity():
         bt.check(nl > 10 and nf > 10, "keyaki: leaves and forks to check (%d, %d)" % (nl, nf))
         bt.check(leaf < 0.25, "frame %d: every leaf moves with the wood it hangs on (worst %.3f of %.4g m)"
                  % (frame, leaf, dmax))
-        # Forks: measured, not yet required. Keyaki's wind_stiffness used to
-        # jump at a fork (sqrt(r / r_base) of the branch's own thinner
-        # radius: worst 0.53); it now follows the path length from the
+        # Forks: keyaki's wind_stiffness follows the path length from the
         # trunk foot, continuous across forks (worst 0.17-0.22 at frames 1
-        # and 37). BANYAN_WIND_FORKS=1 requires it.
-        if os.environ.get("BANYAN_WIND_FORKS"):
-            bt.check(fork < 0.25, "frame %d: every branch base moves with its parent (worst %.3f of %.4g m)"
-                     % (frame, fork, dmax))
+        # and 37; 0.53 when it followed each branch's own radius).
+        bt.check(fork < 0.25, "frame %d: every branch base moves with its parent (worst %.3f of %.4g m)"
+                 % (frame, fork, dmax))
 
 
 def test_operator_option():
