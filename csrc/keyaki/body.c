@@ -30,7 +30,9 @@
  * phase), except that the trunk (branch 0 and the trunk pieces below the
  * limbs) is one of its own, level 0; the limbs are level 1, a side
  * branch its parent's + 1; its pivot is where it leaves its parent (a
- * skeleton point). Stiffness ring by ring: sqrt(r / r_trunk base).
+ * skeleton point). Stiffness ring by ring: (1 - p / P)^1.5, p the path
+ * length from the trunk base (as birth), P the tree's longest; a leaf its
+ * wood's.
  * Birth: path length from the trunk base along the skeleton, ring by
  * ring, over the tree's longest; a leaf its wood's + LEAF_DELAY. The
  * crown's twigs and the segment twig lines join the mesh's skeleton (tag
@@ -289,7 +291,6 @@ static int wind_setup(const banyan_keyaki_params *p, const keyaki_node *n, int32
     w->n = n;
     w->seed = p->seed;
     w->skel0 = skel0;
-    w->r_ref = count > 0 ? n[0].radius : 1.0;
     w->root = malloc(sizeof(int32_t) * 2 * ((size_t)count + 1));
     w->path = malloc(sizeof(double) * ((size_t)count + 1));
     if (!w->root || !w->path) {
@@ -324,20 +325,19 @@ static void wind_free(keyaki_wind *w) {
 }
 
 /* Wind and birth of the limb just swept from vertex v0: ring i closes
- * branch ids[i] at pts[i], radius rad[i]. */
+ * branch ids[i] at pts[i] (stiffness: from the birth, when the tree is
+ * done). */
 static void wind_limb(mesh_builder *mb, const keyaki_wind *w, const keyaki_limb *L, uint32_t v0, const v3 *pts,
-                      const double *rad, const int32_t *ids, int32_t m, double *vals) {
+                      const int32_t *ids, int32_t m, double *vals) {
     if (mb->status || (w->ws->birth < 0 && !w->ws->on)) return;
     const keyaki_node *n = w->n;
     uint32_t np = (uint32_t)(m + 1);
     int cs = L->first == 0;
-    double *bt = vals, *st = vals + np, *lv = vals + 2 * np, *ph = vals + 3 * np, *px = vals + 4 * np;
+    double *bt = vals, *lv = vals + 2 * np, *ph = vals + 3 * np, *px = vals + 4 * np;
     for (uint32_t i = 0; i < np; i++) {
         const keyaki_node *x = &n[ids[i]];
         double t = v3_dot(v3_sub(pts[i], x->start), x->dir);
         bt[i] = w->path[ids[i]] + (t < 0 ? 0 : t > x->length ? x->length : t);
-        /* a side limb's set-back first ring lies inside its parent: the fork's radius */
-        st[i] = keyaki_stiffness(w, i == 0 && !cs && np > 1 ? rad[1] : rad[i]);
         int32_t r = w->root[ids[i]];
         lv[i] = w->level[ids[i]];
         ph[i] = wind_phase_of(w->seed, (uint64_t)r);
@@ -345,7 +345,6 @@ static void wind_limb(mesh_builder *mb, const keyaki_wind *w, const keyaki_limb 
     }
     wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->birth, bt);
     if (!w->ws->on) return;
-    wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->stiffness, st);
     wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->level, lv);
     wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->phase, ph);
     for (int k = 0; k < 3; k++) wind_tube_rings(mb, v0, np, L->sides, cs, 1, w->ws->pivot[k], px + (size_t)k * np);
@@ -441,7 +440,7 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
         for (int32_t i = 1; i <= m; i++) set_attrs(mb, attr, v0 + i * ring, v0 + (i + 1) * ring, &n[ids[i]]);
         uint32_t caps_from = v0 + (uint32_t)(m + 1) * ring + (L->first == 0 ? ring + 1 : 0);
         set_attrs(mb, attr, caps_from, caps_from + ring + 1, &n[ids[m]]);
-        wind_limb(mb, &w, L, v0, pts, rad, ids, m, vals);
+        wind_limb(mb, &w, L, v0, pts, ids, m, vals);
     }
     free(pts);
     free(rad);
@@ -461,11 +460,19 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     }
     wind_free(&w);
     /* Birth was written as path length (m): the longest wood is 1, a leaf
-     * comes LEAF_DELAY after its wood. */
+     * comes LEAF_DELAY after its wood. Stiffness follows from the path p
+     * (a leaf's its wood's): (1 - p / P)^KEYAKI_STIFF_POWER. */
     if (mb->status || body->ws.birth < 0) return;
     float *bt = mb->attr[body->ws.birth], top = 0;
     for (uint32_t v = base; v < leaves_from; v++) top = bt[v] > top ? bt[v] : top;
     double inv = top > 0 ? 1.0 / top : 0.0; /* top * inv rounds to 1.0f */
+    if (body->ws.stiffness >= 0) {
+        float *st = mb->attr[body->ws.stiffness];
+        for (uint32_t v = base; v < mb->nv; v++) {
+            double u = 1.0 - bt[v] * inv;
+            st[v] = (float)(u > 0 ? (u < 1 ? pow(u, KEYAKI_STIFF_POWER) : 1.0) : 0.0);
+        }
+    }
     for (uint32_t v = base; v < mb->nv; v++) {
         double b = bt[v] * inv + (v >= leaves_from ? LEAF_DELAY : 0.0);
         bt[v] = (float)(b < 1.0 ? b : 1.0);

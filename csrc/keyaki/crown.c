@@ -201,7 +201,6 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         q->side = side;
         q->level = level;
         q->path = (float)(path0 + s);
-        q->r_attach = (float)r_at;
     }
 }
 
@@ -850,21 +849,15 @@ void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int 
              * branch's wind level + its order. */
             level = w->level[T->node] + (T->level - w->n[T->node].level);
             ph = wind_phase_of(w->seed, KEYAKI_PHASE_TWIG + (uint64_t)t);
-            wind_set(mb, w->ws, P[0], level, keyaki_stiffness(w, R[0]), ph, 0);
+            wind_set(mb, w->ws, P[0], level, 1, ph, 0); /* stiffness: from the birth, later */
         }
         /* A twig tip's end is hidden in its last leaves: no cap. */
         tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0, 1}; /* a twig: one bark tile round */
         tube_sweep(mb, P, R, (uint32_t)T->count, &o);
         if (!w || mb->status) continue;
-        /* Per ring: stiffness by radius (the set-back first ring of a
-         * first-order twig takes the second's), birth by path length. */
-        double st[MAX_TWIG_PTS], bt[MAX_TWIG_PTS];
-        for (int32_t k = 0; k < T->count; k++) {
-            double r = k == 0 && T->parent < 0 && T->count > 1 ? R[1] : R[k];
-            st[k] = keyaki_stiffness(w, r);
-            bt[k] = k ? bt[k - 1] + v3_dist(P[k - 1], P[k]) : T->path0;
-        }
-        wind_tube_rings(mb, first, (uint32_t)T->count, T->sides, 0, T->children > 0, w->ws->stiffness, st);
+        /* Per ring: birth by path length (stiffness follows from it). */
+        double bt[MAX_TWIG_PTS];
+        for (int32_t k = 0; k < T->count; k++) bt[k] = k ? bt[k - 1] + v3_dist(P[k - 1], P[k]) : T->path0;
         wind_tube_rings(mb, first, (uint32_t)T->count, T->sides, 0, T->children > 0, w->ws->birth, bt);
         /* Skeleton: a first-order twig joined along its branch from the
          * branch's start; a sub-twig from its parent's point it leaves. */
@@ -909,10 +902,11 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
         const keyaki_leaf *q = &c->leaves[k];
         mb_set_attr(mb, attr[1], q->level);
         if (w) {
-            /* Pivot the petiole base, on its wood; level and stiffness that
-             * wood's (+ 1); birth its path, delayed when the tree is done. */
-            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1,
-                     keyaki_stiffness(w, q->r_attach), wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k), 1);
+            /* Pivot the petiole base, on its wood; level that wood's + 1;
+             * birth its path, delayed when the tree is done; stiffness the
+             * wood's there (from the undelayed birth, when the tree is done). */
+            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1,
+                     wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k), 1);
             if (w->ws->birth >= 0) mb_set_attr(mb, w->ws->birth, q->path);
         }
         uint32_t v0 = mb_vertices(mb, 4);

@@ -164,8 +164,7 @@ typedef struct keyaki_leaf {
     int32_t node;
     int32_t side;   /* +1 / -1: its rank, alternating along the twig */
     int32_t level;
-    float path;     /* m: path length from the trunk base to `base` along the wood (birth) */
-    float r_attach; /* m: the wood's radius at `base` (the leaf's wind stiffness) */
+    float path;     /* m: path length from the trunk base to `base` along the wood (birth, stiffness) */
 } keyaki_leaf;
 
 typedef struct keyaki_crown {
@@ -233,15 +232,16 @@ struct keyaki_wind {
     int32_t *root;     /* per branch: the first branch of its wind branch */
     int32_t *level;    /* per branch: its wind branch's level (trunk 0, limbs 1, a side branch its parent's + 1) */
     double *path;      /* per branch: path length from the trunk base to its start, m */
-    double r_ref;      /* m: the trunk's base radius (stiffness 1) */
     uint64_t seed;
     uint32_t skel0;    /* the tree's first skeleton point (point skel0 + i + 1 ends branch i) */
 };
 
-/* Stiffness of wood of radius r: sqrt(r / r_ref), at most 1. */
-static inline double keyaki_stiffness(const keyaki_wind *w, double r) {
-    return w->r_ref > 0 && r < w->r_ref ? sqrt(r > 0 ? r / w->r_ref : 0.0) : 1.0;
-}
+/* Wood stiffness s = (1 - p / P)^KEYAKI_STIFF_POWER, p the path length
+ * from the trunk base (the birth's), P the tree's longest: 1 at the trunk
+ * foot only, continuous across forks (a child's base has its parent's
+ * path), falling toward every tip; a leaf takes its wood's. Written once
+ * the tree is meshed, from the births (body.c), so the meshers pass 1. */
+#define KEYAKI_STIFF_POWER 1.5
 
 /* The skeleton point where branch i starts. */
 static inline uint32_t keyaki_skel_start(const keyaki_wind *w, int32_t i) {

@@ -126,7 +126,7 @@ void keyaki_twigs_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int3
             double r = keyaki_twig_radius(p, &n[i], lev[j]);
             mb_set_attr(mb, attr[1], n[i].level + lev[j]);
             uint32_t first = mb->nv;
-            if (w) wind_set(mb, w->ws, a, w->level[i] + lev[j], keyaki_stiffness(w, r),
+            if (w) wind_set(mb, w->ws, a, w->level[i] + lev[j], 1, /* stiffness: from the birth, later */
                             wind_phase_of(w->seed, KEYAKI_PHASE_LINE + (uint64_t)i * 64 + (uint64_t)(j / 2)), 0);
             seg_line_tube(mb, a, b, r, p->sides_min);
             if (!w) continue;

@@ -245,14 +245,11 @@ def test_keyaki_continuity():
         bt.check(nl > 10 and nf > 10, "keyaki: leaves and forks to check (%d, %d)" % (nl, nf))
         bt.check(leaf < 0.25, "frame %d: every leaf moves with the wood it hangs on (worst %.3f of %.4g m)"
                  % (frame, leaf, dmax))
-        # Forks: measured, not yet required. The library's wind_stiffness
-        # jumps at a fork (a branch's base takes sqrt(r / r_base) of its own
-        # thinner radius: keyaki 0.31 against the parent's 0.62-0.87 a few
-        # mm away), so the bend (1 - s)^2 h cannot match there (worst 0.53;
-        # the old rotation model 0.84-1.0). BANYAN_WIND_FORKS=1 requires it.
-        if os.environ.get("BANYAN_WIND_FORKS"):
-            bt.check(fork < 0.25, "frame %d: every branch base moves with its parent (worst %.3f of %.4g m)"
-                     % (frame, fork, dmax))
+        # Forks: keyaki's wind_stiffness follows the path length from the
+        # trunk foot, continuous across forks (worst 0.17-0.22 at frames 1
+        # and 37; 0.53 when it followed each branch's own radius).
+        bt.check(fork < 0.25, "frame %d: every branch base moves with its parent (worst %.3f of %.4g m)"
+                 % (frame, fork, dmax))
 
 
 def test_operator_option():
