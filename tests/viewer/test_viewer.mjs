@@ -45,7 +45,7 @@ const MIN_FRAME_VARIANCE = 50;     // luminance variance of the whole canvas
 const MIN_MODEL_FRACTION = 0.005;  // share of pixels the model changes
 const MIN_MODEL_VARIANCE = 4;      // luminance variance over the model's pixels
 const MIN_RECOLOURED = 0.25;       // share of the model's pixels 'Colour by' changes
-const LOAD_TIMEOUT_MS = 180000;
+const LOAD_TIMEOUT_MS = 600000;  // the 1.7 GB boulevard took over 180 s on 2 busy cores
 const START_TIMEOUT_MS = 20000;    // until the viewer's module has run
 const WIDTH = 960, HEIGHT = 640;
 
