@@ -30,7 +30,7 @@ import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, 
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { launchChromium } from './cdp.mjs';
-import { readGlb, sceneMeshes, hasWindAttributes } from './glb.mjs';
+import { readGlb, sceneMeshes, hasWindAttributes, writeGlb } from './glb.mjs';
 
 const [cli, repo, outDir] = process.argv.slice(2).map((a) => a && path.resolve(a));
 if (!outDir) {
@@ -116,17 +116,7 @@ function pointGlb() {
     bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 36 }, { buffer: 0, byteOffset: 36, byteLength: 12 }],
     buffers: [{ byteLength: 48 }],
   };
-  let text = Buffer.from(JSON.stringify(json));
-  text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
-  const header = Buffer.alloc(12), jh = Buffer.alloc(8), bh = Buffer.alloc(8);
-  header.write('glTF', 0);
-  header.writeUInt32LE(2, 4);
-  header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
-  jh.writeUInt32LE(text.length, 0);
-  jh.writeUInt32LE(0x4e4f534a, 4);
-  bh.writeUInt32LE(bin.length, 0);
-  bh.writeUInt32LE(0x004e4942, 4);
-  return Buffer.concat([header, jh, text, bh, bin]);
+  return writeGlb(json, bin);
 }
 
 // BANYAN_VIEWER_ONLY=regex narrows the presets, for working on one by hand.
