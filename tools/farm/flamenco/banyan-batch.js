@@ -1,0 +1,130 @@
+// Flamenco job type "banyan-batch": N seeds of one banyan preset, split into
+// tasks of K seeds; each task runs banyan's batch runner through Blender on a
+// Worker. Copy this file into the `scripts/` folder beside flamenco-manager.
+//
+// The runner (blender_addon/banyan/batch_run.py) is idempotent and writes every
+// file by rename, so a task that a killed Worker leaves half done is simply run
+// again; outputs are named from (preset hash, seed), so tasks never collide.
+//
+// Written for Flamenco 3's job compiler (goja: ES2015+, no modules). Globals it
+// uses: author.Task, author.Command, print. Command: "blender-render" with an
+// empty blendfile, which the Worker runs as {blender} {blenderArgs} argsBefore
+// args; the runner builds its scene itself.
+
+const JOB_TYPE = {
+    label: "banyan batch",
+    description: "Generate N seeds of a banyan preset (.glb each, optional renders), K seeds per task",
+    settings: [
+        { key: "preset", type: "string", required: true, default: "avenue_batch_tiny",
+          description: "Preset name, or path of a preset .json that every Worker can read" },
+        { key: "first_seed", type: "int32", default: 0, propargs: { min: 0 },
+          description: "First seed" },
+        { key: "seed_count", type: "int32", required: true, default: 40, propargs: { min: 1 },
+          description: "Number of seeds: first_seed .. first_seed + seed_count - 1" },
+        { key: "seeds_per_task", type: "int32", default: 5, propargs: { min: 1 },
+          description: "Seeds per task (K): one Blender start per task" },
+        { key: "output_dir", type: "string", subtype: "dir_path", required: true,
+          default: "{jobs}/banyan-batch",
+          description: "Output folder on shared storage, as the Workers see it ({jobs} is the shared storage path)" },
+        { key: "render_seeds", type: "string", default: "",
+          description: "Seeds to render as A:B (half-open), empty for none" },
+        { key: "size", type: "int32", default: 64, propargs: { min: 1, max: 16384 },
+          description: "Render width and height in pixels" },
+        { key: "engine", type: "string", default: "WORKBENCH", choices: ["WORKBENCH", "EEVEE"],
+          description: "Render engine" },
+        { key: "threads", type: "int32", default: 0, propargs: { min: 0, max: 1024 },
+          description: "Threads per task, 0 for the runner's default" },
+        { key: "runner", type: "string", default: "{banyan}/batch_run.py", visible: "web",
+          description: "batch_run.py as the Workers see it; define the Manager variable 'banyan' as the add-on folder" },
+    ],
+};
+
+// Seeds are unsigned 32-bit in libbanyan; the end of a half-open range may be 2^32.
+const SEED_END_MAX = 4294967296;
+
+function settingOf(job, key) {
+    const v = job.settings[key];
+    if (v !== undefined && v !== null) return v;
+    for (const s of JOB_TYPE.settings) {
+        if (s.key === key) return s.default;
+    }
+    return undefined;
+}
+
+function intSetting(job, key, min, max) {
+    const v = settingOf(job, key);
+    if (typeof v !== "number" || !Number.isInteger(v) || v < min || v > max) {
+        throw `banyan-batch: setting ${key} must be an integer in [${min}, ${max}], got ${JSON.stringify(v)}`;
+    }
+    return v;
+}
+
+function stringSetting(job, key) {
+    const v = settingOf(job, key);
+    if (typeof v !== "string" || v.trim() === "") {
+        throw `banyan-batch: setting ${key} must be a non-empty string, got ${JSON.stringify(v)}`;
+    }
+    return v.trim();
+}
+
+// "A:B" -> [A, B] (half-open, A < B); "" -> null.
+function parseRange(key, text) {
+    if (text === undefined || text === null || String(text).trim() === "") return null;
+    const m = /^\s*(\d+)\s*:\s*(\d+)\s*$/.exec(String(text));
+    const a = m ? Number(m[1]) : NaN, b = m ? Number(m[2]) : NaN;
+    if (!m || !(a < b) || b > SEED_END_MAX) {
+        throw `banyan-batch: setting ${key} must be A:B with 0 <= A < B <= ${SEED_END_MAX}, got ${JSON.stringify(text)}`;
+    }
+    return [a, b];
+}
+
+function compileJob(job) {
+    const preset = stringSetting(job, "preset");
+    const first = intSetting(job, "first_seed", 0, SEED_END_MAX - 1);
+    const count = intSetting(job, "seed_count", 1, SEED_END_MAX - first);
+    const perTask = intSetting(job, "seeds_per_task", 1, SEED_END_MAX);
+    const outDir = stringSetting(job, "output_dir");
+    const size = intSetting(job, "size", 1, 16384);
+    const threads = intSetting(job, "threads", 0, 1024);
+    const runner = stringSetting(job, "runner");
+    const engine = stringSetting(job, "engine").toUpperCase();
+    if (engine !== "WORKBENCH" && engine !== "EEVEE") {
+        throw `banyan-batch: setting engine must be WORKBENCH or EEVEE, got ${JSON.stringify(engine)}`;
+    }
+    const render = parseRange("render_seeds", settingOf(job, "render_seeds"));
+
+    const end = first + count;
+    print(`banyan-batch: seeds ${first}:${end} of ${preset}, ${perTask} per task, into ${outDir}`);
+    for (let a = first; a < end; a += perTask) {
+        const b = Math.min(a + perTask, end);
+        const args = [
+            // Without it Blender exits 0 when the script raises, and the task
+            // would count as done.
+            "--python-exit-code", "1",
+            "--python", runner,
+            "--",
+            "--preset", preset,
+            "--seeds", `${a}:${b}`,
+            "--out", outDir,
+        ];
+        // Hand each task only its own share of the render range, so that what
+        // it renders never depends on how the runner reads a wider range.
+        if (render) {
+            const ra = Math.max(a, render[0]), rb = Math.min(b, render[1]);
+            if (ra < rb) {
+                args.push("--render-seeds", `${ra}:${rb}`, "--size", String(size), "--engine", engine);
+            }
+        }
+        if (threads > 0) args.push("--threads", String(threads));
+
+        const task = author.Task(`seeds-${a}-${b}`, "blender");
+        task.addCommand(author.Command("blender-render", {
+            exe: "{blender}",
+            exeArgs: "{blenderArgs}",
+            argsBefore: ["--factory-startup"],
+            blendfile: "",
+            args: args,
+        }, b - a));
+        job.addTask(task);
+    }
+}
