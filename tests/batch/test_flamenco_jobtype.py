@@ -227,6 +227,8 @@ def seed_of(name):
 
 
 def outputs(folder):
+    if not os.path.isdir(folder):
+        return []
     return sorted(f for f in os.listdir(folder) if f.endswith((".glb", ".png")) and not f.startswith("."))
 
 

@@ -28,12 +28,14 @@ const JOB_TYPE = {
           description: "Output folder on shared storage, as the Workers see it ({jobs} is the shared storage path)" },
         { key: "render_seeds", type: "string", default: "",
           description: "Seeds to render as A:B (half-open), empty for none" },
-        { key: "size", type: "int32", default: 64, propargs: { min: 1, max: 16384 },
+        { key: "size", type: "int32", default: 64, propargs: { min: 16, max: 4096 },
           description: "Render width and height in pixels" },
         { key: "engine", type: "string", default: "WORKBENCH", choices: ["WORKBENCH", "EEVEE"],
           description: "Render engine" },
-        { key: "threads", type: "int32", default: 0, propargs: { min: 0, max: 1024 },
-          description: "Threads per task, 0 for the runner's default" },
+        { key: "threads", type: "int32", default: 1, propargs: { min: 0, max: 1024 },
+          description: "Generator threads per task (0: all cores); the bytes do not depend on it" },
+        { key: "merge_manifest", type: "bool", default: true,
+          description: "Last task: gather the per-seed records into <output_dir>/manifest.json, re-hashing every file" },
         { key: "runner", type: "string", default: "{banyan}/batch_run.py", visible: "web",
           description: "batch_run.py as the Workers see it; define the Manager variable 'banyan' as the add-on folder" },
     ],
@@ -84,8 +86,12 @@ function compileJob(job) {
     const count = intSetting(job, "seed_count", 1, SEED_END_MAX - first);
     const perTask = intSetting(job, "seeds_per_task", 1, SEED_END_MAX);
     const outDir = stringSetting(job, "output_dir");
-    const size = intSetting(job, "size", 1, 16384);
+    const size = intSetting(job, "size", 16, 4096);
     const threads = intSetting(job, "threads", 0, 1024);
+    const merge = settingOf(job, "merge_manifest");
+    if (typeof merge !== "boolean") {
+        throw `banyan-batch: setting merge_manifest must be true or false, got ${JSON.stringify(merge)}`;
+    }
     const runner = stringSetting(job, "runner");
     const engine = stringSetting(job, "engine").toUpperCase();
     if (engine !== "WORKBENCH" && engine !== "EEVEE") {
@@ -94,15 +100,11 @@ function compileJob(job) {
     const render = parseRange("render_seeds", settingOf(job, "render_seeds"));
 
     const end = first + count;
+    const seedTasks = [];
     print(`banyan-batch: seeds ${first}:${end} of ${preset}, ${perTask} per task, into ${outDir}`);
     for (let a = first; a < end; a += perTask) {
         const b = Math.min(a + perTask, end);
         const args = [
-            // Without it Blender exits 0 when the script raises, and the task
-            // would count as done.
-            "--python-exit-code", "1",
-            "--python", runner,
-            "--",
             "--preset", preset,
             "--seeds", `${a}:${b}`,
             "--out", outDir,
@@ -115,16 +117,36 @@ function compileJob(job) {
                 args.push("--render-seeds", `${ra}:${rb}`, "--size", String(size), "--engine", engine);
             }
         }
-        if (threads > 0) args.push("--threads", String(threads));
+        args.push("--threads", String(threads));
 
         const task = author.Task(`seeds-${a}-${b}`, "blender");
-        task.addCommand(author.Command("blender-render", {
-            exe: "{blender}",
-            exeArgs: "{blenderArgs}",
-            argsBefore: ["--factory-startup"],
-            blendfile: "",
-            args: args,
-        }, b - a));
+        task.addCommand(runnerCommand(runner, args, b - a));
+        job.addTask(task);
+        seedTasks.push(task);
+    }
+
+    if (merge) {
+        // Fails (and so shows the job as failed) when a seed of the range has
+        // no record or a file no longer matches it.
+        const task = author.Task("merge-manifest", "blender");
+        task.addCommand(runnerCommand(runner, [
+            "--merge-manifest", outDir, "--seeds", `${first}:${end}`, "--verify",
+        ], 0));
+        for (const t of seedTasks) task.addDependency(t);
         job.addTask(task);
     }
+}
+
+// The runner in Blender without a blend file: the Worker runs
+// {blender} {blenderArgs} --factory-startup --python-exit-code 1 --python RUNNER -- ARGS.
+function runnerCommand(runner, runnerArgs, steps) {
+    return author.Command("blender-render", {
+        exe: "{blender}",
+        exeArgs: "{blenderArgs}",
+        argsBefore: ["--factory-startup"],
+        blendfile: "",
+        // Without --python-exit-code Blender exits 0 when the script raises,
+        // and the task would count as done.
+        args: ["--python-exit-code", "1", "--python", runner, "--"].concat(runnerArgs),
+    }, steps);
 }
