@@ -23,6 +23,7 @@ complete merged manifest, and pass the Khronos validator.
 Exit 0 when every check passed, 1 otherwise.
 """
 import argparse
+import hashlib
 import json
 import os
 import queue
@@ -375,14 +376,12 @@ def run_farm_checks(blender, lib, seeds, per_task, renders, workdir):
     check(sorted(seed_of(f) for f in pngs) == list(range(renders)), "reference: a render per render seed")
     check(farm_files == ref_files, "the farm made the same files as the reference (%d vs %d)"
           % (len(farm_files), len(ref_files)))
-    for f in glbs:
+    # Renders too: Workbench on one machine and build renders the same pixels.
+    for f in glbs + pngs:
         fp = os.path.join(out, f)
         if os.path.exists(fp):
             with open(fp, "rb") as x, open(os.path.join(ref, f), "rb") as y:
                 check(x.read() == y.read(), "%s: farm bytes == single-machine bytes" % f)
-    for f in pngs:
-        fp = os.path.join(out, f)
-        check(os.path.exists(fp) and os.path.getsize(fp) > 0, "%s: render present" % f)
     leftovers = [f for f in os.listdir(out) if f.startswith(".") and f.endswith(".tmp")]
     check(not leftovers, "no temporary files left after the merge: %s" % leftovers)
 
@@ -394,6 +393,11 @@ def run_farm_checks(blender, lib, seeds, per_task, renders, workdir):
         check(sorted(r.get("seed") for r in recs) == list(range(seeds)), "manifest: one record per seed")
         names = sorted(x["name"] for r in recs for x in r.get("files", []))
         check(names == farm_files, "manifest: lists every output file once")
+        for r in recs:
+            for x in r.get("files", []):
+                with open(os.path.join(out, x["name"]), "rb") as f:
+                    check(hashlib.sha256(f.read()).hexdigest() == x.get("sha256"),
+                          "manifest: %s's checksum matches the file" % x["name"])
 
     p = subprocess.run(["node", VALIDATE, "--no-warnings", out], capture_output=True, text=True, timeout=600)
     check(p.returncode == 0, "Khronos validator on the farm's .glb files: " + (p.stdout + p.stderr)[-2000:])
@@ -410,8 +414,9 @@ def main():
     ap.add_argument("--keep", action="store_true", help="keep the work folder")
     a = ap.parse_args()
 
-    run_compile_checks()
-    if a.mode == "run":
+    if a.mode == "compile":
+        run_compile_checks()
+    else:
         if not a.lib:
             ap.error("run needs --lib")
         workdir = tempfile.mkdtemp(prefix="banyan-flamenco-")
