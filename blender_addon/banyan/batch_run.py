@@ -3,7 +3,8 @@
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
         --preset NAME_OR_PATH --seeds A:B --out DIR [--render-seeds C:D] [--size 64]
         [--engine WORKBENCH|EEVEE] [--threads N] [--texture-size 1024] [--no-textures]
-    python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy, refuses --render-seeds)
+    python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
+                                                      range that meets --seeds)
     python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B]
 
 Seeds are half-open (A:B is A .. B-1). For each seed the preset, with its
@@ -98,7 +99,18 @@ def _argv(argv):
             argv = sys.argv[sys.argv.index("--") + 1:]
     elif "--" in argv:
         argv = argv[argv.index("--") + 1:]
-    return list(argv)
+    # "--seeds -1:3" would read as an option: keep such values with their option.
+    out, it = [], iter(argv)
+    for a in it:
+        if a in _VALUE_OPTIONS:
+            nxt = next(it, None)
+            out.append(a if nxt is None else "%s=%s" % (a, nxt))
+        else:
+            out.append(a)
+    return out
+
+
+_VALUE_OPTIONS = ("--seeds", "--render-seeds", "--size", "--threads", "--texture-size")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -368,10 +380,11 @@ def run(args, log):
     renders = range(0)
     if args.render_seeds:
         c, d = parse_range(args.render_seeds, "--render-seeds")
-        if not _in_blender():
-            raise UsageError("--render-seeds needs Blender: run the runner with blender -b --python (plain "
-                             "python3 writes glTF only)")
-        renders = range(c, d)
+        renders = range(max(a, c), min(b, d))  # the seeds of this run to render (may be none)
+        if renders and not _in_blender():
+            raise UsageError("--render-seeds %s: seeds %d:%d need Blender: run the runner with blender -b "
+                             "--python (plain python3 writes glTF only)" % (args.render_seeds, renders.start,
+                                                                          renders.stop))
     args.engine = args.engine.upper()
     if args.engine not in ("WORKBENCH", "EEVEE"):
         raise UsageError("--engine '%s' must be WORKBENCH or EEVEE" % args.engine)
