@@ -74,11 +74,12 @@ def job_type_info():
 
 
 def runner_args(task):
-    """The runner's own arguments of a task's single blender-render command."""
+    """The runner's own arguments of a task's single command (blender-render
+    or exec: both end in RUNNER -- ARGS)."""
     cmds = task["commands"]
     assert len(cmds) == 1, task
     c = cmds[0]
-    assert c["name"] == "blender-render", c
+    assert c["name"] in ("blender-render", "exec"), c
     args = c["parameters"]["args"]
     return args[args.index("--") + 1:]
 
@@ -142,6 +143,9 @@ def check_split(first, count, per_task, render=None, extra=None):
         check(t["commands"][0]["totalStepCount"] == b - a, label + ": a task's steps are its seeds")
         check(opt(args, "--out") == "/out" and opt(args, "--preset") == "p", label + ": preset and out passed")
         rs = opt(args, "--render-seeds")
+        kind = (t["type"], t["commands"][0]["name"])
+        check(kind == (("misc", "exec") if rs is None else ("blender", "blender-render")),
+              label + ": %s: Blender only for a task that renders, Python (exec) otherwise: %s" % (t["name"], kind))
         if rs is None:
             check(opt(args, "--size") is None and opt(args, "--engine") is None,
                   label + ": no render options on a task that renders nothing")
@@ -165,27 +169,41 @@ def check_split(first, count, per_task, render=None, extra=None):
 
 
 def check_command_shape(defaults):
-    job = compile_job({"output_dir": "{jobs}/banyan"},
-                      {"blender": "/opt/blender 4/blender", "blenderArgs": "-b -y", "banyan": "/addons/banyan",
-                       "jobs": "/shared"})
-    seed_tasks = [t for t in job["tasks"] if t["name"] != "merge-manifest"]
-    check(len(seed_tasks) == -(-defaults["seed_count"] // defaults["seeds_per_task"]),
-          "defaults: seed_count / seeds_per_task tasks")
-    for t in job["tasks"]:
-        c = t["commands"][0]
-        p = c["parameters"]
-        check(p["blendfile"] == "", "%s: no blend file (the runner builds its scene)" % t["name"])
-        argv = c["argv"]
-        check(argv[0] == "/opt/blender 4/blender", "%s: argv[0] is the {blender} variable, spaces kept" % t["name"])
-        check(argv[1:3] == ["-b", "-y"], "%s: {blenderArgs} split into words" % t["name"])
-        check(not any("{" in a for a in argv), "%s: every variable expanded: %s" % (t["name"], argv))
-        check("--python-exit-code" in argv and argv.index("--python-exit-code") < argv.index("--python"),
-              "%s: --python-exit-code before --python (else a failing runner exits 0)" % t["name"])
-        check(argv[argv.index("--python") + 1] == "/addons/banyan/batch_run.py", "%s: runner path" % t["name"])
-        check(argv.index("--factory-startup") < argv.index("--python"), "%s: factory startup" % t["name"])
-        check(opt(argv, "--out") == "/shared/banyan" or opt(argv, "--merge-manifest") == "/shared/banyan",
-              "%s: {jobs} expanded in the output folder" % t["name"])
-        check(opt(argv, "--preset") in (None, defaults["preset"]), "%s: default preset" % t["name"])
+    variables = {"blender": "/opt/blender 4/blender", "blenderArgs": "-b -y", "banyan": "/addons/banyan",
+                 "jobs": "/shared"}
+    for python in ("python3", "", "{py}"):
+        settings = {"output_dir": "{jobs}/banyan", "render_seeds": "0:7"}
+        if python != "python3":
+            settings["python"] = python
+        job = compile_job(settings, dict(variables, py="/venv/bin/python"))
+        seed_tasks = [t for t in job["tasks"] if t["name"] != "merge-manifest"]
+        check(len(seed_tasks) == -(-defaults["seed_count"] // defaults["seeds_per_task"]),
+              "defaults: seed_count / seeds_per_task tasks")
+        for t in job["tasks"]:
+            label = "python=%r: %s" % (python, t["name"])
+            c = t["commands"][0]
+            p, argv = c["parameters"], c["argv"]
+            check(not any("{" in a for a in argv), label + ": every variable expanded: %s" % argv)
+            check(opt(argv, "--out") == "/shared/banyan" or opt(argv, "--merge-manifest") == "/shared/banyan",
+                  label + ": {jobs} expanded in the output folder")
+            check(opt(argv, "--preset") in (None, defaults["preset"]), label + ": default preset")
+            if c["name"] == "exec":
+                check(python != "", label + ": no exec task when python is empty")
+                check(t["type"] == "misc", label + ": exec runs as task type misc")
+                check(argv[0] == ("/venv/bin/python" if python == "{py}" else python), label + ": argv[0] is python")
+                check(argv[1] == "/addons/banyan/batch_run.py" and argv[2] == "--", label + ": python RUNNER --")
+                check("--render-seeds" not in argv, label + ": Python tasks render nothing")
+                continue
+            check(c["name"] == "blender-render" and t["type"] == "blender", label + ": blender-render")
+            check(python == "" or "--render-seeds" in argv, label + ": Blender only where a task renders")
+            check(p["blendfile"] == "", label + ": no blend file (the runner builds its scene)")
+            check(argv[0] == "/opt/blender 4/blender", label + ": argv[0] is the {blender} variable, spaces kept")
+            check(argv[1:3] == ["-b", "-y"], label + ": {blenderArgs} split into words")
+            check("--python-exit-code" in argv and argv.index("--python-exit-code") < argv.index("--python"),
+                  label + ": --python-exit-code before --python (else a failing runner exits 0)")
+            check(argv[argv.index("--python") + 1] == "/addons/banyan/batch_run.py", label + ": runner path")
+            check(argv.index("--factory-startup") < argv.index("--python"), label + ": factory startup")
+            check(argv[argv.index("--python") + 2] == "--", label + ": -- after the runner")
 
 
 def check_refusals():
@@ -195,7 +213,7 @@ def check_refusals():
         ("seeds_per_task", 0), ("first_seed", -1), ("first_seed", SEED_END_MAX),
         ("engine", "CYCLES"), ("render_seeds", "4:2"), ("render_seeds", "4:4"), ("render_seeds", "x"),
         ("render_seeds", "1:"), ("output_dir", ""), ("output_dir", "   "), ("preset", ""), ("size", 8),
-        ("size", 5000), ("threads", -1), ("merge_manifest", "yes"), ("runner", ""),
+        ("size", 5000), ("threads", -1), ("merge_manifest", "yes"), ("runner", ""), ("python", 3),
     ]
     for key, value in bad:
         p = compile_job(dict(base, **{key: value}), expect_ok=False)

@@ -7,9 +7,12 @@
 // again; outputs are named from (preset hash, seed), so tasks never collide.
 //
 // Written for Flamenco 3's job compiler (goja: ES2015+, no modules). Globals it
-// uses: author.Task, author.Command, print. Command: "blender-render" with an
-// empty blendfile, which the Worker runs as {blender} {blenderArgs} argsBefore
-// args; the runner builds its scene itself.
+// uses: author.Task, author.Command, print. A task that renders runs
+// "blender-render" with an empty blendfile, which the Worker runs as
+// {blender} {blenderArgs} argsBefore args (the runner builds its scene). A task
+// that only writes glTF needs no Blender: it runs the runner with Python 3
+// through "exec" (task type "misc"), which saves a Blender start per task;
+// set `python` empty for Workers older than the "exec" command.
 
 const JOB_TYPE = {
     label: "banyan batch",
@@ -36,6 +39,8 @@ const JOB_TYPE = {
           description: "Generator threads per task (0: all cores); the bytes do not depend on it" },
         { key: "merge_manifest", type: "bool", default: true,
           description: "Last task: gather the per-seed records into <output_dir>/manifest.json, re-hashing every file" },
+        { key: "python", type: "string", default: "python3", visible: "web",
+          description: "Python 3 on the Workers for tasks that render nothing (no Blender start); empty: Blender for every task" },
         { key: "runner", type: "string", default: "{banyan}/batch_run.py", visible: "web",
           description: "batch_run.py as the Workers see it; define the Manager variable 'banyan' as the add-on folder" },
     ],
@@ -93,6 +98,11 @@ function compileJob(job) {
         throw `banyan-batch: setting merge_manifest must be true or false, got ${JSON.stringify(merge)}`;
     }
     const runner = stringSetting(job, "runner");
+    const pythonSetting = settingOf(job, "python");
+    if (typeof pythonSetting !== "string") {
+        throw `banyan-batch: setting python must be a string (empty: Blender for every task), got ${JSON.stringify(pythonSetting)}`;
+    }
+    const python = pythonSetting.trim();
     const engine = stringSetting(job, "engine").toUpperCase();
     if (engine !== "WORKBENCH" && engine !== "EEVEE") {
         throw `banyan-batch: setting engine must be WORKBENCH or EEVEE, got ${JSON.stringify(engine)}`;
@@ -111,16 +121,17 @@ function compileJob(job) {
         ];
         // Hand each task only its own share of the render range, so that what
         // it renders never depends on how the runner reads a wider range.
+        let renders = false;
         if (render) {
             const ra = Math.max(a, render[0]), rb = Math.min(b, render[1]);
             if (ra < rb) {
                 args.push("--render-seeds", `${ra}:${rb}`, "--size", String(size), "--engine", engine);
+                renders = true;
             }
         }
         args.push("--threads", String(threads));
 
-        const task = author.Task(`seeds-${a}-${b}`, "blender");
-        task.addCommand(runnerCommand(runner, args, b - a));
+        const task = runnerTask(`seeds-${a}-${b}`, renders ? "" : python, runner, args, b - a);
         job.addTask(task);
         seedTasks.push(task);
     }
@@ -128,19 +139,28 @@ function compileJob(job) {
     if (merge) {
         // Fails (and so shows the job as failed) when a seed of the range has
         // no record or a file no longer matches it.
-        const task = author.Task("merge-manifest", "blender");
-        task.addCommand(runnerCommand(runner, [
+        const task = runnerTask("merge-manifest", python, runner, [
             "--merge-manifest", outDir, "--seeds", `${first}:${end}`, "--verify",
-        ], 0));
+        ], 0);
         for (const t of seedTasks) task.addDependency(t);
         job.addTask(task);
     }
 }
 
-// The runner in Blender without a blend file: the Worker runs
+// A task running the runner: with Python (exec: PYTHON RUNNER -- ARGS) when
+// `python` is given, else in Blender without a blend file:
 // {blender} {blenderArgs} --factory-startup --python-exit-code 1 --python RUNNER -- ARGS.
-function runnerCommand(runner, runnerArgs, steps) {
-    return author.Command("blender-render", {
+function runnerTask(name, python, runner, runnerArgs, steps) {
+    if (python !== "") {
+        const task = author.Task(name, "misc");
+        task.addCommand(author.Command("exec", {
+            exe: python,
+            args: [runner, "--"].concat(runnerArgs),
+        }, steps));
+        return task;
+    }
+    const task = author.Task(name, "blender");
+    task.addCommand(author.Command("blender-render", {
         exe: "{blender}",
         exeArgs: "{blenderArgs}",
         argsBefore: ["--factory-startup"],
@@ -148,5 +168,6 @@ function runnerCommand(runner, runnerArgs, steps) {
         // Without --python-exit-code Blender exits 0 when the script raises,
         // and the task would count as done.
         args: ["--python-exit-code", "1", "--python", runner, "--"].concat(runnerArgs),
-    }, steps);
+    }, steps));
+    return task;
 }

@@ -5,9 +5,9 @@
 //
 // It stands in for the Manager's job compiler (goja) with the globals a job
 // type sees there (author.Task/Command, print, alert, path, process) and, with
-// --var, for the Manager's "{name}" variable expansion and the Worker's
-// blender-render argv (exe, then exeArgs split like a shell, argsBefore, the
-// blendfile when not empty, args). It is written from Flamenco 3's documented
+// --var, for the Manager's "{name}" variable expansion and the argv a Worker
+// runs: for blender-render exe, then exeArgs split like a shell, argsBefore,
+// the blendfile when not empty, args; for exec exe and args. It is written from Flamenco 3's documented
 // behaviour; it contains none of Flamenco's code.
 //
 //   node compile_job.mjs JOBTYPE.js [--settings JSON] [--var NAME=VALUE]... [--job-type-info]
@@ -132,6 +132,7 @@ export function compile(jobTypeFile, settings, vars) {
                 const params = vars ? expandParams(c.parameters, vars) : c.parameters;
                 const out = { name: c.name, parameters: params, totalStepCount: c.totalStepCount };
                 if (vars && c.name === "blender-render") out.argv = workerArgv(params);
+                if (vars && c.name === "exec") out.argv = [params.exe, ...(params.args || []).map(String)];
                 return out;
             }),
         })),
