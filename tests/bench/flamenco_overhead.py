@@ -8,14 +8,15 @@ Flamenco Manager and Workers, which cannot be installed on banyan's build
 machines (tools/farm/flamenco/install.sh exits 3 there), so this script only
 reports it as not measured. (2) is measured here, with the job
 type's own command lines (compile_job.mjs, variables expanded for this
-machine), A/B in turn, medians:
+machine), in turn, medians:
 
   empty task  a seed task whose seeds are all done (the runner skips them):
-              Blender start + runner + library load + checks, no generation
-  seed task   the same task on an empty folder: K seeds made
-  per seed    (seed task - empty task) / K
+              process start + runner + library load + checks, no generation;
+              through Blender (blender-render) and with Python 3 (exec)
+  seed task   the Python task on an empty folder: K seeds made
+  per seed    (seed task - empty Python task) / K
 
-and the overhead fraction empty / (empty + K x per seed) for several K.
+and the fixed cost's share of a task for several K.
     flamenco_overhead.py --lib build/libbanyan.so [--runs 5] [--k 5] [--write tests/bench/peers/flamenco.md]
 """
 import argparse
@@ -37,9 +38,11 @@ PRESET = os.path.join(ROOT, "tests", "batch", "avenue_batch_tiny.json")
 FLAMENCO_BIN = os.environ.get("FLAMENCO_BIN", os.path.expanduser("~/.cache/banyan/flamenco/bin"))
 
 
-def task_argv(blender, k, out):
+def task_argv(blender, k, out, python):
+    """The job type's command line for one glTF-only task of k seeds:
+    exec with Python 3, or Blender when python is empty."""
     settings = {"preset": PRESET, "first_seed": 0, "seed_count": k, "seeds_per_task": k,
-                "output_dir": out, "threads": 1, "merge_manifest": False}
+                "output_dir": out, "threads": 1, "merge_manifest": False, "python": python}
     p = subprocess.run(["node", COMPILE, JOBTYPE, "--settings", json.dumps(settings),
                         "--var", "blender=" + blender, "--var", "blenderArgs=-b -y", "--var", "banyan=" + ADDON],
                        capture_output=True, text=True, check=True)
@@ -67,42 +70,53 @@ def main():
     have_flamenco = all(os.access(os.path.join(FLAMENCO_BIN, b), os.X_OK)
                         for b in ("flamenco-manager", "flamenco-worker"))
 
+    py = sys.executable
     work = tempfile.mkdtemp(prefix="banyan-flamenco-bench-")
     try:
         done_dir = os.path.join(work, "done")
-        subprocess.run(task_argv(blender, a.k, done_dir), env=env, stdout=subprocess.DEVNULL, check=True)
-        empty, full = [], []
-        for i in range(a.runs):  # A/B in turn: the machine's load drifts
-            empty.append(timed(task_argv(blender, a.k, done_dir), env))
+        subprocess.run(task_argv(blender, a.k, done_dir, py), env=env, stdout=subprocess.DEVNULL, check=True)
+        empty_b, empty_p, full = [], [], []
+        for i in range(a.runs):  # in turn: the machine's load drifts
+            empty_b.append(timed(task_argv(blender, a.k, done_dir, ""), env))
+            empty_p.append(timed(task_argv(blender, a.k, done_dir, py), env))
             fresh = os.path.join(work, "fresh%d" % i)
-            full.append(timed(task_argv(blender, a.k, fresh), env))
+            full.append(timed(task_argv(blender, a.k, fresh, py), env))
             shutil.rmtree(fresh)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    e, f = statistics.median(empty), statistics.median(full)
-    per_seed = (f - e) / a.k
+    eb, ep, f = statistics.median(empty_b), statistics.median(empty_p), statistics.median(full)
+    per_seed = (f - ep) / a.k
     load = os.getloadavg()
+
+    def runs(xs):
+        return ", ".join("%.2f" % x for x in xs)
     lines = [
         "# Flamenco: per-task overhead",
         "",
         "Written by `tests/bench/flamenco_overhead.py` on %s (%d cores, load average %.1f at the end; "
-        "%d runs each, A/B in turn, medians)." % (datetime.date.today().isoformat(), os.cpu_count(), load[0], a.runs),
+        "%d runs each, in turn, medians). The machine was shared: compare the rows with each other, "
+        "not with another day's." % (datetime.date.today().isoformat(), os.cpu_count(), load[0], a.runs),
         "",
         "- Flamenco's own overhead (submit to done, beyond the tasks' run time): **not measured**. "
         + ("Flamenco is installed in %s but this script does not drive it yet." % FLAMENCO_BIN if have_flamenco else
            "Flamenco cannot be installed on this machine (the Go module proxy refuses its module; "
            "`tools/farm/flamenco/install.sh` exits 3)."),
-        "- The job type's fixed cost per task (Blender start, runner, library load; all %d seeds already done "
-        "and skipped): **%.2f s** (runs: %s)." % (a.k, e, ", ".join("%.2f" % x for x in empty)),
-        "- A task of %d seeds of `tests/batch/avenue_batch_tiny.json` (glTF only, 1 thread): %.2f s "
-        "(runs: %s), so **%.2f s per seed**." % (a.k, f, ", ".join("%.2f" % x for x in full), per_seed),
+        "- The job type's fixed cost per task, measured on tasks whose %d seeds are already done (the runner "
+        "checks and skips them), with the command lines the job type authors:" % a.k,
+        "  - through Blender (`blender-render`; every task when `python` is empty, else only tasks that "
+        "render): **%.2f s** (runs: %s);" % (eb, runs(empty_b)),
+        "  - with Python 3 (`exec`, glTF-only tasks): **%.2f s** (runs: %s)." % (ep, runs(empty_p)),
+        "- A Python task making %d seeds of `tests/batch/avenue_batch_tiny.json` (glTF only, 1 thread): "
+        "%.2f s (runs: %s), so **%.2f s per seed**." % (a.k, f, runs(full), per_seed),
         "",
-        "| K (seeds per task) | task time | fixed cost share |",
-        "| --- | --- | --- |",
+        "Share of a glTF-only task spent on its fixed cost:",
+        "",
+        "| K (seeds per task) | Python task | share | through Blender | share |",
+        "| --- | --- | --- | --- | --- |",
     ]
     for k in (1, 2, 5, 10, 20, 50):
-        t = e + k * per_seed
-        lines.append("| %d | %.1f s | %.0f %% |" % (k, t, 100 * e / t))
+        tp, tb = ep + k * per_seed, eb + k * per_seed
+        lines.append("| %d | %.1f s | %.0f %% | %.1f s | %.0f %% |" % (k, tp, 100 * ep / tp, tb, 100 * eb / tb))
     text = "\n".join(lines) + "\n"
     print(text)
     if a.write:
