@@ -10,10 +10,10 @@ that depends on every seed task, and that bad settings are refused by name.
 
 run (--blender, --lib): the compiled tasks' argv, with the Manager variables
 expanded for this machine, are run by two stand-in Workers sharing a task
-queue on one output folder, like a Manager with two Workers; one Worker's
-Blender is killed (SIGKILL, its whole process group) in the middle of a task
-once that task has written a seed, its task goes back on the queue and the
-other Worker finishes the job. The folder must then hold every seed's .glb
+queue on one output folder, like a Manager with two Workers; worker-1's
+task process (Blender or Python) is killed (SIGKILL, its whole process group)
+in the middle of its second task, once that task has written a seed but not
+all; the task goes back on the queue and worker-2 finishes the job. The folder must then hold every seed's .glb
 byte-identical to a single-machine run of the runner, the same renders, a
 complete merged manifest, and pass the Khronos validator.
 
@@ -255,17 +255,19 @@ class Farm:
     """Two stand-in Workers taking tasks from one queue, as a Manager hands
     them out; a task whose Worker dies goes back on the queue."""
 
-    def __init__(self, tasks, env, out, log_dir, kill_first_task_of, task_timeout):
+    def __init__(self, tasks, env, out, log_dir, kill_worker, kill_on_task, task_timeout):
         self.pending = queue.Queue()
         self.seed_tasks = [t for t in tasks if t["name"] != "merge-manifest"]
         self.after = [t for t in tasks if t["name"] == "merge-manifest"]
         for t in self.seed_tasks:
             self.pending.put(t)
         self.env, self.out, self.log_dir = env, out, log_dir
-        self.kill_worker = kill_first_task_of
+        self.kill_worker, self.kill_on_task = kill_worker, kill_on_task
+        self.taken = {}
         self.task_timeout = task_timeout
         self.lock = threading.Lock()
         self.done, self.runs, self.errors = [], [], []
+        self.done_by = {}
         self.killed = None
         self.procs = set()
 
@@ -300,7 +302,8 @@ class Farm:
             except queue.Empty:
                 return
             p, log = self._run(name, task)
-            if name == self.kill_worker and self.killed is None:
+            self.taken[name] = self.taken.get(name, 0) + 1
+            if name == self.kill_worker and self.killed is None and self.taken[name] == self.kill_on_task:
                 made = self._kill_mid_task(p, task)
                 log.close()
                 if made is None:
@@ -323,6 +326,7 @@ class Farm:
                 self.errors.append("%s: task %s exited %s (see %s)" % (name, task["name"], rc, self.log_dir))
             else:
                 self.done.append(task["name"])
+                self.done_by[name] = self.done_by.get(name, 0) + 1
 
     def run(self):
         threads = [threading.Thread(target=self.worker, args=(w,)) for w in ("worker-1", "worker-2")]
@@ -371,7 +375,8 @@ def run_farm_checks(blender, lib, seeds, per_task, renders, workdir):
         return
     print("reference run: %d seeds in %.1f s" % (seeds, time.monotonic() - t0), flush=True)
 
-    farm = Farm(job["tasks"], env, out, logs, kill_first_task_of="worker-1", task_timeout=600)
+    # worker-1 dies in its second task, so both Workers have finished tasks.
+    farm = Farm(job["tasks"], env, out, logs, kill_worker="worker-1", kill_on_task=2, task_timeout=600)
     t0 = time.monotonic()
     try:
         farm.run()
@@ -382,6 +387,8 @@ def run_farm_checks(blender, lib, seeds, per_task, renders, workdir):
     for e in farm.errors:
         check(False, e)
     check(farm.killed is not None, "a Worker was killed mid-task")
+    print("tasks done by each Worker: %s" % farm.done_by, flush=True)
+    check(len(farm.done_by) == 2, "both Workers finished tasks: %s" % farm.done_by)
     if farm.killed:
         name = farm.killed[1]
         check(sum(1 for _, n in farm.runs if n == name) == 2, "the killed task ran again: %s" % name)
