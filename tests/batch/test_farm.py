@@ -36,7 +36,9 @@ REF = os.path.join(OUT, "reference")
 os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
 # The tests' own cluster (state, port) beside any other.
 os.environ["BANYAN_SLURM_DIR"] = os.path.join(OUT, "slurm-state")
-os.environ["BANYAN_SLURM_PORT"] = os.environ.get("BANYAN_TEST_SLURM_PORT", "6917")
+# The port follows the build folder, so two build folders' tests can run at once.
+os.environ["BANYAN_SLURM_PORT"] = os.environ.get(
+    "BANYAN_TEST_SLURM_PORT", str(7000 + 2 * (int(hashlib.sha256(BUILD.encode()).hexdigest(), 16) % 1000)))
 os.environ["SLURM_CONF"] = os.path.join(OUT, "slurm-state", "slurm.conf")
 BLENDER = shutil.which("blender")
 
