@@ -132,6 +132,7 @@ try:
 finally:
     if have_slurm:
         subprocess.run(["sh", os.path.join(SLURM, "cluster_stop.sh")], capture_output=True)
+    shutil.rmtree(OUT, ignore_errors=True)  # a few hundred MB of .glb
 med = {k: statistics.median(v) for k, v in times.items()}
 
 rows = []
