@@ -14,11 +14,12 @@ cd "$here"
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
-# for the add-on's tests in a real window (progress bar, Esc).
+# for the add-on's tests in a real window (progress bar, Esc), Slurm and
+# munge for the batch runner's farm tests (a one-node cluster).
 packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
-          valgrind chromium patchelf xvfb xauth)
+          valgrind chromium patchelf xvfb xauth slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -271,9 +271,11 @@ def _write_atomic(path, data):
 
 def _remove_stale_temps(folder, name):
     """Temporary files a killed task left for `name` (".<name>.XXXXXX.tmp",
-    the library's and atomic_file's pattern). Only the task that owns a
-    seed writes its files, so any such file is a leftover."""
-    for t in glob.glob(os.path.join(glob.escape(folder), "." + glob.escape(name) + ".*.tmp")):
+    the library's and atomic_file's pattern; ".<name>.<pid>.tmp.png", a
+    render's). Only the task that owns a seed writes its files, so any
+    such file is a leftover."""
+    base = os.path.join(glob.escape(folder), "." + glob.escape(name))
+    for t in glob.glob(base + ".*.tmp") + glob.glob(base + ".*.tmp.png"):
         try:
             os.unlink(t)
         except OSError:

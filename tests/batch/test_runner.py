@@ -181,13 +181,16 @@ try:
     stale = os.path.join(out, ".%s.AbC123.tmp" % name3)  # a killed writer's leftover
     with open(stale, "wb") as f:
         f.write(b"half a file")
+    stale_png = os.path.join(out, ".%s.png.4242.tmp.png" % name3[:-4])  # a killed render's leftover
+    with open(stale_png, "wb") as f:
+        f.write(b"half a picture")
     os.remove(os.path.join(out, "manifest", name3[:-4] + ".json"))  # seed 3 lost its record
     rc, log = runner("--preset", PRESET, "--seeds", "3:6", "--out", out, "--texture-size", 64)
     after = snapshot(out)
     check(rc == 0 and sha(glb4) == good4, "a corrupted file is made again, the same bytes")
     check(os.path.isfile(glb5) and sha(glb5) == before[os.path.relpath(glb5, out)][0],
           "a deleted file is made again, the same bytes")
-    check(not os.path.exists(stale), "a stale temporary file is removed")
+    check(not os.path.exists(stale) and not os.path.exists(stale_png), "stale temporary files are removed")
     check(os.path.isfile(os.path.join(out, "manifest", name3[:-4] + ".json")), "a lost record is written again")
     check(all(after[k][0] == before[k][0] for k in before if k.endswith(".glb")), "every .glb as before")
     rc, log = runner("--preset", PRESET, "--seeds", "3:6", "--out", out, "--texture-size", 64)
