@@ -142,6 +142,10 @@ def check_split(first, count, per_task, render=None, extra=None):
         a, b = half_open(opt(args, "--seeds"))
         check(t["commands"][0]["totalStepCount"] == b - a, label + ": a task's steps are its seeds")
         check(opt(args, "--out") == "/out" and opt(args, "--preset") == "p", label + ": preset and out passed")
+        check(opt(args, "--texture-size") == str((extra or {}).get("texture_size", 1024)),
+              label + ": texture size passed")
+        check(("--no-textures" in args) == ((extra or {}).get("textures") is False),
+              label + ": --no-textures exactly when textures is false")
         rs = opt(args, "--render-seeds")
         kind = (t["type"], t["commands"][0]["name"])
         check(kind == (("misc", "exec") if rs is None else ("blender", "blender-render")),
@@ -214,6 +218,7 @@ def check_refusals():
         ("engine", "CYCLES"), ("render_seeds", "4:2"), ("render_seeds", "4:4"), ("render_seeds", "x"),
         ("render_seeds", "1:"), ("output_dir", ""), ("output_dir", "   "), ("preset", ""), ("size", 8),
         ("size", 5000), ("threads", -1), ("merge_manifest", "yes"), ("runner", ""), ("python", 3),
+        ("texture_size", 100), ("texture_size", 32), ("texture_size", 16384), ("textures", 0),
     ]
     for key, value in bad:
         p = compile_job(dict(base, **{key: value}), expect_ok=False)
@@ -235,6 +240,7 @@ def run_compile_checks():
                                     (100, 1, 1, (100, 101)), (0, 40, 40, (38, 60)), (5, 17, 4, (0, 6)),
                                     (0, 12, 5, (20, 30))]:
         check_split(first, count, k, render)
+    check_split(0, 10, 3, (2, 5), {"textures": False, "texture_size": 64})
     check_command_shape(defaults)
     check_refusals()
 
@@ -362,13 +368,13 @@ def run_farm_checks(blender, lib, seeds, per_task, renders, workdir):
     os.makedirs(logs)
     settings = {"preset": PRESET, "first_seed": 0, "seed_count": seeds, "seeds_per_task": per_task,
                 "output_dir": "{jobs}/farm", "render_seeds": "0:%d" % renders, "size": 64,
-                "engine": "WORKBENCH", "threads": 1}
+                "engine": "WORKBENCH", "threads": 1, "texture_size": 64}
     job = compile_job(settings, {"blender": blender, "blenderArgs": "-b -y", "banyan": ADDON, "jobs": workdir})
 
     t0 = time.monotonic()
     ref_argv = [blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", runner, "--",
                 "--preset", PRESET, "--seeds", "0:%d" % seeds, "--out", ref, "--render-seeds", "0:%d" % renders,
-                "--size", "64", "--engine", "WORKBENCH", "--threads", "1"]
+                "--size", "64", "--engine", "WORKBENCH", "--threads", "1", "--texture-size", "64"]
     with open(os.path.join(logs, "reference.log"), "w") as log:
         rc = subprocess.run(ref_argv, stdout=log, stderr=subprocess.STDOUT, env=env, timeout=900).returncode
     if not check(rc == 0, "the single-machine reference run exits 0 (see %s/reference.log)" % logs):

@@ -35,6 +35,10 @@ const JOB_TYPE = {
           description: "Render width and height in pixels" },
         { key: "engine", type: "string", default: "WORKBENCH", choices: ["WORKBENCH", "EEVEE"],
           description: "Render engine" },
+        { key: "textures", type: "bool", default: true,
+          description: "Bark and leaf textures in the .glb (off: --no-textures)" },
+        { key: "texture_size", type: "int32", default: 1024, propargs: { min: 64, max: 8192 },
+          description: "glTF texture size, a power of two" },
         { key: "threads", type: "int32", default: 1, propargs: { min: 0, max: 1024 },
           description: "Generator threads per task (0: all cores); the bytes do not depend on it" },
         { key: "merge_manifest", type: "bool", default: true,
@@ -93,6 +97,14 @@ function compileJob(job) {
     const outDir = stringSetting(job, "output_dir");
     const size = intSetting(job, "size", 16, 4096);
     const threads = intSetting(job, "threads", 0, 1024);
+    const textureSize = intSetting(job, "texture_size", 64, 8192);
+    if ((textureSize & (textureSize - 1)) !== 0) {
+        throw `banyan-batch: setting texture_size must be a power of two in [64, 8192], got ${textureSize}`;
+    }
+    const textures = settingOf(job, "textures");
+    if (typeof textures !== "boolean") {
+        throw `banyan-batch: setting textures must be true or false, got ${JSON.stringify(textures)}`;
+    }
     const merge = settingOf(job, "merge_manifest");
     if (typeof merge !== "boolean") {
         throw `banyan-batch: setting merge_manifest must be true or false, got ${JSON.stringify(merge)}`;
@@ -129,7 +141,8 @@ function compileJob(job) {
                 renders = true;
             }
         }
-        args.push("--threads", String(threads));
+        args.push("--threads", String(threads), "--texture-size", String(textureSize));
+        if (!textures) args.push("--no-textures");
 
         const task = runnerTask(`seeds-${a}-${b}`, renders ? "" : python, runner, args, b - a);
         job.addTask(task);
