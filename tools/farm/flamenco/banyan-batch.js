@@ -1,6 +1,7 @@
 // Flamenco job type "banyan-batch": N seeds of one banyan preset, split into
-// tasks of K seeds; each task runs banyan's batch runner through Blender on a
-// Worker. Copy this file into the `scripts/` folder beside flamenco-manager.
+// tasks of K seeds; each task runs banyan's batch runner on a Worker (through
+// Blender when it renders). Copy this file into the `scripts/` folder beside
+// flamenco-manager; docs/batch.md ("Flamenco") is the guide.
 //
 // The runner (blender_addon/banyan/batch_run.py) is idempotent and writes every
 // file by rename, so a task that a killed Worker leaves half done is simply run
@@ -25,7 +26,7 @@ const JOB_TYPE = {
         { key: "seed_count", type: "int32", required: true, default: 40, propargs: { min: 1 },
           description: "Number of seeds: first_seed .. first_seed + seed_count - 1" },
         { key: "seeds_per_task", type: "int32", default: 5, propargs: { min: 1 },
-          description: "Seeds per task (K): one Blender start per task" },
+          description: "Seeds per task (K): one process start and library load per task" },
         { key: "output_dir", type: "string", subtype: "dir_path", required: true,
           default: "{jobs}/banyan-batch",
           description: "Output folder on shared storage, as the Workers see it ({jobs} is the shared storage path)" },
