@@ -202,6 +202,41 @@ def bare_edges(d, topo=None, evaluate=True):
     return dt
 
 
+def floor_differences(d, topo, objs):
+    """What the add-on's objects hold that bare_edges' mesh of d would not,
+    or the other way round: element counts and attribute names (a floor
+    that hands off fewer or more arrays than the add-on is no floor).
+    [] when they match; only for one-object results."""
+    meshes = [o.data for o in objs if o.type == 'MESH']
+    if len(meshes) != 1:
+        return ["%d mesh objects, not one" % len(meshes)]
+    me, out = meshes[0], []
+    for what, have, want in (("vertices", len(me.vertices), d.vertex_count),
+                             ("edges", len(me.edges), len(topo[1]) // 2),
+                             ("polygons", len(me.polygons), d.index_count // 3),
+                             ("material slots", len(me.materials), len(d.materials))):
+        if have != want:
+            out.append("%s: add-on %d, floor %d" % (what, have, want))
+    attrs = d.attributes or {}
+    floor = {n for n in attrs if n not in PIVOT_SCALARS or not all(k in attrs for k in PIVOT_SCALARS)}
+    if all(k in attrs for k in PIVOT_SCALARS):
+        floor.add("wind_pivot")
+    if d.corner_uvs is not None:
+        floor.add("UVMap")
+    if d.colors is not None:
+        floor.add("Color")
+    if _material_slots(d) is not None:
+        floor.add("material_index")
+    addon = {a.name for a in me.attributes if not a.name.startswith(".") and a.name not in (
+        "position", "sharp_face")} | {u.name for u in me.uv_layers}
+    addon = {n[len("banyan_"):] if n.startswith("banyan_") and n[len("banyan_"):] in floor else n for n in addon}
+    if addon - floor:
+        out.append("only the add-on writes %s" % ", ".join(sorted(addon - floor)))
+    if floor - addon:
+        out.append("only the floor writes %s" % ", ".join(sorted(floor - addon)))
+    return out
+
+
 def bare(d, full=False, evaluate=False):
     """Blender's own hand-off of d: positions and indices, and with full
     also the UV, colour and attribute arrays the operator sets; with

@@ -258,6 +258,7 @@ class BanyanRun:
         self.first_ev, self.e2e_ev, self.bare_edges = Series(), Series(), Series()
         self.d = None
         self.topo = None  # the edges handed to the bare_edges floor (computed once, off its clock)
+        self.floor_diff = None  # blender_handoff.floor_differences after the first run
         self.stem = self.leaves = 0
 
     def once(self, lib_call, api_call, grow_call=None):
@@ -274,6 +275,11 @@ class BanyanRun:
         self.e2e.time(api_call)
         self.first_ev.time(HO.first_evaluation, new_objects(keep))
         self.e2e_ev.t.append(self.e2e.t[-1] + self.first_ev.t[-1])
+        if self.floor_diff is None:  # once: does the floor hand Blender what the add-on does?
+            self.floor_diff = HO.floor_differences(self.d, self.topo, new_objects(keep))
+            for line in self.floor_diff:
+                print("peers.py: WARNING %s: the same-edges floor differs from the add-on's mesh: %s" % (
+                    self.label, line), flush=True)
         HO.clear_generated(keep)
 
     @property
@@ -909,6 +915,11 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
         w("| %s | %s | %s | %s | %s | %s | %.2f | %.2f |" % (
             b.label, b.lib.fmt(1e3, "ms", 2), b.e2e.fmt(1e3, "ms", 2), b.first_ev.fmt(1e3, "ms", 2),
             b.e2e_ev.fmt(1e3, "ms", 2), b.bare_edges.fmt(1e3, "ms", 2), b.e2e_over_floor(), b.handoff_edges()))
+    w("")
+    diffs = ["%s: %s" % (b.label, "; ".join(b.floor_diff)) for b in roots + [ban_i, ban_t] if b.floor_diff]
+    w("The floor's mesh against the add-on's (`blender_handoff.floor_differences`: element counts, material "
+      "slots, attribute and UV layer names): %s." % ("the same for every run above" if not diffs else
+                                                     "**differs**: " + " | ".join(diffs)))
     w("")
 
     # ---- memory
