@@ -14,6 +14,14 @@ in one Blender process, on one machine, ratios from the same run:
   6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
   7. roots C  build/tests/bench_roots: the fused surface and the tubes (issue 18)
   8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md (issue 22)
+  9. ivy large   build/tests/bench_ivy --large: the 12 m wall's per-bud table (issue 23)
+ 10. avenue      build/banyan avenue (1,000 trees) under /usr/bin/time -v: generate,
+                 write, peak RSS (issue 23)
+Sections 9 and 10 say "not built" and are skipped when their program or
+flag is missing. Issue 23's targets come first, as verdict lines; end to
+end there includes Blender's first evaluation of the new objects on both
+sides, and the hand-off is judged against a floor given the same edges
+(blender_handoff.bare_edges); the old columns stay beside the new ones.
 
 Every time is the median of RUNS runs with min and max; banyan and the
 peer alternate within each run so both see the same machine load. Writes
@@ -157,12 +165,23 @@ def wall():
 
 # -------------------------------------------------------------------- peers
 class PeerRun:
-    """One peer configuration: operator time, conversion time, figures."""
+    """One peer configuration: operator time, conversion time, figures.
+    e2e = operator + convert (the old column); e2e_ev adds first_eval, the
+    same first evaluation banyan's e2e_ev adds (the operators' closing
+    view-layer updates have already evaluated the new objects, so it is
+    small here)."""
 
     def __init__(self, label, note):
         self.label, self.note = label, note
         self.op, self.conv, self.e2e = Series(), Series(), Series()
+        self.first_ev, self.e2e_ev = Series(), Series()
         self.stem = self.leaves = self.verts = self.tris = 0
+
+    def evaluate(self, keep):
+        """Times the first evaluation of what the run made; closes e2e and e2e_ev."""
+        self.first_ev.time(HO.first_evaluation, new_objects(keep))
+        self.e2e.t.append(self.op.t[-1] + self.conv.t[-1])
+        self.e2e_ev.t.append(self.e2e.t[-1] + self.first_ev.t[-1])
 
 
 def ivygen_once(run, host, max_length, cursor=WALL_CURSOR, inspect=None):
@@ -180,7 +199,7 @@ def ivygen_once(run, host, max_length, cursor=WALL_CURSOR, inspect=None):
     if inspect:
         inspect(curve, leaf)
     run.conv.time(convert_to_mesh, curve)
-    run.e2e.t.append(run.op.t[-1] + run.conv.t[-1])
+    run.evaluate(keep)
     run.leaves = len(leaf.data.polygons) if leaf else 0
     run.verts, run.tris = mesh_counts(new_objects(keep))
     HO.clear_generated(keep)
@@ -193,7 +212,7 @@ def sapling_once(run, kw):
     tree = next(o for o in made if o.type == 'CURVE')
     run.stem = curve_length(tree.data)
     run.conv.time(convert_to_mesh, tree)
-    run.e2e.t.append(run.op.t[-1] + run.conv.t[-1])
+    run.evaluate(keep)
     leaf = next((o for o in made if o.name.startswith("leaves")), None)
     run.leaves = len(leaf.data.vertices) // SAPLING_LEAF_VERTS if leaf else 0
     run.verts, run.tris = mesh_counts(new_objects(keep))
@@ -227,13 +246,19 @@ def match_ivygen(target, key, host, probes=7, tol=0.03, cursor=WALL_CURSOR):
 # ------------------------------------------------------------------- banyan
 class BanyanRun:
     """banyan's library call, growth (ivy), end to end via banyan.api, and
-    Blender's bare hand-off of the same arrays."""
+    Blender's bare hand-off of the same arrays. e2e is the api call alone
+    (the old column); e2e_ev adds the first evaluation of its objects
+    (blender_handoff.first_evaluation), timed right after it in the same
+    run. bare_edges: the same-edges floor, first evaluation included."""
 
     def __init__(self, label):
         self.label = label
         self.lib, self.grow, self.e2e, self.bare, self.bare_full = Series(), Series(), Series(), Series(), Series()
         self.copy = Series()  # the binding's call with its copy-out into Python arrays
+        self.first_ev, self.e2e_ev, self.bare_edges = Series(), Series(), Series()
         self.d = None
+        self.topo = None  # the edges handed to the bare_edges floor (computed once, off its clock)
+        self.floor_diff = None  # blender_handoff.floor_differences after the first run
         self.stem = self.leaves = 0
 
     def once(self, lib_call, api_call, grow_call=None):
@@ -242,9 +267,19 @@ class BanyanRun:
             self.grow.time(grow_call)
         self.lib.time(native, lib_call)
         self.d = self.copy.time(lib_call)
+        if self.topo is None:
+            self.topo = HO.triangle_topology(self.d)
         self.bare.t.append(HO.bare(self.d))
         self.bare_full.t.append(HO.bare(self.d, full=True))
+        self.bare_edges.t.append(HO.bare_edges(self.d, self.topo))
         self.e2e.time(api_call)
+        self.first_ev.time(HO.first_evaluation, new_objects(keep))
+        self.e2e_ev.t.append(self.e2e.t[-1] + self.first_ev.t[-1])
+        if self.floor_diff is None:  # once: does the floor hand Blender what the add-on does?
+            self.floor_diff = HO.floor_differences(self.d, self.topo, new_objects(keep))
+            for line in self.floor_diff:
+                print("peers.py: WARNING %s: the same-edges floor differs from the add-on's mesh: %s" % (
+                    self.label, line), flush=True)
         HO.clear_generated(keep)
 
     @property
@@ -257,6 +292,15 @@ class BanyanRun:
 
     def handoff(self, full=True):
         return (self.e2e.med - self.lib.med) / (self.bare_full if full else self.bare).med
+
+    def handoff_edges(self):
+        """Issue 23's hand-off: (end to end with first evaluation - library)
+        over the same-edges floor with its first evaluation."""
+        return (self.e2e_ev.med - self.lib.med) / self.bare_edges.med
+
+    def e2e_over_floor(self):
+        """End to end with first evaluation over library + the same-edges floor."""
+        return self.e2e_ev.med / (self.lib.med + self.bare_edges.med)
 
 
 def _generate_and_free(func, *args):
@@ -438,6 +482,115 @@ def hosts_figures(outs):
             find(outs["bench_ivy"], r"mesh / box: [0-9.]+x wall, ([0-9.]+)x CPU"))
 
 
+# ------------------------------------------- issue 23: C figures from other programs
+IVY_LARGE_ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s*$")
+# Issue 23's command; BANYAN_BENCH_AVENUE_SET adds --set KEY=VALUE pairs
+# (space-separated) when a workload must be changed by hand, and is named.
+AVENUE_1000 = ["avenue", "--set", "placement=count", "--set", "count=500", "--set", "max_vertices=100000000",
+               "--threads", "2", "--stats"]
+for _kv in os.environ.get("BANYAN_BENCH_AVENUE_SET", "").split():
+    AVENUE_1000 += ["--set", _kv]
+
+
+def section_ivy_large():
+    """Issue 23 (s23-ivy's figure): `build/tests/bench_ivy --large`, the
+    per-bud table of the 12 m x 12 m wall. Returns {"text", "rows"} or
+    {"skip": reason} when the program or its --large mode is not built,
+    or it fails. rows: (buds, step, wall s, CPU s, us/bud cumulative,
+    us/bud marginal, CPU us/bud marginal), parsed from the table."""
+    exe = os.path.join(BUILD, "tests", "bench_ivy")
+    if not os.path.exists(exe):
+        return {"skip": "not built: %s does not exist" % exe}
+    with open(exe, "rb") as f:
+        if b"--large" not in f.read():
+            return {"skip": "not built: this build's `bench_ivy` has no `--large` mode"}
+    try:
+        res = subprocess.run([exe, "--large"], capture_output=True, text=True, timeout=3600)
+    except subprocess.TimeoutExpired:
+        return {"skip": "failed: `bench_ivy --large` ran past an hour"}
+    if res.returncode:
+        return {"skip": "failed: `bench_ivy --large` exited with %d (%s)" % (
+            res.returncode, (res.stderr.strip().splitlines() or ["no message"])[-1])}
+    rows = [tuple(float(x) for x in m.groups()) for m in map(IVY_LARGE_ROW.match, res.stdout.splitlines()) if m]
+    print(res.stdout, flush=True)
+    return {"text": res.stdout, "rows": rows}
+
+
+def _time_v(stderr, label):
+    m = re.search(r"^\s*%s:\s*(\S+)\s*$" % re.escape(label), stderr, re.M)
+    return m.group(1) if m else None
+
+
+def _clock(text):
+    """/usr/bin/time's "h:mm:ss" or "m:ss.ss" as seconds."""
+    out = 0.0
+    for part in text.split(":"):
+        out = out * 60 + float(part)
+    return out
+
+
+def section_avenue_write(runs=3):
+    """Issue 23 (s23-glb and s23-mem's figure): the 1,000-tree avenue
+    (`banyan avenue --set placement=count --set count=500 --set
+    max_vertices=100000000 --threads 2 --stats -o X.glb`) under
+    `/usr/bin/time -v`, `runs` times. Returns {"runs": [...]} or
+    {"skip": reason}. Each run: generate and write s (the CLI's --stats
+    time_ms), wall, user and system s, peak RSS and file bytes."""
+    exe = os.path.join(BUILD, "banyan")
+    if not os.path.exists(exe):
+        return {"skip": "not built: %s does not exist" % exe}
+    if not os.path.exists("/usr/bin/time"):
+        return {"skip": "not measured: /usr/bin/time is missing (Debian package `time`)"}
+    import tempfile
+    out = []
+    for _ in range(runs):
+        with tempfile.TemporaryDirectory(prefix="banyan_bench_") as tmp:
+            glb = os.path.join(tmp, "avenue_1000.glb")
+            try:
+                res = subprocess.run(["/usr/bin/time", "-v", exe] + AVENUE_1000 + ["-o", glb], capture_output=True,
+                                     text=True, timeout=1800)
+            except subprocess.TimeoutExpired:
+                return {"skip": "failed: the 1,000-tree avenue ran past 30 min"}
+            if res.returncode or not os.path.exists(glb):
+                said = [l.strip() for l in (res.stdout + res.stderr).splitlines()
+                        if l.startswith("banyan") and not l.startswith("\t")]
+                return {"skip": "failed: the CLI exited with %d: %s" % (res.returncode, (said or ["no message"])[0])}
+            stats = None
+            for line in reversed(res.stdout.splitlines()):
+                if line.startswith("{"):
+                    with contextlib.suppress(ValueError):
+                        stats = json.loads(line)
+                        break
+            tm = (stats or {}).get("time_ms") or {}
+            rss = _time_v(res.stderr, "Maximum resident set size (kbytes)")
+            wall = _time_v(res.stderr, "Elapsed (wall clock) time (h:mm:ss or m:ss)")
+            r = {"generate": tm.get("generate", float("nan")) / 1e3, "write": tm.get("write", float("nan")) / 1e3,
+                 "wall": _clock(wall) if wall else float("nan"),
+                 "user": float(_time_v(res.stderr, "User time (seconds)") or "nan"),
+                 "sys": float(_time_v(res.stderr, "System time (seconds)") or "nan"),
+                 "rss": 1024.0 * float(rss) if rss else float("nan"), "bytes": os.path.getsize(glb),
+                 "triangles": (stats or {}).get("triangles"), "trees": (stats or {}).get("trees")}
+            out.append(r)
+            print("avenue 1,000 trees: %s" % r, flush=True)
+    return {"runs": out}
+
+
+def avenue_medians(av):
+    return {k: statistics.median(r[k] for r in av["runs"]) for k in ("generate", "write", "wall", "user", "sys",
+                                                                      "rss", "bytes")}
+
+
+def ivy_large_flatness(rows):
+    """(max / min of the CPU us per bud between checkpoints, max / min of
+    the cumulative us per bud, buds of the last row) of the large wall's
+    table, or None when it has fewer than two rows."""
+    if len(rows) < 2:
+        return None
+    marg = [r[6] for r in rows]
+    cum = [r[4] for r in rows]
+    return max(marg) / min(marg), max(cum) / min(cum), int(rows[-1][0])
+
+
 # ------------------------------------------------------------------- report
 def machine():
     model = "?"
@@ -465,6 +618,21 @@ def mtris(n, s):
     return n / s / 1e6
 
 
+def e2e_ratio(ban, peer, first_eval=True):
+    """banyan / peer triangles per second end to end, with (issue 23) or
+    without (the old column) the first evaluation on both sides."""
+    if first_eval:
+        return (ban.tris / ban.e2e_ev.med) / (peer.tris / peer.e2e_ev.med)
+    return (ban.tris / ban.e2e.med) / (peer.tris / peer.e2e.med)
+
+
+def stem_rate_mesh(ban, peer):
+    """banyan / peer metres of stem per second: banyan's library + mesh
+    (the binding's generate call with its copy-out) against the peer's
+    whole operator."""
+    return (ban.stem / ban.copy.med) / (peer.stem / peer.op.med)
+
+
 def at_floor(ban, peer):
     """The end-to-end tris/s ratio if banyan's end to end took exactly the bare floor."""
     return (ban.tris / ban.bare.med) / (peer.tris / peer.e2e.med)
@@ -474,10 +642,141 @@ def verdict(ok):
     return "**met**" if ok else "**missed**"
 
 
-def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=("", (0.0, 0.0)), roots_c=""):
+def verdict23(ok):
+    return "**met**" if ok else "**not met**"
+
+
+def memory_total():
+    with contextlib.suppress(OSError, ValueError, IndexError):
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemTotal:"):
+                    return int(line.split()[1]) / 1024 / 1024
+    return float("nan")
+
+
+def kept_section(name, run_model):
+    """A section measured by hand (tests/bench/peers/<name>), copied in. It
+    must say its own machine (a "Machine:" line); a missing one is said."""
+    path = os.path.join(HERE, name)
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        text = f.read().rstrip()
+    lines = text.splitlines()
+    if "Machine:" not in text:
+        lines.insert(1, "")
+        lines.insert(2, "*Machine not stated in `tests/bench/peers/%s`: not measured in this run (%s); its "
+                        "figures compare with each other only.*" % (name, run_model))
+    return lines + [""]
+
+
+def targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue):
+    """Issue 23's targets, one verdict line each."""
+    L = []
+    w = L.append
+    ig_stem, ig_tris = peers_i[1], peers_i[2]
+    w("## Targets (issue 23)")
+    w("")
+    w("Measured in this run (section numbers below); *e2e+ev*: end to end with Blender's first evaluation of "
+      "the new objects on both sides; *edges*: the same-edges floor (see Terms). The old figures (without the "
+      "first evaluation, against *bare+*) stay in their sections.")
+    w("")
+    w("| target | figure | verdict |")
+    w("|---|---|---|")
+    r_new, r_old = e2e_ratio(ban_i, ig_stem), e2e_ratio(ban_i, ig_stem, False)
+    w("| ivy e2e+ev >= 5x IvyGen tris/s at matched stem length (section 1) | %.1fx (without the first evaluation "
+      "%.1fx; against the triangle-matched IvyGen %.1fx) | %s |" % (
+          r_new, r_old, e2e_ratio(ban_i, ig_tris), verdict23(r_new >= 5)))
+    for r in peers_t:
+        if not r.leaves:
+            continue
+        re_new, re_old = e2e_ratio(ban_t, r), e2e_ratio(ban_t, r, False)
+        w("| keyaki e2e+ev >= 10x Sapling tris/s with leaves (%s; section 2) | %.1fx (without the first "
+          "evaluation %.1fx) | %s |" % (r.label, re_new, re_old, verdict23(re_new >= 10)))
+    rm, rg = stem_rate_mesh(ban_i, ig_stem), (ban_i.stem / ban_i.grow.med) / (ig_stem.stem / ig_stem.op.med)
+    w("| ivy library (growth + mesh + copy-out) >= 40x IvyGen's operator per metre of stem, stem-matched "
+      "(section 1) | %.0fx (growth alone %.0fx) | %s |" % (rm, rg, verdict23(rm >= 40)))
+    h = ban_t.handoff_edges()
+    w("| keyaki e2e+ev within 1.3x the same-edges floor: (e2e+ev - library) / edges (section 3) | %.2f "
+      "(e2e+ev / (library + edges) %.2f; old hand-off against bare+ %.2f) | %s |" % (
+          h, ban_t.e2e_over_floor(), ban_t.handoff(), verdict23(h <= 1.3)))
+    flat = ivy_large_flatness(ivy_large.get("rows", []))
+    if "skip" in ivy_large:
+        w("| ivy on the 12 m x 12 m wall: cost per bud flat within 1.5x from 50k to 600k buds (section 9) | %s | "
+          "not measured |" % ivy_large["skip"])
+    elif flat is None:
+        w("| ivy on the 12 m x 12 m wall: cost per bud flat within 1.5x from 50k to 600k buds (section 9) | "
+          "table not parsed (output copied in section 9) | not judged |")
+    else:
+        ok = flat[0] <= 1.5 and flat[2] >= 550000
+        w("| ivy on the 12 m x 12 m wall: cost per bud flat within 1.5x from 50k to 600k buds (section 9) | "
+          "CPU us per bud between checkpoints: max / min %.2f (cumulative %.2f), up to %d buds | %s |" % (
+              flat[0], flat[1], flat[2], verdict23(ok)))
+    if "skip" in avenue:
+        w("| 1,000-tree avenue: peak RSS <= 1.3x the file, write <= generate (section 10) | %s | not measured |"
+          % avenue["skip"])
+    else:
+        m = avenue_medians(avenue)
+        w("| 1,000-tree avenue: CLI peak RSS <= 1.3x the .glb (section 10) | %.0f MB for %.0f MB: %.2fx | %s |" % (
+            m["rss"] / 1e6, m["bytes"] / 1e6, m["rss"] / m["bytes"], verdict23(m["rss"] <= 1.3 * m["bytes"])))
+        w("| 1,000-tree avenue: write time <= generate time (section 10) | write %.2f s, generate %.2f s | %s |" % (
+            m["write"], m["generate"], verdict23(m["write"] <= m["generate"])))
+    for c in mem["cases"]:
+        if c["how"] != "api":
+            continue
+        f = c["triangles"] / c["seconds"][0] / c["bound_tris_per_s"]
+        w("| one-shot generate call writes >= 25%% of the store-loop bound (tube sweeper, %s, api; section 4) | "
+          "%.1f%% | %s |" % (c["workload"], 100 * f, verdict23(f >= 0.25)))
+    w("")
+    return L
+
+
+def ivy_large_lines(ivy_large, run_model):
+    L = ["## 9. Ivy at scale: the 12 m x 12 m wall (issue 23)", ""]
+    if "skip" in ivy_large:
+        L += ["`build/tests/bench_ivy --large`: %s; this section is skipped." % ivy_large["skip"], ""]
+        return L
+    L += ["`build/tests/bench_ivy --large` (tests/bench/bench_ivy.c), run once in this run (%s): growth alone of "
+          "`presets/ivy_wall_large.json`, one step a call, timed at the bud-count checkpoints. Target: cost per "
+          "bud flat within 1.5x from 50k to 600k buds (judged on CPU microseconds per bud between checkpoints, "
+          "which other jobs on the machine disturb less than wall time)." % run_model, "", "```",
+          ivy_large["text"].strip(), "```", ""]
+    return L
+
+
+def avenue_lines(avenue, run_model):
+    L = ["## 10. The 1,000-tree avenue: generate, write, peak memory (issue 23)", ""]
+    cmd = "banyan " + " ".join(AVENUE_1000) + " -o X.glb"
+    if "skip" in avenue:
+        L += ["`%s`: %s; this section is skipped." % (cmd, avenue["skip"]), ""]
+        return L
+    L += ["`/usr/bin/time -v build/%s` (%s), %d runs in this run; generate and write from the CLI's `--stats` "
+          "(`time_ms`), peak RSS from `time -v` (Maximum resident set size). Targets: peak RSS at most 1.3x the "
+          "file, write at most generate." % (cmd, run_model, len(avenue["runs"])), "",
+          "| run | trees | triangles | generate s | write s | wall s | user s | system s | peak RSS MB | .glb MB | "
+          "RSS / file |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for k, r in enumerate(avenue["runs"]):
+        L.append("| %d | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f | %.2f |" % (
+            k + 1, r["trees"], r["triangles"], r["generate"], r["write"], r["wall"], r["user"], r["sys"],
+            r["rss"] / 1e6, r["bytes"] / 1e6, r["rss"] / r["bytes"]))
+    m = avenue_medians(avenue)
+    L.append("| median | | | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f | %.2f |" % (
+        m["generate"], m["write"], m["wall"], m["user"], m["sys"], m["rss"] / 1e6, m["bytes"] / 1e6,
+        m["rss"] / m["bytes"]))
+    L.append("")
+    return L
+
+
+def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=("", (0.0, 0.0)), roots_c="",
+           ivy_large=None, avenue=None, started=None):
     ban_i, peers_i = ivy
     ban_t, peers_t = tree
     model, cores = machine()
+    ivy_large = ivy_large or {"skip": "not run"}
+    avenue = avenue or {"skip": "not run"}
+    started = started or datetime.datetime.now(datetime.timezone.utc)
+    run_model = "%s, %d logical cores, %s" % (model, cores, started.strftime("%Y-%m-%d"))
     L = []
     w = L.append
     w("# Benchmarks against the peers (issue 9)")
@@ -495,10 +794,12 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "`BANYAN_LIB=build/libbanyan.so` and runs `blender -b --factory-startup --python "
       "tests/bench/peers/peers.py -- %d`." % (RUNS, RUNS))
     w("- Blender %s, Python %s; banyan %s." % (bpy.app.version_string, platform.python_version(), git_rev()))
-    w("- Machine: %s, %d logical cores, %s. Load average (1/5/15 min) %.2f %.2f %.2f at the start, "
+    w("- Machine: %s (`/proc/cpuinfo` model name), %d logical cores, %.1f GB of memory, %s. Load average (1/5/15 min) %.2f %.2f %.2f at the start, "
       "%.2f %.2f %.2f at the end (the machine is shared); %.0f s in all." %
-      (model, cores, platform.platform(), *load0, *load1, elapsed))
-    w("- Date: %s." % datetime.date.today().isoformat())
+      (model, cores, memory_total(), platform.platform(), *load0, *load1, elapsed))
+    w("- Date: %s, started %s UTC." % (started.strftime("%Y-%m-%d"), started.strftime("%H:%M")))
+    w("- Every section below was measured in this run on this machine, except those copied in from runs by hand "
+      "(section 8 and the profiles), which name their own machine and date.")
     w("")
     w("Terms. *library*: libbanyan's generate call, made through the add-on's ctypes binding and followed by "
       "`banyan_mesh_free`: what a script calling the library pays. *copy-out*: the binding's copy of the "
@@ -512,7 +813,23 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "plus one object (`tests/bench/blender_handoff.py`); *bare+* also sets the UV, colour and attribute "
       "arrays the add-on sets. *Hand-off* = (end to end - library) / bare+.")
     w("")
+    w("Issue 23 adds, beside those columns: *first evaluation*: Blender's first depsgraph evaluation of the new "
+      "objects, as a user pays it before seeing them: `bpy.context.evaluated_depsgraph_get()` (the view-layer "
+      "update that `bpy.ops` runs after every operator) and each new object's `evaluated_get(dg).data` fetched "
+      "(its modifier stack, if any, evaluated by then). The peers pay it inside their operators (`bpy.ops` "
+      "updates the view layer after IvyGen's, Sapling's and the convert operator), banyan's `api` call does not; "
+      "both sides get the same call after their end to end, timed in the same run. *e2e+ev* = end to end + "
+      "first evaluation. *edges*: Blender's floor given the same edges as the add-on "
+      "(`blender_handoff.bare_edges`): `foreach_set` of the same vertices, edges (from `banyan_triangle_edges`, "
+      "computed off the clock), loops with their edge indices, triangles, material slots and indices, smooth "
+      "shading (Blender's cheapest stock way for its version and size), the UVs, colours and every attribute "
+      "array the library returns (the wind pivot as one vector), one linked object and the same first "
+      "evaluation. *Hand-off (issue 23)* = (e2e+ev - library) / edges. *library + mesh*: for ivy, the binding's "
+      "`generate` call with its copy-out (growth, mesh and copy into Python arrays), what the stem-rate target "
+      "of issue 23 counts.")
+    w("")
 
+    L.extend(targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue))
     # ---- ivy
     w("## 1. Ivy: banyan vs IvyGen on a 3 m x 3 m wall")
     w("")
@@ -523,25 +840,27 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "splines' lengths (IvyGen), of the skeleton's internode edges (banyan). Leaves: IvyGen's leaf quads; "
       "banyan's 12-triangle leaf blades on 6-triangle petioles (one per bud)." % (WALL_CURSOR,))
     w("")
-    w("| run | setting | stem m | leaves | vertices | triangles | operator / library | growth | end to end | "
-      "m stem/s | M tris/s e2e |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|")
-    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %s | %.0f (growth) | %.2f |" % (
-        ban_i.label, ban_i.stem, ban_i.leaves, ban_i.verts, ban_i.tris, ban_i.lib.fmt(), ban_i.grow.fmt(),
-        ban_i.e2e.fmt(), ban_i.stem / ban_i.grow.med, mtris(ban_i.tris, ban_i.e2e.med)))
+    w("| run | setting | stem m | leaves | vertices | triangles | operator / library | growth | "
+      "library + mesh | end to end | e2e+ev | m stem/s | M tris/s e2e | M tris/s e2e+ev |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %s | %s | %s | %.0f (growth), %.0f (library + mesh) | "
+      "%.2f | %.2f |" % (
+          ban_i.label, ban_i.stem, ban_i.leaves, ban_i.verts, ban_i.tris, ban_i.lib.fmt(), ban_i.grow.fmt(),
+          ban_i.copy.fmt(), ban_i.e2e.fmt(), ban_i.e2e_ev.fmt(), ban_i.stem / ban_i.grow.med,
+          ban_i.stem / ban_i.copy.med, mtris(ban_i.tris, ban_i.e2e.med), mtris(ban_i.tris, ban_i.e2e_ev.med)))
     for r in peers_i:
-        w("| %s | %s | %.0f | %d | %d | %d | %s | - | %s | %.0f (operator) | %.2f |" % (
-            r.label, r.note, r.stem, r.leaves, r.verts, r.tris, r.op.fmt(), r.e2e.fmt(), r.stem / r.op.med,
-            mtris(r.tris, r.e2e.med)))
+        w("| %s | %s | %.0f | %d | %d | %d | %s | - | - | %s | %s | %.0f (operator) | %.2f | %.2f |" % (
+            r.label, r.note, r.stem, r.leaves, r.verts, r.tris, r.op.fmt(), r.e2e.fmt(), r.e2e_ev.fmt(),
+            r.stem / r.op.med, mtris(r.tris, r.e2e.med), mtris(r.tris, r.e2e_ev.med)))
     w("")
     stem_rate = ban_i.stem / ban_i.grow.med
-    w("| ratio banyan / IvyGen | stem length/s, growth vs operator | tris/s, library vs operator | "
-      "tris/s end to end |")
-    w("|---|---|---|---|")
+    w("| ratio banyan / IvyGen | stem length/s, growth vs operator | stem length/s, library + mesh vs operator | "
+      "tris/s, library vs operator | tris/s end to end | tris/s e2e+ev |")
+    w("|---|---|---|---|---|---|")
     for r in peers_i:
-        w("| vs %s | %.0fx | %.0fx | %.1fx |" % (
-            r.label, stem_rate / (r.stem / r.op.med), (ban_i.tris / ban_i.lib.med) / (r.tris / r.op.med),
-            (ban_i.tris / ban_i.e2e.med) / (r.tris / r.e2e.med)))
+        w("| vs %s | %.0fx | %.0fx | %.1fx | %.1fx | %.1fx |" % (
+            r.label, stem_rate / (r.stem / r.op.med), stem_rate_mesh(ban_i, r),
+            (ban_i.tris / ban_i.lib.med) / (r.tris / r.op.med), e2e_ratio(ban_i, r, False), e2e_ratio(ban_i, r)))
     w("")
 
     # ---- tree
@@ -554,22 +873,23 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "leaf triangles are counted once on both sides. Branch length: the curve splines' lengths "
       "(Sapling), the skeleton's edges (banyan).")
     w("")
-    w("| run | setting | branch m | leaves | vertices | triangles | operator / library | end to end | "
-      "M tris/s library/op | M tris/s e2e |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
-    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %.2f | %.2f |" % (
+    w("| run | setting | branch m | leaves | vertices | triangles | operator / library | end to end | e2e+ev | "
+      "M tris/s library/op | M tris/s e2e | M tris/s e2e+ev |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    w("| %s | preset | %.0f | %d | %d | %d | %s | %s | %s | %.2f | %.2f | %.2f |" % (
         ban_t.label, ban_t.stem, ban_t.leaves, ban_t.verts, ban_t.tris, ban_t.lib.fmt(digits=4),
-        ban_t.e2e.fmt(digits=4), mtris(ban_t.tris, ban_t.lib.med), mtris(ban_t.tris, ban_t.e2e.med)))
+        ban_t.e2e.fmt(digits=4), ban_t.e2e_ev.fmt(digits=4), mtris(ban_t.tris, ban_t.lib.med),
+        mtris(ban_t.tris, ban_t.e2e.med), mtris(ban_t.tris, ban_t.e2e_ev.med)))
     for r in peers_t:
-        w("| %s | %s | %.0f | %d | %d | %d | %s | %s | %.2f | %.2f |" % (
+        w("| %s | %s | %.0f | %d | %d | %d | %s | %s | %s | %.2f | %.2f | %.2f |" % (
             r.label, r.note, r.stem, r.leaves, r.verts, r.tris, r.op.fmt(digits=4), r.e2e.fmt(digits=4),
-            mtris(r.tris, r.op.med), mtris(r.tris, r.e2e.med)))
+            r.e2e_ev.fmt(digits=4), mtris(r.tris, r.op.med), mtris(r.tris, r.e2e.med), mtris(r.tris, r.e2e_ev.med)))
     w("")
-    w("| ratio banyan / Sapling | tris/s, library vs operator | tris/s end to end |")
-    w("|---|---|---|")
+    w("| ratio banyan / Sapling | tris/s, library vs operator | tris/s end to end | tris/s e2e+ev |")
+    w("|---|---|---|---|")
     for r in peers_t:
-        w("| vs %s | %.0fx | %.1fx |" % (r.label, (ban_t.tris / ban_t.lib.med) / (r.tris / r.op.med),
-                                         (ban_t.tris / ban_t.e2e.med) / (r.tris / r.e2e.med)))
+        w("| vs %s | %.0fx | %.1fx | %.1fx |" % (r.label, (ban_t.tris / ban_t.lib.med) / (r.tris / r.op.med),
+                                                 e2e_ratio(ban_t, r, False), e2e_ratio(ban_t, r)))
     w("")
 
     # ---- roots and hand-off
@@ -584,6 +904,22 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
             b.bare.fmt(1e3, "ms", 2),
             b.bare_full.fmt(1e3, "ms", 2), b.e2e.fmt(1e3, "ms", 2), b.lib.med / b.bare.med,
             b.e2e.med / b.bare_full.med, b.handoff()))
+    w("")
+    w("Against the same-edges floor, first evaluation on both sides (issue 23). The old columns above let "
+      "Blender derive the edges in the floor (*bare*, *bare+*) and leave the first evaluation out of both.")
+    w("")
+    w("| run | library | end to end | first evaluation | e2e+ev | edges (floor) | e2e+ev / (library + edges) | "
+      "hand-off (e2e+ev - lib) / edges |")
+    w("|---|---|---|---|---|---|---|---|")
+    for b in roots + [ban_i, ban_t]:
+        w("| %s | %s | %s | %s | %s | %s | %.2f | %.2f |" % (
+            b.label, b.lib.fmt(1e3, "ms", 2), b.e2e.fmt(1e3, "ms", 2), b.first_ev.fmt(1e3, "ms", 2),
+            b.e2e_ev.fmt(1e3, "ms", 2), b.bare_edges.fmt(1e3, "ms", 2), b.e2e_over_floor(), b.handoff_edges()))
+    w("")
+    diffs = ["%s: %s" % (b.label, "; ".join(b.floor_diff)) for b in roots + [ban_i, ban_t] if b.floor_diff]
+    w("The floor's mesh against the add-on's (`blender_handoff.floor_differences`: element counts, material "
+      "slots, attribute and UV layer names): %s." % ("the same for every run above" if not diffs else
+                                                     "**differs**: " + " | ".join(diffs)))
     w("")
 
     # ---- memory
@@ -721,17 +1057,10 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
     w("```")
     w("")
     # Sections measured by hand (too long for this run), kept beside it and copied in.
-    for kept in ("instancing.md",):
-        path = os.path.join(HERE, kept)
-        if os.path.exists(path):
-            with open(path) as f:
-                w(f.read().rstrip())
-            w("")
-    notes = os.path.join(HERE, "profile.md")
-    if os.path.exists(notes):
-        with open(notes) as f:
-            w(f.read().rstrip())
-        w("")
+    L.extend(kept_section("instancing.md", run_model))
+    L.extend(ivy_large_lines(ivy_large, run_model))
+    L.extend(avenue_lines(avenue, run_model))
+    L.extend(kept_section("profile.md", run_model))
     w("<!-- bench_tube output:")
     w(mem_text.strip().replace("--", "- -"))
     w("-->")
@@ -740,6 +1069,7 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
 
 def main():
     t0 = time.perf_counter()
+    started = datetime.datetime.now(datetime.timezone.utc)
     load0 = os.getloadavg()
     print("peers.py: %d runs per figure, Blender %s, library %s" % (RUNS, bpy.app.version_string,
                                                                    os.environ.get("BANYAN_LIB")), flush=True)
@@ -755,8 +1085,12 @@ def main():
     textures = section_textures()
     print(textures[0], textures[1], flush=True)
     roots_c = section_roots_c()
+    ivy_large = section_ivy_large()
+    print("ivy large: %s" % ivy_large.get("skip", "%d rows" % len(ivy_large.get("rows", []))), flush=True)
+    avenue = section_avenue_write()
+    print("avenue: %s" % avenue.get("skip", "done"), flush=True)
     text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0,
-                  textures, roots_c)
+                  textures, roots_c, ivy_large, avenue, started)
     with open(OUT, "w") as f:
         f.write(text)
     print(text)

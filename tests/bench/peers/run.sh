@@ -14,7 +14,9 @@ build=$(cd "${1:-$src/build}" && pwd)
 runs=${2:-5}
 script=${3:-peers.py}
 blender=${BLENDER:-blender}
-cmake --build "$build" --target banyan bench_tube bench_hosts bench_roots_hosts bench_ivy bench_textures
+# banyan_cli: the 1,000-tree avenue (issue 23); bench_roots: section 7
+cmake --build "$build" -j2 --target banyan banyan_cli bench_tube bench_hosts bench_roots_hosts bench_ivy bench_textures \
+    bench_roots
 
 scripts=$(mktemp -d)
 trap 'rm -rf "$scripts"' EXIT
