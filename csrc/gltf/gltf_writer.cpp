@@ -28,6 +28,13 @@
  *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK.
  * The skeleton is not exported.
  *
+ * The buffer is never held in memory: its views are planned (offsets,
+ * POSITION min/max), tinygltf writes the JSON for an empty buffer whose
+ * byteLength is then set, and the bytes are streamed after it (the .glb's
+ * BIN chunk, or base64 in the .gltf's data URI) from the mesh arrays,
+ * through one 4 MiB scratch block where they need converting. The bytes
+ * are those tinygltf wrote when it held the buffer.
+ *
  * Nothing is created on disk until every input has been checked. The file
  * is written through core/atomic_file.h: a write that fails part-way
  * leaves the old file as it was. No exception leaves this file.
