@@ -28,6 +28,13 @@
  *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK.
  * The skeleton is not exported.
  *
+ * The buffer is never held in memory: its views are planned (offsets,
+ * POSITION min/max), tinygltf writes the JSON for an empty buffer whose
+ * byteLength is then set, and the bytes are streamed after it (the .glb's
+ * BIN chunk, or base64 in the .gltf's data URI) from the mesh arrays,
+ * through one 4 MiB scratch block where they need converting. The bytes
+ * are those tinygltf wrote when it held the buffer.
+ *
  * Nothing is created on disk until every input has been checked. The file
  * is written through core/atomic_file.h: a write that fails part-way
  * leaves the old file as it was. No exception leaves this file.
@@ -49,7 +56,7 @@
 #include <map>
 #include <new>
 #include <ostream>
-#include <streambuf>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -378,36 +385,74 @@ banyan_status check_mesh(const banyan_mesh *m, const char *mi, banyan_error *err
 
 /* ------------------------------------------------------------ building */
 
+/* One piece of the BIN chunk, in buffer order: the views are planned
+ * first (the JSON needs their offsets) and their bytes streamed to the file
+ * afterwards, straight from the mesh arrays or converted through a fixed
+ * scratch block, so no copy of the buffer is ever held in memory. */
+enum SegKind { kRaw, kZero, kPosition, kNormal, kUv, kTangent, kColor, kWindPivot, kWindParams, kEngineUv, kIndices };
+
+struct Layout;
+
+struct Segment {
+    SegKind kind;
+    uint64_t bytes = 0;
+    const void *src = nullptr;          /* kRaw */
+    const banyan_mesh *m = nullptr;
+    const Layout *L = nullptr;          /* wind kinds */
+    uint32_t base = 0, count = 0;       /* vertices [base, +count); kIndices: indices [base, +count) */
+    uint32_t aux = 0;                   /* kEngineUv: the set (1 .. 4); kIndices: the vertex base subtracted */
+    uint32_t ioff = 0, icount = 0;      /* kTangent: the triangles the range's tangents come from */
+    bool whole = false;                 /* kTangent: from the whole mesh's triangles */
+};
+
 struct Builder {
     tinygltf::Model model;
-    std::vector<unsigned char> &bin;
+    std::vector<Segment> segs;
+    uint64_t size = 0;                       /* the buffer's bytes so far */
+    std::vector<std::vector<float>> keep;    /* small arrays built here (instances) */
 
-    explicit Builder(std::vector<unsigned char> &b) : bin(b) {}
-
-    /* Appends an image's bytes as a new bufferView (no target), then pads
+    /* An image's bytes as a new bufferView (no target), then zeros to pad
      * the buffer to 4 bytes for the views that follow. */
     int add_image_view(const std::vector<unsigned char> &bytes) {
         tinygltf::BufferView v;
         v.buffer = 0;
-        v.byteOffset = bin.size();
+        v.byteOffset = static_cast<size_t>(size);
         v.byteLength = bytes.size();
-        bin.insert(bin.end(), bytes.begin(), bytes.end());
-        bin.resize(static_cast<size_t>(pad4(bin.size())), 0);
+        Segment sg{kRaw};
+        sg.src = bytes.data();
+        sg.bytes = bytes.size();
+        segs.push_back(sg);
+        size += bytes.size();
+        if (pad4(size) != size) {
+            Segment z{kZero};
+            z.bytes = pad4(size) - size;
+            segs.push_back(z);
+            size = pad4(size);
+        }
         model.bufferViews.push_back(v);
         return static_cast<int>(model.bufferViews.size() - 1);
     }
 
-    /* Appends `bytes` bytes (a multiple of 4) as a new bufferView. */
-    int add_view(const void *data, size_t bytes, int target) {
+    /* sg.bytes bytes (a multiple of 4) as a new bufferView. */
+    int add_view(const Segment &sg, int target) {
         tinygltf::BufferView v;
         v.buffer = 0;
-        v.byteOffset = bin.size();
-        v.byteLength = bytes;
+        v.byteOffset = static_cast<size_t>(size);
+        v.byteLength = static_cast<size_t>(sg.bytes);
         v.target = target;
-        const unsigned char *p = static_cast<const unsigned char *>(data);
-        bin.insert(bin.end(), p, p + bytes);
+        segs.push_back(sg);
+        size += sg.bytes;
         model.bufferViews.push_back(v);
         return static_cast<int>(model.bufferViews.size() - 1);
+    }
+
+    /* A small array kept until the buffer is written. */
+    int add_floats(std::vector<float> &&a, int target) {
+        keep.push_back(std::move(a));
+        Segment sg{kRaw};
+        sg.src = keep.back().data();
+        sg.bytes = keep.back().size() * sizeof(float);
+        return add_view(sg, target);
     }
 
     int add_accessor(int view, int component, int type, size_t count,
@@ -479,12 +524,18 @@ bool colors_repeat_material(const banyan_mesh *m) {
  * (increasing banyan v, glTF's bitangent), -1 where the uvs are mirrored.
  * Triangles add their uv gradients to their corners (Lengyel's method);
  * a vertex without a usable gradient gets any unit vector perpendicular
- * to its normal. Needs normals and uvs. */
-std::vector<float> vertex_tangents(const banyan_mesh *m) {
-    const size_t vc = m->vertex_count;
+ * to its normal. Needs normals and uvs. Computed for vertices
+ * [vbase, vbase + vc) from the triangles of indices [ioff, ioff + icount),
+ * which must reference only those vertices; out[4 (v - vbase) ..]. When no
+ * other triangle touches the range, this is the whole mesh's result, bit
+ * for bit: each vertex sums the same terms in the same order. */
+std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_t vcount, uint32_t ioff,
+                                   uint32_t icount) {
+    const size_t vc = vcount;
     std::vector<double> acc(6 * vc, 0.0); /* t then b, per vertex */
-    for (uint32_t k = 0; k + 2 < m->index_count; k += 3) {
+    for (uint32_t k = ioff; k + 2 < ioff + icount; k += 3) {
         const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
+        const uint32_t rel[3] = {i[0] - vbase, i[1] - vbase, i[2] - vbase};
         const float *p0 = m->positions + 3 * static_cast<size_t>(i[0]);
         const float *p1 = m->positions + 3 * static_cast<size_t>(i[1]);
         const float *p2 = m->positions + 3 * static_cast<size_t>(i[2]);
@@ -507,13 +558,14 @@ std::vector<float> vertex_tangents(const banyan_mesh *m) {
         }
         for (int j = 0; j < 3; ++j)
             for (int c = 0; c < 3; ++c) {
-                acc[6 * static_cast<size_t>(i[j]) + c] += sd[c];
-                acc[6 * static_cast<size_t>(i[j]) + 3 + c] += td[c];
+                acc[6 * static_cast<size_t>(rel[j]) + c] += sd[c];
+                acc[6 * static_cast<size_t>(rel[j]) + 3 + c] += td[c];
             }
     }
     std::vector<float> out(4 * vc);
     for (size_t v = 0; v < vc; ++v) {
-        double n[3] = {m->normals[3 * v], m->normals[3 * v + 1], m->normals[3 * v + 2]};
+        const float *nv = m->normals + 3 * (vbase + v);
+        double n[3] = {nv[0], nv[1], nv[2]};
         double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (nl > 0.0) {
             for (double &c : n) c /= nl;
@@ -579,139 +631,326 @@ bool is_wind_attribute(const Layout &L, const banyan_attribute *at) {
     return false;
 }
 
-/* The vertex accessors for vertices [base, base + count) of mesh m;
- * tangents (vertex_tangents, or empty) become TANGENT. */
+/* The vertex accessors for vertices [base, base + count) of mesh m, as
+ * planned views; tangent (or NULL) is the kTangent segment of the range
+ * (its vertex range is filled in here). */
 std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, const Layout &L, uint32_t base,
-                                            uint32_t count, bool with_colors,
-                                            const std::vector<float> &tangents) {
+                                            uint32_t count, bool with_colors, const Segment *tangent) {
     std::map<std::string, int> attrs;
     const int AB = TINYGLTF_TARGET_ARRAY_BUFFER;
     const int F = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    std::vector<float> tmp;
+    auto seg = [&](SegKind kind, uint32_t floats_per_vertex) {
+        Segment sg{kind};
+        sg.m = m;
+        sg.L = &L;
+        sg.base = base;
+        sg.count = count;
+        sg.bytes = static_cast<uint64_t>(count) * floats_per_vertex * sizeof(float);
+        return sg;
+    };
 
-    /* POSITION: (x, y, z) -> (x, z, -y), with min / max of what is stored. */
-    tmp.resize(static_cast<size_t>(count) * 3);
+    /* POSITION: (x, y, z) -> (x, z, -y), with min / max of what is stored
+     * (the bytes are written later; the JSON needs these first). */
     std::vector<double> mn(3, 0.0), mx(3, 0.0);
     for (uint32_t i = 0; i < count; ++i) {
         const float *p = m->positions + 3 * static_cast<size_t>(base + i);
         float q[3] = {p[0], p[2], -p[1]};
         for (int k = 0; k < 3; ++k) {
-            tmp[3 * static_cast<size_t>(i) + k] = q[k];
             double d = static_cast<double>(q[k]);
             if (i == 0 || d < mn[k]) mn[k] = d;
             if (i == 0 || d > mx[k]) mx[k] = d;
         }
     }
-    int v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+    int v = b.add_view(seg(kPosition, 3), AB);
     attrs["POSITION"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC3, count, &mn, &mx);
 
-    /* NORMAL: converted, renormalised in double; a zero normal becomes +Y. */
     if (m->normals) {
-        for (uint32_t i = 0; i < count; ++i) {
-            const float *n = m->normals + 3 * static_cast<size_t>(base + i);
-            double q[3] = {n[0], n[2], -static_cast<double>(n[1])};
-            double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-            float *o = &tmp[3 * static_cast<size_t>(i)];
-            if (len > 0.0) {
-                for (int k = 0; k < 3; ++k) o[k] = static_cast<float>(q[k] / len);
-            } else {
-                o[0] = 0.0f;
-                o[1] = 1.0f;
-                o[2] = 0.0f;
-            }
-        }
-        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        v = b.add_view(seg(kNormal, 3), AB);
         attrs["NORMAL"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC3, count);
     }
 
-    /* TEXCOORD_0: glTF's v runs down the image, banyan's (like Blender's) up. */
     if (m->uvs) {
-        tmp.resize(static_cast<size_t>(count) * 2);
-        for (uint32_t i = 0; i < count; ++i) {
-            const float *t = m->uvs + 2 * static_cast<size_t>(base + i);
-            tmp[2 * static_cast<size_t>(i)] = t[0];
-            tmp[2 * static_cast<size_t>(i) + 1] = 1.0f - t[1];
-        }
-        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        v = b.add_view(seg(kUv, 2), AB);
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     } else if (L.engine_uvs) { /* TEXCOORD_n must count up from 0 */
-        tmp.assign(static_cast<size_t>(count) * 2, 0.0f);
-        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        v = b.add_view(seg(kZero, 2), AB);
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     }
 
-    /* TANGENT: converted like the normals (a rotation: w keeps its sign). */
-    if (!tangents.empty()) {
-        tmp.resize(static_cast<size_t>(count) * 4);
-        for (uint32_t i = 0; i < count; ++i) {
-            const float *t = &tangents[4 * static_cast<size_t>(base + i)];
-            float *o = &tmp[4 * static_cast<size_t>(i)];
-            o[0] = t[0];
-            o[1] = t[2];
-            o[2] = -t[1];
-            o[3] = t[3];
-        }
-        v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+    if (tangent) {
+        Segment sg = *tangent;
+        sg.m = m;
+        sg.base = base;
+        sg.count = count;
+        sg.bytes = static_cast<uint64_t>(count) * 4 * sizeof(float);
+        v = b.add_view(sg, AB);
         attrs["TANGENT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
     }
 
     if (m->colors && with_colors) {
-        v = b.add_view(m->colors + 4 * static_cast<size_t>(base),
-                       static_cast<size_t>(count) * 4 * sizeof(float), AB);
+        Segment sg = seg(kRaw, 4);
+        sg.src = m->colors + 4 * static_cast<size_t>(base);
+        v = b.add_view(sg, AB);
         attrs["COLOR_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
     }
 
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
         const banyan_attribute *at = &m->attributes[a];
         if (is_wind_attribute(L, at)) continue;
-        v = b.add_view(at->data + base, static_cast<size_t>(count) * sizeof(float), AB);
+        Segment sg = seg(kRaw, 1);
+        sg.src = at->data + base;
+        v = b.add_view(sg, AB);
         attrs[upper_attribute_key(at->name)] =
             b.add_accessor(v, F, TINYGLTF_TYPE_SCALAR, count);
     }
 
     if (L.packed) {
-        /* _WIND_PIVOT: a point like POSITION, (x, y, z) -> (x, z, -y). */
-        tmp.resize(static_cast<size_t>(count) * 4);
-        for (uint32_t i = 0; i < count; ++i) {
-            size_t j = static_cast<size_t>(base) + i;
-            float *o = &tmp[3 * static_cast<size_t>(i)];
-            o[0] = L.wind[0][j];
-            o[1] = L.wind[2][j];
-            o[2] = -L.wind[1][j];
-        }
-        v = b.add_view(tmp.data(), static_cast<size_t>(count) * 3 * sizeof(float), AB);
+        v = b.add_view(seg(kWindPivot, 3), AB);
         attrs["_WIND_PIVOT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC3, count);
-        for (uint32_t i = 0; i < count; ++i) {
-            size_t j = static_cast<size_t>(base) + i;
-            for (int k = 0; k < 4; ++k) tmp[4 * static_cast<size_t>(i) + k] = L.wind[3 + k][j];
-        }
-        v = b.add_view(tmp.data(), static_cast<size_t>(count) * 4 * sizeof(float), AB);
+        v = b.add_view(seg(kWindParams, 4), AB);
         attrs["_WIND_PARAMS"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
     }
 
     if (L.engine_uvs) {
-        /* TEXCOORD_1 pivot (x, y), 2 (pivot z, level), 3 (stiffness,
-         * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT. */
-        tmp.resize(static_cast<size_t>(count) * 2);
-        for (int set = 1; set <= 4; ++set) {
-            for (uint32_t i = 0; i < count; ++i) {
-                size_t j = static_cast<size_t>(base) + i;
-                float a = 0.0f, c = 0.0f;
-                switch (set) {
-                case 1: a = L.wind[0][j]; c = L.wind[2][j]; break;
-                case 2: a = -L.wind[1][j]; c = L.wind[3][j]; break;
-                case 3: a = L.wind[4][j]; c = L.wind[5][j]; break;
-                default: a = L.wind[6][j]; c = L.birth ? L.birth[j] : 0.0f; break;
-                }
-                tmp[2 * static_cast<size_t>(i)] = a;
-                tmp[2 * static_cast<size_t>(i) + 1] = c;
-            }
-            v = b.add_view(tmp.data(), tmp.size() * sizeof(float), AB);
+        for (uint32_t set = 1; set <= 4; ++set) {
+            Segment sg = seg(kEngineUv, 2);
+            sg.aux = set;
+            v = b.add_view(sg, AB);
             attrs["TEXCOORD_" + std::to_string(set)] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
         }
     }
     return attrs;
 }
+
+/* Where the BIN chunk's bytes go: the file as they are, or (a .gltf)
+ * base64 inside the JSON's data URI. Remembers the first errno. */
+class Sink {
+  public:
+    Sink(std::FILE *f, bool base64) : f_(f), base64_(base64) {
+        if (base64_) out_.resize(4 * (kBlock / 3) + 8);
+    }
+    int error() const { return error_; }
+    uint64_t count() const { return count_; }
+
+    void put(const void *data, size_t n) {
+        const unsigned char *p = static_cast<const unsigned char *>(data);
+        count_ += n;
+        if (!base64_) {
+            raw(p, n);
+            return;
+        }
+        while (n > 0) {
+            if (held_ > 0 || n < 3) { /* finish the held triple first */
+                while (held_ < 3 && n > 0) {
+                    hold_[held_++] = *p++;
+                    --n;
+                }
+                if (held_ == 3) {
+                    encode(hold_, 3, &out_[0]);
+                    raw(reinterpret_cast<const unsigned char *>(&out_[0]), 4);
+                    held_ = 0;
+                }
+                continue;
+            }
+            size_t take = std::min(n - n % 3, static_cast<size_t>(kBlock / 3 * 3));
+            char *o = &out_[0];
+            for (size_t i = 0; i < take; i += 3, o += 4) encode(p + i, 3, o);
+            raw(reinterpret_cast<const unsigned char *>(&out_[0]), static_cast<size_t>(o - &out_[0]));
+            p += take;
+            n -= take;
+        }
+    }
+
+    /* The last 1 or 2 bytes of a base64 stream, '='-padded. */
+    void finish() {
+        if (base64_ && held_ > 0) {
+            encode(hold_, held_, &out_[0]);
+            raw(reinterpret_cast<const unsigned char *>(&out_[0]), 4);
+            held_ = 0;
+        }
+    }
+
+    static const size_t kBlock = size_t(4) << 20;
+
+  private:
+    void raw(const unsigned char *p, size_t n) {
+        if (error_ != 0 || n == 0) return;
+        errno = 0;
+        if (std::fwrite(p, 1, n, f_) != n) error_ = errno ? errno : EIO;
+    }
+    static void encode(const unsigned char *in, int n, char *o) {
+        static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        uint32_t v = static_cast<uint32_t>(in[0]) << 16 | (n > 1 ? static_cast<uint32_t>(in[1]) << 8 : 0u) |
+                     (n > 2 ? static_cast<uint32_t>(in[2]) : 0u);
+        o[0] = kAlphabet[v >> 18 & 63];
+        o[1] = kAlphabet[v >> 12 & 63];
+        o[2] = n > 1 ? kAlphabet[v >> 6 & 63] : '=';
+        o[3] = n > 2 ? kAlphabet[v & 63] : '=';
+    }
+
+    std::FILE *f_;
+    bool base64_;
+    int error_ = 0;
+    uint64_t count_ = 0;
+    unsigned char hold_[3] = {0, 0, 0};
+    int held_ = 0;
+    std::vector<char> out_;
+};
+
+/* Streams the planned segments into a Sink, converting through one fixed
+ * scratch block (Sink::kBlock bytes). */
+class BinWriter {
+  public:
+    explicit BinWriter(Sink &out) : out_(out), scratch_(Sink::kBlock / sizeof(float)) {}
+
+    void write(const Segment &s) {
+        switch (s.kind) {
+        case kRaw:
+            out_.put(s.src, static_cast<size_t>(s.bytes));
+            return;
+        case kZero: {
+            std::fill(scratch_.begin(), scratch_.end(), 0.0f);
+            for (uint64_t left = s.bytes; left > 0;) {
+                size_t n = static_cast<size_t>(std::min<uint64_t>(left, Sink::kBlock));
+                out_.put(scratch_.data(), n);
+                left -= n;
+            }
+            return;
+        }
+        case kIndices:
+            if (s.aux == 0) { /* already right: straight from the mesh */
+                out_.put(s.m->indices + s.base, static_cast<size_t>(s.count) * sizeof(uint32_t));
+                return;
+            }
+            break;
+        case kTangent:
+            tangents_for(s);
+            break;
+        default:
+            break;
+        }
+        const uint32_t width = s.kind == kIndices ? 1 : static_cast<uint32_t>(s.bytes / 4 / (s.count ? s.count : 1));
+        const uint32_t chunk = static_cast<uint32_t>(scratch_.size() / width);
+        for (uint32_t i0 = 0; i0 < s.count; i0 += chunk) {
+            uint32_t n = std::min(chunk, s.count - i0);
+            fill(s, i0, n, scratch_.data());
+            out_.put(scratch_.data(), static_cast<size_t>(n) * width * sizeof(float));
+        }
+    }
+
+  private:
+    /* Elements [i0, i0 + n) of segment s into o. */
+    void fill(const Segment &s, uint32_t i0, uint32_t n, float *o) {
+        const banyan_mesh *m = s.m;
+        const size_t b = static_cast<size_t>(s.base) + i0;
+        switch (s.kind) {
+        case kPosition: /* (x, y, z) -> (x, z, -y) */
+            for (uint32_t i = 0; i < n; ++i, o += 3) {
+                const float *p = m->positions + 3 * (b + i);
+                o[0] = p[0];
+                o[1] = p[2];
+                o[2] = -p[1];
+            }
+            break;
+        case kNormal: /* converted, renormalised in double; a zero normal becomes +Y */
+            for (uint32_t i = 0; i < n; ++i, o += 3) {
+                const float *nv = m->normals + 3 * (b + i);
+                double q[3] = {nv[0], nv[2], -static_cast<double>(nv[1])};
+                double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+                if (len > 0.0) {
+                    for (int k = 0; k < 3; ++k) o[k] = static_cast<float>(q[k] / len);
+                } else {
+                    o[0] = 0.0f;
+                    o[1] = 1.0f;
+                    o[2] = 0.0f;
+                }
+            }
+            break;
+        case kUv: /* glTF's v runs down the image, banyan's (like Blender's) up */
+            for (uint32_t i = 0; i < n; ++i, o += 2) {
+                const float *t = m->uvs + 2 * (b + i);
+                o[0] = t[0];
+                o[1] = 1.0f - t[1];
+            }
+            break;
+        case kTangent: { /* converted like the normals (a rotation: w keeps its sign) */
+            const float *t = tan_.data() + 4 * (b - tan_base_);
+            for (uint32_t i = 0; i < n; ++i, o += 4, t += 4) {
+                o[0] = t[0];
+                o[1] = t[2];
+                o[2] = -t[1];
+                o[3] = t[3];
+            }
+            break;
+        }
+        case kWindPivot: { /* a point like POSITION */
+            const Layout &L = *s.L;
+            for (uint32_t i = 0; i < n; ++i, o += 3) {
+                o[0] = L.wind[0][b + i];
+                o[1] = L.wind[2][b + i];
+                o[2] = -L.wind[1][b + i];
+            }
+            break;
+        }
+        case kWindParams: { /* level, stiffness, phase, flutter */
+            const Layout &L = *s.L;
+            for (uint32_t i = 0; i < n; ++i, o += 4)
+                for (int k = 0; k < 4; ++k) o[k] = L.wind[3 + k][b + i];
+            break;
+        }
+        case kEngineUv: {
+            /* TEXCOORD_1 pivot (x, y), 2 (pivot z, level), 3 (stiffness,
+             * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT. */
+            const Layout &L = *s.L;
+            for (uint32_t i = 0; i < n; ++i, o += 2) {
+                size_t j = b + i;
+                float a = 0.0f, c = 0.0f;
+                switch (s.aux) {
+                case 1: a = L.wind[0][j]; c = L.wind[2][j]; break;
+                case 2: a = -L.wind[1][j]; c = L.wind[3][j]; break;
+                case 3: a = L.wind[4][j]; c = L.wind[5][j]; break;
+                default: a = L.wind[6][j]; c = L.birth ? L.birth[j] : 0.0f; break;
+                }
+                o[0] = a;
+                o[1] = c;
+            }
+            break;
+        }
+        case kIndices: { /* rebased to the primitive's first vertex */
+            uint32_t *u = reinterpret_cast<uint32_t *>(o);
+            for (uint32_t i = 0; i < n; ++i) u[i] = m->indices[b + i] - s.aux;
+            break;
+        }
+        default:
+            break;
+        }
+    }
+
+    /* The tangents a kTangent segment reads: its own range's, or the whole
+     * mesh's, kept while the same mesh's ranges follow. */
+    void tangents_for(const Segment &s) {
+        if (s.whole) {
+            if (tan_mesh_ != s.m || !tan_whole_) {
+                tan_ = vertex_tangents(s.m, 0, s.m->vertex_count, 0, s.m->index_count);
+                tan_mesh_ = s.m;
+                tan_whole_ = true;
+                tan_base_ = 0;
+            }
+            return;
+        }
+        tan_ = vertex_tangents(s.m, s.base, s.count, s.ioff, s.icount);
+        tan_mesh_ = s.m;
+        tan_whole_ = false;
+        tan_base_ = s.base;
+    }
+
+    Sink &out_;
+    std::vector<float> scratch_;
+    std::vector<float> tan_;
+    const banyan_mesh *tan_mesh_ = nullptr;
+    bool tan_whole_ = false;
+    size_t tan_base_ = 0;
+};
 
 uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t count, bool with_colors, bool tangents) {
     /* Packed wind: 7 scalars become VEC3 + VEC4, the same floats. */
@@ -861,31 +1100,6 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     return BANYAN_OK;
 }
 
-/* A std::streambuf that writes to a FILE* and remembers the first errno. */
-class FileBuf : public std::streambuf {
-  public:
-    explicit FileBuf(std::FILE *f) : f_(f) {}
-    int error() const { return error_; }
-
-  protected:
-    std::streamsize xsputn(const char *s, std::streamsize n) override {
-        if (n <= 0) return 0;
-        errno = 0;
-        size_t w = std::fwrite(s, 1, static_cast<size_t>(n), f_);
-        if (w != static_cast<size_t>(n) && error_ == 0) error_ = errno ? errno : EIO;
-        return static_cast<std::streamsize>(w);
-    }
-    int_type overflow(int_type c) override {
-        if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
-        char ch = traits_type::to_char_type(c);
-        return xsputn(&ch, 1) == 1 ? c : traits_type::eof();
-    }
-
-  private:
-    std::FILE *f_;
-    int error_ = 0;
-};
-
 /* The temporary output file (core/atomic_file.h), removed unless
  * commit() succeeded. */
 class OutFile {
@@ -910,9 +1124,32 @@ struct Job {
     std::vector<Prim> prims;
     bool local = false;
     bool tangents = false;
+    bool tangent_ranges = false; /* each primitive's tangents from its own triangles (tangent_ranges_exact) */
     int material_base = 0;
     std::vector<int> image_texture; /* per m->images: the glTF texture of its PNG, -1 unused */
 };
+
+/* Whether each primitive's tangents, computed from its own triangles
+ * alone, are the whole mesh's: parts keep to their vertices, no two
+ * primitives share a vertex or a triangle, and every triangle is in one.
+ * Then only one part's tangents are held at a time. */
+bool tangent_ranges_exact(const banyan_mesh *m, const std::vector<Prim> &prims, bool local) {
+    if (!local) return false;
+    std::vector<std::pair<uint32_t, uint32_t>> v, ix;
+    uint64_t covered = 0;
+    for (const Prim &pr : prims) {
+        v.emplace_back(pr.vbase, pr.vcount);
+        ix.emplace_back(pr.ioff, pr.icount);
+        covered += pr.icount;
+    }
+    if (covered != m->index_count) return false;
+    for (auto *r : {&v, &ix}) {
+        std::sort(r->begin(), r->end());
+        for (size_t k = 1; k < r->size(); ++k)
+            if (static_cast<uint64_t>((*r)[k - 1].first) + (*r)[k - 1].second > (*r)[k].first) return false;
+    }
+    return true;
+}
 
 /* Bytes of the instancing accessors: TRANSLATION, ROTATION, SCALE. */
 uint64_t instance_bytes(const banyan_mesh *m) { return (3 + 4 + 3) * 4ull * m->instance_count; }
@@ -1001,16 +1238,22 @@ int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], boo
 
     std::map<std::string, int> shared;
     bool colors = !colors_repeat_material(m);
-    std::vector<float> tan;
-    if (J.tangents) tan = vertex_tangents(m);
-    if (!J.local) shared = add_vertex_range(b, m, J.L, 0, m->vertex_count, colors, tan);
-    std::vector<uint32_t> rebased;
+    Segment tan{kTangent};
+    tan.whole = !J.tangent_ranges;
+    const Segment *tp = J.tangents ? &tan : nullptr;
+    if (!J.local) shared = add_vertex_range(b, m, J.L, 0, m->vertex_count, colors, tp);
     auto add_prim = [&](const Prim &pr, tinygltf::Mesh &gm) {
         tinygltf::Primitive prim;
-        prim.attributes = J.local ? add_vertex_range(b, m, J.L, pr.vbase, pr.vcount, colors, tan) : shared;
-        rebased.resize(pr.icount);
-        for (uint32_t k = 0; k < pr.icount; ++k) rebased[k] = m->indices[pr.ioff + k] - pr.vbase;
-        int v = b.add_view(rebased.data(), rebased.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        tan.ioff = pr.ioff;
+        tan.icount = pr.icount;
+        prim.attributes = J.local ? add_vertex_range(b, m, J.L, pr.vbase, pr.vcount, colors, tp) : shared;
+        Segment ix{kIndices};
+        ix.m = m;
+        ix.base = pr.ioff;
+        ix.count = pr.icount;
+        ix.aux = pr.vbase;
+        ix.bytes = 4ull * pr.icount;
+        int v = b.add_view(ix, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
         prim.indices = b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, pr.icount);
         prim.material = pr.material;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
@@ -1037,11 +1280,8 @@ int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], boo
     const int parent = static_cast<int>(model.nodes.size() - 1);
     std::vector<uint32_t> variants = drawn_groups(m);
     std::vector<int> children;
-    std::vector<float> T, R, S;
     for (uint32_t g : variants) {
-        T.clear();
-        R.clear();
-        S.clear();
+        std::vector<float> T, R, S;
         for (uint32_t k = 0; k < m->instance_count; ++k) {
             const banyan_instance *in = &m->instances[k];
             if (in->variant != g) continue;
@@ -1060,11 +1300,11 @@ int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], boo
         model.meshes.push_back(gm);
         const size_t n = T.size() / 3;
         tinygltf::Value::Object attrs;
-        int v = b.add_view(T.data(), T.size() * sizeof(float), 0);
+        int v = b.add_floats(std::move(T), 0);
         attrs["TRANSLATION"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n));
-        v = b.add_view(R.data(), R.size() * sizeof(float), 0);
+        v = b.add_floats(std::move(R), 0);
         attrs["ROTATION"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n));
-        v = b.add_view(S.data(), S.size() * sizeof(float), 0);
+        v = b.add_floats(std::move(S), 0);
         attrs["SCALE"] = tinygltf::Value(b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n));
         tinygltf::Value::Object ext;
         ext["attributes"] = tinygltf::Value(attrs);
@@ -1077,6 +1317,71 @@ int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], boo
     }
     model.nodes[static_cast<size_t>(parent)].children = children;
     return parent;
+}
+
+void put_u32(std::string &s, uint32_t v) {
+    for (int k = 0; k < 4; ++k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+}
+
+uint32_t get_u32(const std::string &s, size_t at) {
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(s[at + static_cast<size_t>(k)]);
+    return v;
+}
+
+/* Sets buffer 0's "byteLength": 0 after `key` to n; false if not found
+ * where expected. `at` gets where the digit was. */
+bool patch_byte_length(std::string &json, const std::string &key, const std::string &field, uint64_t n,
+                       size_t &at) {
+    size_t k = json.find(key);
+    if (k == std::string::npos || json.find(key, k + 1) != std::string::npos) return false;
+    size_t f = json.find(field, k + key.size());
+    if (f == std::string::npos || f != json.find_first_of('"', k + key.size())) return false;
+    at = f + field.size();
+    if (json.compare(at, 1, "0") != 0 || (at + 1 < json.size() && json[at + 1] >= '0' && json[at + 1] <= '9'))
+        return false;
+    json.replace(at, 1, std::to_string(n));
+    return true;
+}
+
+/* tinygltf's document for an empty buffer 0 into what goes before and after
+ * the buffer's `total` bytes: a .glb's header, JSON chunk and BIN chunk
+ * header, then the BIN padding; a .gltf's JSON up to the base64 of the data
+ * URI, then the rest. The same bytes tinygltf writes with the buffer held. */
+bool split_document(const std::string &doc, bool binary, uint64_t total, std::string &head, std::string &tail) {
+    if (binary) {
+        if (doc.size() < 20 || doc.compare(0, 4, "glTF") != 0 || get_u32(doc, 16) != 0x4E4F534Au) return false;
+        uint32_t chunk = get_u32(doc, 12);
+        if (20 + static_cast<uint64_t>(chunk) != doc.size()) return false; /* no BIN chunk: the buffer was empty */
+        std::string json = doc.substr(20, chunk);
+        while (!json.empty() && json.back() == ' ') json.pop_back(); /* tinygltf's padding */
+        size_t at = 0;
+        if (!patch_byte_length(json, "\"buffers\":[{", "\"byteLength\":", total, at)) return false;
+        const uint64_t jpad = (4 - json.size() % 4) % 4, bpad = (4 - total % 4) % 4;
+        const uint64_t length = 12 + 8 + json.size() + jpad + 8 + total + bpad;
+        if (length > 0xFFFFFFFFu) return false;
+        head.assign("glTF");
+        put_u32(head, 2);
+        put_u32(head, static_cast<uint32_t>(length));
+        put_u32(head, static_cast<uint32_t>(json.size() + jpad));
+        put_u32(head, 0x4E4F534Au); /* JSON */
+        head += json;
+        head.append(static_cast<size_t>(jpad), ' ');
+        put_u32(head, static_cast<uint32_t>(total + bpad));
+        put_u32(head, 0x004E4942u); /* BIN */
+        tail.assign(static_cast<size_t>(bpad), '\0');
+        return true;
+    }
+    std::string json = doc;
+    size_t at = 0;
+    if (!patch_byte_length(json, "\"buffers\": [", "\"byteLength\": ", total, at)) return false;
+    const std::string uri = "\"uri\": \"data:application/octet-stream;base64,\"";
+    size_t u = json.find(uri, at);
+    if (u == std::string::npos || json.find_first_of("{}", at) < u) return false;
+    size_t split = u + uri.size() - 1; /* before the closing quote */
+    head = json.substr(0, split);
+    tail = json.substr(split);
+    return true;
 }
 
 banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, uint32_t count,
@@ -1159,6 +1464,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     for (Job &J : jobs) {
         J.material_base = material_base;
         total += plan_mesh(J.m, J.L, material_base, J.tangents, J.prims, J.local);
+        J.tangent_ranges = J.tangents && tangent_ranges_exact(J.m, J.prims, J.local);
         total += instance_bytes(J.m);
         material_base += static_cast<int>(J.m->material_count);
     }
@@ -1171,9 +1477,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
                     static_cast<unsigned long long>(total),
                     static_cast<unsigned long long>(kMaxBufferBytes));
 
-    std::vector<unsigned char> bin;
-    bin.reserve(static_cast<size_t>(total));
-    Builder b(bin);
+    Builder b;
     tinygltf::Model &model = b.model;
     model.asset.version = "2.0";
     model.asset.generator = "banyan";
@@ -1252,27 +1556,44 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     for (size_t p = 0; p < pictures.size(); ++p)
         model.images[static_cast<size_t>(picture_base) + p].bufferView = b.add_image_view(pictures[p]);
 
-    if (bin.size() != total)
+    if (b.size != total)
         return banyan_fail(err, BANYAN_E_INTERNAL,
-                    "glTF buffer holds %zu bytes, planned %llu; please report this",
-                    bin.size(), static_cast<unsigned long long>(total));
-    tinygltf::Buffer buffer;
-    buffer.data.swap(bin);
-    model.buffers.push_back(std::move(buffer));
+                    "glTF buffer holds %llu bytes, planned %llu; please report this",
+                    static_cast<unsigned long long>(b.size), static_cast<unsigned long long>(total));
+    /* The JSON with an empty buffer, then its byteLength set to the
+     * planned size: tinygltf writes everything but the bytes. */
+    model.buffers.push_back(tinygltf::Buffer());
+    std::ostringstream js;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, js, /*prettyPrint=*/true, binary))
+        return banyan_fail(err, BANYAN_E_INTERNAL, "the glTF serialiser failed for '%s'", path);
+    std::string doc = js.str();
+    std::string head, tail; /* what goes before and after the buffer's bytes */
+    if (!split_document(doc, binary, total, head, tail))
+        return banyan_fail(err, BANYAN_E_INTERNAL, "unexpected glTF JSON from tinygltf for '%s'; please report this",
+                           path);
+    doc.clear();
+    doc.shrink_to_fit();
 
     OutFile out;
     if (int oe = out.open(path))
         return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
-    FileBuf fb(out.get());
-    std::ostream os(&fb);
-    tinygltf::TinyGLTF writer;
-    bool ok = writer.WriteGltfSceneToStream(&model, os, /*prettyPrint=*/true, binary);
-    os.flush();
-    if (fb.error() != 0)
-        return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(fb.error()));
-    if (!ok || !os)
-        return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': the glTF serialiser failed", path);
-    int e = out.commit();
+    Sink raw(out.get(), false);
+    raw.put(head.data(), head.size());
+    Sink bin(out.get(), !binary);
+    BinWriter bw(bin);
+    for (const Segment &sg : b.segs) {
+        bw.write(sg);
+        if (bin.error()) break;
+    }
+    bin.finish();
+    if (!bin.error() && bin.count() != total)
+        return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
+                           static_cast<unsigned long long>(bin.count()), static_cast<unsigned long long>(total));
+    raw.put(tail.data(), tail.size());
+    int e = raw.error() ? raw.error() : bin.error();
+    if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
+    e = out.commit();
     if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
     return BANYAN_OK;
 }
