@@ -26,11 +26,12 @@ static void advise_huge(void *p, size_t bytes) {
 void *big_malloc(size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (bytes >= BIG_MIN && bytes <= SIZE_MAX / 2) {
-        /* Rounded up to whole huge pages when that wastes at most an
-         * eighth (the last page is written too, so it is resident);
-         * otherwise the tail past the last whole huge page stays 4 KiB. */
+        /* Rounded up to whole huge pages when that adds at most a
+         * quarter (the last page is written too, so all of it becomes
+         * resident); otherwise the tail past the last whole huge page
+         * stays 4 KiB pages (a 4.1 MiB array would cost 6 MiB). */
         size_t whole = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
-        if ((whole - bytes) * 8 <= bytes) bytes = whole;
+        if ((whole - bytes) * 4 <= bytes) bytes = whole;
         void *p = NULL;
         if (posix_memalign(&p, HUGE_PAGE, bytes)) return NULL;
         advise_huge(p, bytes);
