@@ -31,13 +31,29 @@ void mb_init_external(mesh_builder *mb, uint32_t cap_v, uint32_t cap_i, float *p
     mb->n_attr = n_attr;
 }
 
+void mb_external_skeleton(mesh_builder *mb, float *pos, float *radius, int32_t *tag, uint32_t cap_points,
+                          uint32_t *edges, uint32_t cap_edges) {
+    if (mb->n_skel || mb->n_edge) { /* too late: points were added to the builder's own arrays */
+        if (!mb->status) mb->status = BANYAN_E_INTERNAL;
+        return;
+    }
+    if (!mb->external_skel) { /* an empty reservation of its own */
+        free(mb->skel_pos); free(mb->skel_rad); free(mb->skel_tag); free(mb->skel_edge);
+    }
+    mb->external_skel = 1;
+    mb->skel_pos = pos, mb->skel_rad = radius, mb->skel_tag = tag, mb->skel_edge = edges;
+    mb->cap_skel = cap_points, mb->cap_edge = cap_edges;
+}
+
 void mb_free(mesh_builder *mb) {
     if (!mb->external) {
         free(mb->pos); free(mb->nrm); free(mb->uv); free(mb->col); free(mb->idx);
         for (uint32_t i = 0; i < mb->n_attr; i++) free(mb->attr[i]);
     }
     free(mb->mat); free(mb->part);
-    free(mb->skel_pos); free(mb->skel_rad); free(mb->skel_tag); free(mb->skel_edge);
+    if (!mb->external_skel) {
+        free(mb->skel_pos); free(mb->skel_rad); free(mb->skel_tag); free(mb->skel_edge);
+    }
     memset(mb, 0, sizeof *mb);
 }
 
@@ -202,6 +218,7 @@ banyan_status mb_skel_reserve(mesh_builder *mb, uint32_t points, uint32_t edges)
     if (mb->status) return mb->status;
     uint64_t need_p = (uint64_t)mb->n_skel + points, need_e = (uint64_t)mb->n_edge + edges;
     if (need_p > 0xFFFFFFF0u || need_e > 0xFFFFFFF0u) return mb->status = BANYAN_E_LIMIT;
+    if ((need_p > mb->cap_skel || need_e > mb->cap_edge) && mb->external_skel) return mb->status = BANYAN_E_INTERNAL;
     if (need_p > mb->cap_skel) {
         size_t cap = (size_t)grown(mb->cap_skel, need_p, 256, 0xFFFFFFF0u);
         if (!grow((void **)&mb->skel_pos, cap, 3 * sizeof(float)) || !grow((void **)&mb->skel_rad, cap, sizeof(float)) ||
@@ -253,6 +270,7 @@ banyan_status mb_fail(const mesh_builder *mb, banyan_error *err) {
 
 banyan_status mb_finish(mesh_builder *mb, banyan_mesh **out, banyan_error *err) {
     *out = NULL;
+    if ((mb->external || mb->external_skel) && !mb->status) mb->status = BANYAN_E_INTERNAL; /* not ours to hand over */
     if (mb->status) {
         banyan_status s = mb_fail(mb, err);
         mb_free(mb);

@@ -44,6 +44,8 @@ typedef struct mesh_builder {
      * and hold exactly cap_v vertices and cap_i indices (mb_init_external):
      * never grown, trimmed nor freed here. */
     int external;
+    /* The skeleton arrays belong to the caller too (mb_external_skeleton). */
+    int external_skel;
 
     /* tube_sweep's ring angles (cosines, sines) and u per ring vertex for
      * ring_sides sides, kept across the tubes of one mesh; 0 = none yet. */
@@ -66,6 +68,13 @@ void mb_free(mesh_builder *mb);
  * builder's own small arrays (parts, materials, skeleton). */
 void mb_init_external(mesh_builder *mb, uint32_t cap_v, uint32_t cap_i, float *pos, float *nrm, float *uv, float *col,
                       uint32_t *idx, float *const *attr, const char *const *attr_names, uint32_t n_attr);
+/* Skeleton points and edges written straight into the caller's arrays
+ * too (room for cap_points points and cap_edges edges), e.g. one tree's
+ * slice of an avenue's merged skeleton. Edges hold the builder's own point
+ * numbers (from 0): the caller offsets them. Needing more room fails with
+ * BANYAN_E_INTERNAL, as mb_init_external's arrays do; mb_free leaves them. */
+void mb_external_skeleton(mesh_builder *mb, float *pos, float *radius, int32_t *tag, uint32_t cap_points,
+                          uint32_t *edges, uint32_t cap_edges);
 /* Closes the current part and drops a trailing empty one (mb_finish does
  * this too). */
 void mb_close(mesh_builder *mb);

@@ -9,9 +9,9 @@
  * above), row 1 as far to the right, optionally staggered by half a step.
  * Tree order: row 0 along the path, then row 1.
  * Parallelism: workers take tree indices from an atomic counter; tree i
- * draws only from its own PCG32 streams (seed + i) and is meshed into its
- * own mesh, which the worker copies into the tree's slice of the merged
- * mesh; slices follow index order, so the bytes never depend on the thread
+ * draws only from its own PCG32 streams (seed + i) and is meshed straight
+ * into its own slice of the merged mesh and skeleton; slices follow index
+ * order, so the bytes never depend on the thread
  * count or on scheduling. A first parallel pass sizes every tree exactly
  * (vertices, indices, parts, skeleton), so max_vertices is checked and
  * the merged arrays are allocated once, before any mesh is built. */
@@ -222,9 +222,10 @@ typedef struct avenue_job {
  * it: the count pass's part of the time (bench_progress, 100 trees). */
 #define AVENUE_COUNT_SHARE 0.06
 
-/* Builds tree i straight into its slice of the merged mesh (sized by
- * the count pass: nothing is copied, no page is touched twice), then
- * moves its indices, parts and skeleton to their merged places. Slices
+/* Builds tree i straight into its slice of the merged mesh and skeleton
+ * (sized by the count pass: nothing is copied, no page is touched twice),
+ * then offsets its indices, parts and skeleton edges to their merged
+ * places. Slices
  * are disjoint, so workers write in parallel without locks. */
 static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *sk, banyan_error *err) {
     banyan_mesh *o = J->out;
@@ -240,6 +241,8 @@ static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *
     mesh_builder mb;
     mb_init_external(&mb, c->vertices, c->indices, o->positions + 3 * v, o->normals + 3 * v, o->uvs + 2 * v,
                      o->colors + 4 * v, o->indices + x, attr, names, na);
+    mb_external_skeleton(&mb, o->skel_points + 3 * s, o->skel_radius + s, o->skel_tag + s, c->skel_points,
+                         o->skel_edges + 2 * e, c->skel_edges);
     banyan_status st = keyaki_build_into(&J->trees[i], (double)i, i, sk, &mb, err);
     if (!st && !mb.status) mb_close(&mb);
     if (!st && mb.status) st = mb_fail(&mb, err);
@@ -255,10 +258,8 @@ static banyan_status build_in_place(avenue_job *J, uint32_t i, keyaki_skeleton *
             q.index_offset += (uint32_t)x;
             o->parts[pp + k] = q;
         }
-        memcpy(o->skel_points + 3 * s, mb.skel_pos, sizeof(float) * 3 * mb.n_skel);
-        memcpy(o->skel_radius + s, mb.skel_rad, sizeof(float) * mb.n_skel);
-        memcpy(o->skel_tag + s, mb.skel_tag, sizeof(int32_t) * mb.n_skel);
-        for (uint32_t k = 0; k < 2 * mb.n_edge; k++) o->skel_edges[2 * e + k] = mb.skel_edge[k] + (uint32_t)s;
+        uint32_t *E = o->skel_edges + 2 * e; /* built in place, numbered from the tree's first point */
+        for (uint32_t k = 0; k < 2 * mb.n_edge; k++) E[k] += (uint32_t)s;
         if (i == 0) memcpy(o->materials, mb.mat, sizeof(banyan_material) * o->material_count);
     }
     mb_free(&mb);
@@ -329,11 +330,11 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     o->part_count = (uint32_t)np;
     o->parts = malloc(sizeof(banyan_part) * np);
     o->skel_point_count = (uint32_t)ns;
-    o->skel_points = malloc(sizeof(float) * 3 * ns);
-    o->skel_radius = malloc(sizeof(float) * ns);
-    o->skel_tag = malloc(sizeof(int32_t) * ns);
+    o->skel_points = big_malloc(sizeof(float) * 3 * ns);
+    o->skel_radius = big_malloc(sizeof(float) * ns);
+    o->skel_tag = big_malloc(sizeof(int32_t) * ns);
     o->skel_edge_count = (uint32_t)ne;
-    o->skel_edges = malloc(sizeof(uint32_t) * 2 * ne);
+    o->skel_edges = big_malloc(sizeof(uint32_t) * 2 * ne);
     int ok = o->positions && o->normals && o->uvs && o->colors && o->indices && o->attributes && o->materials && o->parts &&
              o->skel_points && o->skel_radius && o->skel_tag && o->skel_edges;
     for (uint32_t a = 0; ok && a < na; a++) {

@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <errno.h>
+
 #include "banyan.h"
 #include "check.h"
 #include "host_meshes.h"
@@ -29,6 +31,9 @@ void *__real_realloc(void *p, size_t n);
 void *__wrap_malloc(size_t n);
 void *__wrap_calloc(size_t n, size_t m);
 void *__wrap_realloc(void *p, size_t n);
+/* big_alloc's arrays of 4 MiB and more come from posix_memalign. */
+int __real_posix_memalign(void **p, size_t align, size_t n);
+int __wrap_posix_memalign(void **p, size_t align, size_t n);
 
 /* Counts a request; returns 1 when it is the one to fail. */
 static int count(size_t n) {
@@ -44,6 +49,9 @@ void *__wrap_calloc(size_t n, size_t m) {
 }
 void *__wrap_realloc(void *p, size_t n) {
     return count(n) ? NULL : __real_realloc(p, n);
+}
+int __wrap_posix_memalign(void **p, size_t align, size_t n) {
+    return count(n) ? ENOMEM : __real_posix_memalign(p, align, n);
 }
 
 static void reset(void) {
