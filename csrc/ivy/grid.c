@@ -292,22 +292,42 @@ static inline ivy_cell *cell_slot(const banyan_ivy *iv, int32_t x, int32_t y, in
     }
 }
 
-/* Cell (x, y, z) when it holds a bud, else NULL. */
+/* Cell (x, y, z) when it holds a bud, else NULL. An empty home slot
+ * settles most cells around a query by a bit test (the bitmap stays in
+ * cache; the slots do not). */
 static inline const ivy_cell *cell_find(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
-    const ivy_cell *c = cell_slot(iv, x, y, z);
-    return c->n > 0 ? c : NULL; /* an empty slot has n = 0 */
+    uint32_t k = cell_hash(x, y, z) & iv->cmask;
+    if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) return NULL;
+    for (;;) {
+        const ivy_cell *c = &iv->cells[k];
+        if (c->x == x && c->y == y && c->z == z) return c->n > 0 ? c : NULL;
+        if (c->x == INT32_MIN) return NULL;
+        k = (k + 1) & iv->cmask;
+    }
+}
+
+static inline void cell_mark(banyan_ivy *iv, const ivy_cell *c) {
+    uint32_t k = (uint32_t)(c - iv->cells);
+    iv->cbits[k >> 6] |= (uint64_t)1 << (k & 63);
 }
 
 /* A table of `slots` (a power of 2) holding the cells of the old one. */
 static int cells_resize(banyan_ivy *iv, uint32_t slots) {
-    ivy_cell *t = malloc(sizeof(ivy_cell) * slots), *old = iv->cells;
+    /* slots is at least 64: the bitmap of used slots follows the table */
+    ivy_cell *t = malloc(sizeof(ivy_cell) * slots + sizeof(uint64_t) * (slots / 64)), *old = iv->cells;
     if (!t) return 0;
     for (uint32_t k = 0; k < slots; k++) t[k] = (ivy_cell){INT32_MIN, 0, 0, 0, 0, 0};
     uint32_t old_slots = old ? iv->cmask + 1 : 0;
     iv->cells = t;
+    iv->cbits = (uint64_t *)(void *)(t + slots);
+    memset(iv->cbits, 0, sizeof(uint64_t) * (slots / 64));
     iv->cmask = slots - 1;
     for (uint32_t k = 0; k < old_slots; k++)
-        if (old[k].x != INT32_MIN) *cell_slot(iv, old[k].x, old[k].y, old[k].z) = old[k];
+        if (old[k].x != INT32_MIN) {
+            ivy_cell *c = cell_slot(iv, old[k].x, old[k].y, old[k].z);
+            *c = old[k];
+            cell_mark(iv, c);
+        }
     free(old);
     return 1;
 }
@@ -322,6 +342,7 @@ static ivy_cell *cell_room(banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
             c = cell_slot(iv, x, y, z);
         }
         *c = (ivy_cell){x, y, z, 0, 0, 0};
+        cell_mark(iv, c);
         iv->n_cells++;
     }
     if (c->n == c->cap) {
@@ -602,9 +623,11 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
                 for (int32_t k = 0; k < cl->n; k++) {
                     const ivy_gnode *g = &iv->pool[cl->at + k];
                     const int32_t j = g->id;
+                    /* The bud's own copy first: most are out of reach, and
+                     * the bud array is read only for the rest. */
+                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
                     const int32_t pj = iv->buds[j].parent;
                     if (pj < 0 || j == self || pj == self) continue;
-                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
                     v3 c = iv->buds[pj].P;
                     const double cx = v3_dot(c, u), cy = v3_dot(c, w), dx = v3_dot(g->P, u) - cx,
                                  dy = v3_dot(g->P, w) - cy;

@@ -114,6 +114,7 @@ struct banyan_ivy {
      * addressing table; each cell's buds in a run of the pool. */
     int32_t (*bcell)[3];   /* per bud: its cell's coordinates */
     ivy_cell *cells;       /* the table (x = INT32_MIN: empty slot) */
+    uint64_t *cbits;       /* a bit per slot: used (in cells' block) */
     uint32_t cmask;        /* slots - 1 */
     int32_t n_cells;
     ivy_gnode *pool;
