@@ -5,9 +5,13 @@
  * the triangle meshes of a host set.
  *
  * The hash has cells of leaf_max, the look-up radius, so a query reads
- * the 27 cells around a point. Buckets hold singly linked chains through
- * a compact copy of each bud (ivy_gnode); each copy keeps its cell so that
- * two cells sharing a bucket are told apart and nothing is counted twice.
+ * the 27 cells around a point. Each cell (an open addressing table keyed
+ * by its coordinates) keeps a copy of its buds (position, birth step,
+ * index) in one run of a pool, so a query reads 27 table slots and a few
+ * short runs. A chain of buds linked by index, as before, jumped over the
+ * whole plant at every link: past ~50k buds each was a cache miss and the
+ * cost per bud doubled by 250k (issue 23). The runs are read in the order
+ * the chains were, so the light sums are the same to the bit.
  *
  * Shade at a point never falls while buds stay put (leaves only grow, buds
  * are only added), and a test that finds a bud too shaded rests only on
@@ -270,59 +274,155 @@ static int32_t cell_coord(double v, double inv) {
     return i - (f < (double)i);
 }
 
-static uint32_t bucket_of(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
+static inline uint32_t cell_hash(int32_t x, int32_t y, int32_t z) {
     uint32_t h = (uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ (uint32_t)z * 83492791u;
     h ^= h >> 15;
     h *= 0x2c1b3c6du;
     h ^= h >> 12;
-    return h & iv->mask;
+    return h;
+}
+
+/* The slot of cell (x, y, z): its own, or the empty one it would take. */
+static inline ivy_cell *cell_slot(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
+    uint32_t k = cell_hash(x, y, z) & iv->cmask;
+    for (;;) {
+        ivy_cell *c = &iv->cells[k];
+        if (c->x == INT32_MIN || (c->x == x && c->y == y && c->z == z)) return c;
+        k = (k + 1) & iv->cmask;
+    }
+}
+
+/* Cell (x, y, z) when it holds a bud, else NULL. An empty home slot
+ * settles most cells around a query by a bit test (the bitmap stays in
+ * cache; the slots do not). */
+static inline const ivy_cell *cell_find(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
+    uint32_t k = cell_hash(x, y, z) & iv->cmask;
+    if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) return NULL;
+    for (;;) {
+        const ivy_cell *c = &iv->cells[k];
+        if (c->x == x && c->y == y && c->z == z) return c->n > 0 ? c : NULL;
+        if (c->x == INT32_MIN) return NULL;
+        k = (k + 1) & iv->cmask;
+    }
+}
+
+static inline void cell_mark(banyan_ivy *iv, const ivy_cell *c) {
+    uint32_t k = (uint32_t)(c - iv->cells);
+    iv->cbits[k >> 6] |= (uint64_t)1 << (k & 63);
+}
+
+/* A table of `slots` (a power of 2) holding the cells of the old one. */
+static int cells_resize(banyan_ivy *iv, uint32_t slots) {
+    /* slots is at least 64: the bitmap of used slots follows the table */
+    ivy_cell *t = malloc(sizeof(ivy_cell) * slots + sizeof(uint64_t) * (slots / 64)), *old = iv->cells;
+    if (!t) return 0;
+    for (uint32_t k = 0; k < slots; k++) t[k] = (ivy_cell){INT32_MIN, 0, 0, 0, 0, 0};
+    uint32_t old_slots = old ? iv->cmask + 1 : 0;
+    iv->cells = t;
+    iv->cbits = (uint64_t *)(void *)(t + slots);
+    memset(iv->cbits, 0, sizeof(uint64_t) * (slots / 64));
+    iv->cmask = slots - 1;
+    for (uint32_t k = 0; k < old_slots; k++)
+        if (old[k].x != INT32_MIN) {
+            ivy_cell *c = cell_slot(iv, old[k].x, old[k].y, old[k].z);
+            *c = old[k];
+            cell_mark(iv, c);
+        }
+    free(old);
+    return 1;
+}
+
+/* Cell (x, y, z) with room for one more bud; NULL when out of memory. */
+static ivy_cell *cell_room(banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
+    ivy_cell *c = cell_slot(iv, x, y, z);
+    if (c->x == INT32_MIN) {
+        /* A new cell: the table stays at most half full. */
+        if ((uint32_t)(iv->n_cells + 1) * 2 > iv->cmask + 1) {
+            if (iv->cmask >= (1u << 30) || !cells_resize(iv, 2 * (iv->cmask + 1))) return NULL;
+            c = cell_slot(iv, x, y, z);
+        }
+        *c = (ivy_cell){x, y, z, 0, 0, 0};
+        cell_mark(iv, c);
+        iv->n_cells++;
+    }
+    if (c->n == c->cap) {
+        /* A run twice as long at the pool's end; the old run is left
+         * (the runs a cell left behind are shorter than its own). */
+        int32_t cap = c->cap ? 2 * c->cap : 8;
+        if (iv->pool_n + cap > iv->pool_cap) {
+            int64_t pc = iv->pool_cap ? 2 * iv->pool_cap : 4096;
+            while (pc < iv->pool_n + cap) pc *= 2;
+            if (pc > INT32_MAX) return NULL;
+            ivy_gnode *g = realloc(iv->pool, sizeof(ivy_gnode) * (size_t)pc);
+            if (!g) return NULL;
+            iv->pool = g;
+            iv->pool_cap = pc;
+        }
+        if (c->n) memcpy(iv->pool + iv->pool_n, iv->pool + c->at, sizeof(ivy_gnode) * (size_t)c->n);
+        c->at = (int32_t)iv->pool_n;
+        c->cap = cap;
+        iv->pool_n += cap;
+    }
+    return c;
 }
 
 static void link_bud(banyan_ivy *iv, int32_t i) {
-    ivy_gnode *g = &iv->gn[i];
-    g->P = iv->buds[i].P;
-    g->step_c = iv->buds[i].step_c;
-    g->cell[0] = cell_coord(g->P.x, iv->inv_cell);
-    g->cell[1] = cell_coord(g->P.y, iv->inv_cell);
-    g->cell[2] = cell_coord(g->P.z, iv->inv_cell);
-    uint32_t k = bucket_of(iv, g->cell[0], g->cell[1], g->cell[2]);
-    g->next = iv->head[k];
-    iv->head[k] = i;
-    iv->occupied[k >> 6] |= (uint64_t)1 << (k & 63);
+    const ivy_bud *b = &iv->buds[i];
+    int32_t *bc = iv->bcell[i];
+    bc[0] = cell_coord(b->P.x, iv->inv_cell);
+    bc[1] = cell_coord(b->P.y, iv->inv_cell);
+    bc[2] = cell_coord(b->P.z, iv->inv_cell);
+    ivy_cell *c = cell_room(iv, bc[0], bc[1], bc[2]);
+    if (!c) {
+        iv->grid_oom = 1;
+        bc[0] = INT32_MIN; /* in no cell */
+        return;
+    }
+    iv->pool[c->at + c->n++] = (ivy_gnode){b->P, b->step_c, i};
 }
 
 static void unlink_bud(banyan_ivy *iv, int32_t i) {
-    ivy_gnode *g = &iv->gn[i];
-    uint32_t k = bucket_of(iv, g->cell[0], g->cell[1], g->cell[2]);
-    int32_t *at = &iv->head[k];
-    while (*at >= 0 && *at != i) at = &iv->gn[*at].next;
-    if (*at == i) *at = g->next;
-    g->next = -1;
-    if (iv->head[k] < 0) iv->occupied[k >> 6] &= ~((uint64_t)1 << (k & 63));
+    const int32_t *bc = iv->bcell[i];
+    if (bc[0] == INT32_MIN) return;
+    ivy_cell *c = cell_slot(iv, bc[0], bc[1], bc[2]);
+    ivy_gnode *g = iv->pool + c->at;
+    for (int32_t k = 0; k < c->n; k++)
+        if (g[k].id == i) { /* the others keep their order */
+            memmove(g + k, g + k + 1, sizeof(ivy_gnode) * (size_t)(c->n - k - 1));
+            c->n--;
+            break;
+        }
 }
 
 banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets) {
     /* buckets is a power of 2, at least 64 */
-    int32_t *h = malloc(sizeof(int32_t) * buckets + sizeof(uint64_t) * (buckets / 64));
-    if (!h) return BANYAN_E_NOMEM;
-    for (uint32_t i = 0; i < buckets; i++) h[i] = -1;
-    free(iv->head);
-    iv->head = h;
-    iv->occupied = (uint64_t *)(void *)(h + buckets);
-    memset(iv->occupied, 0, sizeof(uint64_t) * (buckets / 64));
-    iv->mask = buckets - 1;
-    /* Relink in bud order: the chains are the same whatever the history. */
+    free(iv->cells);
+    iv->cells = NULL;
+    iv->n_cells = 0;
+    iv->pool_n = 0;
+    if (!cells_resize(iv, buckets)) return BANYAN_E_NOMEM;
+    iv->vbuckets = buckets;
     for (int32_t i = 0; i < iv->n; i++) link_bud(iv, i);
-    return BANYAN_OK;
+    return iv->grid_oom ? BANYAN_E_NOMEM : BANYAN_OK;
+}
+
+static int cmp_gnode_id(const void *a, const void *b) {
+    int32_t x = ((const ivy_gnode *)a)->id, y = ((const ivy_gnode *)b)->id;
+    return (x > y) - (x < y);
 }
 
 void ivy_grid_insert(banyan_ivy *iv, int32_t i) {
-    /* Rehash (which links every bud, i included) at load 2; when that
-     * cannot allocate, the old table keeps working, only slower. */
-    if ((uint32_t)iv->n > 2u * (iv->mask + 1u) && iv->mask < (1u << 26) &&
-        ivy_grid_init(iv, 4u * (iv->mask + 1u)) == BANYAN_OK)
-        return;
     link_bud(iv, i);
+    /* Where the bucket hash rehashed (at load 2), it relinked every bud
+     * in index order: each cell's buds are read newest index first from
+     * then on. */
+    if ((uint32_t)iv->n > 2u * iv->vbuckets && iv->vbuckets - 1u < (1u << 26)) {
+        iv->vbuckets *= 4;
+        for (uint32_t k = 0; k <= iv->cmask; k++) {
+            ivy_cell *c = &iv->cells[k];
+            if (c->n > 1) qsort(iv->pool + c->at, (size_t)c->n, sizeof(ivy_gnode), cmp_gnode_id);
+        }
+    }
 }
 
 /* ------------------------------------------------ light cache upkeep */
@@ -459,47 +559,36 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
     const double ic = iv->inv_cell;
     int32_t x0 = cell_coord(p.x - dmax, ic), x1 = cell_coord(p.x + dmax, ic), y0 = cell_coord(p.y - dmax, ic),
             y1 = cell_coord(p.y + dmax, ic), z0 = cell_coord(p.z - dmax, ic), z1 = cell_coord(p.z + dmax, ic);
-    /* The occupied buckets of the cells around p, in z, y, x order: an
-     * empty one costs a bit test (the bitmap stays in L1), not a load of
-     * its chain head and a mispredicted loop. */
-    enum { MAX_CELLS = 64 }; /* 4 per axis at most: cells are at least leaf_max */
-    uint32_t bk[MAX_CELLS];
-    int32_t cx[MAX_CELLS], cy[MAX_CELLS], cz[MAX_CELLS];
-    int nb = 0;
+    /* The cells around p in z, y, x order, each cell's buds newest link
+     * first (the order the sums have always been added in). */
+    double H = 0.0;
+    v3 acc = v3_make(0, 0, 0);
     for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
         for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
             for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                uint32_t k = bucket_of(iv, x, y, z);
-                bk[nb] = k;
-                cx[nb] = x;
-                cy[nb] = y;
-                cz[nb] = z;
-                nb += (int)((iv->occupied[k >> 6] >> (k & 63)) & 1);
+                const ivy_cell *c = cell_find(iv, x, y, z);
+                if (!c) continue;
+                const ivy_gnode *g = iv->pool + c->at;
+                for (int32_t k = c->n - 1; k >= 0; k--) {
+                    const ivy_gnode *b = &g[k];
+                    const int32_t j = b->id;
+                    v3 d = v3_sub(p, b->P);
+                    double d2 = v3_len2(d);
+                    if (d2 >= dmax2 || j == self) continue;
+                    double dist = sqrt(d2);
+                    double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
+                    if (dl > dmax) dl = dmax;
+                    double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
+                    if (h <= 0) continue;
+                    H += h;
+                    if (gather && gather->seen[j] != gather->test_id) {
+                        gather->seen[j] = gather->test_id;
+                        gather->counted[gather->n_counted++] = j;
+                    }
+                    if (H > stop) return H; /* the caller will not grow: V_l unused */
+                    if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
+                }
             }
-    double H = 0.0;
-    v3 acc = v3_make(0, 0, 0);
-    for (int c = 0; c < nb; c++) {
-        const int32_t x = cx[c], y = cy[c], z = cz[c];
-        for (int32_t j = iv->head[bk[c]]; j >= 0; j = iv->gn[j].next) {
-            const ivy_gnode *b = &iv->gn[j];
-            if (b->cell[0] != x || b->cell[1] != y || b->cell[2] != z || j == self) continue;
-            v3 d = v3_sub(p, b->P);
-            double d2 = v3_len2(d);
-            if (d2 >= dmax2) continue;
-            double dist = sqrt(d2);
-            double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
-            if (dl > dmax) dl = dmax;
-            double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
-            if (h <= 0) continue;
-            H += h;
-            if (gather && gather->seen[j] != gather->test_id) {
-                gather->seen[j] = gather->test_id;
-                gather->counted[gather->n_counted++] = j;
-            }
-            if (H > stop) return H; /* the caller will not grow: V_l unused */
-            if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
-        }
-    }
     if (vl) *vl = v3_add(*vl, acc);
     return H;
 }
@@ -529,14 +618,16 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
     for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
         for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
             for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                uint32_t k = bucket_of(iv, x, y, z);
-                if (!((iv->occupied[k >> 6] >> (k & 63)) & 1)) continue;
-                for (int32_t j = iv->head[k]; j >= 0; j = iv->gn[j].next) {
-                    const ivy_gnode *g = &iv->gn[j];
-                    if (g->cell[0] != x || g->cell[1] != y || g->cell[2] != z) continue;
+                const ivy_cell *cl = cell_find(iv, x, y, z);
+                if (!cl) continue;
+                for (int32_t k = 0; k < cl->n; k++) {
+                    const ivy_gnode *g = &iv->pool[cl->at + k];
+                    const int32_t j = g->id;
+                    /* The bud's own copy first: most are out of reach, and
+                     * the bud array is read only for the rest. */
+                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
                     const int32_t pj = iv->buds[j].parent;
                     if (pj < 0 || j == self || pj == self) continue;
-                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
                     v3 c = iv->buds[pj].P;
                     const double cx = v3_dot(c, u), cy = v3_dot(c, w), dx = v3_dot(g->P, u) - cx,
                                  dy = v3_dot(g->P, w) - cy;

@@ -362,14 +362,14 @@ static banyan_status reserve(banyan_ivy *iv, int32_t need, banyan_error *err) {
     while (cap < need) cap *= 2;
     if (cap > iv->p.max_buds) cap = need > iv->p.max_buds ? need : iv->p.max_buds;
     /* The per-bud arrays below, known before they grow. */
-    const double per_bud = sizeof(ivy_bud) + sizeof(ivy_gnode) + 10 * sizeof(int32_t) + 3 * sizeof(v3);
+    const double per_bud = sizeof(ivy_bud) + 3 * sizeof(ivy_gnode) + 13 * sizeof(int32_t) + 3 * sizeof(v3);
     if (prog_reserve(iv->prog, (double)(cap - iv->cap) * per_bud)) return prog_fail(iv->prog, err, "ivy growth");
     ivy_bud *b = realloc(iv->buds, sizeof(ivy_bud) * (size_t)cap);
     if (!b) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
     iv->buds = b;
-    ivy_gnode *g = realloc(iv->gn, sizeof(ivy_gnode) * (size_t)cap);
+    int32_t(*g)[3] = realloc(iv->bcell, sizeof *g * (size_t)cap);
     if (!g) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
-    iv->gn = g;
+    iv->bcell = g;
     /* Per bud: the light cache's first edge and test stamp (grid.c). */
     int32_t *w = realloc(iv->dep_head, sizeof(int32_t) * (size_t)cap * 2);
     if (!w) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %lld buds", (long long)cap);
@@ -407,6 +407,8 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
     if (s) return s;
     ivy_budget_start(iv);
     if (prog_stopped(iv->prog)) return prog_fail(iv->prog, err, "ivy growth");
+    if (iv->grid_oom)
+        return banyan_fail(err, BANYAN_E_NOMEM, "an earlier step ran out of memory for the spatial hash (%d buds)", iv->n);
     double t0 = now_seconds();
     for (int32_t k = 0; k < n; k++) {
         /* Every growing bud adds at most one bud per step. */
@@ -438,6 +440,11 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
             return prog_fail(iv->prog, err, "ivy growth");
         }
         ivy_sag(iv);
+        if (iv->grid_oom) { /* a bud is missing from the light look-up: the plant is only fit to be freed */
+            iv->step_seconds += now_seconds() - t0;
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the spatial hash at step %d (%d buds)",
+                               iv->step, iv->n);
+        }
         iv->work += n0 + 1.0;
     }
     iv->step_seconds += now_seconds() - t0;
@@ -459,10 +466,11 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->hosts);
     free(iv->box_lo);
     free(iv->buds);
-    free(iv->gn);
+    free(iv->bcell);
     free(iv->dep_head);
     free(iv->dep);
-    free(iv->head);
+    free(iv->cells);
+    free(iv->pool);
     free(iv->chain);
     free(iv->tmp);
     free(iv->cand);
@@ -674,6 +682,10 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         iv->n = k + 1;
         iv->act[k] = k;
         ivy_grid_insert(iv, k);
+    }
+    if (iv->grid_oom) {
+        banyan_ivy_free(iv);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
     iv->active = iv->n_act = iv->roots = ns;
     *out = iv;

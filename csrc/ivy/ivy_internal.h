@@ -56,14 +56,21 @@ typedef struct ivy_dep {
     int32_t sleeper, serial, next;
 } ivy_dep;
 
-/* The spatial hash's copy of a bud: compact, so chain walks stay in cache. */
+/* The spatial hash's copy of a bud, stored with the other buds of its
+ * cell in one run of memory: a light look-up reads a few runs, not a
+ * chain of buds scattered over the whole plant (grid.c). */
 typedef struct ivy_gnode {
     v3 P;
     int32_t step_c;
-    int32_t next;     /* chain */
-    int32_t cell[3];  /* cell coordinates */
-    int32_t pad;
+    int32_t id;       /* bud index */
 } ivy_gnode;
+
+/* A cell of the spatial hash: its coordinates and its buds' run in the
+ * pool (n used of cap). Cells stay once made, empty or not. */
+typedef struct ivy_cell {
+    int32_t x, y, z;
+    int32_t at, n, cap;
+} ivy_cell;
 
 struct banyan_ivy {
     banyan_ivy_params p;   /* start and ground_z moved into the frame below */
@@ -103,11 +110,21 @@ struct banyan_ivy {
     int32_t step;          /* steps done */
     double step_seconds;
 
-    /* Spatial hash: cells of IVY_CELL_SCALE * leaf_max. */
-    ivy_gnode *gn;         /* one per bud */
-    int32_t *head;         /* bucket chains */
-    uint64_t *occupied;    /* a bit per bucket: its chain is not empty (in head's block) */
-    uint32_t mask;
+    /* Spatial hash: cells of IVY_CELL_SCALE * leaf_max in an open
+     * addressing table; each cell's buds in a run of the pool. */
+    int32_t (*bcell)[3];   /* per bud: its cell's coordinates */
+    ivy_cell *cells;       /* the table (x = INT32_MIN: empty slot) */
+    uint64_t *cbits;       /* a bit per slot: used (in cells' block) */
+    uint32_t cmask;        /* slots - 1 */
+    int32_t n_cells;
+    ivy_gnode *pool;
+    int64_t pool_n, pool_cap;
+    /* The order a cell's buds are read in: newest link first, reset to
+     * falling bud index whenever the plant passes 2 * vbuckets buds (the
+     * chains of the bucket hash this replaced, kept so that the light
+     * sums add up in the same order and results stay the same). */
+    uint32_t vbuckets;
+    int grid_oom;          /* the hash could not grow: the step fails */
     double inv_cell;
 
     /* Scratch for the sag correction: cap entries each (tmp: 3 cap). */

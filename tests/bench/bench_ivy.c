@@ -9,7 +9,12 @@
  *   - the same preset with its wall given as a closed 12-triangle mesh
  *     (a host set, Embree queries) against the box: both times and the
  *     ratio (issue 15's target: within 1.5x).
- * Usage: bench_ivy [runs] */
+ * Usage: bench_ivy [runs]
+ *        bench_ivy --large [max_buds [preset]]: growth alone of
+ *     presets/ivy_wall_large.json (or presets/<preset>.json) (12 m x 12 m wall, 1,800 steps), stepped
+ *     one step at a time, with a table at 50k, 100k, 150k, ... 600k buds: time so far, and microseconds per bud over all buds so far
+ *     (cumulative) and over the buds since the row before (marginal);
+ *     issue 23's target: flat within 1.5x from 50k to 600k. */
 #include "bench.h"
 
 #include "host_meshes.h"
@@ -43,7 +48,67 @@ static double lookup_us(const banyan_ivy *iv, double *mean_h) {
     return t;
 }
 
+/* Loads presets/<name>.json into p and its hosts; 0 on failure. */
+static int load_preset(const char *name, banyan_ivy_params *p, banyan_box *hosts, uint32_t cap, uint32_t *nh) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
+    size_t len;
+    char *text = test_read_file(path, &len);
+    banyan_error err = {0, ""};
+    banyan_ivy_params_init(p);
+    int ok = text && !banyan_preset_apply(BANYAN_GEN_IVY, p, text, len, path, &err) &&
+             !banyan_preset_hosts(text, len, path, hosts, cap, nh, &err);
+    if (!ok) fprintf(stderr, "bench_ivy: cannot load %s: %s\n", path, err.message);
+    free(text);
+    return ok;
+}
+
+/* The large wall's per-bud table (growth only: the mesh is not built). */
+static int large(int32_t stop_at, const char *preset) {
+    banyan_ivy_params p;
+    banyan_box hosts[4];
+    uint32_t nh = 0;
+    banyan_error err = {0, ""};
+    if (!load_preset(preset, &p, hosts, 4, &nh)) return 1;
+    banyan_ivy *iv = NULL;
+    if (banyan_ivy_create(&p, hosts, nh, &iv, &err)) {
+        fprintf(stderr, "bench_ivy: %s\n", err.message);
+        return 1;
+    }
+    const int32_t at[] = {50000, 100000, 150000, 200000, 250000, 300000, 400000, 500000, 600000};
+    const int n_at = (int)(sizeof at / sizeof at[0]);
+    int next = 0;
+    double t_prev = 0, c_prev = 0, t = 0, c = 0;
+    int32_t n_prev = iv->n;
+    printf("%s: %d steps, growth only, one step per call\n", preset, p.steps);
+    printf("  %8s %6s %9s %9s %12s %12s %12s\n", "buds", "step", "wall s", "CPU s", "us/bud cum", "us/bud marg",
+           "CPU us/marg");
+    while (iv->step < p.steps && next < n_at && iv->n < stop_at) {
+        double a = bench_now(), ca = cpu_now();
+        if (banyan_ivy_step(iv, 1, &err)) {
+            fprintf(stderr, "bench_ivy: step %d: %s\n", iv->step, err.message);
+            break;
+        }
+        t += bench_now() - a;
+        c += cpu_now() - ca;
+        if (iv->n >= at[next]) {
+            printf("  %8d %6d %9.3f %9.3f %12.2f %12.2f %12.2f\n", iv->n, iv->step, t, c, t / iv->n * 1e6,
+                   (t - t_prev) / (iv->n - n_prev) * 1e6, (c - c_prev) / (iv->n - n_prev) * 1e6);
+            fflush(stdout);
+            t_prev = t;
+            c_prev = c;
+            n_prev = iv->n;
+            while (next < n_at && iv->n >= at[next]) next++;
+        }
+    }
+    printf("  end: %d buds at step %d, %.3f s wall, %.3f s CPU, %.2f us per bud\n", iv->n, iv->step, t, c,
+           t / iv->n * 1e6);
+    banyan_ivy_free(iv);
+    return 0;
+}
+
 int main(int argc, char **argv) {
+    if (argc > 1 && !strcmp(argv[1], "--large")) return large(argc > 2 && atoi(argv[2]) > 0 ? atoi(argv[2]) : INT32_MAX, argc > 3 ? argv[3] : "ivy_wall_large");
     int runs = argc > 1 ? atoi(argv[1]) : 7;
     if (runs < 1) runs = 1;
     char path[1024];

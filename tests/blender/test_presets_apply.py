@@ -183,6 +183,10 @@ def test_presets():
     paths = sorted(glob.glob(os.path.join(bt.SOURCE_DIR, "presets", "*.json")))
     bt.check(len(paths) >= 20, "presets found: %d" % len(paths))
     for path in paths:
+        if path.endswith("_large.json"):
+            # A benchmark (ivy_wall_large: 7 M vertices, minutes in Blender);
+            # test_api applies its params like every shipped preset's.
+            continue
         try:
             check_preset(path)
         except Exception:

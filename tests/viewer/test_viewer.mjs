@@ -134,7 +134,9 @@ for (const name of presets) {
   // A preset may turn the wind data off (avenue_boulevard: 100 unique trees); then it must carry none.
   const windOff = doc.params && (doc.params.wind === false || doc.params['tree.wind'] === false);
   const glb = path.join(glbDir, name.replace(/\.json$/, '.glb'));
-  const r = spawnSync(cli, [generator, '--preset', file, '-o', glb], { encoding: 'utf8' });
+  // A *_large preset is a benchmark (ivy_wall_large: 7 M vertices): its first 300 steps.
+  const cap = name.endsWith('_large.json') ? ['--set', 'steps=300'] : [];
+  const r = spawnSync(cli, [generator, '--preset', file, ...cap, '-o', glb], { encoding: 'utf8' });
   if (r.status !== 0) {
     console.log(`FAIL ${name}: banyan ${generator} exited ${r.status}: ${r.stderr}`);
     process.exit(1);
