@@ -711,8 +711,11 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
         if merged:
             return _single(name, d, parent, uv, created, _origin(origin, start))
         coll = created.add(bpy.data.collections.new(name))
+        objs = BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
+        # Joins the scene once its trees are in: Blender syncs the view
+        # layers once, not once per tree.
         parent.children.link(coll)
-        return BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
+        return objs
     job = Job(compute, build)
     job.params = p
     return _setups(job, "avenue", wind, animate, frame_start, frame_end)

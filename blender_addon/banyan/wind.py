@@ -56,11 +56,15 @@ def pivot_vectors(attributes):
     return out
 
 
-def add_attributes(me, attributes, add_float):
-    """Writes `attributes` on me: the pivot as one vector, the rest through
+def add_attributes(me, attributes, add_float, shift=None):
+    """Writes `attributes` on me: the pivot as one vector (moved by the
+    translation `shift` first, when given), the rest through
     add_float(name, data); returns the names written as floats."""
     piv = pivot_vectors(attributes)
     if piv is not None:
+        if shift is not None and any(shift):
+            from mathutils import Matrix
+            piv = transform_vectors(piv, Matrix.Translation(shift))
         me.attributes.new(PIVOT, 'FLOAT_VECTOR', 'POINT').data.foreach_set("vector", piv)
     done = []
     for name, data in attributes.items():
