@@ -183,6 +183,26 @@ def test_avenue():
     bt.check(len(mats) == len(objs[0].data.materials), "avenue: the trees share their materials (%d)" % len(mats))
 
 
-for t in (test_material_reuse, test_pivots_placed, test_pivots_per_group, test_avenue):
+def test_topology_ahead():
+    if not bt.generator("keyaki"):
+        return
+    bt.reset_scene()
+    job = api.keyaki_tree_job(levels=5)
+    with job:
+        job.compute()
+        topo = job.data.topology
+        bt.check(topo is not None and len(topo[0]) == job.data.index_count, "compute: the edge list made ahead")
+        obj = job.build()[0]
+    me = obj.data
+    bt.check(len(me.edges) == len(topo[1]) // 2, "the mesh has the edges made ahead (%d)" % len(me.edges))
+    bt.check(me.validate(verbose=False) is False, "and validates without fixes")
+    # A wrong edge list (another mesh's) is not used: the edges come from the indices.
+    d = U.synthetic_plant()
+    d.topology = topo
+    o2 = build(d, "Other")
+    bt.check(o2.data.validate(verbose=False) is False, "a stale edge list is ignored")
+
+
+for t in (test_material_reuse, test_pivots_placed, test_pivots_per_group, test_avenue, test_topology_ahead):
     bt.run(t)
 bt.done()
