@@ -174,21 +174,45 @@ def _unsigned(a):
 SMOOTH_OP_MIN = 10000
 
 
+DEFER = 'DEFER'  # fill_mesh(smooth=DEFER): the caller smooths many meshes at once (smooth_objects)
+
+
+def _smooth_op(objs):
+    """object.shade_smooth on objs (linked to a scene or not) in one call;
+    False when it cannot run. Only in object mode: in a paint mode the
+    operator would smooth the active object instead."""
+    if bpy.context.mode != 'OBJECT':
+        return False
+    with bpy.context.temp_override(selected_editable_objects=objs, active_object=objs[0], object=objs[0]):
+        return bpy.ops.object.shade_smooth.poll() and bpy.ops.object.shade_smooth() == {'FINISHED'}
+
+
 def _smooth(me, nt):
     """Makes every polygon smooth. use_smooth is a bit flag, so foreach_set
     goes item by item (about 40 ns a polygon: 35 ms for the wall ivy), and
     Blender 3.4 has no Mesh.shade_smooth(); its operator sets the flags in
-    one C loop (3 ms), here on a temporary object. Only in object mode: in
-    a paint mode the operator would smooth the active object instead."""
-    if nt >= SMOOTH_OP_MIN and bpy.context.mode == 'OBJECT':
+    one C loop (3 ms), here on a temporary object."""
+    if nt >= SMOOTH_OP_MIN:
         ob = bpy.data.objects.new("banyan_smooth", me)
         try:
-            with bpy.context.temp_override(selected_editable_objects=[ob], active_object=ob, object=ob):
-                if bpy.ops.object.shade_smooth.poll() and bpy.ops.object.shade_smooth() == {'FINISHED'}:
-                    return
+            if _smooth_op([ob]):
+                return
         finally:
             bpy.data.objects.remove(ob)
     me.polygons.foreach_set("use_smooth", array("b", [1]) * nt)
+
+
+def smooth_objects(objs):
+    """Every polygon of the objects' meshes smooth (made with
+    smooth=DEFER): one operator call for all of them on Blender 3.4-4.0
+    (an avenue's trees: one pair of view-layer updates, not one per tree);
+    nothing to do from 4.1 on (fill_mesh smoothed them)."""
+    if not objs or bpy.app.version >= (4, 1, 0):
+        return
+    if sum(len(o.data.polygons) for o in objs) >= SMOOTH_OP_MIN and _smooth_op(objs):
+        return
+    for o in objs:
+        o.data.polygons.foreach_set("use_smooth", array("b", [1]) * len(o.data.polygons))
 
 
 def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attributes=None, material_index=None,
@@ -231,7 +255,7 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
             me.shade_smooth()
         else:
             me.shade_flat()
-    elif smooth:
+    elif smooth and smooth != DEFER:
         _smooth(me, nt)
     me.update()
     moved = shift is not None and any(shift)
@@ -361,7 +385,7 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
             loc, shift = base, None
         # The pivots follow the vertices to the group's base (moved by C).
         fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
-                  material_index=material_indices(local_parts), smooth=smooth, shift=shift,
+                  material_index=material_indices(local_parts), smooth=DEFER if smooth else False, shift=shift,
                   pivot_shift=tuple(-c for c in base))
         obj = created.add(bpy.data.objects.new(me.name, me))
         obj.location = loc
@@ -369,5 +393,7 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         objs.append(obj)
         if progress:
             progress(n + 1, len(groups))
+    if smooth:
+        smooth_objects(objs)
     return objs
 
