@@ -192,9 +192,12 @@ class Job:
     failure). close() frees what the job holds (host sets); run() does
     it all. `info` holds what compute learnt (ivy: "grew")."""
 
-    def __init__(self, compute, build, cleanup=None):
+    def __init__(self, compute, build, cleanup=None, whole=True):
         import contextlib
         self._compute, self._build = compute, build
+        # whole: build makes one object of the whole mesh, so its edge list
+        # (triangle_edges, C) is computed in compute, off the main thread.
+        self.whole = whole
         self.stack = contextlib.ExitStack()
         if cleanup is not None:
             self.stack.push(cleanup)
@@ -209,7 +212,12 @@ class Job:
 
     def compute(self, progress=None):
         _check_progress(progress)
-        self.data = self._compute(progress)
+        d = self._compute(progress)
+        if self.whole and d is not None and getattr(d, "indices", None) is not None \
+                and not getattr(d, "instances", None):
+            from .core.mesh import triangle_edges
+            d.topology = triangle_edges(d.indices, len(d.positions) // 3)
+        self.data = d
         return self
 
     def build(self):
@@ -711,9 +719,12 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
         if merged:
             return _single(name, d, parent, uv, created, _origin(origin, start))
         coll = created.add(bpy.data.collections.new(name))
+        objs = BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
+        # Joins the scene once its trees are in: Blender syncs the view
+        # layers once, not once per tree.
         parent.children.link(coll)
-        return BM.objects_per_group(name, d, coll, created, uv=uv, progress=build_progress)
-    job = Job(compute, build)
+        return objs
+    job = Job(compute, build, whole=merged)
     job.params = p
     return _setups(job, "avenue", wind, animate, frame_start, frame_end)
 

@@ -52,20 +52,86 @@ def _collection_of(idb):
     return None
 
 
+LOOK = "banyan_look"    # on a flat material: the key of the look it was made for
+STATE = "banyan_state"  # ...and the fingerprint of the material as made (an artist's edit changes it)
+LOOK_VERSION = 1        # bump when make_material's node setup changes
+
+
+def _look_key(spec, vertex_colors):
+    """The look a flat material is made from (what make_material reads), as text."""
+    col = tuple(round(float(c), 6) for c in spec["base_color"])
+    tint = bool(vertex_colors and min(col[:3]) >= 0.99)
+    return "%d|%s|%s|%.6f|%d|%d" % (LOOK_VERSION, spec["name"], ",".join("%.6f" % c for c in col),
+                                   float(spec["roughness"]), bool(spec["double_sided"]), tint)
+
+
+def _fingerprint(mat):
+    """A hash of what an artist may change on a flat material: its viewport
+    colour, roughness, culling and every node, input value and link of its
+    node tree. Equal to the stored one: untouched since make_material."""
+    import hashlib
+    h = hashlib.sha1()
+    h.update(repr((tuple(round(c, 6) for c in mat.diffuse_color), round(mat.roughness, 6),
+                   mat.use_backface_culling)).encode())
+    nt = mat.node_tree
+    if nt is not None:
+        for n in sorted(nt.nodes, key=lambda n: n.name):
+            h.update(("%s|%s|%s|" % (n.name, n.bl_idname, getattr(n, "layer_name", ""))).encode())
+            for i in n.inputs:
+                v = getattr(i, "default_value", None)
+                if v is not None:
+                    try:
+                        v = tuple(round(x, 6) for x in v)
+                    except TypeError:
+                        v = round(v, 6) if isinstance(v, float) else v
+                h.update(repr((i.identifier, v, i.is_linked)).encode())
+        for ln in nt.links:
+            h.update(("%s.%s>%s.%s|" % (ln.from_node.name, ln.from_socket.identifier, ln.to_node.name,
+                                        ln.to_socket.identifier)).encode())
+    return h.hexdigest()
+
+
+def _reusable(mat, key):
+    return (mat is not None and mat.library is None and mat.get(LOOK) == key
+            and mat.get(STATE) == _fingerprint(mat))
+
+
+def find_flat_material(spec, name, vertex_colors=False):
+    """The flat material make_material made earlier for this look (same
+    key), untouched since (its fingerprint unchanged), or None. The name a
+    new one would get is tried first (one look-up), then every material."""
+    key = _look_key(spec, vertex_colors)
+    mat = bpy.data.materials.get(name)
+    if _reusable(mat, key):
+        return mat
+    for m in bpy.data.materials:
+        if m.get(LOOK) == key and _reusable(m, key):
+            return m
+    return None
+
+
 def make_material(spec, created, prefix="banyan", vertex_colors=False, images=None):
     """A Principled material from a banyan_material dict. A white material
     on a mesh with vertex colours (the segments generator's) takes its
     base colour from them, as glTF viewers show base colour x COLOR_0.
     A material naming a library texture is the shared one of its kind and
     season instead (materials.py: made once, reused by every run). One
-    naming an image of the mesh (a billboard's picture) gets it packed."""
+    naming an image of the mesh (a billboard's picture) gets it packed.
+    A flat material is reused from an earlier run with the same look
+    (key in LOOK) unless it was edited since (STATE, a fingerprint, no
+    longer matches): an artist's material is never changed, and a new
+    one is made beside it."""
     if spec.get("image", -1) >= 0 and images and spec["image"] < len(images):
         from .materials import image_material
         return image_material(spec, images[spec["image"]], created, prefix)
     if spec.get("texture", -1) >= 0:
         from .materials import shared_material
         return shared_material(spec, created, vertex_colors)
-    mat = created.add(bpy.data.materials.new("%s_%s" % (prefix, spec["name"])))
+    name = "%s_%s" % (prefix, spec["name"])
+    mat = find_flat_material(spec, name, vertex_colors)
+    if mat is not None:
+        return mat
+    mat = created.add(bpy.data.materials.new(name))
     col = tuple(spec["base_color"])
     mat.diffuse_color = col
     mat.roughness = spec["roughness"]
@@ -80,6 +146,8 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False, images=No
             vc = mat.node_tree.nodes.new("ShaderNodeVertexColor")
             vc.layer_name = COLOR_ATTRIBUTE
             mat.node_tree.links.new(vc.outputs["Color"], bsdf.inputs["Base Color"])
+    mat[LOOK] = _look_key(spec, vertex_colors)
+    mat[STATE] = _fingerprint(mat)
     return mat
 
 
@@ -99,39 +167,87 @@ def _unsigned(a):
 
 
 # From this many polygons on _smooth uses the operator: its fixed cost (a
-# view-layer update first) pays off on big meshes only.
-SMOOTH_OP_MIN = 100000
+# view-layer update before and after, about 1 ms in a small scene; the
+# relations update it runs is one the first evaluation then skips) against
+# 50 to 500 ns a polygon item by item (Blender 3.4.1, issue #23: 0.6 vs
+# 0.15 ms at 2,000 polygons, 1.0 vs 0.6 at 10,000, 1.3 vs 51 at 100,000).
+SMOOTH_OP_MIN = 10000
+
+
+DEFER = 'DEFER'  # fill_mesh(smooth=DEFER): the caller smooths many meshes at once (smooth_objects)
+
+
+def _smooth_op(objs):
+    """object.shade_smooth on objs (linked to a scene or not) in one call;
+    False when it cannot run. Only in object mode: in a paint mode the
+    operator would smooth the active object instead."""
+    if bpy.context.mode != 'OBJECT':
+        return False
+    with bpy.context.temp_override(selected_editable_objects=objs, active_object=objs[0], object=objs[0]):
+        return bpy.ops.object.shade_smooth.poll() and bpy.ops.object.shade_smooth() == {'FINISHED'}
 
 
 def _smooth(me, nt):
     """Makes every polygon smooth. use_smooth is a bit flag, so foreach_set
     goes item by item (about 40 ns a polygon: 35 ms for the wall ivy), and
     Blender 3.4 has no Mesh.shade_smooth(); its operator sets the flags in
-    one C loop (3 ms), here on a temporary object. Only in object mode: in
-    a paint mode the operator would smooth the active object instead."""
-    if nt >= SMOOTH_OP_MIN and bpy.context.mode == 'OBJECT':
+    one C loop (3 ms), here on a temporary object."""
+    if nt >= SMOOTH_OP_MIN:
         ob = bpy.data.objects.new("banyan_smooth", me)
         try:
-            with bpy.context.temp_override(selected_editable_objects=[ob], active_object=ob, object=ob):
-                if bpy.ops.object.shade_smooth.poll() and bpy.ops.object.shade_smooth() == {'FINISHED'}:
-                    return
+            if _smooth_op([ob]):
+                return
         finally:
             bpy.data.objects.remove(ob)
     me.polygons.foreach_set("use_smooth", array("b", [1]) * nt)
 
 
+def smooth_objects(objs):
+    """Every polygon of the objects' meshes smooth (made with
+    smooth=DEFER): one operator call for all of them on Blender 3.4-4.0
+    (an avenue's trees: one pair of view-layer updates, not one per tree);
+    nothing to do from 4.1 on (fill_mesh smoothed them)."""
+    if not objs or bpy.app.version >= (4, 1, 0):
+        return
+    if sum(len(o.data.polygons) for o in objs) >= SMOOTH_OP_MIN and _smooth_op(objs):
+        return
+    for o in objs:
+        o.data.polygons.foreach_set("use_smooth", array("b", [1]) * len(o.data.polygons))
+
+
 def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attributes=None, material_index=None,
-              smooth=True):
+              smooth=True, shift=None, pivot_shift=None, topology=None):
     """Fills an empty mesh from flat buffers (indices are local vertex numbers).
     The edges come from the library (banyan_triangle_edges) with each
-    loop's edge, so update() has nothing to derive."""
+    loop's edge, so update() has nothing to derive. shift: a translation
+    of the vertices and wind pivots (Mesh.transform, in double);
+    pivot_shift: one of the pivots alone (vertices already moved in C).
+    Both are applied before the pivots are written, so they are written
+    once (moving them afterwards read them back and wrote them again);
+    the pivots are moved as the mesh's own vertices before the real ones
+    are set (no temporary mesh: making and removing one cost ~9 ms a tree).
+    topology: triangle_edges(indices) computed ahead (MeshData.topology)."""
     nv = len(positions) // 3
     ni = len(indices)
     nt = ni // 3
     indices = _unsigned(indices)
-    corner_edges, edges, loop_start = triangle_edges(indices, nv)
+    if topology is None or len(topology[0]) != ni:
+        topology = triangle_edges(indices, nv)
+    corner_edges, edges, loop_start = topology
+    moved = shift is not None and any(shift)
+    piv_shift = tuple((shift[k] if moved else 0.0) + (pivot_shift[k] if pivot_shift is not None else 0.0)
+                      for k in range(3))
     me.vertices.add(nv)
+    pivots = W.pivot_vectors(attributes or {})
+    if pivots is not None and any(piv_shift) and len(pivots) == len(positions):
+        from mathutils import Matrix
+        me.vertices.foreach_set("co", pivots)
+        me.transform(Matrix.Translation(piv_shift))
+        me.vertices.foreach_get("co", pivots)
     me.vertices.foreach_set("co", positions)
+    if moved:
+        from mathutils import Matrix
+        me.transform(Matrix.Translation(shift))
     me.edges.add(len(edges) // 2)
     me.edges.foreach_set("vertices", edges)
     me.loops.add(ni)
@@ -153,7 +269,7 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
             me.shade_smooth()
         else:
             me.shade_flat()
-    elif smooth:
+    elif smooth and smooth != DEFER:
         _smooth(me, nt)
     me.update()
     if corner_uvs is not None and nt:
@@ -166,7 +282,7 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
         attr_name = name if name not in me.attributes else "banyan_" + name
         me.attributes.new(attr_name, 'FLOAT', 'POINT').data.foreach_set("value", data)
     # The wind pivot's three scalars become one vector (wind.py).
-    W.add_attributes(me, attributes or {}, add_float)
+    W.add_attributes(me, attributes or {}, add_float, pivots=pivots)
     return me
 
 
@@ -185,6 +301,14 @@ def as_location(p):
     """p as an object's location holds it: Blender keeps locations in
     float32 (6 cm steps at 1e6 m; whole metres are exact)."""
     return struct.unpack("3f", struct.pack("3f", *p))
+
+
+def placement(at, mesh_origin):
+    """(location, shift): obj's location for `at` (world, snapped to
+    float32) and the move of vertices relative to mesh_origin (world,
+    double) that keeps them where they are (see place)."""
+    loc = as_location(at)
+    return loc, tuple(mesh_origin[k] - loc[k] for k in range(3))
 
 
 def place(me, obj, at, mesh_origin):
@@ -211,11 +335,14 @@ def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=Tr
         make_material(m, created, name, d.colors is not None, getattr(d, "images", None)) for m in d.materials]
     for m in mats:
         me.materials.append(m)
-    fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
-              attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth)
-    obj = created.add(bpy.data.objects.new(name, me))
     mesh_origin = getattr(d, "origin", (0.0, 0.0, 0.0))
-    place(me, obj, mesh_origin if origin is None else origin, mesh_origin)
+    loc, shift = placement(mesh_origin if origin is None else origin, mesh_origin)
+    fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
+              attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth, shift=shift,
+              topology=getattr(d, "topology", None))
+    obj = created.add(bpy.data.objects.new(name, me))
+    if any(loc):
+        obj.location = loc
     collection.objects.link(obj)
     return obj
 
@@ -256,24 +383,23 @@ def objects_per_group(prefix, d, collection, created, *, uv=True, smooth=True, p
         for m in mats:
             me.materials.append(m)
         local_parts = [dict(p, index_offset=p["index_offset"] - i0) for p in parts]
-        fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
-                  material_index=material_indices(local_parts), smooth=smooth)
-        if W.PIVOT in me.attributes and any(base):  # the pivots follow the vertices to the group's base
-            from mathutils import Matrix
-            a = me.attributes[W.PIVOT]
-            vec = array("f", bytes(12 * len(a.data)))
-            a.data.foreach_get("vector", vec)
-            a.data.foreach_set("vector", W.transform_vectors(vec, Matrix.Translation([-c for c in base])))
-        obj = created.add(bpy.data.objects.new(me.name, me))
         mo = getattr(d, "origin", (0.0, 0.0, 0.0))
         foot = tuple(mo[k] + base[k] for k in range(3))  # base is in the mesh's frame
         if any(mo) and not frame_local:
-            place(me, obj, foot, foot)
+            loc, shift = placement(foot, foot)
         else:
-            obj.location = base
+            loc, shift = base, None
+        # The pivots follow the vertices to the group's base (moved by C).
+        fill_mesh(me, pos, idx, corner_uvs=uvs, colors=cols, attributes=attrs,
+                  material_index=material_indices(local_parts), smooth=DEFER if smooth else False, shift=shift,
+                  pivot_shift=tuple(-c for c in base))
+        obj = created.add(bpy.data.objects.new(me.name, me))
+        obj.location = loc
         (collections[g] if collections is not None else collection).objects.link(obj)
         objs.append(obj)
         if progress:
             progress(n + 1, len(groups))
+    if smooth:
+        smooth_objects(objs)
     return objs
 

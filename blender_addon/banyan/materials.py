@@ -71,7 +71,11 @@ def texture_size():
 
 
 def _local(coll, name):
-    """The local (not linked) datablock called name, or None."""
+    """The local (not linked) datablock called name, or None (one look-up
+    by name; the scan only when that one is linked from a library)."""
+    idb = coll.get(name)
+    if idb is None or idb.library is None:
+        return idb
     for idb in coll:
         if idb.name == name and idb.library is None:
             return idb

@@ -56,10 +56,11 @@ def pivot_vectors(attributes):
     return out
 
 
-def add_attributes(me, attributes, add_float):
-    """Writes `attributes` on me: the pivot as one vector, the rest through
-    add_float(name, data); returns the names written as floats."""
-    piv = pivot_vectors(attributes)
+def add_attributes(me, attributes, add_float, pivots=None):
+    """Writes `attributes` on me: the pivot as one vector (`pivots`, the
+    interleaved 'f' array, when the caller made it already), the rest
+    through add_float(name, data); returns the names written as floats."""
+    piv = pivots if pivots is not None else pivot_vectors(attributes)
     if piv is not None:
         me.attributes.new(PIVOT, 'FLOAT_VECTOR', 'POINT').data.foreach_set("vector", piv)
     done = []

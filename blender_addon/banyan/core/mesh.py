@@ -48,6 +48,9 @@ class MeshData:
         self.materials = []
         self.parts = []
         self.skel_points = self.skel_radius = self.skel_tag = self.skel_edges = None
+        # (corner_edges, edges, face_starts) of indices (triangle_edges), when
+        # computed ahead (api.Job.compute, off the main thread), else None.
+        self.topology = None
         self.stats = None  # a generator's measures, when it reports them (ivy: generators.ivy_stats_dict)
         # banyan_mesh.images as {"width", "height", "channels", "png": PNG bytes} (banyan_image_png).
         self.images = []
