@@ -27,6 +27,8 @@ import subprocess
 import sys
 import time
 
+from machine_info import cpu_model  # noqa: E402  (tests/bench/)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
 RUNNER = os.path.join(SRC, "blender_addon", "banyan", "batch_run.py")
@@ -48,6 +50,7 @@ os.environ["BANYAN_SLURM_DIR"] = os.path.join(OUT, "slurm-state")
 os.environ["BANYAN_SLURM_PORT"] = os.environ.get("BANYAN_BENCH_SLURM_PORT", "6927")
 os.environ["SLURM_CONF"] = os.path.join(OUT, "slurm-state", "slurm.conf")
 COMMON = ["--preset", PRESET, "--texture-size", "64", "--quiet"]
+
 
 
 def fresh(name):
@@ -149,9 +152,10 @@ lines = [
     "`python3 tests/bench/bench_batch.py [BUILD_DIR] --write`: %d seeds of tests/batch/avenue_batch_tiny.json "
     "(3 small keyaki a seed), glTF only (the plain-python runner, textures at 64), medians of %d rounds, the "
     "cases' order alternating. Slurm: the one-node cluster of tools/farm/slurm on 127.0.0.1, arrays of %d "
-    "tasks of %d seeds (submit.sh), timed from sbatch to the last task's end. Measured %s on this 2-core "
-    "machine, shared with other jobs (noisy: re-measure on a quiet one):"
-    % (N, args.rounds, tasks, PER_TASK, datetime.date.today().isoformat()),
+    "tasks of %d seeds (submit.sh), timed from sbatch to the last task's end. Machine: %s, %d cores; "
+    "measured %s, load average %.1f at the end (a shared machine: compare the rows with each other):"
+    % (N, args.rounds, tasks, PER_TASK, cpu_model(), os.cpu_count(), datetime.date.today().isoformat(),
+       os.getloadavg()[0]),
     "",
     "| case | %d seeds | seeds/s |" % N,
     "| --- | --- | --- |",

@@ -30,12 +30,15 @@ import sys
 import tempfile
 import time
 
+from machine_info import cpu_model  # noqa: E402  (tests/bench/)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COMPILE = os.path.join(ROOT, "tools", "farm", "flamenco", "compile_job.mjs")
 JOBTYPE = os.path.join(ROOT, "tools", "farm", "flamenco", "banyan-batch.js")
 ADDON = os.path.join(ROOT, "blender_addon", "banyan")
 PRESET = os.path.join(ROOT, "tests", "batch", "avenue_batch_tiny.json")
 FLAMENCO_BIN = os.environ.get("FLAMENCO_BIN", os.path.expanduser("~/.cache/banyan/flamenco/bin"))
+
 
 
 def task_argv(blender, k, out, python):
@@ -91,11 +94,12 @@ def main():
     def runs(xs):
         return ", ".join("%.2f" % x for x in xs)
     lines = [
-        "# Flamenco: per-task overhead",
+        "## Flamenco: per-task overhead (issue #24)",
         "",
-        "Written by `tests/bench/flamenco_overhead.py` on %s (%d cores, load average %.1f at the end; "
-        "%d runs each, in turn, medians). The machine was shared: compare the rows with each other, "
-        "not with another day's." % (datetime.date.today().isoformat(), os.cpu_count(), load[0], a.runs),
+        "Written by `tests/bench/flamenco_overhead.py` on %s. Machine: %s, %d cores, load average %.1f at "
+        "the end; %d runs each, in turn, medians. The machine was shared: compare the rows with each other, "
+        "not with another day's." % (datetime.date.today().isoformat(), cpu_model(), os.cpu_count(), load[0],
+                                     a.runs),
         "",
         "- Flamenco's own overhead (submit to done, beyond the tasks' run time): **not measured**. "
         + ("Flamenco is installed in %s but this script does not drive it yet." % FLAMENCO_BIN if have_flamenco else

@@ -14,6 +14,8 @@ in one Blender process, on one machine, ratios from the same run:
   6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
   7. roots C  build/tests/bench_roots: the fused surface and the tubes (issue 18)
   8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md (issue 22)
+     batch / flamenco  tests/bench/bench_batch.py --write, flamenco_overhead.py: batch.md,
+              flamenco.md (issue 24), copied in the same way
   9. ivy large   build/tests/bench_ivy --large: the 12 m wall's per-bud table (issue 23)
  10. avenue      build/banyan avenue (1,000 trees) under /usr/bin/time -v: generate,
                  write, peak RSS (issue 23)
@@ -62,6 +64,7 @@ for mod in ("banyan", "add_curve_ivygen", "add_curve_sapling"):
 
 sys.path.insert(0, os.path.dirname(HERE))
 import blender_handoff as HO  # noqa: E402  bare() and clear_generated()
+from machine_info import machine  # noqa: E402
 from banyan import api as B  # noqa: E402
 from banyan import hosts as H  # noqa: E402
 from banyan.core import generators as G  # noqa: E402
@@ -595,16 +598,6 @@ def ivy_large_flatness(rows):
 
 
 # ------------------------------------------------------------------- report
-def machine():
-    model = "?"
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    return model, os.cpu_count()
-
-
 def git_rev():
     """HEAD, with "+changes" when tracked files other than OUT differ from it."""
     def git(*a):
@@ -1063,6 +1056,8 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
     L.extend(kept_section("instancing.md", run_model))
     L.extend(ivy_large_lines(ivy_large, run_model))
     L.extend(avenue_lines(avenue, run_model))
+    L.extend(kept_section("batch.md", run_model))
+    L.extend(kept_section("flamenco.md", run_model))
     L.extend(kept_section("profile.md", run_model))
     w("<!-- bench_tube output:")
     w(mem_text.strip().replace("--", "- -"))
