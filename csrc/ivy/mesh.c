@@ -130,28 +130,27 @@ static void leaf_shift(leaf_geo *g, v3 d) {
  * 1-Lipschitz). */
 static double leaf_intrusion(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
     const double tf = tan(LEAF_FOLD);
-    ivy_near nc = ivy_nearest_any(iv, g->c);
-    if (nc.dist - sh->reach * g->size * 1.05 >= margin) return 0;
     double worst = 0;
     if (!iv->n_mesh) {
-        /* Boxes only: the distance alone per vertex (ivy_nearest_any's,
+        /* Boxes only: the distance alone per point (ivy_nearest_any's,
          * the least over the boxes), the normal only for the deepest. */
         int at = -2;
-        if (margin - nc.dist > worst) worst = margin - nc.dist, at = -1;
         v3 qa = g->c;
-        for (int k = 0; k < LEAF_OUTLINE; k++) {
-            v3 q = leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+        for (int k = -1; k < LEAF_OUTLINE; k++) {
+            v3 q = k < 0 ? g->c : leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
             double d = HUGE_VAL;
             for (uint32_t h = 0; h < iv->n_hosts; h++) {
                 double dh = obb_signed_distance(&iv->hosts[h], q);
                 if (dh < d) d = dh;
             }
+            if (k < 0 && d - sh->reach * g->size * 1.05 >= margin) return 0;
             if (margin - d > worst) worst = margin - d, at = k, qa = q;
         }
-        if (at == -1) *dir = nc.normal;
-        else if (at >= 0) *dir = ivy_nearest_any(iv, qa).normal;
+        if (at >= -1) *dir = ivy_nearest_any(iv, qa).normal;
         return worst;
     }
+    ivy_near nc = ivy_nearest_any(iv, g->c);
+    if (nc.dist - sh->reach * g->size * 1.05 >= margin) return 0;
     for (int k = -1; k < LEAF_OUTLINE; k++) {
         v3 q = k < 0 ? g->c : leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
         ivy_near nr = k < 0 ? nc : ivy_nearest_any(iv, q);
