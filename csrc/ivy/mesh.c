@@ -375,19 +375,29 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     const int sides = p->stem_sides;
 
     /* Size first: refuse before allocating the mesh. */
-    int32_t *pts = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
+    /* Every chain's points, walked once here and read again by the
+     * sweep (a chain's buds lie far apart in creation order): at most 2n
+     * (each chain adds its parent), then per chain its first bud and
+     * where its points start, and an end. */
+    int32_t *pts = malloc(sizeof(int32_t) * (4 * (size_t)iv->n + 3));
     if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    int32_t *chn = pts + 2 * (size_t)iv->n + 1;
     uint64_t need_v = 0, need_i = 0;
     uint32_t max_pts = 2;
+    int32_t n_chains = 0, n_pts = 0;
     for (int32_t i = 0; i < iv->n; i++) {
         if (!chain_start(iv, i)) continue;
-        uint32_t n = chain_points(iv, i, pts), v, ix;
+        uint32_t n = chain_points(iv, i, pts + n_pts), v, ix;
+        chn[2 * n_chains] = i;
+        chn[2 * n_chains++ + 1] = n_pts;
+        n_pts += (int32_t)n;
         if (n < 2) n = 2; /* a lone bud gets a stub */
         if (n > max_pts) max_pts = n;
         tube_counts(n, sides, iv->buds[i].parent < 0, 1, &v, &ix);
         need_v += v;
         need_i += ix;
     }
+    chn[2 * n_chains + 1] = n_pts;
     if (p->leaves) {
         need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1 + PETIOLE_VERTS);
         need_i += (uint64_t)iv->n * (LEAF_OUTLINE + 2 * PETIOLE_SIDES) * 3;
@@ -472,22 +482,24 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     mb_begin_part(&mb, m_stem, 0);
     mb_set_attr(&mb, a_part, 0.0);
     int cancelled = 0;
-    for (int32_t i = 0; i < iv->n && !mb.status; i++) {
+    for (int32_t i = 0, c = 0; i < iv->n && !mb.status; i++) {
         if (mesh_progress(iv, i, 0.0)) {
             cancelled = 1;
             break;
         }
-        if (!chain_start(iv, i)) continue;
-        uint32_t n = chain_points(iv, i, pts);
+        if (c >= n_chains || chn[2 * c] != i) continue;
+        const int32_t *pt = pts + chn[2 * c + 1];
+        uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]);
+        c++;
         const ivy_bud *s = &iv->buds[i];
         for (uint32_t k = 0; k < n; k++) {
-            const ivy_bud *b = &iv->buds[pts[k]];
+            const ivy_bud *b = &iv->buds[pt[k]];
             P[k] = b->P;
             /* A branch's base ring sits in its parent and appears with it. */
-            const ivy_bud *own = (k == 0 && pts[0] != i) ? s : b;
+            const ivy_bud *own = (k == 0 && pt[0] != i) ? s : b;
             R[k] = ivy_stem_radius(iv, own);
             birth[k] = (float)own->step_c;
-            wr[k] = bst[pts[k]];
+            wr[k] = bst[pt[k]];
             wr_birth[k] = own->step_c * birth_scale;
         }
         if (n == 1) { /* a lone first bud: a short stub along its direction */
