@@ -130,9 +130,27 @@ static void leaf_shift(leaf_geo *g, v3 d) {
  * 1-Lipschitz). */
 static double leaf_intrusion(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
     const double tf = tan(LEAF_FOLD);
+    double worst = 0;
+    if (!iv->n_mesh) {
+        /* Boxes only: the distance alone per point (ivy_nearest_any's,
+         * the least over the boxes), the normal only for the deepest. */
+        int at = -2;
+        v3 qa = g->c;
+        for (int k = -1; k < LEAF_OUTLINE; k++) {
+            v3 q = k < 0 ? g->c : leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
+            double d = HUGE_VAL;
+            for (uint32_t h = 0; h < iv->n_hosts; h++) {
+                double dh = obb_signed_distance(&iv->hosts[h], q);
+                if (dh < d) d = dh;
+            }
+            if (k < 0 && d - sh->reach * g->size * 1.05 >= margin) return 0;
+            if (margin - d > worst) worst = margin - d, at = k, qa = q;
+        }
+        if (at >= -1) *dir = ivy_nearest_any(iv, qa).normal;
+        return worst;
+    }
     ivy_near nc = ivy_nearest_any(iv, g->c);
     if (nc.dist - sh->reach * g->size * 1.05 >= margin) return 0;
-    double worst = 0;
     for (int k = -1; k < LEAF_OUTLINE; k++) {
         v3 q = k < 0 ? g->c : leaf_vertex(g, sh->ox[k], sh->oy[k], tf);
         ivy_near nr = k < 0 ? nc : ivy_nearest_any(iv, q);
@@ -187,9 +205,24 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
         const obb *o = &iv->hosts[hb];
         if (!have++) leaf_outline(g, sh, tf, q);
         const double h[3] = {o->h[0] + margin, o->h[1] + margin, o->h[2] + margin};
-        v3 lc = obb_to_local(o, g->c);
-        for (int k = 0; k < LEAF_OUTLINE && !hit; k++)
-            hit = tri_box(lc, obb_to_local(o, q[k]), obb_to_local(o, q[(k + 1) % LEAF_OUTLINE]), h);
+        /* The fan in the box's frame, each point once (every triangle
+         * shares the centre and two neighbours share an outline point). */
+        v3 lc = obb_to_local(o, g->c), lq[LEAF_OUTLINE];
+        for (int k = 0; k < LEAF_OUTLINE; k++) lq[k] = obb_to_local(o, q[k]);
+        /* The whole fan past one face of the grown box: tri_box's first
+         * test fails for every triangle (a leaf lying on a wall). */
+        int apart = 0;
+        for (int i = 0; i < 3 && !apart; i++) {
+            double lo = i == 0 ? lc.x : (i == 1 ? lc.y : lc.z), hi = lo;
+            for (int k = 0; k < LEAF_OUTLINE; k++) {
+                double c = i == 0 ? lq[k].x : (i == 1 ? lq[k].y : lq[k].z);
+                lo = fmin(lo, c);
+                hi = fmax(hi, c);
+            }
+            apart = lo > h[i] || hi < -h[i];
+        }
+        for (int k = 0; k < LEAF_OUTLINE && !hit && !apart; k++)
+            hit = tri_box(lc, lq[k], lq[(k + 1) % LEAF_OUTLINE], h);
     }
     for (uint32_t m = 0; m < iv->n_mesh && !hit; m++) {
         if (ivy_far_from(iv, iv->mesh0 + m, g->c, span)) continue;
@@ -342,19 +375,29 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     const int sides = p->stem_sides;
 
     /* Size first: refuse before allocating the mesh. */
-    int32_t *pts = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
+    /* Every chain's points, walked once here and read again by the
+     * sweep (a chain's buds lie far apart in creation order): at most 2n
+     * (each chain adds its parent), then per chain its first bud and
+     * where its points start, and an end. */
+    int32_t *pts = malloc(sizeof(int32_t) * (4 * (size_t)iv->n + 3));
     if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    int32_t *chn = pts + 2 * (size_t)iv->n + 1;
     uint64_t need_v = 0, need_i = 0;
     uint32_t max_pts = 2;
+    int32_t n_chains = 0, n_pts = 0;
     for (int32_t i = 0; i < iv->n; i++) {
         if (!chain_start(iv, i)) continue;
-        uint32_t n = chain_points(iv, i, pts), v, ix;
+        uint32_t n = chain_points(iv, i, pts + n_pts), v, ix;
+        chn[2 * n_chains] = i;
+        chn[2 * n_chains++ + 1] = n_pts;
+        n_pts += (int32_t)n;
         if (n < 2) n = 2; /* a lone bud gets a stub */
         if (n > max_pts) max_pts = n;
         tube_counts(n, sides, iv->buds[i].parent < 0, 1, &v, &ix);
         need_v += v;
         need_i += ix;
     }
+    chn[2 * n_chains + 1] = n_pts;
     if (p->leaves) {
         need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1 + PETIOLE_VERTS);
         need_i += (uint64_t)iv->n * (LEAF_OUTLINE + 2 * PETIOLE_SIDES) * 3;
@@ -439,22 +482,24 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     mb_begin_part(&mb, m_stem, 0);
     mb_set_attr(&mb, a_part, 0.0);
     int cancelled = 0;
-    for (int32_t i = 0; i < iv->n && !mb.status; i++) {
+    for (int32_t i = 0, c = 0; i < iv->n && !mb.status; i++) {
         if (mesh_progress(iv, i, 0.0)) {
             cancelled = 1;
             break;
         }
-        if (!chain_start(iv, i)) continue;
-        uint32_t n = chain_points(iv, i, pts);
+        if (c >= n_chains || chn[2 * c] != i) continue;
+        const int32_t *pt = pts + chn[2 * c + 1];
+        uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]);
+        c++;
         const ivy_bud *s = &iv->buds[i];
         for (uint32_t k = 0; k < n; k++) {
-            const ivy_bud *b = &iv->buds[pts[k]];
+            const ivy_bud *b = &iv->buds[pt[k]];
             P[k] = b->P;
             /* A branch's base ring sits in its parent and appears with it. */
-            const ivy_bud *own = (k == 0 && pts[0] != i) ? s : b;
+            const ivy_bud *own = (k == 0 && pt[0] != i) ? s : b;
             R[k] = ivy_stem_radius(iv, own);
             birth[k] = (float)own->step_c;
-            wr[k] = bst[pts[k]];
+            wr[k] = bst[pt[k]];
             wr_birth[k] = own->step_c * birth_scale;
         }
         if (n == 1) { /* a lone first bud: a short stub along its direction */
@@ -507,6 +552,12 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             lg[i].ok = leaf_place(iv, i, &sh, &lg[i]);
         }
         const double rp = petiole_radius(p);
+        double pc[PETIOLE_SIDES], ps[PETIOLE_SIDES]; /* the ring's directions, the same for every petiole */
+        for (int k = 0; k < PETIOLE_SIDES; k++) {
+            double th = 2 * BANYAN_PI * k / PETIOLE_SIDES;
+            pc[k] = cos(th);
+            ps[k] = sin(th);
+        }
         for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
             if (!lg[i].ok) continue;
             v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
@@ -517,8 +568,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
             if (!I) break;
             for (int k = 0; k < PETIOLE_SIDES; k++) {
-                double th = 2 * BANYAN_PI * k / PETIOLE_SIDES;
-                v3 rn = v3_add(v3_scale(e1, cos(th)), v3_scale(e2, sin(th)));
+                v3 rn = v3_add(v3_scale(e1, pc[k]), v3_scale(e2, ps[k]));
                 mb_put(&mb, vc + (uint32_t)k, v3_madd(a0, rn, rp), rn, (double)k / PETIOLE_SIDES, 0.0);
                 mb_put(&mb, vc + PETIOLE_SIDES + (uint32_t)k, v3_madd(lg[i].base, rn, rp), rn, (double)k / PETIOLE_SIDES, 1.0);
                 uint32_t k1 = (uint32_t)(k + 1) % PETIOLE_SIDES, q0 = vc + (uint32_t)k, q1 = vc + k1;
@@ -531,29 +581,46 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         mb_set_attr(&mb, a_part, 1.0);
         int32_t cols, rows;
         leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
+        /* The blade's template, per vertex (the centre, then the outline):
+         * its offsets along the tip, across and (the fold) the normal per
+         * unit of size, and which normal it takes (0 the blade's, 1 the
+         * +y half's, 2 the -y half's). A leaf is then this template moved
+         * and scaled. */
         const double tf = tan(LEAF_FOLD);
+        double tx[LEAF_OUTLINE + 1], ty[LEAF_OUTLINE + 1], tz[LEAF_OUTLINE + 1];
+        int tn[LEAF_OUTLINE + 1];
+        for (int k = 0; k <= LEAF_OUTLINE; k++) {
+            double x = k ? sh.ox[k - 1] : 0, y = k ? sh.oy[k - 1] : 0;
+            tx[k] = x;
+            ty[k] = y;
+            tz[k] = fabs(y) * tf;
+            tn[k] = fabs(y) < 1e-9 ? 0 : (y > 0 ? 1 : 2);
+        }
         for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
             const leaf_geo *g = &lg[i];
             if (!g->ok) continue;
             const ivy_bud *b = &iv->buds[i];
+            leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
+            leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);
+            leaf_age_tint(iv, b, p->season, lk.tint);
+            mb_set_color(&mb, lk.tint); /* the builder was made with colours */
             mb_set_attr(&mb, a_birth, (double)b->step_c);
             leaf_wind(&mb, &ws, iv, i, bst[i], blv[i], birth_scale);
             uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
             uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
             if (!I) break;
-            float *col = mb.col + 4 * (size_t)vc; /* the builder was made with colours */
-            leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
-            leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);
-            leaf_age_tint(iv, b, p->season, lk.tint);
             /* The fold: each half turns up about the midrib, so its normal leans away from it. */
-            v3 n_pos = v3_norm(v3_madd(g->nb, g->bb, -tf)), n_neg = v3_norm(v3_madd(g->nb, g->bb, tf));
-            for (int k = 0; k <= LEAF_OUTLINE; k++, col += 4) {
-                /* The centre, then the outline. */
-                double x = k ? sh.ox[k - 1] : 0, y = k ? sh.oy[k - 1] : 0;
-                v3 q = leaf_vertex(g, x, y, tf);
-                v3 nn = fabs(y) < 1e-9 ? g->nb : (y > 0 ? n_pos : n_neg);
-                mb_put(&mb, vc + (uint32_t)k, q, nn, lk.u0 + sh.ou[k] * lk.du, lk.v0 + sh.ov[k] * lk.dv);
-                for (int j = 0; j < 4; j++) col[j] = (float)lk.tint[j];
+            v3 nrm[3] = {g->nb, v3_norm(v3_madd(g->nb, g->bb, -tf)), v3_norm(v3_madd(g->nb, g->bb, tf))};
+            float fn[3][3];
+            for (int j = 0; j < 3; j++) fn[j][0] = (float)nrm[j].x, fn[j][1] = (float)nrm[j].y, fn[j][2] = (float)nrm[j].z;
+            float *P = mb.pos + 3 * (size_t)vc, *N = mb.nrm + 3 * (size_t)vc, *UV = mb.uv + 2 * (size_t)vc;
+            for (int k = 0; k <= LEAF_OUTLINE; k++, P += 3, N += 3, UV += 2) {
+                v3 q = v3_madd(v3_madd(v3_madd(g->c, g->a, tx[k] * g->size), g->bb, ty[k] * g->size), g->nb,
+                               tz[k] * g->size);
+                P[0] = (float)q.x, P[1] = (float)q.y, P[2] = (float)q.z;
+                memcpy(N, fn[tn[k]], sizeof fn[0]);
+                UV[0] = (float)(lk.u0 + sh.ou[k] * lk.du);
+                UV[1] = (float)(lk.v0 + sh.ov[k] * lk.dv);
             }
             for (uint32_t k = 0; k < LEAF_OUTLINE; k++, I += 3) {
                 I[0] = vc;
