@@ -18,26 +18,14 @@
  * Ends with "N passed, N failed"; exits 1 on any failure.
  */
 #include "banyan.h"
+#include "check.h"
+#include "test_files.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int g_passed, g_failed;
-
-#define CHECK(cond, ...)                                     \
-    do {                                                     \
-        if (cond) {                                          \
-            g_passed++;                                      \
-        } else {                                             \
-            g_failed++;                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);      \
-            printf(__VA_ARGS__);                             \
-            printf("\n");                                    \
-        }                                                    \
-    } while (0)
 
 static char g_dir[1024];
 
@@ -47,32 +35,6 @@ static const char *out_path(const char *name) {
     char *p = buf[slot++ & 3];
     snprintf(p, sizeof buf[0], "%s/%s", g_dir, name);
     return p;
-}
-
-static unsigned char *read_all(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    unsigned char *data = NULL;
-    size_t cap = 0, n = 0;
-    for (;;) {
-        if (n == cap) {
-            cap = cap ? cap * 2 : 65536;
-            unsigned char *d = realloc(data, cap + 1);
-            if (!d) {
-                free(data);
-                fclose(f);
-                return NULL;
-            }
-            data = d;
-        }
-        size_t r = fread(data + n, 1, cap - n, f);
-        n += r;
-        if (r == 0) break;
-    }
-    fclose(f);
-    data[n] = 0;
-    *size = n;
-    return data;
 }
 
 static uint32_t rd32(const unsigned char *p) {
@@ -102,7 +64,7 @@ static double num(const cJSON *o, const char *key, double dflt) {
 /* Reads and checks the container; 0 on success. */
 static int glb_read(const char *path, glb *g) {
     memset(g, 0, sizeof *g);
-    g->data = read_all(path, &g->size);
+    g->data = (unsigned char *)test_read_file(path, &g->size);
     CHECK(g->data != NULL, "%s: cannot read", path);
     if (!g->data) return 1;
     const unsigned char *d = g->data;
@@ -209,7 +171,7 @@ static void check_containers(const banyan_mesh *m, const banyan_gltf_options *o)
         return;
     }
     size_t jn = 0;
-    char *text = (char *)read_all(pj, &jn);
+    char *text = test_read_file(pj, &jn);
     cJSON *j = text ? cJSON_Parse(text) : NULL;
     CHECK(j != NULL, ".gltf does not parse");
     cJSON *buf0 = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "buffers"), 0);
@@ -338,6 +300,5 @@ int main(int argc, char **argv) {
     glb_free(&g1);
     glb_free(&gs);
     banyan_mesh_free(m);
-    printf("%d passed, %d failed\n", g_passed, g_failed);
-    return g_failed == 0 ? 0 : 1;
+    return check_done("test_gltf_stream");
 }
