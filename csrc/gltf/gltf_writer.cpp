@@ -770,7 +770,7 @@ class Sink {
         }
     }
 
-    static const size_t kBlock = size_t(4) << 20;
+    static constexpr size_t kBlock = size_t(4) << 20;
 
   private:
     void raw(const unsigned char *p, size_t n) {
