@@ -6,6 +6,25 @@
 
 #include "ivy/ivy_internal.h"
 
+/* The light H0 at p and its direction V_l summed over every bud but self
+ * (spec/ivy.md), with no grid: what the look-up must equal. */
+static inline double brute_shade(const banyan_ivy *iv, v3 p, int32_t self, v3 *vl) {
+    double H = 0;
+    *vl = v3_make(0, 0, 0);
+    for (int32_t j = 0; j < iv->n; j++) {
+        if (j == self) continue;
+        const ivy_bud *b = &iv->buds[j];
+        double d = v3_dist(p, b->P);
+        if (d >= iv->p.leaf_max) continue;
+        double dl = ivy_leaf_diameter(iv, b);
+        double h = d < dl ? 1.0 : 1.0 - (d - dl) / iv->p.leaf_max;
+        if (h <= 0) continue;
+        H += h;
+        if (d > 1e-12) *vl = v3_madd(*vl, v3_sub(p, b->P), h / d);
+    }
+    return H;
+}
+
 /* Stem crossings by brute force over every pair of internodes, each seen
  * on its end bud's face chart (docs/ivy.md): a box face in the box's
  * axes, a mesh's cube-map face in the world plane across its axis. */

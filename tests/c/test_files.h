@@ -10,6 +10,15 @@
 
 #include "banyan.h"
 
+/* dir/name in one of 4 rotating buffers, so one call can take a few. */
+static inline const char *test_join(const char *dir, const char *name) {
+    static char buf[4][1200];
+    static int slot;
+    char *p = buf[slot++ & 3];
+    snprintf(p, sizeof buf[0], "%s/%s", dir, name);
+    return p;
+}
+
 /* A NUL-terminated malloc'd copy of the file, or NULL. */
 static inline char *test_read_file(const char *path, size_t *len) {
     FILE *f = fopen(path, "rb");

@@ -12,6 +12,7 @@
 #define _POSIX_C_SOURCE 200809L /* symlink */
 
 #include "banyan.h"
+#include "test_files.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -38,13 +39,7 @@ static int g_passed, g_failed;
 
 static char g_dir[1024];
 
-static const char *out_path(const char *name) {
-    static char buf[4][1200];
-    static int slot;
-    char *p = buf[slot++ & 3];
-    snprintf(p, sizeof buf[0], "%s/%s", g_dir, name);
-    return p;
-}
+#define out_path(name) test_join(g_dir, name)
 
 static int file_exists(const char *path) {
     struct stat st;

@@ -29,13 +29,7 @@
 
 static char g_dir[1024];
 
-static const char *out_path(const char *name) {
-    static char buf[4][1200];
-    static int slot;
-    char *p = buf[slot++ & 3];
-    snprintf(p, sizeof buf[0], "%s/%s", g_dir, name);
-    return p;
-}
+#define out_path(name) test_join(g_dir, name)
 
 static uint32_t rd32(const unsigned char *p) {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;

@@ -50,23 +50,6 @@ static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_box *hosts, uin
     return iv;
 }
 
-static double brute_shade(const banyan_ivy *iv, v3 p, int32_t self, v3 *vl) {
-    double H = 0;
-    *vl = v3_make(0, 0, 0);
-    for (int32_t j = 0; j < iv->n; j++) {
-        if (j == self) continue;
-        const ivy_bud *b = &iv->buds[j];
-        double d = v3_dist(p, b->P);
-        if (d >= iv->p.leaf_max) continue;
-        double dl = ivy_leaf_diameter(iv, b);
-        double h = d < dl ? 1.0 : 1.0 - (d - dl) / iv->p.leaf_max;
-        if (h <= 0) continue;
-        H += h;
-        if (d > 1e-12) *vl = v3_madd(*vl, v3_sub(p, b->P), h / d);
-    }
-    return H;
-}
-
 /* Min signed distance of p to every host the plant keeps out of. */
 static double all_host_distance(const banyan_ivy *iv, v3 p) {
     double best = HUGE_VAL;

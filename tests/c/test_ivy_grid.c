@@ -11,6 +11,7 @@
 
 #include "check.h"
 #include "ivy/ivy_internal.h"
+#include "ivy_checks.h"
 #include "test_files.h"
 
 static int32_t coord(double v, double inv) { return (int32_t)floor(v * inv); }
@@ -62,23 +63,6 @@ static void check_grid(const banyan_ivy *iv, const char *what) {
     CHECK(!overlap, "%s: %d runs overlap or leave the pool", what, overlap);
     free(found);
     free(runs);
-}
-
-static double brute_shade(const banyan_ivy *iv, v3 p, int32_t self, v3 *vl) {
-    double H = 0;
-    *vl = v3_make(0, 0, 0);
-    for (int32_t j = 0; j < iv->n; j++) {
-        if (j == self) continue;
-        const ivy_bud *b = &iv->buds[j];
-        double d = v3_dist(p, b->P);
-        if (d >= iv->p.leaf_max) continue;
-        double dl = ivy_leaf_diameter(iv, b);
-        double h = d < dl ? 1.0 : 1.0 - (d - dl) / iv->p.leaf_max;
-        if (h <= 0) continue;
-        H += h;
-        if (d > 1e-12) *vl = v3_madd(*vl, v3_sub(p, b->P), h / d);
-    }
-    return H;
 }
 
 /* ivy_crosses over every internode (the same test, no hash). */
