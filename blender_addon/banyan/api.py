@@ -56,6 +56,7 @@ from . import build_mesh as BM
 from . import growth_anim as GA
 from . import hosts as H
 from . import presets as PR
+from . import props as PP
 from . import wind as W
 from .core import generators as G
 from .core.errors import BanyanError
@@ -65,12 +66,13 @@ from .core.structs import Box
 
 
 def make_params(gen, preset=None, params=None, values=None, **kw):
-    """Params of gen: defaults, then the preset, then values and kw."""
+    """Params of gen: the add-on's defaults (props.addon_params: the
+    library's, wind data off), then the preset, then values and kw."""
     if params is not None and not isinstance(params, Params):
         raise TypeError("params must be a banyan.core.params.Params, not %s" % type(params).__name__)
     if values is not None and not isinstance(values, Mapping):
         raise TypeError("values must be a mapping of parameter names to values, not %s" % type(values).__name__)
-    p = params.copy() if params is not None else Params(gen)
+    p = params.copy() if params is not None else PP.addon_params(gen)
     if preset:
         path = PR.find(gen, preset)
         p.apply_preset(PR.read(path), path)
@@ -260,7 +262,7 @@ def _job(prepare):
 
 # ------------------------------------------------------- wind and growth
 def _wind_key(gen):
-    return "tree.wind" if gen == "avenue" else "wind"
+    return PP.wind_key(gen)
 
 
 def _setups(job, gen, wind=None, animate=False, frame_start=None, frame_end=None):
@@ -299,12 +301,22 @@ def add_wind(objs, **values):
     """Adds the "Banyan Wind" modifier (or sets its inputs) on each mesh
     object of objs (an object or a list): strength, gust_strength,
     gust_frequency, direction (degrees), flutter. Returns the modifiers.
-    BanyanError, naming the object, when one has no wind attributes."""
+    A Banyan plant built without wind data (the add-on's default) is first
+    regrown with it, as Regenerate does, once per plant (an avenue: all
+    its trees). BanyanError, naming the object, for one that has no wind
+    attributes and is not a plant."""
+    from . import plant as PL
     objs = [objs] if isinstance(objs, bpy.types.bpy_struct) else list(objs)
     for o in objs:
-        if not isinstance(o, bpy.types.Object) or o.type != 'MESH' or not W.has_wind(o.data):
+        if not isinstance(o, bpy.types.Object) or o.type != 'MESH' \
+                or not (W.has_wind(o.data) or PL.is_plant(o)):
             raise BanyanError(1, "'%s' has no wind attributes; grow it with the parameter wind on"
                               % getattr(o, "name", o), "BANYAN_E_INVALID_ARG")
+    for o in objs:
+        if not W.has_wind(o.data):  # not regrown with an earlier tree of its avenue
+            p = PL.stored_params(o)
+            p.set(PP.wind_key(o.banyan_plant.generator), True)
+            PL.regenerate(o, p)
     return _guard(lambda c: [W.add_wind_modifier(o, c, **values) for o in objs])
 
 

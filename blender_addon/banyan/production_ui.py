@@ -12,8 +12,14 @@ def _meshes(context):
     return [o for o in getattr(context, "selected_objects", None) or () if o.type == 'MESH']
 
 
+def _windable(o):
+    from . import plant as PL
+    return W.has_wind(o.data) or PL.is_plant(o)
+
+
 class BANYAN_OT_add_wind(bpy.types.Operator):
-    """Add the Banyan Wind modifier (Geometry Nodes) to the selected plants that carry wind data"""
+    """Add the Banyan Wind modifier (Geometry Nodes) to the selected plants; a plant grown without wind data is
+    regrown with it first"""
     bl_idname = "banyan.add_wind"
     bl_label = "Add Wind"
     bl_options = {'REGISTER', 'UNDO'}
@@ -31,14 +37,14 @@ class BANYAN_OT_add_wind(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if not any(W.has_wind(o.data) for o in _meshes(context)):
-            cls.poll_message_set("Select plants grown with wind data")
+        if not any(_windable(o) for o in _meshes(context)):
+            cls.poll_message_set("Select Banyan plants, or meshes with wind data")
             return False
         return True
 
     def execute(self, context):
         from . import api
-        objs = [o for o in _meshes(context) if W.has_wind(o.data)]
+        objs = [o for o in _meshes(context) if _windable(o)]
         try:
             api.add_wind(objs, strength=self.strength, gust_strength=self.gust_strength,
                          gust_frequency=self.gust_frequency, direction=self.direction, flutter=self.flutter)

@@ -72,9 +72,25 @@ def _desc(spec):
     return d
 
 
+def wind_key(gen):
+    """The parameter that asks the library for wind data."""
+    return "tree.wind" if gen == "avenue" else "wind"
+
+
+def addon_params(gen):
+    """Params of gen with the add-on's defaults: the library's, except that
+    the wind data is off (docs/addon.md, "Wind data: off unless asked").
+    Only the Wind modifier reads its five layers, and they cost about a
+    third of a tree's time in Blender; Wind setup and Add Wind turn it on."""
+    p = P.Params(gen)
+    if wind_key(gen) in p.by_name:
+        p.set(wind_key(gen), False)
+    return p
+
+
 def annotations(gen):
     """{property name: bpy property} for every row of gen's table."""
-    params = P.Params(gen)
+    params = addon_params(gen)
     out = {}
     for s in params.specs:
         v = params.get(s.name)
@@ -132,8 +148,8 @@ _MISSING = object()
 def to_params(gen, holder, skip=()):
     """A Params of gen filled from holder's properties (an operator or any
     object with the attributes); raises BanyanError on bad values."""
-    p = P.Params(gen)
-    defaults = P.Params(gen)
+    p = addon_params(gen)
+    defaults = addon_params(gen)
     for s in p.specs:
         v = getattr(holder, prop_name(s.name), _MISSING)
         if s.name in skip or v is _MISSING:

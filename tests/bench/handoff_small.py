@@ -18,8 +18,9 @@ Cases: keyaki_l6 (a small tree, levels 6), keyaki_young, keyaki_mature,
 ivy_wall (the CLI's 3 x 3 m wall, as a box), roots (defaults around the
 default cube, as a box), avenue20 (20 trees, levels 8, one object each;
 its floor is the whole avenue as one object), and <keyaki preset>+wind
-(the Banyan Wind modifier on, evaluated on the first frame) or -wind (no
-wind data). Before/after comparisons run two add-ons in alternating
+(the Banyan Wind modifier on, evaluated on the first frame), +data (the
+wind data without the modifier; the add-on's default has none since
+issue 23) or -wind (no wind data); ivy_wall+data likewise. Before/after comparisons run two add-ons in alternating
 processes (the same command with BLENDER_USER_SCRIPTS pointing at each).
 
   BANYAN_LIB=build/libbanyan.so BLENDER_USER_SCRIPTS=<dir with addons/banyan> \
@@ -46,6 +47,11 @@ def make_job(case):
         return B.keyaki_tree_job(levels=6)
     if case == "avenue20":
         return B.keyaki_avenue_job(values={"placement": "count", "count": 20, "tree.levels": 8})
+    if case == "ivy_wall+data":
+        return B.ivy_job(hosts=[bpy.data.objects["Cube"]], preset="ivy_wall", host_shape='BOX',
+                         values={"wind": True})
+    if case.endswith("+data"):
+        return B.keyaki_tree_job(preset=case[:-5], values={"wind": True})
     if case.endswith("+wind"):
         return B.keyaki_tree_job(preset=case[:-5], wind=True)
     if case.endswith("-wind"):
@@ -101,7 +107,7 @@ def cleanup(objs):
 res = {}
 for case in CASES:
     bpy.ops.wm.read_homefile(use_factory_startup=True)
-    if case == "ivy_wall":
+    if case.startswith("ivy_wall"):
         wall()
     evaluate([])
     # warm: first run makes shared materials / textures

@@ -86,9 +86,9 @@ def test_avenue():
     if not bt.generator("avenue"):
         return
     bt.reset_scene()
-    unique = api.keyaki_avenue(path=PATH, name="Unique", tree__levels=5)
+    unique = api.keyaki_avenue(path=PATH, name="Unique", tree__levels=5, tree__wind=True)
     bpy.context.view_layer.update()
-    inst = api.keyaki_avenue(path=PATH, name="Inst", tree__levels=5, variants=VARIANTS)
+    inst = api.keyaki_avenue(path=PATH, name="Inst", tree__levels=5, tree__wind=True, variants=VARIANTS)
     empties = [o for o in inst if o.type == 'EMPTY']
     variants = [o for o in inst if o.type == 'MESH']
     bt.check(len(variants) == VARIANTS, "%d variant objects (got %d)" % (VARIANTS, len(variants)))

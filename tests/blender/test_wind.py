@@ -1,6 +1,7 @@
-"""Wind (issue #22): every generator's object carries the wind attributes
-(wind_pivot as one vector, wind_level/stiffness/phase/flutter, the three
-pivot scalars gone), and the Banyan Wind modifier sways tips, not trunk
+"""Wind (issue #22): every generator's object grown with wind data carries
+the wind attributes (wind_pivot as one vector, wind_level/stiffness/
+phase/flutter, the three pivot scalars gone), and none without it (the
+add-on's default, issue #23), and the Banyan Wind modifier sways tips, not trunk
 bases: evaluated at two frames, the top 10 % of the vertices by height
 move more than 5x the bottom 10 %, and the bottom's lowest vertices less
 than 1 mm (the sway measured on the wood: leaves flutter at every
@@ -18,6 +19,7 @@ import prod_util as U  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api  # noqa: E402
+from banyan import props as P  # noqa: E402
 from banyan import build_mesh as BM  # noqa: E402
 from banyan import wind as W  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
@@ -136,7 +138,14 @@ def test_every_generator_has_wind():
         before = {o.name for o in bpy.data.objects}
         res = gens.op(gen)(**gens.KWARGS[gen])
         objs = [o for o in bpy.data.objects if o.name not in before and o.type == 'MESH']
-        bt.check(res == {'FINISHED'} and objs, "%s: built" % gen)
+        bt.check(res == {'FINISHED'} and objs and not any(W.has_wind(o.data) for o in objs),
+                 "%s: built, without wind data by default" % gen)
+        bt.reset_scene()
+        gens.prepare(gen)
+        before = {o.name for o in bpy.data.objects}
+        res = gens.op(gen)(**dict(gens.KWARGS[gen], **{P.prop_name(P.wind_key(gen)): True}))
+        objs = [o for o in bpy.data.objects if o.name not in before and o.type == 'MESH']
+        bt.check(res == {'FINISHED'} and objs, "%s: built with wind on" % gen)
         for o in objs[:3]:
             names = set(o.data.attributes.keys())
             bt.check(W.has_wind(o.data) and not names & set(W.SCALARS),
@@ -263,16 +272,18 @@ def test_operator_option():
              "the operator's Wind setup adds the modifier")
     bt.reset_scene()
     before = {o.name for o in bpy.data.objects}
-    try:
-        res = gens.op("keyaki")(wind_setup=True, wind=False, levels=5)
-    except RuntimeError:
-        res = {'CANCELLED'}
-    bt.check(res == {'CANCELLED'} and not [o for o in bpy.data.objects if o.name not in before],
-             "Wind setup without wind data: refused, nothing left")
+    res = gens.op("keyaki")(wind_setup=True, wind=False, levels=5)
+    objs = [o for o in bpy.data.objects if o.name not in before]
+    bt.check(res == {'FINISHED'} and objs and W.has_wind(objs[0].data),
+             "Wind setup turns the wind data on (the parameter wind off)")
     if bt.generator("roots"):
         bt.reset_scene()
-        objs = api.strangler_roots(hosts=[bpy.data.objects["Cube"]], growth_points=8)
-        bt.check(bpy.ops.banyan.add_wind.poll() is False or True, "poll runs")
+        # Built by the operator, so it is a plant that Add Wind can regrow.
+        before = {o.name for o in bpy.data.objects}
+        gens.op("roots")(growth_points=8)
+        objs = [o for o in bpy.data.objects if o.name not in before and o.type == 'MESH']
+        bt.check(len(objs) == 1 and not W.has_wind(objs[0].data), "roots: no wind data by default")
+        n0 = len(objs[0].data.vertices)
         for o in bpy.context.selected_objects:
             o.select_set(False)
         objs[0].select_set(True)
@@ -280,6 +291,9 @@ def test_operator_option():
         res = bpy.ops.banyan.add_wind(strength=0.2) if bpy.ops.banyan.add_wind.poll() else {'CANCELLED'}
         bt.check(res == {'FINISHED'} and W.MODIFIER in [m.name for m in objs[0].modifiers],
                  "Add Wind on a selected plant")
+        bt.check(W.has_wind(objs[0].data) and len(objs[0].data.vertices) == n0,
+                 "Add Wind regrew the plant with wind data, the same mesh (%d, %d vertices)"
+                 % (n0, len(objs[0].data.vertices)))
         if W.MODIFIER in objs[0].modifiers:
             from banyan import nodes as N
             bt.check(math.isclose(N.get_input(objs[0].modifiers[W.MODIFIER], "Strength"), 0.2, rel_tol=1e-6),

@@ -25,7 +25,6 @@ from .. import presets as PR
 from .. import props as PP
 from ..core import lib as LIB
 from ..core.errors import BanyanError, report_error
-from ..core.params import Params
 
 NO_PRESET = "NONE"
 LAST_PARAMS = {}  # bl_idname -> Params of its last successful run (for "save preset")
@@ -86,7 +85,7 @@ class BanyanOperatorMixin:
         if key == self.banyan_preset_loaded:
             return
         if key != NO_PRESET:
-            p = Params(self.generator)
+            p = PP.addon_params(self.generator)
             path = PR.find(self.generator, key)
             text = PR.read(path)
             p.apply_preset(text, path)
@@ -146,6 +145,8 @@ class BanyanOperatorMixin:
         try:
             self.load_preset_if_changed()
             params = self.params()
+            if getattr(self, "wind_setup", False):  # the modifier needs the wind data
+                params.set(PP.wind_key(self.generator), True)
             job = self.prepare(context, params)
             # The wind and growth setups (the ivy animates by its own birth_step).
             api.add_setups(job, wind=bool(getattr(self, "wind_setup", False)),
