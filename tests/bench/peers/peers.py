@@ -809,6 +809,12 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
       "plus one object (`tests/bench/blender_handoff.py`); *bare+* also sets the UV, colour and attribute "
       "arrays the add-on sets. *Hand-off* = (end to end - library) / bare+.")
     w("")
+    w("banyan runs with the add-on's defaults, as an artist gets them: since issue 23 they grow without the "
+      "wind data (the parameter `wind` off in Blender only; Wind setup and Add Wind turn it on, docs/addon.md "
+      "\"Wind data: off unless asked\"), so the library call, the copy-out and the layers Blender gets are "
+      "those of a plant without the five wind layers. Neither IvyGen nor Sapling makes wind data. Runs before "
+      "that change timed the plants with it.")
+    w("")
     w("Issue 23 adds, beside those columns: *first evaluation*: Blender's first depsgraph evaluation of the new "
       "objects, as a user pays it before seeing them: `bpy.context.evaluated_depsgraph_get()` (the view-layer "
       "update that `bpy.ops` runs after every operator) and each new object's `evaluated_get(dg).data` fetched "
