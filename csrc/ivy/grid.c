@@ -11,7 +11,9 @@
  * short runs. A chain of buds linked by index, as before, jumped over the
  * whole plant at every link: past ~50k buds each was a cache miss and the
  * cost per bud doubled by 250k (issue 23). The runs are read in the order
- * the chains were, so the light sums are the same to the bit.
+ * the chains were, so the light sums are the same to the bit. A query
+ * asks for all its slots, then all its runs, before reading any: misses
+ * overlap instead of coming one after another (docs/ivy.md, "At scale").
  *
  * Shade at a point never falls while buds stay put (leaves only grow, buds
  * are only added), and a test that finds a bud too shaded rests only on
@@ -292,18 +294,52 @@ static inline ivy_cell *cell_slot(const banyan_ivy *iv, int32_t x, int32_t y, in
     }
 }
 
-/* Cell (x, y, z) when it holds a bud, else NULL. An empty home slot
- * settles most cells around a query by a bit test (the bitmap stays in
- * cache; the slots do not). */
-static inline const ivy_cell *cell_find(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
-    uint32_t k = cell_hash(x, y, z) & iv->cmask;
-    if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) return NULL;
-    for (;;) {
-        const ivy_cell *c = &iv->cells[k];
-        if (c->x == x && c->y == y && c->z == z) return c->n > 0 ? c : NULL;
-        if (c->x == INT32_MIN) return NULL;
-        k = (k + 1) & iv->cmask;
+/* A hint to the cache; nothing where the compiler has no such builtin. */
+#if defined(__GNUC__) || defined(__clang__)
+#define IVY_PREFETCH(p) __builtin_prefetch(p)
+#else
+#define IVY_PREFETCH(p) ((void)0)
+#endif
+
+/* The cells x0..x1, y0..y1, z0..z1 (at most 4 per axis) that hold buds,
+ * in z, y, x order, into out (64 entries); returns how many. The slots
+ * and then the runs are asked for in one batch each before any is read:
+ * neighbouring cells lie anywhere in the table and the pool, and waiting
+ * for each miss in turn was most of a look-up's time once the plant
+ * outgrew the caches (issue 23). An empty home slot settles most cells
+ * by a bit test (the bitmap stays in cache; the slots do not). */
+static int cells_around(const banyan_ivy *iv, int32_t x0, int32_t x1, int32_t y0, int32_t y1, int32_t z0, int32_t z1,
+                        const ivy_cell **out) {
+    uint32_t home[64];
+    int32_t key[64][3];
+    int m = 0;
+    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
+        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
+            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
+                uint32_t k = cell_hash(x, y, z) & iv->cmask;
+                if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) continue;
+                IVY_PREFETCH(&iv->cells[k]);
+                home[m] = k;
+                key[m][0] = x;
+                key[m][1] = y;
+                key[m++][2] = z;
+            }
+    int n = 0;
+    for (int q = 0; q < m; q++) {
+        for (uint32_t k = home[q];; k = (k + 1) & iv->cmask) {
+            const ivy_cell *c = &iv->cells[k];
+            if (c->x == key[q][0] && c->y == key[q][1] && c->z == key[q][2]) {
+                if (c->n > 0) {
+                    IVY_PREFETCH(iv->pool + c->at + c->n - 1); /* shade reads the run from its end */
+                    IVY_PREFETCH(iv->pool + c->at);
+                    out[n++] = c;
+                }
+                break;
+            }
+            if (c->x == INT32_MIN) break;
+        }
     }
+    return n;
 }
 
 static inline void cell_mark(banyan_ivy *iv, const ivy_cell *c) {
@@ -563,32 +599,31 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
      * first (the order the sums have always been added in). */
     double H = 0.0;
     v3 acc = v3_make(0, 0, 0);
-    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
-        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
-            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                const ivy_cell *c = cell_find(iv, x, y, z);
-                if (!c) continue;
-                const ivy_gnode *g = iv->pool + c->at;
-                for (int32_t k = c->n - 1; k >= 0; k--) {
-                    const ivy_gnode *b = &g[k];
-                    const int32_t j = b->id;
-                    v3 d = v3_sub(p, b->P);
-                    double d2 = v3_len2(d);
-                    if (d2 >= dmax2 || j == self) continue;
-                    double dist = sqrt(d2);
-                    double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
-                    if (dl > dmax) dl = dmax;
-                    double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
-                    if (h <= 0) continue;
-                    H += h;
-                    if (gather && gather->seen[j] != gather->test_id) {
-                        gather->seen[j] = gather->test_id;
-                        gather->counted[gather->n_counted++] = j;
-                    }
-                    if (H > stop) return H; /* the caller will not grow: V_l unused */
-                    if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
-                }
+    const ivy_cell *cl[64];
+    const int ncl = cells_around(iv, x0, x1, y0, y1, z0, z1, cl);
+    for (int q = 0; q < ncl; q++) {
+        const ivy_cell *c = cl[q];
+        const ivy_gnode *g = iv->pool + c->at;
+        for (int32_t k = c->n - 1; k >= 0; k--) {
+            const ivy_gnode *b = &g[k];
+            const int32_t j = b->id;
+            v3 d = v3_sub(p, b->P);
+            double d2 = v3_len2(d);
+            if (d2 >= dmax2 || j == self) continue;
+            double dist = sqrt(d2);
+            double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
+            if (dl > dmax) dl = dmax;
+            double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
+            if (h <= 0) continue;
+            H += h;
+            if (gather && gather->seen[j] != gather->test_id) {
+                gather->seen[j] = gather->test_id;
+                gather->counted[gather->n_counted++] = j;
             }
+            if (H > stop) return H; /* the caller will not grow: V_l unused */
+            if (vl && dist > 1e-12) acc = v3_madd(acc, d, h / dist);
+        }
+    }
     if (vl) *vl = v3_add(*vl, acc);
     return H;
 }
@@ -615,28 +650,27 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
     const double ex = bx - ax, ey = by - ay;
     int32_t x0 = cell_coord(m.x - r, ic), x1 = cell_coord(m.x + r, ic), y0 = cell_coord(m.y - r, ic),
             y1 = cell_coord(m.y + r, ic), z0 = cell_coord(m.z - r, ic), z1 = cell_coord(m.z + r, ic);
-    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
-        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
-            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                const ivy_cell *cl = cell_find(iv, x, y, z);
-                if (!cl) continue;
-                for (int32_t k = 0; k < cl->n; k++) {
-                    const ivy_gnode *g = &iv->pool[cl->at + k];
-                    const int32_t j = g->id;
-                    /* The bud's own copy first: most are out of reach, and
-                     * the bud array is read only for the rest. */
-                    if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
-                    const int32_t pj = iv->buds[j].parent;
-                    if (pj < 0 || j == self || pj == self) continue;
-                    v3 c = iv->buds[pj].P;
-                    const double cx = v3_dot(c, u), cy = v3_dot(c, w), dx = v3_dot(g->P, u) - cx,
-                                 dy = v3_dot(g->P, w) - cy;
-                    /* Proper intersection: each segment's ends on opposite sides of the other. */
-                    double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
-                    if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
-                    double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
-                    if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
-                }
-            }
+    const ivy_cell *cells[64];
+    const int ncl = cells_around(iv, x0, x1, y0, y1, z0, z1, cells);
+    for (int q = 0; q < ncl; q++) {
+        const ivy_cell *cl = cells[q];
+        for (int32_t k = 0; k < cl->n; k++) {
+            const ivy_gnode *g = &iv->pool[cl->at + k];
+            const int32_t j = g->id;
+            /* The bud's own copy first: most are out of reach, and
+             * the bud array is read only for the rest. */
+            if (v3_len2(v3_sub(g->P, m)) >= r2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
+            const int32_t pj = iv->buds[j].parent;
+            if (pj < 0 || j == self || pj == self) continue;
+            v3 c = iv->buds[pj].P;
+            const double cx = v3_dot(c, u), cy = v3_dot(c, w), dx = v3_dot(g->P, u) - cx,
+                         dy = v3_dot(g->P, w) - cy;
+            /* Proper intersection: each segment's ends on opposite sides of the other. */
+            double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
+            if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
+            double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
+            if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
+        }
+    }
     return 0;
 }
