@@ -261,10 +261,6 @@ def _job(prepare):
 
 
 # ------------------------------------------------------- wind and growth
-def _wind_key(gen):
-    return PP.wind_key(gen)
-
-
 def _setups(job, gen, wind=None, animate=False, frame_start=None, frame_end=None):
     """Production setups on what job builds. wind: None (the params'
     wind data as they are, no modifier), True (wind data on and the
@@ -272,7 +268,7 @@ def _setups(job, gen, wind=None, animate=False, frame_start=None, frame_end=None
     "Banyan Growth" modifier (growth_anim.py) over frame_start..frame_end
     (the scene's when None)."""
     if wind is not None:
-        job.params.set(_wind_key(gen), bool(wind))
+        job.params.set(PP.wind_key(gen), bool(wind))
     return add_setups(job, wind=bool(wind), animate=animate, frame_start=frame_start, frame_end=frame_end)
 
 

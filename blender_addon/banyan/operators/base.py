@@ -145,11 +145,12 @@ class BanyanOperatorMixin:
         try:
             self.load_preset_if_changed()
             params = self.params()
-            if getattr(self, "wind_setup", False):  # the modifier needs the wind data
+            wind = bool(getattr(self, "wind_setup", False))
+            if wind:  # the modifier needs the wind data
                 params.set(PP.wind_key(self.generator), True)
             job = self.prepare(context, params)
             # The wind and growth setups (the ivy animates by its own birth_step).
-            api.add_setups(job, wind=bool(getattr(self, "wind_setup", False)),
+            api.add_setups(job, wind=wind,
                            animate=bool(getattr(self, "animate", False)) and self.generator != "ivy")
             return params, job
         except BaseException as e:
