@@ -37,7 +37,7 @@
  *
  * Nothing is created on disk until every input has been checked. The file
  * is written through core/atomic_file.h: a write that fails part-way
- * leaves the old file as it was. No exception leaves this file.
+ * leaves the old file as it was; fsync only with opt->sync. No exception leaves this file.
  */
 #include "banyan.h"
 #include "core/atomic_file.h"
@@ -1097,6 +1097,9 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
                            "opt->texture_size = %d must be a power of two in [64, 8192]", n);
     if (o.engine_uvs != 0 && o.engine_uvs != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = %d must be 0 (off) or 1 (on)", o.engine_uvs);
+    if (o.sync != 0 && o.sync != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->sync = %d must be 0 (no fsync) or 1 (fsync before the rename)",
+                           o.sync);
     return BANYAN_OK;
 }
 
@@ -1104,11 +1107,15 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
  * commit() succeeded. */
 class OutFile {
   public:
-    OutFile() : af_{nullptr, nullptr, nullptr} {}
+    OutFile() : af_{nullptr, nullptr, nullptr, 0} {}
     ~OutFile() { atomic_abort(&af_); }
-    int open(const char *path) { return atomic_open(&af_, path); }
+    int open(const char *path, bool sync) {
+        int e = atomic_open(&af_, path);
+        af_.sync = sync ? 1 : 0;
+        return e;
+    }
     std::FILE *get() { return af_.f; }
-    /* Flushes, syncs and renames over the target; 0 or an errno value. */
+    /* Flushes, syncs (if asked) and renames over the target; 0 or an errno value. */
     int commit() { return atomic_commit(&af_); }
 
   private:
@@ -1576,7 +1583,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     doc.shrink_to_fit();
 
     OutFile out;
-    if (int oe = out.open(path))
+    if (int oe = out.open(path, o.sync != 0))
         return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
     Sink raw(out.get(), false);
     raw.put(head.data(), head.size());
@@ -1623,6 +1630,7 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
     opt->texture_size = 1024;
     opt->texture_seed = 1;
     opt->engine_uvs = 0;
+    opt->sync = 0;
 }
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }
