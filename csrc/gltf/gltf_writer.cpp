@@ -32,8 +32,9 @@
  * POSITION min/max), tinygltf writes the JSON for an empty buffer whose
  * byteLength is then set, and the bytes are streamed after it (the .glb's
  * BIN chunk, or base64 in the .gltf's data URI) from the mesh arrays,
- * through one 4 MiB scratch block where they need converting. The bytes
- * are those tinygltf wrote when it held the buffer.
+ * converted on a second thread into a few 4 MiB blocks (Pipe) while the
+ * caller writes. The bytes are those tinygltf wrote when it held the
+ * buffer, whatever the threads do.
  *
  * Nothing is created on disk until every input has been checked. The file
  * is written through core/atomic_file.h: a write that fails part-way
@@ -47,6 +48,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -722,6 +729,29 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
     return attrs;
 }
 
+/* The temporary output file (core/atomic_file.h), removed unless
+ * commit() succeeded. */
+class OutFile {
+  public:
+    OutFile() : af_{nullptr, nullptr, nullptr, 0} {}
+    ~OutFile() { atomic_abort(&af_); }
+    int open(const char *path, bool sync) {
+        int e = atomic_open(&af_, path);
+        af_.sync = sync ? 1 : 0;
+        return e;
+    }
+    std::FILE *get() { return af_.f; }
+    /* With sync: the disk starts on what is written so far. */
+    void start_writeback() {
+        if (af_.sync) atomic_start_writeback(&af_);
+    }
+    /* Flushes, syncs (if asked) and renames over the target; 0 or an errno value. */
+    int commit() { return atomic_commit(&af_); }
+
+  private:
+    atomic_file af_;
+};
+
 /* Where the BIN chunk's bytes go: the file as they are, or (a .gltf)
  * base64 inside the JSON's data URI. Remembers the first errno. */
 class Sink {
@@ -797,26 +827,183 @@ class Sink {
     std::vector<char> out_;
 };
 
-/* Streams the planned segments into a Sink, converting through one fixed
- * scratch block (Sink::kBlock bytes). */
+/* The BIN chunk's bytes on their way from the converting thread to the
+ * writing one (the caller), in order: converted or small pieces gathered in
+ * a few fixed blocks (Sink::kBlock bytes each, reused), large raw arrays
+ * handed over as they are in the mesh. Converting block k + 1 while block k
+ * is written overlaps the CPU work with write(); the bytes do not depend on
+ * the split. Without a thread (none could be started) each piece is
+ * written as soon as it is ready. */
+class Pipe {
+  public:
+    static constexpr int kBlocks = 4;
+    static constexpr size_t kByReference = size_t(256) << 10; /* raw pieces at least this long are not copied */
+    static constexpr uint64_t kWriteback = uint64_t(64) << 20; /* with sync: start the disk every this many bytes */
+
+    Pipe(Sink &sink, OutFile &file) : sink_(sink), file_(file) {
+        for (int k = 0; k < kBlocks; ++k) {
+            blocks_[k].resize(Sink::kBlock);
+            if (k > 0) free_.push_back(k);
+        }
+    }
+
+    /* Producer side. Room for at least min bytes (4-aligned) in the current block. */
+    unsigned char *space(size_t min, size_t &cap) {
+        if (Sink::kBlock - fill_ < min || fill_ % 4 != 0) hand_block();
+        cap = Sink::kBlock - fill_;
+        return blocks_[cur_].data() + fill_;
+    }
+    void used(size_t n) { fill_ += n; }
+    void put(const void *data, size_t n) {
+        if (n >= kByReference) {
+            hand_block();
+            push(Piece{data, n, -1});
+            return;
+        }
+        const unsigned char *p = static_cast<const unsigned char *>(data);
+        while (n > 0) {
+            if (fill_ == Sink::kBlock) hand_block();
+            size_t take = std::min(n, Sink::kBlock - fill_);
+            std::memcpy(blocks_[cur_].data() + fill_, p, take);
+            fill_ += take;
+            p += take;
+            n -= take;
+        }
+    }
+    void zeros(uint64_t n) {
+        while (n > 0) {
+            if (fill_ == Sink::kBlock) hand_block();
+            size_t take = static_cast<size_t>(std::min<uint64_t>(n, Sink::kBlock - fill_));
+            std::memset(blocks_[cur_].data() + fill_, 0, take);
+            fill_ += take;
+            n -= take;
+        }
+    }
+    /* Whether the writing side failed: the producer may stop early. */
+    bool failed() {
+        std::lock_guard<std::mutex> lk(mu_);
+        return stop_;
+    }
+    /* The last block, then the end mark. */
+    void finish() {
+        hand_block();
+        push(Piece{nullptr, 0, -2});
+    }
+
+    /* Runs produce(*this) on a new thread while the caller writes; inline
+     * when no thread can be started. Rethrows the producer's exception. */
+    template <class F> void run(F produce) {
+        auto body = [this, &produce] {
+            try {
+                produce(*this);
+            } catch (...) {
+                std::lock_guard<std::mutex> lk(mu_);
+                thrown_ = std::current_exception();
+            }
+            finish();
+        };
+        std::thread t;
+        threaded_ = true; /* before the thread starts: it reads it */
+        try {
+            t = std::thread(body);
+        } catch (const std::system_error &) {
+            threaded_ = false;
+        }
+        if (!threaded_) {
+            body();
+        } else {
+            for (;;) {
+                Piece pc;
+                {
+                    std::unique_lock<std::mutex> lk(mu_);
+                    cv_.wait(lk, [this] { return !queue_.empty(); });
+                    pc = queue_.front();
+                    queue_.pop_front();
+                }
+                if (pc.block == -2) break;
+                write(pc);
+                std::lock_guard<std::mutex> lk(mu_);
+                if (pc.block >= 0) free_.push_back(pc.block);
+                if (sink_.error()) stop_ = true;
+                cv_.notify_all();
+            }
+            t.join();
+        }
+        if (thrown_) std::rethrow_exception(thrown_);
+    }
+
+  private:
+    struct Piece {
+        const void *p;
+        size_t n;
+        int block; /* -1: mesh memory; -2: the end */
+    };
+
+    void write(const Piece &pc) {
+        sink_.put(pc.p, pc.n);
+        written_ += pc.n;
+        if (written_ - synced_ >= kWriteback) {
+            file_.start_writeback();
+            synced_ = written_;
+        }
+    }
+    void push(const Piece &pc) {
+        if (!threaded_) {
+            if (pc.block != -2) write(pc);
+            if (sink_.error()) stop_ = true;
+            return;
+        }
+        std::lock_guard<std::mutex> lk(mu_);
+        queue_.push_back(pc);
+        cv_.notify_all();
+    }
+    /* The current block to the writer (when it holds anything), then a free one. */
+    void hand_block() {
+        if (fill_ == 0) return;
+        if (!threaded_) {
+            write(Piece{blocks_[cur_].data(), fill_, cur_});
+            if (sink_.error()) stop_ = true;
+            fill_ = 0;
+            return;
+        }
+        std::unique_lock<std::mutex> lk(mu_);
+        queue_.push_back(Piece{blocks_[cur_].data(), fill_, cur_});
+        cv_.notify_all();
+        cv_.wait(lk, [this] { return !free_.empty(); });
+        cur_ = free_.front();
+        free_.pop_front();
+        fill_ = 0;
+    }
+
+    Sink &sink_;
+    OutFile &file_;
+    std::vector<unsigned char> blocks_[kBlocks];
+    int cur_ = 0;
+    size_t fill_ = 0;
+    bool threaded_ = false;
+    std::mutex mu_;
+    std::condition_variable cv_;
+    std::deque<Piece> queue_;
+    std::deque<int> free_;
+    bool stop_ = false;
+    std::exception_ptr thrown_;
+    uint64_t written_ = 0, synced_ = 0;
+};
+
+/* Streams the planned segments into a Pipe, converting straight into its
+ * blocks. */
 class BinWriter {
   public:
-    explicit BinWriter(Sink &out) : out_(out), scratch_(Sink::kBlock / sizeof(float)) {}
+    explicit BinWriter(Pipe &out) : out_(out) {}
 
     void write(const Segment &s) {
         switch (s.kind) {
         case kRaw:
             out_.put(s.src, static_cast<size_t>(s.bytes));
             return;
-        case kZero: {
-            std::fill(scratch_.begin(), scratch_.end(), 0.0f);
-            for (uint64_t left = s.bytes; left > 0;) {
-                size_t n = static_cast<size_t>(std::min<uint64_t>(left, Sink::kBlock));
-                out_.put(scratch_.data(), n);
-                left -= n;
-            }
+        case kZero:
+            out_.zeros(s.bytes);
             return;
-        }
         case kIndices:
             if (s.aux == 0) { /* already right: straight from the mesh */
                 out_.put(s.m->indices + s.base, static_cast<size_t>(s.count) * sizeof(uint32_t));
@@ -830,11 +1017,14 @@ class BinWriter {
             break;
         }
         const uint32_t width = s.kind == kIndices ? 1 : static_cast<uint32_t>(s.bytes / 4 / (s.count ? s.count : 1));
-        const uint32_t chunk = static_cast<uint32_t>(scratch_.size() / width);
-        for (uint32_t i0 = 0; i0 < s.count; i0 += chunk) {
-            uint32_t n = std::min(chunk, s.count - i0);
-            fill(s, i0, n, scratch_.data());
-            out_.put(scratch_.data(), static_cast<size_t>(n) * width * sizeof(float));
+        const size_t elem = static_cast<size_t>(width) * sizeof(float);
+        for (uint32_t i0 = 0; i0 < s.count;) {
+            size_t cap = 0;
+            float *o = reinterpret_cast<float *>(out_.space(elem, cap));
+            uint32_t n = static_cast<uint32_t>(std::min<uint64_t>(cap / elem, s.count - i0));
+            fill(s, i0, n, o);
+            out_.used(n * elem);
+            i0 += n;
         }
     }
 
@@ -944,8 +1134,7 @@ class BinWriter {
         tan_base_ = s.base;
     }
 
-    Sink &out_;
-    std::vector<float> scratch_;
+    Pipe &out_;
     std::vector<float> tan_;
     const banyan_mesh *tan_mesh_ = nullptr;
     bool tan_whole_ = false;
@@ -1070,23 +1259,73 @@ int texture_key(const banyan_mesh *m, const banyan_material *bm) {
 
 /* Draws every texture the meshes' materials name, in order of first use;
  * slot[kind * 2 + season] gets its index into `out` (-1: unused). */
-banyan_status draw_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
-                            std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT], banyan_error *err) {
+/* The library textures the materials name, in first-use order: kind and
+ * season into out, its index into slot; drawn later (draw_planned). */
+void plan_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
+                   std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT]) {
     for (int i = 0; i < 2 * BANYAN_TEX_COUNT; ++i) slot[i] = -1;
-    if (!o.textures) return BANYAN_OK;
+    if (!o.textures) return;
     for (uint32_t i = 0; i < count; ++i) {
         for (uint32_t k = 0; k < meshes[i]->material_count; ++k) {
             const banyan_material *bm = &meshes[i]->materials[k];
             int key = texture_key(meshes[i], bm);
             if (key < 0 || slot[key] >= 0) continue;
             out.emplace_back();
-            banyan_status s = draw_texture(bm->texture, key % 2, o, out.back(), err);
-            if (s != BANYAN_OK) return s;
+            out.back().kind = bm->texture;
+            out.back().season = key % 2;
             slot[key] = static_cast<int>(out.size() - 1);
         }
     }
+}
+
+banyan_status draw_planned(const banyan_gltf_options &o, std::vector<TexturePngs> &t, banyan_error *err) {
+    for (TexturePngs &tp : t) {
+        banyan_status s = draw_texture(tp.kind, tp.season, o, tp, err);
+        if (s != BANYAN_OK) return s;
+    }
     return BANYAN_OK;
 }
+
+/* The textures drawn on their own thread while the meshes are planned
+ * (the PNGs' sizes are needed only for the views at the buffer's end);
+ * inline in wait() when no thread can be started. The destructor waits. */
+class TextureDrawer {
+  public:
+    TextureDrawer(const banyan_gltf_options &o, std::vector<TexturePngs> &t) : o_(o), t_(t) {
+        try {
+            th_ = std::thread([this] { body(); });
+        } catch (const std::system_error &) {
+        }
+    }
+    ~TextureDrawer() {
+        if (th_.joinable()) th_.join();
+    }
+    /* The drawing's status, its message in *err; rethrows its exception. */
+    banyan_status wait(banyan_error *err) {
+        if (th_.joinable()) th_.join();
+        else if (!done_) body();
+        if (thrown_) std::rethrow_exception(thrown_);
+        if (status_ != BANYAN_OK && err) *err = err_;
+        return status_;
+    }
+
+  private:
+    void body() {
+        try {
+            status_ = draw_planned(o_, t_, &err_);
+        } catch (...) {
+            thrown_ = std::current_exception();
+        }
+        done_ = true;
+    }
+    const banyan_gltf_options &o_;
+    std::vector<TexturePngs> &t_;
+    std::thread th_;
+    banyan_status status_ = BANYAN_OK;
+    banyan_error err_{};
+    std::exception_ptr thrown_;
+    bool done_ = false;
+};
 
 banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (o.textures != 0 && o.textures != 1)
@@ -1103,24 +1342,6 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     return BANYAN_OK;
 }
 
-/* The temporary output file (core/atomic_file.h), removed unless
- * commit() succeeded. */
-class OutFile {
-  public:
-    OutFile() : af_{nullptr, nullptr, nullptr, 0} {}
-    ~OutFile() { atomic_abort(&af_); }
-    int open(const char *path, bool sync) {
-        int e = atomic_open(&af_, path);
-        af_.sync = sync ? 1 : 0;
-        return e;
-    }
-    std::FILE *get() { return af_.f; }
-    /* Flushes, syncs (if asked) and renames over the target; 0 or an errno value. */
-    int commit() { return atomic_commit(&af_); }
-
-  private:
-    atomic_file af_;
-};
 
 /* One banyan mesh to write: a node's own mesh or one of its levels of
  * detail, with its plan. */
@@ -1437,8 +1658,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
 
     std::vector<TexturePngs> textures;
     int slot[2 * BANYAN_TEX_COUNT];
-    banyan_status ts = draw_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot, err);
-    if (ts != BANYAN_OK) return ts;
+    plan_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot);
     /* The meshes' own images (a billboard's picture), one PNG each that a
      * material names; with textures off, materials are drawn flat. */
     std::vector<std::vector<unsigned char>> pictures;
@@ -1475,14 +1695,15 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         total += instance_bytes(J.m);
         material_base += static_cast<int>(J.m->material_count);
     }
-    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     for (const auto &p : pictures) total += pad4(p.size());
-    if (total > kMaxBufferBytes)
+    auto too_big = [&] {
         return banyan_fail(err, BANYAN_E_LIMIT,
-                    "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
-                    "JSON)",
-                    static_cast<unsigned long long>(total),
-                    static_cast<unsigned long long>(kMaxBufferBytes));
+                           "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
+                           "JSON)",
+                           static_cast<unsigned long long>(total), static_cast<unsigned long long>(kMaxBufferBytes));
+    };
+    if (total > kMaxBufferBytes) return too_big(); /* before the textures are drawn */
+    TextureDrawer drawer(o, textures);
 
     Builder b;
     tinygltf::Model &model = b.model;
@@ -1556,6 +1777,10 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     if (any_lod) model.extensionsUsed.push_back("MSFT_lod");
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+    banyan_status drawn = drawer.wait(err);
+    if (drawn != BANYAN_OK) return drawn;
+    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
+    if (total > kMaxBufferBytes) return too_big();
     for (size_t t = 0; t < textures.size(); ++t) {
         model.images[2 * t].bufferView = b.add_image_view(textures[t].base);
         model.images[2 * t + 1].bufferView = b.add_image_view(textures[t].normal);
@@ -1588,11 +1813,14 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     Sink raw(out.get(), false);
     raw.put(head.data(), head.size());
     Sink bin(out.get(), !binary);
-    BinWriter bw(bin);
-    for (const Segment &sg : b.segs) {
-        bw.write(sg);
-        if (bin.error()) break;
-    }
+    Pipe pipe(bin, out);
+    pipe.run([&b](Pipe &p) {
+        BinWriter bw(p);
+        for (const Segment &sg : b.segs) {
+            if (p.failed()) break;
+            bw.write(sg);
+        }
+    });
     bin.finish();
     if (!bin.error() && bin.count() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
