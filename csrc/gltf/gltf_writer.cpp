@@ -1247,8 +1247,7 @@ banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_optio
     ImageGuard g;
     banyan_status s = banyan_texture_generate(&tp, &g.base, &g.normal, err);
     if (s != BANYAN_OK) return s;
-    t.kind = kind;
-    t.season = season;
+    /* t.kind and t.season were set by plan_textures: the caller reads them meanwhile */
     if ((s = to_png(g, g.base, t.base, err)) != BANYAN_OK) return s;
     return to_png(g, g.normal, t.normal, err);
 }
