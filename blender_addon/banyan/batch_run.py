@@ -223,7 +223,7 @@ class Job:
 
         class GltfOptions(C.Structure):
             _fields_ = [("textures", C.c_int32), ("texture_size", C.c_int32), ("texture_seed", C.c_uint64),
-                        ("engine_uvs", C.c_int32)]
+                        ("engine_uvs", C.c_int32), ("sync", C.c_int32)]  # sync 0: no fsync, as the CLI
 
         size = lib.banyan_sizeof_gltf_options
         size.restype, size.argtypes = C.c_size_t, []

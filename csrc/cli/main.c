@@ -2,7 +2,7 @@
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
  *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
- *                      [--lod 0.5,0.15,billboard] [--engine-uvs]
+ *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--fsync]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -53,7 +53,7 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
-               "                        [--textures on|off] [--texture-size N] [--lod LIST] [--engine-uvs]\n"
+               "                        [--textures on|off] [--texture-size N] [--lod LIST] [--engine-uvs] [--fsync]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
@@ -63,6 +63,8 @@ static int usage(FILE *f) {
                "shares of its triangles, optionally ending in crossed billboard cards.\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
                "(docs/game-engines.md).\n"
+               "--fsync syncs the glTF file to the disk before it replaces -o, so it survives a power cut\n"
+               "(slower for large files; without it the file is still replaced whole: docs/formats.md).\n"
                "\ncommands:\n");
     for (int i = 0; cli_commands[i]; i++)
         fprintf(f, "  %-9s %s\n", cli_commands[i]->name, cli_commands[i]->summary);
@@ -283,6 +285,7 @@ int main(int argc, char **argv) {
             }
         }
         else if (!strcmp(a, "--engine-uvs")) gltf_opt.engine_uvs = 1;
+        else if (!strcmp(a, "--fsync")) gltf_opt.sync = 1;
         else if (!strcmp(a, "--list")) list = 1;
         else {
             fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);

@@ -1,5 +1,9 @@
 /* atomic_file.c - write a temporary file, then rename it (atomic_file.h). */
+#ifdef __linux__
+#define _GNU_SOURCE /* sync_file_range */
+#else
 #define _POSIX_C_SOURCE 200809L
+#endif
 #include "atomic_file.h"
 
 #include <errno.h>
@@ -77,11 +81,13 @@ static void clear(atomic_file *af) {
     free(af->temp);
     af->f = NULL;
     af->path = af->temp = NULL;
+    af->sync = 1;
 }
 
 int atomic_open(atomic_file *af, const char *path) {
     af->f = NULL;
     af->path = af->temp = NULL;
+    af->sync = 1;
     int e = 0;
     if (!path || !path[0]) return ENOENT;
     af->path = final_target(path, &e);
@@ -137,15 +143,15 @@ int atomic_commit(atomic_file *af) {
     int e = 0;
     errno = 0;
     if (fflush(af->f) != 0 || ferror(af->f)) e = errno ? errno : EIO;
-    /* Synced before the rename, so a crash after it finds the new bytes,
-     * not an empty file under the old name. */
-    if (!e && af->temp && fsync(fileno(af->f)) != 0) e = errno;
+    /* With sync, synced before the rename, so a crash after it finds the
+     * new bytes, not an empty file under the old name. */
+    if (!e && af->temp && af->sync && fsync(fileno(af->f)) != 0) e = errno;
     errno = 0;
     if (fclose(af->f) != 0 && !e) e = errno ? errno : EIO;
     af->f = NULL;
     if (!e && af->temp && rename(af->temp, af->path) != 0) e = errno;
     if (e && af->temp) unlink(af->temp);
-    if (!e && af->temp) { /* the rename itself made durable; best effort */
+    if (!e && af->temp && af->sync) { /* the rename itself made durable; best effort */
         size_t d = dir_len(af->path);
         char *dir = d ? dup_n(af->path, d) : NULL;
         int fd = open(dir ? dir : ".", O_RDONLY | O_CLOEXEC);
@@ -157,6 +163,15 @@ int atomic_commit(atomic_file *af) {
     }
     clear(af);
     return e;
+}
+
+void atomic_start_writeback(atomic_file *af) {
+#ifdef __linux__
+    /* nbytes 0: up to the end; SYNC_FILE_RANGE_WRITE only queues the I/O */
+    if (af->f && fflush(af->f) == 0 && sync_file_range(fileno(af->f), 0, 0, SYNC_FILE_RANGE_WRITE) != 0) (void)0;
+#else
+    (void)af;
+#endif
 }
 
 int atomic_write(const char *path, const void *data, size_t len) {

@@ -1,7 +1,8 @@
 /* atomic_file.h - every file banyan writes (glTF, PNG) goes through here:
  * the bytes go to a temporary file next to the target,
- * ".<name>.XXXXXX.tmp" in the same folder, which is flushed, synced and
- * renamed over the target only when all of it is written. A failed write
+ * ".<name>.XXXXXX.tmp" in the same folder, which is flushed, synced
+ * (unless the caller clears af->sync) and renamed over the target only
+ * when all of it is written. A failed write
  * (full disk, file size limit, unwritable folder) removes the temporary
  * file and leaves the old target as it was; a process killed mid-write
  * (SIGKILL, SIGXFSZ) may leave the temporary file, never a cut target.
@@ -29,12 +30,16 @@ typedef struct atomic_file {
     FILE *f;     /* write here */
     char *path;  /* the file replaced at commit (symlinks followed) */
     char *temp;  /* the temporary file; NULL when writing in place */
+    int sync;    /* 1 (atomic_open's default): fsync file and folder at commit */
 } atomic_file;
 
 /* Creates the temporary file for path. On failure *af is cleared and
  * there is nothing to abort. */
 int atomic_open(atomic_file *af, const char *path);
-/* Flushes, syncs, closes and renames the temporary file over the target.
+/* Starts the disk writing back what af holds so far, without waiting
+ * (Linux; elsewhere nothing), so a later sync waits less. Best effort. */
+void atomic_start_writeback(atomic_file *af);
+/* Flushes, syncs (af->sync), closes and renames the temporary file over the target.
  * On failure the temporary file is removed and the target is untouched.
  * Either way *af is released. */
 int atomic_commit(atomic_file *af);

@@ -32,12 +32,13 @@
  * POSITION min/max), tinygltf writes the JSON for an empty buffer whose
  * byteLength is then set, and the bytes are streamed after it (the .glb's
  * BIN chunk, or base64 in the .gltf's data URI) from the mesh arrays,
- * through one 4 MiB scratch block where they need converting. The bytes
- * are those tinygltf wrote when it held the buffer.
+ * converted on a second thread into a few 4 MiB blocks (Pipe) while the
+ * caller writes. The bytes are those tinygltf wrote when it held the
+ * buffer, whatever the threads do.
  *
  * Nothing is created on disk until every input has been checked. The file
  * is written through core/atomic_file.h: a write that fails part-way
- * leaves the old file as it was. No exception leaves this file.
+ * leaves the old file as it was; fsync only with opt->sync. No exception leaves this file.
  */
 #include "banyan.h"
 #include "core/atomic_file.h"
@@ -47,6 +48,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -722,6 +729,29 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
     return attrs;
 }
 
+/* The temporary output file (core/atomic_file.h), removed unless
+ * commit() succeeded. */
+class OutFile {
+  public:
+    OutFile() : af_{nullptr, nullptr, nullptr, 0} {}
+    ~OutFile() { atomic_abort(&af_); }
+    int open(const char *path, bool sync) {
+        int e = atomic_open(&af_, path);
+        af_.sync = sync ? 1 : 0;
+        return e;
+    }
+    std::FILE *get() { return af_.f; }
+    /* With sync: the disk starts on what is written so far. */
+    void start_writeback() {
+        if (af_.sync) atomic_start_writeback(&af_);
+    }
+    /* Flushes, syncs (if asked) and renames over the target; 0 or an errno value. */
+    int commit() { return atomic_commit(&af_); }
+
+  private:
+    atomic_file af_;
+};
+
 /* Where the BIN chunk's bytes go: the file as they are, or (a .gltf)
  * base64 inside the JSON's data URI. Remembers the first errno. */
 class Sink {
@@ -797,26 +827,186 @@ class Sink {
     std::vector<char> out_;
 };
 
-/* Streams the planned segments into a Sink, converting through one fixed
- * scratch block (Sink::kBlock bytes). */
+/* The BIN chunk's bytes on their way from the converting thread to the
+ * writing one (the caller), in order: converted or small pieces gathered in
+ * a few small fixed blocks (kBlockBytes each, reused), large raw arrays
+ * handed over as they are in the mesh. Converting block k + 1 while block k
+ * is written overlaps the CPU work with write(); the bytes do not depend on
+ * the split. Without a thread (none could be started) each piece is
+ * written as soon as it is ready. */
+class Pipe {
+  public:
+    /* Small blocks, so the one just converted is still in the cache when
+     * write() copies it: 4 MiB blocks made write() 2.5x slower here. */
+    static constexpr int kBlocks = 8;
+    static constexpr size_t kBlockBytes = size_t(512) << 10;
+    static constexpr size_t kByReference = size_t(256) << 10; /* raw pieces at least this long are not copied */
+    static constexpr uint64_t kWriteback = uint64_t(64) << 20; /* with sync: start the disk every this many bytes */
+
+    Pipe(Sink &sink, OutFile &file) : sink_(sink), file_(file) {
+        for (int k = 0; k < kBlocks; ++k) {
+            blocks_[k].resize(kBlockBytes);
+            if (k > 0) free_.push_back(k);
+        }
+    }
+
+    /* Producer side. Room for at least min bytes (4-aligned) in the current block. */
+    unsigned char *space(size_t min, size_t &cap) {
+        if (kBlockBytes - fill_ < min || fill_ % 4 != 0) hand_block();
+        cap = kBlockBytes - fill_;
+        return blocks_[cur_].data() + fill_;
+    }
+    void used(size_t n) { fill_ += n; }
+    void put(const void *data, size_t n) {
+        if (n >= kByReference) {
+            hand_block();
+            push(Piece{data, n, -1});
+            return;
+        }
+        const unsigned char *p = static_cast<const unsigned char *>(data);
+        while (n > 0) {
+            if (fill_ == kBlockBytes) hand_block();
+            size_t take = std::min(n, kBlockBytes - fill_);
+            std::memcpy(blocks_[cur_].data() + fill_, p, take);
+            fill_ += take;
+            p += take;
+            n -= take;
+        }
+    }
+    void zeros(uint64_t n) {
+        while (n > 0) {
+            if (fill_ == kBlockBytes) hand_block();
+            size_t take = static_cast<size_t>(std::min<uint64_t>(n, kBlockBytes - fill_));
+            std::memset(blocks_[cur_].data() + fill_, 0, take);
+            fill_ += take;
+            n -= take;
+        }
+    }
+    /* Whether the writing side failed: the producer may stop early. */
+    bool failed() {
+        std::lock_guard<std::mutex> lk(mu_);
+        return stop_;
+    }
+    /* The last block, then the end mark. */
+    void finish() {
+        hand_block();
+        push(Piece{nullptr, 0, -2});
+    }
+
+    /* Runs produce(*this) on a new thread while the caller writes; inline
+     * when no thread can be started. Rethrows the producer's exception. */
+    template <class F> void run(F produce) {
+        auto body = [this, &produce] {
+            try {
+                produce(*this);
+            } catch (...) {
+                std::lock_guard<std::mutex> lk(mu_);
+                thrown_ = std::current_exception();
+            }
+            finish();
+        };
+        std::thread t;
+        threaded_ = true; /* before the thread starts: it reads it */
+        try {
+            t = std::thread(body);
+        } catch (const std::system_error &) {
+            threaded_ = false;
+        }
+        if (!threaded_) {
+            body();
+        } else {
+            for (;;) {
+                Piece pc;
+                {
+                    std::unique_lock<std::mutex> lk(mu_);
+                    cv_.wait(lk, [this] { return !queue_.empty(); });
+                    pc = queue_.front();
+                    queue_.pop_front();
+                }
+                if (pc.block == -2) break;
+                write(pc);
+                std::lock_guard<std::mutex> lk(mu_);
+                if (pc.block >= 0) free_.push_back(pc.block);
+                if (sink_.error()) stop_ = true;
+                cv_.notify_all();
+            }
+            t.join();
+        }
+        if (thrown_) std::rethrow_exception(thrown_);
+    }
+
+  private:
+    struct Piece {
+        const void *p;
+        size_t n;
+        int block; /* -1: mesh memory; -2: the end */
+    };
+
+    void write(const Piece &pc) {
+        sink_.put(pc.p, pc.n);
+        written_ += pc.n;
+        if (written_ - synced_ >= kWriteback) {
+            file_.start_writeback();
+            synced_ = written_;
+        }
+    }
+    void push(const Piece &pc) {
+        if (!threaded_) {
+            if (pc.block != -2) write(pc);
+            if (sink_.error()) stop_ = true;
+            return;
+        }
+        std::lock_guard<std::mutex> lk(mu_);
+        queue_.push_back(pc);
+        cv_.notify_all();
+    }
+    /* The current block to the writer (when it holds anything), then a free one. */
+    void hand_block() {
+        if (fill_ == 0) return;
+        if (!threaded_) {
+            write(Piece{blocks_[cur_].data(), fill_, cur_});
+            if (sink_.error()) stop_ = true;
+            fill_ = 0;
+            return;
+        }
+        std::unique_lock<std::mutex> lk(mu_);
+        queue_.push_back(Piece{blocks_[cur_].data(), fill_, cur_});
+        cv_.notify_all();
+        cv_.wait(lk, [this] { return !free_.empty(); });
+        cur_ = free_.front();
+        free_.pop_front();
+        fill_ = 0;
+    }
+
+    Sink &sink_;
+    OutFile &file_;
+    std::vector<unsigned char> blocks_[kBlocks];
+    int cur_ = 0;
+    size_t fill_ = 0;
+    bool threaded_ = false;
+    std::mutex mu_;
+    std::condition_variable cv_;
+    std::deque<Piece> queue_;
+    std::deque<int> free_;
+    bool stop_ = false;
+    std::exception_ptr thrown_;
+    uint64_t written_ = 0, synced_ = 0;
+};
+
+/* Streams the planned segments into a Pipe, converting straight into its
+ * blocks. */
 class BinWriter {
   public:
-    explicit BinWriter(Sink &out) : out_(out), scratch_(Sink::kBlock / sizeof(float)) {}
+    explicit BinWriter(Pipe &out) : out_(out) {}
 
     void write(const Segment &s) {
         switch (s.kind) {
         case kRaw:
             out_.put(s.src, static_cast<size_t>(s.bytes));
             return;
-        case kZero: {
-            std::fill(scratch_.begin(), scratch_.end(), 0.0f);
-            for (uint64_t left = s.bytes; left > 0;) {
-                size_t n = static_cast<size_t>(std::min<uint64_t>(left, Sink::kBlock));
-                out_.put(scratch_.data(), n);
-                left -= n;
-            }
+        case kZero:
+            out_.zeros(s.bytes);
             return;
-        }
         case kIndices:
             if (s.aux == 0) { /* already right: straight from the mesh */
                 out_.put(s.m->indices + s.base, static_cast<size_t>(s.count) * sizeof(uint32_t));
@@ -830,11 +1020,14 @@ class BinWriter {
             break;
         }
         const uint32_t width = s.kind == kIndices ? 1 : static_cast<uint32_t>(s.bytes / 4 / (s.count ? s.count : 1));
-        const uint32_t chunk = static_cast<uint32_t>(scratch_.size() / width);
-        for (uint32_t i0 = 0; i0 < s.count; i0 += chunk) {
-            uint32_t n = std::min(chunk, s.count - i0);
-            fill(s, i0, n, scratch_.data());
-            out_.put(scratch_.data(), static_cast<size_t>(n) * width * sizeof(float));
+        const size_t elem = static_cast<size_t>(width) * sizeof(float);
+        for (uint32_t i0 = 0; i0 < s.count;) {
+            size_t cap = 0;
+            float *o = reinterpret_cast<float *>(out_.space(elem, cap));
+            uint32_t n = static_cast<uint32_t>(std::min<uint64_t>(cap / elem, s.count - i0));
+            fill(s, i0, n, o);
+            out_.used(n * elem);
+            i0 += n;
         }
     }
 
@@ -944,8 +1137,7 @@ class BinWriter {
         tan_base_ = s.base;
     }
 
-    Sink &out_;
-    std::vector<float> scratch_;
+    Pipe &out_;
     std::vector<float> tan_;
     const banyan_mesh *tan_mesh_ = nullptr;
     bool tan_whole_ = false;
@@ -1055,8 +1247,7 @@ banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_optio
     ImageGuard g;
     banyan_status s = banyan_texture_generate(&tp, &g.base, &g.normal, err);
     if (s != BANYAN_OK) return s;
-    t.kind = kind;
-    t.season = season;
+    /* t.kind and t.season were set by plan_textures: the caller reads them meanwhile */
     if ((s = to_png(g, g.base, t.base, err)) != BANYAN_OK) return s;
     return to_png(g, g.normal, t.normal, err);
 }
@@ -1070,23 +1261,84 @@ int texture_key(const banyan_mesh *m, const banyan_material *bm) {
 
 /* Draws every texture the meshes' materials name, in order of first use;
  * slot[kind * 2 + season] gets its index into `out` (-1: unused). */
-banyan_status draw_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
-                            std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT], banyan_error *err) {
+/* The library textures the materials name, in first-use order: kind and
+ * season into out, its index into slot; drawn later (draw_planned). */
+void plan_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
+                   std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT]) {
     for (int i = 0; i < 2 * BANYAN_TEX_COUNT; ++i) slot[i] = -1;
-    if (!o.textures) return BANYAN_OK;
+    if (!o.textures) return;
     for (uint32_t i = 0; i < count; ++i) {
         for (uint32_t k = 0; k < meshes[i]->material_count; ++k) {
             const banyan_material *bm = &meshes[i]->materials[k];
             int key = texture_key(meshes[i], bm);
             if (key < 0 || slot[key] >= 0) continue;
             out.emplace_back();
-            banyan_status s = draw_texture(bm->texture, key % 2, o, out.back(), err);
-            if (s != BANYAN_OK) return s;
+            out.back().kind = bm->texture;
+            out.back().season = key % 2;
             slot[key] = static_cast<int>(out.size() - 1);
         }
     }
-    return BANYAN_OK;
 }
+
+/* The textures drawn on their own threads (up to kThreads, texture k on
+ * thread k % kThreads) while the meshes are planned: the PNGs' sizes are
+ * needed only for the views at the buffer's end. A texture whose thread
+ * could not be started is drawn in wait(). The destructor waits. */
+class TextureDrawer {
+  public:
+    static constexpr size_t kThreads = 2;
+
+    TextureDrawer(const banyan_gltf_options &o, std::vector<TexturePngs> &t)
+        : o_(o), t_(t), status_(t.size(), BANYAN_OK), err_(t.size()), thrown_(t.size()) {
+        th_.reserve(kThreads);
+        for (size_t k = 0; k < kThreads && k < t_.size(); ++k) {
+            try {
+                th_.emplace_back([this, k] {
+                    for (size_t i = k; i < t_.size(); i += kThreads) draw(i);
+                });
+            } catch (const std::system_error &) {
+                break;
+            }
+        }
+        started_ = th_.size();
+    }
+    ~TextureDrawer() { join(); }
+    /* The first failed texture's status, its message in *err; rethrows its exception. */
+    banyan_status wait(banyan_error *err) {
+        join();
+        for (size_t k = started_; k < kThreads && k < t_.size(); ++k) /* threads never started */
+            for (size_t i = k; i < t_.size(); i += kThreads) draw(i);
+        started_ = kThreads;
+        for (size_t i = 0; i < t_.size(); ++i) {
+            if (thrown_[i]) std::rethrow_exception(thrown_[i]);
+            if (status_[i] != BANYAN_OK) {
+                if (err) *err = err_[i];
+                return status_[i];
+            }
+        }
+        return BANYAN_OK;
+    }
+
+  private:
+    void draw(size_t i) {
+        try {
+            status_[i] = draw_texture(t_[i].kind, t_[i].season, o_, t_[i], &err_[i]);
+        } catch (...) {
+            thrown_[i] = std::current_exception();
+        }
+    }
+    void join() {
+        for (std::thread &t : th_)
+            if (t.joinable()) t.join();
+    }
+    const banyan_gltf_options &o_;
+    std::vector<TexturePngs> &t_;
+    std::vector<banyan_status> status_;
+    std::vector<banyan_error> err_;
+    std::vector<std::exception_ptr> thrown_;
+    std::vector<std::thread> th_;
+    size_t started_ = 0; /* threads started; the rest are drawn in wait() */
+};
 
 banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (o.textures != 0 && o.textures != 1)
@@ -1097,23 +1349,12 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
                            "opt->texture_size = %d must be a power of two in [64, 8192]", n);
     if (o.engine_uvs != 0 && o.engine_uvs != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = %d must be 0 (off) or 1 (on)", o.engine_uvs);
+    if (o.sync != 0 && o.sync != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->sync = %d must be 0 (no fsync) or 1 (fsync before the rename)",
+                           o.sync);
     return BANYAN_OK;
 }
 
-/* The temporary output file (core/atomic_file.h), removed unless
- * commit() succeeded. */
-class OutFile {
-  public:
-    OutFile() : af_{nullptr, nullptr, nullptr} {}
-    ~OutFile() { atomic_abort(&af_); }
-    int open(const char *path) { return atomic_open(&af_, path); }
-    std::FILE *get() { return af_.f; }
-    /* Flushes, syncs and renames over the target; 0 or an errno value. */
-    int commit() { return atomic_commit(&af_); }
-
-  private:
-    atomic_file af_;
-};
 
 /* One banyan mesh to write: a node's own mesh or one of its levels of
  * detail, with its plan. */
@@ -1430,8 +1671,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
 
     std::vector<TexturePngs> textures;
     int slot[2 * BANYAN_TEX_COUNT];
-    banyan_status ts = draw_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot, err);
-    if (ts != BANYAN_OK) return ts;
+    plan_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot);
     /* The meshes' own images (a billboard's picture), one PNG each that a
      * material names; with textures off, materials are drawn flat. */
     std::vector<std::vector<unsigned char>> pictures;
@@ -1468,14 +1708,15 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         total += instance_bytes(J.m);
         material_base += static_cast<int>(J.m->material_count);
     }
-    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     for (const auto &p : pictures) total += pad4(p.size());
-    if (total > kMaxBufferBytes)
+    auto too_big = [&] {
         return banyan_fail(err, BANYAN_E_LIMIT,
-                    "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
-                    "JSON)",
-                    static_cast<unsigned long long>(total),
-                    static_cast<unsigned long long>(kMaxBufferBytes));
+                           "the glTF buffer would hold %llu bytes; the limit is %llu (4 GiB less the "
+                           "JSON)",
+                           static_cast<unsigned long long>(total), static_cast<unsigned long long>(kMaxBufferBytes));
+    };
+    if (total > kMaxBufferBytes) return too_big(); /* before the textures are drawn */
+    TextureDrawer drawer(o, textures);
 
     Builder b;
     tinygltf::Model &model = b.model;
@@ -1549,6 +1790,10 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     if (any_lod) model.extensionsUsed.push_back("MSFT_lod");
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+    banyan_status drawn = drawer.wait(err);
+    if (drawn != BANYAN_OK) return drawn;
+    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
+    if (total > kMaxBufferBytes) return too_big();
     for (size_t t = 0; t < textures.size(); ++t) {
         model.images[2 * t].bufferView = b.add_image_view(textures[t].base);
         model.images[2 * t + 1].bufferView = b.add_image_view(textures[t].normal);
@@ -1576,16 +1821,19 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     doc.shrink_to_fit();
 
     OutFile out;
-    if (int oe = out.open(path))
+    if (int oe = out.open(path, o.sync != 0))
         return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
     Sink raw(out.get(), false);
     raw.put(head.data(), head.size());
     Sink bin(out.get(), !binary);
-    BinWriter bw(bin);
-    for (const Segment &sg : b.segs) {
-        bw.write(sg);
-        if (bin.error()) break;
-    }
+    Pipe pipe(bin, out);
+    pipe.run([&b](Pipe &p) {
+        BinWriter bw(p);
+        for (const Segment &sg : b.segs) {
+            if (p.failed()) break;
+            bw.write(sg);
+        }
+    });
     bin.finish();
     if (!bin.error() && bin.count() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
@@ -1623,6 +1871,7 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
     opt->texture_size = 1024;
     opt->texture_seed = 1;
     opt->engine_uvs = 0;
+    opt->sync = 0;
 }
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }

@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 11
+#define BANYAN_ABI_VERSION 12
 
 /* ---------------------------------------------------------------- status */
 
@@ -485,6 +485,8 @@ typedef struct banyan_gltf_options {
     uint64_t texture_seed;   /* seed of the drawn textures. Default 1 */
     int32_t engine_uvs;      /* 0/1: also write the wind data as TEXCOORD_1 .. 4 for importers that read only UV
                                 sets (docs/gltf.md "Wind"). Default 0 */
+    int32_t sync;            /* 0/1: fsync the file before renaming it over the target, so it survives a power
+                                cut (docs/formats.md "Writing files"). Default 0, as cp and Blender's save */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
@@ -505,8 +507,9 @@ BANYAN_API size_t banyan_sizeof_gltf_options(void);
  * defaults. Refuses a bad option naming it and its range.
  * The file is replaced whole or not at all: the bytes go to a temporary
  * ".<name>.XXXXXX.tmp" in the same folder, renamed over path once
- * written and synced; a failed write leaves the old file (docs/formats.md,
- * "Writing files"). A symlink stays; its target is replaced. */
+ * written (and synced first with opt->sync); a failed write leaves the
+ * old file (docs/formats.md, "Writing files"). A symlink stays; its
+ * target is replaced. */
 BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
                                               const banyan_mesh *const *meshes,
                                               const char *const *names, uint32_t count,

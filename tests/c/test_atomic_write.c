@@ -206,6 +206,22 @@ int main(int argc, char **argv) {
           (unsigned)(sb.st_mode & 07777));
     CHECK(temps(dir, 0) == 0, "write via link: a temporary file was left");
 
+    /* opt->sync = 1 (the CLI's --fsync): synced before the rename, the
+     * same bytes; off by default. Over an old file and to a new one. */
+    banyan_gltf_options so;
+    banyan_gltf_options_init(&so);
+    CHECK(so.sync == 0, "opt->sync is %d by default, expected 0", so.sync);
+    so.sync = 1;
+    const banyan_mesh *bigs[1] = {big};
+    char synced[4400];
+    snprintf(synced, sizeof synced, "%s/synced.glb", dir);
+    unlink(synced);
+    for (int k = 0; k < 2; k++)
+        CHECK(banyan_gltf_write_ex(synced, bigs, NULL, 1, &so, &err) == BANYAN_OK &&
+                  same_bytes(synced, big_bytes, big_len),
+              "synced write %d: %s", k, err.message);
+    CHECK(temps(dir, 0) == 0, "synced write: a temporary file was left");
+
     /* An unwritable folder (as nobody when the test runs as root): the
      * write fails even though the old file itself is writable, as there
      * is no room for the temporary file; the old file is untouched. */

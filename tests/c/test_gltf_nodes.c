@@ -543,6 +543,9 @@ static void refusals(void) {
     o.engine_uvs = 2;
     refuse("engine_uvs", &node, 1, &o, BANYAN_E_RANGE, "engine_uvs");
     o.engine_uvs = 0;
+    o.sync = 2;
+    refuse("sync", &node, 1, &o, BANYAN_E_RANGE, "sync");
+    o.sync = 0;
     banyan_gltf_node two[2] = {node, {NULL, "x", 0, NULL, NULL}};
     refuse("mesh NULL", two, 2, &o, BANYAN_E_INVALID_ARG, "nodes[1].mesh");
     node.lod_count = 8;

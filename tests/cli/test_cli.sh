@@ -167,6 +167,11 @@ expect 0 '"lod_triangles": [' -- "$bin" keyaki --set levels=8 --texture-size 64 
 expect 0 '"lod_triangles": [' -- "$bin" avenue --set variants=2 --set tree.levels=4 --texture-size 64 --lod 0.3,billboard \
   --stats -o "$out/cli_avenue_variants_lod.glb"
 expect 0 '"command": "ivy"' -- "$bin" ivy --set steps=40 --texture-size 64 --engine-uvs --stats -o "$out/cli_ivy_engine_uvs.glb"
+# --fsync only syncs before the rename: the same bytes as without.
+expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --fsync --stats -o "$out/cli_keyaki_fsync.glb"
+expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --stats -o "$out/cli_keyaki_nofsync.glb"
+if cmp -s "$out/cli_keyaki_fsync.glb" "$out/cli_keyaki_nofsync.glb"; then pass=$((pass+1))
+else fail=$((fail+1)); echo "FAIL: --fsync changed the file's bytes"; fi
 expect 2 "--lod '0.5,0.6' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,0.6
 expect 2 "--lod 'billboard,0.5' must be up to 7 falling ratios" -- "$bin" keyaki --lod billboard,0.5
 expect 2 "--lod '0.5,' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,
