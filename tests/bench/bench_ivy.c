@@ -48,10 +48,14 @@ static double lookup_us(const banyan_ivy *iv, double *mean_h) {
     return t;
 }
 
-/* Loads presets/<name>.json into p and its hosts; 0 on failure. */
+/* Loads presets/<name>.json (or tests/bench/<name>.json: walls for the
+ * benchmark alone) into p and its hosts; 0 on failure. */
 static int load_preset(const char *name, banyan_ivy_params *p, banyan_box *hosts, uint32_t cap, uint32_t *nh) {
     char path[1024];
     snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
+    FILE *probe = fopen(path, "rb");
+    if (probe) fclose(probe);
+    else snprintf(path, sizeof path, "%s/tests/bench/%s.json", BANYAN_SOURCE_DIR, name);
     size_t len;
     char *text = test_read_file(path, &len);
     banyan_error err = {0, ""};
