@@ -425,6 +425,12 @@ struct Builder {
         v.buffer = 0;
         v.byteOffset = static_cast<size_t>(size);
         v.byteLength = bytes.size();
+        push_image(bytes);
+        model.bufferViews.push_back(v);
+        return static_cast<int>(model.bufferViews.size() - 1);
+    }
+    /* An image's bytes, then zeros to 4 bytes. */
+    void push_image(const std::vector<unsigned char> &bytes) {
         Segment sg{kRaw};
         sg.src = bytes.data();
         sg.bytes = bytes.size();
@@ -436,8 +442,25 @@ struct Builder {
             segs.push_back(z);
             size = pad4(size);
         }
+    }
+
+    /* An image's bufferView whose bytes come later (fill_image_view), at
+     * offset `at` and `len` bytes for now: the widest they can be. */
+    int add_image_placeholder(uint64_t at, uint64_t len) {
+        tinygltf::BufferView v;
+        v.buffer = 0;
+        v.byteOffset = static_cast<size_t>(at);
+        v.byteLength = static_cast<size_t>(len);
         model.bufferViews.push_back(v);
         return static_cast<int>(model.bufferViews.size() - 1);
+    }
+    /* The placeholder `view` made the image's own, as add_image_view would. */
+    int fill_image_view(int view, const std::vector<unsigned char> &bytes) {
+        tinygltf::BufferView &v = model.bufferViews[static_cast<size_t>(view)];
+        v.byteOffset = static_cast<size_t>(size);
+        v.byteLength = bytes.size();
+        push_image(bytes);
+        return view;
     }
 
     /* sg.bytes bytes (a multiple of 4) as a new bufferView. */
@@ -747,6 +770,18 @@ class OutFile {
     }
     /* Flushes, syncs (if asked) and renames over the target; 0 or an errno value. */
     int commit() { return atomic_commit(&af_); }
+    /* A temporary regular file, which can be written again at its start
+     * (not a FIFO or device written in place). */
+    bool seekable() const { return af_.temp != nullptr; }
+    /* n bytes over the file's first n; 0 or an errno value. Leaves the
+     * position at the end. */
+    int rewrite_start(const void *p, size_t n) {
+        errno = 0;
+        if (std::fseek(af_.f, 0, SEEK_SET) != 0) return errno ? errno : EIO;
+        if (std::fwrite(p, 1, n, af_.f) != n) return errno ? errno : EIO;
+        if (std::fseek(af_.f, 0, SEEK_END) != 0) return errno ? errno : EIO;
+        return 0;
+    }
 
   private:
     atomic_file af_;
@@ -761,6 +796,8 @@ class Sink {
     }
     int error() const { return error_; }
     uint64_t count() const { return count_; }
+    /* Writes to f from now on (a Sink made before its file was opened). */
+    void reset(std::FILE *f) { f_ = f; }
 
     void put(const void *data, size_t n) {
         const unsigned char *p = static_cast<const unsigned char *>(data);
@@ -1588,8 +1625,11 @@ bool patch_byte_length(std::string &json, const std::string &key, const std::str
 /* tinygltf's document for an empty buffer 0 into what goes before and after
  * the buffer's `total` bytes: a .glb's header, JSON chunk and BIN chunk
  * header, then the BIN padding; a .gltf's JSON up to the base64 of the data
- * URI, then the rest. The same bytes tinygltf writes with the buffer held. */
-bool split_document(const std::string &doc, bool binary, uint64_t total, std::string &head, std::string &tail) {
+ * URI, then the rest. The same bytes tinygltf writes with the buffer held,
+ * but for json_chunk (a .glb): the JSON chunk padded with spaces to that
+ * length, the head's size fixed before the JSON is known. */
+bool split_document(const std::string &doc, bool binary, uint64_t total, std::string &head, std::string &tail,
+                    size_t json_chunk = 0) {
     if (binary) {
         if (doc.size() < 20 || doc.compare(0, 4, "glTF") != 0 || get_u32(doc, 16) != 0x4E4F534Au) return false;
         uint32_t chunk = get_u32(doc, 12);
@@ -1598,6 +1638,10 @@ bool split_document(const std::string &doc, bool binary, uint64_t total, std::st
         while (!json.empty() && json.back() == ' ') json.pop_back(); /* tinygltf's padding */
         size_t at = 0;
         if (!patch_byte_length(json, "\"buffers\":[{", "\"byteLength\":", total, at)) return false;
+        if (json_chunk) { /* a JSON chunk of this many bytes (a multiple of 4): spaces after the JSON */
+            if (json.size() > json_chunk || json_chunk % 4) return false;
+            json.append(json_chunk - json.size(), ' ');
+        }
         const uint64_t jpad = (4 - json.size() % 4) % 4, bpad = (4 - total % 4) % 4;
         const uint64_t length = 12 + 8 + json.size() + jpad + 8 + total + bpad;
         if (length > 0xFFFFFFFFu) return false;
@@ -1623,6 +1667,14 @@ bool split_document(const std::string &doc, bool binary, uint64_t total, std::st
     head = json.substr(0, split);
     tail = json.substr(split);
     return true;
+}
+
+/* The most bytes a texture's PNG at `size` pixels a side can take: 4
+ * channels and a filter byte a row, stored uncompressed (deflate's worst
+ * case: zlib's compressBound), and the PNG's chunks. */
+uint64_t png_bound(int32_t size) {
+    const uint64_t raw = static_cast<uint64_t>(size) * (4 * static_cast<uint64_t>(size) + 1);
+    return raw + (raw >> 12) + (raw >> 14) + (raw >> 25) + 13 + 1024;
 }
 
 banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, uint32_t count,
@@ -1790,56 +1842,110 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     if (any_lod) model.extensionsUsed.push_back("MSFT_lod");
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+    /* A .glb with textures need not wait for them: its JSON (before the
+     * BIN chunk) is written first for PNGs of the largest size they can
+     * have, which fixes the head's size, the meshes' bytes are streamed
+     * while the textures are drawn, and at the end the real JSON, padded
+     * with spaces to the same size, is written over the start. Not for a
+     * .gltf (its data URI sits inside the JSON) or a target written in
+     * place (a FIFO cannot be rewound). */
+    const size_t image_views = 2 * textures.size() + pictures.size();
+    const uint64_t bound = png_bound(o.texture_size);
+    uint64_t widest = b.size + 2 * textures.size() * pad4(bound);
+    for (const auto &p : pictures) widest += pad4(p.size());
+    const bool defer = binary && !textures.empty() && widest <= kMaxBufferBytes;
+    OutFile out;
+    if (defer) {
+        if (int oe = out.open(path, o.sync != 0))
+            return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
+    }
+    std::string head, tail; /* what goes before and after the buffer's bytes */
+    size_t json_chunk = 0;   /* deferred: the JSON chunk's bytes, fixed by the widest JSON */
+    /* The JSON with an empty buffer, then its byteLength set to the
+     * planned size: tinygltf writes everything but the bytes. */
+    auto serialize = [&](uint64_t bytes) -> banyan_status {
+        model.buffers.assign(1, tinygltf::Buffer());
+        std::ostringstream js;
+        tinygltf::TinyGLTF writer;
+        if (!writer.WriteGltfSceneToStream(&model, js, /*prettyPrint=*/true, binary))
+            return banyan_fail(err, BANYAN_E_INTERNAL, "the glTF serialiser failed for '%s'", path);
+        if (!split_document(js.str(), binary, bytes, head, tail, json_chunk))
+            return banyan_fail(err, BANYAN_E_INTERNAL,
+                               "unexpected glTF JSON from tinygltf for '%s'; please report this", path);
+        return BANYAN_OK;
+    };
+    std::vector<int> views; /* the images' bufferViews, in image order */
+    auto image_of = [&](size_t k) { /* textures' images first, then the pictures' */
+        return k < 2 * textures.size() ? k : static_cast<size_t>(picture_base) + (k - 2 * textures.size());
+    };
+    if (defer) {
+        uint64_t at = b.size;
+        for (size_t k = 0; k < image_views; ++k) {
+            uint64_t len = k < 2 * textures.size() ? bound : pictures[k - 2 * textures.size()].size();
+            views.push_back(b.add_image_placeholder(at, len));
+            model.images[image_of(k)].bufferView = views.back();
+            at = pad4(at + len);
+        }
+        if (banyan_status sj = serialize(widest)) return sj;
+        json_chunk = head.size() - 28; /* the glb header, the JSON chunk's header, the BIN chunk's */
+    }
+    const size_t mesh_segs = b.segs.size();
+    Sink raw(defer ? out.get() : nullptr, false);
+    Sink bin(defer ? out.get() : nullptr, !binary);
+    auto stream = [&](size_t from) {
+        Pipe pipe(bin, out);
+        pipe.run([&b, from](Pipe &p) {
+            BinWriter bw(p);
+            for (size_t k = from, n = b.segs.size(); k < n; ++k) {
+                if (p.failed()) break;
+                bw.write(b.segs[k]);
+            }
+        });
+    };
+    if (defer) {
+        raw.put(head.data(), head.size()); /* for now: rewritten at the end */
+        stream(0);
+    }
+
     banyan_status drawn = drawer.wait(err);
     if (drawn != BANYAN_OK) return drawn;
     for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     if (total > kMaxBufferBytes) return too_big();
-    for (size_t t = 0; t < textures.size(); ++t) {
-        model.images[2 * t].bufferView = b.add_image_view(textures[t].base);
-        model.images[2 * t + 1].bufferView = b.add_image_view(textures[t].normal);
+    for (size_t k = 0; k < image_views; ++k) {
+        const std::vector<unsigned char> &bytes = k < 2 * textures.size()
+                                                      ? (k % 2 ? textures[k / 2].normal : textures[k / 2].base)
+                                                      : pictures[k - 2 * textures.size()];
+        if (defer && bytes.size() > bound && k < 2 * textures.size())
+            return banyan_fail(err, BANYAN_E_INTERNAL, "a %llu-byte PNG is over its bound %llu; please report this",
+                               static_cast<unsigned long long>(bytes.size()),
+                               static_cast<unsigned long long>(bound));
+        model.images[image_of(k)].bufferView = defer ? b.fill_image_view(views[k], bytes) : b.add_image_view(bytes);
     }
-    for (size_t p = 0; p < pictures.size(); ++p)
-        model.images[static_cast<size_t>(picture_base) + p].bufferView = b.add_image_view(pictures[p]);
 
     if (b.size != total)
         return banyan_fail(err, BANYAN_E_INTERNAL,
                     "glTF buffer holds %llu bytes, planned %llu; please report this",
                     static_cast<unsigned long long>(b.size), static_cast<unsigned long long>(total));
-    /* The JSON with an empty buffer, then its byteLength set to the
-     * planned size: tinygltf writes everything but the bytes. */
-    model.buffers.push_back(tinygltf::Buffer());
-    std::ostringstream js;
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, js, /*prettyPrint=*/true, binary))
-        return banyan_fail(err, BANYAN_E_INTERNAL, "the glTF serialiser failed for '%s'", path);
-    std::string doc = js.str();
-    std::string head, tail; /* what goes before and after the buffer's bytes */
-    if (!split_document(doc, binary, total, head, tail))
-        return banyan_fail(err, BANYAN_E_INTERNAL, "unexpected glTF JSON from tinygltf for '%s'; please report this",
-                           path);
-    doc.clear();
-    doc.shrink_to_fit();
-
-    OutFile out;
-    if (int oe = out.open(path, o.sync != 0))
-        return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
-    Sink raw(out.get(), false);
-    raw.put(head.data(), head.size());
-    Sink bin(out.get(), !binary);
-    Pipe pipe(bin, out);
-    pipe.run([&b](Pipe &p) {
-        BinWriter bw(p);
-        for (const Segment &sg : b.segs) {
-            if (p.failed()) break;
-            bw.write(sg);
-        }
-    });
+    const size_t widest_head = head.size();
+    if (banyan_status sj = serialize(total)) return sj;
+    if (defer && head.size() != widest_head)
+        return banyan_fail(err, BANYAN_E_INTERNAL, "the glTF head grew from %llu to %llu bytes; please report this",
+                           static_cast<unsigned long long>(widest_head), static_cast<unsigned long long>(head.size()));
+    if (!defer) {
+        if (int oe = out.open(path, o.sync != 0))
+            return banyan_fail(err, BANYAN_E_IO, "cannot open '%s' for writing: %s", path, std::strerror(oe));
+        raw.reset(out.get());
+        bin.reset(out.get());
+        raw.put(head.data(), head.size());
+    }
+    stream(defer ? mesh_segs : 0);
     bin.finish();
     if (!bin.error() && bin.count() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
                            static_cast<unsigned long long>(bin.count()), static_cast<unsigned long long>(total));
     raw.put(tail.data(), tail.size());
     int e = raw.error() ? raw.error() : bin.error();
+    if (e == 0 && defer) e = out.rewrite_start(head.data(), head.size());
     if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
     e = out.commit();
     if (e != 0) return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", path, std::strerror(e));
