@@ -127,7 +127,7 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
         if (w_cross > 0) {
             double top = f + w_cross;
             if (!(top > w->f || (top == w->f && c->k < w->k))) continue;
-            crosses = ivy_crosses(iv, b->P, q, surf_n, i, D);
+            crosses = ivy_crosses_near(iv, b->P, q, surf_n, i, D);
             if (!crosses) f = top;
         }
         if (f > w->f || (f == w->f && c->k < w->k)) {
@@ -474,6 +474,7 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->chain);
     free(iv->tmp);
     free(iv->cand);
+    free(iv->xs);
     free(iv);
 }
 
