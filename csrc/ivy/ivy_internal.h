@@ -161,6 +161,7 @@ struct banyan_ivy {
     int32_t scratch_cap;
 
     ivy_cand *cand;        /* params.candidates of them */
+    int32_t *cand_ord;     /* their order of asking (growth.c) */
 
     /* Progress and budget: a one-shot generation's, else `own` (the
      * handle's budget, ivy_budget_start). Growth is counted in bud visits,
