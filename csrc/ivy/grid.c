@@ -313,17 +313,32 @@ static int cells_around(const banyan_ivy *iv, int32_t x0, int32_t x1, int32_t y0
     uint32_t home[64];
     int32_t key[64][3];
     int m = 0;
-    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
-        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
-            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                uint32_t k = cell_hash(x, y, z) & iv->cmask;
-                if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) continue;
+    /* cell_hash's products, once per coordinate (at most 4 a side). */
+    const int32_t nx = x1 - x0 < 3 ? x1 - x0 + 1 : 4, ny = y1 - y0 < 3 ? y1 - y0 + 1 : 4,
+                  nz = z1 - z0 < 3 ? z1 - z0 + 1 : 4;
+    uint32_t hx[4];
+    for (int32_t a = 0; a < nx; a++) hx[a] = (uint32_t)(x0 + a) * 73856093u;
+    const uint32_t mask = iv->cmask;
+    const uint64_t *bits = iv->cbits;
+    for (int32_t c = 0; c < nz; c++) {
+        const uint32_t hz = (uint32_t)(z0 + c) * 83492791u;
+        for (int32_t b = 0; b < ny; b++) {
+            const uint32_t hyz = (uint32_t)(y0 + b) * 19349663u ^ hz;
+            for (int32_t a = 0; a < nx; a++) {
+                uint32_t h = hx[a] ^ hyz; /* = cell_hash(x0 + a, y0 + b, z0 + c) */
+                h ^= h >> 15;
+                h *= 0x2c1b3c6du;
+                h ^= h >> 12;
+                const uint32_t k = h & mask;
+                if (!((bits[k >> 6] >> (k & 63)) & 1)) continue;
                 IVY_PREFETCH(&iv->cells[k]);
                 home[m] = k;
-                key[m][0] = x;
-                key[m][1] = y;
-                key[m++][2] = z;
+                key[m][0] = x0 + a;
+                key[m][1] = y0 + b;
+                key[m++][2] = z0 + c;
             }
+        }
+    }
     int n = 0;
     for (int q = 0; q < m; q++) {
         for (uint32_t k = home[q];; k = (k + 1) & iv->cmask) {
