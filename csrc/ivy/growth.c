@@ -46,7 +46,10 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
     return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
 }
 
-#if defined(__SSE2__)
+/* Not where FMA is on: a compiler may contract the scalar code's a * b + c
+ * there, and the lanes would no longer match it. */
+#if defined(__SSE2__) && !defined(__FMA__)
+#define IVY_LANES 1
 #include <emmintrin.h>
 /* Two candidates' directions at once, each lane by exactly the operations
  * of sin_cos, rotate_xyz and v3_norm_or (IEEE products and sums are the
@@ -142,10 +145,12 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
      * a tie the first drawn. */
     ivy_cand *cd = iv->cand;
     const int32_t K = p->candidates;
+#ifdef IVY_LANES
     v3 dn = base; /* the next candidate's direction, when turned with the one before */
+#endif
     for (int32_t k = 0; k < K; k++) {
         v3 d;
-#if defined(__SSE2__)
+#ifdef IVY_LANES
         if (k & 1) {
             d = dn;
         } else if (k + 1 < K) {
