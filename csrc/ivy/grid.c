@@ -313,17 +313,32 @@ static int cells_around(const banyan_ivy *iv, int32_t x0, int32_t x1, int32_t y0
     uint32_t home[64];
     int32_t key[64][3];
     int m = 0;
-    for (int32_t z = z0; z <= z1 && z <= z0 + 3; z++)
-        for (int32_t y = y0; y <= y1 && y <= y0 + 3; y++)
-            for (int32_t x = x0; x <= x1 && x <= x0 + 3; x++) {
-                uint32_t k = cell_hash(x, y, z) & iv->cmask;
-                if (!((iv->cbits[k >> 6] >> (k & 63)) & 1)) continue;
+    /* cell_hash's products, once per coordinate (at most 4 a side). */
+    const int32_t nx = x1 - x0 < 3 ? x1 - x0 + 1 : 4, ny = y1 - y0 < 3 ? y1 - y0 + 1 : 4,
+                  nz = z1 - z0 < 3 ? z1 - z0 + 1 : 4;
+    uint32_t hx[4];
+    for (int32_t a = 0; a < nx; a++) hx[a] = (uint32_t)(x0 + a) * 73856093u;
+    const uint32_t mask = iv->cmask;
+    const uint64_t *bits = iv->cbits;
+    for (int32_t c = 0; c < nz; c++) {
+        const uint32_t hz = (uint32_t)(z0 + c) * 83492791u;
+        for (int32_t b = 0; b < ny; b++) {
+            const uint32_t hyz = (uint32_t)(y0 + b) * 19349663u ^ hz;
+            for (int32_t a = 0; a < nx; a++) {
+                uint32_t h = hx[a] ^ hyz; /* = cell_hash(x0 + a, y0 + b, z0 + c) */
+                h ^= h >> 15;
+                h *= 0x2c1b3c6du;
+                h ^= h >> 12;
+                const uint32_t k = h & mask;
+                if (!((bits[k >> 6] >> (k & 63)) & 1)) continue;
                 IVY_PREFETCH(&iv->cells[k]);
                 home[m] = k;
-                key[m][0] = x;
-                key[m][1] = y;
-                key[m++][2] = z;
+                key[m][0] = x0 + a;
+                key[m][1] = y0 + b;
+                key[m++][2] = z0 + c;
             }
+        }
+    }
     int n = 0;
     for (int q = 0; q < m; q++) {
         for (uint32_t k = home[q];; k = (k + 1) & iv->cmask) {
@@ -404,6 +419,7 @@ static ivy_cell *cell_room(banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
 
 static void link_bud(banyan_ivy *iv, int32_t i) {
     const ivy_bud *b = &iv->buds[i];
+    iv->grid_gen++;
     int32_t *bc = iv->bcell[i];
     bc[0] = cell_coord(b->P.x, iv->inv_cell);
     bc[1] = cell_coord(b->P.y, iv->inv_cell);
@@ -419,6 +435,7 @@ static void link_bud(banyan_ivy *iv, int32_t i) {
 
 static void unlink_bud(banyan_ivy *iv, int32_t i) {
     const int32_t *bc = iv->bcell[i];
+    iv->grid_gen++;
     if (bc[0] == INT32_MIN) return;
     ivy_cell *c = cell_slot(iv, bc[0], bc[1], bc[2]);
     ivy_gnode *g = iv->pool + c->at;
@@ -435,6 +452,7 @@ banyan_status ivy_grid_init(banyan_ivy *iv, uint32_t buckets) {
     free(iv->cells);
     iv->cells = NULL;
     iv->n_cells = 0;
+    iv->grid_gen++;
     iv->pool_n = 0;
     if (!cells_resize(iv, buckets)) return BANYAN_E_NOMEM;
     iv->vbuckets = buckets;
@@ -599,8 +617,19 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
      * first (the order the sums have always been added in). */
     double H = 0.0;
     v3 acc = v3_make(0, 0, 0);
-    const ivy_cell *cl[64];
+    const ivy_cell *cl_own[64], **cl = cl_own;
+    if (gather && vl) { /* kept for gather_stems at this point */
+        cl = gather->lc;
+        gather->lc_valid = 1;
+        gather->lc_p = p;
+        gather->lc_gen = iv->grid_gen;
+        int32_t *bx = gather->lc_box;
+        bx[0] = x0, bx[1] = x1 <= x0 + 3 ? x1 : x0 + 3;
+        bx[2] = y0, bx[3] = y1 <= y0 + 3 ? y1 : y0 + 3;
+        bx[4] = z0, bx[5] = z1 <= z0 + 3 ? z1 : z0 + 3;
+    }
     const int ncl = cells_around(iv, x0, x1, y0, y1, z0, z1, cl);
+    if (cl != cl_own) gather->n_lc = ncl;
     for (int q = 0; q < ncl; q++) {
         const ivy_cell *c = cl[q];
         const ivy_gnode *g = iv->pool + c->at;
@@ -671,6 +700,115 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
             double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
             if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
         }
+    }
+    return 0;
+}
+
+/* The cells ivy_crosses reads for internode a-b: x0..x1, y0..y1, z0..z1,
+ * at most 4 a side (as cells_around clips them). */
+static void crossing_cells(const banyan_ivy *iv, v3 a, v3 b, int32_t box[6]) {
+    const double r = 1.5 * iv->p.internode, ic = iv->inv_cell;
+    const v3 m = v3_scale(v3_add(a, b), 0.5);
+    const double lo[3] = {m.x - r, m.y - r, m.z - r}, hi[3] = {m.x + r, m.y + r, m.z + r};
+    for (int k = 0; k < 3; k++) {
+        box[2 * k] = cell_coord(lo[k], ic);
+        int32_t e = cell_coord(hi[k], ic);
+        box[2 * k + 1] = e <= box[2 * k] + 3 ? e : box[2 * k] + 3;
+    }
+}
+
+/* Gathers the stems ivy_crosses could count for an internode from a: end
+ * bud copies within 2 l of a (an internode's midpoint is l / 2 from a,
+ * the query reaches 1.5 l from it; the margin covers rounding), within
+ * `layer` across n, not sharing bud self. Each keeps the values
+ * ivy_crosses finds for it, computed the same way. */
+static void gather_stems(banyan_ivy *iv, v3 a, v3 n, int32_t self, double layer) {
+    const double l = iv->p.internode, R = 2.0 * l * (1.0 + 1e-6) + 1e-9, R2 = R * R, ic = iv->inv_cell;
+    iv->xs_valid = 1;
+    iv->xs_ok = 0;
+    iv->n_xs = 0;
+    iv->xs_a = a;
+    iv->xs_n = n;
+    iv->xs_self = self;
+    iv->xs_layer = layer;
+    iv->xs_gen = iv->grid_gen;
+    const v3 u = v3_any_perp(n), w = v3_cross(n, u);
+    iv->xs_u = u;
+    iv->xs_w = w;
+    int32_t *bx = iv->xs_box;
+    const double lo[3] = {a.x - R, a.y - R, a.z - R}, hi[3] = {a.x + R, a.y + R, a.z + R};
+    for (int k = 0; k < 3; k++) {
+        bx[2 * k] = cell_coord(lo[k], ic);
+        bx[2 * k + 1] = cell_coord(hi[k], ic);
+        if (bx[2 * k + 1] - bx[2 * k] > 3) return; /* cells_around would clip: not usable */
+    }
+    const ivy_cell *own[64], *const *cells = own;
+    int ncl;
+    const int32_t *lb = iv->lc_box;
+    if (iv->lc_valid && iv->lc_gen == iv->grid_gen && iv->lc_p.x == a.x && iv->lc_p.y == a.y && iv->lc_p.z == a.z &&
+        bx[0] >= lb[0] && bx[1] <= lb[1] && bx[2] >= lb[2] && bx[3] <= lb[3] && bx[4] >= lb[4] && bx[5] <= lb[5]) {
+        cells = iv->lc; /* the light test's cells hold these (and a few more: the queries check cells) */
+        ncl = iv->n_lc;
+    } else {
+        ncl = cells_around(iv, bx[0], bx[1], bx[2], bx[3], bx[4], bx[5], own);
+    }
+    for (int q = 0; q < ncl; q++) {
+        const ivy_cell *cl = cells[q];
+        for (int32_t k = 0; k < cl->n; k++) {
+            const ivy_gnode *g = &iv->pool[cl->at + k];
+            const int32_t j = g->id;
+            if (v3_len2(v3_sub(g->P, a)) >= R2 || fabs(v3_dot(v3_sub(g->P, a), n)) > layer) continue;
+            const int32_t pj = iv->buds[j].parent;
+            if (pj < 0 || j == self || pj == self) continue;
+            if (iv->n_xs == iv->xs_cap) {
+                int32_t cap = iv->xs_cap ? 2 * iv->xs_cap : 64;
+                ivy_xstem *x = realloc(iv->xs, sizeof(ivy_xstem) * (size_t)cap);
+                if (!x) return; /* not usable: the queries go the long way */
+                iv->xs = x;
+                iv->xs_cap = cap;
+            }
+            ivy_xstem *e = &iv->xs[iv->n_xs++];
+            v3 c = iv->buds[pj].P;
+            e->P = g->P;
+            e->cell[0] = cl->x;
+            e->cell[1] = cl->y;
+            e->cell[2] = cl->z;
+            e->cx = v3_dot(c, u);
+            e->cy = v3_dot(c, w);
+            e->dx = v3_dot(g->P, u) - e->cx;
+            e->dy = v3_dot(g->P, w) - e->cy;
+        }
+    }
+    iv->xs_ok = 1;
+}
+
+int ivy_crosses_near(banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+    if (!iv->xs_valid || iv->xs_gen != iv->grid_gen || iv->xs_self != self || iv->xs_layer != layer ||
+        iv->xs_a.x != a.x || iv->xs_a.y != a.y || iv->xs_a.z != a.z || iv->xs_n.x != n.x || iv->xs_n.y != n.y ||
+        iv->xs_n.z != n.z)
+        gather_stems(iv, a, n, self, layer);
+    int32_t box[6];
+    crossing_cells(iv, a, b, box);
+    const int32_t *g = iv->xs_box;
+    /* The same copies as ivy_crosses reads (the cells it reads, within
+     * those gathered), by the same tests. */
+    if (!iv->xs_ok || box[0] < g[0] || box[1] > g[1] || box[2] < g[2] || box[3] > g[3] || box[4] < g[4] ||
+        box[5] > g[5])
+        return ivy_crosses(iv, a, b, n, self, layer);
+    const double r = 1.5 * iv->p.internode, r2 = r * r;
+    const v3 m = v3_scale(v3_add(a, b), 0.5), u = iv->xs_u, w = iv->xs_w;
+    const double ax = v3_dot(a, u), ay = v3_dot(a, w), bx = v3_dot(b, u), by = v3_dot(b, w);
+    const double ex = bx - ax, ey = by - ay;
+    for (int32_t k = 0; k < iv->n_xs; k++) {
+        const ivy_xstem *e = &iv->xs[k];
+        if (v3_len2(v3_sub(e->P, m)) >= r2 || e->cell[0] < box[0] || e->cell[0] > box[1] || e->cell[1] < box[2] ||
+            e->cell[1] > box[3] || e->cell[2] < box[4] || e->cell[2] > box[5])
+            continue;
+        const double cx = e->cx, cy = e->cy, dx = e->dx, dy = e->dy;
+        double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
+        if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
+        double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
+        if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
     }
     return 0;
 }

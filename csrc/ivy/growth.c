@@ -46,6 +46,68 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
     return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
 }
 
+/* Not where FMA is on: a compiler may contract the scalar code's a * b + c
+ * there, and the lanes would no longer match it. */
+#if defined(__SSE2__) && !defined(__FMA__)
+#define IVY_LANES 1
+#include <emmintrin.h>
+/* Two candidates' directions at once, each lane by exactly the operations
+ * of sin_cos, rotate_xyz and v3_norm_or (IEEE products and sums are the
+ * same in a lane as alone; no FMA): the same bits, about half the
+ * instructions. a[0..2] and a[3..5] are the two candidates' turns; 0 when
+ * one of them is past the series' range (the caller then takes the scalar
+ * way). */
+static inline __m128d sin_series2(__m128d x) {
+    const __m128d x2 = _mm_mul_pd(x, x);
+    __m128d t = _mm_mul_pd(x2, _mm_set1_pd(1.0 / 6227020800.0));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(-1.0 / 39916800), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(1.0 / 362880), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(-1.0 / 5040), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(1.0 / 120), t));
+    t = _mm_add_pd(_mm_set1_pd(-1.0 / 6), t);
+    return _mm_add_pd(x, _mm_mul_pd(_mm_mul_pd(x, x2), t));
+}
+
+static inline __m128d cos_series2(__m128d x) {
+    const __m128d x2 = _mm_mul_pd(x, x);
+    __m128d t = _mm_sub_pd(_mm_set1_pd(1.0 / 479001600.0), _mm_div_pd(x2, _mm_set1_pd(87178291200.0)));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(-1.0 / 3628800), _mm_mul_pd(x2, t)));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(1.0 / 40320), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(-1.0 / 720), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(1.0 / 24), t));
+    t = _mm_mul_pd(x2, _mm_add_pd(_mm_set1_pd(-0.5), t));
+    return _mm_add_pd(_mm_set1_pd(1.0), t);
+}
+
+static int turn_pair(v3 v, const double a[6], v3 *d0, v3 *d1) {
+    for (int k = 0; k < 6; k++)
+        if (!(fabs(a[k]) <= 0.8)) return 0;
+    const __m128d ax = _mm_set_pd(a[3], a[0]), ay = _mm_set_pd(a[4], a[1]), az = _mm_set_pd(a[5], a[2]);
+    __m128d s = sin_series2(ax), c = cos_series2(ax);
+    const __m128d bx = _mm_set1_pd(v.x), by = _mm_set1_pd(v.y), bz = _mm_set1_pd(v.z);
+    __m128d x = bx, y = _mm_sub_pd(_mm_mul_pd(c, by), _mm_mul_pd(s, bz));
+    __m128d z = _mm_add_pd(_mm_mul_pd(s, by), _mm_mul_pd(c, bz));
+    s = sin_series2(ay), c = cos_series2(ay);
+    __m128d x2 = _mm_add_pd(_mm_mul_pd(c, x), _mm_mul_pd(s, z));
+    z = _mm_add_pd(_mm_mul_pd(_mm_xor_pd(s, _mm_set1_pd(-0.0)), x), _mm_mul_pd(c, z));
+    x = x2;
+    s = sin_series2(az), c = cos_series2(az);
+    x2 = _mm_sub_pd(_mm_mul_pd(c, x), _mm_mul_pd(s, y));
+    y = _mm_add_pd(_mm_mul_pd(s, x), _mm_mul_pd(c, y));
+    x = x2;
+    const __m128d len = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z)));
+    const __m128d inv = _mm_div_pd(_mm_set1_pd(1.0), len);
+    double X[2], Y[2], Z[2], L[2];
+    _mm_storeu_pd(X, _mm_mul_pd(x, inv));
+    _mm_storeu_pd(Y, _mm_mul_pd(y, inv));
+    _mm_storeu_pd(Z, _mm_mul_pd(z, inv));
+    _mm_storeu_pd(L, len);
+    *d0 = L[0] > 1e-300 ? v3_make(X[0], Y[0], Z[0]) : v;
+    *d1 = L[1] > 1e-300 ? v3_make(X[1], Y[1], Z[1]) : v;
+    return 1;
+}
+#endif
+
 /* Candidate order of the host queries: the larger bound first, then
  * the one drawn first. */
 static inline int cand_before(const ivy_cand *a, const ivy_cand *b) {
@@ -83,9 +145,27 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
      * a tie the first drawn. */
     ivy_cand *cd = iv->cand;
     const int32_t K = p->candidates;
+#ifdef IVY_LANES
+    v3 dn = base; /* the next candidate's direction, when turned with the one before */
+#endif
     for (int32_t k = 0; k < K; k++) {
-        double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
-        v3 d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
+        v3 d;
+#ifdef IVY_LANES
+        if (k & 1) {
+            d = dn;
+        } else if (k + 1 < K) {
+            double a[6];
+            for (int j = 0; j < 6; j++) a[j] = rng_range(&iv->rng, -tm, tm); /* the draws' order as below */
+            if (!turn_pair(base, a, &d, &dn)) {
+                d = v3_norm_or(rotate_xyz(base, a[0], a[1], a[2]), base);
+                dn = v3_norm_or(rotate_xyz(base, a[3], a[4], a[5]), base);
+            }
+        } else
+#endif
+        {
+            double ax = rng_range(&iv->rng, -tm, tm), ay = rng_range(&iv->rng, -tm, tm), az = rng_range(&iv->rng, -tm, tm);
+            d = v3_norm_or(rotate_xyz(base, ax, ay, az), base);
+        }
         ivy_cand *c = &cd[k];
         c->d = d;
         c->k = k;
@@ -97,9 +177,31 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
         c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max +
                    p->w_helio * c->fhelio + w_tendril * c->ftendril + w_cross;
     }
-    if (K > 32) qsort(cd, (size_t)K, sizeof *cd, cmp_cand);
+    /* The order of the queries: by cand_before, a total order unless a
+     * bound is NaN. Up to 32 candidates an insertion sort of their
+     * numbers (most walks ask most of them); a NaN keeps the selection of
+     * the next one as it always was, so the same ones are asked. */
+    int32_t *ord = iv->cand_ord;
+    int sorted = K > 32;
+    if (sorted) qsort(cd, (size_t)K, sizeof *cd, cmp_cand);
+    if (!sorted) {
+        sorted = 1;
+        for (int32_t k = 0; k < K; k++) {
+            if (cd[k].f_max != cd[k].f_max) {
+                sorted = 0;
+                break;
+            }
+            /* cand_before(k, o): the ones placed so far were drawn before k */
+            const double f = cd[k].f_max;
+            int32_t j = k;
+            for (; j > 0 && f > cd[ord[j - 1]].f_max; j--) ord[j] = ord[j - 1];
+            ord[j] = k;
+        }
+    } else {
+        for (int32_t k = 0; k < K; k++) ord[k] = k;
+    }
     for (int32_t n = 0; n < K; n++) {
-        if (K <= 32) { /* pick the next by selection: most plants stop after two or three */
+        if (!sorted) { /* pick the next by selection */
             int32_t m = n;
             for (int32_t j = n + 1; j < K; j++)
                 if (cand_before(&cd[j], &cd[m])) m = j;
@@ -109,7 +211,7 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
                 cd[m] = t;
             }
         }
-        const ivy_cand *c = &cd[n];
+        const ivy_cand *c = &cd[sorted ? ord[n] : n];
         if (!(c->f_max >= w->f)) break; /* (NaN too) */
         if (c->f_max == w->f && c->k > w->k) continue; /* at most a tie, drawn later */
         v3 d = c->d, q = v3_madd(b->P, d, l);
@@ -127,7 +229,7 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
         if (w_cross > 0) {
             double top = f + w_cross;
             if (!(top > w->f || (top == w->f && c->k < w->k))) continue;
-            crosses = ivy_crosses(iv, b->P, q, surf_n, i, D);
+            crosses = ivy_crosses_near(iv, b->P, q, surf_n, i, D);
             if (!crosses) f = top;
         }
         if (f > w->f || (f == w->f && c->k < w->k)) {
@@ -474,6 +576,8 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->chain);
     free(iv->tmp);
     free(iv->cand);
+    free(iv->cand_ord);
+    free(iv->xs);
     free(iv);
 }
 
@@ -641,7 +745,8 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         return s;
     }
     iv->cand = malloc(sizeof(ivy_cand) * (size_t)params->candidates);
-    if (!iv->cand) {
+    iv->cand_ord = malloc(sizeof(int32_t) * (size_t)params->candidates);
+    if (!iv->cand || !iv->cand_ord) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }

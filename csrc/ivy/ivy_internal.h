@@ -65,6 +65,15 @@ typedef struct ivy_gnode {
     int32_t id;       /* bud index */
 } ivy_gnode;
 
+/* A stem that an internode grown from one bud may cross (ivy_crosses_near):
+ * its end bud's copy, that copy's cell, and the stem across the surface
+ * (parent's u, w and the step to the end bud's), found once per bud. */
+typedef struct ivy_xstem {
+    v3 P;
+    int32_t cell[3];
+    double cx, cy, dx, dy;
+} ivy_xstem;
+
 /* A cell of the spatial hash: its coordinates and its buds' run in the
  * pool (n used of cap). Cells stay once made, empty or not. */
 typedef struct ivy_cell {
@@ -125,6 +134,25 @@ struct banyan_ivy {
      * sums add up in the same order and results stay the same). */
     uint32_t vbuckets;
     int grid_oom;          /* the hash could not grow: the step fails */
+    uint32_t grid_gen;     /* counts the copies linked and unlinked (the stems below go stale) */
+    /* The stems near one bud for ivy_crosses_near, and what they were
+     * gathered for: the bud's point, normal, self, layer, grid_gen; the
+     * cells read (x0, x1, y0, y1, z0, z1); xs_ok = 0: not usable. */
+    ivy_xstem *xs;
+    int32_t n_xs, xs_cap;
+    int xs_ok, xs_valid;
+    v3 xs_a, xs_n, xs_u, xs_w;
+    int32_t xs_self;
+    double xs_layer;
+    uint32_t xs_gen;
+    int32_t xs_box[6];
+    /* The cells the last light test of a bud's own point read (ivy_shade_watch
+     * with vl): the same cells serve gather_stems at that point. */
+    const ivy_cell *lc[64];
+    int32_t n_lc, lc_box[6];
+    v3 lc_p;
+    uint32_t lc_gen;
+    int lc_valid;
     double inv_cell;
 
     /* Scratch for the sag correction: cap entries each (tmp: 3 cap). */
@@ -133,6 +161,7 @@ struct banyan_ivy {
     int32_t scratch_cap;
 
     ivy_cand *cand;        /* params.candidates of them */
+    int32_t *cand_ord;     /* their order of asking (growth.c) */
 
     /* Progress and budget: a one-shot generation's, else `own` (the
      * handle's budget, ivy_budget_start). Growth is counted in bud visits,
@@ -235,6 +264,10 @@ void ivy_sleep(banyan_ivy *iv, int32_t i);
  * whose end bud lies within `layer` of a across n and that does not share
  * bud `self`? (grid.c; f_cross of the random walk) */
 int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
+/* The same answer, for the random walk's many internodes from one point a
+ * (same n, self, layer): the stems near a are gathered once (until the
+ * hash changes), then each query reads that short list. */
+int ivy_crosses_near(banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
 /* Diameter of bud i's leaf (and shadow) at the current step. */
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
 double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);

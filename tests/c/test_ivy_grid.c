@@ -119,6 +119,71 @@ static void check_queries(const banyan_ivy *iv, uint64_t seed, const char *what)
     CHECK(shaded > q / 10 && crossed > 0, "%s: %d shaded queries, %d crossings", what, shaded, crossed);
 }
 
+/* ivy_crosses_near (the random walk's: many internodes from one point, its
+ * stems gathered once) against brute force: 10 internodes from each of
+ * 300 buds, turned up to 40 degrees off the bud's direction (as the walk's
+ * candidates), then the first bud again, so that a later call starts at the
+ * point the gathered stems were found for (stale after moves unless the
+ * hash's changes are heard). */
+static void check_crosses_near(banyan_ivy *iv, uint64_t seed, const char *what) {
+    pcg32 r;
+    pcg32_seed(&r, seed, 5);
+    int bad = 0, crossed = 0, asked = 0;
+    int32_t first = -1;
+    for (int k = 0; k <= 300; k++) {
+        int32_t i = k < 300 ? (int32_t)rng_below(&r, (uint32_t)iv->n) : first;
+        if (k == 0) first = i;
+        const v3 a = iv->buds[i].P, n = k % 2 ? v3_make(0, 1, 0) : v3_make(1, 0, 0);
+        for (int c = 0; c < 10; c++) {
+            v3 t = v3_make(rng_range(&r, -0.7, 0.7), rng_range(&r, -0.7, 0.7), rng_range(&r, -0.7, 0.7));
+            v3 d = v3_norm_or(v3_add(iv->buds[i].V, t), v3_make(0, 0, 1));
+            v3 b = v3_madd(a, d, iv->p.internode);
+            int want = brute_crosses(iv, a, b, n, i, iv->p.sucker_length);
+            crossed += want;
+            bad += ivy_crosses_near(iv, a, b, n, i, iv->p.sucker_length) != want;
+            asked++;
+        }
+    }
+    CHECK(!bad && crossed > 0, "%s: of %d crossing queries from shared points %d off, %d crossings", what, asked, bad,
+          crossed);
+}
+
+/* The gathered stems follow the hash: an internode that crosses a stem,
+ * asked again after every other bud near its start has moved away. */
+static void check_crosses_stale(banyan_ivy *iv) {
+    const double l = iv->p.internode, layer = iv->p.sucker_length;
+    const v3 n = v3_make(0, 1, 0);
+    int32_t i = 0;
+    v3 b = v3_make(0, 0, 0);
+    for (; i < iv->n; i++) {
+        if (iv->buds[i].parent < 0) continue;
+        int c = 0;
+        for (; c < 36; c++) {
+            b = v3_madd(iv->buds[i].P, v3_make(cos(c * 0.1745), 0, sin(c * 0.1745)), l);
+            if (brute_crosses(iv, iv->buds[i].P, b, n, i, layer) && ivy_crosses_near(iv, iv->buds[i].P, b, n, i, layer))
+                break;
+        }
+        if (c < 36) break;
+    }
+    CHECK(i < iv->n, "no crossing found to move away");
+    if (i == iv->n) return;
+    const v3 a = iv->buds[i].P;
+    int32_t *set = malloc(sizeof(int32_t) * (size_t)iv->n), m = 0;
+    v3 *q = malloc(sizeof(v3) * (size_t)iv->n);
+    for (int32_t j = 0; j < iv->n; j++)
+        if (j != i && j != iv->buds[i].parent && v3_dist(iv->buds[j].P, a) < 4 * l) {
+            set[m] = j;
+            q[m++] = v3_add(iv->buds[j].P, v3_make(0, 0, 50));
+        }
+    ivy_grid_move_many(iv, set, q, m);
+    iv->n_wake = 0;
+    int want = brute_crosses(iv, a, b, n, i, layer);
+    CHECK(!want && ivy_crosses_near(iv, a, b, n, i, layer) == want, "after its stems moved away: %d, brute force %d",
+          ivy_crosses_near(iv, a, b, n, i, layer), want);
+    free(set);
+    free(q);
+}
+
 /* Moves a third of the buds to random places (some far, into new cells),
  * as the sag correction does, then checks again. */
 static void check_moves(banyan_ivy *iv, uint64_t seed) {
@@ -139,6 +204,7 @@ static void check_moves(banyan_ivy *iv, uint64_t seed) {
         for (int32_t e = 0; e < iv->cells[k].n; e++) rank[iv->pool[iv->cells[k].at + e].id] = e;
     for (int32_t i = 0; i < iv->n; i++) last[i] = -1;
     for (int32_t k = 0; k < n; k++) last[set[k]] = k;
+    check_crosses_near(iv, seed + 2, "before random moves");
     ivy_grid_move_many(iv, set, q, n);
     iv->n_wake = 0; /* the woken buds are not stepped here */
     int bad_order = 0;
@@ -161,6 +227,8 @@ static void check_moves(banyan_ivy *iv, uint64_t seed) {
     free(last);
     check_grid(iv, "after random moves");
     check_queries(iv, seed + 1, "after random moves");
+    check_crosses_near(iv, seed + 2, "after random moves");
+    check_crosses_stale(iv);
     free(set);
     free(q);
 }
@@ -190,6 +258,7 @@ int main(void) {
             snprintf(what, sizeof what, "%s at step %d (%d buds)", names[k], iv->step, iv->n);
             check_grid(iv, what);
             check_queries(iv, (uint64_t)(10 * k + s), what);
+            check_crosses_near(iv, (uint64_t)(10 * k + s), what);
         }
         CHECK(iv->n > 8193 || k == 1, "%s: %d buds, past the last reordering checked", names[k], iv->n);
         check_moves(iv, (uint64_t)k + 40);
