@@ -25,13 +25,18 @@
  * sway less. A leaf
  * and its petiole sway about their bud with its stiffness, level + 1,
  * flutter 1, a phase of their own. */
+#define _POSIX_C_SOURCE 200809L
+#include <sched.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "core/leaf_look.h"
 #include "core/mesh_builder.h"
 #include "core/obb.h"
+#include "core/pool.h"
 #include "core/tube.h"
 #include "core/wind.h"
 #include "ivy_internal.h"
@@ -361,11 +366,292 @@ static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *
     wind_birth(mb, ws, birth_scale > 0 ? birth : 0.0);
 }
 
-/* Progress of the mesh of a one-shot generation: stems then leaves, by
- * bud, every 256 buds, from iv->mesh_from to 1. Returns 1 once cancelled. */
-static int mesh_progress(const banyan_ivy *iv, int32_t i, double half) {
-    if (i & 255) return 0;
-    return prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * 0.5 * (half + (double)i / iv->n));
+/* The mesh on up to p->threads threads (core/pool.h), the same bytes on
+ * any count: every stem, petiole and blade has its place in the output
+ * planned before it is written, so items write disjoint ranges. Items,
+ * in queue order: leaf placement by blocks of buds (the costly part:
+ * host queries), stems by blocks of chains (their sizes known from the
+ * plan), then petioles and blades by the same blocks of buds, which
+ * start once every leaf is placed (where each block's leaves go is the
+ * count of placed leaves before it). */
+#define MESH_LEAF_BLOCK 256 /* buds per leaf item */
+#define MESH_STEM_ITEMS 64  /* stem items, cut by points: enough for a few threads to even out */
+#define MESH_MIN_BUDS 2048  /* fewer buds: one thread (a thread costs more than such a mesh gains) */
+
+typedef struct mesh_job {
+    const banyan_ivy *iv;
+    const leaf_shape *sh;
+    mesh_builder *out;          /* the output's arrays, sized for the most the plan allows */
+    const int32_t *pts, *chn;   /* the chains (banyan_ivy_mesh) */
+    const uint32_t *cv, *ci;    /* per chain: its first vertex and index; [n_chains]: the stems' end */
+    const int32_t *sblk;        /* per stem item its first chain; [n_sblk]: n_chains */
+    int32_t n_sblk, n_lblk;     /* stem items; leaf blocks (0 without leaves) */
+    uint32_t max_pts;
+    const double *bst;
+    const int32_t *blv;
+    double birth_scale;
+    leaf_geo *lg;
+    uint32_t *lok;              /* per leaf block: leaves placed; once `ready`, the leaves before it ([n_lblk]: all) */
+    int32_t cols, rows;         /* leaf atlas */
+    atomic_int next, placed, ready, done, cancel;
+    atomic_int status;          /* the first failure */
+} mesh_job;
+
+static void job_fail(mesh_job *J, banyan_status s) {
+    int ok = 0;
+    atomic_compare_exchange_strong(&J->status, &ok, (int)s);
+}
+
+/* A builder over the output's vertices v0 .. v0 + nv and indices i0 ..
+ * i0 + ni, with the output's attributes in the same slots. */
+static void sub_builder(const mesh_job *J, mesh_builder *sb, uint32_t v0, uint32_t nv, uint32_t i0, uint32_t ni,
+                        wind_slots *ws, int *a_birth, int *a_part) {
+    const mesh_builder *o = J->out;
+    float *attr[MB_MAX_ATTRS];
+    const char *names[MB_MAX_ATTRS];
+    for (uint32_t a = 0; a < o->n_attr; a++) {
+        attr[a] = o->attr[a] + v0;
+        names[a] = o->attr_name[a];
+    }
+    mb_init_external(sb, nv, ni, o->pos + 3 * (size_t)v0, o->nrm + 3 * (size_t)v0, o->uv + 2 * (size_t)v0,
+                     o->col + 4 * (size_t)v0, o->idx + i0, attr, names, o->n_attr);
+    *a_birth = mb_add_attr(sb, "birth_step");
+    *a_part = mb_add_attr(sb, "part");
+    wind_declare(sb, J->iv->p.wind, ws);
+}
+
+/* Checks that the builder filled its range exactly, then numbers its
+ * indices from the output's first vertex instead of the range's. */
+static void sub_close(mesh_job *J, mesh_builder *sb, uint32_t v0, uint32_t nv, uint32_t ni) {
+    if (!sb->status && (sb->nv != nv || sb->ni != ni)) sb->status = BANYAN_E_INTERNAL; /* the plan was wrong */
+    if (sb->status) {
+        job_fail(J, sb->status);
+        return;
+    }
+    for (uint32_t k = 0; k < ni; k++) sb->idx[k] += v0;
+}
+
+/* Stem item k: its chains as tubes. P .. wr: scratch of max_pts points. */
+static void mesh_stems(mesh_job *J, int32_t k, v3 *P, double *R, float *birth, double *wr) {
+    const banyan_ivy *iv = J->iv;
+    const banyan_ivy_params *p = &iv->p;
+    const int sides = p->stem_sides;
+    const int32_t c0 = J->sblk[k], c1 = J->sblk[k + 1];
+    const uint32_t v0 = J->cv[c0], nv = J->cv[c1] - v0, i0 = J->ci[c0], ni = J->ci[c1] - i0;
+    double *wr_birth = wr + J->max_pts;
+    mesh_builder mb;
+    wind_slots ws;
+    int a_birth, a_part;
+    sub_builder(J, &mb, v0, nv, i0, ni, &ws, &a_birth, &a_part);
+    mb_set_attr(&mb, a_part, 0.0);
+    for (int32_t c = c0; c < c1 && !mb.status; c++) {
+        const int32_t i = J->chn[2 * c];
+        const int32_t *pt = J->pts + J->chn[2 * c + 1];
+        uint32_t n = (uint32_t)(J->chn[2 * c + 3] - J->chn[2 * c + 1]);
+        const ivy_bud *s = &iv->buds[i];
+        for (uint32_t q = 0; q < n; q++) {
+            const ivy_bud *b = &iv->buds[pt[q]];
+            P[q] = b->P;
+            /* A branch's base ring sits in its parent and appears with it. */
+            const ivy_bud *own = (q == 0 && pt[0] != i) ? s : b;
+            R[q] = ivy_stem_radius(iv, own);
+            birth[q] = (float)own->step_c;
+            wr[q] = J->bst[pt[q]];
+            wr_birth[q] = own->step_c * J->birth_scale;
+        }
+        if (n == 1) { /* a lone first bud: a short stub along its direction */
+            P[1] = v3_madd(P[0], s->V, 2.0 * R[0]);
+            R[1] = R[0];
+            birth[1] = birth[0];
+            wr[1] = wr[0], wr_birth[1] = wr_birth[0];
+            n = 2;
+        }
+        wind_set(&mb, &ws, P[0], J->blv[i], 1.0, wind_phase_of(p->seed, (uint64_t)i), 0.0);
+        tube_opts o;
+        memset(&o, 0, sizeof o); /* fields the sweeper may gain stay zero */
+        o.sides = sides;
+        o.cap_start = s->parent < 0;
+        o.cap_end = 1;
+        o.first_normal = ivy_nearest_any(iv, s->P).normal;
+        uint32_t first = mb.nv;
+        tube_sweep(&mb, P, R, n, &o);
+        if (mb.status) break;
+        /* Rings come first (sides + 1 vertices each), then the caps. */
+        float *attr = mb.attr[a_birth];
+        uint32_t ring = (uint32_t)sides + 1, q = 0;
+        for (; q < n; q++)
+            for (uint32_t j = 0; j < ring; j++) attr[first + q * ring + j] = birth[q];
+        uint32_t v = first + n * ring;
+        if (o.cap_start)
+            for (uint32_t j = 0; j < ring + 1; j++) attr[v++] = birth[0];
+        for (; v < mb.nv; v++) attr[v] = birth[n - 1];
+        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.stiffness, wr);
+        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.birth, wr_birth);
+    }
+    sub_close(J, &mb, v0, nv, ni);
+    mb_free(&mb);
+}
+
+/* Leaf block k: each bud's leaf placed; the last block placed sums the
+ * blocks into where each one's leaves go, and opens the leaf writing. */
+static void mesh_place(mesh_job *J, int32_t k) {
+    const int32_t i0 = k * MESH_LEAF_BLOCK, i1 = i0 + MESH_LEAF_BLOCK < J->iv->n ? i0 + MESH_LEAF_BLOCK : J->iv->n;
+    uint32_t ok = 0;
+    for (int32_t i = i0; i < i1; i++) ok += (uint32_t)(J->lg[i].ok = leaf_place(J->iv, i, J->sh, &J->lg[i]));
+    J->lok[k] = ok;
+    if (atomic_fetch_add(&J->placed, 1) + 1 < J->n_lblk) return;
+    uint32_t sum = 0;
+    for (int32_t b = 0; b <= J->n_lblk; b++) {
+        uint32_t c = b < J->n_lblk ? J->lok[b] : 0;
+        J->lok[b] = sum;
+        sum += c;
+    }
+    atomic_store(&J->ready, 1);
+}
+
+/* Leaf block k written: its petioles (in the stem part, after the
+ * stems), then its blades (the leaf part, after every petiole). */
+static void mesh_leaves(mesh_job *J, int32_t k) {
+    const banyan_ivy *iv = J->iv;
+    const banyan_ivy_params *p = &iv->p;
+    const leaf_shape *sh = J->sh;
+    const leaf_geo *lg = J->lg;
+    const int32_t i0 = k * MESH_LEAF_BLOCK, i1 = i0 + MESH_LEAF_BLOCK < iv->n ? i0 + MESH_LEAF_BLOCK : iv->n;
+    const uint32_t before = J->lok[k], count = J->lok[k + 1] - before, all = J->lok[J->n_lblk];
+    if (!count) return;
+    const uint32_t v_pet = J->cv[J->sblk[J->n_sblk]], i_pet = J->ci[J->sblk[J->n_sblk]];
+    mesh_builder mb;
+    wind_slots ws;
+    int a_birth, a_part;
+
+    const double rp = petiole_radius(p);
+    double pc[PETIOLE_SIDES], ps[PETIOLE_SIDES]; /* the ring's directions, the same for every petiole */
+    for (int q = 0; q < PETIOLE_SIDES; q++) {
+        double th = 2 * BANYAN_PI * q / PETIOLE_SIDES;
+        pc[q] = cos(th);
+        ps[q] = sin(th);
+    }
+    uint32_t v0 = v_pet + PETIOLE_VERTS * before, nv = PETIOLE_VERTS * count, ni = 6 * PETIOLE_SIDES * count;
+    sub_builder(J, &mb, v0, nv, i_pet + 6 * PETIOLE_SIDES * before, ni, &ws, &a_birth, &a_part);
+    mb_set_attr(&mb, a_part, 0.0);
+    for (int32_t i = i0; i < i1 && !mb.status; i++) {
+        if (!lg[i].ok) continue;
+        v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
+        v3 e1 = v3_any_perp(ax), e2 = v3_cross(ax, e1);
+        mb_set_attr(&mb, a_birth, (double)iv->buds[i].step_c);
+        leaf_wind(&mb, &ws, iv, i, J->bst[i], J->blv[i], J->birth_scale);
+        uint32_t vc = mb_vertices(&mb, PETIOLE_VERTS);
+        uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
+        if (!I) break;
+        for (int q = 0; q < PETIOLE_SIDES; q++) {
+            v3 rn = v3_add(v3_scale(e1, pc[q]), v3_scale(e2, ps[q]));
+            mb_put(&mb, vc + (uint32_t)q, v3_madd(a0, rn, rp), rn, (double)q / PETIOLE_SIDES, 0.0);
+            mb_put(&mb, vc + PETIOLE_SIDES + (uint32_t)q, v3_madd(lg[i].base, rn, rp), rn, (double)q / PETIOLE_SIDES, 1.0);
+            uint32_t q1 = (uint32_t)(q + 1) % PETIOLE_SIDES, r0 = vc + (uint32_t)q, r1 = vc + q1;
+            I[6 * q + 0] = r0; I[6 * q + 1] = r1; I[6 * q + 2] = r1 + PETIOLE_SIDES;
+            I[6 * q + 3] = r0; I[6 * q + 4] = r1 + PETIOLE_SIDES; I[6 * q + 5] = r0 + PETIOLE_SIDES;
+        }
+    }
+    sub_close(J, &mb, v0, nv, ni);
+    mb_free(&mb);
+    if (atomic_load(&J->status)) return;
+
+    /* The blade's template, per vertex (the centre, then the outline):
+     * its offsets along the tip, across and (the fold) the normal per
+     * unit of size, and which normal it takes (0 the blade's, 1 the
+     * +y half's, 2 the -y half's). A leaf is then this template moved
+     * and scaled. */
+    const double tf = tan(LEAF_FOLD);
+    double tx[LEAF_OUTLINE + 1], ty[LEAF_OUTLINE + 1], tz[LEAF_OUTLINE + 1];
+    int tn[LEAF_OUTLINE + 1];
+    for (int q = 0; q <= LEAF_OUTLINE; q++) {
+        double x = q ? sh->ox[q - 1] : 0, y = q ? sh->oy[q - 1] : 0;
+        tx[q] = x;
+        ty[q] = y;
+        tz[q] = fabs(y) * tf;
+        tn[q] = fabs(y) < 1e-9 ? 0 : (y > 0 ? 1 : 2);
+    }
+    const uint32_t v_leaf = v_pet + PETIOLE_VERTS * all, i_leaf = i_pet + 6 * PETIOLE_SIDES * all;
+    v0 = v_leaf + (LEAF_OUTLINE + 1) * before, nv = (LEAF_OUTLINE + 1) * count, ni = 3 * LEAF_OUTLINE * count;
+    sub_builder(J, &mb, v0, nv, i_leaf + 3 * LEAF_OUTLINE * before, ni, &ws, &a_birth, &a_part);
+    mb_set_attr(&mb, a_part, 1.0);
+    for (int32_t i = i0; i < i1 && !mb.status; i++) {
+        const leaf_geo *g = &lg[i];
+        if (!g->ok) continue;
+        const ivy_bud *b = &iv->buds[i];
+        leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
+        leaf_look_of(p->seed, (uint64_t)i, J->cols, J->rows, p->season, &lk);
+        leaf_age_tint(iv, b, p->season, lk.tint);
+        mb_set_color(&mb, lk.tint); /* the output has colours */
+        mb_set_attr(&mb, a_birth, (double)b->step_c);
+        leaf_wind(&mb, &ws, iv, i, J->bst[i], J->blv[i], J->birth_scale);
+        uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
+        uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
+        if (!I) break;
+        /* The fold: each half turns up about the midrib, so its normal leans away from it. */
+        v3 nrm[3] = {g->nb, v3_norm(v3_madd(g->nb, g->bb, -tf)), v3_norm(v3_madd(g->nb, g->bb, tf))};
+        float fn[3][3];
+        for (int j = 0; j < 3; j++) fn[j][0] = (float)nrm[j].x, fn[j][1] = (float)nrm[j].y, fn[j][2] = (float)nrm[j].z;
+        float *P = mb.pos + 3 * (size_t)vc, *N = mb.nrm + 3 * (size_t)vc, *UV = mb.uv + 2 * (size_t)vc;
+        for (int q = 0; q <= LEAF_OUTLINE; q++, P += 3, N += 3, UV += 2) {
+            v3 x = v3_madd(v3_madd(v3_madd(g->c, g->a, tx[q] * g->size), g->bb, ty[q] * g->size), g->nb,
+                           tz[q] * g->size);
+            P[0] = (float)x.x, P[1] = (float)x.y, P[2] = (float)x.z;
+            memcpy(N, fn[tn[q]], sizeof fn[0]);
+            UV[0] = (float)(lk.u0 + sh->ou[q] * lk.du);
+            UV[1] = (float)(lk.v0 + sh->ov[q] * lk.dv);
+        }
+        for (uint32_t q = 0; q < LEAF_OUTLINE; q++, I += 3) {
+            I[0] = vc;
+            I[1] = vc + 1 + q;
+            I[2] = vc + 1 + (q + 1) % LEAF_OUTLINE;
+        }
+    }
+    sub_close(J, &mb, v0, nv, ni);
+    mb_free(&mb);
+}
+
+/* One thread's share: items from the shared counter until none are
+ * left, the job fails or is cancelled. The caller reports progress, by
+ * items done, from iv->mesh_from to 1. */
+static void mesh_work(void *job, int caller) {
+    mesh_job *J = job;
+    const int32_t n_items = 2 * J->n_lblk + J->n_sblk;
+    v3 *P = NULL;
+    double *R = NULL, *wr = NULL;
+    float *birth = NULL;
+    for (;;) {
+        if (atomic_load(&J->cancel) || atomic_load(&J->status)) break;
+        int32_t k = atomic_fetch_add(&J->next, 1);
+        if (k >= n_items) break;
+        if (k < J->n_lblk) {
+            mesh_place(J, k);
+        } else if (k < J->n_lblk + J->n_sblk) {
+            if (!P) { /* this thread's scratch, on its first stem item */
+                P = malloc(sizeof(v3) * J->max_pts);
+                R = malloc(sizeof(double) * J->max_pts);
+                birth = malloc(sizeof(float) * J->max_pts);
+                wr = malloc(sizeof(double) * 2 * J->max_pts);
+                if (!P || !R || !birth || !wr) {
+                    job_fail(J, BANYAN_E_NOMEM);
+                    break;
+                }
+            }
+            mesh_stems(J, k - J->n_lblk, P, R, birth, wr);
+        } else {
+            /* Every leaf placed first: a block's place depends on the
+             * leaves before it. The queue hands out placement first, so
+             * this waits at most for the other threads' last blocks. */
+            while (!atomic_load(&J->ready) && !atomic_load(&J->cancel) && !atomic_load(&J->status)) sched_yield();
+            if (!atomic_load(&J->ready)) break;
+            mesh_leaves(J, k - J->n_lblk - J->n_sblk);
+        }
+        int32_t d = atomic_fetch_add(&J->done, 1) + 1;
+        const banyan_ivy *iv = J->iv;
+        if (caller && prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * (double)d / n_items))
+            atomic_store(&J->cancel, 1);
+    }
+    free(P); free(R); free(birth); free(wr);
 }
 
 banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_error *err) {
@@ -419,17 +705,13 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         free(pts);
         return prog_fail(iv->prog, err, "ivy mesh");
     }
-    v3 *P = malloc(sizeof(v3) * max_pts);
-    double *R = malloc(sizeof(double) * max_pts);
-    float *birth = malloc(sizeof(float) * max_pts);
-    /* wind: per ring stiffness and birth; per bud stiffness and level */
-    double *wr = malloc(sizeof(double) * 2 * max_pts), *bst = malloc(sizeof(double) * ((size_t)iv->n + 1));
+    /* wind: per bud stiffness and level */
+    double *bst = malloc(sizeof(double) * ((size_t)iv->n + 1));
     int32_t *blv = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
-    if (!P || !R || !birth || !wr || !bst || !blv) {
-        free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
+    if (!bst || !blv) {
+        free(pts); free(bst); free(blv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
-    double *wr_birth = wr + max_pts;
     int32_t last_step = 0;
     {
         /* Buds come in creation order: a parent before its children. bst
@@ -466,7 +748,8 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
 
     mesh_builder mb;
     mb_init(&mb, (uint32_t)p->max_vertices, 1); /* colours: white stems, tinted leaves */
-    int a_birth = mb_add_attr(&mb, "birth_step"), a_part = mb_add_attr(&mb, "part");
+    mb_add_attr(&mb, "birth_step");
+    mb_add_attr(&mb, "part");
     wind_slots ws;
     wind_declare(&mb, p->wind, &ws);
     uint32_t m_stem = mb_add_material(&mb, "ivy_stem", p->stem_color, 0.85, 0);
@@ -475,161 +758,74 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         bark_material_set(&mb.mat[m_stem], BANYAN_TEX_IVY_STEM);
         leaf_material_set(&mb.mat[m_leaf], BANYAN_TEX_IVY_LEAF, p->season, p->leaf_color);
     }
-    /* The whole mesh at once: no copies as the arrays grow. */
+    /* The whole mesh at once (every leaf counted; the pages of those left
+     * out are never touched, and mb_finish trims them). */
     mb_reserve(&mb, (uint32_t)need_v, need_i > UINT32_MAX ? UINT32_MAX : (uint32_t)need_i);
-
-    /* Stems. */
     mb_begin_part(&mb, m_stem, 0);
-    mb_set_attr(&mb, a_part, 0.0);
-    int cancelled = 0;
-    for (int32_t i = 0, c = 0; i < iv->n && !mb.status; i++) {
-        if (mesh_progress(iv, i, 0.0)) {
-            cancelled = 1;
-            break;
-        }
-        if (c >= n_chains || chn[2 * c] != i) continue;
-        const int32_t *pt = pts + chn[2 * c + 1];
-        uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]);
-        c++;
-        const ivy_bud *s = &iv->buds[i];
-        for (uint32_t k = 0; k < n; k++) {
-            const ivy_bud *b = &iv->buds[pt[k]];
-            P[k] = b->P;
-            /* A branch's base ring sits in its parent and appears with it. */
-            const ivy_bud *own = (k == 0 && pt[0] != i) ? s : b;
-            R[k] = ivy_stem_radius(iv, own);
-            birth[k] = (float)own->step_c;
-            wr[k] = bst[pt[k]];
-            wr_birth[k] = own->step_c * birth_scale;
-        }
-        if (n == 1) { /* a lone first bud: a short stub along its direction */
-            P[1] = v3_madd(P[0], s->V, 2.0 * R[0]);
-            R[1] = R[0];
-            birth[1] = birth[0];
-            wr[1] = wr[0], wr_birth[1] = wr_birth[0];
-            n = 2;
-        }
-        wind_set(&mb, &ws, P[0], blv[i], 1.0, wind_phase_of(p->seed, (uint64_t)i), 0.0);
-        tube_opts o;
-        memset(&o, 0, sizeof o); /* fields the sweeper may gain stay zero */
-        o.sides = sides;
-        o.cap_start = s->parent < 0;
-        o.cap_end = 1;
-        o.first_normal = ivy_nearest_any(iv, s->P).normal;
-        uint32_t first = mb.nv;
-        tube_sweep(&mb, P, R, n, &o);
-        if (mb.status) break;
-        /* Rings come first (sides + 1 vertices each), then the caps. */
-        float *attr = mb.attr[a_birth];
-        uint32_t ring = (uint32_t)sides + 1, k = 0;
-        for (; k < n; k++)
-            for (uint32_t j = 0; j < ring; j++) attr[first + k * ring + j] = birth[k];
-        uint32_t v = first + n * ring;
-        if (o.cap_start)
-            for (uint32_t j = 0; j < ring + 1; j++) attr[v++] = birth[0];
-        for (; v < mb.nv; v++) attr[v] = birth[n - 1];
-        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.stiffness, wr);
-        wind_tube_rings(&mb, first, n, sides, o.cap_start, o.cap_end, ws.birth, wr_birth);
+
+    /* The plan: each chain's first vertex and index, the stem items, the leaf blocks. */
+    const int32_t n_lblk = p->leaves ? (int32_t)((iv->n + MESH_LEAF_BLOCK - 1) / MESH_LEAF_BLOCK) : 0;
+    uint32_t *cv = malloc(sizeof(uint32_t) * 2 * ((size_t)n_chains + 1)), *ci = cv ? cv + n_chains + 1 : NULL;
+    int32_t *sblk = malloc(sizeof(int32_t) * (MESH_STEM_ITEMS + 2));
+    uint32_t *lok = malloc(sizeof(uint32_t) * ((size_t)n_lblk + 1));
+    leaf_geo *lg = p->leaves ? malloc(sizeof(leaf_geo) * ((size_t)iv->n + 1)) : NULL;
+    if (!cv || !sblk || !lok || (p->leaves && !lg)) {
+        free(pts); free(bst); free(blv); free(cv); free(sblk); free(lok); free(lg);
+        mb_free(&mb);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
-
-    /* Leaves: every blade placed first (its petiole goes in the stem
-     * part, which is still open), then the petioles, then the blades. */
-    leaf_geo *lg = NULL;
-    if (p->leaves && !mb.status && !cancelled) {
-        lg = malloc(sizeof(leaf_geo) * ((size_t)iv->n + 1));
-        if (!lg) {
-            free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
-            mb_free(&mb);
-            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    int32_t n_sblk = 0;
+    if (!mb.status) {
+        uint32_t v = 0, x = 0;
+        for (int32_t c = 0; c < n_chains; c++) {
+            uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]), tv, ti;
+            tube_counts(n < 2 ? 2 : n, sides, iv->buds[chn[2 * c]].parent < 0, 1, &tv, &ti);
+            cv[c] = v, ci[c] = x;
+            v += tv, x += ti;
         }
-        leaf_shape sh;
-        leaf_shape_init(&sh);
-        for (int32_t i = 0; i < iv->n; i++) {
-            if (mesh_progress(iv, i, 1.0)) {
-                cancelled = 1;
-                break;
-            }
-            lg[i].ok = leaf_place(iv, i, &sh, &lg[i]);
-        }
-        const double rp = petiole_radius(p);
-        double pc[PETIOLE_SIDES], ps[PETIOLE_SIDES]; /* the ring's directions, the same for every petiole */
-        for (int k = 0; k < PETIOLE_SIDES; k++) {
-            double th = 2 * BANYAN_PI * k / PETIOLE_SIDES;
-            pc[k] = cos(th);
-            ps[k] = sin(th);
-        }
-        for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
-            if (!lg[i].ok) continue;
-            v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
-            v3 e1 = v3_any_perp(ax), e2 = v3_cross(ax, e1);
-            mb_set_attr(&mb, a_birth, (double)iv->buds[i].step_c);
-            leaf_wind(&mb, &ws, iv, i, bst[i], blv[i], birth_scale);
-            uint32_t vc = mb_vertices(&mb, PETIOLE_VERTS);
-            uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
-            if (!I) break;
-            for (int k = 0; k < PETIOLE_SIDES; k++) {
-                v3 rn = v3_add(v3_scale(e1, pc[k]), v3_scale(e2, ps[k]));
-                mb_put(&mb, vc + (uint32_t)k, v3_madd(a0, rn, rp), rn, (double)k / PETIOLE_SIDES, 0.0);
-                mb_put(&mb, vc + PETIOLE_SIDES + (uint32_t)k, v3_madd(lg[i].base, rn, rp), rn, (double)k / PETIOLE_SIDES, 1.0);
-                uint32_t k1 = (uint32_t)(k + 1) % PETIOLE_SIDES, q0 = vc + (uint32_t)k, q1 = vc + k1;
-                I[6 * k + 0] = q0; I[6 * k + 1] = q1; I[6 * k + 2] = q1 + PETIOLE_SIDES;
-                I[6 * k + 3] = q0; I[6 * k + 4] = q1 + PETIOLE_SIDES; I[6 * k + 5] = q0 + PETIOLE_SIDES;
-            }
-        }
-
-        mb_begin_part(&mb, m_leaf, 0);
-        mb_set_attr(&mb, a_part, 1.0);
-        int32_t cols, rows;
-        leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &cols, &rows, NULL);
-        /* The blade's template, per vertex (the centre, then the outline):
-         * its offsets along the tip, across and (the fold) the normal per
-         * unit of size, and which normal it takes (0 the blade's, 1 the
-         * +y half's, 2 the -y half's). A leaf is then this template moved
-         * and scaled. */
-        const double tf = tan(LEAF_FOLD);
-        double tx[LEAF_OUTLINE + 1], ty[LEAF_OUTLINE + 1], tz[LEAF_OUTLINE + 1];
-        int tn[LEAF_OUTLINE + 1];
-        for (int k = 0; k <= LEAF_OUTLINE; k++) {
-            double x = k ? sh.ox[k - 1] : 0, y = k ? sh.oy[k - 1] : 0;
-            tx[k] = x;
-            ty[k] = y;
-            tz[k] = fabs(y) * tf;
-            tn[k] = fabs(y) < 1e-9 ? 0 : (y > 0 ? 1 : 2);
-        }
-        for (int32_t i = 0; i < iv->n && !mb.status && !cancelled; i++) {
-            const leaf_geo *g = &lg[i];
-            if (!g->ok) continue;
-            const ivy_bud *b = &iv->buds[i];
-            leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
-            leaf_look_of(p->seed, (uint64_t)i, cols, rows, p->season, &lk);
-            leaf_age_tint(iv, b, p->season, lk.tint);
-            mb_set_color(&mb, lk.tint); /* the builder was made with colours */
-            mb_set_attr(&mb, a_birth, (double)b->step_c);
-            leaf_wind(&mb, &ws, iv, i, bst[i], blv[i], birth_scale);
-            uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
-            uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
-            if (!I) break;
-            /* The fold: each half turns up about the midrib, so its normal leans away from it. */
-            v3 nrm[3] = {g->nb, v3_norm(v3_madd(g->nb, g->bb, -tf)), v3_norm(v3_madd(g->nb, g->bb, tf))};
-            float fn[3][3];
-            for (int j = 0; j < 3; j++) fn[j][0] = (float)nrm[j].x, fn[j][1] = (float)nrm[j].y, fn[j][2] = (float)nrm[j].z;
-            float *P = mb.pos + 3 * (size_t)vc, *N = mb.nrm + 3 * (size_t)vc, *UV = mb.uv + 2 * (size_t)vc;
-            for (int k = 0; k <= LEAF_OUTLINE; k++, P += 3, N += 3, UV += 2) {
-                v3 q = v3_madd(v3_madd(v3_madd(g->c, g->a, tx[k] * g->size), g->bb, ty[k] * g->size), g->nb,
-                               tz[k] * g->size);
-                P[0] = (float)q.x, P[1] = (float)q.y, P[2] = (float)q.z;
-                memcpy(N, fn[tn[k]], sizeof fn[0]);
-                UV[0] = (float)(lk.u0 + sh.ou[k] * lk.du);
-                UV[1] = (float)(lk.v0 + sh.ov[k] * lk.dv);
-            }
-            for (uint32_t k = 0; k < LEAF_OUTLINE; k++, I += 3) {
-                I[0] = vc;
-                I[1] = vc + 1 + k;
-                I[2] = vc + 1 + (k + 1) % LEAF_OUTLINE;
-            }
+        cv[n_chains] = v, ci[n_chains] = x;
+        /* Items of about equal vertex counts (a chain is never split). */
+        const uint32_t per = v / MESH_STEM_ITEMS + 1;
+        sblk[0] = 0;
+        for (int32_t c = 1; c < n_chains; c++)
+            if (cv[c] >= per * (uint32_t)(n_sblk + 1)) sblk[++n_sblk] = c;
+        sblk[++n_sblk] = n_chains;
+    }
+    leaf_shape sh;
+    leaf_shape_init(&sh);
+    mesh_job J;
+    memset(&J, 0, sizeof J);
+    J.iv = iv, J.sh = &sh, J.out = &mb, J.pts = pts, J.chn = chn, J.cv = cv, J.ci = ci, J.sblk = sblk;
+    J.n_sblk = n_sblk, J.n_lblk = n_lblk, J.max_pts = max_pts, J.bst = bst, J.blv = blv, J.birth_scale = birth_scale;
+    J.lg = lg, J.lok = lok;
+    leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &J.cols, &J.rows, NULL);
+    atomic_init(&J.next, 0);
+    atomic_init(&J.placed, 0);
+    atomic_init(&J.ready, 0);
+    atomic_init(&J.done, 0);
+    atomic_init(&J.cancel, 0);
+    atomic_init(&J.status, 0);
+    int threads = p->threads;
+    if (threads == 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = c < 1 ? 1 : c > BANYAN_IVY_MAX_THREADS ? BANYAN_IVY_MAX_THREADS : (int)c;
+    }
+    if (iv->n < MESH_MIN_BUDS) threads = 1;
+    if (!mb.status) pool_run(threads, mesh_work, &J, iv->prog, &J.cancel);
+    int cancelled = atomic_load(&J.cancel);
+    if (!mb.status && atomic_load(&J.status)) mb.status = (banyan_status)atomic_load(&J.status);
+    if (!mb.status && !cancelled) {
+        /* Every range is written: the parts over them. */
+        const uint32_t all = p->leaves ? lok[n_lblk] : 0;
+        mb.nv = cv[n_chains] + PETIOLE_VERTS * all;
+        mb.ni = ci[n_chains] + 6 * PETIOLE_SIDES * all;
+        if (p->leaves) {
+            mb_begin_part(&mb, m_leaf, 0);
+            mb.nv += (LEAF_OUTLINE + 1) * all;
+            mb.ni += 3 * LEAF_OUTLINE * all;
         }
     }
-    free(lg);
+    free(lg); free(cv); free(sblk); free(lok);
 
     /* Skeleton: one point per bud, one edge per internode. */
     for (int32_t i = 0; i < iv->n && !mb.status; i++)
@@ -637,7 +833,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     for (int32_t i = 0; i < iv->n && !mb.status; i++)
         if (iv->buds[i].parent >= 0) mb_skel_edge(&mb, (uint32_t)iv->buds[i].parent, (uint32_t)i);
 
-    free(pts); free(P); free(R); free(birth); free(wr); free(bst); free(blv);
+    free(pts); free(bst); free(blv);
     if (cancelled) {
         mb_free(&mb);
         return prog_fail(iv->prog, err, "ivy mesh");

@@ -75,6 +75,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_INT(S, max_buds, "Bud limit", "Limits", 1, 50000000, "bud cap; a step that could pass it is refused with BANYAN_E_LIMIT"),
     BP_BUDGET(S, "Limits"),
     BP_WIND(S, BP_F_SELF, "Limits"),
+    BP_INT(S, threads, "Threads", "Limits", 0, BANYAN_IVY_MAX_THREADS, "threads that build the mesh (0: all cores); the mesh is the same on any count"),
     BP_DOUBLE(S, stats_cell, "Coverage cell size", "Limits", "m", 0.001, 100, "grid cell of the covered-area measure"),
 };
 const int32_t ivy_table_row_count = (int32_t)(sizeof ivy_table_rows / sizeof ivy_table_rows[0]);

@@ -4,13 +4,17 @@
  * time, metres of stem (the skeleton's internode edges) per second of
  * growth + mesh, and a 64-bit FNV-1a hash of every output array, so two
  * builds can be compared for byte-identical meshes as well as speed.
+ * Each run meshes the plant twice, alternating: on one thread and on
+ * the preset's `threads` (0: all cores); the hashes must agree.
  * Usage: bench_ivy_mesh [runs] [preset] [mesh-only repeats]; the last
- * grows once and then only meshes (for a profiler). */
+ * grows once and then only meshes (for a profiler), on the preset's
+ * threads. */
 #include "bench.h"
 
 #include <math.h>
 
 #include "banyan.h"
+#include "ivy/ivy_internal.h"
 #include "test_files.h"
 
 static double cpu_now(void) {
@@ -95,7 +99,9 @@ int main(int argc, char **argv) {
         banyan_ivy_free(iv);
         return 0;
     }
-    double *tw = malloc(sizeof(double) * (size_t)runs * 4), *tc = tw + runs, *gw = tw + 2 * runs, *gc = tw + 3 * runs;
+    double *tw = malloc(sizeof(double) * (size_t)runs * 6), *tc = tw + runs, *gw = tw + 2 * runs, *gc = tw + 3 * runs,
+           *t1w = tw + 4 * runs, *t1c = tw + 5 * runs;
+    const int32_t threads = p.threads;
     banyan_ivy *iv = NULL;
     uint64_t hash = 0;
     banyan_mesh *m = NULL;
@@ -109,28 +115,37 @@ int main(int argc, char **argv) {
             return 1;
         }
         double b = bench_now(), cb = cpu_now();
-        if (banyan_ivy_mesh(iv, &m, &err)) {
-            fprintf(stderr, "bench_ivy_mesh: %s\n", err.message);
-            return 1;
-        }
-        double c = bench_now(), cc = cpu_now();
-        gw[r] = b - a, gc[r] = cb - ca, tw[r] = c - b, tc[r] = cc - cb;
-        uint64_t h = mesh_hash(m);
-        if (r && h != hash) fprintf(stderr, "bench_ivy_mesh: run %d hashes differently\n", r);
-        hash = h;
-        if (r + 1 < runs) {
+        gw[r] = b - a, gc[r] = cb - ca;
+        /* One thread and the preset's, first one then the other by turns. */
+        for (int k = 0; k < 2; k++) {
+            int one = (k + r) % 2 == 0;
+            iv->p.threads = one ? 1 : threads;
             banyan_mesh_free(m);
             m = NULL;
+            double s0 = bench_now(), c0 = cpu_now();
+            if (banyan_ivy_mesh(iv, &m, &err)) {
+                fprintf(stderr, "bench_ivy_mesh: %s\n", err.message);
+                return 1;
+            }
+            double s1 = bench_now(), c1 = cpu_now();
+            *(one ? &t1w[r] : &tw[r]) = s1 - s0;
+            *(one ? &t1c[r] : &tc[r]) = c1 - c0;
+            uint64_t h = mesh_hash(m);
+            if ((r || k) && h != hash) fprintf(stderr, "bench_ivy_mesh: run %d (%s) hashes differently\n", r, one ? "1 thread" : "threads");
+            hash = h;
         }
     }
     double len_m = stem_length(m);
     printf("%s: %u vertices, %u triangles, %.1f m of stem, hash %016llx\n", path, m->vertex_count,
            m->index_count / 3, len_m, (unsigned long long)hash);
     double mw = bench_median(tw, runs), mc = bench_median(tc, runs), g = bench_median(gw, runs),
-           gcpu = bench_median(gc, runs);
+           gcpu = bench_median(gc, runs), m1w = bench_median(t1w, runs), m1c = bench_median(t1c, runs);
     printf("  growth: median %.1f ms wall, %.1f ms CPU\n", g * 1e3, gcpu * 1e3);
-    printf("  mesh:   median %.1f ms wall, %.1f ms CPU (%d runs)\n", mw * 1e3, mc * 1e3, runs);
-    printf("  growth + mesh: %.0f m/s of stem (CPU)\n", len_m / (gcpu + mc));
+    printf("  mesh, 1 thread: median %.1f ms wall, %.1f ms CPU (%d runs)\n", m1w * 1e3, m1c * 1e3, runs);
+    printf("  mesh, threads = %d: median %.1f ms wall, %.1f ms CPU (all threads); %.2fx the 1-thread wall\n", threads,
+           mw * 1e3, mc * 1e3, m1w / mw);
+    printf("  growth + mesh: %.0f m/s of stem (CPU, 1 thread); %.0f m/s (wall, mesh on threads = %d)\n",
+           len_m / (gcpu + m1c), len_m / (g + mw), threads);
     banyan_mesh_free(m);
     banyan_ivy_free(iv);
     free(tw);

@@ -12,6 +12,8 @@
  *   - Mesh: materials, parts, `part` and `birth_step` attributes, leaf blades
  *     facing out from the wall but tilted off it, skeleton; same seed, same bytes;
  *     stepping in pieces equals stepping at once.
+ *   - The mesh is the same bytes on 1, 2, 3 and all threads (with and
+ *     without leaves and wind).
  *   - Bad input refused with a clear message and *out == NULL.
  *   - Every presets/ivy_*.json loads and generates; glb files for the
  *     validator. */
@@ -473,6 +475,40 @@ static void test_mesh(const char *outdir) {
     banyan_mesh_free(m);
 }
 
+/* The mesh on any number of threads is the one-thread mesh, byte for
+ * byte: its stems and leaves are planned, then written into disjoint
+ * ranges. A plant large enough that the threads are used. */
+static void test_mesh_threads(void) {
+    banyan_ivy_params p;
+    banyan_box hosts[8];
+    uint32_t nh = 0;
+    if (!load_preset("ivy_wall", &p, hosts, &nh)) return;
+    p.steps = 320;
+    banyan_ivy *iv = grow(&p, hosts, nh, p.steps);
+    if (!iv) return;
+    CHECK(iv->n > 8000, "only %d buds: too few for the threads to share the mesh", iv->n);
+    const int32_t counts[] = {2, 3, 0, 16};
+    for (int variant = 0; variant < 3; variant++) {
+        iv->p.leaves = variant != 1;
+        iv->p.wind = variant != 2;
+        banyan_error err;
+        banyan_mesh *one = NULL;
+        iv->p.threads = 1;
+        CHECK(banyan_ivy_mesh(iv, &one, &err) == BANYAN_OK, "1 thread: %s", err.message);
+        for (int k = 0; k < 4 && one; k++) {
+            banyan_mesh *m = NULL;
+            iv->p.threads = counts[k];
+            CHECK(banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK, "%d threads: %s", counts[k], err.message);
+            CHECK(m && banyan_mesh_hash(m) == banyan_mesh_hash(one) && m->vertex_count == one->vertex_count,
+                  "leaves %d, wind %d: %d threads (0: all cores) give other bytes than one", iv->p.leaves, iv->p.wind,
+                  counts[k]);
+            banyan_mesh_free(m);
+        }
+        banyan_mesh_free(one);
+    }
+    banyan_ivy_free(iv);
+}
+
 static void test_bad_input(void) {
     banyan_ivy_params p;
     banyan_box w = wall_box();
@@ -497,6 +533,10 @@ static void test_bad_input(void) {
     REFUSED(BANYAN_E_RANGE, "alpha = 1.2 must be within [0.5, 1]", &w, 1);
     p.steps = BANYAN_IVY_MAX_STEPS + 1;
     REFUSED(BANYAN_E_RANGE, "steps = 100001 must be within [0, 100000]", &w, 1);
+    p.threads = -1;
+    REFUSED(BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", &w, 1);
+    p.threads = BANYAN_IVY_MAX_THREADS + 1;
+    REFUSED(BANYAN_E_RANGE, "threads = 65 must be within [0, 64]", &w, 1);
     REFUSED(BANYAN_E_NO_HOSTS, "n_hosts = 0", &w, 0);
     p.start[0] = 10;
     REFUSED(BANYAN_E_START_FAR, "start_snap_max", &w, 1);
@@ -595,6 +635,7 @@ int main(int argc, char **argv) {
     test_light_and_stats();
     test_scenes();
     test_mesh(outdir);
+    test_mesh_threads();
     test_presets(outdir);
     return check_done("test_ivy");
 }

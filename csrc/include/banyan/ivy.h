@@ -29,6 +29,8 @@ extern "C" {
 
 /* Largest `steps` (and largest n of one banyan_ivy_step call). */
 #define BANYAN_IVY_MAX_STEPS 100000
+/* Most threads of banyan_ivy_params.threads (as an avenue's). */
+#define BANYAN_IVY_MAX_THREADS 64
 
 /* Bud states (also the skeleton's skel_tag). A0, A1, A2 are the three
  * successive apical states; A2 has no sucker. D is dormant, Z ended. */
@@ -117,6 +119,8 @@ typedef struct banyan_ivy_params {
     double max_seconds;         /* s, 0.01 .. 604800 [600] */
     double max_memory_mb;       /* MB of resident memory, 16 .. 1048576 [8192] */
     int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
+    int32_t threads;            /* threads of banyan_ivy_mesh: 0 (all cores, the default) .. BANYAN_IVY_MAX_THREADS;
+                                   the mesh does not depend on it; small plants use one */
 } banyan_ivy_params;
 
 /* Fewest internodes per leading stem (start_stems) a plant must have
