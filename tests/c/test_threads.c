@@ -5,7 +5,8 @@
  * hash (banyan_mesh_hash) must equal the sequential one. The avenue runs
  * its own worker threads inside these. Built under ThreadSanitizer too
  * (BANYAN_TSAN, tools/test.sh), where a data race fails the run. Roots
- * and ivy on meshes share one host set between all the threads. */
+ * and ivy on meshes share one host set between all the threads; one
+ * ivy meshes on two threads of its own inside them. */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,6 +78,10 @@ static uint64_t run_ivy(int v) {
     banyan_ivy_params_init(&p);
     p.seed = 3 + (uint64_t)v;
     p.steps = 40 + 10 * v;
+    if (v == 2) { /* large enough (4.7k buds) that the mesh runs on threads of its own */
+        p.steps = 160;
+        p.threads = 2;
+    }
     banyan_box h = banyan_box_make(0, 0.1, 1.5, 1.5, 0.1, 1.5);
     banyan_mesh *m = NULL;
     banyan_error e;
@@ -150,6 +155,7 @@ static job jobs[] = {
     {"roots", run_roots, 0},       {"roots", run_roots, 1},       {"keyaki", run_keyaki, 0},
     {"keyaki", run_keyaki, 1},     {"keyaki", run_keyaki, 2},     {"avenue", run_avenue, 0},
     {"avenue", run_avenue, 1},     {"ivy", run_ivy, 0},           {"ivy", run_ivy, 1},
+    {"ivy", run_ivy, 2},
     {"segments", run_segments, 0}, {"segments", run_segments, 1}, {"preset", run_preset, 0},
     {"preset", run_preset, 1},     {"preset", run_preset, 2},     {"roots_mesh", run_roots_mesh, 0},
     {"roots_mesh", run_roots_mesh, 1}, {"ivy_mesh", run_ivy_mesh, 0}, {"ivy_mesh", run_ivy_mesh, 1},
