@@ -26,10 +26,10 @@
  * and its petiole sway about their bud with its stiffness, level + 1,
  * flutter 1, a phase of their own. */
 #define _POSIX_C_SOURCE 200809L
-#include <sched.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -611,6 +611,14 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
     mb_free(&mb);
 }
 
+/* A wait for another thread's item: asleep, not spinning, so that on a
+ * busy machine the waiting thread does not take the time of the one it
+ * waits for (a process's threads share one scheduler group). */
+static void mesh_pause(void) {
+    const struct timespec t = {0, 50000}; /* 50 us */
+    nanosleep(&t, NULL);
+}
+
 /* One thread's share: items from the shared counter until none are
  * left, the job fails or is cancelled. The caller reports progress, by
  * items done, from iv->mesh_from to 1. */
@@ -642,7 +650,7 @@ static void mesh_work(void *job, int caller) {
             /* Every leaf placed first: a block's place depends on the
              * leaves before it. The queue hands out placement first, so
              * this waits at most for the other threads' last blocks. */
-            while (!atomic_load(&J->ready) && !atomic_load(&J->cancel) && !atomic_load(&J->status)) sched_yield();
+            while (!atomic_load(&J->ready) && !atomic_load(&J->cancel) && !atomic_load(&J->status)) mesh_pause();
             if (!atomic_load(&J->ready)) break;
             mesh_leaves(J, k - J->n_lblk - J->n_sblk);
         }
@@ -651,11 +659,11 @@ static void mesh_work(void *job, int caller) {
         if (caller && prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * (double)d / n_items))
             atomic_store(&J->cancel, 1);
     }
-    /* The caller waits for the others' last items here, yielding, rather
-     * than in pool_run's 2 ms sleeps: an item is a fraction of that. */
+    /* The caller waits for the others' last items here, in short sleeps,
+     * rather than in pool_run's 2 ms ones: an item is a fraction of that. */
     while (caller && atomic_load(&J->done) < n_items && !atomic_load(&J->cancel) && !atomic_load(&J->status)) {
         if (J->iv->prog && prog_at(J->iv->prog, J->iv->prog->last)) atomic_store(&J->cancel, 1);
-        sched_yield();
+        mesh_pause();
     }
     free(P); free(R); free(birth); free(wr);
 }
