@@ -21,7 +21,7 @@ banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh 
     prog g;
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0};
+    keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0, 1};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_build(&q, 0.0, 0, &sk, out, err);
     keyaki_skeleton_free(&sk);
@@ -40,7 +40,7 @@ banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_s
     prog g; /* the budget; no vertex estimate: nothing is meshed */
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    keyaki_run run = {&g, NULL, NULL, UINT64_MAX, 0};
+    keyaki_run run = {&g, NULL, NULL, UINT64_MAX, 0, 1};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_grow(p, &sk, err);
     if (s && prog_stopped(&g)) s = prog_fail(&g, err, "keyaki statistics");
