@@ -443,9 +443,9 @@ static void mesh_bark(const banyan_keyaki_params *p, const keyaki_node *n, int32
  * LEAF_CHUNK at a time, into the slices the plan gives them; the caller
  * then takes the chunks left. A leaf's bytes come from its index alone,
  * so any thread count writes the same mesh. */
-#define LEAF_CHUNK 8192
+#define LEAF_CHUNK 2048
 /* Vertices per chunk of the birth and stiffness pass. */
-#define BIRTH_CHUNK 65536
+#define BIRTH_CHUNK 16384
 
 typedef struct mesh_job {
     const banyan_keyaki_params *p;
@@ -588,7 +588,9 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     mb->cap_v = J->leaves_from;
     mb->cap_i = J->leaf_i0;
     mb->external = 1;
-    pool_run(threads, mesh_work, J, J->crun.g, J->crun.stop);
+    /* No heartbeat while the caller waits: it waits only for the chunks
+     * already taken, and its own chunks kept the budget. */
+    pool_run(threads, mesh_work, J, NULL, NULL);
     mb->cap_v = cap_v;
     mb->cap_i = cap_i;
     mb->external = external;
