@@ -29,8 +29,8 @@ BUILD_DIR=build-asan BANYAN_CMAKE_ARGS="-DBANYAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=
 
 echo "== ThreadSanitizer: the thread tests =="
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBANYAN_TSAN=ON >/dev/null
-cmake --build build-tsan --target test_threads test_avenue
-(cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^(test_threads|test_avenue)$')
+cmake --build build-tsan --target test_threads test_avenue test_keyaki test_wind_keyaki
+(cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -R '^(test_threads|test_avenue|test_keyaki|test_wind_keyaki)$')
 
 echo "== fuzzing (FUZZ_SECONDS per harness, default 60) =="
 bash tools/fuzz.sh

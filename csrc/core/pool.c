@@ -31,7 +31,7 @@ void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog 
     atomic_fetch_sub(&P.running, threads - 1 - started);
     work(job, 1);
     const struct timespec pause = {0, 2000000}; /* 2 ms */
-    while (atomic_load(&P.running) > 0) {
+    while (g && atomic_load(&P.running) > 0) { /* no prog to keep: just join */
         if (g && prog_at(g, g->last)) atomic_store(cancel, 1);
         nanosleep(&pause, NULL);
     }

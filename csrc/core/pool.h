@@ -4,7 +4,8 @@
  * once done with its share, keeps the budget (and the progress callback's
  * heartbeat) every 2 ms until the others finish, and sets *cancel when
  * prog_at says stop. A thread that cannot be started only means fewer
- * workers. */
+ * workers. g NULL: the caller joins at once (short jobs whose threads
+ * poll the budget themselves), no 2 ms heartbeat to wait out. */
 #ifndef BANYAN_POOL_H
 #define BANYAN_POOL_H
 

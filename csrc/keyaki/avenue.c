@@ -271,7 +271,7 @@ static void work(avenue_job *J, int caller) {
      * need while it grows, so the refusal comes at the same total on any
      * number of threads, each tree stopped part way. */
     keyaki_run run = {caller ? J->prog : NULL, &J->cancel, J->phase == 0 ? &J->counted : NULL,
-                      J->phase == 0 ? J->max_vertices : UINT64_MAX, 0};
+                      J->phase == 0 ? J->max_vertices : UINT64_MAX, 0, 1}; /* one thread a tree */
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     for (;;) {
         if (atomic_load(&J->cancel)) break;

@@ -43,6 +43,7 @@
 
 #include "core/error.h"
 #include "core/leaf_look.h"
+#include "core/pool.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"
 
@@ -358,11 +359,12 @@ static void set_attrs(mesh_builder *mb, const int attr[3], uint32_t from, uint32
     }
 }
 
-void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
-                      mesh_builder *mb, const int attr[3], uint32_t bark_mat, uint32_t leaf_mat, uint32_t group,
-                      double tree_id) {
-    uint32_t base = mb->nv;
-    if (mb_reserve(mb, body->vertices, body->indices)) return;
+/* The bark part from the current vertex on: every limb's tube, the
+ * segment twigs and the crown's twigs. On the caller's thread (it alone
+ * polls the run's prog). */
+static void mesh_bark(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
+                      mesh_builder *mb, const int attr[3], const keyaki_wind *wp, uint32_t base) {
+    const keyaki_wind w = *wp;
     int32_t max_pts = 2;
     for (int32_t k = 0; k < body->limb_count; k++)
         if (body->limbs[k].points > max_pts) max_pts = body->limbs[k].points;
@@ -370,26 +372,11 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     double *rad = malloc(sizeof(double) * (size_t)max_pts);
     int32_t *ids = malloc(sizeof(int32_t) * (size_t)max_pts);
     double *vals = malloc(sizeof(double) * 7 * (size_t)max_pts); /* wind_limb's per-ring values */
-    keyaki_wind w;
-    int no_w = wind_setup(p, n, count, &body->ws, mb->n_skel, &w);
-    if (!pts || !rad || !ids || !vals || no_w) {
+    if (!pts || !rad || !ids || !vals) {
         free(pts); free(rad); free(ids); free(vals);
-        if (!no_w) wind_free(&w);
         mb->status = BANYAN_E_NOMEM;
         return;
     }
-    /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i;
-     * then the twig lines and twigs as they are meshed. */
-    mb_skel_reserve(mb, body->skel_points, body->skel_edges);
-    for (int32_t i = -1; i < count; i++) {
-        const keyaki_node *x = &n[i < 0 ? 0 : i];
-        int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);
-        mb_skel_point(mb, i < 0 ? x->start : node_end(x), x->radius, tag);
-    }
-    for (int32_t i = 0; i < count; i++)
-        mb_skel_edge(mb, w.skel0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), w.skel0 + (uint32_t)i + 1);
-    mb_begin_part(mb, bark_mat, group);
-    mb_set_attr(mb, attr[0], tree_id);
     for (int32_t k = 0; k < body->limb_count; k++) {
         if ((k & 255) == 0 && keyaki_stopped(body->run)) {
             mb->status = BANYAN_E_CANCELLED;
@@ -446,37 +433,193 @@ void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32
     free(rad);
     free(ids);
     free(vals);
+    if (mb->status) return;
+    keyaki_twigs_mesh(p, n, count, mb, attr, &w);
+    keyaki_crown_mesh_twigs(&body->crown, mb, attr, &w);
+}
+
+/* One tree meshed on up to run->threads threads (docs/keyaki.md
+ * "Threads"): the caller sweeps the bark while the others mesh the leaves,
+ * LEAF_CHUNK at a time, into the slices the plan gives them; the caller
+ * then takes the chunks left. A leaf's bytes come from its index alone,
+ * so any thread count writes the same mesh. */
+#define LEAF_CHUNK 2048
+/* Vertices per chunk of the birth and stiffness pass. */
+#define BIRTH_CHUNK 16384
+
+typedef struct mesh_job {
+    const banyan_keyaki_params *p;
+    const keyaki_node *n;
+    int32_t count;
+    keyaki_body *body;
+    mesh_builder *mb;         /* the caller's builder: only the bark's thread touches it while the job runs */
+    mesh_builder tmpl;        /* the builder as the leaves start from, copied per chunk */
+    const int *attr;
+    const keyaki_wind *w;
+    uint32_t base, leaves_from, leaf_i0; /* tree's first vertex; the leaves' first vertex and index */
+    int32_t chunks;
+    atomic_int next;          /* next chunk */
+    atomic_int status;        /* first failure of a leaf chunk */
+    atomic_int stop;          /* the run's stop seen by every thread */
+    keyaki_run crun, wrun;    /* the caller's run (polls the prog) and the others' (the stop flag only) */
+    /* the birth pass */
+    double inv;
+    int birth, stiff;
+} mesh_job;
+
+static void leaf_chunk(mesh_job *J, int32_t c, keyaki_run *run) {
+    int32_t k0 = c * LEAF_CHUNK, k1 = k0 + LEAF_CHUNK;
+    if (k1 > J->body->crown.n_leaves) k1 = J->body->crown.n_leaves;
+    mesh_builder v = J->tmpl; /* a view on the leaves' slice: never grown, never freed */
+    v.nv = J->leaves_from + 4 * (uint32_t)k0;
+    v.ni = J->leaf_i0 + 6 * (uint32_t)k0;
+    v.cap_v = J->leaves_from + 4 * (uint32_t)k1;
+    v.cap_i = J->leaf_i0 + 6 * (uint32_t)k1;
+    v.external = 1;
+    keyaki_crown_mesh_leaves(J->p, &J->body->crown, &v, J->attr, J->w, k0, k1, run);
+    int st = v.status ? (int)v.status : v.nv != v.cap_v || v.ni != v.cap_i ? BANYAN_E_INTERNAL : 0;
+    int none = 0;
+    if (st) atomic_compare_exchange_strong(&J->status, &none, st);
+}
+
+static void mesh_work(void *job, int caller) {
+    mesh_job *J = job;
+    if (caller) {
+        mesh_bark(J->p, J->n, J->count, J->body, J->mb, J->attr, J->w, J->base);
+        if (J->mb->status && J->crun.stop == &J->stop) atomic_store(&J->stop, 1); /* the leaves are moot */
+    }
+    keyaki_run *run = caller ? &J->crun : &J->wrun;
+    for (int32_t c; (c = atomic_fetch_add(&J->next, 1)) < J->chunks;) leaf_chunk(J, c, run);
+}
+
+/* Birth over the tree's longest wood (a leaf LEAF_DELAY later) and the
+ * stiffness from it, vertices from .. to - 1. Rings and leaves share one
+ * birth over several vertices: the pow is taken once for each run. */
+static void birth_range(mesh_job *J, uint32_t from, uint32_t to) {
+    mesh_builder *mb = J->mb;
+    float *bt = mb->attr[J->birth], *st = J->stiff >= 0 ? mb->attr[J->stiff] : NULL;
+    float last_b = 0, last_s = 0;
+    int have = 0;
+    for (uint32_t v = from; v < to && st; v++) {
+        if (!have || bt[v] != last_b) {
+            double u = 1.0 - bt[v] * J->inv;
+            last_b = bt[v];
+            last_s = (float)(u > 0 ? (u < 1 ? pow(u, KEYAKI_STIFF_POWER) : 1.0) : 0.0);
+            have = 1;
+        }
+        st[v] = last_s;
+    }
+    for (uint32_t v = from; v < to; v++) {
+        double b = bt[v] * J->inv + (v >= J->leaves_from ? LEAF_DELAY : 0.0);
+        bt[v] = (float)(b < 1.0 ? b : 1.0);
+    }
+}
+
+static void birth_work(void *job, int caller) {
+    (void)caller;
+    mesh_job *J = job;
+    uint32_t end = J->mb->nv;
+    for (int32_t c; (c = atomic_fetch_add(&J->next, 1)) < J->chunks;) {
+        uint32_t from = J->base + (uint32_t)c * BIRTH_CHUNK, to = end - from > BIRTH_CHUNK ? from + BIRTH_CHUNK : end;
+        birth_range(J, from, to);
+    }
+}
+
+void keyaki_body_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, keyaki_body *body,
+                      mesh_builder *mb, const int attr[3], uint32_t bark_mat, uint32_t leaf_mat, uint32_t group,
+                      double tree_id) {
+    uint32_t base = mb->nv, ibase = mb->ni;
+    if (mb_reserve(mb, body->vertices, body->indices)) return;
+    keyaki_wind w;
+    if (wind_setup(p, n, count, &body->ws, mb->n_skel, &w)) {
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    /* Skeleton: point 0 the trunk base, point i + 1 the end of branch i;
+     * then the twig lines and twigs as they are meshed. */
+    mb_skel_reserve(mb, body->skel_points, body->skel_edges);
+    for (int32_t i = -1; i < count; i++) {
+        const keyaki_node *x = &n[i < 0 ? 0 : i];
+        int32_t tag = x->level | x->order << 8 | (x->flags & KN_BROKEN ? 1 << 16 : 0);
+        mb_skel_point(mb, i < 0 ? x->start : node_end(x), x->radius, tag);
+    }
+    for (int32_t i = 0; i < count; i++)
+        mb_skel_edge(mb, w.skel0 + (uint32_t)(n[i].parent < 0 ? 0 : n[i].parent + 1), w.skel0 + (uint32_t)i + 1);
+    mb_begin_part(mb, bark_mat, group);
+    mb_set_attr(mb, attr[0], tree_id);
     if (mb->status) {
         wind_free(&w);
         return;
     }
-    keyaki_twigs_mesh(p, n, count, mb, attr, &w);
-
-    keyaki_crown_mesh_twigs(&body->crown, mb, attr, &w);
-    uint32_t leaves_from = mb->nv;
-    if (body->vertices > body->bark_vertices) {
-        mb_begin_part(mb, leaf_mat, group);
-        keyaki_crown_mesh_leaves(p, &body->crown, mb, attr, &w);
+    mesh_job *J = malloc(sizeof *J);
+    if (!J) {
+        wind_free(&w);
+        mb->status = BANYAN_E_NOMEM;
+        return;
     }
+    int32_t leaves = body->vertices > body->bark_vertices ? body->crown.n_leaves : 0;
+    J->p = p;
+    J->n = n;
+    J->count = count;
+    J->body = body;
+    J->mb = mb;
+    J->tmpl = *mb;
+    J->attr = attr;
+    J->w = &w;
+    J->base = base;
+    J->leaves_from = base + body->bark_vertices;
+    J->leaf_i0 = ibase + body->bark_indices;
+    J->chunks = (leaves + LEAF_CHUNK - 1) / LEAF_CHUNK;
+    atomic_init(&J->next, 0);
+    atomic_init(&J->status, 0);
+    atomic_init(&J->stop, 0);
+    memset(&J->crun, 0, sizeof J->crun);
+    if (body->run) J->crun = *body->run;
+    if (!J->crun.stop) J->crun.stop = &J->stop;
+    J->wrun = J->crun;
+    J->wrun.g = NULL;
+    int threads = J->crun.threads > 1 ? J->crun.threads : 1;
+    if (threads > J->chunks + 1) threads = J->chunks + 1;
+    /* While the leaves are written beside it, the bark must stay in its
+     * slice: a plan that was not exact fails (BANYAN_E_INTERNAL) rather
+     * than moving the arrays under the other threads. */
+    uint32_t cap_v = mb->cap_v, cap_i = mb->cap_i;
+    int external = mb->external;
+    mb->cap_v = J->leaves_from;
+    mb->cap_i = J->leaf_i0;
+    mb->external = 1;
+    /* No heartbeat while the caller waits: it waits only for the chunks
+     * already taken, and its own chunks kept the budget. */
+    pool_run(threads, mesh_work, J, NULL, NULL);
+    mb->cap_v = cap_v;
+    mb->cap_i = cap_i;
+    mb->external = external;
     wind_free(&w);
+    if (!mb->status && mb->nv != J->leaves_from) mb->status = BANYAN_E_INTERNAL;
+    if (!mb->status && atomic_load(&J->status)) mb->status = (banyan_status)atomic_load(&J->status);
+    if (!mb->status && leaves) {
+        mb_begin_part(mb, leaf_mat, group);
+        mb->nv = J->leaves_from + 4 * (uint32_t)leaves;
+        mb->ni = J->leaf_i0 + 6 * (uint32_t)leaves;
+    }
     /* Birth was written as path length (m): the longest wood is 1, a leaf
      * comes LEAF_DELAY after its wood. Stiffness follows from the path p
      * (a leaf's its wood's): (1 - p / P)^KEYAKI_STIFF_POWER. */
-    if (mb->status || body->ws.birth < 0) return;
+    if (mb->status || body->ws.birth < 0) {
+        free(J);
+        return;
+    }
     float *bt = mb->attr[body->ws.birth], top = 0;
-    for (uint32_t v = base; v < leaves_from; v++) top = bt[v] > top ? bt[v] : top;
-    double inv = top > 0 ? 1.0 / top : 0.0; /* top * inv rounds to 1.0f */
-    if (body->ws.stiffness >= 0) {
-        float *st = mb->attr[body->ws.stiffness];
-        for (uint32_t v = base; v < mb->nv; v++) {
-            double u = 1.0 - bt[v] * inv;
-            st[v] = (float)(u > 0 ? (u < 1 ? pow(u, KEYAKI_STIFF_POWER) : 1.0) : 0.0);
-        }
-    }
-    for (uint32_t v = base; v < mb->nv; v++) {
-        double b = bt[v] * inv + (v >= leaves_from ? LEAF_DELAY : 0.0);
-        bt[v] = (float)(b < 1.0 ? b : 1.0);
-    }
+    for (uint32_t v = base; v < J->leaves_from; v++) top = bt[v] > top ? bt[v] : top;
+    J->inv = top > 0 ? 1.0 / top : 0.0; /* top * inv rounds to 1.0f */
+    J->birth = body->ws.birth;
+    J->stiff = body->ws.stiffness;
+    J->chunks = (int32_t)((mb->nv - base + BIRTH_CHUNK - 1) / BIRTH_CHUNK);
+    atomic_store(&J->next, 0);
+    threads = J->crun.threads > 1 ? J->crun.threads : 1;
+    if (threads > J->chunks) threads = J->chunks > 0 ? J->chunks : 1;
+    pool_run(threads, birth_work, J, NULL, NULL);
+    free(J);
 }
 
 /* Grows the skeleton, orders it and plans its body: what counting and

@@ -889,13 +889,14 @@ void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int 
 }
 
 void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
-                              const int attr[3], const keyaki_wind *w) {
+                              const int attr[3], const keyaki_wind *w, int32_t k0, int32_t k1, keyaki_run *run) {
     int32_t cols = 1, rows = 1;
     leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
     mb_set_attr(mb, attr[2], 0);
     const double hu = LEAF_KEYAKI_HALF_U;
-    for (int32_t k = 0; k < c->n_leaves && !mb->status; k++) {
-        if ((k & 4095) == 0 && keyaki_stopped(c->run)) {
+    if (k1 > c->n_leaves) k1 = c->n_leaves;
+    for (int32_t k = k0; k < k1 && !mb->status; k++) {
+        if ((k & 4095) == 0 && keyaki_stopped(run)) {
             mb->status = BANYAN_E_CANCELLED;
             return;
         }

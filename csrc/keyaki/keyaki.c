@@ -2,7 +2,9 @@
  * (banyan_keyaki_generate) or measured only (banyan_keyaki_stats), per
  * spec/keyaki.md. Growth is in growth.c, Strahler in strahler.c, the body
  * in body.c. The tree takes no hosts: it stands at `position`, up +Z. */
+#define _POSIX_C_SOURCE 200809L /* sysconf */
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "core/frame.h"
@@ -21,7 +23,12 @@ banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh 
     prog g;
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0};
+    int threads = p->threads;
+    if (threads == 0) { /* all cores */
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
+    }
+    keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0, threads};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_build(&q, 0.0, 0, &sk, out, err);
     keyaki_skeleton_free(&sk);
@@ -40,7 +47,7 @@ banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_s
     prog g; /* the budget; no vertex estimate: nothing is meshed */
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    keyaki_run run = {&g, NULL, NULL, UINT64_MAX, 0};
+    keyaki_run run = {&g, NULL, NULL, UINT64_MAX, 0, 1};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_grow(p, &sk, err);
     if (s && prog_stopped(&g)) s = prog_fail(&g, err, "keyaki statistics");

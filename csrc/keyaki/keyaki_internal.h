@@ -54,6 +54,8 @@ typedef struct keyaki_run {
     atomic_ullong *tally;  /* avenue's count pass: vertices counted or promised by all trees; NULL alone */
     uint64_t max_vertices; /* what the tree (alone) or the tally may reach; UINT64_MAX: no estimate */
     uint64_t promised;     /* this tree's part of the tally so far */
+    int threads;           /* threads that may mesh this one tree (0, 1: the caller alone; an avenue's trees
+                              keep 1: no pools inside its pool) */
 } keyaki_run;
 
 /* 1 once the run must stop (budget spent, cancelled, or another thread
@@ -191,10 +193,12 @@ void keyaki_crown_free(keyaki_crown *c);
 /* Appends the twig tubes to the current part (c->vertices exactly), with
  * their wind and birth, and the twigs to the skeleton (w: NULL for none). */
 void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3], const keyaki_wind *w);
-/* Appends the leaf quads (4 vertices, 6 indices each) to the current
- * part, with their wind and birth (w: NULL for none). */
+/* Appends leaves k0 .. k1 - 1 (4 vertices, 6 indices each; every value
+ * from k alone, so ranges may be meshed on several threads into disjoint
+ * slices) to the current part, with their wind and birth (w: NULL for
+ * none); run: the budget this thread may poll. */
 void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
-                              const int attr[3], const keyaki_wind *w);
+                              const int attr[3], const keyaki_wind *w, int32_t k0, int32_t k1, keyaki_run *run);
 /* Skeleton points and edges the crown's twigs add. */
 void keyaki_crown_skel_counts(const keyaki_crown *c, uint64_t *points, uint64_t *edges);
 

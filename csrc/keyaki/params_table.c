@@ -7,7 +7,8 @@
  * preset or `--set tree.levels=14` sets every tree at once. The tree's
  * seed, max_vertices, position and heading are not in the avenue table:
  * the avenue sets them per tree; nor are its max_seconds and max_memory_mb:
- * the avenue's own budget covers the whole avenue. */
+ * the avenue's own budget covers the whole avenue; nor is its threads:
+ * the avenue's threads argument spreads its trees, one thread each. */
 #include <math.h>
 #include <string.h>
 
@@ -117,6 +118,7 @@ const banyan_param_info keyaki_table_rows[] = {
     BP_INT(K, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(K, KEYAKI_F),
     KEYAKI_BUDGET_ROWS(K),
+    BP_INT(K, threads, "Threads", "Limits", 0, BANYAN_AVENUE_MAX_THREADS, "threads meshing the tree (0: all cores); the mesh is the same on any"),
 };
 #undef K
 const int32_t keyaki_table_row_count = (int32_t)(sizeof keyaki_table_rows / sizeof keyaki_table_rows[0]);

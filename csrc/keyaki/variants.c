@@ -52,7 +52,7 @@ typedef struct variant_job {
 } variant_job;
 
 static void work(variant_job *J, int caller) {
-    keyaki_run run = {caller ? J->prog : NULL, &J->cancel, NULL, J->max_vertices, 0};
+    keyaki_run run = {caller ? J->prog : NULL, &J->cancel, NULL, J->max_vertices, 0, 1}; /* one thread a tree */
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     for (;;) {
         if (atomic_load(&J->cancel)) break;

@@ -498,6 +498,10 @@ static void bad_input(void) {
     refuse(&p, BANYAN_E_RANGE, "sides_min = 20 must be <= sides_max = 14", "sides order");
     p.fork_angle = 80;
     refuse(&p, BANYAN_E_RANGE, "fork_angle + fork_angle_step", "fork angle past 90");
+    p.threads = -1;
+    refuse(&p, BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", "threads -1");
+    p.threads = 65;
+    refuse(&p, BANYAN_E_RANGE, "threads = 65 must be within [0, 64]", "threads 65");
     p.tilt_mid = 70;
     refuse(&p, BANYAN_E_RANGE, "tilt_mid", "tilt order");
     p.model = 4;
@@ -528,6 +532,32 @@ static double stdev(const double *v, int n) {
     m /= n;
     for (int i = 0; i < n; i++) s += (v[i] - m) * (v[i] - m);
     return sqrt(s / n);
+}
+
+/* One tree meshed on 1, 2, 3 and all cores: the same bytes (wind on and
+ * off, leaves in several chunks and none). */
+static void threads_same_mesh(void) {
+    for (int v = 0; v < 3; v++) {
+        banyan_keyaki_params p;
+        banyan_keyaki_params_init(&p);
+        p.seed = 9 + (uint64_t)v;
+        p.wind = v != 1;
+        p.leaves = v != 2;
+        uint64_t h[4] = {0, 0, 0, 0};
+        const int threads[4] = {1, 2, 3, 0};
+        for (int t = 0; t < 4; t++) {
+            banyan_mesh *m = NULL;
+            banyan_error err = {0, ""};
+            p.threads = threads[t];
+            CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "threads %d: %s", threads[t], err.message);
+            if (m) h[t] = banyan_mesh_hash(m);
+            if (m && t == 0 && v == 0) CHECK(m->part_count == 2 && m->parts[1].vertex_count > 4 * 8192 * 2,
+                                           "variant %d: too few leaves to split (%u parts)", v, m->part_count);
+            banyan_mesh_free(m);
+        }
+        for (int t = 1; t < 4; t++)
+            CHECK(h[t] && h[t] == h[0], "variant %d: threads %d gives other bytes than 1 thread", v, threads[t]);
+    }
 }
 
 static void determinism_variety(void) {
@@ -668,6 +698,7 @@ int main(int argc, char **argv) {
         for (uint64_t s = 1; s <= 6; s++) crack_free(s * 101, m);
     bad_input();
     determinism_variety();
+    threads_same_mesh();
     presets(outdir);
     return check_done("test_keyaki");
 }

@@ -176,6 +176,9 @@ typedef struct banyan_keyaki_params {
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
     double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add. Default 8192 */
     int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
+    int32_t threads;         /* 0 (all cores) .. BANYAN_AVENUE_MAX_THREADS: threads that mesh this one tree
+                                (banyan_keyaki_generate; the mesh does not depend on it). An avenue's trees each
+                                run on one thread: the avenue's own threads argument spreads them. Default 0 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
