@@ -249,6 +249,8 @@ class Job:
         """MeshData with its C mesh (call within core.mesh.capture())."""
         if self.generator == "avenue":
             return self.G.avenue(params, threads=self.threads)
+        params = params.copy()
+        params.set("threads", self.threads)  # one tree's own threads (keyaki's params since issue 23)
         return self.G.keyaki(params)
 
     def write_glb(self, d, path):

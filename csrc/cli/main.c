@@ -63,6 +63,8 @@ static int usage(FILE *f) {
                "shares of its triangles, optionally ending in crossed billboard cards.\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
                "(docs/game-engines.md).\n"
+               "--threads N: threads for avenue (one tree each), keyaki and ivy (meshing); 0: all cores\n"
+               "(default); the output is the same on any count.\n"
                "--fsync syncs the glTF file to the disk before it replaces -o, so it survives a power cut\n"
                "(slower for large files; without it the file is still replaced whole: docs/formats.md).\n"
                "\ncommands:\n");
@@ -233,6 +235,7 @@ int main(int argc, char **argv) {
     banyan_gltf_options_init(&gltf_opt);
     const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
     int n_sets = 0, n_host_args = 0;
+    const char *threads_text = NULL; /* --threads as given: also the ivy's and the tree's own threads */
     if (!sets || !host_args) {
         free(sets);
         free(host_args);
@@ -255,6 +258,7 @@ int main(int argc, char **argv) {
                 goto bad_flag;
             }
             job.threads = (int)t;
+            threads_text = v;
         }
         else if (!strcmp(a, "--stats")) stats = 1;
         else if (!strcmp(a, "--textures") && has_val) {
@@ -381,6 +385,12 @@ int main(int argc, char **argv) {
     job.host_set = host_set;
     if (seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", seed, &err)) {
         fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err.message);
+        goto out;
+    }
+    /* Before the --set pairs, so that --set threads=N still wins. */
+    if (threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
+        banyan_param_set_text(g, params, "threads", threads_text, &err)) {
+        fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err.message);
         goto out;
     }
     for (int i = 0; i < n_sets; i++) {

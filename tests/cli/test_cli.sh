@@ -172,6 +172,15 @@ expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --fsync --stat
 expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --stats -o "$out/cli_keyaki_nofsync.glb"
 if cmp -s "$out/cli_keyaki_fsync.glb" "$out/cli_keyaki_nofsync.glb"; then pass=$((pass+1))
 else fail=$((fail+1)); echo "FAIL: --fsync changed the file's bytes"; fi
+# --threads reaches one tree and the ivy too (their own threads param), and
+# the bytes do not depend on it; out of range it is refused.
+for g in keyaki ivy; do
+    expect 0 "\"command\": \"$g\"" -- "$bin" $g --texture-size 64 --threads 1 --stats -o "$out/cli_${g}_t1.glb"
+    expect 0 "\"command\": \"$g\"" -- "$bin" $g --texture-size 64 --threads 2 --stats -o "$out/cli_${g}_t2.glb"
+    if cmp -s "$out/cli_${g}_t1.glb" "$out/cli_${g}_t2.glb"; then pass=$((pass+1))
+    else fail=$((fail+1)); echo "FAIL: $g --threads changed the file's bytes"; fi
+done
+expect 2 "must be a whole number in [0, 64]" -- "$bin" keyaki --threads 65 -o "$out/cli_keyaki_t65.glb"
 expect 2 "--lod '0.5,0.6' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,0.6
 expect 2 "--lod 'billboard,0.5' must be up to 7 falling ratios" -- "$bin" keyaki --lod billboard,0.5
 expect 2 "--lod '0.5,' must be up to 7 falling ratios" -- "$bin" keyaki --lod 0.5,
