@@ -30,10 +30,13 @@ void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog 
         if (pthread_create(&tid[started], NULL, worker, &P) == 0) started++;
     atomic_fetch_sub(&P.running, threads - 1 - started);
     work(job, 1);
-    const struct timespec pause = {0, 2000000}; /* 2 ms */
+    /* Sleeps from 50 us doubling to 2 ms: short jobs (an ivy's mesh items)
+     * are joined soon after they end, long ones wake the caller rarely. */
+    struct timespec pause = {0, 50000};
     while (g && atomic_load(&P.running) > 0) { /* no prog to keep: just join */
-        if (g && prog_at(g, g->last)) atomic_store(cancel, 1);
+        if (prog_at(g, g->last)) atomic_store(cancel, 1);
         nanosleep(&pause, NULL);
+        if (pause.tv_nsec < 2000000) pause.tv_nsec = pause.tv_nsec * 2 < 2000000 ? pause.tv_nsec * 2 : 2000000;
     }
     for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
 }

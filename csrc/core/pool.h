@@ -2,10 +2,10 @@
  * trees, an instanced avenue's variants): each thread runs work(job,
  * caller) and takes items from the job's own atomic counter. The caller,
  * once done with its share, keeps the budget (and the progress callback's
- * heartbeat) every 2 ms until the others finish, and sets *cancel when
+ * heartbeat) in sleeps of 50 us growing to 2 ms until the others finish, and sets *cancel when
  * prog_at says stop. A thread that cannot be started only means fewer
  * workers. g NULL: the caller joins at once (short jobs whose threads
- * poll the budget themselves), no 2 ms heartbeat to wait out. */
+ * poll the budget themselves), no heartbeat to wait out. */
 #ifndef BANYAN_POOL_H
 #define BANYAN_POOL_H
 

@@ -659,12 +659,6 @@ static void mesh_work(void *job, int caller) {
         if (caller && prog_at(iv->prog, iv->mesh_from + (1.0 - iv->mesh_from) * (double)d / n_items))
             atomic_store(&J->cancel, 1);
     }
-    /* The caller waits for the others' last items here, in short sleeps,
-     * rather than in pool_run's 2 ms ones: an item is a fraction of that. */
-    while (caller && atomic_load(&J->done) < n_items && !atomic_load(&J->cancel) && !atomic_load(&J->status)) {
-        if (J->iv->prog && prog_at(J->iv->prog, J->iv->prog->last)) atomic_store(&J->cancel, 1);
-        mesh_pause();
-    }
     free(P); free(R); free(birth); free(wr);
 }
 
