@@ -17,7 +17,7 @@ cd "$here"
 # for the add-on's tests in a real window (progress bar, Esc), Slurm and
 # munge for the batch runner's farm tests (a one-node cluster).
 packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libembree-dev
-          libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev
+          libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev libsleef-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth slurm-wlm munge)
 missing=()

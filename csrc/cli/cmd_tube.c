@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "core/dmath.h"
 #include "core/numparse.h"
 
 typedef struct tube_demo_params {
@@ -22,8 +23,8 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     double pts[3 * N], radii[N];
     for (int i = 0; i < N; i++) {
         double t = i / (double)(N - 1);
-        pts[3 * i] = 0.3 * cos(6.0 * t);
-        pts[3 * i + 1] = 0.3 * sin(6.0 * t);
+        pts[3 * i] = 0.3 * dm_cos(6.0 * t);
+        pts[3 * i + 1] = 0.3 * dm_sin(6.0 * t);
         pts[3 * i + 2] = 1.2 * t;
         radii[i] = 0.06 * (1.0 - 0.6 * t);
     }

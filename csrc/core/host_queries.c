@@ -1,8 +1,16 @@
 /* Queries on mesh hosts (docs/hosts.md, "Queries"): closest points by
  * Embree's point query with a per-triangle callback, the sign by the
  * closest feature's pseudonormal or by three rays, segment distances and
- * sphere sweeps exact per triangle, first hits by rtcIntersect1. The
- * host set itself is built in hosts.c. */
+ * sphere sweeps exact per triangle, first hits and crossings by rays. The
+ * host set itself is built in hosts.c.
+ *
+ * Embree only finds candidates: its tree is over padded triangle boxes
+ * (a user geometry) and every distance, hit and crossing is computed here
+ * in double. Each answer is the least under a total order (distance or
+ * hit time, then triangle index), and culls drop only triangles provably
+ * farther by more than the mesh's slack, so the answer does not depend on
+ * the order Embree visits triangles in, which differs with its kernel
+ * (SSE, AVX2, AVX-512) and so with the CPU (docs/api.md, "Determinism"). */
 #include <embree3/rtcore.h>
 #include <float.h>
 #include <math.h>
@@ -50,30 +58,40 @@ static v3 closest_on_triangle(v3 p, v3 a, v3 b, v3 c, int *region) {
 typedef struct nq_ctx {
     const host_mesh *m;
     v3 p;           /* local */
-    double best2;
+    double best2, best; /* squared and plain */
     v3 q;
     uint32_t prim;
     int region;
 } nq_ctx;
 
+/* Embree's float radius for an exact distance d: never below it. */
+static float query_radius(const host_mesh *m, double d) {
+    return (float)(d * (1.0 + 1e-6)) + m->bpad + FLT_MIN;
+}
+
 static bool nq_cb(struct RTCPointQueryFunctionArguments *a) {
     nq_ctx *c = (nq_ctx *)a->userPtr;
-    const uint32_t *t = c->m->tri + 3 * (size_t)a->primID;
-    /* The plane is no nearer than the triangle: most leaves end here. */
-    double hp = v3_dot(v3_sub(c->p, vtx(c->m, t[0])), f3(c->m->fnrm + 3 * (size_t)a->primID));
-    if (hp * hp >= c->best2) return false;
+    const uint32_t prim = a->primID;
+    if (prim >= c->m->nt) return false; /* a hole's cap */
+    const uint32_t *t = c->m->tri + 3 * (size_t)prim;
+    /* The plane is no nearer than the triangle: most leaves end here. The
+     * stored float normal is off by up to 1e-7 of |p - v0|: the cull keeps
+     * 1e-5 of it (as an L1 bound) in hand. */
+    v3 dp = v3_sub(c->p, vtx(c->m, t[0]));
+    double hp = fabs(v3_dot(dp, f3(c->m->fnrm + 3 * (size_t)prim)));
+    if (hp - 1e-5 * (fabs(dp.x) + fabs(dp.y) + fabs(dp.z)) - c->m->slack > c->best) return false;
     int region;
     v3 q = closest_on_triangle(c->p, vtx(c->m, t[0]), vtx(c->m, t[1]), vtx(c->m, t[2]), &region);
     double d2 = v3_len2(v3_sub(c->p, q));
-    if (d2 < c->best2) {
-        c->best2 = d2;
-        c->q = q;
-        c->prim = a->primID;
-        c->region = region;
-        a->query->radius = (float)(sqrt(d2) * (1.0 + 1e-6)) + FLT_MIN;
-        return true;
-    }
-    return false;
+    /* The least (d2, triangle): a tie with the cap is no hit. */
+    if (d2 > c->best2 || (d2 == c->best2 && (c->prim == UINT32_MAX || prim >= c->prim))) return false;
+    c->best2 = d2;
+    c->best = sqrt(d2);
+    c->q = q;
+    c->prim = prim;
+    c->region = region;
+    a->query->radius = query_radius(c->m, c->best);
+    return true;
 }
 
 /* The pseudonormal of the closest feature. */
@@ -88,45 +106,140 @@ static v3 feature_normal(const host_mesh *m, uint32_t prim, int region) {
     return tw == UINT32_MAX ? n : v3_norm_or(v3_add(n, f3(m->fnrm + 3 * (size_t)(tw / 3))), n);
 }
 
-/* ---------------------------------------------------- inside by rays */
+/* -------------------------------------------------------------- rays */
 
-typedef struct count_ctx {
-    struct RTCIntersectContext ctx; /* first: Embree hands the filter this pointer */
-    const host_mesh *m;
-    v3 dir;
-    int wind, cross;
-} count_ctx;
+/* A ray from o along d (both the float ray Embree walks, in double) over
+ * [0, tmax]: every crossing counted (count), or the first hit kept. */
+typedef struct ray_ctx {
+    struct RTCIntersectContext ctx; /* first: Embree hands the callback this pointer */
+    v3 o, d;
+    int kx, ky, kz;                 /* d's axes, kz the largest */
+    double sx, sy, sz;              /* the shear taking d to +z */
+    double tmax;
+    int count;
+    int wind, cross;                /* count: exits minus entries, crossings */
+    double t;                       /* first hit: its t and triangle */
+    uint32_t prim;
+} ray_ctx;
 
-static void count_filter(const struct RTCFilterFunctionNArguments *a) {
-    count_ctx *c = (count_ctx *)a->context;
-    for (unsigned i = 0; i < a->N; i++) {
-        if (!a->valid[i]) continue;
-        /* RTCHitN_primID is C++ only: the SOA layout's primID row. */
-        unsigned prim = ((const unsigned *)a->hit)[5 * a->N + i];
-        double dn = v3_dot(f3(c->m->fnrm + 3 * (size_t)prim), c->dir);
-        c->wind += dn > 0 ? 1 : -1; /* leaving the solid counts +1 */
-        c->cross++;
-        a->valid[i] = 0; /* go on to the next crossing */
+static double axis(v3 v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
+
+static void ray_start(ray_ctx *c, struct RTCRayHit *rh, v3 o, v3 d, double tmax, int count) {
+    rtcInitIntersectContext(&c->ctx);
+    memset(rh, 0, sizeof *rh);
+    rh->ray.org_x = (float)o.x, rh->ray.org_y = (float)o.y, rh->ray.org_z = (float)o.z;
+    rh->ray.dir_x = (float)d.x, rh->ray.dir_y = (float)d.y, rh->ray.dir_z = (float)d.z;
+    rh->ray.tnear = 0.0f;
+    rh->ray.tfar = tmax < 1e30 ? nextafterf((float)tmax, INFINITY) : INFINITY;
+    rh->ray.mask = 0xFFFFFFFFu;
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    c->o = v3_make(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z);
+    c->d = v3_make(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
+    double ax = fabs(c->d.x), ay = fabs(c->d.y), az = fabs(c->d.z);
+    c->kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    c->kx = (c->kz + 1) % 3, c->ky = (c->kx + 1) % 3;
+    if (axis(c->d, c->kz) < 0) { int k = c->kx; c->kx = c->ky, c->ky = k; } /* keep the winding */
+    c->sz = 1.0 / axis(c->d, c->kz);
+    c->sx = axis(c->d, c->kx) * c->sz, c->sy = axis(c->d, c->ky) * c->sz;
+    c->tmax = tmax;
+    c->count = count;
+    c->wind = c->cross = 0;
+    c->t = HUGE_VAL;
+    c->prim = UINT32_MAX;
+}
+
+/* Watertight ray-triangle test (Woop, Benthin and Wald 2013) in double: a
+ * ray through an edge shared by two triangles crosses one or both, never
+ * neither, since each edge's function is the same products on both sides.
+ * The hit's t in [0, c->tmax], or -1. */
+static double ray_tri(const ray_ctx *c, v3 a, v3 b, v3 cc) {
+    v3 A = v3_sub(a, c->o), B = v3_sub(b, c->o), C = v3_sub(cc, c->o);
+    double az = axis(A, c->kz), bz = axis(B, c->kz), cz = axis(C, c->kz);
+    double ax = axis(A, c->kx) - c->sx * az, ay = axis(A, c->ky) - c->sy * az;
+    double bx = axis(B, c->kx) - c->sx * bz, by = axis(B, c->ky) - c->sy * bz;
+    double cx = axis(C, c->kx) - c->sx * cz, cy = axis(C, c->ky) - c->sy * cz;
+    double U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
+    if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0)) return -1;
+    double det = U + V + W;
+    if (det == 0) return -1;
+    double T = U * (c->sz * az) + V * (c->sz * bz) + W * (c->sz * cz);
+    if (det > 0 ? (T < 0 || T > c->tmax * det) : (T > 0 || T < c->tmax * det)) return -1;
+    return T / det;
+}
+
+/* Triangle prim of m's surface, or past m->nt of its hole caps. */
+static void prim_corners(const host_mesh *m, uint32_t prim, v3 v[3]) {
+    if (prim < m->nt) {
+        const uint32_t *t = m->tri + 3 * (size_t)prim;
+        for (int k = 0; k < 3; k++) v[k] = vtx(m, t[k]);
+    } else {
+        const float *f = m->capv + 9 * (size_t)(prim - m->nt);
+        for (int k = 0; k < 3; k++) v[k] = f3(f + 3 * k);
     }
 }
 
-static int ray_says_inside(const host_mesh *m, v3 pl, v3 dir) {
-    count_ctx c;
-    rtcInitIntersectContext(&c.ctx);
-    c.ctx.filter = count_filter;
-    c.m = m;
-    c.dir = dir;
-    c.wind = c.cross = 0;
+static void ray_cb(const struct RTCIntersectFunctionNArguments *a) {
+    if (!a->valid[0]) return; /* rtcIntersect1: N is 1 and rayhit an RTCRayHit */
+    ray_ctx *c = (ray_ctx *)a->context;
+    const host_mesh *m = (const host_mesh *)a->geometryUserPtr;
+    const int cap = a->primID >= m->nt;
+    if (cap && !c->count) return; /* caps close holes for the inside test only */
+    v3 v[3];
+    prim_corners(m, a->primID, v);
+    double t = ray_tri(c, v[0], v[1], v[2]);
+    if (t < 0) return;
+    if (c->count) { /* no hit is reported: the walk goes on to every crossing */
+        v3 n = cap ? v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0])) : f3(m->fnrm + 3 * (size_t)a->primID);
+        double dn = v3_dot(n, c->d);
+        c->wind += dn > 0 ? 1 : -1; /* leaving the solid counts +1 */
+        c->cross++;
+        return;
+    }
+    if (t > c->t || (t == c->t && a->primID >= c->prim)) return;
+    c->t = t, c->prim = a->primID;
+    struct RTCRayHit *rh = (struct RTCRayHit *)a->rayhit;
+    float tf = nextafterf((float)t, INFINITY); /* boxes up to t, ties included, are still walked */
+    if (tf < rh->ray.tfar) rh->ray.tfar = tf;
+    rh->hit.geomID = a->geomID, rh->hit.primID = a->primID;
+}
+
+static void bounds_cb(const struct RTCBoundsFunctionArguments *a) {
+    const host_mesh *m = (const host_mesh *)a->geometryUserPtr;
+    const float *p0, *p1, *p2;
+    if (a->primID < m->nt) {
+        const uint32_t *t = m->tri + 3 * (size_t)a->primID;
+        p0 = m->pos + 4 * (size_t)t[0], p1 = m->pos + 4 * (size_t)t[1], p2 = m->pos + 4 * (size_t)t[2];
+    } else {
+        p0 = m->capv + 9 * (size_t)(a->primID - m->nt), p1 = p0 + 3, p2 = p0 + 6;
+    }
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = fminf(p0[k], fminf(p1[k], p2[k])) - m->bpad;
+        hi[k] = fmaxf(p0[k], fmaxf(p1[k], p2[k])) + m->bpad;
+    }
+    struct RTCBounds *b = a->bounds_o;
+    b->lower_x = lo[0], b->lower_y = lo[1], b->lower_z = lo[2];
+    b->upper_x = hi[0], b->upper_y = hi[1], b->upper_z = hi[2];
+}
+
+void hmesh_user_geometry(void *geometry, host_mesh *m) {
+    RTCGeometry g = (RTCGeometry)geometry;
+    rtcSetGeometryUserPrimitiveCount(g, m->nt + m->ncap);
+    rtcSetGeometryUserData(g, m);
+    rtcSetGeometryBoundsFunction(g, bounds_cb, m);
+    rtcSetGeometryIntersectFunction(g, ray_cb);
+}
+
+/* ---------------------------------------------------- inside by rays */
+
+/* capw: the caps' winding number at pl (with caps; else unused). */
+static int ray_says_inside(const host_mesh *m, v3 pl, v3 dir, double capw) {
+    ray_ctx c;
     struct RTCRayHit rh;
-    memset(&rh, 0, sizeof rh);
-    rh.ray.org_x = (float)pl.x, rh.ray.org_y = (float)pl.y, rh.ray.org_z = (float)pl.z;
-    rh.ray.dir_x = (float)dir.x, rh.ray.dir_y = (float)dir.y, rh.ray.dir_z = (float)dir.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = INFINITY;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    ray_start(&c, &rh, pl, dir, HUGE_VAL, 1);
     rtcIntersect1((RTCScene)m->scene, &c.ctx, &rh);
-    return m->sign_by_rays == 2 ? (c.cross & 1) : c.wind != 0;
+    if (m->sign_by_rays == 2) return c.cross & 1;
+    return m->ncap ? fabs(c.wind - capw) > 0.5 : c.wind != 0;
 }
 
 /* Three fixed directions off every axis and diagonal: a ray through an
@@ -138,9 +251,10 @@ static const double RAY_DIRS[3][3] = {
 };
 
 static int inside_by_rays(const host_mesh *m, v3 pl) {
+    double capw = m->ncap ? hmesh_cap_winding(m, pl) : 0.0;
     int yes = 0;
     for (int k = 0; k < 3; k++) {
-        yes += ray_says_inside(m, pl, v3_load(RAY_DIRS[k]));
+        yes += ray_says_inside(m, pl, v3_load(RAY_DIRS[k]), capw);
         if (yes >= 2 || yes + (2 - k) < 2) break; /* decided */
     }
     return yes >= 2;
@@ -162,6 +276,7 @@ int hmesh_inside(const host_mesh *m, v3 p) {
 static void point_query(const host_mesh *m, v3 p, double cap, nq_ctx *c) {
     c->m = m;
     c->p = v3_sub(p, m->origin);
+    c->best = cap < 1e30 ? cap : HUGE_VAL;
     c->best2 = cap < 1e30 ? cap * cap : HUGE_VAL;
     c->prim = UINT32_MAX;
     c->region = 0;
@@ -169,7 +284,7 @@ static void point_query(const host_mesh *m, v3 p, double cap, nq_ctx *c) {
     struct RTCPointQuery q;
     q.x = (float)c->p.x, q.y = (float)c->p.y, q.z = (float)c->p.z;
     q.time = 0.0f;
-    q.radius = cap < 1e30 ? (float)cap : INFINITY;
+    q.radius = cap < 1e30 ? query_radius(m, cap) : INFINITY;
     struct RTCPointQueryContext qc;
     rtcInitPointQueryContext(&qc);
     rtcPointQuery((RTCScene)m->scene, &q, &qc, nq_cb, c);
@@ -231,22 +346,15 @@ double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
 }
 
 int hmesh_segment_hit(const host_mesh *m, v3 a, v3 b, double *t, v3 *normal) {
-    v3 al = v3_sub(a, m->origin), d = v3_sub(b, a);
-    struct RTCIntersectContext ic;
-    rtcInitIntersectContext(&ic);
+    ray_ctx c;
     struct RTCRayHit rh;
-    memset(&rh, 0, sizeof rh);
-    rh.ray.org_x = (float)al.x, rh.ray.org_y = (float)al.y, rh.ray.org_z = (float)al.z;
-    rh.ray.dir_x = (float)d.x, rh.ray.dir_y = (float)d.y, rh.ray.dir_z = (float)d.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = 1.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1((RTCScene)m->scene, &ic, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
-    if (t) *t = rh.ray.tfar;
+    ray_start(&c, &rh, v3_sub(a, m->origin), v3_sub(b, a), 1.0, 0);
+    rtcIntersect1((RTCScene)m->scene, &c.ctx, &rh);
+    if (c.prim == UINT32_MAX) return 0;
+    v3 d = c.d;
+    if (t) *t = c.t;
     if (normal) {
-        v3 n = f3(m->fnrm + 3 * (size_t)rh.hit.primID);
+        v3 n = f3(m->fnrm + 3 * (size_t)c.prim);
         *normal = v3_dot(n, d) > 0 ? v3_neg(n) : n;
     }
     return 1;
@@ -351,19 +459,19 @@ typedef struct seg_ctx {
     const host_mesh *m;
     v3 a, d;       /* local */
     v3 lo, hi;     /* the capsule's box at the first cap */
+    double half;   /* half the piece's length */
     double best;
-    int first;     /* stop at the first triangle below the cap */
 } seg_ctx;
 
 static bool seg_cb(struct RTCPointQueryFunctionArguments *q) {
     seg_ctx *c = (seg_ctx *)q->userPtr;
     tri3 T;
-    if (!tri_get(c->m, q->primID, c->lo, c->hi, &T) || tri_far(&T, c->a, c->d, c->best)) return false;
+    if (q->primID >= c->m->nt) return false; /* a hole's cap */
+    if (!tri_get(c->m, q->primID, c->lo, c->hi, &T) || tri_far(&T, c->a, c->d, c->best + c->m->slack)) return false;
     double dist = tri_seg_dist(&T, c->a, c->d);
     if (dist >= c->best) return false;
     c->best = dist;
-    if (!c->first) return false;
-    q->query->radius = 0.0f; /* any distance below the cap will do: stop looking */
+    q->query->radius = query_radius(c->m, c->half + dist);
     return true;
 }
 
@@ -380,14 +488,14 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int fi
         c.m = m;
         c.a = v3_madd(al, d, (double)k / pieces);
         c.d = v3_scale(d, 1.0 / pieces);
+        c.half = 0.5 * L / pieces;
         c.best = best;
-        c.first = first;
         capsule_box(c.a, c.d, best < 1e30 ? best : 1e30, &c.lo, &c.hi);
         v3 mid = v3_madd(c.a, c.d, 0.5);
         struct RTCPointQuery q;
         q.x = (float)mid.x, q.y = (float)mid.y, q.z = (float)mid.z;
         q.time = 0.0f;
-        q.radius = best < 1e30 ? (float)((0.5 * L / pieces + best) * (1.0 + 1e-6)) : INFINITY;
+        q.radius = best < 1e30 ? query_radius(m, c.half + best) : INFINITY;
         struct RTCPointQueryContext qc;
         rtcInitPointQueryContext(&qc);
         rtcPointQuery((RTCScene)m->scene, &q, &qc, seg_cb, &c);
@@ -466,20 +574,24 @@ typedef struct sweep_ctx {
     v3 p, d;       /* local */
     v3 lo, hi;     /* the swept sphere's box */
     double r, eps, half;
-    double t;      /* earliest contact so far */
+    double t;      /* earliest contact so far, and its triangle */
+    uint32_t prim;
     v3 n;
 } sweep_ctx;
 
 static bool sweep_cb(struct RTCPointQueryFunctionArguments *q) {
     sweep_ctx *c = (sweep_ctx *)q->userPtr;
+    const uint32_t prim = q->primID;
     tri3 T;
-    if (!tri_get(c->m, q->primID, c->lo, c->hi, &T)) return false;
-    v3 dd = v3_scale(c->d, c->t);
-    if (tri_far(&T, c->p, dd, c->r - c->eps)) return false;
+    if (prim >= c->m->nt || !tri_get(c->m, prim, c->lo, c->hi, &T)) return false; /* or a hole's cap */
+    /* A triangle at least r (and the slack) from the move up to the
+     * earliest contact so far is reached at r only after it. */
+    if (tri_far(&T, c->p, v3_scale(c->d, c->t), c->r + c->m->slack)) return false;
     v3 n;
-    double t = tri_first_contact(&T, c->p, c->d, c->t, c->r, c->eps, &n);
-    if (t >= c->t) return false;
-    c->t = t; /* later triangles are only asked about [0, t] */
+    double t = tri_first_contact(&T, c->p, c->d, 1.0, c->r, c->eps, &n); /* over the whole piece: the same
+                                                                           t whenever it is asked */
+    if (t > c->t || (t == c->t && (c->prim == UINT32_MAX || prim >= c->prim))) return false;
+    c->t = t, c->prim = prim;
     c->n = n;
     return false;
 }
@@ -504,13 +616,14 @@ double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *nor
         c.eps = eps;
         c.half = 0.5 * L / pieces;
         c.t = 1.0;
+        c.prim = UINT32_MAX;
         c.n = v3_make(0, 0, 1);
         capsule_box(c.p, dp, r, &c.lo, &c.hi);
         v3 mid = v3_madd(c.p, dp, 0.5);
         struct RTCPointQuery q;
         q.x = (float)mid.x, q.y = (float)mid.y, q.z = (float)mid.z;
         q.time = 0.0f;
-        q.radius = (float)((c.half + r) * (1.0 + 1e-6));
+        q.radius = query_radius(m, c.half + r);
         struct RTCPointQueryContext qc;
         rtcInitPointQueryContext(&qc);
         rtcPointQuery((RTCScene)m->scene, &q, &qc, sweep_cb, &c);

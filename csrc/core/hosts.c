@@ -9,8 +9,9 @@
  * trusted (holes, several shells that may overlap as Suzanne's do,
  * inconsistent winding) the inside test casts three rays and takes the
  * majority: the winding number (exits minus entries) for a consistently
- * wound mesh, whose nonzero value is the union of overlapping shells,
- * else the parity of the crossings. This file builds the set and answers
+ * wound mesh, whose nonzero value is the union of overlapping shells, with
+ * holes capped and the caps' own winding taken off (host_caps.c), else the
+ * parity of the crossings. This file builds the set and answers
  * the public queries; the mesh queries are in host_queries.c. */
 #include "hosts.h"
 
@@ -35,6 +36,7 @@ static void mesh_free(host_mesh *m) {
     free(m->fnrm);
     free(m->twin);
     free(m->vnrm);
+    free(m->capv);
     memset(m, 0, sizeof *m);
 }
 
@@ -95,7 +97,7 @@ static int weld(const float *pos, uint32_t nv, uint32_t *remap) {
 static float angle_at(v3 a, v3 b, v3 c) { /* angle at a of triangle abc; float is plenty for a weight */
     v3 u = v3_sub(b, a), v = v3_sub(c, a);
     float cosine = (float)(v3_dot(u, v) / sqrt(v3_len2(u) * v3_len2(v)));
-    return acosf(cosine < -1 ? -1 : cosine > 1 ? 1 : cosine);
+    return dm_acosf(cosine < -1 ? -1 : cosine > 1 ? 1 : cosine);
 }
 
 static void store3(float *f, v3 v) {
@@ -343,9 +345,13 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     }
     m->sign_by_rays = !m->closed ? 0 : !consistent ? 2 : (boundary || nonmanifold || shells > 1) ? 1 : 0;
 
-    /* Pseudonormals: vertices by angle (edges from their two faces, in
-     * host_queries.c). */
-    m->twin = twin, twin = NULL; /* edge pseudonormals are summed when asked */
+    m->twin = twin, twin = NULL; /* edge pseudonormals are summed when asked (host_queries.c) */
+    /* Holes of a consistently wound solid are capped for the inside test
+     * (host_caps.c): its inside is then the winding number's. */
+    if (m->sign_by_rays == 1 && boundary && !nonmanifold && !hmesh_build_caps(m))
+        MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] hole caps", hi);
+
+    /* Pseudonormals: vertices by angle (edges from their two faces). */
     m->vnrm = calloc(3 * (size_t)nv, sizeof(float));
     if (!m->vnrm) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] normals", hi);
     for (uint32_t t = 0; t < nt; t++) { /* sums in vnrm itself, normalised after */
@@ -372,15 +378,19 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     RTCScene sc = rtcNewScene(dev);
     if (!sc) MESH_FAIL(BANYAN_E_NOMEM, "Embree could not make a scene for hosts[%u]", hi);
     m->scene = sc;
-    rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
     /* Embree's Morton builder (LOW) for big sculpts, twice as fast to build;
      * the SAH tree (MEDIUM), a little faster to query, below 200k. */
     rtcSetSceneBuildQuality(sc, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    /* A user geometry, not Embree's triangles: its triangle kernels round
+     * differently on each CPU (SSE, AVX2 with FMA, AVX-512, approximate
+     * reciprocals), so only its traversal is used (hmesh_user_geometry). */
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
     if (!g) MESH_FAIL(BANYAN_E_NOMEM, "Embree could not make a geometry for hosts[%u]", hi);
     rtcSetGeometryBuildQuality(g, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM); /* both are read */
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m->pos, 0, 4 * sizeof(float), nv);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->tri, 0, 3 * sizeof(uint32_t), nt);
+    m->bpad = (float)(1e-6 * diag);
+    m->slack = 1e-12 * diag;
+    hmesh_user_geometry(g, m);
     rtcCommitGeometry(g);
     rtcAttachGeometry(sc, g);
     rtcReleaseGeometry(g);

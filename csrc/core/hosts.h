@@ -26,6 +26,12 @@ typedef struct host_mesh {
                                inconsistent winding): inside is decided by rays */
     uint32_t dropped, boundary_edges, shells;
     v3 lo, hi;              /* bounds, in the set's frame */
+    float bpad;             /* triangle boxes grow by this for Embree (1e-6 of the diagonal): its float
+                               traversal then never drops a triangle the exact tests would keep */
+    double slack;           /* 1e-12 of the diagonal: culls drop only what is farther by more than this */
+    uint32_t ncap;          /* triangles closing its holes, for the inside test (host_caps.c); 0 unless
+                               sign_by_rays == 1 with holes and no non-manifold edge */
+    float *capv;            /* 9 * ncap: each cap triangle's corners */
     void *scene;            /* RTCScene */
 } host_mesh;
 
@@ -81,9 +87,10 @@ v3 hmesh_prim_closest(const host_mesh *m, uint32_t prim, v3 p);
 /* Least unsigned distance from the segment a-b to m's surface, exact below
  * cap (> 0), cap beyond. Exact per triangle (no sphere tracing): a few
  * queries however near the segment runs to the surface. With `first`, the
- * distance of the first triangle found nearer than cap instead (a real
- * distance of the segment, not always the least): for a caller that only
- * asks whether the segment comes within cap. */
+ * least over the first piece (pieces of at most 2 cap, taken in order from
+ * a) that comes nearer than cap instead (a real distance of the segment,
+ * not always the least): for a caller that only asks whether the segment
+ * comes within cap. */
 double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int first);
 /* A sphere of radius r moved from p by d: the first t in [0, 1] at which,
  * getting nearer to a triangle, it would come within r - eps of it (t is
@@ -93,6 +100,18 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int fi
  * sphere pressed against the surface and moving along it or away is not
  * stopped, so it can slide. (These four were added for the roots.) */
 double hmesh_sweep(const host_mesh *m, v3 p, v3 d, double r, double eps, v3 *normal);
+/* Makes geometry (an RTCGeometry of type USER) hold m's triangles: Embree
+ * builds and walks the tree over their boxes; every answer comes from the
+ * library's own tests in double (host_queries.c). */
+void hmesh_user_geometry(void *geometry, host_mesh *m);
+
+/* Fills m->capv and m->ncap from the holes of m (m->twin): 0 when out of
+ * memory. */
+int hmesh_build_caps(host_mesh *m);
+/* The generalised winding number of m's caps at p (local): a sum of solid
+ * angles over 4 pi. */
+double hmesh_cap_winding(const host_mesh *m, v3 p);
+
 /* p inside the closed mesh m (0 for open meshes). */
 int hmesh_inside(const host_mesh *m, v3 p);
 /* First surface hit along segment a -> b: returns 1 with t in [0, 1] and

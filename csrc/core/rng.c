@@ -2,6 +2,8 @@
  * Lemire-free rejection for bounded draws, so streams are portable. */
 #include "rng.h"
 
+#include "dmath.h"
+
 #include <math.h>
 
 void pcg32_seed(pcg32 *r, uint64_t seed, uint64_t stream) {
@@ -24,5 +26,5 @@ uint32_t rng_below(pcg32 *r, uint32_t n) {
 double rng_normal(pcg32 *r) {
     double u1 = rng_uniform(r), u2 = rng_uniform(r);
     if (u1 < 1e-300) u1 = 1e-300;
-    return sqrt(-2.0 * log(u1)) * cos(6.283185307179586 * u2);
+    return sqrt(-2.0 * dm_log(u1)) * dm_cos(6.283185307179586 * u2);
 }

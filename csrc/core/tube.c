@@ -145,7 +145,7 @@ double tube_dv(double l, double r0, double r1, double r_mean) {
     if (!(r0 > 1e-12 && r1 > 1e-12)) return (r_mean > 1e-12 ? l / (two_pi * r_mean) : l) / BANYAN_BARK_TILE_ASPECT;
     double d = r1 - r0;
     if (fabs(d) < 1e-6 * r0) return l / (two_pi * 0.5 * (r0 + r1)) / BANYAN_BARK_TILE_ASPECT;
-    return l * log(r1 / r0) / (two_pi * d) / BANYAN_BARK_TILE_ASPECT;
+    return l * dm_log(r1 / r0) / (two_pi * d) / BANYAN_BARK_TILE_ASPECT;
 }
 
 static inline void put3(float *f, v3 p) {
@@ -374,8 +374,8 @@ void tube_sweep(mesh_builder *mb, const v3 *pts, const double *radii, uint32_t n
     if (mb->ring_sides != sides) { /* the builder keeps the last table: most tubes repeat it */
         for (int j = 0; j < sides; j++) {
             double a = 6.283185307179586 * j / sides;
-            mb->ring_cs[j] = cos(a);
-            mb->ring_sn[j] = sin(a);
+            mb->ring_cs[j] = dm_cos(a);
+            mb->ring_sn[j] = dm_sin(a);
         }
         float du = 1.0f / (float)sides;
         for (int j = 0; j <= sides; j++) mb->ring_u[j] = (float)j * du; /* as put_ring's */

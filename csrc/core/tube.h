@@ -81,7 +81,7 @@ static inline double tube_taper_slope(const v3 *pts, const double *radii, uint32
 static inline v3 tube_ring_point(v3 c, v3 T, v3 N, double r, int j, int sides) {
     double a = 6.283185307179586 * j / sides;
     v3 B = v3_cross(T, N);
-    return v3_add(c, v3_add(v3_scale(N, r * cos(a)), v3_scale(B, r * sin(a))));
+    return v3_add(c, v3_add(v3_scale(N, r * dm_cos(a)), v3_scale(B, r * dm_sin(a))));
 }
 
 #endif

@@ -6,6 +6,8 @@
 
 #include <math.h>
 
+#include "dmath.h"
+
 typedef struct v3 { double x, y, z; } v3;
 /* Row-major: m[3*r + c]. */
 typedef struct m3 { double m[9]; } m3;
@@ -49,7 +51,7 @@ static inline v3 v3_norm_or_perp(v3 a, v3 n) {
 
 /* Rodrigues rotation of v by `angle` radians about unit axis k. */
 static inline v3 v3_rotate(v3 v, v3 k, double angle) {
-    double c = cos(angle), s = sin(angle);
+    double c = dm_cos(angle), s = dm_sin(angle);
     v3 r = v3_scale(v, c);
     r = v3_madd(r, v3_cross(k, v), s);
     return v3_madd(r, k, v3_dot(k, v) * (1.0 - c));
@@ -57,7 +59,7 @@ static inline v3 v3_rotate(v3 v, v3 k, double angle) {
 
 /* Rotation about the vertical (Z) axis. */
 static inline v3 v3_rotate_z(v3 v, double angle) {
-    double c = cos(angle), s = sin(angle);
+    double c = dm_cos(angle), s = dm_sin(angle);
     return v3_make(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
 }
 

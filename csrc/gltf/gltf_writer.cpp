@@ -42,6 +42,7 @@
  */
 #include "banyan.h"
 #include "core/atomic_file.h"
+#include "core/dmath.h"
 #include "core/error.h"
 
 #include <tiny_gltf.h>
@@ -1567,7 +1568,7 @@ int emit_job(Builder &b, const Job &J, const int slot[2 * BANYAN_TEX_COUNT], boo
              * of the same angle about +Y. */
             double h = 0.5 * static_cast<double>(in->rotation_z);
             T.insert(T.end(), {in->translation[0], in->translation[2], -in->translation[1]});
-            R.insert(R.end(), {0.0f, static_cast<float>(std::sin(h)), 0.0f, static_cast<float>(std::cos(h))});
+            R.insert(R.end(), {0.0f, static_cast<float>(dm_sin(h)), 0.0f, static_cast<float>(dm_cos(h))});
             S.insert(S.end(), {in->scale, in->scale, in->scale});
         }
         if (T.empty()) continue; /* a variant no instance shows */

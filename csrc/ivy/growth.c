@@ -26,8 +26,8 @@ static double now_seconds(void) {
  * (error below 1e-11 for |x| <= 0.8) is several times cheaper than libm. */
 static inline void sin_cos(double x, double *s, double *c) {
     if (fabs(x) > 0.8) {
-        *s = sin(x);
-        *c = cos(x);
+        *s = dm_sin(x);
+        *c = dm_cos(x);
         return;
     }
     double x2 = x * x;

@@ -59,8 +59,8 @@ static const double leaf_angle[LEAF_OUTLINE] = {-BANYAN_PI, -2.5, -1.85, -1.25, 
  * petiole joins (th = pi). */
 static double leaf_radius(double th) {
     double a = fabs(th);
-    double r = 0.22 + 0.28 * exp(-(a / 0.32) * (a / 0.32)) + 0.22 * exp(-((a - 1.25) / 0.32) * ((a - 1.25) / 0.32)) +
-               0.08 * exp(-((a - 2.2) / 0.4) * ((a - 2.2) / 0.4)) - 0.12 * exp(-((a - BANYAN_PI) / 0.25) * ((a - BANYAN_PI) / 0.25));
+    double r = 0.22 + 0.28 * dm_exp(-(a / 0.32) * (a / 0.32)) + 0.22 * dm_exp(-((a - 1.25) / 0.32) * ((a - 1.25) / 0.32)) +
+               0.08 * dm_exp(-((a - 2.2) / 0.4) * ((a - 2.2) / 0.4)) - 0.12 * dm_exp(-((a - BANYAN_PI) / 0.25) * ((a - BANYAN_PI) / 0.25));
     return 1.1 * r;
 }
 
@@ -75,18 +75,18 @@ static void leaf_shape_init(leaf_shape *sh) {
     double ext = 0;
     for (int k = 0; k < LEAF_OUTLINE; k++) {
         double r = leaf_radius(leaf_angle[k]);
-        sh->ox[k] = r * cos(leaf_angle[k]);
-        sh->oy[k] = r * sin(leaf_angle[k]);
+        sh->ox[k] = r * dm_cos(leaf_angle[k]);
+        sh->oy[k] = r * dm_sin(leaf_angle[k]);
     }
     for (int k = 0; k < LEAF_OUTLINE; k++)
         for (int j = k + 1; j < LEAF_OUTLINE; j++)
-            ext = fmax(ext, hypot(sh->ox[k] - sh->ox[j], sh->oy[k] - sh->oy[j]));
+            ext = fmax(ext, dm_hypot(sh->ox[k] - sh->ox[j], sh->oy[k] - sh->oy[j]));
     /* Per unit of extent: `size` is what one would measure across the side lobes. */
     sh->reach = 0;
     for (int k = 0; k < LEAF_OUTLINE; k++) {
         sh->ox[k] /= ext;
         sh->oy[k] /= ext;
-        sh->reach = fmax(sh->reach, hypot(sh->ox[k], sh->oy[k]));
+        sh->reach = fmax(sh->reach, dm_hypot(sh->ox[k], sh->oy[k]));
     }
     sh->rnotch = leaf_radius(BANYAN_PI) / ext;
     /* Card uvs: the outline's bounds fill the blade's box in one atlas
@@ -134,7 +134,7 @@ static void leaf_shift(leaf_geo *g, v3 d) {
  * is clear by the blade's reach needs no vertex query (distance is
  * 1-Lipschitz). */
 static double leaf_intrusion(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
-    const double tf = tan(LEAF_FOLD);
+    const double tf = dm_tan(LEAF_FOLD);
     double worst = 0;
     if (!iv->n_mesh) {
         /* Boxes only: the distance alone per point (ivy_nearest_any's,
@@ -202,7 +202,7 @@ static void leaf_outline(const leaf_geo *g, const leaf_shape *sh, double tf, v3 
  * Boxes: exact, against the box grown by margin; meshes: the fan's edges.
  * *dir: the way out, the normal of the surface nearest the centre. */
 static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_shape *sh, double margin, v3 *dir) {
-    const double tf = tan(LEAF_FOLD), span = sh->reach * g->size * 1.05 + margin;
+    const double tf = dm_tan(LEAF_FOLD), span = sh->reach * g->size * 1.05 + margin;
     v3 q[LEAF_OUTLINE];
     int have = 0, hit = 0;
     for (uint32_t hb = 0; hb < iv->n_hosts && !hit; hb++) {
@@ -279,7 +279,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
     double th = deg2rad(p->leaf_tilt) * (1 - w) + spread * (2 * u_tilt - 1);
     th = th < -BANYAN_PI / 2 ? -BANYAN_PI / 2 : (th > BANYAN_PI / 2 ? BANYAN_PI / 2 : th);
     v3 toward = v3_rotate(sky, n, 2 * spread * (2 * u_az - 1));
-    g->nb = v3_norm_or(v3_add(v3_scale(n, cos(th)), v3_scale(toward, sin(th))), n);
+    g->nb = v3_norm_or(v3_add(v3_scale(n, dm_cos(th)), v3_scale(toward, dm_sin(th))), n);
     /* Tip: down the blade (it hangs on its petiole), leaning to the leaf's side. */
     v3 down = v3_sub(v3_neg(up), v3_scale(g->nb, -v3_dot(g->nb, up)));
     if (v3_len2(down) < 0.04) down = v3_sub(side, v3_scale(g->nb, v3_dot(g->nb, side)));
@@ -332,7 +332,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
 static void leaf_age_tint(const banyan_ivy *iv, const ivy_bud *b, int32_t season, double tint[4]) {
     if (season == BANYAN_SEASON_AUTUMN) return;
     double age = (double)(iv->step - b->step_c);
-    double young = exp(-age / 15.0), old = fmin(1.0, age / iv->p.leaf_size_steps);
+    double young = dm_exp(-age / 15.0), old = fmin(1.0, age / iv->p.leaf_size_steps);
     tint[0] *= 1.0 - 0.15 * old;
     tint[1] *= (1.0 - 0.45 * young) * (1.0 - 0.10 * old);
     tint[2] *= (1.0 - 0.50 * young) * (1.0 - 0.15 * old);
@@ -528,8 +528,8 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
     double pc[PETIOLE_SIDES], ps[PETIOLE_SIDES]; /* the ring's directions, the same for every petiole */
     for (int q = 0; q < PETIOLE_SIDES; q++) {
         double th = 2 * BANYAN_PI * q / PETIOLE_SIDES;
-        pc[q] = cos(th);
-        ps[q] = sin(th);
+        pc[q] = dm_cos(th);
+        ps[q] = dm_sin(th);
     }
     uint32_t v0 = v_pet + PETIOLE_VERTS * before, nv = PETIOLE_VERTS * count, ni = 6 * PETIOLE_SIDES * count;
     sub_builder(J, &mb, v0, nv, i_pet + 6 * PETIOLE_SIDES * before, ni, &ws, &a_birth, &a_part);
@@ -561,7 +561,7 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
      * unit of size, and which normal it takes (0 the blade's, 1 the
      * +y half's, 2 the -y half's). A leaf is then this template moved
      * and scaled. */
-    const double tf = tan(LEAF_FOLD);
+    const double tf = dm_tan(LEAF_FOLD);
     double tx[LEAF_OUTLINE + 1], ty[LEAF_OUTLINE + 1], tz[LEAF_OUTLINE + 1];
     int tn[LEAF_OUTLINE + 1];
     for (int q = 0; q <= LEAF_OUTLINE; q++) {
@@ -748,7 +748,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
                 bst[i] = 1;
                 continue;
             }
-            double s = exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(ivy_stem_radius(iv, &iv->buds[i]) / r_max) : 0;
+            double s = dm_exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(ivy_stem_radius(iv, &iv->buds[i]) / r_max) : 0;
             bst[i] = s > t ? s : t;
         }
     }

@@ -118,7 +118,7 @@ static int angle_below(v3 a, v3 a2, double t, double tan_t) {
         if (y < lim * (1 - 1e-9)) return 1;
         if (y > lim * (1 + 1e-9)) return 0;
     }
-    return atan2(y, x) < t;
+    return dm_atan2(y, x) < t;
 }
 
 /* sag_pivot's answer: it turned; it stopped at max_iter still too heavy
@@ -155,7 +155,7 @@ static double joint_strength(const banyan_ivy *iv, const ivy_bud *b) {
     const banyan_ivy_params *p = &iv->p;
     if (p->sag_stiffening <= 0) return p->moment_max;
     double x = ivy_stem_radius(iv, b) / p->stem_radius;
-    return p->moment_max * (p->sag_stiffening == 3 ? x * x * x : pow(x, p->sag_stiffening));
+    return p->moment_max * (p->sag_stiffening == 3 ? x * x * x : dm_pow(x, p->sag_stiffening));
 }
 
 static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, const ivy_bud *joint, v3 *q, v3 *qv, v3 *qn,
@@ -190,11 +190,11 @@ static int sag_pivot(const banyan_ivy *iv, sag_consts *sc, v3 pivot, const ivy_b
             /* need < step asks sin(phi - step) < s1 (asin is steeper than
              * 1): when it is clearly not so, skip atan2 and asin. */
             if (al * sc->cs + a.z * sc->sn < (s1 + 1e-7) * arm) {
-                double phi = atan2(al, -a.z);
-                double need = phi - asin(s1) + 1e-9;
+                double phi = dm_atan2(al, -a.z);
+                double need = phi - dm_asin(s1) + 1e-9;
                 if (need < step) {
                     ang = need;
-                    R = rotation_h(v3_scale(axis, 1.0 / al), cos(need), sin(need));
+                    R = rotation_h(v3_scale(axis, 1.0 / al), dm_cos(need), dm_sin(need));
                 }
             }
         }
@@ -248,10 +248,10 @@ static int hook_tip(const banyan_ivy *iv, const sag_consts *sc, const int32_t *c
         prev_old = *P;
         double el = -0.5 * BANYAN_PI + (sc->hook_el + 0.5 * BANYAN_PI) * (double)(K - k) / K;
         v3 to = v3_add(prev_new, d);
-        if (len > 1e-12 && d.z < len * sin(el)) {
+        if (len > 1e-12 && d.z < len * dm_sin(el)) {
             v3 hk = v3_make(d.x, d.y, 0);
             hk = v3_len(hk) > 0.5 * len ? v3_norm(hk) : h;
-            v3 dir = v3_add(v3_scale(hk, cos(el)), v3_make(0, 0, sin(el)));
+            v3 dir = v3_add(v3_scale(hk, dm_cos(el)), v3_make(0, 0, dm_sin(el)));
             to = v3_add(prev_new, v3_scale(dir, len));
         }
         if (v3_dist(to, *P) > 1e-12) {
@@ -373,13 +373,13 @@ void ivy_sag(banyan_ivy *iv) {
     const banyan_ivy_params *p = &iv->p;
     sag_consts sc;
     sc.step = deg2rad(p->sag_step);
-    sc.cs = cos(sc.step);
-    sc.sn = sin(sc.step);
-    sc.tan_half = tan(0.5 * sc.step);
+    sc.cs = dm_cos(sc.step);
+    sc.sn = dm_sin(sc.step);
+    sc.tan_half = dm_tan(0.5 * sc.step);
     sc.max_iter = (int)(180.0 / p->sag_step) + 2;
     double el = deg2rad(p->tip_elevation);
-    sc.el_s = sin(el);
-    sc.el_c = cos(el);
+    sc.el_s = dm_sin(el);
+    sc.el_c = dm_cos(el);
     sc.hook = (int32_t)floor(p->tip_hook_length / p->internode + 0.5);
     sc.hook_el = deg2rad(p->tip_hook_angle);
     sc.budget = (int64_t)SAG_BUDGET_PER_BUD * (iv->n > SAG_BUDGET_MIN / SAG_BUDGET_PER_BUD ? iv->n : SAG_BUDGET_MIN / SAG_BUDGET_PER_BUD);

@@ -151,7 +151,7 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
             v3 at, left;
             path_at(&w, sdist, &at, &left);
             at = v3_madd(at, left, offset);
-            at = v3_add(at, v3_make(jr * cos(ja), jr * sin(ja), 0));
+            at = v3_add(at, v3_make(jr * dm_cos(ja), jr * dm_sin(ja), 0));
             t->position[0] = at.x;
             t->position[1] = at.y;
             t->position[2] = at.z;

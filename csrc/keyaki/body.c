@@ -134,9 +134,9 @@ static void flare_ridge(const flare_shape *f, const v3 *pts, const v3 *T, const 
         double a = f->amp * w * w * w, da = -3.0 * f->amp * w * w / f->h;
         v3 B = v3_cross(T[i], N[i]);
         for (int j = 0; j < sides; j++) {
-            double th = 2.0 * BANYAN_PI * j / sides, c = cos(th), sn = sin(th);
-            double ph = f->lobes * th + f->phase, m = 1.0 + a * cos(ph);
-            double rho = R * m, rho_th = -R * a * f->lobes * sin(ph), rho_s = dR * m + R * da * cos(ph);
+            double th = 2.0 * BANYAN_PI * j / sides, c = dm_cos(th), sn = dm_sin(th);
+            double ph = f->lobes * th + f->phase, m = 1.0 + a * dm_cos(ph);
+            double rho = R * m, rho_th = -R * a * f->lobes * dm_sin(ph), rho_s = dR * m + R * da * dm_cos(ph);
             v3 d = v3_add(v3_scale(N[i], c), v3_scale(B, sn)), dp = v3_add(v3_scale(N[i], -sn), v3_scale(B, c));
             rings[(size_t)i * sides + j] = v3_madd(pts[i], d, rho);
             v3 nr = v3_madd(v3_madd(v3_scale(d, rho), dp, -rho_th), T[i], -rho * rho_s);
@@ -185,8 +185,8 @@ static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, c
     double cs[256], sn[256];
     for (int j = 0; j < sides; j++) {
         double a = 6.283185307179586 * j / sides;
-        cs[j] = cos(a);
-        sn[j] = sin(a);
+        cs[j] = dm_cos(a);
+        sn[j] = dm_sin(a);
     }
     tube_frames(pts, np, v3_make(0, 0, 0), T, N);
     tube_round_rings(pts, rad, np, T, N, cs, sn, sides, rings, normals, NULL);
@@ -504,7 +504,7 @@ static void birth_range(mesh_job *J, uint32_t from, uint32_t to) {
         if (!have || bt[v] != last_b) {
             double u = 1.0 - bt[v] * J->inv;
             last_b = bt[v];
-            last_s = (float)(u > 0 ? (u < 1 ? pow(u, KEYAKI_STIFF_POWER) : 1.0) : 0.0);
+            last_s = (float)(u > 0 ? (u < 1 ? dm_pow(u, KEYAKI_STIFF_POWER) : 1.0) : 0.0);
             have = 1;
         }
         st[v] = last_s;

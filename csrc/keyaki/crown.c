@@ -179,17 +179,17 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         v3 sv = v3_norm_or_perp(v3_cross(up, t), t);
         /* Out from the twig at 45-70 deg on its side, drooping a little. */
         double th = deg2rad(rng_range(&x->lf, 45.0, 70.0));
-        v3 a = v3_add(v3_scale(t, cos(th)), v3_scale(sv, side * sin(th)));
+        v3 a = v3_add(v3_scale(t, dm_cos(th)), v3_scale(sv, side * dm_sin(th)));
         a = v3_norm(v3_madd(a, Z, -rng_range(&x->lf, 0.0, 0.4)));
         /* Blade facing the sky, rolled up to +-45 deg about its midrib: a
          * crown of only level blades is edge-on, nearly invisible, from
          * the side; real blades turn every way to the light. */
         v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
         double roll = deg2rad(rng_range(&x->lf, -45.0, 45.0));
-        w = v3_add(v3_scale(w, cos(roll)), v3_scale(v3_cross(a, w), sin(roll)));
+        w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
         if (v3_cross(w, a).z < 0) w = v3_neg(w);
         /* Smaller near the twig's base and tip. */
-        double f = 0.8 + 0.25 * sin(BANYAN_PI * clampd(s / L, 0, 1));
+        double f = 0.8 + 0.25 * dm_sin(BANYAN_PI * clampd(s / L, 0, 1));
         double blade = p->leaf_size * f * (1.0 + p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
         keyaki_leaf *q = &c->leaves[c->n_leaves++];
         q->base = at;
@@ -215,7 +215,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     const banyan_keyaki_params *p = x->p;
     keyaki_crown *c = x->c;
     int finest = order >= p->twig_levels || leafy_only;
-    double sub_spacing = p->twig_spacing * pow(p->twig_ratio, order);
+    double sub_spacing = p->twig_spacing * dm_pow(p->twig_ratio, order);
     double sub_len = len * p->twig_ratio;
     /* Nodes: where sub-twigs attach (coarse) or every few leaves (finest). */
     int32_t segs;
@@ -285,7 +285,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double pe = p->pipe_exponent;
     int32_t carried = 1;
     for (int32_t k = np - 1; k >= 0; k--) {
-        R[k] = p->twig_radius * pow((double)carried, 1.0 / pe);
+        R[k] = p->twig_radius * dm_pow((double)carried, 1.0 / pe);
         carried += sub_tips[k];
     }
     double cap = TWIG_SETBACK_CAP * r_host;
@@ -361,7 +361,7 @@ static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, doubl
         r.ay = hh > 1e-9 ? h.y / hh : 0.0;
     }
     double reach = p->leaf_size * 1.2;
-    double sub = p->twig_levels >= 2 ? len * p->twig_ratio * sin(deg2rad(p->twig_angle)) : 0.0;
+    double sub = p->twig_levels >= 2 ? len * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
     r.w = sub + reach;
     r.len = len * (hx > 0.2 ? hx : 0.2) + reach;
     if (r.len < r.w) r.len = r.w;
@@ -410,10 +410,10 @@ static void stamp(grid *g, rect r) { FOR_RECT_CELLS(g, r, { (*cell)++; }); }
 static grid sky_layer(const grid *g, int k, rect r, double z, rect *rk) {
     grid gk = *g;
     gk.n = g->sky + (size_t)k * (size_t)g->nx * (size_t)g->ny;
-    double a = 2.0 * BANYAN_PI * k / SKY_OBLIQUE, t = (z - g->zref) / tan(deg2rad(SKY_ELEVATION_DEG));
+    double a = 2.0 * BANYAN_PI * k / SKY_OBLIQUE, t = (z - g->zref) / dm_tan(deg2rad(SKY_ELEVATION_DEG));
     *rk = r;
-    rk->ox -= t * cos(a);
-    rk->oy -= t * sin(a);
+    rk->ox -= t * dm_cos(a);
+    rk->oy -= t * dm_sin(a);
     return gk;
 }
 
@@ -649,7 +649,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             cand *q = &cs[nc];
             double a = deg2rad(tw * rng_range(&plan, 0.85, 1.15));
             q->at = v3_madd(b->start, b->dir, s);
-            q->d = v3_norm(v3_add(v3_scale(b->dir, cos(a)), v3_scale(h, side * sin(a))));
+            q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(h, side * dm_sin(a))));
             q->h = h;
             q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
             q->r_host = branch_radius(p, n, b, s);
@@ -716,7 +716,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         for (int32_t k = 0; k < nc; k++) z0 = fmin(z0, cs[k].z), z1 = fmax(z1, cs[k].z);
         g.zref = 0.5 * (z0 + z1);
         /* Room for the oblique layers' shifts, at most half the crown's depth. */
-        double m = 3.0 * p->twig_length + 1.0 + 0.5 * (z1 - z0) / tan(deg2rad(SKY_ELEVATION_DEG));
+        double m = 3.0 * p->twig_length + 1.0 + 0.5 * (z1 - z0) / dm_tan(deg2rad(SKY_ELEVATION_DEG));
         g.x0 = x0 - m;
         g.y0 = y0 - m;
         g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;

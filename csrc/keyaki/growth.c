@@ -143,15 +143,15 @@ static banyan_status first_split(const banyan_keyaki_params *p, keyaki_skeleton 
     if (step < 1) step = 1;
     while (k % step == 0 && step > 1) step--; /* coprime with k: every slot taken once */
     const double unit = p->unit, zone = p->limb_zone * unit, share = 1.0 / k;
-    const double phi0 = atan2(sk->nodes[0].plane.y, sk->nodes[0].plane.x);
+    const double phi0 = dm_atan2(sk->nodes[0].plane.y, sk->nodes[0].plane.x);
     int32_t piece = 0; /* the trunk piece whose end is the next fork */
     for (int j = 0; j < k; j++) {
         double az = phi0 + 2.0 * BANYAN_PI * (((j * step) % k) + rng_range(r, -0.25, 0.25)) / k;
         double lean = deg2rad(p->limb_angle * (1.0 + rng_range(r, -0.15, 0.15)));
         double turn = deg2rad(p->twist * rng_range(r, -1.0, 1.0));
-        v3 d = v3_make(sin(lean) * cos(az), sin(lean) * sin(az), cos(lean));
-        v3 n = v3_make(-sin(az), cos(az), 0); /* normal of the vertical plane through d */
-        n = v3_norm(v3_add(v3_scale(n, cos(turn)), v3_scale(v3_cross(d, n), sin(turn))));
+        v3 d = v3_make(dm_sin(lean) * dm_cos(az), dm_sin(lean) * dm_sin(az), dm_cos(lean));
+        v3 n = v3_make(-dm_sin(az), dm_cos(az), 0); /* normal of the vertical plane through d */
+        n = v3_norm(v3_add(v3_scale(n, dm_cos(turn)), v3_scale(v3_cross(d, n), dm_sin(turn))));
         add_child(sk->nodes, &sk->count, piece, d, n, p->segment_length * unit, share, p->limb_angle, 0);
         keyaki_node *limb = &sk->nodes[sk->count - 1];
         limb->level = 0;
@@ -177,17 +177,17 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
         double a = p->fork_angle + p->fork_angle_step * (l - 1);
         double sp = a * (1.0 - p->springback * (1.0 - (double)l / L));
         t.angle[l] = a;
-        t.c[l] = cos(deg2rad(a));
-        t.s[l] = sin(deg2rad(a));
+        t.c[l] = dm_cos(deg2rad(a));
+        t.s[l] = dm_sin(deg2rad(a));
         t.sprung[l] = sp;
-        t.cs[l] = cos(deg2rad(sp));
-        t.ss[l] = sin(deg2rad(sp));
-        t.threshold[l] = pow(p->alpha, -l);
+        t.cs[l] = dm_cos(deg2rad(sp));
+        t.ss[l] = dm_sin(deg2rad(sp));
+        t.threshold[l] = dm_pow(p->alpha, -l);
     }
-    const double ct_lo = cos(deg2rad(p->twist)), st_lo = sin(deg2rad(p->twist));
-    const double ct_mid = cos(deg2rad(p->twist_mid)), st_mid = sin(deg2rad(p->twist_mid));
-    const double ct_hi = cos(deg2rad(p->twist_high)), st_hi = sin(deg2rad(p->twist_high));
-    const double z_mid = cos(deg2rad(p->tilt_mid)), z_high = cos(deg2rad(p->tilt_high));
+    const double ct_lo = dm_cos(deg2rad(p->twist)), st_lo = dm_sin(deg2rad(p->twist));
+    const double ct_mid = dm_cos(deg2rad(p->twist_mid)), st_mid = dm_sin(deg2rad(p->twist_mid));
+    const double ct_hi = dm_cos(deg2rad(p->twist_high)), st_hi = dm_sin(deg2rad(p->twist_high));
+    const double z_mid = dm_cos(deg2rad(p->tilt_mid)), z_high = dm_cos(deg2rad(p->tilt_high));
 
     pcg32 r;
     pcg32_seed(&r, p->seed, KEYAKI_STREAM_GROWTH);
@@ -200,7 +200,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
     keyaki_node *trunk = &sk->nodes[0];
     trunk->start = v3_load(p->position);
     trunk->dir = v3_make(0, 0, 1);
-    trunk->plane = v3_make(cos(phi), sin(phi), 0);
+    trunk->plane = v3_make(dm_cos(phi), dm_sin(phi), 0);
     trunk->length = p->trunk_length * unit;
     trunk->energy = 1.0;
     trunk->share = 1.0;

@@ -82,6 +82,6 @@ void keyaki_radii(keyaki_node *n, int32_t count, double tip_radius, double p) {
         int32_t a = n[i].child[0], b = n[i].child[1];
         if (a < 0 && b < 0) n[i].radius = tip_radius;
         else if (a < 0 || b < 0) n[i].radius = n[a >= 0 ? a : b].radius;
-        else n[i].radius = pow(pow(n[a].radius, p) + pow(n[b].radius, p), 1.0 / p);
+        else n[i].radius = dm_pow(dm_pow(n[a].radius, p) + dm_pow(n[b].radius, p), 1.0 / p);
     }
 }

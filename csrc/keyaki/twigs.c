@@ -66,7 +66,7 @@ void keyaki_twig_input(const banyan_keyaki_params *p, const keyaki_node *x, bany
 
 double keyaki_twig_radius(const banyan_keyaki_params *p, const keyaki_node *x, int level_code) {
     double r_end = x->radius * p->tip_taper, r_min = p->tip_radius * p->unit * p->tip_taper;
-    return seg_level_radius(r_end, pow(2.0, -1.0 / p->pipe_exponent), r_min, level_code - 1);
+    return seg_level_radius(r_end, dm_pow(2.0, -1.0 / p->pipe_exponent), r_min, level_code - 1);
 }
 
 static int is_tip(const keyaki_node *x) { return x->child[0] < 0 && x->child[1] < 0; }

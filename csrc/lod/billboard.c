@@ -28,10 +28,10 @@
 
 static float srgb_of_linear(float c) {
     c = c < 0 ? 0 : c > 1 ? 1 : c;
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * dm_powf(c, 1.0f / 2.4f) - 0.055f;
 }
 
-static float linear_of_srgb(float c) { return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f); }
+static float linear_of_srgb(float c) { return c <= 0.04045f ? c / 12.92f : dm_powf((c + 0.055f) / 1.055f, 2.4f); }
 
 /* Linear RGB of each material as the picture shows it: a leaf texture's
  * mean colour over its opaque pixels (drawn small), else base_color. */
@@ -270,8 +270,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, ba
         double total_w = 0;
         for (uint32_t k = 0; k < planes; k++) {
             double a = BB_PI * k / planes;
-            vw[k].d[0] = cos(a), vw[k].d[1] = sin(a);
-            vw[k].n[0] = -sin(a), vw[k].n[1] = cos(a);
+            vw[k].d[0] = dm_cos(a), vw[k].d[1] = dm_sin(a);
+            vw[k].n[0] = -dm_sin(a), vw[k].n[1] = dm_cos(a);
             vw[k].smin = INFINITY, vw[k].smax = -INFINITY;
         }
         for (uint32_t q = 0; q < m->part_count; q++) {

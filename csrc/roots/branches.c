@@ -63,7 +63,7 @@ static int turn(const roots_world *w, const double *cs, v3 from, v3 *q, double d
         }
         if (need >= 2.0 * h) return 0; /* no angle moves the point far enough */
         /* Angles deg+1 .. deg+k stay closer than the chord allows. */
-        double span = 2.0 * asin(need / (2.0 * h)) / delta;
+        double span = 2.0 * dm_asin(need / (2.0 * h)) / delta;
         int k = (int)ceil(span) - 1;
         deg += 1 + (k > 0 ? k : 0);
     }
@@ -88,8 +88,8 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
     const double u = net->u;
     double cs[720]; /* cos, sin of 0 .. 359 degrees */
     for (int d = 0; d < 360; d++) {
-        cs[2 * d] = cos(deg2rad(d));
-        cs[2 * d + 1] = sin(deg2rad(d));
+        cs[2 * d] = dm_cos(deg2rad(d));
+        cs[2 * d + 1] = dm_sin(deg2rad(d));
     }
     for (int a = 0; a < N; a++) {
         for (int k = 0; k < nb; k++) {

@@ -625,7 +625,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         v3 n0 = v3_norm_or_perp(v3_madd(N[cp->at], e, -v3_dot(N[cp->at], e)), e), b0 = v3_cross(e, n0);
         v3 o = v3_sub(q, v3_lerp(cp->a, cp->b, t));
         double l = v3_dist(cp->a, cp->b), rt = cp->ra + (cp->rb - cp->ra) * t;
-        fv[i].u = atan2(v3_dot(o, b0), v3_dot(o, n0)) / (2 * BANYAN_PI) + 0.5;
+        fv[i].u = dm_atan2(v3_dot(o, b0), v3_dot(o, n0)) / (2 * BANYAN_PI) + 0.5;
         fv[i].v = vcum[cp->at] + tube_dv(t * l, cp->ra, rt, r);
         fv[i].kind = net->poly[cp->poly].kind;
         fv[i].id = net->poly[cp->poly].id;

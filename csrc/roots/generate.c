@@ -186,7 +186,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
      * + lateral^2) per growth point from its start circle (pushes out of a
      * host and the pull back to a face each move it by at most r): a G
      * farther than that from every host grows roots that touch none. */
-    double step = hypot(p->forward_max, p->lateral) * net->u;
+    double step = dm_hypot(p->forward_max, p->lateral) * net->u;
     double reach = p->start_radius * net->u + (double)(p->growth_points - 1) * p->moves * step + 4.0 * net->r;
     double nearest = 1e300;
     uint32_t nearest_i = 0;

@@ -109,7 +109,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
         pcg32 g;
         pcg32_seed(&g, p->seed, (uint64_t)STREAM_MAIN + (uint64_t)a);
         double ang = rot + two_pi * a / N;
-        v3 head = v3_make(cos(ang), sin(ang), 0);
+        v3 head = v3_make(dm_cos(ang), dm_sin(ang), 0);
         v3 S = v3_madd(net->G, head, p->start_radius * u);
         world_push_out(w, &S);
         v3 *M = net->M_grown + (size_t)a * B;

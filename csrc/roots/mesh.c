@@ -134,8 +134,8 @@ static void junction_rings(work *wk, const roots_net *net, const banyan_roots_pa
     end_loop(wk, P[n - 1], wk->T[n - 1], wk->N[n - 1], E1, E2, net->r * p->junction_end_scale, wk->le, wk->de);
     for (uint32_t i = 0; i < n; i++) {
         double s = wk->arc[i];
-        double ws = half > 0 && s < half ? pow(1.0 - s / half, p->junction_falloff) : 0.0;
-        double we = half > 0 && L - s < half ? pow(1.0 - (L - s) / half, p->junction_falloff) : 0.0;
+        double ws = half > 0 && s < half ? dm_pow(1.0 - s / half, p->junction_falloff) : 0.0;
+        double we = half > 0 && L - s < half ? dm_pow(1.0 - (L - s) / half, p->junction_falloff) : 0.0;
         if (i == 0) ws = 1.0, we = 0.0;
         if (i == n - 1) we = 1.0, ws = 0.0;
         double rad = wk->rad[i];
@@ -169,7 +169,7 @@ static void ease_bends(double *out, const v3 *P, const double *rad, uint32_t n, 
          * a ring well inside that bound is left without acos and tan. */
         double m = la < lb ? la : lb;
         if (c > -0.999 && out[i] * (1.0 + 1e-6) < 0.45 * m * sqrt((1.0 + c) / (1.0 - c))) continue;
-        double th = acos(c), lim = 0.45 * (la < lb ? la : lb) / tan(0.5 * (th < 3.0 ? th : 3.0));
+        double th = dm_acos(c), lim = 0.45 * (la < lb ? la : lb) / dm_tan(0.5 * (th < 3.0 ? th : 3.0));
         if (lim < floor) lim = floor;
         if (out[i] > lim) out[i] = lim;
     }
@@ -405,8 +405,8 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
     for (int j = 0; j < sides; j++) {
         /* Half-step offset: each half of a junction loop is symmetric. */
         double ang = 2.0 * BANYAN_PI * (j + 0.5) / sides;
-        wk.cs[j] = cos(ang);
-        wk.sn[j] = sin(ang);
+        wk.cs[j] = dm_cos(ang);
+        wk.sn[j] = dm_sin(ang);
     }
 
     roots_wind rw;

@@ -337,7 +337,7 @@ static void buttress(roots_net *net, const banyan_roots_params *p, const roots_p
 /* The pipe model (see the header). */
 static int set_radii(roots_net *net, const banyan_roots_params *p) {
     const int N = net->N, B = net->B, nb = net->nb;
-    const double r = net->r, e = p->pipe_exponent, tipf = pow(p->tip_radius, e), tip = p->tip_radius * r;
+    const double r = net->r, e = p->pipe_exponent, tipf = dm_pow(p->tip_radius, e), tip = p->tip_radius * r;
     const double gain = 2.0 * p->maturity;
     uint32_t longest = 2;
     for (uint32_t t = 0; t < net->n_poly; t++)
@@ -375,12 +375,12 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
                 sum += F[i];
                 double own = tipf + (1.0 - tipf) * (arc[i] / (8.0 * r) < 1 ? arc[i] / (8.0 * r) : 1.0);
                 double x = own + sum;
-                if (x != x_prev) R_prev = r * pow(x, 1.0 / e), x_prev = x;
+                if (x != x_prev) R_prev = r * dm_pow(x, 1.0 / e), x_prev = x;
                 R[i] = R_prev;
             }
         } else {
             double f = pl->kind == ROOT_FIRST ? f1[pl->a * nb + pl->k] : tipf * (1.0 + gain);
-            double Rf = r * pow(f, 1.0 / e);
+            double Rf = r * dm_pow(f, 1.0 / e);
             for (uint32_t i = 0; i < n; i++) R[i] = Rf;
         }
         /* No steps where branches join: three passes of a [1 2 1] filter. */

@@ -124,7 +124,7 @@ int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_w
         }
         double *k = arc; /* k[i]: the fall over segment i-1 .. i, one exp each */
         for (uint32_t i = 1; i < pl->n; i++) {
-            k[i] = exp(-v3_dist(P[i], P[i - 1]) * fall);
+            k[i] = dm_exp(-v3_dist(P[i], P[i - 1]) * fall);
             double v = s[i - 1] * k[i];
             if (v > s[i]) s[i] = v;
         }

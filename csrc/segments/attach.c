@@ -150,7 +150,7 @@ uint32_t seg_attach_parents(const banyan_segment_input *segs, uint32_t count, co
     grid g;
     g.lo = lo;
     /* About 8 cells per axis at most: a small tree gets a small grid. */
-    double maxdim = fmin(GRID_MAX_DIM, fmax(4, ceil(2 * cbrt((double)count))));
+    double maxdim = fmin(GRID_MAX_DIM, fmax(4, ceil(2 * dm_cbrt((double)count))));
     g.h = fmax(fmax(2 * tol, ext / maxdim), fmax(total / (8.0 * count), 1e-9 * (1 + ext)));
     double span[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
     size_t cells = 1;

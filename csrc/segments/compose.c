@@ -121,7 +121,7 @@ static int64_t forks_wanted(int32_t n, int32_t s) {
 }
 
 double seg_level_radius(double radius, double ratio, double radius_min, int level) {
-    double r = radius * pow(ratio, level);
+    double r = radius * dm_pow(ratio, level);
     return r > radius_min ? r : radius_min;
 }
 

@@ -40,7 +40,7 @@ banyan_status banyan_segments_demo(const banyan_segments_params *params, banyan_
         if (i < on_trunk) {
             double z = h * rng_range(&r, 0.45, 1.0), yaw = rng_range(&r, 0, 2 * BANYAN_PI);
             double el = deg2rad(rng_range(&r, 15, 60));
-            v3 A = v3_make(cos(el) * cos(yaw), cos(el) * sin(yaw), sin(el));
+            v3 A = v3_make(dm_cos(el) * dm_cos(yaw), dm_cos(el) * dm_sin(yaw), dm_sin(el));
             store(&out[i], v3_make(0, 0, z), A, h * rng_range(&r, 0.25, 0.45), &r);
         } else {
             const banyan_segment_input *p = &out[rng_below(&r, i)];

@@ -79,14 +79,14 @@ banyan_status seg_consts_make(const banyan_segment_params *p, double m_scale, se
     } else if (!(isfinite(m) && m >= 1e-6 && m <= 1e6)) {
         return banyan_fail(err, BANYAN_E_RANGE, "m * unit = %g m must be within [1e-06, 1e+06] m", m);
     }
-    k->ca = (float)cos(deg2rad(p->alpha_deg));
-    k->sa = (float)sin(deg2rad(p->alpha_deg));
-    k->cb = (float)cos(deg2rad(p->beta_deg));
-    k->sb = (float)sin(deg2rad(p->beta_deg));
-    k->cg = (float)cos(deg2rad(p->gamma_deg));
-    k->sg = (float)sin(deg2rad(p->gamma_deg));
-    k->co = (float)cos(deg2rad(p->omega_deg));
-    k->so = (float)sin(deg2rad(p->omega_deg));
+    k->ca = (float)dm_cos(deg2rad(p->alpha_deg));
+    k->sa = (float)dm_sin(deg2rad(p->alpha_deg));
+    k->cb = (float)dm_cos(deg2rad(p->beta_deg));
+    k->sb = (float)dm_sin(deg2rad(p->beta_deg));
+    k->cg = (float)dm_cos(deg2rad(p->gamma_deg));
+    k->sg = (float)dm_sin(deg2rad(p->gamma_deg));
+    k->co = (float)dm_cos(deg2rad(p->omega_deg));
+    k->so = (float)dm_sin(deg2rad(p->omega_deg));
     k->m = (float)m;
     return BANYAN_OK;
 }

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "banyan.h"
+#include "core/dmath.h"
 #include "core/leaf_look.h"
 #include "textures/tex_internal.h"
 
@@ -220,9 +221,9 @@ typedef struct kleaf {
  * the widest point at ymax. */
 static float keyaki_w0(const kleaf *L, float p, float t) {
     if (t <= 0.0f || t >= 1.0f) return 0.0f;
-    float f = sinf(PI_F * powf(t, p));
+    float f = dm_sinf(PI_F * dm_powf(t, p));
     float e = 1.0f + L->acum * tex_smooth(0.45f, 1.0f, t);
-    if (e != 1.0f) f = powf(f, e); /* below 0.45 it is 1: powf would return f */
+    if (e != 1.0f) f = dm_powf(f, e); /* below 0.45 it is 1: powf would return f */
     return L->half * f;
 }
 
@@ -246,7 +247,7 @@ typedef struct ktab {
 static void keyaki_table(const kleaf *L, ktab *T) {
     T->q0 = 0.06f;
     T->dq = (0.93f - T->q0) / (float)L->veins;
-    const float p = logf(0.5f) / logf(L->ymax); /* the widest point's exponent, once a leaf */
+    const float p = dm_logf(0.5f) / dm_logf(L->ymax); /* the widest point's exponent, once a leaf */
     for (int side = 0; side < 2; side++) {
         float sk = side ? L->skew : 0.0f, sc = side ? 0.95f : 1.0f;
         for (int i = 0; i <= KT; i++) {
@@ -505,7 +506,7 @@ static void ivy_shape(ivleaf *L, pcg32 *r) {
     for (int i = 0; i < 3; i++) {
         kleaf *B = &L->lobe[i];
         float a = i == 0 ? tex_unif(r, -0.04f, 0.04f) : (i == 1 ? 1.0f : -1.0f) * side_a * tex_unif(r, 0.95f, 1.05f);
-        B->dx = sinf(a), B->dy = cosf(a);
+        B->dx = dm_sinf(a), B->dy = dm_cosf(a);
         B->len = i == 0 ? 1.0f : side_len * tex_unif(r, 0.95f, 1.05f);
         B->half = i == 0 ? c_half : side_half;
         B->ymax = i == 0 ? (L->lobed ? tex_unif(r, 0.36f, 0.44f) : tex_unif(r, 0.3f, 0.36f)) : tex_unif(r, 0.3f, 0.38f);
@@ -643,8 +644,8 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
     float bvx[2], bvy[2], blen[2];
     for (int sd = 0; sd < 2; sd++) {
         const kleaf *B = &L->lobe[1 + sd];
-        float a = atan2f(B->dx, B->dy) + (sd ? -1.0f : 1.0f) * L->basal;
-        bvx[sd] = sinf(a), bvy[sd] = cosf(a), blen[sd] = 0.42f * B->len;
+        float a = dm_atan2f(B->dx, B->dy) + (sd ? -1.0f : 1.0f) * L->basal;
+        bvx[sd] = dm_sinf(a), bvy[sd] = dm_cosf(a), blen[sd] = 0.42f * B->len;
     }
     /* Lobe i can only matter where 0 < y < 1 and its distance is over
      * -0.5 px (else coverage is 0, whichever lobe is nearest): |x| under

@@ -15,6 +15,7 @@ runs=${2:-5}
 script=${3:-peers.py}
 blender=${BLENDER:-blender}
 # banyan_cli: the 1,000-tree avenue (issue 23); bench_roots: section 7
+cmake -S "$src" -B "$build" -DBANYAN_BENCH=ON >/dev/null  # the benchmarks are built only when asked
 cmake --build "$build" -j2 --target banyan banyan_cli bench_tube bench_hosts bench_roots_hosts bench_ivy bench_textures \
     bench_roots
 
