@@ -5,6 +5,8 @@
     if bt.generator("roots"): ... # True when built; fails loudly when missing
                                   # unless config.EXPECTED_MISSING lists it
     bt.done()                   # prints "name: N passed, N failed", exits 1 on failure
+                                  # (under suite.py: records the exit code and ends
+                                  # the file, raising Done, so the next file runs)
 """
 import os
 import sys
@@ -16,6 +18,11 @@ import config  # noqa: E402
 NAME = os.path.splitext(os.path.basename(sys.argv[-1]))[0] if sys.argv else "test"
 _passed = 0
 _failed = 0
+# Set by tests/blender/suite.py, which runs many files in one Blender: done()
+# then leaves the exit code the file's own Blender would have given in
+# RESULT and raises Done instead of ending the process.
+DRIVER = False
+RESULT = None
 SOURCE_DIR = os.environ.get("BANYAN_SOURCE_DIR", os.path.normpath(os.path.join(os.path.dirname(__file__), "..", "..")))
 OUT_DIR = os.environ.get("BANYAN_TEST_OUT", "/tmp")
 # The command that starts a child Blender: `blender` itself, or for the bpy
@@ -60,10 +67,20 @@ def generator(gen):
     return False
 
 
+class Done(BaseException):
+    """done() under suite.py: this file is over (a BaseException, so that
+    no `except Exception` in a test swallows it)."""
+
+
 def done():
+    global RESULT
     print("%s: %d passed, %d failed" % (NAME, _passed, _failed), flush=True)
     sys.stdout.flush()
-    os._exit(1 if _failed or not _passed else 0)
+    rc = 1 if _failed or not _passed else 0
+    if DRIVER:
+        RESULT = rc
+        raise Done()
+    os._exit(rc)
 
 
 def reset_scene():
