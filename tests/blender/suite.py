@@ -34,7 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 # The files that run in a Blender of their own, and why. Every other
 # test_*.py runs in the shared driver (BANYAN_BLENDER_SEPARATE=1 makes
-# run.sh start one Blender per file for every file, as before).
+# run.sh start one Blender per file for every file).
 SEPARATE = {
     "test_register": "disables, enables and re-registers the add-on, with a library path and ABI it fakes; "
                      "its first check is the state `--addons` left at start-up",
