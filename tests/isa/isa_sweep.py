@@ -17,6 +17,7 @@ output file's sha256 with the reference:
                as on a CPU without FMA
   oldest       both: Embree SSE2, libm and string functions at baseline
 
+Only the hashes are kept (each case's files are removed once hashed).
 Each stand-in is checked to take effect: Embree's verbose report must name
 the pinned kernel set, and libm_probe must print another hash under the
 tunable than without it (when the CPU has FMA). BANYAN_TEST_TIER=quick
@@ -29,6 +30,7 @@ import glob
 import hashlib
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -110,6 +112,7 @@ def run_case(cli, case, folder, env, threads):
     for f in files:
         with open(os.path.join(folder, f), "rb") as fh:
             sums[f] = hashlib.sha256(fh.read()).hexdigest()
+    shutil.rmtree(folder)  # the hashes are what is compared: a full sweep would keep some 20 GB
     return sums, r.stdout
 
 
@@ -123,6 +126,7 @@ def run_textures(cli, folder, env):
     for f in sorted(os.listdir(folder)):
         with open(os.path.join(folder, f), "rb") as fh:
             sums[f] = hashlib.sha256(fh.read()).hexdigest()
+    shutil.rmtree(folder)
     return sums, r.stdout
 
 
