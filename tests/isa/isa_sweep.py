@@ -75,7 +75,8 @@ def cpu_flags():
 
 
 def cases(repo):
-    """(name, CLI arguments, output files relative to the case's folder)."""
+    """(name, CLI arguments): each writes a .glb, or with textures its PNGs,
+    into the case's own folder."""
     out = []
     for p in sorted(glob.glob(os.path.join(repo, "presets", "*.json"))):
         name = os.path.splitext(os.path.basename(p))[0]
@@ -84,49 +85,41 @@ def cases(repo):
         args = [gen, "--preset", p]
         if name == "avenue_boulevard":  # 100 unique trees, 1.7 GB: the same code on 12
             args += ["--set", "end=60,0,0"]
-        out.append((name, args, ["out.glb"]))
+        out.append((name, args))
     pre = lambda n: os.path.join(repo, "presets", n + ".json")
     host = lambda n: os.path.join(repo, "presets", "hosts", n + ".glb")
     out += [
-        ("lod_keyaki", ["keyaki", "--preset", pre("keyaki_mature"), "--lod", "0.5,0.15,billboard"], ["out.glb"]),
-        ("lod_roots_rock", ["roots", "--preset", pre("roots_rock"), "--lod", "0.5,0.2"], ["out.glb"]),
-        ("lod_ivy_statue", ["ivy", "--preset", pre("ivy_statue"), "--lod", "0.4,billboard"], ["out.glb"]),
-        ("variants", ["avenue", "--preset", pre("avenue_street"), "--set", "variants=3"], ["out.glb"]),
-        ("host_roots_statue", ["roots", "--host", host("statue")], ["out.glb"]),
-        ("host_ivy_column", ["ivy", "--host", host("column")], ["out.glb"]),
-        ("engine_uvs", ["keyaki", "--preset", pre("keyaki_young"), "--engine-uvs"], ["out.glb"]),
-        ("tube", ["tube"], ["out.glb"]),
-        ("segments_demo", ["segments"], ["out.glb"]),
+        ("lod_keyaki", ["keyaki", "--preset", pre("keyaki_mature"), "--lod", "0.5,0.15,billboard"]),
+        ("lod_roots_rock", ["roots", "--preset", pre("roots_rock"), "--lod", "0.5,0.2"]),
+        ("lod_ivy_statue", ["ivy", "--preset", pre("ivy_statue"), "--lod", "0.4,billboard"]),
+        ("variants", ["avenue", "--preset", pre("avenue_street"), "--set", "variants=3"]),
+        ("host_roots_statue", ["roots", "--host", host("statue")]),
+        ("host_ivy_column", ["ivy", "--host", host("column")]),
+        ("engine_uvs", ["keyaki", "--preset", pre("keyaki_young"), "--engine-uvs"]),
+        ("tube", ["tube"]),
+        ("segments_demo", ["segments"]),
+        ("textures", ["textures", "--size", TEXTURE_SIZE, "--seed", "7"]),
     ]
     return out
 
 
 def run_case(cli, case, folder, env, threads):
-    name, args, files = case
+    """({file: sha256} of what the case wrote, or None; the CLI's output)."""
+    name, args = case
     os.makedirs(folder, exist_ok=True)
-    cmd = [cli] + args + ["--texture-size", TEXTURE_SIZE, "--threads", threads, "-o", os.path.join(folder, "out.glb")]
+    if args[0] == "textures":
+        cmd = [cli] + args + ["-o", folder]
+    else:
+        cmd = [cli] + args + ["--texture-size", TEXTURE_SIZE, "--threads", threads, "-o",
+                              os.path.join(folder, "out.glb")]
     r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if r.returncode != 0:
-        return None, r.stdout[-2000:]
-    sums = {}
-    for f in files:
-        with open(os.path.join(folder, f), "rb") as fh:
-            sums[f] = hashlib.sha256(fh.read()).hexdigest()
-    shutil.rmtree(folder)  # the hashes are what is compared: a full sweep would keep some 20 GB
-    return sums, r.stdout
-
-
-def run_textures(cli, folder, env):
-    os.makedirs(folder, exist_ok=True)
-    r = subprocess.run([cli, "textures", "-o", folder, "--size", TEXTURE_SIZE, "--seed", "7"], env=env,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
         return None, r.stdout[-2000:]
     sums = {}
     for f in sorted(os.listdir(folder)):
         with open(os.path.join(folder, f), "rb") as fh:
             sums[f] = hashlib.sha256(fh.read()).hexdigest()
-    shutil.rmtree(folder)
+    shutil.rmtree(folder)  # the hashes are what is compared: a full sweep would keep some 20 GB
     return sums, r.stdout
 
 
@@ -141,9 +134,6 @@ def sweep(cli, all_cases, out, tag, env, threads):
             sums, log = fut.result()
             if check(sums is not None, "%s: %s failed under %s: %s" % (case[0], " ".join(case[1]), tag, log)):
                 res[case[0]] = sums
-    sums, log = run_textures(cli, os.path.join(out, tag, "textures"), env)
-    if check(sums is not None, "textures failed under %s: %s" % (tag, log)):
-        res["textures"] = sums
     return res
 
 
