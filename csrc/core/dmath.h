@@ -13,6 +13,7 @@
 #ifndef BANYAN_DMATH_H
 #define BANYAN_DMATH_H
 
+#include <float.h>
 #include <sleef.h>
 
 /* Most at 3.5 ulp (SLEEF's u35: as fast as glibc); exp at 1 ulp. */
@@ -31,7 +32,7 @@ static inline double dm_hypot(double x, double y) { return Sleef_hypotd1_u35pure
  * relative error grows with |y log x|, about 1e-14 for the exponents and
  * bases here), SLEEF's pow for the rest. */
 static inline double dm_pow(double x, double y) {
-    if (x > 0 && x < 1.0 / 0.0 && y == y) return y == 0 ? 1.0 : Sleef_expd1_u10purec(y * Sleef_logd1_u35purec(x));
+    if (x > 0 && x <= DBL_MAX && y == y) return y == 0 ? 1.0 : Sleef_expd1_u10purec(y * Sleef_logd1_u35purec(x));
     return Sleef_powd1_u10purec(x, y);
 }
 
