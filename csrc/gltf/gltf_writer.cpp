@@ -17,7 +17,8 @@
  *   - POSITION (min/max), NORMAL (renormalised; zero -> +Y), TEXCOORD_0
  *     (u, 1 - v), COLOR_0 (float VEC4, when colors != NULL), "_NAME" float
  *     scalars for custom attributes, UNSIGNED_INT indices;
- *   - Z-up to Y-up: (x, y, z) -> (x, z, -y) for positions and normals;
+ *   - Z-up to Y-up: (x, y, z) -> (x, z, -y) for positions, normals and
+ *     the wind pivot (_WIND_PIVOT_X/_Y/_Z);
  *   - one metallic-roughness material per banyan_material;
  *   - with textures on, the library's textures that the materials name
  *     (banyan/textures.h), drawn at the options' size and seed, as PNG
@@ -397,7 +398,7 @@ banyan_status check_mesh(const banyan_mesh *m, const char *mi, banyan_error *err
  * first (the JSON needs their offsets) and their bytes streamed to the file
  * afterwards, straight from the mesh arrays or converted through a fixed
  * scratch block, so no copy of the buffer is ever held in memory. */
-enum SegKind { kRaw, kZero, kPosition, kNormal, kUv, kTangent, kColor, kWindPivot, kWindParams, kEngineUv, kIndices };
+enum SegKind { kRaw, kZero, kPosition, kNormal, kUv, kTangent, kColor, kWindPivot, kEngineUv, kIndices };
 
 struct Layout;
 
@@ -408,7 +409,8 @@ struct Segment {
     const banyan_mesh *m = nullptr;
     const Layout *L = nullptr;          /* wind kinds */
     uint32_t base = 0, count = 0;       /* vertices [base, +count); kIndices: indices [base, +count) */
-    uint32_t aux = 0;                   /* kEngineUv: the set (1 .. 4); kIndices: the vertex base subtracted */
+    uint32_t aux = 0;                   /* kWindPivot: the glTF axis (0 .. 2); kEngineUv: the set (1 .. 4);
+                                           kIndices: the vertex base subtracted */
     uint32_t ioff = 0, icount = 0;      /* kTangent: the triangles the range's tangents come from */
     bool whole = false;                 /* kTangent: from the whole mesh's triangles */
 };
@@ -628,11 +630,13 @@ std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_
     return out;
 }
 
-/* How a mesh's custom attributes go out (docs/gltf.md "Wind"). With all
- * seven wind attributes they are packed as engines read them: _WIND_PIVOT
- * (VEC3, Y up like POSITION) and _WIND_PARAMS (VEC4: level, stiffness,
- * phase, flutter) replace the seven scalars; with engine_uvs they are
- * also written as TEXCOORD_1 .. 4 for importers that keep only UV sets. */
+/* How a mesh's custom attributes go out (docs/gltf.md "Wind"). Every one
+ * is a float SCALAR: Blender's glTF importer before 5.2 fails on a mesh
+ * whose custom attributes differ in element count. With all three pivot
+ * components, _WIND_PIVOT_X/_Y/_Z are the pivot in glTF's axes like
+ * POSITION ((x, y, z) -> (x, z, -y)); the other wind scalars go out as
+ * they are. With all seven and engine_uvs they are also written as
+ * TEXCOORD_1 .. 4 for importers that keep only UV sets. */
 const char *const kWindNames[7] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PIVOT_Y, BANYAN_ATTR_WIND_PIVOT_Z,
                                    BANYAN_ATTR_WIND_LEVEL,   BANYAN_ATTR_WIND_STIFFNESS, BANYAN_ATTR_WIND_PHASE,
                                    BANYAN_ATTR_WIND_FLUTTER};
@@ -640,8 +644,8 @@ const char *const kWindNames[7] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_WIND_PI
 struct Layout {
     const float *wind[7] = {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
     const float *birth = nullptr;
-    bool packed = false;     /* all seven wind attributes present */
-    bool engine_uvs = false; /* packed and the option on: TEXCOORD_1 .. 4 */
+    bool pivot = false;      /* the three pivot components present */
+    bool engine_uvs = false; /* all seven present and the option on: TEXCOORD_1 .. 4 */
 };
 
 Layout layout_of(const banyan_mesh *m, bool engine_uvs) {
@@ -650,14 +654,14 @@ Layout layout_of(const banyan_mesh *m, bool engine_uvs) {
     for (int k = 0; k < 7; ++k)
         if ((L.wind[k] = banyan_mesh_attribute(m, kWindNames[k])) != nullptr) found++;
     L.birth = banyan_mesh_attribute(m, BANYAN_ATTR_BIRTH);
-    L.packed = found == 7;
-    L.engine_uvs = L.packed && engine_uvs;
+    L.pivot = L.wind[0] && L.wind[1] && L.wind[2];
+    L.engine_uvs = found == 7 && engine_uvs;
     return L;
 }
 
 bool is_wind_attribute(const Layout &L, const banyan_attribute *at) {
-    if (!L.packed) return false;
-    for (int k = 0; k < 7; ++k)
+    if (!L.pivot) return false;
+    for (int k = 0; k < 3; ++k)
         if (at->data == L.wind[k] && std::strcmp(at->name, kWindNames[k]) == 0) return true;
     return false;
 }
@@ -735,11 +739,13 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
             b.add_accessor(v, F, TINYGLTF_TYPE_SCALAR, count);
     }
 
-    if (L.packed) {
-        v = b.add_view(seg(kWindPivot, 3), AB);
-        attrs["_WIND_PIVOT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC3, count);
-        v = b.add_view(seg(kWindParams, 4), AB);
-        attrs["_WIND_PARAMS"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
+    if (L.pivot) {
+        for (uint32_t axis = 0; axis < 3; ++axis) {
+            Segment sg = seg(kWindPivot, 1);
+            sg.aux = axis;
+            v = b.add_view(sg, AB);
+            attrs[upper_attribute_key(kWindNames[axis])] = b.add_accessor(v, F, TINYGLTF_TYPE_SCALAR, count);
+        }
     }
 
     if (L.engine_uvs) {
@@ -1114,24 +1120,16 @@ class BinWriter {
             }
             break;
         }
-        case kWindPivot: { /* a point like POSITION */
+        case kWindPivot: { /* one axis of a point like POSITION: x, z, -y */
             const Layout &L = *s.L;
-            for (uint32_t i = 0; i < n; ++i, o += 3) {
-                o[0] = L.wind[0][b + i];
-                o[1] = L.wind[2][b + i];
-                o[2] = -L.wind[1][b + i];
-            }
-            break;
-        }
-        case kWindParams: { /* level, stiffness, phase, flutter */
-            const Layout &L = *s.L;
-            for (uint32_t i = 0; i < n; ++i, o += 4)
-                for (int k = 0; k < 4; ++k) o[k] = L.wind[3 + k][b + i];
+            const float *src = L.wind[s.aux == 0 ? 0 : s.aux == 1 ? 2 : 1];
+            const float sign = s.aux == 2 ? -1.0f : 1.0f;
+            for (uint32_t i = 0; i < n; ++i) o[i] = sign * src[b + i];
             break;
         }
         case kEngineUv: {
             /* TEXCOORD_1 pivot (x, y), 2 (pivot z, level), 3 (stiffness,
-             * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT. */
+             * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT_*. */
             const Layout &L = *s.L;
             for (uint32_t i = 0; i < n; ++i, o += 2) {
                 size_t j = b + i;
@@ -1183,7 +1181,6 @@ class BinWriter {
 };
 
 uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t count, bool with_colors, bool tangents) {
-    /* Packed wind: 7 scalars become VEC3 + VEC4, the same floats. */
     uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs || L.engine_uvs ? 2 : 0) +
                       (m->colors && with_colors ? 4 : 0) + (tangents ? 4 : 0) + m->attribute_count +
                       (L.engine_uvs ? 8 : 0);

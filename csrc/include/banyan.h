@@ -536,10 +536,10 @@ typedef struct banyan_gltf_node {
 BANYAN_API size_t banyan_sizeof_gltf_node(void);
 
 /* Writes nodes (count 1 .. 65536) as one glTF asset, as banyan_gltf_write_ex
- * does for plain meshes (same options, same atomic write). Besides the
- * "_NAME" scalars, the wind attributes go out packed as engines read them:
- * _WIND_PIVOT (VEC3, Y up, the node's frame) and _WIND_PARAMS (VEC4:
- * level, stiffness, phase, flutter); docs/game-engines.md. */
+ * does for plain meshes (same options, same atomic write). Every custom
+ * attribute is a "_NAME" float scalar; the wind pivot's three
+ * (_WIND_PIVOT_X/_Y/_Z) are in glTF's axes (Y up, the node's frame) like
+ * POSITION; docs/game-engines.md. */
 BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes, uint32_t count,
                                                  const banyan_gltf_options *opt, banyan_error *err);
 

@@ -1,7 +1,7 @@
 // banyan viewer: shows one banyan .glb (drag and drop, the Open button or
 // ?file=URL, optionally &colour=ATTRIBUTE and &wind=0) with orbit controls,
-// and lists what it holds. A file with banyan's wind attributes (_WIND_PIVOT,
-// _WIND_PARAMS) sways in the vertex shader (wind.js); otherwise the page
+// and lists what it holds. A file with banyan's wind attributes (_WIND_PIVOT_X,
+// ..., _WIND_FLUTTER) sways in the vertex shader (wind.js); otherwise the page
 // renders only when something changes, so an idle page costs nothing.
 //
 // window.__banyanViewer is the page's state for tests and scripts:
@@ -12,7 +12,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { Wind, hasWind, WIND_PARAMS } from './wind.js';
+import { Wind, hasWind } from './wind.js';
 
 const $ = (id) => document.getElementById(id);
 const state = {
@@ -151,18 +151,13 @@ function load(source, name) {
 }
 
 // Where each colourable attribute lives: glTF `_ROOT_KIND` arrives in
-// three.js as `_root_kind` (GLTFLoader lower-cases names it does not know);
-// the packed _WIND_PARAMS gives four (wind_level, ..., one component each).
-// Vector attributes other than that (such as _WIND_PIVOT) are not listed.
+// three.js as `_root_kind` (GLTFLoader lower-cases names it does not know).
+// banyan writes every custom attribute as a scalar (docs/gltf.md); vector
+// ones from elsewhere are not listed.
 function scalarsOf(g) {
   const out = [];
   for (const [key, attr] of Object.entries(g.attributes)) {
-    if (!key.startsWith('_')) continue;
-    if (key === '_wind_params' && attr.itemSize === 4) {
-      WIND_PARAMS.forEach((name, c) => out.push([name, attr, c]));
-    } else if (attr.itemSize === 1) {
-      out.push([key.slice(1), attr, 0]);
-    }
+    if (key.startsWith('_') && attr.itemSize === 1) out.push([key.slice(1), attr, 0]);
   }
   return out;
 }
@@ -313,7 +308,7 @@ function fillInfo(gltf, name) {
   row('colours', state.colors ? 'vertex colours (COLOR_0)' : 'material colours only');
   if (state.instances) row('instances', `${state.instances.toLocaleString('en')} (EXT_mesh_gpu_instancing)`);
   if (state.lods) row('levels of detail', `MSFT_lod on ${state.lods} node(s): three.js shows LOD0 only`);
-  row('wind', state.windMeshes ? `${state.windMeshes} primitive(s) with _WIND_PIVOT + _WIND_PARAMS` : 'no wind attributes');
+  row('wind', state.windMeshes ? `${state.windMeshes} primitive(s) with the _WIND_* attributes` : 'no wind attributes');
   for (const [key, [lo, hi]] of Object.entries(state.attributes)) row(key, `${fmt(lo)} … ${fmt(hi)}`);
   $('info').replaceChildren(...rows);
 

@@ -3,10 +3,11 @@
 // Geometry Nodes modifier, so a plant sways alike in both.
 //
 // Every vertex of a plant carries the point it sways about (glTF
-// _WIND_PIVOT, VEC3, the node's frame) and _WIND_PARAMS (VEC4: level,
-// stiffness s, phase, flutter); GLTFLoader keeps them as the geometry
-// attributes `_wind_pivot` and `_wind_params` (it lower-cases names it does
-// not know). The vertex shader, with d the wind's horizontal direction:
+// _WIND_PIVOT_X/_Y/_Z, the node's frame) and _WIND_LEVEL, _WIND_STIFFNESS
+// (s), _WIND_PHASE, _WIND_FLUTTER, all float scalars (docs/gltf.md,
+// "Wind"); GLTFLoader keeps them as the geometry attributes `_wind_pivot_x`,
+// ... (it lower-cases names it does not know). The vertex shader, with d
+// the wind's horizontal direction:
 //  1. main bend, along d by
 //       strength * (1 - s)^2 * h * (1 + gust * sin(2 pi (f t + phi_plant)))
 //     h the height above the plant's lowest point (the bounding box of the
@@ -19,7 +20,9 @@
 // rates are the add-on's (blender_addon/banyan/wind.py).
 import * as THREE from 'three';
 
-export const WIND_PARAMS = ['wind_level', 'wind_stiffness', 'wind_phase', 'wind_flutter'];
+// The geometry attributes the shader reads (wind_level is not needed).
+export const WIND_ATTRIBUTES = ['_wind_pivot_x', '_wind_pivot_y', '_wind_pivot_z', '_wind_stiffness', '_wind_phase',
+  '_wind_flutter'];
 
 // The defaults, in the add-on's units: strength in radians (the steady
 // lean of a vertex of stiffness 0), gust the swing relative to that lean,
@@ -33,12 +36,12 @@ const SWAY_RATE = 2.3;      // the secondary sway's rate (the add-on's SWAY_RATI
 
 export function hasWind(geometry) {
   const a = geometry.attributes;
-  return !!(a._wind_pivot && a._wind_params && a._wind_pivot.itemSize === 3 && a._wind_params.itemSize === 4);
+  return WIND_ATTRIBUTES.every((k) => a[k] && a[k].itemSize === 1);
 }
 
 const DECLARATIONS = /* glsl */`
-attribute vec3 _wind_pivot;
-attribute vec4 _wind_params;   // level, stiffness, phase, flutter
+attribute float _wind_pivot_x, _wind_pivot_y, _wind_pivot_z;
+attribute float _wind_stiffness, _wind_phase, _wind_flutter;
 uniform vec3 banyanWindAxis;   // world axis the wind turns things about (unit, horizontal)
 uniform float banyanWindStrength, banyanWindGust, banyanWindCycle, banyanWindFlutter, banyanWindFlutterCycle;
 uniform float banyanWindSwayCycle;
@@ -69,11 +72,11 @@ mat3 banyanToLocal = transpose(banyanToWorld);
 vec3 banyanAxis = normalize(banyanToLocal * banyanWindAxis);
 // d = axis x up in the mesh frame: the wind's horizontal direction.
 vec3 banyanDir = normalize(cross(banyanAxis, vec3(0.0, 1.0, 0.0)));
-float banyanFree = 1.0 - _wind_params.y;
+float banyanFree = 1.0 - _wind_stiffness;
 float banyanBend = banyanWindStrength * banyanFree * banyanFree *
                    (sin(6.28318531 * fract(banyanWindCycle + banyanPlant)) * banyanWindGust + 1.0);
 float banyanAngle = 0.25 * banyanWindStrength * banyanFree *
-                    sin(6.28318531 * (banyanWindSwayCycle + _wind_params.z));
+                    sin(6.28318531 * (banyanWindSwayCycle + _wind_phase));
 mat3 banyanTurn = banyanWindRotation(banyanAxis, banyanAngle);
 vec3 banyanRestNormal = objectNormal;
 // The bend is the shear x += bend h d: normals by its inverse transpose.
@@ -87,12 +90,12 @@ objectNormal = banyanTurn * (objectNormal - banyanBend * dot(objectNormal, banya
 // than pivot + R d: with the wind off every term is exactly 0, and the
 // file's positions come through bit for bit.
 const MOVE = /* glsl */`
-vec3 banyanArm = transformed - _wind_pivot;
+vec3 banyanArm = transformed - vec3(_wind_pivot_x, _wind_pivot_y, _wind_pivot_z);
 float banyanH = transformed.y - banyanWindBase;
 transformed += banyanTurn * banyanArm - banyanArm;
 transformed += banyanDir * (banyanBend * banyanH);
-transformed += banyanRestNormal * (banyanWindFlutter * _wind_params.w *
-               sin(6.28318531 * (banyanWindFlutterCycle + _wind_params.z)));
+transformed += banyanRestNormal * (banyanWindFlutter * _wind_flutter *
+               sin(6.28318531 * (banyanWindFlutterCycle + _wind_phase)));
 `;
 
 export class Wind {

@@ -1,10 +1,13 @@
 /* banyan_gltf_write_nodes (csrc/gltf/gltf_writer.cpp), read back from the
  * .glb with a small loader here (cJSON for the JSON chunk, floats from the
  * BIN chunk):
- *   - wind: a keyaki's seven wind attributes go out as _WIND_PIVOT (VEC3,
- *     Y up: (x, z, -y)) and _WIND_PARAMS (VEC4), not as scalars; birth
- *     stays _BIRTH; engine_uvs adds TEXCOORD_1 .. 4 with the documented
- *     packing; a mesh with only some wind attributes keeps scalars;
+ *   - wind: a keyaki's seven wind attributes go out as float scalars,
+ *     _WIND_PIVOT_X/_Y/_Z in glTF's axes ((x, z, -y), like POSITION) and
+ *     _WIND_LEVEL, ... as they are; birth stays _BIRTH; every custom
+ *     attribute of every file here is SCALAR (Blender's importer before
+ *     5.2 fails on mixed element counts); engine_uvs adds TEXCOORD_1 .. 4
+ *     with the documented packing; a mesh with only some pivot components
+ *     keeps them as they are;
  *   - MSFT_lod: levels as nodes outside the scene's roots, listed on the
  *     primary node, with MSFT_screencoverage (defaults and given);
  *   - EXT_mesh_gpu_instancing: an instanced avenue as one mesh and node
@@ -199,6 +202,34 @@ static banyan_gltf_options small_textures(void) {
     return o;
 }
 
+/* Primitives of the file without _WIND_PIVOT_X and _WIND_LEVEL (real
+ * generators' meshes, and banyan_mesh_lod's levels of them, carry wind). */
+static int windless_prims(const glb *g) {
+    int bad = 0;
+    for (int mi = 0; mi < cJSON_GetArraySize(arr(g->json, "meshes")); mi++)
+        for (int p = 0; p < cJSON_GetArraySize(arr(item(g, "meshes", mi), "primitives")); p++)
+            bad += prim_attr(g, mi, p, "_WIND_PIVOT_X") < 0 || prim_attr(g, mi, p, "_WIND_LEVEL") < 0;
+    return bad;
+}
+
+/* Custom ("_"-prefixed) attributes of the file that are not float
+ * SCALARs: Blender's glTF importer before 5.2 fails on a mesh whose custom
+ * attributes differ in element count. */
+static int non_scalar_custom(const glb *g) {
+    int bad = 0;
+    for (int mi = 0; mi < cJSON_GetArraySize(arr(g->json, "meshes")); mi++)
+        for (int p = 0; p < cJSON_GetArraySize(arr(item(g, "meshes", mi), "primitives")); p++) {
+            const cJSON *at;
+            cJSON_ArrayForEach(at, arr(cJSON_GetArrayItem(arr(item(g, "meshes", mi), "primitives"), p), "attributes")) {
+                if (at->string[0] != '_') continue;
+                const cJSON *acc = item(g, "accessors", cJSON_IsNumber(at) ? at->valueint : -1);
+                const char *t = cJSON_GetStringValue(arr(acc, "type"));
+                bad += !t || strcmp(t, "SCALAR") || num(acc, "componentType", 0) != 5126;
+            }
+        }
+    return bad;
+}
+
 /* ------------------------------------------------------------ tests */
 
 static void wind(void) {
@@ -234,29 +265,34 @@ static void wind(void) {
               "keyaki's wind values cannot show a packing error: %u pivots with y != 0, %u/%u/%u vertices whose "
               "level/phase/birth differ from vertex 0's", lifted, lv, ph, br);
     }
+    CHECK(non_scalar_custom(&g) == 0, "wind: %d custom attributes not float SCALAR", non_scalar_custom(&g));
     int prims = cJSON_GetArraySize(arr(item(&g, "meshes", 0), "primitives"));
     CHECK(g.json && prims == (int)m->part_count, "%d primitives for %u parts", prims, m->part_count);
     for (int p = 0; g.json && p < prims && p < (int)m->part_count; p++) {
         const uint32_t base = m->parts[p].vertex_offset, vc = m->parts[p].vertex_count;
         int n, c, bad = 0;
         const char *t;
-        const float *piv = floats(&g, prim_attr(&g, 0, p, "_WIND_PIVOT"), &n, &c, &t);
-        CHECK(piv && c == 3 && n == (int)vc, "prim %d: _WIND_PIVOT is not a float VEC3 of %u", p, vc);
-        for (uint32_t i = 0; piv && i < vc; i++)
-            bad += piv[3 * i] != W[0][base + i] || piv[3 * i + 1] != W[2][base + i] || piv[3 * i + 2] != -W[1][base + i];
+        const float *pv[3];
+        for (int k = 0; k < 3; k++) {
+            static const char *const key[3] = {"_WIND_PIVOT_X", "_WIND_PIVOT_Y", "_WIND_PIVOT_Z"};
+            pv[k] = floats(&g, prim_attr(&g, 0, p, key[k]), &n, &c, &t);
+            CHECK(pv[k] && c == 1 && n == (int)vc, "prim %d: %s is not a float scalar of %u", p, key[k], vc);
+        }
+        for (uint32_t i = 0; pv[0] && pv[1] && pv[2] && i < vc; i++)
+            bad += pv[0][i] != W[0][base + i] || pv[1][i] != W[2][base + i] || pv[2][i] != -W[1][base + i];
         CHECK(bad == 0, "prim %d: %d pivots not (x, z, -y)", p, bad);
-        const float *par = floats(&g, prim_attr(&g, 0, p, "_WIND_PARAMS"), &n, &c, &t);
-        CHECK(par && c == 4 && n == (int)vc, "prim %d: _WIND_PARAMS is not a float VEC4 of %u", p, vc);
-        bad = 0;
-        for (uint32_t i = 0; par && i < vc; i++)
-            for (int k = 0; k < 4; k++) bad += par[4 * i + k] != W[3 + k][base + i];
-        CHECK(bad == 0, "prim %d: %d _WIND_PARAMS values not (level, stiffness, phase, flutter)", p, bad);
-        for (int k = 0; k < 7; k++) {
+        for (int k = 3; k < 7; k++) {
             char key[40];
             snprintf(key, sizeof key, "_%s", wn[k]);
             for (char *q = key; *q; q++) *q = (char)(*q >= 'a' && *q <= 'z' ? *q - 32 : *q);
-            CHECK(prim_attr(&g, 0, p, key) < 0, "prim %d: the scalar %s is written as well", p, key);
+            const float *w = floats(&g, prim_attr(&g, 0, p, key), &n, &c, &t);
+            CHECK(w && c == 1 && n == (int)vc, "prim %d: %s is not a float scalar of %u", p, key, vc);
+            bad = 0;
+            for (uint32_t i = 0; w && i < vc; i++) bad += w[i] != W[k][base + i];
+            CHECK(bad == 0, "prim %d: %d %s values differ from the mesh's", p, bad, key);
         }
+        CHECK(prim_attr(&g, 0, p, "_WIND_PIVOT") < 0 && prim_attr(&g, 0, p, "_WIND_PARAMS") < 0,
+              "prim %d: a packed _WIND_PIVOT or _WIND_PARAMS is written", p);
         const float *birth = floats(&g, prim_attr(&g, 0, p, "_BIRTH"), &n, &c, &t);
         CHECK(birth && c == 1, "prim %d: _BIRTH is not a float scalar", p);
         const float *tc[5];
@@ -282,32 +318,32 @@ static void wind(void) {
     o.engine_uvs = 0;
     path = out_path("test_gltf_nodes_wind_plain.glb");
     CHECK(banyan_gltf_write_nodes(path, &node, 1, &o, &err) == BANYAN_OK, "wind plain: %s", err.message);
-    CHECK(glb_load(path, &g) && prim_attr(&g, 0, 0, "_WIND_PIVOT") >= 0 && prim_attr(&g, 0, 0, "TEXCOORD_1") < 0,
-          "engine_uvs 0 still writes TEXCOORD_1, or no _WIND_PIVOT");
+    CHECK(glb_load(path, &g) && prim_attr(&g, 0, 0, "_WIND_PIVOT_X") >= 0 && prim_attr(&g, 0, 0, "TEXCOORD_1") < 0,
+          "engine_uvs 0 still writes TEXCOORD_1, or no _WIND_PIVOT_X");
     glb_free(&g);
 
-    /* Only some wind attributes: they stay scalars. Synthetic (flutter
-     * renamed away), since no generator writes a partial set: it tests the
-     * writer's fallback for meshes from elsewhere. */
+    /* Only two pivot components: they go out as they are (no axis swap).
+     * Synthetic (wind_pivot_z renamed away), since no generator writes a
+     * partial set: it tests the writer's fallback for meshes from
+     * elsewhere. */
     for (uint32_t a = 0; a < m->attribute_count; a++)
-        if (!strcmp(m->attributes[a].name, BANYAN_ATTR_WIND_FLUTTER)) strcpy(m->attributes[a].name, "flutter_x");
+        if (!strcmp(m->attributes[a].name, BANYAN_ATTR_WIND_PIVOT_Z)) strcpy(m->attributes[a].name, "pivot_z_x");
     path = out_path("test_gltf_nodes_wind_partial.glb");
     CHECK(banyan_gltf_write_nodes(path, &node, 1, &o, &err) == BANYAN_OK, "partial: %s", err.message);
-    CHECK(glb_load(path, &g) && prim_attr(&g, 0, 0, "_WIND_PIVOT") < 0 && prim_attr(&g, 0, 0, "_WIND_PIVOT_X") >= 0 &&
-              prim_attr(&g, 0, 0, "_WIND_LEVEL") >= 0,
-          "six wind attributes must stay scalars");
+    if (glb_load(path, &g)) {
+        const uint32_t vc = m->parts[0].vertex_count;
+        int n, c, bad = 0;
+        const char *t;
+        const float *py = floats(&g, prim_attr(&g, 0, 0, "_WIND_PIVOT_Y"), &n, &c, &t);
+        CHECK(py && c == 1 && prim_attr(&g, 0, 0, "_WIND_PIVOT_Z") < 0 && prim_attr(&g, 0, 0, "_PIVOT_Z_X") >= 0,
+              "partial: no scalar _WIND_PIVOT_Y, or a _WIND_PIVOT_Z made up");
+        for (uint32_t i = 0; py && i < vc; i++) bad += py[i] != W[1][m->parts[0].vertex_offset + i];
+        CHECK(bad == 0, "partial: %d _WIND_PIVOT_Y values converted though the pivot is incomplete", bad);
+    } else {
+        CHECK(0, "cannot read %s back", path);
+    }
     glb_free(&g);
     banyan_mesh_free(m);
-}
-
-/* Primitives of the file without _WIND_PIVOT and _WIND_PARAMS (real
- * generators' meshes, and banyan_mesh_lod's levels of them, carry wind). */
-static int windless_prims(const glb *g) {
-    int bad = 0;
-    for (int mi = 0; mi < cJSON_GetArraySize(arr(g->json, "meshes")); mi++)
-        for (int p = 0; p < cJSON_GetArraySize(arr(item(g, "meshes", mi), "primitives")); p++)
-            bad += prim_attr(g, mi, p, "_WIND_PIVOT") < 0 || prim_attr(g, mi, p, "_WIND_PARAMS") < 0;
-    return bad;
 }
 
 /* A coarser level from banyan_mesh_lod; NULL, with a failure, if it
@@ -362,6 +398,7 @@ static void lods(void) {
                   ni, k, cJSON_GetArrayItem(cov, k)->valuedouble, want[r][k]);
     }
     CHECK(windless_prims(&g) == 0, "lod: %d primitives (of the tree or its levels) without wind", windless_prims(&g));
+    CHECK(non_scalar_custom(&g) == 0, "lod: %d custom attributes not float SCALAR", non_scalar_custom(&g));
     glb_free(&g);
 out:
     banyan_mesh_free(m);
@@ -456,6 +493,7 @@ static void instanced(void) {
     }
     CHECK(windless_prims(&g) == 0, "instanced: %d primitives (of the variants or their level) without wind",
           windless_prims(&g));
+    CHECK(non_scalar_custom(&g) == 0, "instanced: %d custom attributes not float SCALAR", non_scalar_custom(&g));
     glb_free(&g);
 out:
     banyan_mesh_free(lod);

@@ -48,5 +48,5 @@ export function sceneMeshes(json) {
 }
 
 export function hasWindAttributes(json) {
-  return (json.meshes || []).some((m) => m.primitives.some((p) => '_WIND_PIVOT' in p.attributes && '_WIND_PARAMS' in p.attributes));
+  return (json.meshes || []).some((m) => m.primitives.some((p) => '_WIND_PIVOT_X' in p.attributes && '_WIND_STIFFNESS' in p.attributes));
 }

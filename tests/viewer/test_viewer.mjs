@@ -13,8 +13,8 @@
 // varies. Controls that must NOT pass: a text file, a truncated .glb and a
 // missing URL must end in the viewer's error state, and a valid .glb whose
 // only triangle is a point must be judged blank.
-// Wind (docs/game-engines.md): every preset's .glb must carry _WIND_PIVOT
-// and _WIND_PARAMS (the case fails before the browser if one does not) and
+// Wind (docs/game-engines.md): every preset's .glb must carry _WIND_PIVOT_X,
+// ..., _WIND_FLUTTER (the case fails before the browser if one does not) and
 // must sway (two frozen moments draw differently) and
 // stand still with the wind off (the same two moments draw the same). A
 // single keyaki must sway in its crown while its trunk base and the ground
@@ -120,10 +120,8 @@ const since = (t) => (Date.now() - t) / 1000;
 
 // What the viewer must report for a file: counts from the glTF JSON, over
 // the meshes the default scene draws (not MSFT_lod's coarser levels, which
-// three.js ignores). Attributes: every "_NAME" scalar, and the four
-// components of _WIND_PARAMS (the viewer colours by each); other vector
-// attributes such as _WIND_PIVOT are not listed.
-const WIND_PARAMS = ['wind_level', 'wind_stiffness', 'wind_phase', 'wind_flutter'];
+// three.js ignores). Attributes: every "_NAME" scalar (banyan writes no
+// other custom attribute).
 function expected(file) {
   const { json: j } = readGlb(file);
   const positions = new Set(), attributes = new Set();
@@ -134,8 +132,7 @@ function expected(file) {
       triangles += j.accessors[p.indices].count / 3;
       colors ||= 'COLOR_0' in p.attributes;
       for (const [k, a] of Object.entries(p.attributes)) {
-        if (k === '_WIND_PARAMS' && j.accessors[a].type === 'VEC4') WIND_PARAMS.forEach((n) => attributes.add(n));
-        else if (k.startsWith('_') && j.accessors[a].type === 'SCALAR') attributes.add(k.slice(1).toLowerCase());
+        if (k.startsWith('_') && j.accessors[a].type === 'SCALAR') attributes.add(k.slice(1).toLowerCase());
       }
     }
   }
@@ -189,11 +186,11 @@ function write(file, args, { windOff = false } = {}) {
     cliSeconds += r.seconds;
     if (r.status !== 0) throw new Error(`banyan ${args.join(' ')} exited ${r.status}: ${r.stderr}`);
     const expect = expected(glb);
-    // Every generator writes the wind attributes, and the writer packs them:
+    // Every generator writes the wind attributes:
     // a preset without them is a regression, not a file to skip the wind on,
     // unless it turns them off (and then it must have none).
     if (!expect.wind !== windOff) {
-      throw new Error(`the CLI wrote ${expect.wind ? '' : 'no '}_WIND_PIVOT/_WIND_PARAMS` +
+      throw new Error(`the CLI wrote ${expect.wind ? '' : 'no '}_WIND_PIVOT_X/_WIND_STIFFNESS` +
                       (windOff ? ' though the preset turns the wind off' : ''));
     }
     return { ...expect, cliSeconds: r.seconds, bytes: statSync(glb).size };
