@@ -11,7 +11,7 @@
 #   bash tools/test.sh --full   everything (what .ci/run runs; about 35
 #                               minutes): the whole ctest (the ISA sweep on
 #                               every kernel set, the add-on in Blender 3.4,
-#                               4.2, 4.5 and 5.0, its zip and its window,
+#                               4.2, 4.5, 5.0, 5.1 and 5.2, its zip and its window,
 #                               valgrind, the farm tests, the viewer on every
 #                               preset), the add-on packages with the build
 #                               folder moved away, the C suite under ASan +
@@ -92,8 +92,8 @@ stage "set-up and build" bash tools/setup.sh
 mkdir -p "$logs"
 rm -f "$logs"/ctest*.log # the table below reads this run's logs only
 if [ "$tier" = full ]; then
-  # Blender 4.2, 4.5 and 5.0 as the bpy module (cached venvs).
-  stage "Blender 4.2, 4.5, 5.0 (bpy wheels)" bash tools/blender_versions.sh
+  # Blender 4.2, 4.5, 5.0, 5.1 and 5.2 as the bpy module (cached venvs).
+  stage "Blender 4.2, 4.5, 5.0, 5.1, 5.2 (bpy wheels)" bash tools/blender_versions.sh
   stage "ctest (every test)" ctest_in build "$logs/ctest.log"
 else
   stage "ctest (quick tier: without the labels full, farm)" ctest_in build "$logs/ctest.log" -LE '^(full|farm)$'

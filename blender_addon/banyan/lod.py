@@ -9,6 +9,7 @@ from where obj is now, as Regenerate does). obj's wind and growth
 modifiers are copied onto the levels that carry the attributes."""
 import bpy
 
+from . import nodes as N
 from . import plant as PL
 from . import wind as W
 from .core import mesh as M
@@ -28,11 +29,7 @@ def _copy_modifiers(src, dst):
             continue
         n = dst.modifiers.new(m.name, 'NODES')
         n.node_group = m.node_group
-        for k in m.keys():
-            try:
-                n[k] = m[k]
-            except (TypeError, KeyError):
-                pass
+        N.copy_inputs(m, n)
 
 
 def _level_object(name, d, coll, created, job, obj, index):

@@ -50,20 +50,62 @@ def shared_group(key, version, name, build, created):
     return ng
 
 
+def _input_values(mod):
+    """Where a Geometry Nodes modifier keeps its input values: Blender 5.2+
+    has mod.properties.inputs, one struct per input identifier whose
+    `.value` is the value (the modifier itself no longer takes ID
+    properties); earlier versions keep them as ID properties of the
+    modifier keyed by identifier, and get None here."""
+    props = getattr(mod, "properties", None)
+    return getattr(props, "inputs", None)
+
+
 def set_inputs(mod, values):
     """Sets a Geometry Nodes modifier's inputs by socket name."""
     ids = group_inputs(mod.node_group)
+    inputs = _input_values(mod)
     for k, v in values.items():
         if v is None:
             continue
         if k not in ids:
             raise KeyError("the node group '%s' has no input '%s'" % (mod.node_group.name, k))
-        mod[ids[k]] = v
+        if inputs is not None:
+            getattr(inputs, ids[k]).value = v
+        elif hasattr(mod.get(ids[k]), "to_list"):
+            mod[ids[k]][:] = v  # in place: an array made from Python floats is doubles, which 3.4 ignores
+        else:
+            mod[ids[k]] = v
     mod.id_data.update_tag()  # an ID property write alone does not re-evaluate the modifier
 
 
+def copy_inputs(src, dst):
+    """Copies a Geometry Nodes modifier's input values, attribute toggles
+    included, to dst, which has the same node group."""
+    si, di = _input_values(src), _input_values(dst)
+    if si is None:
+        for k in src.keys():
+            try:
+                dst[k] = src[k]
+            except (TypeError, KeyError):
+                pass
+        return
+    for name in si.bl_rna.properties.keys():
+        s, d = getattr(si, name, None), getattr(di, name, None)
+        if name in ("rna_type", "name") or s is None or d is None:
+            continue
+        for p in s.bl_rna.properties:
+            if p.identifier not in ("rna_type", "name") and not p.is_readonly:
+                try:
+                    setattr(d, p.identifier, getattr(s, p.identifier))
+                except (TypeError, AttributeError, ValueError):
+                    pass
+
+
 def get_input(mod, name):
-    return mod[group_inputs(mod.node_group)[name]]
+    """A Geometry Nodes modifier's input value by socket name."""
+    ident = group_inputs(mod.node_group)[name]
+    inputs = _input_values(mod)
+    return getattr(inputs, ident).value if inputs is not None else mod[ident]
 
 
 class Builder:
