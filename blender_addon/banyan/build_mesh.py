@@ -1,4 +1,6 @@
-"""MeshData -> Blender meshes, materials and objects, via foreach_set.
+"""MeshData -> Blender meshes, materials and objects, via foreach_set
+through the fastest stock path of each Blender (the generic attributes
+from 4.0, the element collections in 3.4: _Writer).
 
 Every datablock made here is recorded in a Created list so a failure
 half way removes everything again (the operator then leaves the scene as
@@ -169,7 +171,7 @@ def _unsigned(a):
 # From this many polygons on _smooth uses the operator: its fixed cost (a
 # view-layer update before and after, about 1 ms in a small scene; the
 # relations update it runs is one the first evaluation then skips) against
-# 50 to 500 ns a polygon item by item (Blender 3.4.1, issue #23: 0.6 vs
+# 50 to 500 ns a polygon item by item (Blender 3.4.1: 0.6 vs
 # 0.15 ms at 2,000 polygons, 1.0 vs 0.6 at 10,000, 1.3 vs 51 at 100,000).
 SMOOTH_OP_MIN = 10000
 
@@ -204,10 +206,10 @@ def _smooth(me, nt):
 
 def smooth_objects(objs):
     """Every polygon of the objects' meshes smooth (made with
-    smooth=DEFER): one operator call for all of them on Blender 3.4-4.0
+    smooth=DEFER): one operator call for all of them on Blender 3.x
     (an avenue's trees: one pair of view-layer updates, not one per tree);
-    nothing to do from 4.1 on (fill_mesh smoothed them)."""
-    if not objs or bpy.app.version >= (4, 1, 0):
+    nothing to do from 4.0 on (fill_mesh smoothed them, _shade)."""
+    if not objs or bpy.app.version >= (4, 0, 0):
         return
     if sum(len(o.data.polygons) for o in objs) >= SMOOTH_OP_MIN and _smooth_op(objs):
         return
@@ -215,18 +217,99 @@ def smooth_objects(objs):
         o.data.polygons.foreach_set("use_smooth", array("b", [1]) * len(o.data.polygons))
 
 
+def _int32(a):
+    """a (4-byte ints, 'I' or 'i') seen as signed 'i', without a copy: the
+    generic attributes .edge_verts, .corner_vert and .corner_edge are
+    int32, and foreach_set copies a buffer whole only when its item type
+    matches (an 'I' buffer goes item by item, 80x slower)."""
+    return memoryview(a).cast("B").cast("i")
+
+
+class _Writer:
+    """Sets a mesh's vertices, edges and corners through the fastest stock
+    path of the running Blender, told apart by what the mesh holds: the
+    generic attributes position, .edge_verts, .corner_vert and .corner_edge
+    (Blender 4.0 on; each one buffer copy), else the element collections'
+    own properties (vertices.co, edges.vertices, loops.vertex_index and
+    edge_index: Blender 3.4, where they are the fast ones; from 4.0 they go
+    through the attributes item by item, 40 to 100 ms for the wall ivy)."""
+
+    def __init__(self, me):
+        self.me = me
+
+    def _attr(self, name):
+        return self.me.attributes.get(name)
+
+    def positions(self, data, get=False):
+        a = self._attr("position")
+        if a is not None and a.domain == 'POINT' and a.data_type == 'FLOAT_VECTOR':
+            (a.data.foreach_get if get else a.data.foreach_set)("vector", data)
+        else:
+            (self.me.vertices.foreach_get if get else self.me.vertices.foreach_set)("co", data)
+
+    def edges(self, data):
+        a = self._attr(".edge_verts")
+        if a is not None:
+            a.data.foreach_set("value", _int32(data))
+        else:
+            self.me.edges.foreach_set("vertices", data)
+
+    def corner_verts(self, data):
+        a = self._attr(".corner_vert")
+        if a is not None:
+            a.data.foreach_set("value", _int32(data))
+        else:
+            self.me.loops.foreach_set("vertex_index", data)
+
+    def corner_edges(self, data):
+        a = self._attr(".corner_edge")
+        if a is not None:
+            a.data.foreach_set("value", _int32(data))
+        else:
+            self.me.loops.foreach_set("edge_index", data)
+
+    def uvs(self, data, name="UVMap"):
+        """The per-corner UVs as a new UV map (made current): from 4.0 through
+        its FLOAT2 corner attribute (the layer's data.uv goes item by item)."""
+        layer = self.me.uv_layers.new(name=name, do_init=False)  # no default uvs: all are set next
+        a = self._attr(layer.name)
+        if a is not None and a.domain == 'CORNER' and a.data_type == 'FLOAT2' and bpy.app.version >= (4, 0, 0):
+            a.data.foreach_set("vector", data)
+        else:
+            layer.data.foreach_set("uv", data)
+        return layer
+
+
+def _shade(me, nt, smooth):
+    """Every polygon smooth (or flat) by the cheapest stock way: from 4.0
+    the sharp_face attribute (absent: smooth; all true: flat, one buffer
+    copy from a '?' buffer, the attribute's own item type, where a 'b'
+    one goes item by item and Mesh.shade_flat() takes 100 ms for 300,000
+    polygons in 4.5); 3.4 the use_smooth flags (_smooth)."""
+    if bpy.app.version >= (4, 0, 0):
+        sharp = me.attributes.get("sharp_face")
+        if smooth and sharp is not None:
+            me.attributes.remove(sharp)
+        elif not smooth:
+            sharp = sharp or me.attributes.new("sharp_face", 'BOOLEAN', 'FACE')
+            sharp.data.foreach_set("value", memoryview(bytearray(b"\x01") * nt).cast("?"))
+    elif smooth and smooth != DEFER:
+        _smooth(me, nt)
+
+
 def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attributes=None, material_index=None,
               smooth=True, shift=None, pivot_shift=None, topology=None):
-    """Fills an empty mesh from flat buffers (indices are local vertex numbers).
+    """Fills an empty mesh from flat buffers (indices are local vertex numbers),
+    through the fastest stock path of the running Blender (_Writer).
     The edges come from the library (banyan_triangle_edges) with each
     loop's edge, so update() has nothing to derive. shift: a translation
     of the vertices and wind pivots (Mesh.transform, in double);
     pivot_shift: one of the pivots alone (vertices already moved in C).
     Both are applied before the pivots are written, so they are written
-    once (moving them afterwards read them back and wrote them again);
-    the pivots are moved as the mesh's own vertices before the real ones
-    are set (no temporary mesh: making and removing one cost ~9 ms a tree).
-    topology: triangle_edges(indices) computed ahead (MeshData.topology)."""
+    once; the pivots are moved as the mesh's own vertices before the real
+    ones are set (no temporary mesh: making and removing one costs about
+    9 ms a tree). topology: triangle_edges(indices) computed ahead
+    (MeshData.topology)."""
     nv = len(positions) // 3
     ni = len(indices)
     nt = ni // 3
@@ -238,21 +321,22 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
     piv_shift = tuple((shift[k] if moved else 0.0) + (pivot_shift[k] if pivot_shift is not None else 0.0)
                       for k in range(3))
     me.vertices.add(nv)
+    put = _Writer(me)
     pivots = W.pivot_vectors(attributes or {})
     if pivots is not None and any(piv_shift) and len(pivots) == len(positions):
         from mathutils import Matrix
-        me.vertices.foreach_set("co", pivots)
+        put.positions(pivots)
         me.transform(Matrix.Translation(piv_shift))
-        me.vertices.foreach_get("co", pivots)
-    me.vertices.foreach_set("co", positions)
+        put.positions(pivots, get=True)
+    put.positions(positions)
     if moved:
         from mathutils import Matrix
         me.transform(Matrix.Translation(shift))
     me.edges.add(len(edges) // 2)
-    me.edges.foreach_set("vertices", edges)
+    put.edges(edges)
     me.loops.add(ni)
-    me.loops.foreach_set("vertex_index", indices)
-    me.loops.foreach_set("edge_index", corner_edges)
+    put.corner_verts(indices)
+    put.corner_edges(corner_edges)
     me.polygons.add(nt)
     me.polygons.foreach_set("loop_start", loop_start)
     if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # read-only from Blender 4.0
@@ -262,19 +346,10 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
         # polygons' material_index goes item by item (50x slower).
         attr = me.attributes.get("material_index") or me.attributes.new("material_index", 'INT', 'FACE')
         attr.data.foreach_set("value", material_index)
-    if bpy.app.version >= (4, 1, 0):
-        # Blender 4.1+: new polygons are smooth (no sharp_face attribute),
-        # and Mesh.shade_smooth()/shade_flat() set all of them in one call.
-        if smooth:
-            me.shade_smooth()
-        else:
-            me.shade_flat()
-    elif smooth and smooth != DEFER:
-        _smooth(me, nt)
+    _shade(me, nt, smooth)
     me.update()
     if corner_uvs is not None and nt:
-        layer = me.uv_layers.new(name="UVMap", do_init=False)  # no default uvs: all are set next
-        layer.data.foreach_set("uv", corner_uvs)
+        put.uvs(corner_uvs)
     if colors is not None:
         ca = me.color_attributes.new(COLOR_ATTRIBUTE, 'FLOAT_COLOR', 'POINT')
         ca.data.foreach_set("color", colors)
@@ -337,10 +412,14 @@ def object_from_mesh_data(name, d, collection, created, *, materials=None, uv=Tr
         me.materials.append(m)
     mesh_origin = getattr(d, "origin", (0.0, 0.0, 0.0))
     loc, shift = placement(mesh_origin if origin is None else origin, mesh_origin)
+    # Blender 3.x smooths on the new object itself (smooth_objects, before it
+    # joins the scene), not on a temporary one made and removed again.
     fill_mesh(me, d.positions, d.indices, corner_uvs=d.corner_uvs if uv else None, colors=d.colors,
-              attributes=d.attributes, material_index=material_indices(d.parts), smooth=smooth, shift=shift,
-              topology=getattr(d, "topology", None))
+              attributes=d.attributes, material_index=material_indices(d.parts), smooth=DEFER if smooth else False,
+              shift=shift, topology=getattr(d, "topology", None))
     obj = created.add(bpy.data.objects.new(name, me))
+    if smooth:
+        smooth_objects([obj])
     if any(loc):
         obj.location = loc
     collection.objects.link(obj)

@@ -1,4 +1,4 @@
-"""Issue #23's cheaper hand-off: a flat material (no library texture) made
+"""The add-on's hand-off: a flat material (no library texture) made
 by an earlier run with the same look is reused, never one an artist
 edited since (a new one is made beside it, the edited one untouched);
 vertices and wind pivots moved to the object's origin before the pivots

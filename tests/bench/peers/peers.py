@@ -1072,6 +1072,7 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
     w("```")
     w("")
     # Sections measured by hand (too long for this run), kept beside it and copied in.
+    L.extend(kept_section("handoff.md", run_model))  # blender_handoff.py --write, one block per Blender
     L.extend(kept_section("instancing.md", run_model))
     L.extend(ivy_large_lines(ivy_large, run_model))
     L.extend(avenue_lines(avenue, run_model))
