@@ -18,7 +18,9 @@ not change in 4.0 are used: Base Color, Roughness, Alpha, Normal):
   image (sRGB) [x vertex colour: per-leaf tints] -> Principled Base Color
   (the texture carries the colour; base_color is the viewport colour);
   leaves: image alpha > alpha_cutoff (a Math node, so the edge is a hard
-  clip in Cycles, EEVEE Legacy and EEVEE Next alike) -> Principled Alpha;
+  clip in Cycles, EEVEE Legacy and EEVEE Next alike) -> Principled Alpha,
+  the alpha read by a second image node with Closest interpolation (no
+  mipmaps in EEVEE: see _alpha_clip);
   translucency: a Translucent BSDF of the same colour mixed in (weight
   translucency x alpha, so cut-out texels stay transparent), the glow
   of a back-lit leaf (Principled's subsurface/transmission inputs were
@@ -109,6 +111,30 @@ def _eevee_clip(mat, cutoff):
         mat.shadow_method = 'CLIP'
 
 
+def _alpha_clip(nodes, links, img, uv, cutoff, at):
+    """The image's alpha > cutoff (0 or 1), read by an image node of its
+    own with Closest interpolation. EEVEE samples a Linear image node
+    through mipmaps: a leaf smaller than a pixel reads its cell's mean
+    alpha (a keyaki leaf covers 15-25 % of its cell), below the cutoff,
+    and the whole leaf is clipped away. Closest has no mipmaps in EEVEE
+    (Legacy and Next): each anti-aliasing sample reads one texel, so the
+    samples' mean is the leaf's coverage of the pixel, as in Cycles, which
+    never uses mipmaps. The colour keeps its own Linear, mipmapped node."""
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.interpolation = 'Closest'
+    tex.label = "Alpha (Closest: no mipmaps)"
+    tex.location = at
+    links.new(uv, tex.inputs["Vector"])
+    clip = nodes.new("ShaderNodeMath")
+    clip.operation = 'GREATER_THAN'
+    clip.label = "Alpha clip"
+    clip.location = (at[0] + 350, at[1])
+    links.new(tex.outputs["Alpha"], clip.inputs[0])
+    clip.inputs[1].default_value = cutoff
+    return clip.outputs[0]
+
+
 def _multiply(nodes, links, colour, other, x):
     """colour x other, as a Vector Math node (the same node and sockets
     on 3.4 to 5.0, unlike the Mix nodes)."""
@@ -172,13 +198,7 @@ def shared_material(spec, created, vertex_colors=False):
     shader = bsdf.outputs["BSDF"]
     alpha = None
     if leaf and cutoff > 0.0:
-        clip = nodes.new("ShaderNodeMath")
-        clip.operation = 'GREATER_THAN'
-        clip.label = "Alpha clip"
-        clip.location = (-300, 100)
-        links.new(tex.outputs["Alpha"], clip.inputs[0])
-        clip.inputs[1].default_value = cutoff
-        alpha = clip.outputs[0]
+        alpha = _alpha_clip(nodes, links, img, uv.outputs["UV"], cutoff, (-650, 100))
         links.new(alpha, bsdf.inputs["Alpha"])
         _eevee_clip(mat, cutoff)
     translucency = float(spec.get("translucency", 0.0))
@@ -243,12 +263,7 @@ def image_material(spec, image, created, prefix="banyan"):
     links.new(uv.outputs["UV"], tex.inputs["Vector"])
     links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
     cutoff = float(spec.get("alpha_cutoff", 0.0)) or 0.5
-    clip = nodes.new("ShaderNodeMath")
-    clip.operation = 'GREATER_THAN'
-    clip.location = (-300, 100)
-    links.new(tex.outputs["Alpha"], clip.inputs[0])
-    clip.inputs[1].default_value = cutoff
-    links.new(clip.outputs[0], bsdf.inputs["Alpha"])
+    links.new(_alpha_clip(nodes, links, img, uv.outputs["UV"], cutoff, (-650, 0)), bsdf.inputs["Alpha"])
     _eevee_clip(mat, cutoff)
     return mat
 
