@@ -3,6 +3,9 @@ and segment twigs around the objects of a scene, grown by libbanyan (C)
 through ctypes. The add-on only binds, collects hosts, builds meshes and
 draws panels; see docs/addon.md."""
 
+# Blender 3.4 and up (the legacy add-on zip); tested in 3.4, 4.2, 4.5, 5.0,
+# 5.1 and 5.2. The extension (4.2+) stops before 5.3: blender_version_max in
+# blender_addon/blender_manifest.toml.in.
 bl_info = {
     "name": "Banyan",
     "author": "banyan contributors",
@@ -13,12 +16,45 @@ bl_info = {
     "category": "Add Mesh",
 }
 
+# Blender's glTF importer calls the hooks of this class on every enabled add-on's module.
+from .gltf_import import glTF2ImportUserExtension  # noqa: E402,F401
+
 _registered = []
+OTHER_COPY = "other copy"  # in _registered: this copy refused to register (another one is enabled)
+
+
+def other_copy():
+    """(package, folder) of another copy of the add-on that is enabled in
+    this Blender (the legacy `banyan` and the 4.2+ extension
+    `bl_ext.<repo>.banyan`), found by its sidebar panel; None when none is."""
+    import os
+    import sys
+    import bpy
+    for idname in ("VIEW3D_PT_banyan", "VIEW3D_PT_banyan_error"):
+        cls = getattr(bpy.types, idname, None)
+        package = getattr(cls, "__module__", "").rpartition(".")[0]
+        if cls is not None and package and package != __name__:
+            mod = sys.modules.get(package)
+            return package, os.path.dirname(getattr(mod, "__file__", None) or "?")
+    return None
 
 
 def register():
     import bpy
-    from . import state, ui
+    from . import scripting, state, ui
+    other = other_copy()
+    if other is not None:
+        state.MISSING, state.ERRORS, state.OPERATORS = set(), [], []
+        # Two copies would load two libraries and register the same classes,
+        # each unregistering the other's: this one registers only a panel
+        # that says what to remove.
+        state.LOAD_ERROR = ui.other_copy_message(other[0], other[1], __name__)
+        print("banyan: not enabled: %s" % state.LOAD_ERROR)
+        _registered.append(OTHER_COPY)
+        bpy.utils.register_class(ui.VIEW3D_PT_banyan_other_copy)
+        _registered.append(ui.VIEW3D_PT_banyan_other_copy)
+        return
+    scripting.register(__name__)  # `import banyan` in scripts, also under the 4.2+ extension's package name
     from .core import lib
     from .core import generators as G
     from .core.errors import BanyanError
@@ -57,9 +93,9 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
         _registered.append(cls)
+        # The tube is a self-test (scripts and tests call it): not in the menus.
         if cls not in (tube.MESH_OT_banyan_tube, BANYAN_OT_preset_save):
             state.OPERATORS.append((cls.bl_idname, cls.bl_label))
-    state.OPERATORS.append((tube.MESH_OT_banyan_tube.bl_idname, tube.MESH_OT_banyan_tube.bl_label))
     for cls in (ui.VIEW3D_MT_banyan_add, ui.VIEW3D_PT_banyan):
         bpy.utils.register_class(cls)
         _registered.append(cls)
@@ -78,8 +114,10 @@ def register():
 
 
 def unregister():
+    """Undoes what this copy's register() did, and only that."""
     import bpy
     from . import ui
+    refused = OTHER_COPY in _registered
     while _registered:
         cls = _registered.pop()
         if cls == "menu":
@@ -90,5 +128,11 @@ def unregister():
         elif cls == "plant":
             from . import plant
             plant.unregister()
-        else:
+        elif cls == OTHER_COPY:
+            pass
+        elif getattr(cls, "is_registered", True):
             bpy.utils.unregister_class(cls)
+    if refused:
+        return  # the `banyan` alias for scripts is the other copy's
+    from . import scripting
+    scripting.unregister()

@@ -42,6 +42,29 @@ mesh's own origin (the world's, identity matrix, unless the plant stands
 farther than 4096 m out: then a whole-metre point near it, so floats keep
 millimetres); a point puts the origin there.
 
+Scene units. The library works in metres, and so do the calls' numbers:
+parameters, presets, and the points position, start, germination, path
+and origin. Blender objects are read in the scene's units: host objects
+and a path curve go in as metres through the scene's Unit Scale (Scene >
+Units; none when the unit system is None), and the objects made come out
+scaled by 1 / Unit Scale about the world origin (their meshes, wind and
+growth data stay in metres in object space), as the operators do: a
+keyaki is as many metres tall in a centimetre scene as in a metre one.
+
+The ground. Roots and ivy on hosts get the ground at the hosts' foot
+(ground_at_hosts, the operators' "Ground at hosts' foot"): ground_z
+goes to the lowest point of the hosts, so the default cube gets roots
+down to its bottom. By default (None) it applies unless ground_z is
+given: a keyword, in values, in a ready params (used as it is), or by a
+preset without hosts of its own; a plant grown on a preset's own hosts
+keeps the preset's ground. True applies it always (with a preset that
+has hosts, as high above the hosts' foot as the preset's ground is above
+its own hosts'), False never.
+
+Records. What a call builds is recorded as a plant (plant.record, as the
+operators record theirs: generator, params, host objects, the call's
+options), so Regenerate, Make LODs and the Plant panel work on it.
+
 Jobs. Each call is also a *_job(...) returning a Job: made on the main
 thread (the scene read), compute(progress) on any thread (the library
 only), build() on the main thread; the operators run compute on a worker
@@ -83,7 +106,7 @@ def make_params(gen, preset=None, params=None, values=None, **kw):
     return p
 
 
-def _boxes(hosts):
+def _boxes(hosts, scale=1.0):
     if hosts is None:
         return []
     if isinstance(hosts, (str, bytes, Box, bpy.types.bpy_struct)) or not hasattr(hosts, "__iter__"):
@@ -93,7 +116,7 @@ def _boxes(hosts):
         if isinstance(h, Box):
             out.append(h)
         elif isinstance(h, bpy.types.Object):
-            out.append(H.box_from_object(h))
+            out.append(H.box_from_object(h, scale))
         else:
             raise TypeError("hosts[%d] must be a mesh object or a Box, not %s" % (i, type(h).__name__))
     return out
@@ -194,9 +217,11 @@ class Job:
     failure). close() frees what the job holds (host sets); run() does
     it all. `info` holds what compute learnt (ivy: "grew")."""
 
-    def __init__(self, compute, build, cleanup=None, whole=True):
+    def __init__(self, compute, build, cleanup=None, whole=True, unit_scale=None):
         import contextlib
-        self._compute, self._build = compute, build
+        self._compute, self._make = compute, build
+        # Metres per Blender unit of the scene the objects go to (read here, on the main thread).
+        self.unit_scale = scene_unit_scale() if unit_scale is None else unit_scale
         # whole: build makes one object of the whole mesh, so its edge list
         # (triangle_edges, C) is computed in compute, off the main thread.
         self.whole = whole
@@ -206,6 +231,7 @@ class Job:
         self.data = None
         self.info = {}
         self.finishers = []  # fn(objs, created) after build, in its rollback (wind, growth setups)
+        self.plant = None  # (generator, host objects, options): what build records on the plant (_recorded)
 
     def adopt(self, stack_or_cm):
         """Ties a context manager (or ExitStack) to the job's lifetime."""
@@ -222,6 +248,12 @@ class Job:
         self.data = d
         return self
 
+    def _build(self, d, created):
+        """The objects of d (build's), in the scene's units (from_metres)."""
+        objs = self._make(d, created)
+        from_metres(objs, self.unit_scale)
+        return objs
+
     def build(self):
         if self.data is None:
             raise BanyanError(1, "the job has not computed yet", "BANYAN_E_INVALID_ARG")
@@ -230,6 +262,11 @@ class Job:
     def _finish(self, objs, created):
         for fn in self.finishers:
             fn(objs, created)
+        if self.plant is not None:
+            # Kept on the plant as an operator keeps it: Regenerate, Make LODs and the Plant panel work on it.
+            from . import plant as PL
+            gen, hosts, options = self.plant
+            PL.record(objs, gen, self.params, hosts, options)
         return objs
 
     def close(self):
@@ -245,6 +282,39 @@ class Job:
         with self:
             self.compute(progress)
             return self.build()
+
+
+def scene_unit_scale():
+    """Metres per Blender unit of the current scene (hosts.unit_scale)."""
+    return H.unit_scale(bpy.context.scene)
+
+
+def from_metres(objs, scale):
+    """The library's objects (world metres) in Blender units of `scale`
+    metres: scaled about the world origin, so their meshes, wind and
+    growth data stay the library's, in metres of object space."""
+    if scale == 1.0:
+        return
+    from mathutils import Matrix
+    m = Matrix.Scale(1.0 / scale, 4)
+    # Objects an instancer among objs shows (an instanced avenue's
+    # variants) are scaled through it.
+    shown = {c.name for o in objs if o.instance_type == 'COLLECTION' and o.instance_collection
+             for c in o.instance_collection.all_objects}
+    for o in objs:
+        if o.parent is None and o.name not in shown:
+            o.matrix_basis = m @ o.matrix_basis  # matrix_world may not be evaluated yet
+
+
+def _recorded(job, gen, options, hosts=()):
+    """job, set to record what it builds (plant.record: the generator, its
+    params, the host objects among `hosts`, options as plant.build_job
+    reads them) so that the plant can be regenerated and edited."""
+    if isinstance(hosts, HostSet):
+        hosts = getattr(hosts, "objects", ())  # a set made by hosts.surface_host_set
+    objs = [h for h in hosts or () if isinstance(h, bpy.types.Object)]
+    job.plant = (gen, objs, dict(options))
+    return job
 
 
 def _job(prepare):
@@ -357,12 +427,13 @@ def _box_base(box):
     return _bounds_base([min(p[k] for p in c) for k in range(3)], [max(p[k] for p in c) for k in range(3)])
 
 
-def host_base(hosts, fallback=None, index=0):
-    """Bottom centre of the first host's world bounds: an object, a
-    structs.Box or host `index` of a HostSet; `fallback` when there is none."""
+def host_base(hosts, fallback=None, index=0, scale=1.0):
+    """Bottom centre of the first host's world bounds (metres): an object
+    (of a scene of `scale` metres per Blender unit), a structs.Box or host
+    `index` of a HostSet; `fallback` when there is none."""
     h = hosts[0] if isinstance(hosts, (list, tuple)) and hosts else hosts
     if isinstance(h, bpy.types.Object):
-        return object_base(h)
+        return tuple(c * scale for c in object_base(h))
     if isinstance(h, Box):
         return _box_base(h)
     if isinstance(h, HostSet) and h.handle and h.count > index:
@@ -461,11 +532,17 @@ def _check_hosts(hosts):
     return hosts
 
 
-def host_arg(gen, hosts, host_shape, preset, stack):
+def _hosts_list(hosts):
+    """A HostSet as it is, else the hosts as a checked list (read once)."""
+    return hosts if isinstance(hosts, HostSet) else _check_hosts(hosts)
+
+
+def host_arg(gen, hosts, host_shape, preset, stack, scale=None):
     """(arg, named, base): what the generator gets for `hosts` as
     `host_shape` says, a wrapper naming hosts in its errors, and the
-    bottom centre of the first host's world bounds. Host sets built here
-    are closed with `stack`.
+    bottom centre of the first host's world bounds, all in metres (objects
+    read in a scene of `scale` metres per Blender unit; None: the current
+    scene's). Host sets built here are closed with `stack`.
     hosts: a list of objects and core.structs.Box, or a ready
     core.hostset.HostSet (used as is; the caller frees it).
     'BOX': every object as its oriented bounding box (hosts.py); the
@@ -475,6 +552,7 @@ def host_arg(gen, hosts, host_shape, preset, stack):
     path, to the byte."""
     if isinstance(hosts, HostSet):
         return hosts, hosts.named, host_base(hosts)
+    scale = scene_unit_scale() if scale is None else scale
     shape = H.check_shape(host_shape)
     hosts = _check_hosts(hosts)
     if not hosts and preset and shape == H.SURFACE and _preset_has_meshes(gen, preset):
@@ -483,11 +561,11 @@ def host_arg(gen, hosts, host_shape, preset, stack):
         hs = stack.enter_context(HostSet.from_preset(PR.read(path), path))
         return hs, hs.named, host_base(hs)
     if shape == H.BOX or all(isinstance(h, Box) for h in hosts):
-        boxes = _boxes(hosts)
+        boxes = _boxes(hosts, scale)
         if not boxes and preset:
             boxes = _preset_boxes(gen, preset)
-        return boxes, (lambda call: H.generate_named(call, boxes)), host_base(hosts or boxes)
-    hs = stack.enter_context(H.surface_host_set(hosts))
+        return boxes, (lambda call: H.generate_named(call, boxes)), host_base(hosts or boxes, scale=scale)
+    hs = stack.enter_context(H.surface_host_set(hosts, scale=scale))
     # The library's bounds of the first host (exact, where the box of an
     # object's bound_box would be loose when it is rotated); boxes are
     # numbered first in the set.
@@ -517,23 +595,82 @@ def strangler_roots(hosts=(), *, progress=None, **kw):
 
 def strangler_roots_job(hosts=(), *, preset=None, params=None, germination=None, collection=None,
                         name="Banyan Roots", uv=True, host_shape=H.SURFACE, origin='BASE', values=None, wind=None,
-                        animate=False, frame_start=None, frame_end=None, **kw):
+                        animate=False, frame_start=None, frame_end=None, ground_at_hosts=None, **kw):
     """strangler_roots as a Job (see Job). wind, animate, frame_start,
-    frame_end: the wind and growth setups (_setups)."""
+    frame_end: the wind and growth setups (_setups); ground_at_hosts: see
+    the module docstring (The ground)."""
     _collection(collection)
     _check_name(name)
     p = make_params("roots", preset, params, values, **kw)
     if germination is not None:
         set_roots_germination(p, germination)
+    hosts = _hosts_list(hosts)
+    ground = _ground_wanted(ground_at_hosts, "roots", hosts, preset, params, values, kw)
+    scale = scene_unit_scale()
 
     def prepare(stack):
-        arg, named, base = host_arg("roots", hosts, host_shape, preset, stack)
+        arg, named, base = host_arg("roots", hosts, host_shape, preset, stack, scale)
+        if ground:
+            set_ground_at_hosts("roots", p, arg, preset)
         o = _origin(origin, base if base is not None else p.get("germination"))
         return Job(lambda prog: named(lambda: call_with_progress(G.roots, p, arg, progress=prog)),
-                   lambda d, c: _single(name, d, collection, uv, c, o))
+                   lambda d, c: _single(name, d, collection, uv, c, o), unit_scale=scale)
     job = _job(prepare)
     job.params = p
+    _recorded(job, "roots", _hosted_options("strangler_roots", hosts, host_shape, preset, uv), hosts)
     return _setups(job, "roots", wind, animate, frame_start, frame_end)
+
+
+def _hosted_options(call, hosts, host_shape, preset, uv):
+    """The options a roots or ivy plant records: the call, uv_map, the host
+    shape, and the preset whose own hosts it grew on when none were given."""
+    opts = {"api": call, "uv_map": bool(uv), "host_shape": host_shape}
+    if preset and not isinstance(hosts, HostSet) and not list(hosts or ()):
+        opts["preset_hosts"] = preset
+    return opts
+
+
+def set_ground_at_hosts(gen, params, hosts, preset=None):
+    """Puts params' ground_z at the lowest point of `hosts` (boxes or a
+    HostSet, metres: what the generator grows on), so that the plant
+    reaches their foot and spreads on the ground there; with a preset that
+    has hosts, as high above (or below) that point as the preset's ground
+    is above its own hosts' lowest point (a boulder sunk into the ground
+    stays so). Nothing for no hosts. The operators' Ground at hosts' foot."""
+    z = H.hosts_floor(hosts)
+    if z is None:
+        return
+    bounds = preset_host_bounds(gen, preset) if preset else None
+    if bounds is not None:
+        shift = z - bounds[0][2]
+        if abs(shift) <= 1e-6:
+            return  # the preset's own hosts where it has them (to float32): its ground as it is
+        z = params.get("ground_z") + shift
+    params.set("ground_z", z)
+
+
+def _ground_wanted(ground_at_hosts, gen, hosts, preset, params, values, kw):
+    """Whether a call puts the ground at its hosts' foot (set_ground_at_hosts):
+    ground_at_hosts True or False as given; None: unless ground_z is given
+    (a keyword, in values, in a ready params, a preset without hosts that
+    sets it) or the plant grows on the preset's own hosts."""
+    if ground_at_hosts is not None:
+        if not isinstance(ground_at_hosts, bool):
+            raise TypeError("ground_at_hosts must be True, False or None, not %r" % (ground_at_hosts,))
+        return ground_at_hosts
+    if params is not None or "ground_z" in kw or "ground_z" in dict(values or {}):
+        return False
+    if not isinstance(hosts, HostSet) and not hosts:
+        return False  # the preset's own hosts and ground (or none: nothing to stand on)
+    if preset:
+        import json
+        try:
+            doc = json.loads(PR.read(PR.find(gen, preset)))
+            if "ground_z" in (doc.get("params") or {}) and not doc.get("hosts"):
+                return False
+        except (ValueError, AttributeError, TypeError):
+            pass  # make_params has read it: the library's own reading
+    return True
 
 
 def set_roots_germination(p, point):
@@ -578,6 +715,8 @@ def keyaki_tree_job(*, preset=None, params=None, position=None, collection=None,
         return objs
     job = Job(lambda prog: call_with_progress(G.keyaki, local, progress=prog), build)
     job.params = p
+    _recorded(job, "keyaki", {"api": "keyaki_tree", "uv_map": bool(uv),
+                              "origin": origin if origin is not None else 'WORLD'})
     if wind is not None:
         local.set("wind", bool(wind))
     return _setups(job, "keyaki", wind, animate, frame_start, frame_end)
@@ -704,8 +843,9 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
         raise TypeError("progress must be callable as progress(done, total), not %s" % type(build_progress).__name__)
     p = make_params("avenue", preset, params, values, **kw)
     curve = path if isinstance(path, bpy.types.bpy_struct) else None
+    scale = scene_unit_scale()
     if curve is not None:
-        path = curve_points(curve)
+        path = [tuple(c * scale for c in q) for q in curve_points(curve)]  # in metres, as the library's
     elif path is not None and (isinstance(path, (str, bytes)) or not hasattr(path, "__iter__")):
         raise TypeError("path must be a curve object or a list of (x, y, z), not %s" % type(path).__name__)
     path = list(path) if path is not None else None
@@ -732,8 +872,16 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
         # layers once, not once per tree.
         parent.children.link(coll)
         return objs
-    job = Job(compute, build, whole=merged)
+    job = Job(compute, build, whole=merged, unit_scale=scale)
     job.params = p
+    opts = {"api": "keyaki_avenue", "uv_map": bool(uv), "merged": bool(merged)}
+    if curve is not None:
+        opts.update(path_from='CURVE', path=curve)
+    elif path is not None:
+        opts.update(path_from='POINTS', path=path)
+    else:
+        opts["path_from"] = 'PARAMS'
+    _recorded(job, "avenue", opts)
     return _setups(job, "avenue", wind, animate, frame_start, frame_end)
 
 
@@ -761,7 +909,7 @@ def ivy(hosts=(), *, progress=None, stats=None, **kw):
 
 def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, collection=None, name="Ivy", uv=True,
             animate=False, frame_start=None, frame_end=None, host_shape=H.SURFACE, origin='BASE', values=None,
-            wind=None, **kw):
+            wind=None, ground_at_hosts=None, **kw):
     _collection(collection)
     _check_name(name)
     sc = bpy.context.scene
@@ -771,9 +919,14 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
         p.set("start", start)
     if steps is not None:
         p.set("steps", steps)
+    hosts = _hosts_list(hosts)
+    ground = _ground_wanted(ground_at_hosts, "ivy", hosts, preset, params, values, kw)
+    scale = scene_unit_scale()
 
     def prepare(stack):
-        arg, named, base = host_arg("ivy", hosts, host_shape, preset, stack)
+        arg, named, base = host_arg("ivy", hosts, host_shape, preset, stack, scale)
+        if ground:
+            set_ground_at_hosts("ivy", p, arg, preset)
         o = _origin(origin, base if base is not None else p.get("start"))
 
         def compute(prog):
@@ -787,12 +940,13 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
                 from .growth_anim import add_growth_modifier
                 add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))), f0, f1)
             return objs
-        job = Job(compute, build)
+        job = Job(compute, build, unit_scale=scale)
         return job
     if wind is not None:
         p.set("wind", bool(wind))
     job = _job(prepare)
     job.params = p
+    _recorded(job, "ivy", _hosted_options("ivy", hosts, host_shape, preset, uv), hosts)
     return _setups(job, "ivy", wind)
 
 
@@ -848,6 +1002,7 @@ def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segmen
     job = Job(lambda prog: call_with_progress(lambda: G.segments(p, inputs, count, trunk)[0], progress=prog),
               lambda d, c: _single(name, d, collection, uv, c))
     job.params = p
+    _recorded(job, "segments", {"api": "segment_twigs", "uv_map": bool(uv), "banyan_preset": preset})
     return _setups(job, "segments", wind)
 
 

@@ -125,10 +125,11 @@ def _finite(values):
     return all(math.isfinite(x) for x in values)
 
 
-def box_from_object(obj):
-    """The world-space oriented bounding box of a mesh object; raises
-    BanyanError (BANYAN_E_BAD_HOST) naming the object when it cannot be a
-    host (see the module docstring)."""
+def box_from_object(obj, scale=1.0):
+    """The world-space oriented bounding box of a mesh object, in metres
+    for a scene of `scale` metres per Blender unit; raises BanyanError
+    (BANYAN_E_BAD_HOST) naming the object when it cannot be a host (see
+    the module docstring)."""
     if not hasattr(obj, "bound_box") or not hasattr(obj, "matrix_world"):
         raise TypeError("a host must be a mesh object or a banyan Box, not %s" % type(obj).__name__)
     name = obj.name
@@ -138,7 +139,7 @@ def box_from_object(obj):
     if not len(obj.data.vertices) and not obj.modifiers:  # the bound box of a new object may be stale
         raise BanyanError(BAD_HOST, "host '%s' has no surface to grow on: it has no vertices" % name,
                           "BANYAN_E_BAD_HOST")
-    mw = obj.matrix_world
+    mw = to_metres(obj.matrix_world, scale)
     if not _finite(x for row in mw for x in row):
         raise BanyanError(BAD_HOST, "host '%s' has a non-finite location, rotation or scale" % name,
                           "BANYAN_E_BAD_HOST")
@@ -198,9 +199,40 @@ def generate_named(call, boxes):
         raise BanyanError(e.status, msg, e.name) from None
 
 
-def boxes_from_objects(objects):
-    """Boxes of the mesh objects among `objects` (others are skipped)."""
-    return [box_from_object(o) for o in objects if o.type == 'MESH']
+def boxes_from_objects(objects, scale=1.0):
+    """Boxes of the mesh objects among `objects` (others are skipped), in
+    metres for a scene of `scale` metres per Blender unit."""
+    return [box_from_object(o, scale) for o in objects if o.type == 'MESH']
+
+
+def unit_scale(scene):
+    """Metres per Blender unit of a scene: its unit scale (Scene > Units >
+    Unit Scale), 1 when its unit system is None (Blender then applies no
+    scale either). The library works in metres; the add-on converts at its
+    boundary: host objects in (to_metres), plants out (scaled by 1/scale)."""
+    us = getattr(scene, "unit_settings", None)
+    if us is None or us.system == 'NONE':
+        return 1.0
+    s = float("%.7g" % us.scale_length)  # a float32 setting: 0.01, not 0.0099999998
+    return s if math.isfinite(s) and s > 0 else 1.0
+
+
+def to_metres(matrix, scale):
+    """A world matrix of a scene of `scale` metres per unit, in metres."""
+    if scale == 1.0:
+        return matrix
+    from mathutils import Matrix
+    return Matrix.Scale(scale, 4) @ matrix
+
+
+def hosts_floor(hosts):
+    """The lowest point (z) of a host set's hosts or of a list of boxes:
+    where the ground goes when it is at the hosts' foot; None for none."""
+    if isinstance(hosts, HostSet):
+        zs = [hosts.info(i)["lo"][2] for i in range(hosts.count)]
+    else:
+        zs = [min(p[2] for p in box_corners(b)) for b in hosts if isinstance(b, Box)]
+    return min(zs) if zs else None
 
 
 def box_top_center(box):
@@ -288,9 +320,10 @@ def _read_mesh(me, name):
     return pos, tri
 
 
-def mesh_input_from_object(obj, depsgraph):
-    """The MeshInput of an object's evaluated surface in world space;
-    BanyanError naming it when it has none."""
+def mesh_input_from_object(obj, depsgraph, scale=1.0):
+    """The MeshInput of an object's evaluated surface in world space (in
+    metres for a scene of `scale` metres per Blender unit); BanyanError
+    naming it when it has none."""
     if not hasattr(obj, "evaluated_get") or not hasattr(obj, "matrix_world"):
         raise TypeError("a host must be an object or a banyan Box, not %s" % type(obj).__name__)
     name = obj.name
@@ -314,7 +347,7 @@ def mesh_input_from_object(obj, depsgraph):
             pos, tri = _read_mesh(me, name)
         finally:
             ev.to_mesh_clear()
-    return MeshInput(pos, tri, transform=ev.matrix_world, closed=closed_mode(obj), name=name)
+    return MeshInput(pos, tri, transform=to_metres(ev.matrix_world, scale), closed=closed_mode(obj), name=name)
 
 
 CLOSED_PROP = "banyan_host_closed"  # object property: -1 auto, 0 open, 1 closed (e.g. from a preset)
@@ -331,22 +364,13 @@ def closed_mode(obj):
 
 
 def mesh_from_input(name, mi):
-    """A new Mesh datablock of a MeshInput's object-space triangles:
-    foreach_set from its typed buffers, no per-vertex Python loop."""
+    """A new Mesh datablock of a MeshInput's object-space triangles, flat
+    shaded (a glTF mesh without normals is drawn flat): build_mesh.fill_mesh,
+    from its typed buffers through the fastest stock path of the running
+    Blender, the edges from the library."""
     import bpy
-    nv, nt = mi.vertex_count, mi.triangle_count
-    me = bpy.data.meshes.new(name)
-    me.vertices.add(nv)
-    me.vertices.foreach_set("co", mi.positions)
-    loops = array("i")
-    loops.frombytes(mi.indices.tobytes())  # 'I' -> 'i': the property's own item type, one copy
-    me.loops.add(3 * nt)
-    me.loops.foreach_set("vertex_index", loops)
-    me.polygons.add(nt)
-    me.polygons.foreach_set("loop_start", array("i", range(0, 3 * nt, 3)))
-    me.polygons.foreach_set("loop_total", array("i", [3]) * nt)
-    me.update()
-    return me
+    from .build_mesh import fill_mesh
+    return fill_mesh(bpy.data.meshes.new(name), mi.positions, mi.indices, smooth=False)
 
 
 def objects_from_preset(gen, preset, collection=None, material=None):
@@ -395,10 +419,11 @@ def _mesh_type():
     return bpy.types.Mesh
 
 
-def surface_host_set(hosts, depsgraph=None):
+def surface_host_set(hosts, depsgraph=None, scale=1.0):
     """A HostSet of `hosts` (objects and structs.Box): objects as their real
-    surfaces, boxes as boxes (host numbering: the boxes first, then the
-    objects in order). The caller closes it (with-block)."""
+    surfaces (in metres for a scene of `scale` metres per Blender unit),
+    boxes as boxes (host numbering: the boxes first, then the objects in
+    order). The caller closes it (with-block)."""
     import bpy
     depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
     boxes, meshes = [], []
@@ -406,8 +431,10 @@ def surface_host_set(hosts, depsgraph=None):
         if isinstance(h, Box):
             boxes.append(h)
         else:
-            meshes.append(mesh_input_from_object(h, depsgraph))
-    return HostSet(boxes, meshes)
+            meshes.append(mesh_input_from_object(h, depsgraph, scale))
+    hs = HostSet(boxes, meshes)
+    hs.objects = [h for h in hosts if not isinstance(h, Box)]  # what a plant grown on it records (plant.py)
+    return hs
 
 
 def closest_on_set(hs, p):

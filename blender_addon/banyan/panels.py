@@ -79,6 +79,71 @@ def section(layout, context, gen, index, title):
     return box.column() if is_open else None
 
 
+_JUNCTIONS = ("smoothing", "junction_start_scale", "junction_end_scale", "junction_reach", "junction_falloff")
+# Fields that do nothing in a mode, greyed out in the redo panel and the
+# Plant panel: gen -> [(test on the values, table keys it makes idle)].
+# Each is checked against the library (tests/blender/test_ux_new_user.py:
+# another value gives the same mesh).
+IDLE = {
+    "roots": [
+        (lambda v: v("surface") == "fused", ("sides",) + _JUNCTIONS),  # the tube mesher's alone
+        (lambda v: v("surface") == "tubes", ("fuse_radius", "voxel_size")),
+        (lambda v: not v("first_branches"), ("branch_start", "branch_spacing", "branch_vertical", "branch_samples",
+                                             "branch_jitter", "correction") + _JUNCTIONS),
+        (lambda v: not v("second_branches"), ("second_lateral", "second_samples")),
+        (lambda v: not v("hugging"), ("hug_range", "hug_pull")),
+        (lambda v: not v("ground"), ("ground_z", "ground_step", "soil_reach", "flare")),
+        (lambda v: not v("soil_entry"), ("soil_reach", "flare")),
+        (lambda v: v("germination_auto"), ("germination",)),
+    ],
+    "ivy": [
+        (lambda v: v("ground") == "none", ("ground_z", "ground_branching")),
+    ],
+}
+# An operator option that sets a table value itself: (option, value when
+# it does, keys it sets).
+OPTION_SETS = [
+    ("ground_at_hosts", True, ("ground_z",)),
+    ("germinate_at", 'ACTIVE_TOP', ("germination_auto", "germination")),
+    ("germinate_at", 'CURSOR', ("germination_auto", "germination")),
+    ("start_at_cursor", True, ("start",)),
+    ("at_cursor", True, ("position",)),
+    ("path_from", 'CURSOR', ("start", "end")),
+    ("path_from", 'CURVE', ("start", "end")),
+]
+
+
+def idle(gen, holder, options=None):
+    """Property names of gen's table that do nothing with holder's values
+    (an operator's properties or a plant's) and the operator options
+    (`options`: the operator's properties, or a plant's recorded options)."""
+    from .props import prop_name
+
+    def value(key):
+        return getattr(holder, prop_name(key), None)
+    out = set()
+    for test, keys in IDLE.get(gen, ()):
+        try:
+            if test(value):
+                out.update(prop_name(k) for k in keys)
+        except (AttributeError, TypeError):
+            continue
+    if options is not None:
+        get = options.get if isinstance(options, dict) else (lambda n: getattr(options, n, None))
+        for name, when, keys in OPTION_SETS:
+            if get(name) == when:
+                out.update(prop_name(k) for k in keys)
+    return out
+
+
+def draw_prop(layout, data, name, idle_names, **kw):
+    """layout.prop, greyed out (still editable) when the field does nothing now."""
+    if name in idle_names:
+        layout = layout.row()
+        layout.active = False
+    layout.prop(data, name, **kw)
+
+
 def warnings(op, context):
     """What would make this run fail that the panel can say beforehand."""
     props = op.properties
@@ -115,6 +180,7 @@ def draw_operator(op, context):
 
     live.draw_row(layout, op)
 
+    off = idle(op.generator, props, props)
     for i, (title, names) in enumerate(sections(op.generator)):
         body = section(layout, context, op.generator, i, title)
         if body is None:
@@ -122,4 +188,4 @@ def draw_operator(op, context):
         body.use_property_split = True
         body.use_property_decorate = False
         for name in names:
-            body.prop(props, name)
+            draw_prop(body, props, name, off)

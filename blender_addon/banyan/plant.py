@@ -1,6 +1,7 @@
 """Edit later: a built plant keeps on its object what it was grown from
-(generator, the full params, seed, host objects, the operator's options),
-and regenerate() rebuilds it in place from that.
+(generator, the full params, seed, host objects, the options of the
+operator or banyan.api call that built it), and regenerate() rebuilds it
+in place from that.
 
 Storage is Object.banyan_plant, a PropertyGroup: saved in the .blend and
 copied with the object. The params JSON text (Params.to_preset) is the
@@ -8,17 +9,21 @@ source of truth; a PropertyGroup per generator made from the library's
 table (props.annotations) is its editable view in the sidebar. Values the
 float32 view cannot hold exactly (and seeds above 2^31) are listed in
 `lossy` with the view's value at record time, so an untouched property maps
-back to the exact JSON value and an edited one wins. Hosts are Object
+back to the exact JSON value and an edited one wins. The view's lengths
+in metres (the table's "m" rows) are in Blender units of the scene's
+Unit Scale when recorded (`unit_scale`), so the Plant panel shows them in
+the scene's units as the operators' redo panel does. Hosts are Object
 pointers, so a renamed host is still found.
 
 An avenue split into one object per tree is recorded on every tree (same
 `group`, its tree number in `index`); regenerating any tree rebuilds the
 whole avenue.
 
-Regenerate builds through banyan.api into a collection linked to no
-scene, then swaps each object's mesh data: the object itself (name,
-transform, parent, collections, modifiers, selection, material slots)
-stays. Plants on hosts (roots, ivy) grow where their hosts are now, seen
+Regenerate builds through banyan.api (which reads hosts and curves in the
+scene's units and makes the objects in them, api.from_metres) into a
+collection linked to no scene, then swaps each object's mesh data: the
+object itself (name, transform, parent, collections, modifiers,
+selection, material slots) stays. Plants on hosts (roots, ivy) grow where their hosts are now, seen
 from the object's current transform; a tree or twigs keep their object's
 transform as their place (the mesh is the generator's, as built); an
 avenue's trees go where the changed avenue puts them, moved by as much as
@@ -28,7 +33,7 @@ import json
 import uuid
 
 import bpy
-from bpy.props import CollectionProperty, IntProperty, PointerProperty, StringProperty
+from bpy.props import CollectionProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 from mathutils import Matrix
 
 from . import hosts as H
@@ -59,6 +64,8 @@ def _plant_class(gens):
         "params": StringProperty(name="Parameters", description="Params.to_preset JSON: what was built"),
         "seed": StringProperty(name="Seed", description="The params' seed when built"),
         "lossy": StringProperty(description="JSON {key: view value} of values the view rounds"),
+        "unit_scale": FloatProperty(default=0.0, min=0.0, description="Metres per Blender unit of the view's "
+                                                                       "lengths (0: metres, 1)"),
         "hosts": CollectionProperty(type=BanyanPlantHost),
         "path": PointerProperty(type=bpy.types.Object, name="Path",
                                 description="The avenue's curve, when it was grown along one"),
@@ -113,16 +120,26 @@ def _same(a, b):
     return a == b
 
 
+def view_scale(pl):
+    """Metres per Blender unit of a plant view's lengths (1 for a record
+    made before the view had a unit scale)."""
+    s = float("%.7g" % pl.unit_scale)  # a float32 property: 0.01, not 0.0099999998
+    return s if 0 < s < float("inf") else 1.0
+
+
 def _write_view(pl, params, lossy=None):
-    """Copies params into the editable view and notes what it rounds
-    (`lossy`, the JSON text, when already known: an avenue's trees share it)."""
+    """Copies params into the editable view, its lengths in Blender units
+    of the current scene, and notes what it rounds (`lossy`, the JSON text,
+    when already known: an avenue's trees share it)."""
     view = getattr(pl, params.name, None)
     if view is None:
         pl.lossy = ""
         return ""
-    PP.write_props(view, params)
+    scale = H.unit_scale(bpy.context.scene)
+    pl.unit_scale = scale
+    PP.write_props(view, params, scale=scale)
     if lossy is None:
-        seen = PP.to_params(params.name, view)
+        seen = PP.to_params(params.name, view, scale=scale)
         out = {}
         for s in params.specs:
             a, b = seen.get(s.name), params.get(s.name)
@@ -151,7 +168,10 @@ def record(objs, generator, params, hosts=(), options=None):
     pointer). Several objects are one group, rebuilt together.
     options["frame"] (4x4 rows): the object's world matrix as the
     generator placed it, by default its matrix now; an avenue's regenerated
-    trees move by how their place changed from it."""
+    trees move by how their place changed from it. Does nothing when the
+    add-on is not registered (its modules imported by a script)."""
+    if not hasattr(bpy.types.Object, "banyan_plant"):
+        return  # the modules used without the add-on enabled (e.g. a script on sys.path): nothing to record on
     objs = [objs] if isinstance(objs, bpy.types.Object) else list(objs)
     # An instanced avenue's empties are placements, not plants (and may be 10,000).
     objs = [o for o in objs if o.type != 'EMPTY']
@@ -242,7 +262,7 @@ def current_params(obj):
     view = getattr(pl, pl.generator, None)
     if view is None:
         return exact
-    p = PP.to_params(pl.generator, view)
+    p = PP.to_params(pl.generator, view, scale=view_scale(pl))
     try:
         lossy = json.loads(pl.lossy or "{}")
     except ValueError:
@@ -328,12 +348,18 @@ def build_job(obj, params, coll):
     opt = options(obj)
     uv = bool(opt.get("uv_map", True))
     shape = opt.get("host_shape", H.SURFACE)
-    if gen == "roots":
-        return api.strangler_roots_job(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
-    if gen == "ivy":
-        return api.ivy_job(hosts=_hosts(obj), params=params, collection=coll, uv=uv, host_shape=shape)
+    if gen in HOSTED:
+        import contextlib
+        make = api.strangler_roots_job if gen == "roots" else api.ivy_job
+        with contextlib.ExitStack() as stack:
+            hosts = _hosts(obj)
+            if not hosts and opt.get("preset_hosts"):
+                # Grown by banyan.api on a preset's own hosts (its boxes and meshes).
+                hosts = api.host_arg(gen, (), shape, opt["preset_hosts"], stack)[0]
+            job = make(hosts=hosts, params=params, collection=coll, uv=uv, host_shape=shape)
+            return job.adopt(stack.pop_all())
     if gen == "keyaki":
-        return api.keyaki_tree_job(params=params, collection=coll, uv=uv)
+        return api.keyaki_tree_job(params=params, collection=coll, uv=uv, origin=opt.get("origin", 'BASE'))
     if gen == "avenue":
         path = None
         if opt.get("path_from") == 'CURVE':
@@ -356,7 +382,9 @@ def _build(obj, params, coll):
     if obj.banyan_plant.generator == "avenue" and "variants" in params.by_name and params.get("variants"):
         raise BanyanError(13, "'%s': an instanced avenue (variants %d) cannot be regenerated in place yet; add it "
                           "again" % (obj.name, params.get("variants")), "BANYAN_E_UNSUPPORTED")
-    return build_job(obj, params, coll).run()
+    job = build_job(obj, params, coll)
+    job.plant = None  # regenerate() records the plant's own objects, not these temporary ones
+    return job.run()
 
 
 def _remove_tree(coll):

@@ -165,13 +165,15 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         changed = PL.edited(obj)  # about 2.5 ms (roots, Blender 3.4)
         if changed:
             layout.label(text="%d change(s) not built yet" % len(changed), icon='INFO')
+        # At most two buttons a row, short words and no icon beside them:
+        # the labels fit the sidebar's default width (test_ux_new_user.py).
         row = layout.row(align=True)
-        row.operator("banyan.randomize_seed", icon='SHADERFX')
-        row.operator("banyan.copy_preset", icon='COPYDOWN')
+        row.operator("banyan.randomize_seed", text="New Seed")
+        row.operator("banyan.copy_preset", text="Copy Preset")
         row = layout.row(align=True)  # production setups (production_ui.py)
-        row.operator("banyan.add_wind", icon='FORCE_WIND')
-        row.operator("banyan.add_growth", icon='TIME')
-        row.operator("banyan.make_lods", icon='MOD_DECIM')
+        row.operator("banyan.add_wind", text="Add Wind")
+        row.operator("banyan.add_growth", text="Add Growth")
+        layout.operator("banyan.make_lods", icon='MOD_DECIM')
         view = getattr(pl, pl.generator, None)
         if view is None:
             layout.label(text="This add-on has no '%s' generator" % pl.generator, icon='ERROR')
@@ -180,6 +182,11 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
             from .panels import section
         except ImportError:
             section = _section
+        try:  # fields that do nothing with these values, greyed out as in the redo panel
+            from .panels import draw_prop, idle
+            off = idle(pl.generator, view)  # Regenerate takes every value as it is: no operator option
+        except ImportError:
+            off, draw_prop = set(), None
         for i, (title, rows) in enumerate(_groups(specs(pl.generator))):
             body = section(layout, context, pl.generator, i, title or "Parameters")
             if body is None:
@@ -188,10 +195,11 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
                 name = PP.prop_name(s.name)
                 if hasattr(view, name):
                     lab = _label(s)
-                    if lab:
-                        body.prop(view, name, text=lab)
+                    kw = {"text": lab} if lab else {}
+                    if draw_prop is not None:
+                        draw_prop(body, view, name, off, **kw)
                     else:
-                        body.prop(view, name)
+                        body.prop(view, name, **kw)
 
 
 CLASSES = (BANYAN_OT_regenerate, BANYAN_OT_randomize_seed, BANYAN_OT_copy_preset, VIEW3D_PT_banyan_plant)

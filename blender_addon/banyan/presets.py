@@ -2,8 +2,9 @@
 
 Looked up in banyan/presets/ (the zip carries a copy) and, for an add-on
 used from the repository, in <repo>/presets/. A preset belongs to the
-generator its "generator" key names. User presets are Blender's own
-operator presets (bl_options 'PRESET'), saved from the redo panel.
+generator its "generator" key names. User presets are JSON files too,
+saved by the redo panel's `+` (save()) into user_dir(), and listed in the
+same menu, each under a readable title().
 """
 import json
 import os
@@ -135,6 +136,15 @@ def broken_presets(generator=None):
     seen = _scan()
     return [(k, e[1], e[4]) for k, e in sorted(seen.items())
             if e[4] and (generator is None or e[2] == generator or e[2] is None)]
+
+
+def title(key, generator=None):
+    """A preset's menu name: its file name without the generator's prefix,
+    in words ("roots_mature_fig" -> "Mature fig")."""
+    gen = generator or _guess_generator(key + ".json")
+    words = key[len(gen) + 1:] if gen and key.startswith(gen + "_") and len(key) > len(gen) + 1 else key
+    words = " ".join(words.replace("_", " ").replace("-", " ").split()) or key
+    return words[:1].upper() + words[1:]
 
 
 def find(generator, key):

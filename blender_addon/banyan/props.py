@@ -145,9 +145,18 @@ def _snap(x, spec, default):
 _MISSING = object()
 
 
-def to_params(gen, holder, skip=()):
+def length_props(gen):
+    """Property names of gen's lengths in metres (the "m" rows): the ones a
+    scene's unit scale applies to (to_params, write_props)."""
+    return tuple(prop_name(s.name) for s in P.specs(gen)
+                 if s.unit == "m" and s.type in (S.PT_DOUBLE, S.PT_VEC3))
+
+
+def to_params(gen, holder, skip=(), scale=1.0):
     """A Params of gen filled from holder's properties (an operator or any
-    object with the attributes); raises BanyanError on bad values."""
+    object with the attributes); raises BanyanError on bad values. The
+    lengths in metres ("m" rows) are held in Blender units of `scale`
+    metres each (the scene's unit scale; 1: metres)."""
     p = addon_params(gen)
     defaults = addon_params(gen)
     for s in p.specs:
@@ -155,11 +164,12 @@ def to_params(gen, holder, skip=()):
         if s.name in skip or v is _MISSING:
             continue
         d = defaults.get(s.name)
+        k = scale if s.unit == "m" else 1.0
         if s.type == S.PT_DOUBLE:
-            x = _nice(math.degrees(v)) if s.unit == "deg" else _nice(v)
+            x = _nice(math.degrees(v)) if s.unit == "deg" else _nice(_nice(v) * k)
             v = _snap(x, s, d)
         elif s.type == S.PT_VEC3:
-            v = tuple(_snap(_nice(c), s, dc) for c, dc in zip(v, d))
+            v = tuple(_snap(_nice(_nice(c) * k), s, dc) for c, dc in zip(v, d))
         elif s.type == S.PT_COLOR:
             v = tuple(_snap(_nice(c), s, dc) for c, dc in zip(v, d))
         elif s.type == S.PT_SEED and v == 0 and d > INT_MAX:
@@ -168,8 +178,9 @@ def to_params(gen, holder, skip=()):
     return p
 
 
-def write_props(holder, params):
-    """Copies a Params' values into holder's properties (e.g. after a preset)."""
+def write_props(holder, params, scale=1.0):
+    """Copies a Params' values into holder's properties (e.g. after a
+    preset); lengths in metres become Blender units of `scale` metres."""
     for s in params.specs:
         name = prop_name(s.name)
         if not hasattr(holder, name):
@@ -177,6 +188,8 @@ def write_props(holder, params):
         v = params.get(s.name)
         if s.type == S.PT_DOUBLE and s.unit == "deg":
             v = math.radians(v)
+        elif s.unit == "m" and scale != 1.0:
+            v = tuple(c / scale for c in v) if s.type == S.PT_VEC3 else v / scale
         elif s.type == S.PT_SEED and v > INT_MAX:
             v = 0
         setattr(holder, name, v)

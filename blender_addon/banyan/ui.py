@@ -70,3 +70,30 @@ class VIEW3D_PT_banyan_error(bpy.types.Panel):
     def draw(self, context):
         for line in state.LOAD_ERROR.split("; "):
             self.layout.label(text=line, icon='ERROR')
+
+
+def _kind(package):
+    return "the 4.2+ extension" if package.startswith("bl_ext.") else "the legacy add-on"
+
+
+def other_copy_message(other, folder, mine):
+    """What a second enabled copy of the add-on says (register())."""
+    return ("Banyan is already enabled as %s '%s' (%s); this copy, %s '%s', is not. Keep one: disable and "
+            "remove the other in Edit > Preferences > %s, then restart Blender"
+            % (_kind(other), other, folder, _kind(mine), mine,
+               "Get Extensions" if other.startswith("bl_ext.") else "Add-ons"))
+
+
+class VIEW3D_PT_banyan_other_copy(bpy.types.Panel):
+    """Shown by a second enabled copy of the add-on instead of everything else."""
+    bl_idname = "VIEW3D_PT_banyan_other_copy"
+    bl_label = "Banyan: two copies"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Banyan"
+
+    def draw(self, context):
+        col = self.layout.column(align=True)
+        col.alert = True
+        for i, line in enumerate(textwrap.wrap(state.LOAD_ERROR, 36)):  # a label does not wrap
+            col.label(text=line, icon='ERROR' if i == 0 else 'BLANK1')

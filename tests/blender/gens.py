@@ -44,13 +44,19 @@ def library_mesh(gen, hosts_objs, kwargs):
         if k in p.by_name:
             p.set(k, v)
     cur = tuple(bpy.context.scene.cursor.location)
+    # The operators' ground at the hosts' foot.
+    floor = gen in ("roots", "ivy") and kwargs.get("ground_at_hosts", True) and "ground_z" not in kwargs
     if gen in ("roots", "ivy") and kwargs.get("host_shape", "SURFACE") == "SURFACE":
         with H.surface_host_set(hosts_objs) as hs:  # what the operators grow on by default
+            if floor:
+                p.set("ground_z", H.hosts_floor(hs))
             if gen == "roots":
                 return G.roots(p, hs)
             p.set("start", H.closest_on_set(hs, cur))
             return G.ivy(p, hs)
     boxes = H.boxes_from_objects(hosts_objs)
+    if floor:
+        p.set("ground_z", H.hosts_floor(boxes))
     if gen == "roots":
         return G.roots(p, boxes)
     if gen == "keyaki":

@@ -2,7 +2,9 @@
 scripts, no BANYAN_LIB) installs build/banyan.zip the way Edit >
 Preferences > Add-ons > Install does, enables it, finds Add Strangler
 Roots under Add > Mesh > Banyan, and with the default cube selected gets
-roots around the cube; the guide's tweak (Growth Points 15) works too.
+roots around the cube down to its foot; the guide's tweak (Main roots 12)
+works too, and the figures the guide quotes are what
+docs/render_getting_started.py measures now.
 
 The steps run in a child Blender, so nothing of the add-on this test
 runner loaded (from the repository) is involved."""
@@ -39,26 +41,34 @@ cube = bpy.data.objects["Cube"]
 out["cube_selected"] = cube.select_get() and bpy.context.view_layer.objects.active == cube
 
 
+sys.path.insert(0, DOCS)
+import render_getting_started as RG
+figures = {}
+
+
 def grow(**kw):
     before = set(bpy.data.objects)
     res = bpy.ops.mesh.banyan_roots(**kw)
     new = [o for o in bpy.data.objects if o not in before]
+    figures[len(figures)] = RG.measure(new) if new else None
     vs = [o.matrix_world @ v.co for o in new if o.type == 'MESH' for v in o.data.vertices]
     inside = sum(1 for v in vs if max(abs(v.x), abs(v.y), abs(v.z)) < 1 - 1e-3)
     sides = [sum(1 for v in vs if v.x > 1), sum(1 for v in vs if v.x < -1),
              sum(1 for v in vs if v.y > 1), sum(1 for v in vs if v.y < -1)]
     on_top = sum(1 for v in vs if v.z > 1 and abs(v.x) < 1 and abs(v.y) < 1)
     near = sum(1 for v in vs if max(abs(v.x), abs(v.y)) < 1.5)
+    bottom = min((v.z for v in vs), default=0.0)
     for o in new:
         bpy.data.objects.remove(o)
     cube.select_set(True)
     bpy.context.view_layer.objects.active = cube
     return {"result": sorted(res), "objects": len(new), "vertices": len(vs), "inside": inside, "sides": sides,
-            "on_top": on_top, "near": near}
+            "on_top": on_top, "near": near, "bottom": bottom}
 
 
 out["defaults"] = grow()
-out["tweak"] = grow(growth_points=15)
+out["tweak"] = grow(**RG.TWEAK)
+out["figures"] = RG.figures_text(figures[0], figures[1]) if figures[0] and figures[1] else None
 print("GETTING_STARTED " + json.dumps(out))
 '''
 
@@ -71,7 +81,7 @@ def test_guide():
     with tempfile.TemporaryDirectory() as user:
         script = os.path.join(user, "guide.py")
         with open(script, "w") as f:
-            f.write("ZIP = %r\n" % zip_path + CHILD)
+            f.write("ZIP = %r\nDOCS = %r\n" % (zip_path, os.path.join(bt.SOURCE_DIR, "docs")) + CHILD)
         env = {k: v for k, v in os.environ.items() if not k.startswith(("BANYAN_", "BLENDER_"))}
         env["BLENDER_USER_SCRIPTS"] = os.path.join(user, "scripts")  # a newcomer's empty scripts folder
         r = subprocess.run([bt.BLENDER, "-b", "--factory-startup", "--python-exit-code", "1",
@@ -96,16 +106,21 @@ def test_guide():
         bt.check(g["result"] == ["FINISHED"] and g["objects"] == 1 and g["vertices"] > 1000,
                  "%s: one roots object (%s)" % (key, g))
         bt.check(g["inside"] == 0, "%s: no vertex inside the cube (%d)" % (key, g["inside"]))
-        # Issue #18: roots that reach the ground go into the soil there
-        # instead of crawling round the foot, and the cube stands 1 m above
-        # the ground: the six main roots fan over the top and down, and one
-        # face of the four may be left to none (seeds 1, 2, 5 of 1..5).
+        # The six main roots fan over the top and down; one face of the
+        # four may be left to none.
         bt.check(sum(1 for n in g["sides"] if n > 0) >= 3 and g["on_top"] > 0,
                  "%s: roots on at least three sides %s and on top (%d)" % (key, g["sides"], g["on_top"]))
-    # The tweak keeps the roots close round the cube.
-    t = out["tweak"]
-    bt.check(t["near"] > 0.5 * t["vertices"], "tweak: most vertices within 0.5 m of the cube (%d of %d)"
-             % (t["near"], t["vertices"]))
+        # The ground is at the cube's foot (z = -1): the roots reach it and enter the soil beside it.
+        bt.check(g["bottom"] < -0.95, "%s: roots down to the cube's foot (lowest z %.3f)" % (key, g["bottom"]))
+        bt.check(g["near"] > 0.9 * g["vertices"], "%s: roots close round the cube, not crawling away: %d of %d "
+                 "vertices within 0.5 m of it" % (key, g["near"], g["vertices"]))
+    bt.check(out["tweak"]["vertices"] > out["defaults"]["vertices"], "tweak: more main roots, more vertices (%d -> %d)"
+             % (out["defaults"]["vertices"], out["tweak"]["vertices"]))
+    with open(os.path.join(bt.SOURCE_DIR, "docs", "getting-started.md"), encoding="utf-8") as f:
+        guide = f.read()
+    bt.check(out["figures"] and out["figures"] in guide, "docs/getting-started.md quotes what "
+             "docs/render_getting_started.py measures now (bash tools/render_docs.sh start writes it):\n%s"
+             % out["figures"])
 
 
 bt.run(test_guide)

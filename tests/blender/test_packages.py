@@ -7,7 +7,8 @@ it the way Preferences does (Install... / Install from Disk), enables it
 and grows roots around the default cube, and its /proc/self/maps must hold
 no library from the build or source tree. BANYAN_ZIP_DIR names the folder
 holding the zips (default BANYAN_BUILD_DIR); tests/blender/packages.sh runs
-this with the build folder moved away."""
+this with the build folder moved away. Under either package a script's
+`import banyan` must give the add-on's own modules (scripting.py)."""
 import json
 import os
 import subprocess
@@ -45,6 +46,17 @@ out["maps"] = sorted({ln.split()[-1] for ln in open("/proc/self/maps") if ".so" 
 n = len(bpy.data.objects)
 out["roots"] = sorted(bpy.ops.mesh.banyan_roots())
 out["objects"] = len(bpy.data.objects) - n
+# A script's `import banyan`, whatever the package is called: the same modules, a recorded plant.
+import banyan
+import banyan.api
+import banyan.lod  # not loaded yet by the add-on itself
+out["alias"] = [banyan is pkg, banyan.api is sys.modules[name + ".api"], banyan.lod is sys.modules[name + ".lod"]]
+tree = banyan.api.keyaki_tree(levels=6)[0]
+out["api_plant"] = tree.banyan_plant.generator
+out["api_lods"] = len(banyan.api.make_lods(tree, ratios=(0.5,), billboard=False))
+bpy.ops.preferences.addon_disable(module=name)
+out["after_disable"] = [n for n in sys.modules if n == "banyan" or n.startswith("banyan.")
+                        if sys.modules[n].__name__ != n]
 print("PACKAGE " + json.dumps(out))
 '''
 
@@ -124,6 +136,12 @@ def check_install(kind, zip_path, bundled):
                 bt.check(not bad, "%s: nothing loaded from %s: %s" % (kind, tree, bad))
         bt.check(out["roots"] == ["FINISHED"] and out["objects"] == 1, "%s: roots around the cube: %s, %d object(s)"
                  % (kind, out["roots"], out["objects"]))
+        bt.check(out["alias"] == [True, True, True], "%s: a script's import banyan, banyan.api, banyan.lod are the "
+                 "add-on's own modules: %s" % (kind, out["alias"]))
+        bt.check(out["api_plant"] == "keyaki" and out["api_lods"] == 2, "%s: banyan.api.keyaki_tree from a script: a "
+                 "recorded plant (%r), make_lods on it: %d object(s)" % (kind, out["api_plant"], out["api_lods"]))
+        bt.check(out["after_disable"] == [], "%s: disabled, no alias of banyan is left: %s"
+                 % (kind, out["after_disable"]))
 
 
 def test_package(kind, name):

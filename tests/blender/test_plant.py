@@ -1,4 +1,4 @@
-"""Edit later (issue #16): a plant built by an operator keeps its
+"""Edit later: a plant built by an operator or by banyan.api keeps its
 generator, params, seed, hosts and options on the object, through save and
 reload and duplication; Regenerate rebuilds it in place (same object and
 name, user modifiers, materials and transform kept) and a failing one
@@ -377,6 +377,140 @@ def test_record_options():
     bt.check(PL.is_plant(cube) and not PL.is_plant(bpy.data.objects["Camera"]), "record: the cube is now a plant")
 
 
+def test_api_plants():
+    """Plants made by banyan.api are recorded as the operators' are: the
+    Plant panel shows them, Regenerate rebuilds them (the same mesh for
+    unchanged params, another for an edit), make_lods works on them."""
+    import banyan.api as B
+    from banyan import hosts as H
+    bt.reset_scene()
+    cube = bpy.data.objects["Cube"]
+
+    def on_host_set():
+        with H.surface_host_set([cube]) as hs:
+            return B.strangler_roots(hosts=hs, seed=3)
+    calls = {
+        "roots": lambda: B.strangler_roots(hosts=[cube]),
+        "ivy": lambda: B.ivy(hosts=[cube], start=(0.0, -1.05, -0.9), steps=40),
+        "keyaki": lambda: B.keyaki_tree(position=(5.0, 0.0, 0.0), levels=6),
+        "keyaki world": lambda: B.keyaki_tree(position=(0.0, 5.0, 0.0), levels=6, origin=None),
+        "avenue": lambda: B.keyaki_avenue(path=[(0, 10, 0), (20, 10, 0)], spacing=10.0, tree__levels=6),
+        "segments": lambda: B.segment_twigs(),
+        "roots preset hosts": lambda: B.strangler_roots(preset="roots_boulder"),
+        "roots host set": on_host_set,
+    }
+    edit = {"roots": ("seed", 7), "ivy": ("steps", 30), "keyaki": ("levels", 7), "avenue": ("tree__levels", 7),
+            "segments": ("seed", 7)}
+    for what, call in calls.items():
+        gen = what.split()[0]
+        if not bt.generator(gen):
+            continue
+        objs = call()
+        obj = objs[0]
+        pl = obj.banyan_plant
+        bt.check(all(PL.is_plant(o) and o.banyan_plant.generator == gen for o in objs),
+                 "api %s: every object recorded as a %s plant" % (what, gen))
+        if gen in PL.HOSTED and what != "roots preset hosts":
+            bt.check([h.name for h in pl.hosts] == ["Cube"], "api %s: the cube recorded as its host" % what)
+        bt.check(PL.stored_params(obj).to_preset() == pl.params and PL.edited(obj) == [],
+                 "api %s: the params kept, no edit pending" % what)
+        draw_panel(obj)
+        bpy.context.view_layer.objects.active = obj
+        bpy.context.view_layer.update()  # matrix_world of the objects just made
+        name, c0, mw = obj.name, coords(obj), [tuple(r) for r in obj.matrix_world]
+        res, msg = regenerate()
+        obj = bpy.data.objects[name]
+        bt.check(res == {'FINISHED'} and close(coords(obj), c0) and [tuple(r) for r in obj.matrix_world] == mw,
+                 "api %s: Regenerate with unchanged params, the same mesh and place %s" % (what, msg))
+        key, value = edit[gen]
+        setattr(getattr(obj.banyan_plant, gen), PP.prop_name(key.replace("__", ".")), value)
+        res, msg = regenerate()
+        obj = bpy.data.objects[name]
+        bt.check(res == {'FINISHED'} and not close(coords(obj), c0),
+                 "api %s: Regenerate after %s = %r: another mesh %s" % (what, key, value, msg))
+    if bt.generator("keyaki"):
+        tree = B.keyaki_tree(levels=6, name="LOD tree")[0]
+        lods = B.make_lods(tree, ratios=(0.5,), billboard=False)
+        bt.check([o.name for o in lods] == ["LOD tree_LOD0", "LOD tree_LOD1"], "api keyaki: make_lods: %s"
+                 % [o.name for o in lods])
+        bpy.context.view_layer.objects.active = tree
+        bt.check(bpy.ops.banyan.make_lods.poll(), "api keyaki: Make LODs available on it")
+
+
+def world_bounds(objs):
+    bpy.context.view_layer.update()
+    pts = [o.matrix_world @ v.co for o in objs if o.type == 'MESH' for v in o.data.vertices]
+    return [min(p[k] for p in pts) for k in range(3)] + [max(p[k] for p in pts) for k in range(3)]
+
+
+def test_units():
+    """In a centimetre scene (Unit Scale 0.01) Regenerate gives the plant
+    the sizes of its first build, for plants of the operators and of
+    banyan.api, on hosts and along a curve; the Plant panel holds the
+    lengths in the scene's units (roots' Scale 0.05 m as 5 cm)."""
+    import banyan.api as B
+
+    def centimetres():
+        us = bpy.context.scene.unit_settings
+        us.system, us.scale_length, us.length_unit = 'METRIC', 0.01, 'CENTIMETERS'
+
+    def road():
+        cu = bpy.data.curves.new("Road", 'CURVE')
+        sp = cu.splines.new('POLY')
+        sp.points.add(1)
+        sp.points[1].co = (2000.0, 0.0, 0.0, 1.0)  # 20 m
+        ob = bpy.data.objects.new("Road", cu)
+        bpy.context.scene.collection.objects.link(ob)
+        for o in bpy.context.selected_objects:
+            o.select_set(False)
+        ob.select_set(True)
+        bpy.context.view_layer.objects.active = ob
+        return ob
+
+    def cube():
+        c = bpy.data.objects["Cube"]
+        c.scale = (100.0, 100.0, 100.0)  # 2 m
+        bpy.context.view_layer.update()
+        return c
+    cases = {
+        "roots": ("roots", lambda: (cube(), build("roots", surface='tubes', growth_points=20))[1]),
+        "keyaki": ("keyaki", lambda: build("keyaki", levels=6)),
+        "avenue on a curve": ("avenue", lambda: (road(), build("avenue", path_from='CURVE', rows=1,
+                                                                 tree__levels=5))[1]),
+        "api roots": ("roots", lambda: B.strangler_roots(hosts=[cube()], surface='tubes', growth_points=20)),
+        "api keyaki": ("keyaki", lambda: B.keyaki_tree(position=(3.0, 0.0, 0.0), levels=6)),
+        "api avenue on a curve": ("avenue", lambda: B.keyaki_avenue(path=road(), rows=1, tree__levels=5)),
+    }
+    for what, (gen, make) in cases.items():
+        if not bt.generator(gen):
+            continue
+        bt.reset_scene()
+        centimetres()
+        objs = make()
+        b0 = world_bounds(objs)
+        height = (b0[5] - b0[2]) * 0.01
+        bt.check(height > 1.0, "%s: %.2f m tall in a centimetre scene" % (what, height))
+        bpy.context.view_layer.objects.active = objs[0]
+        coll = objs[0].users_collection[0]
+        res, msg = regenerate()
+        b1 = world_bounds(list(coll.objects) if gen == "avenue" else [bpy.context.view_layer.objects.active])
+        bt.check(res == {'FINISHED'} and max(abs(a - b) for a, b in zip(b0, b1)) < 1e-3,
+                 "%s: Regenerate in a centimetre scene, the same bounds (cm) %s / %s %s"
+                 % (what, [round(c, 2) for c in b0], [round(c, 2) for c in b1], msg))
+    if bt.generator("roots"):
+        bt.reset_scene()
+        centimetres()
+        cube()
+        obj = build("roots", growth_points=8)[0]
+        view = obj.banyan_plant.roots
+        bt.check(abs(view.unit - 5.0) < 1e-5 and PL.current_params(obj).get("unit") == 0.05 and not PL.edited(obj),
+                 "Plant panel: Scale 0.05 m held as 5 cm (%g), read back as %g m, no edit pending"
+                 % (view.unit, PL.current_params(obj).get("unit")))
+        view.unit = 6.0
+        bt.check(PL.current_params(obj).get("unit") == 0.06 and PL.edited(obj) == ["unit"],
+                 "Plant panel: 6 cm typed is 0.06 m (%g)" % PL.current_params(obj).get("unit"))
+
+
 class _Layout:
     """Records what the panel draws (no window in background Blender)."""
 
@@ -433,6 +567,7 @@ def main():
     print("Blender %s" % bpy.app.version_string)
     for gen, fn in (("roots", test_roots), ("ivy", test_ivy), ("keyaki", test_keyaki), ("avenue", test_avenue),
                     ("segments", test_segments), ("avenue", test_avenue_curve), ("keyaki", test_record_options),
+                    ("keyaki", test_api_plants), ("roots", test_units),
                     ("keyaki", test_undo)):
         if bt.generator(gen):
             bt.run(fn)

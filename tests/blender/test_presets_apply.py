@@ -198,10 +198,12 @@ def test_presets():
 def test_options_switch():
     """Choosing a preset switches the options that would override it: the
     run equals the API's run of the preset with its own start (ivy) or
-    germination (roots), whatever the cursor options said."""
+    germination (roots), whatever the options were before (a redo panel's,
+    here the defaults: start at the cursor); an option given with the
+    preset in the same call wins (test_ux_new_user.py)."""
     for gen, key, kw, api_kw in (
-            ("ivy", "ivy_wall_sparse", {"start_at_cursor": True}, {}),
-            ("roots", "roots_young_fig", {"germinate_at": 'CURSOR'}, {})):
+            ("ivy", "ivy_wall_sparse", {}, {}),
+            ("roots", "roots_young_fig", {}, {})):
         bt.reset_scene()
         cube = bpy.data.objects["Cube"]
         cube.location.z = 1.0

@@ -15,7 +15,7 @@ import time
 import traceback
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, StringProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 
 from .. import api
 from .. import hosts as H
@@ -34,14 +34,20 @@ _items_cache = {}  # Blender needs the enum strings kept alive
 
 
 def preset_items(gen):
-    """The preset menu: (current values), the presets of gen, then the
+    """The preset menu, the operator's only one: (current values), the
+    presets of gen (shipped and the user's) by their titles, then the
     broken ones, greyed by their icon and named with the library's error;
-    choosing one reports that error."""
+    choosing one reports that error. The tooltip gives the file name."""
     items = [(NO_PRESET, "(current values)", "Keep the values below", 'NONE', 0)]
-    for key, _path, desc in PR.list_presets(gen):
-        items.append((key, key, desc or key, 'NONE', len(items)))
+    good = PR.list_presets(gen)
+    titles = [PR.title(key, gen) for key, _path, _desc in good]
+    for (key, _path, desc), name in zip(good, titles):
+        if titles.count(name) > 1:
+            name = key  # two files of one title: their names tell them apart
+        items.append((key, name, "%s (%s.json)" % (desc or name, key), 'NONE', len(items)))
     for key, _path, err in PR.broken_presets(gen):
-        items.append((key, "%s (broken: %s)" % (key, err), "Cannot be used: %s" % err, 'ERROR', len(items)))
+        items.append((key, "%s (broken: %s)" % (PR.title(key, gen), err), "Cannot be used: %s" % err, 'ERROR',
+                      len(items)))
     _items_cache[gen] = items
     return items
 
@@ -65,8 +71,10 @@ def _dynamic_items(gen):
 
 class BanyanOperatorMixin:
     """Subclasses set `generator` and implement build(context, params) ->
-    objects (through banyan.api). Properties come from make_operator()."""
-    bl_options = {'REGISTER', 'UNDO', 'PRESET'}
+    objects (through banyan.api). Properties come from make_operator().
+    No 'PRESET' option: Blender's own preset menu would be a second one
+    beside the JSON presets (banyan_preset)."""
+    bl_options = {'REGISTER', 'UNDO'}
     generator = ""
     extra_props = ()  # names of non-table properties, drawn first
 
@@ -78,9 +86,10 @@ class BanyanOperatorMixin:
             return why_not(cls, "No scene to add to")
         return True
 
-    def load_preset_if_changed(self):
-        """A newly chosen JSON preset overwrites the table properties once;
-        later edits in the redo panel then apply on top of it."""
+    def load_preset_if_changed(self, scale=1.0):
+        """A newly chosen JSON preset overwrites the table properties once
+        (its lengths in metres become Blender units at `scale`, metres per
+        unit); later edits in the redo panel then apply on top of it."""
         key = self.banyan_preset or NO_PRESET
         if key == self.banyan_preset_loaded:
             return
@@ -89,20 +98,66 @@ class BanyanOperatorMixin:
             path = PR.find(self.generator, key)
             text = PR.read(path)
             p.apply_preset(text, path)
-            PP.write_props(self.properties, p)
+            PP.write_props(self.properties, p, scale=scale)
             doc = json.loads(text)
             self.preset_loaded(dict(doc.get("params") or {}), bool(doc.get("hosts")))
         self.banyan_preset_loaded = key
+
+    def explicit_values(self):
+        """{property: value} the caller gave this call (keywords of
+        bpy.ops...(banyan_preset=..., sides=4)), which win over the preset
+        loaded with them. Only on an operator's first run: a preset chosen
+        later in the redo panel applies whole."""
+        props = self.properties
+        if props.is_property_set("banyan_preset_loaded"):
+            return {}
+        names = tuple(self.table_props) + tuple(self.extra_props) + tuple(getattr(self, "placement_props", ()))
+        out = {}
+        for n in names:
+            if props.is_property_set(n):
+                v = getattr(props, n)
+                out[n] = v if isinstance(v, (str, bool, int, float)) else tuple(v)
+        return out
+
+    def to_scene_units(self, context, explicit):
+        """Puts the length properties (the table's "m" rows, Line length) in
+        the Blender units of the scene's unit scale: a value is a length in
+        Blender units, shown in the scene's units, and to_params() gives the
+        library metres. Values not yet in this scene's units are converted
+        keeping their metres: the defaults (the library's metres) and values
+        remembered from a scene of another scale; the caller's own values
+        (`explicit`) are Blender units already, as in Blender's own
+        operators. Returns the scale (metres per Blender unit)."""
+        s = H.unit_scale(context.scene)
+        props = self.properties
+        was = props.banyan_unit_scale  # 0: never converted (the defaults, in metres)
+        if not (math.isfinite(was) and was > 0):
+            was = 1.0
+        if was != s:
+            k = was / s
+            for n in self.length_props:
+                if n in explicit:
+                    continue
+                v = getattr(props, n)
+                setattr(props, n, tuple(c * k for c in v) if hasattr(v, "__len__") else v * k)
+        props.banyan_unit_scale = s
+        return s
 
     def preset_loaded(self, values, has_hosts):
         """A newly chosen preset's own "params" (as written) and whether it
         names hosts: operators switch their options so that the preset
         applies whole (its path, its start)."""
 
-    def params(self):
+    def params(self, scale=1.0):
         # Through self.properties: each attribute of the operator itself
         # costs a property lookup in Python (bpy_types.Operator), ~30 us.
-        return PP.to_params(self.generator, self.properties)
+        return PP.to_params(self.generator, self.properties, scale=scale)
+
+    @property
+    def unit_scale(self):
+        """Metres per Blender unit of this run (see to_scene_units)."""
+        s = getattr(getattr(self, "properties", None), "banyan_unit_scale", 1.0)
+        return s if math.isfinite(s) and s > 0 else 1.0
 
     def preset_doc(self):
         """The chosen JSON preset as written ({} for none or a broken one)."""
@@ -135,7 +190,7 @@ class BanyanOperatorMixin:
         """prepare + compute + build in one go (what execute() runs)."""
         with self.prepare(context, params) as job:
             job.compute(progress)
-            objs = job.build()
+            objs = job.build()  # in the scene's units (api.from_metres)
         self.place(context, objs)
         return objs
 
@@ -143,8 +198,12 @@ class BanyanOperatorMixin:
         """Leaves Edit Mode, then params and the job; None after an error report."""
         self._mode = leave_edit_mode(context)
         try:
-            self.load_preset_if_changed()
-            params = self.params()
+            explicit = self.explicit_values()
+            scale = self.to_scene_units(context, explicit)
+            self.load_preset_if_changed(scale)
+            for n, v in explicit.items():  # the caller's keywords win over the preset
+                setattr(self.properties, n, v)
+            params = self.params(scale)
             wind = bool(getattr(self, "wind_setup", False))
             if wind:  # the modifier needs the wind data
                 params.set(PP.wind_key(self.generator), True)
@@ -170,7 +229,7 @@ class BanyanOperatorMixin:
         """Main thread, the job computed: the objects, then the report."""
         try:
             with job:
-                objs = job.build()
+                objs = job.build()  # in the scene's units (api.from_metres)
             self.place(context, objs)
         except BaseException as e:
             return self._fail(context, e)
@@ -490,10 +549,32 @@ class HostsOperatorMixin(BanyanOperatorMixin):
         the block ends (Surface)."""
         hosts = self.selected_hosts(context)
         if self.host_shape == H.BOX:
-            yield H.boxes_from_objects(hosts)
+            yield H.boxes_from_objects(hosts, scale=self.unit_scale)
             return
-        with H.surface_host_set(hosts, context.evaluated_depsgraph_get()) as hs:
+        with H.surface_host_set(hosts, context.evaluated_depsgraph_get(), scale=self.unit_scale) as hs:
             yield hs
+
+
+def scene_point(op, point):
+    """A point of the scene (Blender units) in the library's metres."""
+    s = op.unit_scale
+    return tuple(c * s for c in point)
+
+
+def ground_at_hosts_property():
+    return BoolProperty(name="Ground at hosts' foot", default=True,
+                        description="Put the ground plane at the lowest point of the hosts, so that the plant reaches "
+                                    "their foot and spreads on the ground there (else at Ground height)")
+
+
+def set_ground_at_hosts(op, params, hosts):
+    """The ground plane at the lowest point of the hosts (metres), when the
+    operator's Ground at hosts' foot is on; with a preset that has hosts,
+    as high above (or below) that point as the preset's ground is above
+    its own hosts' lowest point (a boulder sunk into the ground stays so)."""
+    if getattr(op, "ground_at_hosts", False):
+        api.set_ground_at_hosts(op.generator, params, hosts,
+                                op.banyan_preset if op.banyan_preset != NO_PRESET else None)
 
 
 def host_shape_property():
@@ -505,19 +586,28 @@ def host_shape_property():
 PLACEMENT_PROPS = ("align", "location", "rotation")
 
 
+def _is_length(prop):
+    """Whether a bpy property definition (a _PropertyDeferred) is a length."""
+    kw = getattr(prop, "keywords", None) or {}
+    return kw.get("unit") == 'LENGTH'
+
+
 def make_operator(mixin, idname, label, description, gen, extra, placement=False):
     """Builds an Operator class for gen: the table's properties plus
     `extra` (dict of non-table properties) plus the preset menu; with
     placement, Blender's own Align / Location / Rotation options
     (bpy_extras.object_utils.AddObjectHelper, see place_object)."""
     table = PP.annotations(gen)
-    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded"} | set(live.properties(gen)))
+    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded", "banyan_unit_scale"}
+                          | set(live.properties(gen)))
     if clash:
         raise BanyanError(14, "%s: operator property names clash with the table: %s" % (gen, sorted(clash)))
     ann = {}
     ann["banyan_preset"] = EnumProperty(name="Preset", items=_dynamic_items(gen),
                                         description="A JSON preset from presets/; applied once when chosen")
     ann["banyan_preset_loaded"] = StringProperty(default=NO_PRESET, options={'HIDDEN'})
+    # Metres per Blender unit the length properties hold (0: the defaults, metres).
+    ann["banyan_unit_scale"] = FloatProperty(default=0.0, min=0.0, max=1e5, options={'HIDDEN'})
     extra = dict(extra)
     extra["wind_setup"] = BoolProperty(name="Wind setup", default=False,
                                        description="Add the Banyan Wind modifier (Geometry Nodes: strength, gusts, "
@@ -543,6 +633,7 @@ def make_operator(mixin, idname, label, description, gen, extra, placement=False
     return type(cls_name, bases, {
         "bl_idname": idname, "banyan_idname": idname, "bl_label": label, "bl_description": description, "generator": gen,
         "extra_props": tuple(extra), "table_props": tuple(table), "__annotations__": ann,
+        "length_props": PP.length_props(gen) + tuple(n for n, p in extra.items() if _is_length(p)),
         "placement_props": PLACEMENT_PROPS if placement else (),
         "execute": live.wrap(mixin.execute),
     })

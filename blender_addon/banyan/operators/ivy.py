@@ -10,7 +10,8 @@ from bpy.props import BoolProperty
 
 from .. import api
 from .. import hosts as H
-from .base import NO_PRESET, HostsOperatorMixin, cursor_location, host_shape_property, make_operator
+from .base import (NO_PRESET, HostsOperatorMixin, cursor_location, ground_at_hosts_property, host_shape_property,
+                   make_operator, scene_point, set_ground_at_hosts)
 
 IDNAME = "mesh.banyan_ivy"
 
@@ -24,6 +25,7 @@ class IvyMixin(HostsOperatorMixin):
             start = self._start_point(context, params, hosts)
             if start is not None:
                 params.set("start", start)  # recorded as grown (save preset, the plant's parameters)
+            set_ground_at_hosts(self, params, hosts)
             job = api.ivy_job(hosts=hosts, params=params, start=start, collection=context.collection,
                               uv=self.uv_map, animate=self.animate)
             return job.adopt(stack)
@@ -36,14 +38,14 @@ class IvyMixin(HostsOperatorMixin):
             if self.banyan_preset != NO_PRESET and "start" in self.preset_params() and self.preset_has_hosts():
                 # The preset's start is relative to its own hosts.
                 self._start_from = "the preset's start"
-                return api.preset_point_on("ivy", self.banyan_preset, params.get("start"),
-                                           self.selected_hosts(context))
+                return scene_point(self, api.preset_point_on("ivy", self.banyan_preset, params.get("start"),
+                                                             self.selected_hosts(context)))
             self._start_from = "start"
             return None
         # The cursor as it is, for the library to place (it knows where a
         # stem can grow); a cursor farther than start_snap_max from every
         # host first comes to the nearest host point, so it still grows.
-        cur = cursor_location(context)
+        cur = scene_point(self, cursor_location(context))  # metres, as the hosts
         self._start_from = "the 3D cursor"
         near = H.closest_point(hosts, cur)[0] if isinstance(hosts, list) else H.closest_on_set(hosts, cur)
         if near is not None and math.dist(near, cur) > 0.99 * params.get("start_snap_max"):
@@ -51,6 +53,8 @@ class IvyMixin(HostsOperatorMixin):
         return cur
 
     def preset_loaded(self, values, has_hosts):
+        if "ground_z" in values and not has_hosts:  # the preset's own ground (else kept relative to its hosts)
+            self.ground_at_hosts = False
         # A start given relative to the preset's hosts is part of what it
         # describes (a preset saved from a run has no hosts: the cursor stays).
         if "start" in values and has_hosts:
@@ -60,7 +64,7 @@ class IvyMixin(HostsOperatorMixin):
         if job.info.get("grew", True):
             return None
         where = getattr(self, "_start_from", "start")
-        p = job.params.get("start")
+        p = [c / self.unit_scale for c in job.params.get("start")]  # in the scene's units, as the cursor
         return ("the ivy could not grow from %s (%.3g, %.3g, %.3g) (move the 3D cursor to a side of the object)"
                 % (where, p[0], p[1], p[2]))
 
@@ -68,6 +72,7 @@ class IvyMixin(HostsOperatorMixin):
 def make_class():
     extra = {
         "host_shape": host_shape_property(),
+        "ground_at_hosts": ground_at_hosts_property(),
         "start_at_cursor": BoolProperty(name="Start at 3D cursor", default=True,
                                         description="Start at the 3D cursor, placed by the library on the nearest "
                                                     "host side where a stem can grow (else the `start` parameter; "

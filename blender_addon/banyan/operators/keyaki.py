@@ -8,7 +8,8 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty
 
 from .. import api
 from ..core.errors import BanyanError
-from .base import BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator, place_matrix
+from .base import (BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator, place_matrix,
+                   scene_point)
 
 TREE_IDNAME = "mesh.banyan_keyaki_tree"
 AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
@@ -22,17 +23,18 @@ class TreeMixin(BanyanOperatorMixin):
                 cursor_location(context)  # a NaN cursor is named as such
                 self._matrix = place_matrix(context, self)
                 # Recorded (save preset, the plant's parameters) as where it stands.
-                params.set("position", tuple(self._matrix.to_translation()))
+                params.set("position", scene_point(self, self._matrix.to_translation()))
             return api.keyaki_tree_job(params=params, collection=context.collection, uv=self.uv_map)
 
     def place(self, context, objs):
         """The foot at Location, turned by Rotation about the foot (the mesh
-        is local to it); without At 3D cursor, at `position`, turned too."""
+        is local to it); without At 3D cursor, at `position`, turned too.
+        The mesh in metres, scaled to the scene's units (from_metres)."""
         from mathutils import Matrix
         m = self._matrix
         if m is None:
             m = Matrix.Translation(objs[0].location) @ place_matrix(context, self).to_3x3().to_4x4()
-        objs[0].matrix_world = m
+        objs[0].matrix_world = m @ Matrix.Scale(1.0 / self.unit_scale, 4)
 
 
 class AvenueMixin(BanyanOperatorMixin):
@@ -43,11 +45,11 @@ class AvenueMixin(BanyanOperatorMixin):
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':
                 raise BanyanError(1, "the active object is not a curve (choose 'Straight line')")
-            path = act
+            path = act  # read in the scene's units by the API
         elif self.path_from == 'CURSOR':
             a = cursor_location(context)
             d = cursor_axis(context, 0)
-            path = [a, tuple(a[k] + d[k] * self.line_length for k in range(3))]
+            path = [scene_point(self, a), scene_point(self, tuple(a[k] + d[k] * self.line_length for k in range(3)))]
             self.built_path = path
             # Recorded as grown: a preset saved from this run draws this line.
             with at_cursor_note(True, "start", "the line starts at the 3D cursor"):

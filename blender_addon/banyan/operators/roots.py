@@ -9,7 +9,8 @@ import contextlib
 from bpy.props import EnumProperty
 
 from .. import api
-from .base import NO_PRESET, HostsOperatorMixin, cursor_location, host_shape_property, make_operator
+from .base import (NO_PRESET, HostsOperatorMixin, cursor_location, ground_at_hosts_property, host_shape_property,
+                   make_operator, scene_point, set_ground_at_hosts)
 
 IDNAME = "mesh.banyan_roots"
 
@@ -21,14 +22,17 @@ class RootsMixin(HostsOperatorMixin):
             hosts = stack.enter_context(self.host_arg(context))  # the active object is the first host
             # Set on `params` itself so "save preset" records what was grown.
             if self.germinate_at == 'CURSOR':
-                api.set_roots_germination(params, cursor_location(context))
+                api.set_roots_germination(params, scene_point(self, cursor_location(context)))
             elif self.germinate_at == 'ACTIVE_TOP':
                 # The generator's own rule on hosts[0] (the active object): its top, lifted by r.
                 params.set("germination_auto", True)
             elif (self.banyan_preset != NO_PRESET and not params.get("germination_auto")
                   and "germination" in self.preset_params() and self.preset_has_hosts()):
-                api.set_roots_germination(params, api.preset_point_on(
-                    "roots", self.banyan_preset, params.get("germination"), self.selected_hosts(context)))
+                # From the preset's hosts (metres) onto the selected ones (Blender units), in metres.
+                pt = api.preset_point_on("roots", self.banyan_preset, params.get("germination"),
+                                         self.selected_hosts(context))
+                api.set_roots_germination(params, scene_point(self, pt))
+            set_ground_at_hosts(self, params, hosts)
             job = api.strangler_roots_job(hosts=hosts, params=params, collection=context.collection,
                                           uv=self.uv_map)
             return job.adopt(stack)
@@ -37,6 +41,8 @@ class RootsMixin(HostsOperatorMixin):
             raise
 
     def preset_loaded(self, values, has_hosts):
+        if "ground_z" in values and not has_hosts:  # the preset's own ground (else kept relative to its hosts)
+            self.ground_at_hosts = False
         # The preset's own germination: its point (relative to its hosts) or the automatic one.
         if "germination" in values and not values.get("germination_auto", False):
             self.germinate_at = 'PARAMS'
@@ -47,6 +53,7 @@ class RootsMixin(HostsOperatorMixin):
 def make_class():
     extra = {
         "host_shape": host_shape_property(),
+        "ground_at_hosts": ground_at_hosts_property(),
         "germinate_at": EnumProperty(
             name="Germinate at", default='ACTIVE_TOP',
             items=[('ACTIVE_TOP', "Active top", "Above the top of the active (first) host"),

@@ -15,12 +15,14 @@ class SegmentsMixin(BanyanOperatorMixin):
         return api.segment_twigs_job(preset=key, params=params, collection=context.collection, uv=self.uv_map)
 
     def place(self, context, objs):
+        from mathutils import Matrix
+        m = self._matrix @ Matrix.Scale(1.0 / self.unit_scale, 4)  # the mesh in metres (from_metres)
         for o in objs:
-            o.matrix_world = self._matrix
+            o.matrix_world = m
 
-    def load_preset_if_changed(self):
+    def load_preset_if_changed(self, scale=1.0):
         # The preset also supplies the segment list (read in build), so it stays selected.
-        BanyanOperatorMixin.load_preset_if_changed(self)
+        BanyanOperatorMixin.load_preset_if_changed(self, scale)
 
 
 def make_class():
