@@ -62,9 +62,42 @@ def crop(src, dst, x0, y0, w, h):
 
 
 def shoot(name, rect):
+    """Saves the window and crops rect from it; rect may be a function of
+    the window's screenshot file giving the rectangle."""
     with override():
         bpy.ops.screen.screenshot(filepath=TMP)
-    crop(TMP, os.path.join(OUT, name), *rect)
+    crop(TMP, os.path.join(OUT, name), *(rect(TMP) if callable(rect) else rect))
+
+
+def popup_rect(src, x, y, margin=6):
+    """The rectangle (x0, y0 from the top, w, h) of the popup under window
+    pixel (x, y), plus margin: Blender moves a tall popup up to keep it in
+    the window, so its place depends on its height. Found in the pixels:
+    the popup's background is a flat dark grey (the theme's, under
+    --factory-startup), darker than the viewport behind it, and its left
+    padding column holds nothing else from top to bottom."""
+    img = bpy.data.images.load(src)
+    W, H = img.size
+    px = [0.0] * (W * H * 4)
+    img.pixels.foreach_get(px)
+    bpy.data.images.remove(img)
+
+    def grey(u, v):  # v from the top
+        return px[((H - 1 - v) * W + u) * 4]
+    bg = 0.094  # the popup's background, 24/255
+    flat = lambda u, v: abs(grey(u, v) - bg) < 0.01  # noqa: E731
+    left = next(u for u in range(max(0, x - 100), min(W - 4, x + 100)) if all(flat(u + k, y) for k in range(4)))
+    col = left + 2
+    top, bottom = y, y
+    while top > 0 and flat(col, top - 1):
+        top -= 1
+    while bottom < H - 1 and flat(col, bottom + 1):
+        bottom += 1
+    right = col  # along a row of the top padding, above the title
+    while right < W - 1 and flat(right + 1, top + 5):
+        right += 1
+    x0, y0 = max(0, left - margin), max(0, top - margin)
+    return x0, y0, min(W, right + 1 + margin) - x0, min(H, bottom + 1 + margin) - y0
 
 
 def region_rect(area, rtype):
@@ -135,7 +168,7 @@ def redo_panel(op, name, view=None):
 
     def shot():
         x, y = POPUP_AT
-        shoot(name, (x - 12, y - 34, 336, 640))
+        shoot(name, lambda src: popup_rect(src, x, y + 20))
         move(40, 40)  # away: the popup closes
 
     def viewport():

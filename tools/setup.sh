@@ -55,6 +55,11 @@ if [ ! -f docs/viewer/node_modules/three/build/three.module.js ]; then
   npm ci --prefix docs/viewer --no-audit --no-fund
 fi
 
+# Babylon.js for the Babylon load test, pinned in tests/babylon/package-lock.json.
+if [ ! -f tests/babylon/node_modules/@babylonjs/loaders/glTF/index.js ]; then
+  npm ci --prefix tests/babylon --no-audit --no-fund
+fi
+
 build=${BUILD_DIR:-build}
 # shellcheck disable=SC2086
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release ${BANYAN_CMAKE_ARGS:-}
