@@ -388,6 +388,11 @@ def test_ground_at_foot():
         res, objs = run(bpy.ops.mesh.banyan_roots, ground_at_hosts=False)
         low = min(p.z for p in world_z(objs))
         bt.check(res == {'FINISHED'} and low > -0.5, "without it the ground stays at Ground height 0 (%.3f)" % low)
+        bt.reset_scene()
+        res, objs = run(bpy.ops.mesh.banyan_roots, ground_z=-0.5)
+        p = base.LAST_PARAMS["mesh.banyan_roots"]
+        bt.check(res == {'FINISHED'} and p.get("ground_z") == -0.5, "a ground_z keyword wins over the hosts' foot "
+                 "(%g)" % p.get("ground_z"))
     if bt.generator("ivy"):
         bt.reset_scene()
         gens.prepare("ivy")

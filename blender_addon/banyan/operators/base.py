@@ -203,6 +203,8 @@ class BanyanOperatorMixin:
             self.load_preset_if_changed(scale)
             for n, v in explicit.items():  # the caller's keywords win over the preset
                 setattr(self.properties, n, v)
+            if "ground_z" in explicit and "ground_at_hosts" not in explicit and hasattr(self, "ground_at_hosts"):
+                self.properties.ground_at_hosts = False  # a Ground height given wins over the hosts' foot
             params = self.params(scale)
             wind = bool(getattr(self, "wind_setup", False))
             if wind:  # the modifier needs the wind data
