@@ -1,4 +1,4 @@
-"""Issue #23: what a user waits for when banyan hands a plant to Blender,
+"""What a user waits for when banyan hands a plant to Blender,
 against Blender's own floor for the same arrays. Per case, in one Blender
 process (medians of RUNS, after one warm-up run that makes the shared
 materials, as in a .blend that already has a plant):
@@ -8,7 +8,8 @@ materials, as in a .blend that already has a plant):
   eval     the first depsgraph evaluation of the new objects
            (evaluated_depsgraph_get + evaluated_get(dg).data)
   e2e      all three, as a script calling banyan.api waits
-  floor    the same arrays by foreach_set, given the same edges (positions,
+  floor    the same arrays by Blender's fastest stock path of its version
+           (blender_handoff.stock_set), given the same edges (positions,
            edges, loop vertices and edges, loop starts, UVs, colours, every
            float attribute as the library names it), one object linked,
            its first evaluation: what any add-on pays for this mesh
@@ -19,8 +20,7 @@ ivy_wall (the CLI's 3 x 3 m wall, as a box), roots (defaults around the
 default cube, as a box), avenue20 (20 trees, levels 8, one object each;
 its floor is the whole avenue as one object), and <keyaki preset>+wind
 (the Banyan Wind modifier on, evaluated on the first frame), +data (the
-wind data without the modifier; the add-on's default has none since
-issue 23) or -wind (no wind data); ivy_wall+data likewise. Before/after comparisons run two add-ons in alternating
+wind data without the modifier; the add-on's default has none) or -wind (no wind data); ivy_wall+data likewise. Before/after comparisons run two add-ons in alternating
 processes (the same command with BLENDER_USER_SCRIPTS pointing at each).
 
   BANYAN_LIB=build/libbanyan.so BLENDER_USER_SCRIPTS=<dir with addons/banyan> \
@@ -32,6 +32,9 @@ import bpy, time, sys, os, statistics, cProfile, pstats, io
 from array import array
 import banyan.api as B
 from banyan.core.mesh import triangle_edges
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_handoff import stock_set  # noqa: E402
 RUNS = int(os.environ.get("RUNS", "5"))
 CASES = os.environ.get("CASES", "keyaki_young,keyaki_mature,ivy_wall,roots").split(",")
 PROF = os.environ.get("PROF")
@@ -72,16 +75,16 @@ def floor(d, edges_pre, full=True):
     t = time.perf_counter()
     me = bpy.data.meshes.new("floor")
     nv, ni = len(d.positions)//3, len(d.indices)
-    me.vertices.add(nv); me.vertices.foreach_set("co", d.positions)
-    me.edges.add(len(edges)//2); me.edges.foreach_set("vertices", edges)
-    me.loops.add(ni); me.loops.foreach_set("vertex_index", d.indices); me.loops.foreach_set("edge_index", corner_edges)
+    me.vertices.add(nv); stock_set(me, "co", d.positions)
+    me.edges.add(len(edges)//2); stock_set(me, "edges", edges)
+    me.loops.add(ni); stock_set(me, "vertex_index", d.indices); stock_set(me, "edge_index", corner_edges)
     me.polygons.add(ni//3); me.polygons.foreach_set("loop_start", starts)
     if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:
         me.polygons.foreach_set("loop_total", array("I", [3]) * (ni//3))
     me.update()
     if full:
         if d.corner_uvs is not None:
-            me.uv_layers.new(name="UVMap", do_init=False).data.foreach_set("uv", d.corner_uvs)
+            stock_set(me, me.uv_layers.new(name="UVMap", do_init=False).name, d.corner_uvs)
         if d.colors is not None:
             me.color_attributes.new("Color", 'FLOAT_COLOR', 'POINT').data.foreach_set("color", d.colors)
         for name, a in d.attributes.items():
