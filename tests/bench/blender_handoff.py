@@ -318,7 +318,7 @@ def bare(d, full=False, evaluate=False):
 def setup_roots():
     cube = bpy.data.objects["Cube"]
     return [cube], lambda: G.roots(Params("roots"), H.boxes_from_objects([cube])), \
-        lambda **kw: bpy.ops.mesh.banyan_roots(host_shape='BOX', **kw)
+        lambda **kw: bpy.ops.mesh.banyan_roots(host_shape='BOX', ground_at_hosts=False, **kw)  # the library's ground
 
 
 def setup_ivy():
