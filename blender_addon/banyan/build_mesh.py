@@ -247,26 +247,22 @@ class _Writer:
         else:
             (self.me.vertices.foreach_get if get else self.me.vertices.foreach_set)("co", data)
 
-    def edges(self, data):
-        a = self._attr(".edge_verts")
+    def _ints(self, attr, coll, prop, data):
+        """The int32 generic attribute attr (4.0 on), else coll's prop."""
+        a = self._attr(attr)
         if a is not None:
             a.data.foreach_set("value", _int32(data))
         else:
-            self.me.edges.foreach_set("vertices", data)
+            coll.foreach_set(prop, data)
+
+    def edges(self, data):
+        self._ints(".edge_verts", self.me.edges, "vertices", data)
 
     def corner_verts(self, data):
-        a = self._attr(".corner_vert")
-        if a is not None:
-            a.data.foreach_set("value", _int32(data))
-        else:
-            self.me.loops.foreach_set("vertex_index", data)
+        self._ints(".corner_vert", self.me.loops, "vertex_index", data)
 
     def corner_edges(self, data):
-        a = self._attr(".corner_edge")
-        if a is not None:
-            a.data.foreach_set("value", _int32(data))
-        else:
-            self.me.loops.foreach_set("edge_index", data)
+        self._ints(".corner_edge", self.me.loops, "edge_index", data)
 
     def uvs(self, data, name="UVMap"):
         """The per-corner UVs as a new UV map (made current): from 4.0 through

@@ -142,12 +142,12 @@ def remove_coarser_levels(gltf):
         return
     gltf.banyan_levels_removed = True
     vnodes = getattr(gltf, "vnodes", None) or {}
-    ids, todo = [], [i for i in sorted(coarser_levels(gltf)) if i in vnodes]
-    while todo:
-        i = todo.pop()
+    ids, stack = [], [i for i in sorted(coarser_levels(gltf)) if i in vnodes]  # the levels and their subtrees
+    while stack:
+        i = stack.pop()
         if i in vnodes and i not in ids:
             ids.append(i)
-            todo.extend(getattr(vnodes[i], "children", None) or [])
+            stack.extend(getattr(vnodes[i], "children", None) or [])
     objs = {}
     for i in ids:
         ob = getattr(vnodes[i], "blender_object", None)

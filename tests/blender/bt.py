@@ -95,3 +95,11 @@ def scene_state():
     return (sorted(o.name for o in bpy.data.objects), sorted(m.name for m in bpy.data.meshes),
             sorted(m.name for m in bpy.data.materials), sorted(c.name for c in bpy.data.collections),
             sorted(n.name for n in bpy.data.node_groups))
+
+
+def run_op(op, **kw):
+    """(op(**kw)'s result, the objects it added)."""
+    import bpy
+    before = {o.name for o in bpy.data.objects}
+    res = op(**kw)
+    return res, [o for o in bpy.data.objects if o.name not in before]

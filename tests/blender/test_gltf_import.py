@@ -182,11 +182,11 @@ def expected(path):
     nodes = j.get("nodes", [])
 
     def reach(roots):
-        seen, todo = [], list(roots)
-        while todo:
-            i = todo.pop()
+        seen, stack = [], list(roots)
+        while stack:
+            i = stack.pop()
             seen.append(i)
-            todo += nodes[i].get("children", [])
+            stack += nodes[i].get("children", [])
         return seen
     scene = reach(j["scenes"][j.get("scene", 0)]["nodes"])
     lods = reach([i for n in nodes for i in (n.get("extensions") or {}).get("MSFT_lod", {}).get("ids", [])])

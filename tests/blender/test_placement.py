@@ -37,14 +37,7 @@ def world_offset(obj, positions, stride=1):
                for i in range(0, len(co), 3 * stride))
 
 
-def new_objects(before):
-    return [o for o in bpy.data.objects if o.name not in before]
-
-
-def run(op, **kw):
-    before = {o.name for o in bpy.data.objects}
-    res = op(**kw)
-    return res, new_objects(before)
+run = bt.run_op
 
 
 def close(a, b, tol=1e-5):

@@ -26,14 +26,7 @@ from banyan.operators import base  # noqa: E402
 print("Blender %s" % bpy.app.version_string)
 
 
-def new_objects(before):
-    return [o for o in bpy.data.objects if o.name not in before]
-
-
-def run(op, **kw):
-    before = {o.name for o in bpy.data.objects}
-    res = op(**kw)
-    return res, new_objects(before)
+run = bt.run_op
 
 
 def world_z(objs):
