@@ -72,8 +72,22 @@ def main(argv):
     return 0
 
 
+def _purge_session_temp():
+    """Removes Blender's session temp folder (bpy.app.tempdir, a
+    blender_XXXXXX folder), which Blender purges on a normal exit and
+    os._exit skips."""
+    bpy = sys.modules.get("bpy")
+    d = getattr(getattr(bpy, "app", None), "tempdir", "") if bpy else ""
+    if d and os.path.basename(os.path.normpath(d)).startswith("blender_"):
+        import shutil
+        shutil.rmtree(d, ignore_errors=True)
+
+
 if __name__ == "__main__":
-    rc = main(sys.argv[1:])
+    try:
+        rc = main(sys.argv[1:])
+    finally:
+        _purge_session_temp()
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(rc)

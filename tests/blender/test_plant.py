@@ -5,6 +5,7 @@ name, user modifiers, materials and transform kept) and a failing one
 leaves the object as it was."""
 import json
 import os
+import shutil
 import sys
 import tempfile
 
@@ -64,9 +65,15 @@ def user_edits(obj):
 
 
 def save_reload(name):
-    path = os.path.join(tempfile.mkdtemp(prefix="banyan_plant_"), "plant.blend")
-    bpy.ops.wm.save_as_mainfile(filepath=path)
-    bpy.ops.wm.open_mainfile(filepath=path)
+    """Saves the scene to a temporary .blend and opens it again; the file
+    and its folder are removed once open (Blender holds the data)."""
+    d = tempfile.mkdtemp(prefix="banyan_plant_")
+    path = os.path.join(d, "plant.blend")
+    try:
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+        bpy.ops.wm.open_mainfile(filepath=path)
+    finally:
+        shutil.rmtree(d, ignore_errors=True)
     obj = bpy.data.objects[name]
     bpy.context.view_layer.objects.active = obj
     return obj
