@@ -15,6 +15,9 @@
 
 #include <stdint.h>
 
+/* Declared ahead of banyan.h, whose generator headers name it. */
+typedef struct banyan_hosts banyan_hosts;
+
 #include "../banyan.h"
 
 #ifdef __cplusplus
@@ -49,8 +52,6 @@ typedef struct banyan_host_mesh {
     int32_t closed;             /* banyan_host_closed */
     int32_t reserved;           /* 0 */
 } banyan_host_mesh;
-
-typedef struct banyan_hosts banyan_hosts;
 
 /* Builds a host set from boxes[0 .. n_boxes - 1] and meshes[0 .. n_meshes -
  * 1] (n_boxes + n_meshes within 1 .. BANYAN_MAX_HOSTS). Refuses, naming the

@@ -16,6 +16,10 @@
  */
 #ifndef BANYAN_KEYAKI_H
 #define BANYAN_KEYAKI_H
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../banyan.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -10,6 +10,10 @@
  */
 #ifndef BANYAN_ROOTS_H
 #define BANYAN_ROOTS_H
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../banyan.h"
 
 #include <stddef.h>
 #include <stdint.h>

@@ -25,6 +25,10 @@
  */
 #ifndef BANYAN_SEGMENTS_H
 #define BANYAN_SEGMENTS_H
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../banyan.h"
 
 #include <stddef.h>
 #include <stdint.h>
