@@ -20,7 +20,12 @@ writes docs/img/keyaki/look_<tag>_<view>.png:
           this 2-core machine, against 25 s and 1.5 GB for 1.2 M faces
           before issue #20;
   young   keyaki_young from 10 m at eye height (it must not read as a
-          lollipop).
+          lollipop);
+  silhouette  the tree view in black against a white sky, no ground: what
+          the crown hides (wood and leaf texels passing the alpha cutoff);
+  above   the avenue view's preset from above: 25 m over its crowns,
+          pitched 55 degrees down onto its middle, a 24 mm lens (canopy
+          or bark from above).
 --values merges params into the keyaki views, --avenue-values into the
 avenue view (its keys as the avenue takes them, e.g. "tree.leaf_density"),
 --views picks some views, --size, --samples, --out, --colors (palette
@@ -60,7 +65,53 @@ VIEWS = {
     "tree": ("keyaki", "keyaki_mature", (20.0 * math.cos(_Y), 20.0 * math.sin(_Y), 1.6), ("fit", None), None),
     "avenue": ("avenue", None, (-6.0, 0.0, 1.6), ("pitch", 0.0, 9.0), 20.0),
     "young": ("keyaki", "keyaki_young", (10.0 * math.cos(_Y), 10.0 * math.sin(_Y), 1.6), ("fit", None), None),
+    "silhouette": ("keyaki", "keyaki_mature", (20.0 * math.cos(_Y), 20.0 * math.sin(_Y), 1.6), ("fit", None), None),
+    "above": ("avenue", None, None, ("pitch", 90.0, -55.0), 24.0),  # eye: above_eye(), from the grown avenue
 }
+
+
+def above_eye(plant):
+    """The above view's eye: 25 m above the crowns and 17.5 m to the side
+    of the middle of the plant's bounds, so that the view, pitched 55
+    degrees down, centres on it."""
+    lo, hi = RS.bounds(plant)
+    c = (lo + hi) / 2
+    return (c.x, c.y - 25.0 / math.tan(math.radians(55.0)) - 0.5 * (hi.z - lo.z) / math.tan(math.radians(55.0)),
+            hi.z + 25.0)
+
+
+def silhouette(plant, ground):
+    """The scene as a silhouette: the plant's materials black and without
+    gloss (their alpha kept), no sun, no ground, a uniform white sky."""
+    sc = bpy.context.scene
+    ground.hide_render = True
+    for o in sc.objects:
+        if o.type == 'LIGHT':
+            o.data.energy = 0.0
+    bg = sc.world.node_tree.nodes["Background"]
+    for ln in list(bg.inputs["Color"].links):
+        sc.world.node_tree.links.remove(ln)
+    bg.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    bg.inputs["Strength"].default_value = 1.0  # white, rendered with the Standard view transform
+    for m in {s.material for o in plant if o.type == 'MESH' for s in o.material_slots if s.material}:
+        for n in m.node_tree.nodes if m.node_tree else ():
+            if n.bl_idname != "ShaderNodeBsdfPrincipled":
+                continue
+            for name, v in (("Base Color", (0.0, 0.0, 0.0, 1.0)), ("Specular", 0.0), ("Specular IOR Level", 0.0),
+                            ("Subsurface Weight", 0.0), ("Subsurface", 0.0), ("Transmission Weight", 0.0),
+                            ("Emission Strength", 0.0)):
+                i = n.inputs.get(name)
+                if i is not None:
+                    for ln in list(i.links):
+                        m.node_tree.links.remove(ln)
+                    i.default_value = v
+        for n in list(m.node_tree.nodes) if m.node_tree else ():
+            if n.bl_idname in ("ShaderNodeBsdfTranslucent", "ShaderNodeBsdfTransparent") and n.outputs[0].links:
+                # a translucency mix lets light through a leaf: make that branch black too
+                if n.bl_idname == "ShaderNodeBsdfTranslucent":
+                    n.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+                    for ln in list(n.inputs["Color"].links):
+                        m.node_tree.links.remove(ln)
 
 
 def camera(eye, look, lens, plant, w, h, margin=1.08):
@@ -124,7 +175,7 @@ def main():
     for name in a.views.split(","):
         gen, preset, eye, look, lens = VIEWS[name]
         values = json.loads(a.avenue_values if gen == "avenue" else a.values)
-        if gen == "avenue" and RS.import_banyan().make_params("avenue", preset=a.avenue, values=values).get("rows") < 2:
+        if name == "avenue" and RS.import_banyan().make_params("avenue", preset=a.avenue, values=values).get("rows") < 2:
             # One row (avenue_street) stands on the view's line: stand 7 m to its side, turned 20 degrees to it.
             eye, look = (eye[0], eye[1] - 7.0, eye[2]), (look[0], look[1] + 20.0, look[2])
         t0 = time.perf_counter()
@@ -132,12 +183,16 @@ def main():
         plant, _ = RS.grow(gen, preset=preset or a.avenue, values=values)
         t1 = time.perf_counter()
         RS.plant_materials(plant)
-        RS.studio(plant)
+        ground = RS.studio(plant)
+        if name == "silhouette":
+            silhouette(plant, ground)
+        if name == "above":
+            eye = above_eye(plant)
         camera(eye, look, lens, plant, w, h)
         if gen == "avenue" and a.avenue != "avenue_street":
             name += "_" + a.avenue.replace("avenue_", "")
         path = os.path.join(a.out, "look_%s_%s.png" % (a.tag, name))
-        RS.render(path, w, h, a.samples, plant)
+        RS.render(path, w, h, a.samples, plant, view_transform='Standard' if name == "silhouette" else 'Filmic')
         if a.colors:
             palette_png(path, min(a.colors, 256))
         tris = sum(len(o.data.polygons) for o in plant if o.type == 'MESH')

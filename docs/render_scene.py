@@ -362,13 +362,17 @@ class BlankRender(RuntimeError):
     pass
 
 
-def render(path, width, height, samples, plant, min_variance=2e-4, min_coverage=0.003):
+def render(path, width, height, samples, plant, min_variance=2e-4, min_coverage=0.003, view_transform='Filmic'):
     """Renders to path (PNG) and checks the picture: the luminance variance
     over the whole image and the share of pixels where the plant is the
     first thing the camera sees. Raises BlankRender below the thresholds.
-    Returns (variance, coverage)."""
+    view_transform 'Standard' keeps pixel values linear in what a pixel
+    covers (a silhouette). Returns (variance, coverage)."""
     sc = bpy.context.scene
     settings(width, height, samples)
+    if view_transform != 'Filmic':
+        sc.view_settings.view_transform = view_transform
+        sc.view_settings.exposure = 0.0
     with tempfile.TemporaryDirectory() as mask_dir:
         _mask_nodes(sc, plant, mask_dir)
         os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
