@@ -94,7 +94,7 @@ def _library_error(generator, data, path):
     from .core.errors import BanyanError, GeneratorMissing, LoadError
     try:
         from .core.params import Params
-        Params(generator).apply_preset(data, os.path.basename(path))
+        Params(generator).apply_preset(data, _printable(os.path.basename(path)))
     except (GeneratorMissing, LoadError):
         return ""  # nothing to check it with; the JSON checks below still run
     except BanyanError as e:
@@ -112,30 +112,33 @@ def _preset_info(path):
     try:
         st = os.stat(path)
     except FileNotFoundError:
-        return None  # removed since it was listed, or a dangling link
+        try:
+            target = os.readlink(path)
+        except OSError:
+            return None  # removed since it was listed
+        return (_guess_generator(path), "", "%s: is a link to a missing file (%s): remove it or put a JSON "
+                "preset there" % (_printable(os.path.basename(path)), _printable(target)))
     except OSError as e:
-        return (_guess_generator(path), "", "%s: %s" % (os.path.basename(path), e.strerror or e))
+        return (_guess_generator(path), "", "%s: %s" % (_printable(os.path.basename(path)), e.strerror or e))
     hit = _parsed.get(path)
     if hit and hit[:2] == (st.st_mtime_ns, st.st_size):
         return hit[2:]
     try:
         data = read(path)
     except FileNotFoundError:
-        return None
+        return None  # removed since it was listed
     except BanyanError as e:
         return (_guess_generator(path), "", e.message)  # not cached: a FIFO's mtime moves as it is written
-    except OSError as e:
-        return (_guess_generator(path), "", "%s: %s" % (os.path.basename(path), e.strerror or e))
     try:
         doc = json.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError):
+    except (ValueError, RecursionError):  # not UTF-8, not JSON, nested too deep for Python's parser
         doc = None
     gen = doc.get("generator") if isinstance(doc, dict) else None
     desc = str(doc.get("description", "")) if isinstance(doc, dict) else ""
     if not isinstance(gen, str):
         gen = None
     lib_gen = gen if gen in _known() else _guess_generator(path)
-    name = os.path.basename(path)
+    name = _printable(os.path.basename(path))
     if isinstance(doc, dict) and not lib_gen:
         error = "%s: \"generator\" is %s, not one of %s" % (name, json.dumps(doc.get("generator")),
                                                               ", ".join(_known()))
@@ -162,7 +165,9 @@ def _scan():
         for fn in sorted(os.listdir(d)):
             if not fn.endswith(".json"):
                 continue
-            key = fn[:-5]
+            # The menu's identifier: control characters and bytes that are
+            # not UTF-8 escaped (Blender's enum refuses the whole list otherwise).
+            key = _printable(fn[:-5])
             if key in seen:
                 continue
             path = os.path.join(d, fn)
@@ -229,11 +234,17 @@ def read(path):
     file, BANYAN_E_IO / BANYAN_E_LIMIT) what is not a regular file after
     following links, and files larger than MAX_BYTES, before reading them:
     opened without blocking (a FIFO swapped in after the check does not
-    hang) and read to at most MAX_BYTES + 1 bytes. OSError (e.g.
-    FileNotFoundError) when it cannot be opened."""
-    _checked(path, os.stat(path))
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0) | getattr(os, "O_CLOEXEC", 0)
-    fd = os.open(path, flags)
+    hang) and read to at most MAX_BYTES + 1 bytes. A file that cannot be
+    opened or read is refused the same way (PresetNotFound, also a
+    FileNotFoundError, when it does not exist)."""
+    try:
+        _checked(path, os.stat(path))
+        flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0) | getattr(os, "O_CLOEXEC", 0)
+        fd = os.open(path, flags)
+    except FileNotFoundError:
+        raise PresetNotFound("%s: no such file" % _printable(path)) from None
+    except OSError as e:
+        raise _refuse(path, "cannot be opened: %s" % (e.strerror or e)) from None
     try:
         _checked(path, os.fstat(fd))  # the file opened is the file checked
         chunks, size = [], 0
@@ -242,6 +253,8 @@ def read(path):
                 b = os.read(fd, min(1 << 20, MAX_BYTES + 1 - size))
             except BlockingIOError:
                 raise _refuse(path, "could not be read without waiting") from None
+            except OSError as e:
+                raise _refuse(path, "cannot be read: %s" % (e.strerror or e)) from None
             if not b:
                 break
             chunks.append(b)

@@ -98,7 +98,17 @@ def test_files():
         os.mkdir(path("roots_zz_files_dir.json"))
         with open(path("roots_zz_files_big.json"), "wb") as f:
             f.truncate(PR.MAX_BYTES + 1)  # sparse: nothing written
+        # A file name that is not UTF-8 and one with an ESC byte.
+        with open(path(os.fsdecode(b"roots_zz_files_\xff.json")), "w") as f:
+            f.write(GOOD)
+        with open(path("roots_zz_files_\x1b[31m.json"), "w") as f:
+            f.write("{")
         broken = listing("a FIFO, a folder and a large file too")
+        bt.check("roots_zz_files_\\udcff" in [k for k, _, _ in PR.list_presets("roots")],
+                 "a good preset whose file name is not UTF-8 is offered, its key escaped")
+        bt.check(broken.get("roots_zz_files_\\x1b[31m", "").startswith("roots_zz_files_\\x1b[31m.json:1:"),
+                 "a broken preset with an ESC in its name: listed, escaped: %r"
+                 % broken.get("roots_zz_files_\\x1b[31m"))
         for key, want in (("roots_zz_files_fifo", "FIFO"), ("roots_zz_files_dir", "folder"),
                           ("roots_zz_files_big", "at most %d" % PR.MAX_BYTES),
                           ("roots_zz_files_zero", "character device")):
@@ -120,6 +130,9 @@ def test_files():
         bt.reset_scene()
         res = gens.op("roots")(banyan_preset="roots_zz_files_good")
         bt.check(res == {'FINISHED'}, "the good user preset runs: %s" % res)
+        bt.reset_scene()
+        res = gens.op("roots")(banyan_preset="roots_zz_files_\\udcff")
+        bt.check(res == {'FINISHED'}, "the good user preset of a file name that is not UTF-8 runs: %s" % res)
     finally:
         remove_made()
 

@@ -263,7 +263,7 @@ class HostSet(L.Handle):
                                                         if "mesh" in h] + [m.name for m in extra])
         marr = (S.HostMesh * max(1, len(extra)))(*[m.struct() for m in extra])
         err = S.Error()
-        st = L.load().banyan_preset_host_set(data, len(data), source.encode(),
+        st = L.load().banyan_preset_host_set(data, len(data), L.source_name(source),
                                              os.fsencode(base_dir) if base_dir else None,
                                              marr if extra else None, len(extra), C.byref(self.handle), C.byref(err))
         if st:
