@@ -69,6 +69,17 @@ def _refuse(path, why, status=IO_ERROR):
                        "BANYAN_E_LIMIT" if status == LIMIT else "BANYAN_E_IO")
 
 
+def _missing(path):
+    """PresetNotFound for a path that is not there: a dangling link says
+    where it points."""
+    try:
+        target = os.readlink(path)
+    except OSError:
+        return PresetNotFound("%s: no such file" % _printable(path))
+    return PresetNotFound("%s: is a link to a missing file (%s): remove it or put a JSON preset there"
+                          % (_printable(os.path.basename(path)), _printable(target)))
+
+
 def _checked(path, st):
     """Refuses (BanyanError) a file that is not a regular one or is larger than MAX_BYTES."""
     why = _not_regular(st.st_mode)
@@ -112,12 +123,9 @@ def _preset_info(path):
     try:
         st = os.stat(path)
     except FileNotFoundError:
-        try:
-            target = os.readlink(path)
-        except OSError:
+        if not os.path.islink(path):
             return None  # removed since it was listed
-        return (_guess_generator(path), "", "%s: is a link to a missing file (%s): remove it or put a JSON "
-                "preset there" % (_printable(os.path.basename(path)), _printable(target)))
+        return (_guess_generator(path), "", _missing(path).message)
     except OSError as e:
         return (_guess_generator(path), "", "%s: %s" % (_printable(os.path.basename(path)), e.strerror or e))
     hit = _parsed.get(path)
@@ -242,7 +250,7 @@ def read(path):
         flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0) | getattr(os, "O_CLOEXEC", 0)
         fd = os.open(path, flags)
     except FileNotFoundError:
-        raise PresetNotFound("%s: no such file" % _printable(path)) from None
+        raise _missing(path) from None
     except OSError as e:
         raise _refuse(path, "cannot be opened: %s" % (e.strerror or e)) from None
     try:
