@@ -7,9 +7,11 @@ saved by the redo panel's `+` (save()) into user_dir(), and listed in the
 same menu, each under a readable title().
 
 Only regular files (after following links) of at most MAX_BYTES are read:
-a FIFO, a device or a folder named like a preset, or a file too large,
-is listed among the broken presets with the reason, never opened for
-reading (a FIFO would block, /dev/zero would fill the memory).
+a FIFO, a device, a folder or a dangling link named like a preset, or a
+file too large, is listed among the broken presets with the reason,
+never read (a FIFO would block, /dev/zero would fill the memory). Keys
+and messages spell file names with control characters and bytes that
+are not UTF-8 escaped.
 """
 import json
 import os
