@@ -1,7 +1,10 @@
 /* `banyan keyaki`: one keyaki tree (spec/keyaki.md). Takes no hosts.
  * --stats adds the tree's own measures: Strahler stream counts N_k, the
- * bifurcation ratios N_k / N_{k+1} and their mean, tips, forks, breaks,
- * height and crown width (banyan_keyaki_stats, on the same skeleton). */
+ * bifurcation ratios N_k / N_{k+1} and their mean, tips, forks, breaks
+ * and the skeleton's height and crown width (banyan_keyaki_stats, on the
+ * same skeleton), then the height and crown width of the mesh written:
+ * the crown's twigs and leaves reach past the skeleton's branch ends. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,8 +39,24 @@ void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st)
     cli_stat_num(stats, "breaks", st->break_count);
     cli_stat_num(stats, "max_level", st->max_level);
     cli_stat_num(stats, "mean_run_length", st->mean_run_length);
-    cli_stat_num(stats, "height_m", st->height);
-    cli_stat_num(stats, "crown_width_m", st->crown_width);
+    cli_stat_num(stats, "skeleton_height_m", st->height);
+    cli_stat_num(stats, "skeleton_crown_width_m", st->crown_width);
+}
+
+/* The tree as meshed (bark, twigs, leaves): its highest vertex above the
+ * trunk base and twice the largest horizontal distance of a vertex from
+ * the trunk's axis, in world metres (origin - base first, in double). */
+static void mesh_reach(const banyan_mesh *m, const double base[3], double *height, double *width) {
+    double o[3], top = -HUGE_VAL, r2 = 0;
+    for (int k = 0; k < 3; k++) o[k] = m->origin[k] - base[k];
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const float *q = m->positions + 3 * (size_t)v;
+        double dx = o[0] + q[0], dy = o[1] + q[1], z = o[2] + q[2];
+        if (z > top) top = z;
+        if (dx * dx + dy * dy > r2) r2 = dx * dx + dy * dy;
+    }
+    *height = m->vertex_count ? top : 0.0;
+    *width = 2.0 * sqrt(r2);
 }
 
 static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
@@ -67,6 +86,10 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     *names = nm;
     *count = 1;
     cli_keyaki_stats_json(stats, &st);
+    double height, width;
+    mesh_reach(m[0], p->position, &height, &width);
+    cli_stat_num(stats, "height_m", height);
+    cli_stat_num(stats, "crown_width_m", width);
     return BANYAN_OK;
 }
 

@@ -5,11 +5,13 @@ for each numeric, enum and string property (NaN, +-inf, 0, -1, +-1e300,
 2^31-1, ints outside int32, empty and bogus strings) and in hostile scenes
 (no selection, zero-scale / tiny / NaN / sheared / empty hosts, non-mesh
 objects, 300 hosts, a NaN 3D cursor, curves with no points, broken preset
-files). Each case must end in {'FINISHED'}, an error report, Blender's own
-refusal of the argument or a failed poll: never a Python trace or the
-add-on's "unexpected" fallback, never a silent cancel. After anything but
-{'FINISHED'} the scene (objects, meshes, materials, collections, node
-groups, curves, selection, active object, cursor) is unchanged.
+files, preset "files" that are a FIFO, a link to /dev/zero, a folder, a
+dangling link or larger than the library takes). Each case must end in
+{'FINISHED'}, an error report, Blender's own refusal of the argument or a
+failed poll: never a Python trace or the add-on's "unexpected" fallback,
+never a silent cancel. After anything but {'FINISHED'} the scene
+(objects, meshes, materials, collections, node groups, curves, selection,
+active object, cursor) is unchanged.
 
 banyan.api calls get hostile kwargs: they raise BanyanError (bad values,
 hosts, paths, presets), TypeError (an argument of the wrong kind) or
@@ -585,6 +587,21 @@ def write(path, data):
         f.write(data if isinstance(data, bytes) else data.encode())
 
 
+def sparse(path, size):
+    with open(path, "wb") as f:
+        f.truncate(size)
+
+
+# name: (make(path), (result, substring of the message))
+SPECIAL_FILES = {
+    "fifo": (os.mkfifo, ("error report", "FIFO")),
+    "link_to_dev_zero": (lambda p: os.symlink("/dev/zero", p), ("error report", "link to a character device")),
+    "folder": (os.mkdir, ("error report", "folder")),
+    "too_large": (lambda p: sparse(p, PR.MAX_BYTES + 1), ("error report", "at most %d" % PR.MAX_BYTES)),
+    "dangling_link": (lambda p: os.symlink("missing_target.json", p), ("error report", "link to a missing file")),
+}
+
+
 def first_key(gen, types):
     return next(s.name for s in specs(gen) if s.type in types)
 
@@ -623,13 +640,30 @@ def test_presets():
                 kw = dict(BASE.get(idname, {}))
                 kw["banyan_preset"] = key
                 run_op(idname, "banyan_preset", key, kw, expect=expect, label="(preset file) %s" % name)
+            # Files that are not preset files: listed as broken, refused
+            # without being opened for reading (a FIFO would block the menu).
+            for name, (make, expect) in SPECIAL_FILES.items():
+                key = "%s_bt_hostile_%s" % (gen, name)
+                path = os.path.join(d, key + ".json")
+                made.append(path)
+                make(path)
+                fresh_scene()
+                kw = dict(BASE.get(idname, {}))
+                kw["banyan_preset"] = key
+                t0 = time.perf_counter()
+                run_op(idname, "banyan_preset", key, kw, expect=expect, label="(preset file) %s" % name)
+                s = time.perf_counter() - t0
+                bt.check(s < 5.0, "%s (preset file) %s: answered in %.2f s" % (idname, name, s))
             # The broken files do not hide the shipped presets.
             listed = [k for k, _, _ in PR.list_presets(gen)]
             bt.check(any(not k.startswith(gen + "_bt_hostile") for k in listed) or gen == "segments" and listed,
                      "%s: shipped presets still listed beside broken ones: %s" % (gen, listed))
     finally:
         for p in made:
-            os.remove(p)
+            if os.path.isdir(p) and not os.path.islink(p):
+                os.rmdir(p)
+            elif os.path.lexists(p):
+                os.remove(p)
 
 
 # -------------------------------------------------------------- the API

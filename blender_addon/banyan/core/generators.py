@@ -239,11 +239,11 @@ def segments_read(text, source="<preset>"):
     data = text.encode() if isinstance(text, str) else bytes(text)
     count = C.c_uint32(0)
     err = S.Error()
-    L.raise_for(f(data, len(data), source.encode(), None, 0, C.byref(count), None, None, C.byref(err)), err)
+    L.raise_for(f(data, len(data), L.source_name(source), None, 0, C.byref(count), None, None, C.byref(err)), err)
     arr = (SegmentInput * max(1, count.value))()
     trunk = (C.c_double * 6)()
     has = C.c_int32(0)
-    L.raise_for(f(data, len(data), source.encode(), arr, count.value, C.byref(count), trunk, C.byref(has),
+    L.raise_for(f(data, len(data), L.source_name(source), arr, count.value, C.byref(count), trunk, C.byref(has),
                   C.byref(err)), err)
     return arr, count.value, (trunk if has.value else None)
 

@@ -93,9 +93,12 @@ def read_glb(path, transform=None, closed=S.HOST_CLOSED_AUTO, name=None):
     """A .glb file read by the library (banyan_glb_read_host: every triangle
     of its default scene under its node transforms, Z up, coincident
     vertices merged) as a MeshInput: object-space positions and triangles
-    copied out of the library's allocation with two memmoves, `transform`
-    (see transform_rows) as its object -> world matrix. BanyanError with
-    the path when the file is not a readable glTF binary with triangles."""
+    copied out of the library's allocation with two memmoves, and the
+    object -> world matrix the library returns with them: `transform` (see
+    transform_rows) with, for a mesh far from the origin, the whole-metre
+    point its positions are relative to folded into the translation (so
+    they keep float precision). BanyanError with the path when the file is
+    not a readable glTF binary with triangles."""
     lib = L.load()
     rows = transform_rows(transform)
     out = C.POINTER(S.HostMesh)()
@@ -109,6 +112,7 @@ def read_glb(path, transform=None, closed=S.HOST_CLOSED_AUTO, name=None):
         tri = array("I", bytes(12 * m.triangle_count))
         C.memmove(pos.buffer_info()[0], m.positions, 12 * m.vertex_count)
         C.memmove(tri.buffer_info()[0], m.indices, 12 * m.triangle_count)
+        rows = tuple(m.transform)  # the far offset included
     finally:
         lib.banyan_host_mesh_free(out)
     return MeshInput(pos, tri, transform=rows, closed=closed, name=name or os.path.basename(path))
@@ -259,7 +263,7 @@ class HostSet(L.Handle):
                                                         if "mesh" in h] + [m.name for m in extra])
         marr = (S.HostMesh * max(1, len(extra)))(*[m.struct() for m in extra])
         err = S.Error()
-        st = L.load().banyan_preset_host_set(data, len(data), source.encode(),
+        st = L.load().banyan_preset_host_set(data, len(data), L.source_name(source),
                                              os.fsencode(base_dir) if base_dir else None,
                                              marr if extra else None, len(extra), C.byref(self.handle), C.byref(err))
         if st:

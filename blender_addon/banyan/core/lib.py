@@ -178,6 +178,13 @@ def status_name(code):
     return s.decode() if s else "BANYAN_E_%d" % code
 
 
+def source_name(text):
+    """A preset's source name (a file name, for the library's messages) as
+    UTF-8 bytes: characters UTF-8 cannot hold (a file name's bytes that are
+    not UTF-8, kept by Python as surrogate escapes) as backslash escapes."""
+    return str(text).encode("utf-8", "backslashreplace")
+
+
 def raise_for(status, err):
     """Turns a non-zero status + filled banyan_error into BanyanError."""
     if status:

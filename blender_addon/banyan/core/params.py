@@ -192,7 +192,7 @@ class Params:
         data = text.encode() if isinstance(text, str) else bytes(text)
         err = S.Error()
         trial = self.copy()  # the library may leave a failed apply half done
-        st = L.load().banyan_preset_apply(self.gen, trial.ptr, data, len(data), source.encode(), C.byref(err))
+        st = L.load().banyan_preset_apply(self.gen, trial.ptr, data, len(data), L.source_name(source), C.byref(err))
         L.raise_for(st, err)
         C.memmove(self.buf, trial.buf, C.sizeof(self.buf))
 
@@ -217,7 +217,7 @@ def preset_hosts(text, source="<preset>"):
     out = (S.Box * S.MAX_HOSTS)()
     count = C.c_uint32(0)
     err = S.Error()
-    st = L.load().banyan_preset_hosts(data, len(data), source.encode(), out, S.MAX_HOSTS, C.byref(count),
+    st = L.load().banyan_preset_hosts(data, len(data), L.source_name(source), out, S.MAX_HOSTS, C.byref(count),
                                       C.byref(err))
     L.raise_for(st, err)
     return [S.Box.from_buffer_copy(out[i]) for i in range(count.value)]

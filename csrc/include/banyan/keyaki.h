@@ -217,8 +217,10 @@ typedef struct banyan_keyaki_statistics {
     int32_t stream_count[BANYAN_KEYAKI_MAX_ORDER];   /* [k-1] = N_k, k = 1 .. K; 0 beyond */
     double bifurcation_ratio[BANYAN_KEYAKI_MAX_ORDER]; /* [k-1] = N_k / N_{k+1}, k = 1 .. K-1; 0 beyond */
     double mean_bifurcation_ratio; /* mean of the K-1 ratios; 0 when K == 1 */
-    double height;            /* m: highest branch end above position[2] */
-    double crown_width;       /* m: twice the largest horizontal distance of a branch end from the trunk base */
+    double height;            /* m: highest branch end above position[2]. The skeleton's: the crown's twigs and
+                                 leaves reach past the branch ends (the mesh's own is higher) */
+    double crown_width;       /* m: twice the largest horizontal distance of a branch end from the trunk base
+                                 (the skeleton's, as height) */
     double mean_run_length;   /* levels: mean length of a run of single branches between real forks */
 } banyan_keyaki_statistics;
 
