@@ -78,6 +78,12 @@ typedef struct cli_command {
 
 extern const cli_command *const cli_commands[];
 
+/* A tree as meshed (bark, twigs, leaves; the parts of `group`, or all for
+ * -1): its highest vertex above `base` (world metres) and twice the
+ * largest horizontal distance of a vertex from the vertical through
+ * base, in double (cmd_keyaki.c; --stats of keyaki and avenue). */
+void cli_tree_reach(const banyan_mesh *m, int64_t group, const double base[3], double *height, double *width);
+
 /* `banyan textures -o DIR`: not a mesh command (cmd_textures.c). */
 int cli_textures_main(int argc, char **argv);
 

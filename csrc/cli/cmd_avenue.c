@@ -1,7 +1,9 @@
 /* `banyan avenue`: keyaki trees along the straight path start..end, one
  * or two rows, grown on --threads N threads (0 = all cores). --stats adds
- * the tree count and, over the trees, the mean, min and max of tips and
- * crown widths and the mean Strahler bifurcation ratio; with --set
+ * the tree count and, over the trees, the mean, min and max of tips (the
+ * skeleton's) and of crown widths (the mesh's: twice the farthest vertex
+ * of the tree from its trunk's axis, twigs and leaves included) and the
+ * mean Strahler bifurcation ratio; with --set
  * variants=N (instanced trees) also the variant and instance counts. A polyline path
  * is available through the library call (banyan_avenue_generate). */
 #include <stdio.h>
@@ -31,23 +33,29 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         goto fail;
     }
     /* Over the trees shown: an instanced avenue's tree i is its instance's
-     * variant, grown from tree `variant`'s params (heading aside). */
+     * variant, grown from tree `variant`'s params (heading aside) at the
+     * mesh's origin and drawn at the instance's scale; an avenue's tree i
+     * is the parts of group i, standing at its position. */
     const banyan_mesh *a = m[0];
+    const int instanced = a->instance_count == n;
     double tips = 0, width = 0, ratio = 0, tmin = 1e300, tmax = 0, wmin = 1e300, wmax = 0;
     for (uint32_t i = 0; i < n; i++) {
         banyan_keyaki_statistics st;
-        uint32_t k = a->instance_count == n ? a->instances[i].variant : i;
+        uint32_t k = instanced ? a->instances[i].variant : i;
         if ((s = banyan_keyaki_stats(&trees[k], &st, err))) {
             banyan_mesh_free(m[0]);
             goto fail;
         }
+        double h, w;
+        cli_tree_reach(a, k, instanced ? a->origin : trees[i].position, &h, &w);
+        if (instanced) w *= a->instances[i].scale;
         tips += st.tip_count;
-        width += st.crown_width;
+        width += w;
         ratio += st.mean_bifurcation_ratio;
         if (st.tip_count < tmin) tmin = st.tip_count;
         if (st.tip_count > tmax) tmax = st.tip_count;
-        if (st.crown_width < wmin) wmin = st.crown_width;
-        if (st.crown_width > wmax) wmax = st.crown_width;
+        if (w < wmin) wmin = w;
+        if (w > wmax) wmax = w;
     }
     free(trees);
     nm[0] = malloc(16);

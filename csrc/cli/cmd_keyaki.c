@@ -13,11 +13,8 @@
 
 static void init(void *p) { banyan_keyaki_params_init((banyan_keyaki_params *)p); }
 
-/* Appends the measures of one skeleton as stats members (shared with
- * cmd_avenue.c through this declaration). */
-void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st);
-
-void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st) {
+/* Appends the measures of one skeleton as stats members. */
+static void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st) {
     char buf[2048];
     size_t n = 0;
     n += (size_t)snprintf(buf + n, sizeof buf - n, "[");
@@ -43,19 +40,20 @@ void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st)
     cli_stat_num(stats, "skeleton_crown_width_m", st->crown_width);
 }
 
-/* The tree as meshed (bark, twigs, leaves): its highest vertex above the
- * trunk base and twice the largest horizontal distance of a vertex from
- * the trunk's axis, in world metres (origin - base first, in double). */
-static void mesh_reach(const banyan_mesh *m, const double base[3], double *height, double *width) {
+void cli_tree_reach(const banyan_mesh *m, int64_t group, const double base[3], double *height, double *width) {
     double o[3], top = -HUGE_VAL, r2 = 0;
     for (int k = 0; k < 3; k++) o[k] = m->origin[k] - base[k];
-    for (uint32_t v = 0; v < m->vertex_count; v++) {
-        const float *q = m->positions + 3 * (size_t)v;
-        double dx = o[0] + q[0], dy = o[1] + q[1], z = o[2] + q[2];
-        if (z > top) top = z;
-        if (dx * dx + dy * dy > r2) r2 = dx * dx + dy * dy;
+    for (uint32_t p = 0; p < m->part_count; p++) {
+        const banyan_part *pt = &m->parts[p];
+        if (group >= 0 && pt->group != (uint32_t)group) continue;
+        for (uint32_t v = pt->vertex_offset; v < pt->vertex_offset + pt->vertex_count; v++) {
+            const float *q = m->positions + 3 * (size_t)v;
+            double dx = o[0] + q[0], dy = o[1] + q[1], z = o[2] + q[2];
+            if (z > top) top = z;
+            if (dx * dx + dy * dy > r2) r2 = dx * dx + dy * dy;
+        }
     }
-    *height = m->vertex_count ? top : 0.0;
+    *height = top > -HUGE_VAL ? top : 0.0;
     *width = 2.0 * sqrt(r2);
 }
 
@@ -87,7 +85,7 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     *count = 1;
     cli_keyaki_stats_json(stats, &st);
     double height, width;
-    mesh_reach(m[0], p->position, &height, &width);
+    cli_tree_reach(m[0], -1, p->position, &height, &width);
     cli_stat_num(stats, "height_m", height);
     cli_stat_num(stats, "crown_width_m", width);
     return BANYAN_OK;

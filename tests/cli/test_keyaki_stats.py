@@ -5,6 +5,9 @@ and twice its largest horizontal distance from the trunk's axis, read
 back from the .glb (node translation + positions, glTF's Y up turned to
 Z up), to 0.1 mm; skeleton_height_m and skeleton_crown_width_m stay the
 skeleton's (banyan_keyaki_stats), which the crown reaches past.
+`banyan avenue --stats`: crown_width_min/max/mean_m are the trees'
+meshes' in the same way (two trees 20 m apart, each the vertices on its
+side of the middle).
 
     test_keyaki_stats.py <banyan cli> <out dir>
 """
@@ -86,8 +89,28 @@ def main():
                                              st.get("crown_width_m", -1), height, width,
                                              st.get("skeleton_height_m", -1), st.get("skeleton_crown_width_m", -1)))
         failed += not ok
-    print("keyaki --stats vs the mesh: %d cases, %d failed" % (len(CASES), failed))
+    failed += avenue(cli, out)
+    print("keyaki and avenue --stats vs the mesh: %d cases, %d failed" % (len(CASES) + 1, failed))
     return 1 if failed else 0
+
+
+def avenue(cli, out):
+    """1 when the avenue's crown widths are not its trees' meshes'."""
+    path = os.path.join(out, "avenue_stats.glb")
+    r = subprocess.run([cli, "avenue", "--textures", "off", "--stats", "-o", path, "--set", "start=0,0,0",
+                        "--set", "end=20,0,0", "--set", "rows=1", "--set", "placement=count", "--set", "count=2",
+                        "--set", "position_jitter=0", "--set", "tree.levels=8"], capture_output=True, text=True)
+    if r.returncode != 0:
+        print("FAIL avenue: rc %d: %s" % (r.returncode, r.stderr))
+        return 1
+    st = json.loads(r.stdout)
+    pts = glb_world_points(path)
+    widths = [2.0 * max(math.hypot(p[0] - bx, p[1]) for p in pts if (p[0] < 10.0) == (bx == 0.0)) for bx in (0.0, 20.0)]
+    ok = (abs(st["crown_width_min_m"] - min(widths)) <= TOL and abs(st["crown_width_max_m"] - max(widths)) <= TOL
+          and abs(st["crown_width_mean_m"] - sum(widths) / 2) <= TOL)
+    print("%s avenue: crown widths %.4f .. %.4f m, the meshes' %.4f, %.4f" % (
+        "ok  " if ok else "FAIL", st["crown_width_min_m"], st["crown_width_max_m"], *widths))
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":
