@@ -1716,7 +1716,13 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     prog g;
     if (banyan_status sb = prog_budget_from(&g, budget, err)) return sb;
     const prog_deadline deadline = prog_deadline_of(&g);
-    auto over = [&] { return prog_fail(&g, err, "writing glTF"); };
+    auto over = [&] {
+        if (g.cancelled == PROG_RUNNING) { /* the streaming thread saw the deadline first */
+            g.cancelled = PROG_OVER_TIME;
+            g.over_value = prog_now() - g.t_start;
+        }
+        return prog_fail(&g, err, "writing glTF");
+    };
 
     /* Every mesh to write, in order: each node's own, then its levels. */
     std::vector<Job> jobs;
@@ -1939,7 +1945,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
 
     banyan_status drawn = drawer.wait(err);
     if (drawn != BANYAN_OK) return drawn;
-    if (late || prog_at(&g, 0.75)) return over();
+    if (prog_at(&g, 0.75) || late) return over();
     for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     if (total > kMaxBufferBytes) return too_big();
     for (size_t k = 0; k < image_views; ++k) {
@@ -1970,7 +1976,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         raw.put(head.data(), head.size());
     }
     stream(defer ? mesh_segs : 0);
-    if (late || prog_at(&g, 0.99)) return over();
+    if (prog_at(&g, 0.99) || late) return over();
     bin.finish();
     if (!bin.error() && bin.count() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
