@@ -14,12 +14,44 @@
 #include <string.h>
 #include <time.h>
 
+#include <zlib.h>
+
 #include "banyan.h"
 #include "check.h"
 #include "core/atomic_file.h"
 #include "lod_plants.h"
 #include "roots/fused_vdb.h"
 #include "test_files.h"
+
+/* stb_image_write with zlib level 1 for its deflate: what the library's
+ * PNG encoder gave before it could be stopped, byte for byte. */
+static unsigned char *ref_deflate(unsigned char *data, int len, int *out_len, int quality) {
+    (void)quality;
+    uLongf cap = compressBound((uLong)len);
+    unsigned char *out = malloc(cap);
+    if (out && compress2(out, &cap, data, (uLong)len, 1) != Z_OK) {
+        free(out);
+        return NULL;
+    }
+    *out_len = (int)cap;
+    return out;
+}
+#define STBIW_ZLIB_COMPRESS ref_deflate
+#if defined(__GNUC__)
+#  pragma GCC diagnostic push
+#  pragma GCC diagnostic ignored "-Wunused-function"
+#  pragma GCC diagnostic ignored "-Wpedantic"
+#  pragma GCC diagnostic ignored "-Wsign-compare"
+#  pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_WRITE_NO_STDIO
+#include <stb/stb_image_write.h>
+#if defined(__GNUC__)
+#  pragma GCC diagnostic pop
+#  pragma GCC diagnostic ignored "-Wunused-function"
+#endif
 
 static double now(void) {
     struct timespec t;
@@ -281,11 +313,44 @@ static void test_long_name(const char *dir) {
           "a 256-byte name: %d %s", e, why);
 }
 
+/* The stoppable PNG encoder gives stb_image_write's bytes: textures, and
+ * odd sizes with 1 to 4 channels (noise, flat runs). */
+static void test_png_bytes(void) {
+    banyan_error e;
+    banyan_texture_params tp;
+    banyan_texture_params_init(&tp);
+    tp.size = 256;
+    banyan_image *bc = NULL, *nm = NULL;
+    CHECK(!banyan_texture_generate(&tp, &bc, &nm, &e), "texture: %s", e.message);
+    uint8_t noise[37 * 23 * 4];
+    uint32_t x = 12345;
+    for (size_t i = 0; i < sizeof noise; i++) x = x * 1103515245u + 12345u, noise[i] = i % 97 < 40 ? 7 : (uint8_t)(x >> 16);
+    banyan_image odd[4] = {{37, 23, 1, noise}, {37, 23, 2, noise}, {5, 1, 3, noise}, {1, 37, 4, noise}};
+    const banyan_image *ims[6] = {bc, nm, &odd[0], &odd[1], &odd[2], &odd[3]};
+    for (int k = 0; k < 6; k++) {
+        const banyan_image *im = ims[k];
+        if (!im) continue;
+        uint8_t *png = NULL;
+        size_t len = 0;
+        int rlen = 0;
+        unsigned char *ref = stbi_write_png_to_mem(im->pixels, (int)(im->width * im->channels), (int)im->width,
+                                                   (int)im->height, (int)im->channels, &rlen);
+        CHECK(!banyan_image_png(im, &png, &len, &e), "png %d: %s", k, e.message);
+        CHECK(ref && png && (size_t)rlen == len && !memcmp(ref, png, len), "png %d (%u x %u x %u): not stb's bytes", k,
+              im->width, im->height, im->channels);
+        free(ref);
+        banyan_png_free(png);
+    }
+    banyan_image_free(bc);
+    banyan_image_free(nm);
+}
+
 int main(int argc, char **argv) {
     const char *dir = argc > 1 ? argv[1] : ".";
     test_budget_args();
     test_lod();
     test_textures();
+    test_png_bytes();
     test_writer(dir);
     test_fused_stop();
     test_long_name(dir);
