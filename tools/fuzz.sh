@@ -8,7 +8,8 @@
 # The corpora stay in build-fuzz/corpus, so runs add up. The seeds hold
 # every preset twice: shrunk, and at its real size (<name>.real, under the
 # harness's run budget, tests/fuzz/fuzz_common.h).
-#   FUZZ_SECONDS   seconds per harness (default 60)
+#   FUZZ_SECONDS   seconds per harness (default 60; fuzz_lod and
+#                  fuzz_gltf_write run half of it)
 #   FUZZ_JOBS      harnesses at a time (default 2)
 #   FUZZ_TIMEOUT   per-input limit in seconds (default 30): an input slower
 #                  than this is a failure, a timeout (libFuzzer stops) or a
@@ -25,7 +26,10 @@ jobs=${FUZZ_JOBS:-2}
 timeout=${FUZZ_TIMEOUT:-30}
 results=${FUZZ_RESULTS:-out/fuzz_results.json}
 build=build-fuzz
-harnesses=(fuzz_preset fuzz_roots fuzz_keyaki fuzz_ivy fuzz_segments fuzz_hosts fuzz_glb)
+harnesses=(fuzz_preset fuzz_roots fuzz_keyaki fuzz_ivy fuzz_segments fuzz_hosts fuzz_glb fuzz_lod fuzz_gltf_write)
+# The mesh-in harnesses (small meshes, fast inputs) run half as long: the
+# stage's wall time grows by a quarter of FUZZ_SECONDS, not a whole one.
+half=(fuzz_lod fuzz_gltf_write)
 
 echo "== fuzzing: ${#harnesses[@]} harnesses x ${secs} s, ${jobs} at a time, ${timeout} s an input =="
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBANYAN_FUZZ=ON >/dev/null
@@ -34,15 +38,18 @@ cmake --build "$build" --target "${harnesses[@]}" fuzz_seeds
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 corpus=$here/$build/corpus
 "$build/tests/fuzz/fuzz_seeds" presets "$corpus"
-mkdir -p "$corpus/fuzz_preset" "$corpus/fuzz_hosts" "$corpus/fuzz_glb"
+mkdir -p "$corpus/fuzz_preset" "$corpus/fuzz_hosts" "$corpus/fuzz_glb" "$corpus/fuzz_lod" "$corpus/fuzz_gltf_write"
 cp presets/*.json tests/data/bad_presets/* "$corpus/fuzz_preset/"
 cp tests/fuzz/seeds/fuzz_hosts/* "$corpus/fuzz_hosts/"
 cp tests/fuzz/seeds/fuzz_glb/* "$corpus/fuzz_glb/"
+cp tests/fuzz/seeds/fuzz_lod/* "$corpus/fuzz_lod/"
+cp tests/fuzz/seeds/fuzz_gltf_write/* "$corpus/fuzz_gltf_write/"
 
 # One harness: runs it, then writes its JSON line to fuzz_work/<h>/result.
 run_one() {
-  local h=$1 work=$here/$build/fuzz_work/$1 max_len=4096
+  local h=$1 work=$here/$build/fuzz_work/$1 max_len=4096 secs=$secs
   [ "$h" = fuzz_preset ] && max_len=65536
+  [[ " ${half[*]} " == *" $h "* ]] && secs=$(( (secs + 1) / 2 ))
   rm -rf "$work"
   mkdir -p "$work/crashes" "$here/tests/fuzz/regressions/$h"
   local start rc=0

@@ -402,6 +402,37 @@ def cases(banyan, presets, tmp):
     L.append(Case(7, "`banyan avenue --set tree.trunk_length=0.01` (its documented minimum)", "accepted",
                   lambda ctx: ([banyan, "avenue", "--set", "tree.trunk_length=0.01", "--set", "count=1", "--set",
                                 "placement=count", "-o", out("tl.glb")] + quick, {}), accepted_judge))
+
+    # The stages after generation keep the command's budget, and a bad -o
+    # is a bad command line, refused before any work.
+    def stage_judge(budget_s, limit_mb=None):
+        """Held: a mesh or BANYAN_E_LIMIT within budget_s + 0.5 s (and limit_mb)."""
+        def judge(r, ctx):
+            ok = not r.cut and r.wall <= budget_s + 0.5 and (r.rc == 0 or "E_LIMIT" in r.err)
+            if limit_mb and (r.rss_mb is None or r.rss_mb > limit_mb):
+                ok = False
+            return ok, ""
+        return judge
+    L.append(Case(2, "`banyan keyaki --preset keyaki_mature.json --texture-size 8192 --set max_seconds=1 --set "
+                     "max_memory_mb=200`", "textures refused from their size within 1.5 s under 400 MB",
+                  lambda ctx: ([banyan, "keyaki", "--preset", P("keyaki_mature.json"), "--texture-size", "8192",
+                                "--set", "max_seconds=1", "--set", "max_memory_mb=200", "-o", out("k8192.glb")], {}),
+                  stage_judge(1.0, 400)))
+    L.append(Case(2, "`banyan avenue --preset avenue_mixed_age.json --lod 0.5,0.15,billboard --set max_seconds=1`",
+                  "stops within 1.5 s", lambda ctx: ([banyan, "avenue", "--preset", P("avenue_mixed_age.json"),
+                                                      "--lod", "0.5,0.15,billboard", "--set", "max_seconds=1",
+                                                      "-o", out("lod.glb")] + quick, {}),
+                  stage_judge(1.0)))
+    L.append(Case(2, "`banyan roots --preset roots_trunk.json --set voxel_size=0.1 --set max_seconds=4` (the budget "
+                     "passes while OpenVDB meshes)", "stops within 4.5 s",
+                  lambda ctx: ([banyan, "roots", "--preset", P("roots_trunk.json"), "--set", "voxel_size=0.1",
+                                "--set", "max_seconds=4", "-o", out("vdb.glb")] + quick, {}),
+                  stage_judge(4.0)))
+    L.append(Case(1, "`banyan keyaki --preset keyaki_mature.json -o <a 256-byte name>.glb`",
+                  "refused before any work (exit 2, under 0.5 s), naming the file name's length",
+                  lambda ctx: ([banyan, "keyaki", "--preset", P("keyaki_mature.json"), "-o",
+                                out("a" * 252 + ".glb")] + quick, {}),
+                  lambda r, c: (r.rc == 2 and not r.cut and r.wall < 0.5 and "file name is 256 bytes" in r.err, "")))
     return L
 
 

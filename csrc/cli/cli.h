@@ -50,9 +50,25 @@ typedef struct cli_lod {
 } cli_lod;
 /* 1 when spec ("0.5,0.15,billboard") is well formed. */
 int cli_lod_parse(const char *spec, cli_lod *out);
-/* Writes meshes with their levels of detail as MSFT_lod. */
+struct cli_command;
+/* The command's budget, started just before generation (budget.c): the
+ * generator's max_seconds and max_memory_mb (the defaults for commands
+ * without them) cover generation, --lod, the textures and the write. */
+typedef struct cli_budget {
+    double max_seconds, max_memory_mb;
+    double t0, rss0_mb; /* when generation started, and the resident MB then */
+} cli_budget;
+void cli_budget_start(cli_budget *b, const struct cli_command *cmd, const void *params);
+/* What is left for `stage` ("the levels of detail"), as a banyan_budget;
+ * BANYAN_E_LIMIT (err naming the field) when less than the library's
+ * least (0.01 s, 16 MB) is left. */
+banyan_status cli_budget_left(const cli_budget *b, const char *stage, banyan_budget *out, banyan_error *err);
+
+/* Writes meshes with their levels of detail as MSFT_lod, each level and
+ * the write within what is left of the budget. */
 banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char *const *names, uint32_t count,
-                             const cli_lod *lod, const banyan_gltf_options *opt, cli_stats *st, banyan_error *err);
+                             const cli_lod *lod, const banyan_gltf_options *opt, const cli_budget *budget,
+                             cli_stats *st, banyan_error *err);
 
 /* Exit codes: 0 done, 1 refused or failed, 2 bad command line,
  * 3 written with a warning (docs/ivy.md, "Hosts and start"). */

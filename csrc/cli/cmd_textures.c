@@ -70,7 +70,7 @@ int cli_textures_main(int argc, char **argv) {
     snprintf(first, sizeof first, "%s/%s_summer_color.png", dir, kind_names[0]);
     if (atomic_check(first, why, sizeof why)) {
         fprintf(stderr, "banyan textures: -o %s: %s\n", dir, why);
-        return 1;
+        return 2; /* a bad command line, as for the mesh commands */
     }
     for (int k = 0; k < BANYAN_TEX_COUNT; k++) {
         int leaf = k == BANYAN_TEX_KEYAKI_LEAF || k == BANYAN_TEX_IVY_LEAF;

@@ -38,7 +38,8 @@ int cli_lod_parse(const char *spec, cli_lod *out) {
 }
 
 banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char *const *names, uint32_t count,
-                             const cli_lod *lod, const banyan_gltf_options *opt, cli_stats *st, banyan_error *err) {
+                             const cli_lod *lod, const banyan_gltf_options *opt, const cli_budget *budget,
+                             cli_stats *st, banyan_error *err) {
     banyan_mesh **levels = calloc((size_t)count * CLI_MAX_LODS + 1, sizeof *levels);
     banyan_gltf_node *nodes = calloc((size_t)count + 1, sizeof *nodes);
     banyan_status s = levels && nodes ? BANYAN_OK : BANYAN_E_NOMEM;
@@ -55,7 +56,9 @@ banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char 
         for (int k = 0; !s && k < lod->count; k++) {
             p.billboard = lod->billboard && k == lod->count - 1;
             if (!p.billboard) p.ratio = lod->ratio[k];
-            s = banyan_mesh_lod(meshes[i], &p, &levels[(size_t)i * CLI_MAX_LODS + k], err);
+            banyan_budget left;
+            s = cli_budget_left(budget, "the levels of detail", &left, err);
+            if (!s) s = banyan_mesh_lod_budget(meshes[i], &p, &left, &levels[(size_t)i * CLI_MAX_LODS + k], err);
             if (!s && i == 0 && tl + 32 < sizeof tris)
                 tl += (size_t)snprintf(tris + tl, sizeof tris - tl, "%s%u", k ? ", " : "",
                                        levels[k]->index_count / 3);
@@ -70,7 +73,9 @@ banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char 
         char buf[600];
         snprintf(buf, sizeof buf, "[%s]", tris);
         cli_stat_raw(st, "lod_triangles", buf);
-        s = banyan_gltf_write_nodes(path, nodes, count, opt, err);
+        banyan_budget left;
+        s = cli_budget_left(budget, "writing", &left, err);
+        if (!s) s = banyan_gltf_write_nodes_budget(path, nodes, count, opt, &left, err);
     }
     for (size_t k = 0; levels && k < (size_t)count * CLI_MAX_LODS; k++) banyan_mesh_free(levels[k]);
     free(levels);

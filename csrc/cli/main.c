@@ -309,11 +309,12 @@ int main(int argc, char **argv) {
         free(host_args);
         return 0;
     }
-    /* A bad -o is reported now, not after a long generation. */
+    /* A bad -o is reported now, not after a long generation: a bad
+     * command line (exit 2). */
     if (out_path && !out_path_ok(cmd, out_path)) {
         free(sets);
         free(host_args);
-        return 1;
+        return 2;
     }
 
     int rc = 1;
@@ -416,6 +417,8 @@ int main(int argc, char **argv) {
     st.warning[0] = '\0';
     banyan_progress progress = {show_progress, (void *)cmd->name};
     if (isatty(STDERR_FILENO)) job.progress = &progress;
+    cli_budget budget;
+    cli_budget_start(&budget, cmd, params);
     double t0 = now_ms();
     banyan_status s = cmd->run(&job, params, &meshes, &names, &count, &st, &err);
     double t1 = now_ms();
@@ -448,10 +451,18 @@ int main(int argc, char **argv) {
     }
     double t2 = t1;
     if (out_path) {
-        if (lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, &gltf_opt, &st, &err)
-                      : banyan_gltf_write_ex(out_path, (const banyan_mesh *const *)meshes,
-                                             (const char *const *)names, count, &gltf_opt, &err)) {
-            fprintf(stderr, "banyan %s: writing %s: %s\n", cmd->name, out_path, err.message);
+        banyan_budget left;
+        banyan_status ws = lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, &gltf_opt, &budget, &st, &err)
+                                     : cli_budget_left(&budget, "writing", &left, &err);
+        if (!lod.count && !ws)
+            ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
+                                             count, &gltf_opt, &left, &err);
+        if (ws) {
+            fprintf(stderr, "banyan %s: writing %s: %s: %s%s\n", cmd->name, out_path, banyan_status_name(ws),
+                    err.message,
+                    ws == BANYAN_E_LIMIT ? " (what generation left of the command's max_seconds and max_memory_mb "
+                                           "is the budget of --lod, the textures and the write)"
+                                         : "");
             goto out;
         }
         t2 = now_ms();

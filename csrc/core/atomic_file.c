@@ -209,7 +209,8 @@ int atomic_check(const char *path, char *why, size_t cap) {
         snprintf(why, cap, "'%s' names a folder, not a file", t);
     } else if (stat(dir ? dir : ".", &st) != 0) {
         e = errno;
-        snprintf(why, cap, "folder '%s' does not exist (%s)", shown, strerror(e));
+        snprintf(why, cap, e == ENAMETOOLONG ? "folder '%s' cannot be reached (%s)" : "folder '%s' does not exist (%s)",
+                 shown, strerror(e));
     } else if (!S_ISDIR(st.st_mode)) {
         e = ENOTDIR;
         snprintf(why, cap, "'%s' is not a folder", shown);
@@ -219,6 +220,16 @@ int atomic_check(const char *path, char *why, size_t cap) {
     } else if (access(t, F_OK) == 0 && access(t, W_OK) != 0) {
         e = errno;
         snprintf(why, cap, "'%s' is not writable (%s)", t, strerror(e));
+    } else {
+        /* The name must fit the folder's file system, or the rename at the
+         * end of a long run fails (the temporary name is cut to fit). */
+        long most = pathconf(dir ? dir : ".", _PC_NAME_MAX);
+        size_t b = strlen(t + d);
+        if (most > 0 && b > (size_t)most) {
+            e = ENAMETOOLONG;
+            snprintf(why, cap, "the file name is %zu bytes, longer than the %ld the folder '%s' allows; choose a "
+                     "shorter name", b, most, shown);
+        }
     }
     free(dir);
     free(t);

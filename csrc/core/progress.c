@@ -128,3 +128,34 @@ banyan_status prog_fail(const prog *g, banyan_error *err, const char *what) {
                            PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
     return banyan_fail(err, BANYAN_E_CANCELLED, "%s cancelled by the progress callback", what);
 }
+
+double prog_now(void) { return now_seconds(); }
+
+prog_deadline prog_deadline_of(const prog *g) {
+    prog_deadline d = {0.0};
+    if (g && g->max_seconds > 0.0) d.t_end = g->t_start + g->max_seconds;
+    return d;
+}
+
+void banyan_budget_init(banyan_budget *b) {
+    if (!b) return;
+    b->max_seconds = PROG_MAX_SECONDS_DEFAULT;
+    b->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
+}
+
+size_t banyan_sizeof_budget(void) { return sizeof(banyan_budget); }
+
+banyan_status prog_budget_from(prog *g, const banyan_budget *b, banyan_error *err) {
+    banyan_budget d;
+    banyan_budget_init(&d);
+    if (b) d = *b;
+    if (!(d.max_seconds >= PROG_MAX_SECONDS_MIN && d.max_seconds <= PROG_MAX_SECONDS_MAX))
+        return banyan_fail(err, BANYAN_E_RANGE, "budget->max_seconds = %g is outside [%g, %.0f] (seconds)",
+                           d.max_seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX);
+    if (!(d.max_memory_mb >= PROG_MAX_MEMORY_MIN && d.max_memory_mb <= PROG_MAX_MEMORY_MAX))
+        return banyan_fail(err, BANYAN_E_RANGE, "budget->max_memory_mb = %g is outside [%.0f, %.0f] (MB)",
+                           d.max_memory_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
+    prog_init(g, NULL);
+    prog_budget(g, d.max_seconds, d.max_memory_mb);
+    return BANYAN_OK;
+}

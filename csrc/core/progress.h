@@ -16,6 +16,10 @@
 
 #include "banyan.h"
 
+#ifdef __cplusplus
+extern "C" { /* the glTF writer and the OpenVDB shim are C++ */
+#endif
+
 #define PROG_HEARTBEAT 0.1 /* seconds */
 /* The budget parameters every generator's params carry, with one range. */
 #define PROG_MAX_SECONDS_MIN 0.01
@@ -67,4 +71,24 @@ banyan_status prog_fail(const prog *g, banyan_error *err, const char *what);
 /* Resident memory of the process in MB; 0 where it cannot be read. */
 double prog_rss_mb(void);
 
+/* The public banyan_budget of the calls whose params carry none (LOD,
+ * textures, the glTF writer): NULL is the defaults; a bad field is refused
+ * naming budget->max_seconds or budget->max_memory_mb and the range. On
+ * success g's budget is started (prog_budget). */
+banyan_status prog_budget_from(prog *g, const banyan_budget *b, banyan_error *err);
+
+/* A wall-clock deadline that any thread may check without changing it
+ * (the textures are drawn on the glTF writer's threads, which must not
+ * call prog_at): t_end 0 = none. */
+typedef struct prog_deadline {
+    double t_end;
+} prog_deadline;
+/* The deadline of g's budget (0 when g has no max_seconds). */
+prog_deadline prog_deadline_of(const prog *g);
+double prog_now(void);
+static inline int prog_deadline_passed(const prog_deadline *d) { return d && d->t_end > 0.0 && prog_now() > d->t_end; }
+
+#ifdef __cplusplus
+}
+#endif
 #endif

@@ -45,6 +45,8 @@
 #include "core/atomic_file.h"
 #include "core/dmath.h"
 #include "core/error.h"
+#include "core/progress.h"
+#include "textures/tex_budget.h"
 
 #include <tiny_gltf.h>
 
@@ -1261,9 +1263,10 @@ struct ImageGuard {
     }
 };
 
-banyan_status to_png(ImageGuard &g, const banyan_image *image, std::vector<unsigned char> &out, banyan_error *err) {
+banyan_status to_png(ImageGuard &g, const banyan_image *image, const prog_deadline &stop, double seconds,
+                     std::vector<unsigned char> &out, banyan_error *err) {
     size_t size = 0;
-    banyan_status s = banyan_image_png(image, &g.png, &size, err);
+    banyan_status s = tex_png(image, &stop, seconds, &g.png, &size, err);
     if (s != BANYAN_OK) return s;
     out.assign(g.png, g.png + size);
     banyan_png_free(g.png);
@@ -1271,8 +1274,8 @@ banyan_status to_png(ImageGuard &g, const banyan_image *image, std::vector<unsig
     return BANYAN_OK;
 }
 
-banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, TexturePngs &t,
-                           banyan_error *err) {
+banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, const prog_deadline &stop,
+                           double seconds, TexturePngs &t, banyan_error *err) {
     banyan_texture_params tp;
     banyan_texture_params_init(&tp);
     tp.kind = kind;
@@ -1280,11 +1283,11 @@ banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_optio
     tp.size = o.texture_size;
     tp.seed = o.texture_seed;
     ImageGuard g;
-    banyan_status s = banyan_texture_generate(&tp, &g.base, &g.normal, err);
+    banyan_status s = tex_generate(&tp, &stop, seconds, &g.base, &g.normal, err);
     if (s != BANYAN_OK) return s;
     /* t.kind and t.season were set by plan_textures: the caller reads them meanwhile */
-    if ((s = to_png(g, g.base, t.base, err)) != BANYAN_OK) return s;
-    return to_png(g, g.normal, t.normal, err);
+    if ((s = to_png(g, g.base, stop, seconds, t.base, err)) != BANYAN_OK) return s;
+    return to_png(g, g.normal, stop, seconds, t.normal, err);
 }
 
 /* The slot key of a material's texture, or -1 when it is drawn flat:
@@ -1323,8 +1326,9 @@ class TextureDrawer {
   public:
     static constexpr size_t kThreads = 2;
 
-    TextureDrawer(const banyan_gltf_options &o, std::vector<TexturePngs> &t)
-        : o_(o), t_(t), status_(t.size(), BANYAN_OK), err_(t.size()), thrown_(t.size()) {
+    TextureDrawer(const banyan_gltf_options &o, const prog_deadline &stop, double seconds, std::vector<TexturePngs> &t)
+        : o_(o), stop_(stop), seconds_(seconds), t_(t), status_(t.size(), BANYAN_OK), err_(t.size()),
+          thrown_(t.size()) {
         th_.reserve(kThreads);
         for (size_t k = 0; k < kThreads && k < t_.size(); ++k) {
             try {
@@ -1357,7 +1361,7 @@ class TextureDrawer {
   private:
     void draw(size_t i) {
         try {
-            status_[i] = draw_texture(t_[i].kind, t_[i].season, o_, t_[i], &err_[i]);
+            status_[i] = draw_texture(t_[i].kind, t_[i].season, o_, stop_, seconds_, t_[i], &err_[i]);
         } catch (...) {
             thrown_[i] = std::current_exception();
         }
@@ -1367,6 +1371,8 @@ class TextureDrawer {
             if (t.joinable()) t.join();
     }
     const banyan_gltf_options &o_;
+    const prog_deadline stop_; /* the call's max_seconds, checked by the painters and the PNG encoder */
+    const double seconds_;
     std::vector<TexturePngs> &t_;
     std::vector<banyan_status> status_;
     std::vector<banyan_error> err_;
@@ -1676,7 +1682,8 @@ uint64_t png_bound(int32_t size) {
 }
 
 banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, uint32_t count,
-                               const banyan_gltf_options *opt, bool ex, banyan_error *err) {
+                               const banyan_gltf_options *opt, const banyan_budget *budget, bool ex,
+                               banyan_error *err) {
     banyan_gltf_options o;
     banyan_gltf_options_init(&o);
     if (opt) o = *opt;
@@ -1703,6 +1710,19 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         banyan_status s = check_node(nodes[i], i, ex, err);
         if (s != BANYAN_OK) return s;
     }
+    /* The budget: the textures' memory refused up front from their size,
+     * time checked between meshes, while streaming and inside the texture
+     * painters and PNG encoders (on the drawing threads, by deadline). */
+    prog g;
+    if (banyan_status sb = prog_budget_from(&g, budget, err)) return sb;
+    const prog_deadline deadline = prog_deadline_of(&g);
+    auto over = [&] {
+        if (g.cancelled == PROG_RUNNING) { /* the streaming thread saw the deadline first */
+            g.cancelled = PROG_OVER_TIME;
+            g.over_value = prog_now() - g.t_start;
+        }
+        return prog_fail(&g, err, "writing glTF");
+    };
 
     /* Every mesh to write, in order: each node's own, then its levels. */
     std::vector<Job> jobs;
@@ -1731,11 +1751,11 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         for (uint32_t k = 0; o.textures && J.m->image_count > 0 && k < J.m->material_count; ++k) {
             int32_t im = J.m->materials[k].image;
             if (im < 0 || J.image_texture[static_cast<size_t>(im)] >= 0) continue;
-            ImageGuard g;
+            ImageGuard ig;
             size_t size = 0;
-            banyan_status s = banyan_image_png(&J.m->images[im], &g.png, &size, err);
+            banyan_status s = tex_png(&J.m->images[im], &deadline, g.max_seconds, &ig.png, &size, err);
             if (s != BANYAN_OK) return s;
-            pictures.emplace_back(g.png, g.png + size);
+            pictures.emplace_back(ig.png, ig.png + size);
             J.image_texture[static_cast<size_t>(im)] = picture_base + static_cast<int>(pictures.size() - 1);
         }
     }
@@ -1766,7 +1786,19 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
                            static_cast<unsigned long long>(total), static_cast<unsigned long long>(kMaxBufferBytes));
     };
     if (total > kMaxBufferBytes) return too_big(); /* before the textures are drawn */
-    TextureDrawer drawer(o, textures);
+    if (!textures.empty()) {
+        const size_t at_once = std::min(textures.size(), TextureDrawer::kThreads);
+        if (prog_reserve(&g, static_cast<double>(at_once) * static_cast<double>(tex_peak_bytes(o.texture_size, 1))))
+            return banyan_fail(err, BANYAN_E_LIMIT,
+                               "drawing %u texture%s of %d pixels (%u at once) needs %.0f MB, past max_memory_mb = "
+                               "%g (%.0f .. %.0f); lower the texture size (a power of two, 64 .. 8192), turn the "
+                               "textures off or raise max_memory_mb",
+                               static_cast<unsigned>(textures.size()), textures.size() == 1 ? "" : "s",
+                               static_cast<int>(o.texture_size), static_cast<unsigned>(at_once), g.over_value,
+                               g.max_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
+    }
+    if (prog_at(&g, 0.0)) return over();
+    TextureDrawer drawer(o, deadline, g.max_seconds, textures);
 
     Builder b;
     tinygltf::Model &model = b.model;
@@ -1817,6 +1849,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     size_t j = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const banyan_gltf_node &n = nodes[i];
+        if (prog_at(&g, 0.5 * i / count)) return over();
         int primary = emit_job(b, jobs[j++], slot, any_instanced);
         if (n.lod_count > 0) {
             /* MSFT_lod: the coarser levels are nodes outside the scene's
@@ -1890,12 +1923,17 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     const size_t mesh_segs = b.segs.size();
     Sink raw(defer ? out.get() : nullptr, false);
     Sink bin(defer ? out.get() : nullptr, !binary);
+    bool late = false; /* the producer passed the deadline (one thread writes it, read after its join) */
     auto stream = [&](size_t from) {
         Pipe pipe(bin, out);
-        pipe.run([&b, from](Pipe &p) {
+        pipe.run([&b, from, &deadline, &late](Pipe &p) {
             BinWriter bw(p);
             for (size_t k = from, n = b.segs.size(); k < n; ++k) {
                 if (p.failed()) break;
+                if (prog_deadline_passed(&deadline)) {
+                    late = true;
+                    break;
+                }
                 bw.write(b.segs[k]);
             }
         });
@@ -1907,6 +1945,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
 
     banyan_status drawn = drawer.wait(err);
     if (drawn != BANYAN_OK) return drawn;
+    if (prog_at(&g, 0.75) || late) return over();
     for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
     if (total > kMaxBufferBytes) return too_big();
     for (size_t k = 0; k < image_views; ++k) {
@@ -1937,6 +1976,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         raw.put(head.data(), head.size());
     }
     stream(defer ? mesh_segs : 0);
+    if (prog_at(&g, 0.99) || late) return over();
     bin.finish();
     if (!bin.error() && bin.count() != total)
         return banyan_fail(err, BANYAN_E_INTERNAL, "wrote %llu buffer bytes, planned %llu; please report this",
@@ -1985,7 +2025,13 @@ extern "C" BANYAN_API size_t banyan_sizeof_gltf_node(void) { return sizeof(banya
 extern "C" BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes,
                                                             uint32_t count, const banyan_gltf_options *opt,
                                                             banyan_error *err) {
-    return guarded(path, err, [&] { return write_nodes_impl(path, nodes, count, opt, false, err); });
+    return banyan_gltf_write_nodes_budget(path, nodes, count, opt, nullptr, err);
+}
+
+extern "C" BANYAN_API banyan_status banyan_gltf_write_nodes_budget(const char *path, const banyan_gltf_node *nodes,
+                                                                   uint32_t count, const banyan_gltf_options *opt,
+                                                                   const banyan_budget *budget, banyan_error *err) {
+    return guarded(path, err, [&] { return write_nodes_impl(path, nodes, count, opt, budget, false, err); });
 }
 
 extern "C" BANYAN_API banyan_status banyan_gltf_write(const char *path,
@@ -2000,6 +2046,13 @@ extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
                                                          const banyan_mesh *const *meshes,
                                                          const char *const *names, uint32_t count,
                                                          const banyan_gltf_options *opt, banyan_error *err) {
+    return banyan_gltf_write_ex_budget(path, meshes, names, count, opt, nullptr, err);
+}
+
+extern "C" BANYAN_API banyan_status banyan_gltf_write_ex_budget(const char *path, const banyan_mesh *const *meshes,
+                                                                const char *const *names, uint32_t count,
+                                                                const banyan_gltf_options *opt,
+                                                                const banyan_budget *budget, banyan_error *err) {
     return guarded(path, err, [&] {
         std::vector<banyan_gltf_node> nodes;
         if (meshes != nullptr) {
@@ -2007,6 +2060,6 @@ extern "C" BANYAN_API banyan_status banyan_gltf_write_ex(const char *path,
             for (uint32_t i = 0; i < count; ++i)
                 nodes[i] = banyan_gltf_node{meshes[i], names ? names[i] : nullptr, 0, nullptr, nullptr};
         }
-        return write_nodes_impl(path, meshes ? nodes.data() : nullptr, count, opt, true, err);
+        return write_nodes_impl(path, meshes ? nodes.data() : nullptr, count, opt, budget, true, err);
     });
 }

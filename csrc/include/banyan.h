@@ -96,6 +96,24 @@ typedef struct banyan_progress {
     void *user;            /* handed back to fn as is */
 } banyan_progress;
 
+/* --------------------------------------------------------------- budget */
+
+/* The budget of a call whose params carry none (banyan_mesh_lod_budget,
+ * banyan_texture_generate_budget, banyan_gltf_write_ex_budget,
+ * banyan_gltf_write_nodes_budget), with the generators' meaning and ranges
+ * (docs/api.md "Budgets"): past max_seconds of wall time, or max_memory_mb
+ * of resident memory above the process's at the call, the call stops (or
+ * refuses up front, when its size says so) with BANYAN_E_LIMIT naming the
+ * field, *out == NULL and nothing leaked. NULL: the defaults, which the
+ * same calls without _budget use. Init with banyan_budget_init. */
+typedef struct banyan_budget {
+    double max_seconds;   /* s, 0.01 .. 604800. Default 600 */
+    double max_memory_mb; /* MB, 16 .. 1048576. Default 8192 */
+} banyan_budget;
+
+BANYAN_API void banyan_budget_init(banyan_budget *b);
+BANYAN_API size_t banyan_sizeof_budget(void);
+
 /* ----------------------------------------------------------------- hosts */
 
 /* An oriented box: a host object's bounding box under its world matrix.
@@ -542,6 +560,21 @@ BANYAN_API size_t banyan_sizeof_gltf_node(void);
  * POSITION; docs/game-engines.md. */
 BANYAN_API banyan_status banyan_gltf_write_nodes(const char *path, const banyan_gltf_node *nodes, uint32_t count,
                                                  const banyan_gltf_options *opt, banyan_error *err);
+
+/* banyan_gltf_write_ex and banyan_gltf_write_nodes under a budget
+ * (banyan_budget; NULL: the defaults, which the calls without _budget
+ * use): the textures' memory (about 15 bytes a pixel for each of the two
+ * drawn at once) is refused up front with BANYAN_E_LIMIT, naming
+ * max_memory_mb and the texture size; past max_seconds the write stops
+ * (between meshes, while streaming, inside the texture painters and the
+ * PNG encoder) with BANYAN_E_LIMIT and the old file is left as it was. */
+BANYAN_API banyan_status banyan_gltf_write_ex_budget(const char *path, const banyan_mesh *const *meshes,
+                                                     const char *const *names, uint32_t count,
+                                                     const banyan_gltf_options *opt, const banyan_budget *budget,
+                                                     banyan_error *err);
+BANYAN_API banyan_status banyan_gltf_write_nodes_budget(const char *path, const banyan_gltf_node *nodes,
+                                                        uint32_t count, const banyan_gltf_options *opt,
+                                                        const banyan_budget *budget, banyan_error *err);
 
 /* banyan_gltf_write_ex with the default options (textures at 1024). */
 BANYAN_API banyan_status banyan_gltf_write(const char *path,

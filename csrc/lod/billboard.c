@@ -198,7 +198,7 @@ static int dilate(uint8_t *img, uint32_t W, uint32_t H) {
     return 0;
 }
 
-banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, banyan_mesh **out,
+banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, prog *pg, banyan_mesh **out,
                             banyan_error *err) {
     uint32_t planes = (uint32_t)p->billboard_planes, size = (uint32_t)p->billboard_size;
     uint32_t n_groups = 0;
@@ -263,6 +263,10 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, ba
     for (uint32_t g = 0; g < n_groups; g++) {
         uint32_t cd = slot[g];
         if (cd == UINT32_MAX) continue;
+        if (prog_at(pg, (double)g / n_groups)) {
+            st = BANYAN_E_LIMIT;
+            goto fail;
+        }
         double c[2] = {0.5 * (lo[g][0] + hi[g][0]), 0.5 * (lo[g][1] + hi[g][1])};
         double zmin = lo[g][2], zmax = hi[g][2];
         if (zmax - zmin < 1e-6) zmax = zmin + 1e-6;
@@ -314,8 +318,13 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, ba
         depth = malloc(sizeof(float) * (size_t)W * H);
         if (!im->pixels || !depth) goto fail;
         for (size_t i = 0; i < (size_t)W * H; i++) depth[i] = -INFINITY;
-        for (uint32_t k = 0; k < planes; k++) draw_view(m, g, (const float(*)[3])rgb, c, zmin, zmax, &vw[k],
-                                                        im->pixels, depth, W, H);
+        for (uint32_t k = 0; k < planes; k++) {
+            if (prog_at(pg, (double)g / n_groups)) {
+                st = BANYAN_E_LIMIT;
+                goto fail;
+            }
+            draw_view(m, g, (const float(*)[3])rgb, c, zmin, zmax, &vw[k], im->pixels, depth, W, H);
+        }
         if (dilate(im->pixels, W, H)) goto fail;
 
         banyan_material *mt = &o->materials[cd];
@@ -378,6 +387,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, ba
 fail:
     free(lo); free(hi); free(slot); free(rgb); free(depth);
     banyan_mesh_free(o);
+    if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the billboard level of detail");
     return banyan_fail(err, st ? st : BANYAN_E_NOMEM, "out of memory drawing the billboards of %u vertices",
                        m->vertex_count);
 }

@@ -393,7 +393,7 @@ banyan_status lod_copy_common(const banyan_mesh *m, banyan_mesh *o, int material
 
 /* Reduced copy: each part's kept vertices in their old order, then its
  * kept triangles renumbered. */
-static banyan_status lod_reduce(const banyan_mesh *m, const banyan_lod_params *p, banyan_mesh **out,
+static banyan_status lod_reduce(const banyan_mesh *m, const banyan_lod_params *p, prog *pg, banyan_mesh **out,
                                 banyan_error *err) {
     const float *flutter = banyan_mesh_attribute(m, BANYAN_ATTR_WIND_FLUTTER);
     banyan_status st = BANYAN_E_NOMEM;
@@ -409,9 +409,17 @@ static banyan_status lod_reduce(const banyan_mesh *m, const banyan_lod_params *p
         }
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
+        if (prog_at(pg, 0.9 * q / m->part_count)) { /* between parts: meshoptimizer cannot be stopped inside one */
+            st = BANYAN_E_LIMIT;
+            goto fail;
+        }
         int rc = part_is_leaves(m, pt, flutter) ? thin_leaves(m, q, p, blo, bhi, &po[q])
                                                 : reduce_wood(m, pt, p->ratio, &po[q]);
         if (rc) goto fail;
+    }
+    if (prog_at(pg, 0.9)) {
+        st = BANYAN_E_LIMIT;
+        goto fail;
     }
     /* Count what stays. */
     uint64_t nv = 0, ni = 0;
@@ -484,12 +492,18 @@ fail:
     free(po);
     free(remap);
     banyan_mesh_free(o);
+    if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the level of detail");
     return banyan_fail(err, st ? st : BANYAN_E_NOMEM, "out of memory making a level of detail of %u vertices",
                        m->vertex_count);
 }
 
 banyan_status banyan_mesh_lod(const banyan_mesh *mesh, const banyan_lod_params *p, banyan_mesh **out,
                               banyan_error *err) {
+    return banyan_mesh_lod_budget(mesh, p, NULL, out, err);
+}
+
+banyan_status banyan_mesh_lod_budget(const banyan_mesh *mesh, const banyan_lod_params *p, const banyan_budget *budget,
+                                     banyan_mesh **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     banyan_lod_params defaults;
     if (!p) {
@@ -499,5 +513,7 @@ banyan_status banyan_mesh_lod(const banyan_mesh *mesh, const banyan_lod_params *
     banyan_status s;
     if ((s = check_params(p, err))) return s;
     if ((s = check_mesh(mesh, err))) return s;
-    return p->billboard ? lod_billboard(mesh, p, out, err) : lod_reduce(mesh, p, out, err);
+    prog g;
+    if ((s = prog_budget_from(&g, budget, err))) return s;
+    return p->billboard ? lod_billboard(mesh, p, &g, out, err) : lod_reduce(mesh, p, &g, out, err);
 }

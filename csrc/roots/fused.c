@@ -321,6 +321,10 @@ typedef struct fvert {
     double t;
 } fvert;
 
+/* OpenVDB's stop between its meshing stages (fused_vdb_in.stop): the
+ * budget and the cancel, on the generator's thread. */
+static int vdb_stop(void *user) { return roots_stop((const roots_net *)user); }
+
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                                    banyan_roots_stats *stats, banyan_error *err) {
     const double r = net->r, h = p->voxel_size * r;
@@ -495,7 +499,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 #ifdef FUSED_TIMING
         fprintf(stderr, "fused: %u of %u blocks to OpenVDB\n", n_surf, g.n);
 #endif
-        fused_vdb_in vi = {origin, g.acc, n_surf, (float)band, 0.0};
+        fused_vdb_in vi = {origin, g.acc, n_surf, (float)band, vdb_stop, (void *)net};
         int vs = fused_vdb_mesh(&vi, &vo);
         /* The field is done with (the lists stay for the nearest capsule):
          * its memory goes before the mesh's arrives, lowering the peak. */
@@ -503,6 +507,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         free(g.tmp);
         g.acc = g.tmp = NULL;
         if (vs == FUSED_VDB_NOMEM) goto nomem;
+        if (vs == FUSED_VDB_STOPPED) goto stopped;
         if (vs != FUSED_VDB_OK) {
             st = banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
                              "OpenVDB could not mesh the fused roots surface (%s)",
@@ -511,7 +516,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         }
     }
     STAGE(3);
-    if (roots_stop(net)) goto stopped; /* OpenVDB itself cannot be stopped: the budget is read after it */
+    if (roots_stop(net)) goto stopped;
     if (vo.n_pos == 0 || vo.n_tri == 0) {
         st = banyan_fail(err, BANYAN_E_INTERNAL, "the fused roots surface is empty");
         goto done;

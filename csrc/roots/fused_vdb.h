@@ -16,7 +16,11 @@ typedef struct fused_vdb_in {
     const float *values;   /* 512 per block, voxel (x,y,z) at x*64 + y*8 + z (OpenVDB's leaf order) */
     size_t n_blocks;
     float background;      /* band half-width: |v| >= background is outside the band */
-    double adaptivity;     /* 0 .. 1, volumeToMesh's */
+    /* Asked between the meshing's stages and every few hundred leaves of
+     * its per-leaf stages, on the calling thread; nonzero stops the meshing
+     * with FUSED_VDB_STOPPED (the budget, the cancel). NULL: never. */
+    int (*stop)(void *user);
+    void *stop_user;
 } fused_vdb_in;
 
 typedef struct fused_vdb_out {
@@ -25,7 +29,7 @@ typedef struct fused_vdb_out {
     uint32_t n_pos, n_tri;
 } fused_vdb_out;
 
-enum { FUSED_VDB_OK = 0, FUSED_VDB_NOMEM = 1, FUSED_VDB_TOO_BIG = 2, FUSED_VDB_FAILED = 3 };
+enum { FUSED_VDB_OK = 0, FUSED_VDB_NOMEM = 1, FUSED_VDB_TOO_BIG = 2, FUSED_VDB_FAILED = 3, FUSED_VDB_STOPPED = 4 };
 
 /* Returns FUSED_VDB_*; on failure out is zeroed and nothing is held. */
 int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out);

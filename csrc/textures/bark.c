@@ -263,7 +263,7 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
         return -1;
     }
     const float sx = (float)S.gx / (float)n, sy = (float)S.gy / (float)n;
-    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+    for (int y0 = 0; y0 < n && !tex_stopped(c); y0 += TEX_BAND) {
         const float *wx = fields_rows(&F, 0, y0), *wy = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
                     *hf = fields_rows(&F, 3, y0);
         /* Coarse samples every KB pixels (the band's last row stands in
@@ -336,7 +336,7 @@ int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     static const float spec[4][4] = {{4, 4, 4, 0.5f}, {16, 32, 3, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
     fields F;
     if (fields_init(&F, n, 4, spec, rng)) return -1;
-    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+    for (int y0 = 0; y0 < n && !tex_stopped(c); y0 += TEX_BAND) {
         const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
                     *hf = fields_rows(&F, 3, y0);
         for (int r = 0; r < TEX_BAND; r++) {
@@ -388,7 +388,7 @@ int tex_paint_ivy_stem(tex_canvas *c, pcg32 *rng) {
     static const float spec[4][4] = {{8, 2, 4, 0.5f}, {16, 4, 3, 0.5f}, {8, 1, 5, 0.55f}, {4, 4, 5, 0.6f}};
     fields F;
     if (fields_init(&F, n, 4, spec, rng)) return -1;
-    for (int y0 = 0; y0 < n; y0 += TEX_BAND) {
+    for (int y0 = 0; y0 < n && !tex_stopped(c); y0 += TEX_BAND) {
         const float *fw = fields_rows(&F, 0, y0), *fs = fields_rows(&F, 1, y0), *crack = fields_rows(&F, 2, y0),
                     *tone = fields_rows(&F, 3, y0);
         for (int r = 0; r < TEX_BAND; r++) {

@@ -849,7 +849,7 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         t = py[i], py[i] = py[d], py[d] = t;
     }
     for (int j = 0; j < rows; j++)
-        for (int i = 0; i < cols; i++) {
+        for (int i = 0; i < cols && !tex_stopped(c); i++) {
             int id = i + j * cols;
             cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
             float ratio = 1.85f + 1.05f * ((float)pr[id] + tex_unif(rng, 0.0f, 1.0f)) / (float)nc;
@@ -882,7 +882,7 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
         return -1;
     }
     for (int j = 0; j < rows; j++)
-        for (int i = 0; i < cols; i++) {
+        for (int i = 0; i < cols && !tex_stopped(c); i++) {
             cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
             ivleaf L;
             /* A quarter of the cells: young unlobed leaves (long shoots). */

@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/progress.h"
 #include "core/rng.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
@@ -26,7 +27,12 @@ typedef struct tex_canvas {
     int wrap;         /* 1: tileable (bark), Sobel wraps around the edges */
     float *grain;     /* TEX_TILE^2 fine noise about [-1, 1] for leaf surfaces, tiled (leaf painters make it) */
     float *mottle;    /* TEX_TILE^2 noise a few spots per leaf (autumn blotches), stretched over the image */
+    const prog_deadline *stop; /* NULL: none. Past it, painters stop early (their image is then dropped) */
 } tex_canvas;
+
+/* 1 once the canvas's deadline has passed: painters check it per band or
+ * leaf cell and stop; banyan_texture_generate then refuses the picture. */
+static inline int tex_stopped(const tex_canvas *c) { return prog_deadline_passed(c->stop); }
 
 /* Leaf atlases (leaves.c) and bark (bark.c); season only for leaves.
  * Return 0 on success, -1 when a scratch allocation failed. */

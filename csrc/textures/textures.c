@@ -1,8 +1,8 @@
 /* textures.c - the public texture calls of banyan/textures.h (issue #17):
  * input checks, the atlas layout, the canvas each painter draws into, the
  * normal map (Sobel on the painter's height field, glTF's tangent-space
- * convention) and PNG bytes through stb_image_write, compiled here as a
- * private copy so the library adds no run-time dependency. Painters:
+ * convention) and PNG bytes through stb_image_write's pieces and zlib,
+ * under the caller's deadline (tex_budget.h). Painters:
  * leaves.c (keyaki and Boston ivy atlases), bark.c (tileable bark). */
 #include <math.h>
 #include <stdlib.h>
@@ -11,29 +11,18 @@
 #include "banyan.h"
 #include "core/big_alloc.h"
 #include "core/error.h"
+#include "textures/tex_budget.h"
 #include "textures/tex_internal.h"
 
 /* zlib level: 6 (its default) costs twice level 3 for 3 % smaller files. */
 #define TEX_PNG_LEVEL 1
 
 /* stb_image_write, private to this file (static functions, its two
- * tuning globals are static and never written: no shared state), with
- * zlib's deflate instead of its own: ten times faster at 1024 x 1024 and
- * smaller files (the glTF writer and the add-on encode every texture). */
+ * tuning globals are static and never written: no shared state): its
+ * PNG filter and chunk helpers, with zlib's deflate instead of its own
+ * (ten times faster at 1024 x 1024 and smaller files), driven by
+ * png_encode below so a budget can stop it. */
 #include <zlib.h>
-static unsigned char *tex_deflate(unsigned char *data, int len, int *out_len, int quality) {
-    (void)quality;
-    uLongf cap = compressBound((uLong)len);
-    unsigned char *out = malloc(cap);
-    if (!out) return NULL;
-    if (compress2(out, &cap, data, (uLong)len, TEX_PNG_LEVEL) != Z_OK) {
-        free(out);
-        return NULL;
-    }
-    *out_len = (int)cap;
-    return out;
-}
-#define STBIW_ZLIB_COMPRESS tex_deflate
 #if defined(__GNUC__)
 #  pragma GCC diagnostic push
 #  pragma GCC diagnostic ignored "-Wunused-function"
@@ -179,7 +168,7 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
     nm_row slot[3];
     for (int i = 0; i < 3; i++)
         slot[i] = (nm_row){-1, pad + (size_t)i * (n + 2), flat + (size_t)i * (n / NM_CHUNK)};
-    for (int y = 0; y < n; y++) {
+    for (int y = 0; y < n && !((y & 63) == 0 && tex_stopped(c)); y++) {
         int rows[3] = {y - 1, y, y + 1};
         for (int r = 0; r < 3; r++) {
             if (c->wrap) rows[r] = (rows[r] + n) & (n - 1);
@@ -227,8 +216,22 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
 /* Streams per kind and season, so the five textures of one seed differ. */
 static uint64_t stream_of(int kind, int season) { return 0x7e47u + (uint64_t)kind * 2u + (uint64_t)season; }
 
-banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_image **base_color,
-                                      banyan_image **normal, banyan_error *err) {
+static banyan_status over_time(banyan_error *err, const char *what, int32_t size, double seconds) {
+    return banyan_fail(err, BANYAN_E_LIMIT,
+                       "%s a %d-pixel texture passed max_seconds = %g (%g .. %.0f); raise max_seconds or lower the "
+                       "texture size (a power of two, %d .. %d)",
+                       what, (int)size, seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, TEX_MIN_SIZE, TEX_MAX_SIZE);
+}
+
+uint64_t tex_peak_bytes(int32_t size, int normal) {
+    const uint64_t px = (uint64_t)size * (uint64_t)size;
+    /* Drawing: RGBA + float heights (+ RGB normals); encoding the RGBA
+     * picture beside them: its filter rows and about as many deflated bytes. */
+    return px * (4 + 4 + (normal ? 3 : 0)) + 2 * px * 4;
+}
+
+banyan_status tex_generate(const banyan_texture_params *p, const prog_deadline *stop, double seconds,
+                           banyan_image **base_color, banyan_image **normal, banyan_error *err) {
     banyan_error_clear(err);
     if (base_color) *base_color = NULL;
     if (normal) *normal = NULL;
@@ -237,7 +240,7 @@ banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_ima
     if (!base_color && !normal) return BANYAN_OK; /* nothing asked */
 
     const int n = p->size;
-    tex_canvas c = {n, NULL, NULL, 1.0f, 0, NULL, NULL};
+    tex_canvas c = {n, NULL, NULL, 1.0f, 0, NULL, NULL, stop};
     banyan_image *bc = image_new((uint32_t)n, 4), *nm = normal ? image_new((uint32_t)n, 3) : NULL;
     c.height = big_malloc((size_t)n * n * sizeof *c.height); /* every painter writes all of it */
     if (!bc || (normal && !nm) || !c.height) goto nomem;
@@ -254,8 +257,13 @@ banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_ima
     case BANYAN_TEX_IVY_STEM: rc = tex_paint_ivy_stem(&c, &rng); break;
     default: break;
     }
-    if (rc != 0 || (nm && normal_map(&c, nm->pixels) != 0)) goto nomem;
+    if (rc != 0 || (nm && !tex_stopped(&c) && normal_map(&c, nm->pixels) != 0)) goto nomem;
     free(c.height);
+    if (tex_stopped(&c)) { /* the painter or the normal map stopped early */
+        banyan_image_free(bc);
+        banyan_image_free(nm);
+        return over_time(err, "drawing", n, seconds);
+    }
     if (base_color) *base_color = bc;
     else banyan_image_free(bc);
     if (normal) *normal = nm;
@@ -267,7 +275,134 @@ nomem:
     return banyan_fail(err, BANYAN_E_NOMEM, "texture of size %d: out of memory", n);
 }
 
-banyan_status banyan_image_png(const banyan_image *image, uint8_t **png, size_t *size, banyan_error *err) {
+banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_image **base_color,
+                                      banyan_image **normal, banyan_error *err) {
+    return banyan_texture_generate_budget(p, NULL, base_color, normal, err);
+}
+
+banyan_status banyan_texture_generate_budget(const banyan_texture_params *p, const banyan_budget *budget,
+                                             banyan_image **base_color, banyan_image **normal, banyan_error *err) {
+    banyan_error_clear(err);
+    if (base_color) *base_color = NULL;
+    if (normal) *normal = NULL;
+    banyan_status s = check_params(p, err);
+    if (s != BANYAN_OK) return s;
+    prog g;
+    if ((s = prog_budget_from(&g, budget, err)) != BANYAN_OK) return s;
+    if (!base_color && !normal) return BANYAN_OK; /* nothing asked */
+    const double need = (double)tex_peak_bytes(p->size, normal != NULL);
+    if (prog_reserve(&g, need - 2.0 * 4.0 * p->size * p->size)) /* drawing only: no PNG here */
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "a %d-pixel texture needs %.0f MB to draw, past max_memory_mb = %g (%.0f .. %.0f); "
+                           "lower the texture size (a power of two, %d .. %d) or raise max_memory_mb",
+                           (int)p->size, g.over_value, g.max_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX,
+                           TEX_MIN_SIZE, TEX_MAX_SIZE);
+    prog_deadline d = prog_deadline_of(&g);
+    return tex_generate(p, &d, g.max_seconds, base_color, normal, err);
+}
+
+/* stbi_write_png_to_mem with the deadline checked every 64 rows of
+ * filtering and every 1 MB deflated: the same filter choice (each row's
+ * least sum of absolute bytes over the five), the same zlib stream
+ * (deflate fed in pieces gives compress2's bytes) and the same chunks. */
+static unsigned char *png_encode(const unsigned char *pixels, int x, int y, int n, const prog_deadline *stop,
+                                 int *out_len, int *stopped) {
+    static const int ctype[5] = {-1, 0, 4, 2, 6};
+    static const unsigned char sig[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+    const size_t row = (size_t)x * n + 1, raw = row * (size_t)y;
+    *stopped = 0;
+    unsigned char *filt = malloc(raw);
+    signed char *line = malloc((size_t)x * n);
+    if (!filt || !line) {
+        free(filt);
+        free(line);
+        return NULL;
+    }
+    for (int j = 0; j < y; ++j) {
+        if ((j & 63) == 0 && prog_deadline_passed(stop)) {
+            free(filt);
+            free(line);
+            *stopped = 1;
+            return NULL;
+        }
+        int best = 0, best_val = 0x7fffffff, ft;
+        for (ft = 0; ft < 5; ft++) {
+            stbiw__encode_png_line((unsigned char *)pixels, x * n, x, y, j, n, ft, line);
+            int est = 0;
+            for (int i = 0; i < x * n; ++i) est += abs((signed char)line[i]);
+            if (est < best_val) best_val = est, best = ft;
+        }
+        if (ft != best) stbiw__encode_png_line((unsigned char *)pixels, x * n, x, y, j, n, best, line);
+        filt[(size_t)j * row] = (unsigned char)best;
+        memcpy(filt + (size_t)j * row + 1, line, (size_t)x * n);
+    }
+    free(line);
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    uLong cap = compressBound((uLong)raw);
+    unsigned char *zb = malloc(cap);
+    if (!zb || deflateInit(&z, TEX_PNG_LEVEL) != Z_OK) {
+        free(zb);
+        free(filt);
+        return NULL;
+    }
+    z.next_out = zb;
+    z.avail_out = (uInt)cap;
+    const size_t piece = (size_t)1 << 20;
+    size_t at = 0;
+    int zr = Z_OK;
+    while (zr == Z_OK) {
+        if (prog_deadline_passed(stop)) {
+            *stopped = 1;
+            break;
+        }
+        size_t take = raw - at < piece ? raw - at : piece;
+        z.next_in = filt + at;
+        z.avail_in = (uInt)take;
+        at += take;
+        zr = deflate(&z, at == raw ? Z_FINISH : Z_NO_FLUSH);
+        if (zr == Z_OK && z.avail_in != 0) zr = Z_BUF_ERROR; /* the output bound was too small: cannot happen */
+    }
+    uLong zlen = z.total_out;
+    deflateEnd(&z);
+    free(filt);
+    if (zr != Z_STREAM_END) {
+        free(zb);
+        return NULL;
+    }
+    const size_t total = 8 + 12 + 13 + 12 + (size_t)zlen + 12;
+    unsigned char *out = malloc(total), *o = out;
+    if (!out) {
+        free(zb);
+        return NULL;
+    }
+    memcpy(o, sig, 8);
+    o += 8;
+    stbiw__wp32(o, 13);
+    stbiw__wptag(o, "IHDR");
+    stbiw__wp32(o, x);
+    stbiw__wp32(o, y);
+    *o++ = 8;
+    *o++ = (unsigned char)ctype[n];
+    *o++ = 0;
+    *o++ = 0;
+    *o++ = 0;
+    stbiw__wpcrc(&o, 13);
+    stbiw__wp32(o, (int)zlen);
+    stbiw__wptag(o, "IDAT");
+    memcpy(o, zb, zlen);
+    o += zlen;
+    free(zb);
+    stbiw__wpcrc(&o, (int)zlen);
+    stbiw__wp32(o, 0);
+    stbiw__wptag(o, "IEND");
+    stbiw__wpcrc(&o, 0);
+    *out_len = (int)total;
+    return out;
+}
+
+banyan_status tex_png(const banyan_image *image, const prog_deadline *stop, double seconds, uint8_t **png,
+                      size_t *size, banyan_error *err) {
     banyan_error_clear(err);
     if (png) *png = NULL;
     if (size) *size = 0;
@@ -280,10 +415,14 @@ banyan_status banyan_image_png(const banyan_image *image, uint8_t **png, size_t 
     if (image->width < 1 || image->width > TEX_MAX_SIZE || image->height < 1 || image->height > TEX_MAX_SIZE)
         return banyan_fail(err, BANYAN_E_RANGE, "image->width x height = %u x %u must be within [1, %d] each",
                            image->width, image->height, TEX_MAX_SIZE);
-    int len = 0;
-    unsigned char *bytes = stbi_write_png_to_mem(image->pixels, (int)(image->width * image->channels),
-                                                 (int)image->width, (int)image->height, (int)image->channels,
-                                                 &len);
+    int len = 0, stopped = 0;
+    unsigned char *bytes = png_encode(image->pixels, (int)image->width, (int)image->height, (int)image->channels,
+                                      stop, &len, &stopped);
+    if (stopped) {
+        free(bytes);
+        return over_time(err, "encoding (PNG)", (int32_t)(image->width > image->height ? image->width : image->height),
+                         seconds);
+    }
     if (!bytes || len <= 0) {
         free(bytes);
         return banyan_fail(err, BANYAN_E_NOMEM, "PNG of %u x %u: out of memory", image->width, image->height);
@@ -291,6 +430,11 @@ banyan_status banyan_image_png(const banyan_image *image, uint8_t **png, size_t 
     *png = bytes;
     *size = (size_t)len;
     return BANYAN_OK;
+}
+
+
+banyan_status banyan_image_png(const banyan_image *image, uint8_t **png, size_t *size, banyan_error *err) {
+    return tex_png(image, NULL, 0.0, png, size, err);
 }
 
 void banyan_png_free(uint8_t *png) { free(png); }

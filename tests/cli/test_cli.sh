@@ -16,7 +16,7 @@ expect 0 '"triangles"' -- "$bin" tube --stats
 expect 0 '"vertices": 332' -- "$bin" tube --set sides=4 --stats -o "$out/cli_tube_square.gltf"
 expect 1 "sides = '2' must be a whole number within [3, 256]" -- "$bin" tube --set sides=2
 expect 1 "must look like key=value" -- "$bin" tube --set sides
-expect 1 "-o $out/x.obj: must end in .glb" -- "$bin" tube -o "$out/x.obj"
+expect 2 "-o $out/x.obj: must end in .glb" -- "$bin" tube -o "$out/x.obj"
 expect 2 "unexpected argument" -- "$bin" tube --bogus
 expect 1 "cannot read preset" -- "$bin" tube --preset /nonexistent.json
 # Issue #21: the CLI's ivy (the step API) keeps max_vertices while it

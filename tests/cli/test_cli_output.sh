@@ -55,17 +55,17 @@ as=""
 [ "$(id -u)" = 0 ] && command -v setpriv >/dev/null && as="setpriv --reuid=65534 --regid=65534 --clear-groups"
 if [ "$(id -u)" != 0 ] || [ -n "$as" ]; then
   msg=$($as "$bin" tube -o "$out/ro/plant.glb" 2>&1); rc=$?
-  [ $rc = 1 ] && echo "$msg" | grep -q -- "-o $out/ro/plant.glb: folder '$out/ro' is not writable" && ok ||
+  [ $rc = 2 ] && echo "$msg" | grep -q -- "-o $out/ro/plant.glb: folder '$out/ro' is not writable" && ok ||
     no "unwritable folder: rc $rc, $msg"
   cmp -s "$out/ro/plant.glb" "$out/old.bin" && ok || no "unwritable folder: the old .glb changed"
 fi
 chmod 755 "$out/ro"
 
 # A bad -o is refused before generating: no progress line on a terminal,
-# no stats, exit 1, the message names -o and the path.
+# no stats, exit 2, the message names -o and the path.
 check_o() { # check_o NEEDLE PATH
   msg=$("$bin" avenue --preset "$src/presets/avenue_boulevard.json" --stats -o "$2" 2>&1); rc=$?
-  [ $rc = 1 ] && echo "$msg" | grep -qF -- "-o $2: " && echo "$msg" | grep -qF -- "$1" &&
+  [ $rc = 2 ] && echo "$msg" | grep -qF -- "-o $2: " && echo "$msg" | grep -qF -- "$1" &&
     ! echo "$msg" | grep -q '"triangles"' && ok ||
     no "-o $2: rc $rc, $msg"
 }
@@ -74,6 +74,7 @@ mkdir -p "$out/ro.glb"
 check_o "'$out/ro.glb' is a folder" "$out/ro.glb"
 check_o "'$out/old.bin' is not a folder" "$out/old.bin/x.glb"
 check_o "must end in .glb (binary) or .gltf (JSON)" "$out/x.obj"
+check_o "the file name is 256 bytes" "$out/$(printf '%0252d' 0).glb"
 if command -v script >/dev/null; then
   msg=$(script -qec "'$bin' avenue --preset '$src/presets/avenue_boulevard.json' -o /nonexistent/dir/x.glb" /dev/null 2>&1)
   echo "$msg" | grep -q -- "-o /nonexistent/dir/x.glb" && ! echo "$msg" | grep -q '%' && ok ||
@@ -83,7 +84,7 @@ fi
 # PNG textures: a bad -o folder first, then a full disk leaves every old
 # PNG as it was, and a kill leaves no cut PNG.
 msg=$("$bin" textures -o /nonexistent/dir --size 64 2>&1); rc=$?
-[ $rc = 1 ] && echo "$msg" | grep -qF -- "-o /nonexistent/dir: folder '/nonexistent/dir' does not exist" && ok ||
+[ $rc = 2 ] && echo "$msg" | grep -qF -- "-o /nonexistent/dir: folder '/nonexistent/dir' does not exist" && ok ||
   no "textures -o: rc $rc, $msg"
 mkdir -p "$out/png" "$out/png_old"
 "$bin" textures -o "$out/png" --size 64 >/dev/null || no "textures --size 64"

@@ -35,6 +35,12 @@ BANYAN_API size_t banyan_sizeof_lod_params(void);
  * failure *out is NULL. */
 BANYAN_API banyan_status banyan_mesh_lod(const banyan_mesh *mesh, const banyan_lod_params *p, banyan_mesh **out,
                                          banyan_error *err);
+/* banyan_mesh_lod under a budget (banyan.h, banyan_budget; NULL: the
+ * defaults, which banyan_mesh_lod uses): checked between parts (the
+ * simplifier runs one part at a time) and between the billboards' trees
+ * and cards; past it BANYAN_E_LIMIT naming max_seconds or max_memory_mb. */
+BANYAN_API banyan_status banyan_mesh_lod_budget(const banyan_mesh *mesh, const banyan_lod_params *p,
+                                                const banyan_budget *budget, banyan_mesh **out, banyan_error *err);
 
 #ifdef __cplusplus
 }

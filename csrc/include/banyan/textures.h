@@ -62,6 +62,14 @@ BANYAN_API void banyan_texture_params_init(banyan_texture_params *p);
  * are NULL. The same params give the same bytes on every run. */
 BANYAN_API banyan_status banyan_texture_generate(const banyan_texture_params *p, banyan_image **base_color,
                                                  banyan_image **normal, banyan_error *err);
+/* banyan_texture_generate under a budget (banyan.h, banyan_budget; NULL:
+ * the defaults, which banyan_texture_generate uses): refused up front with
+ * BANYAN_E_LIMIT when the pictures' size (size^2 x 11 bytes with the
+ * normal map, 8 without) passes max_memory_mb, stopped with BANYAN_E_LIMIT
+ * once drawing passes max_seconds. */
+BANYAN_API banyan_status banyan_texture_generate_budget(const banyan_texture_params *p, const banyan_budget *budget,
+                                                        banyan_image **base_color, banyan_image **normal,
+                                                        banyan_error *err);
 BANYAN_API void banyan_image_free(banyan_image *image);
 
 /* PNG bytes of an image (stb_image_write, deterministic). *png is freed

@@ -1,0 +1,75 @@
+/* budget.c - the command's budget over the stages after generation: the
+ * generator's max_seconds and max_memory_mb (from --set or the preset)
+ * count from the start of generation to the end of the write, so the
+ * levels of detail, the textures and the glTF writer get what the
+ * generation left (banyan_budget), and a spent budget stops the command
+ * with BANYAN_E_LIMIT. */
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+
+static double now_s(void) {
+    struct timespec t;
+    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+/* Resident MB of this process (the library's own reader is internal). */
+static double rss_mb(void) {
+#if defined(__linux__)
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f) return 0.0;
+    unsigned long long size = 0, res = 0;
+    int n = fscanf(f, "%llu %llu", &size, &res);
+    fclose(f);
+    return n == 2 ? (double)res * 4096.0 / (1024.0 * 1024.0) : 0.0;
+#else
+    return 0.0;
+#endif
+}
+
+static double param_double(const cli_command *cmd, const void *params, const char *key, double dflt) {
+    if (cmd->generator < 0) return dflt;
+    const banyan_param_info *pi = banyan_param_find((banyan_generator)cmd->generator, key);
+    if (!pi || pi->type != BANYAN_PT_DOUBLE) return dflt;
+    double v;
+    memcpy(&v, (const char *)params + pi->offset, sizeof v);
+    return v;
+}
+
+void cli_budget_start(cli_budget *b, const cli_command *cmd, const void *params) {
+    banyan_budget d;
+    banyan_budget_init(&d);
+    b->max_seconds = param_double(cmd, params, "max_seconds", d.max_seconds);
+    b->max_memory_mb = param_double(cmd, params, "max_memory_mb", d.max_memory_mb);
+    b->t0 = now_s();
+    b->rss0_mb = rss_mb();
+}
+
+banyan_status cli_budget_left(const cli_budget *b, const char *stage, banyan_budget *out, banyan_error *err) {
+    banyan_budget_init(out);
+    double spent = now_s() - b->t0, used = rss_mb() - b->rss0_mb;
+    out->max_seconds = b->max_seconds - spent;
+    out->max_memory_mb = b->max_memory_mb - (used > 0.0 ? used : 0.0);
+    if (out->max_seconds < 0.01) {
+        if (err) {
+            err->code = BANYAN_E_LIMIT;
+            snprintf(err->message, sizeof err->message,
+                     "%s not started: %.2f s spent of max_seconds = %g; raise max_seconds or ask for less work", stage,
+                     spent, b->max_seconds);
+        }
+        return BANYAN_E_LIMIT;
+    }
+    if (out->max_memory_mb < 16.0) {
+        if (err) {
+            err->code = BANYAN_E_LIMIT;
+            snprintf(err->message, sizeof err->message,
+                     "%s not started: %.0f MB held of max_memory_mb = %g; raise max_memory_mb or ask for less work",
+                     stage, used, b->max_memory_mb);
+        }
+        return BANYAN_E_LIMIT;
+    }
+    return BANYAN_OK;
+}
