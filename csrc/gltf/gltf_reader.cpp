@@ -489,6 +489,7 @@ struct front {
 /* The JSON chunk may not pass this: a host's JSON is small (the big
  * arrays live in the binary chunk), and its parse costs memory. */
 const uint32_t kMaxJsonBytes = UINT32_C(64) << 20;
+const double kJsonTreeBytes = 48.0; /* a parsed JSON tree's bytes per byte of text, at most */
 
 bool read_all(FILE *f, void *buf, size_t n) { return n == 0 || std::fread(buf, 1, n, f) == n; }
 
@@ -496,7 +497,7 @@ bool read_all(FILE *f, void *buf, size_t n) { return n == 0 || std::fread(buf, 1
  * a file that is not a .glb, or whose header and chunk lengths disagree
  * with the file's size or pass the limits, is refused having read at most
  * 28 bytes; then the JSON chunk alone is read and scanned. */
-banyan_status read_front(const char *path, front *fr, banyan_error *err) {
+banyan_status read_front(const char *path, front *fr, prog *g, banyan_error *err) {
     /* A FIFO or a device would block or never end: regular files only. */
     struct stat sb;
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
@@ -542,6 +543,13 @@ banyan_status read_front(const char *path, front *fr, banyan_error *err) {
         fr->bin_len = bin[0];
         fr->has_bin = true;
     }
+    /* Parsing JSON holds a tree of many times its size (cJSON: about 40
+     * bytes a value, down to 2 bytes a value of text). */
+    if (g && prog_reserve(g, kJsonTreeBytes * fr->json_len)) {
+        char what[300];
+        std::snprintf(what, sizeof what, "reading the JSON of %s", path);
+        return prog_fail(g, err, what);
+    }
     fr->bytes.resize(20 + static_cast<size_t>(fr->json_len));
     std::memcpy(fr->bytes.data(), h, 20);
     if (std::fseek(fr->f, 20, SEEK_SET) != 0 || !read_all(fr->f, fr->bytes.data() + 20, fr->json_len))
@@ -566,14 +574,14 @@ banyan_status read_front(const char *path, front *fr, banyan_error *err) {
  * chunks read, tinygltf's copies of the buffers and its JSON tree, and per
  * vertex read and per triangle the merge table, positions and indices. */
 double front_memory(const front &fr) {
-    return 20.0 + fr.json_len + 8 + fr.z.bin_need + fr.z.bin_copy + 32.0 * fr.json_len + 56.0 * fr.z.vertex_reads +
+    return 20.0 + fr.json_len + 8 + fr.z.bin_need + fr.z.bin_copy + kJsonTreeBytes * fr.json_len + 56.0 * fr.z.vertex_reads +
            24.0 * fr.z.triangles;
 }
 
 banyan_status read_host(const char *path, const double *transform, int32_t closed, prog *g, banyan_host_mesh **out,
                         banyan_error *err) {
     front fr;
-    banyan_status st = read_front(path, &fr, err);
+    banyan_status st = read_front(path, &fr, g, err);
     if (st) return st;
     char what[300];
     std::snprintf(what, sizeof what, "reading %s", path);
@@ -708,13 +716,13 @@ banyan_status glb_read_host_prog(const char *path, const double transform[12], i
     return read_checked(path, transform, closed, g, out, err);
 }
 
-banyan_status glb_scan(const char *path, glb_sizes *out, banyan_error *err) {
+banyan_status glb_scan(const char *path, prog *g, glb_sizes *out, banyan_error *err) {
     if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
     *out = glb_sizes{0, 0, 0};
     if (!path || !*path) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL or empty");
     try {
         front fr;
-        banyan_status s = read_front(path, &fr, err);
+        banyan_status s = read_front(path, &fr, g, err);
         if (s) return s;
         out->triangles = static_cast<uint64_t>(fr.z.triangles);
         out->vertex_reads = static_cast<uint64_t>(fr.z.vertex_reads);

@@ -27,8 +27,8 @@ typedef struct glb_sizes {
  * path; refuses what banyan_glb_read_host would refuse from those (not a
  * .glb, sizes that disagree with the file, more than
  * BANYAN_HOSTS_MAX_TRIANGLES triangles or GLB_MAX_VERTEX_READS vertices to
- * read). */
-banyan_status glb_scan(const char *path, glb_sizes *out, banyan_error *err);
+ * read), or whose JSON would not fit the budget of g (NULL for none). */
+banyan_status glb_scan(const char *path, prog *g, glb_sizes *out, banyan_error *err);
 
 /* banyan_glb_read_host inside the budget of g (prog_budget; NULL for
  * none): refused up front when its estimate passes max_memory_mb, stopped

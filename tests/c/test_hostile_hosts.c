@@ -169,6 +169,37 @@ static void big_files(void) {
     /* The header's length disagrees with the file: refused from 28 bytes. */
     if (truncate(path_in("valid_header_2gb.glb"), (off_t)(two_gb - 4)) == 0)
         refused("valid_header_2gb.glb", BANYAN_E_PARSE, "(truncated?)", 0.5);
+    /* A JSON chunk over 64 MB is refused from its length (here a hole). */
+    fd = open(path_in("json_65mb.glb"), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+        uint32_t h[5] = {0x46546C67u, 2, 20 + (65u << 20), 65u << 20, 0x4E4F534Au};
+        CHECK(write(fd, h, 20) == 20 && ftruncate(fd, 20 + (65 << 20)) == 0, "write");
+        close(fd);
+    }
+    refused("json_65mb.glb", BANYAN_E_LIMIT, "JSON chunk has 68157440 bytes", 0.5);
+    unlink(path_in("json_65mb.glb"));
+    /* A 16 MB JSON of small numbers: its parse alone would pass 64 MB. */
+    size_t jn = (size_t)16 << 20;
+    char *big = malloc(jn + 1);
+    if (big) {
+        const char *head = "{\"asset\":{\"version\":\"2.0\",\"extras\":[0";
+        size_t hl = strlen(head);
+        memcpy(big, head, hl);
+        for (size_t i = hl; i + 4 < jn; i += 2) memcpy(big + i, ",0", 2);
+        memcpy(big + jn - 4 - (jn - hl) % 2, "]}} ", 4);
+        big[jn - (jn - hl) % 2] = '\0';
+        write_glb("json_16mb.glb", big, NULL, 0);
+        free(big);
+        banyan_host_mesh *m = NULL;
+        banyan_error e = {0, ""};
+        double t0 = now();
+        banyan_status s = banyan_glb_read_host_ex(path_in("json_16mb.glb"), NULL, -1, 10, 64, &m, &e);
+        double dt = now() - t0;
+        CHECK(s == BANYAN_E_LIMIT && !m && strstr(e.message, "reading the JSON of") &&
+                  strstr(e.message, "max_memory_mb = 64") && dt < 0.5,
+              "16 MB JSON in 64 MB: %s '%s' in %.2f s", banyan_status_name(s), e.message, dt);
+        unlink(path_in("json_16mb.glb"));
+    }
     unlink(path_in("not_gltf_2gb.glb"));
     unlink(path_in("valid_header_2gb.glb"));
 }
