@@ -507,6 +507,13 @@ def cases(banyan, presets, tmp):
     L.append(Case(8, "a roots preset naming one 1M-triangle file 150 times", "refused by the set-wide limit "
                   "before the files are read, under 100 MB", c_many, refused_small(100, "33554432")))
 
+    def c_many_cli(ctx):
+        c_many(ctx)
+        hosts = sum((["--host", out("one_m.glb") + "@%d,0,0" % i] for i in range(150)), [])
+        return [banyan, "roots"] + hosts + ["-o", out("m.glb")] + budget("roots", ctx) + quick, {}
+    L.append(Case(8, "`banyan roots --host one_m.glb@i,0,0` 150 times (a 1M-triangle file)", "refused by the "
+                  "set-wide limit, the file read once, under 100 MB", c_many_cli, refused_small(100, "33554432")))
+
     def c_esc(ctx):
         pre = write_json("esc.json", {"generator": "roots", "schema": 1,
                                       "hosts": [{"mesh": "a\u001b[2J\u001b]0;pwned\u0007.glb"}]})

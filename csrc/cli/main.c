@@ -204,28 +204,51 @@ static double host_seconds_left(const host_budget *b) {
 }
 
 /* Reads the --host meshes into read[] (caller frees) and extra[] (their
- * structs, for the host-set calls), within the budget b. */
+ * structs, for the host-set calls), within the budget b. A file named
+ * again is read once (its later entries share the first's arrays, moved),
+ * and the set-wide triangle limit is kept as the files are read. */
 static int read_host_args(const cli_command *cmd, const char **specs, int n, banyan_host_mesh **read,
                           banyan_host_mesh *extra, const host_budget *b) {
-    for (int i = 0; i < n; i++) {
-        char path[4096];
-        double t[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, at[3] = {0, 0, 0};
-        if (!host_spec(specs[i], path, sizeof path, at)) {
+    double(*ats)[3] = calloc((size_t)n + 1, sizeof *ats);
+    char(*paths)[4096] = calloc((size_t)n + 1, sizeof *paths);
+    uint64_t tris = 0;
+    int ok = ats && paths;
+    for (int i = 0; ok && i < n; i++) {
+        double t[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        if (!host_spec(specs[i], paths[i], sizeof paths[i], ats[i])) {
             fprintf(stderr, "banyan %s: --host %s: expected FILE.glb or FILE.glb@x,y,z (metres, each within "
                     "[-1e6, 1e6])\n", cmd->name, specs[i]);
-            return 0;
+            ok = 0;
+            break;
         }
-        t[3] = at[0], t[7] = at[1], t[11] = at[2];
-        banyan_error err = {0, ""};
-        if (banyan_glb_read_host_ex(path, t, BANYAN_HOST_CLOSED_AUTO, host_seconds_left(b), b->max_memory_mb, &read[i],
-                                    &err)) {
-            fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
-                    banyan_status_name((banyan_status)err.code), err.message);
-            return 0;
+        t[3] = ats[i][0], t[7] = ats[i][1], t[11] = ats[i][2];
+        int j = 0;
+        while (j < i && (!read[j] || strcmp(paths[j], paths[i]))) j++;
+        if (j < i) {
+            extra[i] = *read[j];
+            for (int r = 0; r < 3; r++) extra[i].transform[4 * r + 3] += ats[i][r] - ats[j][r];
+        } else {
+            banyan_error err = {0, ""};
+            if (banyan_glb_read_host_ex(paths[i], t, BANYAN_HOST_CLOSED_AUTO, host_seconds_left(b), b->max_memory_mb,
+                                        &read[i], &err)) {
+                fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
+                        banyan_status_name((banyan_status)err.code), err.message);
+                ok = 0;
+                break;
+            }
+            extra[i] = *read[i];
         }
-        extra[i] = *read[i];
+        tris += extra[i].triangle_count;
+        if (tris > BANYAN_HOSTS_MAX_TRIANGLES) {
+            fprintf(stderr, "banyan %s: --host %s: with it the --host meshes hold %llu triangles; a host set takes at "
+                    "most %u (decimate, or use fewer or box hosts)\n", cmd->name, specs[i],
+                    (unsigned long long)tris, BANYAN_HOSTS_MAX_TRIANGLES);
+            ok = 0;
+        }
     }
-    return 1;
+    free(ats);
+    free(paths);
+    return ok;
 }
 
 /* -o names a .glb or .gltf file (the library's rule) that can be
