@@ -469,6 +469,13 @@ int main(int argc, char **argv) {
             goto out;
         }
     }
+    /* The hosts' reading came out of the run's max_seconds: the generator
+     * gets what is left, so the command keeps the one budget. */
+    if (hb.deadline_ms > 0 && banyan_param_find(g, "max_seconds")) {
+        char left[32];
+        snprintf(left, sizeof left, "%.3f", host_seconds_left(&hb));
+        banyan_param_set_text(g, params, "max_seconds", left, NULL);
+    }
     if (!host_set && job.n_hosts == 0 && cmd->default_hosts) cmd->default_hosts(&job);
 
     cli_stats st;
