@@ -737,7 +737,7 @@ banyan_status glb_scan(const char *path, prog *g, glb_sizes *out, banyan_error *
 
 extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
                                                          banyan_host_mesh **out, banyan_error *err) {
-    return read_checked(path, transform, closed, nullptr, out, err);
+    return banyan_glb_read_host_ex(path, transform, closed, PROG_MAX_SECONDS_DEFAULT, PROG_MAX_MEMORY_DEFAULT, out, err);
 }
 
 extern "C" BANYAN_API banyan_status banyan_glb_read_host_ex(const char *path, const double transform[12], int32_t closed,
