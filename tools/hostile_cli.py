@@ -433,6 +433,127 @@ def cases(banyan, presets, tmp):
                   lambda ctx: ([banyan, "keyaki", "--preset", P("keyaki_mature.json"), "-o",
                                 out("a" * 252 + ".glb")] + quick, {}),
                   lambda r, c: (r.rc == 2 and not r.cut and r.wall < 0.5 and "file name is 256 bytes" in r.err, "")))
+
+    # 8. Hostile host files and presets: refused from their sizes, inside the budget, messages escaped.
+    def glb(name, doc, bin_len, bin_bytes=b"", size=None):
+        """A .glb of the JSON doc and a BIN chunk of bin_len bytes (bin_bytes, then zeros left as a sparse
+        hole); size: a larger file (sparse) whose header says so."""
+        js = json.dumps(doc).encode()
+        js += b" " * (-len(js) % 4)
+        bl = bin_len + (-bin_len % 4)
+        total = 20 + len(js) + (8 + bl if bin_len else 0)
+        with open(out(name), "wb") as f:
+            f.write(struct.pack("<4sIIII", b"glTF", 2, size or total, len(js), 0x4E4F534A) + js)
+            if bin_len:
+                f.write(struct.pack("<II", bl, 0x004E4942) + bin_bytes)
+            f.truncate(size or total)
+        return out(name)
+
+    def mesh_doc(nodes=1, prims=None, accessors=None, views=None, buffer_len=96):
+        return {"asset": {"version": "2.0"}, "scenes": [{"nodes": list(range(nodes))}],
+                "nodes": [{"mesh": 0, "translation": [i, 0, 0]} for i in range(nodes)],
+                "meshes": [{"primitives": prims or [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+                "buffers": [{"byteLength": buffer_len}],
+                "bufferViews": views or [{"buffer": 0, "byteLength": 48},
+                                         {"buffer": 0, "byteOffset": 48, "byteLength": 48}],
+                "accessors": accessors or [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                                           {"bufferView": 1, "componentType": 5125, "count": 12, "type": "SCALAR"}]}
+    tet = struct.pack("<12f12I", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3)
+
+    def roots_host(path, extra=()):
+        return [banyan, "roots", "--host", path, "-o", out("h.glb")] + list(extra) + budget("roots", {}) + quick
+
+    def refused_small(limit_mb, *words):
+        def judge(r, ctx):
+            ok, note = refused_judge(*words)(r, ctx)
+            return ok and r.rss_mb is not None and r.rss_mb <= limit_mb, note
+        return judge
+
+    def c_wrap(ctx):
+        d = mesh_doc()
+        d["accessors"][0].update(byteOffset=2 ** 64 - 64 * 2 ** 20, count=5592406)
+        return roots_host(glb("wrap.glb", d, 96, tet)), {}
+    L.append(Case(8, "`banyan roots --host wrap.glb`: an accessor at byteOffset 2^64 - 64 MiB whose end wraps to "
+                  "byte 8", "refused (no crash), naming the accessor", c_wrap, refused_judge("reaches past")))
+
+    def c_mode(ctx):
+        d = mesh_doc()
+        d["meshes"][0]["primitives"][0]["mode"] = -5
+        return roots_host(glb("mode.glb", d, 96, tet)), {}
+    L.append(Case(8, "`banyan roots --host mode.glb`: primitive mode -5", "refused, naming the mode",
+                  c_mode, refused_judge("mode = -5")))
+
+    def c_not_gltf(ctx):
+        with open(out("zip.glb"), "wb") as f:
+            f.write(b"PK\x03\x04 not glTF")
+            f.truncate(2 * 10 ** 9)
+        return roots_host(out("zip.glb")), {}
+    L.append(Case(8, "`banyan roots --host zip.glb`: a 2 GB file that is not glTF",
+                  "refused from its 12-byte header, under 100 MB", c_not_gltf,
+                  refused_small(100, "does not start with")))
+
+    def c_big_header(ctx):
+        d = mesh_doc(buffer_len=2 * 10 ** 9 - 2048,
+                     views=[{"buffer": 0, "byteLength": 12000000},
+                            {"buffer": 0, "byteOffset": 12000000, "byteLength": 150000000}],
+                     accessors=[{"bufferView": 0, "componentType": 5126, "count": 1000000, "type": "VEC3"},
+                                {"bufferView": 1, "componentType": 5121, "count": 150000000, "type": "SCALAR"}])
+        return roots_host(glb("big.glb", d, 2 * 10 ** 9 - 2048, size=None)), {}
+    L.append(Case(8, "`banyan roots --host big.glb`: a valid header and JSON on 2 GB (50 M triangles)",
+                  "refused from its JSON before the 2 GB are read, under 100 MB", c_big_header,
+                  refused_small(100, "33554432")))
+
+    def instanced(name, nodes):
+        d = mesh_doc(nodes=nodes, prims=[{"attributes": {"POSITION": 0}}], buffer_len=1199988,
+                     views=[{"buffer": 0, "byteLength": 1199988}],
+                     accessors=[{"bufferView": 0, "componentType": 5126, "count": 99999, "type": "VEC3"}])
+        return glb(name, d, 1199988)
+    L.append(Case(8, "`banyan roots --host inst.glb --set max_memory_mb=64 --set max_seconds=2`: 100 nodes "
+                  "instancing one 100k-vertex mesh (1.2 MB)", "stops within 2.5 s under 100 MB",
+                  lambda ctx: (roots_host(instanced("inst.glb", 100), ["--set", "max_memory_mb=64"]), {}),
+                  budget_judge(100)))
+    L.append(Case(8, "`banyan roots --host inst2000.glb`: 2,000 nodes instancing one 100k-vertex mesh",
+                  "refused from its JSON, counting the instances", lambda ctx: (
+                      roots_host(instanced("inst2000.glb", 2000)), {}), refused_small(100, "instance")))
+
+    def c_shared(ctx):
+        d = mesh_doc(prims=[{"attributes": {"POSITION": 0}, "indices": 1}] * 5000, buffer_len=2400012,
+                     views=[{"buffer": 0, "byteLength": 2400000},
+                            {"buffer": 0, "byteOffset": 2400000, "byteLength": 12}],
+                     accessors=[{"bufferView": 0, "componentType": 5126, "count": 200000, "type": "VEC3"},
+                                {"bufferView": 1, "componentType": 5125, "count": 3, "type": "SCALAR"}])
+        return roots_host(glb("shared.glb", d, 2400012)), {}
+    L.append(Case(8, "`banyan roots --host shared.glb`: 5,000 primitives sharing one 200k-vertex accessor",
+                  "refused from its JSON, counting the vertex reads", c_shared,
+                  refused_small(100, "vertices to read")))
+
+    def c_many(ctx):
+        d = mesh_doc(buffer_len=3000036, views=[{"buffer": 0, "byteLength": 36},
+                                                {"buffer": 0, "byteOffset": 36, "byteLength": 3000000}],
+                     accessors=[{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                                {"bufferView": 1, "componentType": 5121, "count": 3000000, "type": "SCALAR"}])
+        glb("one_m.glb", d, 3000036)
+        pre = write_json("many.json", {"generator": "roots", "schema": 1, "hosts": [{"mesh": "one_m.glb"}] * 150})
+        return [banyan, "roots", "--preset", pre, "-o", out("m.glb")] + budget("roots", ctx) + quick, {}
+    L.append(Case(8, "a roots preset naming one 1M-triangle file 150 times", "refused by the set-wide limit "
+                  "before the files are read, under 100 MB", c_many, refused_small(100, "33554432")))
+
+    def c_many_cli(ctx):
+        c_many(ctx)
+        hosts = sum((["--host", out("one_m.glb") + "@%d,0,0" % i] for i in range(150)), [])
+        return [banyan, "roots"] + hosts + ["-o", out("m.glb")] + budget("roots", ctx) + quick, {}
+    L.append(Case(8, "`banyan roots --host one_m.glb@i,0,0` 150 times (a 1M-triangle file)", "refused by the "
+                  "set-wide limit, the file read once, under 100 MB", c_many_cli, refused_small(100, "33554432")))
+
+    def c_esc(ctx):
+        pre = write_json("esc.json", {"generator": "roots", "schema": 1,
+                                      "hosts": [{"mesh": "a\u001b[2J\u001b]0;pwned\u0007.glb"}]})
+        return [banyan, "roots", "--preset", pre, "-o", out("e.glb")] + quick, {}
+    def j_esc(r, ctx):
+        ok = r.rc > 0 and not r.cut and "\x1b" not in r.err and "\\x1b[2J" in r.err
+        return ok, "" if ok else "control characters reached the terminal"
+    L.append(Case(8, "a preset whose mesh path holds ESC sequences", "refused with the path's control characters "
+                  "escaped (\\x1b)", c_esc, j_esc))
     return L
 
 

@@ -171,28 +171,84 @@ static int host_spec(const char *spec, char *path, size_t cap, double t[3]) {
     return 1;
 }
 
+/* The run's budget (max_seconds, max_memory_mb) as the preset and the
+ * --set pairs give it, read before the --set pairs are applied so that
+ * reading the hosts keeps it too; 600 s and 8192 MB without one. */
+typedef struct host_budget {
+    double deadline_ms, max_memory_mb;
+} host_budget;
+
+static host_budget host_budget_of(banyan_generator g, const void *params, size_t size, const char **sets, int n) {
+    double v[2] = {600, 8192};
+    static const char *const keys[2] = {"max_seconds", "max_memory_mb"};
+    void *probe = malloc(size ? size : 1);
+    for (int k = 0; probe && k < 2; k++) {
+        const banyan_param_info *info = banyan_param_find(g, keys[k]);
+        if (!info) continue;
+        memcpy(probe, params, size);
+        size_t kl = strlen(keys[k]);
+        for (int i = 0; i < n; i++)
+            if (!strncmp(sets[i], keys[k], kl) && sets[i][kl] == '=')
+                banyan_param_set_text(g, probe, keys[k], sets[i] + kl + 1, NULL); /* refused later, naming it */
+        memcpy(&v[k], (const char *)probe + info->offset, sizeof v[k]);
+    }
+    free(probe);
+    host_budget b = {now_ms() + 1000.0 * v[0], v[1]};
+    return b;
+}
+
+/* The seconds left of b, at least the smallest budget. */
+static double host_seconds_left(const host_budget *b) {
+    double s = (b->deadline_ms - now_ms()) / 1000.0;
+    return s > 0.01 ? s : 0.01;
+}
+
 /* Reads the --host meshes into read[] (caller frees) and extra[] (their
- * structs, for the host-set calls). */
+ * structs, for the host-set calls), within the budget b. A file named
+ * again is read once (its later entries share the first's arrays, moved),
+ * and the set-wide triangle limit is kept as the files are read. */
 static int read_host_args(const cli_command *cmd, const char **specs, int n, banyan_host_mesh **read,
-                          banyan_host_mesh *extra) {
-    for (int i = 0; i < n; i++) {
-        char path[4096];
-        double t[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, at[3] = {0, 0, 0};
-        if (!host_spec(specs[i], path, sizeof path, at)) {
+                          banyan_host_mesh *extra, const host_budget *b) {
+    double(*ats)[3] = calloc((size_t)n + 1, sizeof *ats);
+    char(*paths)[4096] = calloc((size_t)n + 1, sizeof *paths);
+    uint64_t tris = 0;
+    int ok = ats && paths;
+    for (int i = 0; ok && i < n; i++) {
+        double t[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        if (!host_spec(specs[i], paths[i], sizeof paths[i], ats[i])) {
             fprintf(stderr, "banyan %s: --host %s: expected FILE.glb or FILE.glb@x,y,z (metres, each within "
                     "[-1e6, 1e6])\n", cmd->name, specs[i]);
-            return 0;
+            ok = 0;
+            break;
         }
-        t[3] = at[0], t[7] = at[1], t[11] = at[2];
-        banyan_error err = {0, ""};
-        if (banyan_glb_read_host(path, t, BANYAN_HOST_CLOSED_AUTO, &read[i], &err)) {
-            fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
-                    banyan_status_name((banyan_status)err.code), err.message);
-            return 0;
+        t[3] = ats[i][0], t[7] = ats[i][1], t[11] = ats[i][2];
+        int j = 0;
+        while (j < i && (!read[j] || strcmp(paths[j], paths[i]))) j++;
+        if (j < i) {
+            extra[i] = *read[j];
+            for (int r = 0; r < 3; r++) extra[i].transform[4 * r + 3] += ats[i][r] - ats[j][r];
+        } else {
+            banyan_error err = {0, ""};
+            if (banyan_glb_read_host_ex(paths[i], t, BANYAN_HOST_CLOSED_AUTO, host_seconds_left(b), b->max_memory_mb,
+                                        &read[i], &err)) {
+                fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
+                        banyan_status_name((banyan_status)err.code), err.message);
+                ok = 0;
+                break;
+            }
+            extra[i] = *read[i];
         }
-        extra[i] = *read[i];
+        tris += extra[i].triangle_count;
+        if (tris > BANYAN_HOSTS_MAX_TRIANGLES) {
+            fprintf(stderr, "banyan %s: --host %s: with it the --host meshes hold %llu triangles; a host set takes at "
+                    "most %u (decimate, or use fewer or box hosts)\n", cmd->name, specs[i],
+                    (unsigned long long)tris, BANYAN_HOSTS_MAX_TRIANGLES);
+            ok = 0;
+        }
     }
-    return 1;
+    free(ats);
+    free(paths);
+    return ok;
 }
 
 /* -o names a .glb or .gltf file (the library's rule) that can be
@@ -334,6 +390,7 @@ int main(int argc, char **argv) {
     }
     cmd->init(params);
     banyan_generator g = (banyan_generator)cmd->generator;
+    host_budget hb = {0, 8192};
     if (job.preset_path) {
         char why[4200];
         text = read_preset(job.preset_path, &job.preset_len, why, sizeof why);
@@ -358,21 +415,24 @@ int main(int argc, char **argv) {
             hs = banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts,
                                      &err);
         if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
-            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra)) goto out;
+            hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) goto out;
             const char *slash = strrchr(job.preset_path, '/');
             char dir[4096] = ".";
             if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
                 snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
                          job.preset_path);
-            hs = banyan_preset_host_set(text, job.preset_len, job.preset_path, dir, host_extra, (uint32_t)n_host_args,
-                                        &host_set, &err);
+            hs = banyan_preset_host_set_ex(text, job.preset_len, job.preset_path, dir, host_extra,
+                                           (uint32_t)n_host_args, host_seconds_left(&hb), hb.max_memory_mb, &host_set,
+                                           &err);
         }
         if (hs) {
             fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
             goto out;
         }
     } else if (n_host_args) {
-        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra)) goto out;
+        hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) goto out;
         if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
             fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
             goto out;
@@ -409,6 +469,13 @@ int main(int argc, char **argv) {
             fprintf(stderr, "banyan %s: --set %s: %s\n", cmd->name, sets[i], err.message);
             goto out;
         }
+    }
+    /* The hosts' reading came out of the run's max_seconds: the generator
+     * gets what is left, so the command keeps the one budget. */
+    if (hb.deadline_ms > 0 && banyan_param_find(g, "max_seconds")) {
+        char left[32];
+        snprintf(left, sizeof left, "%.3f", host_seconds_left(&hb));
+        banyan_param_set_text(g, params, "max_seconds", left, NULL);
     }
     if (!host_set && job.n_hosts == 0 && cmd->default_hosts) cmd->default_hosts(&job);
 

@@ -19,8 +19,12 @@
  * UV seams and hard edges, which would open a closed mesh). No exception
  * leaves this file.
  */
+#include "gltf/gltf_reader.h"
+
 #include "banyan.h"
 #include "core/error.h"
+
+#include <cjson/cJSON.h>
 
 #include <tiny_gltf.h>
 
@@ -29,9 +33,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <sys/stat.h>
 #include <unordered_map>
@@ -139,6 +145,8 @@ struct reader {
     const char *path;
     const tinygltf::Model &model;
     banyan_error *err;
+    prog *g;                      /* the budget, or NULL */
+    const char *what;             /* "reading <path>", for prog_fail */
     std::vector<float> pos;       /* 3 per vertex, Z up */
     std::vector<uint32_t> tri;    /* 3 per triangle */
     std::unordered_map<vkey, uint32_t, vkey_hash> weld;
@@ -150,7 +158,11 @@ struct reader {
     bool have_off = false;
     uint64_t primitives = 0, skipped = 0; /* primitives seen; of those, not triangles */
 
-    reader(const char *p, const tinygltf::Model &m, banyan_error *e) : path(p), model(m), err(e) {}
+    reader(const char *p, const tinygltf::Model &m, banyan_error *e, prog *gp, const char *w)
+        : path(p), model(m), err(e), g(gp), what(w) {}
+
+    /* Every 64k elements: 1 (err filled) once the budget is spent. */
+    bool stopped(size_t k) { return (k & 0xFFFF) == 0xFFFF && g && prog_at(g, g->last); }
 
     /* The bytes of accessor `a`: element k starts at base + k * stride and
      * has `elem` bytes. Checks the accessor, view and buffer bounds. */
@@ -169,14 +181,24 @@ struct reader {
                         acc.bufferView, view.buffer);
         const auto &buf = model.buffers[static_cast<size_t>(view.buffer)].data;
         size_t st = view.byteStride ? view.byteStride : elem;
-        uint64_t need = acc.count ? static_cast<uint64_t>(acc.byteOffset) +
-                                        static_cast<uint64_t>(st) * (acc.count - 1) + elem
-                                  : 0;
-        if (st < elem || view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset ||
+        /* Every sum and product checked: offsets near 2^64 from a crafted
+         * file must not wrap the end back into the buffer. */
+        uint64_t need = 0;
+        bool wraps = false;
+        if (acc.count) {
+            uint64_t last = 0;
+            wraps = __builtin_mul_overflow(static_cast<uint64_t>(st), static_cast<uint64_t>(acc.count - 1), &last) ||
+                    __builtin_add_overflow(last, static_cast<uint64_t>(elem), &last) ||
+                    __builtin_add_overflow(last, static_cast<uint64_t>(acc.byteOffset), &need);
+        } else if (acc.byteOffset > view.byteLength) {
+            wraps = true;
+        }
+        if (st < elem || wraps || view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset ||
             need > view.byteLength)
             return banyan_fail(err, BANYAN_E_PARSE,
-                        "%s: mesh %d primitive %zu: %s (%zu elements) reaches past its buffer view or buffer", path,
-                        mesh, prim, what, acc.count);
+                        "%s: mesh %d primitive %zu: %s (%zu elements from byte %zu, stride %zu) reaches past its "
+                        "buffer view (%zu bytes from byte %zu) or buffer (%zu bytes)", path, mesh, prim, what,
+                        acc.count, acc.byteOffset, st, view.byteLength, view.byteOffset, buf.size());
         *base = buf.data() + view.byteOffset + acc.byteOffset;
         *stride = st;
         *count = acc.count;
@@ -187,6 +209,11 @@ struct reader {
         const auto &gm = model.meshes[static_cast<size_t>(mesh)];
         const tinygltf::Primitive &p = gm.primitives[pi];
         ++primitives;
+        /* -1: no "mode" given, glTF's default (triangles). */
+        if (p.mode < -1 || p.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: mesh %d primitive %zu: mode = %d is not a glTF primitive mode "
+                        "(0 .. 6): banyan reads triangles (4, the default), strips (5) and fans (6), and skips points "
+                        "and lines (0 .. 3)", path, mesh, pi, p.mode);
         int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -221,6 +248,7 @@ struct reader {
         /* This primitive's vertices, transformed and merged. */
         std::vector<uint32_t> local(nv);
         for (size_t k = 0; k < nv; ++k) {
+            if (stopped(k)) return prog_fail(g, err, what);
             float f[3];
             std::memcpy(f, pb + k * pstride, sizeof f);
             double w[3];
@@ -265,6 +293,7 @@ struct reader {
             if ((s = span(p.indices, mesh, pi, "indices", es, &ib, &istride, &ni))) return s;
             idx.resize(ni);
             for (size_t k = 0; k < ni; ++k) {
+                if (stopped(k)) return prog_fail(g, err, what);
                 const unsigned char *e = ib + k * istride;
                 uint32_t v = es == 1 ? e[0] : es == 2 ? static_cast<uint32_t>(e[0] | e[1] << 8) : 0;
                 if (es == 4) std::memcpy(&v, e, 4);
@@ -285,6 +314,7 @@ struct reader {
                         BANYAN_HOSTS_MAX_TRIANGLES);
         tri.reserve(tri.size() + 3 * nt);
         for (size_t t = 0; t < nt; ++t) {
+            if (stopped(t)) return prog_fail(g, err, what);
             uint32_t a, b, c;
             if (mode == TINYGLTF_MODE_TRIANGLES) {
                 a = idx[3 * t], b = idx[3 * t + 1], c = idx[3 * t + 2];
@@ -348,53 +378,240 @@ bool ignorable_extension(const std::string &e) {
            e == "EXT_texture_webp";
 }
 
-banyan_status read_host(const char *path, const double *transform, int32_t closed, banyan_host_mesh **out,
-                        banyan_error *err) {
+/* cJSON's number k of o when it is >= 0 (whole, at most 2^53), else dflt. */
+double count_of(const cJSON *o, const char *k, double dflt) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, k);
+    if (!cJSON_IsNumber(v) || !(v->valuedouble >= 0)) return dflt;
+    return std::floor(std::min(v->valuedouble, 9007199254740992.0)); /* a count past 2^53 is refused later */
+}
+
+/* What the JSON chunk asks of the reader, before the binary chunk is read:
+ * the triangles and POSITION reads of every node instance of every
+ * primitive reached from the scene (the walk's rules: default scene, or
+ * every root node), and the bytes of the binary chunk that the buffers
+ * use (bin_need) and copy (bin_copy). References that do not exist are
+ * left for the full read to refuse. Returns 0 when the text is not JSON. */
+struct json_sizes {
+    double triangles = 0, vertex_reads = 0, bin_need = 0, bin_copy = 0;
+};
+
+bool scan_json(const char *text, size_t len, json_sizes *z) {
+    cJSON *j = preset_json_parse(text, len, nullptr);
+    if (!j) return false;
+    const cJSON *accs = cJSON_GetObjectItemCaseSensitive(j, "accessors");
+    const cJSON *meshes = cJSON_GetObjectItemCaseSensitive(j, "meshes");
+    const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(j, "nodes");
+    const cJSON *scenes = cJSON_GetObjectItemCaseSensitive(j, "scenes");
+    const cJSON *bufs = cJSON_GetObjectItemCaseSensitive(j, "buffers");
+    std::vector<double> acount;
+    for (const cJSON *a = cJSON_IsArray(accs) ? accs->child : nullptr; a; a = a->next)
+        acount.push_back(count_of(a, "count", 0));
+    auto count_at = [&](const cJSON *o, const char *k) -> double {
+        double i = count_of(o, k, -1);
+        return i >= 0 && i < static_cast<double>(acount.size()) ? acount[static_cast<size_t>(i)] : -1;
+    };
+    std::vector<double> mtri, mreads; /* per mesh, one instance */
+    for (const cJSON *m = cJSON_IsArray(meshes) ? meshes->child : nullptr; m; m = m->next) {
+        double t = 0, r = 0;
+        const cJSON *prims = cJSON_GetObjectItemCaseSensitive(m, "primitives");
+        for (const cJSON *p = cJSON_IsArray(prims) ? prims->child : nullptr; p; p = p->next) {
+            double mode = count_of(p, "mode", TINYGLTF_MODE_TRIANGLES);
+            const cJSON *attrs = cJSON_GetObjectItemCaseSensitive(p, "attributes");
+            double nv = cJSON_IsObject(attrs) ? count_at(attrs, "POSITION") : -1;
+            if (nv < 0 || mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) continue;
+            double ni = cJSON_GetObjectItemCaseSensitive(p, "indices") ? count_at(p, "indices") : nv;
+            if (ni < 0) ni = 0;
+            r += nv;
+            t += mode == TINYGLTF_MODE_TRIANGLES ? std::floor(ni / 3) : ni >= 3 ? ni - 2 : 0;
+        }
+        mtri.push_back(t);
+        mreads.push_back(r);
+    }
+    std::vector<const cJSON *> node;
+    for (const cJSON *n = cJSON_IsArray(nodes) ? nodes->child : nullptr; n; n = n->next) node.push_back(n);
+    std::vector<size_t> stack;
+    auto push_all = [&](const cJSON *list) {
+        for (const cJSON *c = cJSON_IsArray(list) ? list->child : nullptr; c; c = c->next)
+            if (cJSON_IsNumber(c) && c->valuedouble >= 0 && c->valuedouble < static_cast<double>(node.size()))
+                stack.push_back(static_cast<size_t>(c->valuedouble));
+    };
+    if (cJSON_IsArray(scenes) && scenes->child) {
+        double sc = count_of(j, "scene", 0);
+        const cJSON *scene = sc < cJSON_GetArraySize(scenes) ? cJSON_GetArrayItem(scenes, static_cast<int>(sc)) : nullptr;
+        if (scene) push_all(cJSON_GetObjectItemCaseSensitive(scene, "nodes"));
+    } else {
+        std::vector<char> child(node.size(), 0);
+        for (const cJSON *n : node) {
+            const cJSON *ch = cJSON_GetObjectItemCaseSensitive(n, "children");
+            for (const cJSON *c = cJSON_IsArray(ch) ? ch->child : nullptr; c; c = c->next)
+                if (cJSON_IsNumber(c) && c->valuedouble >= 0 && c->valuedouble < static_cast<double>(node.size()))
+                    child[static_cast<size_t>(c->valuedouble)] = 1;
+        }
+        for (size_t i = 0; i < node.size(); ++i)
+            if (!child[i]) stack.push_back(i);
+    }
+    std::vector<char> seen(node.size(), 0);
+    while (!stack.empty()) {
+        size_t n = stack.back();
+        stack.pop_back();
+        if (seen[n]++) continue; /* the walk refuses it */
+        double m = count_of(node[n], "mesh", -1);
+        if (m >= 0 && m < static_cast<double>(mtri.size())) {
+            z->triangles += mtri[static_cast<size_t>(m)];
+            z->vertex_reads += mreads[static_cast<size_t>(m)];
+        }
+        push_all(cJSON_GetObjectItemCaseSensitive(node[n], "children"));
+    }
+    for (const cJSON *b = cJSON_IsArray(bufs) ? bufs->child : nullptr; b; b = b->next)
+        if (!cJSON_GetObjectItemCaseSensitive(b, "uri")) {
+            double l = count_of(b, "byteLength", 0);
+            z->bin_need = std::max(z->bin_need, l);
+            z->bin_copy += l;
+        }
+    cJSON_Delete(j);
+    return true;
+}
+
+/* An open .glb whose header, chunk headers and JSON chunk are read and
+ * checked; the binary chunk is left in the file. */
+struct front {
+    FILE *f = nullptr;
+    uint64_t size = 0;
+    std::vector<unsigned char> bytes; /* the 20-byte header, then the JSON chunk */
+    uint32_t json_len = 0, bin_len = 0;
+    bool has_bin = false;
+    json_sizes z;
+    ~front() {
+        if (f) std::fclose(f);
+    }
+};
+
+/* The JSON chunk may not pass this: a host's JSON is small (the big
+ * arrays live in the binary chunk), and its parse costs memory. */
+const uint32_t kMaxJsonBytes = UINT32_C(64) << 20;
+const double kJsonTreeBytes = 48.0; /* a parsed JSON tree's bytes per byte of text, at most */
+
+bool read_all(FILE *f, void *buf, size_t n) { return n == 0 || std::fread(buf, 1, n, f) == n; }
+
+/* Opens path and reads its sizes from the header before anything else:
+ * a file that is not a .glb, or whose header and chunk lengths disagree
+ * with the file's size or pass the limits, is refused having read at most
+ * 28 bytes; then the JSON chunk alone is read and scanned. */
+banyan_status read_front(const char *path, front *fr, prog *g, banyan_error *err) {
     /* A FIFO or a device would block or never end: regular files only. */
     struct stat sb;
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
         return banyan_fail(err, BANYAN_E_IO, "%s: not a regular file", path);
-    FILE *f = std::fopen(path, "rb");
-    if (!f) return banyan_fail(err, BANYAN_E_IO, "%s: cannot open: %s", path, std::strerror(errno));
-    std::vector<unsigned char> bytes;
-    long size = -1;
-    if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
-    if (size < 0 || std::fseek(f, 0, SEEK_SET) != 0) {
-        std::fclose(f);
+    fr->f = std::fopen(path, "rb");
+    if (!fr->f) return banyan_fail(err, BANYAN_E_IO, "%s: cannot open: %s", path, std::strerror(errno));
+    if (fstat(fileno(fr->f), &sb) != 0 || !S_ISREG(sb.st_mode))
         return banyan_fail(err, BANYAN_E_IO, "%s: cannot read (not a regular file?)", path);
-    }
-    if (static_cast<uint64_t>(size) > kMaxFileBytes) {
-        std::fclose(f);
-        return banyan_fail(err, BANYAN_E_LIMIT, "%s: %ld bytes is more than the %llu a .glb may have here", path, size,
-                    static_cast<unsigned long long>(kMaxFileBytes));
-    }
-    bytes.resize(static_cast<size_t>(size));
-    size_t got = size ? std::fread(bytes.data(), 1, bytes.size(), f) : 0;
-    std::fclose(f);
-    if (got != bytes.size()) return banyan_fail(err, BANYAN_E_IO, "%s: read %zu of %ld bytes", path, got, size);
-    if (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0)
+    fr->size = static_cast<uint64_t>(sb.st_size);
+    unsigned char h[20] = {0};
+    size_t got = std::fread(h, 1, fr->size < 20 ? static_cast<size_t>(fr->size) : 20, fr->f);
+    if (got < 12 || std::memcmp(h, "glTF", 4) != 0)
         return banyan_fail(err, BANYAN_E_PARSE, "%s: not a glTF binary (.glb) file: it does not start with \"glTF\"%s", path,
-                    !bytes.empty() && bytes[0] == '{' ? " (a .gltf JSON file? export it as .glb)" : "");
-
-    /* The container, checked here in full: tinygltf 2.7 lets a BIN chunk
-     * run up to its 8-byte header past the end of the data. */
-    uint32_t hdr[5] = {0, 0, 0, 0, 0};
-    std::memcpy(hdr, bytes.data(), bytes.size() < 20 ? 12 : 20);
+                    got && h[0] == '{' ? " (a .gltf JSON file? export it as .glb)" : "");
+    uint32_t hdr[5];
+    std::memcpy(hdr, h, 20);
     if (hdr[1] != 2)
         return banyan_fail(err, BANYAN_E_PARSE, "%s: glTF binary version %u (banyan reads version 2)", path, hdr[1]);
-    if (hdr[2] != bytes.size())
-        return banyan_fail(err, BANYAN_E_PARSE, "%s: the header says %u bytes but the file has %zu (truncated?)", path,
-                    hdr[2], bytes.size());
-    if (bytes.size() < 20 || hdr[4] != 0x4E4F534Au || hdr[3] == 0 || hdr[3] > bytes.size() - 20)
+    if (fr->size > kMaxFileBytes)
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: %llu bytes is more than the %llu a .glb may have here", path,
+                    static_cast<unsigned long long>(fr->size), static_cast<unsigned long long>(kMaxFileBytes));
+    if (hdr[2] != fr->size)
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: the header says %u bytes but the file has %llu (truncated?)", path,
+                    hdr[2], static_cast<unsigned long long>(fr->size));
+    /* tinygltf 2.7 lets a BIN chunk run up to its 8-byte header past the
+     * end of the data: every length is checked here. */
+    if (got < 20 || hdr[4] != 0x4E4F534Au || hdr[3] == 0 || hdr[3] > fr->size - 20)
         return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the JSON chunk is missing or truncated", path);
-    size_t next = 20 + static_cast<size_t>(hdr[3]);
-    if (next < bytes.size()) {
+    if (hdr[3] > kMaxJsonBytes)
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: its JSON chunk has %u bytes; banyan reads at most %u (a host's "
+                    "geometry belongs in the binary chunk)", path, hdr[3], kMaxJsonBytes);
+    fr->json_len = hdr[3];
+    uint64_t next = 20 + static_cast<uint64_t>(hdr[3]);
+    if (next < fr->size) {
         uint32_t bin[2] = {0, 0};
-        if (bytes.size() - next >= 8) std::memcpy(bin, bytes.data() + next, 8);
-        if (bytes.size() - next < 8 || bin[0] > bytes.size() - next - 8)
+        if (fr->size - next < 8 || std::fseek(fr->f, static_cast<long>(next), SEEK_SET) != 0 || !read_all(fr->f, bin, 8) ||
+            bin[0] > fr->size - next - 8)
             return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the chunk after the JSON runs past the end "
                         "of the file", path);
+        if (bin[1] != 0x004E4942u || bin[0] < 4 || bin[0] % 4)
+            return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: the chunk after the JSON is not a BIN "
+                        "chunk of a whole number of 4-byte words", path);
+        fr->bin_len = bin[0];
+        fr->has_bin = true;
     }
+    /* Parsing JSON holds a tree of many times its size (cJSON: about 40
+     * bytes a value, down to 2 bytes a value of text). */
+    if (g && prog_reserve(g, kJsonTreeBytes * fr->json_len)) {
+        char what[300];
+        std::snprintf(what, sizeof what, "reading the JSON of %s", path);
+        return prog_fail(g, err, what);
+    }
+    fr->bytes.resize(20 + static_cast<size_t>(fr->json_len));
+    std::memcpy(fr->bytes.data(), h, 20);
+    if (std::fseek(fr->f, 20, SEEK_SET) != 0 || !read_all(fr->f, fr->bytes.data() + 20, fr->json_len))
+        return banyan_fail(err, BANYAN_E_IO, "%s: cannot read its JSON chunk: %s", path, std::strerror(errno));
+    if (!scan_json(reinterpret_cast<const char *>(fr->bytes.data() + 20), fr->json_len, &fr->z))
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: its JSON chunk is not valid JSON", path);
+    if (fr->z.triangles > BANYAN_HOSTS_MAX_TRIANGLES)
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: %.0f triangles (each node's instance counted); a host takes at most "
+                    "%u (BANYAN_HOSTS_MAX_TRIANGLES): decimate, or instance fewer", path,
+                    fr->z.triangles, BANYAN_HOSTS_MAX_TRIANGLES);
+    if (fr->z.vertex_reads > static_cast<double>(GLB_MAX_VERTEX_READS))
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: %.0f vertices to read (each node's instance of each primitive's "
+                    "POSITION); at most %llu: decimate, or instance fewer", path, fr->z.vertex_reads,
+                    static_cast<unsigned long long>(GLB_MAX_VERTEX_READS));
+    if (fr->z.bin_need > fr->bin_len)
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: a buffer of %.0f bytes is longer than the "
+                    "%u-byte BIN chunk", path, fr->z.bin_need, fr->bin_len);
+    return BANYAN_OK;
+}
+
+/* The most the read holds at once, in bytes (an upper estimate): the
+ * chunks read, tinygltf's copies of the buffers and its JSON tree, and per
+ * vertex read and per triangle the merge table, positions and indices. */
+double front_memory(const front &fr) {
+    return 20.0 + fr.json_len + 8 + fr.z.bin_need + fr.z.bin_copy + kJsonTreeBytes * fr.json_len + 56.0 * fr.z.vertex_reads +
+           24.0 * fr.z.triangles;
+}
+
+banyan_status read_host(const char *path, const double *transform, int32_t closed, prog *g, banyan_host_mesh **out,
+                        banyan_error *err) {
+    front fr;
+    banyan_status st = read_front(path, &fr, g, err);
+    if (st) return st;
+    char what[300];
+    std::snprintf(what, sizeof what, "reading %s", path);
+    if (g && prog_reserve(g, front_memory(fr))) return prog_fail(g, err, what);
+    /* The binary chunk: only the bytes the buffers use, read in pieces
+     * the budget can stop between. tinygltf gets the header, the JSON and
+     * a BIN chunk of that length. */
+    size_t need = static_cast<size_t>(fr.z.bin_need + 3) & ~static_cast<size_t>(3);
+    std::vector<unsigned char> bytes;
+    bytes.swap(fr.bytes);
+    if (fr.has_bin && need) {
+        size_t at = bytes.size();
+        bytes.resize(at + 8 + need);
+        uint32_t bin[2] = {static_cast<uint32_t>(need), 0x004E4942u};
+        std::memcpy(bytes.data() + at, bin, 8);
+        at += 8;
+        if (std::fseek(fr.f, static_cast<long>(28 + fr.json_len), SEEK_SET) != 0)
+            return banyan_fail(err, BANYAN_E_IO, "%s: cannot read: %s", path, std::strerror(errno));
+        for (size_t done = 0; done < need;) {
+            size_t piece = std::min(need - done, static_cast<size_t>(8) << 20);
+            if (!read_all(fr.f, bytes.data() + at + done, piece))
+                return banyan_fail(err, BANYAN_E_IO, "%s: read %zu of %zu bytes of its BIN chunk", path, done, need);
+            done += piece;
+            if (g && prog_at(g, g->last)) return prog_fail(g, err, what);
+        }
+    }
+    std::fclose(fr.f);
+    fr.f = nullptr;
+    uint32_t glb_length = static_cast<uint32_t>(bytes.size());
+    std::memcpy(bytes.data() + 8, &glb_length, 4);
 
     std::string dir(path);
     size_t slash = dir.find_last_of('/');
@@ -433,7 +650,7 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (!child[i]) roots.push_back(static_cast<int>(i));
     }
-    reader r(path, model, err);
+    reader r(path, model, err, g, what);
     banyan_status s = r.walk(roots);
     if (s) return s;
     size_t nt = r.tri.size() / 3, nv = r.pos.size() / 3;
@@ -468,10 +685,10 @@ banyan_status read_host(const char *path, const double *transform, int32_t close
     return BANYAN_OK;
 }
 
-} // namespace
 
-extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
-                                                         banyan_host_mesh **out, banyan_error *err) {
+/* The public calls' checks, then read_host; no exception leaves. */
+banyan_status read_checked(const char *path, const double transform[12], int32_t closed, prog *g, banyan_host_mesh **out,
+                           banyan_error *err) {
     if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
     *out = nullptr;
     if (!path || !*path) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL or empty");
@@ -481,14 +698,59 @@ extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const
         if (!std::isfinite(transform[i]))
             return banyan_fail(err, BANYAN_E_RANGE, "transform[%d] = %g must be finite", i, transform[i]);
     try {
-        return read_host(path, transform, closed, out, err);
+        return read_host(path, transform, closed, g, out, err);
     } catch (const std::bad_alloc &) {
         return banyan_fail(err, BANYAN_E_NOMEM, "%s: out of memory", path);
-    } catch (const std::exception &x) {
-        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: %.160s", path, x.what());
+    } catch (const std::length_error &) {
+        return banyan_fail(err, BANYAN_E_LIMIT, "%s: a size in the file is larger than this machine can hold", path);
     } catch (...) {
-        return banyan_fail(err, BANYAN_E_INTERNAL, "%s: unexpected exception while reading", path);
+        /* Library internals (std::exception::what) mean nothing to a user. */
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: a value in it stopped the reader", path);
     }
+}
+
+} // namespace
+
+banyan_status glb_read_host_prog(const char *path, const double transform[12], int32_t closed, prog *g,
+                                 banyan_host_mesh **out, banyan_error *err) {
+    return read_checked(path, transform, closed, g, out, err);
+}
+
+banyan_status glb_scan(const char *path, prog *g, glb_sizes *out, banyan_error *err) {
+    if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
+    *out = glb_sizes{0, 0, 0};
+    if (!path || !*path) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL or empty");
+    try {
+        front fr;
+        banyan_status s = read_front(path, &fr, g, err);
+        if (s) return s;
+        out->triangles = static_cast<uint64_t>(fr.z.triangles);
+        out->vertex_reads = static_cast<uint64_t>(fr.z.vertex_reads);
+        out->memory = front_memory(fr);
+        return BANYAN_OK;
+    } catch (const std::bad_alloc &) {
+        return banyan_fail(err, BANYAN_E_NOMEM, "%s: out of memory", path);
+    } catch (...) {
+        return banyan_fail(err, BANYAN_E_PARSE, "%s: not a valid glTF binary: a value in it stopped the reader", path);
+    }
+}
+
+extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
+                                                         banyan_host_mesh **out, banyan_error *err) {
+    return banyan_glb_read_host_ex(path, transform, closed, PROG_MAX_SECONDS_DEFAULT, PROG_MAX_MEMORY_DEFAULT, out, err);
+}
+
+extern "C" BANYAN_API banyan_status banyan_glb_read_host_ex(const char *path, const double transform[12], int32_t closed,
+                                                            double max_seconds, double max_memory_mb,
+                                                            banyan_host_mesh **out, banyan_error *err) {
+    if (out) *out = nullptr;
+    if (banyan_check_range(err, "max_seconds", max_seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, "s") ||
+        banyan_check_range(err, "max_memory_mb", max_memory_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX, "MB"))
+        return static_cast<banyan_status>(err ? err->code : BANYAN_E_RANGE);
+    prog g;
+    prog_init(&g, nullptr);
+    prog_budget(&g, max_seconds, max_memory_mb);
+    return read_checked(path, transform, closed, &g, out, err);
 }
 
 extern "C" BANYAN_API void banyan_host_mesh_free(banyan_host_mesh *mesh) { std::free(mesh); }

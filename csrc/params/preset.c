@@ -12,7 +12,9 @@
 #include <cjson/cJSON.h>
 
 #include "../core/error.h"
+#include "../core/progress.h"
 #include "../core/vec.h"
+#include "../gltf/gltf_reader.h"
 #include "params.h"
 
 #define PRESET_MAX_DEPTH 16
@@ -117,6 +119,15 @@ static int given_before(const cJSON *obj, const cJSON *c) {
  * parses so that concurrent calls on distinct texts stay race-free. */
 static pthread_mutex_t json_lock = PTHREAD_MUTEX_INITIALIZER;
 
+cJSON *preset_json_parse(const char *text, size_t len, const char **end) {
+    const char *e = NULL;
+    pthread_mutex_lock(&json_lock);
+    cJSON *j = cJSON_ParseWithLengthOpts(text, len, &e, 0);
+    pthread_mutex_unlock(&json_lock);
+    if (end) *end = e;
+    return j;
+}
+
 banyan_status preset_parse(const char *text, size_t len, const char *source, cJSON **root, banyan_error *err) {
     *root = NULL;
     if (!source) source = "<preset>";
@@ -128,9 +139,7 @@ banyan_status preset_parse(const char *text, size_t len, const char *source, cJS
     banyan_status s = prescan(text, len, source, err);
     if (s) return s;
     const char *end = NULL;
-    pthread_mutex_lock(&json_lock);
-    cJSON *j = cJSON_ParseWithLengthOpts(text, len, &end, 0);
-    pthread_mutex_unlock(&json_lock);
+    cJSON *j = preset_json_parse(text, len, &end);
     size_t off = end && end >= text && end <= text + len ? (size_t)(end - text) : len;
     if (!j)
         return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: malformed JSON (truncated file or syntax error)", source,
@@ -384,14 +393,23 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
             return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].scale[%d] = %g must be within [1e-6, 1e6] in "
                                "size (a negative scale mirrors)", w, i, a, sc[a]);
     }
-    /* The rotation is checked as a box's is: one rule, one message. */
-    banyan_box probe = banyan_box_make(0, 0, 0, 1, 1, 1);
-    memcpy(probe.rotation, rot, sizeof rot);
-    banyan_status s = banyan_box_validate(&probe, i, err);
-    if (s) {
-        banyan_error_prefix(err, w);
-        return s;
-    }
+    /* A rotation, as a box's, but a mesh host has "scale" for scale and
+     * mirroring, so the messages say so. */
+    for (int a = 0; a < 9; a++)
+        if (!isfinite(rot[a]))
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation[%d] = %g must be finite", w, i, a, rot[a]);
+    m3 rm = m3_load(rot);
+    for (int c = 0; c < 3; c++)
+        for (int d = c; d < 3; d++) {
+            double dot = v3_dot(m3_col(&rm, c), m3_col(&rm, d)), want = c == d ? 1.0 : 0.0;
+            if (fabs(dot - want) > 1e-3)
+                return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation is not a rotation (column %d . "
+                                   "column %d = %g, want %g): give the scale in \"scale\" and a pure rotation",
+                                   w, i, c, d, dot, want);
+        }
+    if (m3_det(&rm) < 0)
+        return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation has determinant %g: give a proper rotation "
+                           "(det +1) and mirror with a negative \"scale\"", w, i, m3_det(&rm));
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++) transform[4 * r + c] = rot[3 * r + c] * sc[c];
         transform[4 * r + 3] = t[r];
@@ -437,8 +455,9 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
         uint32_t i = 0;
         for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++)
             if (mesh_member(h))
-                s = banyan_fail(err, BANYAN_E_UNSUPPORTED, "%shosts[%u] is a mesh host; read this preset's hosts "
-                                "with banyan_preset_host_set (banyan_preset_hosts reads boxes only)", w, i);
+                s = banyan_fail(err, BANYAN_E_UNSUPPORTED, "%shosts[%u] is a mesh host (\"mesh\"), and only boxes "
+                                "are read here: mesh hosts are for the generators that grow on meshes (roots, ivy); "
+                                "give this one as a box (center, half)", w, i);
         if (!s && n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts is more than the %u allowed", w, n, cap);
         i = 0;
         for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++) s = read_box(h, i, w, &out[i], err);
@@ -451,14 +470,58 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
     return s;
 }
 
+/* How the set numbers host k of banyan_hosts_create's messages ("hosts[K]
+ * (mesh M) ...") in the preset's terms: its message is rewritten to start
+ * "hosts[i]" (the preset's entry) or "--host / extra mesh j", keeping the
+ * cause whole. Other messages get a short "host set: " prefix. */
+static void name_set_host(banyan_error *err, const char *source, const uint32_t *entry, uint32_t nm, uint32_t n_extra) {
+    if (!err) return;
+    unsigned k = 0, mi = 0;
+    int used = 0;
+    if (sscanf(err->message, "hosts[%u] (mesh %u)%n", &k, &mi, &used) == 2 && used > 0 && mi < nm + n_extra) {
+        char head[80];
+        if (mi < nm) snprintf(head, sizeof head, "hosts[%u]", entry[mi]);
+        else snprintf(head, sizeof head, "extra mesh %u (after the preset's hosts)", mi - nm);
+        size_t h = strlen(head), r = strlen(err->message + used), cap = sizeof err->message - 1;
+        if (h + r > cap) r = cap - h;
+        memmove(err->message + h, err->message + used, r);
+        memcpy(err->message, head, h);
+        err->message[h + r] = '\0';
+    }
+    char pre[300];
+    snprintf(pre, sizeof pre, "%s: host set: ", source);
+    banyan_error_prefix(err, pre);
+}
+
 banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source, const char *base_dir,
                                      const banyan_host_mesh *extra, uint32_t n_extra, banyan_hosts **out,
                                      banyan_error *err) {
+    return banyan_preset_host_set_ex(text, length, source, base_dir, extra, n_extra, PROG_MAX_SECONDS_DEFAULT,
+                                     PROG_MAX_MEMORY_DEFAULT, out, err);
+}
+
+/* What banyan_hosts_create holds per triangle and per vertex of its meshes
+ * (positions, normals, twins, caps, Embree's tree), for the memory
+ * estimate made before it runs: an upper bound, about twice the 119 bytes
+ * a triangle (vertices included) measured on a 560k-triangle mesh. */
+#define HOST_SET_BYTES_PER_TRIANGLE 160.0
+#define HOST_SET_BYTES_PER_VERTEX 48.0
+
+banyan_status banyan_preset_host_set_ex(const char *text, size_t length, const char *source, const char *base_dir,
+                                        const banyan_host_mesh *extra, uint32_t n_extra, double max_seconds,
+                                        double max_memory_mb, banyan_hosts **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (n_extra && !extra) return banyan_fail(err, BANYAN_E_INVALID_ARG, "extra is NULL but n_extra = %u", n_extra);
+    banyan_status s;
+    if ((s = banyan_check_range(err, "max_seconds", max_seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, "s")) ||
+        (s = banyan_check_range(err, "max_memory_mb", max_memory_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX, "MB")))
+        return s;
     if (!source) source = "<preset>";
+    prog g;
+    prog_init(&g, NULL);
+    prog_budget(&g, max_seconds, max_memory_mb);
     cJSON *j;
-    banyan_status s = preset_parse(text, length, source, &j, err);
+    s = preset_parse(text, length, source, &j, err);
     if (s) return s;
     const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
     char w[300];
@@ -489,6 +552,13 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
         s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
         goto done;
     }
+    /* First every entry checked and every mesh file's sizes read from its
+     * header and JSON: the set-wide limits and the memory estimate hold
+     * before any file is read whole (one file named by many entries counts
+     * once per entry). */
+    uint64_t set_tris = 0, set_verts = 0;
+    double set_bytes = 0;
+    for (uint32_t k = 0; k < n_extra; k++) set_tris += extra[k].triangle_count, set_verts += extra[k].vertex_count;
     uint32_t i = 0;
     for (const cJSON *h = hosts ? hosts->child : NULL; h; h = h->next, i++) {
         if (!mesh_member(h)) {
@@ -499,8 +569,45 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
         where_nth(wm, sizeof wm, source, text, length, "mesh", (int)nm);
         double transform[12];
         int32_t closed;
+        glb_sizes z;
         if ((s = read_mesh_entry(h, i, wm, base_dir, &path, transform, &closed, err))) goto done;
-        s = banyan_glb_read_host(path, transform, closed, &read[nm], err);
+        s = glb_scan(path, &g, &z, err);
+        free(path);
+        if (s) {
+            char pre[340];
+            snprintf(pre, sizeof pre, "%shosts[%u]: ", wm, i);
+            banyan_error_prefix(err, pre);
+            goto done;
+        }
+        set_tris += z.triangles, set_verts += z.vertex_reads;
+        set_bytes += z.memory + HOST_SET_BYTES_PER_TRIANGLE * (double)z.triangles;
+        if (set_tris > BANYAN_HOSTS_MAX_TRIANGLES) {
+            s = banyan_fail(err, BANYAN_E_LIMIT, "%shosts[%u]: with it the mesh hosts hold %llu triangles (each entry "
+                            "counted, also when entries name one file); a host set takes at most %u (decimate, or "
+                            "use fewer or box hosts)", wm, i, (unsigned long long)set_tris, BANYAN_HOSTS_MAX_TRIANGLES);
+            goto done;
+        }
+        if (prog_at(&g, 0.0)) {
+            s = prog_fail(&g, err, "reading the preset's mesh hosts");
+            goto done;
+        }
+        nm++;
+    }
+    set_bytes += HOST_SET_BYTES_PER_VERTEX * (double)set_verts;
+    if (prog_reserve(&g, set_bytes)) {
+        s = prog_fail(&g, err, "building the host set (estimated from the mesh files' headers)");
+        banyan_error_prefix(err, w);
+        goto done;
+    }
+    nm = 0, i = 0;
+    for (const cJSON *h = hosts ? hosts->child : NULL; h; h = h->next, i++) {
+        if (!mesh_member(h)) continue;
+        char wm[300], *path = NULL;
+        where_nth(wm, sizeof wm, source, text, length, "mesh", (int)nm);
+        double transform[12];
+        int32_t closed;
+        if ((s = read_mesh_entry(h, i, wm, base_dir, &path, transform, &closed, err))) goto done;
+        s = glb_read_host_prog(path, transform, closed, &g, &read[nm], err);
         free(path);
         if (s) {
             char pre[340];
@@ -526,19 +633,15 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
         entry[nm++] = i;
     }
     if (n_extra) memcpy(meshes + nm, extra, sizeof *extra * n_extra);
-    s = banyan_hosts_create(boxes, nb, meshes, nm + n_extra, out, err);
-    if (s) {
-        /* The set numbers boxes first; say which preset entry it was. */
-        char pre[400];
-        snprintf(pre, sizeof pre, "%s: host set (%u boxes, then %u meshes: preset hosts", source, nb, nm);
-        size_t len = strlen(pre);
-        for (uint32_t k = 0; k < nm && len + 16 < sizeof pre; k++)
-            len += (size_t)snprintf(pre + len, sizeof pre - len, "%s%u", k ? ", " : " ", entry[k]);
-        snprintf(pre + len, sizeof pre - len, "%s): ", n_extra ? ", then the extra meshes" : "");
-        banyan_error_prefix(err, pre);
-    } else {
-        banyan_error_clear(err);
+    /* The build itself cannot be stopped half way: it starts only with time
+     * left, and the estimate above covered its memory. */
+    if (prog_at(&g, 0.5)) {
+        s = prog_fail(&g, err, "reading the preset's mesh hosts");
+        goto done;
     }
+    s = banyan_hosts_create(boxes, nb, meshes, nm + n_extra, out, err);
+    if (s) name_set_host(err, source, entry, nm, n_extra);
+    else banyan_error_clear(err);
 done:
     for (uint32_t k = 0; read && k < n; k++) banyan_host_mesh_free(read[k]);
     free(read);

@@ -230,6 +230,8 @@ static inline void fz_check_failure(banyan_status s, const banyan_error *e, cons
     FZ_ASSERT(e->code == (int32_t)s, "err.code %d for status %d", e->code, (int)s);
     FZ_ASSERT(memchr(e->message, 0, sizeof e->message) != NULL, "message not terminated");
     FZ_ASSERT(e->message[0] != 0, "empty message for %s", banyan_status_name(s));
+    for (const unsigned char *c = (const unsigned char *)e->message; *c; c++) /* printed escaped */
+        FZ_ASSERT(*c >= 0x20 && *c != 0x7F, "control character 0x%02x in: %s", *c, e->message);
     FZ_ASSERT(out == NULL, "out is not NULL after %s", banyan_status_name(s));
 }
 
