@@ -203,6 +203,15 @@ static double host_seconds_left(const host_budget *b) {
     return s > 0.01 ? s : 0.01;
 }
 
+/* What is left of b, as the library's host-reading calls take it. */
+static banyan_budget host_budget_left(const host_budget *b) {
+    banyan_budget out;
+    banyan_budget_init(&out);
+    out.max_seconds = host_seconds_left(b);
+    out.max_memory_mb = b->max_memory_mb;
+    return out;
+}
+
 /* Reads the --host meshes into read[] (caller frees) and extra[] (their
  * structs, for the host-set calls), within the budget b. A file named
  * again is read once (its later entries share the first's arrays, moved),
@@ -229,8 +238,8 @@ static int read_host_args(const cli_command *cmd, const char **specs, int n, ban
             for (int r = 0; r < 3; r++) extra[i].transform[4 * r + 3] += ats[i][r] - ats[j][r];
         } else {
             banyan_error err = {0, ""};
-            if (banyan_glb_read_host_ex(paths[i], t, BANYAN_HOST_CLOSED_AUTO, host_seconds_left(b), b->max_memory_mb,
-                                        &read[i], &err)) {
+            banyan_budget left = host_budget_left(b);
+            if (banyan_glb_read_host_budget(paths[i], t, BANYAN_HOST_CLOSED_AUTO, &left, &read[i], &err)) {
                 fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
                         banyan_status_name((banyan_status)err.code), err.message);
                 ok = 0;
@@ -422,9 +431,9 @@ int main(int argc, char **argv) {
             if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
                 snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
                          job.preset_path);
-            hs = banyan_preset_host_set_ex(text, job.preset_len, job.preset_path, dir, host_extra,
-                                           (uint32_t)n_host_args, host_seconds_left(&hb), hb.max_memory_mb, &host_set,
-                                           &err);
+            banyan_budget left = host_budget_left(&hb);
+            hs = banyan_preset_host_set_budget(text, job.preset_len, job.preset_path, dir, host_extra,
+                                               (uint32_t)n_host_args, &left, &host_set, &err);
         }
         if (hs) {
             fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);

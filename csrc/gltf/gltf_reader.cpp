@@ -737,19 +737,16 @@ banyan_status glb_scan(const char *path, prog *g, glb_sizes *out, banyan_error *
 
 extern "C" BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
                                                          banyan_host_mesh **out, banyan_error *err) {
-    return banyan_glb_read_host_ex(path, transform, closed, PROG_MAX_SECONDS_DEFAULT, PROG_MAX_MEMORY_DEFAULT, out, err);
+    return banyan_glb_read_host_budget(path, transform, closed, nullptr, out, err);
 }
 
-extern "C" BANYAN_API banyan_status banyan_glb_read_host_ex(const char *path, const double transform[12], int32_t closed,
-                                                            double max_seconds, double max_memory_mb,
-                                                            banyan_host_mesh **out, banyan_error *err) {
+extern "C" BANYAN_API banyan_status banyan_glb_read_host_budget(const char *path, const double transform[12],
+                                                                int32_t closed, const banyan_budget *budget,
+                                                                banyan_host_mesh **out, banyan_error *err) {
     if (out) *out = nullptr;
-    if (banyan_check_range(err, "max_seconds", max_seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, "s") ||
-        banyan_check_range(err, "max_memory_mb", max_memory_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX, "MB"))
-        return static_cast<banyan_status>(err ? err->code : BANYAN_E_RANGE);
     prog g;
-    prog_init(&g, nullptr);
-    prog_budget(&g, max_seconds, max_memory_mb);
+    banyan_status s = prog_budget_from(&g, budget, err);
+    if (s != BANYAN_OK) return s;
     return read_checked(path, transform, closed, &g, out, err);
 }
 

@@ -1,7 +1,7 @@
 /* gltf_reader.h - the .glb reader's calls inside the library (the public
- * ones are banyan_glb_read_host and banyan_glb_read_host_ex in banyan.h):
+ * ones are banyan_glb_read_host and banyan_glb_read_host_budget in banyan.h):
  * a look at a file's sizes from its header and JSON alone, and a read
- * inside a budget shared by several files (banyan_preset_host_set_ex). */
+ * inside a budget shared by several files (banyan_preset_host_set_budget). */
 #ifndef BANYAN_GLTF_READER_H
 #define BANYAN_GLTF_READER_H
 

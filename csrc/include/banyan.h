@@ -100,7 +100,8 @@ typedef struct banyan_progress {
 
 /* The budget of a call whose params carry none (banyan_mesh_lod_budget,
  * banyan_texture_generate_budget, banyan_gltf_write_ex_budget,
- * banyan_gltf_write_nodes_budget), with the generators' meaning and ranges
+ * banyan_gltf_write_nodes_budget, banyan_glb_read_host_budget,
+ * banyan_preset_host_set_budget), with the generators' meaning and ranges
  * (docs/api.md "Budgets"): past max_seconds of wall time, or max_memory_mb
  * of resident memory above the process's at the call, the call stops (or
  * refuses up front, when its size says so) with BANYAN_E_LIMIT naming the
@@ -467,18 +468,16 @@ struct banyan_hosts;
  * *out == NULL. */
 BANYAN_API banyan_status banyan_glb_read_host(const char *path, const double transform[12], int32_t closed,
                                               struct banyan_host_mesh **out, banyan_error *err);
-/* banyan_glb_read_host inside a budget, as the generators' max_seconds
- * (0.01 .. 604800 s) and max_memory_mb (16 .. 1048576 MB of resident
- * memory above the process's at the call); banyan_glb_read_host has 600 s
- * and 8192 MB. The sizes are read from the file's header and JSON before
+/* banyan_glb_read_host inside a budget (banyan_budget; NULL: the
+ * defaults, which banyan_glb_read_host uses). The sizes are read from the file's header and JSON before
  * its binary chunk: a file whose triangles (every node's instance
  * counted), vertices to read (at most 3 * BANYAN_HOSTS_MAX_TRIANGLES) or
  * memory estimate pass the limits is refused before the read
  * (BANYAN_E_LIMIT naming the limit); a read that runs out of time or
  * memory stops with BANYAN_E_LIMIT naming max_seconds or max_memory_mb. */
-BANYAN_API banyan_status banyan_glb_read_host_ex(const char *path, const double transform[12], int32_t closed,
-                                                 double max_seconds, double max_memory_mb,
-                                                 struct banyan_host_mesh **out, banyan_error *err);
+BANYAN_API banyan_status banyan_glb_read_host_budget(const char *path, const double transform[12], int32_t closed,
+                                                     const banyan_budget *budget, struct banyan_host_mesh **out,
+                                                     banyan_error *err);
 /* Frees a mesh from banyan_glb_read_host; accepts NULL. */
 BANYAN_API void banyan_host_mesh_free(struct banyan_host_mesh *mesh);
 
@@ -505,16 +504,16 @@ BANYAN_API void banyan_host_mesh_free(struct banyan_host_mesh *mesh);
 BANYAN_API banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source,
                                                 const char *base_dir, const struct banyan_host_mesh *extra,
                                                 uint32_t n_extra, struct banyan_hosts **out, banyan_error *err);
-/* banyan_preset_host_set inside one budget for the whole call (as
- * banyan_glb_read_host_ex; banyan_preset_host_set has 600 s and 8192 MB):
+/* banyan_preset_host_set inside one budget for the whole call
+ * (banyan_budget; NULL: the defaults, which banyan_preset_host_set uses):
  * every mesh file's sizes are read from its header first, and the set-wide
  * limits (BANYAN_HOSTS_MAX_TRIANGLES over all meshes, however many entries
  * name one file) and the memory estimate are checked before any file is
  * read whole. */
-BANYAN_API banyan_status banyan_preset_host_set_ex(const char *text, size_t length, const char *source,
-                                                   const char *base_dir, const struct banyan_host_mesh *extra,
-                                                   uint32_t n_extra, double max_seconds, double max_memory_mb,
-                                                   struct banyan_hosts **out, banyan_error *err);
+BANYAN_API banyan_status banyan_preset_host_set_budget(const char *text, size_t length, const char *source,
+                                                       const char *base_dir, const struct banyan_host_mesh *extra,
+                                                       uint32_t n_extra, const banyan_budget *budget,
+                                                       struct banyan_hosts **out, banyan_error *err);
 
 /* ----------------------------------------------------------- glTF export */
 

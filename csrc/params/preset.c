@@ -496,8 +496,7 @@ static void name_set_host(banyan_error *err, const char *source, const uint32_t 
 banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source, const char *base_dir,
                                      const banyan_host_mesh *extra, uint32_t n_extra, banyan_hosts **out,
                                      banyan_error *err) {
-    return banyan_preset_host_set_ex(text, length, source, base_dir, extra, n_extra, PROG_MAX_SECONDS_DEFAULT,
-                                     PROG_MAX_MEMORY_DEFAULT, out, err);
+    return banyan_preset_host_set_budget(text, length, source, base_dir, extra, n_extra, NULL, out, err);
 }
 
 /* What banyan_hosts_create holds per triangle and per vertex of its meshes
@@ -507,19 +506,15 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
 #define HOST_SET_BYTES_PER_TRIANGLE 160.0
 #define HOST_SET_BYTES_PER_VERTEX 48.0
 
-banyan_status banyan_preset_host_set_ex(const char *text, size_t length, const char *source, const char *base_dir,
-                                        const banyan_host_mesh *extra, uint32_t n_extra, double max_seconds,
-                                        double max_memory_mb, banyan_hosts **out, banyan_error *err) {
+banyan_status banyan_preset_host_set_budget(const char *text, size_t length, const char *source, const char *base_dir,
+                                            const banyan_host_mesh *extra, uint32_t n_extra,
+                                            const banyan_budget *budget, banyan_hosts **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (n_extra && !extra) return banyan_fail(err, BANYAN_E_INVALID_ARG, "extra is NULL but n_extra = %u", n_extra);
-    banyan_status s;
-    if ((s = banyan_check_range(err, "max_seconds", max_seconds, PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX, "s")) ||
-        (s = banyan_check_range(err, "max_memory_mb", max_memory_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX, "MB")))
-        return s;
-    if (!source) source = "<preset>";
     prog g;
-    prog_init(&g, NULL);
-    prog_budget(&g, max_seconds, max_memory_mb);
+    banyan_status s = prog_budget_from(&g, budget, err);
+    if (s) return s;
+    if (!source) source = "<preset>";
     cJSON *j;
     s = preset_parse(text, length, source, &j, err);
     if (s) return s;

@@ -21,6 +21,9 @@
 #include "banyan.h"
 #include "check.h"
 
+/* A budget of s seconds and mb megabytes, for the _budget calls. */
+#define budget(s, mb) (&(banyan_budget){(s), (mb)})
+
 static char outdir[1024];
 
 static const char *path_in(const char *name) {
@@ -193,7 +196,7 @@ static void big_files(void) {
         banyan_host_mesh *m = NULL;
         banyan_error e = {0, ""};
         double t0 = now();
-        banyan_status s = banyan_glb_read_host_ex(path_in("json_16mb.glb"), NULL, -1, 10, 64, &m, &e);
+        banyan_status s = banyan_glb_read_host_budget(path_in("json_16mb.glb"), NULL, -1, budget(10, 64), &m, &e);
         double dt = now() - t0;
         CHECK(s == BANYAN_E_LIMIT && !m && strstr(e.message, "reading the JSON of") &&
                   strstr(e.message, "max_memory_mb = 64") && dt < 0.5,
@@ -250,7 +253,7 @@ static void counted_work(void) {
     banyan_host_mesh *m = NULL;
     banyan_error e = {0, ""};
     double t0 = now();
-    banyan_status s = banyan_glb_read_host_ex(path_in("inst_100.glb"), NULL, -1, 2, 64, &m, &e);
+    banyan_status s = banyan_glb_read_host_budget(path_in("inst_100.glb"), NULL, -1, budget(2, 64), &m, &e);
     double dt = now() - t0;
     CHECK(s == BANYAN_E_LIMIT && !m && strstr(e.message, "max_memory_mb = 64") && strstr(e.message, "inst_100.glb") &&
               dt < 0.5,
@@ -258,21 +261,21 @@ static void counted_work(void) {
     /* Within the memory budget but not the time: stopped while it reads. */
     write_instanced("inst_20.glb", 20, 99999);
     t0 = now();
-    s = banyan_glb_read_host_ex(path_in("inst_20.glb"), NULL, -1, 0.01, 4096, &m, &e);
+    s = banyan_glb_read_host_budget(path_in("inst_20.glb"), NULL, -1, budget(0.01, 4096), &m, &e);
     dt = now() - t0;
     CHECK(s == BANYAN_E_LIMIT && !m && strstr(e.message, "max_seconds = 0.01") && dt < 0.5,
           "inst_20 in 0.01 s: %s '%s' in %.2f s", banyan_status_name(s), e.message, dt);
     /* The budget's own range is checked, naming it. */
-    s = banyan_glb_read_host_ex(path_in("good.glb"), NULL, -1, 0, 64, &m, &e);
+    s = banyan_glb_read_host_budget(path_in("good.glb"), NULL, -1, budget(0, 64), &m, &e);
     CHECK(s == BANYAN_E_RANGE && !m && strstr(e.message, "max_seconds"), "max_seconds 0: %s", e.message);
-    s = banyan_glb_read_host_ex(path_in("good.glb"), NULL, -1, 10, 64, &m, &e);
+    s = banyan_glb_read_host_budget(path_in("good.glb"), NULL, -1, budget(10, 64), &m, &e);
     CHECK(s == BANYAN_OK && m && m->triangle_count == 4, "good.glb within a budget: %s", e.message);
     banyan_host_mesh_free(m);
 }
 
 static banyan_status preset_set(const char *text, const char *source, double max_s, double max_mb, banyan_hosts **H,
                                 banyan_error *e) {
-    return banyan_preset_host_set_ex(text, strlen(text), source, outdir, NULL, 0, max_s, max_mb, H, e);
+    return banyan_preset_host_set_budget(text, strlen(text), source, outdir, NULL, 0, budget(max_s, max_mb), H, e);
 }
 
 /* Many entries naming one 1 M-triangle file: the set-wide limit holds
@@ -372,7 +375,7 @@ static void messages(void) {
               !strstr(e.message, "\302\233") && strstr(e.message, "a\\x1b[2J\\xc2\\x9bb\\x07.glb") &&
               strstr(e.message, "esc\\x1b]0;title\\x07.json"),
           "controls: '%s'", e.message);
-    s = banyan_glb_read_host_ex("tab\there\n.glb", NULL, -1, 10, 64, (banyan_host_mesh **)&H, &e);
+    s = banyan_glb_read_host_budget("tab\there\n.glb", NULL, -1, budget(10, 64), (banyan_host_mesh **)&H, &e);
     CHECK(s == BANYAN_E_IO && strstr(e.message, "tab\\x09here\\x0a.glb"), "tab and newline: '%s'", e.message);
     /* Text that is already UTF-8 stays as it is. */
     banyan_fail(&e, BANYAN_E_IO, "caf\xc3\xa9 \xe6\x9c\xa8.glb");

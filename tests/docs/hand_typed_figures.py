@@ -55,6 +55,10 @@ ALLOW = [
     ("docs/keyaki.md", "in sleeps of 50 us growing to 2 ms"),
     # limits and block sizes stated by the code
     ("docs/gltf.md", "a few 512 KiB blocks ahead"),
+    # the .glb reader's JSON cap and read piece (csrc/gltf/gltf_reader.cpp)
+    ("docs/api.md", "(at most 64 MB), from which"),
+    ("docs/formats.md", "then the JSON chunk (at most 64 MB) is read"),
+    ("docs/api.md", "every 8 MB read and every 65,536"),
     ("docs/gltf.md", "on the file every 64 MiB"),
     # a viewer call's argument
     ("docs/game-engines.md", "freeze the clock at 2.5 s"),
