@@ -463,9 +463,16 @@ def cases(banyan, presets, tmp):
     def roots_host(path, extra=()):
         return [banyan, "roots", "--host", path, "-o", out("h.glb")] + list(extra) + budget("roots", {}) + quick
 
-    def refused_small(limit_mb, *words):
+    def refused_2(*words):
+        """refused_judge, with exit code 2: host files are refused as a bad command line."""
         def judge(r, ctx):
             ok, note = refused_judge(*words)(r, ctx)
+            return ok and r.rc == 2, note if r.rc == 2 else "exit %d, not 2" % r.rc
+        return judge
+
+    def refused_small(limit_mb, *words):
+        def judge(r, ctx):
+            ok, note = refused_2(*words)(r, ctx)
             return ok and r.rss_mb is not None and r.rss_mb <= limit_mb, note
         return judge
 
@@ -474,14 +481,14 @@ def cases(banyan, presets, tmp):
         d["accessors"][0].update(byteOffset=2 ** 64 - 64 * 2 ** 20, count=5592406)
         return roots_host(glb("wrap.glb", d, 96, tet)), {}
     L.append(Case(8, "`banyan roots --host wrap.glb`: an accessor at byteOffset 2^64 - 64 MiB whose end wraps to "
-                  "byte 8", "refused (no crash), naming the accessor", c_wrap, refused_judge("reaches past")))
+                  "byte 8", "refused (no crash, exit 2), naming the accessor", c_wrap, refused_2("reaches past")))
 
     def c_mode(ctx):
         d = mesh_doc()
         d["meshes"][0]["primitives"][0]["mode"] = -5
         return roots_host(glb("mode.glb", d, 96, tet)), {}
-    L.append(Case(8, "`banyan roots --host mode.glb`: primitive mode -5", "refused, naming the mode",
-                  c_mode, refused_judge("mode = -5")))
+    L.append(Case(8, "`banyan roots --host mode.glb`: primitive mode -5", "refused (exit 2), naming the mode",
+                  c_mode, refused_2("mode = -5")))
 
     def c_not_gltf(ctx):
         with open(out("zip.glb"), "wb") as f:
@@ -489,7 +496,7 @@ def cases(banyan, presets, tmp):
             f.truncate(2 * 10 ** 9)
         return roots_host(out("zip.glb")), {}
     L.append(Case(8, "`banyan roots --host zip.glb`: a 2 GB file that is not glTF",
-                  "refused from its 12-byte header, under 100 MB", c_not_gltf,
+                  "refused from its 12-byte header (exit 2), under 100 MB", c_not_gltf,
                   refused_small(100, "does not start with")))
 
     def c_big_header(ctx):
@@ -550,7 +557,7 @@ def cases(banyan, presets, tmp):
                                       "hosts": [{"mesh": "a\u001b[2J\u001b]0;pwned\u0007.glb"}]})
         return [banyan, "roots", "--preset", pre, "-o", out("e.glb")] + quick, {}
     def j_esc(r, ctx):
-        ok = r.rc > 0 and not r.cut and "\x1b" not in r.err and "\\x1b[2J" in r.err
+        ok = r.rc == 2 and not r.cut and "\x1b" not in r.err and "\\x1b[2J" in r.err
         return ok, "" if ok else "control characters reached the terminal"
     L.append(Case(8, "a preset whose mesh path holds ESC sequences", "refused with the path's control characters "
                   "escaped (\\x1b)", c_esc, j_esc))

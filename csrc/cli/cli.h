@@ -70,8 +70,11 @@ banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char 
                              const cli_lod *lod, const banyan_gltf_options *opt, const cli_budget *budget,
                              cli_stats *st, banyan_error *err);
 
-/* Exit codes: 0 done, 1 refused or failed, 2 bad command line,
- * 3 written with a warning (docs/ivy.md, "Hosts and start"). */
+/* Exit codes: 0 done, 1 refused or failed, 2 bad command line or hosts
+ * refused before any work (a --host file, a preset's hosts: the same
+ * input gives the same refusal), 3 written with a warning (docs/ivy.md,
+ * "Hosts and start"). */
+#define CLI_EXIT_BAD_INPUT 2
 #define CLI_EXIT_WARNING 3
 void cli_stat_num(cli_stats *s, const char *key, double v);
 void cli_stat_raw(cli_stats *s, const char *key, const char *json);

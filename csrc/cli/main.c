@@ -425,7 +425,10 @@ int main(int argc, char **argv) {
                                      &err);
         if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
             hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
-            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) goto out;
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) {
+                rc = CLI_EXIT_BAD_INPUT;
+                goto out;
+            }
             const char *slash = strrchr(job.preset_path, '/');
             char dir[4096] = ".";
             if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
@@ -437,13 +440,18 @@ int main(int argc, char **argv) {
         }
         if (hs) {
             fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
+            rc = CLI_EXIT_BAD_INPUT;
             goto out;
         }
     } else if (n_host_args) {
         hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
-        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) goto out;
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) {
+            rc = CLI_EXIT_BAD_INPUT;
+            goto out;
+        }
         if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
             fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
+            rc = CLI_EXIT_BAD_INPUT;
             goto out;
         }
     }

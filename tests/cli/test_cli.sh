@@ -85,7 +85,7 @@ expect 0 '"host_set": {"boxes": 1, "meshes": 1' -- "$bin" ivy --preset "$src/pre
   --host "$hosts/rock.glb@0,-2.5,0" --set steps=40 --stats
 expect 0 '"host_set": {"boxes": 0, "meshes": 2' -- "$bin" roots --preset "$src/presets/roots_column.json" \
   --host "$hosts/rock.glb@3,0,0" --set growth_points=12 --stats
-expect 1 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$hosts/rock.glb@1,2"
+expect 2 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$hosts/rock.glb@1,2"
 expect 1 "this command takes no hosts" -- "$bin" keyaki --host "$hosts/rock.glb"
 
 # Bad mesh files are refused, naming the host, before anything grows. They
@@ -108,21 +108,21 @@ glb "$bad/nan.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":
 glb "$bad/points.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":0}]}],'"$acc"'}' "$bad/tet_nan.bin"
 glb "$bad/empty.glb" '{"asset":{"version":"2.0"},"scenes":[{"nodes":[]}]}'
 printf 'solid cube\nendsolid cube\n' > "$bad/cube.glb"
-expect 1 "--host $bad/nan.glb: BANYAN_E_BAD_HOST: $bad/nan.glb: mesh 0" -- "$bin" roots --host "$bad/nan.glb"
-expect 1 "vertex 3 is not finite" -- "$bin" ivy --host "$bad/nan.glb"
-expect 1 "$bad/points.glb: has no triangles" -- "$bin" roots --host "$bad/points.glb"
-expect 1 "$bad/empty.glb: has no triangles" -- "$bin" ivy --host "$bad/empty.glb"
-expect 1 "$bad/cube.glb: not a glTF binary (.glb) file" -- "$bin" roots --host "$bad/cube.glb"
-expect 1 "cannot open" -- "$bin" roots --host "$bad/missing.glb"
+expect 2 "--host $bad/nan.glb: BANYAN_E_BAD_HOST: $bad/nan.glb: mesh 0" -- "$bin" roots --host "$bad/nan.glb"
+expect 2 "vertex 3 is not finite" -- "$bin" ivy --host "$bad/nan.glb"
+expect 2 "$bad/points.glb: has no triangles" -- "$bin" roots --host "$bad/points.glb"
+expect 2 "$bad/empty.glb: has no triangles" -- "$bin" ivy --host "$bad/empty.glb"
+expect 2 "$bad/cube.glb: not a glTF binary (.glb) file" -- "$bin" roots --host "$bad/cube.glb"
+expect 2 "cannot open" -- "$bin" roots --host "$bad/missing.glb"
 # The same files named by a preset: the message names the preset's host.
 for f in nan points empty cube missing; do
   printf '{\n "generator": "roots",\n "hosts": [\n  { "center": [0, 0, 1], "half": [1, 1, 1] },\n  { "mesh": "%s.glb" }\n ]\n}\n' "$f" > "$bad/$f.json"
-  expect 1 "$bad/$f.json:5: hosts[1]: $bad/$f.glb:" -- "$bin" roots --preset "$bad/$f.json"
+  expect 2 "$bad/$f.json:5: hosts[1]: $bad/$f.glb:" -- "$bin" roots --preset "$bad/$f.json"
 done
 printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "scale": 0 } ] }\n' > "$bad/scale.json"
-expect 1 "hosts[0].scale[0] = 0 must be within" -- "$bin" roots --preset "$bad/scale.json"
+expect 2 "hosts[0].scale[0] = 0 must be within" -- "$bin" roots --preset "$bad/scale.json"
 printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "half": [1, 1, 1] } ] }\n' > "$bad/half.json"
-expect 1 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots --preset "$bad/half.json"
+expect 2 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots --preset "$bad/half.json"
 # Ivy's start (issue 16): on the wall's bottom face it moves to a side a
 # stem can grow from; boxed in a closed 2 cm cavity it cannot grow, the
 # output is still written and the exit code is 3 with a warning naming why.
@@ -193,7 +193,7 @@ expect 1 "sides = '+8' must be a whole number within [3, 256]" -- "$bin" tube --
 expect 1 "radius = ' 0.5' is not a decimal number" -- "$bin" roots --set "radius= 0.5"
 expect 1 "radius needs 1 number, got 2" -- "$bin" roots --set radius=0,5
 expect 1 "radius = '0x1' has trailing text 'x1'" -- "$bin" roots --set radius=0x1
-expect 1 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$out/x.glb@1,2,0x3"
+expect 2 "expected FILE.glb or FILE.glb@x,y,z" -- "$bin" roots --host "$out/x.glb@1,2,0x3"
 # Numbers read the same under a comma-decimal locale (the CLI itself keeps
 # the C locale; the library must not care either way).
 if locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
@@ -204,10 +204,10 @@ fi
 # Explicit empty lists are refused, naming the key; a missing key keeps
 # the default.
 printf '{"generator": "roots", "hosts": []}' > "$out/cli_empty_hosts.json"
-expect 1 "cli_empty_hosts.json:1: hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json"
-expect 1 "hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json" --host "$hosts/column.glb"
+expect 2 "cli_empty_hosts.json:1: hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json"
+expect 2 "hosts is an empty list" -- "$bin" roots --preset "$out/cli_empty_hosts.json" --host "$hosts/column.glb"
 printf '{"generator": "ivy", "hosts": []}' > "$out/cli_empty_hosts_ivy.json"
-expect 1 "hosts is an empty list" -- "$bin" ivy --preset "$out/cli_empty_hosts_ivy.json"
+expect 2 "hosts is an empty list" -- "$bin" ivy --preset "$out/cli_empty_hosts_ivy.json"
 printf '{"generator": "segments",\n "segments": []}' > "$out/cli_empty_segments.json"
 expect 1 "cli_empty_segments.json:2: segments is an empty list" -- "$bin" segments --preset "$out/cli_empty_segments.json"
 # A huge preset is refused by size, naming the limit, not read whole.
