@@ -5,7 +5,8 @@
  * stopped with the old file left); the fused roots surface's OpenVDB
  * meshing asks its stop between pieces; an output name longer than the
  * folder allows is refused before any work. A budget that is not reached
- * changes no byte. Margins are wide (a noisy 2-core VM, ASan). */
+ * changes no byte. A stop is wanted within 0.5 s of its budget, as the
+ * generators' (test_budget.c), on a noisy 2-core VM under ASan too. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <errno.h>
 #include <math.h>
@@ -142,20 +143,20 @@ static void test_textures(void) {
     banyan_budget b = budget(0, 200);
     double t0 = now();
     banyan_status s = banyan_texture_generate_budget(&tp, &b, &bc, &nm, &e);
-    limited("texture 8192, 200 MB", s, bc, &e, now() - t0, "max_memory_mb", 0.1);
+    limited("texture 8192, 200 MB", s, bc, &e, now() - t0, "max_memory_mb", 0.5);
     CHECK(nm == NULL && strstr(e.message, "texture size"), "texture 8192: %s", e.message);
     /* Drawing past the time: stopped inside the painter. */
     tp.size = 4096;
     b = budget(0.05, 0);
     t0 = now();
     s = banyan_texture_generate_budget(&tp, &b, &bc, &nm, &e);
-    limited("texture 4096, 0.05 s", s, bc, &e, now() - t0, "max_seconds", 0.4);
+    limited("texture 4096, 0.05 s", s, bc, &e, now() - t0, "max_seconds", 0.55);
     CHECK(nm == NULL, "texture 4096: a normal map came with the failure");
     /* Leaves, stopped between cells. */
     tp.kind = BANYAN_TEX_KEYAKI_LEAF;
     t0 = now();
     s = banyan_texture_generate_budget(&tp, &b, &bc, NULL, &e);
-    limited("leaves 4096, 0.05 s", s, bc, &e, now() - t0, "max_seconds", 0.4);
+    limited("leaves 4096, 0.05 s", s, bc, &e, now() - t0, "max_seconds", 0.55);
     /* With room: the same pixels as the call without a budget. */
     tp.size = 256;
     banyan_image *a = NULL, *c = NULL;
