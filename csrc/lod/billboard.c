@@ -296,18 +296,26 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         }
         /* Pixels: the longer side of the strip of pictures is `size`. */
         double ppm = size / fmax(total_w, zmax - zmin);
-        uint32_t H = (uint32_t)lrint((zmax - zmin) * ppm), W = 0;
-        H = H < 1 ? 1 : H > size ? size : H;
-        /* Tile edges rounded from the running sum: the widths add up to
-         * the strip's rounded width exactly. */
-        double run = 0;
-        for (uint32_t k = 0; k < planes; k++) {
-            run += (vw[k].smax - vw[k].smin) * ppm;
-            uint32_t edge = (uint32_t)lrint(run);
-            edge = edge > size ? size : edge;
-            vw[k].x0 = W;
-            vw[k].w = edge > W ? edge - W : 1;
-            W += vw[k].w;
+        uint32_t H, W;
+        for (;;) {
+            H = (uint32_t)lrint((zmax - zmin) * ppm), W = 0;
+            H = H < 1 ? 1 : H > size ? size : H;
+            /* Tile edges rounded from the running sum: the widths add up to
+             * the strip's rounded width exactly, unless a tile thinner than
+             * a pixel takes one of its own. */
+            double run = 0;
+            for (uint32_t k = 0; k < planes; k++) {
+                run += (vw[k].smax - vw[k].smin) * ppm;
+                uint32_t edge = (uint32_t)lrint(run);
+                edge = edge > size ? size : edge;
+                vw[k].x0 = W;
+                vw[k].w = edge > W ? edge - W : 1;
+                W += vw[k].w;
+            }
+            if (W <= size) break;
+            /* Those pixels pushed the strip past `size`: leave room for one
+             * a tile (planes <= 8 < 32 <= size), which always fits. */
+            ppm *= (double)(size - planes) / (double)size;
         }
         banyan_image *im = &o->images[cd];
         im->width = W;
