@@ -1,6 +1,6 @@
 /* fuzz_glb.c - libFuzzer harness for the glTF binary reader
  * (banyan_glb_read_host): the bytes are a .glb file, written to a file of
- * this process's own (the reader takes a path) and read back. A refusal
+ * this process's own (the reader takes a path), read back and removed. A refusal
  * must be clean (status, message, *out NULL); an accepted mesh must have
  * triangles, indices within its vertices, finite positions, and the
  * transform and closed mode it was given. Seeds: tests/fuzz/seeds/fuzz_glb
@@ -25,6 +25,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     banyan_error e;
     memset(&e, 0, sizeof e);
     banyan_status s = banyan_glb_read_host(path, t, closed, &m, &e);
+    unlink(path); /* each input's file goes with it: none is left in /tmp */
     if (s) {
         fz_check_failure(s, &e, m);
     } else {
