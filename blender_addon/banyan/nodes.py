@@ -53,8 +53,8 @@ def shared_group(key, version, name, build, created):
 def _input_values(mod):
     """Where a Geometry Nodes modifier keeps its input values: Blender 5.2+
     has mod.properties.inputs, one struct per input identifier whose
-    `.value` is the value (the modifier itself no longer takes ID
-    properties); earlier versions keep them as ID properties of the
+    `.value` is the value (the modifier itself takes no ID properties
+    there); earlier versions keep them as ID properties of the
     modifier keyed by identifier, and get None here."""
     props = getattr(mod, "properties", None)
     return getattr(props, "inputs", None)

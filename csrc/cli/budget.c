@@ -1,9 +1,9 @@
-/* budget.c - the command's budget over the stages after generation: the
- * generator's max_seconds and max_memory_mb (from --set or the preset)
- * count from the start of generation to the end of the write, so the
- * levels of detail, the textures and the glTF writer get what the
- * generation left (banyan_budget), and a spent budget stops the command
- * with BANYAN_E_LIMIT. */
+/* budget.c - the command's one budget: the generator's max_seconds and
+ * max_memory_mb (from --set or the preset) count from the start of the
+ * hosts' reading to the end of the write, so each stage (the hosts,
+ * generation, the levels of detail, the textures, the glTF writer) gets
+ * what the ones before it left (banyan_budget), and a spent budget stops
+ * the command with BANYAN_E_LIMIT. */
 #include <stdio.h>
 #include <string.h>
 #include <time.h>

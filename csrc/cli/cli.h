@@ -51,12 +51,13 @@ typedef struct cli_lod {
 /* 1 when spec ("0.5,0.15,billboard") is well formed. */
 int cli_lod_parse(const char *spec, cli_lod *out);
 struct cli_command;
-/* The command's budget, started just before generation (budget.c): the
- * generator's max_seconds and max_memory_mb (the defaults for commands
- * without them) cover generation, --lod, the textures and the write. */
+/* The command's budget, started once the params are final (budget.c):
+ * the generator's max_seconds and max_memory_mb (the defaults for
+ * commands without them) cover reading the hosts, generation, --lod,
+ * the textures and the write. */
 typedef struct cli_budget {
     double max_seconds, max_memory_mb;
-    double t0, rss0_mb; /* when generation started, and the resident MB then */
+    double t0, rss0_mb; /* when the budget started, and the resident MB then */
 } cli_budget;
 void cli_budget_start(cli_budget *b, const struct cli_command *cmd, const void *params);
 /* What is left for `stage` ("the levels of detail"), as a banyan_budget;

@@ -171,53 +171,13 @@ static int host_spec(const char *spec, char *path, size_t cap, double t[3]) {
     return 1;
 }
 
-/* The run's budget (max_seconds, max_memory_mb) as the preset and the
- * --set pairs give it, read before the --set pairs are applied so that
- * reading the hosts keeps it too; 600 s and 8192 MB without one. */
-typedef struct host_budget {
-    double deadline_ms, max_memory_mb;
-} host_budget;
-
-static host_budget host_budget_of(banyan_generator g, const void *params, size_t size, const char **sets, int n) {
-    double v[2] = {600, 8192};
-    static const char *const keys[2] = {"max_seconds", "max_memory_mb"};
-    void *probe = malloc(size ? size : 1);
-    for (int k = 0; probe && k < 2; k++) {
-        const banyan_param_info *info = banyan_param_find(g, keys[k]);
-        if (!info) continue;
-        memcpy(probe, params, size);
-        size_t kl = strlen(keys[k]);
-        for (int i = 0; i < n; i++)
-            if (!strncmp(sets[i], keys[k], kl) && sets[i][kl] == '=')
-                banyan_param_set_text(g, probe, keys[k], sets[i] + kl + 1, NULL); /* refused later, naming it */
-        memcpy(&v[k], (const char *)probe + info->offset, sizeof v[k]);
-    }
-    free(probe);
-    host_budget b = {now_ms() + 1000.0 * v[0], v[1]};
-    return b;
-}
-
-/* The seconds left of b, at least the smallest budget. */
-static double host_seconds_left(const host_budget *b) {
-    double s = (b->deadline_ms - now_ms()) / 1000.0;
-    return s > 0.01 ? s : 0.01;
-}
-
-/* What is left of b, as the library's host-reading calls take it. */
-static banyan_budget host_budget_left(const host_budget *b) {
-    banyan_budget out;
-    banyan_budget_init(&out);
-    out.max_seconds = host_seconds_left(b);
-    out.max_memory_mb = b->max_memory_mb;
-    return out;
-}
-
 /* Reads the --host meshes into read[] (caller frees) and extra[] (their
- * structs, for the host-set calls), within the budget b. A file named
+ * structs, for the host-set calls), within what is left of the command's
+ * budget b. A file named
  * again is read once (its later entries share the first's arrays, moved),
  * and the set-wide triangle limit is kept as the files are read. */
 static int read_host_args(const cli_command *cmd, const char **specs, int n, banyan_host_mesh **read,
-                          banyan_host_mesh *extra, const host_budget *b) {
+                          banyan_host_mesh *extra, const cli_budget *b) {
     double(*ats)[3] = calloc((size_t)n + 1, sizeof *ats);
     char(*paths)[4096] = calloc((size_t)n + 1, sizeof *paths);
     uint64_t tris = 0;
@@ -238,8 +198,9 @@ static int read_host_args(const cli_command *cmd, const char **specs, int n, ban
             for (int r = 0; r < 3; r++) extra[i].transform[4 * r + 3] += ats[i][r] - ats[j][r];
         } else {
             banyan_error err = {0, ""};
-            banyan_budget left = host_budget_left(b);
-            if (banyan_glb_read_host_budget(paths[i], t, BANYAN_HOST_CLOSED_AUTO, &left, &read[i], &err)) {
+            banyan_budget left;
+            if (cli_budget_left(b, "reading the hosts", &left, &err) ||
+                banyan_glb_read_host_budget(paths[i], t, BANYAN_HOST_CLOSED_AUTO, &left, &read[i], &err)) {
                 fprintf(stderr, "banyan %s: --host %s: %s: %s\n", cmd->name, specs[i],
                         banyan_status_name((banyan_status)err.code), err.message);
                 ok = 0;
@@ -399,7 +360,6 @@ int main(int argc, char **argv) {
     }
     cmd->init(params);
     banyan_generator g = (banyan_generator)cmd->generator;
-    host_budget hb = {0, 8192};
     if (job.preset_path) {
         char why[4200];
         text = read_preset(job.preset_path, &job.preset_len, why, sizeof why);
@@ -416,51 +376,7 @@ int main(int argc, char **argv) {
             fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
             goto out;
         }
-        /* Boxes only, no --host: the box calls, as always. A mesh preset
-         * (refused by banyan_preset_hosts as UNSUPPORTED) or any --host
-         * takes the host set. */
-        banyan_status hs = BANYAN_E_UNSUPPORTED;
-        if (!n_host_args)
-            hs = banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts,
-                                     &err);
-        if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
-            hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
-            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) {
-                rc = CLI_EXIT_BAD_INPUT;
-                goto out;
-            }
-            const char *slash = strrchr(job.preset_path, '/');
-            char dir[4096] = ".";
-            if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
-                snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
-                         job.preset_path);
-            banyan_budget left = host_budget_left(&hb);
-            hs = banyan_preset_host_set_budget(text, job.preset_len, job.preset_path, dir, host_extra,
-                                               (uint32_t)n_host_args, &left, &host_set, &err);
-        }
-        if (hs) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
-    } else if (n_host_args) {
-        hb = host_budget_of(g, params, cmd->params_size, sets, n_sets);
-        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &hb)) {
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
-        if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
-            fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
     }
-    /* The set holds its own copy of the meshes. */
-    for (int i = 0; i < n_host_args; i++) {
-        banyan_host_mesh_free(host_read[i]);
-        host_read[i] = NULL;
-    }
-    job.host_set = host_set;
     if (seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", seed, &err)) {
         fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err.message);
         goto out;
@@ -487,12 +403,66 @@ int main(int argc, char **argv) {
             goto out;
         }
     }
-    /* The hosts' reading came out of the run's max_seconds: the generator
-     * gets what is left, so the command keeps the one budget. */
-    if (hb.deadline_ms > 0 && banyan_param_find(g, "max_seconds")) {
-        char left[32];
-        snprintf(left, sizeof left, "%.3f", host_seconds_left(&hb));
-        banyan_param_set_text(g, params, "max_seconds", left, NULL);
+    /* The command's budget, from here to the written file: the hosts'
+     * reading, generation, --lod, the textures and the write. */
+    cli_budget budget;
+    cli_budget_start(&budget, cmd, params);
+    int hosts_read = 0;
+    if (job.preset_path) {
+        /* Boxes only, no --host: the box calls, as always. A mesh preset
+         * (refused by banyan_preset_hosts as UNSUPPORTED) or any --host
+         * takes the host set. */
+        banyan_status hs = BANYAN_E_UNSUPPORTED;
+        if (!n_host_args)
+            hs = banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts,
+                                     &err);
+        if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
+            hosts_read = 1;
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &budget)) {
+                rc = CLI_EXIT_BAD_INPUT;
+                goto out;
+            }
+            const char *slash = strrchr(job.preset_path, '/');
+            char dir[4096] = ".";
+            if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
+                snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
+                         job.preset_path);
+            banyan_budget left;
+            hs = cli_budget_left(&budget, "reading the hosts", &left, &err);
+            if (!hs)
+                hs = banyan_preset_host_set_budget(text, job.preset_len, job.preset_path, dir, host_extra,
+                                                   (uint32_t)n_host_args, &left, &host_set, &err);
+        }
+        if (hs) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
+            rc = CLI_EXIT_BAD_INPUT;
+            goto out;
+        }
+    } else if (n_host_args) {
+        hosts_read = 1;
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &budget)) {
+            rc = CLI_EXIT_BAD_INPUT;
+            goto out;
+        }
+        if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
+            fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
+            rc = CLI_EXIT_BAD_INPUT;
+            goto out;
+        }
+    }
+    /* The set holds its own copy of the meshes. */
+    for (int i = 0; i < n_host_args; i++) {
+        banyan_host_mesh_free(host_read[i]);
+        host_read[i] = NULL;
+    }
+    job.host_set = host_set;
+    /* The hosts' reading came out of the command's max_seconds: the
+     * generator gets what is left. */
+    banyan_budget gen_left;
+    if (hosts_read && banyan_param_find(g, "max_seconds") && !cli_budget_left(&budget, "generating", &gen_left, NULL)) {
+        char seconds[32];
+        snprintf(seconds, sizeof seconds, "%.3f", gen_left.max_seconds);
+        banyan_param_set_text(g, params, "max_seconds", seconds, NULL);
     }
     if (!host_set && job.n_hosts == 0 && cmd->default_hosts) cmd->default_hosts(&job);
 
@@ -501,8 +471,6 @@ int main(int argc, char **argv) {
     st.warning[0] = '\0';
     banyan_progress progress = {show_progress, (void *)cmd->name};
     if (isatty(STDERR_FILENO)) job.progress = &progress;
-    cli_budget budget;
-    cli_budget_start(&budget, cmd, params);
     double t0 = now_ms();
     banyan_status s = cmd->run(&job, params, &meshes, &names, &count, &st, &err);
     double t1 = now_ms();

@@ -5,20 +5,14 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Length of the UTF-8 sequence at s (n bytes left) that a terminal shows
- * as text, or 0 for a byte to escape: C0 controls, DEL, the C1 controls
- * U+0080 .. U+009F (ESC and CSI start terminal commands) and anything
- * that is not strict UTF-8 (a path may hold any bytes). */
-static size_t printable_sequence(const unsigned char *s, size_t n) {
+size_t banyan_utf8_sequence(const unsigned char *s, size_t n) {
     unsigned char c = s[0];
-    if (c < 0x20 || c == 0x7F) return 0;
+    if (c == 0) return 0;
     if (c < 0x80) return 1;
     size_t len;
-    unsigned char lo = 0x80, hi = 0xBF;
-    if (c >= 0xC2 && c <= 0xDF) {
-        len = 2;
-        if (c == 0xC2) lo = 0xA0; /* U+0080 .. U+009F are controls */
-    } else if (c >= 0xE0 && c <= 0xEF) {
+    unsigned char lo = 0x80, hi = 0xBF; /* range of the second byte */
+    if (c >= 0xC2 && c <= 0xDF) len = 2;
+    else if (c >= 0xE0 && c <= 0xEF) {
         len = 3;
         if (c == 0xE0) lo = 0xA0;
         if (c == 0xED) hi = 0x9F;
@@ -32,6 +26,16 @@ static size_t printable_sequence(const unsigned char *s, size_t n) {
     for (size_t k = 2; k < len; k++)
         if ((s[k] & 0xC0) != 0x80) return 0;
     return len;
+}
+
+/* Length of the UTF-8 sequence at s (n bytes left) that a terminal shows
+ * as text, or 0 for a byte to escape: C0 controls, DEL, the C1 controls
+ * U+0080 .. U+009F (ESC and CSI start terminal commands) and anything
+ * that is not strict UTF-8 (a path may hold any bytes). */
+static size_t printable_sequence(const unsigned char *s, size_t n) {
+    if (s[0] < 0x20 || s[0] == 0x7F) return 0;
+    if (s[0] == 0xC2 && n > 1 && s[1] < 0xA0) return 0;
+    return banyan_utf8_sequence(s, n);
 }
 
 /* Copies src (NUL-terminated) into dst[0 .. cap - 1] (cap > 0) with every

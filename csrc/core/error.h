@@ -16,6 +16,10 @@ extern "C" { /* the C++ shims (csrc/gltf) report through these too */
 #endif
 
 /* Fills err (when non-NULL) and returns code. */
+/* Length of the strict UTF-8 sequence at s[0 .. n-1] (RFC 3629: no
+ * overlong forms, no surrogates, nothing past U+10FFFF, no NUL), or 0. */
+size_t banyan_utf8_sequence(const unsigned char *s, size_t n);
+
 banyan_status banyan_fail(banyan_error *err, banyan_status code, const char *fmt, ...) BANYAN_PRINTF(3, 4);
 /* Puts `prefix` (e.g. "file.json:3: ") before err's message, truncating. */
 void banyan_error_prefix(banyan_error *err, const char *prefix);

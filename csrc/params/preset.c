@@ -46,31 +46,6 @@ static void where(char *buf, size_t n, const char *source, const char *text, siz
     where_nth(buf, n, source, text, len, key, 0);
 }
 
-/* Length of the strict UTF-8 sequence at s[0..n-1] (RFC 3629: no overlong
- * forms, no surrogates, nothing past U+10FFFF, no NUL), or 0. */
-static size_t utf8_sequence(const unsigned char *s, size_t n) {
-    unsigned char c = s[0];
-    if (c == 0) return 0;
-    if (c < 0x80) return 1;
-    size_t len;
-    unsigned char lo = 0x80, hi = 0xBF; /* range of the second byte */
-    if (c >= 0xC2 && c <= 0xDF) len = 2;
-    else if (c >= 0xE0 && c <= 0xEF) {
-        len = 3;
-        if (c == 0xE0) lo = 0xA0;
-        if (c == 0xED) hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        len = 4;
-        if (c == 0xF0) lo = 0x90;
-        if (c == 0xF4) hi = 0x8F;
-    } else
-        return 0;
-    if (len > n || s[1] < lo || s[1] > hi) return 0;
-    for (size_t k = 2; k < len; k++)
-        if ((s[k] & 0xC0) != 0x80) return 0;
-    return len;
-}
-
 /* One pass over the raw bytes before cJSON sees them: strict UTF-8, no
  * \u0000 escape (it would cut the C string cJSON makes short, so
  * "roots\u0000x" would read as "roots"), and brackets nested at most
@@ -79,7 +54,7 @@ static banyan_status prescan(const char *text, size_t len, const char *source, b
     const unsigned char *t = (const unsigned char *)text;
     int depth = 0, in_string = 0;
     for (size_t i = 0; i < len;) {
-        size_t k = utf8_sequence(t + i, len - i);
+        size_t k = banyan_utf8_sequence(t + i, len - i);
         if (!k)
             return banyan_fail(err, BANYAN_E_PARSE, "%s:%d: byte %zu is not valid UTF-8 (0x%02x)", source,
                                preset_line_at(text, len, i), i, t[i]);
@@ -499,6 +474,13 @@ banyan_status banyan_preset_host_set(const char *text, size_t length, const char
     return banyan_preset_host_set_budget(text, length, source, base_dir, extra, n_extra, NULL, out, err);
 }
 
+/* err's message prefixed with the mesh entry it is about: "<where>hosts[i]: ". */
+static void prefix_entry(banyan_error *err, const char *wm, uint32_t i) {
+    char pre[340];
+    snprintf(pre, sizeof pre, "%shosts[%u]: ", wm, i);
+    banyan_error_prefix(err, pre);
+}
+
 /* What banyan_hosts_create holds per triangle and per vertex of its meshes
  * (positions, normals, twins, caps, Embree's tree), for the memory
  * estimate made before it runs: an upper bound, about twice the 119 bytes
@@ -569,9 +551,7 @@ banyan_status banyan_preset_host_set_budget(const char *text, size_t length, con
         s = glb_scan(path, &g, &z, err);
         free(path);
         if (s) {
-            char pre[340];
-            snprintf(pre, sizeof pre, "%shosts[%u]: ", wm, i);
-            banyan_error_prefix(err, pre);
+            prefix_entry(err, wm, i);
             goto done;
         }
         set_tris += z.triangles, set_verts += z.vertex_reads;
@@ -605,9 +585,7 @@ banyan_status banyan_preset_host_set_budget(const char *text, size_t length, con
         s = glb_read_host_prog(path, transform, closed, &g, &read[nm], err);
         free(path);
         if (s) {
-            char pre[340];
-            snprintf(pre, sizeof pre, "%shosts[%u]: ", wm, i);
-            banyan_error_prefix(err, pre);
+            prefix_entry(err, wm, i);
             goto done;
         }
         /* Placed, every vertex must stay where the host set accepts it. */

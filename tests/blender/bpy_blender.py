@@ -73,9 +73,9 @@ def main(argv):
 
 
 def _purge_session_temp():
-    """Removes Blender's session temp folder (bpy.app.tempdir, a
-    blender_XXXXXX folder), which Blender purges on a normal exit and
-    os._exit skips."""
+    """Removes Blender's session temp folder (bpy.app.tempdir, named
+    "blender_" and six random characters), which Blender purges on a
+    normal exit and os._exit skips."""
     bpy = sys.modules.get("bpy")
     d = getattr(getattr(bpy, "app", None), "tempdir", "") if bpy else ""
     if d and os.path.basename(os.path.normpath(d)).startswith("blender_"):

@@ -324,7 +324,7 @@ static void presets(void) {
 /* Messages keep their cause, say what to change, and escape controls. */
 static void messages(void) {
     /* 60 meshes then a flat one: the set's message names the entry and keeps
-     * its cause (a prefix listing every entry used to fill the message). */
+     * its cause (a prefix listing every entry would fill the message). */
     unsigned char bin[48];
     const float flat[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};
     const uint32_t tri[3] = {0, 1, 2};
