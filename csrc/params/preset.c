@@ -270,13 +270,13 @@ static void euler_deg(const double *v, double rot[9]) {
     memcpy(rot, r.m, sizeof r.m);
 }
 
-static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_box *out, banyan_error *err) {
-    if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] must be an object", w, i);
+static banyan_status read_box(const cJSON *h, uint32_t i, banyan_box *out, banyan_error *err) {
+    if (!cJSON_IsObject(h)) return banyan_fail(err, BANYAN_E_TYPE, "hosts[%u] must be an object", i);
     double c[3] = {0, 0, 0}, half[3], rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     int have_half = 0, have_rot = 0;
     for (const cJSON *k = h->child; k; k = k->next) {
         if (given_before(h, k))
-            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, k->string);
+            return banyan_fail(err, BANYAN_E_PARSE, "hosts[%u].%s is given twice", i, k->string);
         double v[9];
         int n = number_array(k, v, 9);
         if (strcmp(k->string, "center") == 0 && n == 3) memcpy(c, v, sizeof c);
@@ -288,15 +288,14 @@ static banyan_status read_box(const cJSON *h, uint32_t i, const char *w, banyan_
         } else if (strcmp(k->string, "name") == 0 && cJSON_IsString(k)) {
         } else
             return banyan_fail(err, BANYAN_E_TYPE,
-                               "%shosts[%u].%s is unknown or malformed (keys: center [3], half [3], rotation [9] or "
-                               "rotation_euler_deg [3], name; or \"mesh\" for a mesh host)", w, i, k->string);
+                               "hosts[%u].%s is unknown or malformed (keys: center [3], half [3], rotation [9] or "
+                               "rotation_euler_deg [3], name; or \"mesh\" for a mesh host)", i, k->string);
     }
-    if (!have_half) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u] needs \"half\": [hx, hy, hz]", w, i);
+    if (!have_half) return banyan_fail(err, BANYAN_E_TYPE, "hosts[%u] needs \"half\": [hx, hy, hz]", i);
     memcpy(out->center, c, sizeof c);
     memcpy(out->half, half, sizeof half);
     memcpy(out->rotation, rot, sizeof rot);
     banyan_status s = banyan_box_validate(out, i, err);
-    if (s) banyan_error_prefix(err, w);
     return s;
 }
 
@@ -307,7 +306,7 @@ static const cJSON *mesh_member(const cJSON *h) {
 
 /* One mesh host entry: its file (joined to base_dir, malloc'd into *path),
  * object -> world transform and closed mode. Reads no file. */
-static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, const char *base_dir, char **path,
+static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *base_dir, char **path,
                                      double transform[12], int32_t *closed, banyan_error *err) {
     *path = NULL;
     double t[3] = {0, 0, 0}, sc[3] = {1, 1, 1}, rot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -316,18 +315,18 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
     *closed = BANYAN_HOST_CLOSED_AUTO;
     for (const cJSON *k = h->child; k; k = k->next) {
         if (given_before(h, k))
-            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u].%s is given twice", w, i, k->string);
+            return banyan_fail(err, BANYAN_E_PARSE, "hosts[%u].%s is given twice", i, k->string);
         double v[9];
         int n = number_array(k, v, 9);
         const char *key = k->string;
         if (!strcmp(key, "mesh")) {
             if (!cJSON_IsString(k) || !k->valuestring[0])
-                return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
+                return banyan_fail(err, BANYAN_E_TYPE, "hosts[%u].mesh must name a .glb file", i);
             file = k->valuestring;
         } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && have_t) {
-            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of translation and center", w, i);
+            return banyan_fail(err, BANYAN_E_PARSE, "hosts[%u]: give one of translation and center", i);
         } else if ((!strcmp(key, "rotation") || !strcmp(key, "rotation_euler_deg")) && have_rot) {
-            return banyan_fail(err, BANYAN_E_PARSE, "%shosts[%u]: give one of rotation and rotation_euler_deg", w, i);
+            return banyan_fail(err, BANYAN_E_PARSE, "hosts[%u]: give one of rotation and rotation_euler_deg", i);
         } else if ((!strcmp(key, "translation") || !strcmp(key, "center")) && n == 3) {
             memcpy(t, v, sizeof t);
             have_t = 1;
@@ -337,8 +336,8 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
         } else if (!strcmp(key, "rotation_euler_deg") && n == 3 && !have_rot) {
             for (int a = 0; a < 3; a++)
                 if (!isfinite(v[a]))
-                    return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation_euler_deg[%d] = %g must be "
-                                       "finite", w, i, a, v[a]);
+                    return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].rotation_euler_deg[%d] = %g must be "
+                                       "finite", i, a, v[a]);
             euler_deg(v, rot);
             have_rot = 1;
         } else if (!strcmp(key, "scale") && (cJSON_IsNumber(k) || n == 3)) {
@@ -350,41 +349,40 @@ static banyan_status read_mesh_entry(const cJSON *h, uint32_t i, const char *w, 
             else if (!strcmp(c, "open")) *closed = BANYAN_HOST_OPEN;
             else if (!strcmp(c, "closed")) *closed = BANYAN_HOST_CLOSED;
             else
-                return banyan_fail(err, BANYAN_E_RANGE, "%shosts[%u].closed = \"%.40s\" must be \"auto\", \"open\" or "
-                                   "\"closed\"", w, i, c);
+                return banyan_fail(err, BANYAN_E_RANGE, "hosts[%u].closed = \"%.40s\" must be \"auto\", \"open\" or "
+                                   "\"closed\"", i, c);
         } else if (!strcmp(key, "name") && cJSON_IsString(k)) {
         } else
             return banyan_fail(err, !strcmp(key, "half") ? BANYAN_E_UNKNOWN_KEY : BANYAN_E_TYPE,
-                               "%shosts[%u].%s is unknown or malformed for a mesh host (keys: mesh \"file.glb\", "
-                               "translation or center [3], rotation [9] or rotation_euler_deg [3], scale s or [3], "
-                               "closed \"auto\"|\"open\"|\"closed\", name)", w, i, key);
+                               "hosts[%u].%s is unknown or malformed for a mesh host (keys: mesh, translation or "
+                               "center [3], rotation [9] or rotation_euler_deg [3], scale, closed, name)", i, key);
     }
-    if (!file) return banyan_fail(err, BANYAN_E_TYPE, "%shosts[%u].mesh must name a .glb file", w, i);
+    if (!file) return banyan_fail(err, BANYAN_E_TYPE, "hosts[%u].mesh must name a .glb file", i);
     for (int a = 0; a < 3; a++) {
         if (!isfinite(t[a]) || fabs(t[a]) > 1e6)
-            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].translation[%d] = %g must be finite, within "
-                               "[-1e6, 1e6] m", w, i, a, t[a]);
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].translation[%d] = %g must be finite, within "
+                               "[-1e6, 1e6] m", i, a, t[a]);
         if (!isfinite(sc[a]) || fabs(sc[a]) < 1e-6 || fabs(sc[a]) > 1e6)
-            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].scale[%d] = %g must be within [1e-6, 1e6] in "
-                               "size (a negative scale mirrors)", w, i, a, sc[a]);
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].scale[%d] = %g must be within [1e-6, 1e6] in "
+                               "size (a negative scale mirrors)", i, a, sc[a]);
     }
     /* A rotation, as a box's, but a mesh host has "scale" for scale and
      * mirroring, so the messages say so. */
     for (int a = 0; a < 9; a++)
         if (!isfinite(rot[a]))
-            return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation[%d] = %g must be finite", w, i, a, rot[a]);
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].rotation[%d] = %g must be finite", i, a, rot[a]);
     m3 rm = m3_load(rot);
     for (int c = 0; c < 3; c++)
         for (int d = c; d < 3; d++) {
             double dot = v3_dot(m3_col(&rm, c), m3_col(&rm, d)), want = c == d ? 1.0 : 0.0;
             if (fabs(dot - want) > 1e-3)
-                return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation is not a rotation (column %d . "
+                return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].rotation is not a rotation (column %d . "
                                    "column %d = %g, want %g): give the scale in \"scale\" and a pure rotation",
-                                   w, i, c, d, dot, want);
+                                   i, c, d, dot, want);
         }
     if (m3_det(&rm) < 0)
-        return banyan_fail(err, BANYAN_E_BAD_HOST, "%shosts[%u].rotation has determinant %g: give a proper rotation "
-                           "(det +1) and mirror with a negative \"scale\"", w, i, m3_det(&rm));
+        return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u].rotation has determinant %g: give a proper rotation "
+                           "(det +1) and mirror with a negative \"scale\"", i, m3_det(&rm));
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++) transform[4 * r + c] = rot[3 * r + c] * sc[c];
         transform[4 * r + 3] = t[r];
@@ -435,7 +433,8 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
                                 "give this one as a box (center, half)", w, i);
         if (!s && n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u hosts is more than the %u allowed", w, n, cap);
         i = 0;
-        for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++) s = read_box(h, i, w, &out[i], err);
+        for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++)
+            if ((s = read_box(h, i, &out[i], err))) banyan_error_prefix(err, w);
         if (!s) {
             *count = n;
             banyan_error_clear(err);
@@ -539,7 +538,10 @@ banyan_status banyan_preset_host_set_budget(const char *text, size_t length, con
     uint32_t i = 0;
     for (const cJSON *h = hosts ? hosts->child : NULL; h; h = h->next, i++) {
         if (!mesh_member(h)) {
-            if ((s = read_box(h, i, w, &boxes[nb++], err))) goto done;
+            if ((s = read_box(h, i, &boxes[nb++], err))) {
+                banyan_error_prefix(err, w);
+                goto done;
+            }
             continue;
         }
         char wm[300], *path = NULL;
@@ -547,7 +549,10 @@ banyan_status banyan_preset_host_set_budget(const char *text, size_t length, con
         double transform[12];
         int32_t closed;
         glb_sizes z;
-        if ((s = read_mesh_entry(h, i, wm, base_dir, &path, transform, &closed, err))) goto done;
+        if ((s = read_mesh_entry(h, i, base_dir, &path, transform, &closed, err))) {
+            banyan_error_prefix(err, wm);
+            goto done;
+        }
         s = glb_scan(path, &g, &z, err);
         free(path);
         if (s) {
@@ -581,7 +586,10 @@ banyan_status banyan_preset_host_set_budget(const char *text, size_t length, con
         where_nth(wm, sizeof wm, source, text, length, "mesh", (int)nm);
         double transform[12];
         int32_t closed;
-        if ((s = read_mesh_entry(h, i, wm, base_dir, &path, transform, &closed, err))) goto done;
+        if ((s = read_mesh_entry(h, i, base_dir, &path, transform, &closed, err))) {
+            banyan_error_prefix(err, wm);
+            goto done;
+        }
         s = glb_read_host_prog(path, transform, closed, &g, &read[nm], err);
         free(path);
         if (s) {

@@ -1,7 +1,7 @@
 /* The run budget of keyaki and avenue (issue 21, item 3; docs/keyaki.md
  * "Budget"):
  *   - a tree and an avenue under max_seconds = 2 on inputs that take
- *     longer stop within 2.5 s with BANYAN_E_LIMIT naming max_seconds,
+ *     longer stop within 2.5 s (CHECK_SLACK looser under sanitizers) with BANYAN_E_LIMIT naming max_seconds,
  *     *out NULL; a small max_memory_mb stops them naming max_memory_mb;
  *   - a tree past max_vertices is refused while its skeleton grows: its
  *     peak resident set stays far below the 2.2 GB a whole skeleton of
@@ -104,12 +104,21 @@ static int run_child(const char *name, int threads, int fd) {
 
 extern char **environ;
 
-/* ThreadSanitizer's shadow memory counts in the resident set: the
- * absolute peak bound is that much looser under it (the ratios are not). */
-#if defined(__SANITIZE_THREAD__)
+/* A sanitizer's shadow memory (and ASan's quarantine of freed blocks)
+ * counts in the resident set: the absolute peak bound is that much looser
+ * under one (the ratios are not). */
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
 #define RSS_SCALE 3.0
 #else
 #define RSS_SCALE 1.0
+#endif
+/* ASan's allocator keeps per-thread caches and a quarantine: 8 threads
+ * hold more freed memory than 1 there. Still far below the 8x of eight
+ * trees in flight at once, which is what the ratio catches. */
+#if defined(__SANITIZE_ADDRESS__)
+#define THREADS_RSS_RATIO 1.5
+#else
+#define THREADS_RSS_RATIO 1.2
 #endif
 
 /* Runs case `name` on `threads` in a child; returns the child's peak
@@ -149,7 +158,7 @@ static void memory_of_threads(void) {
     printf("refused avenue: %.0f MB peak on 1 thread, %.0f MB on 8 (%.2fx): %s\n", m1, m8, m8 / m1, r8.message);
     CHECK(m1 > 0 && m8 > 0 && r1.status == BANYAN_E_LIMIT && r8.status == BANYAN_E_LIMIT,
           "refused avenue: %d / %d: %s", r1.status, r8.status, r8.message);
-    CHECK(m1 > 0 && m8 <= 1.2 * m1, "refused avenue: %.0f MB on 8 threads, %.0f MB on 1", m8, m1);
+    CHECK(m1 > 0 && m8 <= THREADS_RSS_RATIO * m1, "refused avenue: %.0f MB on 8 threads, %.0f MB on 1", m8, m1);
 
     /* A built avenue (the default: 16 trees). */
     run_result r3;
@@ -160,7 +169,7 @@ static void memory_of_threads(void) {
            r8.vertices);
     CHECK(m1 > 0 && m8 > 0 && m3 > 0 && !r1.status && !r8.status && !r3.status, "default avenue: %d / %d / %d",
           r1.status, r8.status, r3.status);
-    CHECK(m1 > 0 && m8 <= 1.2 * m1, "default avenue: %.0f MB on 8 threads, %.0f MB on 1", m8, m1);
+    CHECK(m1 > 0 && m8 <= THREADS_RSS_RATIO * m1, "default avenue: %.0f MB on 8 threads, %.0f MB on 1", m8, m1);
     CHECK(r1.vertices > 0 && r1.hash == r8.hash && r1.hash == r3.hash && r1.vertices == r8.vertices,
           "the avenue differs between 1, 3 and 8 threads");
 }
@@ -184,7 +193,7 @@ static void time_and_memory_budgets(void) {
     k.max_seconds = 2;
     double t = now();
     banyan_status s = banyan_keyaki_generate(&k, &m, &e);
-    check_stop("tree, max_seconds 2", s, m, &e, "max_seconds", now() - t, 2.5);
+    check_stop("tree, max_seconds 2", s, m, &e, "max_seconds", now() - t, 2 + 0.5 * CHECK_SLACK);
     banyan_mesh_free(m);
 
     big_tree(&k);
@@ -213,7 +222,7 @@ static void time_and_memory_budgets(void) {
         t = now();
         s = banyan_avenue_generate(&a, NULL, 0, threads, &m, NULL, &e);
         check_stop(threads == 2 ? "avenue, max_seconds 2, 2 threads" : "avenue, max_seconds 2, 8 threads", s, m, &e,
-                   "max_seconds", now() - t, 2.5);
+                   "max_seconds", now() - t, 2 + 0.5 * CHECK_SLACK);
         banyan_mesh_free(m);
     }
     banyan_avenue_params_init(&a);

@@ -123,6 +123,10 @@ printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "scale": 0 } ] }
 expect 2 "hosts[0].scale[0] = 0 must be within" -- "$bin" roots --preset "$bad/scale.json"
 printf '{ "generator": "roots", "hosts": [ { "mesh": "nan.glb", "half": [1, 1, 1] } ] }\n' > "$bad/half.json"
 expect 2 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots --preset "$bad/half.json"
+# Wherever the checkout sits, a long path gives up its middle and the cause stays whole.
+deep="$bad/a-directory-name-long-enough/to-stand-for/a-farm-checkout/somewhere-deep"
+mkdir -p "$deep" && cp "$bad/half.json" "$deep/half.json"
+expect 2 "hosts[0].half is unknown or malformed for a mesh host (keys: mesh, translation or center [3], rotation [9] or rotation_euler_deg [3], scale, closed, name)" -- "$bin" roots --preset "$deep/half.json"
 # Ivy's start (issue 16): on the wall's bottom face it moves to a side a
 # stem can grow from; boxed in a closed 2 cm cavity it cannot grow, the
 # output is still written and the exit code is 3 with a warning naming why.
