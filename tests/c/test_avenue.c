@@ -316,8 +316,12 @@ static void preset(const char *path, const char *name, void *ctx) {
           "%s: %u trees", name, n);
     banyan_mesh *m = NULL;
     if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, NULL, &err);
-    /* Bark and leaves per tree; bark only in winter. */
-    uint32_t parts = (p.tree.leaves ? 2 : 1) * n;
+    /* Bark and leaves per tree (per variant when instanced, each variant
+     * shown by at least one tree); bark only in winter. */
+    uint32_t shown = p.variants > 0 && (uint32_t)p.variants < n ? (uint32_t)p.variants : n;
+    uint32_t parts = (p.tree.leaves ? 2 : 1) * shown;
+    CHECK(p.variants == 0 || (m == NULL && s) || (m && m->instance_count == n), "%s: %u instances, want %u", name,
+          m ? m->instance_count : 0, n);
     CHECK(s == BANYAN_OK && m && m->part_count == parts, "%s: %s (%u parts, want %u)", name, err.message,
           m ? m->part_count : 0, parts);
     CHECK(m == NULL || m->vertex_count <= (uint32_t)p.max_vertices, "%s: over max_vertices", name);
