@@ -1,7 +1,8 @@
 /* avenue.c - keyaki avenues (spec/keyaki.md, "Avenues"): trees placed
  * along a line or polyline in one or two rows, each with its own seed
  * (base seed + index), a random heading and jitter of trunk height,
- * position and (for mixed ages) levels, grown in parallel with pthreads.
+ * position, size (unit), lean and (for mixed ages) levels, grown in
+ * parallel with pthreads.
  *
  * Layout: trees sit at arc lengths along the path, every `spacing` metres
  * centred on it, or `count` per row from end to end; row 0 lies
@@ -126,6 +127,7 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
     }
     uint32_t n_row = (uint32_t)per_row, total = 0;
     const banyan_param_info *trunk = banyan_param_find(BANYAN_GEN_KEYAKI, "trunk_length");
+    const banyan_param_info *unit = banyan_param_find(BANYAN_GEN_KEYAKI, "unit");
     for (int row = 0; row < p->rows; row++) {
         double shift = row == 1 && p->stagger ? 0.5 * step : 0.0;
         double offset = p->rows == 2 ? (row == 0 ? 0.5 : -0.5) * p->row_offset : 0.0;
@@ -161,6 +163,14 @@ banyan_status banyan_avenue_layout(const banyan_avenue_params *p, const double *
                 int32_t drop = (int32_t)rng_below(&r, (uint32_t)p->levels_jitter + 1);
                 t->levels = p->tree.levels - drop < 1 ? 1 : p->tree.levels - drop;
             }
+            /* Size and lean from a stream of their own: the draws above
+             * keep every avenue's feet, headings and trunks. */
+            pcg32 q;
+            pcg32_seed(&q, p->seed + i, AVENUE_STREAM_SHAPE);
+            double u = p->tree.unit * (1.0 + rng_range(&q, -p->scale_jitter, p->scale_jitter));
+            t->unit = u < unit->min ? unit->min : u > unit->max ? unit->max : u;
+            t->lean = p->lean_jitter * rng_uniform(&q);
+            t->lean_direction = rng_range(&q, -180.0, 180.0);
         }
     }
     free(own);

@@ -21,7 +21,12 @@
  * (1 - t)^2 fall-off over flare_height and ridged by flare_lobes
  * buttresses, swept as given rings with their surface's normals. Bark
  * uvs: every tube wraps a whole number of bark_tile-wide tiles round
- * (tube_bark_tiles of its first branch's radius), v in the same tiles.
+ * (tube_bark_tiles of its first branch's radius), v in the same tiles; a
+ * tube whose first branch is thinner than bark_flake_radius, and every
+ * twig, takes its u from the bark texture's smooth lane instead
+ * (keyaki_bark_smooth), and so does a flaking limb from one more ring
+ * just past its first branch thinner than that on (flake_end): flakes
+ * only on the trunk and the old limbs.
  * Everything is counted exactly before meshing (keyaki_body_plan) so the
  * vertex limit is checked before any mesh memory is allocated.
  * Wind and birth (docs/keyaki.md "Wind and growth attributes"), after
@@ -81,7 +86,7 @@ static inline v3 node_end(const keyaki_node *x) { return v3_madd(x->start, x->di
 #define KEYAKI_STREAM_FLARE 0x666c617265ull /* "flare" */
 
 typedef struct flare_shape {
-    double r0, h, sink, flare, amp, phase;
+    double r0, h, sink, flare, amp, phase, t0; /* t0: the sunk ring's shape (its place is sink down) */
     int lobes;
 } flare_shape;
 
@@ -98,13 +103,20 @@ static void flare_setup(const banyan_keyaki_params *p, const keyaki_node *trunk,
     f->r0 = trunk->radius;
     f->h = p->flare_height * p->unit;
     if (f->h > 0.8 * trunk->length) f->h = 0.8 * trunk->length;
-    f->sink = 0.15 * f->r0;
     f->flare = p->flare;
     f->lobes = p->flare_lobes;
     f->amp = f->lobes > 0 ? 0.6 * p->flare / (1.0 + p->flare) : 0.0;
     /* Many lobes: shallower, so a ridge's flank is at most 2:1 round the
      * trunk (rho_theta / rho = amp lobes) and the rings still sample it. */
     if (f->amp * f->lobes > 2.0) f->amp = 2.0 / f->lobes;
+    /* The sunk ring has the shape of the curves carried on to 0.15 r0
+     * under the ground (t0); a leaning trunk's sits deeper along its axis,
+     * by its widest reach x tan(lean), so its high side stays under level
+     * ground too. */
+    f->t0 = -0.15 * f->r0 / f->h;
+    double w0 = 1.0 - f->t0, reach = f->r0 * (1.0 + f->flare * w0 * w0) * (1.0 + f->amp * w0 * w0 * w0);
+    double hz = sqrt(trunk->dir.x * trunk->dir.x + trunk->dir.y * trunk->dir.y);
+    f->sink = 0.15 * f->r0 + (trunk->dir.z > 0.1 ? reach * hz / trunk->dir.z : 0.0);
     pcg32 r;
     pcg32_seed(&r, p->seed, KEYAKI_STREAM_FLARE);
     f->phase = rng_uniform(&r) * 2.0 * BANYAN_PI;
@@ -113,10 +125,13 @@ static void flare_setup(const banyan_keyaki_params *p, const keyaki_node *trunk,
 /* t of flare ring i: ring 0 sunk, ring 1 + i at i / F (i = 0 .. F). */
 static double flare_t(const flare_shape *f, int i) { return i == 0 ? -f->sink / f->h : (double)(i - 1) / FLARE_RINGS; }
 
+/* t of flare ring i's shape: the sunk ring's t0, else its place's. */
+static double flare_shape_t(const flare_shape *f, int i) { return i == 0 ? f->t0 : flare_t(f, i); }
+
 /* The flare's points and mean radii; pts[F + 1] is the trunk at r0. */
 static void flare_points_put(const flare_shape *f, const keyaki_node *trunk, v3 *pts, double *rad) {
     for (int i = 0; i <= FLARE_RINGS + 1; i++) {
-        double t = flare_t(f, i), w = 1.0 - t;
+        double t = flare_t(f, i), w = 1.0 - flare_shape_t(f, i);
         pts[i] = v3_madd(trunk->start, trunk->dir, f->h * t);
         rad[i] = f->r0 * (1.0 + f->flare * w * w);
     }
@@ -129,7 +144,7 @@ static void flare_points_put(const flare_shape *f, const keyaki_node *trunk, v3 
 static void flare_ridge(const flare_shape *f, const v3 *pts, const v3 *T, const v3 *N, int sides, v3 *rings,
                         v3 *normals) {
     for (int i = 0; i <= FLARE_RINGS + 1; i++) {
-        double t = flare_t(f, i), w = 1.0 - t;
+        double w = 1.0 - flare_shape_t(f, i);
         double R = f->r0 * (1.0 + f->flare * w * w), dR = -2.0 * f->r0 * f->flare * w / f->h;
         double a = f->amp * w * w * w, da = -3.0 * f->amp * w * w / f->h;
         v3 B = v3_cross(T[i], N[i]);
@@ -199,6 +214,33 @@ static void flare_sweep(mesh_builder *mb, const flare_shape *f, const v3 *pts, c
     free(rings);
 }
 
+/* keyaki_bark_smooth from v = vb on (v - vb scaled, so a limb's lane
+ * goes on from where its flakes end). */
+static void bark_lane(mesh_builder *mb, uint32_t from, int tiles, float vb) {
+    if (mb->status) return;
+    const float u0 = BANYAN_KEYAKI_BARK_SMOOTH_U0;
+    const float k = (BANYAN_KEYAKI_BARK_SMOOTH_U1 - u0) / (float)(tiles > 1 ? tiles : 1);
+    for (uint32_t v = from; v < mb->nv; v++) {
+        float *t = mb->uv + 2 * (size_t)v;
+        t[0] = u0 + k * t[0];
+        t[1] = vb + k * (t[1] - vb);
+    }
+}
+
+void keyaki_bark_smooth(mesh_builder *mb, uint32_t from, int tiles) { bark_lane(mb, from, tiles, 0.0f); }
+
+/* A limb at least bark_flake_radius thick at its first branch keeps its
+ * flakes down to the first branch of its chain thinner than that, which
+ * this returns (-1: none); a ring just past that branch's start (0.3 of
+ * the radius there, at most a quarter of the branch) begins the smooth
+ * lane, so the change of uvs spans a few cm. */
+static int32_t flake_end(const banyan_keyaki_params *p, const keyaki_node *n, int32_t first) {
+    if (n[first].radius < p->bark_flake_radius) return -1;
+    for (int32_t j = main_child(n, first); j >= 0; j = main_child(n, j))
+        if (n[j].radius < p->bark_flake_radius) return j;
+    return -1;
+}
+
 static void no_wind(wind_slots *ws) {
     memset(ws, 0, sizeof *ws);
     ws->birth = ws->level = ws->stiffness = ws->phase = ws->flutter = -1;
@@ -230,7 +272,7 @@ banyan_status keyaki_body_plan(const banyan_keyaki_params *p, const keyaki_node 
         int32_t m = 1;
         for (int32_t j = main_child(n, i); j >= 0; j = main_child(n, j)) m++;
         L->first = i;
-        L->points = m + 1 + (i != 0) + (i == 0 ? flare_points(p) : 0);
+        L->points = m + 1 + (i != 0) + (i == 0 ? flare_points(p) : 0) + (flake_end(p, n, i) >= 0);
         double f = r_trunk > 0 ? sqrt(n[i].radius / r_trunk) : 1.0;
         int sides = (int)floor(p->sides_min + (p->sides_max - p->sides_min) * f + 0.5);
         L->sides = sides < p->sides_min ? p->sides_min : sides > p->sides_max ? p->sides_max : sides;
@@ -400,7 +442,17 @@ static void mesh_bark(const banyan_keyaki_params *p, const keyaki_node *n, int32
             rad[1] = n[L->first].radius;
             ids[1] = L->first;
         }
+        int32_t lane = flake_end(p, n, L->first), lane_ring = -1;
         for (int32_t j = L->first; j >= 0; j = main_child(n, j)) {
+            if (j == lane) { /* the smooth lane's first ring, just past j's start */
+                double r_end = main_child(n, j) < 0 ? n[j].radius * p->tip_taper : n[j].radius;
+                double d = 0.3 * rad[m] < 0.25 * n[j].length ? 0.3 * rad[m] : 0.25 * n[j].length;
+                m++;
+                pts[m] = v3_madd(n[j].start, n[j].dir, d);
+                rad[m] = rad[m - 1] + (r_end - rad[m - 1]) * (n[j].length > 0 ? d / n[j].length : 0.0);
+                ids[m] = j;
+                lane_ring = m;
+            }
             m++;
             pts[m] = node_end(&n[j]);
             int32_t next = main_child(n, j);
@@ -422,6 +474,10 @@ static void mesh_bark(const banyan_keyaki_params *p, const keyaki_node *n, int32
             tube_opts o = {L->sides, L->first == 0, 1, {0, 0, 0}, 0.0, NULL, 0, tiles};
             tube_sweep(mb, pts, rad, (uint32_t)(m + 1), &o);
         }
+        if (n[L->first].radius < p->bark_flake_radius) keyaki_bark_smooth(mb, v0, tiles);
+        uint32_t ring_v = (uint32_t)L->sides + 1;
+        if (lane_ring > 0 && !mb->status) /* v goes on from the ring before */
+            bark_lane(mb, v0 + (uint32_t)lane_ring * ring_v, tiles, mb->uv[2 * ((size_t)v0 + (size_t)(lane_ring - 1) * ring_v) + 1]);
         /* Ring i > 0 closes branch ids[i]; the end cap belongs to the tip. */
         uint32_t ring = (uint32_t)L->sides + 1;
         for (int32_t i = 1; i <= m; i++) set_attrs(mb, attr, v0 + i * ring, v0 + (i + 1) * ring, &n[ids[i]]);

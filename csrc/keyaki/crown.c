@@ -854,6 +854,7 @@ void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int 
         /* A twig tip's end is hidden in its last leaves: no cap. */
         tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0, 1}; /* a twig: one bark tile round */
         tube_sweep(mb, P, R, (uint32_t)T->count, &o);
+        keyaki_bark_smooth(mb, first, 1); /* a twig's own smooth bark */
         if (!w || mb->status) continue;
         /* Per ring: birth by path length (stiffness follows from it). */
         double bt[MAX_TWIG_PTS];

@@ -169,6 +169,25 @@ static banyan_status first_split(const banyan_keyaki_params *p, keyaki_skeleton 
     return BANYAN_OK;
 }
 
+/* Lean (docs/keyaki.md "Lean"): the grown skeleton turned as one about
+ * its foot (position) by `lean` about the horizontal axis across
+ * heading + lean_direction, so the top moves that way; the growth rules
+ * never see it. */
+static void lean_tree(const banyan_keyaki_params *p, keyaki_skeleton *sk) {
+    double a = deg2rad(p->heading + p->lean_direction), t = deg2rad(p->lean);
+    v3 k = v3_make(-dm_sin(a), dm_cos(a), 0.0), o = v3_load(p->position);
+    double c = dm_cos(t), sn = dm_sin(t);
+    /* Rodrigues: v c + (k x v) s + k (k . v)(1 - c). */
+#define LEAN_TURN(v) v3_add(v3_add(v3_scale(v, c), v3_scale(v3_cross(k, v), sn)), v3_scale(k, v3_dot(k, v) * (1.0 - c)))
+    for (int32_t i = 0; i < sk->count; i++) {
+        keyaki_node *x = &sk->nodes[i];
+        x->start = v3_add(o, LEAN_TURN(v3_sub(x->start, o)));
+        x->dir = v3_norm_or(LEAN_TURN(x->dir), x->dir);
+        x->plane = v3_norm_or(LEAN_TURN(x->plane), x->plane);
+    }
+#undef LEAN_TURN
+}
+
 banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err) {
     const int L = p->levels, model = p->model;
     const double unit = p->unit, seg = p->segment_length * unit;
@@ -336,5 +355,6 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
     /* Twigs from segments: the finest levels go, after the radii, so the
      * limbs keep the thickness of the full tree (twigs.c). */
     if (p->twigs_from_segments) keyaki_truncate(sk, keyaki_grown_levels(p));
+    if (p->lean > 0) lean_tree(p, sk);
     return BANYAN_OK;
 }

@@ -192,6 +192,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
 void keyaki_crown_free(keyaki_crown *c);
 /* Appends the twig tubes to the current part (c->vertices exactly), with
  * their wind and birth, and the twigs to the skeleton (w: NULL for none). */
+/* Smooth bark: the uvs of vertices from .. mb->nv - 1 (one tube swept
+ * with `tiles` bark tiles round, and its caps) moved into the keyaki bark
+ * texture's smooth lane (BANYAN_KEYAKI_BARK_SMOOTH_U0 .. _U1), v scaled
+ * alike so texels stay square (body.c). */
+void keyaki_bark_smooth(mesh_builder *mb, uint32_t from, int tiles);
 void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3], const keyaki_wind *w);
 /* Appends leaves k0 .. k1 - 1 (4 vertices, 6 indices each; every value
  * from k alone, so ranges may be meshed on several threads into disjoint
@@ -335,5 +340,6 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
 #define KEYAKI_STREAM_LEAVES 0x6c6561766573ull /* "leaves" */
 #define KEYAKI_STREAM_TWIGS 0x7477696773ull    /* "twigs" */
 #define AVENUE_STREAM_JITTER 0x6a6974746572ull /* "jitter" */
+#define AVENUE_STREAM_SHAPE 0x7368617065ull     /* "shape": size and lean */
 
 #endif

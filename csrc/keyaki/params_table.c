@@ -5,8 +5,8 @@
  * The avenue table embeds the tree's rows under a "tree." prefix
  * (offsetof(banyan_avenue_params, tree.levels) is plain C), so an avenue
  * preset or `--set tree.levels=14` sets every tree at once. The tree's
- * seed, max_vertices, position and heading are not in the avenue table:
- * the avenue sets them per tree; nor are its max_seconds and max_memory_mb:
+ * seed, max_vertices, position, heading, lean and lean_direction are not
+ * in the avenue table: the avenue sets them per tree; nor are its max_seconds and max_memory_mb:
  * the avenue's own budget covers the whole avenue; nor is its threads:
  * the avenue's threads argument spreads its trees, one thread each. */
 #include <math.h>
@@ -60,6 +60,7 @@
     BP_DOUBLE(S, F(flare_height), "Flare height", "Thickness", "unit", 0.01, 10, "height over which the flare fades into the trunk"), \
     BP_INT(S, F(flare_lobes), "Flare buttresses", "Thickness", 0, 16, "root buttresses round the flare (0: round)"), \
     BP_DOUBLE(S, F(bark_tile), "Bark tile", "Thickness", "m", 0.01, 10, "side of one bark texture tile on the bark"), \
+    BP_DOUBLE(S, F(bark_flake_radius), "Flaking bark from", "Thickness", "m", 0, 10, "tubes at least this thick show flakes; thinner ones and twigs smooth bark"), \
     BP_INT(S, F(sides_max), "Trunk sides", "Thickness", 3, 64, "tube sides of the trunk"), \
     BP_INT(S, F(sides_min), "Twig sides", "Thickness", 3, 64, "tube sides of the thinnest branches"), \
     BP_COLOR(S, F(bark_color), "Bark color", "Thickness", "bark material colour (linear RGBA)")
@@ -114,6 +115,9 @@ const banyan_param_info keyaki_table_rows[] = {
     BP_SEED(K, seed, "Seed", "Tree", "random seed"),
     BP_VEC3(K, position, "Position", "Tree", "m", -1e6, 1e6, "trunk base"),
     BP_DOUBLE(K, heading, "Heading", "Tree", "deg", -360, 360, "turns the whole tree about its trunk"),
+    BP_DOUBLE(K, lean, "Lean", "Tree", "deg", 0, 30, "the whole tree tilted about its foot by this much"),
+    BP_DOUBLE(K, lean_direction, "Lean direction", "Tree", "deg", -360, 360,
+              "the way it leans, counter-clockwise from +X, turned with heading"),
     KEYAKI_TREE_GROUPS(K, KEYAKI_F),
     BP_INT(K, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(K, KEYAKI_F),
@@ -141,6 +145,8 @@ const banyan_param_info avenue_table_rows[] = {
               "trunk moved uniformly within a disc of this radius"),
     BP_INT(A, levels_jitter, "Random age", "Variation", 0, BANYAN_KEYAKI_MAX_LEVELS - 1,
            "tree.levels lowered by a uniform whole number in [0, this], never below 1: trees of mixed ages"),
+    BP_DOUBLE(A, scale_jitter, "Random size", "Variation", "", 0, 0.5, "tree.unit scaled by 1 + uniform(+-this): the whole tree's size"),
+    BP_DOUBLE(A, lean_jitter, "Random lean", "Variation", "deg", 0, 30, "each tree leans by uniform(0, this) in a random direction"),
     BP_INT(A, variants, "Variants", "Variation", 0, BANYAN_AVENUE_MAX_VARIANTS,
            "0: every tree unique; else this many distinct trees placed as instances"),
     KEYAKI_TREE_GROUPS(A, AVENUE_F),
@@ -188,9 +194,10 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->pipe_exponent = 2.5;
     p->tip_taper = 0.5;
     p->flare = 0.5;
-    p->flare_height = 0.6;
+    p->flare_height = 1.0;
     p->flare_lobes = 5;
     p->bark_tile = 0.4;
+    p->bark_flake_radius = 0.07;
     p->sides_max = 14;
     p->sides_min = 4;
     p->twig_levels = 2;
@@ -238,6 +245,8 @@ void banyan_avenue_params_init(banyan_avenue_params *p) {
     p->heading_jitter = 180.0;
     p->height_jitter = 0.15;
     p->position_jitter = 0.3;
+    p->scale_jitter = 0.12;
+    p->lean_jitter = 3.0;
     p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
     p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
 }

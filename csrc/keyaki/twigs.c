@@ -129,6 +129,7 @@ void keyaki_twigs_mesh(const banyan_keyaki_params *p, const keyaki_node *n, int3
             if (w) wind_set(mb, w->ws, a, w->level[i] + lev[j], 1, /* stiffness: from the birth, later */
                             wind_phase_of(w->seed, KEYAKI_PHASE_LINE + (uint64_t)i * 64 + (uint64_t)(j / 2)), 0);
             seg_line_tube(mb, a, b, r, p->sides_min);
+            keyaki_bark_smooth(mb, first, 1); /* a twig's own smooth bark */
             if (!w) continue;
             double bt[2] = {path[j / 2], path[j / 2] + v3_dist(a, b)};
             wind_tube_rings(mb, first, 2, p->sides_min, 0, 1, w->ws->birth, bt);

@@ -5,14 +5,16 @@
  *
  * Method. The layout is the unique avenue's (banyan_avenue_layout): the
  * same feet, headings and frame. Variant k is tree k's params (seed + k,
- * its height and levels jitter) grown at the frame's origin with heading
- * 0, so it stands on its foot, k = 0 .. V - 1 with V = min(variants, tree
+ * its height, size, lean and levels jitter) grown at the frame's origin
+ * with heading 0 (its lean direction relative to it), so it stands on its
+ * foot, k = 0 .. V - 1 with V = min(variants, tree
  * count). Tree i is shown by variant i when i < V (so the first V trees
  * are the unique avenue's own, turned by their heading), else by a
  * variant drawn uniformly from tree i's own PCG32 stream (seed + i,
  * "variant"): neighbours do not repeat a fixed cycle along the row. The
  * instance stands at tree i's foot (in the mesh's frame) turned by tree
- * i's heading, scale 1.
+ * i's heading, scaled by tree i's unit over variant k's (so every tree
+ * keeps its own size; its lean is the variant's).
  * Parallelism and budget as in the avenue: workers take variant indices
  * from an atomic counter and grow each into its own mesh; the calling
  * thread keeps the budget (max_seconds, max_memory_mb) and the progress
@@ -221,7 +223,8 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
         inst[i].variant = k;
         for (int c = 0; c < 3; c++) inst[i].translation[c] = (float)(trees[i].position[c] - (&O.x)[c]);
         inst[i].rotation_z = (float)deg2rad(trees[i].heading);
-        inst[i].scale = 1.0f;
+        /* Tree i's size (scale_jitter) on whichever variant shows it. */
+        inst[i].scale = (float)(trees[i].unit / trees[k].unit);
     }
 
     int t = threads;

@@ -1,6 +1,7 @@
-/* bark.c - tileable bark (issue #17; docs/materials.md "Bark"): keyaki
- * (smooth grey with lenticels, old scales flaking off into orange-brown
- * patches), strangler fig (smooth pale grey-brown with fine horizontal
+/* bark.c - tileable bark (docs/materials.md "Bark"): keyaki (smooth grey
+ * with lenticels, small old scales flaking off into muted orange-brown
+ * patches, and a smooth grey-brown lane for thin branches and twigs),
+ * strangler fig (smooth pale grey-brown with fine horizontal
  * wrinkles around the root) and the ivy's woody stem (brown, fibrous,
  * a few longitudinal fissures). Each is periodic value noise (noise.c)
  * shaped per kind, made a band of rows at a time; the tile spans one
@@ -78,8 +79,12 @@ static float *fields_rows(fields *F, int i, int y0) {
 
 /* Keyaki's scales: a periodic jittered grid of gx x gy cells (cellular
  * noise), warped, so the flakes are rounded polygons a little taller than
- * wide. Each cell is a scale: grey (its own shade) or shed, showing the
- * orange-brown under-bark (fresh) or a duller brown (older). */
+ * wide, a few cm on a 0.4 m tile. Each cell is a scale: grey (its own
+ * shade) or, for a few, shed, showing the under-bark, muted orange-brown
+ * (fresh) to a duller brown (older). No scale is shed near the smooth
+ * lane, u in BANYAN_KEYAKI_BARK_SMOOTH_U0 .. _U1 (textures.h): there the
+ * tile is smooth grey-brown young bark with lenticels, and the bodies map
+ * their thin branches' and twigs' u into it. */
 typedef struct scales {
     int gx, gy, pw;       /* cells across and along; padded row width */
     float *px, *py, *val; /* padded by SPAD cells each side (copies wrapped round): point, value */
@@ -87,8 +92,11 @@ typedef struct scales {
     float *vals;          /* gx * gy: each cell's value */
 } scales;
 
-#define KEYAKI_SHED 0.30f /* fraction of scales shed */
-#define SPAD 3             /* covers the warp (under a cell) and the 3 x 3 search */
+#define KEYAKI_SHED 0.13f     /* fraction of scales shed */
+#define KEYAKI_GX 16          /* scales across the tile */
+#define KEYAKI_GY 12          /* scales along it */
+#define KEYAKI_LANE_FADE 0.03f /* u over which the lane's colour fades in at each side */
+#define SPAD 3                /* covers the warp (under a cell) and the 3 x 3 search */
 
 static int scales_init(scales *S, int gx, int gy, pcg32 *rng) {
     S->gx = gx, S->gy = gy, S->pw = gx + 2 * SPAD;
@@ -103,10 +111,15 @@ static int scales_init(scales *S, int gx, int gy, pcg32 *rng) {
         return -1;
     }
     float *jy = jx + cells, *v = jy + cells;
+    /* A scale whose point lies within 1.2 cells of the lane (its reach
+     * with the warp) stays on: its value is moved above KEYAKI_SHED. */
+    const float lo = BANYAN_KEYAKI_BARK_SMOOTH_U0 * (float)gx - 1.2f, hi = BANYAN_KEYAKI_BARK_SMOOTH_U1 * (float)gx + 1.2f;
     for (size_t i = 0; i < cells; i++) {
         jx[i] = tex_unif(rng, 0.1f, 0.9f);
         jy[i] = tex_unif(rng, 0.1f, 0.9f);
         v[i] = tex_unif(rng, 0.0f, 1.0f);
+        float x = (float)(i % (size_t)gx) + jx[i];
+        if (x > lo && x < hi) v[i] = KEYAKI_SHED + (1.0f - KEYAKI_SHED) * v[i];
     }
     S->py = S->px + padded, S->val = S->py + padded, S->vals = S->val + padded;
     memcpy(S->vals, v, sizeof(float) * cells);
@@ -179,14 +192,17 @@ static void scales_at4(const scales *S, const float qx[4], const float qy[4], in
 static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, const float *wy,
                        const float *restrict tr, const float *restrict hr, const int *cid, const float *cgap,
                        float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
-    const float grey[3] = {160, 158, 150}, grey2[3] = {118, 118, 112};
-    const float orange[3] = {190, 120, 74}, brown[3] = {140, 104, 78};
+    const float grey[3] = {162, 160, 153}, grey2[3] = {120, 120, 115};
+    const float orange[3] = {164, 134, 108}, brown[3] = {132, 118, 102};
+    const float lane[3] = {156, 148, 138}, lane2[3] = {120, 112, 103}; /* young bark: grey-brown */
     const float sx = (float)S->gx / (float)n, sy = (float)S->gy / (float)n;
     const int cw = n / KB + 1, by = r / KB;
     /* The border term is 0 beyond a gap of 0.07; inside a block the gap
-     * changes by under 0.06 at 1024 (the block spans fewer cells on a
-     * larger image): the same bytes as searching every pixel. */
-    const float kb_gap = 0.08f + 0.06f * 1024.0f / (float)n;
+     * changes by under 0.06 at 1024 on a 12 x 8 grid (the block spans
+     * fewer cells on a larger image, more on a finer grid): the same
+     * bytes as searching every pixel. */
+    const float fx = (float)S->gx / 12.0f, fy = (float)S->gy / 8.0f;
+    const float kb_gap = 0.08f + 0.06f * 1024.0f / (float)n * (fx > fy ? fx : fy);
     /* Pass 1: each pixel's scale value (into B) and gap (into H). */
     for (int bx = 0; bx < n / KB; bx++) {
         int c00 = by * cw + bx, c01 = c00 + 1, c10 = c00 + cw, c11 = c10 + 1, id = cid[c00];
@@ -220,7 +236,7 @@ static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, co
         float v = B[x];
         float edge = 1.0f - tex_smooth(0.0f, 0.07f, H[x]); /* the border between two scales */
         float t = tr[x];
-        float g = tex_clampf(0.5f + 0.9f * t + (v - 0.5f) * 0.5f, 0.0f, 1.0f);
+        float g = tex_clampf(0.55f + 0.6f * t + (v - 0.5f) * 0.4f, 0.0f, 1.0f); /* soft mottling, no camouflage */
         /* Shed: fresh (orange) to older (duller brown), mottled; the
          * scales around it end in a torn, shadowed edge. */
         float fresh = tex_clampf(v / KEYAKI_SHED * 1.4f - 0.2f + 0.8f * t, 0.0f, 1.0f);
@@ -237,7 +253,14 @@ static void keyaki_row(int n, int y, int r, const scales *S, const float *wx, co
         float gb = tex_mix(grey2[2], grey[2], g) * dark;
         float gh = 0.25f * hr[x] - 0.1f * edge;
         int shed = v < KEYAKI_SHED;
-        R[x] = shed ? sr : gr, G[x] = shed ? sg : gg, B[x] = shed ? sb : gb, H[x] = shed ? sh : gh;
+        /* The smooth lane: young bark over the scales, faded in at its sides. */
+        float u = ((float)x + 0.5f) / (float)n;
+        float k = tex_smooth(BANYAN_KEYAKI_BARK_SMOOTH_U0 - KEYAKI_LANE_FADE, BANYAN_KEYAKI_BARK_SMOOTH_U0, u) *
+                  (1.0f - tex_smooth(BANYAN_KEYAKI_BARK_SMOOTH_U1, BANYAN_KEYAKI_BARK_SMOOTH_U1 + KEYAKI_LANE_FADE, u));
+        float lt = tex_clampf(0.5f + 0.6f * t, 0.0f, 1.0f);
+        float lr = tex_mix(lane2[0], lane[0], lt), lg = tex_mix(lane2[1], lane[1], lt), lb = tex_mix(lane2[2], lane[2], lt);
+        R[x] = tex_mix(shed ? sr : gr, lr, k), G[x] = tex_mix(shed ? sg : gg, lg, k);
+        B[x] = tex_mix(shed ? sb : gb, lb, k), H[x] = tex_mix(shed ? sh : gh, 0.1f * hr[x], k);
     }
 }
 
@@ -248,7 +271,7 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     fields F;
     if (fields_init(&F, n, 4, spec, rng)) return -1;
     scales S;
-    if (scales_init(&S, 12, 8, rng)) {
+    if (scales_init(&S, KEYAKI_GX, KEYAKI_GY, rng)) {
         fields_free(&F);
         return -1;
     }

@@ -1,8 +1,9 @@
 /* avenue: layout (counts by spacing and count, rows, stagger, row offset,
  * polylines), per-tree seeds (tree i is the keyaki of seed base + i),
  * the merged mesh grouped by tree, byte-identical output on 1, 2 and all
- * threads, trees that differ, mixed ages (levels_jitter), refusals with
- * clear messages, every avenue preset, and a glb for the validator. */
+ * threads, trees that differ, mixed ages (levels_jitter), sizes and
+ * leans (scale_jitter, lean_jitter), refusals with clear messages, every
+ * avenue preset, and a glb for the validator. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -295,6 +296,95 @@ static void merged(const char *outdir) {
 }
 
 
+/* Coefficient of variation (sd / mean) of tree heights: each group's
+ * highest vertex over its lowest. */
+static double height_cv(const banyan_mesh *m, uint32_t n) {
+    double h[64], sum = 0, sq = 0;
+    for (uint32_t i = 0; i < n && i < 64; i++) h[i] = 0;
+    float lo[64], hi[64];
+    for (uint32_t i = 0; i < 64; i++) lo[i] = 1e30f, hi[i] = -1e30f;
+    for (uint32_t q = 0; q < m->part_count; q++) {
+        const banyan_part *pt = &m->parts[q];
+        if (pt->group >= 64) continue;
+        for (uint32_t v = pt->vertex_offset; v < pt->vertex_offset + pt->vertex_count; v++) {
+            float z = m->positions[3 * (size_t)v + 2];
+            lo[pt->group] = z < lo[pt->group] ? z : lo[pt->group];
+            hi[pt->group] = z > hi[pt->group] ? z : hi[pt->group];
+        }
+    }
+    for (uint32_t i = 0; i < n && i < 64; i++) {
+        h[i] = hi[i] - lo[i];
+        sum += h[i];
+        sq += h[i] * h[i];
+    }
+    double mean = sum / n, var = sq / n - mean * mean;
+    return mean > 0 ? sqrt(var > 0 ? var : 0) / mean : 0;
+}
+
+/* scale_jitter and lean_jitter: drawn from a stream of their own (the
+ * feet, headings, trunks and levels stay those of an avenue without
+ * them), unit within 1 +- scale_jitter of tree.unit, leans within
+ * lean_jitter (the trunk's tilt as grown), and the heights spread. */
+static void size_and_lean(void) {
+    banyan_avenue_params p, q;
+    small(&p);
+    p.end[0] = 56; /* 8 a row */
+    p.tree.leaves = 0;
+    p.scale_jitter = 0.15;
+    p.lean_jitter = 4.0;
+    q = p;
+    q.scale_jitter = 0;
+    q.lean_jitter = 0;
+    banyan_keyaki_params a[32], b[32];
+    uint32_t n = 0, nb = 0;
+    banyan_error err;
+    CHECK(banyan_avenue_layout(&p, NULL, 0, a, 32, &n, &err) == BANYAN_OK && n == 16, "layout: %u trees", n);
+    CHECK(banyan_avenue_layout(&q, NULL, 0, b, 32, &nb, &err) == BANYAN_OK && nb == n, "layout without: %u trees", nb);
+    if (n != 16 || nb != n) return;
+    int moved = 0, off_unit = 0, off_lean = 0, none = 0, dirs = 0;
+    double umin = 1e9, umax = 0, lmax = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        moved += memcmp(a[i].position, b[i].position, sizeof a[i].position) || a[i].heading != b[i].heading ||
+                 a[i].trunk_length != b[i].trunk_length || a[i].levels != b[i].levels || a[i].seed != b[i].seed;
+        double s = a[i].unit / p.tree.unit;
+        off_unit += s < 1 - p.scale_jitter - 1e-12 || s > 1 + p.scale_jitter + 1e-12;
+        umin = s < umin ? s : umin;
+        umax = s > umax ? s : umax;
+        none += b[i].unit != p.tree.unit || b[i].lean != 0;
+        dirs += a[i].lean_direction > 0;
+        /* The grown trunk's tilt is the lean; its foot stays. */
+        keyaki_skeleton sk = {NULL, 0, 0, NULL};
+        if (keyaki_grow(&a[i], &sk, NULL) != BANYAN_OK || sk.count < 1) {
+            off_lean++;
+            keyaki_skeleton_free(&sk);
+            continue;
+        }
+        const keyaki_node *t = &sk.nodes[0];
+        double tilt = acos(t->dir.z < 1 ? t->dir.z : 1) * 180.0 / BANYAN_PI;
+        off_lean += tilt > p.lean_jitter + 1e-6 || fabs(tilt - a[i].lean) > 1e-6 ||
+                    v3_dist(t->start, v3_load(a[i].position)) > 1e-9;
+        lmax = tilt > lmax ? tilt : lmax;
+        keyaki_skeleton_free(&sk);
+    }
+    CHECK(moved == 0, "%d trees whose feet, heading, trunk or levels move with scale_jitter / lean_jitter", moved);
+    CHECK(none == 0, "%d trees sized or leaning without the jitters", none);
+    CHECK(off_unit == 0 && umax - umin > p.scale_jitter, "units %.3f .. %.3f of tree.unit (%d outside +-%g)", umin, umax,
+          off_unit, p.scale_jitter);
+    CHECK(off_lean == 0 && lmax > 0.5 * p.lean_jitter, "%d trunks tilted otherwise than their lean (up to %g); largest %.2f deg",
+          off_lean, p.lean_jitter, lmax);
+    CHECK(dirs > 2 && dirs < (int)n - 2, "lean directions one-sided: %d of %u positive", dirs, n);
+    /* Heights spread: more than without the jitters, and by at least 5 %. */
+    banyan_mesh *m = NULL, *m0 = NULL;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    CHECK(banyan_avenue_generate(&q, NULL, 0, 2, &m0, NULL, &err) == BANYAN_OK, "avenue without: %s", err.message);
+    if (m && m0) {
+        double cv = height_cv(m, n), cv0 = height_cv(m0, n);
+        CHECK(cv >= 0.05 && cv > cv0, "tree heights vary by %.3f (sd / mean), %.3f without scale_jitter", cv, cv0);
+    }
+    banyan_mesh_free(m);
+    banyan_mesh_free(m0);
+}
+
 /* Tree counts of the presets whose layout the docs quote; 0: not checked. */
 static uint32_t want_trees(const char *name) {
     if (!strcmp(name, "avenue_boulevard")) return 100;
@@ -345,6 +435,7 @@ int main(int argc, char **argv) {
     mixed_ages();
     refusals();
     merged(outdir);
+    size_and_lean();
     presets(outdir);
     return check_done("test_avenue");
 }

@@ -104,11 +104,13 @@ static void placements(void) {
         const banyan_instance *in = &ins->instances[i];
         const float *b = uni->skel_points + 3 * (size_t)base[i];
         for (int c = 0; c < 3; c++) off += fabsf(in->translation[c] - b[c]) > 1e-5f;
-        turned += fabs(in->rotation_z - deg2rad(trees[i].heading)) > 1e-6 || in->scale != 1.0f;
+        turned += fabs(in->rotation_z - deg2rad(trees[i].heading)) > 1e-6 || in->variant >= 8 ||
+                  fabs(in->scale - trees[i].unit / trees[in->variant < 8 ? in->variant : 0].unit) > 1e-6 ||
+                  (i < 3 && in->scale != 1.0f);
         drawn += in->variant == (i < 3 ? i : in->variant) && in->variant < 3;
     }
     CHECK(off == 0, "%d instance coordinates off the unique trees' trunk bases", off);
-    CHECK(turned == 0, "%d instances not turned by their tree's heading, or scaled", turned);
+    CHECK(turned == 0, "%d instances not turned by their tree's heading, or not scaled to their tree's size", turned);
     CHECK(drawn == 8, "instances 0..2 must show variants 0..2, the others one of them (%d right)", drawn);
     /* The first variants are the unique trees' skeletons, turned and
      * moved by their instance (twigs and leaves are drawn at heading 0,
@@ -119,6 +121,35 @@ static void placements(void) {
         double d = skeleton_match(ins, vbase, 3, k, ins->instances[k].rotation_z, ins->instances[k].translation, uni,
                                   base, 8, k);
         CHECK(d >= 0 && d < 1e-4, "variant %u placed as instance %u is %g m from the unique tree %u", k, k, d, k);
+    }
+
+    /* Sizes spread over the instances too (scale_jitter): variant k's
+     * height (its group's highest vertex over its lowest) times the
+     * instance's scale is tree i's own height, as grown alone; leans stay
+     * within lean_jitter. */
+    {
+        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+        for (uint32_t q = 0; q < ins->part_count; q++) {
+            const banyan_part *pt = &ins->parts[q];
+            for (uint32_t v = pt->vertex_offset; pt->group < 3 && v < pt->vertex_offset + pt->vertex_count; v++) {
+                float z = ins->positions[3 * (size_t)v + 2];
+                lo[pt->group] = z < lo[pt->group] ? z : lo[pt->group];
+                hi[pt->group] = z > hi[pt->group] ? z : hi[pt->group];
+            }
+        }
+        double sum = 0, sq = 0;
+        int leaning = 0, bad_lean = 0;
+        for (uint32_t i = 0; i < 8; i++) {
+            double h = (hi[ins->instances[i].variant] - lo[ins->instances[i].variant]) * ins->instances[i].scale;
+            sum += h;
+            sq += h * h;
+            leaning += trees[i].lean > 0;
+            bad_lean += trees[i].lean < 0 || trees[i].lean > p.lean_jitter;
+        }
+        double mean = sum / 8, cv = sqrt(fmax(sq / 8 - mean * mean, 0)) / mean;
+        CHECK(cv >= 0.04, "instance heights vary by %.3f (sd / mean) with scale_jitter %g", cv, p.scale_jitter);
+        CHECK(leaning == 8 && bad_lean == 0, "%d trees leaning, %d beyond lean_jitter %g", leaning, bad_lean,
+              p.lean_jitter);
     }
 
     /* The same bytes on 1 thread. */

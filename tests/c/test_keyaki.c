@@ -658,12 +658,14 @@ static void fractions_and_heading(void) {
 }
 
 /* `unit` scales the tree's body: same vertex count, positions scaled.
- * Twigs and leaves are real sizes in metres (issue #20): left out. */
+ * Twigs and leaves are real sizes in metres (issue #20): left out; so is
+ * bark_flake_radius (metres: where a limb's flakes end, one more ring). */
 static void unit_scales(void) {
     banyan_keyaki_params p;
     banyan_keyaki_params_init(&p);
     p.seed = 31;
     p.leaf_levels = 0;
+    p.bark_flake_radius = 0;
     banyan_mesh *a = NULL, *b = NULL;
     banyan_keyaki_generate(&p, &a, NULL);
     p.unit = 2.5;

@@ -6,7 +6,8 @@
  * flare 0 gives the plain trunk ring; every tube wraps a whole number of
  * bark tiles (tube_bark_tiles of its first branch's radius), the trunk's
  * texels are square and a tile spans bark_tile; no NaN; the plan's counts
- * are exact; the flare leaves the skeleton alone; same seed same bytes. */
+ * are exact; the flare leaves the skeleton alone; same seed same bytes;
+ * a leaning trunk's sunk ring stays under the ground. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,6 +70,14 @@ static int maxima(const double *r, int n) {
     for (int j = 0; j < n; j++)
         c += r[j] > r[(j + n - 1) % n] && r[j] >= r[(j + 1) % n];
     return c;
+}
+
+/* The child a limb continues into (body.c's main_child). */
+static int32_t main_of(const keyaki_node *n, int32_t i) {
+    int32_t a = n[i].child[0], b = n[i].child[1];
+    if (a < 0) return b;
+    if (b < 0) return a;
+    return n[b].radius > n[a].radius ? b : a;
 }
 
 static int finite_mesh(const mesh_builder *mb) {
@@ -183,9 +192,12 @@ static void flare_leaves_growth(void) {
     release(&b);
 }
 
-/* Bark uvs: on every tube u wraps tube_bark_tiles(radius of its first
- * branch) whole tiles; on the trunk above the flare texels are square
- * and a tile spans bark_tile +- 30 %. */
+/* Bark uvs: on every tube at least bark_flake_radius thick u wraps
+ * tube_bark_tiles(radius of its first branch) whole tiles, on every
+ * thinner one it runs once over the smooth lane (U0 .. U1), and a flaking
+ * limb turns smooth (for good) where, and only where, its chain thins
+ * past the radius; both kinds of tube occur; on the trunk above the flare texels are square and a tile spans
+ * bark_tile +- 30 %. */
 static void bark_uvs(uint64_t seed, double unit, double tile, double flare) {
     trunk_mesh t;
     banyan_keyaki_params_init(&t.p);
@@ -198,18 +210,32 @@ static void bark_uvs(uint64_t seed, double unit, double tile, double flare) {
         release(&t);
         return;
     }
-    int bad_k = 0, ones = 0, many = 0;
+    int bad_k = 0, ones = 0, many = 0, smooth = 0, flaky = 0;
     for (int32_t k = 0; k < t.body.limb_count; k++) {
         const keyaki_limb *L = &t.body.limbs[k];
         int want = tube_bark_tiles(t.sk.nodes[L->first].radius, tile);
+        int lane = t.sk.nodes[L->first].radius < t.p.bark_flake_radius, thin = 0;
+        for (int32_t j = L->first; j >= 0; j = main_of(t.sk.nodes, j)) thin |= t.sk.nodes[j].radius < t.p.bark_flake_radius;
+        int was_lane = lane, lane_rings = 0;
         for (int32_t r = 0; r < L->points; r++) {
             const float *uv = t.mb.uv + 2 * (size_t)(L->vertex_offset + (uint32_t)r * (uint32_t)(L->sides + 1));
-            bad_k += uv[0] != 0.0f || uv[2 * L->sides] != (float)want;
+            int on = fabsf(uv[0] - BANYAN_KEYAKI_BARK_SMOOTH_U0) <= 1e-6f &&
+                     fabsf(uv[2 * L->sides] - BANYAN_KEYAKI_BARK_SMOOTH_U1) <= 1e-6f;
+            int tiled = uv[0] == 0.0f && uv[2 * L->sides] == (float)want;
+            /* A flaking limb turns smooth once, never back. */
+            bad_k += !(on || tiled) || (lane && !on) || (was_lane && !on);
+            was_lane |= on;
+            lane_rings += on;
         }
+        bad_k += thin != (lane_rings > 0); /* smooth where, and only where, the chain thins past the radius */
         ones += want == 1;
         many += want > 1;
+        smooth += lane;
+        flaky += !lane;
     }
-    CHECK(bad_k == 0, "unit %g tile %g: %d rings whose u does not run 0..k", unit, tile, bad_k);
+    CHECK(bad_k == 0, "unit %g tile %g: %d rings whose u does not run 0..k (smooth: U0..U1)", unit, tile, bad_k);
+    CHECK((smooth > 0 || unit > 1) && flaky > 0, "unit %g tile %g: %d smooth tubes, %d flaking", unit, tile, smooth,
+          flaky); /* at unit 2 even the tips are over bark_flake_radius */
     CHECK(ones > 0 && many > 0, "unit %g tile %g: %d tubes with one tile, %d with more", unit, tile, ones, many);
     /* The trunk: the ring at the top of the first branch and the one
      * below it, both at the trunk's radius. */
@@ -271,6 +297,31 @@ static void same_bytes(void) {
     banyan_mesh_free(c);
 }
 
+/* A leaning trunk's foot (with a flare): the sunk ring lies wholly under
+ * level ground (the foot's z), so the flare's high side shows no gap. */
+static void leaning_foot(double lean, double flare) {
+    trunk_mesh t;
+    banyan_keyaki_params_init(&t.p);
+    t.p.seed = 9;
+    t.p.levels = 10;
+    t.p.flare = flare;
+    t.p.lean = lean;
+    t.p.lean_direction = 40;
+    if (!build(&t)) {
+        CHECK(0, "build");
+        release(&t);
+        return;
+    }
+    const keyaki_limb *L = &t.body.limbs[0];
+    double top = -1e9, foot = t.p.position[2];
+    for (int j = 0; j < L->sides; j++) {
+        double z = t.mb.pos[3 * ((size_t)L->vertex_offset + (size_t)j) + 2];
+        top = z > top ? z : top;
+    }
+    CHECK(top < foot, "lean %g flare %g: the sunk ring reaches %g m over the ground", lean, flare, top - foot);
+    release(&t);
+}
+
 int main(void) {
     static const double flares[] = {0.5, 0.0, 1.2, 3.0};
     static const int lobes[] = {5, 0, 3, 8, 1, 16};
@@ -285,5 +336,8 @@ int main(void) {
     bark_uvs(6, 2.0, 0.6, 0.5);
     bark_uvs(7, 1.0, 0.4, 3.0);
     same_bytes();
+    leaning_foot(4.0, 0.5);
+    leaning_foot(15.0, 1.2);
+    leaning_foot(28.0, 3.0);
     return check_done("test_keyaki_trunk");
 }

@@ -199,8 +199,9 @@ static void check_tiles(int kind, const banyan_image *im, const char *what) {
               rows ? "top/bottom" : "left/right", seam, near, mx);
     }
     /* The check can fail: columns x >= n/2 taken from x + n/4 put a cut
-     * between columns n/2 - 1 and n/2. */
-    if (kind == BANYAN_TEX_KEYAKI_BARK && !strcmp(what, "colour")) {
+     * between columns n/2 - 1 and n/2. From 256 px: at 64 a flake is four
+     * pixels across, and neighbouring columns differ as much as a cut. */
+    if (kind == BANYAN_TEX_KEYAKI_BARK && !strcmp(what, "colour") && n >= 256) {
         banyan_image sw = *im;
         int c = (int)im->channels;
         sw.pixels = malloc((size_t)n * n * c);
@@ -209,8 +210,8 @@ static void check_tiles(int kind, const banyan_image *im, const char *what) {
                 memcpy(sw.pixels + c * ((size_t)y * n + x),
                        im->pixels + c * ((size_t)y * n + (x < n / 2 ? x : (x + n / 4) % n)), (size_t)c);
         double seam = 0, near = 0;
-        CHECK(sw.pixels && !seam_ok(&sw, n / 2 - 1, 0, &seam, &near), "%s: the seam test does not see a cut (%.2f vs %.2f)",
-              names[kind], seam, near);
+        CHECK(sw.pixels && !seam_ok(&sw, n / 2 - 1, 0, &seam, &near),
+              "%s %d px: the seam test does not see a cut (%.2f vs %.2f)", names[kind], n, seam, near);
         free(sw.pixels);
     }
 }

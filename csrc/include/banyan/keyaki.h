@@ -92,6 +92,10 @@ typedef struct banyan_keyaki_params {
     double position[3];      /* m, each within +-1e6: trunk base. Default origin */
     double heading;          /* deg, -360 .. 360: turns the whole tree about its trunk. Default 0 */
     double unit;             /* m, 1e-3 .. 1e3: multiplies every "unit" length. Default 1 */
+    double lean;             /* deg, 0 .. 30: the whole tree tilted about its foot (the trunk base) by this much, after
+                                it has grown (its shape does not change). Default 0 */
+    double lean_direction;   /* deg, -360 .. 360: the way it leans, counter-clockwise from +X, turned with heading.
+                                Default 0 */
 
     /* --- growth (spec "Common terms", models 1-4) */
     int32_t model;           /* banyan_keyaki_model. Default EDAORE */
@@ -132,7 +136,7 @@ typedef struct banyan_keyaki_params {
     double tip_taper;        /* 0.05 .. 1: end radius of a tip as a fraction of tip_radius. Default 0.5 */
     double flare;            /* 0 .. 3: extra trunk radius at the ground, a fraction of the trunk's radius
                                 (root flare). Default 0.5 */
-    double flare_height;     /* unit, 0.01 .. 10: height over which the flare fades into the trunk. Default 0.6 */
+    double flare_height;     /* unit, 0.01 .. 10: height over which the flare fades into the trunk. Default 1 */
     int32_t flare_lobes;     /* 0 .. 16: root buttresses round the flare (0: a round flare). Default 5 */
     double bark_tile;        /* m, 0.01 .. 10: side of one bark texture tile on the surface (u wraps a whole
                                 number of tiles round a tube). Default 0.4 */
@@ -164,6 +168,9 @@ typedef struct banyan_keyaki_params {
     double leaf_color[4];    /* linear RGBA: the summer leaves' flat colour (textures off). Default green */
     int32_t season;          /* banyan_season: the leaf material (texture and flat colour); the geometry
                                 is the same in every season. Default SUMMER */
+    double bark_flake_radius; /* m, 0 .. 10: a tube whose first branch is at least this thick (the trunk, the old
+                                 limbs) shows the bark's flakes; thinner ones and every twig the texture's smooth
+                                 grey-brown lane (BANYAN_KEYAKI_BARK_SMOOTH_U0 .. _U1). Default 0.07 */
 
     /* --- twigs from segments (spec/segments.md, "Composing a tree"; docs/keyaki.md) */
     int32_t twigs_from_segments; /* bool: grow the skeleton to levels - segment_levels and make the finest
@@ -257,7 +264,12 @@ typedef struct banyan_avenue_params {
     double position_jitter;  /* m, 0 .. 100: offset uniform in a disc of this radius. Default 0.3 */
     int32_t levels_jitter;   /* 0 .. 29: levels lowered by a uniform whole number in [0, this] (never below 1),
                                 so trees of mixed ages stand side by side. Default 0 */
-    banyan_keyaki_params tree; /* every tree; seed, max_vertices, position and heading are set per tree */
+    double scale_jitter;     /* 0 .. 0.5: tree.unit scaled by 1 + uniform(+-this): the whole tree's size (leaves
+                                and twigs keep theirs). Default 0.12 */
+    double lean_jitter;      /* deg, 0 .. 30: each tree leans (tree.lean) by uniform(0, this) in a uniform
+                                direction (tree.lean_direction). Default 3 */
+    banyan_keyaki_params tree; /* every tree; seed, max_vertices, position, heading, lean and lean_direction are
+                                  set per tree */
     /* The avenue's budget, over every tree and thread (docs/keyaki.md "Budget"). */
     double max_seconds;      /* s, 0.01 .. 604800: wall time of the call. Default 600 */
     double max_memory_mb;    /* MB, 16 .. 1048576: resident memory the call may add, every thread's. Default 8192 */

@@ -19,7 +19,8 @@ typedef enum banyan_texture_kind {
     BANYAN_TEX_NONE = -1,
     BANYAN_TEX_KEYAKI_LEAF = 0, /* atlas of keyaki (Zelkova serrata) leaves: ovate, pointed, serrated, 3-7 cm */
     BANYAN_TEX_IVY_LEAF = 1,    /* atlas of Boston ivy (Parthenocissus tricuspidata) leaves: three-lobed, toothed */
-    BANYAN_TEX_KEYAKI_BARK = 2, /* tileable: smooth grey, flaking into orange-brown patches */
+    BANYAN_TEX_KEYAKI_BARK = 2, /* tileable: smooth grey, flaking in small muted orange-brown patches; a smooth
+                                   grey-brown lane (BANYAN_KEYAKI_BARK_SMOOTH_U0 .. _U1) for thin branches */
     BANYAN_TEX_FIG_BARK = 3,    /* tileable: smooth pale grey-brown (strangler fig roots) */
     BANYAN_TEX_IVY_STEM = 4,    /* tileable: woody brown */
     BANYAN_TEX_COUNT = 5
@@ -36,6 +37,12 @@ typedef enum banyan_season {
  * tile: 1 in u = once around, 1 in v = `BANYAN_BARK_TILE_ASPECT`
  * circumferences along (the tube's uvs already run in circumferences). */
 #define BANYAN_BARK_TILE_ASPECT 1.0f
+/* The keyaki bark's smooth lane: u in [U0, U1] of its tile (every v) is
+ * young bark, smooth grey-brown with lenticels and no flakes. The keyaki
+ * maps the u of its thin branches and twigs into it (docs/keyaki.md
+ * "Trunk: flare and bark"); on the trunk it is a narrow flake-free strip. */
+#define BANYAN_KEYAKI_BARK_SMOOTH_U0 0.08f
+#define BANYAN_KEYAKI_BARK_SMOOTH_U1 0.20f
 
 typedef struct banyan_atlas_layout {
     int32_t cols, rows;      /* 1 x 1 for bark */
