@@ -79,7 +79,14 @@ def new_objects(before):
 
 
 def counts(objs):
-    return sum(len(o.data.vertices) for o in objs), sum(len(o.data.polygons) for o in objs)
+    meshes = [o for o in objs if o.type == 'MESH']
+    return sum(len(o.data.vertices) for o in meshes), sum(len(o.data.polygons) for o in meshes)
+
+
+def trees_of(objs):
+    """An avenue's trees: its collection-instance empties when instanced (variants), else its tree objects."""
+    empties = [o for o in objs if o.type == 'EMPTY' and o.instance_type == 'COLLECTION']
+    return empties or objs
 
 
 def check_preset(path):
@@ -131,6 +138,7 @@ def check_preset(path):
 
 
 def check_avenue(key, doc, ref, objs):
+    objs = trees_of(objs)
     bt.check(len(objs) == ref["trees"], "%s: %d trees, the CLI %d" % (key, len(objs), ref["trees"]))
     p = doc["params"]
     length = (Vector(p["end"]) - Vector(p["start"])).length
@@ -143,7 +151,7 @@ def check_avenue(key, doc, ref, objs):
     bpy.context.scene.cursor.location = (10.0, 20.0, 0.0)
     before = {o.name for o in bpy.data.objects}
     res = OPS["avenue"]('INVOKE_DEFAULT', banyan_preset=key)
-    objs = new_objects(before)
+    objs = trees_of(new_objects(before))
     bt.check(res == {'FINISHED'} and len(objs) == ref["trees"], "%s at a moved cursor: %d trees, the CLI %d"
              % (key, len(objs), ref["trees"]))
     if objs and len(objs) == len(at_origin):
