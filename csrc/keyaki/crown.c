@@ -30,6 +30,7 @@
  * "leaves" streams keyed by (seed, cluster), so light on or off changes
  * no other cluster's draws. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,6 +45,8 @@
 #define CELL 0.2            /* m, the light grid's cell */
 #define MAX_TWIG_PTS 64     /* points of one twig's polyline */
 #define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
+#define CARD_LENGTH 5.5     /* a spray card's length / leaf_size: its painted leaves come out leaf-sized */
+#define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
 
 void keyaki_crown_free(keyaki_crown *c) {
     if (!c) return;
@@ -201,7 +204,48 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         q->side = side;
         q->level = level;
         q->path = (float)(path0 + s);
+        q->card = 0;
     }
+}
+
+/* A spray card continuing a twig from its end `at` along t (leaf_look.h,
+ * LEAF_KEYAKI_SPRAY_*): CARD_LENGTH x leaf_size long, lying in the spray
+ * plane of normal `up` drooping a little, rolled up to +-CARD_ROLL_DEG
+ * about its twig; the painted twig's base sits on `at`. One card: the
+ * count never depends on a draw. */
+static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, double path) {
+    const banyan_keyaki_params *p = x->p;
+    if (!p->leaves || p->leaf_density <= 0) return;
+    keyaki_crown *c = x->c;
+    if (over_budget(x, 1, 0)) return;
+    if (c->count_only) {
+        c->n_leaves++;
+        return;
+    }
+    if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + 1, sizeof(keyaki_leaf))) {
+        x->oom = 1;
+        return;
+    }
+    const v3 Z = v3_make(0, 0, 1);
+    /* Turned a little aside in the spray plane, drooping a little. */
+    v3 a = v3_rotate(t, up, deg2rad(rng_range(&x->lf, -15.0, 15.0)));
+    a = v3_norm(v3_madd(a, Z, -rng_range(&x->lf, 0.0, 0.3)));
+    v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
+    double roll = deg2rad(rng_range(&x->lf, -CARD_ROLL_DEG, CARD_ROLL_DEG));
+    w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
+    if (v3_cross(w, a).z < 0) w = v3_neg(w);
+    double len = CARD_LENGTH * p->leaf_size * (1.0 + 0.5 * p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
+    keyaki_leaf *q = &c->leaves[c->n_leaves++];
+    q->base = v3_madd(at, a, -LEAF_KEYAKI_SPRAY_U0 * len);
+    q->axis = a;
+    q->width = w;
+    q->length = len;
+    q->twig = twig;
+    q->node = x->node;
+    q->side = 1;
+    q->level = level;
+    q->path = (float)path;
+    q->card = 1;
 }
 
 /* Grows one twig of `order` from point `at` (on its parent's axis, whose
@@ -300,6 +344,11 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     memcpy(pts_copy, P + surface, sizeof(v3) * (size_t)(np - surface));
     memcpy(rad_copy, R + surface, sizeof(double) * (size_t)(np - surface));
     leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
+    /* A spray card on from every twig's end. */
+    if (np - surface >= 2) {
+        const v3 *E = pts_copy + (np - surface - 1);
+        card_at(x, *E, v3_norm_or(v3_sub(*E, E[-1]), up), up, me, level, cum[np - 1]);
+    }
     if (c->twigs[me].children == 0) c->tips++;
     return tips;
 }
@@ -311,6 +360,7 @@ typedef struct cand {
     double path;     /* m: path length from the trunk base to `at` */
     int32_t node, index;
     int tip;         /* a skeleton tip's continuation: never dropped */
+    int shell;       /* on a branch below leaf_levels, on the crown's outer shell: a spur at worst */
 } cand;
 
 static int cand_cmp(const void *a, const void *b) {
@@ -567,6 +617,107 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
     return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
 }
 
+/* The crown's outer shell: foliage also grows on branches deeper than
+ * leaf_levels from a tip, from SHELL_FROM of the tree's height up, where
+ * the branch lies in the outer part of the crown at its height (at least
+ * SHELL_OUTER of the widest reach of the skeleton within a metre of that
+ * height): clusters every twig_spacing, heading outward, fanned alternately
+ * either side of the outward direction. So the crown is leafy from about a
+ * third of its height, a dome from below rather than the limbs' star. */
+#define SHELL_FROM 0.3
+#define SHELL_OUTER 0.5
+#define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
+#define SHELL_SPACING 0.5 /* x twig_spacing: a shell cluster's spacing along its branch */
+#define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
+
+typedef struct shell {
+    double x0, y0, z0, height;
+    double *env; /* per band: the widest reach round the trunk's foot within a band either side */
+    int32_t bands;
+    int why;     /* a failure: 1 out of memory, 2 past the budget */
+} shell;
+
+static double reach_of(const shell *sh, v3 q) { return sqrt((q.x - sh->x0) * (q.x - sh->x0) + (q.y - sh->y0) * (q.y - sh->y0)); }
+
+static int32_t band_of(const shell *sh, double z) {
+    int32_t b = (int32_t)floor((z - sh->z0) / SHELL_BAND);
+    return b < 0 ? 0 : b >= sh->bands ? sh->bands - 1 : b;
+}
+
+static int shell_of(shell *sh, const keyaki_node *n, int32_t count) {
+    memset(sh, 0, sizeof *sh);
+    if (count <= 0) return 0;
+    sh->x0 = n[0].start.x, sh->y0 = n[0].start.y, sh->z0 = n[0].start.z;
+    double top = sh->z0;
+    for (int32_t i = 0; i < count; i++) top = fmax(top, n[i].start.z + n[i].dir.z * n[i].length);
+    sh->height = top - sh->z0;
+    sh->bands = (int32_t)clampd(ceil(sh->height / SHELL_BAND), 0, 100000) + 1;
+    double *raw = calloc(2 * (size_t)sh->bands, sizeof(double));
+    if (!raw) return 1;
+    for (int32_t i = 0; i < count; i++) {
+        v3 e = v3_madd(n[i].start, n[i].dir, n[i].length);
+        int32_t b = band_of(sh, e.z);
+        raw[b] = fmax(raw[b], reach_of(sh, e));
+    }
+    double *env = raw + sh->bands;
+    for (int32_t b = 0; b < sh->bands; b++)
+        env[b] = fmax(raw[b], fmax(b > 0 ? raw[b - 1] : 0.0, b + 1 < sh->bands ? raw[b + 1] : 0.0));
+    memmove(raw, env, sizeof(double) * (size_t)sh->bands);
+    sh->env = raw;
+    return 0;
+}
+
+/* Appends the shell clusters of deep branch i (see shell) to *cs; 1 on a
+ * failure (sh->why). */
+static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan,
+                          double path, cand **cs, int32_t *nc, int32_t *cap, int count_only) {
+    const keyaki_node *b = &n[i];
+    if (!sh->env || sh->height <= 0) return 0;
+    double zlo = sh->z0 + SHELL_FROM * sh->height;
+    v3 e = v3_madd(b->start, b->dir, b->length);
+    if (fmax(b->start.z, e.z) < zlo) return 0;
+    int side = rng_uniform(plan) < 0.5 ? 1 : -1;
+    const double step = SHELL_SPACING * p->twig_spacing;
+    double s = step * rng_uniform(plan);
+    int32_t k = (int32_t)((b->length - s) / step) + 1;
+    if (k <= 0) return 0;
+    if (8.0 * ((double)*nc + k) > (double)budget(p, count_only)) {
+        sh->why = 2;
+        return 1;
+    }
+    if (grow_array((void **)cs, cap, *nc + k, sizeof(cand))) {
+        sh->why = 1;
+        return 1;
+    }
+    for (; s < b->length; s += step, side = -side) {
+        v3 at = v3_madd(b->start, b->dir, s);
+        double fan = rng_range(plan, 15.0, 75.0), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
+        double len = SHELL_LENGTH * p->twig_length * rng_range(plan, 0.75, 1.25);
+        if (at.z < zlo) continue;
+        double rho = reach_of(sh, at);
+        if (rho < SHELL_OUTER * sh->env[band_of(sh, at.z)] || rho < 1e-6) continue;
+        /* Outward: the radial direction square to the branch, fanned about it. */
+        v3 rad = v3_make((at.x - sh->x0) / rho, (at.y - sh->y0) / rho, 0);
+        v3 o = v3_sub(rad, v3_scale(b->dir, v3_dot(rad, b->dir)));
+        if (v3_len2(o) < 1e-8) o = horizontal_perp(b->dir);
+        o = v3_rotate(v3_norm(o), b->dir, deg2rad(side * fan));
+        cand *q = &(*cs)[*nc];
+        double r = branch_radius(p, n, b, s);
+        q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(o, dm_sin(a))));
+        q->h = horizontal_perp(q->d);
+        q->at = at;
+        q->len = len;
+        q->r_host = r;
+        q->path = path + s;
+        q->node = i;
+        q->index = *nc;
+        q->tip = 0;
+        q->shell = 1;
+        (*nc)++;
+    }
+    return 0;
+}
+
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                 keyaki_run *run, keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
@@ -615,15 +766,33 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     pcg32_seed(&plan, p->seed, KEYAKI_STREAM_TWIGS);
     cand *cs = NULL;
     int32_t nc = 0, cap = 0;
+    shell sh;
+    if (shell_of(&sh, n, count)) {
+        free(depth);
+        free(npath);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    }
     double tw = p->twig_angle;
     for (int32_t i = 0; i < count; i++) {
         if ((i & 4095) == 0 && keyaki_stopped(run)) {
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return crown_fail(c, 3, BANYAN_OK, p, err);
         }
-        if (depth[i] >= p->leaf_levels) continue;
+        if (depth[i] >= p->leaf_levels) {
+            if (shell_clusters(&sh, p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only)) {
+                int why = sh.why;
+                free(depth);
+                free(npath);
+                free(cs);
+                free(sh.env);
+                return why == 2 ? crown_fail(c, 2, BANYAN_E_LIMIT, p, err)
+                                : banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+            }
+            continue;
+        }
         const keyaki_node *b = &n[i];
         int tip = b->child[0] < 0 && b->child[1] < 0;
         v3 h = horizontal_perp(b->dir);
@@ -637,12 +806,14 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
         }
         if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
         for (; s < b->length; s += p->twig_spacing, side = -side) {
@@ -657,6 +828,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->node = i;
             q->index = nc;
             q->tip = 0;
+            q->shell = 0;
             nc++;
         }
         if (tip) {
@@ -670,11 +842,20 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->node = i;
             q->index = nc;
             q->tip = 1;
+            q->shell = 0;
             nc++;
         }
     }
     free(depth);
     free(npath);
+    if (getenv("FOL_DEBUG")) {
+        int32_t ns = 0, nlow = 0;
+        for (int32_t k = 0; k < nc; k++) if (cs[k].shell) { ns++; if (cs[k].at.z < sh.z0 + 0.5 * sh.height) nlow++; }
+        fprintf(stderr, "clusters %d shell %d low %d height %.1f\n", nc, ns, nlow, sh.height);
+        for (int32_t b = 0; b < sh.bands; b++) fprintf(stderr, "%.1f ", sh.env[b]);
+        fprintf(stderr, "\n");
+    }
+    free(sh.env);
     x.npath = NULL;
     for (int32_t k = 0; k < nc; k++) {
         v3 e = v3_madd(cs[k].at, cs[k].d, 0.5 * cs[k].len);
@@ -754,11 +935,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             double fl, fr;
             sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
             double lo = fmin(fl, fr), hi = fmax(fl, fr);
-            if (lo >= 0.9 && !q.tip) { /* all shaded: the cluster breaks */
+            if (lo >= 0.9 && !q.tip && !q.shell) { /* all shaded: the cluster breaks */
                 c->dropped++;
                 continue;
             }
-            if (lo >= 0.5) { /* both sides shaded: a short leafy spur */
+            if (lo >= 0.5 && !q.shell) { /* both sides shaded: a short leafy spur */
                 spur = 1;
                 len = fmin(len, fmax(0.3 * len, 3.0 / fmax(p->leaf_density, 1e-9)));
                 c->stopped++;
@@ -892,6 +1073,7 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
                               const int attr[3], const keyaki_wind *w, int32_t k0, int32_t k1, keyaki_run *run) {
     int32_t cols = 1, rows = 1;
     leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
+    const int keyaki_atlas = cols == 4 && rows == 4; /* the spray row's layout (leaf_look.h) */
     mb_set_attr(mb, attr[2], 0);
     const double hu = LEAF_KEYAKI_HALF_U;
     if (k1 > c->n_leaves) k1 = c->n_leaves;
@@ -914,16 +1096,29 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
         uint32_t *I = mb_indices(mb, 6);
         if (v0 == UINT32_MAX || !I) return;
         leaf_look lk;
-        leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
-        double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
+        if (keyaki_atlas) leaf_look_keyaki(p->seed, (uint64_t)k, q->card, p->season, &lk);
+        else leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
         v3 nrm = v3_cross(q->width, q->axis);
-        v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
-        v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
-        double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
-        mb_put(mb, v0, p0, nrm, ua, lk.v0);
-        mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
-        mb_put(mb, v0 + 2, p2, nrm, ub, v1);
-        mb_put(mb, v0 + 3, p3, nrm, ua, v1);
+        if (q->card) {
+            /* A spray cell: u along the twig (the card's axis), v across. */
+            double hw = 0.5 * q->length / LEAF_KEYAKI_SPRAY_ASPECT;
+            v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
+            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
+            double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
+            mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);
+            mb_put(mb, v0 + 1, p1, nrm, lk.u0, v1);
+            mb_put(mb, v0 + 2, p2, nrm, u1, v1);
+            mb_put(mb, v0 + 3, p3, nrm, u1, lk.v0);
+        } else {
+            double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
+            v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
+            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
+            double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
+            mb_put(mb, v0, p0, nrm, ua, lk.v0);
+            mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
+            mb_put(mb, v0 + 2, p2, nrm, ub, v1);
+            mb_put(mb, v0 + 3, p3, nrm, ua, v1);
+        }
         for (uint32_t j = 0; j < 4 && mb->with_color; j++)
             for (int m = 0; m < 4; m++) mb->col[4 * ((size_t)v0 + j) + m] = (float)lk.tint[m];
         I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;

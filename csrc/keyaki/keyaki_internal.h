@@ -167,6 +167,8 @@ typedef struct keyaki_leaf {
     int32_t side;   /* +1 / -1: its rank, alternating along the twig */
     int32_t level;
     float path;     /* m: path length from the trunk base to `base` along the wood (birth, stiffness) */
+    int32_t card;   /* 0: a single leaf; 1: a spray card (leaf_look.h LEAF_KEYAKI_SPRAY_*): `length` along
+                       its painted twig, LEAF_KEYAKI_SPRAY_ASPECT times its width, its twig's base on the wood */
 } keyaki_leaf;
 
 typedef struct keyaki_crown {
