@@ -40,13 +40,15 @@
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"
 
-#define EXTEND 3.0         /* a cluster grows at most this x its length on into empty cells */
+#define EXTEND 6.0         /* a cluster grows at most this x its length on into empty cells */
+#define HOLE_SHARE 0.6     /* a cluster grows on while this share of the cells ahead are holes */
 #define ZIGZAG_DEG 12.0     /* a twig's turn at each node, alternately */
 #define CELL 0.2            /* m, the light grid's cell */
 #define MAX_TWIG_PTS 64     /* points of one twig's polyline */
 #define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
 #define CARD_LENGTH 5.5     /* a spray card's length / leaf_size: its painted leaves come out leaf-sized */
 #define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
+#define SHOOT_FAN_DEG 50.0  /* the side cards at a shoot's end: this far either side of it */
 
 void keyaki_crown_free(keyaki_crown *c) {
     if (!c) return;
@@ -85,6 +87,7 @@ typedef struct ctx {
     keyaki_crown *c;
     pcg32 tw, lf; /* twig and leaf draws of this cluster */
     int32_t node, base_level;
+    int cards_only; /* a shell cluster: spray cards, no single leaves */
     int oom; /* 1: out of memory, 2: past max_vertices, 3: the run stopped, 4: refused (err set) */
     keyaki_run *run;
     uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
@@ -258,12 +261,16 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
                          int leafy_only, double path0) {
     const banyan_keyaki_params *p = x->p;
     keyaki_crown *c = x->c;
-    int finest = order >= p->twig_levels || leafy_only;
+    /* A shell cluster is one shoot of spray cards: no sub-twigs. */
+    int card_shoot = x->cards_only && order == 1;
+    int finest = order >= p->twig_levels || leafy_only || card_shoot;
     double sub_spacing = p->twig_spacing * dm_pow(p->twig_ratio, order);
     double sub_len = len * p->twig_ratio;
-    /* Nodes: where sub-twigs attach (coarse) or every few leaves (finest). */
+    /* Nodes: where sub-twigs attach (coarse), where cards sit (a card
+     * shoot) or every few leaves (finest). */
     int32_t segs;
-    if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 4.0 + 0.5), 1, 3);
+    if (card_shoot) segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 2, MAX_TWIG_PTS - 3);
+    else if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 4.0 + 0.5), 1, 3);
     else segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 1, MAX_TWIG_PTS - 3);
     /* A first-order twig leaves a thick branch: an axis point inside it,
      * then one on its surface. A sub-twig's parent is a few mm thick: its
@@ -319,6 +326,8 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
             int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0, cum[k]);
             P = c->pts + c->twigs[me].first; /* the arrays may have moved */
             R = c->rad + c->twigs[me].first;
+            /* A spray card on the node's other side. */
+            card_at(x, P[k], v3_rotate(t, up, deg2rad(-side * p->twig_angle)), up, me, c->twigs[me].level, cum[k]);
             sub_tips[k] = st;
             tips += st;
             c->twigs[me].children++;
@@ -343,11 +352,22 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double rad_copy[MAX_TWIG_PTS];
     memcpy(pts_copy, P + surface, sizeof(v3) * (size_t)(np - surface));
     memcpy(rad_copy, R + surface, sizeof(double) * (size_t)(np - surface));
-    leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
-    /* A spray card on from every twig's end. */
+    if (!x->cards_only)
+        leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
+    /* A card shoot: a card at every node, sides alternating. */
+    for (int32_t i = 1, sd = 1; card_shoot && i < segs; i++, sd = -sd) {
+        v3 t = v3_norm_or(v3_sub(pts_copy[i], pts_copy[i - 1]), up);
+        card_at(x, pts_copy[i], v3_rotate(t, up, deg2rad(sd * p->twig_angle)), up, me, level, cum[surface + i]);
+    }
+    /* A spray card on from every twig's end; a shoot's end (a twig with
+     * sub-twigs, or a card shoot) fans two more either side, filling the
+     * crown's edge. */
     if (np - surface >= 2) {
         const v3 *E = pts_copy + (np - surface - 1);
-        card_at(x, *E, v3_norm_or(v3_sub(*E, E[-1]), up), up, me, level, cum[np - 1]);
+        v3 te = v3_norm_or(v3_sub(*E, E[-1]), up);
+        card_at(x, *E, te, up, me, level, cum[np - 1]);
+        for (int sgn = -1; sgn <= 1 && (!finest || card_shoot); sgn += 2)
+            card_at(x, *E, v3_rotate(te, up, deg2rad(sgn * SHOOT_FAN_DEG)), up, me, level, cum[np - 1]);
     }
     if (c->twigs[me].children == 0) c->tips++;
     return tips;
@@ -596,6 +616,15 @@ static void cluster_stream(pcg32 *r, const banyan_keyaki_params *p, int32_t inde
     pcg32_seed(r, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)index, stream);
 }
 
+/* A twig direction nearly level (rising FLAT_RISE of its plan length) in
+ * its plan direction; a vertical one kept. */
+#define FLAT_RISE 0.15
+static v3 flat_dir(v3 d) {
+    double hx = sqrt(d.x * d.x + d.y * d.y);
+    if (hx < 0.05) return d;
+    return v3_norm(v3_make(d.x / hx, d.y / hx, FLAT_RISE));
+}
+
 /* Turns a cluster's twig, side vector and spray normal about the vertical. */
 static void turn_cluster(cand *q, v3 *up, double a) {
     q->d = v3_rotate_z(q->d, a);
@@ -624,10 +653,10 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
  * height): clusters every twig_spacing, heading outward, fanned alternately
  * either side of the outward direction. So the crown is leafy from about a
  * third of its height, a dome from below rather than the limbs' star. */
-#define SHELL_FROM 0.3
-#define SHELL_OUTER 0.5
+#define SHELL_FROM 0.25
+#define SHELL_OUTER 0.3
 #define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
-#define SHELL_SPACING 0.5 /* x twig_spacing: a shell cluster's spacing along its branch */
+#define SHELL_SPACING 0.35 /* x twig_spacing: a shell cluster's spacing along its branch */
 #define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
 
 typedef struct shell {
@@ -738,7 +767,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK, npath};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK, npath};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -924,6 +953,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         cand q = cs[k];
         x.node = q.node;
         x.base_level = n[q.node].level;
+        x.cards_only = q.shell;
         cluster_stream(&x.tw, p, q.index, KEYAKI_STREAM_TWIGS);
         cluster_stream(&x.lf, p, q.index, KEYAKI_STREAM_LEAVES);
         v3 up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
@@ -957,19 +987,28 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                  * light_steer aside, whichever reaches furthest into the
                  * hole (straight on a tie). */
                 double best = 0, best_a = 0;
-                for (int h = 0; h < 5; h++) {
+                for (int h = 0; h < 5 && hypot(q.d.x, q.d.y) >= 0.05; h++) {
                     double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
-                    rect r2 = cluster_rect(p, q.at, v3_rotate_z(q.d, a), v3_rotate_z(q.h, a), len);
+                    rect r2 = cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len);
+                    /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
                     double ext = 0;
-                    for (;;) {
-                        double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL);
-                        double ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
-                        if (ext >= EXTEND * q.len || !hole_at(&g, ex, ey)) break;
-                        ext += p->twig_spacing;
+                    int32_t seen = 0, holes = 0;
+                    for (double t = 0; t < EXTEND * q.len; t += p->twig_spacing) {
+                        double ex = r2.ox + r2.ax * (r2.len + t + 0.5 * CELL);
+                        double ey = r2.oy + r2.ay * (r2.len + t + 0.5 * CELL);
+                        int hole = hole_at(&g, ex, ey);
+                        seen++, holes += hole;
+                        if (hole && holes >= HOLE_SHARE * seen) ext = t + p->twig_spacing;
+                        if (holes < HOLE_SHARE * seen - 2) break;
                     }
                     if (ext > best) best = ext, best_a = a;
                 }
                 if (best_a != 0) turn_cluster(&q, &up, best_a);
+                if (best > 0) { /* a shoot into a gap grows out sideways, toward the light */
+                    q.d = flat_dir(q.d);
+                    up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
+                    if (up.z < 0) up = v3_neg(up);
+                }
                 len += best;
             }
             sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
@@ -987,6 +1026,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         tube_counts((uint32_t)c->twigs[t].count, c->twigs[t].sides, 0, c->twigs[t].children > 0, &v, &i);
         c->vertices += v;
         c->indices += i;
+    }
+    if (getenv("FOL_DEBUG") && !count_only) {
+        int32_t ncard = 0;
+        for (int32_t k = 0; k < c->n_leaves; k++) ncard += c->leaves[k].card;
+        fprintf(stderr, "leaves %d cards %d twigs %d twig tris %llu\n", c->n_leaves - ncard, ncard, c->n_twigs, (unsigned long long)c->indices / 3);
     }
     return BANYAN_OK;
 }
