@@ -48,6 +48,7 @@
 #define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
 #define CARD_LENGTH 5.5     /* a spray card's length / leaf_size: its painted leaves come out leaf-sized */
 #define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
+#define CARD_EVERY 0.6      /* cards along a long finest twig: one every this many card lengths */
 #define SHOOT_FAN_DEG 50.0  /* the side cards at a shoot's end: this far either side of it */
 
 void keyaki_crown_free(keyaki_crown *c) {
@@ -326,8 +327,9 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
             int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0, cum[k]);
             P = c->pts + c->twigs[me].first; /* the arrays may have moved */
             R = c->rad + c->twigs[me].first;
-            /* A spray card on the node's other side. */
-            card_at(x, P[k], v3_rotate(t, up, deg2rad(-side * p->twig_angle)), up, me, c->twigs[me].level, cum[k]);
+            /* A spray card on every other node's other side. */
+            if (i % 2 == 0)
+                card_at(x, P[k], v3_rotate(t, up, deg2rad(-side * p->twig_angle)), up, me, c->twigs[me].level, cum[k]);
             sub_tips[k] = st;
             tips += st;
             c->twigs[me].children++;
@@ -354,6 +356,17 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     memcpy(rad_copy, R + surface, sizeof(double) * (size_t)(np - surface));
     if (!x->cards_only)
         leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
+    /* A long finest twig (a gap-filling shoot's) carries cards along it
+     * every CARD_EVERY card lengths back from its end, sides alternating. */
+    if (finest && !card_shoot && np - surface >= 2) {
+        double every = CARD_EVERY * CARD_LENGTH * p->leaf_size;
+        int32_t m = every > 0 ? (int32_t)clampd(floor(L / every), 0, 1000) : 0;
+        for (int32_t j = 1, sd = 1; j <= m; j++, sd = -sd) {
+            v3 t;
+            v3 at = along_r(pts_copy, rad_copy, np - surface, L - j * every, &t, NULL);
+            card_at(x, at, v3_rotate(t, up, deg2rad(sd * p->twig_angle)), up, me, level, cum[surface] + L - j * every);
+        }
+    }
     /* A card shoot: a card at every node, sides alternating. */
     for (int32_t i = 1, sd = 1; card_shoot && i < segs; i++, sd = -sd) {
         v3 t = v3_norm_or(v3_sub(pts_copy[i], pts_copy[i - 1]), up);
@@ -656,8 +669,9 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
 #define SHELL_FROM 0.25
 #define SHELL_OUTER 0.3
 #define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
-#define SHELL_SPACING 0.35 /* x twig_spacing: a shell cluster's spacing along its branch */
+#define SHELL_SPACING 0.25 /* x twig_spacing: a shell cluster's spacing along its branch */
 #define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
+#define SHELL_LOW_LENGTH 2.2 /* x twig_length: in the crown's lower half (its skirt) */
 
 typedef struct shell {
     double x0, y0, z0, height;
@@ -721,8 +735,9 @@ static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki
     for (; s < b->length; s += step, side = -side) {
         v3 at = v3_madd(b->start, b->dir, s);
         double fan = rng_range(plan, 15.0, 75.0), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
-        double len = SHELL_LENGTH * p->twig_length * rng_range(plan, 0.75, 1.25);
+        double len = p->twig_length * rng_range(plan, 0.75, 1.25);
         if (at.z < zlo) continue;
+        len *= at.z < sh->z0 + 0.5 * sh->height ? SHELL_LOW_LENGTH : SHELL_LENGTH;
         double rho = reach_of(sh, at);
         if (rho < SHELL_OUTER * sh->env[band_of(sh, at.z)] || rho < 1e-6) continue;
         /* Outward: the radial direction square to the branch, fanned about it. */
