@@ -30,7 +30,6 @@
  * "leaves" streams keyed by (seed, cluster), so light on or off changes
  * no other cluster's draws. */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -89,6 +88,7 @@ typedef struct ctx {
     pcg32 tw, lf; /* twig and leaf draws of this cluster */
     int32_t node, base_level;
     int cards_only; /* a shell cluster: spray cards, no single leaves */
+    double sub_base; /* m: the cluster's planned length (its sub-twigs' lengths follow it); 0: len's */
     int oom; /* 1: out of memory, 2: past max_vertices, 3: the run stopped, 4: refused (err set) */
     keyaki_run *run;
     uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
@@ -266,7 +266,8 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     int card_shoot = x->cards_only && order == 1;
     int finest = order >= p->twig_levels || leafy_only || card_shoot;
     double sub_spacing = p->twig_spacing * dm_pow(p->twig_ratio, order);
-    double sub_len = len * p->twig_ratio;
+    /* A shoot grown on into a gap keeps its planned sub-twigs. */
+    double sub_len = (order == 1 && x->sub_base > 0 ? fmin(len, x->sub_base) : len) * p->twig_ratio;
     /* Nodes: where sub-twigs attach (coarse), where cards sit (a card
      * shoot) or every few leaves (finest). */
     int32_t segs;
@@ -430,7 +431,7 @@ typedef struct rect {
     double ox, oy, ax, ay, len, w;
 } rect;
 
-static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len) {
+static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len, double wlen) {
     rect r;
     double hx = sqrt(d.x * d.x + d.y * d.y);
     r.ox = at.x;
@@ -444,7 +445,7 @@ static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, doubl
         r.ay = hh > 1e-9 ? h.y / hh : 0.0;
     }
     double reach = p->leaf_size * 1.2;
-    double sub = p->twig_levels >= 2 ? len * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
+    double sub = p->twig_levels >= 2 ? fmin(len, wlen) * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
     r.w = sub + reach;
     r.len = len * (hx > 0.2 ? hx : 0.2) + reach;
     if (r.len < r.w) r.len = r.w;
@@ -782,7 +783,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK, npath};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -892,13 +893,6 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     free(depth);
     free(npath);
-    if (getenv("FOL_DEBUG")) {
-        int32_t ns = 0, nlow = 0;
-        for (int32_t k = 0; k < nc; k++) if (cs[k].shell) { ns++; if (cs[k].at.z < sh.z0 + 0.5 * sh.height) nlow++; }
-        fprintf(stderr, "clusters %d shell %d low %d height %.1f\n", nc, ns, nlow, sh.height);
-        for (int32_t b = 0; b < sh.bands; b++) fprintf(stderr, "%.1f ", sh.env[b]);
-        fprintf(stderr, "\n");
-    }
     free(sh.env);
     x.npath = NULL;
     for (int32_t k = 0; k < nc; k++) {
@@ -976,7 +970,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         double len = q.len;
         int spur = 0;
         if (g.n) {
-            rect r = cluster_rect(p, q.at, q.d, q.h, len);
+            rect r = cluster_rect(p, q.at, q.d, q.h, len, len);
             double fl, fr;
             sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
             double lo = fmin(fl, fr), hi = fmax(fl, fr);
@@ -1004,7 +998,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 double best = 0, best_a = 0;
                 for (int h = 0; h < 5 && hypot(q.d.x, q.d.y) >= 0.05; h++) {
                     double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
-                    rect r2 = cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len);
+                    rect r2 = cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len, len);
                     /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
                     double ext = 0;
                     int32_t seen = 0, holes = 0;
@@ -1026,8 +1020,9 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 }
                 len += best;
             }
-            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
+            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len, q.len), q.z);
         }
+        x.sub_base = q.len;
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur, q.path);
     }
     free(g.n);
@@ -1041,11 +1036,6 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         tube_counts((uint32_t)c->twigs[t].count, c->twigs[t].sides, 0, c->twigs[t].children > 0, &v, &i);
         c->vertices += v;
         c->indices += i;
-    }
-    if (getenv("FOL_DEBUG") && !count_only) {
-        int32_t ncard = 0;
-        for (int32_t k = 0; k < c->n_leaves; k++) ncard += c->leaves[k].card;
-        fprintf(stderr, "leaves %d cards %d twigs %d twig tris %llu\n", c->n_leaves - ncard, ncard, c->n_twigs, (unsigned long long)c->indices / 3);
     }
     return BANYAN_OK;
 }
