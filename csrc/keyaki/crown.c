@@ -240,7 +240,7 @@ static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, dou
     if (v3_cross(w, a).z < 0) w = v3_neg(w);
     double len = CARD_LENGTH * p->leaf_size * (1.0 + 0.5 * p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
     keyaki_leaf *q = &c->leaves[c->n_leaves++];
-    q->base = v3_madd(at, a, -LEAF_KEYAKI_SPRAY_U0 * len);
+    q->base = at; /* the card's base edge lies LEAF_KEYAKI_SPRAY_U0 x len behind it */
     q->axis = a;
     q->width = w;
     q->length = len;
@@ -1137,8 +1137,9 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
             /* Pivot the petiole base, on its wood; level that wood's + 1;
              * birth its path, delayed when the tree is done; stiffness the
              * wood's there (from the undelayed birth, when the tree is done). */
-            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1,
-                     wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k), 1);
+            double ph = wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k);
+            if ((float)ph >= 1.0f) ph = 0.0; /* stored as a float: one turn is none */
+            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1, ph, 1);
             if (w->ws->birth >= 0) mb_set_attr(mb, w->ws->birth, q->path);
         }
         uint32_t v0 = mb_vertices(mb, 4);
@@ -1151,7 +1152,8 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
         if (q->card) {
             /* A spray cell: u along the twig (the card's axis), v across. */
             double hw = 0.5 * q->length / LEAF_KEYAKI_SPRAY_ASPECT;
-            v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
+            v3 o = v3_madd(q->base, q->axis, -LEAF_KEYAKI_SPRAY_U0 * q->length);
+            v3 p0 = v3_madd(o, q->width, -hw), p1 = v3_madd(o, q->width, hw);
             v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
             double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
             mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);

@@ -158,7 +158,7 @@ typedef struct keyaki_twig {
 } keyaki_twig;
 
 typedef struct keyaki_leaf {
-    v3 base;        /* petiole end (quad's v = 0 edge centre), on the twig's axis */
+    v3 base;        /* on the twig's axis: a leaf's petiole end (its quad's v = 0 edge centre), a card's painted twig base */
     v3 axis;        /* unit, petiole towards the blade's tip */
     v3 width;       /* unit, across the quad; width x axis is the face normal (z >= 0) */
     double length;  /* m, quad length: petiole + blade (blade: length x (LEAF_KEYAKI_BLADE_V1 - V0)) */
