@@ -12,7 +12,12 @@
  * twig_radius at every tip, never above 0.8 of the branch they sit on.
  * Leaves: one quad each, two-ranked (left, right, ...) every
  * 1 / leaf_density along the finest twigs and the distal part of coarser
- * ones, the last at the tip, so no twig sticks out bare.
+ * ones, the last at the tip, so no twig sticks out bare. Spray cards (one
+ * quad showing a painted spray of the leaf atlas, leaf_look.h) give the
+ * crown its leaf mass: on from every twig's end, beside the nodes and
+ * along long finest twigs. Branches deeper than leaf_levels carry shoots
+ * of spray cards where they lie on the crown's outer shell, from
+ * SHELL_FROM of the height up (shell_clusters).
  *
  * Light and crowding: a cluster is approximated by its plan-view
  * rectangle (what it shades under a zenith sun). Clusters grow from the
@@ -22,7 +27,8 @@
  * right halves: lit -> grows, on into empty cells past its length (holes
  * fill); one side shaded -> turns up to light_steer towards the lit side;
  * both shaded -> a short leafy spur; all shaded -> dropped. Then its
- * rectangle is stamped. The skeleton is never touched: its Strahler
+ * rectangle is stamped (a shell cluster never breaks nor stops). The
+ * skeleton is never touched: its Strahler
  * statistics stay the paper's.
  *
  * Everything lands in flat arrays first (counted exactly for
