@@ -722,7 +722,9 @@ static int shell_of(shell *sh, const keyaki_node *n, int32_t count) {
 static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan,
                           double path, cand **cs, int32_t *nc, int32_t *cap, int count_only) {
     const keyaki_node *b = &n[i];
-    if (!sh->env || sh->height <= 0) return 0;
+    /* Shoots of spray cards: nothing to carry without leaves (winter keeps
+     * its twigs as they were). */
+    if (!sh->env || sh->height <= 0 || !p->leaves || p->leaf_density <= 0) return 0;
     double zlo = sh->z0 + SHELL_FROM * sh->height;
     v3 e = v3_madd(b->start, b->dir, b->length);
     if (fmax(b->start.z, e.z) < zlo) return 0;
