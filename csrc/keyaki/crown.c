@@ -676,6 +676,7 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
 #define SHELL_FROM 0.25
 #define SHELL_OUTER 0.3
 #define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
+#define SHELL_FAN_DEG 150.0 /* a shell cluster heads 15 deg .. this far round its branch from the outward direction */
 #define SHELL_SPACING 0.25 /* x twig_spacing: a shell cluster's spacing along its branch */
 #define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
 #define SHELL_LOW_LENGTH 2.2 /* x twig_length: in the crown's lower half (its skirt) */
@@ -743,7 +744,7 @@ static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki
     }
     for (; s < b->length; s += step, side = -side) {
         v3 at = v3_madd(b->start, b->dir, s);
-        double fan = rng_range(plan, 15.0, 75.0), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
+        double fan = rng_range(plan, 15.0, SHELL_FAN_DEG), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
         double len = p->twig_length * rng_range(plan, 0.75, 1.25);
         if (at.z < zlo) continue;
         len *= at.z < sh->z0 + 0.5 * sh->height ? SHELL_LOW_LENGTH : SHELL_LENGTH;
