@@ -967,7 +967,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
-        if ((k & 31) == 0 && keep_budget(&x, err)) break;
+        if ((k & 7) == 0 && keep_budget(&x, err)) break; /* a cluster may be a long shoot */
         cand q = cs[k];
         x.node = q.node;
         x.base_level = n[q.node].level;
