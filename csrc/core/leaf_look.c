@@ -45,6 +45,21 @@ void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int
     out->tint[3] = 1.0;
 }
 
+void leaf_look_keyaki(uint64_t seed, uint64_t index, int spray, int32_t season, leaf_look *out) {
+    /* A single leaf: leaf_look_of over a 4 x 3 grid (the cells above the
+     * spray row), shifted up a row; the same draws, so the same tint. */
+    leaf_look_of(seed, index, 4, 3, season, out);
+    out->dv = 0.25;
+    out->v0 = out->v0 * 0.75 + 0.25;
+    if (spray) { /* the same stream's cell draw picks a spray: its parity */
+        int32_t c = (int32_t)(out->u0 * 4.0 + 0.5) + 4 * (int32_t)((out->v0 - 0.25) * 4.0 + 0.5);
+        out->u0 = (double)(c % LEAF_KEYAKI_SPRAYS) / LEAF_KEYAKI_SPRAYS;
+        out->du = 1.0 / LEAF_KEYAKI_SPRAYS;
+        out->v0 = 0.0;
+        out->dv = 0.25;
+    }
+}
+
 void leaf_material_set(banyan_material *m, int32_t kind, int32_t season, const double summer_rgba[4]) {
     /* Flat autumn colours (linear): keyaki orange-rust, Boston ivy scarlet
      * (shared/reference/plants.md). */

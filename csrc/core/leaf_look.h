@@ -37,8 +37,32 @@ void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect)
 #define LEAF_KEYAKI_BLADE_V1 0.98
 #define LEAF_KEYAKI_HALF_U 0.25
 
+/* Spray cells of the keyaki atlas: its bottom row (v in [0, 0.25]) holds
+ * LEAF_KEYAKI_SPRAYS sprays instead of single leaves, each two cells wide
+ * (u in [0, 0.5] and [0.5, 1]): a thin twig along the cell's centre line
+ * from LEAF_KEYAKI_SPRAY_U0 (its base) to LEAF_KEYAKI_SPRAY_U1, carrying
+ * two-ranked leaves at 40-70 deg forward, alternately on each side and
+ * smaller toward the tip, and one leaf on from its end. Units: the spray
+ * cell's, u 0..1 along the twig, v 0..1 across it. The leaves cover about
+ * LEAF_KEYAKI_SPRAY_COVER of the cell (alpha >= 0.5). Single leaves use
+ * the rows above (leaf_look_keyaki). A spray card is LEAF_KEYAKI_SPRAY_ASPECT
+ * times as long as it is wide; its painted twig starts U0 of its length
+ * from the card's base edge. */
+#define LEAF_KEYAKI_SPRAYS 2
+#define LEAF_KEYAKI_SPRAY_ASPECT 2.0
+#define LEAF_KEYAKI_SPRAY_U0 0.03
+#define LEAF_KEYAKI_SPRAY_U1 0.78
+#define LEAF_KEYAKI_SPRAY_V 0.5
+#define LEAF_KEYAKI_SPRAY_COVER 0.45
+
 /* The look of leaf `index` of a plant grown from `seed`. */
 void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);
+
+/* The look of keyaki card `index` (a 4 x 4 keyaki atlas): spray 0, a
+ * single leaf from the 12 single-leaf cells (rows v >= 0.25); spray 1, one
+ * of the LEAF_KEYAKI_SPRAYS spray cells (u0, v0, du, dv its whole spray
+ * cell). The tint as leaf_look_of's. */
+void leaf_look_keyaki(uint64_t seed, uint64_t index, int spray, int32_t season, leaf_look *out);
 
 /* Sets a leaf material for a season: texture kind, season, alpha cutoff,
  * translucency, and the flat colour (summer: `summer_rgba`, the user's

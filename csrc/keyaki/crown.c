@@ -12,7 +12,12 @@
  * twig_radius at every tip, never above 0.8 of the branch they sit on.
  * Leaves: one quad each, two-ranked (left, right, ...) every
  * 1 / leaf_density along the finest twigs and the distal part of coarser
- * ones, the last at the tip, so no twig sticks out bare.
+ * ones, the last at the tip, so no twig sticks out bare. Spray cards (one
+ * quad showing a painted spray of the leaf atlas, leaf_look.h) give the
+ * crown its leaf mass: on from every twig's end, beside the nodes and
+ * along long finest twigs. Branches deeper than leaf_levels carry shoots
+ * of spray cards where they lie on the crown's outer shell, from
+ * SHELL_FROM of the height up (shell_clusters).
  *
  * Light and crowding: a cluster is approximated by its plan-view
  * rectangle (what it shades under a zenith sun). Clusters grow from the
@@ -22,7 +27,8 @@
  * right halves: lit -> grows, on into empty cells past its length (holes
  * fill); one side shaded -> turns up to light_steer towards the lit side;
  * both shaded -> a short leafy spur; all shaded -> dropped. Then its
- * rectangle is stamped. The skeleton is never touched: its Strahler
+ * rectangle is stamped (a shell cluster never breaks nor stops). The
+ * skeleton is never touched: its Strahler
  * statistics stay the paper's.
  *
  * Everything lands in flat arrays first (counted exactly for
@@ -39,11 +45,16 @@
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"
 
-#define EXTEND 3.0         /* a cluster grows at most this x its length on into empty cells */
+#define EXTEND 6.0         /* a cluster grows at most this x its length on into empty cells */
+#define HOLE_SHARE 0.6     /* a cluster grows on while this share of the cells ahead are holes */
 #define ZIGZAG_DEG 12.0     /* a twig's turn at each node, alternately */
 #define CELL 0.2            /* m, the light grid's cell */
 #define MAX_TWIG_PTS 64     /* points of one twig's polyline */
 #define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
+#define CARD_LENGTH 5.5     /* a spray card's length / leaf_size: its painted leaves come out leaf-sized */
+#define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
+#define CARD_EVERY 0.6      /* cards along a long finest twig: one every this many card lengths */
+#define SHOOT_FAN_DEG 50.0  /* the side cards at a shoot's end: this far either side of it */
 
 void keyaki_crown_free(keyaki_crown *c) {
     if (!c) return;
@@ -82,6 +93,8 @@ typedef struct ctx {
     keyaki_crown *c;
     pcg32 tw, lf; /* twig and leaf draws of this cluster */
     int32_t node, base_level;
+    int cards_only; /* a shell cluster: spray cards, no single leaves */
+    double sub_base; /* m: the cluster's planned length (its sub-twigs' lengths follow it); 0: len's */
     int oom; /* 1: out of memory, 2: past max_vertices, 3: the run stopped, 4: refused (err set) */
     keyaki_run *run;
     uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
@@ -201,7 +214,48 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         q->side = side;
         q->level = level;
         q->path = (float)(path0 + s);
+        q->card = 0;
     }
+}
+
+/* A spray card continuing a twig from its end `at` along t (leaf_look.h,
+ * LEAF_KEYAKI_SPRAY_*): CARD_LENGTH x leaf_size long, lying in the spray
+ * plane of normal `up` drooping a little, rolled up to +-CARD_ROLL_DEG
+ * about its twig; the painted twig's base sits on `at`. One card: the
+ * count never depends on a draw. */
+static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, double path) {
+    const banyan_keyaki_params *p = x->p;
+    if (!p->leaves || p->leaf_density <= 0) return;
+    keyaki_crown *c = x->c;
+    if (over_budget(x, 1, 0)) return;
+    if (c->count_only) {
+        c->n_leaves++;
+        return;
+    }
+    if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + 1, sizeof(keyaki_leaf))) {
+        x->oom = 1;
+        return;
+    }
+    const v3 Z = v3_make(0, 0, 1);
+    /* Turned a little aside in the spray plane, drooping a little. */
+    v3 a = v3_rotate(t, up, deg2rad(rng_range(&x->lf, -15.0, 15.0)));
+    a = v3_norm(v3_madd(a, Z, -rng_range(&x->lf, 0.0, 0.3)));
+    v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
+    double roll = deg2rad(rng_range(&x->lf, -CARD_ROLL_DEG, CARD_ROLL_DEG));
+    w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
+    if (v3_cross(w, a).z < 0) w = v3_neg(w);
+    double len = CARD_LENGTH * p->leaf_size * (1.0 + 0.5 * p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
+    keyaki_leaf *q = &c->leaves[c->n_leaves++];
+    q->base = at; /* the card's base edge lies LEAF_KEYAKI_SPRAY_U0 x len behind it */
+    q->axis = a;
+    q->width = w;
+    q->length = len;
+    q->twig = twig;
+    q->node = x->node;
+    q->side = 1;
+    q->level = level;
+    q->path = (float)path;
+    q->card = 1;
 }
 
 /* Grows one twig of `order` from point `at` (on its parent's axis, whose
@@ -214,12 +268,17 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
                          int leafy_only, double path0) {
     const banyan_keyaki_params *p = x->p;
     keyaki_crown *c = x->c;
-    int finest = order >= p->twig_levels || leafy_only;
+    /* A shell cluster is one shoot of spray cards: no sub-twigs. */
+    int card_shoot = x->cards_only && order == 1;
+    int finest = order >= p->twig_levels || leafy_only || card_shoot;
     double sub_spacing = p->twig_spacing * dm_pow(p->twig_ratio, order);
-    double sub_len = len * p->twig_ratio;
-    /* Nodes: where sub-twigs attach (coarse) or every few leaves (finest). */
+    /* A shoot grown on into a gap keeps its planned sub-twigs. */
+    double sub_len = (order == 1 && x->sub_base > 0 ? fmin(len, x->sub_base) : len) * p->twig_ratio;
+    /* Nodes: where sub-twigs attach (coarse), where cards sit (a card
+     * shoot) or every few leaves (finest). */
     int32_t segs;
-    if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 4.0 + 0.5), 1, 3);
+    if (card_shoot) segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 2, MAX_TWIG_PTS - 3);
+    else if (finest) segs = (int32_t)clampd(floor(len * p->leaf_density / 4.0 + 0.5), 1, 3);
     else segs = (int32_t)clampd(floor(len / sub_spacing + 0.5), 1, MAX_TWIG_PTS - 3);
     /* A first-order twig leaves a thick branch: an axis point inside it,
      * then one on its surface. A sub-twig's parent is a few mm thick: its
@@ -275,6 +334,9 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
             int32_t st = grow_twig(x, order + 1, me, P[k], sd, up, l, p->twig_radius, 0, cum[k]);
             P = c->pts + c->twigs[me].first; /* the arrays may have moved */
             R = c->rad + c->twigs[me].first;
+            /* A spray card on every other node's other side. */
+            if (i % 2 == 0)
+                card_at(x, P[k], v3_rotate(t, up, deg2rad(-side * p->twig_angle)), up, me, c->twigs[me].level, cum[k]);
             sub_tips[k] = st;
             tips += st;
             c->twigs[me].children++;
@@ -299,7 +361,34 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     double rad_copy[MAX_TWIG_PTS];
     memcpy(pts_copy, P + surface, sizeof(v3) * (size_t)(np - surface));
     memcpy(rad_copy, R + surface, sizeof(double) * (size_t)(np - surface));
-    leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
+    if (!x->cards_only)
+        leaves_along(x, pts_copy, rad_copy, np - surface, finest ? 0.1 * L : 0.65 * L, up, me, level, cum[surface]);
+    /* A long finest twig (a gap-filling shoot's) carries cards along it
+     * every CARD_EVERY card lengths back from its end, sides alternating. */
+    if (finest && !card_shoot && np - surface >= 2) {
+        double every = CARD_EVERY * CARD_LENGTH * p->leaf_size;
+        int32_t m = every > 0 ? (int32_t)clampd(floor(L / every), 0, 1000) : 0;
+        for (int32_t j = 1, sd = 1; j <= m; j++, sd = -sd) {
+            v3 t;
+            v3 at = along_r(pts_copy, rad_copy, np - surface, L - j * every, &t, NULL);
+            card_at(x, at, v3_rotate(t, up, deg2rad(sd * p->twig_angle)), up, me, level, cum[surface] + L - j * every);
+        }
+    }
+    /* A card shoot: a card at every node, sides alternating. */
+    for (int32_t i = 1, sd = 1; card_shoot && i < segs; i++, sd = -sd) {
+        v3 t = v3_norm_or(v3_sub(pts_copy[i], pts_copy[i - 1]), up);
+        card_at(x, pts_copy[i], v3_rotate(t, up, deg2rad(sd * p->twig_angle)), up, me, level, cum[surface + i]);
+    }
+    /* A spray card on from every twig's end; a shoot's end (a twig with
+     * sub-twigs, or a card shoot) fans two more either side, filling the
+     * crown's edge. */
+    if (np - surface >= 2) {
+        const v3 *E = pts_copy + (np - surface - 1);
+        v3 te = v3_norm_or(v3_sub(*E, E[-1]), up);
+        card_at(x, *E, te, up, me, level, cum[np - 1]);
+        for (int sgn = -1; sgn <= 1 && (!finest || card_shoot); sgn += 2)
+            card_at(x, *E, v3_rotate(te, up, deg2rad(sgn * SHOOT_FAN_DEG)), up, me, level, cum[np - 1]);
+    }
     if (c->twigs[me].children == 0) c->tips++;
     return tips;
 }
@@ -311,6 +400,7 @@ typedef struct cand {
     double path;     /* m: path length from the trunk base to `at` */
     int32_t node, index;
     int tip;         /* a skeleton tip's continuation: never dropped */
+    int shell;       /* on a branch below leaf_levels, on the crown's outer shell: a spur at worst */
 } cand;
 
 static int cand_cmp(const void *a, const void *b) {
@@ -347,7 +437,7 @@ typedef struct rect {
     double ox, oy, ax, ay, len, w;
 } rect;
 
-static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len) {
+static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len, double wlen) {
     rect r;
     double hx = sqrt(d.x * d.x + d.y * d.y);
     r.ox = at.x;
@@ -361,7 +451,7 @@ static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, doubl
         r.ay = hh > 1e-9 ? h.y / hh : 0.0;
     }
     double reach = p->leaf_size * 1.2;
-    double sub = p->twig_levels >= 2 ? len * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
+    double sub = p->twig_levels >= 2 ? fmin(len, wlen) * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
     r.w = sub + reach;
     r.len = len * (hx > 0.2 ? hx : 0.2) + reach;
     if (r.len < r.w) r.len = r.w;
@@ -546,6 +636,15 @@ static void cluster_stream(pcg32 *r, const banyan_keyaki_params *p, int32_t inde
     pcg32_seed(r, p->seed * 0x9e3779b97f4a7c15ull + (uint64_t)index, stream);
 }
 
+/* A twig direction nearly level (rising FLAT_RISE of its plan length) in
+ * its plan direction; a vertical one kept. */
+#define FLAT_RISE 0.15
+static v3 flat_dir(v3 d) {
+    double hx = sqrt(d.x * d.x + d.y * d.y);
+    if (hx < 0.05) return d;
+    return v3_norm(v3_make(d.x / hx, d.y / hx, FLAT_RISE));
+}
+
 /* Turns a cluster's twig, side vector and spray normal about the vertical. */
 static void turn_cluster(cand *q, v3 *up, double a) {
     q->d = v3_rotate_z(q->d, a);
@@ -565,6 +664,112 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
                            "max_vertices or lower leaf_density, leaf_levels, twig_levels or raise twig_spacing",
                            (long long)budget(p, count_only));
     return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+}
+
+/* The crown's outer shell: foliage also grows on branches deeper than
+ * leaf_levels from a tip, from SHELL_FROM of the tree's height up, where
+ * the branch lies in the outer part of the crown at its height (at least
+ * SHELL_OUTER of the widest reach of the skeleton within a metre of that
+ * height): clusters every twig_spacing, heading outward, fanned alternately
+ * either side of the outward direction. So the crown is leafy from about a
+ * third of its height, a dome from below rather than the limbs' star. */
+#define SHELL_FROM 0.25
+#define SHELL_OUTER 0.3
+#define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
+#define SHELL_FAN_DEG 150.0 /* a shell cluster heads 15 deg .. this far round its branch from the outward direction */
+#define SHELL_SPACING 0.25 /* x twig_spacing: a shell cluster's spacing along its branch */
+#define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
+#define SHELL_LOW_LENGTH 2.2 /* x twig_length: in the crown's lower half (its skirt) */
+
+typedef struct shell {
+    double x0, y0, z0, height;
+    double *env; /* per band: the widest reach round the trunk's foot within a band either side */
+    int32_t bands;
+    int why;     /* a failure: 1 out of memory, 2 past the budget */
+} shell;
+
+static double reach_of(const shell *sh, v3 q) { return sqrt((q.x - sh->x0) * (q.x - sh->x0) + (q.y - sh->y0) * (q.y - sh->y0)); }
+
+static int32_t band_of(const shell *sh, double z) {
+    int32_t b = (int32_t)floor((z - sh->z0) / SHELL_BAND);
+    return b < 0 ? 0 : b >= sh->bands ? sh->bands - 1 : b;
+}
+
+static int shell_of(shell *sh, const keyaki_node *n, int32_t count) {
+    memset(sh, 0, sizeof *sh);
+    if (count <= 0) return 0;
+    sh->x0 = n[0].start.x, sh->y0 = n[0].start.y, sh->z0 = n[0].start.z;
+    double top = sh->z0;
+    for (int32_t i = 0; i < count; i++) top = fmax(top, n[i].start.z + n[i].dir.z * n[i].length);
+    sh->height = top - sh->z0;
+    sh->bands = (int32_t)clampd(ceil(sh->height / SHELL_BAND), 0, 100000) + 1;
+    double *raw = calloc(2 * (size_t)sh->bands, sizeof(double));
+    if (!raw) return 1;
+    for (int32_t i = 0; i < count; i++) {
+        v3 e = v3_madd(n[i].start, n[i].dir, n[i].length);
+        int32_t b = band_of(sh, e.z);
+        raw[b] = fmax(raw[b], reach_of(sh, e));
+    }
+    double *env = raw + sh->bands;
+    for (int32_t b = 0; b < sh->bands; b++)
+        env[b] = fmax(raw[b], fmax(b > 0 ? raw[b - 1] : 0.0, b + 1 < sh->bands ? raw[b + 1] : 0.0));
+    memmove(raw, env, sizeof(double) * (size_t)sh->bands);
+    sh->env = raw;
+    return 0;
+}
+
+/* Appends the shell clusters of deep branch i (see shell) to *cs; 1 on a
+ * failure (sh->why). */
+static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan,
+                          double path, cand **cs, int32_t *nc, int32_t *cap, int count_only) {
+    const keyaki_node *b = &n[i];
+    /* Shoots of spray cards: nothing to carry without leaves (winter keeps
+     * its twigs as they were). */
+    if (!sh->env || sh->height <= 0 || !p->leaves || p->leaf_density <= 0) return 0;
+    double zlo = sh->z0 + SHELL_FROM * sh->height;
+    v3 e = v3_madd(b->start, b->dir, b->length);
+    if (fmax(b->start.z, e.z) < zlo) return 0;
+    int side = rng_uniform(plan) < 0.5 ? 1 : -1;
+    const double step = SHELL_SPACING * p->twig_spacing;
+    double s = step * rng_uniform(plan);
+    int32_t k = (int32_t)((b->length - s) / step) + 1;
+    if (k <= 0) return 0;
+    if (8.0 * ((double)*nc + k) > (double)budget(p, count_only)) {
+        sh->why = 2;
+        return 1;
+    }
+    if (grow_array((void **)cs, cap, *nc + k, sizeof(cand))) {
+        sh->why = 1;
+        return 1;
+    }
+    for (; s < b->length; s += step, side = -side) {
+        v3 at = v3_madd(b->start, b->dir, s);
+        double fan = rng_range(plan, 15.0, SHELL_FAN_DEG), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
+        double len = p->twig_length * rng_range(plan, 0.75, 1.25);
+        if (at.z < zlo) continue;
+        len *= at.z < sh->z0 + 0.5 * sh->height ? SHELL_LOW_LENGTH : SHELL_LENGTH;
+        double rho = reach_of(sh, at);
+        if (rho < SHELL_OUTER * sh->env[band_of(sh, at.z)] || rho < 1e-6) continue;
+        /* Outward: the radial direction square to the branch, fanned about it. */
+        v3 rad = v3_make((at.x - sh->x0) / rho, (at.y - sh->y0) / rho, 0);
+        v3 o = v3_sub(rad, v3_scale(b->dir, v3_dot(rad, b->dir)));
+        if (v3_len2(o) < 1e-8) o = horizontal_perp(b->dir);
+        o = v3_rotate(v3_norm(o), b->dir, deg2rad(side * fan));
+        cand *q = &(*cs)[*nc];
+        double r = branch_radius(p, n, b, s);
+        q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(o, dm_sin(a))));
+        q->h = horizontal_perp(q->d);
+        q->at = at;
+        q->len = len;
+        q->r_host = r;
+        q->path = path + s;
+        q->node = i;
+        q->index = *nc;
+        q->tip = 0;
+        q->shell = 1;
+        (*nc)++;
+    }
+    return 0;
 }
 
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
@@ -587,7 +792,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, run, run ? run->promised : 0, BANYAN_OK, npath};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -615,15 +820,33 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     pcg32_seed(&plan, p->seed, KEYAKI_STREAM_TWIGS);
     cand *cs = NULL;
     int32_t nc = 0, cap = 0;
+    shell sh;
+    if (shell_of(&sh, n, count)) {
+        free(depth);
+        free(npath);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+    }
     double tw = p->twig_angle;
     for (int32_t i = 0; i < count; i++) {
         if ((i & 4095) == 0 && keyaki_stopped(run)) {
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return crown_fail(c, 3, BANYAN_OK, p, err);
         }
-        if (depth[i] >= p->leaf_levels) continue;
+        if (depth[i] >= p->leaf_levels) {
+            if (shell_clusters(&sh, p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only)) {
+                int why = sh.why;
+                free(depth);
+                free(npath);
+                free(cs);
+                free(sh.env);
+                return why == 2 ? crown_fail(c, 2, BANYAN_E_LIMIT, p, err)
+                                : banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+            }
+            continue;
+        }
         const keyaki_node *b = &n[i];
         int tip = b->child[0] < 0 && b->child[1] < 0;
         v3 h = horizontal_perp(b->dir);
@@ -637,12 +860,14 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
         }
         if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
             free(depth);
             free(npath);
             free(cs);
+            free(sh.env);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
         for (; s < b->length; s += p->twig_spacing, side = -side) {
@@ -657,6 +882,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->node = i;
             q->index = nc;
             q->tip = 0;
+            q->shell = 0;
             nc++;
         }
         if (tip) {
@@ -670,11 +896,13 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             q->node = i;
             q->index = nc;
             q->tip = 1;
+            q->shell = 0;
             nc++;
         }
     }
     free(depth);
     free(npath);
+    free(sh.env);
     x.npath = NULL;
     for (int32_t k = 0; k < nc; k++) {
         v3 e = v3_madd(cs[k].at, cs[k].d, 0.5 * cs[k].len);
@@ -739,10 +967,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
-        if ((k & 31) == 0 && keep_budget(&x, err)) break;
+        if ((k & 7) == 0 && keep_budget(&x, err)) break; /* a cluster may be a long shoot */
         cand q = cs[k];
         x.node = q.node;
         x.base_level = n[q.node].level;
+        x.cards_only = q.shell;
         cluster_stream(&x.tw, p, q.index, KEYAKI_STREAM_TWIGS);
         cluster_stream(&x.lf, p, q.index, KEYAKI_STREAM_LEAVES);
         v3 up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
@@ -750,15 +979,15 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         double len = q.len;
         int spur = 0;
         if (g.n) {
-            rect r = cluster_rect(p, q.at, q.d, q.h, len);
+            rect r = cluster_rect(p, q.at, q.d, q.h, len, len);
             double fl, fr;
             sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
             double lo = fmin(fl, fr), hi = fmax(fl, fr);
-            if (lo >= 0.9 && !q.tip) { /* all shaded: the cluster breaks */
+            if (lo >= 0.9 && !q.tip && !q.shell) { /* all shaded: the cluster breaks */
                 c->dropped++;
                 continue;
             }
-            if (lo >= 0.5) { /* both sides shaded: a short leafy spur */
+            if (lo >= 0.5 && !q.shell) { /* both sides shaded: a short leafy spur */
                 spur = 1;
                 len = fmin(len, fmax(0.3 * len, 3.0 / fmax(p->leaf_density, 1e-9)));
                 c->stopped++;
@@ -776,23 +1005,33 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                  * light_steer aside, whichever reaches furthest into the
                  * hole (straight on a tie). */
                 double best = 0, best_a = 0;
-                for (int h = 0; h < 5; h++) {
+                for (int h = 0; h < 5 && hypot(q.d.x, q.d.y) >= 0.05; h++) {
                     double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
-                    rect r2 = cluster_rect(p, q.at, v3_rotate_z(q.d, a), v3_rotate_z(q.h, a), len);
+                    rect r2 = cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len, len);
+                    /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
                     double ext = 0;
-                    for (;;) {
-                        double ex = r2.ox + r2.ax * (r2.len + ext + 0.5 * CELL);
-                        double ey = r2.oy + r2.ay * (r2.len + ext + 0.5 * CELL);
-                        if (ext >= EXTEND * q.len || !hole_at(&g, ex, ey)) break;
-                        ext += p->twig_spacing;
+                    int32_t seen = 0, holes = 0;
+                    for (double t = 0; t < EXTEND * q.len; t += p->twig_spacing) {
+                        double ex = r2.ox + r2.ax * (r2.len + t + 0.5 * CELL);
+                        double ey = r2.oy + r2.ay * (r2.len + t + 0.5 * CELL);
+                        int hole = hole_at(&g, ex, ey);
+                        seen++, holes += hole;
+                        if (hole && holes >= HOLE_SHARE * seen) ext = t + p->twig_spacing;
+                        if (holes < HOLE_SHARE * seen - 2) break;
                     }
                     if (ext > best) best = ext, best_a = a;
                 }
                 if (best_a != 0) turn_cluster(&q, &up, best_a);
+                if (best > 0) { /* a shoot into a gap grows out sideways, toward the light */
+                    q.d = flat_dir(q.d);
+                    up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
+                    if (up.z < 0) up = v3_neg(up);
+                }
                 len += best;
             }
-            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len), q.z);
+            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len, q.len), q.z);
         }
+        x.sub_base = q.len;
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur, q.path);
     }
     free(g.n);
@@ -893,6 +1132,7 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
                               const int attr[3], const keyaki_wind *w, int32_t k0, int32_t k1, keyaki_run *run) {
     int32_t cols = 1, rows = 1;
     leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
+    const int keyaki_atlas = cols == 4 && rows == 4; /* the spray row's layout (leaf_look.h) */
     mb_set_attr(mb, attr[2], 0);
     const double hu = LEAF_KEYAKI_HALF_U;
     if (k1 > c->n_leaves) k1 = c->n_leaves;
@@ -907,24 +1147,39 @@ void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown 
             /* Pivot the petiole base, on its wood; level that wood's + 1;
              * birth its path, delayed when the tree is done; stiffness the
              * wood's there (from the undelayed birth, when the tree is done). */
-            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1,
-                     wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k), 1);
+            double ph = wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k);
+            if ((float)ph >= 1.0f) ph = 0.0; /* stored as a float: one turn is none */
+            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1, ph, 1);
             if (w->ws->birth >= 0) mb_set_attr(mb, w->ws->birth, q->path);
         }
         uint32_t v0 = mb_vertices(mb, 4);
         uint32_t *I = mb_indices(mb, 6);
         if (v0 == UINT32_MAX || !I) return;
         leaf_look lk;
-        leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
-        double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
+        if (keyaki_atlas) leaf_look_keyaki(p->seed, (uint64_t)k, q->card, p->season, &lk);
+        else leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
         v3 nrm = v3_cross(q->width, q->axis);
-        v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
-        v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
-        double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
-        mb_put(mb, v0, p0, nrm, ua, lk.v0);
-        mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
-        mb_put(mb, v0 + 2, p2, nrm, ub, v1);
-        mb_put(mb, v0 + 3, p3, nrm, ua, v1);
+        if (q->card) {
+            /* A spray cell: u along the twig (the card's axis), v across. */
+            double hw = 0.5 * q->length / LEAF_KEYAKI_SPRAY_ASPECT;
+            v3 o = v3_madd(q->base, q->axis, -LEAF_KEYAKI_SPRAY_U0 * q->length);
+            v3 p0 = v3_madd(o, q->width, -hw), p1 = v3_madd(o, q->width, hw);
+            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
+            double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
+            mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);
+            mb_put(mb, v0 + 1, p1, nrm, lk.u0, v1);
+            mb_put(mb, v0 + 2, p2, nrm, u1, v1);
+            mb_put(mb, v0 + 3, p3, nrm, u1, lk.v0);
+        } else {
+            double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
+            v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
+            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
+            double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
+            mb_put(mb, v0, p0, nrm, ua, lk.v0);
+            mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
+            mb_put(mb, v0 + 2, p2, nrm, ub, v1);
+            mb_put(mb, v0 + 3, p3, nrm, ua, v1);
+        }
         for (uint32_t j = 0; j < 4 && mb->with_color; j++)
             for (int m = 0; m < 4; m++) mb->col[4 * ((size_t)v0 + j) + m] = (float)lk.tint[m];
         I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;

@@ -158,7 +158,7 @@ typedef struct keyaki_twig {
 } keyaki_twig;
 
 typedef struct keyaki_leaf {
-    v3 base;        /* petiole end (quad's v = 0 edge centre), on the twig's axis */
+    v3 base;        /* on the twig's axis: a leaf's petiole end (its quad's v = 0 edge centre), a card's painted twig base */
     v3 axis;        /* unit, petiole towards the blade's tip */
     v3 width;       /* unit, across the quad; width x axis is the face normal (z >= 0) */
     double length;  /* m, quad length: petiole + blade (blade: length x (LEAF_KEYAKI_BLADE_V1 - V0)) */
@@ -167,6 +167,8 @@ typedef struct keyaki_leaf {
     int32_t side;   /* +1 / -1: its rank, alternating along the twig */
     int32_t level;
     float path;     /* m: path length from the trunk base to `base` along the wood (birth, stiffness) */
+    int32_t card;   /* 0: a single leaf; 1: a spray card (leaf_look.h LEAF_KEYAKI_SPRAY_*): `length` along
+                       its painted twig, LEAF_KEYAKI_SPRAY_ASPECT times its width, its twig's base on the wood */
 } keyaki_leaf;
 
 typedef struct keyaki_crown {

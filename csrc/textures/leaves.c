@@ -7,7 +7,9 @@
  * blades by a polar radius around the petiole junction (three pointed
  * lobes or one, cordate base, coarse teeth) with five palmate primary
  * veins. Profiles are tabulated per leaf, the edge is antialiased from its
- * distance in pixels. Both atlases are 4 x 4 cells of one leaf each; a
+ * distance in pixels. Both atlases are 4 x 4 cells of one leaf each,
+ * except keyaki's bottom row: two sprays of leaves on a twig, each two
+ * cells wide (leaf_look.h, LEAF_KEYAKI_SPRAY_*), for leaf-cluster cards; a
  * keyaki leaf fills the box core/leaf_look.h gives its mesh quad (issue
  * #20: midrib up the cell's centre, petiole below, blade and teeth within
  * LEAF_KEYAKI_HALF_U of it), so the drawn leaf and the quad have the same
@@ -38,6 +40,7 @@ typedef struct cell {
     int lo, hi;       /* rows (of the cell) the span covers */
     float *scr;       /* LEAF_SCR * size floats: one row's covered pixels, shaded together */
     int *cols;        /* size entries: their columns */
+    int top;          /* rows kept clear at the top besides the margin (a spray cell: the lower half only) */
 } cell;
 
 /* Per covered pixel of a row, the blade painters first find the leaf's
@@ -102,7 +105,7 @@ static void span_end(cell *k, int *y0, int *y1) {
         if (k->xmin[r] < m) k->xmin[r] = m;
         if (k->xmax[r] > k->size - 1 - m) k->xmax[r] = k->size - 1 - m;
     }
-    *y0 = lo < m ? m : lo;
+    *y0 = lo < m + k->top ? m + k->top : lo;
     *y1 = hi > k->size - 1 - m ? k->size - 1 - m : hi;
 }
 
@@ -157,7 +160,7 @@ static void bounds(const cell *k, float umin, float umax, float vmin, float vmax
     *y0 = k->y0 + (int)floorf((1.0f - vmax) * s) - 1;
     *y1 = k->y0 + (int)ceilf((1.0f - vmin) * s) + 1;
     int lo_x = k->x0 + k->margin, hi_x = k->x0 + k->size - 1 - k->margin;
-    int lo_y = k->y0 + k->margin, hi_y = k->y0 + k->size - 1 - k->margin;
+    int lo_y = k->y0 + k->margin + k->top, hi_y = k->y0 + k->size - 1 - k->margin;
     if (*x0 < lo_x) *x0 = lo_x;
     if (*x1 > hi_x) *x1 = hi_x;
     if (*y0 < lo_y) *y0 = lo_y;
@@ -432,6 +435,26 @@ static void keyaki_colours(kleaf *L, int season, int tone, float light, pcg32 *r
     L->blot = tex_unif(r, 0.0f, 0.35f);
 }
 
+/* A keyaki blade's shape: base (bx, by), unit direction (dx, dy) and
+ * length len in cell units, `ratio` its length / width, `lance` narrows
+ * the widest point towards the base, `bend` curves the midrib; the rest
+ * drawn from r. */
+static void keyaki_shape(kleaf *L, float bx, float by, float dx, float dy, float len, float ratio, int lance,
+                         float bend, float cs, pcg32 *r) {
+    memset(L, 0, sizeof *L);
+    L->bx = bx, L->by = by, L->dx = dx, L->dy = dy;
+    L->len = len;
+    L->half = 1.0f / (1.95f * ratio); /* the right half is 0.95 of the left (keyaki_table) */
+    L->ymax = lance ? tex_unif(r, 0.26f, 0.32f) : tex_unif(r, 0.30f, 0.40f);
+    L->acum = lance ? tex_unif(r, 1.0f, 1.6f) : tex_unif(r, 0.7f, 1.4f);
+    L->veins = 8 + (int)rng_below(r, 8); /* 8-15 pairs */
+    L->slope = tex_unif(r, 0.75f, 1.05f);
+    L->skew = tex_unif(r, 0.01f, 0.05f);
+    L->tooth = 0.028f, L->env0 = 0.10f, L->env1 = 0.99f;
+    L->bend = bend;
+    L->minw = 0.8f / (L->len * cs); /* 0.8 px: the tip stays visible to within 2.5 % of its end */
+}
+
 /* One keyaki leaf filling its cell's box (leaf_look.h): midrib up u = 0.5,
  * blade from LEAF_KEYAKI_BLADE_V0 to its tip at LEAF_KEYAKI_BLADE_V1,
  * petiole below; `ratio` its length / width, `lance` narrows the widest
@@ -440,19 +463,9 @@ static void keyaki_colours(kleaf *L, int season, int tone, float light, pcg32 *r
  * leaf that would reach past it is narrowed (half-width and bend scaled). */
 static void keyaki_cell(cell *k, int season, int tone, float light, float ratio, int lance, float bend, pcg32 *r) {
     kleaf L;
-    memset(&L, 0, sizeof L);
     const float cs = (float)k->size;
-    L.bx = 0.5f, L.by = (float)LEAF_KEYAKI_BLADE_V0, L.dx = 0.0f, L.dy = 1.0f;
-    L.len = (float)(LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0);
-    L.half = 1.0f / (1.95f * ratio); /* the right half is 0.95 of the left (keyaki_table) */
-    L.ymax = lance ? tex_unif(r, 0.26f, 0.32f) : tex_unif(r, 0.30f, 0.40f);
-    L.acum = lance ? tex_unif(r, 1.0f, 1.6f) : tex_unif(r, 0.7f, 1.4f);
-    L.veins = 8 + (int)rng_below(r, 8); /* 8-15 pairs */
-    L.slope = tex_unif(r, 0.75f, 1.05f);
-    L.skew = tex_unif(r, 0.01f, 0.05f);
-    L.tooth = 0.028f, L.env0 = 0.10f, L.env1 = 0.99f;
-    L.bend = bend;
-    L.minw = 0.8f / (L.len * cs); /* 0.8 px: the tip stays visible to within 2.5 % of its end */
+    keyaki_shape(&L, 0.5f, (float)LEAF_KEYAKI_BLADE_V0, 0.0f, 1.0f, (float)(LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0),
+                 ratio, lance, bend, cs, r);
     keyaki_colours(&L, season, tone, light, r);
     /* Fit sideways: margin extents from the table, antialiased edge 0.75 px. */
     const float lim = ((float)LEAF_KEYAKI_HALF_U - 0.75f / cs) / L.len;
@@ -472,6 +485,81 @@ static void keyaki_cell(cell *k, int season, int tone, float light, float ratio,
     for (int ch = 0; ch < 3; ch++) pc[ch] = tex_mix(pb[ch], L.col[ch], 0.35f);
     stroke(k, 0.5f, 0.0f, 0.5f, (float)LEAF_KEYAKI_BLADE_V0 + 0.03f, 0.009f, 0.007f, pc, 0.2f);
     keyaki_leaf(k, &L);
+}
+
+/* A keyaki spray (leaf_look.h, LEAF_KEYAKI_SPRAY_*) in k: a square cell
+ * twice the spray's height whose upper half is kept clear (k->top), so
+ * cell units u 0..1 run along the spray and v 0..0.5 across it. A thin
+ * twig along v = 0.25 from U0 to U1, leaves alternately left and right at
+ * 40-70 deg forward on short petioles, smaller toward the tip, and one
+ * leaf on from the twig's end. Summer: each leaf its own light and some
+ * young ones; autumn: each leaf its own tone (yellow to red-purple). */
+static void keyaki_spray(cell *k, int season, pcg32 *r) {
+    const float cs = (float)k->size, vc = 0.5f * (float)LEAF_KEYAKI_SPRAY_V;
+    const float u0 = (float)LEAF_KEYAKI_SPRAY_U0, u1 = (float)LEAF_KEYAKI_SPRAY_U1;
+    const float half = 0.25f - (float)(k->margin + 2) / cs; /* room either side of the twig */
+    /* The cell's fill colour: a mid leaf of the season. */
+    kleaf M;
+    memset(&M, 0, sizeof M);
+    pcg32 fr = *r;
+    keyaki_colours(&M, season, season == BANYAN_SEASON_SUMMER ? 0 : 1, 0.0f, &fr);
+    {
+        uint8_t px[4] = {tex_byte(M.col[0]), tex_byte(M.col[1]), tex_byte(M.col[2]), 0};
+        int ya = k->y0 + k->top, yb = k->y0 + k->size;
+        for (int y = ya; y < yb; y++) {
+            uint8_t *p = k->c->rgba + 4 * ((size_t)y * k->c->n + k->x0);
+            for (int x = 0; x < k->size; x++) memcpy(p + 4 * x, px, 4);
+            memset(k->c->height + (size_t)y * k->c->n + k->x0, 0, sizeof(float) * (size_t)k->size);
+        }
+    }
+    /* The twig: a slight curve, thinning to the tip. */
+    const float bow = tex_unif(r, -0.012f, 0.012f);
+    const float tw[3] = {season ? 108.0f : 92.0f, season ? 84.0f : 80.0f, season ? 60.0f : 58.0f};
+    enum { TS = 8 };
+    float px_[TS + 1], py_[TS + 1];
+    for (int i = 0; i <= TS; i++) {
+        float t = (float)i / TS;
+        px_[i] = u0 + (u1 - u0) * t;
+        py_[i] = vc + bow * 4.0f * t * (1.0f - t);
+    }
+    for (int i = 0; i < TS; i++)
+        stroke(k, px_[i], py_[i], px_[i + 1], py_[i + 1], tex_mix(0.0042f, 0.0022f, (float)i / TS),
+               tex_mix(0.0042f, 0.0022f, (float)(i + 1) / TS), tw, 0.4f);
+    /* Leaves: a node every `step` along the twig, sides alternating. */
+    const float step = 0.031f;
+    int side = rng_uniform(r) < 0.5 ? 1 : -1;
+    for (float s = u0 + 0.05f; s < u1 - 0.01f && !tex_stopped(k->c); s += step * tex_unif(r, 0.9f, 1.1f), side = -side) {
+        float t = (s - u0) / (u1 - u0);
+        float th = tex_unif(r, 40.0f, 62.0f) * PI_F / 180.0f;
+        float dx = dm_cosf(th), dy = (float)side * dm_sinf(th);
+        float ratio = tex_unif(r, 1.8f, 2.4f), wmax = 0.55f / ratio; /* widest half-width / length, with teeth */
+        float len = 0.27f * (1.0f - 0.3f * t) * tex_unif(r, 0.9f, 1.1f);
+        float pet = 0.06f; /* petiole / blade length */
+        float reach = (1.0f + pet) * fabsf(dy) + wmax * dx; /* sideways per unit length */
+        if (len * reach > half) len = half / reach;
+        float ty = vc + bow * 4.0f * t * (1.0f - t);
+        float bx = s + pet * len * dx, by = ty + pet * len * dy;
+        kleaf L;
+        float bend = tex_unif(r, -0.03f, 0.03f);
+        keyaki_shape(&L, bx, by, dx, dy, len, ratio, ratio > 2.45f, bend, cs, r);
+        int tone = season == BANYAN_SEASON_SUMMER ? rng_uniform(r) < 0.12 : (int)rng_below(r, 4);
+        keyaki_colours(&L, season, tone, tex_unif(r, -1.0f, 1.0f), r);
+        float pc[3];
+        for (int ch = 0; ch < 3; ch++) pc[ch] = tex_mix(tw[ch], L.col[ch], 0.35f);
+        stroke(k, s, ty, bx, by, 0.0026f, 0.002f, pc, 0.3f);
+        keyaki_leaf(k, &L);
+    }
+    /* The tip leaf, on from the twig's end. */
+    {
+        float ratio = tex_unif(r, 2.0f, 2.6f), len = (1.0f - (float)(k->margin + 2) / cs - u1) / 1.05f;
+        float wmax = 0.55f / ratio;
+        if (len * wmax > half) len = half / wmax;
+        kleaf L;
+        keyaki_shape(&L, u1 + 0.04f * len, vc, 1.0f, 0.0f, len * 0.96f, ratio, ratio > 2.45f, 0.0f, cs, r);
+        int tone = season == BANYAN_SEASON_SUMMER ? rng_uniform(r) < 0.12 : (int)rng_below(r, 4);
+        keyaki_colours(&L, season, tone, tex_unif(r, -1.0f, 1.0f), r);
+        keyaki_leaf(k, &L);
+    }
 }
 
 /* ---------------------------------------------------------------- ivy */
@@ -829,16 +917,23 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
     int cs = c->n / cols;
     int *spans = malloc(sizeof(int) * 3 * (size_t)cs);
     float *scr = malloc(sizeof(float) * LEAF_SCR * (size_t)cs);
-    if (!spans || !scr) {
+    int ss = c->n / LEAF_KEYAKI_SPRAYS; /* a spray's square cell */
+    int *spans2 = malloc(sizeof(int) * 3 * (size_t)ss);
+    float *scr2 = malloc(sizeof(float) * LEAF_SCR * (size_t)ss);
+    if (!spans || !scr || !spans2 || !scr2) {
         free(spans);
         free(scr);
+        free(spans2);
+        free(scr2);
         free_fields(c);
         return -1;
     }
-    /* 16 leaves, each its own: length / width and summer lightness spread
-     * evenly over their ranges (shuffled over the cells), three young
-     * leaves in summer, a bent midrib in about a third; in autumn atlas
-     * row j (from the top) is tone j: yellow, orange, rust, red-purple. */
+    /* 12 single leaves in the rows above the sprays, each its own: length
+     * / width and summer lightness spread evenly over their ranges
+     * (shuffled over 16 draws, so the 12 keep the 4 x 4 atlas's), up to
+     * three young leaves in summer, a bent midrib in about a third; in
+     * autumn atlas row j (from the top) is tone j: yellow, orange, rust
+     * (red-purple leaves are in the sprays, whose leaves mix all four). */
     int nc = cols * rows, pr[64], pl[64], py[64];
     for (int i = 0; i < nc && i < 64; i++) pr[i] = pl[i] = py[i] = i;
     for (int i = nc - 1; i > 0; i--) {
@@ -848,10 +943,10 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
         t = pl[i], pl[i] = pl[b], pl[b] = t;
         t = py[i], py[i] = py[d], py[d] = t;
     }
-    for (int j = 0; j < rows; j++)
+    for (int j = 0; j + 1 < rows; j++)
         for (int i = 0; i < cols && !tex_stopped(c); i++) {
             int id = i + j * cols;
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs, 0};
             float ratio = 1.85f + 1.05f * ((float)pr[id] + tex_unif(rng, 0.0f, 1.0f)) / (float)nc;
             float light = -1.0f + 2.0f * ((float)pl[id] + tex_unif(rng, 0.0f, 1.0f)) / (float)nc;
             float bend = rng_uniform(rng) < 0.35 ? (rng_uniform(rng) < 0.5 ? -1.0f : 1.0f) * tex_unif(rng, 0.025f, 0.06f)
@@ -859,6 +954,16 @@ int tex_paint_keyaki_leaves(tex_canvas *c, int season, pcg32 *rng) {
             int tone = season == BANYAN_SEASON_SUMMER ? py[id] < 3 : j % 4;
             keyaki_cell(&k, season, tone, light, ratio, ratio > 2.45f, bend, rng);
         }
+    /* The bottom row: LEAF_KEYAKI_SPRAYS sprays, each a square cell of
+     * twice the side whose lower half is the spray. */
+    for (int i = 0; i < LEAF_KEYAKI_SPRAYS && !tex_stopped(c); i++) {
+        int ss = c->n / LEAF_KEYAKI_SPRAYS;
+        cell k = {c, i * ss, (rows - 1) * cs - (ss - cs), ss, cs >= 64 ? 2 : 1, spans2, spans2 + ss, 0, 0, scr2,
+                  spans2 + 2 * ss, ss - cs};
+        keyaki_spray(&k, season, rng);
+    }
+    free(spans2);
+    free(scr2);
     free(spans);
     free(scr);
     free_fields(c);
@@ -883,7 +988,7 @@ int tex_paint_ivy_leaves(tex_canvas *c, int season, pcg32 *rng) {
     }
     for (int j = 0; j < rows; j++)
         for (int i = 0; i < cols && !tex_stopped(c); i++) {
-            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs};
+            cell k = {c, i * cs, j * cs, cs, cs >= 64 ? 2 : 1, spans, spans + cs, 0, 0, scr, spans + 2 * cs, 0};
             ivleaf L;
             /* A quarter of the cells: young unlobed leaves (long shoots). */
             L.lobed = ((i + j * cols) % 4) != 3;

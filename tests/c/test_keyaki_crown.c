@@ -84,6 +84,7 @@ static int grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_crown
 
 typedef struct fails {
     int start, tip, petiole, alternate, level, radius_cap;
+    int32_t singles, cards; /* single leaves (their blade lengths in `lengths`) and spray cards */
 } fails;
 
 static void check_crown(const banyan_keyaki_params *p, const keyaki_skeleton *sk, const keyaki_crown *c, fails *f,
@@ -114,7 +115,13 @@ static void check_crown(const banyan_keyaki_params *p, const keyaki_skeleton *sk
     v3 q_tangent[2] = {{0, 0, 1}, {0, 0, 1}}; /* the twig's direction at this leaf and the one before */
     for (int32_t k = 0; k < c->n_leaves; k++) {
         const keyaki_leaf *q = &c->leaves[k];
-        lengths[k] = q->length * (LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0); /* the blade */
+        if (q->card) { /* a spray card: its painted twig's base on its twig */
+            f->cards++;
+            if (q->twig < 0 || poly_dist(q->base, c->pts + c->twigs[q->twig].first, c->twigs[q->twig].count) > 1e-9)
+                f->petiole++;
+            continue;
+        }
+        lengths[f->singles++] = q->length * (LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0); /* the blade */
         if (q->twig < 0) {
             f->petiole++;
             continue;
@@ -123,7 +130,7 @@ static void check_crown(const banyan_keyaki_params *p, const keyaki_skeleton *sk
         if (poly_dist(q->base, c->pts + T->first, T->count) > 1e-9) f->petiole++;
         q_tangent[k % 2] = nearest_tangent(q->base, c->pts + T->first, T->count);
         if (q->level != T->level) f->level++;
-        if (k > 0 && c->leaves[k - 1].twig == q->twig) {
+        if (k > 0 && c->leaves[k - 1].twig == q->twig && !c->leaves[k - 1].card) {
             const keyaki_leaf *o = &c->leaves[k - 1];
             v3 tq = q_tangent[k % 2], to = q_tangent[(k + 1) % 2];
             v3 a = v3_madd(q->axis, tq, -v3_dot(q->axis, tq));
@@ -159,8 +166,10 @@ static void preset_seeds(const char *name) {
         CHECK(f.level == 0, "%s seed %d: %d levels wrong", name, (int)seed, f.level);
         CHECK(c.n_leaves > 1000 && c.tips > 100, "%s seed %d: %d leaves, %d tips", name, (int)seed, c.n_leaves,
               c.tips);
-        qsort(len, (size_t)c.n_leaves, sizeof(double), dbl_cmp);
-        double p10 = len[c.n_leaves / 10], p90 = len[(c.n_leaves * 9) / 10];
+        CHECK(f.cards > 0 && f.singles > 1000, "%s seed %d: %d spray cards, %d single leaves", name, (int)seed,
+              f.cards, f.singles);
+        qsort(len, (size_t)f.singles, sizeof(double), dbl_cmp);
+        double p10 = f.singles ? len[f.singles / 10] : 0, p90 = f.singles ? len[(f.singles * 9) / 10] : 1;
         CHECK(p10 >= 0.03 && p90 <= 0.08, "%s seed %d: leaf length p10 %.4f p90 %.4f", name, (int)seed, p10, p90);
         free(len);
         /* Light off: every cluster as planned. */

@@ -211,9 +211,11 @@ static void crown(const char *name, int min_tips, int min_leaves, double min_fil
         }
         double *len = malloc(sizeof(double) * (size_t)(c.n_leaves + 1));
         const double blade = LEAF_KEYAKI_BLADE_V1 - LEAF_KEYAKI_BLADE_V0;
-        for (int32_t i = 0; i < c.n_leaves; i++) len[i] = c.leaves[i].length * blade;
-        qsort(len, (size_t)c.n_leaves, sizeof(double), dbl_cmp);
-        double p10 = c.n_leaves ? len[c.n_leaves / 10] : 0, p90 = c.n_leaves ? len[(c.n_leaves * 9) / 10] : 1;
+        int32_t singles = 0; /* single leaves: spray cards carry many painted leaves */
+        for (int32_t i = 0; i < c.n_leaves; i++)
+            if (!c.leaves[i].card) len[singles++] = c.leaves[i].length * blade;
+        qsort(len, (size_t)singles, sizeof(double), dbl_cmp);
+        double p10 = singles ? len[singles / 10] : 0, p90 = singles ? len[(singles * 9) / 10] : 1;
         crown_plan pl;
         crown_plan_measure(&c, 0.5, &pl);
         double filled = pl.inside ? (double)pl.filled / pl.inside : 0;

@@ -66,7 +66,9 @@ static void check_atlas(int kind, int season, const banyan_image *im) {
     CHECK(L.cols >= 1 && L.rows >= 1 && L.cols * L.rows >= 4, "%s: %d x %d cells", names[kind], L.cols, L.rows);
     CHECK(L.leaf_aspect > 0.2f && L.leaf_aspect <= 1.0f, "%s: aspect %g", names[kind], L.leaf_aspect);
     int cw = (int)im->width / L.cols, ch = (int)im->height / L.rows;
-    for (int j = 0; j < L.rows; j++)
+    /* Keyaki's bottom row: sprays (check_keyaki_sprays). */
+    int rows = kind == BANYAN_TEX_KEYAKI_LEAF ? L.rows - 1 : L.rows;
+    for (int j = 0; j < rows; j++)
         for (int i = 0; i < L.cols; i++) {
             int x0 = i * cw, y0 = j * ch, x1 = x0 + cw - 1, y1 = y0 + ch - 1;
             int cx = x0 + cw / 2, cy = y0 + ch / 2;
@@ -117,7 +119,7 @@ static void check_keyaki_cells(int season, const banyan_image *im) {
     const int cw = (int)im->width / 4;
     const double px = 1.0 / cw, allow = 1.5 * px, hu = LEAF_KEYAKI_HALF_U;
     double broadest = 0.0;
-    for (int j = 0; j < 4; j++)
+    for (int j = 0; j < 3; j++) /* the bottom row holds sprays */
         for (int i = 0; i < 4; i++) {
             int x0 = i * cw, y0 = j * cw, opaque = 0, outside = 0;
             double top = -1.0, umin = 1.0, umax = 0.0, base = 2.0;
@@ -158,6 +160,32 @@ static void check_keyaki_cells(int season, const banyan_image *im) {
     if (cw >= 64)
         CHECK(broadest > 0.8 * 2 * hu, "keyaki s%d %d px: the broadest leaf is %.3f wide, under 0.8 of the box's %.2f",
               season, (int)im->width, broadest, 2 * hu);
+}
+
+/* Keyaki's spray cells (leaf_look.h LEAF_KEYAKI_SPRAY_*): the bottom row,
+ * LEAF_KEYAKI_SPRAYS cells each LEAF_KEYAKI_SPRAY_ASPECT times as wide as
+ * tall. In each: the twig's base (u = U0 on the centre line) drawn, clear
+ * corners and border, the leaves covering 0.3-0.75 of the cell. */
+static void check_keyaki_sprays(int season, const banyan_image *im) {
+    const int n = (int)im->width, h = n / 4, w = n / LEAF_KEYAKI_SPRAYS;
+    CHECK(fabs((double)w / h - LEAF_KEYAKI_SPRAY_ASPECT) < 1e-9, "keyaki sprays: %d x %d px", w, h);
+    for (int i = 0; i < LEAF_KEYAKI_SPRAYS; i++) {
+        int x0 = i * w, y0 = n - h, x1 = x0 + w - 1, y1 = n - 1;
+        int bx = x0 + (int)(LEAF_KEYAKI_SPRAY_U0 * w + 1.5), by = y0 + (int)((1.0 - LEAF_KEYAKI_SPRAY_V) * h);
+        CHECK(alpha_at(im, bx, by) > 0 || alpha_at(im, bx, by - 1) > 0, "keyaki s%d spray %d: no twig at its base",
+              season, i);
+        int border = 0;
+        for (int t = 0; t < w; t++) border += alpha_at(im, x0 + t, y0) + alpha_at(im, x0 + t, y1);
+        for (int t = 0; t < h; t++) border += alpha_at(im, x0, y0 + t) + alpha_at(im, x1, y0 + t);
+        CHECK(border == 0, "keyaki s%d spray %d: a leaf touches the cell border", season, i);
+        long covered = 0;
+        for (int y = y0; y <= y1; y++)
+            for (int x = x0; x <= x1; x++) covered += alpha_at(im, x, y) > 127;
+        double frac = (double)covered / ((double)w * h);
+        CHECK(frac > 0.3 && frac < 0.75 && fabs(frac - LEAF_KEYAKI_SPRAY_COVER) < 0.12, /* small atlases lose edges */
+              "keyaki s%d spray %d: leaves cover %.2f of the cell (LEAF_KEYAKI_SPRAY_COVER %.2f)", season, i, frac,
+              LEAF_KEYAKI_SPRAY_COVER);
+    }
 }
 
 /* Mean absolute step between two columns (or rows) a and b, all channels. */
@@ -316,7 +344,7 @@ int main(void) {
                       names[kind], nm->width, nm->height, nm->channels);
                 if (is_leaf(kind)) {
                     check_atlas(kind, season, bc);
-                    if (kind == BANYAN_TEX_KEYAKI_LEAF) check_keyaki_cells(season, bc);
+                    if (kind == BANYAN_TEX_KEYAKI_LEAF) check_keyaki_cells(season, bc), check_keyaki_sprays(season, bc);
                 } else {
                     check_opaque(kind, bc);
                     check_tiles(kind, bc, "colour");
