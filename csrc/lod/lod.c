@@ -33,7 +33,7 @@ void banyan_lod_params_init(banyan_lod_params *p) {
     memset(p, 0, sizeof *p);
     p->ratio = 0.5;
     p->billboard = 0;
-    p->billboard_planes = 2;
+    p->billboard_planes = 3;
     p->billboard_size = 256;
     p->seed = 1;
 }
