@@ -49,7 +49,7 @@ static const double BB_SUN[3] = {-0.4545, -0.5417, 0.7071};
 #define BB_SKY 0.4
 
 static float srgb_of_linear(float c) {
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    c = !(c > 0) ? 0 : c > 1 ? 1 : c; /* NaN (a hostile colour) reads as black */
     return c <= 0.0031308f ? 12.92f * c : 1.055f * dm_powf(c, 1.0f / 2.4f) - 0.055f;
 }
 
@@ -92,7 +92,7 @@ static banyan_status paint_init(const banyan_mesh *m, bb_paint *pa) {
         const banyan_material *mt = &m->materials[i];
         bb_mat *b = &pa->mat[i];
         for (int c = 0; c < 3; c++) b->flat[c] = mt->base_color[c];
-        b->translucency = mt->translucency < 0 ? 0 : mt->translucency > 1 ? 1 : mt->translucency;
+        b->translucency = !(mt->translucency > 0) ? 0 : mt->translucency > 1 ? 1 : mt->translucency;
         if (mt->image >= 0) {
             b->tex = &m->images[mt->image];
             continue;
@@ -156,31 +156,33 @@ static int tri_normal(const banyan_mesh *m, const uint32_t *I, double n[3]) {
     return 1;
 }
 
-/* The plant's mean light over what the views show (each triangle's
- * light weighted by its area seen): the pictures carry light / mean. */
-static double mean_light(const banyan_mesh *m, uint32_t g, const bb_view *vw, uint32_t nview) {
+/* The light the card of view w gets itself, its two faces averaged
+ * (an engine's card material has no translucency): the picture of w
+ * carries the plant's light / this, so the card, lit by the engine, shows
+ * the plant as lit. */
+static double card_light(const bb_view *w) {
+    double back[3] = {-w->v[0], -w->v[1], -w->v[2]};
+    return 0.5 * (bb_light(w->v, w->v, 0) + bb_light(back, back, 0));
+}
+
+/* The group's area-weighted mean roughness (the cards' material's). */
+static float mean_roughness(const banyan_mesh *m, uint32_t g) {
     double sum = 0, wsum = 0;
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
         if (pt->group != g) continue;
-        double t = m->materials[pt->material].translucency;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        double r = m->materials[pt->material].roughness, a = 0;
+        if (!(r >= 0 && r <= 1)) continue;
         for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
-            const uint32_t *I = m->indices + k;
-            const float *A = m->positions + 3 * (size_t)I[0], *B = m->positions + 3 * (size_t)I[1],
-                        *C = m->positions + 3 * (size_t)I[2];
+            const float *A = m->positions + 3 * (size_t)m->indices[k], *B = m->positions + 3 * (size_t)m->indices[k + 1],
+                        *C = m->positions + 3 * (size_t)m->indices[k + 2];
             double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
             double f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-            double n[3];
-            if (!tri_normal(m, I, n)) continue;
-            for (uint32_t w = 0; w < nview; w++) {
-                double a = 0.5 * fabs(f[0] * vw[w].v[0] + f[1] * vw[w].v[1] + f[2] * vw[w].v[2]);
-                sum += a * bb_light(n, vw[w].v, t);
-                wsum += a;
-            }
+            a += sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
         }
+        if (isfinite(a)) sum += a * r, wsum += a;
     }
-    return wsum > 0 && sum > 0 ? sum / wsum : 1.0;
+    return wsum > 0 ? (float)(sum / wsum) : 0.9f;
 }
 
 /* The tile's samples: depth (-inf where empty) and linear colour. */
@@ -545,7 +547,6 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         im->channels = 4;
         im->pixels = calloc((size_t)W * H, 4);
         if (!im->pixels) goto fail;
-        double gain = mean_light(m, g, vw, tiles);
         for (uint32_t k = 0; k < tiles; k++) {
             if (prog_at(pg, (double)g / n_groups)) {
                 st = BANYAN_E_LIMIT;
@@ -559,7 +560,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             share = malloc(sizeof(float) * (size_t)vw[k].w * vw[k].h);
             if (!tl.depth || !tl.rgb || !share) goto fail;
             for (size_t i = 0; i < ns; i++) tl.depth[i] = -INFINITY;
-            draw_view(m, g, &pa, gain, &vw[k], &tl);
+            draw_view(m, g, &pa, card_light(&vw[k]), &vw[k], &tl);
             resolve(&tl, ss, &vw[k], im->pixels, W, share);
         }
         if (dilate(im->pixels, W, H)) goto fail;
@@ -567,7 +568,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         banyan_material *mt = &o->materials[cd];
         snprintf(mt->name, sizeof mt->name, "billboard_%u", g);
         mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-        mt->roughness = 0.9f;
+        mt->roughness = mean_roughness(m, g);
         mt->double_sided = 1;
         mt->texture = BANYAN_TEX_NONE;
         mt->alpha_cutoff = 0.5f;
