@@ -15,9 +15,9 @@
  *     texel with alpha below one half covers nothing (as the engine's
  *     alpha test), and its colour times the vertex colour is the colour;
  *   - light: the sun and sky of the docs' studio scene, a Lambert term
- *     with translucency on the face seen (double-sided leaves), as a
- *     share of the plant's mean, so the picture carries where the plant
- *     is lit and the engine's own light sets the level;
+ *     with translucency on the face seen (double-sided leaves), over the
+ *     light the card itself gets (its two faces averaged), so the card,
+ *     lit by the engine, shows the plant as lit;
  *   - a pixel's alpha is the share of its samples covered, scaled per
  *     picture so that as many pixels pass the cutoff 0.5 as the plant
  *     covers (coverage-preserving alpha, Castano 2010): the card is as
