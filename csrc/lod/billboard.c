@@ -25,7 +25,9 @@
  *   - the colour dilated into the empty pixels so mipmaps do not halo.
  * The pictures sit in a grid of tiles (verticals in order, then the top)
  * in one RGBA image per group (tree, or variant of an instanced avenue),
- * billboard_size pixels on its longer side at most. */
+ * billboard_size pixels on its longer side at most. Each group has two
+ * parts and materials on that image: the vertical cards (double sided)
+ * and the top card (single sided, facing up). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -472,8 +474,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     o->uvs = malloc(2 * sizeof(float) * nv);
     o->indices = malloc(sizeof(uint32_t) * ni);
     o->attributes = calloc(n_attr, sizeof(banyan_attribute));
-    o->materials = calloc(n_cards, sizeof(banyan_material));
-    o->parts = calloc(n_cards, sizeof(banyan_part));
+    o->materials = calloc(2 * (size_t)n_cards, sizeof(banyan_material));
+    o->parts = calloc(2 * (size_t)n_cards, sizeof(banyan_part));
     o->images = calloc(n_cards, sizeof(banyan_image));
     if (!o->positions || !o->normals || !o->uvs || !o->indices || !o->attributes || !o->materials || !o->parts ||
         !o->images)
@@ -483,7 +485,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         strncpy(o->attributes[a].name, names[a], BANYAN_NAME_MAX - 1);
         if (!(o->attributes[a].data = malloc(sizeof(float) * nv))) goto fail;
     }
-    o->material_count = o->part_count = o->image_count = n_cards;
+    o->material_count = o->part_count = 2 * n_cards;
+    o->image_count = n_cards;
     if ((st = lod_copy_common(m, o, 0))) goto fail;
     st = BANYAN_E_NOMEM;
 
@@ -565,22 +568,29 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         }
         if (dilate(im->pixels, W, H)) goto fail;
 
-        banyan_material *mt = &o->materials[cd];
-        snprintf(mt->name, sizeof mt->name, "billboard_%u", g);
-        mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-        mt->roughness = mean_roughness(m, g);
-        mt->double_sided = 1;
-        mt->texture = BANYAN_TEX_NONE;
-        mt->alpha_cutoff = 0.5f;
-        mt->translucency = 0.3f;
-        mt->image = (int32_t)cd;
-        banyan_part *op = &o->parts[cd];
-        op->vertex_offset = cd * nvc;
-        op->vertex_count = nvc;
-        op->index_offset = cd * nic;
-        op->index_count = nic;
-        op->material = cd;
-        op->group = g;
+        /* Two parts and materials per group, one picture: the vertical
+         * cards, double sided, and the top card, single sided facing up
+         * (an engine that culls back faces does not show its unlit
+         * underside from the ground). */
+        for (uint32_t h = 0; h < 2; h++) {
+            banyan_material *mt = &o->materials[2 * cd + h];
+            snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
+            mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
+            mt->roughness = mean_roughness(m, g);
+            mt->double_sided = !h;
+            mt->texture = BANYAN_TEX_NONE;
+            mt->alpha_cutoff = 0.5f;
+            mt->translucency = 0.3f;
+            mt->image = (int32_t)cd;
+            banyan_part *pp = &o->parts[2 * cd + h];
+            pp->vertex_offset = cd * nvc + (h ? planes * 8 : 0);
+            pp->vertex_count = h ? 4 : planes * 8;
+            pp->index_offset = cd * nic + (h ? planes * 12 : 0);
+            pp->index_count = h ? 6 : planes * 12;
+            pp->material = 2 * cd + h;
+            pp->group = g;
+        }
+        const banyan_part *op = &o->parts[2 * cd];
         float phase = (float)wind_phase_of(p->seed, g);
         /* Quads: two half planes per vertical view (split at the axis),
          * then the top card; corners counter-clockwise seen from +v. */

@@ -150,17 +150,24 @@ static void check_billboard(const char *name, const banyan_mesh *m, int32_t plan
     if (!o) return;
     uint32_t groups = 0;
     for (uint32_t q = 0; q < m->part_count; q++) groups = m->parts[q].group + 1 > groups ? m->parts[q].group + 1 : groups;
-    CHECK(o->part_count == groups && o->image_count == groups, "%s billboard: %u parts, %u images for %u groups", name,
-          o->part_count, o->image_count, groups);
+    CHECK(o->part_count == 2 * groups && o->image_count == groups, "%s billboard: %u parts, %u images for %u groups",
+          name, o->part_count, o->image_count, groups);
     char why[200];
     CHECK(well_formed(o, why, sizeof why), "%s billboard: %s", name, why);
     for (uint32_t q = 0; q < o->part_count; q++) {
         const banyan_part *pt = &o->parts[q];
-        CHECK(pt->index_count == (2u * planes + 1) * 6, "%s billboard: part %u has %u indices, want %d quads", name,
-              q, pt->index_count, 2 * planes + 1);
+        /* Per group: the vertical half quads (double sided), then the top
+         * card (single sided, facing up), one picture. */
+        int top = q % 2;
+        CHECK(pt->index_count == (top ? 6u : 12u * planes), "%s billboard: part %u has %u indices, want %d quads", name,
+              q, pt->index_count, top ? 1 : 2 * planes);
         const banyan_material *mt = &o->materials[pt->material];
-        CHECK(mt->image >= 0 && (uint32_t)mt->image < o->image_count && mt->alpha_cutoff == 0.5f && mt->double_sided,
+        CHECK(mt->image >= 0 && (uint32_t)mt->image < o->image_count && mt->alpha_cutoff == 0.5f &&
+                  mt->double_sided == !top && (uint32_t)mt->image == q / 2,
               "%s billboard: material %u", name, pt->material);
+        for (uint32_t v = pt->vertex_offset; top && v < pt->vertex_offset + pt->vertex_count; v++)
+            CHECK(o->normals[3 * (size_t)v + 2] == 1.0f, "%s billboard: the top card's vertex %u does not face up", name,
+                  v);
         if (mt->image < 0 || (uint32_t)mt->image >= o->image_count) continue;
         const banyan_image *im = &o->images[mt->image];
         uint32_t longer = im->width > im->height ? im->width : im->height;
@@ -185,9 +192,9 @@ static void check_billboard(const char *name, const banyan_mesh *m, int32_t plan
     /* stiffness 1 at a card's foot, 0.5 at its top, linear between (the
      * top card) */
     for (uint32_t q = 0; st && q < o->part_count; q++) {
-        const banyan_part *pt = &o->parts[q];
+        const banyan_part *pt = &o->parts[q], *vert = &o->parts[q & ~1u]; /* the group's height: its vertical cards */
         float zlo = INFINITY, zhi = -INFINITY;
-        for (uint32_t v = pt->vertex_offset; v < pt->vertex_offset + pt->vertex_count; v++) {
+        for (uint32_t v = vert->vertex_offset; v < vert->vertex_offset + vert->vertex_count; v++) {
             zlo = fminf(zlo, o->positions[3 * (size_t)v + 2]);
             zhi = fmaxf(zhi, o->positions[3 * (size_t)v + 2]);
         }

@@ -1,7 +1,8 @@
 /* test_lod_look.c - levels of detail that look like the plant they stand
  * for (docs/lod.md):
- *   - the billboard: 2 x planes vertical half quads and one horizontal top
- *     card at 0.6 .. 0.7 of the height over the plant's footprint; each
+ *   - the billboard: 2 x planes vertical half quads (one part) and one
+ *     horizontal top card at 0.6 .. 0.7 of the height over the plant's
+ *     footprint (the next part, its vertices right after); each
  *     card's picture, compared with this file's own rendering of the full
  *     mesh along the card's normal (z-buffered, the leaf texture's alpha
  *     tested at 0.5 per sample, 6 x 6 samples per picture pixel, colour =
@@ -152,11 +153,12 @@ static void check_billboard_look(const char *name, const banyan_mesh *m, const c
         zlo = fmin(zlo, m->positions[3 * (size_t)v + 2]), zhi = fmax(zhi, m->positions[3 * (size_t)v + 2]);
     double cov_card_all = 0, cov_tree_all = 0, lum_card_all = 0, lum_tree_all = 0;
     for (uint32_t q = 0; q < o->part_count && q < 1; q++) {
-        const banyan_part *pt = &o->parts[q];
-        CHECK(pt->index_count == (2 * planes + 1) * 6 && pt->vertex_count == planes * 8 + 4,
-              "%s billboard: %u indices, %u vertices for %u planes and a top card", name, pt->index_count,
-              pt->vertex_count, planes);
-        if (pt->vertex_count != planes * 8 + 4) continue;
+        const banyan_part *pt = &o->parts[q], *tp = &o->parts[q + 1];
+        CHECK(o->part_count == 2 && pt->index_count == planes * 12 && pt->vertex_count == planes * 8 &&
+                  tp->index_count == 6 && tp->vertex_count == 4 && tp->vertex_offset == pt->vertex_count,
+              "%s billboard: %u parts, %u + %u indices, %u + %u vertices for %u planes and a top card", name,
+              o->part_count, pt->index_count, tp->index_count, pt->vertex_count, tp->vertex_count, planes);
+        if (o->part_count != 2 || tp->vertex_offset != pt->vertex_count) continue;
         const banyan_image *im = &o->images[o->materials[pt->material].image];
         if (png_dir) {
             uint8_t *png = NULL;
