@@ -60,7 +60,7 @@ static int usage(FILE *f) {
                "--textures on (default) embeds the leaf and bark textures in the glTF file, drawn at\n"
                "--texture-size pixels (a power of two, 64 .. 8192; default 1024); off writes flat colours.\n"
                "--lod 0.5,0.15,billboard adds coarser levels of detail to each mesh (MSFT_lod): falling\n"
-               "shares of its triangles, optionally ending in crossed billboard cards.\n"
+               "shares of its triangles, optionally ending in billboard cards (3 vertical, 1 on top).\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
                "(docs/game-engines.md).\n"
                "--threads N: threads for avenue (one tree each), keyaki and ivy (meshing); 0: all cores\n"

@@ -1,18 +1,33 @@
-/* billboard.c - the last level of detail of a tree: crossed cards.
+/* billboard.c - the last level of detail of a tree: cards.
  *
- * Method: `billboard_planes` vertical planes through the vertical axis of
- * the plant's bounding box centre, at equal angles (two: a cross). Each
- * plane is as wide as the plant's vertices reach along it and as tall as
- * the plant, split at the axis into two quads (so an engine can sort the
- * halves), and shows an orthographic picture of the plant seen along the
- * plane's normal. The pictures are drawn here by a small software
- * rasteriser (z-buffered triangles, one flat colour each: the material's
- * base colour, or its leaf texture's average colour, times the vertex
- * colour, lit by a Lambert term from the vertex normals), alpha 255 where
- * the plant covers the pixel, and the colour dilated into the empty
- * pixels so mipmaps do not halo. The planes' pictures sit side by side
+ * Method (docs/lod.md, "Billboard"): `billboard_planes` vertical planes
+ * through the vertical axis of the plant's bounding box centre, at equal
+ * angles, plus one horizontal card at BB_TOP_AT of the plant's height
+ * (about where a crown is widest) so the plant does not vanish seen from
+ * above. Each vertical plane is as wide as the plant's vertices reach
+ * along it and as tall as the plant, split at the axis into two quads
+ * (so an engine can sort the halves); the top card covers the plant's
+ * footprint. Each card shows an orthographic picture of the plant seen
+ * along its normal, drawn here by a small software rasteriser:
+ *   - z-buffered triangles, BB_SS x BB_SS samples per pixel; a textured
+ *     material (its leaf atlas or bark drawn at BB_TEX_SIZE, or the
+ *     mesh's own image) is sampled at each sample's interpolated uv, a
+ *     texel with alpha below one half covers nothing (as the engine's
+ *     alpha test), and its colour times the vertex colour is the colour;
+ *   - light: the sun and sky of the docs' studio scene, a Lambert term
+ *     with translucency on the face seen (double-sided leaves), over the
+ *     light the card itself gets (its two faces averaged), so the card,
+ *     lit by the engine, shows the plant as lit;
+ *   - a pixel's alpha is the share of its samples covered, scaled per
+ *     picture so that as many pixels pass the cutoff 0.5 as the plant
+ *     covers (coverage-preserving alpha, Castano 2010): the card is as
+ *     see-through as the tree;
+ *   - the colour dilated into the empty pixels so mipmaps do not halo.
+ * The pictures sit in a grid of tiles (verticals in order, then the top)
  * in one RGBA image per group (tree, or variant of an instanced avenue),
- * billboard_size pixels on its longer side. */
+ * billboard_size pixels on its longer side at most. Each group has two
+ * parts and materials on that image: the vertical cards (double sided)
+ * and the top card (single sided, facing up). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,126 +39,286 @@
 #include "lod_internal.h"
 
 #define BB_MAX_PLANES 8
+#define BB_MAX_TILES (BB_MAX_PLANES + 1)
 #define BB_PI 3.14159265358979323846
+/* Height of the top card, a share of the plant's. */
+#define BB_TOP_AT 0.65
+/* Pixels per side of the textures sampled. */
+#define BB_TEX_SIZE 256
+/* Light: toward the sun of docs/render_scene.py's studio (45 degrees up,
+ * from -x -y), and the sky's share of the light on a face turned away. */
+static const double BB_SUN[3] = {-0.4545, -0.5417, 0.7071};
+#define BB_SKY 0.4
 
 static float srgb_of_linear(float c) {
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    c = !(c > 0) ? 0 : c > 1 ? 1 : c; /* NaN (a hostile colour) reads as black */
     return c <= 0.0031308f ? 12.92f * c : 1.055f * dm_powf(c, 1.0f / 2.4f) - 0.055f;
 }
 
 static float linear_of_srgb(float c) { return c <= 0.04045f ? c / 12.92f : dm_powf((c + 0.055f) / 1.055f, 2.4f); }
 
-/* Linear RGB of each material as the picture shows it: a leaf texture's
- * mean colour over its opaque pixels (drawn small), else base_color. */
-static banyan_status material_colours(const banyan_mesh *m, float (*rgb)[3]) {
-    float tex[BANYAN_TEX_COUNT][2][3];
-    int have[BANYAN_TEX_COUNT][2] = {{0}};
+/* Samples per pixel side: fewer on the large pictures (memory). */
+static uint32_t bb_ss(uint32_t size) { return size <= 512 ? 4 : size <= 1024 ? 2 : 1; }
+
+/* What the rasteriser knows of one material: a texture to sample (the
+ * mesh's image, or a generated one), else a flat linear colour. */
+typedef struct bb_mat {
+    const banyan_image *tex;
+    float flat[3];
+    float translucency;
+} bb_mat;
+
+typedef struct bb_paint {
+    bb_mat *mat;
+    banyan_image **owned; /* generated textures, one per material at most */
+    uint32_t n_owned;
+    float lin[256];       /* sRGB byte -> linear */
+} bb_paint;
+
+static void paint_free(bb_paint *pa) {
+    if (!pa) return;
+    for (uint32_t i = 0; i < pa->n_owned; i++) banyan_image_free(pa->owned[i]);
+    free(pa->owned);
+    free(pa->mat);
+}
+
+static banyan_status paint_init(const banyan_mesh *m, bb_paint *pa) {
+    memset(pa, 0, sizeof *pa);
+    for (int i = 0; i < 256; i++) pa->lin[i] = linear_of_srgb(i / 255.0f);
+    pa->mat = calloc(m->material_count, sizeof(bb_mat));
+    pa->owned = calloc(m->material_count, sizeof(banyan_image *));
+    if (!pa->mat || !pa->owned) return BANYAN_E_NOMEM;
+    int32_t *kinds = malloc(sizeof(int32_t) * 2 * m->material_count);
+    if (!kinds) return BANYAN_E_NOMEM;
     for (uint32_t i = 0; i < m->material_count; i++) {
         const banyan_material *mt = &m->materials[i];
-        for (int c = 0; c < 3; c++) rgb[i][c] = mt->base_color[c];
-        int k = mt->texture, s = mt->season == BANYAN_SEASON_AUTUMN;
-        if (mt->image >= 0 || (k != BANYAN_TEX_KEYAKI_LEAF && k != BANYAN_TEX_IVY_LEAF)) continue;
-        if (!have[k][s]) {
-            banyan_texture_params tp;
-            banyan_texture_params_init(&tp);
-            tp.kind = k;
-            tp.season = s;
-            tp.size = 64;
-            banyan_image *im = NULL;
-            banyan_status st = banyan_texture_generate(&tp, &im, NULL, NULL);
-            if (st == BANYAN_E_NOMEM) return st;
-            double sum[3] = {0, 0, 0}, n = 0;
-            for (size_t px = 0; im && px < (size_t)im->width * im->height; px++) {
-                const uint8_t *c = im->pixels + 4 * px;
-                if (c[3] < 128) continue;
-                for (int j = 0; j < 3; j++) sum[j] += linear_of_srgb(c[j] / 255.0f);
-                n++;
-            }
-            banyan_image_free(im);
-            for (int j = 0; j < 3; j++) tex[k][s][j] = n > 0 ? (float)(sum[j] / n) : mt->base_color[j];
-            have[k][s] = 1;
+        bb_mat *b = &pa->mat[i];
+        for (int c = 0; c < 3; c++) b->flat[c] = mt->base_color[c];
+        b->translucency = !(mt->translucency > 0) ? 0 : mt->translucency > 1 ? 1 : mt->translucency;
+        if (mt->image >= 0) {
+            b->tex = &m->images[mt->image];
+            continue;
         }
-        for (int c = 0; c < 3; c++) rgb[i][c] = tex[k][s][c];
+        if (mt->texture < 0 || mt->texture >= BANYAN_TEX_COUNT) continue;
+        for (uint32_t j = 0; j < pa->n_owned; j++)
+            if (kinds[2 * j] == mt->texture && kinds[2 * j + 1] == mt->season) b->tex = pa->owned[j];
+        if (b->tex) continue;
+        banyan_texture_params tp;
+        banyan_texture_params_init(&tp);
+        tp.kind = mt->texture;
+        tp.season = mt->season;
+        tp.size = BB_TEX_SIZE;
+        banyan_image *im = NULL;
+        banyan_status st = banyan_texture_generate(&tp, &im, NULL, NULL);
+        if (st == BANYAN_E_NOMEM) {
+            free(kinds);
+            return st;
+        }
+        if (st || !im) continue; /* a texture the library cannot draw: the flat colour */
+        kinds[2 * pa->n_owned] = mt->texture, kinds[2 * pa->n_owned + 1] = mt->season;
+        pa->owned[pa->n_owned++] = im;
+        b->tex = im;
     }
+    free(kinds);
     return BANYAN_OK;
 }
 
+/* One picture: a card's view of the plant. Picture x runs along r, y
+ * down along -up; depth grows toward the viewer (along v). */
 typedef struct bb_view {
-    double d[2], n[2];       /* the plane's horizontal direction and normal */
-    double smin, smax;       /* the plant's reach along d from the axis */
-    uint32_t x0, w;          /* its tile in the image */
+    double r[3], up[3], v[3];
+    double rmin, rmax, umin, umax;
+    uint32_t x0, y0, w, h; /* its tile in the image */
 } bb_view;
 
-/* Draws the triangles of group g into one tile: seen from +n, picture x
- * runs along -d (so the picture is not mirrored), y down from zmax. */
-static void draw_view(const banyan_mesh *m, uint32_t g, const float (*rgb)[3], const double c[2], double zmin,
-                      double zmax, const bb_view *vw, uint8_t *img, float *depth, uint32_t W, uint32_t H) {
-    double sx = vw->w / (vw->smax - vw->smin), sy = H / (zmax - zmin);
-    double L[3] = {0.5 * vw->n[0], 0.5 * vw->n[1], 0.8}, ll = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
-    for (int j = 0; j < 3; j++) L[j] /= ll;
+/* The light on a face of unit normal n seen from v (the face turned to
+ * the viewer, so a double-sided leaf shows its lit or its back-lit side). */
+static double bb_light(const double n[3], const double v[3], double translucency) {
+    double s = n[0] * v[0] + n[1] * v[1] + n[2] * v[2] < 0 ? -1 : 1;
+    double c = s * (n[0] * BB_SUN[0] + n[1] * BB_SUN[1] + n[2] * BB_SUN[2]);
+    return BB_SKY + (1 - BB_SKY) * (c > 0 ? c : -c * translucency);
+}
+
+/* A triangle's unit normal: its vertex normals' mean, else its plane's. */
+static int tri_normal(const banyan_mesh *m, const uint32_t *I, double n[3]) {
+    n[0] = n[1] = n[2] = 0;
+    if (m->normals)
+        for (int j = 0; j < 3; j++)
+            for (int e = 0; e < 3; e++) n[e] += m->normals[3 * (size_t)I[j] + e];
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(l > 1e-12)) {
+        const float *A = m->positions + 3 * (size_t)I[0], *B = m->positions + 3 * (size_t)I[1],
+                    *C = m->positions + 3 * (size_t)I[2];
+        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(l > 0)) return 0;
+    }
+    for (int e = 0; e < 3; e++) n[e] /= l;
+    return 1;
+}
+
+/* The light the card of view w gets itself, its two faces averaged
+ * (an engine's card material has no translucency): the picture of w
+ * carries the plant's light / this, so the card, lit by the engine, shows
+ * the plant as lit. */
+static double card_light(const bb_view *w) {
+    double back[3] = {-w->v[0], -w->v[1], -w->v[2]};
+    return 0.5 * (bb_light(w->v, w->v, 0) + bb_light(back, back, 0));
+}
+
+/* The group's area-weighted mean roughness (the cards' material's). */
+static float mean_roughness(const banyan_mesh *m, uint32_t g) {
+    double sum = 0, wsum = 0;
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
         if (pt->group != g) continue;
-        const float *mc = rgb[pt->material];
+        double r = m->materials[pt->material].roughness, a = 0;
+        if (!(r >= 0 && r <= 1)) continue;
         for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
-            double X[3], Y[3], Z[3], col[3] = {0, 0, 0}, nn[3] = {0, 0, 0};
+            const float *A = m->positions + 3 * (size_t)m->indices[k], *B = m->positions + 3 * (size_t)m->indices[k + 1],
+                        *C = m->positions + 3 * (size_t)m->indices[k + 2];
+            double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+            double f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            a += sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        }
+        if (isfinite(a)) sum += a * r, wsum += a;
+    }
+    return wsum > 0 ? (float)(sum / wsum) : 0.9f;
+}
+
+/* The tile's samples: depth (-inf where empty) and linear colour. */
+typedef struct bb_tile {
+    uint32_t sw, sh;
+    float *depth;
+    float *rgb;
+} bb_tile;
+
+static void texel(const bb_paint *pa, const banyan_image *im, double u, double v, float out[4]) {
+    double x = u * im->width, y = (1.0 - v) * im->height;
+    if (!(fabs(x) < 1e9) || !(fabs(y) < 1e9)) x = y = 0; /* NaN or far off: the first texel */
+    long ix = (long)floor(x), iy = (long)floor(y);
+    ix %= (long)im->width, iy %= (long)im->height;
+    ix += ix < 0 ? (long)im->width : 0, iy += iy < 0 ? (long)im->height : 0;
+    const uint8_t *c = im->pixels + ((size_t)iy * im->width + (size_t)ix) * im->channels;
+    for (int e = 0; e < 3; e++) out[e] = pa->lin[c[e]];
+    out[3] = im->channels == 4 ? c[3] / 255.0f : 1.0f;
+}
+
+/* Draws the triangles of group g into one tile's samples. */
+static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, double gain, const bb_view *vw,
+                      bb_tile *t) {
+    double sx = t->sw / (vw->rmax - vw->rmin), sy = t->sh / (vw->umax - vw->umin);
+    for (uint32_t q = 0; q < m->part_count; q++) {
+        const banyan_part *pt = &m->parts[q];
+        if (pt->group != g) continue;
+        const bb_mat *bm = &pa->mat[pt->material];
+        const banyan_image *tex = m->uvs ? bm->tex : NULL;
+        for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
+            const uint32_t *I = m->indices + k;
+            double X[3], Y[3], Z[3], U[3] = {0, 0, 0}, V[3] = {0, 0, 0}, tint[3] = {0, 0, 0}, n[3];
             for (int j = 0; j < 3; j++) {
-                uint32_t v = m->indices[k + j];
-                const float *P = m->positions + 3 * (size_t)v;
-                double s = (P[0] - c[0]) * vw->d[0] + (P[1] - c[1]) * vw->d[1];
-                X[j] = (vw->smax - s) * sx + vw->x0;
-                Y[j] = (zmax - P[2]) * sy;
-                Z[j] = (P[0] - c[0]) * vw->n[0] + (P[1] - c[1]) * vw->n[1];
-                for (int e = 0; e < 3; e++) {
-                    col[e] += mc[e] * (m->colors ? m->colors[4 * (size_t)v + e] : 1.0f) / 3.0;
-                    if (m->normals) nn[e] += m->normals[3 * (size_t)v + e];
-                }
+                const float *P = m->positions + 3 * (size_t)I[j];
+                X[j] = (P[0] * vw->r[0] + P[1] * vw->r[1] + P[2] * vw->r[2] - vw->rmin) * sx;
+                Y[j] = (vw->umax - (P[0] * vw->up[0] + P[1] * vw->up[1] + P[2] * vw->up[2])) * sy;
+                Z[j] = P[0] * vw->v[0] + P[1] * vw->v[1] + P[2] * vw->v[2];
+                if (tex) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
+                for (int e = 0; e < 3; e++) tint[e] += (m->colors ? m->colors[4 * (size_t)I[j] + e] : 1.0f) / 3.0;
             }
-            double nl = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-            double lam = nl > 0 ? fabs(nn[0] * L[0] + nn[1] * L[1] + nn[2] * L[2]) / nl : 1.0;
-            double shade = 0.35 + 0.65 * lam;
-            uint8_t rgb8[3];
-            for (int e = 0; e < 3; e++) rgb8[e] = (uint8_t)lrintf(255.0f * srgb_of_linear((float)(col[e] * shade)));
+            double light = (tri_normal(m, I, n) ? bb_light(n, vw->v, bm->translucency) : 1.0) / gain;
+            double flat[3];
+            for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-            /* Thin triangles seen edge-on still cover what they pass: a
-             * sliver smaller than a pixel lights the pixel at its centre. */
             long x0 = (long)floor(fmin(X[0], fmin(X[1], X[2]))), x1 = (long)floor(fmax(X[0], fmax(X[1], X[2])));
             long y0 = (long)floor(fmin(Y[0], fmin(Y[1], Y[2]))), y1 = (long)floor(fmax(Y[0], fmax(Y[1], Y[2])));
-            long lo = vw->x0, hi = (long)vw->x0 + vw->w - 1;
-            x0 = x0 < lo ? lo : x0;
-            x1 = x1 > hi ? hi : x1;
+            x0 = x0 < 0 ? 0 : x0;
+            x1 = x1 > (long)t->sw - 1 ? (long)t->sw - 1 : x1;
             y0 = y0 < 0 ? 0 : y0;
-            y1 = y1 > (long)H - 1 ? (long)H - 1 : y1;
+            y1 = y1 > (long)t->sh - 1 ? (long)t->sh - 1 : y1;
             if (x0 > x1 || y0 > y1) continue;
-            if (fabs(area) < 1e-12 || (x0 == x1 && y0 == y1)) {
-                double zc = (Z[0] + Z[1] + Z[2]) / 3;
-                long cx = (long)floor((X[0] + X[1] + X[2]) / 3), cy = (long)floor((Y[0] + Y[1] + Y[2]) / 3);
-                if (cx < x0 || cx > x1 || cy < y0 || cy > y1) continue;
-                size_t px = (size_t)cy * W + (size_t)cx;
-                if (zc > depth[px]) {
-                    depth[px] = (float)zc;
-                    memcpy(img + 4 * px, rgb8, 3);
-                    img[4 * px + 3] = 255;
-                }
-                continue;
-            }
+            /* Thin triangles seen edge-on still cover what they pass: a
+             * sliver smaller than a sample lights the sample at its centre. */
+            int sliver = fabs(area) < 1e-12 || (x0 == x1 && y0 == y1);
             for (long y = y0; y <= y1; y++)
                 for (long x = x0; x <= x1; x++) {
-                    double px_ = x + 0.5, py_ = y + 0.5;
-                    double w0 = ((X[1] - px_) * (Y[2] - py_) - (X[2] - px_) * (Y[1] - py_)) / area;
-                    double w1 = ((X[2] - px_) * (Y[0] - py_) - (X[0] - px_) * (Y[2] - py_)) / area;
-                    double w2 = 1 - w0 - w1;
-                    if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-                    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
-                    size_t px = (size_t)y * W + (size_t)x;
-                    if (z > depth[px]) {
-                        depth[px] = (float)z;
-                        memcpy(img + 4 * px, rgb8, 3);
-                        img[4 * px + 3] = 255;
+                    double w0, w1, w2;
+                    if (sliver) {
+                        long cx = (long)floor((X[0] + X[1] + X[2]) / 3), cy = (long)floor((Y[0] + Y[1] + Y[2]) / 3);
+                        if (cx != x || cy != y) continue;
+                        w0 = w1 = w2 = 1.0 / 3;
+                    } else {
+                        double px_ = x + 0.5, py_ = y + 0.5;
+                        w0 = ((X[1] - px_) * (Y[2] - py_) - (X[2] - px_) * (Y[1] - py_)) / area;
+                        w1 = ((X[2] - px_) * (Y[0] - py_) - (X[0] - px_) * (Y[2] - py_)) / area;
+                        w2 = 1 - w0 - w1;
+                        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
                     }
+                    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
+                    size_t s = (size_t)y * t->sw + (size_t)x;
+                    if (!(z > t->depth[s])) continue;
+                    float *c = t->rgb + 3 * s;
+                    if (tex) {
+                        float tx[4];
+                        texel(pa, tex, w0 * U[0] + w1 * U[1] + w2 * U[2], w0 * V[0] + w1 * V[1] + w2 * V[2], tx);
+                        if (tx[3] < 0.5f) continue;
+                        for (int e = 0; e < 3; e++) c[e] = (float)(tx[e] * tint[e] * light);
+                    } else {
+                        for (int e = 0; e < 3; e++) c[e] = (float)flat[e];
+                    }
+                    t->depth[s] = (float)z;
                 }
         }
     }
+}
+
+/* Tile samples -> the image's pixels: the covered samples' mean colour,
+ * alpha the covered share scaled (by one factor per tile, found by
+ * bisection) so the pixels at alpha >= 0.5 are as many as the tile's
+ * covered share of samples says. */
+static void resolve(const bb_tile *t, uint32_t ss, const bb_view *vw, uint8_t *img, uint32_t W, float *share) {
+    double total = 0;
+    for (uint32_t y = 0; y < vw->h; y++)
+        for (uint32_t x = 0; x < vw->w; x++) {
+            double sum[3] = {0, 0, 0};
+            uint32_t n = 0;
+            for (uint32_t j = 0; j < ss; j++)
+                for (uint32_t i = 0; i < ss; i++) {
+                    size_t s = (size_t)(y * ss + j) * t->sw + (x * ss + i);
+                    if (t->depth[s] == -INFINITY) continue;
+                    for (int e = 0; e < 3; e++) sum[e] += t->rgb[3 * s + e];
+                    n++;
+                }
+            uint8_t *px = img + 4 * ((size_t)(vw->y0 + y) * W + vw->x0 + x);
+            share[(size_t)y * vw->w + x] = (float)n / (float)(ss * ss);
+            total += (double)n / (ss * ss);
+            for (int e = 0; e < 3; e++)
+                px[e] = n ? (uint8_t)lrintf(255.0f * srgb_of_linear((float)(sum[e] / n))) : 0;
+            px[3] = 0;
+        }
+    size_t np = (size_t)vw->w * vw->h;
+    double want = total; /* pixels that should pass the cutoff */
+    double lo = 0.5, hi = 16, scale = 1;
+    for (int it = 0; it < 40; it++) {
+        double mid = 0.5 * (lo + hi);
+        size_t pass = 0;
+        for (size_t i = 0; i < np; i++) pass += share[i] > 0 && lrint(255.0 * fmin(1.0, mid * share[i])) >= 128;
+        if ((double)pass < want) lo = mid;
+        else hi = mid;
+    }
+    /* Of the two ends, the one nearer the covered share. */
+    size_t p_lo = 0, p_hi = 0;
+    for (size_t i = 0; i < np; i++) {
+        p_lo += share[i] > 0 && lrint(255.0 * fmin(1.0, lo * share[i])) >= 128;
+        p_hi += share[i] > 0 && lrint(255.0 * fmin(1.0, hi * share[i])) >= 128;
+    }
+    scale = fabs((double)p_lo - want) <= fabs((double)p_hi - want) ? lo : hi;
+    for (uint32_t y = 0; y < vw->h; y++)
+        for (uint32_t x = 0; x < vw->w; x++) {
+            float a = share[(size_t)y * vw->w + x];
+            if (!(a > 0)) continue;
+            long a8 = lrint(255.0 * fmin(1.0, scale * a));
+            img[4 * ((size_t)(vw->y0 + y) * W + vw->x0 + x) + 3] = (uint8_t)(a8 < 1 ? 1 : a8);
+        }
 }
 
 /* Colour into the empty pixels, ring by ring from the covered ones (the
@@ -198,20 +373,74 @@ static int dilate(uint8_t *img, uint32_t W, uint32_t H) {
     return 0;
 }
 
+/* Tiles in a grid of `cols` columns, rows as tall as their tallest tile:
+ * pixel sizes at ppm pixels per metre; returns the image's W and H. */
+static void grid_at(bb_view *vw, uint32_t n, uint32_t cols, double ppm, uint32_t *W, uint32_t *H) {
+    uint32_t y = 0, wmax = 0;
+    for (uint32_t r0 = 0; r0 < n; r0 += cols) {
+        uint32_t x = 0, hrow = 0;
+        for (uint32_t k = r0; k < n && k < r0 + cols; k++) {
+            long w = lrint((vw[k].rmax - vw[k].rmin) * ppm), h = lrint((vw[k].umax - vw[k].umin) * ppm);
+            vw[k].w = w < 1 ? 1 : (uint32_t)w;
+            vw[k].h = h < 1 ? 1 : (uint32_t)h;
+            vw[k].x0 = x, vw[k].y0 = y;
+            x += vw[k].w;
+            hrow = vw[k].h > hrow ? vw[k].h : hrow;
+        }
+        wmax = x > wmax ? x : wmax;
+        y += hrow;
+    }
+    *W = wmax, *H = y;
+}
+
+/* The grid (columns, then pixels per metre) that draws the tiles largest
+ * with the longer side of the image at most `size`. */
+static void layout(bb_view *vw, uint32_t n, uint32_t size, uint32_t *W, uint32_t *H) {
+    uint32_t best_c = 1;
+    double best_ppm = 0;
+    for (uint32_t c = 1; c <= n; c++) {
+        double wm = 0, hm = 0;
+        for (uint32_t r0 = 0; r0 < n; r0 += c) {
+            double x = 0, hr = 0;
+            for (uint32_t k = r0; k < n && k < r0 + c; k++) {
+                x += vw[k].rmax - vw[k].rmin;
+                hr = fmax(hr, vw[k].umax - vw[k].umin);
+            }
+            wm = fmax(wm, x);
+            hm += hr;
+        }
+        double ppm = size / fmax(wm, hm);
+        if (ppm > best_ppm * (1 + 1e-9)) best_ppm = ppm, best_c = c;
+    }
+    /* Rounding may push a side past `size` (each tile at least a pixel):
+     * shrink until it fits, which it does once every tile is one pixel
+     * (at most 9 tiles in a side of 32 or more). */
+    double ppm = best_ppm;
+    for (int it = 0; it < 2000; it++) {
+        grid_at(vw, n, best_c, ppm, W, H);
+        if (*W <= size && *H <= size) return;
+        ppm *= 0.995;
+    }
+    grid_at(vw, n, best_c, 0, W, H);
+}
+
 banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, prog *pg, banyan_mesh **out,
                             banyan_error *err) {
-    uint32_t planes = (uint32_t)p->billboard_planes, size = (uint32_t)p->billboard_size;
+    uint32_t planes = (uint32_t)p->billboard_planes, size = (uint32_t)p->billboard_size, ss = bb_ss(size);
+    uint32_t tiles = planes + 1, nvc = planes * 8 + 4, nic = planes * 12 + 6; /* per card set */
     uint32_t n_groups = 0;
     for (uint32_t q = 0; q < m->part_count; q++)
         if (m->parts[q].group + 1 > n_groups) n_groups = m->parts[q].group + 1;
     /* Which groups have vertices, and their bounds. */
     double (*lo)[3] = malloc(sizeof(double[3]) * n_groups), (*hi)[3] = malloc(sizeof(double[3]) * n_groups);
     uint32_t *slot = malloc(sizeof(uint32_t) * n_groups);
-    float (*rgb)[3] = malloc(sizeof(float[3]) * m->material_count);
     banyan_mesh *o = calloc(1, sizeof *o);
-    float *depth = NULL;
+    bb_paint pa;
+    memset(&pa, 0, sizeof pa);
+    bb_tile tl = {0, 0, NULL, NULL};
+    float *share = NULL;
     banyan_status st = BANYAN_E_NOMEM;
-    if (!lo || !hi || !slot || !rgb || !o) goto fail;
+    if (!lo || !hi || !slot || !o) goto fail;
     for (uint32_t g = 0; g < n_groups; g++) {
         slot[g] = UINT32_MAX;
         for (int j = 0; j < 3; j++) lo[g][j] = INFINITY, hi[g][j] = -INFINITY;
@@ -229,7 +458,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     uint32_t n_cards = 0;
     for (uint32_t g = 0; g < n_groups; g++)
         if (lo[g][0] <= hi[g][0]) slot[g] = n_cards++;
-    if ((st = material_colours(m, rgb))) goto fail;
+    if ((st = paint_init(m, &pa))) goto fail;
     st = BANYAN_E_NOMEM;
     int wind = banyan_mesh_attribute(m, BANYAN_ATTR_WIND_PIVOT_X) || !banyan_mesh_attribute(m, BANYAN_ATTR_BIRTH);
     uint32_t n_attr = wind ? 8 : 1;
@@ -237,7 +466,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
                                          BANYAN_ATTR_WIND_PIVOT_Y,   BANYAN_ATTR_WIND_PIVOT_Z,
                                          BANYAN_ATTR_WIND_LEVEL,     BANYAN_ATTR_WIND_STIFFNESS,
                                          BANYAN_ATTR_WIND_PHASE,     BANYAN_ATTR_WIND_FLUTTER};
-    size_t nv = (size_t)n_cards * planes * 8, ni = (size_t)n_cards * planes * 12;
+    size_t nv = (size_t)n_cards * nvc, ni = (size_t)n_cards * nic;
     o->vertex_count = (uint32_t)nv;
     o->index_count = (uint32_t)ni;
     o->positions = malloc(3 * sizeof(float) * nv);
@@ -245,8 +474,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     o->uvs = malloc(2 * sizeof(float) * nv);
     o->indices = malloc(sizeof(uint32_t) * ni);
     o->attributes = calloc(n_attr, sizeof(banyan_attribute));
-    o->materials = calloc(n_cards, sizeof(banyan_material));
-    o->parts = calloc(n_cards, sizeof(banyan_part));
+    o->materials = calloc(2 * (size_t)n_cards, sizeof(banyan_material));
+    o->parts = calloc(2 * (size_t)n_cards, sizeof(banyan_part));
     o->images = calloc(n_cards, sizeof(banyan_image));
     if (!o->positions || !o->normals || !o->uvs || !o->indices || !o->attributes || !o->materials || !o->parts ||
         !o->images)
@@ -256,7 +485,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         strncpy(o->attributes[a].name, names[a], BANYAN_NAME_MAX - 1);
         if (!(o->attributes[a].data = malloc(sizeof(float) * nv))) goto fail;
     }
-    o->material_count = o->part_count = o->image_count = n_cards;
+    o->material_count = o->part_count = 2 * n_cards;
+    o->image_count = n_cards;
     if ((st = lod_copy_common(m, o, 0))) goto fail;
     st = BANYAN_E_NOMEM;
 
@@ -270,13 +500,12 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         double c[2] = {0.5 * (lo[g][0] + hi[g][0]), 0.5 * (lo[g][1] + hi[g][1])};
         double zmin = lo[g][2], zmax = hi[g][2];
         if (zmax - zmin < 1e-6) zmax = zmin + 1e-6;
-        bb_view vw[BB_MAX_PLANES];
-        double total_w = 0;
+        bb_view vw[BB_MAX_TILES];
+        double dk[BB_MAX_PLANES][2], smin[BB_MAX_PLANES], smax[BB_MAX_PLANES];
         for (uint32_t k = 0; k < planes; k++) {
             double a = BB_PI * k / planes;
-            vw[k].d[0] = dm_cos(a), vw[k].d[1] = dm_sin(a);
-            vw[k].n[0] = -dm_sin(a), vw[k].n[1] = dm_cos(a);
-            vw[k].smin = INFINITY, vw[k].smax = -INFINITY;
+            dk[k][0] = dm_cos(a), dk[k][1] = dm_sin(a);
+            smin[k] = INFINITY, smax[k] = -INFINITY;
         }
         for (uint32_t q = 0; q < m->part_count; q++) {
             const banyan_part *pt = &m->parts[q];
@@ -284,92 +513,109 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
                 const float *P = m->positions + 3 * (size_t)m->indices[k];
                 for (uint32_t v = 0; v < planes; v++) {
-                    double s = (P[0] - c[0]) * vw[v].d[0] + (P[1] - c[1]) * vw[v].d[1];
-                    vw[v].smin = fmin(vw[v].smin, s);
-                    vw[v].smax = fmax(vw[v].smax, s);
+                    double s = (P[0] - c[0]) * dk[v][0] + (P[1] - c[1]) * dk[v][1];
+                    smin[v] = fmin(smin[v], s);
+                    smax[v] = fmax(smax[v], s);
                 }
             }
         }
+        /* Vertical views: seen from +n, picture x along -d (not mirrored). */
         for (uint32_t k = 0; k < planes; k++) {
-            if (vw[k].smax - vw[k].smin < 1e-6) vw[k].smin -= 5e-7, vw[k].smax += 5e-7;
-            total_w += vw[k].smax - vw[k].smin;
+            if (smax[k] - smin[k] < 1e-6) smin[k] -= 5e-7, smax[k] += 5e-7;
+            bb_view *w = &vw[k];
+            double n2[2] = {-dk[k][1], dk[k][0]};
+            w->r[0] = -dk[k][0], w->r[1] = -dk[k][1], w->r[2] = 0;
+            w->up[0] = 0, w->up[1] = 0, w->up[2] = 1;
+            w->v[0] = n2[0], w->v[1] = n2[1], w->v[2] = 0;
+            double rc = c[0] * w->r[0] + c[1] * w->r[1];
+            w->rmin = rc - smax[k], w->rmax = rc - smin[k];
+            w->umin = zmin, w->umax = zmax;
         }
-        /* Pixels: the longer side of the strip of pictures is `size`. */
-        double ppm = size / fmax(total_w, zmax - zmin);
-        uint32_t H, W;
-        for (;;) {
-            H = (uint32_t)lrint((zmax - zmin) * ppm), W = 0;
-            H = H < 1 ? 1 : H > size ? size : H;
-            /* Tile edges rounded from the running sum: the widths add up to
-             * the strip's rounded width exactly, unless a tile thinner than
-             * a pixel takes one of its own. */
-            double run = 0;
-            for (uint32_t k = 0; k < planes; k++) {
-                run += (vw[k].smax - vw[k].smin) * ppm;
-                uint32_t edge = (uint32_t)lrint(run);
-                edge = edge > size ? size : edge;
-                vw[k].x0 = W;
-                vw[k].w = edge > W ? edge - W : 1;
-                W += vw[k].w;
-            }
-            if (W <= size) break;
-            /* Those pixels pushed the strip past `size`: leave room for one
-             * a tile (planes <= 8 < 32 <= size), which always fits. */
-            ppm *= (double)(size - planes) / (double)size;
+        /* The top view: from +z, x to the right, y up the picture. */
+        {
+            bb_view *w = &vw[planes];
+            double x0 = lo[g][0], x1 = hi[g][0], y0 = lo[g][1], y1 = hi[g][1];
+            if (x1 - x0 < 1e-6) x0 -= 5e-7, x1 += 5e-7;
+            if (y1 - y0 < 1e-6) y0 -= 5e-7, y1 += 5e-7;
+            w->r[0] = 1, w->r[1] = 0, w->r[2] = 0;
+            w->up[0] = 0, w->up[1] = 1, w->up[2] = 0;
+            w->v[0] = 0, w->v[1] = 0, w->v[2] = 1;
+            w->rmin = x0, w->rmax = x1, w->umin = y0, w->umax = y1;
         }
+        uint32_t W, H;
+        layout(vw, tiles, size, &W, &H);
         banyan_image *im = &o->images[cd];
         im->width = W;
         im->height = H;
         im->channels = 4;
         im->pixels = calloc((size_t)W * H, 4);
-        free(depth);
-        depth = malloc(sizeof(float) * (size_t)W * H);
-        if (!im->pixels || !depth) goto fail;
-        for (size_t i = 0; i < (size_t)W * H; i++) depth[i] = -INFINITY;
-        for (uint32_t k = 0; k < planes; k++) {
+        if (!im->pixels) goto fail;
+        for (uint32_t k = 0; k < tiles; k++) {
             if (prog_at(pg, (double)g / n_groups)) {
                 st = BANYAN_E_LIMIT;
                 goto fail;
             }
-            draw_view(m, g, (const float(*)[3])rgb, c, zmin, zmax, &vw[k], im->pixels, depth, W, H);
+            tl.sw = vw[k].w * ss, tl.sh = vw[k].h * ss;
+            size_t ns = (size_t)tl.sw * tl.sh;
+            free(tl.depth), free(tl.rgb), free(share);
+            tl.depth = malloc(sizeof(float) * ns);
+            tl.rgb = malloc(3 * sizeof(float) * ns);
+            share = malloc(sizeof(float) * (size_t)vw[k].w * vw[k].h);
+            if (!tl.depth || !tl.rgb || !share) goto fail;
+            for (size_t i = 0; i < ns; i++) tl.depth[i] = -INFINITY;
+            draw_view(m, g, &pa, card_light(&vw[k]), &vw[k], &tl);
+            resolve(&tl, ss, &vw[k], im->pixels, W, share);
         }
         if (dilate(im->pixels, W, H)) goto fail;
 
-        banyan_material *mt = &o->materials[cd];
-        snprintf(mt->name, sizeof mt->name, "billboard_%u", g);
-        mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-        mt->roughness = 0.9f;
-        mt->double_sided = 1;
-        mt->texture = BANYAN_TEX_NONE;
-        mt->alpha_cutoff = 0.5f;
-        mt->translucency = 0.3f;
-        mt->image = (int32_t)cd;
-        banyan_part *op = &o->parts[cd];
-        op->vertex_offset = cd * planes * 8;
-        op->vertex_count = planes * 8;
-        op->index_offset = cd * planes * 12;
-        op->index_count = planes * 12;
-        op->material = cd;
-        op->group = g;
+        /* Two parts and materials per group, one picture: the vertical
+         * cards, double sided, and the top card, single sided facing up
+         * (an engine that culls back faces does not show its unlit
+         * underside from the ground). */
+        for (uint32_t h = 0; h < 2; h++) {
+            banyan_material *mt = &o->materials[2 * cd + h];
+            snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
+            mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
+            mt->roughness = mean_roughness(m, g);
+            mt->double_sided = !h;
+            mt->texture = BANYAN_TEX_NONE;
+            mt->alpha_cutoff = 0.5f;
+            mt->translucency = 0.3f;
+            mt->image = (int32_t)cd;
+            banyan_part *pp = &o->parts[2 * cd + h];
+            pp->vertex_offset = cd * nvc + (h ? planes * 8 : 0);
+            pp->vertex_count = h ? 4 : planes * 8;
+            pp->index_offset = cd * nic + (h ? planes * 12 : 0);
+            pp->index_count = h ? 6 : planes * 12;
+            pp->material = 2 * cd + h;
+            pp->group = g;
+        }
+        const banyan_part *op = &o->parts[2 * cd];
         float phase = (float)wind_phase_of(p->seed, g);
-        for (uint32_t k = 0; k < planes; k++) {
-            /* Two half quads, split at the axis: s in [smin, 0] and [0, smax]. */
-            double s_mid = fmin(fmax(0.0, vw[k].smin), vw[k].smax);
-            double sv[3] = {vw[k].smin, s_mid, vw[k].smax};
-            for (uint32_t h = 0; h < 2; h++) {
+        /* Quads: two half planes per vertical view (split at the axis),
+         * then the top card; corners counter-clockwise seen from +v. */
+        for (uint32_t k = 0; k < tiles; k++) {
+            const bb_view *w = &vw[k];
+            uint32_t halves = k < planes ? 2 : 1;
+            double rc = c[0] * w->r[0] + c[1] * w->r[1];
+            double r_mid = k < planes ? fmin(fmax(rc, w->rmin), w->rmax) : w->rmax;
+            double rv[3] = {w->rmin, r_mid, w->rmax};
+            double depth = k < planes ? c[0] * w->v[0] + c[1] * w->v[1] : zmin + BB_TOP_AT * (zmax - zmin);
+            for (uint32_t h = 0; h < halves; h++) {
                 uint32_t base = op->vertex_offset + (k * 2 + h) * 4;
-                double corner[4][2] = {{sv[h], zmin}, {sv[h + 1], zmin}, {sv[h + 1], zmax}, {sv[h], zmax}};
+                double ra = rv[h], rb = k < planes ? rv[h + 1] : w->rmax;
+                double corner[4][2] = {{ra, w->umin}, {rb, w->umin}, {rb, w->umax}, {ra, w->umax}};
                 for (int e = 0; e < 4; e++) {
                     uint32_t v = base + (uint32_t)e;
-                    double s = corner[e][0], z = corner[e][1];
+                    double rr = corner[e][0], uu = corner[e][1];
                     float *P = o->positions + 3 * (size_t)v, *N = o->normals + 3 * (size_t)v, *T = o->uvs + 2 * (size_t)v;
-                    P[0] = (float)(c[0] + s * vw[k].d[0]);
-                    P[1] = (float)(c[1] + s * vw[k].d[1]);
-                    P[2] = (float)z;
-                    N[0] = (float)vw[k].n[0], N[1] = (float)vw[k].n[1], N[2] = 0;
-                    T[0] = (float)((vw[k].x0 + (vw[k].smax - s) / (vw[k].smax - vw[k].smin) * vw[k].w) / W);
-                    T[1] = (float)((z - zmin) / (zmax - zmin));
-                    float t = (float)((z - zmin) / (zmax - zmin));
+                    for (int j = 0; j < 3; j++) {
+                        P[j] = (float)(rr * w->r[j] + uu * w->up[j] + depth * w->v[j]);
+                        N[j] = (float)w->v[j];
+                    }
+                    T[0] = (float)((w->x0 + (rr - w->rmin) / (w->rmax - w->rmin) * w->w) / W);
+                    T[1] = (float)(1.0 - (w->y0 + (w->umax - uu) / (w->umax - w->umin) * w->h) / H);
+                    float t = (float)((P[2] - zmin) / (zmax - zmin));
                     o->attributes[0].data[v] = 1.0f;
                     if (wind) {
                         o->attributes[1].data[v] = (float)c[0];
@@ -381,19 +627,20 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
                         o->attributes[7].data[v] = 0.0f;
                     }
                 }
-                /* counter-clockwise seen from +n */
                 uint32_t *I = o->indices + op->index_offset + (k * 2 + h) * 6;
-                I[0] = base, I[1] = base + 2, I[2] = base + 1;
-                I[3] = base, I[4] = base + 3, I[5] = base + 2;
+                I[0] = base, I[1] = base + 1, I[2] = base + 2;
+                I[3] = base, I[4] = base + 2, I[5] = base + 3;
             }
         }
     }
-    free(lo); free(hi); free(slot); free(rgb); free(depth);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share);
+    paint_free(&pa);
     *out = o;
     banyan_error_clear(err);
     return BANYAN_OK;
 fail:
-    free(lo); free(hi); free(slot); free(rgb); free(depth);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share);
+    paint_free(&pa);
     banyan_mesh_free(o);
     if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the billboard level of detail");
     return banyan_fail(err, st ? st : BANYAN_E_NOMEM, "out of memory drawing the billboards of %u vertices",

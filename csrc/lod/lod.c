@@ -10,8 +10,8 @@
  *     survivor grows about its petiole base by sqrt(total area / kept
  *     area), so the crown keeps its leaf area and its density from afar
  *     (the thinning of SpeedTree-style leaf LODs);
- *   - with `billboard`, crossed cards carrying the library's own picture
- *     of the plant (billboard.c).
+ *   - with `billboard`, vertical cards and a top card carrying the
+ *     library's own pictures of the plant (billboard.c).
  * Everything else (materials, groups, attributes, skeleton, origin,
  * images, instances) is carried over; the choice of leaves is a PCG32
  * stream of (seed, part), so the output is the same bytes on every run. */
@@ -33,7 +33,7 @@ void banyan_lod_params_init(banyan_lod_params *p) {
     memset(p, 0, sizeof *p);
     p->ratio = 0.5;
     p->billboard = 0;
-    p->billboard_planes = 2;
+    p->billboard_planes = 3;
     p->billboard_size = 256;
     p->seed = 1;
 }

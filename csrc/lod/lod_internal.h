@@ -29,7 +29,7 @@ int lod_simplify_part(const float *pos, const float *nrm, const float *uv, uint3
  * failure (o is then the caller's to free). */
 banyan_status lod_copy_common(const banyan_mesh *m, banyan_mesh *o, int materials_images);
 
-/* The crossed-card level of `m` (validated by the caller) into *out,
+/* The billboard level (vertical cards and a top card) of `m` (validated by the caller) into *out,
  * checking the call's budget `pg` per tree (group) and card. */
 banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, prog *pg, banyan_mesh **out,
                             banyan_error *err);

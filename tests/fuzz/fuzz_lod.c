@@ -7,7 +7,10 @@
  *   planes  1 + b % 9 (1 and 9 outside 2 .. 8);  size  one of 16, 32,
  *           64, 128, 256, 1000 (16 and 1000 refused);  seed u8
  * A refusal must be clean; a level must have its indices in range, parts
- * covering it in order, no more triangles than the mesh (simplified), and
+ * covering it in order, no more triangles than the mesh (simplified), a
+ * billboard's parts 2 x planes vertical quads and a top card in turn, uvs
+ * inside the picture,
+ * and
  * be the same again for the same input (when no budget stopped either). */
 #include "fuzz_mesh.h"
 
@@ -35,6 +38,12 @@ static void check_level(const banyan_mesh *in, const banyan_lod_params *p, const
         FZ_ASSERT(o->index_count <= in->index_count, "%u indices from %u", o->index_count, in->index_count);
         FZ_ASSERT(o->part_count == in->part_count, "%u parts from %u", o->part_count, in->part_count);
     } else {
+        uint32_t planes = (uint32_t)(p ? p->billboard_planes : 3);
+        for (uint32_t q = 0; q < o->part_count; q++) /* 2 x planes vertical half quads, then a top card */
+            FZ_ASSERT(o->parts[q].index_count == (q % 2 ? 6 : 12 * planes), "card part %u: %u indices for %u planes",
+                      q, o->parts[q].index_count, planes);
+        for (uint32_t v = 0; v < 2 * o->vertex_count; v++)
+            FZ_ASSERT(o->uvs[v] >= 0 && o->uvs[v] <= 1, "card uv %u = %g outside the picture", v, (double)o->uvs[v]);
         for (uint32_t k = 0; k < o->image_count; k++)
             FZ_ASSERT(o->images[k].pixels && o->images[k].width >= 1 && o->images[k].height >= 1 &&
                           o->images[k].width <= (uint32_t)p->billboard_size &&

@@ -2,8 +2,8 @@
  * banyan_mesh_lod makes a coarser copy of any generator's mesh: wood is
  * simplified with meshoptimizer, leaves are thinned whole (survivors grow
  * about their petiole so the leaf area stays), or, with `billboard`, the
- * plant becomes crossed vertical cards carrying a picture of it drawn by
- * the library (an image of the output mesh). */
+ * plant becomes vertical cards and a top card carrying pictures of it
+ * drawn by the library (an image of the output mesh). */
 #ifndef BANYAN_LOD_H
 #define BANYAN_LOD_H
 #include <stddef.h>
@@ -17,8 +17,8 @@ extern "C" {
 
 typedef struct banyan_lod_params {
     double ratio;             /* share of the triangles kept, 0.001 .. 1. Default 0.5 */
-    int32_t billboard;        /* bool: crossed cards instead (ratio ignored). Default 0 */
-    int32_t billboard_planes; /* vertical cards about the plant's axis, 2 .. 8. Default 2 (a cross) */
+    int32_t billboard;        /* bool: cards (vertical ones and a top one) instead (ratio ignored). Default 0 */
+    int32_t billboard_planes; /* vertical cards about the plant's axis (a top card is added), 2 .. 8. Default 3 */
     int32_t billboard_size;   /* pixels of the picture's longer side: a power of two, 32 .. 4096. Default 256 */
     int32_t reserved;
     uint64_t seed;            /* which leaves stay. Default 1 */
