@@ -240,14 +240,17 @@ def shared_material(spec, created, vertex_colors=False):
 def image_material(spec, image, created, prefix="banyan"):
     """A material of its own for a mesh's image (a billboard's picture of
     the plant): the PNG packed, its alpha clipped at alpha_cutoff (0.5
-    when the spec has none), double sided."""
+    when the spec has none). A single-sided one (a billboard's top card,
+    facing up) is transparent from behind in every engine: backface
+    culling alone hides it only in the viewport, not in a Cycles render."""
     name = "%s_%s" % (prefix, spec["name"])
     img = created.add(bpy.data.images.new(name, image["width"], image["height"], alpha=image["channels"] == 4))
     img.pack(data=image["png"], data_len=len(image["png"]))
     img.source = 'FILE'
     mat = created.add(bpy.data.materials.new(name))
     mat.diffuse_color = tuple(spec["base_color"])
-    mat.use_backface_culling = False
+    single = not spec.get("double_sided", 1)
+    mat.use_backface_culling = single
     if bpy.app.version < (5, 0, 0):
         mat.use_nodes = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
@@ -263,7 +266,23 @@ def image_material(spec, image, created, prefix="banyan"):
     links.new(uv.outputs["UV"], tex.inputs["Vector"])
     links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
     cutoff = float(spec.get("alpha_cutoff", 0.0)) or 0.5
-    links.new(_alpha_clip(nodes, links, img, uv.outputs["UV"], cutoff, (-650, 0)), bsdf.inputs["Alpha"])
+    alpha = _alpha_clip(nodes, links, img, uv.outputs["UV"], cutoff, (-650, 0))
+    if single:
+        geo = nodes.new("ShaderNodeNewGeometry")
+        geo.location = (-650, -300)
+        front = nodes.new("ShaderNodeMath")
+        front.operation = 'LESS_THAN'
+        front.label = "Front face only"
+        front.location = (-300, -300)
+        links.new(geo.outputs["Backfacing"], front.inputs[0])
+        front.inputs[1].default_value = 0.5
+        keep = nodes.new("ShaderNodeMath")
+        keep.operation = 'MULTIPLY'
+        keep.location = (-100, -150)
+        links.new(alpha, keep.inputs[0])
+        links.new(front.outputs[0], keep.inputs[1])
+        alpha = keep.outputs[0]
+    links.new(alpha, bsdf.inputs["Alpha"])
     _eevee_clip(mat, cutoff)
     return mat
 

@@ -65,6 +65,15 @@ def check_lods(obj, gen, billboard):
         bt.check(imgs and imgs[0].packed_file is not None and imgs[0].size[0] > 0,
                  "%s: the billboard's material packs an image" % gen)
         bt.check(tris(bb) < 0.05 * t0, "%s: the billboard is a few cards (%d triangles)" % (gen, tris(bb)))
+        # The top card (a single-sided material) is transparent from below in
+        # a render too: its alpha passes through the Geometry node's Backfacing.
+        mats = [s.material for s in bb.material_slots if s.material and s.material.node_tree]
+        single = [m for m in mats if m.use_backface_culling]
+        bt.check(len(single) == 1 and len(mats) == 2, "%s: vertical cards and one single-sided top card (%s)"
+                 % (gen, [(m.name, m.use_backface_culling) for m in mats]))
+        for m in single:
+            bt.check(any(lk.from_socket.name == "Backfacing" for lk in m.node_tree.links),
+                     "%s: %s hides its back face in a render" % (gen, m.name))
 
 
 def build(gen, **kw):
