@@ -55,6 +55,9 @@
 #define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
 #define CARD_EVERY 0.6      /* cards along a long finest twig: one every this many card lengths */
 #define SHOOT_FAN_DEG 50.0  /* the side cards at a shoot's end: this far either side of it */
+#define CARD_LAYERS 3        /* spray cards one plan cell of a height band holds in the crown's upper half */
+#define CARD_LAYERS_LOW 6    /* ... and in its lower half (its skirt, lit from the side) */
+#define CARD_BAND 2.0        /* m: the height bands of that cap */
 
 void keyaki_crown_free(keyaki_crown *c) {
     if (!c) return;
@@ -100,6 +103,10 @@ typedef struct ctx {
     uint64_t base; /* vertices the tree needs besides the crown (promised by the body's plan) */
     banyan_status st; /* the refusal of oom 4 */
     const double *npath; /* per skeleton branch: path length from the trunk base to its start, m */
+    int32_t *cards;      /* per plan cell of the light grid: spray cards centred there so far (NULL: no cap) */
+    double gx0, gy0;     /* the light grid's corner, m */
+    int32_t gnx, gny, gnb; /* its cells, and CARD_BAND height bands up from z0 */
+    double z0, half_z;     /* m: the trunk's foot and half the skeleton's height */
 } ctx;
 
 /* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
@@ -227,6 +234,20 @@ static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, dou
     const banyan_keyaki_params *p = x->p;
     if (!p->leaves || p->leaf_density <= 0) return;
     keyaki_crown *c = x->c;
+    if (x->cards) {
+        /* Deep shade sheds leaves: a card whose centre falls in a plan cell
+         * already holding CARD_LAYERS cards (placed by the clusters above:
+         * they grow highest first) is not grown. From the twig alone, so
+         * counting and placing agree. */
+        v3 mid = v3_madd(at, t, 0.5 * CARD_LENGTH * p->leaf_size);
+        int32_t i = (int32_t)floor((mid.x - x->gx0) / CELL), j = (int32_t)floor((mid.y - x->gy0) / CELL);
+        int32_t b = (int32_t)clampd(floor((mid.z - x->z0) / CARD_BAND), 0, x->gnb - 1);
+        if (i >= 0 && j >= 0 && i < x->gnx && j < x->gny) {
+            int32_t *k = &x->cards[((size_t)b * (size_t)x->gny + (size_t)j) * (size_t)x->gnx + (size_t)i];
+            if (*k >= (mid.z < x->half_z ? CARD_LAYERS_LOW : CARD_LAYERS)) return;
+            (*k)++;
+        }
+    }
     if (over_budget(x, 1, 0)) return;
     if (c->count_only) {
         c->n_leaves++;
@@ -792,7 +813,8 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
-    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath};
+    ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath, NULL, 0, 0, 0, 0,
+             0, 0, 0};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -964,6 +986,15 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
         if (g.nx) hull_mask(&hl, &g);
+        if (g.nx) {
+            double top = n[0].start.z;
+            for (int32_t k = 0; k < count; k++) top = fmax(top, v3_madd(n[k].start, n[k].dir, n[k].length).z);
+            x.z0 = n[0].start.z;
+            x.half_z = 0.5 * (x.z0 + top);
+            x.gnb = (int32_t)ceil((top - x.z0 + 2.0 * p->twig_length) / CARD_BAND) + 1;
+            x.cards = calloc((size_t)g.nx * (size_t)g.ny * (size_t)x.gnb, sizeof(int32_t));
+            x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
+        }
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
@@ -1037,6 +1068,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     free(g.n);
     free(g.in);
     free(g.sky);
+    free(x.cards);
     free(hl.xy);
     free(cs);
     if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
