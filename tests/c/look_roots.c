@@ -5,11 +5,13 @@
  * (writer defaults), the sleeve gap of host 0's bounding box (for a mesh
  * host its box, so only a rough figure), over the whole side and its lowest
  * 0.5 m, the foot reach beyond the footprint below 0.3 m (m and times the
- * footprint's smaller width), the self-intersecting triangle pairs and the
- * share of them 2-8 m up. Exits 1 on a library error.
+ * footprint's smaller width), the self-intersecting triangle pairs, the
+ * share of them 2-8 m up and the pairs within 0.5 mm (sheets nearly
+ * touching; intersecting ones included). Exits 1 on a library error.
  *   look_roots [SEEDS] [key=value ...]   (default 5; key=value: --set on every net) */
 #include <stdio.h>
 #include <time.h>
+
 
 #include "roots_look_checks.h"
 #include "test_files.h"
@@ -52,7 +54,7 @@ static int row(const char *label, const banyan_roots_params *p, const banyan_hos
     double ground = p->ground ? p->ground_z : blo[2];
     rl_grid g;
     rl_sleeve s = {0, 0, 0, 0};
-    if (rl_grid_build(m, 0.05, &g) == 0) {
+    if (rl_grid_build(m, 0.05, 0.0, &g) == 0) {
         rl_sleeve_gap(m, &g, blo, bhi, ground, &s);
         rl_grid_free(&g);
     }
@@ -63,12 +65,13 @@ static int row(const char *label, const banyan_roots_params *p, const banyan_hos
     clock_t t1 = clock();
     int64_t pairs = rl_self_intersections(m, z, CAP);
     double si_s = (double)(clock() - t1) / CLOCKS_PER_SEC;
+    int64_t close = rl_close_pairs(m, 5e-4, NULL, 0);
     int64_t mid = 0;
     for (int64_t i = 0; i < pairs && i < CAP; i++) mid += z[i] >= ground + 2 && z[i] <= ground + 8;
     long long glb = rl_glb_size(m, "/tmp", NULL, &err);
-    printf("| %s | %llu | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %lld | %.0f %% | %.1f s | %.1f s |\n", label,
+    printf("| %s | %llu | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %lld | %.0f %% | %lld | %.1f s | %.1f s |\n", label,
            (unsigned long long)p->seed, m->index_count / 3, glb / 1e6, s.gap, s.gap_foot, r.reach, r.fraction,
-           (long long)pairs, pairs ? 100.0 * mid / (pairs < CAP ? pairs : CAP) : 0.0, gen_s, si_s);
+           (long long)pairs, pairs ? 100.0 * mid / (pairs < CAP ? pairs : CAP) : 0.0, (long long)close, gen_s, si_s);
     fflush(stdout);
     banyan_mesh_free(m);
     return 0;
@@ -98,8 +101,8 @@ static int preset(const char *name, int seeds, int argc, char **argv) {
 int main(int argc, char **argv) {
     int seeds = argc > 1 ? atoi(argv[1]) : 5, rc = 0;
     printf("| preset | seed | triangles | .glb MB | sleeve gap | gap lowest 0.5 m | foot reach m | reach / width | "
-           "self-intersecting pairs | of them 2-8 m up | generate | pairs search |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "self-intersecting pairs | of them 2-8 m up | pairs within 0.5 mm | generate | pairs search |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     banyan_roots_params p;
     banyan_roots_params_init(&p);
     rc |= overrides(&p, argc, argv);

@@ -55,8 +55,9 @@ static inline int32_t rl_cell_of(const rl_grid *g, int k, double x) {
 }
 
 /* Builds the grid with cells about `cell` metres (grown so that there are
- * at most about 8 M cells). 0 on success. */
-static inline int rl_grid_build(const banyan_mesh *m, double cell, rl_grid *g) {
+ * at most about 8 M cells), each triangle listed in the cells its bounds,
+ * grown by pad, meet. 0 on success. */
+static inline int rl_grid_build(const banyan_mesh *m, double cell, double pad, rl_grid *g) {
     memset(g, 0, sizeof *g);
     uint32_t nt = m->index_count / 3;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -87,6 +88,7 @@ static inline int rl_grid_build(const banyan_mesh *m, double cell, rl_grid *g) {
         for (uint32_t t = 0; t < nt; t++) {
             double a[3], b[3];
             rl_tri_box(m, t, a, b);
+            for (int k = 0; k < 3; k++) a[k] -= pad, b[k] += pad;
             int32_t i0 = rl_cell_of(g, 0, a[0]), i1 = rl_cell_of(g, 0, b[0]);
             int32_t j0 = rl_cell_of(g, 1, a[1]), j1 = rl_cell_of(g, 1, b[1]);
             int32_t k0 = rl_cell_of(g, 2, a[2]), k1 = rl_cell_of(g, 2, b[2]);
@@ -293,10 +295,108 @@ static inline int rl_tri_tri(double A[3][3], double B[3][3]) {
     return 0;
 }
 
-/* The number of intersecting triangle pairs sharing no (welded) vertex;
- * -1 on no memory. With at_z non-NULL, also the heights of the pairs'
- * first triangle centres (up to cap of them) for where-figures. */
-static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, int64_t cap) {
+static inline double rl_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Squared distance from p to triangle (a, b, c) (Ericson, Real-Time
+ * Collision Detection 5.1.5). */
+static inline double rl_pt_tri2(const double p[3], const double a[3], const double b[3], const double c[3]) {
+    double ab[3], ac[3], ap[3], q[3];
+    for (int k = 0; k < 3; k++) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
+    double d1 = rl_dot(ab, ap), d2 = rl_dot(ac, ap), v, w;
+    if (d1 <= 0 && d2 <= 0) {
+        for (int k = 0; k < 3; k++) q[k] = a[k];
+        goto out;
+    }
+    double bp[3], cp[3];
+    for (int k = 0; k < 3; k++) bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
+    double d3 = rl_dot(ab, bp), d4 = rl_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        for (int k = 0; k < 3; k++) q[k] = b[k];
+        goto out;
+    }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        v = d1 / (d1 - d3);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
+        goto out;
+    }
+    double d5 = rl_dot(ab, cp), d6 = rl_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        for (int k = 0; k < 3; k++) q[k] = c[k];
+        goto out;
+    }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        w = d2 / (d2 - d6);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
+        goto out;
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
+        goto out;
+    }
+    {
+        double den = 1.0 / (va + vb + vc);
+        v = vb * den, w = vc * den;
+        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
+    }
+out:;
+    double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+    return rl_dot(d, d);
+}
+
+static inline double rl_clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
+
+/* Squared distance between segments p1-q1 and p2-q2 (Ericson 5.1.9). */
+static inline double rl_seg_seg2(const double p1[3], const double q1[3], const double p2[3], const double q2[3]) {
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; k++) d1[k] = q1[k] - p1[k], d2[k] = q2[k] - p2[k], r[k] = p1[k] - p2[k];
+    double a = rl_dot(d1, d1), e = rl_dot(d2, d2), f = rl_dot(d2, r), s, t;
+    if (a <= 1e-30 && e <= 1e-30) return rl_dot(r, r);
+    if (a <= 1e-30) {
+        s = 0, t = rl_clamp01(f / e);
+    } else {
+        double c = rl_dot(d1, r);
+        if (e <= 1e-30) {
+            t = 0, s = rl_clamp01(-c / a);
+        } else {
+            double b = rl_dot(d1, d2), den = a * e - b * b;
+            s = den > 0 ? rl_clamp01((b * f - c * e) / den) : 0;
+            t = (b * s + f) / e;
+            if (t < 0)
+                t = 0, s = rl_clamp01(-c / a);
+            else if (t > 1)
+                t = 1, s = rl_clamp01((b - c) / a);
+        }
+    }
+    double x[3];
+    for (int k = 0; k < 3; k++) x[k] = p1[k] + d1[k] * s - (p2[k] + d2[k] * t);
+    return rl_dot(x, x);
+}
+
+/* Squared distance between two triangles that do not intersect. */
+static inline double rl_tri_tri2(double A[3][3], double B[3][3]) {
+    double best = 1e300;
+    for (int i = 0; i < 3; i++) {
+        double d = rl_pt_tri2(A[i], B[0], B[1], B[2]);
+        if (d < best) best = d;
+        d = rl_pt_tri2(B[i], A[0], A[1], A[2]);
+        if (d < best) best = d;
+        for (int j = 0; j < 3; j++) {
+            d = rl_seg_seg2(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3]);
+            if (d < best) best = d;
+        }
+    }
+    return best;
+}
+
+/* The number of triangle pairs sharing no (welded) vertex that intersect
+ * or, with tol > 0, come within tol metres of each other (two sheets
+ * almost touching); -1 on no memory. With at_z non-NULL, also the heights
+ * of the pairs' first triangle centres (up to cap of them). */
+static inline int64_t rl_close_pairs(const banyan_mesh *m, double tol, double *at_z, int64_t cap) {
     uint32_t nt = m->index_count / 3;
     if (nt < 2) return 0;
     /* cells about twice the mean edge */
@@ -308,7 +408,7 @@ static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, 
     }
     el /= nt;
     rl_grid g;
-    if (rl_grid_build(m, el > 0 ? 2 * el : 1, &g)) return -1;
+    if (rl_grid_build(m, el > 0 ? 2 * el : 1, 0.5 * tol, &g)) return -1;
     uint32_t *id = rl_weld(m);
     if (!id) {
         rl_grid_free(&g);
@@ -326,11 +426,12 @@ static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, 
                 rl_tri_box(m, s, sl, sh);
                 rl_tri_box(m, t, tl, th);
                 int apart = 0;
-                for (int k = 0; k < 3; k++) apart |= sl[k] > th[k] || tl[k] > sh[k];
+                for (int k = 0; k < 3; k++) apart |= sl[k] > th[k] + tol || tl[k] > sh[k] + tol;
                 if (apart) continue;
-                /* the pair is counted in the cell of its boxes' overlap's low corner */
+                /* the pair is counted in the cell of the low corner of its boxes'
+                 * overlap (the boxes grown by tol / 2) */
                 double ol[3];
-                for (int k = 0; k < 3; k++) ol[k] = sl[k] > tl[k] ? sl[k] : tl[k];
+                for (int k = 0; k < 3; k++) ol[k] = (sl[k] > tl[k] ? sl[k] : tl[k]) - 0.5 * tol;
                 if (rl_cell_of(&g, 0, ol[0]) != ci || rl_cell_of(&g, 1, ol[1]) != cj || rl_cell_of(&g, 2, ol[2]) != ck)
                     continue;
                 const uint32_t *S = m->indices + 3 * (size_t)s, *T = m->indices + 3 * (size_t)t;
@@ -340,7 +441,7 @@ static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, 
                 if (share) continue;
                 double A[3][3], B[3][3];
                 for (int j = 0; j < 3; j++) rl_corner(m, s, j, A[j]), rl_corner(m, t, j, B[j]);
-                if (rl_tri_tri(A, B)) {
+                if (rl_tri_tri(A, B) || (tol > 0 && rl_tri_tri2(A, B) < tol * tol)) {
                     if (at_z && count < cap)
                         at_z[count] = (A[0][2] + A[1][2] + A[2][2]) / 3 + m->origin[2];
                     count++;
@@ -350,6 +451,11 @@ static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, 
     free(id);
     rl_grid_free(&g);
     return count;
+}
+
+/* Intersecting triangle pairs sharing no (welded) vertex. */
+static inline int64_t rl_self_intersections(const banyan_mesh *m, double *at_z, int64_t cap) {
+    return rl_close_pairs(m, 0.0, at_z, cap);
 }
 
 /* ------------------------------------------------------ the .glb size */

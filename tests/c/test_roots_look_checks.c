@@ -9,7 +9,9 @@
  *     footprint, one 0.5 m up at 3 m (too high to count);
  *   - self-intersections: two crossing quads (2 pairs), a closed cube
  *     (0), the same cube with every triangle on its own copies of the
- *     vertices (0: welded by position), a cube inside a cube (0);
+ *     vertices (0: welded by position), a cube inside a cube (0); pairs
+ *     within a distance: parallel triangles and edges fractions of a mm
+ *     apart;
  *   - the .glb size: a small roots mesh's, the size of the file written. */
 #include <stdio.h>
 
@@ -44,7 +46,7 @@ static void sleeve(void) {
             }
         banyan_mesh m = bare(pos, SIDES * RINGS, idx, n);
         rl_grid g;
-        CHECK(rl_grid_build(&m, 0.05, &g) == 0, "grid");
+        CHECK(rl_grid_build(&m, 0.05, 0.0, &g) == 0, "grid");
         rl_sleeve s;
         CHECK(rl_sleeve_gap(&m, &g, host_lo, host_hi, 0.0, &s) == 0, "sleeve");
         rl_grid_free(&g);
@@ -63,7 +65,7 @@ static void sleeve(void) {
     banyan_mesh m = bare(far, 3, ti, 3);
     rl_grid g;
     rl_sleeve s;
-    CHECK(rl_grid_build(&m, 0.05, &g) == 0, "grid");
+    CHECK(rl_grid_build(&m, 0.05, 0.0, &g) == 0, "grid");
     CHECK(rl_sleeve_gap(&m, &g, host_lo, host_hi, 0.0, &s) == 0 && s.gap == 1 && s.gap_foot == 1,
           "a far triangle covers: gap %.3f", s.gap);
     rl_grid_free(&g);
@@ -144,6 +146,23 @@ static void self_intersections(void) {
     printf("overlapping cubes: %lld pairs\n", (long long)n);
     CHECK(n > 0, "overlapping cubes: no pair found");
     for (int64_t i = 0; i < n && i < 64; i++) CHECK(z[i] > -1.01 && z[i] < 1.51, "pair height %.3f", z[i]);
+
+    /* close pairs: two parallel triangles 0.3 mm apart (not within 0.2 mm,
+     * within 0.5 mm), one 1 mm off */
+    float tp[27] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2f, 0.2f, 0.0003f, 1.2f, 0.2f, 0.0003f, 0.2f, 1.2f, 0.0003f,
+                    5, 5, 0, 6, 5, 0, 5, 6, 0.001f};
+    uint32_t tix[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    m = bare(tp, 9, tix, 6);
+    CHECK(rl_self_intersections(&m, NULL, 0) == 0, "parallel triangles intersect");
+    CHECK(rl_close_pairs(&m, 2e-4, NULL, 0) == 0, "0.3 mm apart within 0.2 mm");
+    CHECK(rl_close_pairs(&m, 5e-4, NULL, 0) == 1, "0.3 mm apart not within 0.5 mm: %lld",
+          (long long)rl_close_pairs(&m, 5e-4, NULL, 0));
+    /* edge to edge, 0.4 mm apart across a gap in x, boxes not overlapping */
+    float ep[18] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1.0004f, 0, 0, 2, 0, 0, 2, 1, 0};
+    uint32_t eix[6] = {0, 1, 2, 3, 4, 5};
+    m = bare(ep, 6, eix, 6);
+    CHECK(rl_close_pairs(&m, 5e-4, NULL, 0) == 1, "edges 0.4 mm apart: %lld", (long long)rl_close_pairs(&m, 5e-4, NULL, 0));
+    CHECK(rl_close_pairs(&m, 3e-4, NULL, 0) == 0, "edges 0.4 mm apart within 0.3 mm");
 }
 
 static void glb_size(const char *dir) {
