@@ -8,7 +8,8 @@
  *   - foot reach: the largest horizontal distance beyond the hosts'
  *     footprint (the XY box of their bounds, 0 inside) of a root vertex
  *     between the ground and 0.3 m above it, also as a fraction of the
- *     footprint's smaller width;
+ *     footprint's smaller width; and the sprawl limit of test_roots_look.c
+ *     (95th percentile of that distance above the ground);
  *   - self-intersecting triangle pairs: two triangles that share no vertex
  *     (vertices welded by position: the uv seam's copies are one vertex)
  *     and intersect, found through a uniform grid of the triangles' bounds;
@@ -245,6 +246,34 @@ static inline void rl_foot_reach(const banyan_mesh *m, const double lo[2], const
     double wx = hi[0] - lo[0], wy = hi[1] - lo[1];
     out->width = wx < wy ? wx : wy;
     out->fraction = out->width > 0 ? best / out->width : 0;
+}
+
+/* The sprawl limit of the roots' look (test_roots_look.c): the 95th
+ * percentile of the horizontal distance beyond the footprint of the
+ * vertices more than 1 cm above the ground, in metres; *diag the
+ * footprint's diagonal. -1 on no memory. */
+static inline int rl_dbl_cmp(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+static inline double rl_sprawl_p95(const banyan_mesh *m, const double lo[2], const double hi[2], double ground_z,
+                                   double *diag) {
+    *diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]));
+    double *d = malloc(sizeof *d * (m->vertex_count ? m->vertex_count : 1));
+    if (!d) return -1;
+    uint32_t k = 0;
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const float *q = m->positions + 3 * (size_t)v;
+        double x = q[0] + m->origin[0], y = q[1] + m->origin[1], z = q[2] + m->origin[2];
+        if (z <= ground_z + 0.01) continue;
+        double dx = x < lo[0] ? lo[0] - x : (x > hi[0] ? x - hi[0] : 0);
+        double dy = y < lo[1] ? lo[1] - y : (y > hi[1] ? y - hi[1] : 0);
+        d[k++] = sqrt(dx * dx + dy * dy);
+    }
+    qsort(d, k, sizeof *d, rl_dbl_cmp);
+    double p95 = k ? d[(size_t)(0.95 * (k - 1))] : 0;
+    free(d);
+    return p95;
 }
 
 /* ------------------------------------------ self-intersecting pairs */
