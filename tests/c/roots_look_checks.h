@@ -13,9 +13,12 @@
  *   - self-intersecting triangle pairs: two triangles that share no vertex
  *     (vertices welded by position: the uv seam's copies are one vertex)
  *     and intersect, found through a uniform grid of the triangles' bounds;
+ *     and the pairs within a distance (sheets that nearly touch, which a
+ *     tolerant intersection test counts);
  *   - the size of the mesh written as .glb with the writer's defaults.
  * Shared by test_roots_look_checks.c (the measures on meshes of known
- * answer), look_roots.c (the figures of the presets) and the roots tests. */
+ * answer), look_roots.c (the figures of the presets, and the acceptance
+ * test of the closing foot) and test_roots_surface.c. */
 #ifndef BANYAN_ROOTS_LOOK_CHECKS_H
 #define BANYAN_ROOTS_LOOK_CHECKS_H
 
