@@ -55,6 +55,8 @@ static double stage_ms(void) {
 /* Roots stop this far (times r) outside a host: marching's linear
  * interpolation then keeps vertices out of a curved host too. */
 #define HOST_GAP 0.02
+/* Field values nearer zero than this (times h) move out to it. */
+#define SNAP 0.1
 /* The surface is closed this far (times r) under the ground. */
 #define SOIL_DEPTH 2.0
 
@@ -448,9 +450,13 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
                     double c = world_clearance_in(w, q, 0, range, NULL, NULL);
                     if (gap - c > d) d = (float)(gap - c);
                 }
-                /* An exact zero puts several cells' vertices on one point (a
-                 * face of zero area): it counts as just outside. */
-                if (d == 0) d = 1e-6f * (float)h;
+                /* A value at or near zero puts the vertices of the cells
+                 * round that voxel on or near one point: faces of zero or
+                 * sliver area, sheets that nearly touch. Such a value moves
+                 * out to SNAP h on its side (0 counts as outside): the
+                 * surface crosses no edge nearer than about SNAP h to a
+                 * voxel. */
+                if (d < SNAP * h && d > -SNAP * h) d = (float)(d < 0 ? -SNAP * h : SNAP * h);
                 acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
             }
             int inside = 0;

@@ -99,7 +99,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .junction_reach = 2, /* #18: was 8; thick main roots (pipe model) make the junction, long loops folded the tubes */
         .junction_falloff = 3,
         .surface = 0,
-        .voxel_size = 0.4,
+        .voxel_size = 0.8,
         .fuse_radius = 1,
         .maturity = 0.6,
         .pipe_exponent = 2.5,
