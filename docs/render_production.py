@@ -5,8 +5,8 @@ keyaki_young's growth animation at three frames, through the add-on
     bash tools/render_docs.sh production
 
 writes docs/img/production/:
-  lod_<distance>m.png   LOD0 (the tree), 0.5, 0.15 and the crossed
-                        billboards, each from <distance> m at eye height
+  lod_<distance>m.png   LOD0 (the tree), 0.5, 0.15 and the billboard
+                        (vertical cards and a top card), each from <distance> m at eye height
                         (the same camera for all four; the first distance
                         frames the tree, the others keep its lens), one
                         image per distance, the levels left to right;

@@ -159,7 +159,8 @@ typedef struct banyan_keyaki_params {
     double light_steer;      /* deg, 0 .. 90: largest turn of a twig cluster towards its lit side. Default 35 */
     int32_t leaves;          /* bool: leaves. Default true */
     int32_t leaf_levels;     /* 0 .. 30: skeleton branches within this many levels of a tip carry twigs and
-                                leaves. Default 5 */
+                                leaves; deeper ones (the limbs) carry spray-card shoots where they lie on the
+                                crown's outer shell (docs/keyaki.md "Twigs and leaves"). Default 5 */
     double leaf_density;     /* leaves per metre of leafy twig (two ranks, one leaf a node), 0 .. 1000.
                                 Default 24 */
     double leaf_size;        /* m, 0.005 .. 1: median blade length. Default 0.055 */
