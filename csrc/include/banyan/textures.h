@@ -33,7 +33,10 @@ typedef enum banyan_season {
 
 /* Leaf atlases are a grid of cols x rows equal cells, one leaf per cell,
  * the petiole's end at the cell's bottom centre (u = 0.5, v = 0 of the
- * cell, v up), the tip towards the cell's top. Bark textures are one
+ * cell, v up), the tip towards the cell's top. The keyaki atlas's bottom
+ * row (v < 1 / rows) holds two spray cells instead, each two cells wide:
+ * a twig along the row's centre line from its left end, carrying leaves
+ * on both sides (the crown's spray cards; docs/materials.md). Bark textures are one
  * tile: 1 in u = once around, 1 in v = `BANYAN_BARK_TILE_ASPECT`
  * circumferences along (the tube's uvs already run in circumferences). */
 #define BANYAN_BARK_TILE_ASPECT 1.0f
