@@ -58,6 +58,7 @@
 #define CARD_LAYERS 3        /* spray cards one plan cell of a height band holds in the crown's upper half */
 #define CARD_LAYERS_LOW 6    /* ... and in its lower half (its skirt, lit from the side) */
 #define CARD_BAND 2.0        /* m: the height bands of that cap */
+#define CARD_CELLS_MAX 16e6  /* cells (int32) of the cap's grid, bands included: 64 MB */
 
 void keyaki_crown_free(keyaki_crown *c) {
     if (!c) return;
@@ -107,6 +108,7 @@ typedef struct ctx {
     double gx0, gy0;     /* the light grid's corner, m */
     int32_t gnx, gny, gnb; /* its cells, and CARD_BAND height bands up from z0 */
     double z0, half_z;     /* m: the trunk's foot and half the skeleton's height */
+    double band;           /* m: the bands' height (CARD_BAND, more on a giant tree) */
 } ctx;
 
 /* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
@@ -241,7 +243,7 @@ static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, dou
          * counting and placing agree. */
         v3 mid = v3_madd(at, t, 0.5 * CARD_LENGTH * p->leaf_size);
         int32_t i = (int32_t)floor((mid.x - x->gx0) / CELL), j = (int32_t)floor((mid.y - x->gy0) / CELL);
-        int32_t b = (int32_t)clampd(floor((mid.z - x->z0) / CARD_BAND), 0, x->gnb - 1);
+        int32_t b = (int32_t)clampd(floor((mid.z - x->z0) / x->band), 0, x->gnb - 1);
         if (i >= 0 && j >= 0 && i < x->gnx && j < x->gny) {
             int32_t *k = &x->cards[((size_t)b * (size_t)x->gny + (size_t)j) * (size_t)x->gnx + (size_t)i];
             if (*k >= (mid.z < x->half_z ? CARD_LAYERS_LOW : CARD_LAYERS)) return;
@@ -814,7 +816,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
     }
     ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath, NULL, 0, 0, 0, 0,
-             0, 0, 0};
+             0, 0, 0, CARD_BAND};
     if (p->twigs_from_segments || p->twig_levels == 0) {
         /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
         for (int32_t i = 0; i < count && !x.oom; i++) {
@@ -991,9 +993,22 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             for (int32_t k = 0; k < count; k++) top = fmax(top, v3_madd(n[k].start, n[k].dir, n[k].length).z);
             x.z0 = n[0].start.z;
             x.half_z = 0.5 * (x.z0 + top);
-            x.gnb = (int32_t)ceil((top - x.z0 + 2.0 * p->twig_length) / CARD_BAND) + 1;
+            /* Bands of CARD_BAND, fewer and taller on a giant tree: the cap's
+             * grid stays within CARD_CELLS_MAX cells. */
+            double reach = top - x.z0 + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
+            double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
+            x.gnb = (int32_t)nb;
+            x.band = fmax(CARD_BAND, reach / nb);
             x.cards = calloc((size_t)g.nx * (size_t)g.ny * (size_t)x.gnb, sizeof(int32_t));
             x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
+            if (!x.cards) {
+                free(g.n);
+                free(g.in);
+                free(g.sky);
+                free(cs);
+                free(hl.xy);
+                return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
+            }
         }
     }
     c->clusters = nc;

@@ -25,6 +25,9 @@ from banyan import wind as W  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
 
 FRAMES = (1, 37)
+# A fork is measured against its parent's nearest vertex when that lies
+# within this distance (m) of the branch's base.
+FORK_REACH = 0.2
 
 
 def _subset(coords, idx):
@@ -189,7 +192,8 @@ def continuity(obj, frame):
     phase and level with flutter 1; its vertex nearest the pivot against
     the vertex of the wood it hangs on (level - 1) nearest that pivot. A fork:
     each branch (wood sharing pivot, phase, level >= 1), its vertex
-    nearest its pivot against the nearest vertex of its parent's level."""
+    nearest its pivot against the nearest vertex of its parent's level,
+    when that lies within FORK_REACH (the rest are counted, unmeasured)."""
     from mathutils import Vector, kdtree
     me = obj.data
     rest = U.rest_coords(obj)
@@ -224,17 +228,23 @@ def continuity(obj, frame):
         r = (disp[near] - disp[w]).length / dmax
         leaf_worst = max(leaf_worst, r)
     fork_worst = 0.0
-    forks = 0
+    forks = unmeasured = 0
     for key, vs in _groups(wood, piv, phase, level).items():
         if key[4] < 1 or key[4] - 1 not in parent:
             continue
         p = Vector(key[:3])
         near = min(vs, key=lambda i: (co[i] - p).length)
-        _c, w, _d = parent[key[4] - 1].find(co[near])
+        _c, w, d = parent[key[4] - 1].find(co[near])
+        forks += 1
+        if d > FORK_REACH:
+            # A twig halfway along a long straight branch: the branch's
+            # nearest vertex is a ring at one of its ends, which turns away
+            # from the twig's base with the branch; no vertex tells here.
+            unmeasured += 1
+            continue
         r = (disp[near] - disp[w]).length / dmax
         fork_worst = max(fork_worst, r)
-        forks += 1
-    return leaf_worst, fork_worst, len(leaf_groups), forks, dmax
+    return leaf_worst, fork_worst, len(leaf_groups), forks, dmax, unmeasured
 
 
 def test_keyaki_continuity():
@@ -248,10 +258,12 @@ def test_keyaki_continuity():
     objs = api.keyaki_tree(wind=True, levels=6)
     api.add_wind(objs[0], flutter=0.0)
     for frame in FRAMES:
-        leaf, fork, nl, nf, dmax = continuity(objs[0], frame)
-        print("keyaki continuity frame %d: %d leaves worst %.3f, %d forks worst %.3f (of %.4g m)"
-              % (frame, nl, leaf, nf, fork, dmax))
+        leaf, fork, nl, nf, dmax, far = continuity(objs[0], frame)
+        print("keyaki continuity frame %d: %d leaves worst %.3f, %d forks worst %.3f (of %.4g m), %d forks beyond "
+              "%.2f m of their parent's vertices" % (frame, nl, leaf, nf, fork, dmax, far, FORK_REACH))
         bt.check(nl > 10 and nf > 10, "keyaki: leaves and forks to check (%d, %d)" % (nl, nf))
+        bt.check(far <= 0.1 * nf, "keyaki: %d of %d forks lie beyond %.2f m of their parent's vertices, unmeasured"
+                 % (far, nf, FORK_REACH))
         bt.check(leaf < 0.25, "frame %d: every leaf moves with the wood it hangs on (worst %.3f of %.4g m)"
                  % (frame, leaf, dmax))
         # Forks: keyaki's wind_stiffness follows the path length from the
