@@ -975,41 +975,30 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         g.ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
         if ((double)g.nx * g.ny > 4e6) g.nx = g.ny = 0; /* a crown over ~400 m across: no light model */
         else {
+            /* The card cap's height bands: CARD_BAND, fewer and taller on a
+             * giant tree, so its grid stays within CARD_CELLS_MAX cells. */
+            double top = n[0].start.z;
+            for (int32_t k = 0; k < count; k++) top = fmax(top, v3_madd(n[k].start, n[k].dir, n[k].length).z);
+            double reach = top - n[0].start.z + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
+            double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
+            x.z0 = n[0].start.z, x.half_z = 0.5 * (x.z0 + top);
+            x.gnb = (int32_t)nb, x.band = fmax(CARD_BAND, reach / nb);
+            x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
             g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
             g.in = malloc((size_t)g.nx * (size_t)g.ny);
             g.sky = calloc((size_t)SKY_OBLIQUE * (size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
+            x.cards = calloc((size_t)g.nx * (size_t)g.ny * (size_t)x.gnb, sizeof(int32_t));
         }
-        if (g.nx && (!g.n || !g.in || !g.sky)) {
+        if (g.nx && (!g.n || !g.in || !g.sky || !x.cards)) {
             free(g.n);
             free(g.in);
             free(g.sky);
+            free(x.cards);
             free(cs);
             free(hl.xy);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
         if (g.nx) hull_mask(&hl, &g);
-        if (g.nx) {
-            double top = n[0].start.z;
-            for (int32_t k = 0; k < count; k++) top = fmax(top, v3_madd(n[k].start, n[k].dir, n[k].length).z);
-            x.z0 = n[0].start.z;
-            x.half_z = 0.5 * (x.z0 + top);
-            /* Bands of CARD_BAND, fewer and taller on a giant tree: the cap's
-             * grid stays within CARD_CELLS_MAX cells. */
-            double reach = top - x.z0 + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
-            double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
-            x.gnb = (int32_t)nb;
-            x.band = fmax(CARD_BAND, reach / nb);
-            x.cards = calloc((size_t)g.nx * (size_t)g.ny * (size_t)x.gnb, sizeof(int32_t));
-            x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
-            if (!x.cards) {
-                free(g.n);
-                free(g.in);
-                free(g.sky);
-                free(cs);
-                free(hl.xy);
-                return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
-            }
-        }
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {

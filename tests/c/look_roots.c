@@ -118,10 +118,8 @@ static int load(const char *name, banyan_roots_params *p, banyan_hosts **H) {
         if (banyan_hosts_create(&trunk, 1, NULL, 0, H, &err) == BANYAN_OK) return 0;
     } else {
         char path[4096];
-        uint32_t n = 0;
         snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
-        if (!test_load_preset(BANYAN_GEN_ROOTS, p, path, NULL, 0, &n, &err) && !test_load_host_set(path, H, &err))
-            return 0;
+        if (!test_load_roots(path, p, H, &err)) return 0;
     }
     fprintf(stderr, "%s: %s\n", name, err.message);
     return 1;

@@ -89,6 +89,16 @@ static inline banyan_status test_load_host_set(const char *path, banyan_hosts **
     return s;
 }
 
+/* A roots preset's params and its hosts (boxes or meshes); *hosts NULL on
+ * failure. */
+static inline banyan_status test_load_roots(const char *path, banyan_roots_params *p, banyan_hosts **hosts,
+                                            banyan_error *err) {
+    banyan_roots_params_init(p);
+    *hosts = NULL;
+    banyan_status s = test_load_preset(BANYAN_GEN_ROOTS, p, path, NULL, 0, NULL, err);
+    return s ? s : test_load_host_set(path, hosts, err);
+}
+
 static inline int test_walk_presets(const char *dir, const char *prefix, int meshes,
                                     void (*fn)(const char *path, const char *name, void *ctx), void *ctx);
 

@@ -154,14 +154,10 @@ static void judge(const char *name, const banyan_roots_params *p0, const banyan_
 static void preset(const char *path, const char *name, void *ctx) {
     (void)ctx;
     banyan_roots_params p;
-    banyan_roots_params_init(&p);
     banyan_error err;
-    uint32_t n = 0;
-    banyan_status s = test_load_preset(BANYAN_GEN_ROOTS, &p, path, NULL, 0, &n, &err);
-    CHECK(s == BANYAN_OK, "%s: %s", name, err.message);
     banyan_hosts *H = NULL;
-    if (!s) s = test_load_host_set(path, &H, &err);
-    CHECK(s == BANYAN_OK, "%s hosts: %s", name, err.message);
+    banyan_status s = test_load_roots(path, &p, &H, &err);
+    CHECK(s == BANYAN_OK, "%s: %s", name, err.message);
     if (!s) judge(name, &p, H, NULL);
     banyan_hosts_free(H);
 }
