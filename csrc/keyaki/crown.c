@@ -170,6 +170,14 @@ static double poly_length(const v3 *pts, int32_t n) {
  * the ranks lie left and right of the twig in the spray plane. rad: the
  * wood's radius at each point, path0: the path length from the trunk
  * base to pts[0] (a leaf's stiffness and birth). */
+/* The width of a blade or card of unit axis a: level across a, rolled by
+ * `roll` (rad) about a, turned so that width x axis faces the sky. */
+static v3 rolled_width(v3 a, double roll) {
+    v3 w = v3_norm_or_perp(v3_cross(v3_make(0, 0, 1), a), a);
+    w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
+    return v3_cross(w, a).z < 0 ? v3_neg(w) : w;
+}
+
 static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, double s0, v3 up, int32_t twig,
                          int32_t level, double path0) {
     const banyan_keyaki_params *p = x->p;
@@ -206,10 +214,7 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         /* Blade facing the sky, rolled up to +-45 deg about its midrib: a
          * crown of only level blades is edge-on, nearly invisible, from
          * the side; real blades turn every way to the light. */
-        v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
-        double roll = deg2rad(rng_range(&x->lf, -45.0, 45.0));
-        w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
-        if (v3_cross(w, a).z < 0) w = v3_neg(w);
+        v3 w = rolled_width(a, deg2rad(rng_range(&x->lf, -45.0, 45.0)));
         /* Smaller near the twig's base and tip. */
         double f = 0.8 + 0.25 * dm_sin(BANYAN_PI * clampd(s / L, 0, 1));
         double blade = p->leaf_size * f * (1.0 + p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
@@ -263,10 +268,7 @@ static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, dou
     /* Turned a little aside in the spray plane, drooping a little. */
     v3 a = v3_rotate(t, up, deg2rad(rng_range(&x->lf, -15.0, 15.0)));
     a = v3_norm(v3_madd(a, Z, -rng_range(&x->lf, 0.0, 0.3)));
-    v3 w = v3_norm_or_perp(v3_cross(Z, a), a);
-    double roll = deg2rad(rng_range(&x->lf, -CARD_ROLL_DEG, CARD_ROLL_DEG));
-    w = v3_add(v3_scale(w, dm_cos(roll)), v3_scale(v3_cross(a, w), dm_sin(roll)));
-    if (v3_cross(w, a).z < 0) w = v3_neg(w);
+    v3 w = rolled_width(a, deg2rad(rng_range(&x->lf, -CARD_ROLL_DEG, CARD_ROLL_DEG)));
     double len = CARD_LENGTH * p->leaf_size * (1.0 + 0.5 * p->leaf_size_spread * rng_range(&x->lf, -1.0, 1.0));
     keyaki_leaf *q = &c->leaves[c->n_leaves++];
     q->base = at; /* the card's base edge lies LEAF_KEYAKI_SPRAY_U0 x len behind it */
@@ -977,11 +979,9 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         else {
             /* The card cap's height bands: CARD_BAND, fewer and taller on a
              * giant tree, so its grid stays within CARD_CELLS_MAX cells. */
-            double top = n[0].start.z;
-            for (int32_t k = 0; k < count; k++) top = fmax(top, v3_madd(n[k].start, n[k].dir, n[k].length).z);
-            double reach = top - n[0].start.z + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
+            double reach = sh.height + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
             double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
-            x.z0 = n[0].start.z, x.half_z = 0.5 * (x.z0 + top);
+            x.z0 = sh.z0, x.half_z = sh.z0 + 0.5 * sh.height;
             x.gnb = (int32_t)nb, x.band = fmax(CARD_BAND, reach / nb);
             x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
             g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
