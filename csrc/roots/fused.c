@@ -682,7 +682,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             /* the nearest capsule's values, between its two points */
             const capsule *cp = &caps[fv[i].cap];
             double t = fv[i].t, s0 = rw.stiff[cp->at], b0 = rw.birth[cp->at];
-            wind_set(&mb, &ws, rw.pivot[cp->poly], fv[i].kind, s0 + (rw.stiff[cp->at + 1] - s0) * t,
+            wind_set(&mb, &ws, rw.pivot[cp->poly], roots_wind_level(fv[i].kind), s0 + (rw.stiff[cp->at + 1] - s0) * t,
                      rw.phase[cp->poly], 0.0);
             wind_birth(&mb, &ws, b0 + (rw.birth[cp->at + 1] - b0) * t);
             mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);

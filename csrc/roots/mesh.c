@@ -331,7 +331,8 @@ void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind
 int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roots_params *p) {
     /* Skeleton: one point per polyline point, the junctions shared: a first
      * branch root's ends are its main roots' points, a second branch root's
-     * ends are its first branch roots' middle points; G is one point. */
+     * ends are its first branch roots' middle points; a foot root's start
+     * is the net point it leaves; G is one point. */
     uint32_t *skel = malloc(sizeof(uint32_t) * (net->n_pts ? net->n_pts : 1));
     if (!skel) return -1;
     uint32_t g_index = UINT32_MAX;
@@ -345,6 +346,8 @@ int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roo
             } else if (pl->kind == ROOT_FIRST && (i == 0 || i + 1 == pl->n)) {
                 int b = roots_branch_b(p, pl->k), a = i == 0 ? pl->a : (pl->a + 1) % net->N;
                 k = skel[net->M_at[(size_t)a * net->B + b]];
+            } else if (pl->kind == ROOT_FOOT && i == 0 && pl->from != UINT32_MAX) {
+                k = skel[pl->from];
             } else if (pl->kind == ROOT_SECOND && (i == 0 || i + 1 == pl->n)) {
                 int slot = pl->a * net->nb + pl->k + (i == 0 ? 0 : 1);
                 k = skel[net->K_mid_at[slot]];
@@ -433,7 +436,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
         mb_set_attr(&mb, a_kind, pl->kind);
         mb_set_attr(&mb, a_id, pl->id);
         /* stiffness and birth ring by ring after the sweep */
-        wind_set(&mb, &ws, rw.pivot[t], pl->kind, 1.0, rw.phase[t], 0.0);
+        wind_set(&mb, &ws, rw.pivot[t], roots_wind_level(pl->kind), 1.0, rw.phase[t], 0.0);
         int smooth = pl->kind == ROOT_FIRST && p->smoothing;
         v3 first_normal = v3_make(0, 0, 0);
         if (smooth) {

@@ -31,7 +31,7 @@
 #define REPAIR_SAG ROOTS_SAG
 #define REPAIR_DEPTH 16
 
-static int reserve_pts(roots_net *net, uint32_t more) {
+int roots_reserve_pts(roots_net *net, uint32_t more) {
     if (net->n_pts + more <= net->cap_pts) return 1;
     uint32_t cap = net->cap_pts ? net->cap_pts : 1024;
     while (cap < net->n_pts + more) cap *= 2;
@@ -65,7 +65,7 @@ static uint32_t put(builder *bd, v3 q, double rad, int exact) {
             return last;
         }
     }
-    if (!reserve_pts(net, 1)) {
+    if (!roots_reserve_pts(net, 1)) {
         bd->oom = 1;
         return net->n_pts ? net->n_pts - 1 : 0;
     }
@@ -205,7 +205,7 @@ static uint32_t polyline(builder *bd, const v3 *src, uint32_t n, uint32_t *idx, 
     return bd->net->n_pts - bd->start;
 }
 
-static int add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, int a, int k) {
+int roots_add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, int a, int k) {
     if (net->n_poly >= net->cap_poly) {
         uint32_t cap = net->cap_poly ? net->cap_poly * 2 : 64;
         roots_poly *np = realloc(net->poly, sizeof *np * cap);
@@ -222,6 +222,7 @@ static int add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, 
     pl->k = k;
     pl->ring_off = UINT32_MAX;
     pl->soil_from = n;
+    pl->from = UINT32_MAX;
     return 1;
 }
 
@@ -419,7 +420,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
     uint32_t *idx = malloc(sizeof(uint32_t) * longest);
     roots_world soil_w = roots_soil_world(&net->w);
     builder bd = {net, &net->w, 0, 0, p->smooth_paths, NULL};
-    if (!src || !idx || !reserve_pts(net, (uint32_t)(N * (B + 1) + N * nb * (net->S1 + net->S2)) + 64)) {
+    if (!src || !idx || !roots_reserve_pts(net, (uint32_t)(N * (B + 1) + N * nb * (net->S1 + net->S2)) + 64)) {
         free(src); free(idx);
         return BANYAN_E_NOMEM;
     }
@@ -447,7 +448,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
             bd.w = &net->w;
         }
         uint32_t n = net->n_pts - off;
-        if (!add_poly(net, off, n, ROOT_MAIN, id++, a, -1)) bd.oom = 1;
+        if (!roots_add_poly(net, off, n, ROOT_MAIN, id++, a, -1)) bd.oom = 1;
         else if (soil_from != UINT32_MAX) net->poly[net->n_poly - 1].soil_from = soil_from;
     }
     bd.press = p->hugging ? p : NULL;
@@ -460,7 +461,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
                                   net->K_ok + (size_t)slot * net->S1);
             if (prog_stopped(net->prog)) break;
             net->K_mid_at[slot] = idx[(net->S1 - 1) / 2];
-            if (!add_poly(net, off, n, ROOT_FIRST, id++, a, k)) bd.oom = 1;
+            if (!roots_add_poly(net, off, n, ROOT_FIRST, id++, a, k)) bd.oom = 1;
         }
     for (int a = 0; a < N && !bd.oom; a++)
         for (int k = 0; k < nb; k++) {
@@ -468,7 +469,7 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p) {
             if (!net->Q_valid[slot]) continue;
             uint32_t off = net->n_pts;
             uint32_t n = polyline(&bd, net->Q + (size_t)slot * net->S2, (uint32_t)net->S2, NULL, NULL);
-            if (!add_poly(net, off, n, ROOT_SECOND, id++, a, k)) bd.oom = 1;
+            if (!roots_add_poly(net, off, n, ROOT_SECOND, id++, a, k)) bd.oom = 1;
         }
     free(src);
     free(idx);

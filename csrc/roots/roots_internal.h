@@ -15,8 +15,11 @@
 #include "core/rng.h"
 #include "core/vec.h"
 
-/* Kinds, also the skeleton tag and the `root_kind` attribute. */
-enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2 };
+/* Kinds, also the skeleton tag and the `root_kind` attribute. Foot roots
+ * (foot.c: drop roots, buttresses, surface roots) are held by the host and
+ * the soil as the main roots' feet are: wind level 0 with the mains. */
+enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2, ROOT_FOOT = 3 };
+static inline int roots_wind_level(int kind) { return kind == ROOT_FOOT ? 0 : kind; }
 
 /* Collision world: hosts, ground, r. Clearance of a point = its distance
  * to the nearest host surface (signed, < 0 inside a box or a closed mesh)
@@ -107,7 +110,9 @@ typedef struct roots_poly {
     uint32_t ring_off; /* junction loops: index into net->loops, or UINT32_MAX */
     uint32_t soil_from; /* main roots that enter the soil: the first point of the underground end
                            (pts[off + soil_from ..] lie below the ground, soil_from - 1 is where the
-                           root enters it); n when the root stays above ground */
+                           root enters it); n when the root stays above ground. Foot roots: from
+                           here on the points lie on or in the soil */
+    uint32_t from;     /* foot roots: the net point (index into pts) they start on; else UINT32_MAX */
 } roots_poly;
 
 /* Points of a main root's underground end (soil_entry): it runs on
@@ -219,6 +224,13 @@ void roots_press_first(roots_net *net, const banyan_roots_params *p);
  * from it (when free there); returns 1 when it moved. */
 int roots_press_point(const roots_world *w, const banyan_roots_params *p, v3 *q);
 banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p);
+/* The foot (foot.c): drop roots, plank buttresses and surface roots,
+ * appended as ROOT_FOOT polylines once the radii are set. */
+banyan_status roots_grow_foot(roots_net *net, const banyan_roots_params *p);
+/* Room for `more` points (pts and rad); 0 when out of memory. */
+int roots_reserve_pts(roots_net *net, uint32_t more);
+/* Appends a polyline record (from = UINT32_MAX, soil_from = n); 0 when out of memory. */
+int roots_add_poly(roots_net *net, uint32_t off, uint32_t n, int kind, int id, int a, int k);
 
 /* First-branch slot k of a main root starts at growth index (0-based). */
 static inline int roots_branch_b(const banyan_roots_params *p, int k) {
@@ -240,7 +252,8 @@ static inline int roots_slot_open(const roots_net *net, const banyan_roots_param
 #define ROOTS_SAG 0.2
 
 /* Per-entity random streams (pcg32_seed's stream argument). */
-enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000 };
+enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000,
+       STREAM_FOOT = 0x30000000 };
 
 /* The params checks of banyan_roots_generate: the table, then the rules
  * that tie fields together (generate.c). */

@@ -67,7 +67,7 @@ typedef struct banyan_roots_params {
     /* Issue #18: the look of a real strangler fig (docs/roots.md). */
     int32_t surface;              /* banyan_roots_surface: one fused closed surface (OpenVDB) or the
                                      plain tubes [FUSED] */
-    double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.8] */
+    double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.9] */
     double fuse_radius;           /* multiples of r, 0 .. 4: fillet where roots merge (smooth union) [1] */
     double maturity;              /* 0 .. 1: young separate cords (0) to an old fused sleeve (1): how
                                      much roots thicken with the flow and fuse [0.6] */
@@ -77,7 +77,12 @@ typedef struct banyan_roots_params {
                                      with a buttress flare, instead of crawling outward [1] */
     double soil_reach;            /* multiples of r, 0 .. 100: how far past the host a root may run on
                                      the ground before it goes in [3] */
-    double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.4] */
+    double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.15] */
+    double buttress;              /* 0 .. 4: how far plank buttresses and their surface roots run out
+                                     past the host, times the host's width at the foot, at maturity 1
+                                     (times maturity below); 0: none [1.2] */
+    double foot_roots;            /* 0 .. 8: roots that drop from the lowest branch roots to the soil,
+                                     per gap between main roots, at maturity 1 (times maturity) [4] */
     int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
     /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT naming it. */
     double max_seconds;           /* s, 0.01 .. 604800: wall time of one call [600] */
