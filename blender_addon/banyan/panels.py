@@ -92,8 +92,8 @@ IDLE = {
                                              "branch_jitter", "correction") + _JUNCTIONS),
         (lambda v: not v("second_branches"), ("second_lateral", "second_samples")),
         (lambda v: not v("hugging"), ("hug_range", "hug_pull")),
-        (lambda v: not v("ground"), ("ground_z", "ground_step", "soil_reach", "flare")),
-        (lambda v: not v("soil_entry"), ("soil_reach", "flare")),
+        (lambda v: not v("ground"), ("ground_z", "ground_step", "soil_reach", "flare", "buttress", "foot_roots")),
+        (lambda v: not v("soil_entry"), ("soil_reach", "flare", "buttress")),
         (lambda v: v("germination_auto"), ("germination",)),
     ],
     "ivy": [

@@ -100,7 +100,8 @@ static void drop_root(foot *f, uint32_t from, double lean, int a, int k, pcg32 *
     v3 S = net->pts[from];
     double z0 = S.z;
     if (!w->ground || z0 - gz < 4.0 * r) return;
-    double R0 = net->rad[from];
+    /* as thick as a branch root, even from a main root's point */
+    double R0 = net->rad[from] < 1.2 * r ? net->rad[from] : 1.2 * r;
     f->n = 0;
     add_pt(f, S, R0);
     double slope = 0; /* wander about the lean per step, a random walk */
@@ -347,7 +348,8 @@ static void buttresses(foot *f) {
         v3 side = v3_cross(UP, h);
         const banyan_hosts *H = net->hosts;
         double wx = H->hi[which].x - H->lo[which].x, wy = H->hi[which].y - H->lo[which].y;
-        double L = p->buttress * (wx < wy ? wx : wy) * p->maturity;
+        double wz = H->hi[which].z - H->lo[which].z, wmin = wx < wy ? wx : wy;
+        double L = p->buttress * (wz < wmin ? wz : wmin) * p->maturity; /* a low rock: by its height */
         pcg32 g;
         pcg32_seed(&g, p->seed, (uint64_t)STREAM_FOOT + 0x8000u + (uint64_t)a);
         const double Re = net->rad[net->poly[t].off + ie];

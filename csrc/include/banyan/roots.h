@@ -79,7 +79,7 @@ typedef struct banyan_roots_params {
                                      the ground before it goes in [3] */
     double flare;                 /* 1 .. 10: radius where a root enters the soil, times its radius above [1.15] */
     double buttress;              /* 0 .. 4: how far plank buttresses and their surface roots run out
-                                     past the host, times the host's width at the foot, at maturity 1
+                                     past the host, times the host's smallest extent, at maturity 1
                                      (times maturity below); 0: none [1.2] */
     double foot_roots;            /* 0 .. 8: roots that drop from the lowest branch roots to the soil,
                                      per gap between main roots, at maturity 1 (times maturity) [4] */
