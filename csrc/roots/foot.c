@@ -16,6 +16,8 @@
  *   of the top edge) whose capsules overlap, which the fused surface
  *   merges into one thin wall (the fused surface only: as tubes the
  *   strands would read as a comb).
+ *   Mains that reach the soil within 0.3 of the reach of one that has a
+ *   buttress share it.
  * - Surface roots: under each plank a root runs on along the ground, half
  *   in the soil, meandering, to the buttress reach past the host's
  *   surface (buttress x the host's smaller width x maturity), with a side
@@ -282,7 +284,11 @@ static void plank(foot *f, uint32_t t, uint32_t ie, v3 h, v3 side, double L, pcg
         f->soil_from = FOOT_MAX_PTS;
         for (int i = 0; i <= nx; i++) {
             double x = (double)i / nx;
-            v3 q = v3_madd(v3_madd(s, h, Lp * x), side, bend * Lp * x * x);
+            /* strands start where the root passes their height and meet at the
+             * plank's far end, so a root crossing the face does not shear
+             * the plank into fingers */
+            v3 base = v3_lerp(s, net->pts[pl.off + ie], x);
+            v3 q = v3_madd(v3_madd(base, h, Lp * x), side, bend * Lp * x * x);
             q.z = gz + fj * Hb * dm_pow(1.0 - x, 1.6);
             if (!next_ok(f, &q)) break;
             if (q.z < gz + r && f->soil_from == FOOT_MAX_PTS) f->soil_from = f->n;
@@ -336,6 +342,12 @@ static void buttresses(foot *f) {
     const roots_world *w = &net->w;
     if (p->buttress <= 0 || p->maturity <= 0 || !w->ground) return;
     uint32_t n_poly = net->n_poly; /* mains only: the loop appends */
+    v3 *done = malloc(sizeof(v3) * (size_t)(net->N ? net->N : 1)); /* entries that have a buttress */
+    int n_done = 0;
+    if (!done) {
+        f->oom = 1;
+        return;
+    }
     for (uint32_t t = 0; t < n_poly && !f->oom; t++) {
         if (net->poly[t].kind != ROOT_MAIN || net->poly[t].soil_from >= net->poly[t].n) continue;
         uint32_t ie = net->poly[t].soil_from - 1;
@@ -350,6 +362,12 @@ static void buttresses(foot *f) {
         double wx = H->hi[which].x - H->lo[which].x, wy = H->hi[which].y - H->lo[which].y;
         double wz = H->hi[which].z - H->lo[which].z, wmin = wx < wy ? wx : wy;
         double L = p->buttress * (wz < wmin ? wz : wmin) * p->maturity; /* a low rock: by its height */
+        /* mains that reach the soil side by side share one buttress (each
+         * its own spread them like the fingers of a hand) */
+        int shared = 0;
+        for (int j = 0; j < n_done; j++) shared |= v3_dist(done[j], E) < 0.3 * L;
+        if (shared || n_done >= net->N) continue;
+        done[n_done++] = E;
         pcg32 g;
         pcg32_seed(&g, p->seed, (uint64_t)STREAM_FOOT + 0x8000u + (uint64_t)a);
         const double Re = net->rad[net->poly[t].off + ie];
@@ -368,6 +386,7 @@ static void buttresses(foot *f) {
         v3 h2 = v3_make(h.x * dm_cos(turn) - h.y * dm_sin(turn), h.x * dm_sin(turn) + h.y * dm_cos(turn), 0);
         surface_root(f, at + i, s2, h2, 0.5 * L, 0.6 * net->rad[at + i], a, 101, &g);
     }
+    free(done);
 }
 
 banyan_status roots_grow_foot(roots_net *net, const banyan_roots_params *p) {

@@ -65,6 +65,12 @@ typedef struct capsule {
     v3 ba;     /* b - a, and its squared length: kept for the many queries */
     double l2;
     double ra, rb;
+    /* Flattening against a host (ROOTS_FLAT): the cross-section is an
+     * ellipse sq R wide along the host and R / sq thick across it (normal
+     * fn, outward), its centre moved (1 - 1 / sq) R towards the host so
+     * that it grips as deep as the round root did; sq = 1: round. */
+    v3 fn;
+    double sq;
     uint32_t poly, at; /* polyline, its point index in net->pts of a */
 } capsule;
 
@@ -209,6 +215,46 @@ static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
     return v3_len(v3_madd(pa, ba, -t)) - (c->ra + (c->rb - c->ra) * t);
 }
 
+/* Signed distance to the flattened section of c at the axis offset e
+ * (p minus the axis point at t) for radius tr: the ellipse's first-order
+ * distance (|q|_E (|q|_E - 1) / |grad|, exact on the surface). */
+static inline double flat_dist(const capsule *c, v3 e, double tr) {
+    double sh = (1.0 - 1.0 / c->sq) * tr;
+    e = v3_madd(e, c->fn, sh);
+    double qn = v3_dot(e, c->fn), qt2 = v3_len2(e) - qn * qn;
+    if (qt2 < 0) qt2 = 0;
+    double A = tr * c->sq, B = tr / c->sq, iA2 = 1.0 / (A * A), iB2 = 1.0 / (B * B);
+    double k0 = sqrt(qt2 * iA2 + qn * qn * iB2), k1 = sqrt(qt2 * iA2 * iA2 + qn * qn * iB2 * iB2);
+    return k1 > 1e-12 ? k0 * (k0 - 1.0) / k1 : -B;
+}
+
+/* A root pressed on a host flattens against it, as a fig's roots do on a
+ * trunk: at full contact (the capsule's middle within r of the host face
+ * beyond its radius... down to touching) its section is ROOTS_FLAT_LO +
+ * (ROOTS_FLAT_HI - ROOTS_FLAT_LO) maturity times as wide as thick; the
+ * part of the host normal across the capsule's axis is the thin
+ * direction, so a root leaving the host along the normal stays round. */
+#define ROOTS_FLAT_LO 1.5
+#define ROOTS_FLAT_HI 3.0
+static void flatten(const roots_net *net, const banyan_roots_params *p, capsule *c) {
+    c->sq = 1.0;
+    c->fn = v3_make(0, 0, 0);
+    const double r = net->r, R = 0.5 * (c->ra + c->rb);
+    v3 n, m = v3_lerp(c->a, c->b, 0.5);
+    int which;
+    double cl = world_clearance_in(&net->w, m, 0, R + r, &n, &which);
+    if (which < 0 || cl >= R + r) return;
+    double s = (R + r - cl) / r;
+    s = s > 1 ? 1 : s;
+    v3 ax = v3_norm_or(c->ba, v3_make(0, 0, 1));
+    v3 across = v3_madd(n, ax, -v3_dot(n, ax));
+    double l = v3_len(across);
+    if (l < 0.5) return; /* along the normal: leaving the host */
+    double ratio = 1.0 + (ROOTS_FLAT_LO - 1.0 + (ROOTS_FLAT_HI - ROOTS_FLAT_LO) * p->maturity) * s * l;
+    c->sq = sqrt(ratio);
+    c->fn = v3_scale(across, 1.0 / l);
+}
+
 /* Polynomial smooth minimum (fillet radius about k). */
 static inline float smin(float a, float b, float k) {
     float h = k - fabsf(a - b);
@@ -218,7 +264,8 @@ static inline float smin(float a, float b, float k) {
 
 /* Rasterises capsule c (of polyline stamp - 1) into the blocks' tmp. */
 static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t stamp) {
-    double h = g->h, ih = 1.0 / h, R = (c->ra > c->rb ? c->ra : c->rb) + g->cut;
+    double wide = (c->ra > c->rb ? c->ra : c->rb) * (c->sq - 1.0); /* how much wider a flat root is */
+    double h = g->h, ih = 1.0 / h, R = (c->ra > c->rb ? c->ra : c->rb) * c->sq + g->cut;
     v3 lo = v3_make(fmin(c->a.x, c->b.x) - R, fmin(c->a.y, c->b.y) - R, fmin(c->a.z, c->b.z) - R);
     v3 hi = v3_make(fmax(c->a.x, c->b.x) + R, fmax(c->a.y, c->b.y) + R, fmax(c->a.z, c->b.z) + R);
     int32_t i0[3] = {(int32_t)ceil(lo.x / h), (int32_t)ceil(lo.y / h), (int32_t)ceil(lo.z / h)};
@@ -228,7 +275,7 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
         for (int32_t by = floor_div8(i0[1]); by <= floor_div8(i1[1]); by++)
             for (int32_t bz = floor_div8(i0[2]); bz <= floor_div8(i1[2]); bz++) {
                 v3 centre = v3_make((bx * 8 + 3.5) * h, (by * 8 + 3.5) * h, (bz * 8 + 3.5) * h);
-                if (capsule_dist(c, centre, NULL) - half_diag >= g->cut) continue;
+                if (capsule_dist(c, centre, NULL) - half_diag - wide >= g->cut) continue;
                 int32_t x0 = bx * 8 > i0[0] ? bx * 8 : i0[0], x1 = bx * 8 + 7 < i1[0] ? bx * 8 + 7 : i1[0];
                 int32_t y0 = by * 8 > i0[1] ? by * 8 : i0[1], y1 = by * 8 + 7 < i1[1] ? by * 8 + 7 : i1[1];
                 int32_t z0 = bz * 8 > i0[2] ? bz * 8 : i0[2], z1 = bz * 8 + 7 < i1[2] ? bz * 8 + 7 : i1[2];
@@ -273,9 +320,10 @@ static void raster_capsule(fgrid *g, const capsule *c, uint32_t ci, uint32_t sta
                             double t = dt * il2;
                             t = t < 0 ? 0 : (t > 1 ? 1 : t);
                             double q2 = pxy2 + pz * pz - t * (2 * dt - t * l2), tr = c->ra + dr * t;
-                            double reach = g->cut + tr;
+                            double reach = g->cut + tr * c->sq;
                             if (q2 >= reach * reach) continue;
-                            double d = sqrt(q2 > 0 ? q2 : 0) - tr;
+                            double d = c->sq == 1.0 ? sqrt(q2 > 0 ? q2 : 0) - tr
+                                                    : flat_dist(c, v3_make(px - t * ba.x, py - t * ba.y, pz - t * ba.z), tr);
                             if (b == UINT32_MAX) {
                                 b = grid_get(g, bx, by, bz);
                                 if (b == UINT32_MAX) return;
@@ -319,9 +367,76 @@ static uint32_t nearest_capsule(const fgrid *g, const capsule *caps, uint32_t n_
 typedef struct fvert {
     double u, v;
     int32_t kind, id;
-    uint32_t cap; /* the nearest capsule, and where along it (0..1) */
+    uint32_t cap; /* the nearest capsule, and where along it (0..1): the attributes */
     double t;
+    uint32_t src; /* the marching vertex (position, normal) */
 } fvert;
+
+/* The uv of q on capsule cp at t: u round it (the tube frame of its first
+ * point), v along its polyline (tube_dv, as the tubes'). */
+static void uv_on(const capsule *cp, const v3 *T, const v3 *N, const double *vcum, double r, v3 q, double t,
+                  double *u, double *v) {
+    v3 e = v3_norm_or(v3_sub(cp->b, cp->a), T[cp->at]);
+    v3 n0 = v3_norm_or_perp(v3_madd(N[cp->at], e, -v3_dot(N[cp->at], e)), e), b0 = v3_cross(e, n0);
+    v3 o = v3_sub(q, v3_lerp(cp->a, cp->b, t));
+    double l = v3_dist(cp->a, cp->b), rt = cp->ra + (cp->rb - cp->ra) * t;
+    *u = dm_atan2(v3_dot(o, b0), v3_dot(o, n0)) / (2 * BANYAN_PI) + 0.5;
+    *v = vcum[cp->at] + tube_dv(t * l, cp->ra, rt, r);
+}
+
+/* A triangle whose corners lie nearest to different roots takes one
+ * root's uvs at all three corners (the root of the corner whose capsule
+ * comes first): each other corner becomes a copy of its vertex with the
+ * uv of its position on that capsule, shared by the triangles round it
+ * that ask the same. Interpolating two roots' unrelated uvs drew tight
+ * stripes across such triangles. fv grows (*cap entries); returns the
+ * entry count, 0 when out of memory. */
+static uint32_t seam_uvs(fvert **pfv, uint32_t *cap, uint32_t nv, uint32_t *tri, uint32_t nt, const float *pos,
+                         double h, const capsule *caps, const v3 *T, const v3 *N, const double *vcum, double r) {
+    uint32_t n = nv, room = 0, *head = malloc(sizeof(uint32_t) * (nv ? nv : 1)), *next = NULL, *key = NULL;
+    if (!head) return 0;
+    for (uint32_t i = 0; i < nv; i++) head[i] = UINT32_MAX;
+    for (uint32_t f = 0; f < nt && n; f++) {
+        uint32_t *I = tri + 3 * (size_t)f, ref = 0;
+        fvert *fv = *pfv;
+        for (int j = 1; j < 3; j++)
+            if (fv[I[j]].cap < fv[I[ref]].cap) ref = (uint32_t)j;
+        const uint32_t rc = fv[I[ref]].cap;
+        for (uint32_t j = 0; j < 3 && n; j++) {
+            uint32_t s = I[j], e;
+            if (j == ref || caps[(*pfv)[s].cap].poly == caps[rc].poly) continue;
+            for (e = head[s]; e != UINT32_MAX && key[e - nv] != rc; e = next[e - nv]) {}
+            if (e == UINT32_MAX) {
+                if (n == *cap || n - nv == room) {
+                    uint32_t grow = room ? room : 1024;
+                    fvert *nf = realloc(*pfv, sizeof *nf * ((size_t)*cap + grow));
+                    if (nf) *pfv = nf, *cap += grow;
+                    uint32_t *nn = nf ? realloc(next, sizeof(uint32_t) * ((size_t)room + grow)) : NULL;
+                    if (nn) next = nn;
+                    uint32_t *nk = nn ? realloc(key, sizeof(uint32_t) * ((size_t)room + grow)) : NULL;
+                    if (!nk) {
+                        n = 0;
+                        break;
+                    }
+                    key = nk, room += grow;
+                }
+                fvert *c = &(*pfv)[n];
+                *c = (*pfv)[s];
+                const capsule *cp = &caps[rc];
+                v3 q = v3_make(pos[3 * s] * h, pos[3 * s + 1] * h, pos[3 * s + 2] * h);
+                double t = cp->l2 > 0 ? v3_dot(v3_sub(q, cp->a), cp->ba) / cp->l2 : 0;
+                uv_on(cp, T, N, vcum, r, q, t < 0 ? 0 : (t > 1 ? 1 : t), &c->u, &c->v);
+                next[n - nv] = head[s], key[n - nv] = rc, head[s] = n;
+                e = n++;
+            }
+            I[j] = e;
+        }
+    }
+    free(head);
+    free(next);
+    free(key);
+    return n;
+}
 
 /* OpenVDB's stop between its meshing stages (fused_vdb_in.stop): the
  * budget and the cancel, on the generator's thread. */
@@ -371,6 +486,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             c->ba = v3_sub(c->b, c->a), c->l2 = v3_len2(c->ba);
             c->ra = net->rad[at], c->rb = net->rad[at + 1];
             c->poly = t, c->at = at;
+            flatten(net, p, c);
             double l = v3_dist(c->a, c->b);
             vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
             area += BANYAN_PI * (c->ra + c->rb) * l;
@@ -611,10 +727,9 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 
     /* Smooth normals (area-weighted face normals), uvs and attributes. */
     nacc = calloc((size_t)3 * nv, sizeof(double));
+    uint32_t n_fv = nv, fv_cap = nv;
     fv = malloc(sizeof *fv * nv);
-    dup = malloc(sizeof *dup * nv);
-    dsrc = malloc(sizeof *dsrc * nv);
-    if (!nacc || !fv || !dup || !dsrc) goto nomem;
+    if (!nacc || !fv) goto nomem;
     for (uint32_t f = 0; f < nt; f++) {
         const uint32_t *I = vo.tri + 3 * (size_t)f;
         v3 A = v3_make(vo.pos[3 * I[0]], vo.pos[3 * I[0] + 1], vo.pos[3 * I[0] + 2]);
@@ -632,17 +747,16 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         double t = 0;
         uint32_t c = nearest_capsule(&g, caps, n_caps, q, &t);
         const capsule *cp = &caps[c];
-        v3 e = v3_norm_or(v3_sub(cp->b, cp->a), T[cp->at]);
-        v3 n0 = v3_norm_or_perp(v3_madd(N[cp->at], e, -v3_dot(N[cp->at], e)), e), b0 = v3_cross(e, n0);
-        v3 o = v3_sub(q, v3_lerp(cp->a, cp->b, t));
-        double l = v3_dist(cp->a, cp->b), rt = cp->ra + (cp->rb - cp->ra) * t;
-        fv[i].u = dm_atan2(v3_dot(o, b0), v3_dot(o, n0)) / (2 * BANYAN_PI) + 0.5;
-        fv[i].v = vcum[cp->at] + tube_dv(t * l, cp->ra, rt, r);
+        uv_on(cp, T, N, vcum, r, q, t, &fv[i].u, &fv[i].v);
         fv[i].kind = net->poly[cp->poly].kind;
         fv[i].id = net->poly[cp->poly].id;
-        fv[i].cap = c, fv[i].t = t;
-        dup[i] = UINT32_MAX;
+        fv[i].cap = c, fv[i].t = t, fv[i].src = i;
     }
+    n_fv = seam_uvs(&fv, &fv_cap, nv, vo.tri, nt, vo.pos, h, caps, T, N, vcum, r);
+    dup = malloc(sizeof *dup * (n_fv ? n_fv : 1));
+    dsrc = malloc(sizeof *dsrc * (n_fv ? n_fv : 1));
+    if (!n_fv || !dup || !dsrc) goto nomem;
+    for (uint32_t i = 0; i < n_fv; i++) dup[i] = UINT32_MAX;
     /* A triangle across u's wrap takes copies of its low-u vertices at u + 1. */
     for (uint32_t f = 0; f < nt; f++) {
         uint32_t *I = vo.tri + 3 * (size_t)f;
@@ -651,15 +765,15 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         if (hi - lo <= 0.5) continue;
         for (int j = 0; j < 3; j++)
             if (fv[I[j]].u < 0.5) {
-                if (dup[I[j]] == UINT32_MAX) dsrc[extra] = I[j], dup[I[j]] = nv + extra++;
+                if (dup[I[j]] == UINT32_MAX) dsrc[extra] = I[j], dup[I[j]] = n_fv + extra++;
                 I[j] = dup[I[j]];
             }
     }
-    if ((uint64_t)nv + extra > (uint64_t)p->max_vertices) {
+    if ((uint64_t)n_fv + extra > (uint64_t)p->max_vertices) {
         st = banyan_fail(err, BANYAN_E_LIMIT,
                          "the fused roots surface has %llu vertices, more than max_vertices = %d; raise "
                          "max_vertices or voxel_size, or use surface = tubes",
-                         (unsigned long long)nv + extra, p->max_vertices);
+                         (unsigned long long)n_fv + extra, p->max_vertices);
         goto done;
     }
 
@@ -671,12 +785,12 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     wind_slots ws;
     roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
     mb_live = 1;
-    mb_reserve(&mb, nv + extra, 3 * nt);
+    mb_reserve(&mb, n_fv + extra, 3 * nt);
     for (int pass = 0; pass < 2; pass++)
-        for (uint32_t j = 0; j < (pass ? extra : nv); j++) {
-            uint32_t i = pass ? dsrc[j] : j;
-            v3 q = v3_make(vo.pos[3 * i] * h, vo.pos[3 * i + 1] * h, vo.pos[3 * i + 2] * h);
-            v3 n = v3_norm(v3_make(nacc[3 * i], nacc[3 * i + 1], nacc[3 * i + 2]));
+        for (uint32_t j = 0; j < (pass ? extra : n_fv); j++) {
+            uint32_t i = pass ? dsrc[j] : j, s = fv[i].src;
+            v3 q = v3_make(vo.pos[3 * s] * h, vo.pos[3 * s + 1] * h, vo.pos[3 * s + 2] * h);
+            v3 n = v3_norm(v3_make(nacc[3 * s], nacc[3 * s + 1], nacc[3 * s + 2]));
             mb_set_attr(&mb, a_kind, fv[i].kind);
             mb_set_attr(&mb, a_id, fv[i].id);
             /* the nearest capsule's values, between its two points */

@@ -104,6 +104,11 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
     /* Nearest-host queries only matter within this (exact for boxes at any
      * distance; a mesh is only searched this far). */
     double look = hug_range + max_step;
+    /* A face whose normal points further down than this lets a root go:
+     * with soil_entry roots follow an overhang's underside down to the
+     * ground (a rock's, a face's brow) and only a near-flat ceiling drops
+     * them; without, any face steeper than 60 degrees past vertical. */
+    const double overhang = p->soil_entry ? -0.95 : -0.5;
 
     for (int a = 0; a < N; a++) {
         pcg32 g;
@@ -132,7 +137,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                     int which = hw;
                     double c = hc;
                     hn = hn0;
-                    hugged = which >= 0 && hn.z > -0.5 && (c < hug_range || (pressed && c < hug_range + max_step));
+                    hugged = which >= 0 && hn.z > overhang && (c < hug_range || (pressed && c < hug_range + max_step));
                     /* Keep only the part of S - Lambda across the face: along
                      * the face it would herd every root onto the box's
                      * vertical edges. */
@@ -181,7 +186,7 @@ void roots_grow_mains(roots_net *net, const banyan_roots_params *p) {
                     int which;
                     double c = world_clearance_in(w, S, 0, look, &n, &which);
                     if (!crawl && (hugged || pressed) && which >= 0 && c > r && c < hug_range + max_step &&
-                        n.z > -0.5) {
+                        n.z > overhang) {
                         /* Back to distance r from the host it was pressed
                          * against, however far the move (or a step off an
                          * edge) took it: this wraps edges. */

@@ -110,7 +110,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .soil_reach = 3,
         .flare = 1.15,
         .buttress = 1.2,
-        .foot_roots = 4,
+        .foot_roots = 3,
         .smooth_paths = 1,
         .germination = {0, 0, 0},
         .germination_auto = 1,

@@ -333,50 +333,49 @@ int tex_paint_keyaki_bark(tex_canvas *c, pcg32 *rng) {
     return 0;
 }
 
-#define FIG_RINGS 40 /* wrinkles per tile along the root */
+#define FIG_FOLDS 20 /* longitudinal folds round the root per tile */
 
-/* One row: wavy horizontal wrinkles (ring coordinate `ring` + warp),
- * broken into segments (seg), tone, fine relief. */
-static void fig_row(int n, float ring, const float *restrict warp, const float *restrict seg,
-                    const float *restrict tr, const float *restrict hr, float *restrict R, float *restrict G,
-                    float *restrict B, float *restrict H) {
-    const float pale[3] = {170, 160, 145}, dark[3] = {132, 122, 108}, crease[3] = {98, 88, 76};
+/* One row: a fig root's smooth bark: longitudinal folds (across u, warped,
+ * fading in and out in broad patches with the warp), tone, fine relief.
+ * No rings across the root, low contrast and low relief: the fused
+ * surface's uv jumps where the nearest root changes, and lines across
+ * the uv drew staircases there. */
+static void fig_row(int n, const float *restrict warp, const float *restrict tr, const float *restrict hr,
+                    float *restrict R, float *restrict G, float *restrict B, float *restrict H) {
+    const float pale[3] = {168, 159, 146}, dark[3] = {136, 127, 114}, crease[3] = {112, 102, 90};
     for (int x = 0; x < n; x++) {
-        float w = ring + 1.2f * warp[x] + 64.0f; /* positive: truncation floors */
-        float f = w - (float)(int)w, e = f < 0.5f ? f : 1.0f - f; /* distance to the wrinkle's line */
-        float k = tex_clampf(1.0f - e * e * (1.0f / (0.12f * 0.12f)), 0.0f, 1.0f);
-        float wr = k * k * k * tex_smooth(-0.1f, 0.35f, seg[x]);
-        float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f);
-        R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], 0.7f * wr);
-        G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], 0.7f * wr);
-        B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], 0.7f * wr);
-        H[x] = 0.05f * hr[x] - 0.5f * wr;
+        float a = (float)x * FIG_FOLDS / (float)n + 1.5f * warp[x] + 64.0f; /* positive: truncation floors */
+        float d = fabsf(2.0f * (a - (float)(int)a) - 1.0f);                 /* 0 on a fold's crease */
+        float fold = (1.0f - tex_smooth(0.0f, 0.3f, d)) * tex_smooth(-0.6f, 0.2f, warp[x]);
+        float t = tex_clampf(0.5f + 0.8f * tr[x], 0.0f, 1.0f), m = 0.5f * fold;
+        R[x] = tex_mix(tex_mix(dark[0], pale[0], t), crease[0], m);
+        G[x] = tex_mix(tex_mix(dark[1], pale[1], t), crease[1], m);
+        B[x] = tex_mix(tex_mix(dark[2], pale[2], t), crease[2], m);
+        H[x] = 0.05f * hr[x] - 0.45f * fold;
     }
 }
 
 int tex_paint_fig_bark(tex_canvas *c, pcg32 *rng) {
     const int n = c->n;
-    static const float spec[4][4] = {{4, 4, 4, 0.5f}, {16, 32, 3, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
+    static const float spec[3][4] = {{4, 4, 4, 0.5f}, {4, 4, 6, 0.6f}, {16, 16, 4, 0.5f}};
     fields F;
-    if (fields_init(&F, n, 4, spec, rng)) return -1;
+    if (fields_init(&F, n, 3, spec, rng)) return -1;
     for (int y0 = 0; y0 < n && !tex_stopped(c); y0 += TEX_BAND) {
-        const float *warp = fields_rows(&F, 0, y0), *seg = fields_rows(&F, 1, y0), *tone = fields_rows(&F, 2, y0),
-                    *hf = fields_rows(&F, 3, y0);
+        const float *warp = fields_rows(&F, 0, y0), *tone = fields_rows(&F, 1, y0), *hf = fields_rows(&F, 2, y0);
         for (int r = 0; r < TEX_BAND; r++) {
             size_t row = (size_t)(y0 + r) * n, o = (size_t)r * n;
-            fig_row(n, (float)(y0 + r) * FIG_RINGS / (float)n, warp + o, seg + o, tone + o, hf + o, F.rgb, F.rgb + n,
-                    F.rgb + 2 * n, c->height + row);
+            fig_row(n, warp + o, tone + o, hf + o, F.rgb, F.rgb + n, F.rgb + 2 * n, c->height + row);
             tex_pack_rgba(c->rgba + 4 * row, F.rgb, F.rgb + n, F.rgb + 2 * n, n);
         }
     }
     float s = (float)n / 1024.0f;
-    const float lcol[3] = {190, 180, 160};
-    for (int k = 0; k < 160; k++) {
+    const float lcol[3] = {182, 174, 158}; /* lenticels: short, pale, faint */
+    for (int k = 0; k < 220; k++) {
         float cx = tex_unif(rng, 0, (float)n), cy = tex_unif(rng, 0, (float)n);
-        float r = tex_unif(rng, 1.2f, 2.4f) * s;
-        mark(c, cx, cy, r * 1.6f < 1.0f ? 1.0f : r * 1.6f, r < 0.6f ? 0.6f : r, lcol, 0.6f, 0.2f);
+        float r = tex_unif(rng, 0.8f, 1.6f) * s;
+        mark(c, cx, cy, r * 1.4f < 1.0f ? 1.0f : r * 1.4f, r < 0.6f ? 0.6f : r, lcol, 0.35f, 0.15f);
     }
-    c->relief = 4.0f * s;
+    c->relief = 2.5f * s;
     c->wrap = 1;
     fields_free(&F);
     return 0;

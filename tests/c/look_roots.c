@@ -19,7 +19,11 @@
  * test_roots_look.c (95th percentile beyond the footprint <= 0.5 x its
  * diagonal) on all five; 0 intersecting triangle pairs on all five; the
  * default net's .glb <= 6 MB. It prints every bound that fails and exits
- * 1 when any does; ctest runs it as test_roots_foot. */
+ * 1 when any does; ctest runs it as test_roots_foot.
+ *
+ *   look_roots --doc docs/roots.md
+ * writes the foot's figures (seeds 1-5 of the five nets) into the page's
+ * block between "<!-- figures: look_roots -->" and "<!-- end figures -->". */
 #include <stdio.h>
 #include <time.h>
 
@@ -165,7 +169,47 @@ static int accept(void) {
     return failed || errors;
 }
 
+/* The figures block of docs/roots.md (see the header). */
+static int doc(const char *path) {
+    static const char open_tag[] = "<!-- figures: look_roots -->", close_tag[] = "<!-- end figures -->";
+    size_t len = 0;
+    char *page = test_read_file(path, &len);
+    char *a = page ? strstr(page, open_tag) : NULL, *b = a ? strstr(a, close_tag) : NULL;
+    if (!b) return fprintf(stderr, "%s: no %s ... %s block\n", path, open_tag, close_tag), 1;
+    size_t cap = 1 << 16, n = 0;
+    char *t = malloc(cap);
+    if (!t) return 1;
+    n += (size_t)snprintf(t + n, cap - n,
+                          "%s\n<!-- written by `build/tests/look_roots --doc docs/roots.md`, do not edit -->\n\n"
+                          "| net | seed | .glb MB | sleeve gap | gap lowest 0.5 m | foot reach / width | "
+                          "p95 beyond footprint / diagonal | intersecting pairs |\n|---|---|---|---|---|---|---|---|\n",
+                          open_tag);
+    for (int k = 0; k < 5; k++) {
+        banyan_roots_params p;
+        banyan_hosts *H;
+        if (load(NAMES[k], &p, &H)) return free(t), 1;
+        for (uint64_t seed = 1; seed <= 5; seed++) {
+            figures f;
+            p.seed = seed;
+            if (measure(NAMES[k], &p, H, &f)) return free(t), banyan_hosts_free(H), 1;
+            n += (size_t)snprintf(t + n, cap - n, "| %s%s%s | %llu | %.2f | %.2f | %.2f | %.2f | %.3f | %lld |\n",
+                                  k ? "`" : "", NAMES[k], k ? "`" : "", (unsigned long long)seed, f.glb / 1e6,
+                                  f.sleeve.gap, f.sleeve.gap_foot, f.reach.fraction, f.diag > 0 ? f.p95 / f.diag : 0,
+                                  (long long)f.pairs);
+        }
+        banyan_hosts_free(H);
+    }
+    FILE *o = fopen(path, "wb");
+    int rc = !o || fwrite(page, 1, (size_t)(a - page), o) != (size_t)(a - page) || fwrite(t, 1, n, o) != n ||
+             fputs("\n", o) < 0 || fputs(b, o) < 0;
+    if (o && fclose(o)) rc = 1;
+    free(t);
+    free(page);
+    return rc;
+}
+
 int main(int argc, char **argv) {
+    if (argc > 2 && !strcmp(argv[1], "--doc")) return doc(argv[2]);
     if (argc > 1 && !strcmp(argv[1], "--accept")) {
         if (argc > 2) out_dir = argv[2];
         return accept();

@@ -82,7 +82,7 @@ typedef struct banyan_roots_params {
                                      past the host, times the host's smallest extent, at maturity 1
                                      (times maturity below); 0: none [1.2] */
     double foot_roots;            /* 0 .. 8: roots that drop from the lowest branch roots to the soil,
-                                     per gap between main roots, at maturity 1 (times maturity) [4] */
+                                     per gap between main roots, at maturity 1 (times maturity) [3] */
     int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
     /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT naming it. */
     double max_seconds;           /* s, 0.01 .. 604800: wall time of one call [600] */
