@@ -75,13 +75,16 @@ def grow(**kw):
 def measure(objs):
     """What the guide says about roots around the default cube (2 m, centred
     on the origin): objects, vertices, the highest and lowest root point,
-    how far any root stands out from the cube's faces, how many of its four
-    side faces have roots on them."""
+    how far any root stands out from the cube's faces above its foot (0.3 m
+    over the ground at z = -1) and how far the foot's roots run out over the
+    ground, how many of its four side faces have roots on them."""
     vs = [o.matrix_world @ v.co for o in objs if o.type == 'MESH' for v in o.data.vertices]
-    out = max(max(abs(v.x), abs(v.y)) for v in vs) - 1.0
+    out = max(max(abs(v.x), abs(v.y)) for v in vs if v.z > -0.7) - 1.0
+    reach = max(max(abs(v.x), abs(v.y)) for v in vs) - 1.0
     faces = [any(v.x > 1 for v in vs), any(v.x < -1 for v in vs), any(v.y > 1 for v in vs), any(v.y < -1 for v in vs)]
     return {"objects": len(objs), "vertices": len(vs), "top": round(max(v.z for v in vs), 2),
-            "bottom": round(min(v.z for v in vs), 2), "out": round(out, 2), "faces": sum(faces)}
+            "bottom": round(min(v.z for v in vs), 2), "out": round(out, 2), "reach": round(reach, 2),
+            "faces": sum(faces)}
 
 
 def figures_text(defaults, tweak):
@@ -93,8 +96,9 @@ def figures_text(defaults, tweak):
         % (d["objects"], format(d["vertices"], ",")),
         "z = %.2f m down to z = %.2f m (the cube reaches from z = -1 to 1 m), on %d of"
         % (d["top"], d["bottom"], d["faces"]),
-        "its 4 side faces and never more than %.2f m out from them." % d["out"],
-        "With Main roots 12: %s vertices, on %d faces, at most %.2f m out."
+        "its 4 side faces and never more than %.2f m out from them above the foot;" % d["out"],
+        "at the foot, buttresses and surface roots run %.2f m out over the ground." % d["reach"],
+        "With Main roots 12: %s vertices, on %d faces, at most %.2f m out above the foot."
         % (format(t["vertices"], ","), t["faces"], t["out"]),
         END])
 

@@ -4,11 +4,14 @@ from 1 m, 3 m and 10 m, for docs/roots.md's before/after pictures:
     bash tools/render_docs.sh roots -- --tag after --values '{"surface": 1}'
 
 writes docs/img/roots/look_<tag>_1m.png, _3m.png, _10m.png (--preset
-grows a preset instead, --size, --samples)."""
+grows a preset instead, --suzanne grows on Blender's Suzanne (2 m, chin
+on the ground) as a mesh host through the add-on, --size, --samples)."""
 import argparse
 import json
 import os
 import sys
+
+import bpy
 
 from mathutils import Vector
 
@@ -42,6 +45,7 @@ def main():
     ap.add_argument("--tag", default="before")
     ap.add_argument("--preset", default=None)
     ap.add_argument("--values", default="{}", help="params as JSON, e.g. {\"surface\": 1}")
+    ap.add_argument("--suzanne", action="store_true", help="grow on Suzanne (a mesh host) instead")
     ap.add_argument("--size", default="640x400")
     ap.add_argument("--samples", type=int, default=8)
     ap.add_argument("--out", default=os.path.join(RS.REPO, "docs", "img", "roots"))
@@ -49,7 +53,11 @@ def main():
     w, h = (int(v) for v in a.size.split("x"))
     for name, dist in VIEWS:
         RS.reset()
-        plant, hosts = RS.grow("roots", preset=a.preset, values=json.loads(a.values))
+        host = None
+        if a.suzanne:
+            bpy.ops.mesh.primitive_monkey_add(size=2.0, location=(0, 0, 1.0))
+            host = [bpy.context.active_object]
+        plant, hosts = RS.grow("roots", preset=a.preset, values=json.loads(a.values), hosts=host)
         hosts = RS.host_objects(hosts)
         RS.plant_materials(plant)
         RS.studio(plant + hosts)
@@ -60,7 +68,7 @@ def main():
         cam.rotation_euler = (-d).to_track_quat('-Z', 'Y').to_euler()
         cam.data.lens = 28.0
         cam.data.clip_start = 0.01
-        tag = a.tag if not a.preset else "%s_%s" % (a.preset, a.tag)
+        tag = a.tag if not (a.preset or a.suzanne) else "%s_%s" % (a.preset or "suzanne", a.tag)
         RS.render(os.path.join(a.out, "look_%s_%s.png" % (tag, name)), w, h, a.samples, plant)
 
 

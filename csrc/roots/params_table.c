@@ -102,7 +102,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .junction_falloff = 3,
         .surface = 0,
         .voxel_size = 0.9,
-        .fuse_radius = 1,
+        .fuse_radius = 2,
         .maturity = 0.6,
         .pipe_exponent = 2.5,
         .tip_radius = 0.6,

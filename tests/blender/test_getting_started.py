@@ -56,14 +56,17 @@ def grow(**kw):
     sides = [sum(1 for v in vs if v.x > 1), sum(1 for v in vs if v.x < -1),
              sum(1 for v in vs if v.y > 1), sum(1 for v in vs if v.y < -1)]
     on_top = sum(1 for v in vs if v.z > 1 and abs(v.x) < 1 and abs(v.y) < 1)
-    near = sum(1 for v in vs if max(abs(v.x), abs(v.y)) < 1.5)
+    # above the foot (0.3 m over the ground at z = -1): the buttresses and
+    # surface roots at the foot run out over the ground on purpose
+    lifted = [v for v in vs if v.z > -0.7]
+    near = sum(1 for v in lifted if max(abs(v.x), abs(v.y)) < 1.5)
     bottom = min((v.z for v in vs), default=0.0)
     for o in new:
         bpy.data.objects.remove(o)
     cube.select_set(True)
     bpy.context.view_layer.objects.active = cube
     return {"result": sorted(res), "objects": len(new), "vertices": len(vs), "inside": inside, "sides": sides,
-            "on_top": on_top, "near": near, "bottom": bottom}
+            "on_top": on_top, "near": near, "lifted": len(lifted), "bottom": bottom}
 
 
 out["defaults"] = grow()
@@ -112,8 +115,8 @@ def test_guide():
                  "%s: roots on at least three sides %s and on top (%d)" % (key, g["sides"], g["on_top"]))
         # The ground is at the cube's foot (z = -1): the roots reach it and enter the soil beside it.
         bt.check(g["bottom"] < -0.95, "%s: roots down to the cube's foot (lowest z %.3f)" % (key, g["bottom"]))
-        bt.check(g["near"] > 0.9 * g["vertices"], "%s: roots close round the cube, not crawling away: %d of %d "
-                 "vertices within 0.5 m of it" % (key, g["near"], g["vertices"]))
+        bt.check(g["near"] > 0.9 * g["lifted"], "%s: roots close round the cube, not crawling away: %d of %d "
+                 "vertices above the foot within 0.5 m of it" % (key, g["near"], g["lifted"]))
     bt.check(out["tweak"]["vertices"] > out["defaults"]["vertices"], "tweak: more main roots, more vertices (%d -> %d)"
              % (out["defaults"]["vertices"], out["tweak"]["vertices"]))
     with open(os.path.join(bt.SOURCE_DIR, "docs", "getting-started.md"), encoding="utf-8") as f:
