@@ -20,8 +20,8 @@
  *   buttress share it.
  * - Surface roots: under each plank a root runs on along the ground, half
  *   in the soil, meandering, to the buttress reach past the host's
- *   surface (buttress x the host's smaller width x maturity), with a side
- *   root on figs of maturity 0.5 and more; both end in the soil.
+ *   surface (buttress x the host's smallest extent x maturity), with a
+ *   side root on figs of maturity 0.8 and more; both end in the soil.
  * Their points keep r from the hosts; points on or in the soil (soil_from
  * on) do not keep r from the ground. */
 #include <stdlib.h>
@@ -322,7 +322,7 @@ static uint32_t surface_root(foot *f, uint32_t from, v3 s, v3 h, double L, doubl
         head = v3_norm_or(v3_make(head.x * c - head.y * sn, head.x * sn + head.y * c, 0), h);
         /* back towards h when it strays past 35 degrees */
         if (v3_dot(head, h) < 0.82) head = v3_norm_or(v3_lerp(head, h, 0.3), h);
-        double x = (double)i / ns, R = tip + (R0 - tip) * (1.0 - 0.8 * x);
+        double x = (double)i / ns, R = tip + (R0 - tip) * dm_pow(1.0 - x, 1.2);
         v3 nq = v3_madd(q, head, step);
         nq.z = gz - 0.25 * R;
         if (!next_ok(f, &nq)) break;
@@ -377,9 +377,9 @@ static void buttresses(foot *f) {
         v3 s = E;
         s.z = w->ground_z - 0.25 * Re;
         if (!keep_clear(f, &s)) continue;
-        double R0 = 0.7 * Re > net->r ? 0.7 * Re : net->r;
+        double R0 = 0.9 * Re > net->r ? 0.9 * Re : net->r;
         uint32_t at = surface_root(f, net->poly[t].off + ie, s, h, L, R0, a, 100, &g);
-        if (at == UINT32_MAX || p->maturity < 0.5) continue;
+        if (at == UINT32_MAX || p->maturity < 0.8) continue;
         uint32_t n_s = net->poly[net->n_poly - 1].n, i = n_s / 3;
         v3 s2 = net->pts[at + i];
         double turn = (rng_uniform(&g) < 0.5 ? -1.0 : 1.0) * rng_range(&g, 0.6, 1.0);
