@@ -204,7 +204,7 @@ static void drop_roots(foot *f) {
     }
     pcg32 g;
     pcg32_seed(&g, f->p->seed, (uint64_t)STREAM_FOOT);
-    for (int d = 0; d < want && !f->oom && n < cap; d++) {
+    for (int d = 0; d < want && !f->oom && n < cap && !roots_stop(net); d++) { /* a scan of the net each */
         /* the widest gap not shut */
         qsort(ang, (size_t)n, sizeof(double), dbl_cmp);
         double best = -1, mid = 0;
@@ -348,7 +348,7 @@ static void buttresses(foot *f) {
         f->oom = 1;
         return;
     }
-    for (uint32_t t = 0; t < n_poly && !f->oom; t++) {
+    for (uint32_t t = 0; t < n_poly && !f->oom && !roots_stop(net); t++) {
         if (net->poly[t].kind != ROOT_MAIN || net->poly[t].soil_from >= net->poly[t].n) continue;
         uint32_t ie = net->poly[t].soil_from - 1;
         const int a = net->poly[t].a;
