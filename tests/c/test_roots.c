@@ -631,7 +631,7 @@ int main(int argc, char **argv) {
         p.first_branches = 0;
         roots_net net;
         banyan_error err;
-        int kinds[3] = {0, 0, 0};
+        int kinds[4] = {0, 0, 0, 0}; /* ROOT_MAIN .. ROOT_FOOT */
         roots_net_build(&p, &host, 1, &net, &err);
         for (uint32_t t = 0; t < net.n_poly; t++) kinds[net.poly[t].kind]++;
         CHECK(kinds[0] == 6 && kinds[1] == 0 && kinds[2] == 0, "first_branches off: kinds %d %d %d", kinds[0], kinds[1],
