@@ -92,6 +92,12 @@ static int next_ok(const foot *f, v3 *q) {
 /* Angle of q round the vertical through G. */
 static double angle_of(const roots_net *net, v3 q) { return dm_atan2(q.y - net->G.y, q.x - net->G.x); }
 
+/* a - b turned into [-pi, pi). */
+static double angle_diff(double a, double b) {
+    double d = a - b;
+    return d - 2.0 * BANYAN_PI * floor(d / (2.0 * BANYAN_PI) + 0.5);
+}
+
 /* One drop root from net point `from` down the host to the soil, leaning
  * `lean` metres sideways (counter-clockwise round G) per metre down. */
 static void drop_root(foot *f, uint32_t from, double lean, int a, int k, pcg32 *g) {
@@ -101,7 +107,7 @@ static void drop_root(foot *f, uint32_t from, double lean, int a, int k, pcg32 *
     const double r = net->r, gz = w->ground_z, step = 2.0 * r, stop = r * (1.0 - ROOTS_SAG);
     v3 S = net->pts[from];
     double z0 = S.z;
-    if (!w->ground || z0 - gz < 4.0 * r) return;
+    if (z0 - gz < 4.0 * r) return; /* roots_grow_foot asks for the ground */
     /* as thick as a branch root, even from a main root's point */
     double R0 = net->rad[from] < 1.2 * r ? net->rad[from] : 1.2 * r;
     f->n = 0;
@@ -152,7 +158,6 @@ static void drop_root(foot *f, uint32_t from, double lean, int a, int k, pcg32 *
     emit(f, from, a, k);
 }
 
-
 static int dbl_cmp(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
@@ -173,8 +178,7 @@ static uint32_t drop_source(const foot *f, double th, double half) {
         for (uint32_t i = 1; i < end; i++) {
             v3 q = net->pts[pl->off + i];
             if (q.z >= bz || q.z - gz < 4.0 * r) continue;
-            double d = angle_of(net, q) - th;
-            d -= 2.0 * BANYAN_PI * floor(d / (2.0 * BANYAN_PI) + 0.5);
+            double d = angle_diff(angle_of(net, q), th);
             if (d < -half || d > half) continue;
             if (world_clearance_in(&net->w, q, 0, near, NULL, NULL) >= near) continue;
             bz = q.z, best = pl->off + i;
@@ -213,8 +217,7 @@ static void drop_roots(foot *f) {
             double w = a1 - a0, c = a0 + 0.5 * w;
             int closed = 0;
             for (int j = 0; j < n_shut; j++) {
-                double e = shut[j] - c;
-                e -= two_pi * floor(e / two_pi + 0.5);
+                double e = angle_diff(shut[j], c);
                 if (e > -0.25 * w && e < 0.25 * w) closed = 1;
             }
             if (!closed && w > best) best = w, mid = c;
@@ -225,8 +228,7 @@ static void drop_roots(foot *f) {
         if (from != UINT32_MAX) {
             /* lean so as to land in the gap's middle */
             v3 S = net->pts[from];
-            double e = mid - angle_of(net, S);
-            e -= two_pi * floor(e / two_pi + 0.5);
+            double e = angle_diff(mid, angle_of(net, S));
             double rho = sqrt((S.x - net->G.x) * (S.x - net->G.x) + (S.y - net->G.y) * (S.y - net->G.y));
             double lean = e * rho / (S.z - net->w.ground_z);
             lean = lean > 0.6 ? 0.6 : (lean < -0.6 ? -0.6 : lean);
@@ -340,7 +342,7 @@ static void buttresses(foot *f) {
     roots_net *net = f->net;
     const banyan_roots_params *p = f->p;
     const roots_world *w = &net->w;
-    if (p->buttress <= 0 || p->maturity <= 0 || !w->ground) return;
+    if (p->buttress <= 0 || p->maturity <= 0) return; /* roots_grow_foot asks for the ground */
     uint32_t n_poly = net->n_poly; /* mains only: the loop appends */
     v3 *done = malloc(sizeof(v3) * (size_t)(net->N ? net->N : 1)); /* entries that have a buttress */
     int n_done = 0;

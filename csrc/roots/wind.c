@@ -116,19 +116,18 @@ int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_w
         const v3 *P = net->pts + pl->off;
         const double *R = net->rad + pl->off;
         double *s = st + pl->off;
-        for (uint32_t i = 0; i < pl->n; i++) {
-            double reach = (R[i] > r ? R[i] : r) + 0.5 * r;
-            s[i] = world_clearance_in(&net->w, P[i], 1, reach, NULL, NULL) < reach ? 1.0 : 0.0;
-        }
         if (pl->kind == ROOT_FOOT) { /* buttresses, surface and drop roots: held along their length */
             for (uint32_t i = 0; i < pl->n; i++) s[i] = 1.0;
             continue;
         }
+        for (uint32_t i = 0; i < pl->n; i++) {
+            double reach = (R[i] > r ? R[i] : r) + 0.5 * r;
+            s[i] = world_clearance_in(&net->w, P[i], 1, reach, NULL, NULL) < reach ? 1.0 : 0.0;
+        }
         if (pl->kind == ROOT_MAIN) s[0] = 1.0; /* G */
         else {
-            uint32_t e1 = parent_point(net, p, pl, 1);
-            s[0] = st[parent_point(net, p, pl, 0)];
-            if (e1 != UINT32_MAX) s[pl->n - 1] = st[e1];
+            double s0 = st[parent_point(net, p, pl, 0)], s1 = st[parent_point(net, p, pl, 1)];
+            s[0] = s0, s[pl->n - 1] = s1;
         }
         double *k = arc; /* k[i]: the fall over segment i-1 .. i, one exp each */
         for (uint32_t i = 1; i < pl->n; i++) {
