@@ -229,9 +229,10 @@ static inline double flat_dist(const capsule *c, v3 e, double tr) {
 }
 
 /* A root pressed on a host flattens against it, as a fig's roots do on a
- * trunk: at full contact (the capsule's middle within r of the host face
- * beyond its radius... down to touching) its section is ROOTS_FLAT_LO +
- * (ROOTS_FLAT_HI - ROOTS_FLAT_LO) maturity times as wide as thick; the
+ * trunk: where the capsule's middle lies within R of the host (full
+ * contact; the flattening fades out as the gap opens to r) its section is
+ * ROOTS_FLAT_LO + (ROOTS_FLAT_HI - ROOTS_FLAT_LO) maturity times as wide
+ * as thick; the
  * part of the host normal across the capsule's axis is the thin
  * direction, so a root leaving the host along the normal stays round. */
 #define ROOTS_FLAT_LO 1.5
@@ -424,8 +425,9 @@ static uint32_t seam_uvs(fvert **pfv, uint32_t *cap, uint32_t nv, uint32_t *tri,
                 *c = (*pfv)[s];
                 const capsule *cp = &caps[rc];
                 v3 q = v3_make(pos[3 * s] * h, pos[3 * s + 1] * h, pos[3 * s + 2] * h);
-                double t = cp->l2 > 0 ? v3_dot(v3_sub(q, cp->a), cp->ba) / cp->l2 : 0;
-                uv_on(cp, T, N, vcum, r, q, t < 0 ? 0 : (t > 1 ? 1 : t), &c->u, &c->v);
+                double t;
+                capsule_dist(cp, q, &t);
+                uv_on(cp, T, N, vcum, r, q, t, &c->u, &c->v);
                 next[n - nv] = head[s], key[n - nv] = rc, head[s] = n;
                 e = n++;
             }
