@@ -18,42 +18,9 @@
 #include <string.h>
 
 #include "hosts.h"
+#include "tri_closest.h"
 
 /* ----------------------------------------------------- closest point */
-
-/* Closest point of triangle abc to p (Ericson, Real-Time Collision
- * Detection 5.1.5). *region: 0 face, 1..3 vertex a, b, c, 4..6 edge ab,
- * bc, ca. */
-static v3 closest_on_triangle(v3 p, v3 a, v3 b, v3 c, int *region) {
-    v3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
-    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) { *region = 1; return a; }
-    v3 bp = v3_sub(p, b);
-    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) { *region = 2; return b; }
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        *region = 4;
-        return v3_madd(a, ab, d1 / (d1 - d3));
-    }
-    v3 cp = v3_sub(p, c);
-    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) { *region = 3; return c; }
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        *region = 6;
-        return v3_madd(a, ac, d2 / (d2 - d6));
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        *region = 5;
-        return v3_madd(b, v3_sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    double den = 1.0 / (va + vb + vc);
-    *region = 0;
-    return v3_madd(v3_madd(a, ab, vb * den), ac, vc * den);
-}
-
 
 typedef struct nq_ctx {
     const host_mesh *m;
@@ -81,7 +48,7 @@ static bool nq_cb(struct RTCPointQueryFunctionArguments *a) {
     double hp = fabs(v3_dot(dp, f3(c->m->fnrm + 3 * (size_t)prim)));
     if (hp - 1e-5 * (fabs(dp.x) + fabs(dp.y) + fabs(dp.z)) - c->m->slack > c->best) return false;
     int region;
-    v3 q = closest_on_triangle(c->p, vtx(c->m, t[0]), vtx(c->m, t[1]), vtx(c->m, t[2]), &region);
+    v3 q = tri_closest(c->p, vtx(c->m, t[0]), vtx(c->m, t[1]), vtx(c->m, t[2]), &region);
     double d2 = v3_len2(v3_sub(c->p, q));
     /* The least (d2, triangle): a tie with the cap is no hit. */
     if (d2 > c->best2 || (d2 == c->best2 && (c->prim == UINT32_MAX || prim >= c->prim))) return false;
@@ -328,14 +295,14 @@ double hmesh_prim_distance(const host_mesh *m, uint32_t prim, v3 p) {
     const uint32_t *t = m->tri + 3 * (size_t)prim;
     int region;
     v3 pl = v3_sub(p, m->origin);
-    return v3_dist(pl, closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region));
+    return v3_dist(pl, tri_closest(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region));
 }
 
 v3 hmesh_prim_closest(const host_mesh *m, uint32_t prim, v3 p) {
     const uint32_t *t = m->tri + 3 * (size_t)prim;
     int region;
     v3 pl = v3_sub(p, m->origin);
-    return v3_add(closest_on_triangle(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region), m->origin);
+    return v3_add(tri_closest(pl, vtx(m, t[0]), vtx(m, t[1]), vtx(m, t[2]), &region), m->origin);
 }
 
 double hmesh_udistance(const host_mesh *m, v3 p, double cap, uint32_t *prim) {
@@ -445,12 +412,12 @@ static double tri_seg_dist(const tri3 *T, v3 a, v3 d) {
         double s = -pa / pd;
         if (s >= 0 && s <= 1) { /* crosses the plane: through the triangle? */
             v3 x = v3_madd(a, d, s);
-            if (v3_len2(v3_sub(x, closest_on_triangle(x, T->v[0], T->v[1], T->v[2], &region))) <= 1e-24) return 0;
+            if (v3_len2(v3_sub(x, tri_closest(x, T->v[0], T->v[1], T->v[2], &region))) <= 1e-24) return 0;
         }
     }
     v3 b = v3_add(a, d);
-    double best = fmin(v3_len2(v3_sub(a, closest_on_triangle(a, T->v[0], T->v[1], T->v[2], &region))),
-                       v3_len2(v3_sub(b, closest_on_triangle(b, T->v[0], T->v[1], T->v[2], &region))));
+    double best = fmin(v3_len2(v3_sub(a, tri_closest(a, T->v[0], T->v[1], T->v[2], &region))),
+                       v3_len2(v3_sub(b, tri_closest(b, T->v[0], T->v[1], T->v[2], &region))));
     for (int k = 0; k < 3; k++) best = fmin(best, seg_seg_dist2(a, b, T->v[k], T->v[(k + 1) % 3]));
     return sqrt(best);
 }
@@ -507,7 +474,7 @@ double hmesh_segment_distance(const host_mesh *m, v3 a, v3 b, double cap, int fi
 /* f(t) = distance from p + t d to T, less r, and its slope. */
 static double tri_f(const tri3 *T, v3 p, v3 d, double t, double r, double *slope, v3 *grad) {
     int region;
-    v3 x = v3_madd(p, d, t), q = closest_on_triangle(x, T->v[0], T->v[1], T->v[2], &region), g = v3_sub(x, q);
+    v3 x = v3_madd(p, d, t), q = tri_closest(x, T->v[0], T->v[1], T->v[2], &region), g = v3_sub(x, q);
     double dist = v3_len(g);
     g = dist > 0 ? v3_scale(g, 1.0 / dist) : (v3_dot(d, T->n) > 0 ? v3_neg(T->n) : T->n);
     if (slope) *slope = dist > 0 ? v3_dot(g, d) : -v3_len(d);

@@ -30,6 +30,7 @@
 #include "core/error.h"
 #include "core/tube.h"
 #include "core/wind.h"
+#include "capsule.h"
 #include "fused_vdb.h"
 #include "roots_internal.h"
 /* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
@@ -59,20 +60,6 @@ static double stage_ms(void) {
 #define SNAP 0.1
 /* The surface is closed this far (times r) under the ground. */
 #define SOIL_DEPTH 2.0
-
-typedef struct capsule {
-    v3 a, b;
-    v3 ba;     /* b - a, and its squared length: kept for the many queries */
-    double l2;
-    double ra, rb;
-    /* Flattening against a host (ROOTS_FLAT): the cross-section is an
-     * ellipse sq R wide along the host and R / sq thick across it (normal
-     * fn, outward), its centre moved (1 - 1 / sq) R towards the host so
-     * that it grips as deep as the round root did; sq = 1: round. */
-    v3 fn;
-    double sq;
-    uint32_t poly, at; /* polyline, its point index in net->pts of a */
-} capsule;
 
 typedef struct blk_meta {
     int32_t bx, by, bz;
@@ -202,58 +189,6 @@ static void grid_free(fgrid *g) {
     free(g->lc);
     free(g->lnext);
     free(g->touched);
-}
-
-/* Signed distance to a tapered capsule: distance to the axis point at the
- * projection's t, less the radius there (near enough to exact for the
- * tapers of a root, and 1-Lipschitz up to the taper's slope). *t_out gets t. */
-static inline double capsule_dist(const capsule *c, v3 p, double *t_out) {
-    v3 ba = c->ba, pa = v3_sub(p, c->a);
-    double l2 = c->l2, t = l2 > 0 ? v3_dot(pa, ba) / l2 : 0;
-    t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    if (t_out) *t_out = t;
-    return v3_len(v3_madd(pa, ba, -t)) - (c->ra + (c->rb - c->ra) * t);
-}
-
-/* Signed distance to the flattened section of c at the axis offset e
- * (p minus the axis point at t) for radius tr: the ellipse's first-order
- * distance (|q|_E (|q|_E - 1) / |grad|, exact on the surface). */
-static inline double flat_dist(const capsule *c, v3 e, double tr) {
-    double sh = (1.0 - 1.0 / c->sq) * tr;
-    e = v3_madd(e, c->fn, sh);
-    double qn = v3_dot(e, c->fn), qt2 = v3_len2(e) - qn * qn;
-    if (qt2 < 0) qt2 = 0;
-    double A = tr * c->sq, B = tr / c->sq, iA2 = 1.0 / (A * A), iB2 = 1.0 / (B * B);
-    double k0 = sqrt(qt2 * iA2 + qn * qn * iB2), k1 = sqrt(qt2 * iA2 * iA2 + qn * qn * iB2 * iB2);
-    return k1 > 1e-12 ? k0 * (k0 - 1.0) / k1 : -B;
-}
-
-/* A root pressed on a host flattens against it, as a fig's roots do on a
- * trunk: where the capsule's middle lies within R of the host (full
- * contact; the flattening fades out as the gap opens to r) its section is
- * ROOTS_FLAT_LO + (ROOTS_FLAT_HI - ROOTS_FLAT_LO) maturity times as wide
- * as thick; the
- * part of the host normal across the capsule's axis is the thin
- * direction, so a root leaving the host along the normal stays round. */
-#define ROOTS_FLAT_LO 1.5
-#define ROOTS_FLAT_HI 3.0
-static void flatten(const roots_net *net, const banyan_roots_params *p, capsule *c) {
-    c->sq = 1.0;
-    c->fn = v3_make(0, 0, 0);
-    const double r = net->r, R = 0.5 * (c->ra + c->rb);
-    v3 n, m = v3_lerp(c->a, c->b, 0.5);
-    int which;
-    double cl = world_clearance_in(&net->w, m, 0, R + r, &n, &which);
-    if (which < 0 || cl >= R + r) return;
-    double s = (R + r - cl) / r;
-    s = s > 1 ? 1 : s;
-    v3 ax = v3_norm_or(c->ba, v3_make(0, 0, 1));
-    v3 across = v3_madd(n, ax, -v3_dot(n, ax));
-    double l = v3_len(across);
-    if (l < 0.5) return; /* along the normal: leaving the host */
-    double ratio = 1.0 + (ROOTS_FLAT_LO - 1.0 + (ROOTS_FLAT_HI - ROOTS_FLAT_LO) * p->maturity) * s * l;
-    c->sq = sqrt(ratio);
-    c->fn = v3_scale(across, 1.0 / l);
 }
 
 /* Polynomial smooth minimum (fillet radius about k). */
@@ -457,7 +392,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     /* Capsules, and an estimate of the vertices: a tube's side over h^2. */
     uint32_t n_caps = 0;
     for (uint32_t t = 0; t < net->n_poly; t++)
-        if (net->poly[t].n >= 2) n_caps += net->poly[t].n - 1;
+        if (net->poly[t].n >= 2 && net->poly[t].kind != ROOT_AERIAL) n_caps += net->poly[t].n - 1;
     if (n_caps == 0) return banyan_fail(err, BANYAN_E_INTERNAL, "the roots net has no root to mesh");
     capsule *caps = malloc(sizeof *caps * n_caps);
     v3 *T = malloc(sizeof(v3) * 2 * (net->n_pts ? net->n_pts : 1));
@@ -478,17 +413,13 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     n_caps = 0;
     for (uint32_t t = 0; t < net->n_poly; t++) {
         const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2) continue;
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
         tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
         vcum[pl->off] = 0;
         for (uint32_t i = 0; i + 1 < pl->n; i++) {
             uint32_t at = pl->off + i;
             capsule *c = &caps[n_caps++];
-            c->a = net->pts[at], c->b = net->pts[at + 1];
-            c->ba = v3_sub(c->b, c->a), c->l2 = v3_len2(c->ba);
-            c->ra = net->rad[at], c->rb = net->rad[at + 1];
-            c->poly = t, c->at = at;
-            flatten(net, p, c);
+            roots_capsule_set(c, net, p, t, at);
             double l = v3_dist(c->a, c->b);
             vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
             area += BANYAN_PI * (c->ra + c->rb) * l;
@@ -523,7 +454,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     if (grid_rehash(&g, 4096)) goto nomem;
     for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
         const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2) continue;
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
         if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
             st = prog_fail(net->prog, err, "fused roots surface");
             goto done;
@@ -787,7 +718,14 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     wind_slots ws;
     roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
     mb_live = 1;
-    mb_reserve(&mb, n_fv + extra, 3 * nt);
+    uint32_t thread_v = 0, thread_i = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].kind == ROOT_AERIAL) {
+            uint32_t v, i;
+            roots_aerial_counts(&net->poly[t], &v, &i);
+            thread_v += v, thread_i += i;
+        }
+    mb_reserve(&mb, n_fv + extra + thread_v, 3 * nt + thread_i);
     for (int pass = 0; pass < 2; pass++)
         for (uint32_t j = 0; j < (pass ? extra : n_fv); j++) {
             uint32_t i = pass ? dsrc[j] : j, s = fv[i].src;
@@ -804,6 +742,14 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
         }
     for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
+    for (uint32_t t = 0; t < net->n_poly && thread_v; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->kind != ROOT_AERIAL) continue;
+        mb_set_attr(&mb, a_kind, pl->kind);
+        mb_set_attr(&mb, a_id, pl->id);
+        wind_set(&mb, &ws, rw.pivot[t], roots_wind_level(pl->kind), 1.0, rw.phase[t], 0.0);
+        roots_aerial_sweep(&mb, net, pl, nt, ws.stiffness, ws.birth, rw.stiff, rw.birth);
+    }
     if (!mb.status && mb.nv) {
         /* The surface starts off G and ends short of the last tip: its
          * birth is stretched to 0..1 so growth starts and ends on time. */

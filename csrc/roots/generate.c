@@ -264,7 +264,8 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     if (prog_at(g, ROOTS_AT_FIRST)) goto cancelled;
     roots_grow_second(net, p);
     if (prog_at(g, ROOTS_AT_SECOND)) goto cancelled;
-    if ((s = roots_make_paths(net, p)) || (!prog_stopped(g) && (s = roots_grow_foot(net, p)))) {
+    if ((s = roots_make_paths(net, p)) || (!prog_stopped(g) && (s = roots_grow_foot(net, p))) ||
+        (!prog_stopped(g) && (s = roots_grow_aerial(net, p)))) {
         roots_net_free(net);
         return banyan_fail(err, s, "out of memory for the roots paths");
     }

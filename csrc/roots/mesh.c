@@ -332,7 +332,7 @@ int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roo
     /* Skeleton: one point per polyline point, the junctions shared: a first
      * branch root's ends are its main roots' points, a second branch root's
      * ends are its first branch roots' middle points; a foot root's start
-     * is the net point it leaves; G is one point. */
+     * and an aerial root's is the net point it leaves; G is one point. */
     uint32_t *skel = malloc(sizeof(uint32_t) * (net->n_pts ? net->n_pts : 1));
     if (!skel) return -1;
     uint32_t g_index = UINT32_MAX;
@@ -346,7 +346,7 @@ int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roo
             } else if (pl->kind == ROOT_FIRST && (i == 0 || i + 1 == pl->n)) {
                 int b = roots_branch_b(p, pl->k), a = i == 0 ? pl->a : (pl->a + 1) % net->N;
                 k = skel[net->M_at[(size_t)a * net->B + b]];
-            } else if (pl->kind == ROOT_FOOT && i == 0 && pl->from != UINT32_MAX) {
+            } else if (i == 0 && pl->from != UINT32_MAX) { /* foot and aerial roots */
                 k = skel[pl->from];
             } else if (pl->kind == ROOT_SECOND && (i == 0 || i + 1 == pl->n)) {
                 int slot = pl->a * net->nb + pl->k + (i == 0 ? 0 : 1);

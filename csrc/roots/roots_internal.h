@@ -17,9 +17,13 @@
 
 /* Kinds, also the skeleton tag and the `root_kind` attribute. Foot roots
  * (foot.c: drop roots, buttresses, surface roots) are held by the host and
- * the soil as the main roots' feet are: wind level 0 with the mains. */
-enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2, ROOT_FOOT = 3 };
-static inline int roots_wind_level(int kind) { return kind == ROOT_FOOT ? 0 : kind; }
+ * the soil as the main roots' feet are: wind level 0 with the mains.
+ * Aerial roots (aerial.c: thin hanging threads) sway as the thinnest
+ * branch roots do: level 2. */
+enum { ROOT_MAIN = 0, ROOT_FIRST = 1, ROOT_SECOND = 2, ROOT_FOOT = 3, ROOT_AERIAL = 4 };
+static inline int roots_wind_level(int kind) {
+    return kind == ROOT_FOOT ? 0 : kind == ROOT_AERIAL ? ROOT_SECOND : kind;
+}
 
 /* Collision world: hosts, ground, r. Clearance of a point = its distance
  * to the nearest host surface (signed, < 0 inside a box or a closed mesh)
@@ -112,7 +116,7 @@ typedef struct roots_poly {
                            (pts[off + soil_from ..] lie below the ground, soil_from - 1 is where the
                            root enters it); n when the root stays above ground. Foot roots: from
                            here on the points lie on or in the soil */
-    uint32_t from;     /* foot roots: the net point (index into pts) they start on; else UINT32_MAX */
+    uint32_t from;     /* foot and aerial roots: the net point (index into pts) they start on; else UINT32_MAX */
 } roots_poly;
 
 /* Points of a main root's underground end (soil_entry): it runs on
@@ -227,6 +231,24 @@ banyan_status roots_make_paths(roots_net *net, const banyan_roots_params *p);
 /* The foot (foot.c): drop roots, plank buttresses and surface roots,
  * appended as ROOT_FOOT polylines once the radii are set. */
 banyan_status roots_grow_foot(roots_net *net, const banyan_roots_params *p);
+/* Aerial roots (aerial.c): thin threads hanging from the net, appended
+ * as ROOT_AERIAL polylines after the foot. Their first point is the net
+ * point they hang from (inside that root); the fused surface leaves them
+ * out of its field and sweeps them with roots_aerial_sweep. */
+banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p);
+/* Sides of an aerial root's tube on the fused surface. */
+#define ROOTS_AERIAL_SIDES 6
+/* Sweeps aerial polyline pl as a round tube from its second point on,
+ * into the fused surface's builder, whose first nt triangles are the
+ * surface: its first ring goes back towards the first point onto the
+ * surface, so the thread leaves the bark with neither a gap nor a
+ * crossing. Capped at both ends (a closed shell); per-ring stiffness and
+ * birth from `stiff` and `birth` (net point values) into those slots.
+ * roots_aerial_counts gives what it adds, for mb_reserve (the sweep reads
+ * the builder's arrays, which must not move). */
+void roots_aerial_sweep(mesh_builder *mb, const roots_net *net, const roots_poly *pl, uint32_t nt, int slot_stiff,
+                        int slot_birth, const double *stiff, const double *birth);
+void roots_aerial_counts(const roots_poly *pl, uint32_t *verts, uint32_t *indices);
 /* Room for `more` points (pts and rad); 0 when out of memory. */
 int roots_reserve_pts(roots_net *net, uint32_t more);
 /* Appends a polyline record (from = UINT32_MAX, soil_from = n); 0 when out of memory. */
@@ -253,7 +275,7 @@ static inline int roots_slot_open(const roots_net *net, const banyan_roots_param
 
 /* Per-entity random streams (pcg32_seed's stream argument). */
 enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000,
-       STREAM_FOOT = 0x30000000 };
+       STREAM_FOOT = 0x30000000, STREAM_AERIAL = 0x38000000 };
 
 /* The params checks of banyan_roots_generate: the table, then the rules
  * that tie fields together (generate.c). */

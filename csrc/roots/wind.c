@@ -18,8 +18,10 @@
  * than 0.9 sqrt(R / R_max), every generator's wood stiffness (R the
  * pipe-model radius, R_max the net's thickest) kept below 1: the thick
  * main roots sway less than the thin branch roots. Foot roots (foot.c)
- * lie on the host or the ground or stand as planks: 1. Pivot: the root's start on its parent (G for main roots),
- * the very skeleton point; level: main 0, first branch 1, second 2 (foot
+ * lie on the host or the ground or stand as planks: 1. Aerial roots
+ * (aerial.c) hang free: only their start on the root and an end in the
+ * soil hold them. Pivot: the root's start on its parent (G for main roots),
+ * the very skeleton point; level: main 0, first branch 1, second 2 (aerial 2, foot
  * roots 0: roots_wind_level); phase: per root id. */
 #include <stdlib.h>
 
@@ -44,7 +46,7 @@ static uint32_t parent_point(const roots_net *net, const banyan_roots_params *p,
         return net->M_at[(size_t)a * net->B + b];
     }
     if (pl->kind == ROOT_SECOND) return net->K_mid_at[pl->a * net->nb + pl->k + (end ? 1 : 0)];
-    if (pl->kind == ROOT_FOOT) return end ? UINT32_MAX : pl->from; /* its end lies in the soil */
+    if (pl->kind == ROOT_FOOT || pl->kind == ROOT_AERIAL) return end ? UINT32_MAX : pl->from; /* a free end */
     return UINT32_MAX;
 }
 
@@ -122,12 +124,16 @@ int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_w
         }
         for (uint32_t i = 0; i < pl->n; i++) {
             double reach = (R[i] > r ? R[i] : r) + 0.5 * r;
-            s[i] = world_clearance_in(&net->w, P[i], 1, reach, NULL, NULL) < reach ? 1.0 : 0.0;
+            if (pl->kind == ROOT_AERIAL) /* hangs free of the hosts (aerial.c): only the ground holds it */
+                s[i] = net->w.ground && P[i].z - net->w.ground_z < reach ? 1.0 : 0.0;
+            else
+                s[i] = world_clearance_in(&net->w, P[i], 1, reach, NULL, NULL) < reach ? 1.0 : 0.0;
         }
         if (pl->kind == ROOT_MAIN) s[0] = 1.0; /* G */
         else {
-            double s0 = st[parent_point(net, p, pl, 0)], s1 = st[parent_point(net, p, pl, 1)];
-            s[0] = s0, s[pl->n - 1] = s1;
+            uint32_t e1 = parent_point(net, p, pl, 1);
+            s[0] = st[parent_point(net, p, pl, 0)];
+            if (e1 != UINT32_MAX) s[pl->n - 1] = st[e1];
         }
         double *k = arc; /* k[i]: the fall over segment i-1 .. i, one exp each */
         for (uint32_t i = 1; i < pl->n; i++) {
@@ -140,7 +146,7 @@ int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_w
             if (v > s[i]) s[i] = v;
         }
         /* a branch's ends are its parents' */
-        uint32_t end = pl->kind == ROOT_MAIN || pl->kind == ROOT_FOOT ? pl->n : pl->n - 1;
+        uint32_t end = parent_point(net, p, pl, 1) == UINT32_MAX ? pl->n : pl->n - 1;
         for (uint32_t i = 1; i < end && r_max > 0; i++) {
             double v = ROOTS_WIND_THICK * sqrt(R[i] / r_max);
             if (v > s[i]) s[i] = v;

@@ -602,10 +602,10 @@ int main(int argc, char **argv) {
         if (m) {
             const float *kind = banyan_mesh_attribute(m, "root_kind"), *id = banyan_mesh_attribute(m, "root_id");
             CHECK(kind && id && m->colors, "root_kind, root_id and colours must be present");
-            int bad = 0, kinds[4] = {0, 0, 0, 0};
+            int bad = 0, kinds[5] = {0, 0, 0, 0, 0};
             for (uint32_t v = 0; kind && id && m->colors && v < m->vertex_count; v++) {
                 int k = (int)kind[v], i = (int)id[v];
-                if (k < 0 || k > ROOT_FOOT || kind[v] != k || i < 0 || (uint32_t)i >= net.n_poly || net.poly[i].kind != k) bad++;
+                if (k < 0 || k > ROOT_AERIAL || kind[v] != k || i < 0 || (uint32_t)i >= net.n_poly || net.poly[i].kind != k) bad++;
                 else kinds[k]++;
                 if (m->colors[4 * v] != 0.3f || m->colors[4 * v + 1] != 0.2f || m->colors[4 * v + 2] != 0.1f ||
                     m->colors[4 * v + 3] != 1.0f)
@@ -616,7 +616,7 @@ int main(int argc, char **argv) {
             CHECK(m->material_count == 1 && m->materials[0].base_color[0] == 0.3f && m->materials[0].base_color[2] == 0.1f,
                   "material base colour");
             int tags = 0;
-            for (uint32_t i = 0; i < m->skel_point_count; i++) tags += m->skel_tag[i] < 0 || m->skel_tag[i] > ROOT_FOOT;
+            for (uint32_t i = 0; i < m->skel_point_count; i++) tags += m->skel_tag[i] < 0 || m->skel_tag[i] > ROOT_AERIAL;
             CHECK(tags == 0 && m->skel_edge_count > 0, "%d skeleton tags out of range", tags);
         }
         banyan_mesh_free(m);
@@ -631,7 +631,7 @@ int main(int argc, char **argv) {
         p.first_branches = 0;
         roots_net net;
         banyan_error err;
-        int kinds[4] = {0, 0, 0, 0}; /* ROOT_MAIN .. ROOT_FOOT */
+        int kinds[5] = {0, 0, 0, 0, 0}; /* ROOT_MAIN .. ROOT_AERIAL */
         roots_net_build(&p, &host, 1, &net, &err);
         for (uint32_t t = 0; t < net.n_poly; t++) kinds[net.poly[t].kind]++;
         CHECK(kinds[0] == 6 && kinds[1] == 0 && kinds[2] == 0, "first_branches off: kinds %d %d %d", kinds[0], kinds[1],

@@ -73,7 +73,8 @@ static void measure(const roots_net *net, const banyan_roots_params *p, const ba
                 L->entering++;
                 if (!(R[pl->soil_from - 1] > R[0])) L->thin_entries++;
             }
-        } else if (p->hugging && pl->kind != ROOT_FOOT) { /* planks and surface roots stand out on purpose */
+        } else if (p->hugging && pl->kind != ROOT_FOOT && pl->kind != ROOT_AERIAL) { /* planks, surface roots and
+                                                                                       hanging roots stand out on purpose */
             for (uint32_t i = 1; i + 1 < pl->n; i++) {
                 v3 n;
                 int which;

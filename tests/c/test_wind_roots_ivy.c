@@ -92,8 +92,8 @@ static void roots_per_root(const char *what, const banyan_mesh *m) {
         uint32_t r = (uint32_t)id[v];
         if (first[r] == UINT32_MAX) first[r] = v;
         uint32_t f = first[r];
-        /* foot roots (kind 3) sway with the main roots: level 0 */
-        bad += lv[v] != (kind[v] == 3.0f ? 0.0f : kind[v]) || ph[v] != ph[f] || px[v] != px[f] || py[v] != py[f] || pz[v] != pz[f];
+        /* foot roots (kind 3) sway with the main roots: level 0; aerial roots (4) as the second branch roots */
+        bad += lv[v] != (kind[v] == 3.0f ? 0.0f : kind[v] == 4.0f ? 2.0f : kind[v]) || ph[v] != ph[f] || px[v] != px[f] || py[v] != py[f] || pz[v] != pz[f];
     }
     CHECK(bad == 0, "%s: %ld vertices whose pivot, phase or level is not their root's", what, bad);
     free(first);

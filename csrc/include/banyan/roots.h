@@ -83,6 +83,8 @@ typedef struct banyan_roots_params {
                                      (times maturity below); 0: none [1.2] */
     double foot_roots;            /* 0 .. 8: roots that drop from the lowest branch roots to the soil,
                                      per gap between main roots, at maturity 1 (times maturity) [3] */
+    double aerial_roots;          /* 0 .. 200: thin roots hanging free from the net, at maturity 1
+                                     (times maturity); some reach the soil [40] */
     int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
     /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT naming it. */
     double max_seconds;           /* s, 0.01 .. 604800: wall time of one call [600] */
@@ -123,7 +125,7 @@ BANYAN_API size_t banyan_sizeof_roots_stats(void);
 
 /* Grows the net around hosts[0..n_hosts-1] (n_hosts 1 .. BANYAN_MAX_HOSTS)
  * and sweeps it into one mesh with attributes `root_kind` (0 main, 1 first
- * branch, 2 second branch) and `root_id`, vertex colour, one material, and
+ * branch, 2 second branch, 3 foot, 4 aerial) and `root_id`, vertex colour, one material, and
  * the skeleton (skel_tag = root kind). Refuses bad parameters
  * (BANYAN_E_RANGE), no hosts (BANYAN_E_NO_HOSTS), bad boxes
  * (BANYAN_E_BAD_HOST), G inside a host or below the ground
