@@ -18,7 +18,8 @@
  * The clearance from the fused surface is the fused field itself
  * (capsule.h: the same capsules, per polyline their minimum, merged by
  * the smooth minimum), so a thread hangs a few millimetres off the bark
- * however the roots flatten and fuse. */
+ * however the roots flatten and fuse. As tubes (surface = tubes) it is
+ * the round capsules: fuse_radius and voxel_size change nothing there. */
 #include <stdlib.h>
 #include <math.h>
 
@@ -49,6 +50,8 @@
  * the surface's snap and marching error (0.25 voxel) and 3 mm. */
 #define AERIAL_GAP_VOXELS 0.25
 #define AERIAL_GAP 0.003
+/* As tubes: the room past the round capsules (times r). */
+#define AERIAL_TUBE_SLACK 0.1
 /* A thread's first ring stops this far off the surface it leaves (m),
  * and the tube between it and the next ring half as far: out of reach of
  * a 0.5 mm "sheets nearly touching" test, far below what a render
@@ -443,8 +446,11 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p) {
     aerial A = {0};
     A.net = net, A.p = p, A.soil = roots_soil_world(&net->w);
     A.first_thread = net->n_poly;
-    A.k = p->fuse_radius * net->r * (0.25 + 0.75 * p->maturity);
-    A.margin = AERIAL_GAP_VOXELS * p->voxel_size * net->r + AERIAL_GAP;
+    /* The fused surface's field; the tubes are the plain round capsules
+     * (their junction loops and bend widening reach a tenth of r past them). */
+    const int fused = p->surface == BANYAN_ROOTS_FUSED;
+    A.k = fused ? p->fuse_radius * net->r * (0.25 + 0.75 * p->maturity) : 0.0;
+    A.margin = (fused ? AERIAL_GAP_VOXELS * p->voxel_size * net->r : AERIAL_TUBE_SLACK * net->r) + AERIAL_GAP;
     pcg32_seed(&A.rng, p->seed, STREAM_AERIAL);
     for (uint32_t t = 0; t < net->n_poly; t++) {
         if (net->poly[t].id >= A.id) A.id = net->poly[t].id + 1;
@@ -465,6 +471,7 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p) {
         for (uint32_t i = 0; i + 1 < net->poly[t].n; i++) {
             capsule *c = &A.caps[A.n_caps];
             roots_capsule_set(c, net, p, t, net->poly[t].off + i);
+            if (!fused) c->sq = 1.0, c->fn = v3_make(0, 0, 0);
             A.cap_lo[A.n_caps] = v3_make(dmin(c->a.x, c->b.x), dmin(c->a.y, c->b.y), dmin(c->a.z, c->b.z));
             A.cap_hi[A.n_caps] = v3_make(dmax(c->a.x, c->b.x), dmax(c->a.y, c->b.y), dmax(c->a.z, c->b.z));
             /* a flat section: sq R wide, its centre up to R off the axis */
