@@ -20,8 +20,9 @@
  * the smooth minimum), so a thread hangs a few millimetres off the bark
  * however the roots flatten and fuse. As tubes (surface = tubes) it is
  * the round capsules: fuse_radius and voxel_size change nothing there. */
-#include <stdlib.h>
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "capsule.h"
 #include "core/tri_closest.h"
@@ -33,9 +34,6 @@
 #define AERIAL_SLIDE 0.4
 #define AERIAL_MAX_PTS 160
 #define AERIAL_MAX_THREADS 200
-/* The field is exact within this of the roots (farther: this, less the
- * fillet, a lower bound). */
-#define AERIAL_NEAR 0.15
 /* A thread keeps this far (times r) from the hosts: hanging free, past
  * where the wind counts a root as held by one (wind.c). */
 #define AERIAL_HOST 1.5
@@ -68,7 +66,9 @@ typedef struct aerial {
     v3 *cap_lo, *cap_hi;  /* per capsule: bounds of its axis */
     double *cap_reach;    /* per capsule: the farthest its surface lies from the axis */
     /* A grid over the capsules: cell c lists (in capsule order) those
-     * whose surface comes within AERIAL_NEAR of it. */
+     * whose surface comes within near of it: the field is exact up to
+     * near - k (twice the most room a thread asks), a lower bound beyond. */
+    double near;
     v3 g_lo;
     double g_cell;
     int32_t g_n[3];
@@ -108,11 +108,11 @@ static int32_t cell_of(const aerial *A, int k, double x) {
 }
 
 /* The fused field at q (capsule.h, merged in polyline order), exact up
- * to AERIAL_NEAR - k, a lower bound beyond. A capsule whose bound lies
+ * to near - k, a lower bound beyond. A capsule whose bound lies
  * past the polyline's minimum so far, or past the merged value by the
  * fillet (where the smooth minimum is the plain one), changes nothing. */
 static double field_at(const aerial *A, v3 q) {
-    double far = AERIAL_NEAR - A->k;
+    double far = A->near - A->k;
     if (q.x < A->g_lo.x || q.y < A->g_lo.y || q.z < A->g_lo.z || q.x > A->g_lo.x + A->g_n[0] * A->g_cell ||
         q.y > A->g_lo.y + A->g_n[1] * A->g_cell || q.z > A->g_lo.z + A->g_n[2] * A->g_cell)
         return far;
@@ -134,17 +134,17 @@ static double field_at(const aerial *A, v3 q) {
     return acc < far ? acc : far;
 }
 
-/* Fills the grid (0 when out of memory): cells of about AERIAL_NEAR / 2,
+/* Fills the grid (0 when out of memory): cells of about near,
  * at most about 4 million of them. */
 static int build_grid(aerial *A) {
     v3 lo = v3_make(HUGE_VAL, HUGE_VAL, HUGE_VAL), hi = v3_make(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
     for (uint32_t c = 0; c < A->n_caps; c++) {
-        double e = A->cap_reach[c] + AERIAL_NEAR;
+        double e = A->cap_reach[c] + A->near;
         lo = v3_make(dmin(lo.x, A->cap_lo[c].x - e), dmin(lo.y, A->cap_lo[c].y - e), dmin(lo.z, A->cap_lo[c].z - e));
         hi = v3_make(dmax(hi.x, A->cap_hi[c].x + e), dmax(hi.y, A->cap_hi[c].y + e), dmax(hi.z, A->cap_hi[c].z + e));
     }
     if (!A->n_caps) lo = hi = v3_make(0, 0, 0);
-    double cell = 0.5 * AERIAL_NEAR, vol = (hi.x - lo.x + cell) * (hi.y - lo.y + cell) * (hi.z - lo.z + cell);
+    double cell = A->near, vol = (hi.x - lo.x + cell) * (hi.y - lo.y + cell) * (hi.z - lo.z + cell);
     if (vol / (cell * cell * cell) > 4e6) cell = cbrt(vol / 4e6);
     A->g_lo = lo, A->g_cell = cell;
     A->g_n[0] = (int32_t)ceil((hi.x - lo.x) / cell) + 1;
@@ -155,7 +155,7 @@ static int build_grid(aerial *A) {
     if (!A->g_start) return 0;
     for (int pass = 0; pass < 2; pass++) {
         for (uint32_t c = 0; c < A->n_caps; c++) {
-            double e = A->cap_reach[c] + AERIAL_NEAR;
+            double e = A->cap_reach[c] + A->near;
             int32_t i0 = cell_of(A, 0, A->cap_lo[c].x - e), i1 = cell_of(A, 0, A->cap_hi[c].x + e);
             int32_t j0 = cell_of(A, 1, A->cap_lo[c].y - e), j1 = cell_of(A, 1, A->cap_hi[c].y + e);
             int32_t k0 = cell_of(A, 2, A->cap_lo[c].z - e), k1 = cell_of(A, 2, A->cap_hi[c].z + e);
@@ -451,6 +451,7 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p) {
     const int fused = p->surface == BANYAN_ROOTS_FUSED;
     A.k = fused ? p->fuse_radius * net->r * (0.25 + 0.75 * p->maturity) : 0.0;
     A.margin = (fused ? AERIAL_GAP_VOXELS * p->voxel_size * net->r : AERIAL_TUBE_SLACK * net->r) + AERIAL_GAP;
+    A.near = A.k + 2.0 * (AERIAL_R_HI + A.margin);
     pcg32_seed(&A.rng, p->seed, STREAM_AERIAL);
     for (uint32_t t = 0; t < net->n_poly; t++) {
         if (net->poly[t].id >= A.id) A.id = net->poly[t].id + 1;
@@ -474,8 +475,8 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p) {
             if (!fused) c->sq = 1.0, c->fn = v3_make(0, 0, 0);
             A.cap_lo[A.n_caps] = v3_make(dmin(c->a.x, c->b.x), dmin(c->a.y, c->b.y), dmin(c->a.z, c->b.z));
             A.cap_hi[A.n_caps] = v3_make(dmax(c->a.x, c->b.x), dmax(c->a.y, c->b.y), dmax(c->a.z, c->b.z));
-            /* a flat section: sq R wide, its centre up to R off the axis */
-            A.cap_reach[A.n_caps++] = dmax(c->ra, c->rb) * (c->sq + 1.0);
+            /* a flat section: sq R wide, its centre (1 - 1 / sq) R off the axis */
+            A.cap_reach[A.n_caps++] = dmax(c->ra, c->rb) * (c->sq + 1.0 - 1.0 / c->sq);
         }
     if (!build_grid(&A)) A.oom = 1;
     v3 used[64];
@@ -631,18 +632,24 @@ static int start_crosses(const float *pos, const uint32_t *tri, const uint32_t *
     return 0;
 }
 
-void roots_aerial_sweep(mesh_builder *mb, const roots_net *net, const roots_poly *pl, uint32_t nt, int slot_stiff,
-                        int slot_birth, const double *stiff, const double *birth) {
+/* How far from a thread's second point the surface it leaves can lie:
+ * the way back to its first point and two radii. */
+static double start_reach(const roots_net *net, const roots_poly *pl) {
+    return v3_dist(net->pts[pl->off], net->pts[pl->off + 1]) + 2.0 * net->rad[pl->off + 1];
+}
+
+/* Sweeps one thread (pl, n >= 3); cand[0..nc-1]: the surface's triangles
+ * within start_reach of its second point; near: room for nc more. */
+static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *pl, const uint32_t *cand, uint32_t nc,
+                      uint32_t *near, int slot_stiff, int slot_birth, const double *stiff, const double *birth) {
     enum { S = ROOTS_AERIAL_SIDES };
     /* Rings: the one where the thread leaves the surface, then one per
      * point from the second on (the first lies inside its root). */
     const uint32_t n = pl->n;
-    if (pl->n < 3 || mb->status) return;
     v3 *C = malloc(sizeof(v3) * (3 * (size_t)n + 2 * (size_t)n * S));
     double *R = malloc(sizeof(double) * 3 * n);
-    uint32_t *cand = malloc(sizeof(uint32_t) * 2 * (size_t)(nt ? nt : 1)), *near = cand + (nt ? nt : 1);
-    if (!C || !R || !cand) {
-        free(C), free(R), free(cand);
+    if (!C || !R) {
+        free(C), free(R);
         mb->status = BANYAN_E_NOMEM;
         return;
     }
@@ -664,22 +671,7 @@ void roots_aerial_sweep(mesh_builder *mb, const roots_net *net, const roots_poly
      * root's axis) onto the surface it leaves, AERIAL_TOUCH short: every
      * edge from it to ring 1 lies outside (the first hit from outside). */
     v3 d = v3_norm(v3_sub(P[0], P[1]));
-    double reach = v3_dist(P[0], P[1]) + 2.0 * R[1];
-    uint32_t nc = 0;
-    for (uint32_t f = 0; f < nt; f++) { /* triangles whose bounds come within reach */
-        v3 X[3];
-        corners(pos, tri + 3 * (size_t)f, X);
-        double lo[3] = {dmin(dmin(X[0].x, X[1].x), X[2].x), dmin(dmin(X[0].y, X[1].y), X[2].y),
-                        dmin(dmin(X[0].z, X[1].z), X[2].z)};
-        double hi[3] = {dmax(dmax(X[0].x, X[1].x), X[2].x), dmax(dmax(X[0].y, X[1].y), X[2].y),
-                        dmax(dmax(X[0].z, X[1].z), X[2].z)};
-        double c[3] = {P[1].x, P[1].y, P[1].z}, e2 = 0;
-        for (int k = 0; k < 3; k++) {
-            double e = c[k] < lo[k] ? lo[k] - c[k] : (c[k] > hi[k] ? c[k] - hi[k] : 0);
-            e2 += e * e;
-        }
-        if (e2 < reach * reach) cand[nc++] = f;
-    }
+    double reach = start_reach(net, pl);
     double hit[S];
     for (int j = 0; j < S; j++) {
         double cosine, s = ray_hit(pos, tri, cand, nc, ring[S + j], d, reach, &cosine);
@@ -758,5 +750,89 @@ void roots_aerial_sweep(mesh_builder *mb, const roots_net *net, const roots_poly
     wind_tube_rings(mb, first, nr, S, 1, 1, slot_birth, wb + skip);
     free(C);
     free(R);
-    free(cand);
+}
+
+void roots_aerial_sweep_all(mesh_builder *mb, const roots_net *net, uint32_t nt, int a_kind, int a_id,
+                            const wind_slots *wsl, const roots_wind *rw) {
+    /* The threads, by the x of their second point; each surface triangle
+     * goes to the lists of the threads whose start it can come within
+     * reach of (two passes: count, then fill). */
+    uint32_t nth = 0;
+    double reach_max = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].kind == ROOT_AERIAL && net->poly[t].n >= 3) nth++;
+    if (!nth || mb->status) return;
+    uint32_t *th = malloc(sizeof(uint32_t) * (2 * (size_t)nth + 1)), *start = th + nth;
+    if (!th) {
+        mb->status = BANYAN_E_NOMEM;
+        return;
+    }
+    nth = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].kind == ROOT_AERIAL && net->poly[t].n >= 3) {
+            th[nth++] = t;
+            reach_max = dmax(reach_max, start_reach(net, &net->poly[t]));
+        }
+    for (uint32_t i = 1; i < nth; i++) /* insertion sort by x, then by polyline (at most AERIAL_MAX_THREADS) */
+        for (uint32_t j = i; j > 0; j--) {
+            double x0 = net->pts[net->poly[th[j - 1]].off + 1].x, x1 = net->pts[net->poly[th[j]].off + 1].x;
+            if (x0 < x1 || (x0 == x1 && th[j - 1] < th[j])) break;
+            uint32_t sw = th[j];
+            th[j] = th[j - 1], th[j - 1] = sw;
+        }
+    const float *pos = mb->pos; /* the surface: the builder's first nt triangles (held: reserved) */
+    const uint32_t *tri = mb->idx;
+    uint32_t *list = NULL, total = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 0) memset(start, 0, sizeof(uint32_t) * (nth + 1));
+        for (uint32_t f = 0; f < nt; f++) {
+            v3 X[3];
+            corners(pos, tri + 3 * (size_t)f, X);
+            v3 lo = v3_make(dmin(dmin(X[0].x, X[1].x), X[2].x), dmin(dmin(X[0].y, X[1].y), X[2].y),
+                            dmin(dmin(X[0].z, X[1].z), X[2].z));
+            v3 hi = v3_make(dmax(dmax(X[0].x, X[1].x), X[2].x), dmax(dmax(X[0].y, X[1].y), X[2].y),
+                            dmax(dmax(X[0].z, X[1].z), X[2].z));
+            uint32_t a = 0, b = nth; /* the first thread whose x reaches lo.x - reach_max */
+            while (a < b) {
+                uint32_t m = (a + b) / 2;
+                if (net->pts[net->poly[th[m]].off + 1].x < lo.x - reach_max) a = m + 1;
+                else b = m;
+            }
+            for (uint32_t i = a; i < nth; i++) {
+                const roots_poly *pl = &net->poly[th[i]];
+                v3 c = net->pts[pl->off + 1];
+                if (c.x > hi.x + reach_max) break;
+                double reach = start_reach(net, pl);
+                if (box_dist(c, lo, hi) >= reach) continue;
+                if (pass == 0) start[i + 1]++;
+                else list[start[i]++] = f;
+            }
+        }
+        if (pass == 0) {
+            for (uint32_t i = 0; i < nth; i++) start[i + 1] += start[i];
+            total = start[nth];
+            list = malloc(sizeof(uint32_t) * (2 * (size_t)total + 1));
+            if (!list) {
+                free(th);
+                mb->status = BANYAN_E_NOMEM;
+                return;
+            }
+        }
+    }
+    for (uint32_t i = nth; i > 0; i--) start[i] = start[i - 1]; /* the fill moved every start on */
+    start[0] = 0;
+    /* in the polylines' order (the mesh's bytes do not depend on x) */
+    for (uint32_t t = 0; t < net->n_poly && !mb->status; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->kind != ROOT_AERIAL || pl->n < 3) continue;
+        uint32_t i = 0;
+        while (th[i] != t) i++;
+        mb_set_attr(mb, a_kind, pl->kind);
+        mb_set_attr(mb, a_id, pl->id);
+        wind_set(mb, wsl, rw->pivot[t], roots_wind_level(pl->kind), 1.0, rw->phase[t], 0.0);
+        sweep_one(mb, net, pl, list + start[i], start[i + 1] - start[i], list + total, wsl->stiffness, wsl->birth,
+                  rw->stiff, rw->birth);
+    }
+    free(list);
+    free(th);
 }

@@ -742,14 +742,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
             mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
         }
     for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
-    for (uint32_t t = 0; t < net->n_poly && thread_v; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->kind != ROOT_AERIAL) continue;
-        mb_set_attr(&mb, a_kind, pl->kind);
-        mb_set_attr(&mb, a_id, pl->id);
-        wind_set(&mb, &ws, rw.pivot[t], roots_wind_level(pl->kind), 1.0, rw.phase[t], 0.0);
-        roots_aerial_sweep(&mb, net, pl, nt, ws.stiffness, ws.birth, rw.stiff, rw.birth);
-    }
+    if (thread_v) roots_aerial_sweep_all(&mb, net, nt, a_kind, a_id, &ws, &rw);
     if (!mb.status && mb.nv) {
         /* The surface starts off G and ends short of the last tip: its
          * birth is stretched to 0..1 so growth starts and ends on time. */

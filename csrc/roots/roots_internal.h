@@ -218,6 +218,17 @@ typedef struct roots_wind {
 int roots_wind_build(const roots_net *net, const banyan_roots_params *p, roots_wind *rw);
 void roots_wind_free(roots_wind *rw);
 
+/* Sweeps the aerial polylines as round tubes from their second point on,
+ * into the fused surface's builder, whose first nt triangles are the
+ * surface; each thread's first ring goes back towards its first point
+ * onto the surface, so it leaves the bark with neither a gap nor a
+ * crossing. Capped at both ends (closed shells); attributes a_kind, a_id,
+ * the wind and birth of rw. roots_aerial_counts gives what one adds, for
+ * mb_reserve (the sweep reads the builder's arrays, which must not
+ * move). */
+void roots_aerial_sweep_all(mesh_builder *mb, const roots_net *net, uint32_t nt, int a_kind, int a_id,
+                            const struct wind_slots *ws, const roots_wind *rw);
+
 /* Stages (each file's header comment names its spec section). */
 void roots_grow_mains(roots_net *net, const banyan_roots_params *p);
 void roots_grow_first(roots_net *net, const banyan_roots_params *p);
@@ -234,20 +245,11 @@ banyan_status roots_grow_foot(roots_net *net, const banyan_roots_params *p);
 /* Aerial roots (aerial.c): thin threads hanging from the net, appended
  * as ROOT_AERIAL polylines after the foot. Their first point is the net
  * point they hang from (inside that root); the fused surface leaves them
- * out of its field and sweeps them with roots_aerial_sweep. */
+ * out of its field and sweeps them with roots_aerial_sweep_all. */
 banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p);
 /* Sides of an aerial root's tube on the fused surface. */
 #define ROOTS_AERIAL_SIDES 6
-/* Sweeps aerial polyline pl as a round tube from its second point on,
- * into the fused surface's builder, whose first nt triangles are the
- * surface: its first ring goes back towards the first point onto the
- * surface, so the thread leaves the bark with neither a gap nor a
- * crossing. Capped at both ends (a closed shell); per-ring stiffness and
- * birth from `stiff` and `birth` (net point values) into those slots.
- * roots_aerial_counts gives what it adds, for mb_reserve (the sweep reads
- * the builder's arrays, which must not move). */
-void roots_aerial_sweep(mesh_builder *mb, const roots_net *net, const roots_poly *pl, uint32_t nt, int slot_stiff,
-                        int slot_birth, const double *stiff, const double *birth);
+/* Vertices and indices the sweep adds for aerial polyline pl. */
 void roots_aerial_counts(const roots_poly *pl, uint32_t *verts, uint32_t *indices);
 /* Room for `more` points (pts and rad); 0 when out of memory. */
 int roots_reserve_pts(roots_net *net, uint32_t more);
