@@ -145,7 +145,7 @@ static int build_grid(aerial *A) {
     }
     if (!A->n_caps) lo = hi = v3_make(0, 0, 0);
     double cell = A->near, vol = (hi.x - lo.x + cell) * (hi.y - lo.y + cell) * (hi.z - lo.z + cell);
-    if (vol / (cell * cell * cell) > 4e6) cell = cbrt(vol / 4e6);
+    if (vol / (cell * cell * cell) > 4e6) cell = dm_cbrt(vol / 4e6);
     A->g_lo = lo, A->g_cell = cell;
     A->g_n[0] = (int32_t)ceil((hi.x - lo.x) / cell) + 1;
     A->g_n[1] = (int32_t)ceil((hi.y - lo.y) / cell) + 1;
@@ -319,7 +319,7 @@ static void simplify(aerial *A, double tr) {
 static void hang(aerial *A, uint32_t at, v3 o, v3 along) {
     const roots_net *net = A->net;
     const double gz = net->w.ground ? net->w.ground_z : -HUGE_VAL;
-    double tr = AERIAL_R_LO * exp(log(AERIAL_R_HI / AERIAL_R_LO) * rng_uniform(&A->rng));
+    double tr = AERIAL_R_LO * dm_exp(dm_log(AERIAL_R_HI / AERIAL_R_LO) * rng_uniform(&A->rng));
     int rooted = net->w.ground && rng_uniform(&A->rng) < 0.2 + 0.3 * A->p->maturity;
     double frac = rng_range(&A->rng, 0.2, 0.8);
     v3 side = v3_scale(along, rng_range(&A->rng, -0.8, 0.8));
