@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "hosts.h"
-#include "tri_closest.h"
+#include "closest.h"
 
 /* ----------------------------------------------------- closest point */
 
@@ -337,40 +337,6 @@ int hmesh_segment_hit(const host_mesh *m, v3 a, v3 b, double *t, v3 *normal) {
  * slide along it. Triangles are found with point queries round the
  * middles of pieces about 2 r (or 2 cap) long, so each query sphere holds
  * few triangles; most are dropped by the capsule's box or their plane. */
-
-/* Squared distance between segments p1-q1 and p2-q2 (Ericson 5.1.9). */
-static double seg_seg_dist2(v3 p1, v3 q1, v3 p2, v3 q2) {
-    v3 d1 = v3_sub(q1, p1), d2 = v3_sub(q2, p2), r = v3_sub(p1, p2);
-    double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r), s, t;
-    if (a <= 1e-300 && e <= 1e-300) return v3_len2(r);
-    if (a <= 1e-300) {
-        s = 0;
-        t = f / e;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
-    } else {
-        double c = v3_dot(d1, r);
-        if (e <= 1e-300) {
-            t = 0;
-            s = -c / a;
-            s = s < 0 ? 0 : s > 1 ? 1 : s;
-        } else {
-            double b = v3_dot(d1, d2), den = a * e - b * b;
-            s = den > 0 ? (b * f - c * e) / den : 0;
-            s = s < 0 ? 0 : s > 1 ? 1 : s;
-            t = (b * s + f) / e;
-            if (t < 0) {
-                t = 0;
-                s = -c / a;
-                s = s < 0 ? 0 : s > 1 ? 1 : s;
-            } else if (t > 1) {
-                t = 1;
-                s = (b - c) / a;
-                s = s < 0 ? 0 : s > 1 ? 1 : s;
-            }
-        }
-    }
-    return v3_len2(v3_sub(v3_madd(p1, d1, s), v3_madd(p2, d2, t)));
-}
 
 typedef struct tri3 {
     v3 v[3], n; /* local; unit normal in double (the stored float one cannot

@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "capsule.h"
-#include "core/tri_closest.h"
+#include "core/closest.h"
 #include "core/tube.h"
 #include "core/wind.h"
 
@@ -178,19 +178,6 @@ static int build_grid(aerial *A) {
     return 1;
 }
 
-/* Least distance between segments a-b and c-e (closest points, clamped). */
-static double seg_seg(v3 a, v3 b, v3 c, v3 e) {
-    v3 d1 = v3_sub(b, a), d2 = v3_sub(e, c), w = v3_sub(a, c);
-    double A = v3_dot(d1, d1), B = v3_dot(d1, d2), C = v3_dot(d2, d2), D = v3_dot(d1, w), E = v3_dot(d2, w);
-    double den = A * C - B * B, s = den > 1e-18 ? (B * E - C * D) / den : 0, t;
-    s = s < 0 ? 0 : (s > 1 ? 1 : s);
-    t = C > 1e-18 ? (B * s + E) / C : 0;
-    if (t < 0) t = 0, s = A > 1e-18 ? -D / A : 0;
-    else if (t > 1) t = 1, s = A > 1e-18 ? (B - D) / A : 0;
-    s = s < 0 ? 0 : (s > 1 ? 1 : s);
-    return v3_dist(v3_madd(a, d1, s), v3_madd(c, d2, t));
-}
-
 /* Least distance from segment a-b to the threads hung so far, less their
  * radius there (their first segments too, from inside the root they
  * leave). */
@@ -208,7 +195,7 @@ static double threads_at(const aerial *A, v3 a, v3 b) {
         if (gx * gx + gy * gy + gz * gz >= best * best) continue;
         for (uint32_t i = 0; i + 1 < pl->n; i++) {
             const v3 *P = net->pts + pl->off + i;
-            double d = seg_seg(a, b, P[0], P[1]) - dmax(net->rad[pl->off + i], net->rad[pl->off + i + 1]);
+            double d = sqrt(seg_seg_dist2(a, b, P[0], P[1])) - dmax(net->rad[pl->off + i], net->rad[pl->off + i + 1]);
             if (d < best) best = d;
         }
     }
@@ -453,10 +440,9 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p) {
     A.margin = (fused ? AERIAL_GAP_VOXELS * p->voxel_size * net->r : AERIAL_TUBE_SLACK * net->r) + AERIAL_GAP;
     A.near = A.k + 2.0 * (AERIAL_R_HI + A.margin);
     pcg32_seed(&A.rng, p->seed, STREAM_AERIAL);
-    for (uint32_t t = 0; t < net->n_poly; t++) {
-        if (net->poly[t].id >= A.id) A.id = net->poly[t].id + 1;
+    A.id = roots_next_id(net);
+    for (uint32_t t = 0; t < net->n_poly; t++)
         if (net->poly[t].n >= 2) A.n_caps += net->poly[t].n - 1;
-    }
     uint32_t n_sites = 0, *site = NULL;
     A.caps = malloc(sizeof(capsule) * (A.n_caps ? A.n_caps : 1));
     A.cap_lo = malloc(sizeof(v3) * 2 * (A.n_caps ? A.n_caps : 1));
@@ -579,7 +565,7 @@ static double tri_tri_dist(const v3 *P, const v3 *Q) {
     for (int i = 0; i < 3; i++) {
         best = dmin(best, v3_dist(P[i], tri_closest(P[i], Q[0], Q[1], Q[2], &region)));
         best = dmin(best, v3_dist(Q[i], tri_closest(Q[i], P[0], P[1], P[2], &region)));
-        for (int j = 0; j < 3; j++) best = dmin(best, seg_seg(P[i], P[(i + 1) % 3], Q[j], Q[(j + 1) % 3]));
+        for (int j = 0; j < 3; j++) best = dmin(best, sqrt(seg_seg_dist2(P[i], P[(i + 1) % 3], Q[j], Q[(j + 1) % 3])));
     }
     return best;
 }

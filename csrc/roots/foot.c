@@ -397,9 +397,7 @@ banyan_status roots_grow_foot(roots_net *net, const banyan_roots_params *p) {
     f->net = net;
     f->p = p;
     f->soil = roots_soil_world(&net->w);
-    f->id = 0;
-    for (uint32_t t = 0; t < net->n_poly; t++)
-        if (net->poly[t].id >= f->id) f->id = net->poly[t].id + 1;
+    f->id = roots_next_id(net);
     if (net->w.ground) {
         drop_roots(f);
         if (!f->oom) buttresses(f);

@@ -251,6 +251,14 @@ banyan_status roots_grow_aerial(roots_net *net, const banyan_roots_params *p);
 #define ROOTS_AERIAL_SIDES 6
 /* Vertices and indices the sweep adds for aerial polyline pl. */
 void roots_aerial_counts(const roots_poly *pl, uint32_t *verts, uint32_t *indices);
+/* The root_id after every polyline's so far (stages that append roots
+ * number theirs on from it). */
+static inline int roots_next_id(const roots_net *net) {
+    int id = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].id >= id) id = net->poly[t].id + 1;
+    return id;
+}
 /* Room for `more` points (pts and rad); 0 when out of memory. */
 int roots_reserve_pts(roots_net *net, uint32_t more);
 /* Appends a polyline record (from = UINT32_MAX, soil_from = n); 0 when out of memory. */
