@@ -88,7 +88,7 @@ IDLE = {
     "roots": [
         (lambda v: v("surface") == "fused", ("sides",) + _JUNCTIONS),  # the tube mesher's alone
         (lambda v: v("surface") == "tubes", ("fuse_radius", "voxel_size")),
-        (lambda v: not v("first_branches"), ("branch_start", "branch_spacing", "branch_vertical", "branch_samples",
+        (lambda v: not v("first_branches"), ("branch_start", "branch_spacing", "branch_vertical", "branch_tilt", "branch_samples",
                                              "branch_jitter", "correction") + _JUNCTIONS),
         (lambda v: not v("second_branches"), ("second_lateral", "second_samples")),
         (lambda v: not v("hugging"), ("hug_range", "hug_pull")),

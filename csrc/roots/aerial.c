@@ -667,8 +667,9 @@ static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *
     }
     /* Where the surface runs slantwise a quad's diagonal may cut it, or
      * the ring come nearer than AERIAL_TOUCH: the ring then stops shorter
-     * (by tenths of the way); where none fits the tube starts at ring 1
-     * (the thread then stands off the bark by its margin). */
+     * (by half millimetres, then tenths of the way); where none fits the
+     * tube starts at ring 1 (the thread then stands off the bark by its
+     * margin). */
     /* each vertex back from the nearest surface to AERIAL_TOUCH */
     for (int it = 0; it < 4; it++)
         for (int j = 0; j < S; j++) {
@@ -689,10 +690,12 @@ static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *
             if (world_clearance_in(&net->w, q, 0, AERIAL_TOUCH, NULL, NULL) >= AERIAL_TOUCH) break;
             hit[j] = it == 19 ? 0 : 0.8 * hit[j];
         }
+    /* Tries: half a millimetre shorter each (so the start stays within
+     * a few of the bark), then by tenths of the way. */
     uint32_t skip = 1; /* no ring 0 fits: the tube starts at ring 1, capped */
-    for (int tries = 0; tries < 10 && skip; tries++) {
-        double f = 1.0 - 0.1 * tries;
-        for (int j = 0; j < S; j++) ring[j] = v3_madd(ring[S + j], d, dmax(f * hit[j], 0.001));
+    for (int tries = 0; tries < 19 && skip; tries++) {
+        double f = tries < 10 ? 1.0 : 1.0 - 0.1 * (tries - 9), back = tries < 10 ? 0.0005 * tries : 0.0;
+        for (int j = 0; j < S; j++) ring[j] = v3_madd(ring[S + j], d, dmax(f * hit[j] - back, 0.001));
         /* the candidates near the strip between rings 0 and 1 */
         v3 lo = ring[0], hi = ring[0];
         for (int j = 0; j < 2 * S; j++)

@@ -81,8 +81,35 @@ static void plan(pcg32 *g, const banyan_roots_params *p, double u, v3 P0, v3 P3,
     c[3] = P3;
 }
 
+/* The end slot of each first branch root (net->K_end): level (k) or, for
+ * a branch_tilt share, one slot lower or higher on the next main root, a
+ * diamond lattice instead of rungs at one height round the host. An end
+ * stays above that root's soil entry, and ends never decrease along a main
+ * root (slot k ending lower than slot k + 1 would cross it). Slot indices
+ * are points the correction (spec 3) never moves, so every end keeps its
+ * junction. One stream per main root: branch_tilt 0 draws nothing. */
+static void pick_ends(roots_net *net, const banyan_roots_params *p) {
+    const int N = net->N, nb = net->nb;
+    for (int a = 0; a < N; a++) {
+        pcg32 g;
+        pcg32_seed(&g, p->seed, (uint64_t)STREAM_TILT + (uint64_t)a);
+        int a2 = (a + 1) % N, prev = 0;
+        for (int k = 0; k < nb; k++) {
+            int e = k;
+            if (p->branch_tilt > 0 && rng_uniform(&g) < p->branch_tilt) {
+                int d = rng_below(&g, 2) ? 1 : -1;
+                if (k + d < prev || k + d >= nb || roots_branch_b(p, k + d) >= net->soil_b[a2]) d = -d;
+                if (k + d >= prev && k + d >= 0 && k + d < nb && roots_branch_b(p, k + d) < net->soil_b[a2]) e = k + d;
+            }
+            net->K_end[a * nb + k] = e;
+            if (roots_slot_open(net, p, a, k)) prev = e;
+        }
+    }
+}
+
 void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
     if (!p->first_branches || net->N < 2) return;
+    pick_ends(net, p);
     const roots_world *w = &net->w;
     const int N = net->N, B = net->B, nb = net->nb, m = net->S1 - 1;
     const double u = net->u;
@@ -99,7 +126,8 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
             if (b < 0 || b >= B || !roots_slot_open(net, p, a, k)) continue;
             pcg32 g;
             pcg32_seed(&g, p->seed, (uint64_t)STREAM_FIRST + (uint64_t)slot);
-            v3 P0 = net->M_grown[(size_t)a * B + b], P3 = net->M_grown[(size_t)((a + 1) % N) * B + b];
+            v3 P0 = net->M_grown[(size_t)a * B + b];
+            v3 P3 = net->M_grown[(size_t)((a + 1) % N) * B + roots_branch_end_b(net, p, slot)];
             v3 *K = net->K + (size_t)slot * net->S1;
             v3 c[4];
             plan(&g, p, u, P0, P3, c);

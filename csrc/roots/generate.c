@@ -22,6 +22,7 @@ void roots_net_free(roots_net *net) {
     free(net->M_grown);
     free(net->K);
     free(net->K_valid);
+    free(net->K_end);
     free(net->K_ok);
     free(net->Q);
     free(net->Q_valid);
@@ -239,6 +240,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     net->M_grown = malloc(sizeof(v3) * N * B);
     net->K = malloc(sizeof(v3) * slots * (size_t)net->S1);
     net->K_valid = calloc(slots, sizeof(int32_t));
+    net->K_end = calloc(slots, sizeof(int32_t));
     net->K_ok = calloc(slots * (size_t)net->S1, 1);
     net->Q = malloc(sizeof(v3) * slots * (size_t)net->S2);
     net->Q_valid = calloc(slots, sizeof(int32_t));
@@ -247,12 +249,13 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     net->soil_pts = malloc(sizeof(v3) * N * ROOTS_SOIL_PTS);
     net->M_at = malloc(sizeof(uint32_t) * N * B);
     net->K_mid_at = calloc(slots, sizeof(uint32_t));
-    if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
+    if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_end || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
         !net->soil_b || !net->soil_pts || !net->M_at || !net->K_mid_at) {
         roots_net_free(net);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots net");
     }
 
+    for (size_t t = 0; t < slots; t++) net->K_end[t] = (int32_t)(t % (nb ? nb : 1)); /* level */
     roots_grow_mains(net, p);
     if (prog_stopped(g)) goto cancelled;
     memcpy(net->M, net->M_grown, sizeof(v3) * N * B);
@@ -295,8 +298,8 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     for (uint32_t t = 0; t < net->n_poly; t++) {
         const roots_poly *pl = &net->poly[t];
         if (pl->kind != ROOT_FIRST) continue;
-        int b = roots_branch_b(p, pl->k);
-        v3 start = net->M[(size_t)pl->a * B + b], end = net->M[(size_t)((pl->a + 1) % net->N) * B + b];
+        int b = roots_branch_b(p, pl->k), be = roots_branch_end_b(net, p, pl->a * net->nb + pl->k);
+        v3 start = net->M[(size_t)pl->a * B + b], end = net->M[(size_t)((pl->a + 1) % net->N) * B + be];
         const v3 *P = net->pts + pl->off;
         if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
             st->first_reached++;

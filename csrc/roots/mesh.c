@@ -119,8 +119,9 @@ static void junction_rings(work *wk, const roots_net *net, const banyan_roots_pa
     uint32_t n = pl->n;
     int sides = wk->sides, B = net->B;
     int b = roots_branch_b(p, pl->k), a2 = (pl->a + 1) % net->N;
+    int be = roots_branch_end_b(net, p, pl->a * net->nb + pl->k);
 #define MAT(a, i) net->M[(size_t)(a) * B + ((i) < 0 ? 0 : ((i) >= B ? B - 1 : (i)))]
-    v3 C1 = MAT(pl->a, b - 3), C2 = MAT(pl->a, b + 2), E1 = MAT(a2, b - 2), E2 = MAT(a2, b + 2);
+    v3 C1 = MAT(pl->a, b - 3), C2 = MAT(pl->a, b + 2), E1 = MAT(a2, be - 2), E2 = MAT(a2, be + 2);
 #undef MAT
     /* Growth points lie several r apart; on a root crawling over the ground
      * five of them make a sheet metres long, so the loop's reach is capped. */
@@ -344,7 +345,8 @@ int roots_mesh_skeleton(mesh_builder *mb, const roots_net *net, const banyan_roo
                 if (g_index == UINT32_MAX) g_index = mb_skel_point(mb, net->pts[src], net->rad[src], ROOT_MAIN);
                 k = g_index;
             } else if (pl->kind == ROOT_FIRST && (i == 0 || i + 1 == pl->n)) {
-                int b = roots_branch_b(p, pl->k), a = i == 0 ? pl->a : (pl->a + 1) % net->N;
+                int b = i == 0 ? roots_branch_b(p, pl->k) : roots_branch_end_b(net, p, pl->a * net->nb + pl->k);
+                int a = i == 0 ? pl->a : (pl->a + 1) % net->N;
                 k = skel[net->M_at[(size_t)a * net->B + b]];
             } else if (i == 0 && pl->from != UINT32_MAX) { /* foot and aerial roots */
                 k = skel[pl->from];

@@ -32,6 +32,7 @@ const banyan_param_info roots_table_rows[] = {
     BP_INT(S, branch_start, "First side root at", "Branches", 1, 10000, "first-branch start index b (1-based)"),
     BP_INT(S, branch_spacing, "Side root spacing", "Branches", 1, 10000, "first-branch spacing along a main root"),
     BP_DOUBLE(S, branch_vertical, "Side root drop", "Branches", "unit", 0, 1000, "first-branch Bezier vertical draw"),
+    BP_DOUBLE(S, branch_tilt, "Side root slant", "Branches", "", 0, 1, "share of first branch roots ending one slot lower or higher than they start (0: level rungs)"),
     BP_INT(S, branch_samples, "Side root length", "Branches", 3, 1001, "growth points per first branch root"),
     BP_DOUBLE(S, branch_jitter, "Side root wobble", "Branches", "unit", 0, 1000, "first-branch vertical jitter per point"),
     BP_BOOL(S, second_branches, "Rootlets", "Branches", "grow second branch roots"),
@@ -83,6 +84,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .branch_start = 4,
         .branch_spacing = 5,
         .branch_vertical = 15,
+        .branch_tilt = 0.6,
         .branch_samples = 21,
         .branch_jitter = 0, /* #18: smooth paths, no zigzag (the paper: 1.5) */
         .second_lateral = 20,

@@ -364,13 +364,16 @@ static int set_radii(roots_net *net, const banyan_roots_params *p) {
         if (pl->kind == ROOT_MAIN) {
             int a = pl->a, ap = (a + N - 1) % N;
             for (uint32_t i = 0; i < n; i++) F[i] = 0;
-            for (int k = 0; k < nb; k++) {
-                int b = roots_branch_b(p, k);
-                if (b < 0 || b >= B) continue;
-                uint32_t at = net->M_at[(size_t)a * B + b] - pl->off;
-                double f = 0.5 * f1[a * nb + k] + (N > 1 ? 0.5 * f1[ap * nb + k] : 0.0);
-                if (at < n) F[at] += gain * f;
-            }
+            /* Half of each first branch root's flow joins at its start (on
+             * a) and half at its end (on a from a - 1's slots). */
+            for (int k = 0; k < nb; k++)
+                for (int side = 0; side < (N > 1 ? 2 : 1); side++) {
+                    int slot = (side ? ap : a) * nb + k;
+                    int b = side ? (f1[slot] > 0 ? roots_branch_end_b(net, p, slot) : -1) : roots_branch_b(p, k);
+                    if (b < 0 || b >= B) continue;
+                    uint32_t at = net->M_at[(size_t)a * B + b] - pl->off;
+                    if (at < n) F[at] += gain * 0.5 * f1[slot];
+                }
             double sum = 0, x_prev = -1, R_prev = 0; /* x is constant along most of a root: one pow per run */
             for (uint32_t i = 0; i < n; i++) {
                 sum += F[i];

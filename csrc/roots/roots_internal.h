@@ -147,6 +147,8 @@ typedef struct roots_net {
     v3 *M_grown;       /* N * B: as grown, before correction */
     v3 *K;             /* N * nb * S1 first branch points, slot [a*nb + k] */
     int32_t *K_valid;  /* N * nb: 1 when the slot holds a first branch root */
+    int32_t *K_end;    /* N * nb: the slot of main root a+1 where slot (a, k)'s first branch root
+                          ends: k, or k -+ 1 (branch_tilt) */
     uint8_t *K_ok;     /* N * nb * S1: the step into K[i] was checked free while placing it */
     v3 *Q;             /* N * nb * S2 second branch points, slot [a*nb + k] joins k and k+1 */
     int32_t *Q_valid;  /* N * nb */
@@ -269,6 +271,12 @@ static inline int roots_branch_b(const banyan_roots_params *p, int k) {
     return p->branch_start - 1 + k * p->branch_spacing;
 }
 
+/* Growth index on main root a+1 where the first branch root of slot
+ * a * nb + k ends. */
+static inline int roots_branch_end_b(const roots_net *net, const banyan_roots_params *p, int slot) {
+    return roots_branch_b(p, net->K_end[slot]);
+}
+
 /* A first branch root grows in slot (a, k) only where both its ends lie
  * above the soil entry of their main roots (soil_entry). */
 static inline int roots_slot_open(const roots_net *net, const banyan_roots_params *p, int a, int k) {
@@ -285,7 +293,7 @@ static inline int roots_slot_open(const roots_net *net, const banyan_roots_param
 
 /* Per-entity random streams (pcg32_seed's stream argument). */
 enum { STREAM_SHARED = 1, STREAM_MAIN = 0x100, STREAM_FIRST = 0x10000, STREAM_SECOND = 0x20000000,
-       STREAM_FOOT = 0x30000000, STREAM_AERIAL = 0x38000000 };
+       STREAM_FOOT = 0x30000000, STREAM_AERIAL = 0x38000000, STREAM_TILT = 0x3c000000 };
 
 /* The params checks of banyan_roots_generate: the table, then the rules
  * that tie fields together (generate.c). */

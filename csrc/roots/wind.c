@@ -42,7 +42,8 @@ static void arc_of(const v3 *P, uint32_t n, double *arc) {
  * UINT32_MAX for a main root's end (G is handled by the caller). */
 static uint32_t parent_point(const roots_net *net, const banyan_roots_params *p, const roots_poly *pl, int end) {
     if (pl->kind == ROOT_FIRST) {
-        int b = roots_branch_b(p, pl->k), a = end ? (pl->a + 1) % net->N : pl->a;
+        int b = end ? roots_branch_end_b(net, p, pl->a * net->nb + pl->k) : roots_branch_b(p, pl->k);
+        int a = end ? (pl->a + 1) % net->N : pl->a;
         return net->M_at[(size_t)a * net->B + b];
     }
     if (pl->kind == ROOT_SECOND) return net->K_mid_at[pl->a * net->nb + pl->k + (end ? 1 : 0)];

@@ -262,8 +262,8 @@ static void check_net(const roots_net *net, const banyan_roots_params *p, const 
         const v3 *Pp = net->pts + pl->off;
         if (pl->kind == ROOT_FIRST) {
             firsts++;
-            int b = roots_branch_b(p, pl->k);
-            v3 s = net->M[(size_t)pl->a * B + b], e = net->M[(size_t)((pl->a + 1) % N) * B + b];
+            int b = roots_branch_b(p, pl->k), be = roots_branch_end_b(net, p, pl->a * nb + pl->k);
+            v3 s = net->M[(size_t)pl->a * B + b], e = net->M[(size_t)((pl->a + 1) % N) * B + be];
             const v3 *K = net->K + (size_t)(pl->a * nb + pl->k) * net->S1;
             if (memcmp(&Pp[0], &s, sizeof s) || memcmp(&Pp[pl->n - 1], &e, sizeof e) ||
                 memcmp(&K[0], &s, sizeof s) || memcmp(&K[net->S1 - 1], &e, sizeof e) || pl->n < 2)

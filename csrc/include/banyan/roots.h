@@ -38,6 +38,9 @@ typedef struct banyan_roots_params {
     int32_t branch_start;         /* 1 .. 10000: first-branch start index b (1-based) [4] */
     int32_t branch_spacing;       /* 1 .. 10000: first-branch spacing [5] */
     double branch_vertical;       /* unit, 0 .. 1000: Bezier vertical draw +-v [15] */
+    double branch_tilt;           /* 0 .. 1: share of first branch roots that end one slot lower or higher
+                                     on the next main root instead of level (a diamond lattice, not
+                                     ladder rungs); 0: the paper's level branches [0.6] */
     int32_t branch_samples;       /* 3 .. 1001: growth points per first branch root [21] */
     double branch_jitter;         /* unit, 0 .. 1000: vertical jitter I(-j <= x <= j) per point [1.5] */
     double second_lateral;        /* unit, 0 .. 1000: second-branch lateral draw +-l [20] */
