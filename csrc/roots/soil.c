@@ -9,8 +9,10 @@
  * The band's top at a point of the ground is soil_line times 0.5 .. 1.5,
  * from a smooth value noise over world x, y (a 0.6 m cell, a 0.17 m one
  * for a ragged edge), so it rises and falls round the foot and never
- * reaches 2 soil_line. Below it the stain grows with a smoothstep to full
- * at the soil; a second noise makes it patchy (0.8 .. 1 of full). Faces
+ * reaches 2 soil_line. The stain is full in the band's lowest quarter
+ * and fades with a smoothstep to nothing at its top, so the band reads
+ * from a few metres yet has no edge; a second noise makes it patchy
+ * (0.8 .. 1 of full). Faces
  * turned up are washed by the rain: there the stain falls off faster with
  * height (t x (1 - up + up t^3)), so a surface root lying on the ground
  * keeps a grey top over dark flanks, while everything at the soil itself
@@ -71,7 +73,7 @@ void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_
         double x = (double)P[0] + O.x, y = (double)P[1] + O.y;
         double wave = 0.75 * value_noise(k_top, x, y, 0.6) + 0.25 * value_noise(k_edge, x, y, 0.17);
         double top = p->soil_line * (0.5 + wave);
-        double t = 1.0 - smooth01(h / top); /* 1 at the soil, 0 at the band's top */
+        double t = 1.0 - smooth01((h - 0.25 * top) / (0.75 * top)); /* 1 low in the band, 0 at its top */
         if (t <= 0) continue;
         double up = m->normals ? (double)m->normals[3 * (size_t)v + 2] : 0.0;
         up = up > 0 ? up : 0;
