@@ -15,8 +15,10 @@ back, delete or rename it. The texture size (add-on preference, default
 
 Node setup, the same on Blender 3.4 to 5.0 (only inputs whose names did
 not change in 4.0 are used: Base Color, Roughness, Alpha, Normal):
-  image (sRGB) [x vertex colour: per-leaf tints] -> Principled Base Color
-  (the texture carries the colour; base_color is the viewport colour);
+  image (sRGB) [x vertex colour: per-leaf tints, the fig bark's soil
+  line] -> Principled Base Color (the texture carries the colour;
+  base_color is the viewport colour), as glTF viewers show texture x
+  COLOR_0;
   leaves: image alpha > alpha_cutoff (a Math node, so the edge is a hard
   clip in Cycles, EEVEE Legacy and EEVEE Next alike) -> Principled Alpha,
   the alpha read by a second image node with Closest interpolation (no
@@ -187,8 +189,9 @@ def shared_material(spec, created, vertex_colors=False):
     colour = tex.outputs["Color"]
     # The texture carries the colour (base_color is the flat colour of
     # untextured viewers: here the viewport's), as in the glTF writer;
-    # leaves are tinted leaf by leaf by the vertex colours (COLOR_0).
-    if vertex_colors and leaf:
+    # the vertex colours (COLOR_0) multiply it: leaves are tinted leaf by
+    # leaf, the fig's roots darken towards the soil (the soil line).
+    if vertex_colors and (leaf or kind == S.TEX_FIG_BARK):
         vc = nodes.new("ShaderNodeVertexColor")
         vc.layer_name = COLOR_ATTRIBUTE
         vc.location = (-300, 550)

@@ -15,8 +15,9 @@
  *     that range and indices rebased to it. Otherwise the mesh's primitives
  *     share accessors over all its vertices and keep absolute indices;
  *   - POSITION (min/max), NORMAL (renormalised; zero -> +Y), TEXCOORD_0
- *     (u, 1 - v), COLOR_0 (float VEC4, when colors != NULL), "_NAME" float
- *     scalars for custom attributes, UNSIGNED_INT indices;
+ *     (u, 1 - v), COLOR_0 (UNSIGNED_BYTE normalized VEC4, when colors !=
+ *     NULL and they do more than repeat the materials' base colours),
+ *     "_NAME" float scalars for custom attributes, UNSIGNED_INT indices;
  *   - Z-up to Y-up: (x, y, z) -> (x, z, -y) for positions, normals and
  *     the wind pivot (_WIND_PIVOT_X/_Y/_Z);
  *   - one metallic-roughness material per banyan_material;
@@ -490,13 +491,14 @@ struct Builder {
         return add_view(sg, target);
     }
 
+    /* normalized: integer components read as 0..1 (COLOR_0's bytes). */
     int add_accessor(int view, int component, int type, size_t count,
                      const std::vector<double> *mn = nullptr,
-                     const std::vector<double> *mx = nullptr) {
+                     const std::vector<double> *mx = nullptr, bool normalized = false) {
         tinygltf::Accessor a;
         a.bufferView = view;
         a.byteOffset = 0;
-        a.normalized = false;
+        a.normalized = normalized;
         a.componentType = component;
         a.type = type;
         a.count = count;
@@ -531,8 +533,8 @@ std::string upper_attribute_key(const char *name) {
 
 /* True when every vertex colour equals the base colour of the material
  * drawing it. glTF shows baseColorFactor x COLOR_0, so writing both would
- * square the colour; such colours are left out (the roots carry their one
- * colour both ways). */
+ * square the colour; such colours are left out. (The roots' vertex colours
+ * are a multiplier, the soil line, white above it: they are written.) */
 bool colors_repeat_material(const banyan_mesh *m) {
     if (!m->colors || m->material_count == 0) return false;
     auto same = [&](uint32_t v, uint32_t mat) {
@@ -724,11 +726,11 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
         attrs["TANGENT"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
     }
 
-    if (m->colors && with_colors) {
-        Segment sg = seg(kRaw, 4);
-        sg.src = m->colors + 4 * static_cast<size_t>(base);
+    if (m->colors && with_colors) { /* 4 bytes a vertex: r, g, b, a as 0..255 */
+        Segment sg = seg(kColor, 1);
         v = b.add_view(sg, AB);
-        attrs["COLOR_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC4, count);
+        attrs["COLOR_0"] = b.add_accessor(v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, count,
+                                          nullptr, nullptr, true);
     }
 
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
@@ -1065,6 +1067,7 @@ class BinWriter {
         default:
             break;
         }
+        /* 4-byte words per element (kColor: its four bytes are one) */
         const uint32_t width = s.kind == kIndices ? 1 : static_cast<uint32_t>(s.bytes / 4 / (s.count ? s.count : 1));
         const size_t elem = static_cast<size_t>(width) * sizeof(float);
         for (uint32_t i0 = 0; i0 < s.count;) {
@@ -1147,6 +1150,16 @@ class BinWriter {
             }
             break;
         }
+        case kColor: { /* clamped to [0, 1], rounded to the nearest of 0..255 */
+            uint8_t *u = reinterpret_cast<uint8_t *>(o);
+            const float *c = m->colors + 4 * b;
+            for (uint32_t i = 0; i < 4 * n; ++i) {
+                float x = c[i];
+                x = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
+                u[i] = static_cast<uint8_t>(x * 255.0f + 0.5f);
+            }
+            break;
+        }
         case kIndices: { /* rebased to the primitive's first vertex */
             uint32_t *u = reinterpret_cast<uint32_t *>(o);
             for (uint32_t i = 0; i < n; ++i) u[i] = m->indices[b + i] - s.aux;
@@ -1183,8 +1196,9 @@ class BinWriter {
 };
 
 uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t count, bool with_colors, bool tangents) {
+    /* in 4-byte words: a colour is 4 bytes */
     uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs || L.engine_uvs ? 2 : 0) +
-                      (m->colors && with_colors ? 4 : 0) + (tangents ? 4 : 0) + m->attribute_count +
+                      (m->colors && with_colors ? 1 : 0) + (tangents ? 4 : 0) + m->attribute_count +
                       (L.engine_uvs ? 8 : 0);
     return floats * 4 * count;
 }

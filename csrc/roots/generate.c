@@ -2,8 +2,9 @@
  * G (spec roots.md, "Parameters": top centre of the first host, lifted by
  * r; for a mesh host the highest surface point above the centre of its
  * bounds), the stages in order (main roots, first branch roots,
- * correction, second branch roots, final paths, mesh) and the stats. Box
- * input becomes a box-only host set, so boxes and meshes share one path.
+ * correction, second branch roots, final paths, mesh, soil line) and the
+ * stats. Box input becomes a box-only host set, so boxes and meshes share
+ * one path.
  * Refusals: bad params, no or bad hosts, G inside a host or below the
  * ground, G beyond the roots' reach of every host, a mesh past
  * max_vertices. */
@@ -316,7 +317,10 @@ static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_
     if (s) return s;
     banyan_roots_stats st = net->stats;
     s = roots_net_mesh(net, params, out, &st, err);
-    if (!s) frame_set(*out, net->hosts->origin);
+    if (!s) {
+        roots_soil_line(net, params, *out);
+        frame_set(*out, net->hosts->origin);
+    }
     roots_net_free(net);
     if (s == BANYAN_OK && stats) *stats = st;
     return s;

@@ -231,6 +231,13 @@ void roots_wind_free(roots_wind *rw);
 void roots_aerial_sweep_all(mesh_builder *mb, const roots_net *net, uint32_t nt, int a_kind, int a_id,
                             const struct wind_slots *ws, const roots_wind *rw);
 
+/* The soil line (soil.c): rewrites the finished mesh's vertex colours as
+ * a multiplier of the bark, white above a band about soil_line high
+ * where the roots meet the ground, a darker, warmer soil tint towards it
+ * (all white with the ground off or soil_line 0). m is in the net's frame
+ * (before frame_set); the stain follows world x, y. */
+void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_mesh *m);
+
 /* Stages (each file's header comment names its spec section). */
 void roots_grow_mains(roots_net *net, const banyan_roots_params *p);
 void roots_grow_first(roots_net *net, const banyan_roots_params *p);

@@ -2,9 +2,11 @@
 operators run twice leave exactly one material per kind and season and one
 image per texture, packed, of the preference's size, the leaves' with
 alpha; node trees wire image -> Principled base colour (and alpha through a
-clip for leaves, a Normal Map for bark); EEVEE clips leaves; autumn swaps
-the material, not the geometry; an artist's edit to a shared material is
-never overwritten; Regenerate with another season swaps the slot."""
+clip for leaves, a Normal Map for bark; the leaves' and the fig bark's
+times the vertex colours, which on the roots carry the soil line); EEVEE
+clips leaves; autumn swaps the material, not the geometry; an artist's
+edit to a shared material is never overwritten; Regenerate with another
+season swaps the slot."""
 import os
 import sys
 from array import array
@@ -126,6 +128,30 @@ def test_twice():
             bt.check(img.colorspace_settings.name == 'Non-Color', "%s: Non-Color" % name)
     for m in mats:
         check_nodes(m)
+    for o in objs.get("roots", []):
+        check_soil_line(o)
+
+
+def check_soil_line(o):
+    """The roots carry the soil line as the "Color" attribute (white above
+    the band, darker towards the ground), and Banyan Fig Bark multiplies
+    its image by it: a Color Attribute node feeds the base colour, as glTF
+    viewers show texture x COLOR_0."""
+    ca = o.data.color_attributes.get(MAT.COLOR_ATTRIBUTE)
+    if bt.check(ca is not None and ca.domain == 'POINT', "%s: a per-vertex \"Color\" attribute" % o.name):
+        buf = array("f", bytes(4 * 4 * len(ca.data)))
+        ca.data.foreach_get("color", buf)
+        white = sum(1 for v in buf[0::4] if v >= 0.999)
+        bt.check(0 < white < len(ca.data) and min(buf[0::4]) < 0.8,
+                 "%s: white above the soil line, darker below (%d of %d red at 1, least %.3f)"
+                 % (o.name, white, len(ca.data), min(buf[0::4]) if len(buf) else -1))
+    m = o.data.materials[0] if o.data.materials else None
+    if not bt.check(m is not None and m.name == "Banyan Fig Bark", "%s: Banyan Fig Bark" % o.name):
+        return
+    bsdf = next((n for n in m.node_tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
+    vc = [n for n, out in upstream(bsdf.inputs["Base Color"]) if n.bl_idname == "ShaderNodeVertexColor"]
+    bt.check(len(vc) == 1 and vc[0].layer_name == MAT.COLOR_ATTRIBUTE,
+             "%s: a Color Attribute node (\"Color\") -> Base Color" % m.name)
 
 
 def check_nodes(m):

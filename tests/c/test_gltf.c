@@ -14,6 +14,7 @@
 #include "banyan.h"
 #include "test_files.h"
 
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -284,6 +285,64 @@ static void expect_fail(const char *what, const char *path, const banyan_mesh *c
     printf("ok: %-34s -> %d \"%s\"\n", what, (int)s, err.message);
 }
 
+/* COLOR_0 of every primitive of the .glb at path (mesh 0, one primitive per
+ * part of m, each over its part's vertices): UNSIGNED_BYTE (5121)
+ * normalized VEC4, its bytes m's colours clamped to [0, 1] and rounded
+ * (c x 255 + 0.5, truncated). Returns how many primitives carried it. */
+static int check_color_bytes(const char *path, const banyan_mesh *m) {
+    size_t size = 0;
+    unsigned char *d = read_all(path, &size);
+    int found = 0;
+    if (!d || size < 28) {
+        CHECK(0, "%s: cannot read", path);
+        free(d);
+        return 0;
+    }
+    uint32_t jl = rd32(d + 12);
+    const unsigned char *bin = d + 20 + jl + 8;
+    cJSON *j = cJSON_ParseWithLength((const char *)d + 20, jl);
+    CHECK(j != NULL, "%s: JSON does not parse", path);
+    const cJSON *prims = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(j, "meshes"), 0), "primitives");
+    const cJSON *accs = cJSON_GetObjectItemCaseSensitive(j, "accessors");
+    const cJSON *views = cJSON_GetObjectItemCaseSensitive(j, "bufferViews");
+    const cJSON *prim;
+    int k = 0;
+    cJSON_ArrayForEach(prim, prims) {
+        const cJSON *ai = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(prim, "attributes"), "COLOR_0");
+        const uint32_t base = (uint32_t)k < m->part_count ? m->parts[k].vertex_offset : 0;
+        k++;
+        if (!cJSON_IsNumber(ai)) continue;
+        found++;
+        const cJSON *a = cJSON_GetArrayItem(accs, ai->valueint);
+        const cJSON *ct = cJSON_GetObjectItemCaseSensitive(a, "componentType");
+        const cJSON *nz = cJSON_GetObjectItemCaseSensitive(a, "normalized");
+        const char *type = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(a, "type"));
+        CHECK(cJSON_IsNumber(ct) && ct->valueint == 5121, "%s: COLOR_0 componentType %d, want 5121 (UNSIGNED_BYTE)",
+              path, cJSON_IsNumber(ct) ? ct->valueint : -1);
+        CHECK(cJSON_IsTrue(nz), "%s: COLOR_0 is not normalized", path);
+        CHECK(type && strcmp(type, "VEC4") == 0, "%s: COLOR_0 type %s, want VEC4", path, type ? type : "?");
+        const cJSON *cnt = cJSON_GetObjectItemCaseSensitive(a, "count");
+        const cJSON *v = cJSON_GetArrayItem(views, (int)cJSON_GetNumberValue(cJSON_GetObjectItemCaseSensitive(a, "bufferView")));
+        const cJSON *vo = cJSON_GetObjectItemCaseSensitive(v, "byteOffset");
+        const cJSON *vl = cJSON_GetObjectItemCaseSensitive(v, "byteLength");
+        uint32_t n = cJSON_IsNumber(cnt) ? (uint32_t)cnt->valueint : 0;
+        size_t off = cJSON_IsNumber(vo) ? (size_t)vo->valuedouble : 0;
+        CHECK(cJSON_IsNumber(vl) && (size_t)vl->valuedouble == 4 * (size_t)n, "%s: COLOR_0 view of %g bytes for %u colours",
+              path, cJSON_IsNumber(vl) ? vl->valuedouble : -1.0, n);
+        int wrong = 0;
+        for (uint32_t i = 0; i < 4 * n && 20 + jl + 8 + off + i < size && base + i / 4 < m->vertex_count; ++i) {
+            float c = m->colors[4 * (size_t)base + i];
+            c = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
+            wrong += bin[off + i] != (unsigned char)(c * 255.0f + 0.5f);
+        }
+        CHECK(wrong == 0, "%s: %d COLOR_0 bytes are not the colours rounded", path, wrong);
+    }
+    cJSON_Delete(j);
+    free(d);
+    return found;
+}
+
 int main(int argc, char **argv) {
     if (argc != 2) {
         fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
@@ -316,6 +375,8 @@ int main(int argc, char **argv) {
         "\"leaf \xe8\x91\x89\"", "\"trunk\"", "\"doubleSided\":true", "\"metallicFactor\":0",
         NULL};
     if (s == BANYAN_OK) check_written("test_gltf_two.glb", 1, two_must);
+    if (s == BANYAN_OK)
+        CHECK(check_color_bytes(out_path("test_gltf_two.glb"), a) == 2, "two.glb: mesh A's primitives lack COLOR_0");
 
     s = banyan_gltf_write(out_path("test_gltf_two.gltf"), both, names, 2, &err);
     CHECK(s == BANYAN_OK, "two.gltf: %d %s", (int)s, err.message);
@@ -387,10 +448,13 @@ int main(int argc, char **argv) {
             CHECK(json && !strstr(json, "COLOR_0"), "same_colour.glb: COLOR_0 repeats the materials");
             free(json);
             c->colors[0] += 0.25f;
+            c->colors[5] = 1.5f;  /* clamped to 255 */
+            c->colors[6] = -0.5f; /* clamped to 0 */
             s = banyan_gltf_write(out_path("test_gltf_same_colour.glb"), one, NULL, 1, &err);
             json = s == BANYAN_OK ? json_of(out_path("test_gltf_same_colour.glb"), 1) : NULL;
             CHECK(json && strstr(json, "COLOR_0"), "same_colour.glb: differing colours left out");
             free(json);
+            if (s == BANYAN_OK) check_color_bytes(out_path("test_gltf_same_colour.glb"), c);
             mesh_destroy(c);
         }
     }

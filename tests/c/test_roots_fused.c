@@ -274,6 +274,7 @@ static void check_net(const char *what, const banyan_roots_params *p0, const ban
         memset(&rs, 0, sizeof rs);
         st = roots_net_mesh(&net, &p, &m, &rs, &err);
         CHECK(st == BANYAN_OK && m, "%s seed %llu: %s", what, (unsigned long long)p.seed, err.message);
+        if (m) roots_soil_line(&net, &p, m); /* as banyan_roots_generate does */
         if (!m) {
             roots_net_free(&net);
             t->failed++;

@@ -135,6 +135,7 @@ static void roots_one(const char *name, banyan_roots_params p, const banyan_box 
         banyan_mesh *m = NULL;
         st = roots_net_mesh(&net, &p, &m, NULL, &err);
         CHECK(st == BANYAN_OK && m, "%s: %s", what, err.message);
+        if (m) roots_soil_line(&net, &p, m); /* as banyan_roots_generate does */
         if (m) {
             common_checks(what, m, NULL);
             roots_per_root(what, m);

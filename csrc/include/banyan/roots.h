@@ -47,7 +47,8 @@ typedef struct banyan_roots_params {
     int32_t second_samples;       /* 2 .. 1001: growth points per second branch root [6] */
     int32_t bezier_uniform;       /* bool: draw the Bezier offsets uniformly in [-v, v] instead of the
                                      spec's I(-v, v) pick of -v or +v [0] */
-    double color[4];              /* linear RGBA 0..1: vertex and material colour */
+    double color[4];              /* linear RGBA 0..1: the material's base colour (the vertex colours are
+                                     a multiplier of it and of the bark texture: soil_line) */
     int32_t first_branches;       /* bool: grow first branch roots [1] */
     int32_t second_branches;      /* bool: grow second branch roots [1] */
     int32_t correction;           /* bool: bend main roots at first branches (spec 3) [1] */
@@ -88,6 +89,8 @@ typedef struct banyan_roots_params {
                                      per gap between main roots, at maturity 1 (times maturity) [3] */
     double aerial_roots;          /* 0 .. 200: thin roots hanging free from the net, at maturity 1
                                      (times maturity); some reach the soil [40] */
+    double soil_line;             /* m, 0 .. 2: mean height of the darker, soil-stained band where the
+                                     roots meet the ground (vertex colours); 0 = none [0.25] */
     int32_t smooth_paths;         /* bool: smooth curves through the growth points, no zigzag [1] */
     /* The run's budget (docs/api.md, "Budgets"): past either, BANYAN_E_LIMIT naming it. */
     double max_seconds;           /* s, 0.01 .. 604800: wall time of one call [600] */
