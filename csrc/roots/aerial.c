@@ -618,6 +618,33 @@ static int start_crosses(const float *pos, const uint32_t *tri, const uint32_t *
     return 0;
 }
 
+/* The start folds on itself: two of its triangles (the cap over ring a,
+ * the quads to ring b with either diagonal) that share no corner come
+ * nearer than half AERIAL_TOUCH, as where one corner of ring a runs far
+ * back along a slanting surface and its neighbours do not. */
+static int start_folds(const v3 *a, const v3 *b, v3 apex, int S) {
+    enum { MAXT = 5 * ROOTS_AERIAL_SIDES };
+    v3 q[MAXT][3];
+    int id[MAXT][3], n = 0;
+    for (int j = 0; j < S; j++) {
+        int k = (j + 1) % S;
+        const int ids[5][3] = {{j, k, S + k}, {j, S + k, S + j}, {j, k, S + j}, {k, S + k, S + j}, {2 * S, j, k}};
+        for (int m = 0; m < 5; m++, n++)
+            for (int c = 0; c < 3; c++) {
+                int v = ids[m][c];
+                id[n][c] = v;
+                q[n][c] = v < S ? a[v] : v < 2 * S ? b[v - S] : apex;
+            }
+    }
+    for (int s = 0; s < n; s++)
+        for (int t = s + 1; t < n; t++) {
+            int share = 0;
+            for (int c = 0; c < 9; c++) share |= id[s][c / 3] == id[t][c % 3];
+            if (!share && tri_tri_dist(q[s], q[t]) < 0.5 * AERIAL_TOUCH) return 1;
+        }
+    return 0;
+}
+
 /* How far from a thread's second point the surface it leaves can lie:
  * the way back to its first point and two radii. */
 static double start_reach(const roots_net *net, const roots_poly *pl) {
@@ -658,17 +685,24 @@ static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *
      * edge from it to ring 1 lies outside (the first hit from outside). */
     v3 d = v3_norm(v3_sub(P[0], P[1]));
     double reach = start_reach(net, pl);
-    double hit[S];
+    double hit[S], shortest = HUGE_VAL;
+    int missed[S];
     for (int j = 0; j < S; j++) {
         double cosine, s = ray_hit(pos, tri, cand, nc, ring[S + j], d, reach, &cosine);
         double back = AERIAL_TOUCH / dmax(cosine, 0.25); /* AERIAL_TOUCH off the surface, along its normal */
-        hit[j] = s < reach ? (s > back ? s - back : 0) : 0;
+        missed[j] = !(s < reach);
+        hit[j] = missed[j] ? 0 : s > back ? s - back : 0;
+        if (!missed[j]) shortest = dmin(shortest, hit[j]);
         nrm[j] = nrm[S + j];
     }
-    /* Where the surface runs slantwise a quad's diagonal may cut it, or
-     * the ring come nearer than AERIAL_TOUCH: the ring then stops shorter
-     * (by half millimetres, then tenths of the way); where none fits the
-     * tube starts at ring 1 (the thread then stands off the bark by its
+    /* a corner whose ray passes the root's side goes as far as the
+     * shortest that met it (not nowhere: the ring would fold) */
+    for (int j = 0; j < S; j++)
+        if (missed[j] && shortest < HUGE_VAL) hit[j] = shortest;
+    /* Where the surface runs slantwise a quad's diagonal may cut it, the
+     * ring come nearer than AERIAL_TOUCH or the start fold on itself: the
+     * ring then stops shorter (the tries below); where none fits the tube
+     * starts at ring 1 (the thread then stands off the bark by its
      * margin). */
     /* each vertex back from the nearest surface to AERIAL_TOUCH */
     for (int it = 0; it < 4; it++)
@@ -691,11 +725,18 @@ static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *
             hit[j] = it == 19 ? 0 : 0.8 * hit[j];
         }
     /* Tries: half a millimetre shorter each (so the start stays within
-     * a few of the bark), then by tenths of the way. */
+     * a few of the bark); then each corner's way drawn towards the least
+     * of them by quarters (ring 1's shape moved back: a start that cannot
+     * fold); then that by tenths of the way. */
+    double least = hit[0];
+    for (int j = 1; j < S; j++) least = dmin(least, hit[j]);
     uint32_t skip = 1; /* no ring 0 fits: the tube starts at ring 1, capped */
-    for (int tries = 0; tries < 19 && skip; tries++) {
-        double f = tries < 10 ? 1.0 : 1.0 - 0.1 * (tries - 9), back = tries < 10 ? 0.0005 * tries : 0.0;
-        for (int j = 0; j < S; j++) ring[j] = v3_madd(ring[S + j], d, dmax(f * hit[j] - back, 0.001));
+    for (int tries = 0; tries < 23 && skip; tries++) {
+        double back = tries < 10 ? 0.0005 * tries : 0.0;
+        double keep = tries < 10 ? 1.0 : tries < 14 ? 0.25 * (13 - tries) : 0.0; /* of hit[j] - least */
+        double f = tries < 14 ? 1.0 : 0.1 * (23 - tries);
+        for (int j = 0; j < S; j++)
+            ring[j] = v3_madd(ring[S + j], d, dmax(f * (least + keep * (hit[j] - least)) - back, 0.001));
         /* the candidates near the strip between rings 0 and 1 */
         v3 lo = ring[0], hi = ring[0];
         for (int j = 0; j < 2 * S; j++)
@@ -714,7 +755,7 @@ static void sweep_one(mesh_builder *mb, const roots_net *net, const roots_poly *
             if (!apart) near[ns++] = cand[c];
         }
         C[0] = cap_apex(ring, d, C[1], T[1], S);
-        if (!start_crosses(pos, tri, near, ns, ring, ring + S, C[0], S) &&
+        if (!start_folds(ring, ring + S, C[0], S) && !start_crosses(pos, tri, near, ns, ring, ring + S, C[0], S) &&
             start_clear(pos, tri, near, ns, ring, ring + S, C[0], S))
             skip = 0;
     }

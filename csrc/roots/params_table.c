@@ -105,7 +105,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .junction_reach = 2, /* #18: was 8; thick main roots (pipe model) make the junction, long loops folded the tubes */
         .junction_falloff = 3,
         .surface = 0,
-        .voxel_size = 0.9,
+        .voxel_size = 0.95,
         .fuse_radius = 2,
         .maturity = 0.6,
         .pipe_exponent = 2.5,

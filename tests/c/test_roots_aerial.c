@@ -80,21 +80,24 @@ static void mesh_threads(const char *name, const banyan_mesh *m) {
         while (v < m->vertex_count && id[v] == id[a]) v++;
         CHECK(kind[a] == 4.0f, "%s: vertex %u after the threads began has root_kind %g", name, a, kind[a]);
         threads++;
-        /* ring 0 (its first vertex) on the bark: within 2 mm of the surface */
+        /* ring 0 touches the bark: its nearest vertex within 2 mm of the
+         * surface (leaving a slanting surface the ring leans on it) */
         double best = HUGE_VAL;
-        const float *q = m->positions + 3 * (size_t)a;
-        v3 Q = v3_make(q[0], q[1], q[2]);
-        for (uint32_t f = 0; f + 2 < m->index_count; f += 3) {
-            const uint32_t *I = m->indices + f;
-            if (I[0] >= surface_v) break;
-            v3 X[3];
-            for (int j = 0; j < 3; j++) {
-                const float *c = m->positions + 3 * (size_t)I[j];
-                X[j] = v3_make(c[0], c[1], c[2]);
+        for (uint32_t c = 0; c <= ROOTS_AERIAL_SIDES && a + c < v; c++) {
+            const float *q = m->positions + 3 * (size_t)(a + c);
+            v3 Q = v3_make(q[0], q[1], q[2]);
+            for (uint32_t f = 0; f + 2 < m->index_count; f += 3) {
+                const uint32_t *I = m->indices + f;
+                if (I[0] >= surface_v) break;
+                v3 X[3];
+                for (int j = 0; j < 3; j++) {
+                    const float *c = m->positions + 3 * (size_t)I[j];
+                    X[j] = v3_make(c[0], c[1], c[2]);
+                }
+                int region;
+                double d = v3_dist(Q, tri_closest(Q, X[0], X[1], X[2], &region));
+                if (d < best) best = d;
             }
-            int region;
-            double d = v3_dist(Q, tri_closest(Q, X[0], X[1], X[2], &region));
-            if (d < best) best = d;
         }
         if (best > worst) worst = best;
         gaps += best > 0.002;

@@ -71,7 +71,7 @@ typedef struct banyan_roots_params {
     /* Issue #18: the look of a real strangler fig (docs/roots.md). */
     int32_t surface;              /* banyan_roots_surface: one fused closed surface (OpenVDB) or the
                                      plain tubes [FUSED] */
-    double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.9] */
+    double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.95] */
     double fuse_radius;           /* multiples of r, 0 .. 4: fillet where roots merge (smooth union) [2] */
     double maturity;              /* 0 .. 1: young separate cords (0) to an old fused sleeve (1): how
                                      much roots thicken with the flow and fuse [0.6] */
