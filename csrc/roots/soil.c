@@ -53,7 +53,7 @@ static double value_noise(uint64_t key, double x, double y, double cell) {
 }
 
 /* The multiplier at full stain: darker and warmer (linear RGB). */
-static const double SOIL_TINT[3] = {0.55, 0.48, 0.40};
+static const double SOIL_TINT[3] = {0.42, 0.35, 0.27};
 
 void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_mesh *m) {
     if (!m || !m->colors) return;
