@@ -35,6 +35,7 @@
 #include "core/error.h"
 #include "core/leaf_look.h"
 #include "core/mesh_builder.h"
+#include "core/noise.h"
 #include "core/obb.h"
 #include "core/pool.h"
 #include "core/tube.h"
@@ -46,6 +47,7 @@
 #define PETIOLE_VERTS (2 * PETIOLE_SIDES)
 #define LEAF_FOLD 0.25  /* rad each half of a blade turns up about the midrib: a flat card reads as paper */
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
+#define CLUMP_SALT 0xc1d3bULL     /* the clumps' noise and the keep draws */
 #define IVY_WIND_REACH 8.0 /* a free stem softens over this many internodes from its last hold */
 #define IVY_WIND_LEAF 0x1eaf0000000ULL /* leaves' phase ids, apart from the stems' (bud numbers) */
 
@@ -239,6 +241,23 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
     return hit;
 }
 
+/* Does bud i carry a leaf? Of the buds, leaf_share do where the cover is
+ * average; the share varies over clumps of clump_size (3-D value noise
+ * on the bud's world position: 1 +- leaf_clump times it) and halves
+ * towards the growing tips (age 0: a new bud; 1: leaf_size_steps old), so
+ * the cover has dense and thin patches and a thinner growth front. Drawn
+ * from a hash of the seed and the bud, apart from every stream. */
+static int leaf_kept(const banyan_ivy *iv, int32_t i, double age) {
+    const banyan_ivy_params *p = &iv->p;
+    if (p->leaf_share >= 1 && p->leaf_clump <= 0) return 1;
+    const uint64_t key = noise_mix(p->seed ^ CLUMP_SALT);
+    v3 P = v3_add(iv->buds[i].P, iv->origin);
+    double share = p->leaf_share * (1 + p->leaf_clump * (2 * noise_value3(key, P.x, P.y, P.z, p->clump_size) - 1)) *
+                   (0.5 + 0.5 * age);
+    uint64_t h = noise_mix(noise_mix(key + 1) ^ (uint64_t)i);
+    return (double)(h >> 11) * (1.0 / 9007199254740992.0) < share;
+}
+
 /* Places bud i's leaf (module comment); returns 0 when it has no size
  * or finds no room clear of the hosts. */
 static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, leaf_geo *g) {
@@ -253,6 +272,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
      * (plants.md: long-shoot leaves are smaller than spur leaves). */
     double age = (double)(iv->step - b->step_c) / p->leaf_size_steps;
     age = age < 0 ? 0 : (age > 1 ? 1 : age);
+    if (!leaf_kept(iv, i, age)) return 0;
     g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age * sqrt(age)) * p->leaf_scale *
               (0.8 + 0.45 * u_size);
     if (!(g->size > 0)) return 0;

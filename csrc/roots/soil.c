@@ -21,36 +21,7 @@
  * same stain whichever frame the generator picked. */
 #include "roots_internal.h"
 
-/* splitmix64's finaliser: a well-mixed 64-bit hash. */
-static uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-/* The lattice value of cell (i, j), in [0, 1). */
-static double lattice(uint64_t key, int64_t i, int64_t j) {
-    uint64_t h = mix64(key ^ mix64((uint64_t)i * 0x9e3779b97f4a7c15ULL + (uint64_t)j * 0xc2b2ae3d27d4eb4fULL));
-    return (double)(h >> 11) * (1.0 / 9007199254740992.0);
-}
-
-static double smooth01(double t) {
-    t = t < 0 ? 0 : t > 1 ? 1 : t;
-    return t * t * (3 - 2 * t);
-}
-
-/* Value noise at (x, y) m over cells of `cell` m: the four corners' values
- * blended with smoothsteps; in [0, 1). */
-static double value_noise(uint64_t key, double x, double y, double cell) {
-    double u = x / cell, v = y / cell;
-    double fu = floor(u), fv = floor(v);
-    int64_t i = (int64_t)fu, j = (int64_t)fv;
-    double s = smooth01(u - fu), t = smooth01(v - fv);
-    double a = lattice(key, i, j), b = lattice(key, i + 1, j);
-    double c = lattice(key, i, j + 1), d = lattice(key, i + 1, j + 1);
-    double lo = a + (b - a) * s, hi = c + (d - c) * s;
-    return lo + (hi - lo) * t;
-}
+#include "core/noise.h"
 
 /* The multiplier at full stain: darker and warmer (linear RGB). */
 static const double SOIL_TINT[3] = {0.42, 0.35, 0.27};
@@ -63,22 +34,22 @@ void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_
                                        C[4 * (size_t)v + 3] = 1.0f;
     if (!net->w.ground || !(p->soil_line > 0)) return;
     const v3 O = net->hosts->origin;
-    const uint64_t seed = mix64(p->seed ^ 0x5017113e50117ULL);
-    const uint64_t k_top = mix64(seed + 1), k_edge = mix64(seed + 2), k_patch = mix64(seed + 3);
+    const uint64_t seed = noise_mix(p->seed ^ 0x5017113e50117ULL);
+    const uint64_t k_top = noise_mix(seed + 1), k_edge = noise_mix(seed + 2), k_patch = noise_mix(seed + 3);
     const double top_max = 1.5 * p->soil_line;
     for (uint32_t v = 0; v < n; v++) {
         const float *P = m->positions + 3 * (size_t)v;
         double h = (double)P[2] - net->w.ground_z;
         if (h >= top_max) continue;
         double x = (double)P[0] + O.x, y = (double)P[1] + O.y;
-        double wave = 0.75 * value_noise(k_top, x, y, 0.6) + 0.25 * value_noise(k_edge, x, y, 0.17);
+        double wave = 0.75 * noise_value2(k_top, x, y, 0.6) + 0.25 * noise_value2(k_edge, x, y, 0.17);
         double top = p->soil_line * (0.5 + wave);
-        double t = 1.0 - smooth01((h - 0.25 * top) / (0.75 * top)); /* 1 low in the band, 0 at its top */
+        double t = 1.0 - noise_smooth01((h - 0.25 * top) / (0.75 * top)); /* 1 low in the band, 0 at its top */
         if (t <= 0) continue;
         double up = m->normals ? (double)m->normals[3 * (size_t)v + 2] : 0.0;
         up = up > 0 ? up : 0;
         double stain = t * (1.0 - up + up * t * t * t);
-        stain *= 0.8 + 0.2 * value_noise(k_patch, x, y, 0.3);
+        stain *= 0.8 + 0.2 * noise_value2(k_patch, x, y, 0.3);
         float *c = C + 4 * (size_t)v;
         for (int k = 0; k < 3; k++) c[k] = (float)(1.0 - stain * (1.0 - SOIL_TINT[k]));
     }

@@ -107,6 +107,9 @@ typedef struct banyan_ivy_params {
     double leaf_petiole;        /* petiole length over blade size, 0 .. 5 */
     double leaf_tilt;           /* mean turn of a blade off the surface towards the sky, deg, 0 .. 90 */
     double leaf_spread;         /* per-leaf random spread of that turn and of the blade's heading, deg, 0 .. 90 */
+    double leaf_share;          /* share of the buds that carry a leaf where the cover is average, 0 .. 1 */
+    double leaf_clump;          /* how far that share varies over clumps: 0 even, 1 from none to twice, 0 .. 1 */
+    double clump_size;          /* size of those clumps, m, 0.01 .. 100 */
     int32_t leaf_size_steps;    /* steps of age a drawn blade takes to reach leaf_size_max, 1 .. 100000 */
     double stem_color[4];       /* linear RGBA of material "ivy_stem" */
     double leaf_color[4];       /* linear RGBA of material "ivy_leaf" in summer (its flat colour, textures off) */
