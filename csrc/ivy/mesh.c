@@ -242,16 +242,18 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
 }
 
 /* Does bud i carry a leaf? Of the buds, leaf_share do where the cover is
- * average; the share varies over clumps of clump_size (3-D value noise
- * on the bud's world position: 1 +- leaf_clump times it) and halves
- * towards the growing tips (age 0: a new bud; 1: leaf_size_steps old), so
- * the cover has dense and thin patches and a thinner growth front. Drawn
- * from a hash of the seed and the bud, apart from every stream. */
+ * average; the share varies over clumps of clump_size (1 +- leaf_clump
+ * times a 3-D value noise of the bud's position relative to the first
+ * bud, so a plant moved, far from the origin too, keeps its leaves) and
+ * halves towards the growing tips (age 0: a new bud; 1: leaf_size_steps
+ * old), so the cover has dense and thin patches and a thinner growth
+ * front. Drawn from a hash of the seed and the bud, apart from every
+ * stream. */
 static int leaf_kept(const banyan_ivy *iv, int32_t i, double age) {
     const banyan_ivy_params *p = &iv->p;
     if (p->leaf_share >= 1 && p->leaf_clump <= 0) return 1;
     const uint64_t key = noise_mix(p->seed ^ CLUMP_SALT);
-    v3 P = v3_add(iv->buds[i].P, iv->origin);
+    v3 P = v3_sub(iv->buds[i].P, iv->buds[0].P);
     double share = p->leaf_share * (1 + p->leaf_clump * (2 * noise_value3(key, P.x, P.y, P.z, p->clump_size) - 1)) *
                    (0.5 + 0.5 * age);
     uint64_t h = noise_mix(noise_mix(key + 1) ^ (uint64_t)i);

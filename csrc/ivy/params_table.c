@@ -149,7 +149,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_size_max = 0.14;
     p->leaf_size_steps = 300;
     p->leaf_petiole = 0.7;
-    p->leaf_tilt = 14.0;
+    p->leaf_tilt = 16.0;
     p->leaf_spread = 10.0;
     p->leaf_share = 0.55;
     p->leaf_clump = 0.5;

@@ -16,9 +16,9 @@
  * turned up are washed by the rain: there the stain falls off faster with
  * height (t x (1 - up + up t^3)), so a surface root lying on the ground
  * keeps a grey top over dark flanks, while everything at the soil itself
- * is stained. The noise runs in world coordinates (the mesh's local
- * position plus the frame's origin, in double): the same place gets the
- * same stain whichever frame the generator picked. */
+ * is stained. The noise runs on the position relative to the
+ * germination point G: a plant moved (far from the origin too) keeps its
+ * stain, as it keeps its roots. */
 #include "roots_internal.h"
 
 #include "core/noise.h"
@@ -33,7 +33,7 @@ void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_
     for (uint32_t v = 0; v < n; v++) C[4 * (size_t)v] = C[4 * (size_t)v + 1] = C[4 * (size_t)v + 2] =
                                        C[4 * (size_t)v + 3] = 1.0f;
     if (!net->w.ground || !(p->soil_line > 0)) return;
-    const v3 O = net->hosts->origin;
+    const v3 G = net->G;
     const uint64_t seed = noise_mix(p->seed ^ 0x5017113e50117ULL);
     const uint64_t k_top = noise_mix(seed + 1), k_edge = noise_mix(seed + 2), k_patch = noise_mix(seed + 3);
     const double top_max = 1.5 * p->soil_line;
@@ -41,7 +41,7 @@ void roots_soil_line(const roots_net *net, const banyan_roots_params *p, banyan_
         const float *P = m->positions + 3 * (size_t)v;
         double h = (double)P[2] - net->w.ground_z;
         if (h >= top_max) continue;
-        double x = (double)P[0] + O.x, y = (double)P[1] + O.y;
+        double x = (double)P[0] - G.x, y = (double)P[1] - G.y;
         double wave = 0.75 * noise_value2(k_top, x, y, 0.6) + 0.25 * noise_value2(k_edge, x, y, 0.17);
         double top = p->soil_line * (0.5 + wave);
         double t = 1.0 - noise_smooth01((h - 0.25 * top) / (0.75 * top)); /* 1 low in the band, 0 at its top */
