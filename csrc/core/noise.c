@@ -9,11 +9,12 @@ uint64_t noise_mix(uint64_t z) {
     return z ^ (z >> 31);
 }
 
+double noise_unit(uint64_t h) { return (double)(h >> 11) * (1.0 / 9007199254740992.0); }
+
 /* The lattice value of cell (i, j, k), in [0, 1). */
 static double lattice(uint64_t key, int64_t i, int64_t j, int64_t k) {
-    uint64_t h = noise_mix(key ^ noise_mix((uint64_t)i * 0x9e3779b97f4a7c15ULL + (uint64_t)j * 0xc2b2ae3d27d4eb4fULL +
-                                           (uint64_t)k * 0x165667b19e3779f9ULL));
-    return (double)(h >> 11) * (1.0 / 9007199254740992.0);
+    return noise_unit(noise_mix(key ^ noise_mix((uint64_t)i * 0x9e3779b97f4a7c15ULL +
+                                                (uint64_t)j * 0xc2b2ae3d27d4eb4fULL + (uint64_t)k * 0x165667b19e3779f9ULL)));
 }
 
 double noise_smooth01(double t) {

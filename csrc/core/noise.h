@@ -11,6 +11,9 @@
  * seed, e.g. noise_mix(seed ^ SALT), noise_mix(key + 1). */
 uint64_t noise_mix(uint64_t z);
 
+/* A hash's top 53 bits as a uniform in [0, 1). */
+double noise_unit(uint64_t h);
+
 /* Value noise at (x, y) over square cells of `cell` (> 0) units. */
 double noise_value2(uint64_t key, double x, double y, double cell);
 

@@ -256,8 +256,7 @@ static int leaf_kept(const banyan_ivy *iv, int32_t i, double age) {
     v3 P = v3_sub(iv->buds[i].P, iv->buds[0].P);
     double share = p->leaf_share * (1 + p->leaf_clump * (2 * noise_value3(key, P.x, P.y, P.z, p->clump_size) - 1)) *
                    (0.5 + 0.5 * age);
-    uint64_t h = noise_mix(noise_mix(key + 1) ^ (uint64_t)i);
-    return (double)(h >> 11) * (1.0 / 9007199254740992.0) < share;
+    return noise_unit(noise_mix(noise_mix(key + 1) ^ (uint64_t)i)) < share;
 }
 
 /* Places bud i's leaf (module comment); returns 0 when it has no size

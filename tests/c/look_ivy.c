@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "ivy_look.h"
+#include "test_files.h"
 
 #define CELL 0.02   /* ray grid, m */
 #define PATCH 0.5   /* patchiness cells, m */
@@ -70,10 +71,10 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
     const banyan_part *lp = &m->parts[1];
     uint32_t *blade_of = malloc(sizeof(uint32_t) * (m->vertex_count ? m->vertex_count : 1));
     uint32_t *count = calloc((size_t)nx * nz + 1, sizeof(uint32_t)), *items = NULL;
-    int *hits = calloc((size_t)nx * nz, sizeof(int)), *seen = malloc(sizeof(int) * (nb ? nb : 1));
+    int *seen = malloc(sizeof(int) * (nb ? nb : 1));
     double *patch = calloc((size_t)px * pz, sizeof(double));
     wt *w = malloc(sizeof(wt) * (lp->index_count / 3 + 1));
-    if (!blade_of || !count || !hits || !seen || !patch || !w) return 1;
+    if (!blade_of || !count || !seen || !patch || !w) return 1;
     for (uint32_t k = 0; k < nb; k++)
         for (uint32_t v = bl[k].first; v < bl[k].first + bl[k].count; v++) blade_of[v] = k;
     size_t nw = 0;
@@ -170,23 +171,7 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
     f->layers = covered ? layer_sum / covered : 0;
     f->layers_p90 = lv && nl ? lv[(size_t)(0.9 * (double)(nl - 1) + 0.5)] : 0;
     f->cv = mean > 0 ? sqrt(var) / mean : 0;
-    free(lv), free(layers), free(items), free(w), free(patch), free(seen), free(hits), free(count), free(blade_of), free(bl);
-    return 0;
-}
-
-static int overrides(banyan_ivy_params *p, int first, int argc, char **argv) {
-    for (int i = first; i < argc; i++) {
-        char key[256];
-        const char *eq = strchr(argv[i], '=');
-        if (!eq || eq - argv[i] >= (long)sizeof key) return fprintf(stderr, "bad override %s\n", argv[i]), 1;
-        memcpy(key, argv[i], (size_t)(eq - argv[i]));
-        key[eq - argv[i]] = 0;
-        banyan_error err;
-        if (banyan_param_set_text(BANYAN_GEN_IVY, p, key, eq + 1, &err)) {
-            fprintf(stderr, "%s: %s\n", argv[i], err.message);
-            return 1;
-        }
-    }
+    free(lv), free(layers), free(items), free(w), free(patch), free(seen), free(count), free(blade_of), free(bl);
     return 0;
 }
 
@@ -199,7 +184,7 @@ int main(int argc, char **argv) {
     banyan_error err = {0, ""};
     if (ivy_look_preset("ivy_wall", &base, hosts, 8, &nh, &err) != BANYAN_OK || nh < 1)
         return fprintf(stderr, "ivy_wall: %s\n", err.message), 1;
-    if (!accept && overrides(&base, 2, argc, argv)) return 1;
+    if (!accept && test_param_overrides(BANYAN_GEN_IVY, &base, 2, argc, argv)) return 1;
     /* The wall's front face (-y): the first host, an axis-aligned box. */
     const banyan_box *W = &hosts[0];
     const double x0 = W->center[0] - W->half[0], x1 = W->center[0] + W->half[0];

@@ -42,22 +42,6 @@ typedef struct figures {
     double gen_s, pairs_s;
 } figures;
 
-static int overrides(banyan_roots_params *p, int first, int argc, char **argv) {
-    for (int i = first; i < argc; i++) {
-        char key[256];
-        const char *eq = strchr(argv[i], '=');
-        if (!eq || eq - argv[i] >= (long)sizeof key) return fprintf(stderr, "bad override %s\n", argv[i]), 1;
-        memcpy(key, argv[i], (size_t)(eq - argv[i]));
-        key[eq - argv[i]] = 0;
-        banyan_error err;
-        if (banyan_param_set_text(BANYAN_GEN_ROOTS, p, key, eq + 1, &err)) {
-            fprintf(stderr, "%s: %s\n", argv[i], err.message);
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* The figures of one net: 0, or 1 on a library error. */
 static int measure(const char *label, const banyan_roots_params *p, const banyan_hosts *H, figures *f) {
     banyan_error err = {0, ""};
@@ -222,7 +206,7 @@ int main(int argc, char **argv) {
         banyan_roots_params p;
         banyan_hosts *H;
         if (load(NAMES[k], &p, &H)) return 1;
-        rc |= overrides(&p, 2, argc, argv);
+        rc |= test_param_overrides(BANYAN_GEN_ROOTS, &p, 2, argc, argv);
         for (int s = 1; s <= seeds && !rc; s++) {
             p.seed = (uint64_t)s;
             rc |= row(NAMES[k], &p, H);

@@ -37,6 +37,24 @@ static inline char *test_read_file(const char *path, size_t *len) {
     return b;
 }
 
+/* Applies argv[first..argc) as key=value to params (banyan_param_set_text),
+ * as the CLI's --set: 0, or 1 after naming the bad one on stderr. */
+static inline int test_param_overrides(banyan_generator g, void *params, int first, int argc, char **argv) {
+    for (int i = first; i < argc; i++) {
+        char key[256];
+        const char *eq = strchr(argv[i], '=');
+        if (!eq || eq - argv[i] >= (long)sizeof key) return fprintf(stderr, "bad override %s\n", argv[i]), 1;
+        memcpy(key, argv[i], (size_t)(eq - argv[i]));
+        key[eq - argv[i]] = 0;
+        banyan_error err;
+        if (banyan_param_set_text(g, params, key, eq + 1, &err)) {
+            fprintf(stderr, "%s: %s\n", argv[i], err.message);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* Reads the preset file at path and applies it to params (already
  * initialised), and, when hosts is not NULL, reads its hosts (at most cap)
  * into hosts and *n_hosts. Returns the status; err says why. */
