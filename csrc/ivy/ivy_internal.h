@@ -270,7 +270,17 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
 int ivy_crosses_near(banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
 /* Diameter of bud i's leaf (and shadow) at the current step. */
 double ivy_leaf_diameter(const banyan_ivy *iv, const ivy_bud *b);
+/* Stem radius by age (the spec's rule, capped): the growth's (sag) and
+ * the floor of the mesh's wood. */
 double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
+/* The mesh's wood (wood.c): per bud its stem radius (age rule or pipe
+ * model, the larger) in r and its tube centre in P (the bud, moved out of
+ * the surface it lies on by as much as the stem is thicker than its gap).
+ * r and P hold iv->n entries. BANYAN_E_NOMEM or OK. */
+banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P);
+/* Share of the leaves a stem of radius r keeps: 1 up to three times
+ * stem_radius_max, falling smoothly to 0 at six times it (old wood). */
+double ivy_wood_leaf_share(const banyan_ivy_params *p, double r);
 
 /* Sag correction of every dangling stem (sag.c). */
 void ivy_sag(banyan_ivy *iv);

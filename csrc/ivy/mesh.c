@@ -249,19 +249,20 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
  * old), so the cover has dense and thin patches and a thinner growth
  * front. Drawn from a hash of the seed and the bud, apart from every
  * stream. */
-static int leaf_kept(const banyan_ivy *iv, int32_t i, double age) {
+static int leaf_kept(const banyan_ivy *iv, int32_t i, double age, double wood) {
     const banyan_ivy_params *p = &iv->p;
-    if (p->leaf_share >= 1 && p->leaf_clump <= 0) return 1;
+    if (wood <= 0) return 0;
+    if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1) return 1;
     const uint64_t key = noise_mix(p->seed ^ CLUMP_SALT);
     v3 P = v3_sub(iv->buds[i].P, iv->buds[0].P);
     double share = p->leaf_share * (1 + p->leaf_clump * (2 * noise_value3(key, P.x, P.y, P.z, p->clump_size) - 1)) *
-                   (0.5 + 0.5 * age);
+                   (0.5 + 0.5 * age) * wood;
     return noise_unit(noise_mix(noise_mix(key + 1) ^ (uint64_t)i)) < share;
 }
 
 /* Places bud i's leaf (module comment); returns 0 when it has no size
  * or finds no room clear of the hosts. */
-static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, leaf_geo *g) {
+static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, double wood_r, leaf_geo *g) {
     const banyan_ivy_params *p = &iv->p;
     const ivy_bud *b = &iv->buds[i];
     pcg32 r; /* the leaf's own stream: draws here move no stem */
@@ -273,7 +274,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, lea
      * (plants.md: long-shoot leaves are smaller than spur leaves). */
     double age = (double)(iv->step - b->step_c) / p->leaf_size_steps;
     age = age < 0 ? 0 : (age > 1 ? 1 : age);
-    if (!leaf_kept(iv, i, age)) return 0;
+    if (!leaf_kept(iv, i, age, ivy_wood_leaf_share(p, wood_r))) return 0;
     g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age * sqrt(age)) * p->leaf_scale *
               (0.8 + 0.45 * u_size);
     if (!(g->size > 0)) return 0;
@@ -378,11 +379,12 @@ static int chain_start(const banyan_ivy *iv, int32_t i) {
     return par < 0 || iv->buds[par].child[1] == i;
 }
 
-/* Wind and birth of bud i's leaf (petiole and blade): see the header. */
-static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *iv, int32_t i, double stiffness,
+/* Wind and birth of bud i's leaf (petiole and blade): see the header. The
+ * pivot is the bud's point on its stem's axis (`at`: the skeleton's). */
+static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *iv, int32_t i, v3 at, double stiffness,
                       int32_t level, double birth_scale) {
     const ivy_bud *b = &iv->buds[i];
-    wind_set(mb, ws, b->P, level + 1, stiffness, wind_phase_of(iv->p.seed, IVY_WIND_LEAF + (uint64_t)i), 1.0);
+    wind_set(mb, ws, at, level + 1, stiffness, wind_phase_of(iv->p.seed, IVY_WIND_LEAF + (uint64_t)i), 1.0);
     double birth = (b->step_c + 0.5) * birth_scale;
     wind_birth(mb, ws, birth_scale > 0 ? birth : 0.0);
 }
@@ -410,6 +412,8 @@ typedef struct mesh_job {
     uint32_t max_pts;
     const double *bst;
     const int32_t *blv;
+    const double *wood_r;       /* per bud: the stem's radius and tube centre (ivy_wood) */
+    const v3 *wood_P;
     double birth_scale;
     leaf_geo *lg;
     uint32_t *lok;              /* per leaf block: leaves placed; once `ready`, the leaves before it ([n_lblk]: all) */
@@ -472,10 +476,10 @@ static void mesh_stems(mesh_job *J, int32_t k, v3 *P, double *R, float *birth, d
         const ivy_bud *s = &iv->buds[i];
         for (uint32_t q = 0; q < n; q++) {
             const ivy_bud *b = &iv->buds[pt[q]];
-            P[q] = b->P;
+            P[q] = J->wood_P[pt[q]];
             /* A branch's base ring sits in its parent and appears with it. */
             const ivy_bud *own = (q == 0 && pt[0] != i) ? s : b;
-            R[q] = ivy_stem_radius(iv, own);
+            R[q] = J->wood_r[(q == 0 && pt[0] != i) ? i : pt[q]];
             birth[q] = (float)own->step_c;
             wr[q] = J->bst[pt[q]];
             wr_birth[q] = own->step_c * J->birth_scale;
@@ -518,7 +522,7 @@ static void mesh_stems(mesh_job *J, int32_t k, v3 *P, double *R, float *birth, d
 static void mesh_place(mesh_job *J, int32_t k) {
     const int32_t i0 = k * MESH_LEAF_BLOCK, i1 = i0 + MESH_LEAF_BLOCK < J->iv->n ? i0 + MESH_LEAF_BLOCK : J->iv->n;
     uint32_t ok = 0;
-    for (int32_t i = i0; i < i1; i++) ok += (uint32_t)(J->lg[i].ok = leaf_place(J->iv, i, J->sh, &J->lg[i]));
+    for (int32_t i = i0; i < i1; i++) ok += (uint32_t)(J->lg[i].ok = leaf_place(J->iv, i, J->sh, J->wood_r[i], &J->lg[i]));
     J->lok[k] = ok;
     if (atomic_fetch_add(&J->placed, 1) + 1 < J->n_lblk) return;
     uint32_t sum = 0;
@@ -560,7 +564,7 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
         v3 a0 = iv->buds[i].P, ax = v3_norm_or(v3_sub(lg[i].base, a0), lg[i].nb);
         v3 e1 = v3_any_perp(ax), e2 = v3_cross(ax, e1);
         mb_set_attr(&mb, a_birth, (double)iv->buds[i].step_c);
-        leaf_wind(&mb, &ws, iv, i, J->bst[i], J->blv[i], J->birth_scale);
+        leaf_wind(&mb, &ws, iv, i, J->wood_P[i], J->bst[i], J->blv[i], J->birth_scale);
         uint32_t vc = mb_vertices(&mb, PETIOLE_VERTS);
         uint32_t *I = mb_indices(&mb, 6 * PETIOLE_SIDES);
         if (!I) break;
@@ -605,7 +609,7 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
         leaf_age_tint(iv, b, p->season, lk.tint);
         mb_set_color(&mb, lk.tint); /* the output has colours */
         mb_set_attr(&mb, a_birth, (double)b->step_c);
-        leaf_wind(&mb, &ws, iv, i, J->bst[i], J->blv[i], J->birth_scale);
+        leaf_wind(&mb, &ws, iv, i, J->wood_P[i], J->bst[i], J->blv[i], J->birth_scale);
         uint32_t vc = mb_vertices(&mb, LEAF_OUTLINE + 1);
         uint32_t *I = mb_indices(&mb, 3 * LEAF_OUTLINE);
         if (!I) break;
@@ -737,8 +741,10 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     /* wind: per bud stiffness and level */
     double *bst = malloc(sizeof(double) * ((size_t)iv->n + 1));
     int32_t *blv = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
-    if (!bst || !blv) {
-        free(pts); free(bst); free(blv);
+    double *wood_r = malloc(sizeof(double) * ((size_t)iv->n + 1));
+    v3 *wood_P = malloc(sizeof(v3) * ((size_t)iv->n + 1));
+    if (!bst || !blv || !wood_r || !wood_P || ivy_wood(iv, wood_r, wood_P)) {
+        free(pts); free(bst); free(blv); free(wood_r); free(wood_P);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
     int32_t last_step = 0;
@@ -760,16 +766,13 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
             if (blv[i] > 63) blv[i] = 63; /* wind_level's range; the tips past it share it */
         }
         double r_max = 0;
-        for (int32_t i = 0; i < iv->n; i++) {
-            double r = ivy_stem_radius(iv, &iv->buds[i]);
-            r_max = r > r_max ? r : r_max;
-        }
+        for (int32_t i = 0; i < iv->n; i++) r_max = wood_r[i] > r_max ? wood_r[i] : r_max;
         for (int32_t i = 0; i < iv->n; i++) {
             if (bst[i] == 0) { /* held */
                 bst[i] = 1;
                 continue;
             }
-            double s = dm_exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(ivy_stem_radius(iv, &iv->buds[i]) / r_max) : 0;
+            double s = dm_exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(wood_r[i] / r_max) : 0;
             bst[i] = s > t ? s : t;
         }
     }
@@ -799,7 +802,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     uint32_t *lok = malloc(sizeof(uint32_t) * ((size_t)n_lblk + 1));
     leaf_geo *lg = p->leaves ? malloc(sizeof(leaf_geo) * ((size_t)iv->n + 1)) : NULL;
     if (!cv || !sblk || !lok || (p->leaves && !lg)) {
-        free(pts); free(bst); free(blv); free(cv); free(sblk); free(lok); free(lg);
+        free(pts); free(bst); free(blv); free(wood_r); free(wood_P); free(cv); free(sblk); free(lok); free(lg);
         mb_free(&mb);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
@@ -826,7 +829,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     memset(&J, 0, sizeof J);
     J.iv = iv, J.sh = &sh, J.out = &mb, J.pts = pts, J.chn = chn, J.cv = cv, J.ci = ci, J.sblk = sblk;
     J.n_sblk = n_sblk, J.n_lblk = n_lblk, J.max_pts = max_pts, J.bst = bst, J.blv = blv, J.birth_scale = birth_scale;
-    J.lg = lg, J.lok = lok;
+    J.lg = lg, J.lok = lok, J.wood_r = wood_r, J.wood_P = wood_P;
     leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &J.cols, &J.rows, NULL);
     atomic_init(&J.next, 0);
     atomic_init(&J.placed, 0);
@@ -858,11 +861,11 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
 
     /* Skeleton: one point per bud, one edge per internode. */
     for (int32_t i = 0; i < iv->n && !mb.status; i++)
-        mb_skel_point(&mb, iv->buds[i].P, ivy_stem_radius(iv, &iv->buds[i]), iv->buds[i].state);
+        mb_skel_point(&mb, wood_P[i], wood_r[i], iv->buds[i].state);
     for (int32_t i = 0; i < iv->n && !mb.status; i++)
         if (iv->buds[i].parent >= 0) mb_skel_edge(&mb, (uint32_t)iv->buds[i].parent, (uint32_t)i);
 
-    free(pts); free(bst); free(blv);
+    free(pts); free(bst); free(blv); free(wood_r); free(wood_P);
     if (cancelled) {
         mb_free(&mb);
         return prog_fail(iv->prog, err, "ivy mesh");

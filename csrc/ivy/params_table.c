@@ -32,7 +32,8 @@ const banyan_param_info ivy_table_rows[] = {
     BP_ENUM(S, season, "Season", "Leaves", "summer|autumn", "leaf material: summer green or autumn crimson; the geometry stays"),
     BP_DOUBLE(S, stem_radius, "Stem thickness", "Stems", "m", 1e-5, 1, "r0, stem radius at birth"),
     BP_DOUBLE(S, stem_radius_growth, "Thickening per step", "Stems", "m", 0, 1, "k, stem radius added per step of age"),
-    BP_DOUBLE(S, stem_radius_max, "Maximum stem thickness", "Stems", "m", 1e-5, 1, "largest stem radius; at least stem_radius"),
+    BP_DOUBLE(S, stem_radius_max, "Maximum thickening by age", "Stems", "m", 1e-5, 1, "largest stem radius by age; at least stem_radius (wood past three times it is old and sheds its leaves)"),
+    BP_DOUBLE(S, stem_pipe, "Trunk thickening", "Stems", "m", 0, 0.1, "pipe model: a stem is at least this x sqrt(buds it carries) thick, so leading stems become trunks (0: age rule only)"),
     BP_INT(S, stem_sides, "Stem sides", "Stems", 3, 64, "sides of a stem tube"),
     BP_COLOR(S, stem_color, "Stem color", "Stems", "base colour of material ivy_stem (linear RGBA)"),
     BP_DOUBLE(S, sucker_length, "Aerial root reach", "Climbing", "m", 0, 10, "D, sucker reach: a bud within it of a surface attaches (paper 30 mm)"),
@@ -143,7 +144,8 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->tip_hook_angle = 70.0;
     p->stem_radius = 0.0015;
     p->stem_radius_growth = 0.00002;
-    p->stem_radius_max = 0.008;
+    p->stem_radius_max = 0.003;
+    p->stem_pipe = 0.0002;
     p->leaf_scale = 1.0;
     p->leaf_size_min = 0.05;
     p->leaf_size_max = 0.14;

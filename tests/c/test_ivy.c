@@ -392,7 +392,9 @@ static void test_mesh(const char *outdir) {
      * does a petiole's first ring (the last 6 vertices per blade of part 0,
      * 3 at its bud then 3 at its blade). */
     int32_t ab2 = m2 ? attr_index(m2, "birth_step") : -1;
-    if (iv && ab2 >= 0 && m2->part_count == 2) {
+    double *wood_r = iv ? malloc(sizeof(double) * (size_t)iv->n) : NULL;
+    v3 *wood_P = iv ? malloc(sizeof(v3) * (size_t)iv->n) : NULL;
+    if (iv && ab2 >= 0 && m2->part_count == 2 && wood_r && wood_P && ivy_wood(iv, wood_r, wood_P) == BANYAN_OK) {
         int bad = 0, tried = 0;
         const banyan_part *sp = &m2->parts[0];
         uint32_t pet0 = sp->vertex_offset + sp->vertex_count - 6 * (m2->parts[1].vertex_count / 13);
@@ -401,15 +403,19 @@ static void test_mesh(const char *outdir) {
             v3 q = v3_make(m2->positions[3 * v], m2->positions[3 * v + 1], m2->positions[3 * v + 2]);
             int32_t b = (int32_t)m2->attributes[ab2].data[v];
             int ok = 0;
-            for (int32_t i = 0; i < iv->n && !ok; i++)
+            for (int32_t i = 0; i < iv->n && !ok; i++) {
+                const double reach = 3 * (wood_r[i] > p.stem_radius_max ? wood_r[i] : p.stem_radius_max) + 1e-4;
                 ok = iv->buds[i].step_c == b &&
-                     (v3_dist(iv->buds[i].P, q) < 3 * p.stem_radius_max + 1e-4 || /* a branch's base ring: */
-                      (iv->buds[i].parent >= 0 && v3_dist(iv->buds[iv->buds[i].parent].P, q) < 3 * p.stem_radius_max + 1e-4));
+                     (v3_dist(wood_P[i], q) < reach || /* a branch's base ring: */
+                      (iv->buds[i].parent >= 0 && v3_dist(wood_P[iv->buds[i].parent], q) < reach));
+            }
             tried++;
             bad += !ok;
         }
         CHECK(tried > 50 && bad == 0, "%d of %d stem vertices with a birth_step of no bud they surround", bad, tried);
     }
+    free(wood_r);
+    free(wood_P);
     banyan_mesh_free(m2);
     banyan_ivy_free(iv);
     p.seed = 2;

@@ -100,7 +100,8 @@ typedef struct banyan_ivy_params {
 
     double stem_radius;         /* r0, stem radius at birth, m, 1e-5 .. 1 */
     double stem_radius_growth;  /* k, radius added per step of age, m, 0 .. 1 */
-    double stem_radius_max;     /* radius cap, m, >= stem_radius, 1e-5 .. 1 */
+    double stem_radius_max;     /* cap of the age rule, m, >= stem_radius, 1e-5 .. 1 */
+    double stem_pipe;           /* pipe model: a stem is at least this x sqrt(buds it carries) thick, m, 0 .. 0.1 */
     double leaf_scale;          /* overall multiplier of the drawn blade sizes, 0 .. 10 */
     double leaf_size_min;       /* drawn blade size (across the side lobes) of a new leaf, m, 0.001 .. 1 */
     double leaf_size_max;       /* drawn blade size of a full-grown leaf, m, >= leaf_size_min, 0.001 .. 1 */

@@ -1,0 +1,51 @@
+/* Stem wood of the ivy mesh (docs/ivy.md "Stems and trunks"). A stem is
+ * as thick as the larger of two rules: the spec's age rule (r0 + k age,
+ * capped at stem_radius_max; ivy_stem_radius, which the sag also reads)
+ * and the pipe model, stem_pipe x sqrt(buds it carries): a stem's wood
+ * carries every shoot beyond it, so the few leading stems that carry the
+ * whole plant thicken into trunks while side shoots stay thin. A stem
+ * thicker than its gap to the surface it lies on is moved out along that
+ * surface's normal, so a trunk lies on the wall instead of in it. Only
+ * the mesh reads these: the growth is the same with or without them. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "ivy_internal.h"
+
+banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P) {
+    const banyan_ivy_params *p = &iv->p;
+    const int32_t n = iv->n;
+    int32_t *carried = malloc(sizeof(int32_t) * ((size_t)n + 1));
+    if (!carried) return BANYAN_E_NOMEM;
+    /* Buds come in creation order, a parent before its children: one
+     * backward pass sums every bud's shoots. */
+    for (int32_t i = n - 1; i >= 0; i--) {
+        const ivy_bud *b = &iv->buds[i];
+        int32_t c = 1;
+        for (int k = 0; k < 2; k++)
+            if (b->child[k] >= 0) c += carried[b->child[k]];
+        carried[i] = c;
+    }
+    for (int32_t i = 0; i < n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        double age = ivy_stem_radius(iv, b), pipe = p->stem_pipe * sqrt((double)carried[i]);
+        r[i] = pipe > age ? pipe : age;
+        P[i] = b->P;
+        /* Thicker than its gap to the surface: out along the normal. */
+        double gap = ivy_grip_distance(iv, b->P, r[i]);
+        if (gap < r[i]) {
+            ivy_near nr = ivy_nearest_any(iv, b->P);
+            if (nr.dist < r[i]) P[i] = v3_madd(b->P, nr.normal, r[i] - nr.dist);
+        }
+    }
+    free(carried);
+    return BANYAN_OK;
+}
+
+double ivy_wood_leaf_share(const banyan_ivy_params *p, double r) {
+    /* Old wood, more than three times the age rule's cap, sheds its
+     * leaves: all of them by six times it (the bare trunks at the foot of
+     * an old wall). */
+    double x = (r - 3 * p->stem_radius_max) / (3 * p->stem_radius_max);
+    return x <= 0 ? 1.0 : x >= 1 ? 0.0 : 1.0 - x * x * (3 - 2 * x);
+}
