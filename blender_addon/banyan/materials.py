@@ -27,7 +27,12 @@ not change in 4.0 are used: Base Color, Roughness, Alpha, Normal):
   translucency x alpha, so cut-out texels stay transparent), the glow
   of a back-lit leaf (Principled's subsurface/transmission inputs were
   renamed in 4.0 and behave differently across versions);
-  normal image (Non-Color) -> Normal Map (tangent, "UVMap") -> Normal.
+  normal image (Non-Color) -> Normal Map (tangent, "UVMap") -> Normal;
+  the ivy leaf's underside (UNDERSIDE): Geometry Backfacing (the card's
+  back, the side towards the wall) mixes the roughness from the
+  material's (the glossy upper side) to a rougher one and the colour to
+  a paler, duller one, with Math / Vector Math nodes only (the same on
+  every version; one glTF material cannot differ by side).
 EEVEE: 3.4-4.1 blend_method CLIP + shadow_method CLIP; 4.2+ (EEVEE Next)
 surface_render_method DITHERED, which with a 0/1 alpha is a clip.
 """
@@ -39,6 +44,12 @@ from .core import textures as T
 PROP = "banyan_texture"  # "kind/season" on materials and images this module made
 UV_MAP = "UVMap"         # build_mesh.fill_mesh's layer
 COLOR_ATTRIBUTE = "Color"
+# Leaf kinds whose underside differs from the upper side: (roughness,
+# lift, grey). Boston ivy: glossy upper side, paler and duller below
+# (shared/reference/plants.md): the underside's colour is
+# (1 + lift) x mix(colour, its luminance, grey).
+UNDERSIDE = {S.TEX_IVY_LEAF: (0.7, 0.35, 0.4)}
+_LUMA = (0.2126, 0.7152, 0.0722)
 
 
 def material_name(kind, season):
@@ -148,6 +159,53 @@ def _multiply(nodes, links, colour, other, x):
     return m.outputs[0]
 
 
+def _underside(nodes, links, colour, roughness, under):
+    """Colour and roughness that change on the back face: (colour,
+    roughness) output sockets. Backfacing is 1 on a face seen from behind
+    (by its winding, not its shading normal)."""
+    u_rough, lift, grey = under
+    geo = nodes.new("ShaderNodeNewGeometry")
+    geo.location = (-300, 800)
+    back = geo.outputs["Backfacing"]
+    rough = nodes.new("ShaderNodeMath")
+    rough.operation = 'MULTIPLY_ADD'
+    rough.label = "Underside roughness"
+    rough.location = (0, 800)
+    links.new(back, rough.inputs[0])
+    rough.inputs[1].default_value = u_rough - roughness
+    rough.inputs[2].default_value = roughness
+    luma = nodes.new("ShaderNodeVectorMath")
+    luma.operation = 'DOT_PRODUCT'
+    luma.location = (-100, 650)
+    links.new(colour, luma.inputs[0])
+    luma.inputs[1].default_value = _LUMA
+    grey_part = nodes.new("ShaderNodeMath")
+    grey_part.operation = 'MULTIPLY'
+    grey_part.location = (100, 650)
+    links.new(luma.outputs["Value"], grey_part.inputs[0])
+    grey_part.inputs[1].default_value = (1.0 + lift) * grey
+    pale = nodes.new("ShaderNodeVectorMath")
+    pale.operation = 'MULTIPLY_ADD'
+    pale.label = "Underside colour (paler, duller)"
+    pale.location = (300, 650)
+    links.new(colour, pale.inputs[0])
+    pale.inputs[1].default_value = ((1.0 + lift) * (1.0 - grey),) * 3
+    links.new(grey_part.outputs[0], pale.inputs[2])
+    diff = nodes.new("ShaderNodeVectorMath")
+    diff.operation = 'SUBTRACT'
+    diff.location = (500, 650)
+    links.new(pale.outputs[0], diff.inputs[0])
+    links.new(colour, diff.inputs[1])
+    side = nodes.new("ShaderNodeVectorMath")
+    side.operation = 'MULTIPLY_ADD'
+    side.label = "Upper or underside colour"
+    side.location = (700, 650)
+    links.new(diff.outputs[0], side.inputs[0])
+    links.new(back, side.inputs[1])
+    links.new(colour, side.inputs[2])
+    return side.outputs[0], rough.outputs[0]
+
+
 def shared_material(spec, created, vertex_colors=False):
     """The shared material of a textured banyan_material dict (made once)."""
     kind, season = spec["texture"], spec["season"] if spec["texture"] in T.LEAVES else S.SEASON_SUMMER
@@ -196,7 +254,11 @@ def shared_material(spec, created, vertex_colors=False):
         vc.layer_name = COLOR_ATTRIBUTE
         vc.location = (-300, 550)
         colour = _multiply(nodes, links, colour, vc.outputs["Color"], -100)
-    links.new(colour, bsdf.inputs["Base Color"])
+    surface = colour
+    if kind in UNDERSIDE:
+        surface, rough = _underside(nodes, links, colour, float(spec["roughness"]), UNDERSIDE[kind])
+        links.new(rough, bsdf.inputs["Roughness"])
+    links.new(surface, bsdf.inputs["Base Color"])
 
     shader = bsdf.outputs["BSDF"]
     alpha = None

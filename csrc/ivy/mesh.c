@@ -46,6 +46,11 @@
 #define PETIOLE_SIDES 3 /* a petiole is two rings of 3, no caps: 1 mm across, a triangle reads as round */
 #define PETIOLE_VERTS (2 * PETIOLE_SIDES)
 #define LEAF_FOLD 0.25  /* rad each half of a blade turns up about the midrib: a flat card reads as paper */
+/* The leaf material's roughness: Boston ivy's upper side is glossy (a
+ * waxy cuticle, plants.md), where ivy_stem's bark is 0.85. One glTF
+ * material shades both sides alike; the add-on gives the underside its
+ * own rougher, paler look (blender_addon/banyan/materials.py). */
+#define IVY_LEAF_ROUGHNESS 0.35
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
 #define CLUMP_SALT 0xc1d3bULL     /* the clumps' noise and the keep draws */
 #define IVY_WIND_REACH 8.0 /* a free stem softens over this many internodes from its last hold */
@@ -348,16 +353,19 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
     return 0;
 }
 
-/* Young Boston ivy leaves flush reddish-bronze, old ones are dark
- * (plants.md): the summer tint loses green and blue while a leaf is
- * young, and darkens a little with age. Autumn has its own spread. */
+/* Young Boston ivy leaves flush reddish-bronze, then turn a rich green
+ * (plants.md): in summer the tint keeps its red while the leaf is young
+ * and loses most of its green and blue, weight w = exp(-(age / 20)^2)
+ * (age in steps: the leaves of the last 10 steps stay at least 0.78 of
+ * the way bronze, those past 40 steps are green), and darkens a little
+ * up to leaf_size_steps. Autumn has its own spread. */
 static void leaf_age_tint(const banyan_ivy *iv, const ivy_bud *b, int32_t season, double tint[4]) {
     if (season == BANYAN_SEASON_AUTUMN) return;
-    double age = (double)(iv->step - b->step_c);
-    double young = dm_exp(-age / 15.0), old = fmin(1.0, age / iv->p.leaf_size_steps);
-    tint[0] *= 1.0 - 0.15 * old;
-    tint[1] *= (1.0 - 0.45 * young) * (1.0 - 0.10 * old);
-    tint[2] *= (1.0 - 0.50 * young) * (1.0 - 0.15 * old);
+    double age = (double)(iv->step - b->step_c), a = age / 20.0;
+    double young = dm_exp(-a * a), old = fmin(1.0, age / iv->p.leaf_size_steps);
+    tint[0] *= 1.0 - 0.08 * old;
+    tint[1] *= (1.0 - 0.90 * young) * (1.0 - 0.04 * old);
+    tint[2] *= (1.0 - 0.85 * young) * (1.0 - 0.08 * old);
 }
 
 uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n) {
@@ -785,7 +793,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     wind_slots ws;
     wind_declare(&mb, p->wind, &ws);
     uint32_t m_stem = mb_add_material(&mb, "ivy_stem", p->stem_color, 0.85, 0);
-    uint32_t m_leaf = mb_add_material(&mb, "ivy_leaf", p->leaf_color, 0.6, 1);
+    uint32_t m_leaf = mb_add_material(&mb, "ivy_leaf", p->leaf_color, IVY_LEAF_ROUGHNESS, 1);
     if (!mb.status) {
         bark_material_set(&mb.mat[m_stem], BANYAN_TEX_IVY_STEM);
         leaf_material_set(&mb.mat[m_leaf], BANYAN_TEX_IVY_LEAF, p->season, p->leaf_color);

@@ -843,8 +843,9 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
 static void ivy_colours(ivleaf *L, int season, pcg32 *r) {
     float c[3], in[3];
     if (season == BANYAN_SEASON_SUMMER) {
-        /* Glossy dark green; young (unlobed) leaves lighter, a bronze hint. */
-        const float dark[3] = {40, 74, 30}, young[3] = {88, 112, 46};
+        /* Rich green (the gloss is the material's roughness); young
+         * (unlobed) leaves lighter, a bronze hint. */
+        const float dark[3] = {56, 96, 30}, young[3] = {96, 124, 46};
         float b = tex_unif(r, 0.88f, 1.12f);
         float y = L->lobed ? tex_unif(r, 0.0f, 0.2f) : tex_unif(r, 0.45f, 0.8f);
         for (int i = 0; i < 3; i++) c[i] = tex_mix(dark[i], young[i], y) * b;

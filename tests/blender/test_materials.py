@@ -6,7 +6,9 @@ clip for leaves, a Normal Map for bark; the leaves' and the fig bark's
 times the vertex colours, which on the roots carry the soil line); EEVEE
 clips leaves; autumn swaps the material, not the geometry; an artist's
 edit to a shared material is never overwritten; Regenerate with another
-season swaps the slot."""
+season swaps the slot; the ivy leaf is glossy on its upper side, rougher,
+paler and duller on its underside (Geometry Backfacing), its nodes
+evaluated at both sides."""
 import os
 import sys
 from array import array
@@ -154,6 +156,69 @@ def check_soil_line(o):
              "%s: a Color Attribute node (\"Color\") -> Base Color" % m.name)
 
 
+def evaluate(socket, back, colour):
+    """The value reaching an input socket for a face seen from the front
+    (back 0) or behind (back 1), the colour image reading `colour` and the
+    vertex colours white: Math / Vector Math nodes and Geometry's
+    Backfacing evaluated; None for any other node."""
+    if not socket.is_linked:
+        v = socket.default_value
+        return tuple(v)[:3] if hasattr(v, "__len__") else float(v)
+    link = socket.links[0]
+    n, out = link.from_node, link.from_socket.name
+    if n.bl_idname == "ShaderNodeNewGeometry":
+        return float(back) if out == "Backfacing" else None
+    if n.bl_idname == "ShaderNodeTexImage":
+        return tuple(colour) if out == "Color" else None
+    if n.bl_idname == "ShaderNodeVertexColor":
+        return (1.0, 1.0, 1.0)
+    if n.bl_idname not in ("ShaderNodeMath", "ShaderNodeVectorMath"):
+        return None
+    args = [evaluate(i, back, colour) for i in list(n.inputs)[:3]]
+    vec = n.bl_idname == "ShaderNodeVectorMath"
+    if any(a is None for a in args[:2]):
+        return None
+    if vec:
+        v = [a if isinstance(a, tuple) else (a, a, a) for a in args]
+        op = {'MULTIPLY': lambda: tuple(x * y for x, y in zip(v[0], v[1])),
+              'SUBTRACT': lambda: tuple(x - y for x, y in zip(v[0], v[1])),
+              'ADD': lambda: tuple(x + y for x, y in zip(v[0], v[1])),
+              'MULTIPLY_ADD': lambda: tuple(x * y + z for x, y, z in zip(*v)),
+              'DOT_PRODUCT': lambda: sum(x * y for x, y in zip(v[0], v[1]))}.get(n.operation)
+        if op is None:
+            return None
+        r = op()
+        return r if out == "Vector" or not isinstance(r, tuple) else None
+    a = [x if not isinstance(x, tuple) else x[0] for x in args]
+    return {'MULTIPLY': lambda: a[0] * a[1], 'ADD': lambda: a[0] + a[1], 'MULTIPLY_ADD': lambda: a[0] * a[1] + a[2],
+            'GREATER_THAN': lambda: float(a[0] > a[1]), 'LESS_THAN': lambda: float(a[0] < a[1])}.get(
+        n.operation, lambda: None)()
+
+
+def check_underside(m, bsdf):
+    """Banyan Ivy Leaf: glossy upper side, a rougher, paler and duller
+    underside (the card's back face, Geometry Backfacing), in Math nodes
+    only, so the same on every Blender version (plants.md section 2)."""
+    leaf = (0.05, 0.12, 0.02)  # a linear leaf green
+    col = [evaluate(bsdf.inputs["Base Color"], b, leaf) for b in (0, 1)]
+    rough = [evaluate(bsdf.inputs["Roughness"], b, leaf) for b in (0, 1)]
+    back = [n for n, out in upstream(bsdf.inputs["Roughness"]) + upstream(bsdf.inputs["Base Color"])
+            if n.bl_idname == "ShaderNodeNewGeometry" and out == "Backfacing"]
+    bt.check(len(back) >= 2, "%s: Geometry Backfacing drives roughness and colour" % m.name)
+    if not bt.check(None not in col and None not in rough,
+                    "%s: roughness %s and colour %s evaluate" % (m.name, rough, col)):
+        return
+    luma = [0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2] for c in col]
+    sat = [(max(c) - min(c)) / max(c) for c in col]
+    bt.check(0.25 <= rough[0] <= 0.45 and rough[1] >= 0.6,
+             "%s: roughness upper side %.3f (glossy, 0.25-0.45), underside %.3f (>= 0.6)" % (m.name, rough[0], rough[1]))
+    bt.check(max(abs(x - y) for x, y in zip(col[0], leaf)) < 1e-6,
+             "%s: the upper side shows the texture x vertex colour as it is (%s)" % (m.name, col[0]))
+    bt.check(luma[1] > 1.15 * luma[0] and sat[1] < 0.85 * sat[0],
+             "%s: underside paler and duller: luminance %.4f -> %.4f, saturation %.3f -> %.3f"
+             % (m.name, luma[0], luma[1], sat[0], sat[1]))
+
+
 def check_nodes(m):
     kind = int(m[MAT.PROP].split("/")[0])
     leaf = kind in T.LEAVES
@@ -181,6 +246,8 @@ def check_nodes(m):
         bt.check(not m.use_backface_culling, "%s: double sided" % m.name)
         bt.check(any(n.bl_idname == "ShaderNodeBsdfTranslucent" for n, _ in upstream(out.inputs["Surface"])),
                  "%s: translucent BSDF mixed in (back-lit glow)" % m.name)
+        if kind == S.TEX_IVY_LEAF:
+            check_underside(m, bsdf)
     else:
         nm = [n for n, _ in upstream(bsdf.inputs["Normal"]) if n.bl_idname == "ShaderNodeNormalMap"]
         bt.check(len(nm) == 1 and nm[0].space == 'TANGENT', "%s: Normal Map -> Normal" % m.name)

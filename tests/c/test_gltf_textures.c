@@ -413,6 +413,21 @@ int main(int argc, char **argv) {
     check_materials("tex_keyaki_autumn.glb", "keyaki_leaf", "keyaki_bark", BANYAN_TEX_KEYAKI_LEAF);
     check_materials("tex_ivy_summer.glb", "ivy_leaf", "ivy_stem", BANYAN_TEX_IVY_LEAF);
     check_ivy_alpha(is, "tex_ivy_summer.glb");
+    {
+        /* The ivy's leaves glossy (docs/ivy.md "Leaf material"), its stems matte. */
+        glb g;
+        double rl = -1, rs = -1;
+        if (glb_read(out_path("tex_ivy_summer.glb"), &g)) {
+            const cJSON *l = material_named(&g, "ivy_leaf"), *st = material_named(&g, "ivy_stem");
+            const cJSON *pl = l ? cJSON_GetObjectItemCaseSensitive(l, "pbrMetallicRoughness") : NULL,
+                        *ps = st ? cJSON_GetObjectItemCaseSensitive(st, "pbrMetallicRoughness") : NULL;
+            if (pl) num(pl, "roughnessFactor", &rl);
+            if (ps) num(ps, "roughnessFactor", &rs);
+        }
+        glb_free(&g);
+        CHECK(rl >= 0.25 && rl <= 0.45 && rs >= 0.7, "tex_ivy_summer.glb: roughnessFactor ivy_leaf %g (want 0.25-0.45), ivy_stem %g (want >= 0.7)",
+              rl, rs);
+    }
     CHECK(count_of("tex_keyaki_summer.glb", "images") == 4, "keyaki: %d images, want leaf + bark, base + normal",
           count_of("tex_keyaki_summer.glb", "images"));
     {
