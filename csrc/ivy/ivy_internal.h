@@ -278,6 +278,10 @@ double ivy_stem_radius(const banyan_ivy *iv, const ivy_bud *b);
  * the surface it lies on by as much as the stem is thicker than its gap).
  * r and P hold iv->n entries. BANYAN_E_NOMEM or OK. */
 banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P);
+/* Radius of curvature of a mesh host near `at` (a nearest answer), from
+ * how far the surface's normal turns over steps of h along it (relief.c);
+ * HUGE_VAL on boxes, the ground and flat parts. */
+double ivy_relief_radius(const banyan_ivy *iv, ivy_near at, double h);
 /* Share of the leaves a stem of radius r keeps: 1 up to three times
  * stem_radius_max, falling smoothly to 0 at six times it (old wood). */
 double ivy_wood_leaf_share(const banyan_ivy_params *p, double r);

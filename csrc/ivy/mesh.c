@@ -53,6 +53,7 @@
 #define IVY_LEAF_ROUGHNESS 0.35
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
 #define CLUMP_SALT 0xc1d3bULL     /* the clumps' noise and the keep draws */
+#define RELIEF_STEP 0.5  /* the relief is read over steps of this x the largest blade */
 #define IVY_WIND_REACH 8.0 /* a free stem softens over this many internodes from its last hold */
 #define IVY_WIND_LEAF 0x1eaf0000000ULL /* leaves' phase ids, apart from the stems' (bud numbers) */
 
@@ -287,6 +288,15 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
     const v3 up = v3_make(0, 0, 1);
     const double reach = p->sucker_length > p->internode ? p->sucker_length : p->internode;
     ivy_near nr = ivy_nearest_any(iv, b->P);
+    /* On a mesh host's tight relief (a nose, a brow, an eye's rim) the
+     * blade stays smaller than the feature, so the form reads. */
+    if (p->leaf_relief > 0 && nr.dist <= reach) {
+        const double fit = p->leaf_relief * ivy_relief_radius(iv, nr, RELIEF_STEP * p->leaf_size_max * p->leaf_scale);
+        if (g->size > fit) {
+            g->size = fit;
+            if (g->size < p->leaf_size_min * p->leaf_scale) return 0;
+        }
+    }
     /* The surface's normal, blending towards "up and out" as the stem leaves it. */
     double w = (nr.dist - p->sucker_length) / (4.0 * reach);
     w = w < 0 ? 0 : (w > 1 ? 1 : w);

@@ -12,6 +12,8 @@
 
 #include "ivy_internal.h"
 
+#define WOOD_PUSHES 3 /* pushes out of the surfaces: a corner takes two */
+
 banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P) {
     const banyan_ivy_params *p = &iv->p;
     const int32_t n = iv->n;
@@ -31,11 +33,13 @@ banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P) {
         double age = ivy_stem_radius(iv, b), pipe = p->stem_pipe * sqrt((double)carried[i]);
         r[i] = pipe > age ? pipe : age;
         P[i] = b->P;
-        /* Thicker than its gap to the surface: out along the normal. */
-        double gap = ivy_grip_distance(iv, b->P, r[i]);
-        if (gap < r[i]) {
-            ivy_near nr = ivy_nearest_any(iv, b->P);
-            if (nr.dist < r[i]) P[i] = v3_madd(b->P, nr.normal, r[i] - nr.dist);
+        /* Thicker than its gap to the surface: out along the normal; in a
+         * corner (the wall's foot) once more for the other surface. */
+        if (ivy_grip_distance(iv, b->P, r[i]) >= r[i] && (!p->ground || b->P.z - p->ground_z >= r[i])) continue;
+        for (int k = 0; k < WOOD_PUSHES; k++) {
+            ivy_near nr = ivy_nearest_any(iv, P[i]);
+            if (!(nr.dist < r[i])) break;
+            P[i] = v3_madd(P[i], nr.normal, r[i] - nr.dist);
         }
     }
     free(carried);

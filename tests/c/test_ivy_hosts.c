@@ -28,6 +28,7 @@
 #include "check.h"
 #include "ivy_checks.h"
 #include "host_meshes.h"
+#include "ivy_look.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
 
@@ -176,6 +177,8 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     banyan_ivy_params all = *p;
     all.leaf_share = 1;
     all.leaf_clump = 0;
+    all.stem_pipe = 0;   /* no old wood to shed leaves */
+    all.leaf_relief = 0; /* nor relief to leave them out */
     banyan_status s = banyan_ivy_create_hosts(&all, H, &iv, &err);
     CHECK(s == BANYAN_OK, "%s: create: %s", what, err.message);
     if (s) return r;
@@ -614,6 +617,83 @@ static void bad_input(void) {
     tm_free(&sm);
 }
 
+/* Blades of a grown plant whose centre lies within `near` of one of the
+ * eyes' surfaces (spheres at e[0..1] of radius er): how many, and the
+ * largest. */
+static void eye_blades(const banyan_mesh *m, const v3 *e, double er, double near, uint32_t *count, double *largest) {
+    uint32_t nb = 0;
+    ivy_blade *bl = ivy_look_blades(m, &nb);
+    *count = 0, *largest = 0;
+    for (uint32_t i = 0; i < nb; i++)
+        for (int k = 0; k < 2; k++)
+            if (v3_dist(bl[i].centre, e[k]) < er + near) {
+                ++*count;
+                *largest = bl[i].size > *largest ? bl[i].size : *largest;
+                break;
+            }
+    free(bl);
+}
+
+/* leaf_relief: a flat mesh wall's leaves are the same with it or
+ * without; on the head's eyes (radius 0.175 m) no blade is larger than
+ * leaf_relief x that radius (1.5 x for the facets' coarse curvature),
+ * where without it they reach full size. */
+static void relief_scene(void) {
+    banyan_error err = {0, ""};
+    tm_mesh qm = {0};
+    tm_quad(&qm, -1.5, 1.5, 0, 0, 3.0);
+    banyan_host_mesh qh = tm_host(&qm, 0, 0, 0, BANYAN_HOST_OPEN);
+    banyan_hosts *Q = make_set(NULL, 0, &qh, 1);
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 200;
+    p.start[0] = 0, p.start[1] = -0.02, p.start[2] = 0.05;
+    banyan_mesh *a = NULL, *b = NULL;
+    if (Q) {
+        CHECK(banyan_ivy_generate_hosts(&p, Q, &a, NULL, &err) == BANYAN_OK, "relief, wall: %s", err.message);
+        banyan_ivy_params off = p;
+        off.leaf_relief = 0;
+        CHECK(banyan_ivy_generate_hosts(&off, Q, &b, NULL, &err) == BANYAN_OK, "relief off, wall: %s", err.message);
+        CHECK(p.leaf_relief > 0 && same_bytes(a, b), "a flat mesh wall's leaves change with leaf_relief");
+    }
+    banyan_mesh_free(a);
+    banyan_mesh_free(b);
+    banyan_hosts_free(Q);
+    tm_free(&qm);
+
+    const double r = 0.5, er = 0.35 * r;
+    const v3 eyes[2] = {v3_make(-0.4 * r, -0.8 * r, 1.25 * r), v3_make(0.4 * r, -0.8 * r, 1.25 * r)};
+    tm_mesh hm = {0};
+    tm_two_shell_head(&hm, r);
+    banyan_host_mesh hh = tm_host(&hm, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
+    banyan_hosts *H = make_set(NULL, 0, &hh, 1);
+    p.steps = 300;
+    p.start[0] = 0, p.start[1] = -r - 0.05, p.start[2] = 0.3;
+    a = b = NULL;
+    if (H) {
+        CHECK(banyan_ivy_generate_hosts(&p, H, &a, NULL, &err) == BANYAN_OK, "relief, head: %s", err.message);
+        banyan_ivy_params off = p;
+        off.leaf_relief = 0;
+        CHECK(banyan_ivy_generate_hosts(&off, H, &b, NULL, &err) == BANYAN_OK, "relief off, head: %s", err.message);
+    }
+    if (a && b) {
+        uint32_t n_on, n_off;
+        double big_on, big_off;
+        eye_blades(a, eyes, er, 0.05, &n_on, &big_on);
+        eye_blades(b, eyes, er, 0.05, &n_off, &big_off);
+        const double cap = 1.5 * p.leaf_relief * er;
+        CHECK(n_off > 20 && big_off > cap, "relief off: %u blades at the eyes, largest %.3f m (want > %.3f)", n_off, big_off,
+              cap);
+        CHECK(big_on <= cap, "relief: blade of %.3f m at the eyes, over %.3f m", big_on, cap);
+        printf("  relief: blades at the eyes %u (largest %.3f m), without it %u (largest %.3f m)\n", n_on, big_on, n_off,
+               big_off);
+    }
+    banyan_mesh_free(a);
+    banyan_mesh_free(b);
+    banyan_hosts_free(H);
+    tm_free(&hm);
+}
+
 int main(int argc, char **argv) {
     (void)argc;
     (void)argv;
@@ -626,5 +706,6 @@ int main(int argc, char **argv) {
     quad_scene();
     two_shell_scene();
     mixed_scene();
+    relief_scene();
     return check_done("test_ivy_hosts");
 }

@@ -1,0 +1,109 @@
+/* test_ivy_wood - the ivy mesh's wood (csrc/ivy/wood.c) on ivy_wall:
+ * stems never thicken towards their tips, a leading stem's foot is a
+ * trunk, a trunk lies on the wall and not in it, old wood carries no
+ * leaf, and stem_pipe 0 is the spec's age rule alone. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "check.h"
+#include "ivy_look.h"
+
+static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_box *hosts, uint32_t nh) {
+    banyan_ivy *iv = NULL;
+    banyan_error err = {0, ""};
+    CHECK(banyan_ivy_create(p, hosts, nh, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    if (iv) CHECK(banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK, "step: %s", err.message);
+    return iv;
+}
+
+/* Radii, trunks and the gap to the wall. */
+static void wood_shape(const banyan_ivy *iv, const double *r, const v3 *P) {
+    const banyan_ivy_params *p = &iv->p;
+    int thicker = 0, inside = 0, roots = 0;
+    double worst = 0, foot = 0;
+    for (int32_t i = 0; i < iv->n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        if (b->parent >= 0 && r[i] > r[b->parent] * (1 + 1e-12)) thicker++;
+        if (b->parent < 0) {
+            roots++;
+            foot = r[i] > foot ? r[i] : foot;
+        }
+        /* Every tube's centre at least its radius off every surface. */
+        double d = ivy_nearest_any(iv, P[i]).dist, in = r[i] - d;
+        if (in > 1e-6) inside++, worst = in > worst ? in : worst;
+    }
+    CHECK(thicker == 0, "%d buds' stems thicker than their parent's", thicker);
+    CHECK(roots > 0 && foot >= 5 * p->stem_radius_max, "the thickest of %d leading stems' feet: %.4f m, under 5 x %.4f m",
+          roots, foot, p->stem_radius_max);
+    CHECK(inside == 0, "%d stems reach into a surface (by up to %.4f m)", inside, worst);
+}
+
+/* Old wood sheds its leaves: among buds whose wood is past 4.5 times
+ * the age rule's cap (half way through the shedding) the leafed share is
+ * under half of that among buds of young wood (under 3 times it), and no
+ * blade grows on wood past 6 times it. */
+static void wood_leaves(const banyan_ivy *iv, const double *r) {
+    banyan_mesh *m = NULL;
+    banyan_error err = {0, ""};
+    CHECK(banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK && m, "mesh: %s", err.message);
+    if (!m) return;
+    uint32_t nb = 0, n_old = 0, n_young = 0, leaf_old = 0, leaf_young = 0, dead = 0;
+    ivy_blade *bl = ivy_look_blades(m, &nb);
+    char *leafed = calloc((size_t)iv->n, 1);
+    const double cap = iv->p.stem_radius_max;
+    /* A blade's bud is the one at its petiole's base; of buds at one
+     * point (the leading stems' first buds) the thinnest. */
+    for (uint32_t k = 0; k < nb && leafed; k++) {
+        int32_t best = -1;
+        double bd = HUGE_VAL;
+        for (int32_t i = 0; i < iv->n; i++) {
+            double d = v3_dist(iv->buds[i].P, bl[k].base);
+            if (d < bd - 1e-9 || (d < bd + 1e-9 && best >= 0 && r[i] < r[best])) bd = d < bd ? d : bd, best = i;
+        }
+        if (best >= 0) leafed[best] = 1;
+    }
+    for (int32_t i = 0; i < iv->n && leafed; i++) {
+        if (r[i] >= 4.5 * cap) n_old++, leaf_old += leafed[i];
+        if (r[i] < 3 * cap) n_young++, leaf_young += leafed[i];
+        dead += r[i] >= 6 * cap && leafed[i];
+    }
+    CHECK(nb > 1000 && n_old > 20 && n_young > 1000, "%u blades, %u buds of old wood, %u of young", nb, n_old, n_young);
+    if (n_old && n_young)
+        CHECK(2.0 * leaf_old / n_old < (double)leaf_young / n_young && dead == 0,
+              "leafed: %u of %u buds of old wood, %u of %u of young; %u past 6 x the cap", leaf_old, n_old, leaf_young,
+              n_young, dead);
+    printf("  leafed: %u of %u buds of old wood, %u of %u of young\n", leaf_old, n_old, leaf_young, n_young);
+    free(leafed);
+    free(bl);
+    banyan_mesh_free(m);
+}
+
+int main(void) {
+    banyan_ivy_params p;
+    banyan_box hosts[8];
+    uint32_t nh = 0;
+    banyan_error err = {0, ""};
+    if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
+    banyan_ivy *iv = grow(&p, hosts, nh);
+    if (!iv) return check_done("test_ivy_wood");
+    double *r = malloc(sizeof(double) * (size_t)iv->n);
+    v3 *P = malloc(sizeof(v3) * (size_t)iv->n);
+    CHECK(r && P && ivy_wood(iv, r, P) == BANYAN_OK, "ivy_wood");
+    double rmax = 0;
+    for (int32_t i = 0; i < iv->n; i++) rmax = r[i] > rmax ? r[i] : rmax;
+    printf("  ivy_wall: %d buds, thickest stem %.4f m (age rule's cap %.4f m)\n", iv->n, rmax, p.stem_radius_max);
+    wood_shape(iv, r, P);
+    wood_leaves(iv, r);
+
+    /* stem_pipe 0: the age rule alone, the buds where they are. */
+    iv->p.stem_pipe = 0;
+    CHECK(ivy_wood(iv, r, P) == BANYAN_OK, "ivy_wood, no pipe");
+    int off = 0;
+    for (int32_t i = 0; i < iv->n; i++) off += r[i] != ivy_stem_radius(iv, &iv->buds[i]);
+    CHECK(off == 0, "stem_pipe 0: %d radii differ from the age rule", off);
+    free(r);
+    free(P);
+    banyan_ivy_free(iv);
+    return check_done("test_ivy_wood");
+}
