@@ -361,8 +361,9 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
             path[j / 2] =
                 j == 0 ? sw.path[i] : path[pl] + v3_dist(a, v3_make(buf[6 * pl], buf[6 * pl + 1], buf[6 * pl + 2]));
             int level = sw.depth[i] + lev[j];
-            /* The pivot: the tube's base, where it sits in its parent. */
-            wind_set(&mb, &sw.ws, tb->c[0], level, seg_stiffness(&sw, level),
+            /* The pivot: the line's start, a skeleton point (the tube's
+             * base is that point moved by the zigzag, a few mm). */
+            wind_set(&mb, &sw.ws, a, level, seg_stiffness(&sw, level),
                      wind_phase_of(p->seed, ((uint64_t)i << 8 | (uint64_t)(j / 2)) + 1), 0);
             if (v3_dist(a, b) >= MIN_TUBE_LENGTH) sweep_tube(&mb, tb, p->sides, sw.ws.birth, path[j / 2]);
             uint32_t q = mb_skel_point(&mb, a, tb->rb, lev[j]);

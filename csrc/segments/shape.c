@@ -7,14 +7,16 @@
  *   rb to its tip radius rt = max(radius_min, SEG_TAPER rb) (never above
  *   rb). rb is the level's radius (radius x radius_ratio^code; the trunk:
  *   trunk_radius), but at most the parent's inner radius / SEG_FLARE,
- *   so a child is never thicker than where it leaves its parent. The
- *   inner radius is the parent's local radius x cos(pi / sides): what a
- *   polygonal ring of `sides` sides holds.
+ *   so a child is never thicker than where it leaves its parent, and
+ *   never below radius_min. The inner radius is the parent's local
+ *   radius x cos(pi / sides): what a polygonal ring of `sides` sides
+ *   holds.
  * - Junction. The base ring sits on the parent's centre line with radius
  *   min(SEG_FLARE rb, the parent's inner radius): inside the parent, a
  *   little wider than the line, narrowing to the line's radius just
  *   outside the parent's surface (the exit ring), so the joint reads as
- *   grown.
+ *   grown. (Where both are at radius_min the base ring is the narrower,
+ *   by at most cos(pi / sides), and hidden in the parent.)
  * - Closed tip. The tube ends in a dome of the tip radius: a ring of rt
  *   one rt before the tip, two rings on a quarter circle towards it, and
  *   the sweeper's end cap.
@@ -52,9 +54,11 @@ static double tip_of(double rb, double radius_min) {
 }
 
 /* Nominal base radius of a line of level radius r_level leaving a parent
- * of inner radius rp (rp <= 0: no parent). */
-static double base_of(double r_level, double rp) {
-    return rp > 0 && rp / SEG_FLARE < r_level ? rp / SEG_FLARE : r_level;
+ * of inner radius rp (rp <= 0: no parent), never below radius_min (a
+ * parent is never thinner than that either). */
+static double base_of(double r_level, double rp, double radius_min) {
+    double rb = rp > 0 && rp / SEG_FLARE < r_level ? rp / SEG_FLARE : r_level;
+    return rb > radius_min ? rb : radius_min;
 }
 
 /* Base ring radius of a line of base radius rb in a parent of inner
@@ -132,7 +136,7 @@ int seg_shaper_init(seg_shaper *sh, const banyan_segments_params *p, const banya
         } else if (q == -1) {
             rp = sh->inner * lerp(sh->trunk_rb, sh->trunk_rt, foot_t(S, v3_load(trunk), v3_load(trunk + 3)));
         }
-        sh->rb[i] = base_of(r_axis, rp);
+        sh->rb[i] = base_of(r_axis, rp, p->radius_min);
         sh->rt[i] = tip_of(sh->rb[i], p->radius_min);
     }
     sh->parent = parent;
@@ -229,7 +233,7 @@ void seg_shaper_line(const seg_shaper *sh, uint32_t i, const float *xyz, const u
     v3 qa = v3_make(xyz[6 * q], xyz[6 * q + 1], xyz[6 * q + 2]), qb = v3_make(xyz[6 * q + 3], xyz[6 * q + 4], xyz[6 * q + 5]);
     double rp = sh->inner * lerp(pt->rb, pt->rt, foot_t(a, qa, qb));
     double r_level = seg_level_radius(p->radius, p->radius_ratio, p->radius_min, lev[2 * j]);
-    tb->rb = base_of(r_level, rp);
+    tb->rb = base_of(r_level, rp, p->radius_min);
     tb->rt = tip_of(tb->rb, p->radius_min);
     tb->parent = q;
     line_rings(sh, tb, a, b, w, NULL, flare_of(tb->rb, rp), rp, SEG_EXIT_SHARE);
