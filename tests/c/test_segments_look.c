@@ -2,7 +2,7 @@
  * line set"), on presets/segments_paper.json, segments_bushy.json and
  * demo trees, measured on the mesh's rings (tests/c/segment_tubes.h gives
  * where each tube's rings are):
- * - taper: ring radii never grow from a tube's exit ring (where it
+ * - taper: every tube above radius_min narrows to its tip; ring radii never grow from a tube's exit ring (where it
  *   leaves its parent's surface) to its tip, and a child's base and exit
  *   rings are no wider than its parent's ring radius where it leaves it;
  * - closed tips: with positions welded, the only open edges are the base
@@ -44,7 +44,7 @@ static double radius_near(const banyan_mesh *m, const plan_tube *t, int sides, v
 }
 
 typedef struct look_counts {
-    int grow, thick, open_tip, poke, green, checked_joints;
+    int grow, flat, thick, open_tip, poke, green, checked_joints;
 } look_counts;
 
 /* Position key for welding: the three floats' bits. */
@@ -134,6 +134,12 @@ static void check_look(const banyan_segments_params *p, const banyan_segment_inp
             if (r > r_prev * 1.002 + 1e-7) c.grow++;
             r_prev = r;
         }
+        /* It tapers: the last whole ring (the dome's start) is narrower
+         * than the exit ring (the trunk: its base), unless the tube is at radius_min. */
+        double r_last;
+        plan_ring(m, t, sides, t->t.n - 1 - SEG_DOME_RINGS, &r_last);
+        double r_from = t->level < 0 ? r0 : r1; /* the trunk has no exit ring */
+        if (!(r_last < r_from * 0.999) && r_from > p->radius_min * 1.01) c.flat++;
         if (t->parent < 0 || !pl.tubes[t->parent].meshed) continue;
         const plan_tube *pt = &pl.tubes[t->parent];
         double dist, s;
@@ -159,6 +165,7 @@ static void check_look(const banyan_segments_params *p, const banyan_segment_inp
         if (col[1] > col[0]) c.green++;
     }
     CHECK(c.grow == 0, "%s: %d rings wider than the ring before them", what, c.grow);
+    CHECK(c.flat == 0, "%s: %d tubes thicker than radius_min that do not taper", what, c.flat);
     CHECK(c.thick == 0, "%s: %d children wider at their base than their parent there", what, c.thick);
     CHECK(c.open_tip == 0 && open == tubes * (uint32_t)sides, "%s: %d open edges off the bases, %u open in all for %u tubes",
           what, c.open_tip, open, tubes);
