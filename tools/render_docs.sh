@@ -8,18 +8,21 @@
 #   (also: params, start, avenue, hosts, roots (issue #18 look views),
 #   ivy (issue #19 look views: front, close, stems, pillar), keyaki (issue #20
 #   look views: under, tree, avenue, young), production (issue #22: LOD chain,
-#   growth frames); extra arguments go to the script)
+#   growth frames), segments (docs/segments.md's before/after look views);
+#   extra arguments go to the script; BANYAN_LIB may name another build's
+#   library, e.g. a copy of the library before a change)
 #   bash tools/render_docs.sh ui         # docs/screenshots.py in a real window on Xvfb
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
-[ -f build/libbanyan.so ] || { echo "build first (tools/main.sh or cmake + ninja)"; exit 1; }
+lib=${BANYAN_LIB:-$here/build/libbanyan.so}
+[ -f "$lib" ] || { echo "build first (tools/main.sh or cmake + ninja)"; exit 1; }
 scripts=$(mktemp -d)
 trap 'rm -rf "$scripts"' EXIT
 mkdir -p "$scripts/addons"
 ln -s "$here/blender_addon/banyan" "$scripts/addons/banyan"
 run() {
-  BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$here/build/libbanyan.so" \
+  BLENDER_USER_SCRIPTS="$scripts" BANYAN_LIB="$lib" \
     blender -b --factory-startup --addons banyan --python-exit-code 1 --python "$@"
 }
 what=${1:-all}
@@ -33,6 +36,7 @@ case $what in
   roots) run docs/render_roots_look.py -- "$@" ;;
   ivy) run docs/render_ivy_look.py -- "$@" ;;
   keyaki) run docs/render_keyaki_look.py -- "$@" ;;
+  segments) run docs/render_segments_look.py -- "$@" ;;
   production) run docs/render_production.py -- "$@" ;;
   ui) # A real window: Blender on a virtual X display; a .blend on the command line skips the splash.
     command -v xvfb-run >/dev/null || { echo "ui needs Xvfb: apt-get install xvfb xauth"; exit 1; }
@@ -48,5 +52,5 @@ case $what in
     run docs/render_getting_started.py
     run docs/render_hosts.py
     run docs/examples/render_avenue.py -- --out docs/img/avenue.png ;;
-  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts|roots|ivy|keyaki|ui] [script args]"; exit 2 ;;
+  *) echo "usage: tools/render_docs.sh [all|gallery|params|start|avenue|hosts|roots|ivy|keyaki|segments|ui] [script args]"; exit 2 ;;
 esac

@@ -7,7 +7,8 @@
  * would draw. The mesh is built in two passes: the first runs every
  * segment to count lines and estimate the vertex total (refusing with
  * BANYAN_E_LIMIT before anything is allocated), the second sweeps one
- * short tube per line through the shared sweeper. */
+ * tube per line through the shared sweeper, shaped by shape.c (taper,
+ * flared junctions, domed tips, the axes' zigzag). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -125,10 +126,6 @@ double seg_level_radius(double radius, double ratio, double radius_min, int leve
     return r > radius_min ? r : radius_min;
 }
 
-static double level_radius(const banyan_segments_params *p, int level) {
-    return seg_level_radius(p->radius, p->radius_ratio, p->radius_min, level);
-}
-
 /* One straight tube a -> b, closed at b; frames from the shared sweeper,
  * no allocation (sides <= 64). Also the keyaki's twig tubes. */
 void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
@@ -140,12 +137,25 @@ void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
     tube_sweep_rings(mb, pts, rings, 2, &o);
 }
 
-static void level_color(int level, double rgba[4]) {
-    /* Linear RGB: bark brown at the axis to twig green at level code 4+. */
-    static const double bark[3] = {0.12, 0.07, 0.035}, tip[3] = {0.10, 0.30, 0.05};
+/* Linear RGB by level code: the keyaki's bark (its default bark_color,
+ * so both trees show the same bark) on the trunk and axes, fading to a
+ * young twig's olive brown at code 4 and above (red over green over blue:
+ * never green). */
+static void level_color(const double bark[4], int level, double rgba[4]) {
+    static const double young[3] = {0.17, 0.14, 0.07};
     double t = level < 0 ? 0 : level > 4 ? 1 : level / 4.0;
-    for (int c = 0; c < 3; c++) rgba[c] = bark[c] + (tip[c] - bark[c]) * t;
+    for (int c = 0; c < 3; c++) rgba[c] = bark[c] + (young[c] - bark[c]) * t;
     rgba[3] = 1.0;
+}
+
+/* Sweeps one shaped line (closed at its tip) with its birth per ring. */
+static void sweep_tube(mesh_builder *mb, const seg_tube *tb, int sides, int birth, double path0) {
+    tube_opts o = {sides, 0, 1, {0, 0, 0}, 0.0, NULL, 0, 1};
+    double bt[SEG_TUBE_MAX_POINTS];
+    uint32_t first = mb->nv;
+    tube_sweep(mb, tb->c, tb->r, (uint32_t)tb->n, &o);
+    for (int k = 0; k < tb->n; k++) bt[k] = path0 + tb->s[k];
+    if (mb->nv > first) wind_tube_rings(mb, first, (uint32_t)tb->n, sides, 0, 1, birth, bt);
 }
 
 /* Wind and birth of a composed tree (docs/segments.md "Wind and growth
@@ -247,10 +257,11 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     float buf[3 * BANYAN_SEGMENT_MAX_VERTICES];
     uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
     uint32_t tv, ti;
-    tube_counts(2, p->sides, 0, 1, &tv, &ti);
-    uint64_t verts = 0, lines = 0;
+    uint64_t verts = 0, indices = 0, lines = 0;
     if (trunk) {
+        tube_counts((uint32_t)seg_tube_points(-1, 0), p->sides, 0, 1, &tv, &ti);
         verts += tv;
+        indices += ti;
         lines++;
     }
     for (uint32_t i = 0; i < count; i++) {
@@ -264,7 +275,10 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
             if (lev[j] > st.max_level) st.max_level = lev[j];
             const float *a = buf + 3 * j, *b = a + 3;
             double dx = (double)b[0] - a[0], dy = (double)b[1] - a[1], dz = (double)b[2] - a[2];
-            if (sqrt(dx * dx + dy * dy + dz * dz) >= MIN_TUBE_LENGTH) verts += tv;
+            if (!(sqrt(dx * dx + dy * dy + dz * dz) >= MIN_TUBE_LENGTH)) continue;
+            tube_counts((uint32_t)seg_tube_points(j / 2, segs[i].n), p->sides, 0, 1, &tv, &ti);
+            verts += tv;
+            indices += ti;
         }
     }
     st.lines = (uint32_t)lines;
@@ -274,7 +288,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
                            "= %d)", count, (unsigned long long)verts, p->max_vertices, p->sides);
     /* The mesh's memory, known before it is allocated: about 68 bytes a
      * vertex with its attributes and birth (96 with wind), 4 an index. */
-    if (prog_reserve(&g, (double)verts * (p->wind ? 96.0 : 68.0) + (double)(verts / tv) * ti * 4.0))
+    if (prog_reserve(&g, (double)verts * (p->wind ? 96.0 : 68.0) + (double)indices * 4.0))
         return prog_fail(&g, err, "segments");
     seg_wind sw;
     if (seg_wind_init(&sw, p, segs, count, trunk)) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
@@ -288,6 +302,15 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         return banyan_fail(err, s, "out of memory while checking %u segments", count);
     }
     seg_wind_tree(&sw, segs, count, trunk);
+    seg_shaper sh;
+    seg_tube *tubes = malloc(sizeof *tubes * (BANYAN_SEGMENT_MAX_VERTICES / 2));
+    if (!tubes || seg_shaper_init(&sh, p, segs, count, trunk, sw.parent)) {
+        free(tubes);
+        seg_wind_free(&sw);
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    }
+    banyan_keyaki_params kp;
+    banyan_keyaki_params_init(&kp);
 
     /* Pass 2: the mesh. */
     mesh_builder mb;
@@ -297,27 +320,27 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     static const double white[4] = {1, 1, 1, 1};
     mb_add_material(&mb, "segments", white, 0.8, 0);
     /* A failure is sticky; mb_finish reports it. */
-    mb_reserve(&mb, (uint32_t)verts, (uint32_t)((uint64_t)(verts / tv) * ti));
+    mb_reserve(&mb, (uint32_t)verts, (uint32_t)indices);
     double rgba[4];
     if (trunk) {
         v3 a = v3_load(trunk), b = v3_load(trunk + 3);
         mb_set_attr(&mb, a_level, -1);
         mb_set_attr(&mb, a_seg, -1);
-        level_color(-1, rgba);
+        level_color(kp.bark_color, -1, rgba);
         mb_set_color(&mb, rgba);
-        double bt[2] = {0.0, v3_dist(a, b)};
-        uint32_t first = mb.nv;
         wind_set(&mb, &sw.ws, a, 0, seg_stiffness(&sw, 0), wind_phase_of(p->seed, 0), 0);
-        seg_line_tube(&mb, a, b, p->trunk_radius, p->sides);
-        wind_tube_rings(&mb, first, 2, p->sides, 0, 1, sw.ws.birth, bt);
-        uint32_t q = mb_skel_point(&mb, a, p->trunk_radius, -1);
-        mb_skel_point(&mb, b, p->trunk_radius, -1);
+        seg_shaper_trunk(&sh, &tubes[0]);
+        sweep_tube(&mb, &tubes[0], p->sides, sw.ws.birth, 0.0);
+        uint32_t q = mb_skel_point(&mb, a, tubes[0].rb, -1);
+        mb_skel_point(&mb, b, tubes[0].rt, -1);
         mb_skel_edge(&mb, q, q + 1);
     }
     for (uint32_t i = 0; i < count && !mb.status; i++) {
         if ((i & 63) == 0 && prog_at(&g, 0.0)) {
             mb_free(&mb);
             seg_wind_free(&sw);
+            seg_shaper_free(&sh);
+            free(tubes);
             return prog_fail(&g, err, "segments");
         }
         uint8_t par[BANYAN_SEGMENT_MAX_VERTICES / 2];
@@ -327,9 +350,10 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         for (int j = 0; j < nv; j += 2) {
             v3 a = v3_make(buf[3 * j], buf[3 * j + 1], buf[3 * j + 2]);
             v3 b = v3_make(buf[3 * j + 3], buf[3 * j + 4], buf[3 * j + 5]);
-            double r = level_radius(p, lev[j]);
+            seg_tube *tb = &tubes[j / 2];
+            seg_shaper_line(&sh, i, buf, lev, par, tubes, j / 2, tb);
             mb_set_attr(&mb, a_level, lev[j]);
-            level_color(lev[j], rgba);
+            level_color(kp.bark_color, lev[j], rgba);
             mb_set_color(&mb, rgba);
             /* Birth: the path from the root to the line's start, along its
              * parent line (the axis: from S; a fork: from its line's start). */
@@ -337,17 +361,18 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
             path[j / 2] =
                 j == 0 ? sw.path[i] : path[pl] + v3_dist(a, v3_make(buf[6 * pl], buf[6 * pl + 1], buf[6 * pl + 2]));
             int level = sw.depth[i] + lev[j];
-            double bt[2] = {path[j / 2], path[j / 2] + v3_dist(a, b)};
+            /* The pivot: the line's start, a skeleton point (the tube's
+             * base is that point moved by the zigzag, a few mm). */
             wind_set(&mb, &sw.ws, a, level, seg_stiffness(&sw, level),
                      wind_phase_of(p->seed, ((uint64_t)i << 8 | (uint64_t)(j / 2)) + 1), 0);
-            uint32_t first = mb.nv;
-            if (v3_dist(a, b) >= MIN_TUBE_LENGTH) seg_line_tube(&mb, a, b, r, p->sides);
-            if (mb.nv > first) wind_tube_rings(&mb, first, 2, p->sides, 0, 1, sw.ws.birth, bt);
-            uint32_t q = mb_skel_point(&mb, a, r, lev[j]);
-            mb_skel_point(&mb, b, r, lev[j]);
+            if (v3_dist(a, b) >= MIN_TUBE_LENGTH) sweep_tube(&mb, tb, p->sides, sw.ws.birth, path[j / 2]);
+            uint32_t q = mb_skel_point(&mb, a, tb->rb, lev[j]);
+            mb_skel_point(&mb, b, tb->rt, lev[j]);
             mb_skel_edge(&mb, q, q + 1);
         }
     }
+    seg_shaper_free(&sh);
+    free(tubes);
     if (!mb.status && mb.nv == 0) {
         mb_free(&mb);
         seg_wind_free(&sw);

@@ -62,6 +62,50 @@ double seg_level_radius(double radius, double ratio, double radius_min, int leve
  * and indices. The caller sets the attributes and part first. */
 void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides);
 
+/* The composer's tube shapes (shape.c): taper, flared junctions, domed
+ * tips and the axes' zigzag, for the mesh only (the line set stays the
+ * reference's). */
+#define SEG_DOME_RINGS 2
+#define SEG_TUBE_MAX_POINTS (3 + SEG_DOME_RINGS + BANYAN_SEGMENT_MAX_TWIGS)
+
+/* One line's tube: ring centres c, radii r and distances s from the
+ * line's start along it (for birth); rb, rt the line's base and tip
+ * radius (the skeleton's); parent the line of the same segment it leaves
+ * (-1: the axis of another segment or the trunk, -2: none). */
+typedef struct seg_tube {
+    v3 c[SEG_TUBE_MAX_POINTS];
+    double r[SEG_TUBE_MAX_POINTS], s[SEG_TUBE_MAX_POINTS];
+    int n;
+    double rb, rt;
+    int parent;
+} seg_tube;
+
+/* Per tree: each segment's move (the zigzag of the axes it hangs from)
+ * and its axis's base and tip radius. */
+typedef struct seg_shaper {
+    const banyan_segments_params *p;
+    const banyan_segment_input *segs;
+    const double *trunk;
+    const int32_t *parent; /* seg_attach_parents' */
+    v3 *shift;
+    double *rb, *rt;
+    double trunk_rb, trunk_rt, ca, sa;
+    double inner; /* cos(pi / sides): a polygonal ring's inner radius over its radius */
+} seg_shaper;
+
+/* Ring count of a line's tube: line -1 the trunk, 0 an axis with `twigs`
+ * twigs, else a twig or fork. */
+int seg_tube_points(int line, int twigs);
+/* Returns nonzero when out of memory. parent: seg_attach_parents', kept. */
+int seg_shaper_init(seg_shaper *sh, const banyan_segments_params *p, const banyan_segment_input *segs,
+                    uint32_t count, const double *trunk, const int32_t *parent);
+void seg_shaper_free(seg_shaper *sh);
+void seg_shaper_trunk(const seg_shaper *sh, seg_tube *tb);
+/* Line j of segment i (xyz, lev, par from seg_run_tree); tubes[0 .. j-1]
+ * are the segment's earlier lines, already shaped. */
+void seg_shaper_line(const seg_shaper *sh, uint32_t i, const float *xyz, const uint8_t *lev, const uint8_t *par,
+                     const seg_tube *tubes, int j, seg_tube *tb);
+
 /* The segment parameters inside the composer's params. */
 void seg_params_from_tree(const banyan_segments_params *tp, banyan_segment_params *sp);
 

@@ -20,6 +20,7 @@
 #include "segments/segment_core.h"
 #include "test_files.h"
 #include "mesh_checks.h"
+#include "segment_tubes.h"
 
 #define MAXV BANYAN_SEGMENT_MAX_VERTICES
 
@@ -34,8 +35,9 @@ static void write_glb(const char *dir, const char *name, const banyan_mesh *m) {
 }
 
 /* Mesh invariants: finite, unit normals, triangles wound with their
- * normals, side normals pointing away from their line, vertex count as
- * estimated, skeleton = line set. */
+ * normals, ring vertices at their ring's radius with normals pointing
+ * away from its centre, vertex count as the tubes' layout says,
+ * skeleton = line set with the tubes' base and tip radii. */
 static void check_mesh(const banyan_mesh *m, const banyan_segments_params *p, const banyan_segment_input *segs,
                        uint32_t count, const double *trunk, const char *what) {
     uint32_t nv = 0;
@@ -45,24 +47,18 @@ static void check_mesh(const banyan_mesh *m, const banyan_segments_params *p, co
     float *xyz = malloc(sizeof(float) * 3 * nv);
     int8_t *lev = malloc(nv);
     CHECK(banyan_segments_lines(p, segs, count, trunk, xyz, lev, nv, &nv, &err) == BANYAN_OK, "%s lines", what);
-    uint32_t lines = nv / 2, tubes = 0;
-    for (uint32_t i = 0; i < lines; i++) {
-        const float *a = xyz + 6 * i, *b = a + 3;
-        double d = sqrt(((double)b[0] - a[0]) * ((double)b[0] - a[0]) + ((double)b[1] - a[1]) * ((double)b[1] - a[1]) +
-                        ((double)b[2] - a[2]) * ((double)b[2] - a[2]));
-        tubes += d >= 1e-9;
-    }
-    uint32_t tv, ti;
-    tube_counts(2, p->sides, 0, 1, &tv, &ti);
-    CHECK(m->vertex_count == tubes * tv && m->index_count == tubes * ti, "%s: %u vertices / %u indices for %u tubes",
-          what, m->vertex_count, m->index_count, tubes);
+    uint32_t lines = nv / 2;
+    seg_plan pl;
+    CHECK(seg_plan_make(p, segs, count, trunk, m, &pl) == 0 && pl.n == lines, "%s: tube layout", what);
+    CHECK(m->vertex_count == pl.vertices && m->index_count == pl.indices, "%s: %u vertices / %u indices, laid out %u / %u",
+          what, m->vertex_count, m->index_count, pl.vertices, pl.indices);
     /* Skeleton: the line set, point for point, tag = level. */
     CHECK(m->skel_point_count == nv && m->skel_edge_count == lines, "%s: skeleton %u points %u edges for %u lines", what,
           m->skel_point_count, m->skel_edge_count, lines);
     int bad_skel = 0;
     for (uint32_t i = 0; i < nv && m->skel_point_count == nv; i++) {
         if (memcmp(m->skel_points + 3 * i, xyz + 3 * i, 12) || m->skel_tag[i] != lev[i]) bad_skel++;
-        double want = lev[i] < 0 ? p->trunk_radius : fmax(p->radius_min, p->radius * pow(p->radius_ratio, lev[i]));
+        double want = i / 2 < pl.n ? (i & 1 ? pl.tubes[i / 2].t.rt : pl.tubes[i / 2].t.rb) : 0;
         if (fabs(m->skel_radius[i] - want) > 1e-6 * want) bad_skel++;
     }
     for (uint32_t e = 0; e < m->skel_edge_count; e++)
@@ -80,24 +76,23 @@ static void check_mesh(const banyan_mesh *m, const banyan_segments_params *p, co
             if (!isfinite(m->positions[3 * v + k])) bad_n++;
     }
     bad_wind += mc_wound_against_normals(m, 1e-14);
-    /* Side ring vertices (the first 2 (sides + 1) of each tube) lie at
-     * their line's radius with normals pointing away from it. */
-    uint32_t tube = 0;
-    for (uint32_t i = 0; i < lines && tube < tubes; i++) {
-        v3 a = v3_make(xyz[6 * i], xyz[6 * i + 1], xyz[6 * i + 2]), b = v3_make(xyz[6 * i + 3], xyz[6 * i + 4], xyz[6 * i + 5]);
-        if (v3_dist(a, b) < 1e-9) continue;
-        v3 ab = v3_sub(b, a);
-        double r = lev[2 * i] < 0 ? p->trunk_radius : fmax(p->radius_min, p->radius * pow(p->radius_ratio, lev[2 * i]));
-        for (uint32_t k = 0; k < 2 * (uint32_t)(p->sides + 1); k++) {
-            uint32_t v = tube * tv + k;
-            v3 q = v3_make(m->positions[3 * v], m->positions[3 * v + 1], m->positions[3 * v + 2]);
-            double t = v3_dot(v3_sub(q, a), ab) / v3_len2(ab);
-            v3 foot = v3_madd(a, ab, t), nn = v3_make(m->normals[3 * v], m->normals[3 * v + 1], m->normals[3 * v + 2]);
-            if (fabs(v3_dist(q, foot) - r) > 1e-4 * (1 + r) + 1e-6 * v3_len(q) || v3_dot(nn, v3_sub(q, foot)) <= 0) bad_out++;
-            if (alevel && alevel[v] != lev[2 * i]) bad_attr++;
-        }
-        tube++;
+    /* Ring vertices lie at their ring's radius round its centre (within
+     * the sweeper's widening across the zigzag's bends), normals pointing
+     * away from it; each carries its line's level. */
+    for (uint32_t i = 0; i < lines && pl.vertices == m->vertex_count; i++) {
+        const plan_tube *t = &pl.tubes[i];
+        if (!t->meshed) continue;
+        for (int k = 0; k < t->t.n; k++)
+            for (uint32_t j = 0; j <= (uint32_t)p->sides; j++) {
+                uint32_t v = t->first + (uint32_t)k * (uint32_t)(p->sides + 1) + j;
+                v3 q = plan_vertex(m, v), d = v3_sub(q, t->t.c[k]);
+                v3 nn = v3_make(m->normals[3 * v], m->normals[3 * v + 1], m->normals[3 * v + 2]);
+                double r = t->t.r[k];
+                if (fabs(v3_len(d) - r) > 3e-3 * r + 1e-6 * (1 + v3_len(q)) || v3_dot(nn, d) <= 0) bad_out++;
+                if (alevel && alevel[v] != lev[2 * i]) bad_attr++;
+            }
     }
+    seg_plan_free(&pl);
     CHECK(bad_attr == 0, "%s: %d vertices with wrong attributes", what, bad_attr);
     CHECK(bad_n == 0, "%s: %d non-unit normals or non-finite positions", what, bad_n);
     CHECK(bad_wind == 0, "%s: %d triangles wound against their normals", what, bad_wind);

@@ -155,10 +155,12 @@ BANYAN_API const char *banyan_segment_shader_source(int32_t stage);
  *                     m * unit.
  *   unit              metres per paper unit, 1e-6 .. 1e3 (0.05: twigs of
  *                     0.5 m).
- *   radius            tube radius of an axis line (level 0), m (0.02).
- *   radius_ratio      radius of level k = radius * radius_ratio^k (0.6).
- *   radius_min        radii never go below this, m (0.002).
- *   trunk_radius      radius of the trunk line's tube, m (0.06).
+ *   radius            base radius of an axis line (level 0), m (0.02); every
+ *                     tube tapers to half its base radius at its tip.
+ *   radius_ratio      base radius of level k = radius * radius_ratio^k, no
+ *                     more than the parent's where a line leaves it (0.6).
+ *   radius_min        radii never go below this (tip domes aside), m (0.002).
+ *   trunk_radius      base radius of the trunk line's tube, m (0.06).
  *   sides             sides of every tube, 3 .. 64 (6).
  *   attach_tolerance  how far S may lie from an earlier axis (or the
  *                     trunk) and still count as attached, m (0.001).
