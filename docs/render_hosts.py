@@ -64,6 +64,11 @@ SHOTS = {
     # Fewer steps than the sphere: the face must still show through.
     "ivy_suzanne_surface": ("ivy", suzanne, 'SURFACE', "ivy_statue", dict(IVY, steps=240, start=(0.6, -0.5, 0.05)),
                             0.3, RS.VIEWS["ivy"]),
+    # The full 450 steps, with the blades fitted to the relief (leaf_relief, the default) and without.
+    "ivy_suzanne_relief": ("ivy", suzanne, 'SURFACE', "ivy_statue", dict(IVY, start=(0.6, -0.5, 0.05)),
+                           0.3, RS.VIEWS["ivy"]),
+    "ivy_suzanne_relief_off": ("ivy", suzanne, 'SURFACE', "ivy_statue",
+                               dict(IVY, start=(0.6, -0.5, 0.05), leaf_relief=0.0), 0.3, RS.VIEWS["ivy"]),
 }
 
 
