@@ -931,14 +931,14 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
 
         def compute(prog):
             d = named(lambda: call_with_progress(G.ivy, p, arg, progress=prog))
-            job.info["grew"] = ivy_grew(d, p.get("steps"))
+            job.info["grew"] = ivy_grew(d, G.ivy_steps(p))
             return d
 
         def build(d, created):
             objs = _single(name, d, collection, uv, created, o)
             if animate:
                 from .growth_anim import add_growth_modifier
-                add_growth_modifier(objs[0], created, max(1, int(p.get("steps"))), f0, f1)
+                add_growth_modifier(objs[0], created, max(1, G.ivy_steps(p)), f0, f1)
             return objs
         job = Job(compute, build, unit_scale=scale)
         return job

@@ -38,6 +38,7 @@ from mathutils import Matrix
 
 from . import hosts as H
 from . import props as PP
+from .core import generators as G
 from .core import structs as S
 from .core.errors import BanyanError
 from .core.params import Params
@@ -431,10 +432,11 @@ def _swap_mesh(obj, new_me, to_local=None):
 
 
 def _update_growth(obj, params):
-    """The ivy growth modifier's last step follows a changed `steps`."""
+    """The ivy growth modifier's last step follows a changed `steps` or
+    `years`."""
     if "steps" not in params.by_name:
         return
-    last = float(max(1, int(params.get("steps"))))
+    last = float(max(1, G.ivy_steps(params)))
     for mod in obj.modifiers:
         ng = getattr(mod, "node_group", None)
         if mod.type == 'NODES' and ng is not None and ng.name.startswith("Banyan Ivy Growth"):

@@ -35,12 +35,13 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     }
     /* In up to 100 parts when showing progress (the same plant as all the
      * steps at once), the fraction of steps done. */
-    int32_t parts = job->progress ? (p->steps < 100 ? p->steps : 100) : 1;
+    const int32_t steps = banyan_ivy_steps(p); /* the params are checked: >= 0 */
+    int32_t parts = job->progress ? (steps < 100 ? steps : 100) : 1;
     for (int32_t k = 0, done = 0; !s && k < parts; k++) {
-        int32_t to = (int32_t)((int64_t)p->steps * (k + 1) / (parts ? parts : 1));
+        int32_t to = (int32_t)((int64_t)steps * (k + 1) / (parts ? parts : 1));
         s = banyan_ivy_step(iv, to - done, err);
         done = to;
-        if (job->progress) job->progress->fn(job->progress->user, (double)done / p->steps);
+        if (job->progress) job->progress->fn(job->progress->user, (double)done / steps);
     }
     if (!s && parts == 0) s = banyan_ivy_step(iv, 0, err);
     if (!s) s = banyan_ivy_get_stats(iv, &st, err);

@@ -829,7 +829,7 @@ banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_
     banyan_status s = banyan_ivy_create(params, hosts, n_hosts, &iv, err);
     if (s) return s;
     /* One shot: stop as soon as the mesh could no longer fit. */
-    s = ivy_grow(iv, params->steps, 1, err);
+    s = ivy_grow(iv, banyan_ivy_steps(params), 1, err);
     if (!s) s = banyan_ivy_mesh(iv, out, err);
     banyan_ivy_free(iv);
     return s;
@@ -853,10 +853,10 @@ banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, c
     banyan_ivy *iv = NULL;
     if ((s = banyan_ivy_create_hosts(params, hosts, &iv, err))) return s;
     iv->prog = &g;
-    iv->goal = params->steps;
+    iv->goal = banyan_ivy_steps(params);
     iv->grow_share = IVY_GROW_SHARE;
     iv->mesh_from = IVY_GROW_SHARE + (stats ? IVY_STATS_SHARE : 0.0);
-    s = ivy_grow(iv, params->steps, 1, err);
+    s = ivy_grow(iv, banyan_ivy_steps(params), 1, err);
     if (!s && prog_at(iv->prog, IVY_GROW_SHARE)) s = prog_fail(iv->prog, err, "ivy");
     if (!s && stats) s = banyan_ivy_get_stats(iv, stats, err);
     if (!s && prog_at(iv->prog, iv->mesh_from)) s = prog_fail(iv->prog, err, "ivy");

@@ -11,7 +11,9 @@
 
 const banyan_param_info ivy_table_rows[] = {
     BP_SEED(S, seed, "Seed", "Growth", "random seed; the same seed gives the same bytes"),
-    BP_INT(S, steps, "Growth steps", "Growth", 0, BANYAN_IVY_MAX_STEPS, "growth steps (paper: 450)"),
+    BP_INT(S, steps, "Growth steps", "Growth", 0, BANYAN_IVY_MAX_STEPS, "growth steps (paper: 450); unused when years > 0"),
+    BP_DOUBLE(S, years, "Years of growth", "Growth", "", 0, 1000, "the plant's age: > 0 grows years x Growth per year / Leaf spacing steps instead of Growth steps (0: use Growth steps)"),
+    BP_DOUBLE(S, shoot_growth, "Growth per year", "Growth", "m", 0.01, 10, "how far a leading shoot grows in a year (Boston ivy: 1-2 m); turns years into steps"),
     BP_DOUBLE(S, internode, "Leaf spacing", "Growth", "m", 0.001, 10, "l, internode length (paper 30 mm)"),
     BP_DOUBLE(S, branch_angle, "Branch angle", "Growth", "deg", 0, 180, "R(theta) of rule p3: angle of a lateral branch off its stem"),
     BP_DOUBLE(S, theta_max, "Wander angle", "Growth", "deg", 0, 180, "largest turn about each axis of a random-walk candidate"),
@@ -92,6 +94,8 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->seed = 1;
     p->max_vertices = 4000000;
     p->steps = 450;
+    p->years = 0;
+    p->shoot_growth = 1.5;
     p->max_buds = 2000000;
     p->max_seconds = PROG_MAX_SECONDS_DEFAULT;
     p->max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
@@ -167,6 +171,14 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
 size_t banyan_sizeof_ivy_params(void) { return sizeof(banyan_ivy_params); }
 size_t banyan_sizeof_ivy_stats(void) { return sizeof(banyan_ivy_stats); }
 
+int32_t banyan_ivy_steps(const banyan_ivy_params *p) {
+    if (!p) return -1;
+    if (!(p->years > 0)) return p->steps;
+    double n = p->years * p->shoot_growth / p->internode;
+    if (!(n <= BANYAN_IVY_MAX_STEPS)) return -1; /* NaN too */
+    return (int32_t)(n + 0.5);
+}
+
 banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err) {
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     banyan_status s = banyan_params_check(BANYAN_GEN_IVY, p, err);
@@ -178,6 +190,10 @@ banyan_status ivy_params_check(const banyan_ivy_params *p, banyan_error *err) {
     if (p->stem_radius_max < p->stem_radius)
         return banyan_fail(err, BANYAN_E_RANGE, "stem_radius_max = %g must be >= stem_radius = %g m",
                            p->stem_radius_max, p->stem_radius);
+    if (banyan_ivy_steps(p) < 0)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "years = %g gives %.0f steps (years x shoot_growth / internode), over %d; lower years",
+                           p->years, p->years * p->shoot_growth / p->internode, BANYAN_IVY_MAX_STEPS);
     if (p->leaf_size_max < p->leaf_size_min)
         return banyan_fail(err, BANYAN_E_RANGE, "leaf_size_max = %g must be >= leaf_size_min = %g m",
                            p->leaf_size_max, p->leaf_size_min);

@@ -110,6 +110,18 @@ def test_ivy_animation(lib):
     bt.check(counts[0] < counts[1] < counts[2], "ivy grows over the frames: %s" % counts)
     bt.check(counts[2] == lib.vertex_count, "ivy complete at the last frame (%d, %d)" % (counts[2], lib.vertex_count))
     bt.check(counts[0] > 0, "ivy: something at the first frame")
+    # years > 0 grows years x shoot_growth / internode steps: the growth
+    # modifier's last step follows it, not `steps`.
+    bt.reset_scene()
+    gens.prepare("ivy")
+    before = {o.name for o in bpy.data.objects}
+    kw = {PP.prop_name("steps"): 5, PP.prop_name("years"): 1.2, PP.prop_name("shoot_growth"): 1.5,
+          PP.prop_name("internode"): 0.03, "animate": True}
+    bt.check(gens.op("ivy")(**kw) == {'FINISHED'}, "ivy by years finished")
+    objs = new_objects(before)
+    last = [n.inputs["To Max"].default_value for m in objs[0].modifiers if m.type == 'NODES' and m.node_group
+            for n in m.node_group.nodes if n.bl_idname == 'ShaderNodeMapRange']
+    bt.check(last == [60.0], "ivy by years: the growth modifier ends at step %s, want 60" % last)
 
 
 def test_bad_values(gen):

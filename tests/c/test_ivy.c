@@ -487,6 +487,29 @@ static void test_mesh(const char *outdir) {
 /* The mesh on any number of threads is the one-thread mesh, byte for
  * byte: its stems and leaves are planned, then written into disjoint
  * ranges. A plant large enough that the threads are used. */
+/* years: 0 grows `steps`; years x shoot_growth / internode steps else,
+ * rounded to the nearest, the same plant as those steps. */
+static void test_years(void) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    CHECK(p.years == 0 && banyan_ivy_steps(&p) == p.steps, "years 0: %d steps, want %d", banyan_ivy_steps(&p), p.steps);
+    p.years = 2, p.shoot_growth = 1.5, p.internode = 0.03, p.steps = 7;
+    CHECK(banyan_ivy_steps(&p) == 100, "2 years at 1.5 m / 0.03 m: %d steps, want 100", banyan_ivy_steps(&p));
+    p.years = 0.0101; /* 0.505 steps: the nearest is 1 */
+    CHECK(banyan_ivy_steps(&p) == 1, "0.0101 years: %d steps, want 1", banyan_ivy_steps(&p));
+    banyan_box w = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
+    banyan_mesh *a = NULL, *b = NULL;
+    banyan_error err;
+    banyan_ivy_params q = p;
+    p.years = 1.2; /* 60 steps */
+    q.years = 0, q.steps = 60;
+    CHECK(banyan_ivy_generate(&p, &w, 1, &a, &err) == BANYAN_OK, "years 1.2: %s", err.message);
+    CHECK(banyan_ivy_generate(&q, &w, 1, &b, &err) == BANYAN_OK, "steps 60: %s", err.message);
+    CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "1.2 years and 60 steps differ");
+    banyan_mesh_free(a);
+    banyan_mesh_free(b);
+}
+
 static void test_mesh_threads(void) {
     banyan_ivy_params p;
     banyan_box hosts[8];
@@ -542,6 +565,13 @@ static void test_bad_input(void) {
     REFUSED(BANYAN_E_RANGE, "alpha = 1.2 must be within [0.5, 1]", &w, 1);
     p.steps = BANYAN_IVY_MAX_STEPS + 1;
     REFUSED(BANYAN_E_RANGE, "steps = 100001 must be within [0, 100000]", &w, 1);
+    p.years = 1000, p.shoot_growth = 10, p.internode = 0.01;
+    REFUSED(BANYAN_E_RANGE, "years = 1000 gives 1000000 steps", &w, 1);
+    p.years = -1;
+    REFUSED(BANYAN_E_RANGE, "years", &w, 1);
+    p.years = NAN;
+    REFUSED(BANYAN_E_RANGE, "years", &w, 1);
+    CHECK(banyan_ivy_steps(NULL) == -1, "banyan_ivy_steps(NULL)");
     p.threads = -1;
     REFUSED(BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", &w, 1);
     p.threads = BANYAN_IVY_MAX_THREADS + 1;
@@ -645,6 +675,7 @@ int main(int argc, char **argv) {
     test_scenes();
     test_mesh(outdir);
     test_mesh_threads();
+    test_years();
     test_presets(outdir);
     return check_done("test_ivy");
 }

@@ -158,6 +158,12 @@ def avenue_tree_count(params, path=None):
     return n.value
 
 
+def ivy_steps(params):
+    """The steps the ivy grows (banyan_ivy_steps: `steps`, or the years
+    turned into steps); -1 for params the check refuses."""
+    return _fn("banyan_ivy_steps", C.c_int32, [C.c_void_p], "ivy")(params.ptr)
+
+
 def ivy_stats_dict(st):
     """banyan_ivy_stats as a dict; "warning" is the library's sentence
     when the plant could not grow (cannot_grow != 0), else ""."""

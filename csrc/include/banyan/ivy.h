@@ -46,6 +46,8 @@ typedef struct banyan_ivy_params {
     uint64_t seed;              /* any value; same seed, same bytes */
     int32_t max_vertices;       /* mesh vertex cap, 1 .. 1<<30; more -> BANYAN_E_LIMIT */
     int32_t steps;              /* growth steps of banyan_ivy_generate, 0 .. BANYAN_IVY_MAX_STEPS (paper: 450) */
+    double years;               /* > 0: grow this many years instead of `steps` (banyan_ivy_steps), 0 .. 1000 */
+    double shoot_growth;        /* a leading shoot's growth per year, m, 0.01 .. 10: years x this / internode steps */
     int32_t max_buds;           /* bud cap, 1 .. 50,000,000; a step that could pass it -> BANYAN_E_LIMIT */
     int32_t candidates;         /* K, random-walk candidates per new bud, 1 .. 1000 */
     int32_t h1_buds;            /* buds before a dormant bud whose H0 adds into H1, 0 .. 64 */
@@ -167,6 +169,11 @@ typedef struct banyan_ivy banyan_ivy;
 /* Defaults: the paper's Table 3 in metres (t0 = 20) and 450 steps; the
  * start at (0, 0, 0.05), the bottom centre of the CLI's default wall. */
 BANYAN_API void banyan_ivy_params_init(banyan_ivy_params *params);
+/* The steps a generate call grows: `steps`, or with years > 0 the
+ * nearest whole number to years x shoot_growth / internode (a step grows
+ * one internode on a growing tip). -1 for NULL or values the params check
+ * refuses (non-finite, or over BANYAN_IVY_MAX_STEPS). */
+BANYAN_API int32_t banyan_ivy_steps(const banyan_ivy_params *params);
 BANYAN_API size_t banyan_sizeof_ivy_params(void);
 BANYAN_API size_t banyan_sizeof_ivy_stats(void);
 
