@@ -282,6 +282,12 @@ banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P);
  * how far the surface's normal turns over steps of h along it (relief.c);
  * HUGE_VAL on boxes, the ground and flat parts. */
 double ivy_relief_radius(const banyan_ivy *iv, ivy_near at, double h);
+/* Distance from `at` (a nearest answer on a box) to the nearest edge of
+ * its face, when below cap, and in *out_dir the way out across that edge
+ * (in the face's plane): edges on the ground, where another host
+ * carries the face on, or across a face narrower than 4 cap do not count. HUGE_VAL (out_dir untouched) on
+ * meshes, the ground and farther from every edge. */
+double ivy_edge_distance(const banyan_ivy *iv, ivy_near at, double cap, v3 *out_dir);
 /* Share of the leaves a stem of radius r keeps: 1 up to three times
  * stem_radius_max, falling smoothly to 0 at six times it (old wood). */
 double ivy_wood_leaf_share(const banyan_ivy_params *p, double r);

@@ -53,6 +53,8 @@
 #define IVY_LEAF_ROUGHNESS 0.35
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
 #define CLUMP_SALT 0xc1d3bULL     /* the clumps' noise and the keep draws */
+#define FRAY_SALT 0xf4a7e0ULL      /* the frayed edges' noise */
+#define EDGE_LEAN 1.5              /* a petiole at the edge leans out this much (the rest of its direction is unit) */
 #define RELIEF_STEP 0.5  /* the relief is read over steps of this x the largest blade */
 #define IVY_WIND_REACH 8.0 /* a free stem softens over this many internodes from its last hold */
 #define IVY_WIND_LEAF 0x1eaf0000000ULL /* leaves' phase ids, apart from the stems' (bud numbers) */
@@ -266,6 +268,21 @@ static int leaf_kept(const banyan_ivy *iv, int32_t i, double age, double wood) {
     return noise_unit(noise_mix(noise_mix(key + 1) ^ (uint64_t)i)) < share;
 }
 
+/* The cover frays at a box's edges: within a band of edge_fray, its width
+ * varying along the edge by half either way (value noise over clumps of
+ * half clump_size), a leaf's petiole leans out across the edge, the more
+ * the nearer it is, so blades stand past the outline, raggedly. Returns
+ * the lean (0 none .. 1 at the edge) and the way out in *out. */
+static double leaf_edge_lean(const banyan_ivy *iv, int32_t i, ivy_near nr, v3 *out) {
+    const banyan_ivy_params *p = &iv->p;
+    double e = ivy_edge_distance(iv, nr, 1.5 * p->edge_fray, out);
+    if (e == HUGE_VAL) return 0;
+    const uint64_t key = noise_mix(p->seed ^ FRAY_SALT);
+    v3 P = v3_sub(iv->buds[i].P, iv->buds[0].P);
+    double width = p->edge_fray * (0.5 + noise_value3(key, P.x, P.y, P.z, 0.5 * p->clump_size));
+    return 1.0 - noise_smooth01(e / width);
+}
+
 /* Places bud i's leaf (module comment); returns 0 when it has no size
  * or finds no room clear of the hosts. */
 static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, double wood_r, leaf_geo *g) {
@@ -329,6 +346,9 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
      * about 45 deg off the surface (straight out it read as a ladder
      * from the side). */
     v3 pd = v3_norm(v3_add(v3_add(v3_scale(n, 0.8), v3_scale(sky, 0.55)), v3_scale(side, 0.45)));
+    v3 out;
+    double out_lean = p->edge_fray > 0 && nr.dist <= reach ? leaf_edge_lean(iv, i, nr, &out) : 0;
+    if (out_lean > 0) pd = v3_norm(v3_madd(pd, out, EDGE_LEAN * out_lean));
     double lp = p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet);
     g->base = v3_madd(b->P, pd, lp);
     g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);

@@ -1,12 +1,15 @@
-/* The relief of a mesh host under a leaf (docs/ivy.md "On mesh hosts"):
- * how tightly the surface curves near a point, so that leaves on a
- * statue's nose, brow or eye rims stay smaller than the feature they sit
- * on and the form still reads through the cover. Boxes are flat faces and
- * report no relief: a wall's cover is not touched. */
+/* The host's shape under a leaf (docs/ivy.md "Leaves fitted to the
+ * relief", "Cover"): how tightly a mesh host curves near a point, so that
+ * leaves on a statue's nose, brow or eye rims stay smaller than the
+ * feature they sit on and the form still reads through the cover (boxes
+ * are flat faces: no relief); and how far a point on a box lies from the
+ * edge of its face, where the cover frays. */
 #include <math.h>
 
 #include "core/dmath.h"
 #include "ivy_internal.h"
+
+#define EDGE_PAST 0.05 /* m past an edge where another host would carry the face on */
 
 /* Unit normal of the triangle of mesh m nearest x, or 0 when none lies
  * within cap. */
@@ -41,4 +44,32 @@ double ivy_relief_radius(const banyan_ivy *iv, ivy_near at, double h) {
         turn = a > turn ? a : turn;
     }
     return turn > 1e-9 ? h / turn : HUGE_VAL;
+}
+
+double ivy_edge_distance(const banyan_ivy *iv, ivy_near at, double cap, v3 *out_dir) {
+    if (at.host < 0 || (uint32_t)at.host >= iv->n_given || !(cap > 0)) return HUGE_VAL;
+    const obb *o = &iv->hosts[at.host];
+    const v3 l = obb_to_local(o, at.point);
+    const double L[3] = {l.x, l.y, l.z};
+    int f = 0; /* the face's axis: where the point is nearest the box's side */
+    for (int k = 1; k < 3; k++)
+        if (o->h[k] - fabs(L[k]) < o->h[f] - fabs(L[f])) f = k;
+    double best = HUGE_VAL;
+    for (int k = 0; k < 3; k++) {
+        if (k == f) continue;
+        double e = o->h[k] - fabs(L[k]);
+        /* A face narrower than four caps across (a pillar, a wall's
+         * thickness) is all edge along that axis: none there. */
+        if (!(e < cap) || e >= best || o->h[k] < 2 * cap) continue;
+        /* The edge's point nearest `at`, and a point past it in the face's
+         * plane: an edge on the ground, or one where another host carries
+         * the face on (a window's blocks), is no edge of the cover. */
+        const v3 out = L[k] < 0 ? v3_neg(o->ax[k]) : o->ax[k];
+        const v3 edge = v3_madd(at.point, out, e);
+        if (iv->p.ground && edge.z <= iv->p.ground_z + EDGE_PAST) continue;
+        if (ivy_grip_distance(iv, v3_madd(edge, out, EDGE_PAST), EDGE_PAST) < 0.5 * EDGE_PAST) continue;
+        best = e;
+        *out_dir = out;
+    }
+    return best;
 }

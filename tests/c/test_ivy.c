@@ -510,6 +510,50 @@ static void test_years(void) {
     banyan_mesh_free(b);
 }
 
+/* The frayed edges: ivy_edge_distance on box faces (a face's edge, one on
+ * the ground, a seam where a second box carries the face on), and blades
+ * standing past the wall's outline with edge_fray and not without. */
+static void test_edges(void) {
+    banyan_ivy_params p;
+    banyan_ivy_params_init(&p);
+    p.steps = 0;
+    banyan_box two[2] = {banyan_box_make(-0.75, 0.1, 1.5, 0.75, 0.1, 1.5), banyan_box_make(0.75, 0.1, 1.5, 0.75, 0.1, 1.5)};
+    banyan_ivy *iv = NULL;
+    banyan_error err;
+    CHECK(banyan_ivy_create(&p, two, 2, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    if (iv) {
+        v3 out = v3_make(0, 0, 0);
+        double e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(1.4, -0.01, 1.5)), 0.3, &out);
+        CHECK(fabs(e - 0.1) < 1e-9 && out.x == 1, "right edge: %g, out (%g, %g, %g)", e, out.x, out.y, out.z);
+        e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(0.8, -0.01, 2.9)), 0.3, &out);
+        CHECK(fabs(e - 0.1) < 1e-9 && out.z == 1, "top edge: %g", e);
+        e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(0.8, -0.01, 1.5)), 0.3, &out);
+        CHECK(e == HUGE_VAL, "face centre: %g", e);
+        e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(0.05, -0.01, 1.5)), 0.3, &out);
+        CHECK(e == HUGE_VAL, "the seam between the boxes is no edge: %g", e);
+        e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(0.8, -0.01, 0.05)), 0.3, &out);
+        CHECK(p.ground && e == HUGE_VAL, "the edge on the ground is no edge: %g", e);
+        banyan_ivy_free(iv);
+    }
+    banyan_box w = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
+    int past[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        banyan_ivy_params q;
+        banyan_ivy_params_init(&q);
+        q.edge_fray = k ? 0.2 : 0;
+        banyan_mesh *m = NULL;
+        CHECK(banyan_ivy_generate(&q, &w, 1, &m, &err) == BANYAN_OK, "edge_fray %g: %s", q.edge_fray, err.message);
+        if (!m || m->part_count < 2) continue;
+        const banyan_part *lp = &m->parts[1];
+        for (uint32_t v = lp->vertex_offset; v < lp->vertex_offset + lp->vertex_count; v += 13) /* blade centres */
+            past[k] += m->positions[3 * v + 1] < -0.01 && /* before the front face, past its outline */
+                       (fabs(m->positions[3 * v]) > 1.52 || m->positions[3 * v + 2] > 3.02);
+        banyan_mesh_free(m);
+    }
+    CHECK(4 * past[1] > 5 * past[0] && past[1] > past[0] + 100, "blades past the outline: %d with edge_fray 0.2, %d without", past[1], past[0]);
+    printf("  blades past the wall's outline: %d with edge_fray 0.2, %d without\n", past[1], past[0]);
+}
+
 static void test_mesh_threads(void) {
     banyan_ivy_params p;
     banyan_box hosts[8];
@@ -676,6 +720,7 @@ int main(int argc, char **argv) {
     test_mesh(outdir);
     test_mesh_threads();
     test_years();
+    test_edges();
     test_presets(outdir);
     return check_done("test_ivy");
 }
