@@ -1,17 +1,21 @@
 """banyan's batch runner: one preset, a range of seeds, one output folder.
 
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
-        --preset NAME_OR_PATH --seeds A:B --out DIR [--render-seeds C:D] [--size 64]
-        [--engine WORKBENCH|EEVEE] [--threads N] [--texture-size 1024] [--no-textures]
+        --preset NAME_OR_PATH --seeds A:B --out DIR [--host FILE.glb[@x,y,z] ...]
+        [--render-seeds C:D] [--size 64] [--engine WORKBENCH|EEVEE] [--threads N]
+        [--texture-size 1024] [--no-textures] [--shared-textures]
     python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
                                                       range that meets --seeds)
     python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B]
+    python3 <addon>/banyan/batch_run.py -- --check --preset NAME_OR_PATH [--host ...]
 
-Seeds are half-open (A:B is A .. B-1). For each seed the preset, with its
+Seeds are half-open (A:B is A .. B-1). For each seed the preset (any
+generator the CLI grows; hosts and the hash: batch_job.py), with its
 `seed` replaced, is grown and written by libbanyan's glTF writer (the bytes
-of `banyan <gen> --preset P --set seed=S -o X.glb`) as
+of `banyan <gen> --preset P --set seed=S [--host ...] -o X.glb`) as
 DIR/<preset>-<hash12>-s<seed>.glb, <hash12> the preset hash (the resolved
-parameters but the seed, and the glTF options); seeds in --render-seeds
+parameters but the seed, the preset's host and segment lists, the host
+files' bytes, the glTF options, libbanyan's version); seeds in --render-seeds
 are also rendered (DIR/...-s<seed>.png). A record of each seed goes to
 DIR/manifest/<name>.json. Every file is written to a temporary name in its
 folder and renamed, so a killed task leaves no cut file; a seed whose
