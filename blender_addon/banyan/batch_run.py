@@ -1,17 +1,21 @@
 """banyan's batch runner: one preset, a range of seeds, one output folder.
 
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
-        --preset NAME_OR_PATH --seeds A:B --out DIR [--render-seeds C:D] [--size 64]
-        [--engine WORKBENCH|EEVEE] [--threads N] [--texture-size 1024] [--no-textures]
+        --preset NAME_OR_PATH --seeds A:B --out DIR [--host FILE.glb[@x,y,z] ...]
+        [--render-seeds C:D] [--size 64] [--engine WORKBENCH|EEVEE] [--threads N]
+        [--texture-size 1024] [--no-textures] [--shared-textures]
     python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
                                                       range that meets --seeds)
     python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B]
+    python3 <addon>/banyan/batch_run.py -- --check --preset NAME_OR_PATH [--host ...]
 
-Seeds are half-open (A:B is A .. B-1). For each seed the preset, with its
+Seeds are half-open (A:B is A .. B-1). For each seed the preset (any
+generator the CLI grows; hosts and the hash: batch_job.py), with its
 `seed` replaced, is grown and written by libbanyan's glTF writer (the bytes
-of `banyan <gen> --preset P --set seed=S -o X.glb`) as
+of `banyan <gen> --preset P --set seed=S [--host ...] -o X.glb`) as
 DIR/<preset>-<hash12>-s<seed>.glb, <hash12> the preset hash (the resolved
-parameters but the seed, and the glTF options); seeds in --render-seeds
+parameters but the seed, the preset's host and segment lists, the host
+files' bytes, the glTF options, libbanyan's version); seeds in --render-seeds
 are also rendered (DIR/...-s<seed>.png). A record of each seed goes to
 DIR/manifest/<name>.json. Every file is written to a temporary name in its
 folder and renamed, so a killed task leaves no cut file; a seed whose
@@ -43,10 +47,6 @@ MANIFEST_FILE = "manifest.json"
 _PKG = "_banyan_batch"  # the add-on package loaded under a private name (its __init__ not run)
 
 
-class UsageError(Exception):
-    """Bad arguments or preset: exit status 2 with the message."""
-
-
 def _here():
     return os.path.dirname(os.path.abspath(__file__))
 
@@ -67,6 +67,13 @@ def _package():
 def _sub(name):
     _package()
     return importlib.import_module(_PKG + "." + name)
+
+
+_job = _sub("batch_job")  # the preset, its hosts and hash, the writer's options (batch_job.py)
+UsageError = _job.UsageError
+Job = _job.Job
+find_preset = _job.find_preset
+_sha256, _file_sha256, _canonical = _job._sha256, _job._file_sha256, _job._canonical
 
 
 def _in_blender():
@@ -110,7 +117,7 @@ def _argv(argv):
     return out
 
 
-_VALUE_OPTIONS = ("--seeds", "--render-seeds", "--size", "--threads", "--texture-size")
+_VALUE_OPTIONS = ("--seeds", "--render-seeds", "--size", "--threads", "--texture-size", "--host")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -121,6 +128,8 @@ class _Parser(argparse.ArgumentParser):
 def make_parser():
     p = _Parser(prog="batch_run.py", description="banyan batch runner (docs/batch.md)")
     p.add_argument("--preset", help="a preset file (.json) or the name of a shipped preset")
+    p.add_argument("--host", action="append", metavar="FILE.glb[@x,y,z]",
+                   help="a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres: the CLI's --host")
     p.add_argument("--seeds", help="A:B, half-open: seeds A .. B-1")
     p.add_argument("--out", help="output folder (created)")
     p.add_argument("--render-seeds", help="C:D, half-open: the seeds (within --seeds) also rendered (Blender only)")
@@ -129,141 +138,14 @@ def make_parser():
     p.add_argument("--threads", type=int, default=1, help="generator threads (0: all cores; default 1)")
     p.add_argument("--texture-size", type=int, default=1024, help="glTF texture size (as the CLI's; default 1024)")
     p.add_argument("--no-textures", action="store_true", help="glTF without textures (as the CLI's --textures off)")
+    p.add_argument("--shared-textures", action="store_true",
+                   help="textures once per preset hash in DIR/<preset>-<hash12>-textures/, referenced by the .glb files")
+    p.add_argument("--check", action="store_true",
+                   help="load the preset, hosts and options, then exit 0 (ready) or 2 (the reason); writes nothing")
     p.add_argument("--merge-manifest", metavar="DIR", help="merge DIR/manifest/*.json into DIR/manifest.json")
     p.add_argument("--verify", action="store_true", help="with --merge-manifest: re-hash every file")
     p.add_argument("--quiet", action="store_true")
     return p
-
-
-# ------------------------------------------------------------------ presets
-def find_preset(name):
-    """A path for NAME_OR_PATH: an existing file, else a shipped preset
-    (banyan/presets/ in the zip, <repo>/presets/ beside the add-on)."""
-    if os.path.isfile(name):
-        return os.path.abspath(name)
-    if os.sep in name or name.endswith(".json"):
-        raise UsageError("--preset '%s': no such file" % name)
-    here = _here()
-    dirs = [os.path.join(here, "presets"),
-            os.path.normpath(os.path.join(os.path.dirname(os.path.realpath(os.path.join(here, "__init__.py"))),
-                                          "..", "..", "presets"))]
-    for d in dirs:
-        f = os.path.join(d, name + ".json")
-        if os.path.isfile(f):
-            return f
-    raise UsageError("--preset '%s': not a file, nor a shipped preset (looked in %s)" % (name, ", ".join(dirs)))
-
-
-def _sha256(data):
-    return hashlib.sha256(data).hexdigest()
-
-
-def _file_sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
-class Job:
-    """The resolved preset and options, shared by every seed of a run."""
-
-    GENERATORS = ("avenue", "keyaki")  # grown from parameters alone (no hosts): see docs/batch.md
-
-    def __init__(self, args):
-        self.core = _sub("core")
-        self.P = _sub("core.params")
-        self.G = _sub("core.generators")
-        self.M = _sub("core.mesh")
-        self.S = _sub("core.structs")
-        self.L = _sub("core.lib")
-        self.errors = _sub("core.errors")
-        try:
-            self.L.load()
-        except self.errors.BanyanError as e:
-            raise UsageError("libbanyan: %s" % e.message)
-        self.preset_path = find_preset(args.preset)
-        with open(self.preset_path, "rb") as f:
-            self.preset_text = f.read()
-        try:
-            doc = json.loads(self.preset_text)
-        except ValueError as e:
-            raise UsageError("--preset %s: not JSON: %s" % (self.preset_path, e))
-        gen = doc.get("generator") if isinstance(doc, dict) else None
-        if gen not in self.GENERATORS:
-            raise UsageError("--preset %s: generator %r: the runner grows %s (presets without hosts)"
-                             % (self.preset_path, gen, " and ".join(self.GENERATORS)))
-        self.generator = gen
-        if doc.get("hosts"):
-            raise UsageError("--preset %s: has hosts; the runner grows presets without hosts" % self.preset_path)
-        self.preset_name = os.path.splitext(os.path.basename(self.preset_path))[0]
-        try:
-            self.params = self.P.Params(gen)
-            self.params.apply_preset(self.preset_text, os.path.basename(self.preset_path))
-            self.params.check()
-        except self.errors.BanyanError as e:
-            raise UsageError("--preset %s: %s" % (self.preset_path, e.message))
-        if not (0 <= args.threads <= 1024):
-            raise UsageError("--threads %d must be within [0, 1024] (0: all cores)" % args.threads)
-        ts = args.texture_size
-        if ts < 64 or ts > 8192 or ts & (ts - 1):
-            raise UsageError("--texture-size %d must be a power of two within [64, 8192]" % ts)
-        self.threads = args.threads
-        self.gltf = {"textures": 0 if args.no_textures else 1, "texture_size": ts, "texture_seed": 1,
-                     "engine_uvs": 0}
-        resolved = self.params.as_dict()
-        resolved.pop("seed", None)
-        self.preset_hash = _sha256(_canonical({"generator": gen, "params": resolved, "gltf": self.gltf}))
-        self.version = self.L.version()
-        self._bind_writer()
-
-    def _bind_writer(self):
-        lib = self.L.load()
-
-        class GltfOptions(C.Structure):
-            _fields_ = [("textures", C.c_int32), ("texture_size", C.c_int32), ("texture_seed", C.c_uint64),
-                        ("engine_uvs", C.c_int32), ("sync", C.c_int32)]  # sync 0: no fsync, as the CLI
-
-        size = lib.banyan_sizeof_gltf_options
-        size.restype, size.argtypes = C.c_size_t, []
-        if size() != C.sizeof(GltfOptions):
-            raise UsageError("libbanyan's banyan_gltf_options is %d bytes, the runner's %d: rebuild both from "
-                             "the same source" % (size(), C.sizeof(GltfOptions)))
-        self._opt = GltfOptions(**self.gltf)
-        w = lib.banyan_gltf_write_ex
-        w.restype = C.c_int
-        w.argtypes = [C.c_char_p, C.POINTER(C.POINTER(self.S.Mesh)), C.POINTER(C.c_char_p), C.c_uint32,
-                      C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
-        self._write = w
-
-    def seed_params(self, seed):
-        p = self.params.copy()
-        p.set("seed", seed)
-        return p
-
-    def name(self, seed):
-        return "%s-%s-s%d" % (self.preset_name, self.preset_hash[:12], seed)
-
-    def grow(self, params):
-        """MeshData with its C mesh (call within core.mesh.capture())."""
-        if self.generator == "avenue":
-            return self.G.avenue(params, threads=self.threads)
-        params = params.copy()
-        params.set("threads", self.threads)  # one tree's own threads (keyaki's params since issue 23)
-        return self.G.keyaki(params)
-
-    def write_glb(self, d, path):
-        """The CLI's bytes: one mesh named after the generator, the same options."""
-        arr = (C.POINTER(self.S.Mesh) * 1)(d.c_mesh)
-        names = (C.c_char_p * 1)(self.generator.encode())
-        err = self.S.Error()
-        st = self._write(os.fsencode(path), arr, names, 1, C.byref(self._opt), C.byref(err))
-        self.L.raise_for(st, err)
-
-
-def _canonical(obj):
-    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False).encode()
 
 
 # ------------------------------------------------------------------ records
@@ -314,7 +196,9 @@ def _blender_version():
 
 
 def _render_settings(args):
-    return {"size": args.size, "engine": args.engine}
+    """What a render depends on besides the plant; Blender's version too, so
+    a render made by another Blender is made again (docs/batch.md)."""
+    return {"size": args.size, "engine": args.engine, "blender": _blender_version()}
 
 
 def run_seed(job, args, seed, render, log):
@@ -471,13 +355,18 @@ def _ranges(seeds):
 
 def main(argv=None):
     try:
-        args = make_parser().parse_args(_argv(argv))
+        argv = _argv(argv)
+        if "--check" in argv:
+            argv = _job.strip_submit_options(argv)  # submit.sh passes its whole command line
+        args = make_parser().parse_args(argv)
 
         def log(msg):
             if not args.quiet:
                 print("batch_run: " + msg, flush=True)
         if args.merge_manifest:
             return merge(args, log)
+        if args.check:
+            return _job.check(args, log)
         return run(args, log)
     except UsageError as e:
         print("batch_run: error: %s" % e, file=sys.stderr, flush=True)

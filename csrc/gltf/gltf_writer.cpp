@@ -27,7 +27,9 @@
  *     (kind, season, map), shared by every material that uses it;
  *     baseColorTexture (factor white, as the texture carries the colour)
  *     and normalTexture; bark samplers REPEAT, atlas samplers
- *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK.
+ *     CLAMP_TO_EDGE; alpha_cutoff > 0 gives alphaMode MASK. With
+ *     opt->image_dir those images are PNG files in that folder instead
+ *     (relative URIs; a file already there is kept, not drawn again).
  * The skeleton is not exported.
  *
  * The buffer is never held in memory: its views are planned (offsets,
@@ -50,6 +52,11 @@
 #include "textures/tex_budget.h"
 
 #include <tiny_gltf.h>
+
+#include <sys/stat.h>
+#ifdef _WIN32
+#include <direct.h>
+#endif
 
 #include <algorithm>
 #include <cerrno>
@@ -1264,6 +1271,7 @@ const char *const kKindNames[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "ke
 struct TexturePngs {
     int32_t kind, season;
     std::vector<unsigned char> base, normal;
+    bool have = false; /* opt->image_dir: both files are there already, nothing to draw */
 };
 
 /* Frees the library's images and PNG buffers on every path out. */
@@ -1374,6 +1382,7 @@ class TextureDrawer {
 
   private:
     void draw(size_t i) {
+        if (t_[i].have) return;
         try {
             status_[i] = draw_texture(t_[i].kind, t_[i].season, o_, stop_, seconds_, t_[i], &err_[i]);
         } catch (...) {
@@ -1395,6 +1404,8 @@ class TextureDrawer {
     size_t started_ = 0; /* threads started; the rest are drawn in wait() */
 };
 
+bool image_dir_ok(const char *d);
+
 banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (o.textures != 0 && o.textures != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->textures = %d must be 0 (off) or 1 (on)", o.textures);
@@ -1407,7 +1418,81 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (o.sync != 0 && o.sync != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->sync = %d must be 0 (no fsync) or 1 (fsync before the rename)",
                            o.sync);
+    if (o.image_dir != nullptr && o.image_dir[0] != '\0' && !image_dir_ok(o.image_dir))
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "opt->image_dir = '%.200s' must be a relative folder of at most 1024 characters, "
+                           "'/'-separated parts of letters, digits, '.', '_' and '-', none empty, '.' or '..'",
+                           o.image_dir);
     return BANYAN_OK;
+}
+
+/* opt->image_dir's folder parts, each a name a URI carries as it is. */
+bool image_dir_ok(const char *d) {
+    const size_t n = std::strlen(d);
+    if (n == 0 || n > 1024) return false;
+    size_t part = 0;
+    for (size_t i = 0; i <= n; ++i) {
+        const char c = d[i];
+        if (c == '/' || c == '\0') {
+            if (part == 0) return false; /* empty: a leading '/', "//" or a trailing '/' */
+            const char *p = d + i - part;
+            if ((part == 1 && p[0] == '.') || (part == 2 && p[0] == '.' && p[1] == '.')) return false;
+            part = 0;
+            continue;
+        }
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                        c == '_' || c == '-';
+        if (!ok) return false;
+        ++part;
+    }
+    return true;
+}
+
+/* The folder of path with its trailing separator ("" for the current one). */
+std::string folder_of(const char *path) {
+    const char *s = std::strrchr(path, '/');
+#ifdef _WIN32
+    const char *b = std::strrchr(path, '\\');
+    if (b != nullptr && (s == nullptr || b > s)) s = b;
+#endif
+    return s ? std::string(path, static_cast<size_t>(s - path + 1)) : std::string();
+}
+
+bool is_regular_file(const std::string &p) {
+    struct stat st;
+    return stat(p.c_str(), &st) == 0 && (st.st_mode & S_IFMT) == S_IFREG && st.st_size > 0;
+}
+
+/* base + rel and every folder between, created where missing; 0 or errno. */
+int make_folders(const std::string &base, const std::string &rel) {
+    for (size_t i = 0; i <= rel.size(); ++i) {
+        if (i < rel.size() && rel[i] != '/') continue;
+        const std::string d = base + rel.substr(0, i);
+        struct stat st;
+        if (stat(d.c_str(), &st) == 0 && (st.st_mode & S_IFMT) == S_IFDIR) continue;
+#ifdef _WIN32
+        int r = _mkdir(d.c_str());
+#else
+        int r = mkdir(d.c_str(), 0777);
+#endif
+        if (r != 0 && errno != EEXIST) return errno;
+    }
+    return 0;
+}
+
+/* bytes as the whole file path, by rename; synced with opt->sync. */
+int write_png_file(const std::string &path, const std::vector<unsigned char> &bytes, bool sync) {
+    atomic_file af;
+    int e = atomic_open(&af, path.c_str());
+    if (e) return e;
+    af.sync = sync ? 1 : 0;
+    errno = 0;
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), af.f) != bytes.size()) {
+        e = errno ? errno : EIO;
+        atomic_abort(&af);
+        return e;
+    }
+    return atomic_commit(&af);
 }
 
 
@@ -1756,6 +1841,23 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     std::vector<TexturePngs> textures;
     int slot[2 * BANYAN_TEX_COUNT];
     plan_textures(all.data(), static_cast<uint32_t>(all.size()), o, textures, slot);
+    /* opt->image_dir: the textures as files beside the asset, drawn only
+     * where a file is missing; their images carry a URI, not a view. */
+    const bool external = o.image_dir != nullptr && o.image_dir[0] != '\0';
+    const std::string image_folder = external ? folder_of(path) : std::string();
+    std::vector<std::string> image_uri; /* per texture image (2 t, 2 t + 1) */
+    if (external) {
+        for (TexturePngs &t : textures) {
+            std::string name = kKindNames[t.kind];
+            if (is_leaf_kind(t.kind)) name += t.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
+            const std::string tail = "-" + std::to_string(o.texture_size) + "-s" + std::to_string(o.texture_seed) + ".png";
+            image_uri.push_back(std::string(o.image_dir) + "/" + name + tail);
+            image_uri.push_back(std::string(o.image_dir) + "/" + name + "_normal" + tail);
+            t.have = is_regular_file(image_folder + image_uri[image_uri.size() - 2]) &&
+                     is_regular_file(image_folder + image_uri.back());
+        }
+    }
+    const size_t tex_views = external ? 0 : 2 * textures.size(); /* the textures' images in the buffer */
     /* The meshes' own images (a billboard's picture), one PNG each that a
      * material names; with textures off, materials are drawn flat. */
     std::vector<std::vector<unsigned char>> pictures;
@@ -1800,14 +1902,16 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
                            static_cast<unsigned long long>(total), static_cast<unsigned long long>(kMaxBufferBytes));
     };
     if (total > kMaxBufferBytes) return too_big(); /* before the textures are drawn */
-    if (!textures.empty()) {
-        const size_t at_once = std::min(textures.size(), TextureDrawer::kThreads);
+    size_t to_draw = 0;
+    for (const TexturePngs &t : textures) to_draw += !t.have;
+    if (to_draw > 0) {
+        const size_t at_once = std::min(to_draw, TextureDrawer::kThreads);
         if (prog_reserve(&g, static_cast<double>(at_once) * static_cast<double>(tex_peak_bytes(o.texture_size, 1))))
             return banyan_fail(err, BANYAN_E_LIMIT,
                                "drawing %u texture%s of %d pixels (%u at once) needs %.0f MB, past max_memory_mb = "
                                "%g (%.0f .. %.0f); lower the texture size (a power of two, 64 .. 8192), turn the "
                                "textures off or raise max_memory_mb",
-                               static_cast<unsigned>(textures.size()), textures.size() == 1 ? "" : "s",
+                               static_cast<unsigned>(to_draw), to_draw == 1 ? "" : "s",
                                static_cast<int>(o.texture_size), static_cast<unsigned>(at_once), g.over_value,
                                g.max_mb, PROG_MAX_MEMORY_MIN, PROG_MAX_MEMORY_MAX);
     }
@@ -1853,6 +1957,10 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         if (atlas) name += tp.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
         add_texture(name, smp);
         add_texture(name + "_normal", smp);
+        if (external) {
+            model.images[model.images.size() - 2].uri = image_uri[2 * t];
+            model.images.back().uri = image_uri[2 * t + 1];
+        }
     }
     for (const Job &J : jobs)
         for (size_t k = 0; k < J.image_texture.size(); ++k)
@@ -1894,11 +2002,11 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
      * with spaces to the same size, is written over the start. Not for a
      * .gltf (its data URI sits inside the JSON) or a target written in
      * place (a FIFO cannot be rewound). */
-    const size_t image_views = 2 * textures.size() + pictures.size();
+    const size_t image_views = tex_views + pictures.size();
     const uint64_t bound = png_bound(o.texture_size);
-    uint64_t widest = b.size + 2 * textures.size() * pad4(bound);
+    uint64_t widest = b.size + tex_views * pad4(bound);
     for (const auto &p : pictures) widest += pad4(p.size());
-    const bool defer = binary && !textures.empty() && widest <= kMaxBufferBytes;
+    const bool defer = binary && tex_views > 0 && widest <= kMaxBufferBytes;
     OutFile out;
     if (defer) {
         if (int oe = out.open(path, o.sync != 0))
@@ -1912,6 +2020,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         model.buffers.assign(1, tinygltf::Buffer());
         std::ostringstream js;
         tinygltf::TinyGLTF writer;
+        writer.SetImageWriter(nullptr, nullptr); /* an image's uri is written as it is */
         if (!writer.WriteGltfSceneToStream(&model, js, /*prettyPrint=*/true, binary))
             return banyan_fail(err, BANYAN_E_INTERNAL, "the glTF serialiser failed for '%s'", path);
         if (!split_document(js.str(), binary, bytes, head, tail, json_chunk))
@@ -1921,12 +2030,12 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     };
     std::vector<int> views; /* the images' bufferViews, in image order */
     auto image_of = [&](size_t k) { /* textures' images first, then the pictures' */
-        return k < 2 * textures.size() ? k : static_cast<size_t>(picture_base) + (k - 2 * textures.size());
+        return k < tex_views ? k : static_cast<size_t>(picture_base) + (k - tex_views);
     };
     if (defer) {
         uint64_t at = b.size;
         for (size_t k = 0; k < image_views; ++k) {
-            uint64_t len = k < 2 * textures.size() ? bound : pictures[k - 2 * textures.size()].size();
+            uint64_t len = k < tex_views ? bound : pictures[k - tex_views].size();
             views.push_back(b.add_image_placeholder(at, len));
             model.images[image_of(k)].bufferView = views.back();
             at = pad4(at + len);
@@ -1960,13 +2069,28 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     banyan_status drawn = drawer.wait(err);
     if (drawn != BANYAN_OK) return drawn;
     if (prog_at(&g, 0.75) || late) return over();
-    for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
+    if (external) {
+        /* The missing files, before the asset that names them. */
+        if (int fe = make_folders(image_folder, o.image_dir))
+            return banyan_fail(err, BANYAN_E_IO, "cannot create the image folder '%s%s': %s", image_folder.c_str(),
+                               o.image_dir, std::strerror(fe));
+        for (size_t t = 0; t < textures.size(); ++t) {
+            if (textures[t].have) continue;
+            for (size_t m = 0; m < 2; ++m) {
+                const std::string f = image_folder + image_uri[2 * t + m];
+                if (int fe = write_png_file(f, m ? textures[t].normal : textures[t].base, o.sync != 0))
+                    return banyan_fail(err, BANYAN_E_IO, "cannot write '%s': %s", f.c_str(), std::strerror(fe));
+            }
+        }
+    } else {
+        for (const TexturePngs &t : textures) total += pad4(t.base.size()) + pad4(t.normal.size());
+    }
     if (total > kMaxBufferBytes) return too_big();
     for (size_t k = 0; k < image_views; ++k) {
-        const std::vector<unsigned char> &bytes = k < 2 * textures.size()
+        const std::vector<unsigned char> &bytes = k < tex_views
                                                       ? (k % 2 ? textures[k / 2].normal : textures[k / 2].base)
-                                                      : pictures[k - 2 * textures.size()];
-        if (defer && bytes.size() > bound && k < 2 * textures.size())
+                                                      : pictures[k - tex_views];
+        if (defer && bytes.size() > bound && k < tex_views)
             return banyan_fail(err, BANYAN_E_INTERNAL, "a %llu-byte PNG is over its bound %llu; please report this",
                                static_cast<unsigned long long>(bytes.size()),
                                static_cast<unsigned long long>(bound));
@@ -2030,6 +2154,7 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
     opt->texture_seed = 1;
     opt->engine_uvs = 0;
     opt->sync = 0;
+    opt->image_dir = nullptr;
 }
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }

@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 13
+#define BANYAN_ABI_VERSION 14
 
 /* ---------------------------------------------------------------- status */
 
@@ -526,6 +526,12 @@ typedef struct banyan_gltf_options {
                                 sets (docs/gltf.md "Wind"). Default 0 */
     int32_t sync;            /* 0/1: fsync the file before renaming it over the target, so it survives a power
                                 cut (docs/formats.md "Writing files"). Default 0, as cp and Blender's save */
+    const char *image_dir;   /* NULL or "" (default): the textures are embedded. Else the library's textures
+                                (not a mesh's own images) are PNG files in this folder, relative to the glTF
+                                file's folder ('/'-separated; letters, digits, '.', '_', '-'; no "." or ".."
+                                part), named <image>-<texture_size>-s<texture_seed>.png and referenced by that
+                                relative URI. The folder is created; a file already there is kept, not drawn
+                                again (each is written whole by rename, so one that exists is complete) */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);

@@ -79,8 +79,10 @@ try:
     with open(bad, "w") as f:
         json.dump({"generator": "avenue", "schema": 1, "params": {"spacing": -3}}, f)
     refused(["--preset", bad, "--seeds", "0:2", "--out", out], ["--preset", "spacing"], "a preset value out of range")
-    refused(["--preset", os.path.join(SRC, "presets", "roots_trunk.json"), "--seeds", "0:2", "--out", out],
-            ["--preset", "roots"], "a generator the runner does not grow")
+    with open(bad, "w") as f:
+        json.dump({"generator": "tube", "schema": 1, "params": {}}, f)
+    refused(["--preset", bad, "--seeds", "0:2", "--out", out], ["--preset", "tube"],
+            "a generator the runner does not grow")
     for seeds in ("5", "5:5", "7:3", "-1:3", "a:b", "1:2:3", "0:4294967297"):
         refused(["--preset", PRESET, "--seeds", seeds, "--out", out], ["--seeds", seeds], "--seeds %s" % seeds)
     refused(["--preset", PRESET, "--out", out], ["--seeds"], "no --seeds")

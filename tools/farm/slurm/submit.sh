@@ -5,7 +5,8 @@
 # A:B, which exits non-zero if a seed has no record). Slurm's logs go to
 # --logs DIR (default OUT.slurm-logs, beside OUT, so OUT holds only the
 # runner's files). Prints
-# "<array job id> <merge job id>". Other arguments go to the runner.
+# "<array job id> <merge job id>". Other arguments go to the runner, which
+# checks them (batch_run.py --check) before anything is queued.
 #   sh submit.sh --per-task 10 --workers 2 --preset P --seeds 0:40 --out DIR [...]
 # Environment as banyan_array.sbatch (BANYAN_ADDON, BANYAN_BLENDER,
 # BANYAN_PYTHON); SLURM_CONF as cluster_start.sh prints.
@@ -13,6 +14,10 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 addon=${BANYAN_ADDON:-$(cd "$here/../../.." && pwd)/blender_addon/banyan}
 export BANYAN_ADDON=$addon
+# Nothing is queued for a preset the runner refuses: its --check loads the
+# preset, hosts and options as a task would (exit 2 with the reason).
+"${BANYAN_PYTHON:-python3}" "$addon/batch_run.py" -- --check "$@" >&2 ||
+  { echo "submit: the runner refused the job (above): nothing queued" >&2; exit 2; }
 per_task= workers= seeds= out= logs= args=
 while [ $# -gt 0 ]; do
   case "$1" in
