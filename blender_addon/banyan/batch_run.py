@@ -3,9 +3,11 @@
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
         --preset NAME_OR_PATH --seeds A:B --out DIR [--render-seeds C:D] [--size 64]
         [--engine WORKBENCH|EEVEE] [--threads N] [--texture-size 1024] [--no-textures]
+        [--no-parent-watch]
     python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
                                                       range that meets --seeds)
-    python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B]
+    python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B] [--verify]
+        [--hash HASH12 | --preset P [--texture-size T] [--no-textures]]
 
 Seeds are half-open (A:B is A .. B-1). For each seed the preset, with its
 `seed` replaced, is grown and written by libbanyan's glTF writer (the bytes
@@ -127,6 +129,8 @@ def make_parser():
     p.add_argument("--verify", action="store_true", help="with --merge-manifest: re-hash every file")
     p.add_argument("--hash", help="with --merge-manifest: the preset hash (its first 12 or more hex digits) whose "
                                   "seeds --seeds must cover (--preset with the run's options gives it too)")
+    p.add_argument("--no-parent-watch", action="store_true",
+                   help="keep running when the parent process dies (default: stop with exit 3, an orphan)")
     p.add_argument("--quiet", action="store_true")
     return p
 
@@ -413,7 +417,8 @@ def run(args, log):
     except OSError as e:
         raise UsageError("--out %s: cannot make the folder: %s" % (args.out, e.strerror or e))
     bm.check_out_folder(args.out)
-    _sub("batch_files").ParentWatch().start()  # an orphaned runner stops (exit 3)
+    if not args.no_parent_watch:
+        _sub("batch_files").ParentWatch().start()  # an orphaned runner stops (exit 3)
     counts = {"made": 0, "skipped": 0, "failed": 0}
     t0 = time.perf_counter()
     for seed in range(a, b):

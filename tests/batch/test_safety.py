@@ -430,6 +430,22 @@ p.wait()
     check(stopped, "the runner stops within 15 s of its parent's death (%.1f s)" % (time.time() - t0))
     check("parent process" in open(err).read(), "the orphaned runner says why it stopped")
     n = len(glob.glob(os.path.join(orphan, "*.glb")))
+    # --no-parent-watch: the runner goes on without its parent.
+    err2 = os.path.join(tmp, "orphan2.err")
+    parent = subprocess.Popen([sys.executable, "-c", """
+import subprocess, sys
+p = subprocess.Popen([sys.executable, %r, "--", "--preset", %r, "--seeds", "0:1000000", "--out", %r,
+                      "--texture-size", "64", "--no-parent-watch"], stdout=subprocess.DEVNULL, stderr=open(%r, "w"))
+print(p.pid, flush=True)
+p.wait()
+""" % (RUNNER, PRESET, os.path.join(tmp, "orphan2"), err2)], stdout=subprocess.PIPE, text=True)
+    child2 = int(parent.stdout.readline())
+    time.sleep(1.0)
+    parent.send_signal(signal.SIGKILL)
+    parent.wait()
+    time.sleep(2.0)
+    check(alive(child2), "--no-parent-watch: the runner goes on after its parent's death")
+    os.kill(child2, signal.SIGKILL)
     # Its leftovers (lock file, private folder) belong to a dead owner: the
     # next run takes the seed over at once.
     rc, log = runner("--preset", PRESET, "--seeds", "%d:%d" % (max(0, n - 2), n + 2), "--out", orphan, *TS, timeout=60)
