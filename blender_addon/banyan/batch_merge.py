@@ -341,6 +341,10 @@ def merge(args, log, preset_hash=None):
            "files": sum(len(r["files"]) for r in recs),
            "bytes": sum(f["bytes"] for r in recs for f in r["files"]),
            "seconds": round(sum(r.get("seconds", 0) for r in recs), 4), "records": recs}
-    bf.write_atomic(target, json.dumps(doc, indent=1, sort_keys=True) + "\n")
+    try:
+        bf.write_atomic(target, json.dumps(doc, indent=1, sort_keys=True) + "\n")
+    except OSError as e:
+        log("manifest %s: cannot write it: %s" % (target, e.strerror or e))
+        return 1
     log("manifest %s: %d records, %d files" % (target, doc["count"], doc["files"]))
     return 0
