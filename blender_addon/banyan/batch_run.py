@@ -3,10 +3,11 @@
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
         --preset NAME_OR_PATH --seeds A:B --out DIR [--host FILE.glb[@x,y,z] ...]
         [--render-seeds C:D] [--size 64] [--engine WORKBENCH|EEVEE] [--threads N]
-        [--texture-size 1024] [--no-textures] [--shared-textures]
+        [--texture-size 1024] [--no-textures] [--shared-textures] [--no-parent-watch]
     python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
                                                       range that meets --seeds)
-    python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B]
+    python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B] [--verify]
+        [--hash HASH12 | --preset P [--host ...] [--texture-size T] [--no-textures] [--shared-textures]]
     python3 <addon>/banyan/batch_run.py -- --check --preset NAME_OR_PATH [--host ...]
 
 Seeds are half-open (A:B is A .. B-1). For each seed the preset (any
@@ -17,21 +18,22 @@ DIR/<preset>-<hash12>-s<seed>.glb, <hash12> the preset hash (the resolved
 parameters but the seed, the preset's host and segment lists, the host
 files' bytes, the glTF options, libbanyan's version); seeds in --render-seeds
 are also rendered (DIR/...-s<seed>.png). A record of each seed goes to
-DIR/manifest/<name>.json. Every file is written to a temporary name in its
-folder and renamed, so a killed task leaves no cut file; a seed whose
-files exist and match its record is skipped (re-running is free), a
-missing or changed file is made again. Concurrent tasks must be given
-disjoint seed ranges (a scheduler's array does that): each seed's files
-belong to the one task that makes it. --merge-manifest gathers the
-records into DIR/manifest.json (docs/batch.md).
+DIR/manifest/<name>.json. A seed is made only under its lock
+(DIR/manifest/.<name>.lock, an fcntl record lock), its files are written
+into a private temporary folder and renamed into place (never through a
+symlink), so a killed task leaves no cut file and overlapping runners
+wait for each other; a seed whose files exist and match its record is
+skipped (re-running is free), a missing or changed file is made again.
+--merge-manifest gathers the records into DIR/manifest.json
+(docs/batch.md; batch_files.py, batch_merge.py).
 
-Exit status: 0 done, 2 bad arguments or preset, 1 a seed failed.
+Exit status: 0 done, 2 bad arguments or preset, 1 a seed failed (or a
+merge check), 3 the parent process died (the runner stops).
 The package's __init__ is never run: only banyan.core (ctypes, no bpy) is
 loaded, plus build_mesh for renders inside Blender.
 """
 import argparse
 import ctypes as C
-import glob
 import hashlib
 import importlib
 import importlib.util
@@ -85,18 +87,10 @@ def _in_blender():
 
 
 # ---------------------------------------------------------------- arguments
-def parse_range(text, what):
-    """'A:B' (half-open, 0 <= A < B <= 2^32) -> (A, B); UsageError naming `what`."""
-    parts = str(text).split(":")
-    try:
-        if len(parts) != 2:
-            raise ValueError
-        a, b = int(parts[0]), int(parts[1])
-    except ValueError:
-        raise UsageError("%s '%s' must look like A:B (half-open: seeds A .. B-1, whole numbers)" % (what, text))
-    if not (0 <= a < b <= 2 ** 32):
-        raise UsageError("%s '%s' must have 0 <= A < B <= 4294967296 (half-open: seeds A .. B-1)" % (what, text))
-    return a, b
+def parse_range(text, what, cap=None):
+    """'A:B' (half-open, 0 <= A < B <= 2^32, ASCII decimal digits; at most
+    cap seeds when given) -> (A, B); UsageError naming `what`."""
+    return _sub("batch_merge").parse_range(text, what, cap)
 
 
 def _argv(argv):
@@ -133,10 +127,11 @@ def make_parser():
     p.add_argument("--seeds", help="A:B, half-open: seeds A .. B-1")
     p.add_argument("--out", help="output folder (created)")
     p.add_argument("--render-seeds", help="C:D, half-open: the seeds (within --seeds) also rendered (Blender only)")
-    p.add_argument("--size", type=int, default=64, help="render size in pixels, square (16 .. 4096, default 64)")
+    dec = _sub("batch_merge").decimal_int
+    p.add_argument("--size", type=dec, default=64, help="render size in pixels, square (16 .. 4096, default 64)")
     p.add_argument("--engine", default="WORKBENCH", help="WORKBENCH (default) or EEVEE")
-    p.add_argument("--threads", type=int, default=1, help="generator threads (0: all cores; default 1)")
-    p.add_argument("--texture-size", type=int, default=1024, help="glTF texture size (as the CLI's; default 1024)")
+    p.add_argument("--threads", type=dec, default=1, help="generator threads (0: all cores; default 1)")
+    p.add_argument("--texture-size", type=dec, default=1024, help="glTF texture size (as the CLI's; default 1024)")
     p.add_argument("--no-textures", action="store_true", help="glTF without textures (as the CLI's --textures off)")
     p.add_argument("--shared-textures", action="store_true",
                    help="textures once per preset hash in DIR/<preset>-<hash12>-textures/, referenced by the .glb files")
@@ -144,47 +139,43 @@ def make_parser():
                    help="load the preset, hosts and options, then exit 0 (ready) or 2 (the reason); writes nothing")
     p.add_argument("--merge-manifest", metavar="DIR", help="merge DIR/manifest/*.json into DIR/manifest.json")
     p.add_argument("--verify", action="store_true", help="with --merge-manifest: re-hash every file")
+    p.add_argument("--hash", help="with --merge-manifest: the preset hash (its first 12 or more hex digits) whose "
+                                  "seeds --seeds must cover (--preset with the run's options gives it too)")
+    p.add_argument("--no-parent-watch", action="store_true",
+                   help="keep running when the parent process dies (default: stop with exit 3, an orphan)")
     p.add_argument("--quiet", action="store_true")
     return p
 
 
 # ------------------------------------------------------------------ records
 def _write_atomic(path, data):
-    _sub("core.atomic_file").write_atomic(path, data)
+    """Written beside path under a fresh name and renamed over it: a
+    symlink at path is replaced, never written through."""
+    _sub("batch_files").write_atomic(path, data)
 
 
 def _remove_stale_temps(folder, name):
-    """Temporary files a killed task left for `name` (".<name>.XXXXXX.tmp",
-    the library's and atomic_file's pattern; ".<name>.<pid>.tmp.png", a
-    render's). Only the task that owns a seed writes its files, so any
-    such file is a leftover."""
-    base = os.path.join(glob.escape(folder), "." + glob.escape(name))
-    for t in glob.glob(base + ".*.tmp") + glob.glob(base + ".*.tmp.png"):
-        try:
-            os.unlink(t)
-        except OSError:
-            pass
+    """Leftover temporaries of seed `name` in folder (a dead runner's: call
+    only while holding the seed's lock). Other files are never removed."""
+    return _sub("batch_files").remove_stale_temps(folder, [name])
 
 
 def _file_entry(path):
-    return {"name": os.path.basename(path), "sha256": _file_sha256(path), "bytes": os.path.getsize(path)}
+    st = os.lstat(path)
+    return {"name": os.path.basename(path), "sha256": _sub("batch_merge").file_sha256(path), "bytes": st.st_size}
 
 
 def _file_ok(folder, entry):
-    path = os.path.join(folder, entry["name"])
-    try:
-        return os.path.getsize(path) == entry["bytes"] and _file_sha256(path) == entry["sha256"]
-    except (OSError, KeyError, TypeError):
-        return False
+    return _sub("batch_merge").file_ok(folder, entry)
 
 
-def read_record(path):
-    try:
-        with open(path, "rb") as f:
-            rec = json.loads(f.read())
-        return rec if isinstance(rec, dict) and rec.get("schema") == RECORD_SCHEMA else None
-    except (OSError, ValueError):
-        return None
+def read_record(path, log=None):
+    """The record at path, or None when it is missing or malformed (then
+    named through log)."""
+    rec, why = _sub("batch_merge").load_record(path)
+    if why and log and os.path.lexists(path):
+        log("record %s is malformed (%s): the seed is made again" % (path, why))
+    return rec
 
 
 def _blender_version():
@@ -202,18 +193,30 @@ def _render_settings(args):
 
 
 def run_seed(job, args, seed, render, log):
-    """Makes what is missing of one seed; returns 'skipped' or 'made'."""
+    """Makes what is missing of one seed under its lock; returns 'skipped'
+    or 'made'. A seed locked by another live runner is waited for, then
+    found up to date (or finished)."""
     name = job.name(seed)
+    lock = _sub("batch_files").SeedLock(os.path.join(args.out, MANIFEST_DIR), name)
+    lock.acquire(wait=True, on_wait=lambda why: log("seed %d: %s is locked (%s): waiting" % (seed, name, why)))
+    try:
+        return _run_seed_locked(job, args, seed, render, log, name)
+    finally:
+        lock.release()
+
+
+def _run_seed_locked(job, args, seed, render, log, name):
+    bf = _sub("batch_files")
     out = args.out
     mdir = os.path.join(out, MANIFEST_DIR)
     rec_path = os.path.join(mdir, name + ".json")
     params = job.seed_params(seed)
     params_hash = _sha256(_canonical({"generator": job.generator, "params": params.as_dict(), "gltf": job.gltf}))
-    old = read_record(rec_path)
+    old = read_record(rec_path, log)
     glb_name, png_name = name + ".glb", name + ".png"
     if old is not None and old.get("params_hash") != params_hash:
         old = None
-    files = {f.get("name"): f for f in (old or {}).get("files", []) if isinstance(f, dict)}
+    files = {f["name"]: f for f in (old or {}).get("files", [])}
     glb_ok = glb_name in files and _file_ok(out, files[glb_name])
     png_ok = (not render) or (png_name in files and _file_ok(out, files[png_name])
                               and old.get("render") == _render_settings(args))
@@ -221,42 +224,52 @@ def run_seed(job, args, seed, render, log):
         log("seed %d: %s up to date, skipped" % (seed, name))
         return "skipped"
     t0 = time.perf_counter()
-    for n in (glb_name, png_name, name + ".json"):
-        _remove_stale_temps(out if n != name + ".json" else mdir, n)
-    glb_path = os.path.join(out, glb_name)
-    made = []
-    M = job.M
-    with M.capture():
-        d = job.grow(params)
-        if not glb_ok:
-            job.write_glb(d, glb_path)
-            made.append("glb")
-        if render and not png_ok:
-            from_blender = _sub("batch_render")
-            tmp = os.path.join(out, ".%s.%d.tmp.png" % (png_name, os.getpid()))
-            try:
-                from_blender.render(d, tmp, size=args.size, engine=args.engine)
-                os.replace(tmp, os.path.join(out, png_name))
-            finally:
-                if os.path.exists(tmp):
-                    os.unlink(tmp)
-            made.append("png")
-    seconds = time.perf_counter() - t0
-    entries = [_file_entry(glb_path)]
-    if render:
-        entries.append(_file_entry(os.path.join(out, png_name)))
-    elif png_name in files and _file_ok(out, files[png_name]):
-        entries.append(files[png_name])  # a render from an earlier run stays listed
-    rec = {
-        "schema": RECORD_SCHEMA, "name": name, "seed": seed, "preset": job.preset_name,
-        "preset_file": job.preset_path, "generator": job.generator, "preset_hash": job.preset_hash,
-        "params_hash": params_hash, "gltf": job.gltf, "files": entries, "seconds": round(seconds, 4),
-        "made": made, "banyan_version": job.version, "blender_version": _blender_version(),
-        "host": platform.node(),
-    }
-    if render or (old and png_name in files and any(e["name"] == png_name for e in entries)):
-        rec["render"] = _render_settings(args) if render else old.get("render")
-    _write_atomic(rec_path, json.dumps(rec, indent=1, sort_keys=True) + "\n")
+    for folder in (out, mdir):
+        _remove_stale_temps(folder, name)  # a dead runner's: we hold the lock
+    tmpdir = bf.private_folder(out, name)
+    try:
+        made = []
+        glb_path = os.path.join(out, glb_name)
+        glb_src = glb_path
+        M = job.M
+        with M.capture():
+            d = job.grow(params)
+            if not glb_ok:
+                glb_src = os.path.join(tmpdir, glb_name)
+                job.write_glb(d, glb_src)
+                made.append("glb")
+            png_src = None
+            if render and not png_ok:
+                png_src = os.path.join(tmpdir, png_name)
+                _sub("batch_render").render(d, png_src, size=args.size, engine=args.engine)
+                made.append("png")
+        seconds = time.perf_counter() - t0
+        entries = [_file_entry(glb_src)]
+        if render:
+            entries.append(_file_entry(png_src or os.path.join(out, png_name)))
+        elif png_name in files and _file_ok(out, files[png_name]):
+            entries.append(files[png_name])  # a render from an earlier run stays listed
+        rec = {
+            "schema": RECORD_SCHEMA, "name": name, "seed": seed, "preset": job.preset_name,
+            "preset_file": job.preset_path, "generator": job.generator, "preset_hash": job.preset_hash,
+            "params_hash": params_hash, "gltf": job.gltf, "files": entries, "seconds": round(seconds, 4),
+            "made": made, "banyan_version": job.version, "blender_version": _blender_version(),
+            "host": platform.node(),
+        }
+        if render or (old and png_name in files and any(e["name"] == png_name for e in entries)):
+            rec["render"] = _render_settings(args) if render else old.get("render")
+        rec_src = os.path.join(tmpdir, name + ".json")
+        bf.write_new(rec_src, json.dumps(rec, indent=1, sort_keys=True) + "\n")
+        # Into place, the record last: rename replaces a symlink at the
+        # name, never its target.
+        if glb_src != glb_path:
+            bf.place(glb_src, glb_path)
+        if png_src:
+            bf.place(png_src, os.path.join(out, png_name))
+        bf.place(rec_src, rec_path)
+    finally:
+        import shutil
+        shutil.rmtree(tmpdir, ignore_errors=True)
     log("seed %d: %s made %s in %.2f s" % (seed, name, "+".join(made) or "record", seconds))
     return "made"
 
@@ -264,7 +277,8 @@ def run_seed(job, args, seed, render, log):
 def run(args, log):
     if not args.preset or not args.seeds or not args.out:
         raise UsageError("--preset, --seeds and --out are required (or --merge-manifest DIR)")
-    a, b = parse_range(args.seeds, "--seeds")
+    bm = _sub("batch_merge")
+    a, b = parse_range(args.seeds, "--seeds", bm.SEEDS_MAX)
     renders = range(0)
     if args.render_seeds:
         c, d = parse_range(args.render_seeds, "--render-seeds")
@@ -278,8 +292,16 @@ def run(args, log):
         raise UsageError("--engine '%s' must be WORKBENCH or EEVEE" % args.engine)
     if not (16 <= args.size <= 4096):
         raise UsageError("--size %d must be within [16, 4096] pixels" % args.size)
+    bm.check_out_folder(args.out)
+    bm.check_preset_file(find_preset(args.preset))  # size cap, JSON, "hosts" before Job reads it
     job = Job(args)
-    os.makedirs(os.path.join(args.out, MANIFEST_DIR), exist_ok=True)
+    try:
+        os.makedirs(os.path.join(args.out, MANIFEST_DIR), exist_ok=True)
+    except OSError as e:
+        raise UsageError("--out %s: cannot make the folder: %s" % (args.out, e.strerror or e))
+    bm.check_out_folder(args.out)
+    if not args.no_parent_watch:
+        _sub("batch_files").ParentWatch().start()  # an orphaned runner stops (exit 3)
     counts = {"made": 0, "skipped": 0, "failed": 0}
     t0 = time.perf_counter()
     for seed in range(a, b):
@@ -295,62 +317,21 @@ def run(args, log):
 
 # ------------------------------------------------------------------- merging
 def merge(args, log):
-    """DIR/manifest/*.json -> DIR/manifest.json (records sorted by preset
-    hash and seed). With --seeds A:B, every seed of the range must have a
-    record (else exit 1, naming the missing ones); --verify re-hashes
-    every listed file. Leftover temporary files are reported and removed."""
-    out = args.merge_manifest
-    mdir = os.path.join(out, MANIFEST_DIR)
-    if not os.path.isdir(mdir):
-        raise UsageError("--merge-manifest %s: no %s folder (nothing was run there)" % (out, MANIFEST_DIR))
-    recs, bad = [], []
-    for path in sorted(glob.glob(os.path.join(glob.escape(mdir), "*.json"))):
-        rec = read_record(path)
-        if rec is None:
-            bad.append("%s: unreadable record" % os.path.basename(path))
-            continue
-        if args.verify:
-            for f in rec.get("files", []):
-                if not _file_ok(out, f):
-                    bad.append("%s: %s is missing or differs from its record" % (rec["name"], f.get("name")))
-        recs.append(rec)
-    recs.sort(key=lambda r: (r.get("preset"), r.get("preset_hash"), r.get("seed")))
-    missing = []
-    if args.seeds:
-        a, b = parse_range(args.seeds, "--seeds")
-        have = {r.get("seed") for r in recs}
-        missing = [s for s in range(a, b) if s not in have]
-        if missing:
-            bad.append("seeds without a record: %s" % _ranges(missing))
-    for folder in (out, mdir):
-        for t in glob.glob(os.path.join(glob.escape(folder), ".*.tmp")) + glob.glob(
-                os.path.join(glob.escape(folder), ".*.tmp.png")):
-            log("removing a leftover temporary file %s" % t)
-            os.unlink(t)
-    doc = {"schema": RECORD_SCHEMA, "count": len(recs),
-           "files": sum(len(r.get("files", [])) for r in recs),
-           "bytes": sum(f.get("bytes", 0) for r in recs for f in r.get("files", [])),
-           "seconds": round(sum(r.get("seconds", 0) for r in recs), 4), "records": recs}
-    _write_atomic(os.path.join(out, MANIFEST_FILE), json.dumps(doc, indent=1, sort_keys=True) + "\n")
-    log("manifest %s: %d records, %d files" % (os.path.join(out, MANIFEST_FILE), doc["count"], doc["files"]))
-    for b_ in bad:
-        log("manifest: %s" % b_)
-    return 1 if bad else 0
+    """DIR/manifest/*.json -> DIR/manifest.json (batch_merge.merge): with
+    --seeds A:B every seed of the range must have a record of one preset
+    hash (--hash, or --preset with the run's options, or the only one
+    there); --verify re-hashes every listed file. Malformed records and
+    failed checks are named and leave manifest.json as it was (exit 1)."""
+    bm = _sub("batch_merge")
+    preset_hash = None
+    if args.preset:
+        bm.check_preset_file(find_preset(args.preset))
+        preset_hash = Job(args).preset_hash
+    return bm.merge(args, log, preset_hash)
 
 
 def _ranges(seeds):
-    out, start, prev = [], None, None
-    for s in seeds:
-        if start is None:
-            start = prev = s
-        elif s == prev + 1:
-            prev = s
-        else:
-            out.append("%d:%d" % (start, prev + 1))
-            start = prev = s
-    if start is not None:
-        out.append("%d:%d" % (start, prev + 1))
-    return ", ".join(out)
+    return _sub("batch_merge").ranges(seeds)
 
 
 def main(argv=None):
@@ -368,7 +349,7 @@ def main(argv=None):
         if args.check:
             return _job.check(args, log)
         return run(args, log)
-    except UsageError as e:
+    except (UsageError, _sub("batch_merge").UsageError) as e:
         print("batch_run: error: %s" % e, file=sys.stderr, flush=True)
         return 2
 

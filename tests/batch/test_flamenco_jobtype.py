@@ -233,6 +233,20 @@ def check_refusals():
           "the last seed 2^32-1 is reachable")
     job = compile_job(dict(base, merge_manifest=False))
     check(all(t["name"] != "merge-manifest" for t in job["tasks"]), "merge_manifest=false: no merge task")
+    # Huge task counts are refused with the way out; so are more seeds than a merge takes.
+    p = compile_job(dict(base, seed_count=200000, seeds_per_task=5), expect_ok=False)
+    check(p.returncode == 2 and "setting seeds_per_task" in p.stderr and "40000 tasks" in p.stderr
+          and "at least 20" in p.stderr, "200000 seeds in tasks of 5 refused, naming seeds_per_task: " + p.stderr)
+    job = compile_job(dict(base, seed_count=200000, seeds_per_task=20, merge_manifest=False))
+    check(len(job["tasks"]) == 10000, "200000 seeds in tasks of 20: 10000 tasks, allowed")
+    p = compile_job(dict(base, seed_count=10000001, seeds_per_task=10000), expect_ok=False)
+    check(p.returncode == 2 and "setting seed_count" in p.stderr and "10000000" in p.stderr,
+          "more than 10^7 seeds refused: " + p.stderr)
+    # The merge checks the preset's hash: it gets the preset and the glTF options.
+    job = compile_job(dict(base, textures=False, texture_size=64))
+    m = runner_args(job["tasks"][-1])
+    check(opt(m, "--preset") == "avenue_batch_tiny" and opt(m, "--texture-size") == "64" and "--no-textures" in m,
+          "the merge task gets --preset and the glTF options: %s" % m)
 
 
 def run_compile_checks():

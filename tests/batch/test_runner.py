@@ -207,11 +207,22 @@ try:
             os.remove(j)
 
     # --- the merged manifest
-    with open(os.path.join(out, "manifest", ".x.json.QwErTy.tmp"), "w") as f:
+    # A dead runner's leftover record temporary (seed 4's; its lock is free)
+    # is removed; a user's own hidden .tmp files are not the runner's.
+    with open(os.path.join(out, "manifest", ".%s.json.QwErTy.tmp" % os.path.basename(glb4)[:-4]), "w") as f:
         f.write("{")
+    for mine_ in (os.path.join(out, ".thesis.tmp"), os.path.join(out, "manifest", ".notes.json.tmp")):
+        with open(mine_, "w") as f:
+            f.write("mine")
     rc, log = runner("--merge-manifest", out, "--seeds", "3:6", "--verify")
     check(rc == 0, "merge 3:6 (exit %d: %s)" % (rc, log[-300:]))
-    check(not glob.glob(os.path.join(out, "manifest", ".*.tmp")), "the merge removes leftover temporary files")
+    check(not glob.glob(os.path.join(out, "manifest", ".*-s4.json.*.tmp")),
+          "the merge removes a dead runner's leftover temporary file")
+    check(os.path.isfile(os.path.join(out, ".thesis.tmp")) and os.path.isfile(os.path.join(out, "manifest",
+                                                                                            ".notes.json.tmp")),
+          "the merge leaves a user's own .tmp files")
+    os.remove(os.path.join(out, ".thesis.tmp"))
+    os.remove(os.path.join(out, "manifest", ".notes.json.tmp"))
     with open(os.path.join(out, "manifest.json")) as f:
         man = json.load(f)
     check(man["count"] == 3 and [r["seed"] for r in man["records"]] == [3, 4, 5] and man["files"] == 3,

@@ -7,13 +7,18 @@
 // file by rename, so a task that a killed Worker leaves half done is simply run
 // again; outputs are named from (preset hash, seed), so tasks never collide.
 //
-// Written for Flamenco 3's job compiler (goja: ES2015+, no modules). Globals it
-// uses: author.Task, author.Command, print. A task that renders runs
-// "blender-render" with an empty blendfile, which the Worker runs as
-// {blender} {blenderArgs} argsBefore args (the runner builds its scene). A task
-// that only writes glTF needs no Blender: it runs the runner with Python 3
-// through "exec" (task type "misc"), which saves a Blender start per task;
-// set `python` empty for Workers older than the "exec" command.
+// Needs Flamenco 3.5 or later (Manager and Workers): before 3.5 the
+// "blender-render" command refuses an empty blendfile. Written for Flamenco
+// 3's job compiler (goja: ES2015+, no modules). Globals it uses: author.Task,
+// author.Command, print. A task that renders runs "blender-render" with an
+// empty blendfile, which the Worker runs as {blender} {blenderArgs}
+// argsBefore args (the runner builds its scene). A task that only writes glTF
+// needs no Blender: it runs the runner with Python 3 through "exec" (task type
+// "misc"), which saves a Blender start per task; set `python` empty only for
+// Workers without Python 3 (every task then starts Blender).
+//
+// Limits: at most MAX_TASKS seed tasks per job (raise seeds_per_task for
+// more seeds) and at most SEEDS_MAX seeds (the runner's cap per merge).
 
 const JOB_TYPE = {
     label: "banyan batch",
@@ -53,6 +58,11 @@ const JOB_TYPE = {
 
 // Seeds are unsigned 32-bit in libbanyan; the end of a half-open range may be 2^32.
 const SEED_END_MAX = 4294967296;
+// A job of more tasks than this is refused: the Manager stores and schedules
+// every task, and a huge count is nearly always a seeds_per_task left small.
+const MAX_TASKS = 10000;
+// The runner refuses a merge (and a run) of more seeds (batch_merge.SEEDS_MAX).
+const SEEDS_MAX = 10000000;
 
 function settingOf(job, key) {
     const v = job.settings[key];
@@ -121,6 +131,15 @@ function compileJob(job) {
         throw `banyan-batch: setting engine must be WORKBENCH or EEVEE, got ${JSON.stringify(engine)}`;
     }
     const render = parseRange("render_seeds", settingOf(job, "render_seeds"));
+    if (count > SEEDS_MAX) {
+        throw `banyan-batch: setting seed_count ${count} is more than ${SEEDS_MAX} seeds, the runner's limit per ` +
+            `merge: split the seeds into several jobs`;
+    }
+    const taskCount = Math.ceil(count / perTask);
+    if (taskCount > MAX_TASKS) {
+        throw `banyan-batch: setting seeds_per_task ${perTask} makes ${taskCount} tasks of seed_count ${count}, ` +
+            `more than ${MAX_TASKS}: raise seeds_per_task to at least ${Math.ceil(count / MAX_TASKS)}`;
+    }
 
     const end = first + count;
     const seedTasks = [];
@@ -153,9 +172,12 @@ function compileJob(job) {
     if (merge) {
         // Fails (and so shows the job as failed) when a seed of the range has
         // no record or a file no longer matches it.
-        const task = runnerTask("merge-manifest", python, runner, [
-            "--merge-manifest", outDir, "--seeds", `${first}:${end}`, "--verify",
-        ], 0);
+        // --preset and the glTF options give the merge the preset hash whose
+        // seeds must all be there.
+        const mergeArgs = ["--merge-manifest", outDir, "--seeds", `${first}:${end}`, "--verify",
+            "--preset", preset, "--texture-size", String(textureSize)];
+        if (!textures) mergeArgs.push("--no-textures");
+        const task = runnerTask("merge-manifest", python, runner, mergeArgs, 0);
         for (const t of seedTasks) task.addDependency(t);
         job.addTask(task);
     }
