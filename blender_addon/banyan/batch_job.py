@@ -295,7 +295,7 @@ class Job:
             params.set("threads", self.threads)  # the meshing's threads; the bytes do not depend on them
             plant = G.IvyPlant(params, hosts)  # create, step, mesh: the CLI's calls
             try:
-                plant.step(int(params.get("steps")))
+                plant.step(G.ivy_steps(params))  # `steps`, or the years in steps (banyan_ivy_steps)
                 return plant.mesh()
             finally:
                 plant.close()

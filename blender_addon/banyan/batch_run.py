@@ -205,6 +205,24 @@ def run_seed(job, args, seed, render, log):
         lock.release()
 
 
+def _place_textures(job, tmpdir, out, bf):
+    """--shared-textures: the writer put the textures beside the .glb, in
+    the private folder; each goes into DIR/<image_dir>/ unless a runner
+    put it there already (the same bytes: a function of the preset hash).
+    A symlink planted at that folder is refused."""
+    if not job.image_dir:
+        return
+    src = os.path.join(tmpdir, job.image_dir)
+    dst = os.path.join(out, job.image_dir)
+    if os.path.islink(dst):
+        raise OSError("%s is a symbolic link: the shared textures are not written through it" % dst)
+    os.makedirs(dst, exist_ok=True)
+    for f in sorted(os.listdir(src)) if os.path.isdir(src) else ():
+        target = os.path.join(dst, f)
+        if not os.path.lexists(target):
+            bf.place(os.path.join(src, f), target)
+
+
 def _run_seed_locked(job, args, seed, render, log, name):
     bf = _sub("batch_files")
     out = args.out
@@ -237,6 +255,7 @@ def _run_seed_locked(job, args, seed, render, log, name):
             if not glb_ok:
                 glb_src = os.path.join(tmpdir, glb_name)
                 job.write_glb(d, glb_src)
+                _place_textures(job, tmpdir, out, bf)
                 made.append("glb")
             png_src = None
             if render and not png_ok:
