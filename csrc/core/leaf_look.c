@@ -2,6 +2,7 @@
  * (leaf_look.h). */
 #include "leaf_look.h"
 
+#include "noise.h"
 #include "rng.h"
 
 /* Streams of the per-leaf generators: the index spread over the stream
@@ -9,6 +10,7 @@
  * many bits. */
 #define LEAF_LOOK_SALT 0x1eaf100cULL
 #define LEAF_LOOK_MUL 0x9E3779B97F4A7C15ULL
+#define LEAF_IVY_CELL_SALT 0x1eafce11ULL /* the ivy's young / grown cell draw */
 
 void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect) {
     banyan_atlas_layout L;
@@ -43,6 +45,18 @@ void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int
         out->tint[2] = f * (0.80 + 0.20 * b);
     }
     out->tint[3] = 1.0;
+}
+
+void leaf_look_ivy(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int young, int32_t season,
+                   leaf_look *out) {
+    leaf_look_of(seed, index, cols, rows, season, out);
+    const uint64_t cells = (uint64_t)cols * (uint64_t)rows, young_cells = cells / 4, grown = cells - young_cells;
+    const uint64_t h = noise_mix(noise_mix(seed ^ LEAF_IVY_CELL_SALT) + index);
+    uint64_t c;
+    if (young && young_cells) c = 4 * (h % young_cells) + 3;
+    else c = 4 * ((h % grown) / 3) + (h % grown) % 3;
+    out->u0 = (double)(c % (uint64_t)cols) * out->du;
+    out->v0 = (double)(c / (uint64_t)cols) * out->dv;
 }
 
 void leaf_look_keyaki(uint64_t seed, uint64_t index, int spray, int32_t season, leaf_look *out) {

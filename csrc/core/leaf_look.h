@@ -58,6 +58,15 @@ void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect)
 /* The look of leaf `index` of a plant grown from `seed`. */
 void leaf_look_of(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int32_t season, leaf_look *out);
 
+/* The look of Boston ivy leaf `index` on a cols x rows ivy atlas, whose
+ * every fourth cell (cell number % 4 == 3: the right-hand column of the
+ * 4 x 4 atlas) holds a young unlobed leaf, bronze in summer, the others
+ * grown three-lobed ones (csrc/textures/leaves.c): a young leaf takes one
+ * of the young cells, a grown one one of the others, from a hash of the
+ * seed and the index. The tint as leaf_look_of's. */
+void leaf_look_ivy(uint64_t seed, uint64_t index, int32_t cols, int32_t rows, int young, int32_t season,
+                   leaf_look *out);
+
 /* The look of keyaki card `index` (a 4 x 4 keyaki atlas): spray 0, a
  * single leaf from the 12 single-leaf cells (rows v >= 0.25); spray 1, one
  * of the LEAF_KEYAKI_SPRAYS spray cells (u0, v0, du, dv its whole spray

@@ -9,8 +9,9 @@
  * midrib, sized by age (young small, old large), turned off the surface
  * towards the sky with its tip hanging down and out, kept `clearance` off
  * every surface; up and out when the stem hangs free. Its uvs fit the
- * outline into one cell of the ivy leaf atlas and its vertex colour is a
- * per-leaf tint (leaf_look.h), bronze while young. Per-leaf choices come
+ * outline into one cell of the ivy leaf atlas (a young, bronze cell while
+ * the leaf is young) and its vertex colour is a per-leaf tint
+ * (leaf_look.h). Per-leaf choices come
  * from a PCG32 stream of the leaf's own, so the growth is not disturbed.
  * Every vertex carries `birth_step` (the step its bud was created) and
  * `part` (0 stem and petiole, 1 leaf blade), and the wind and birth
@@ -53,6 +54,7 @@
 #define IVY_LEAF_ROUGHNESS 0.35
 #define LEAF_STREAM 0x1eaf5e7cULL /* the blade's own stream, apart from leaf_look's */
 #define CLUMP_SALT 0xc1d3bULL     /* the clumps' noise and the keep draws */
+#define IVY_YOUNG_STEPS 12         /* a leaf this many steps old leaves the atlas's young (bronze) cells */
 #define FRAY_SALT 0xf4a7e0ULL      /* the frayed edges' noise */
 #define EDGE_LEAN 1.5              /* a petiole at the edge leans out this much (the rest of its direction is unit) */
 #define RELIEF_STEP 0.5  /* the relief is read over steps of this x the largest blade */
@@ -384,18 +386,21 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
 }
 
 /* Young Boston ivy leaves flush reddish-bronze, then turn a rich green
- * (plants.md): in summer the tint keeps its red while the leaf is young
- * and loses most of its green and blue, weight w = exp(-(age / 20)^2)
- * (age in steps: the leaves of the last 10 steps stay at least 0.78 of
- * the way bronze, those past 40 steps are green), and darkens a little
- * up to leaf_size_steps. Autumn has its own spread. */
+ * (plants.md). A leaf younger than IVY_YOUNG_STEPS shows one of the
+ * atlas's young cells, bronze in summer (leaf_look_ivy), its tint as
+ * drawn. An older one shows a grown, green cell whose tint keeps its red
+ * while it loses some green and blue as the flush fades, weight w =
+ * exp(-(age / 20)^2) (age in steps: green by about 40), and darkens a
+ * little up to leaf_size_steps. Autumn has its own spread. */
+static int leaf_young(const banyan_ivy *iv, const ivy_bud *b) { return iv->step - b->step_c < IVY_YOUNG_STEPS; }
+
 static void leaf_age_tint(const banyan_ivy *iv, const ivy_bud *b, int32_t season, double tint[4]) {
-    if (season == BANYAN_SEASON_AUTUMN) return;
+    if (season == BANYAN_SEASON_AUTUMN || leaf_young(iv, b)) return;
     double age = (double)(iv->step - b->step_c), a = age / 20.0;
     double young = dm_exp(-a * a), old = fmin(1.0, age / iv->p.leaf_size_steps);
     tint[0] *= 1.0 - 0.08 * old;
-    tint[1] *= (1.0 - 0.90 * young) * (1.0 - 0.04 * old);
-    tint[2] *= (1.0 - 0.85 * young) * (1.0 - 0.08 * old);
+    tint[1] *= (1.0 - 0.55 * young) * (1.0 - 0.04 * old);
+    tint[2] *= (1.0 - 0.55 * young) * (1.0 - 0.08 * old);
 }
 
 uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n) {
@@ -643,7 +648,7 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
         if (!g->ok) continue;
         const ivy_bud *b = &iv->buds[i];
         leaf_look lk; /* by bud: a leaf keeps its look as the plant grows */
-        leaf_look_of(p->seed, (uint64_t)i, J->cols, J->rows, p->season, &lk);
+        leaf_look_ivy(p->seed, (uint64_t)i, J->cols, J->rows, leaf_young(iv, b), p->season, &lk);
         leaf_age_tint(iv, b, p->season, lk.tint);
         mb_set_color(&mb, lk.tint); /* the output has colours */
         mb_set_attr(&mb, a_birth, (double)b->step_c);

@@ -843,13 +843,19 @@ static void ivy_leaf(cell *k, const ivleaf *L) {
 static void ivy_colours(ivleaf *L, int season, pcg32 *r) {
     float c[3], in[3];
     if (season == BANYAN_SEASON_SUMMER) {
-        /* Rich green (the gloss is the material's roughness); young
-         * (unlobed) leaves lighter, a bronze hint. */
-        const float dark[3] = {56, 96, 30}, young[3] = {96, 124, 46};
+        /* Rich green (the gloss is the material's roughness), a little
+         * lighter now and then; the young unlobed leaves of the right-hand
+         * column flush reddish-bronze, some more olive (plants.md). */
+        const float dark[3] = {56, 96, 30}, light[3] = {96, 124, 46};
+        const float bronze[3] = {150, 80, 44}, olive[3] = {128, 96, 42};
         float b = tex_unif(r, 0.88f, 1.12f);
-        float y = L->lobed ? tex_unif(r, 0.0f, 0.2f) : tex_unif(r, 0.45f, 0.8f);
-        for (int i = 0; i < 3; i++) c[i] = tex_mix(dark[i], young[i], y) * b;
-        if (!L->lobed) c[0] += tex_unif(r, 0.0f, 14.0f);
+        if (L->lobed) {
+            float y = tex_unif(r, 0.0f, 0.2f);
+            for (int i = 0; i < 3; i++) c[i] = tex_mix(dark[i], light[i], y) * b;
+        } else {
+            float y = tex_unif(r, 0.0f, 0.45f);
+            for (int i = 0; i < 3; i++) c[i] = tex_mix(bronze[i], olive[i], y) * b;
+        }
         for (int i = 0; i < 3; i++) in[i] = c[i] * 1.05f;
         for (int i = 0; i < 3; i++) {
             L->vein[i] = tex_mix(c[i], 175.0f - (float)i * 35.0f, 0.33f);

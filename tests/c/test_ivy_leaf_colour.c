@@ -57,7 +57,10 @@ static double lum(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.
 typedef struct group {
     double rgb[3], area;
     int n, wrong; /* blades; blades of the wrong hue order */
+    int cell_wrong; /* blades on a young cell when grown, or on a grown cell when young */
 } group;
+
+#define YOUNG_CELL_STEPS 12 /* IVY_YOUNG_STEPS (csrc/ivy/mesh.c): younger blades show the atlas's young cells */
 
 static void add(group *g, const double c[3], double area) {
     for (int k = 0; k < 3; k++) g->rgb[k] += c[k] * area;
@@ -134,6 +137,7 @@ static int measure(const banyan_ivy *iv, const banyan_mesh *m, int32_t cols, int
         for (int q = 0; q < 3; q++) c[q] = t[q] * cell[3 * (cu + cols * cv) + q];
         double age = (double)iv->step - m->attributes[ab].data[b->first];
         add(all, c, b->area);
+        all->cell_wrong += ((cu + cols * cv) % 4 == 3) != (age < YOUNG_CELL_STEPS); /* young cells: every 4th */
         for (int e = 0; e < 7; e++)
             if (age < edge[e]) {
                 hist[e] += b->area;
@@ -189,7 +193,7 @@ int main(int argc, char **argv) {
         p.seed = seed;
         banyan_ivy *iv = NULL;
         banyan_mesh *m = NULL;
-        group young = {{0}, 0, 0, 0}, old = young, all = young;
+        group young = {{0}, 0, 0, 0, 0}, old = young, all = young;
         /* Growing: the front's young leaves flush bronze, the plant stays green. */
         int ok = banyan_ivy_create(&p, hosts, nh, &iv, &err) == BANYAN_OK &&
                  banyan_ivy_step(iv, GROWING, &err) == BANYAN_OK && banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK;
@@ -209,11 +213,13 @@ int main(int argc, char **argv) {
               young.wrong, young.n);
         CHECK(y[0] > y[1] && y[1] > y[2] && hue(y) >= 5 && hue(y) <= 40,
               "seed %llu: young mean %.4f %.4f %.4f (hue %.1f) is not reddish-bronze", sd, y[0], y[1], y[2], hue(y));
+        CHECK(all.cell_wrong == 0 && lum(y) >= 0.05, "seed %llu: %d blades on a cell of the wrong age; young luminance "
+              "%.4f (want >= 0.05: bronze, not dark brown)", sd, all.cell_wrong, lum(y));
         check_green(&all, sd, GROWING);
         banyan_mesh_free(m);
         m = NULL;
         /* Grown: the old leaves a rich green. */
-        group young2 = {{0}, 0, 0, 0}, all2 = young2;
+        group young2 = {{0}, 0, 0, 0, 0}, all2 = young2;
         old = young2;
         ok = ok && banyan_ivy_step(iv, p.steps - GROWING, &err) == BANYAN_OK && banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK;
         CHECK(ok && measure(iv, m, cols, rows, cell, &young2, &old, &all2), "seed %llu, %d steps: %s", sd, p.steps,
