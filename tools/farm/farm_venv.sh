@@ -20,6 +20,9 @@ if [ -z "$py" ]; then
 fi
 log() { echo "farm_venv: $*" >&2; }
 want=$(sha256sum "$req" | cut -d' ' -f1)
+mkdir -p "$(dirname "$venv")"
+exec 9>"$venv.lock" # one install at a time (tests run in parallel)
+flock 9
 stamp="$venv/.banyan-requirements.sha256"
 if [ -x "$venv/bin/python" ] && [ "$(cat "$stamp" 2>/dev/null)" = "$want" ]; then
   log "cached in $venv"
@@ -33,7 +36,6 @@ if ! "$py" -c "import ensurepip, venv" 2>/dev/null; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends python3-venv
 fi
 rm -rf "$venv"
-mkdir -p "$(dirname "$venv")"
 t0=$(date +%s)
 "$py" -m venv "$venv"
 "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$req"
