@@ -11,8 +11,6 @@ refused before a cluster starts.
     python3 tests/batch/test_dask.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
 import glob
-import hashlib
-import json
 import os
 import shutil
 import signal
@@ -21,45 +19,10 @@ import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-ADDON = os.path.join(SRC, "blender_addon", "banyan")
-RUNNER = os.path.join(ADDON, "batch_run.py")
+from farm_common import ADDON, PRESET, RUNNER, SRC, check, farm_venv, finish, manifest_files, outputs
+
 SUBMIT = os.path.join(SRC, "tools", "farm", "dask", "submit.py")
-PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
 SEEDS, PER_TASK = "0:24", 8  # 3 tasks on 2 workers; 1024-pixel textures: a task runs long enough to be killed
-
-failed = passed = 0
-
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
-    return ok
-
-
-def outputs(folder):
-    out = {}
-    for p in sorted(glob.glob(os.path.join(folder, "*"))):
-        if os.path.isfile(p) and not p.endswith("manifest.json"):
-            with open(p, "rb") as f:
-                out[os.path.basename(p)] = hashlib.sha256(f.read()).hexdigest()
-    return out
-
-
-def manifest_files(folder):
-    try:
-        with open(os.path.join(folder, "manifest.json")) as f:
-            doc = json.load(f)
-    except (OSError, ValueError):
-        return None
-    return {e["name"]: e["sha256"] for r in doc["records"] for e in r["files"]}
 
 
 def proc_status(pid):
@@ -90,12 +53,7 @@ def entries_of(out):
     return found
 
 
-r = subprocess.run(["bash", os.path.join(SRC, "tools", "farm", "farm_venv.sh")], stdout=subprocess.PIPE, text=True,
-                   timeout=900)
-if not check(r.returncode == 0 and r.stdout.strip(), "tools/farm/farm_venv.sh installs the farm venv (exit %d)"
-             % r.returncode):
-    sys.exit(1)
-PY = os.path.join(r.stdout.strip().splitlines()[-1], "bin", "python")
+PY = os.path.join(farm_venv(), "bin", "python")
 
 
 def submit(out, *extra, seeds=SEEDS):
@@ -173,5 +131,4 @@ try:
     check(not entries_of(out), "no runner process is left (%s)" % entries_of(out))
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
-print("test_dask: %d checks, %d failed" % (passed + failed, failed))
-sys.exit(1 if failed else 0)
+finish("test_dask")

@@ -10,7 +10,6 @@ validator and hold the embedded model's geometry.
     python3 tests/batch/test_grow.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
 import glob
-import hashlib
 import importlib.util
 import json
 import os
@@ -20,39 +19,19 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-RUNNER = os.path.join(SRC, "blender_addon", "banyan", "batch_run.py")
+from farm_common import BUILD, HERE, RUNNER, SRC, check, finish, sha
+
 PRESETS = os.path.join(SRC, "presets")
 TINY = os.path.join(HERE, "avenue_batch_tiny.json")
 SUBMIT = os.path.join(SRC, "tools", "farm", "slurm", "submit.sh")
 VALIDATE = os.path.join(SRC, "tests", "gltf", "validate.mjs")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
 CLI = os.path.join(BUILD, "banyan")
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
-
-failed = 0
-passed = 0
-
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
 
 
 def runner(*args, cwd=None):
     r = subprocess.run([sys.executable, RUNNER, "--"] + [str(a) for a in args], capture_output=True, text=True,
                        cwd=cwd, timeout=600)
     return r.returncode, r.stdout + r.stderr
-
-
-def sha(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
 
 
 def cli(gen, preset, seed, out, *extra):
@@ -232,5 +211,4 @@ try:
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print("test_grow: %d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+finish("test_grow")

@@ -12,7 +12,6 @@ the merge step, naming the missing seeds.
     python3 tests/batch/test_openjd.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
 import glob
-import hashlib
 import json
 import os
 import shutil
@@ -22,54 +21,13 @@ import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-ADDON = os.path.join(SRC, "blender_addon", "banyan")
-RUNNER = os.path.join(ADDON, "batch_run.py")
+from farm_common import ADDON, PRESET, RUNNER, SRC, check, farm_venv, finish, manifest_files, outputs
+
 TEMPLATE = os.path.join(SRC, "tools", "farm", "openjd", "banyan_batch.yaml")
-PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
 SEEDS, PER_TASK, TASKS = "0:20", 5, 4  # default 1024-pixel textures: a task takes long enough to be killed
 
-failed = passed = 0
 
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
-    return ok
-
-
-def outputs(folder):
-    """{name: sha256} of the runner's files in folder (the records hold times and hosts)."""
-    out = {}
-    for p in sorted(glob.glob(os.path.join(folder, "*"))):
-        if os.path.isfile(p) and not p.endswith("manifest.json"):
-            with open(p, "rb") as f:
-                out[os.path.basename(p)] = hashlib.sha256(f.read()).hexdigest()
-    return out
-
-
-def manifest_files(folder):
-    try:
-        with open(os.path.join(folder, "manifest.json")) as f:
-            doc = json.load(f)
-    except (OSError, ValueError):
-        return None
-    return {e["name"]: e["sha256"] for r in doc["records"] for e in r["files"]}
-
-
-r = subprocess.run(["bash", os.path.join(SRC, "tools", "farm", "farm_venv.sh")], stdout=subprocess.PIPE, text=True,
-                   timeout=900)
-if not check(r.returncode == 0 and r.stdout.strip(), "tools/farm/farm_venv.sh installs the farm venv (exit %d)"
-             % r.returncode):
-    sys.exit(1)
-OPENJD = os.path.join(r.stdout.strip().splitlines()[-1], "bin", "openjd")
+OPENJD = os.path.join(farm_venv(), "bin", "openjd")
 
 
 def params(out, last=TASKS - 1):
@@ -171,5 +129,4 @@ try:
     check(not entries_of(out), "no task process is left running")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
-print("test_openjd: %d checks, %d failed" % (passed + failed, failed))
-sys.exit(1 if failed else 0)
+finish("test_openjd")

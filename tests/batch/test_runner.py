@@ -7,7 +7,6 @@ again, nothing else is touched) and the merged manifest.
     python3 tests/batch/test_runner.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
 import glob
-import hashlib
 import json
 import os
 import shutil
@@ -15,36 +14,15 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-RUNNER = os.path.join(SRC, "blender_addon", "banyan", "batch_run.py")
-PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
+from farm_common import BUILD, PRESET, RUNNER, check, finish, sha
+
 CLI = os.path.join(BUILD, "banyan")
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
-
-failed = 0
-passed = 0
-
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
 
 
 def runner(*args, cwd=None):
     r = subprocess.run([sys.executable, RUNNER, "--"] + [str(a) for a in args], capture_output=True, text=True,
                        cwd=cwd, timeout=600)
     return r.returncode, r.stdout + r.stderr
-
-
-def sha(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
 
 
 def snapshot(folder):
@@ -238,5 +216,4 @@ try:
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print("test_runner: %d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+finish("test_runner")

@@ -20,39 +20,19 @@ plain python3 with a fake `sbatch`, no Blender, no cluster.
     python3 tests/batch/test_safety.py BUILD_DIR
 """
 import glob
-import hashlib
 import json
 import os
 import shutil
 import signal
-import stat
 import subprocess
 import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-ADDON = os.path.join(SRC, "blender_addon", "banyan")
-RUNNER = os.path.join(ADDON, "batch_run.py")
+from farm_common import ADDON, PRESET, RUNNER, SRC, check, finish, sha
+
 SLURM = os.path.join(SRC, "tools", "farm", "slurm")
-PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
 TS = ["--texture-size", "64"]
-
-failed = 0
-passed = 0
-
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
-    return ok
 
 
 def runner(*args, timeout=300):
@@ -62,11 +42,6 @@ def runner(*args, timeout=300):
     except subprocess.TimeoutExpired as e:
         return -1, "timed out after %d s: %s" % (timeout, (e.stdout or b"")[-300:])
     return r.returncode, r.stdout + r.stderr
-
-
-def sha(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
 
 
 def glbs(folder):
@@ -456,5 +431,4 @@ p.wait()
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print("test_safety: %d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+finish("test_safety")

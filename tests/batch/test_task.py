@@ -7,7 +7,6 @@ once, the tasks' folder byte-identical to one run of the runner, and
     python3 tests/batch/test_task.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
 import glob
-import hashlib
 import importlib.util
 import os
 import re
@@ -18,26 +17,10 @@ import sys
 import tempfile
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, "..", ".."))
-ADDON = os.path.join(SRC, "blender_addon", "banyan")
+import farm_common
+from farm_common import ADDON, PRESET, RUNNER, check, finish
+
 ENTRY = os.path.join(ADDON, "batch_task.py")
-RUNNER = os.path.join(ADDON, "batch_run.py")
-PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
-BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
-os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
-
-failed = passed = 0
-
-
-def check(ok, what):
-    global failed, passed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what, flush=True)
-    return ok
 
 
 def entry(*args):
@@ -48,11 +31,7 @@ def entry(*args):
 
 def outputs(folder):
     """{name: sha256} of the .glb files (the records hold times and hosts)."""
-    out = {}
-    for p in sorted(glob.glob(os.path.join(folder, "*.glb"))):
-        with open(p, "rb") as f:
-            out[os.path.basename(p)] = hashlib.sha256(f.read()).hexdigest()
-    return out
+    return farm_common.outputs(folder, "*.glb")
 
 
 def seeds_of(folder):
@@ -156,5 +135,4 @@ try:
           "it stopped at once, mid-task (%.2f s after its parent; %d of 30 seeds made)" % (time.time() - t1, made))
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
-print("test_task: %d checks, %d failed" % (passed + failed, failed))
-sys.exit(1 if failed else 0)
+finish("test_task")
