@@ -17,6 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     fz_read(BANYAN_GEN_IVY, &p, data, size, &in);
     if (!in.real) {
         p.steps = fz_clamp_i32(p.steps, 80);
+        if (banyan_ivy_steps(&p) > 80) p.years = 0; /* years also decide the steps */
         p.max_buds = fz_clamp_i32(p.max_buds, 5000);
         p.candidates = fz_clamp_i32(p.candidates, 16);
     }
@@ -72,6 +73,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         banyan_status sa = banyan_ivy_mesh(iv, &a, &e);
         banyan_ivy_params once = p;
         once.steps = grown;
+        once.years = 0; /* `steps`, not the age, decides the one shot */
         banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &eb);
         FZ_ASSERT(sa == sb || fz_budget_stop(sa, &e) || fz_budget_stop(sb, &eb), "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
         if (sa == BANYAN_OK)
