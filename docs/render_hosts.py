@@ -69,6 +69,9 @@ SHOTS = {
                            0.3, RS.VIEWS["ivy"]),
     "ivy_suzanne_relief_off": ("ivy", suzanne, 'SURFACE', "ivy_statue",
                                dict(IVY, start=(0.6, -0.5, 0.05), leaf_relief=0.0), 0.3, RS.VIEWS["ivy"]),
+    # The full 450 steps with stems that never wrap over the curves (wrap_angle 0).
+    "ivy_suzanne_wrap_off": ("ivy", suzanne, 'SURFACE', "ivy_statue",
+                             dict(IVY, start=(0.6, -0.5, 0.05), wrap_angle=0.0), 0.3, RS.VIEWS["ivy"]),
 }
 
 

@@ -33,6 +33,7 @@ case $what in
   start) run docs/render_getting_started.py -- "$@" ;;
   avenue) run docs/examples/render_avenue.py -- --out docs/img/avenue.png "$@" ;;
   hosts) run docs/render_hosts.py -- "$@" ;;
+  ivy-mesh) run docs/measure_ivy_mesh.py -- "$@" ;;
   roots) run docs/render_roots_look.py -- "$@" ;;
   ivy) run docs/render_ivy_look.py -- "$@" ;;
   keyaki) run docs/render_keyaki_look.py -- "$@" ;;

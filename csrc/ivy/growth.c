@@ -50,6 +50,8 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
  * there, and the lanes would no longer match it. */
 #if defined(__SSE2__) && !defined(__FMA__)
 #define IVY_LANES 1
+#define WRAP_RUN 2
+
 #include <emmintrin.h>
 /* Two candidates' directions at once, each lane by exactly the operations
  * of sin_cos, rotate_xyz and v3_norm_or (IEEE products and sums are the
@@ -300,6 +302,30 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     v3 best_q = w.q, best_d = w.d;
     double best_dist = w.dist;
 
+    if (p->wrap_angle > 0 && b->run <= WRAP_RUN && best_dist > D) {
+        /* The surface of a mesh host falls away under a stem that lay on
+         * it: over a rounded form or a gentle edge (the normal turns by at
+         * most wrap_angle) the stem bends over, aimed at the point
+         * `clearance` off the surface below the chosen candidate; over a
+         * sharper edge it grows on free and may hang. A box's edges turn
+         * by a right angle: its stems never wrap. */
+        const double cap = D + p->internode;
+        ivy_near at = ivy_nearest_within(iv, b->P, cap);
+        ivy_near nr = ivy_nearest_within(iv, best_q, cap);
+        if (!(nr.dist <= cap)) nr = at;
+        const int on_mesh = at.dist <= cap && nr.dist <= cap && at.host >= (int32_t)iv->mesh0 && nr.host >= (int32_t)iv->mesh0;
+        if (on_mesh && v3_dot(at.normal, nr.normal) >= dm_cos(deg2rad(p->wrap_angle))) {
+            v3 target = v3_madd(nr.point, nr.normal, p->clearance);
+            v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
+            v3 q = v3_madd(b->P, d, p->internode);
+            double dist;
+            if (!ivy_blocked(iv, b->P, q, D, &dist) && dist <= D) {
+                best_q = q;
+                best_d = d;
+                best_dist = dist;
+            }
+        }
+    }
     if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
         /* The sucker draws the stem onto the surface: aim the internode at
          * the point `clearance` off the surface below the candidate. */

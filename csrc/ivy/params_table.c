@@ -43,6 +43,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, sucker_length, "Aerial root reach", "Climbing", "m", 0, 10, "D, sucker reach: a bud within it of a surface attaches (paper 30 mm)"),
     BP_DOUBLE(S, clearance, "Gap to the surface", "Climbing", "m", 1e-5, 1, "gap a stem keeps from host surfaces (> 0: a stem on a face must not count as inside it)"),
     BP_BOOL(S, sucker_pull, "Aerial roots pull the stem", "Climbing", "a bud that attaches is drawn to clearance off the surface by its sucker"),
+    BP_DOUBLE(S, wrap_angle, "Wrap over edges up to", "Climbing", "deg", 0, 180, "a stem whose surface falls away under it bends over onto it when the surface turns by at most this within an internode (rounded forms, gentle edges); over a sharper edge it grows on free and may hang (0: never)"),
     BP_DOUBLE(S, w_d, "Cling to surfaces", "Climbing", "", 0, 100, "weight of f_d, staying within sucker reach of a surface (w_d in the paper)"),
     BP_DOUBLE(S, w_v, "Straightness", "Climbing", "", 0, 100, "weight of f_v, gentle turns (w_v in the paper)"),
     BP_DOUBLE(S, w_geo, "Climb upwards", "Climbing", "", 0, 100, "weight of f_geo, growing against gravity (w_geo in the paper)"),
@@ -105,6 +106,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->h1_buds = 2;
     p->leaf_growth_steps = 20;
     p->sucker_pull = 1;
+    p->wrap_angle = 60;
     p->leaves = 1;
     p->stem_sides = 6;
     p->helio_in_plane = 1;

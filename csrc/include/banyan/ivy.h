@@ -46,6 +46,7 @@ typedef struct banyan_ivy_params {
     uint64_t seed;              /* any value; same seed, same bytes */
     int32_t max_vertices;       /* mesh vertex cap, 1 .. 1<<30; more -> BANYAN_E_LIMIT */
     int32_t steps;              /* growth steps of banyan_ivy_generate, 0 .. BANYAN_IVY_MAX_STEPS (paper: 450) */
+    double wrap_angle;          /* deg, 0 .. 180: a stem bends over an edge or curve whose surface turns by at most this (0: never) */
     double years;               /* > 0: grow this many years instead of `steps` (banyan_ivy_steps), 0 .. 1000 */
     double shoot_growth;        /* a leading shoot's growth per year, m, 0.01 .. 10: years x this / internode steps */
     int32_t max_buds;           /* bud cap, 1 .. 50,000,000; a step that could pass it -> BANYAN_E_LIMIT */
