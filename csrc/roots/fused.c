@@ -563,6 +563,12 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         g.acc = g.tmp = NULL;
         if (vs == FUSED_VDB_NOMEM) goto nomem;
         if (vs == FUSED_VDB_STOPPED) goto stopped;
+        if (vs == FUSED_VDB_NO_MODULE) {
+            st = banyan_fail(err, BANYAN_E_INTERNAL,
+                             "the fused roots surface needs libbanyan_vdb.so (OpenVDB) beside libbanyan.so; it is "
+                             "missing or does not load: reinstall banyan, or set surface to tubes");
+            goto done;
+        }
         if (vs != FUSED_VDB_OK) {
             st = banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
                              "OpenVDB could not mesh the fused roots surface (%s)",

@@ -169,7 +169,8 @@ static int mesh_blocks(const fused_vdb_in *in, std::thread::id caller, fused_vdb
     return FUSED_VDB_OK;
 }
 
-extern "C" int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out) {
+/* The module's one export (csrc/banyan_vdb.map). */
+extern "C" __attribute__((visibility("default"))) int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out) {
     std::memset(out, 0, sizeof *out);
     try {
         int rc = FUSED_VDB_FAILED;

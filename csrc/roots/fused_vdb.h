@@ -29,9 +29,19 @@ typedef struct fused_vdb_out {
     uint32_t n_pos, n_tri;
 } fused_vdb_out;
 
-enum { FUSED_VDB_OK = 0, FUSED_VDB_NOMEM = 1, FUSED_VDB_TOO_BIG = 2, FUSED_VDB_FAILED = 3, FUSED_VDB_STOPPED = 4 };
+enum {
+    FUSED_VDB_OK = 0,
+    FUSED_VDB_NOMEM = 1,
+    FUSED_VDB_TOO_BIG = 2,
+    FUSED_VDB_FAILED = 3,
+    FUSED_VDB_STOPPED = 4,
+    FUSED_VDB_NO_MODULE = 5 /* libbanyan_vdb.so is not beside libbanyan.so (fused_vdb_module.c) */
+};
 
-/* Returns FUSED_VDB_*; on failure out is zeroed and nothing is held. */
+/* Returns FUSED_VDB_*; on failure out is zeroed and nothing is held.
+ * Defined by the shim (fused_vdb.cpp: the static library, and the module
+ * libbanyan_vdb.so) and, in libbanyan.so, by fused_vdb_module.c, which
+ * loads the module and calls its definition. */
 int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out);
 
 #ifdef __cplusplus

@@ -5,7 +5,8 @@ library of lib/ to that folder or to the C, C++ and math runtimes; then
 a child Blender with empty user folders and no BANYAN_* variables installs
 it the way Preferences does (Install... / Install from Disk), enables it
 and grows roots around the default cube, and its /proc/self/maps must hold
-no library from the build or source tree. BANYAN_ZIP_DIR names the folder
+no library from the build or source tree, and the OpenVDB module
+(libbanyan_vdb.so) only once the fused roots were meshed. BANYAN_ZIP_DIR names the folder
 holding the zips (default BANYAN_BUILD_DIR); tests/blender/packages.sh runs
 this with the build folder moved away. Under either package a script's
 `import banyan` must give the add-on's own modules (scripting.py)."""
@@ -42,10 +43,13 @@ pkg = sys.modules[name]
 out["package"] = pkg.__file__
 out["load_error"] = sys.modules[name + ".state"].LOAD_ERROR
 out["library"] = sys.modules[name + ".core.lib"].load().banyan_path
-out["maps"] = sorted({ln.split()[-1] for ln in open("/proc/self/maps") if ".so" in ln.rsplit("/", 1)[-1]})
+def maps():
+    return sorted({ln.split()[-1] for ln in open("/proc/self/maps") if ".so" in ln.rsplit("/", 1)[-1]})
+out["maps_start"] = maps()
 n = len(bpy.data.objects)
-out["roots"] = sorted(bpy.ops.mesh.banyan_roots())
+out["roots"] = sorted(bpy.ops.mesh.banyan_roots())  # a fused surface: loads the OpenVDB module
 out["objects"] = len(bpy.data.objects) - n
+out["maps"] = maps()
 # A script's `import banyan`, whatever the package is called: the same modules, a recorded plant.
 import banyan
 import banyan.api
@@ -77,7 +81,8 @@ def check_ldd(kind, zip_path):
                  % (kind, sos))
         with open(os.path.join(lib, "bundled.txt")) as f:
             bundled = f.read().split()
-        bt.check(sorted(bundled + ["libbanyan.so"]) == sos, "%s: bundled.txt lists every bundled library" % kind)
+        bt.check(sorted(bundled + ["libbanyan.so", "libbanyan_vdb.so"]) == sos,
+                 "%s: lib/ holds libbanyan.so, its OpenVDB module and what bundled.txt lists" % kind)
         env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
         for so in sos:
             r = subprocess.run(["ldd", os.path.join(lib, so)], capture_output=True, text=True, env=env)
@@ -114,7 +119,7 @@ def check_install(kind, zip_path, bundled):
         out = json.loads(lines[-1].split(" ", 1)[1])
         root = os.path.realpath(os.path.join(user, "extensions", "user_default", "banyan") if kind == "extension"
                                 else os.path.join(user, "scripts", "addons", "banyan"))
-        print("%s:" % kind, json.dumps({k: v for k, v in out.items() if k != "maps"}))
+        print("%s:" % kind, json.dumps({k: v for k, v in out.items() if not k.startswith("maps")}))
         bt.check(out["install"] == ["FINISHED"] and out["enabled"], "%s: installed and enabled: %s"
                  % (kind, out["install"]))
         bt.check(os.path.realpath(out["package"]).startswith(root + os.sep), "%s: package from the install: %s"
@@ -123,6 +128,9 @@ def check_install(kind, zip_path, bundled):
         bt.check(os.path.realpath(out["library"]) == os.path.join(root, "lib", "libbanyan.so"),
                  "%s: the package's own library: %s" % (kind, out["library"]))
         maps = [os.path.realpath(m) for m in out["maps"]]
+        module = os.path.join(root, "lib", "libbanyan_vdb.so")
+        bt.check(module not in [os.path.realpath(m) for m in out["maps_start"]] and module in maps,
+                 "%s: the OpenVDB module loaded from the package when fused roots were meshed, not at start" % kind)
         for name in bundled:
             mine = os.path.join(root, "lib", name)
             # A soname Blender loaded first (4.5+ ships libtbb.so.12) is used as it is: one runtime per process.
