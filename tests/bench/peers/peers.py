@@ -605,6 +605,43 @@ def ivy_large_flatness(rows):
 
 
 # ------------------------------------------------------------------- report
+# What a user waits for: each script under tests/bench/ times one wait with
+# alternating runs of the CLI and prints markdown rows
+# `| figure | value | target | verdict |`, copied in as they are.
+WAITS = (("Levels of detail", "bench_lod_wait.py"), ("Textured writes", "bench_texture_write.py"),
+         ("Start-up", "bench_startup.py"), ("Compact glTF", "bench_compact.py"))
+
+
+def section_waits():
+    out = []
+    for title, script in WAITS:
+        path = os.path.join(SRC, "tests", "bench", script)
+        if not os.path.isfile(path):
+            continue
+        res = subprocess.run(["python3", path, "--build", BUILD, "--runs", str(max(RUNS, 5))], capture_output=True,
+                             text=True)
+        text = res.stdout.strip() if res.returncode == 0 else "failed (exit %d): %s" % (
+            res.returncode, (res.stderr or res.stdout).strip()[-400:])
+        out.append((title, script, text))
+        print("waits: %s done" % script, flush=True)
+    return out
+
+
+def waits_lines(waits, ban_i, peers_i, run_model):
+    L = ["## What users wait for", "",
+         "Measured in this run (%s) by the scripts named, each with alternating runs of the CLI; the load they "
+         "name is the machine's as they ran." % run_model, ""]
+    ig = peers_i[1]
+    rg = (ban_i.stem / ban_i.grow.med) / (ig.stem / ig.op.med)
+    L += ["### Ivy growth (section 1)", "", "| figure | value | target | verdict |", "|---|---|---|---|",
+          "| ivy_wall growth per metre of stem against IvyGen's operator, stem-matched | %.1fx (%.0f m/s against "
+          "%.0f m/s) | >= 25x | **%s** |" % (rg, ban_i.stem / ban_i.grow.med, ig.stem / ig.op.med,
+                                             "met" if rg >= 25 else "not met"), ""]
+    for title, script, text in waits:
+        L += ["### %s (`tests/bench/%s`)" % (title, script), "", text, ""]
+    return L
+
+
 def git_rev():
     """HEAD, with "+changes" when tracked files other than OUT differ from it."""
     def git(*a):
@@ -779,7 +816,7 @@ def avenue_lines(avenue, run_model):
 
 
 def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textures=("", (0.0, 0.0)), roots_c="",
-           ivy_large=None, avenue=None, started=None):
+           ivy_large=None, avenue=None, started=None, waits=None):
     ban_i, peers_i = ivy
     ban_t, peers_t = tree
     model, cores = machine()
@@ -1077,6 +1114,7 @@ def report(ivy, tree, roots, mem, mem_text, hosts, load0, load1, elapsed, textur
     L.extend(kept_section("instancing.md", run_model))
     L.extend(ivy_large_lines(ivy_large, run_model))
     L.extend(avenue_lines(avenue, run_model))
+    L.extend(waits_lines(waits or [], ban_i, peers_i, run_model))
     L.extend(kept_section("batch.md", run_model))
     L.extend(kept_section("flamenco.md", run_model))
     L.extend(kept_section("profile.md", run_model))
@@ -1109,8 +1147,9 @@ def main():
         print("ivy large %s: %s" % (key, big.get("skip", "%d rows" % len(big.get("rows", [])))), flush=True)
     avenue = section_avenue_write()
     print("avenue: %s" % avenue.get("skip", "done"), flush=True)
+    waits = section_waits()
     text = report(ivy, tree, roots, mem[0], mem[1], hosts, load0, os.getloadavg(), time.perf_counter() - t0,
-                  textures, roots_c, ivy_large, avenue, started)
+                  textures, roots_c, ivy_large, avenue, started, waits)
     with open(OUT, "w") as f:
         f.write(text)
     print(text)
