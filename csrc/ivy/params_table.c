@@ -179,7 +179,7 @@ int32_t banyan_ivy_steps(const banyan_ivy_params *p) {
     if (!p) return -1;
     if (!(p->years > 0)) return p->steps;
     double n = p->years * p->shoot_growth / p->internode;
-    if (!(n <= BANYAN_IVY_MAX_STEPS)) return -1; /* NaN too */
+    if (!(n >= 0 && n <= BANYAN_IVY_MAX_STEPS)) return -1; /* NaN, and a negative rate or internode, too */
     return (int32_t)(n + 0.5);
 }
 

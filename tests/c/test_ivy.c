@@ -616,6 +616,13 @@ static void test_bad_input(void) {
     p.years = NAN;
     REFUSED(BANYAN_E_RANGE, "years", &w, 1);
     CHECK(banyan_ivy_steps(NULL) == -1, "banyan_ivy_steps(NULL)");
+    {   /* Before any check: a negative rate or internode is -1, no overflow. */
+        banyan_ivy_params q = p;
+        q.years = 2, q.shoot_growth = -1e60, q.internode = 0.03;
+        CHECK(banyan_ivy_steps(&q) == -1, "banyan_ivy_steps with shoot_growth -1e60: %d", banyan_ivy_steps(&q));
+        q.shoot_growth = 1.5, q.internode = -1e-300;
+        CHECK(banyan_ivy_steps(&q) == -1, "banyan_ivy_steps with internode -1e-300: %d", banyan_ivy_steps(&q));
+    }
     p.threads = -1;
     REFUSED(BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", &w, 1);
     p.threads = BANYAN_IVY_MAX_THREADS + 1;
