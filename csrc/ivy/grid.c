@@ -357,6 +357,43 @@ static int cells_around(const banyan_ivy *iv, int32_t x0, int32_t x1, int32_t y0
     return n;
 }
 
+/* The cells around cell (x, y, z), which exists: the list cells_around
+ * gives for x - 1 .. x + 1, y - 1 .. y + 1, z - 1 .. z + 1, read from the
+ * cell's row of neighbours instead of hashing 27 cells. */
+static int cells_near(const banyan_ivy *iv, int32_t x, int32_t y, int32_t z, const ivy_cell **out) {
+    const int32_t *row = iv->cnb[cell_slot(iv, x, y, z)->id];
+    uint32_t slot[27];
+    int m = 0;
+    for (int o = 0; o < 27; o++)
+        if (row[o] >= 0) {
+            slot[m] = iv->cslot[row[o]];
+            IVY_PREFETCH(&iv->cells[slot[m++]]);
+        }
+    int n = 0;
+    for (int q = 0; q < m; q++) {
+        const ivy_cell *c = &iv->cells[slot[q]];
+        if (c->n > 0) {
+            IVY_PREFETCH(iv->pool + c->at + c->n - 1);
+            IVY_PREFETCH(iv->pool + c->at);
+            out[n++] = c;
+        }
+    }
+    return n;
+}
+
+/* Fills the row of neighbours of the new cell c and enters it in theirs. */
+static void cell_row(banyan_ivy *iv, const ivy_cell *c) {
+    int32_t *row = iv->cnb[c->id];
+    int o = 0;
+    for (int32_t dz = -1; dz <= 1; dz++)
+        for (int32_t dy = -1; dy <= 1; dy++)
+            for (int32_t dx = -1; dx <= 1; dx++, o++) {
+                const ivy_cell *e = cell_slot(iv, c->x + dx, c->y + dy, c->z + dz);
+                row[o] = e->x == INT32_MIN ? -1 : e->id;
+                if (row[o] >= 0) iv->cnb[e->id][26 - o] = c->id;
+            }
+}
+
 static inline void cell_mark(banyan_ivy *iv, const ivy_cell *c) {
     uint32_t k = (uint32_t)(c - iv->cells);
     iv->cbits[k >> 6] |= (uint64_t)1 << (k & 63);
@@ -367,7 +404,7 @@ static int cells_resize(banyan_ivy *iv, uint32_t slots) {
     /* slots is at least 64: the bitmap of used slots follows the table */
     ivy_cell *t = malloc(sizeof(ivy_cell) * slots + sizeof(uint64_t) * (slots / 64)), *old = iv->cells;
     if (!t) return 0;
-    for (uint32_t k = 0; k < slots; k++) t[k] = (ivy_cell){INT32_MIN, 0, 0, 0, 0, 0};
+    for (uint32_t k = 0; k < slots; k++) t[k] = (ivy_cell){INT32_MIN, 0, 0, 0, 0, 0, 0};
     uint32_t old_slots = old ? iv->cmask + 1 : 0;
     iv->cells = t;
     iv->cbits = (uint64_t *)(void *)(t + slots);
@@ -378,6 +415,7 @@ static int cells_resize(banyan_ivy *iv, uint32_t slots) {
             ivy_cell *c = cell_slot(iv, old[k].x, old[k].y, old[k].z);
             *c = old[k];
             cell_mark(iv, c);
+            iv->cslot[c->id] = (uint32_t)(c - t);
         }
     free(old);
     return 1;
@@ -392,9 +430,20 @@ static ivy_cell *cell_room(banyan_ivy *iv, int32_t x, int32_t y, int32_t z) {
             if (iv->cmask >= (1u << 30) || !cells_resize(iv, 2 * (iv->cmask + 1))) return NULL;
             c = cell_slot(iv, x, y, z);
         }
-        *c = (ivy_cell){x, y, z, 0, 0, 0};
+        if (iv->n_cells == iv->cnb_cap) { /* rows and slots of cells by id */
+            int32_t cap = iv->cnb_cap ? 2 * iv->cnb_cap : 256;
+            int32_t(*r)[27] = iv->cnb_cap < (1 << 26) ? realloc(iv->cnb, sizeof *r * (size_t)cap) : NULL;
+            if (!r) return NULL;
+            iv->cnb = r;
+            uint32_t *sl = realloc(iv->cslot, sizeof *sl * (size_t)cap);
+            if (!sl) return NULL;
+            iv->cslot = sl;
+            iv->cnb_cap = cap;
+        }
+        *c = (ivy_cell){x, y, z, 0, 0, 0, iv->n_cells};
         cell_mark(iv, c);
-        iv->n_cells++;
+        iv->cslot[iv->n_cells++] = (uint32_t)(c - iv->cells);
+        cell_row(iv, c);
     }
     if (c->n == c->cap) {
         /* A run twice as long at the pool's end; the old run is left
@@ -628,7 +677,12 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
         bx[2] = y0, bx[3] = y1 <= y0 + 3 ? y1 : y0 + 3;
         bx[4] = z0, bx[5] = z1 <= z0 + 3 ? z1 : z0 + 3;
     }
-    const int ncl = cells_around(iv, x0, x1, y0, y1, z0, z1, cl);
+    /* Around a bud's own cell (the usual case): its row of neighbours. */
+    const int32_t *bc = self >= 0 && self < iv->n ? iv->bcell[self] : NULL;
+    const int ncl = bc && bc[0] != INT32_MIN && x0 == bc[0] - 1 && x1 == bc[0] + 1 && y0 == bc[1] - 1 &&
+                            y1 == bc[1] + 1 && z0 == bc[2] - 1 && z1 == bc[2] + 1
+                        ? cells_near(iv, bc[0], bc[1], bc[2], cl)
+                        : cells_around(iv, x0, x1, y0, y1, z0, z1, cl);
     if (cl != cl_own) gather->n_lc = ncl;
     for (int q = 0; q < ncl; q++) {
         const ivy_cell *c = cl[q];

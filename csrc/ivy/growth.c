@@ -137,10 +137,13 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
     const banyan_ivy_params *p = &iv->p;
     const ivy_bud *b = &iv->buds[i];
     const double l = p->internode, D = p->sucker_length;
-    const double fd_max = sucker && D > 0 ? 1.0 : 0.0;
+    /* A free candidate is at least clearance off every box (ivy_blocked
+     * refuses nearer ones), so f_d < 1 - 0.999 clearance / D there (the
+     * 0.999 covers the rounding of the boxes' bounds); a mesh's float
+     * surface gets no such margin. */
+    const double fd_max = !(sucker && D > 0) ? 0.0 : iv->n_mesh ? 1.0 : 1.0 - 0.999 * p->clearance / D;
     /* Every candidate's free terms first, with the most it could score
-     * (f_d, f_grav and f_cross at their most: a free candidate is at
-     * least clearance off every surface, so f_d <= 1). Then the host
+     * (f_d or f_grav, and f_cross, at their most). Then the host
      * queries, the costly part, in order of that bound, best first: once
      * the bound cannot beat the best found, no later candidate can. The
      * winner is the one the spec's order gives: the highest score, and on
@@ -176,8 +179,14 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
         c->fhelio = helio_on ? (1.0 + v3_dot(vlh, d)) * 0.5 : 0.0;
         c->ftendril = w_tendril > 0 ? (1.0 - v3_dot(surf_n, d)) * 0.5 : 0.0;
         double fgrav_max = grav_on && d.z < 1.0 ? (1.0 - d.z) * 0.5 : 0.0;
-        c->f_max = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max +
-                   p->w_helio * c->fhelio + w_tendril * c->ftendril + w_cross;
+        /* f_d and f_grav exclude each other (f_grav only while free): the
+         * bound is the larger of the two cases, each summed as the score
+         * is, so that rounding keeps it a bound. */
+        const double on = p->w_d * fd_max + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * 0.0 +
+                          p->w_helio * c->fhelio + w_tendril * c->ftendril + w_cross;
+        const double off = p->w_d * 0.0 + p->w_v * c->fv + p->w_geo * c->fgeo + p->w_grav * fgrav_max +
+                           p->w_helio * c->fhelio + w_tendril * c->ftendril + w_cross;
+        c->f_max = on >= off ? on : off > on ? off : on + off; /* NaN stays NaN */
     }
     /* The order of the queries: by cand_before, a total order unless a
      * bound is NaN. Up to 32 candidates an insertion sort of their
@@ -598,6 +607,8 @@ void banyan_ivy_free(banyan_ivy *iv) {
     free(iv->dep_head);
     free(iv->dep);
     free(iv->cells);
+    free(iv->cnb);
+    free(iv->cslot);
     free(iv->pool);
     free(iv->chain);
     free(iv->tmp);

@@ -79,6 +79,7 @@ typedef struct ivy_xstem {
 typedef struct ivy_cell {
     int32_t x, y, z;
     int32_t at, n, cap;
+    int32_t id;       /* its number, in the order cells were made (its row of cnb) */
 } ivy_cell;
 
 struct banyan_ivy {
@@ -126,6 +127,13 @@ struct banyan_ivy {
     uint64_t *cbits;       /* a bit per slot: used (in cells' block) */
     uint32_t cmask;        /* slots - 1 */
     int32_t n_cells;
+    /* Per cell (by id): the ids of the 27 cells around it, in z, y, x
+     * order, -1 where there is none, and its slot in the table; room for
+     * cnb_cap cells. A light test reads these instead of hashing the 27
+     * cells (grid.c, shade). */
+    int32_t (*cnb)[27];
+    uint32_t *cslot;
+    int32_t cnb_cap;
     ivy_gnode *pool;
     int64_t pool_n, pool_cap;
     /* The order a cell's buds are read in: newest link first, reset to
