@@ -196,6 +196,7 @@ static void compare_attribute(Glb *p, Glb *c, const cJSON *pn, const cJSON *cn, 
     node_frame(cn, ct, cs);
     const int is_pos = !strcmp(key, "POSITION"), pivots = pivot_axis(key, 0) >= 0;
     const int is_dir = !strcmp(key, "NORMAL") || !strcmp(key, "TANGENT");
+    const int framed = item(cn, "scale") != NULL;
     long bad = 0;
     for (uint32_t i = 0; i < np; ++i) {
         const double *x = a + (size_t)i * (size_t)wp, *y = b + (size_t)i * (size_t)wp;
@@ -209,10 +210,11 @@ static void compare_attribute(Glb *p, Glb *c, const cJSON *pn, const cJSON *cn, 
                 }
                 const double want = pt[ax] + x[k], got = ct[ax] + cs[ax] * y[k];
                 const double step = cs[ax], err = fabs(got - want) / step;
-                if (is_pos && err > worst_position) worst_position = err;
-                if (!is_pos && err > worst_pivot) worst_pivot = err;
-                /* half a step from rounding, plus float rounding of the plain value */
-                if (fabs(got - want) > 0.5 * step + 1e-6 * (1 + fabs(want))) bad++;
+                if (framed && is_pos && err > worst_position) worst_position = err;
+                if (framed && !is_pos && err > worst_pivot) worst_pivot = err;
+                /* Quantized (the node has a scale): half a step from rounding, plus
+                 * float rounding of the plain value; else the same floats. */
+                if (framed ? fabs(got - want) > 0.5 * step + 1e-6 * (1 + fabs(want)) : x[k] != y[k]) bad++;
             }
         } else if (is_dir) {
             double dot = x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
