@@ -254,7 +254,8 @@ class Job:
         class GltfOptions(C.Structure):
             _fields_ = [("textures", C.c_int32), ("texture_size", C.c_int32), ("texture_seed", C.c_uint64),
                         ("engine_uvs", C.c_int32), ("sync", C.c_int32),  # sync 0: no fsync, as the CLI
-                        ("image_dir", C.c_char_p)]  # NULL: textures embedded, as the CLI
+                        ("image_dir", C.c_char_p),  # NULL: textures embedded, as the CLI
+                        ("compact", C.c_int32)]  # 0: plain meshes, as the CLI
 
         size = lib.banyan_sizeof_gltf_options
         size.restype, size.argtypes = C.c_size_t, []

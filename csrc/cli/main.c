@@ -2,7 +2,7 @@
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
  *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
- *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--fsync]
+ *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--fsync] [--compact]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -54,6 +54,7 @@ static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
                "                        [--textures on|off] [--texture-size N] [--lod LIST] [--engine-uvs] [--fsync]\n"
+               "                        [--compact]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
@@ -63,6 +64,9 @@ static int usage(FILE *f) {
                "shares of its triangles, optionally ending in billboard cards (3 vertical, 1 on top).\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
                "(docs/game-engines.md).\n"
+               "--compact writes quantized, meshopt-compressed meshes (KHR_mesh_quantization,\n"
+               "EXT_meshopt_compression, both required): smaller files that fewer importers read\n"
+               "(three.js with its MeshoptDecoder; not Blender's; docs/gltf.md).\n"
                "--threads N: threads for avenue (one tree each), keyaki and ivy (meshing); 0: all cores\n"
                "(default); the output is the same on any count.\n"
                "--fsync syncs the glTF file to the disk before it replaces -o, so it survives a power cut\n"
@@ -316,6 +320,7 @@ int main(int argc, char **argv) {
         }
         else if (!strcmp(a, "--engine-uvs")) gltf_opt.engine_uvs = 1;
         else if (!strcmp(a, "--fsync")) gltf_opt.sync = 1;
+        else if (!strcmp(a, "--compact")) gltf_opt.compact = 1;
         else if (!strcmp(a, "--list")) list = 1;
         else {
             fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);

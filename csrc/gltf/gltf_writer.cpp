@@ -49,6 +49,7 @@
 #include "core/dmath.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "gltf/gltf_compact.h"
 #include "textures/tex_budget.h"
 
 #include <tiny_gltf.h>
@@ -1418,6 +1419,8 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
     if (o.sync != 0 && o.sync != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->sync = %d must be 0 (no fsync) or 1 (fsync before the rename)",
                            o.sync);
+    if (o.compact != 0 && o.compact != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->compact = %d must be 0 (plain) or 1 (compact)", o.compact);
     if (o.image_dir != nullptr && o.image_dir[0] != '\0' && !image_dir_ok(o.image_dir))
         return banyan_fail(err, BANYAN_E_RANGE,
                            "opt->image_dir = '%.200s' must be a relative folder of at most 1024 characters, "
@@ -1809,6 +1812,14 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
         banyan_status s = check_node(nodes[i], i, ex, err);
         if (s != BANYAN_OK) return s;
     }
+    if (o.compact) { /* the plain .glb, rewritten compact (gltf_compact.cpp) */
+        banyan_gltf_options plain = o;
+        plain.compact = 0;
+        plain.sync = 0;
+        return gltf_compact_write(path, binary, o.sync != 0, o.engine_uvs != 0, [&](const char *tmp) {
+            return write_nodes_impl(tmp, nodes, count, &plain, budget, ex, err);
+        }, err);
+    }
     /* The budget: the textures' memory refused up front from their size,
      * time checked between meshes, while streaming and inside the texture
      * painters and PNG encoders (on the drawing threads, by deadline). */
@@ -2155,6 +2166,7 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
     opt->engine_uvs = 0;
     opt->sync = 0;
     opt->image_dir = nullptr;
+    opt->compact = 0;
 }
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }

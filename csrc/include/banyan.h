@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 15
+#define BANYAN_ABI_VERSION 16
 
 /* ---------------------------------------------------------------- status */
 
@@ -532,6 +532,9 @@ typedef struct banyan_gltf_options {
                                 part), named <image>-<texture_size>-s<texture_seed>.png and referenced by that
                                 relative URI. The folder is created; a file already there is kept, not drawn
                                 again (each is written whole by rename, so one that exists is complete) */
+    int32_t compact;         /* 0/1: quantized (KHR_mesh_quantization) and meshopt-compressed
+                                (EXT_meshopt_compression) meshes, both required: a fraction of the size, read
+                                by fewer importers (docs/gltf.md "Compact files"). Default 0 */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);

@@ -12,6 +12,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { Wind, hasWind } from './wind.js';
 
 const $ = (id) => document.getElementById(id);
@@ -145,7 +146,8 @@ function load(source, name) {
   const onError = (e) => {
     if (token === loadToken) fail(`Cannot load ${name}: ${e && e.message ? e.message : e}`);
   };
-  const loader = new GLTFLoader();
+  // EXT_meshopt_compression: banyan's compact files (docs/gltf.md).
+  const loader = new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
   if (typeof source === 'string') loader.load(source, onLoad, undefined, onError);
   else loader.parse(source, '', onLoad, onError);
 }

@@ -46,6 +46,7 @@ uniform vec3 banyanWindAxis;   // world axis the wind turns things about (unit, 
 uniform float banyanWindStrength, banyanWindGust, banyanWindCycle, banyanWindFlutter, banyanWindFlutterCycle;
 uniform float banyanWindSwayCycle;
 uniform float banyanWindBase;   // the plant's lowest y (its own frame)
+uniform float banyanWindUnit;   // metres per unit of that frame (a compact file's node scale; else 1)
 
 // Rotation by angle a (radians) about the unit axis k (Rodrigues).
 mat3 banyanWindRotation(vec3 k, float a) {
@@ -95,7 +96,7 @@ float banyanH = transformed.y - banyanWindBase;
 transformed += banyanTurn * banyanArm - banyanArm;
 transformed += banyanDir * (banyanBend * banyanH);
 transformed += banyanRestNormal * (banyanWindFlutter * _wind_flutter *
-               sin(6.28318531 * (banyanWindFlutterCycle + _wind_phase)));
+               sin(6.28318531 * (banyanWindFlutterCycle + _wind_phase))) / banyanWindUnit;
 `;
 
 export class Wind {
@@ -147,8 +148,8 @@ export class Wind {
   // Makes material sway (it must be used only on geometry with the wind
   // attributes); base: the plant's lowest y in the geometry's frame.
   // Returns it.
-  patch(material, base = 0) {
-    const uniforms = { ...this.uniforms, banyanWindBase: { value: base } };
+  patch(material, base = 0, unit = 1) {
+    const uniforms = { ...this.uniforms, banyanWindBase: { value: base }, banyanWindUnit: { value: unit } };
     material.onBeforeCompile = (shader) => {
       if (!shader.vertexShader.includes('#include <beginnormal_vertex>') ||
           !shader.vertexShader.includes('#include <begin_vertex>')) return;
@@ -188,10 +189,14 @@ export class Wind {
     root.traverse((o) => {
       if (!o.isMesh || !hasWind(o.geometry)) return;
       const base = bases.get(plant(o));
+      // A compact file's positions and pivots are in steps of its node's
+      // (uniform) scale: the turn and the bend do not depend on the unit,
+      // the flutter (metres along the normal) does.
+      const unit = plant(o).scale.x;
       this.bases.set(o, base);
       const one = (m) => {
-        const key = `${m.uuid}:${base}`;
-        if (!copies.has(key)) copies.set(key, this.patch(m.clone(), base));
+        const key = `${m.uuid}:${base}:${unit}`;
+        if (!copies.has(key)) copies.set(key, this.patch(m.clone(), base, unit));
         return copies.get(key);
       };
       o.material = Array.isArray(o.material) ? o.material.map(one) : one(o.material);

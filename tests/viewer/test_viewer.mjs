@@ -252,6 +252,12 @@ cases.push({ name: 'wind_avenue', file: 'wind_avenue.glb', kind: 'preset', insta
 cases.push({ name: 'lod_keyaki', file: 'lod_keyaki.glb', kind: 'preset', lod: true, tree: true,
              ready: () => write('lod_keyaki.glb', ['keyaki', '--preset', youngFile, '--lod', '0.5,0.15',
                                                    '--textures', 'off']) });
+// A compact file (--compact: KHR_mesh_quantization, EXT_meshopt_compression)
+// of the same keyaki with its levels: three.js decodes it with its
+// MeshoptDecoder, and it must show, count and sway like the plain one.
+cases.push({ name: 'compact_keyaki', file: 'compact_keyaki.glb', kind: 'preset', lod: true, tree: true,
+             ready: () => write('compact_keyaki.glb', ['keyaki', '--preset', youngFile, '--lod', '0.5,0.15',
+                                                       '--textures', 'off', '--compact']) });
 // The controls that must fail, once every file is written (the truncated
 // one is half of the smallest).
 const allWritten = () => Promise.allSettled(cases.filter((c) => c.kind !== 'error' && c.kind !== 'blank')
