@@ -1,5 +1,5 @@
-/* test_budget.c - every run keeps its budget (issue 21, items 2 and 4):
- * the issue's inputs under max_seconds = 2 stop within 2.5 s of wall time
+/* test_budget.c - every run keeps its budget:
+ * long ivy, roots and segments runs under max_seconds = 2 stop within 2.5 s of wall time
  * with BANYAN_E_LIMIT and a message naming max_seconds; a memory budget
  * stops with BANYAN_E_LIMIT naming max_memory_mb before the process holds
  * 1.5 times it; the step API keeps max_vertices while it grows. The

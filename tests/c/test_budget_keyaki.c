@@ -1,4 +1,4 @@
-/* The run budget of keyaki and avenue (issue 21, item 3; docs/keyaki.md
+/* The run budget of keyaki and avenue (docs/keyaki.md
  * "Budget"):
  *   - a tree and an avenue under max_seconds = 2 on inputs that take
  *     longer stop within 2.5 s (CHECK_SLACK looser under sanitizers) with BANYAN_E_LIMIT naming max_seconds,
