@@ -1,4 +1,4 @@
-"""Issue #21's hostile CLI cases, run for real by tools/reliability_table.py.
+"""The hostile CLI cases, run for real by tools/reliability_table.py.
 
 Each case is a `banyan` command line (with its files made in a scratch
 folder), what was wanted, and a judge that reads the run - exit status,
