@@ -24,7 +24,7 @@ import time
 
 CUT = 20.0        # s: a run still going is killed and recorded as ran past
 BUDGET = 2.0      # s: max_seconds asked of budget cases
-BUDGET_SLACK = 2.5  # s: the issue's "stops within 2.5 s"
+BUDGET_SLACK = 2.5  # s: a budget run "stops within 2.5 s"
 
 
 class Run:
@@ -196,7 +196,7 @@ def accepted_judge(r, ctx):
 
 
 def cases(banyan, presets, tmp):
-    """The cases, in the issue's order. Each build(ctx) returns (argv, run
+    """The cases, in a fixed order. Each build(ctx) returns (argv, run
     options); ctx holds the scratch folder and what the judge needs."""
     P = lambda name: os.path.join(presets, name)
     out = lambda name: os.path.join(tmp, name)

@@ -5,7 +5,7 @@
  *     *out NULL; a small max_memory_mb stops them naming max_memory_mb;
  *   - a tree past max_vertices is refused while its skeleton grows: its
  *     peak resident set stays far below the 2.2 GB a whole skeleton of
- *     max_nodes = 2^24 takes (1.4 GB in the issue);
+ *     max_nodes = 2^24 takes;
  *   - an avenue's peak resident set on 8 threads is within 1.2x of 1
  *     thread, refused (every tree grows part way) and built alike; the
  *     bytes are the same on 1, 3 and 8 threads;

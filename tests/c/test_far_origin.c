@@ -19,7 +19,7 @@
 #include "host_meshes.h"
 
 static const double FAR[3] = {999999.0, -500000.0, 5000.0};
-/* The issue's own case: a trunk standing on the ground moved to x = 999,999
+/* A trunk standing on the ground moved to x = 999,999
  * m alone; the near axes keep a 0 origin, so nothing but x moves. */
 static const double FAR_X[3] = {999999.0, 0.0, 0.0};
 static const double *shift = FAR; /* the move same_world compares */
