@@ -12,8 +12,8 @@
  *     the bare sag (sag_stiffening = tip_hook_length = 0) measured in
  *     the same run (0.884 on the pillar).
  *   - Every run, growing or ended, turns its end up: its last 3 buds'
- *     V.z > 0 (before: 32 of 450 on the pillar); and at least 95 % rise
- *     over their last three internodes (before: none).
+ *     V.z > 0 (the bare sag's: few); and at least 95 % rise over
+ *     their last three internodes (the bare sag's: none).
  *   - Enough runs that this means something: at least 100 on the pillar.
  * Printed too, not checked: the median angle between the overall
  * directions (anchor -> lowest bud) of neighbouring runs (anchors within
