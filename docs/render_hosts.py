@@ -6,7 +6,7 @@ docs/img/hosts/, in the shared scene of docs/render_scene.py:
 
 (or `bash tools/render_docs.sh hosts`). Each host is a Blender primitive
 grown on through banyan.api with host_shape 'BOX' (its oriented bounding
-box: the only host shape before issue #15) and 'SURFACE' (its real
+box) and 'SURFACE' (its real
 triangles). The two pictures of a pair share one camera, framed on the
 host's bounds with a fixed margin, so only the host shape differs.
 Cycles on the CPU, fixed seed and samples, no denoiser; every picture is

@@ -1,7 +1,6 @@
 """The ivy of presets/ivy_wall.json (a 3 m x 3 m wall, its front face at
 y = 0 looking along -y, the ivy from its bottom centre) and
-presets/ivy_pillar.json, for docs/ivy.md's before/after pictures of
-issue #19:
+presets/ivy_pillar.json, for docs/ivy.md's before/after pictures:
 
     bash tools/render_docs.sh ivy -- --tag after --values '{"t0": 20}'
 

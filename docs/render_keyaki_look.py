@@ -1,6 +1,6 @@
 """The keyaki of presets/keyaki_mature.json, keyaki_young.json and
 avenue_boulevard.json as a person sees them, for docs/keyaki.md's
-before/after pictures of issue #20:
+before/after pictures:
 
     bash tools/render_docs.sh keyaki -- --tag after
 
@@ -16,9 +16,9 @@ writes docs/img/keyaki/look_<tag>_<view>.png:
           without "avenue_">.png (e.g. _avenue_boulevard.png). The default
           is the street because the 100-tree boulevard is too heavy here
           once the trees carry ~30,000 leaves each: 6.6 M faces (leaves
-          only, no twigs yet) took 2 min 11 s and 7.1 GB in Blender 3.4 on
+          only, no twigs) took 2 min 11 s and 7.1 GB in Blender 3.4 on
           this 2-core machine, against 25 s and 1.5 GB for 1.2 M faces
-          before issue #20;
+          of 0.5 m spray cards;
   young   keyaki_young from 10 m at eye height (it must not read as a
           lollipop);
   silhouette  the tree view in black against a white sky, no ground: what

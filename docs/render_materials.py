@@ -7,8 +7,8 @@ docs/render_scene.py:
         --tag after [--addon DIR] [--only NAME ...] [--size 480x360] [--samples 32] [--texture-size 1024]
 
 --addon is the blender_addon/ folder to use (default this repository's):
-"before" is made with the add-on and library of the commit before issue
-#17 (flat colours), "after" with this one (shared textured materials),
+"before" is made with the add-on and library of commit e9b3e72 (flat
+colours), "after" with this one (shared textured materials),
 same plants, same cameras. Each shot picks its surface point from the
 plant's own vertices (the one furthest out towards the view direction in
 a height band), so both versions frame the same spot. Cycles on the CPU,
@@ -132,12 +132,12 @@ def main():
         from banyan import materials
         materials.FALLBACK_SIZE = a.texture_size
     except ImportError:
-        pass  # the add-on before issue #17
+        pass  # the "before" add-on (flat colours)
     print("banyan from %s, library %s" % (os.path.dirname(api.__file__), os.environ.get("BANYAN_LIB")))
     w, h = (int(v) for v in a.size.split("x"))
     for name in a.only or SHOTS:
         if "season" in SHOTS[name][1] and a.tag == "before":
-            continue  # no seasons before issue #17
+            continue  # the "before" add-on has no seasons
         shoot(name, a.out, w, h, a.samples, a.tag)
 
 

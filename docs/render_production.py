@@ -1,4 +1,4 @@
-"""Issue #22's pictures: keyaki_mature's levels of detail side by side, and
+"""Production pictures: keyaki_mature's levels of detail side by side, and
 keyaki_young's growth animation at three frames, through the add-on
 (api.make_lods, the "Banyan Growth" modifier):
 

@@ -143,7 +143,7 @@ def select_cube():
 @step(2.0)
 def setup():
     os.makedirs(OUT, exist_ok=True)
-    # The cube resting on the ground, the cursor at the origin: issue #16's first case.
+    # The cube resting on the ground, the cursor at the origin: on its bottom face.
     bpy.data.objects["Cube"].location.z = 1.0
     bpy.context.scene.cursor.location = (0.0, 0.0, 0.0)
     select_cube()

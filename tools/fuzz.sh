@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Short libFuzzer runs of every harness (issue 8; part of tools/test.sh):
+# Short libFuzzer runs of every harness (part of tools/test.sh):
 # builds build-fuzz with Debian's clang (libFuzzer + ASan + UBSan), makes
 # the seed corpora from presets/, runs each harness FUZZ_SECONDS (default
 # 60) two at a time, appends one JSON line per harness to the results file

@@ -1,4 +1,4 @@
-"""Issue #21's hostile CLI cases, run for real by tools/reliability_table.py.
+"""The hostile CLI cases, run for real by tools/reliability_table.py.
 
 Each case is a `banyan` command line (with its files made in a scratch
 folder), what was wanted, and a judge that reads the run - exit status,
@@ -24,7 +24,7 @@ import time
 
 CUT = 20.0        # s: a run still going is killed and recorded as ran past
 BUDGET = 2.0      # s: max_seconds asked of budget cases
-BUDGET_SLACK = 2.5  # s: the issue's "stops within 2.5 s"
+BUDGET_SLACK = 2.5  # s: a budget run "stops within 2.5 s"
 
 
 class Run:
@@ -196,7 +196,7 @@ def accepted_judge(r, ctx):
 
 
 def cases(banyan, presets, tmp):
-    """The cases, in the issue's order. Each build(ctx) returns (argv, run
+    """The cases, in a fixed order. Each build(ctx) returns (argv, run
     options); ctx holds the scratch folder and what the judge needs."""
     P = lambda name: os.path.join(presets, name)
     out = lambda name: os.path.join(tmp, name)

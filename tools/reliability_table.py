@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes docs/reliability.md from real runs (issue 8): nothing in its tables
+"""Writes docs/reliability.md from real runs: nothing in its tables
 is typed by hand.
 
 Sources:
@@ -12,7 +12,7 @@ Sources:
   - the add-on's hostile-input results, out/addon_hostile.json (a JSON list
     of {operator, property, value, result, message, scene_unchanged}, written
     by the headless Blender test), when present;
-  - issue #21's hostile CLI commands (tools/hostile_cli.py), run here with
+  - the hostile CLI commands (tools/hostile_cli.py), run here with
     BUILD/banyan: wall time, peak memory, outcome, and whether what was
     wanted held.
 
@@ -62,7 +62,7 @@ leaves its out pointer NULL. The statuses are distinct per kind of fault:
 | output past `max_vertices` (or another documented cap) | `BANYAN_E_LIMIT` |
 | malformed preset text | `BANYAN_E_PARSE`, `BANYAN_E_TYPE`, `BANYAN_E_UNKNOWN_KEY` |
 
-Choices made where the issue left one open:
+Choices made:
 
 - **Degenerate hosts are refused, never repaired.** A box needs a half-extent
   in [1e-6, 1e6] m on every axis, a finite centre within 1e6 m, and a
@@ -75,8 +75,8 @@ Choices made where the issue left one open:
   than a main root can ever move (start_radius + (growth_points - 1) x moves
   x hypot(forward_max, lateral) units, plus 4 r) is refused with
   `BANYAN_E_START_FAR`: no root could touch a host.
-- **Ivy: a start inside a host is repaired**, as documented since the ivy
-  landed: the start is snapped to the nearest host surface (the default
+- **Ivy: a start inside a host is repaired**, as docs/ivy.md says: the
+  start is snapped to the nearest host surface (the default
   start lies inside the default wall). A start farther than
   `start_snap_max` from every host is refused with `BANYAN_E_START_FAR`.
 - **Segments: a segment far from every axis is not an error**: it is built
@@ -240,8 +240,8 @@ def fuzz_section(results):
         secs = sum(r["seconds"] for r in rs)
         execs = sum(r["execs"] for r in rs)
         crashes = sum(r["crashes"] for r in rs)
-        # Runs from before tools/fuzz.sh counted timeouts and slow units
-        # apart: their timeouts were in "crashes", slow units nowhere.
+        # Runs recorded without "timeouts" count their timeouts in
+        # "crashes" and their slow units nowhere.
         old = [r for r in rs if "timeouts" not in r]
         unrecorded += len(old)
         timeouts = sum(r.get("timeouts", 0) for r in rs)
@@ -264,14 +264,14 @@ def fuzz_section(results):
     out.append("| all | | %.2f h | %s | | | | | | | |" % (tot_s / 3600.0, "{:,}".format(tot_e)))
     out.append("")
     if unrecorded:
-        out.append("%d runs come from before timeouts and slow units were recorded apart: their timeouts are "
+        out.append("%d runs did not record timeouts and slow units apart: their timeouts are "
                    "counted in crashes, their slow units were not counted." % unrecorded)
         out.append("")
     return out
 
 
 def cli_section(rows, banyan):
-    out = ["## Issue #21: hostile command lines\n"]
+    out = ["## Hostile command lines\n"]
     if rows is None:
         out.append("Not run for this page (`--no-cli`, or no `%s`)." % os.path.relpath(banyan, HERE))
         out.append("")

@@ -5,9 +5,9 @@
 # build/):
 #   bash tools/render_docs.sh            # everything
 #   bash tools/render_docs.sh gallery    # docs/render_gallery.py only
-#   (also: params, start, avenue, hosts, roots (issue #18 look views),
-#   ivy (issue #19 look views: front, close, stems, pillar), keyaki (issue #20
-#   look views: under, tree, avenue, young), production (issue #22: LOD chain,
+#   (also: params, start, avenue, hosts, roots (look views),
+#   ivy (look views: front, close, stems, pillar), keyaki (look
+#   views: under, tree, avenue, young), production (LOD chain,
 #   growth frames), segments (docs/segments.md's before/after look views);
 #   extra arguments go to the script; BANYAN_LIB may name another build's
 #   library, e.g. a copy of the library before a change)

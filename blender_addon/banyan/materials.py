@@ -1,4 +1,4 @@
-"""Shared, textured materials of the library's leaves and bark (issue #17).
+"""Shared, textured materials of the library's leaves and bark.
 
 A banyan_material that names a texture (keyaki/ivy leaf atlas, keyaki/fig
 bark, ivy stem) becomes ONE material per kind and season, named for

@@ -1,4 +1,4 @@
-/* leaf_look.h - how leaf cards and their materials look (issue #17):
+/* leaf_look.h - how leaf cards and their materials look:
  * which atlas cell a card shows, its per-leaf colour tint (vertex colours,
  * COLOR_0) and the season's material. A card's cell and tint come from a
  * PCG32 stream of its own, seeded with the generator's seed and the
@@ -26,7 +26,7 @@ void leaf_atlas_grid(int32_t kind, int32_t *cols, int32_t *rows, double *aspect)
 #define LEAF_IVY_BLADE_V1 0.96
 #define LEAF_IVY_BLADE_HALF_U 0.45
 
-/* Where a keyaki atlas cell's leaf lies (issue #20: one real-size leaf a
+/* Where a keyaki atlas cell's leaf lies (one real-size leaf a
  * cell, 4 x 4 cells): the blade's midrib runs up the cell's centre line
  * u = 0.5, its petiole from v = 0 to LEAF_KEYAKI_BLADE_V0, the blade from
  * there to its tip at LEAF_KEYAKI_BLADE_V1; blade and teeth stay within

@@ -1,6 +1,6 @@
 /* progress.h - the progress / cancel callback of the long calls
  * (banyan_progress, docs/api.md "Progress and cancel") and the run's
- * budget (issue 21): one place that keeps the fraction monotone, calls the
+ * budget: one place that keeps the fraction monotone, calls the
  * callback about 100 times for the fraction plus at most every
  * PROG_HEARTBEAT seconds while the fraction moves slower (so a cancel is
  * heard within that), remembers a cancel, and stops a run that passes its

@@ -1,5 +1,5 @@
 /* wind.h - the wind and birth attributes every generator writes (banyan.h,
- * BANYAN_ATTR_WIND_*; issue #22; docs/game-engines.md).
+ * BANYAN_ATTR_WIND_*; docs/game-engines.md).
  *
  * A generator declares the slots once (wind_declare), then before each
  * branch, twig or leaf sets the current values (wind_set, wind_birth),

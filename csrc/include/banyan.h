@@ -150,7 +150,7 @@ typedef struct banyan_attribute {
     float *data;                /* vertex_count floats */
 } banyan_attribute;
 
-/* Wind and growth attributes (issue #22; docs/game-engines.md). Every
+/* Wind and growth attributes (docs/game-engines.md). Every
  * generator's mesh carries them when its params' `wind` is 1 (the
  * default); `birth` is always there.
  *   wind_pivot_x/y/z  the point the vertex sways about, in the mesh's
@@ -205,7 +205,7 @@ typedef struct banyan_material {
                                    picture; -1 for none. When >= 0 it replaces `texture` */
 } banyan_material;
 
-/* One placed copy of a variant (instancing, issue #22): the parts whose
+/* One placed copy of a variant (instancing): the parts whose
  * group is `variant`, turned by rotation_z about +Z, scaled by scale,
  * then moved by translation (metres, in the mesh's frame). */
 typedef struct banyan_instance {

@@ -162,7 +162,7 @@ void roots_grow_first(roots_net *net, const banyan_roots_params *p) {
     }
 }
 
-/* Hugging (issue #18): a branch point farther than 1.5 r from the host
+/* Hugging: a branch point farther than 1.5 r from the host
  * it runs over, but within 4 hug_range r of it, goes back to distance r
  * from it (along the distance-field normal; less when the full pull
  * would leave it unfree), so branch roots lie on the bark instead of

@@ -1,4 +1,4 @@
-/* The fused roots surface (issue #18 "Fused surface"; spec roots.md 5,
+/* The fused roots surface (spec roots.md 5,
  * docs/roots.md "Fused surface"): the whole net as one closed surface in
  * which touching roots merge with smooth fillets, as a strangler fig's
  * roots fuse (anastomosis). Method: every segment of the final polylines

@@ -1,6 +1,6 @@
 /*
- * fused_vdb.cpp - the one C++ file of the fused roots surface (issue #18,
- * docs/roots.md "Fused surface"): OpenVDB 10 meshes a narrow-band level
+ * fused_vdb.cpp - the one C++ file of the fused roots surface
+ * (docs/roots.md "Fused surface"): OpenVDB 10 meshes a narrow-band level
  * set that fused.c has evaluated. The geometry (capsules, smooth union,
  * host difference) stays in C; this shim only copies fused.c's 8^3 blocks
  * into the leaves of a sparse openvdb::FloatGrid (same voxel order as a

@@ -40,7 +40,7 @@ void roots_net_free(roots_net *net) {
 
 banyan_status roots_params_check(const banyan_roots_params *p, banyan_error *err) {
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
-    /* The ones the issue names first, with messages of their own. */
+    /* radius and sides first, with messages of their own. */
     if (isnan(p->radius) || !(p->radius > 0))
         return banyan_fail(err, BANYAN_E_RANGE, "radius = %g must be > 0 (root radius r in units; valid [0.001, 100])",
                            p->radius);

@@ -16,7 +16,7 @@
  * In both modes a root that lands on the ground or on an upward face
  * crawls; it grows down again once nothing supports it.
  *
- * Soil entry (issue #18, on by default): a real fig root that reaches the
+ * Soil entry (on by default): a real fig root that reaches the
  * ground goes into it close to the host and thickens into a buttress; it
  * does not wander off over the soil. So a root that touches the ground
  * stops its walk there (its later growth points repeat that point) and

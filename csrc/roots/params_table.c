@@ -87,7 +87,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .branch_vertical = 15,
         .branch_tilt = 0.6,
         .branch_samples = 21,
-        .branch_jitter = 0, /* #18: smooth paths, no zigzag (the paper: 1.5) */
+        .branch_jitter = 0, /* smooth paths, no zigzag (the paper: 1.5) */
         .second_lateral = 20,
         .second_samples = 6,
         .bezier_uniform = 0,
@@ -102,7 +102,7 @@ void banyan_roots_params_init(banyan_roots_params *p) {
         .ground_step = 0.3,
         .junction_start_scale = 1.15,
         .junction_end_scale = 1.08,
-        .junction_reach = 2, /* #18: was 8; thick main roots (pipe model) make the junction, long loops folded the tubes */
+        .junction_reach = 2, /* thick main roots (pipe model) make the junction; long loops fold the tubes */
         .junction_falloff = 3,
         .surface = 0,
         .voxel_size = 0.95,

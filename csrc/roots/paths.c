@@ -7,11 +7,11 @@
  * point, pushed out to distance r, and both parts are checked again, so
  * the tube follows the host round the corner instead of through it.
  *
- * Issue #18 (docs/roots.md, "The look of a real fig"):
+ * The look of a real fig (docs/roots.md):
  * - smooth_paths: the polyline is a centripetal Catmull-Rom curve through
  *   the growth points (which it keeps exactly, so junctions stay shared),
  *   resampled about every 2 r; a sample closer than r to a host is pushed
- *   out, and segment repair runs on the samples as before.
+ *   out, and segment repair runs on the samples as above.
  * - A main root that entered the soil (growth.c) gets its underground end
  *   after its entry point, repaired against the hosts only.
  * - Radii by the pipe model: a root is as thick as what feeds into it.

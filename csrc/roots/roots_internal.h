@@ -28,9 +28,8 @@ static inline int roots_wind_level(int kind) {
 /* Collision world: hosts, ground, r. Clearance of a point = its distance
  * to the nearest host surface (signed, < 0 inside a box or a closed mesh)
  * or to the ground plane; a sphere centre is free when its clearance is
- * >= r. Every query loops over the boxes first, exactly as it did before
- * meshes existed (a box-only world gives the same bytes), then over the
- * meshes. Host numbers (`which`) follow the host set: boxes, then meshes. */
+ * >= r. Every query loops over the boxes first, then over the meshes;
+ * with no meshes it is the plain box query, bit for bit. Host numbers (`which`) follow the host set: boxes, then meshes. */
 typedef struct roots_world {
     const obb *hosts;         /* the boxes */
     uint32_t n_hosts;         /* boxes */
@@ -195,7 +194,7 @@ void roots_net_free(roots_net *net);
 banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                              banyan_roots_stats *stats, banyan_error *err);
 
-/* The fused surface (fused.c, issue #18): one closed surface of the whole
+/* The fused surface (fused.c): one closed surface of the whole
  * net through an OpenVDB level set; roots_net_mesh calls it when
  * p->surface is BANYAN_ROOTS_FUSED. */
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,

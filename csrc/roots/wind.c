@@ -1,4 +1,4 @@
-/* Wind and birth values of the roots net (issue #22; docs/roots.md "Wind
+/* Wind and birth values of the roots net (docs/roots.md "Wind
  * and growth attributes"), per polyline point and per polyline, shared by
  * the tubes (mesh.c) and the fused surface (fused.c).
  *

@@ -1,4 +1,4 @@
-/* Benchmark of host sets (issue 15): building a set from a closed UV
+/* Benchmark of host sets: building a set from a closed UV
  * sphere of about 1M triangles (welding, adjacency, pseudonormals and
  * Embree's BVH, one build thread), and the query rates on it and on a
  * 50k-triangle one: closest point near the surface (capped at 5 cm, as the

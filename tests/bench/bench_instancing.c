@@ -1,4 +1,4 @@
-/* bench_instancing: issue #22's 10,000-tree avenue (placement count, 5,000
+/* bench_instancing: the 10,000-tree avenue (placement count, 5,000
  * trees a row, 2 rows, 3 m apart along 15 km, default keyaki trees):
  *   - as 16 variants placed as instances: generate time, .glb write time
  *     and size (target < 1 GB), peak resident set;

@@ -1,4 +1,4 @@
-/* Ivy mesh benchmark (issue 23): the wall preset (presets/ivy_wall.json)
+/* Ivy mesh benchmark: the wall preset (presets/ivy_wall.json)
  * grown once, then banyan_ivy_mesh timed alone over several runs, with
  * the growth and the stats beside it. Prints medians of wall and CPU
  * time, metres of stem (the skeleton's internode edges) per second of

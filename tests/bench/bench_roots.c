@@ -1,7 +1,7 @@
 /* Benchmark of the roots generator: the default net (6 main roots x 40
  * growth points, all branch kinds, junction smoothing, hugging) round the
  * CLI's default trunk, single-threaded.
- * Fused surface (the default, issue #18): seeds 1..10, the median time per
+ * Fused surface (the default): seeds 1..10, the median time per
  * net, the split net / fused mesh, and the memory peak of one call (the
  * growth of the process's peak resident set over its size before the
  * first call: the level set's blocks, OpenVDB's grid and mesh, the output).

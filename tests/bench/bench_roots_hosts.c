@@ -1,4 +1,4 @@
-/* Benchmark of roots on a mesh host (issue 15): the default net (6 main
+/* Benchmark of roots on a mesh host: the default net (6 main
  * roots x 40 growth points, all branch kinds, hugging, n = 16 sides) round
  * a closed cylinder trunk the size of the CLI's default trunk (0.4 m
  * radius, 8 m tall) tessellated into about 50,000 triangles, against the

@@ -1,5 +1,5 @@
 /* Segments: CPU reference speed over 1e6 random segments (n uniform in
- * 0..63, s in 0..10, as in the issue's tests; most of them reach the
+ * 0..63, s in 0..10, as in the segment tests; most of them reach the
  * 128-vertex budget), one banyan_segment_generate call per segment and in
  * batches of 4096 (banyan_segment_generate_many); then the composer on a
  * random demo tree and the attachment check on a large list. Median of 5

@@ -1,10 +1,10 @@
-/* bench_textures: time to draw every texture the library makes (issue
- * #17): the keyaki and Boston ivy leaf atlases in both seasons and the
+/* bench_textures: time to draw every texture the library makes:
+ * the keyaki and Boston ivy leaf atlases in both seasons and the
  * three barks, base colour and normal map each, one thread (the painters
  * are single-threaded). Median of `runs` runs with min and max, per
  * texture and for the whole set (the sum of each run's times); then the
  * PNG encoding of the set once, for scale (the glTF writer and the add-on
- * pay it too). Target (issue 17): the set at 1024 under 150 ms. Besides
+ * pay it too). Target: the set at 1024 under 150 ms. Besides
  * the wall clock it prints the thread's CPU time for the set: on this
  * shared 2-core machine the wall clock also counts time spent waiting for
  * a core.

@@ -17,7 +17,7 @@
  *   api       banyan_tube_generate (long only): validation, fresh memory,
  *             skeleton
  * Each row gives its fraction of the bound (the store loop into touched
- * memory: the issue's target is >= 25 % for the api row) and of the
+ * memory: the target is >= 25 % for the api row) and of the
  * fresh-memory bound, and the page faults one run takes (getrusage: a
  * count, steadier than times on a loaded machine). A third store loop
  * writes fresh memory from big_malloc (2 MiB-aligned, huge pages where the

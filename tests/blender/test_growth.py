@@ -1,4 +1,4 @@
-"""Growth animation by `birth` (issue #22): the Banyan Growth modifier
+"""Growth animation by `birth`: the Banyan Growth modifier
 shows few vertices at frame_start, every vertex at frame_end (the
 evaluated count equal to the mesh's), and counts never fall in between;
 for a synthetic plant (the node group alone), then roots, keyaki and an

@@ -1,4 +1,4 @@
-"""Hostile input for every Banyan operator and headless API call (issue 8).
+"""Hostile input for every Banyan operator and headless API call.
 
 Every registered operator is driven through bpy.ops with hostile values
 for each numeric, enum and string property (NaN, +-inf, 0, -1, +-1e300,

@@ -1,4 +1,4 @@
-"""Host shape (issue 15): hosts are the objects' real surfaces (docs/addon.md, "Hosts from objects").
+"""Host shape: hosts are the objects' real surfaces (docs/addon.md, "Hosts from objects").
 
 On a UV sphere, Suzanne, a 32-vertex cylinder and an open plane, checked
 in Blender's world space with mathutils (BVHTree of each host's evaluated

@@ -1,4 +1,4 @@
-"""Instanced avenues (issue #22): an avenue with `variants` > 0 becomes
+"""Instanced avenues: an avenue with `variants` > 0 becomes
 one object per variant in "<name> variants" (excluded from the view
 layer, one collection per variant) and one collection-instance empty per
 tree; the empties stand where the unique avenue's trees stand (their

@@ -1,4 +1,4 @@
-"""Levels of detail (issue #22): banyan.api.make_lods / Make LODs on a
+"""Levels of detail: banyan.api.make_lods / Make LODs on a
 keyaki (and roots) grown by an operator: a collection "<name> LODs" with
 <name>_LOD0 (the plant's own mesh) .. LOD2 at about 50 % and 15 % of its
 triangles (within 10 %), bounding boxes within 5 %, and for the tree a

@@ -1,4 +1,4 @@
-"""Shared textured materials (issue #17, blender_addon/banyan/materials.py):
+"""Shared textured materials (blender_addon/banyan/materials.py):
 operators run twice leave exactly one material per kind and season and one
 image per texture, packed, of the preference's size, the leaves' with
 alpha; node trees wire image -> Principled base colour (and alpha through a

@@ -207,7 +207,7 @@ def test_execute_progress():
 
 
 def test_ivy_cannot_grow():
-    """The issue's case: the lifted cube, the cursor at the origin (under its
+    """The lifted cube, the cursor at the origin (under its
     bottom face). It grows (the library places the start on a side), or,
     with a library that cannot, a warning and not a success report."""
     ctx = bpy.context

@@ -1,7 +1,7 @@
-"""Wind (issue #22): every generator's object grown with wind data carries
+"""Wind: every generator's object grown with wind data carries
 the wind attributes (wind_pivot as one vector, wind_level/stiffness/
 phase/flutter, the three pivot scalars gone), and none without it (the
-add-on's default, issue #23), and the Banyan Wind modifier sways tips, not trunk
+add-on's default), and the Banyan Wind modifier sways tips, not trunk
 bases: evaluated at two frames, the top 10 % of the vertices by height
 move more than 5x the bottom 10 %, and the bottom's lowest vertices less
 than 1 mm (the sway measured on the wood: leaves flutter at every

@@ -1,4 +1,4 @@
-/* host_meshes.h - the test hosts of issue 15, built in code: a UV sphere,
+/* host_meshes.h - the test hosts, built in code: a UV sphere,
  * an n-sided closed cylinder, an open quad wall, and a two-shell mesh of
  * overlapping spheres that stands in for Suzanne (closed, self-
  * intersecting). Shared by the host, roots and ivy tests and the

@@ -1,4 +1,4 @@
-/* ivy_look.h - the look measures of issue #19 on a grown ivy and its mesh
+/* ivy_look.h - the look measures on a grown ivy and its mesh
  * (docs/ivy.md, "How the look is measured"): the stem architecture seen
  * on the wall's face, and the leaf blades (connected components of the
  * leaf part, in the order mesh.c emits them, each with the petiole that

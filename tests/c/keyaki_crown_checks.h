@@ -1,5 +1,5 @@
-/* keyaki_crown_checks.h - plan-view measures of a keyaki crown (issue
- * #20), shared by test_keyaki_crown.c and test_keyaki_look.c: leaf centres
+/* keyaki_crown_checks.h - plan-view measures of a keyaki crown,
+ * shared by test_keyaki_crown.c and test_keyaki_look.c: leaf centres
  * binned into square plan cells, the crown's outline as the convex hull of
  * the leaf centres, the share of cells inside it holding leaves, and the
  * leaves per cell. */

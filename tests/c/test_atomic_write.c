@@ -1,5 +1,5 @@
 /* test_atomic_write.c - a write never destroys the file it replaces
- * (core/atomic_file.h, issue #21): a full disk, a killed run and an
+ * (core/atomic_file.h): a full disk, a killed run and an
  * unwritable folder leave the old .glb byte for byte, a symlink stays a
  * link with its target replaced whole, no temporary file is left behind
  * by a failed write. The full disk and the kill are RLIMIT_FSIZE in a

@@ -1,6 +1,6 @@
-/* test_bad_input.c - every public entry point against hostile input
- * (issue 8): NaN and inf in every field of every params table, values
- * below and above their ranges, zero and negative sizes, counts past
+/* test_bad_input.c - every public entry point against hostile input:
+ * NaN and inf in every field of every params table, values below and
+ * above their ranges, zero and negative sizes, counts past
  * their caps, degenerate hosts, no hosts, start points inside or far from
  * the hosts, NULL pointers, vertex limits and broken presets.
  *
@@ -633,7 +633,7 @@ static void null_cases(void) {
         "sides", banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "sides", "4294967304", &e), rp.sides == 8);
     RUN("common", "banyan_param_set_text", "wrong type", "seed = '-1'", BANYAN_E_TYPE, "seed",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", "-1", &e), 1);
-    /* Issue 21: whole tokens in the C locale's spelling, nothing around them. */
+    /* Whole tokens in the C locale's spelling, nothing around them. */
     RUN("common", "banyan_param_set_text", "wrong type", "seed = ' -1' (a space before)", BANYAN_E_TYPE, "seed",
         banyan_param_set_text(BANYAN_GEN_ROOTS, &rp, "seed", " -1", &e), 1);
     RUN("common", "banyan_param_set_text", "wrong type", "seed = '+1'", BANYAN_E_TYPE, "seed",
@@ -687,7 +687,7 @@ static void null_cases(void) {
         RUN("common", "banyan_gltf_write", "NaN", "positions[4] = NaN", BANYAN_E_RANGE, "positions",
             banyan_gltf_write("x.glb", &one, NULL, 1, &e), 1);
         tube->positions[4] = keep_p;
-        /* Texture options and a material's texture fields (issue #17). */
+        /* Texture options and a material's texture fields. */
         banyan_gltf_options go;
         struct { const char *klass, *input, *needle; int32_t textures, size; } opt_rows[] = {
             {"zero", "opt->texture_size = 0", "texture_size", 1, 0},
@@ -1024,7 +1024,7 @@ static void preset_cases(void) {
         {HOSTS, "unknown key", "host key 'size'", "{\"hosts\": [{\"half\": [1,1,1],\n\"size\": 2}]}", NULL, 0,
          BANYAN_E_TYPE, "hosts[0].size"},
         {HOSTS, "wrong type", "hosts is an object", "{\"hosts\": {}}", NULL, 0, BANYAN_E_TYPE, "array"},
-        /* Issue 21: an explicit empty list is not the default hosts. */
+        /* An explicit empty list is not the default hosts. */
         {HOSTS, "empty list", "hosts is []", "{\"hosts\": []}", NULL, 0, BANYAN_E_NO_HOSTS,
          "t.json:1: hosts is an empty list"},
         {HOSTS, "wrong type", "host without half", "{\"hosts\": [{\"center\": [0,0,0]}]}", NULL, 0, BANYAN_E_TYPE,
@@ -1127,7 +1127,7 @@ static void preset_cases(void) {
          BANYAN_E_PARSE, "needs \"s\""},
         {"wrong type", "trunk without end", "{\"trunk\": {\"start\": [0,0,0]}}", BANYAN_E_TYPE, "trunk"},
         {"unknown key", "top-level 'segmnets'", "{\"segmnets\": []}", BANYAN_E_UNKNOWN_KEY, "segmnets"},
-        /* Issue 21: an explicit empty list is not the random demo tree. */
+        /* An explicit empty list is not the random demo tree. */
         {"empty list", "segments is []", "{\"segments\":\n[]}", BANYAN_E_RANGE, "t.json:2: segments is an empty list"},
     };
     for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
@@ -1190,7 +1190,7 @@ static void good_presets(void) {
     }
 }
 
-/* Textures (issue 17): size, kind, season; the two image out pointers
+/* Textures: size, kind, season; the two image out pointers
  * come back NULL. */
 static int images_null(banyan_image *a, banyan_image *b) { return a == NULL && b == NULL; }
 

@@ -1,5 +1,5 @@
-/* test_budget.c - every run keeps its budget (issue 21, items 2 and 4):
- * the issue's inputs under max_seconds = 2 stop within 2.5 s of wall time
+/* test_budget.c - every run keeps its budget:
+ * long ivy, roots and segments runs under max_seconds = 2 stop within 2.5 s of wall time
  * with BANYAN_E_LIMIT and a message naming max_seconds; a memory budget
  * stops with BANYAN_E_LIMIT naming max_memory_mb before the process holds
  * 1.5 times it; the step API keeps max_vertices while it grows. The
@@ -79,7 +79,7 @@ static void ivy_memory(void) {
     banyan_ivy_free(iv);
 }
 
-/* Issue item 2: `banyan ivy --set t0=1000000` through the step API as the
+/* `banyan ivy --set t0=1000000` through the step API as the
  * CLI calls it, and through the one-shot host-set call. */
 static void ivy_time(void) {
     banyan_ivy_params p;
@@ -117,7 +117,7 @@ static void ivy_time(void) {
     banyan_ivy_free(iv);
 }
 
-/* Issue item 2: a 1 km wall. With the default max_vertices the step API
+/* A 1 km wall. With the default max_vertices the step API
  * refuses as soon as the plant could not be meshed (as the one shot
  * does); with that cap raised, the time budget stops it. */
 static void ivy_wall(void) {
@@ -145,7 +145,7 @@ static void ivy_wall(void) {
     banyan_ivy_free(iv);
 }
 
-/* Issue item 4: 256 hosts, 64 roots, 10,000 growth points, 100 moves. A
+/* 256 hosts, 64 roots, 10,000 growth points, 100 moves. A
  * trunk in the middle (G on it) among 255 posts on a 16 x 16 grid. */
 static void roots_time(banyan_roots_surface surface) {
     banyan_box boxes[256];

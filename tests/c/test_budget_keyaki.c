@@ -1,11 +1,11 @@
-/* The run budget of keyaki and avenue (issue 21, item 3; docs/keyaki.md
+/* The run budget of keyaki and avenue (docs/keyaki.md
  * "Budget"):
  *   - a tree and an avenue under max_seconds = 2 on inputs that take
  *     longer stop within 2.5 s (CHECK_SLACK looser under sanitizers) with BANYAN_E_LIMIT naming max_seconds,
  *     *out NULL; a small max_memory_mb stops them naming max_memory_mb;
  *   - a tree past max_vertices is refused while its skeleton grows: its
  *     peak resident set stays far below the 2.2 GB a whole skeleton of
- *     max_nodes = 2^24 takes (1.4 GB in the issue);
+ *     max_nodes = 2^24 takes;
  *   - an avenue's peak resident set on 8 threads is within 1.2x of 1
  *     thread, refused (every tree grows part way) and built alike; the
  *     bytes are the same on 1, 3 and 8 threads;

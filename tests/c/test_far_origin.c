@@ -1,5 +1,5 @@
-/* test_far_origin.c - precision far from the world origin (issue 21 item
- * 5, docs/api.md "Far from the origin"). Every generator grows the same
+/* test_far_origin.c - precision far from the world origin
+ * (docs/api.md "Far from the origin"). Every generator grows the same
  * plant at the origin and moved to (999999, -500000, 5000) m: the moved
  * mesh carries a whole-metre origin, and its world positions (origin +
  * position, in double) match the near plant's moved, vertex by vertex, to
@@ -19,7 +19,7 @@
 #include "host_meshes.h"
 
 static const double FAR[3] = {999999.0, -500000.0, 5000.0};
-/* The issue's own case: a trunk standing on the ground moved to x = 999,999
+/* A trunk standing on the ground moved to x = 999,999
  * m alone; the near axes keep a 0 origin, so nothing but x moves. */
 static const double FAR_X[3] = {999999.0, 0.0, 0.0};
 static const double *shift = FAR; /* the move same_world compares */
@@ -39,7 +39,7 @@ static int origin_zero(const banyan_mesh *m) { return m->origin[0] == 0 && m->or
 static void same_world(const char *what, banyan_mesh *near, banyan_mesh *far) {
     CHECK(near && far, "%s: a mesh is missing", what);
     if (!near || !far) goto done;
-    CHECK(origin_zero(near), "%s: near the origin, origin = (%g, %g, %g) (must stay 0: same bytes as before)", what,
+    CHECK(origin_zero(near), "%s: near the origin, origin = (%g, %g, %g) (must stay 0: the same bytes)", what,
           near->origin[0], near->origin[1], near->origin[2]);
     CHECK(!origin_zero(far), "%s: far away, origin is 0", what);
     for (int k = 0; k < 3; k++)

@@ -1,4 +1,4 @@
-/* Host sets on real triangles (issue 15): distances on a UV sphere agree
+/* Host sets on real triangles: distances on a UV sphere agree
  * with the sphere they approximate; inside/outside is right for a closed
  * sphere, the same sphere wound inside out, one with a hole, and a mesh of
  * overlapping shells (Suzanne's case); an open quad has no inside; rays

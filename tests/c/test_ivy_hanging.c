@@ -1,4 +1,4 @@
-/* Hanging stems (spec/ivy.md, "Sag of unattached stems"; issue 19: no
+/* Hanging stems (spec/ivy.md, "Sag of unattached stems": no
  * straight parallel curtains), on ivy_pillar and ivy_wall, seeds 1..5,
  * the presets' 450 steps.
  * A hanging run is what hangs from a stem's last held bud: from the end
@@ -9,11 +9,11 @@
  * its parent's path twice.)
  *   - The runs curve: the median straightness (chord anchor -> end over
  *     the path length) is below 0.8 on each preset and 0.1 below that of
- *     the bare sag (sag_stiffening = tip_hook_length = 0, the sag before
- *     issue 19) measured in the same run (0.884 on the pillar).
+ *     the bare sag (sag_stiffening = tip_hook_length = 0) measured in
+ *     the same run (0.884 on the pillar).
  *   - Every run, growing or ended, turns its end up: its last 3 buds'
- *     V.z > 0 (before: 32 of 450 on the pillar); and at least 95 % rise
- *     over their last three internodes (before: none).
+ *     V.z > 0 (the bare sag's: few); and at least 95 % rise over
+ *     their last three internodes (the bare sag's: none).
  *   - Enough runs that this means something: at least 100 on the pillar.
  * Printed too, not checked: the median angle between the overall
  * directions (anchor -> lowest bud) of neighbouring runs (anchors within
@@ -108,7 +108,7 @@ typedef struct figures {
 static int n_set;
 static char **sets;
 /* The sag as the spec's bare rule leaves it (one joint strength, no hook):
- * the straight curtains of before, measured in the same run. */
+ * straight curtains, measured in the same run to compare. */
 static const char *plumb[2] = {"sag_stiffening=0", "tip_hook_length=0"};
 
 static figures measure(const char *name, int n_over, char *const *over) {

@@ -1,4 +1,4 @@
-/* Ivy on mesh hosts (issue 15, spec/ivy.md with spec README "Hosts"):
+/* Ivy on mesh hosts (spec/ivy.md with spec README "Hosts"):
  * meshes built here, checked against brute-force oracles of this file
  * (closest point over every triangle, inside by the face planes of each
  * convex shell, segment against every triangle), not against the host

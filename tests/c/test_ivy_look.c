@@ -1,4 +1,4 @@
-/* The ivy's look (issue #19; docs/ivy.md "Stem architecture", "How the
+/* The ivy's look (docs/ivy.md "Stem architecture", "How the
  * look is measured", "Geometry"; reference/plants.md section 2) on the
  * presets ivy_wall and ivy_pillar, seeds 1..5, at their 450 steps.
  * Stems:

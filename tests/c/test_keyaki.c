@@ -401,7 +401,7 @@ static void crack_free(uint64_t seed, int model) {
     keyaki_skeleton_free(&sk);
 }
 
-/* levels: the skeleton's; twigs and leaves (order 0, issue #20) lie up
+/* levels: the skeleton's; twigs and leaves (order 0) lie up
  * to twig_levels deeper. */
 static void mesh_sanity(const banyan_mesh *m, int levels, const char *name) {
     levels += 3; /* twig_levels <= 3 */
@@ -658,7 +658,7 @@ static void fractions_and_heading(void) {
 }
 
 /* `unit` scales the tree's body: same vertex count, positions scaled.
- * Twigs and leaves are real sizes in metres (issue #20): left out; so is
+ * Twigs and leaves are real sizes in metres: left out; so is
  * bark_flake_radius (metres: where a limb's flakes end, one more ring). */
 static void unit_scales(void) {
     banyan_keyaki_params p;

@@ -1,4 +1,4 @@
-/* keyaki crown (issue #20; docs/keyaki.md "Twigs and leaves", "Light and
+/* keyaki crown (docs/keyaki.md "Twigs and leaves", "Light and
  * crowding"): on keyaki_mature and keyaki_young, seeds 1..10: every twig
  * starts on or in its parent (skeleton branch or twig), twig tips have
  * twig_radius, every leaf's petiole end lies on its twig, leaf lengths in

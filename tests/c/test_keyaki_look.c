@@ -1,4 +1,4 @@
-/* test_keyaki_look: issue #20's measures of a keyaki that reads as a
+/* test_keyaki_look: the measures of a keyaki that reads as a
  * keyaki, on the shipped presets over seeds 1..10.
  *   - keyaki_mature and keyaki_young: at least 3 limbs of at least 0.4 of
  *     the trunk's diameter leave the trunk below 0.35 of the tree's height

@@ -1,5 +1,5 @@
 /* keyaki_trunk: the trunk's root flare and the bark uvs (docs/keyaki.md
- * "Trunk: flare and bark"; issue #20). Over models and seeds: the ground
+ * "Trunk: flare and bark"). Over models and seeds: the ground
  * ring's mean radius is (1 + flare) x the trunk's, the mean radius falls
  * monotonically to the trunk's by flare_height, the ground ring has
  * flare_lobes maxima round it (none with 0 lobes), normals face out,

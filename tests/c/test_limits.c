@@ -1,5 +1,5 @@
-/* test_limits.c - vertex limits refuse before large buffers exist (issue
- * 8, "Memory"). The test links with -Wl,--wrap for malloc, calloc and
+/* test_limits.c - vertex limits refuse before large buffers exist.
+ * The test links with -Wl,--wrap for malloc, calloc and
  * realloc (tests/CMakeLists.txt), so every allocation the library's
  * objects make passes the counters below: a generation that would pass
  * max_vertices must fail with BANYAN_E_LIMIT, return no mesh, and never
@@ -76,7 +76,7 @@ static void refused(const char *what, banyan_status s, const banyan_mesh *m, con
            (double)alloc_total / MB);
 }
 
-/* Out of memory at every allocation (issue 8: a failed call leaves *out
+/* Out of memory at every allocation (a failed call leaves *out
  * NULL, leaks nothing and never crashes). The generation runs once to
  * count its allocations, then once per allocation with that one failing:
  * each run must give a mesh (the paths that can do without the memory,

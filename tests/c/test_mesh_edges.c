@@ -226,7 +226,7 @@ static void sparse(void) {
     if (capped) setrlimit(RLIMIT_AS, &old);
 }
 
-/* One triangle of a 1e9-vertex mesh (3.9 GB of tables before issue 21)
+/* One triangle of a 1e9-vertex mesh (3.9 GB as per-vertex tables)
  * within 256 MB more address space than the test has. */
 static void one_triangle_of_many(void) {
     const uint32_t tri[3] = {999999999u, 7, 500000000u};

@@ -249,7 +249,7 @@ static void test_start(void) {
         banyan_hosts_free(M);
     }
     tm_free(&cm);
-    /* The CLI's wall, started on its bottom face (issue 16). */
+    /* The CLI's wall, started on its bottom face. */
     banyan_box wall = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
     H = box_set(&wall, 1);
     if (H) {

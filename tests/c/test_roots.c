@@ -3,10 +3,10 @@
  *   - Clearance: every skeleton point of every kind of root, in hugging and
  *     paper mode, is at least r - tol from every host and the ground
  *     (tol = 1e-3 r; the skeleton is stored in float); the underground ends
- *     of roots entering the soil (issue #18, soil_entry) keep clear of the
+ *     of roots entering the soil (soil_entry) keep clear of the
  *     hosts only, and their tubes may go below the ground.
  *   - Branch slots whose ends lie past a main root's soil entry grow no
- *     first branch root (issue #18 overturned "all N x nb present").
+ *     first branch root (so not all N x nb are present).
  *   - Every first branch root starts exactly on M(a,b) and ends exactly on
  *     M(a+1,b); every second branch root joins the middles of its two first
  *     branch roots; none is missing; no step sags into a host; the skeleton
@@ -370,7 +370,7 @@ static void roots_preset(const char *path, const char *name, void *ctx) {
     banyan_error err;
     CHECK(banyan_roots_generate_stats(&p, hosts, n, &m, &st, &err) == BANYAN_OK, "%s: %s", name, err.message);
     if (!strcmp(name, "roots_paper")) CHECK(p.hugging == 0, "the paper preset must turn hugging off");
-    /* Issue #18: every shipped preset touches the ground (the young fig's
+    /* Every shipped preset touches the ground (the young fig's
      * cords have just reached it). */
     CHECK(m && st.mains_on_ground > 0, "%s: no main root reached the ground", name);
     if (!strcmp(name, "roots_trunk") || !strcmp(name, "roots_ruin"))

@@ -1,4 +1,4 @@
-/* The fused roots surface (issue #18, docs/roots.md "Fused surface"):
+/* The fused roots surface (docs/roots.md "Fused surface"):
  * invariants on the default net and every presets/roots_*.json (box and
  * mesh hosts), 5 seeds each, not snapshots.
  *   - Closed and consistently oriented: with seam copies welded (same

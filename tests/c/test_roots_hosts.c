@@ -1,4 +1,4 @@
-/* Roots on host sets with meshes (issue 15; spec README "Hosts", roots.md
+/* Roots on host sets with meshes (spec README "Hosts", roots.md
  * 1): invariants over seeds on meshes built in code (tests/c/host_meshes.h),
  * not snapshots.
  *   - A UV sphere resting on the ground, a 32-sided closed cylinder column
@@ -67,8 +67,8 @@ static banyan_mesh *grow_check(const banyan_hosts *H, const banyan_roots_params 
     double r = p->radius * p->unit;
     rep->nets++;
     /* Skeleton points: clearance >= r (less float storage); below the
-     * ground only the underground ends of roots entering the soil (issue
-     * #18, soil_entry), which keep clear of the hosts only. */
+     * ground only the underground ends of roots entering the soil
+     * (soil_entry), which keep clear of the hosts only. */
     for (uint32_t i = 0; i < m->skel_point_count; i++) {
         v3 q = v3_make(m->skel_points[3 * i], m->skel_points[3 * i + 1], m->skel_points[3 * i + 2]);
         int under = p->soil_entry && p->ground && q.z < p->ground_z + r * (1.0 - TOL);

@@ -1,4 +1,4 @@
-/* The look of a real strangler fig (issue #18, docs/roots.md "The look of
+/* The look of a real strangler fig (docs/roots.md "The look of
  * a real fig"), measured in tube mode on the default net (the CLI's
  * trunk) and on every presets/roots_*.json, 5 seeds each:
  *   - roots stay near the host: of the root vertices above the ground

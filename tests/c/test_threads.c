@@ -1,6 +1,6 @@
-/* test_threads.c - concurrent calls give the sequential results (issue 8,
- * "Threads"). Every generator, the preset reader and the tube run first
- * one after another, then from several threads at once on different
+/* test_threads.c - concurrent calls give the sequential results.
+ * Every generator, the preset reader and the tube run first one after
+ * another, then from several threads at once on different
  * params, each thread in its own order and several rounds; every mesh
  * hash (banyan_mesh_hash) must equal the sequential one. The avenue runs
  * its own worker threads inside these. Built under ThreadSanitizer too

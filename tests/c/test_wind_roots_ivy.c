@@ -1,5 +1,5 @@
 /* Wind and birth attributes of the roots, the ivy and the tube demo
- * (issue #22; docs/roots.md and docs/ivy.md "Wind and growth
+ * (docs/roots.md and docs/ivy.md "Wind and growth
  * attributes"), as invariants (wind_checks.h and below), not snapshots:
  *   - every attribute present and in range; pivots on the mesh's own
  *     skeleton (within 1 mm); mean wood stiffness per level never rising

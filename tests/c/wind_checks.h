@@ -1,5 +1,5 @@
 /* wind_checks.h - invariants of the wind and birth attributes (banyan.h,
- * BANYAN_ATTR_WIND_*; issue #22), shared by every generator's wind test.
+ * BANYAN_ATTR_WIND_*), shared by every generator's wind test.
  *
  *   wind_attrs_check     all eight attributes present, finite, in range
  *   wind_pivot_worst     farthest any vertex's pivot lies from the mesh's

@@ -19,7 +19,7 @@ expect 1 "must look like key=value" -- "$bin" tube --set sides
 expect 2 "-o $out/x.obj: must end in .glb" -- "$bin" tube -o "$out/x.obj"
 expect 2 "unexpected argument" -- "$bin" tube --bogus
 expect 1 "cannot read preset" -- "$bin" tube --preset /nonexistent.json
-# Issue #21: the CLI's ivy (the step API) keeps max_vertices while it
+# The CLI's ivy (the step API) keeps max_vertices while it
 # grows and every run keeps its time budget.
 expect 1 "over max_vertices = 200000" -- "$bin" ivy --set t0=1000000 --set steps=100000 --set max_vertices=200000
 expect 1 "past max_seconds = 1" -- "$bin" ivy --set t0=1000000 --set steps=100000 --set max_vertices=1000000000 \
@@ -46,7 +46,7 @@ expect 1 "must be within" -- "$bin" roots --set sides=2
 expect 0 '"origin": [999999, -500000, 5000]' -- "$bin" keyaki --set position=999999.25,-500000,5000 --set levels=8 \
   --textures off --stats -o "$out/cli_keyaki_far.glb"
 expect 1 "roots_trunk.json" -- "$bin" keyaki --preset "$src/presets/roots_trunk.json"
-# Textures (issue #17): on by default, size and on/off checked, named.
+# Textures: on by default, size and on/off checked, named.
 expect 2 "--textures 'maybe' must be on or off" -- "$bin" keyaki --textures maybe
 for n in 0 100 32 16384 -64 1e3 64x; do
   expect 2 "--texture-size '$n' must be a power of two in [64, 8192]" -- "$bin" keyaki --texture-size "$n"
@@ -127,7 +127,7 @@ expect 2 "hosts[0].half is unknown or malformed for a mesh host" -- "$bin" roots
 deep="$bad/a-directory-name-long-enough/to-stand-for/a-farm-checkout/somewhere-deep"
 mkdir -p "$deep" && cp "$bad/half.json" "$deep/half.json"
 expect 2 "hosts[0].half is unknown or malformed for a mesh host (keys: mesh, translation or center [3], rotation [9] or rotation_euler_deg [3], scale, closed, name)" -- "$bin" roots --preset "$deep/half.json"
-# Ivy's start (issue 16): on the wall's bottom face it moves to a side a
+# Ivy's start: on the wall's bottom face it moves to a side a
 # stem can grow from; boxed in a closed 2 cm cavity it cannot grow, the
 # output is still written and the exit code is 3 with a warning naming why.
 expect 0 '"cannot_grow": 0' -- "$bin" ivy --preset "$src/presets/ivy_wall.json" --set start=0,0.1,0 --set steps=60 --stats
@@ -154,7 +154,7 @@ if command -v script >/dev/null; then
     else fail=$((fail+1)); echo "FAIL: no progress line for $g on a terminal: $msg"; fi
   done
 fi
-# Strict flags (issue 21): the whole token a base-10 number in range, the
+# Strict flags: the whole token a base-10 number in range, the
 # range in the message; no spaces, no sign where negative is invalid.
 expect 2 "--threads 'abc' must be a whole number in [0, 64]" -- "$bin" avenue --threads abc
 expect 2 "--threads '-1' must be a whole number in [0, 64]" -- "$bin" avenue --threads -1
@@ -162,10 +162,10 @@ expect 2 "--threads ' 2' must be a whole number in [0, 64]" -- "$bin" avenue --t
 expect 2 "--threads '2x' must be a whole number in [0, 64]" -- "$bin" avenue --threads 2x
 expect 2 "--threads '65' must be a whole number in [0, 64]" -- "$bin" avenue --threads 65
 expect 0 '"command": "avenue"' -- "$bin" avenue --threads 1 --set tree.levels=4 --stats
-# Instanced avenue (issue #22): the writer places the variants; --stats counts them.
+# Instanced avenue: the writer places the variants; --stats counts them.
 expect 0 '"variants": 3, "instances": 16' -- "$bin" avenue --set variants=3 --set tree.levels=4 --texture-size 64 --stats \
   -o "$out/cli_avenue_variants.glb"
-# Levels of detail (issue #22): --lod writes MSFT_lod; the first level's triangles are about half.
+# Levels of detail: --lod writes MSFT_lod; the first level's triangles are about half.
 expect 0 '"lod_triangles": [' -- "$bin" keyaki --set levels=8 --texture-size 64 --lod 0.5,0.15,billboard --stats \
   -o "$out/cli_keyaki_lod.glb"
 expect 0 '"lod_triangles": [' -- "$bin" avenue --set variants=2 --set tree.levels=4 --texture-size 64 --lod 0.3,billboard \

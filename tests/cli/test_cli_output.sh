@@ -1,5 +1,5 @@
 #!/bin/sh
-# The CLI never destroys an output file (issue #21): a full disk (ulimit -f
+# The CLI never destroys an output file: a full disk (ulimit -f
 # with SIGXFSZ ignored: write fails with EFBIG) or a run killed mid-write
 # (SIGXFSZ at its default) leaves the old .glb / .png byte for byte, a
 # symlink stays a link, and a bad -o is refused before anything is

@@ -1,4 +1,4 @@
-/* fuzz_hosts.c - libFuzzer harness for host sets (issue 15): bytes -> up
+/* fuzz_hosts.c - libFuzzer harness for host sets: bytes -> up
  * to two boxes and two meshes (vertices from 16-bit values, some special:
  * NaN, inf, huge; indices that may be out of range; a transform that may
  * be singular, mirrored or NaN; closed auto / open / closed) ->

@@ -1,4 +1,4 @@
-/* Levels of detail (issue #22; docs/game-engines.md "Levels of detail").
+/* Levels of detail (docs/game-engines.md "Levels of detail").
  * banyan_mesh_lod makes a coarser copy of any generator's mesh: wood is
  * simplified with meshoptimizer, leaves are thinned whole (survivors grow
  * about their petiole so the leaf area stays), or, with `billboard`, the

@@ -68,7 +68,7 @@ typedef struct banyan_roots_params {
     int32_t ground;               /* bool: the ground half-space z < ground_z is solid [1] */
     double ground_z;              /* m, -1e6 .. 1e6 [0] */
     int32_t max_vertices;         /* 1 .. 2^30: refuse (BANYAN_E_LIMIT) beyond this [4000000] */
-    /* Issue #18: the look of a real strangler fig (docs/roots.md). */
+    /* The look of a real strangler fig (docs/roots.md). */
     int32_t surface;              /* banyan_roots_surface: one fused closed surface (OpenVDB) or the
                                      plain tubes [FUSED] */
     double voxel_size;            /* multiples of r, 0.1 .. 2: the fused surface's voxel [0.95] */

@@ -1,4 +1,4 @@
-/* Textures drawn by the library (issue #17): leaf atlases and tileable
+/* Textures drawn by the library: leaf atlases and tileable
  * bark, deterministic from a seed, as RGBA8 / RGB8 images and PNG bytes
  * (stb_image_write). Materials of a banyan_mesh name the texture they use
  * (banyan_material.texture); the glTF writer embeds the images it needs,

@@ -1,4 +1,4 @@
-"""Issue 15: ivy on Suzanne, banyan against IvyGen (add_curve_ivygen), in
+"""Ivy on Suzanne, banyan against IvyGen (add_curve_ivygen), in
 one Blender process, from the same start on the same mesh.
 
 banyan grows on Suzanne's real surface (Host shape Surface: its evaluated

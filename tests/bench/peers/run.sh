@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Issue 9's peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs] [script]
-# (script: peers.py, the default, or ivy_suzanne.py alone: issue 15's ivy
+# The peer benchmark:   tests/bench/peers/run.sh [build_dir] [runs] [script]
+# (script: peers.py, the default, or ivy_suzanne.py alone: the ivy
 # on Suzanne against IvyGen, printed; peers.py includes it)
 # Builds libbanyan.so and bench_tube in build_dir (default build/), loads
 # the add-on from the repository the way tests/blender/run.sh does (a
@@ -14,7 +14,7 @@ build=$(cd "${1:-$src/build}" && pwd)
 runs=${2:-5}
 script=${3:-peers.py}
 blender=${BLENDER:-blender}
-# banyan_cli: the 1,000-tree avenue (issue 23); bench_roots: section 7
+# banyan_cli: the 1,000-tree avenue (section 10); bench_roots: section 7
 cmake -S "$src" -B "$build" -DBANYAN_BENCH=ON >/dev/null  # the benchmarks are built only when asked
 cmake --build "$build" -j2 --target banyan banyan_cli bench_tube bench_hosts bench_roots_hosts bench_ivy bench_textures \
     bench_roots
