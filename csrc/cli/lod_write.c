@@ -55,9 +55,10 @@ static void *bb_run(void *arg) {
 }
 
 /* Levels of one mesh into lv[0 .. lod->count): each ratio's level is
- * simplified from the level before it (the mesh's own ratio of that
- * level's triangles: ratio[k] / ratio[k - 1]), so each pass starts from
- * fewer triangles; the billboard pictures the mesh itself, drawn on a
+ * simplified from the level before it, asked for the share of that
+ * level's triangles that leaves ratio[k] of the mesh's (the simplifier
+ * may stop a little short of a ratio: the next level makes up for it), so
+ * each pass starts from fewer triangles; the billboard pictures the mesh itself, drawn on a
  * second thread while the ratios' chain runs (threads != 1). The same
  * levels on any thread count. */
 static banyan_status levels_of(const banyan_mesh *mesh, const cli_lod *lod, int threads, const cli_budget *budget,
@@ -78,7 +79,11 @@ static banyan_status levels_of(const banyan_mesh *mesh, const cli_lod *lod, int 
     for (int k = 0; !s && k < n_ratio; k++) {
         banyan_lod_params p;
         banyan_lod_params_init(&p);
-        p.ratio = k ? lod->ratio[k] / lod->ratio[k - 1] : lod->ratio[0];
+        p.ratio = lod->ratio[0];
+        if (k) { /* of the level before's triangles, the share that leaves ratio[k] of the mesh's */
+            double r = lod->ratio[k] * ((double)mesh->index_count / (double)(lv[k - 1]->index_count ? lv[k - 1]->index_count : 1));
+            p.ratio = r > 1 ? 1 : r < 0.001 ? 0.001 : r;
+        }
         banyan_budget left;
         s = cli_budget_left(budget, "the levels of detail", &left, err);
         if (!s) s = banyan_mesh_lod_budget(k ? lv[k - 1] : mesh, &p, &left, &lv[k], err);

@@ -255,10 +255,30 @@ static inline double dmax3(double a, double b, double c) {
     return a > m ? a : m;
 }
 
+/* One sample of a triangle at barycentrics (w0, w1, w2): nearer than
+ * what the sample holds and, textured, over the alpha cutoff, it takes
+ * the triangle's colour there. */
+static inline void put_sample(const bb_paint *pa, const banyan_image *tex, bb_tile *t, long x, long y, double w0,
+                              double w1, double w2, const double Z[3], const double U[3], const double V[3],
+                              const double tint[3], double light, const double flat[3]) {
+    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
+    size_t s = (size_t)y * t->sw + (size_t)x;
+    if (!(z > t->depth[s])) return;
+    float *c = t->rgb + 3 * s;
+    if (tex) {
+        float tx[3];
+        if (texel(pa, tex, w0 * U[0] + w1 * U[1] + w2 * U[2], w0 * V[0] + w1 * V[1] + w2 * V[2], tx) < 0.5f) return;
+        for (int e = 0; e < 3; e++) c[e] = (float)(tx[e] * tint[e] * light);
+    } else {
+        for (int e = 0; e < 3; e++) c[e] = (float)flat[e];
+    }
+    t->depth[s] = (float)z;
+}
+
 /* Draws the triangles of group g (tri: tris_of_group's) into one tile's
  * samples. */
-static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, const bb_tri *tri, double gain,
-                      const bb_view *vw, bb_tile *t) {
+static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, const bb_tri *tri, double *proj,
+                      double gain, const bb_view *vw, bb_tile *t) {
     double sx = t->sw / (vw->rmax - vw->rmin), sy = t->sh / (vw->umax - vw->umin);
     size_t at = 0;
     for (uint32_t q = 0; q < m->part_count; q++) {
@@ -266,21 +286,29 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
         if (pt->group != g) continue;
         const bb_mat *bm = &pa->mat[pt->material];
         const banyan_image *tex = m->uvs ? bm->tex : NULL;
+        /* The part's vertices in picture space, once (a vertex has several
+         * corners): proj holds x, y and depth of each. */
+        for (uint32_t v = 0; v < pt->vertex_count; v++) {
+            const float *P = m->positions + 3 * ((size_t)pt->vertex_offset + v);
+            double *o = proj + 3 * (size_t)v;
+            o[0] = (P[0] * vw->r[0] + P[1] * vw->r[1] + P[2] * vw->r[2] - vw->rmin) * sx;
+            o[1] = (vw->umax - (P[0] * vw->up[0] + P[1] * vw->up[1] + P[2] * vw->up[2])) * sy;
+            o[2] = P[0] * vw->v[0] + P[1] * vw->v[1] + P[2] * vw->v[2];
+        }
         for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
             const uint32_t *I = m->indices + k;
             const bb_tri *b = &tri[at++];
             const double *tint = b->tint;
             double X[3], Y[3], Z[3], U[3] = {0, 0, 0}, V[3] = {0, 0, 0};
             for (int j = 0; j < 3; j++) {
-                const float *P = m->positions + 3 * (size_t)I[j];
-                X[j] = (P[0] * vw->r[0] + P[1] * vw->r[1] + P[2] * vw->r[2] - vw->rmin) * sx;
-                Y[j] = (vw->umax - (P[0] * vw->up[0] + P[1] * vw->up[1] + P[2] * vw->up[2])) * sy;
-                Z[j] = P[0] * vw->v[0] + P[1] * vw->v[1] + P[2] * vw->v[2];
+                const double *o = proj + 3 * (size_t)(I[j] - pt->vertex_offset);
+                X[j] = o[0], Y[j] = o[1], Z[j] = o[2];
                 if (tex) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
             }
             double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
-            double flat[3];
-            for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
+            double flat[3] = {0, 0, 0};
+            if (!tex)
+                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
             /* Finite here (positions are checked, views are finite): plain
              * compares give fmin's and fmax's values. */
@@ -296,43 +324,27 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             /* Thin triangles seen edge-on still cover what they pass: a
              * sliver smaller than a sample lights the sample at its centre. */
             int sliver = fabs(area) < 1e-12 || (x0 == x1 && y0 == y1);
-            long cx = sliver ? floor_l((X[0] + X[1] + X[2]) / 3) : 0, cy = sliver ? floor_l((Y[0] + Y[1] + Y[2]) / 3) : 0;
+            if (sliver) {
+                long cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
+                if (cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)
+                    put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
+                continue;
+            }
             int neg = area < 0;
             for (long y = y0; y <= y1; y++) {
                 double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
                 for (long x = x0; x <= x1; x++) {
-                    double w0, w1, w2;
-                    if (sliver) {
-                        if (cx != x || cy != y) continue;
-                        w0 = w1 = w2 = 1.0 / 3;
-                    } else {
-                        double px_ = x + 0.5;
-                        double e0 = (X[1] - px_) * dy2 - (X[2] - px_) * dy1;
-                        /* w0 = e0 / area < 0 exactly when their signs differ
-                         * (no quotient here is small enough to round to 0):
-                         * most samples outside are left without dividing. */
-                        if (e0 != 0 && (e0 < 0) != neg && fabs(e0) > 1e-250) continue;
-                        double e1 = (X[2] - px_) * dy0 - (X[0] - px_) * dy2;
-                        if (e1 != 0 && (e1 < 0) != neg && fabs(e1) > 1e-250) continue;
-                        w0 = e0 / area;
-                        w1 = e1 / area;
-                        w2 = 1 - w0 - w1;
-                        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-                    }
-                    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
-                    size_t s = (size_t)y * t->sw + (size_t)x;
-                    if (!(z > t->depth[s])) continue;
-                    float *c = t->rgb + 3 * s;
-                    if (tex) {
-                        float tx[3];
-                        if (texel(pa, tex, w0 * U[0] + w1 * U[1] + w2 * U[2], w0 * V[0] + w1 * V[1] + w2 * V[2], tx) <
-                            0.5f)
-                            continue;
-                        for (int e = 0; e < 3; e++) c[e] = (float)(tx[e] * tint[e] * light);
-                    } else {
-                        for (int e = 0; e < 3; e++) c[e] = (float)flat[e];
-                    }
-                    t->depth[s] = (float)z;
+                    double px_ = x + 0.5;
+                    double e0 = (X[1] - px_) * dy2 - (X[2] - px_) * dy1;
+                    /* w0 = e0 / area < 0 exactly when their signs differ
+                     * (no quotient here is small enough to round to 0):
+                     * most samples outside are left without dividing. */
+                    if (e0 != 0 && (e0 < 0) != neg && fabs(e0) > 1e-250) continue;
+                    double e1 = (X[2] - px_) * dy0 - (X[0] - px_) * dy2;
+                    if (e1 != 0 && (e1 < 0) != neg && fabs(e1) > 1e-250) continue;
+                    double w0 = e0 / area, w1 = e1 / area, w2 = 1 - w0 - w1;
+                    if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                    put_sample(pa, tex, t, x, y, w0, w1, w2, Z, U, V, tint, light, flat);
                 }
             }
         }
@@ -513,8 +525,9 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     bb_paint pa;
     memset(&pa, 0, sizeof pa);
     bb_tile tl = {0, 0, NULL, NULL};
-    size_t tile_cap = 0, tri_cap = 0;
+    size_t tile_cap = 0, tri_cap = 0, proj_cap = 0;
     bb_tri *tri = NULL;
+    double *proj = NULL;
     float *share = NULL;
     banyan_status st = BANYAN_E_NOMEM;
     if (!lo || !hi || !slot || !o) goto fail;
@@ -636,6 +649,14 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             if (!(tri = malloc(sizeof(bb_tri) * tri_cap))) goto fail;
         }
         tris_of_group(m, g, tri);
+        size_t n_vtx = 0;
+        for (uint32_t q = 0; q < m->part_count; q++)
+            if (m->parts[q].group == g && m->parts[q].vertex_count > n_vtx) n_vtx = m->parts[q].vertex_count;
+        if (n_vtx > proj_cap) {
+            free(proj);
+            proj_cap = n_vtx;
+            if (!(proj = malloc(3 * sizeof(double) * proj_cap))) goto fail;
+        }
         for (uint32_t k = 0; k < tiles; k++) {
             if (prog_at(pg, (double)g / n_groups)) {
                 st = BANYAN_E_LIMIT;
@@ -652,7 +673,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
                 if (!tl.depth || !tl.rgb || !share) goto fail;
             }
             for (size_t i = 0; i < ns; i++) tl.depth[i] = -INFINITY;
-            draw_view(m, g, &pa, tri, card_light(&vw[k]), &vw[k], &tl);
+            draw_view(m, g, &pa, tri, proj, card_light(&vw[k]), &vw[k], &tl);
             resolve(&tl, ss, &vw[k], pa.to8, im->pixels, W, share);
         }
         if (dilate(im->pixels, W, H)) goto fail;
@@ -722,13 +743,13 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             }
         }
     }
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     *out = o;
     banyan_error_clear(err);
     return BANYAN_OK;
 fail:
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     banyan_mesh_free(o);
     if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the billboard level of detail");

@@ -329,7 +329,11 @@ static int thin_leaves(const banyan_mesh *m, uint32_t q, const banyan_lod_params
         if (c == UINT32_MAX || !keep[c]) continue;
         for (int j = 0; j < 3; j++) {
             double o = piv[3 * (size_t)c + j], d = P[3 * (size_t)v + j] - o, room = d > 0 ? bhi[j] - o : blo[j] - o;
-            if (fabs(d) > 1e-12) cap[c] = fmin(cap[c], fmax(1.0, room / d));
+            if (fabs(d) > 1e-12) {
+                double g = room / d; /* NaN (a hostile pivot) reads as 1, as fmax(1, NaN) */
+                g = g > 1.0 ? g : 1.0;
+                cap[c] = g < cap[c] ? g : cap[c];
+            }
         }
     }
     double s_hi = lod_leaf_growth(karea, cap, keep, n, total);
@@ -437,9 +441,10 @@ static banyan_status lod_reduce(const banyan_mesh *m, const banyan_lod_params *p
     if (!po || !remap || !o) goto fail;
     double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t v = 0; v < m->vertex_count; v++)
-        for (int j = 0; j < 3; j++) {
-            blo[j] = fmin(blo[j], m->positions[3 * (size_t)v + j]);
-            bhi[j] = fmax(bhi[j], m->positions[3 * (size_t)v + j]);
+        for (int j = 0; j < 3; j++) { /* finite (check_mesh): plain compares give fmin's and fmax's values */
+            double x = m->positions[3 * (size_t)v + j];
+            blo[j] = x < blo[j] ? x : blo[j];
+            bhi[j] = x > bhi[j] ? x : bhi[j];
         }
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
