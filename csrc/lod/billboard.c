@@ -330,7 +330,7 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                     put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
                 continue;
             }
-            int neg = area < 0;
+            double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
             for (long y = y0; y <= y1; y++) {
                 double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
                 for (long x = x0; x <= x1; x++) {
@@ -339,9 +339,9 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                     /* w0 = e0 / area < 0 exactly when their signs differ
                      * (no quotient here is small enough to round to 0):
                      * most samples outside are left without dividing. */
-                    if (e0 != 0 && (e0 < 0) != neg && fabs(e0) > 1e-250) continue;
+                    if (e0 * sg < -1e-250) continue;
                     double e1 = (X[2] - px_) * dy0 - (X[0] - px_) * dy2;
-                    if (e1 != 0 && (e1 < 0) != neg && fabs(e1) > 1e-250) continue;
+                    if (e1 * sg < -1e-250) continue;
                     double w0 = e0 / area, w1 = e1 / area, w2 = 1 - w0 - w1;
                     if (w0 < 0 || w1 < 0 || w2 < 0) continue;
                     put_sample(pa, tex, t, x, y, w0, w1, w2, Z, U, V, tint, light, flat);
