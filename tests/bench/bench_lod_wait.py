@@ -9,7 +9,7 @@ without) over the median generation time, target at most 2x. Wall time
 Prints markdown table rows `| figure | value | target | met/not met |`
 and one line naming the machine and its load.
 
-    python3 tests/bench/bench_lod_wait.py --build build --runs 7
+    python3 tests/bench/bench_lod_wait.py --build build --runs 7 [--against OLD_BUILD]
 """
 import argparse
 import json
@@ -57,32 +57,50 @@ def row(figure, value, target, met):
     print(f"| {figure} | {value} | {target} | {status} |")
 
 
+def measure(cli, preset, out, sums):
+    """One alternating pair (without, with --lod) into sums."""
+    g, w, c = run(cli, preset, out, False)
+    sums["gen"].append(g), sums["w_plain"].append(w), sums["cpu_plain"].append(c)
+    g, w, c = run(cli, preset, out, True)
+    sums["gen"].append(g), sums["w_lod"].append(w), sums["cpu_lod"].append(c)
+
+
+def figures(sums):
+    """(generation ms, LOD's added wall ms, its added CPU ms)."""
+    g = statistics.median(sums["gen"])
+    added = statistics.median(sums["w_lod"]) - statistics.median(sums["w_plain"])
+    added_cpu = 1e3 * (statistics.median(sums["cpu_lod"]) - statistics.median(sums["cpu_plain"]))
+    return g, added, added_cpu
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", required=True, help="the build directory (holds the banyan CLI)")
     ap.add_argument("--runs", type=int, default=7, help="runs of each kind, alternating")
+    ap.add_argument("--against", help="another build directory (an older banyan), run in the same alternation "
+                                      "and shown as its own rows")
     a = ap.parse_args()
-    cli = os.path.join(os.path.abspath(a.build), "banyan")
+    builds = [a.build] + ([a.against] if a.against else [])
+    clis = [os.path.join(os.path.abspath(b), "banyan") for b in builds]
     preset = os.path.join(ROOT, "presets", "keyaki_mature.json")
     load0 = os.getloadavg()
-    gen, w_plain, w_lod, cpu_plain, cpu_lod = [], [], [], [], []
+    sums = [{k: [] for k in ("gen", "w_plain", "w_lod", "cpu_plain", "cpu_lod")} for _ in clis]
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "k.glb")
-        run(cli, preset, out, False)  # warm the page cache
+        for cli in clis:
+            run(cli, preset, out, False)  # warm the page cache
         for _ in range(a.runs):
-            g, w, c = run(cli, preset, out, False)
-            gen.append(g), w_plain.append(w), cpu_plain.append(c)
-            g, w, c = run(cli, preset, out, True)
-            gen.append(g), w_lod.append(w), cpu_lod.append(c)
+            for cli, sm in zip(clis, sums):
+                measure(cli, preset, out, sm)
     load1 = os.getloadavg()
-    g = statistics.median(gen)
-    added = statistics.median(w_lod) - statistics.median(w_plain)
-    added_cpu = 1e3 * (statistics.median(cpu_lod) - statistics.median(cpu_plain))
-    ratio = added / g
-    row(f"keyaki_mature `--lod {LOD}`: LOD's added time / generation (wall, {added:.0f} ms / {g:.0f} ms)",
-        f"{ratio:.2f}x", "<= 2x", ratio <= 2.0)
-    row(f"keyaki_mature `--lod {LOD}`: LOD's added CPU / generation ({added_cpu:.0f} ms / {g:.0f} ms)",
-        f"{added_cpu / g:.2f}x", "—", None)
+    for b, sm in zip(builds, sums):
+        g, added, added_cpu = figures(sm)
+        ratio = added / g
+        tag = "" if b == a.build else f" ({b})"
+        row(f"keyaki_mature `--lod {LOD}`{tag}: LOD's added time / generation (wall, {added:.0f} ms / {g:.0f} ms)",
+            f"{ratio:.2f}x", "<= 2x", ratio <= 2.0)
+        row(f"keyaki_mature `--lod {LOD}`{tag}: LOD's added CPU time (user + system, {added_cpu:.0f} ms) / "
+            f"generation (wall)", f"{added_cpu / g:.2f}x", "—", None)
     model, cores = machine()
     print(f"Machine: {model}, {cores} logical cores; load average {load0[0]:.2f} before, {load1[0]:.2f} after "
           f"({a.runs} alternating runs of each, medians, textures off).")
