@@ -66,10 +66,11 @@ void cli_budget_start(cli_budget *b, const struct cli_command *cmd, const void *
 banyan_status cli_budget_left(const cli_budget *b, const char *stage, banyan_budget *out, banyan_error *err);
 
 /* Writes meshes with their levels of detail as MSFT_lod, each level and
- * the write within what is left of the budget. */
+ * the write within what is left of the budget; threads (--threads) 1 makes
+ * the levels one after another, else the billboard beside the others. */
 banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char *const *names, uint32_t count,
-                             const cli_lod *lod, const banyan_gltf_options *opt, const cli_budget *budget,
-                             cli_stats *st, banyan_error *err);
+                             const cli_lod *lod, int threads, const banyan_gltf_options *opt,
+                             const cli_budget *budget, cli_stats *st, banyan_error *err);
 
 /* Exit codes: 0 done, 1 refused or failed, 2 bad command line or hosts
  * refused before any work (a --host file, a preset's hosts: the same

@@ -509,7 +509,7 @@ int main(int argc, char **argv) {
     double t2 = t1;
     if (out_path) {
         banyan_budget left;
-        banyan_status ws = lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, &gltf_opt, &budget, &st, &err)
+        banyan_status ws = lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, job.threads, &gltf_opt, &budget, &st, &err)
                                      : cli_budget_left(&budget, "writing", &left, &err);
         if (!lod.count && !ws)
             ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,

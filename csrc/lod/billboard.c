@@ -37,6 +37,7 @@
 #include "core/error.h"
 #include "core/wind.h"
 #include "lod_internal.h"
+#include "srgb8.h"
 
 #define BB_MAX_PLANES 8
 #define BB_MAX_TILES (BB_MAX_PLANES + 1)
@@ -50,14 +51,10 @@
 static const double BB_SUN[3] = {-0.4545, -0.5417, 0.7071};
 #define BB_SKY 0.4
 
-static float srgb_of_linear(float c) {
-    c = !(c > 0) ? 0 : c > 1 ? 1 : c; /* NaN (a hostile colour) reads as black */
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * dm_powf(c, 1.0f / 2.4f) - 0.055f;
-}
-
 static float linear_of_srgb(float c) { return c <= 0.04045f ? c / 12.92f : dm_powf((c + 0.055f) / 1.055f, 2.4f); }
 
 /* Samples per pixel side: fewer on the large pictures (memory). */
+#define BB_MAX_SS 4
 static uint32_t bb_ss(uint32_t size) { return size <= 512 ? 4 : size <= 1024 ? 2 : 1; }
 
 /* What the rasteriser knows of one material: a texture to sample (the
@@ -73,6 +70,7 @@ typedef struct bb_paint {
     banyan_image **owned; /* generated textures, one per material at most */
     uint32_t n_owned;
     float lin[256];       /* sRGB byte -> linear */
+    float to8[256];       /* linear -> sRGB byte: to8[b] is the least linear value whose byte is b (srgb8_build) */
 } bb_paint;
 
 static void paint_free(bb_paint *pa) {
@@ -85,6 +83,7 @@ static void paint_free(bb_paint *pa) {
 static banyan_status paint_init(const banyan_mesh *m, bb_paint *pa) {
     memset(pa, 0, sizeof *pa);
     for (int i = 0; i < 256; i++) pa->lin[i] = linear_of_srgb(i / 255.0f);
+    srgb8_build(pa->to8);
     pa->mat = calloc(m->material_count, sizeof(bb_mat));
     pa->owned = calloc(m->material_count, sizeof(banyan_image *));
     if (!pa->mat || !pa->owned) return BANYAN_E_NOMEM;
@@ -194,43 +193,129 @@ typedef struct bb_tile {
     float *rgb;
 } bb_tile;
 
-static void texel(const bb_paint *pa, const banyan_image *im, double u, double v, float out[4]) {
-    double x = u * im->width, y = (1.0 - v) * im->height;
-    if (!(fabs(x) < 1e9) || !(fabs(y) < 1e9)) x = y = 0; /* NaN or far off: the first texel */
-    long ix = (long)floor(x), iy = (long)floor(y);
-    ix %= (long)im->width, iy %= (long)im->height;
-    ix += ix < 0 ? (long)im->width : 0, iy += iy < 0 ? (long)im->height : 0;
-    const uint8_t *c = im->pixels + ((size_t)iy * im->width + (size_t)ix) * im->channels;
-    for (int e = 0; e < 3; e++) out[e] = pa->lin[c[e]];
-    out[3] = im->channels == 4 ? c[3] / 255.0f : 1.0f;
+/* floor(x) as a long for |x| < 1e15: the same value without a libm call. */
+static inline long floor_l(double x) {
+    long t = (long)x;
+    return (double)t > x ? t - 1 : t;
 }
 
-/* Draws the triangles of group g into one tile's samples. */
-static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, double gain, const bb_view *vw,
-                      bb_tile *t) {
+/* The texel under (u, v), repeating: its alpha first (a texel under one
+ * half covers nothing, and its colour is not read), then its linear
+ * colour into out. Returns the alpha. */
+static inline float texel(const bb_paint *pa, const banyan_image *im, double u, double v, float out[3]) {
+    double x = u * im->width, y = (1.0 - v) * im->height;
+    if (!(fabs(x) < 1e9) || !(fabs(y) < 1e9)) x = y = 0; /* NaN or far off: the first texel */
+    long ix = floor_l(x), iy = floor_l(y);
+    long w = (long)im->width, h = (long)im->height;
+    if (!(w & (w - 1)) && !(h & (h - 1))) { /* powers of two: the remainder in [0, size) is the low bits */
+        ix &= w - 1, iy &= h - 1;
+    } else {
+        ix %= w, iy %= h;
+        ix += ix < 0 ? w : 0, iy += iy < 0 ? h : 0;
+    }
+    const uint8_t *c = im->pixels + ((size_t)iy * im->width + (size_t)ix) * im->channels;
+    float a = im->channels == 4 ? c[3] / 255.0f : 1.0f;
+    if (a < 0.5f) return a;
+    for (int e = 0; e < 3; e++) out[e] = pa->lin[c[e]];
+    return a;
+}
+
+/* What a triangle brings to every view, worked out once per group: its
+ * vertex colours' mean and its unit normal (has_n 0: none, lit flat). */
+typedef struct bb_tri {
+    double tint[3];
+    double n[3];
+    int has_n;
+} bb_tri;
+
+/* The group's triangles in drawing order (parts in order) into tri. */
+static void tris_of_group(const banyan_mesh *m, uint32_t g, bb_tri *tri) {
+    size_t at = 0;
+    for (uint32_t q = 0; q < m->part_count; q++) {
+        const banyan_part *pt = &m->parts[q];
+        if (pt->group != g) continue;
+        for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
+            const uint32_t *I = m->indices + k;
+            bb_tri *b = &tri[at++];
+            b->tint[0] = b->tint[1] = b->tint[2] = 0;
+            for (int j = 0; j < 3; j++)
+                for (int e = 0; e < 3; e++) b->tint[e] += (m->colors ? m->colors[4 * (size_t)I[j] + e] : 1.0f) / 3.0;
+            b->has_n = tri_normal(m, I, b->n);
+        }
+    }
+}
+
+static inline double dmin3(double a, double b, double c) {
+    double m = b < c ? b : c;
+    return a < m ? a : m;
+}
+
+static inline double dmax3(double a, double b, double c) {
+    double m = b > c ? b : c;
+    return a > m ? a : m;
+}
+
+/* One sample of a triangle at barycentrics (w0, w1, w2): nearer than
+ * what the sample holds and, textured, over the alpha cutoff, it takes
+ * the triangle's colour there. */
+static inline void put_sample(const bb_paint *pa, const banyan_image *tex, bb_tile *t, long x, long y, double w0,
+                              double w1, double w2, const double Z[3], const double U[3], const double V[3],
+                              const double tint[3], double light, const double flat[3]) {
+    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
+    size_t s = (size_t)y * t->sw + (size_t)x;
+    if (!(z > t->depth[s])) return;
+    float *c = t->rgb + 3 * s;
+    if (tex) {
+        float tx[3];
+        if (texel(pa, tex, w0 * U[0] + w1 * U[1] + w2 * U[2], w0 * V[0] + w1 * V[1] + w2 * V[2], tx) < 0.5f) return;
+        for (int e = 0; e < 3; e++) c[e] = (float)(tx[e] * tint[e] * light);
+    } else {
+        for (int e = 0; e < 3; e++) c[e] = (float)flat[e];
+    }
+    t->depth[s] = (float)z;
+}
+
+/* Draws the triangles of group g (tri: tris_of_group's) into one tile's
+ * samples. */
+static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, const bb_tri *tri, double *proj,
+                      double gain, const bb_view *vw, bb_tile *t) {
     double sx = t->sw / (vw->rmax - vw->rmin), sy = t->sh / (vw->umax - vw->umin);
+    size_t at = 0;
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
         if (pt->group != g) continue;
         const bb_mat *bm = &pa->mat[pt->material];
         const banyan_image *tex = m->uvs ? bm->tex : NULL;
+        /* The part's vertices in picture space, once (a vertex has several
+         * corners): proj holds x, y and depth of each. */
+        for (uint32_t v = 0; v < pt->vertex_count; v++) {
+            const float *P = m->positions + 3 * ((size_t)pt->vertex_offset + v);
+            double *o = proj + 3 * (size_t)v;
+            o[0] = (P[0] * vw->r[0] + P[1] * vw->r[1] + P[2] * vw->r[2] - vw->rmin) * sx;
+            o[1] = (vw->umax - (P[0] * vw->up[0] + P[1] * vw->up[1] + P[2] * vw->up[2])) * sy;
+            o[2] = P[0] * vw->v[0] + P[1] * vw->v[1] + P[2] * vw->v[2];
+        }
         for (uint32_t k = pt->index_offset; k + 2 < pt->index_offset + pt->index_count; k += 3) {
             const uint32_t *I = m->indices + k;
-            double X[3], Y[3], Z[3], U[3] = {0, 0, 0}, V[3] = {0, 0, 0}, tint[3] = {0, 0, 0}, n[3];
+            const bb_tri *b = &tri[at++];
+            const double *tint = b->tint;
+            double X[3], Y[3], Z[3], U[3] = {0, 0, 0}, V[3] = {0, 0, 0};
             for (int j = 0; j < 3; j++) {
-                const float *P = m->positions + 3 * (size_t)I[j];
-                X[j] = (P[0] * vw->r[0] + P[1] * vw->r[1] + P[2] * vw->r[2] - vw->rmin) * sx;
-                Y[j] = (vw->umax - (P[0] * vw->up[0] + P[1] * vw->up[1] + P[2] * vw->up[2])) * sy;
-                Z[j] = P[0] * vw->v[0] + P[1] * vw->v[1] + P[2] * vw->v[2];
+                const double *o = proj + 3 * (size_t)(I[j] - pt->vertex_offset);
+                X[j] = o[0], Y[j] = o[1], Z[j] = o[2];
                 if (tex) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
-                for (int e = 0; e < 3; e++) tint[e] += (m->colors ? m->colors[4 * (size_t)I[j] + e] : 1.0f) / 3.0;
             }
-            double light = (tri_normal(m, I, n) ? bb_light(n, vw->v, bm->translucency) : 1.0) / gain;
-            double flat[3];
-            for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
+            double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
+            double flat[3] = {0, 0, 0};
+            if (!tex)
+                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-            long x0 = (long)floor(fmin(X[0], fmin(X[1], X[2]))), x1 = (long)floor(fmax(X[0], fmax(X[1], X[2])));
-            long y0 = (long)floor(fmin(Y[0], fmin(Y[1], Y[2]))), y1 = (long)floor(fmax(Y[0], fmax(Y[1], Y[2])));
+            /* Finite here (positions are checked, views are finite): plain
+             * compares give fmin's and fmax's values. */
+            double bx0 = dmin3(X[0], X[1], X[2]), bx1 = dmax3(X[0], X[1], X[2]);
+            double by0 = dmin3(Y[0], Y[1], Y[2]), by1 = dmax3(Y[0], Y[1], Y[2]);
+            if (!(bx1 >= 0 && by1 >= 0 && bx0 < t->sw && by0 < t->sh)) continue; /* off the tile (as x0 > x1) */
+            long x0 = floor_l(bx0), x1 = floor_l(bx1), y0 = floor_l(by0), y1 = floor_l(by1);
             x0 = x0 < 0 ? 0 : x0;
             x1 = x1 > (long)t->sw - 1 ? (long)t->sw - 1 : x1;
             y0 = y0 < 0 ? 0 : y0;
@@ -239,34 +324,29 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, doub
             /* Thin triangles seen edge-on still cover what they pass: a
              * sliver smaller than a sample lights the sample at its centre. */
             int sliver = fabs(area) < 1e-12 || (x0 == x1 && y0 == y1);
-            for (long y = y0; y <= y1; y++)
+            if (sliver) {
+                long cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
+                if (cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)
+                    put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
+                continue;
+            }
+            double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
+            for (long y = y0; y <= y1; y++) {
+                double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
                 for (long x = x0; x <= x1; x++) {
-                    double w0, w1, w2;
-                    if (sliver) {
-                        long cx = (long)floor((X[0] + X[1] + X[2]) / 3), cy = (long)floor((Y[0] + Y[1] + Y[2]) / 3);
-                        if (cx != x || cy != y) continue;
-                        w0 = w1 = w2 = 1.0 / 3;
-                    } else {
-                        double px_ = x + 0.5, py_ = y + 0.5;
-                        w0 = ((X[1] - px_) * (Y[2] - py_) - (X[2] - px_) * (Y[1] - py_)) / area;
-                        w1 = ((X[2] - px_) * (Y[0] - py_) - (X[0] - px_) * (Y[2] - py_)) / area;
-                        w2 = 1 - w0 - w1;
-                        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-                    }
-                    double z = w0 * Z[0] + w1 * Z[1] + w2 * Z[2];
-                    size_t s = (size_t)y * t->sw + (size_t)x;
-                    if (!(z > t->depth[s])) continue;
-                    float *c = t->rgb + 3 * s;
-                    if (tex) {
-                        float tx[4];
-                        texel(pa, tex, w0 * U[0] + w1 * U[1] + w2 * U[2], w0 * V[0] + w1 * V[1] + w2 * V[2], tx);
-                        if (tx[3] < 0.5f) continue;
-                        for (int e = 0; e < 3; e++) c[e] = (float)(tx[e] * tint[e] * light);
-                    } else {
-                        for (int e = 0; e < 3; e++) c[e] = (float)flat[e];
-                    }
-                    t->depth[s] = (float)z;
+                    double px_ = x + 0.5;
+                    double e0 = (X[1] - px_) * dy2 - (X[2] - px_) * dy1;
+                    /* w0 = e0 / area < 0 exactly when their signs differ
+                     * (no quotient here is small enough to round to 0):
+                     * most samples outside are left without dividing. */
+                    if (e0 * sg < -1e-250) continue;
+                    double e1 = (X[2] - px_) * dy0 - (X[0] - px_) * dy2;
+                    if (e1 * sg < -1e-250) continue;
+                    double w0 = e0 / area, w1 = e1 / area, w2 = 1 - w0 - w1;
+                    if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                    put_sample(pa, tex, t, x, y, w0, w1, w2, Z, U, V, tint, light, flat);
                 }
+            }
         }
     }
 }
@@ -275,8 +355,10 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, doub
  * alpha the covered share scaled (by one factor per tile, found by
  * bisection) so the pixels at alpha >= 0.5 are as many as the tile's
  * covered share of samples says. */
-static void resolve(const bb_tile *t, uint32_t ss, const bb_view *vw, uint8_t *img, uint32_t W, float *share) {
+static void resolve(const bb_tile *t, uint32_t ss, const bb_view *vw, const float to8[256], uint8_t *img, uint32_t W,
+                    float *share) {
     double total = 0;
+    size_t hist[BB_MAX_SS * BB_MAX_SS + 1] = {0}; /* pixels by covered samples */
     for (uint32_t y = 0; y < vw->h; y++)
         for (uint32_t x = 0; x < vw->w; x++) {
             double sum[3] = {0, 0, 0};
@@ -290,26 +372,31 @@ static void resolve(const bb_tile *t, uint32_t ss, const bb_view *vw, uint8_t *i
                 }
             uint8_t *px = img + 4 * ((size_t)(vw->y0 + y) * W + vw->x0 + x);
             share[(size_t)y * vw->w + x] = (float)n / (float)(ss * ss);
+            hist[n]++;
             total += (double)n / (ss * ss);
             for (int e = 0; e < 3; e++)
-                px[e] = n ? (uint8_t)lrintf(255.0f * srgb_of_linear((float)(sum[e] / n))) : 0;
+                px[e] = n ? srgb8(to8, (float)(sum[e] / n)) : 0;
             px[3] = 0;
         }
-    size_t np = (size_t)vw->w * vw->h;
+    /* A pixel's share is one of ss * ss + 1 values (n / (ss * ss)): the
+     * pixels that pass at a scale are counted per value. */
     double want = total; /* pixels that should pass the cutoff */
     double lo = 0.5, hi = 16, scale = 1;
+    uint32_t nss = ss * ss;
     for (int it = 0; it < 40; it++) {
         double mid = 0.5 * (lo + hi);
         size_t pass = 0;
-        for (size_t i = 0; i < np; i++) pass += share[i] > 0 && lrint(255.0 * fmin(1.0, mid * share[i])) >= 128;
+        for (uint32_t n = 1; n <= nss; n++)
+            pass += lrint(255.0 * fmin(1.0, mid * (double)((float)n / (float)nss))) >= 128 ? hist[n] : 0;
         if ((double)pass < want) lo = mid;
         else hi = mid;
     }
     /* Of the two ends, the one nearer the covered share. */
     size_t p_lo = 0, p_hi = 0;
-    for (size_t i = 0; i < np; i++) {
-        p_lo += share[i] > 0 && lrint(255.0 * fmin(1.0, lo * share[i])) >= 128;
-        p_hi += share[i] > 0 && lrint(255.0 * fmin(1.0, hi * share[i])) >= 128;
+    for (uint32_t n = 1; n <= nss; n++) {
+        float sh = (float)n / (float)nss;
+        p_lo += lrint(255.0 * fmin(1.0, lo * sh)) >= 128 ? hist[n] : 0;
+        p_hi += lrint(255.0 * fmin(1.0, hi * sh)) >= 128 ? hist[n] : 0;
     }
     scale = fabs((double)p_lo - want) <= fabs((double)p_hi - want) ? lo : hi;
     for (uint32_t y = 0; y < vw->h; y++)
@@ -438,6 +525,9 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     bb_paint pa;
     memset(&pa, 0, sizeof pa);
     bb_tile tl = {0, 0, NULL, NULL};
+    size_t tile_cap = 0, tri_cap = 0, proj_cap = 0;
+    bb_tri *tri = NULL;
+    double *proj = NULL;
     float *share = NULL;
     banyan_status st = BANYAN_E_NOMEM;
     if (!lo || !hi || !slot || !o) goto fail;
@@ -450,8 +540,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
             const float *P = m->positions + 3 * (size_t)m->indices[k];
             for (int j = 0; j < 3; j++) {
-                lo[pt->group][j] = fmin(lo[pt->group][j], P[j]);
-                hi[pt->group][j] = fmax(hi[pt->group][j], P[j]);
+                lo[pt->group][j] = P[j] < lo[pt->group][j] ? P[j] : lo[pt->group][j]; /* finite: fmin's value */
+                hi[pt->group][j] = P[j] > hi[pt->group][j] ? P[j] : hi[pt->group][j];
             }
         }
     }
@@ -514,8 +604,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
                 const float *P = m->positions + 3 * (size_t)m->indices[k];
                 for (uint32_t v = 0; v < planes; v++) {
                     double s = (P[0] - c[0]) * dk[v][0] + (P[1] - c[1]) * dk[v][1];
-                    smin[v] = fmin(smin[v], s);
-                    smax[v] = fmax(smax[v], s);
+                    smin[v] = s < smin[v] ? s : smin[v]; /* finite: fmin's value */
+                    smax[v] = s > smax[v] ? s : smax[v];
                 }
             }
         }
@@ -550,6 +640,23 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         im->channels = 4;
         im->pixels = calloc((size_t)W * H, 4);
         if (!im->pixels) goto fail;
+        size_t n_tri = 0;
+        for (uint32_t q = 0; q < m->part_count; q++)
+            if (m->parts[q].group == g) n_tri += m->parts[q].index_count / 3;
+        if (n_tri > tri_cap) {
+            free(tri);
+            tri_cap = n_tri;
+            if (!(tri = malloc(sizeof(bb_tri) * tri_cap))) goto fail;
+        }
+        tris_of_group(m, g, tri);
+        size_t n_vtx = 0;
+        for (uint32_t q = 0; q < m->part_count; q++)
+            if (m->parts[q].group == g && m->parts[q].vertex_count > n_vtx) n_vtx = m->parts[q].vertex_count;
+        if (n_vtx > proj_cap) {
+            free(proj);
+            proj_cap = n_vtx;
+            if (!(proj = malloc(3 * sizeof(double) * proj_cap))) goto fail;
+        }
         for (uint32_t k = 0; k < tiles; k++) {
             if (prog_at(pg, (double)g / n_groups)) {
                 st = BANYAN_E_LIMIT;
@@ -557,14 +664,17 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             }
             tl.sw = vw[k].w * ss, tl.sh = vw[k].h * ss;
             size_t ns = (size_t)tl.sw * tl.sh;
-            free(tl.depth), free(tl.rgb), free(share);
-            tl.depth = malloc(sizeof(float) * ns);
-            tl.rgb = malloc(3 * sizeof(float) * ns);
-            share = malloc(sizeof(float) * (size_t)vw[k].w * vw[k].h);
-            if (!tl.depth || !tl.rgb || !share) goto fail;
+            if (ns > tile_cap) { /* one set of buffers for every tile, grown as needed */
+                free(tl.depth), free(tl.rgb), free(share);
+                tile_cap = ns;
+                tl.depth = malloc(sizeof(float) * ns);
+                tl.rgb = malloc(3 * sizeof(float) * ns);
+                share = malloc(sizeof(float) * ns); /* a pixel has at least one sample */
+                if (!tl.depth || !tl.rgb || !share) goto fail;
+            }
             for (size_t i = 0; i < ns; i++) tl.depth[i] = -INFINITY;
-            draw_view(m, g, &pa, card_light(&vw[k]), &vw[k], &tl);
-            resolve(&tl, ss, &vw[k], im->pixels, W, share);
+            draw_view(m, g, &pa, tri, proj, card_light(&vw[k]), &vw[k], &tl);
+            resolve(&tl, ss, &vw[k], pa.to8, im->pixels, W, share);
         }
         if (dilate(im->pixels, W, H)) goto fail;
 
@@ -633,13 +743,13 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             }
         }
     }
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     *out = o;
     banyan_error_clear(err);
     return BANYAN_OK;
 fail:
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share);
+    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     banyan_mesh_free(o);
     if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the billboard level of detail");

@@ -177,6 +177,54 @@ static double tri_area(const float *P, uint32_t a, uint32_t b, uint32_t c) {
     return 0.5 * sqrt(x * x + y * y + z * z);
 }
 
+/* The growth s >= 1 of the kept leaves (keep[c]) at which their areas,
+ * each grown by min(s, cap[c])^2, add up to `total`, solved directly:
+ * with the leaves whose cap is below s held at their cap (area B) and the
+ * others' area A, s = sqrt((total - B) / A); capping the leaves below that
+ * s only raises it, so a few passes over the still uncapped leaves settle
+ * it. Where the caps bind everywhere, s is the largest cap (every leaf at
+ * its own); s stays within 1e4 (a leaf needs no more). */
+static double lod_leaf_growth(const double *karea, const double *cap, const unsigned char *keep, uint32_t n,
+                              double total) {
+    double a = 0, b = 0, cmax = 1;
+    uint32_t m = 0;
+    uint32_t *live = malloc(sizeof(uint32_t) * (n ? n : 1));
+    for (uint32_t c = 0; c < n; c++)
+        if (keep[c]) {
+            a += karea[c];
+            if (live) live[m++] = c;
+        }
+    if (!(a > 0) || !(total > a)) {
+        free(live);
+        return 1.0;
+    }
+    double s = sqrt(total / a);
+    if (!live) return s < 1e4 ? s : 1e4; /* no room for the list: the uncapped growth */
+    for (;;) {
+        uint32_t w = 0, capped = 0;
+        for (uint32_t i = 0; i < m; i++) {
+            uint32_t c = live[i];
+            if (cap[c] < s) {
+                b += karea[c] * cap[c] * cap[c];
+                a -= karea[c];
+                cmax = cap[c] > cmax ? cap[c] : cmax;
+                capped++;
+            } else {
+                live[w++] = c;
+            }
+        }
+        m = w;
+        if (!capped) break;
+        if (!m || !(a > 0) || !(total > b)) {
+            s = m ? s : cmax;
+            break;
+        }
+        s = sqrt((total - b) / a);
+    }
+    free(live);
+    return s < 1 ? 1 : s > 1e4 ? 1e4 : s;
+}
+
 /* Thins one leaf part: whole leaves kept at random, survivors grown about
  * their petiole base so the part's leaf area stays. */
 static int thin_leaves(const banyan_mesh *m, uint32_t q, const banyan_lod_params *p, const double blo[3],
@@ -281,24 +329,14 @@ static int thin_leaves(const banyan_mesh *m, uint32_t q, const banyan_lod_params
         if (c == UINT32_MAX || !keep[c]) continue;
         for (int j = 0; j < 3; j++) {
             double o = piv[3 * (size_t)c + j], d = P[3 * (size_t)v + j] - o, room = d > 0 ? bhi[j] - o : blo[j] - o;
-            if (fabs(d) > 1e-12) cap[c] = fmin(cap[c], fmax(1.0, room / d));
+            if (fabs(d) > 1e-12) {
+                double g = room / d; /* NaN (a hostile pivot) reads as 1, as fmax(1, NaN) */
+                g = g > 1.0 ? g : 1.0;
+                cap[c] = g < cap[c] ? g : cap[c];
+            }
         }
     }
-    double s_lo = 1, s_hi = kept > 0 && total > kept ? sqrt(total / kept) : 1.0;
-    for (int grow = 0; grow < 40; grow++) { /* s_hi: enough (or the caps bind everywhere) */
-        double f = 0;
-        for (uint32_t c = 0; c < n; c++)
-            if (keep[c]) f += karea[c] * fmin(s_hi, cap[c]) * fmin(s_hi, cap[c]);
-        if (f >= total || s_hi > 1e4) break;
-        s_hi *= 1.5;
-    }
-    for (int it = 0; it < 50 && s_hi > 1; it++) {
-        double mid = 0.5 * (s_lo + s_hi), f = 0;
-        for (uint32_t c = 0; c < n; c++)
-            if (keep[c]) f += karea[c] * fmin(mid, cap[c]) * fmin(mid, cap[c]);
-        if (f < total) s_lo = mid;
-        else s_hi = mid;
-    }
+    double s_hi = lod_leaf_growth(karea, cap, keep, n, total);
     free(karea);
     for (uint32_t v = 0; v < nv; v++) {
         uint32_t c = comp[v];
@@ -403,9 +441,10 @@ static banyan_status lod_reduce(const banyan_mesh *m, const banyan_lod_params *p
     if (!po || !remap || !o) goto fail;
     double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t v = 0; v < m->vertex_count; v++)
-        for (int j = 0; j < 3; j++) {
-            blo[j] = fmin(blo[j], m->positions[3 * (size_t)v + j]);
-            bhi[j] = fmax(bhi[j], m->positions[3 * (size_t)v + j]);
+        for (int j = 0; j < 3; j++) { /* finite (check_mesh): plain compares give fmin's and fmax's values */
+            double x = m->positions[3 * (size_t)v + j];
+            blo[j] = x < blo[j] ? x : blo[j];
+            bhi[j] = x > bhi[j] ? x : bhi[j];
         }
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];

@@ -2,7 +2,8 @@
  * on every generator's mesh, ratios 0.5 and 0.15 keep that share of the
  * triangles (within 10 %), the bounding box (within 5 % of its size on
  * every axis), the leaf area (within 10 %), every part, material and
- * attribute, and make no degenerate triangle; the same seed gives the same
+ * attribute, and make no degenerate triangle (also 0.15 made from the 0.5
+ * level, as the CLI makes it); the same seed gives the same
  * bytes and another seed other leaves; the billboard level is 2 * planes
  * vertical half quads and a top card per tree with a picture neither empty
  * nor full (test_lod_look.c compares the pictures with the plant); bad
@@ -93,6 +94,50 @@ static int well_formed(const banyan_mesh *m, char *why, size_t n) {
         return 0;
     }
     return 1;
+}
+
+/* The CLI's levels (csrc/cli/lod_write.c) come each from the one before:
+ * 0.15 made from the 0.5 level (its ratio 0.15 x the plant's triangles
+ * over the 0.5 level's) keeps 0.15 of the plant's
+ * triangles within 10 %, the plant's bounds within 5 % and its leaf area
+ * within 10 %, well formed; printed beside the 0.15 level made from the
+ * plant itself. */
+static void check_chain(const char *name, const banyan_mesh *m) {
+    banyan_lod_params p;
+    banyan_lod_params_init(&p);
+    banyan_error err = {0, ""};
+    banyan_mesh *half = NULL, *chain = NULL, *direct = NULL;
+    p.ratio = 0.5;
+    CHECK(banyan_mesh_lod(m, &p, &half, &err) == BANYAN_OK && half, "%s 0.5: %s", name, err.message);
+    if (half) p.ratio = 0.15 * ((double)m->index_count / half->index_count); /* as the CLI asks */
+    if (half)
+        CHECK(banyan_mesh_lod(half, &p, &chain, &err) == BANYAN_OK && chain, "%s 0.5 -> 0.15: %s", name,
+              err.message);
+    p.ratio = 0.15;
+    CHECK(banyan_mesh_lod(m, &p, &direct, &err) == BANYAN_OK && direct, "%s 0.15: %s", name, err.message);
+    if (chain && direct) {
+        double tris = m->index_count / 3.0, got = chain->index_count / 3.0, want = 0.15 * tris;
+        bounds b0 = mesh_bounds(m), b1 = mesh_bounds(chain), b2 = mesh_bounds(direct);
+        double la0 = leaf_area(m), la1 = leaf_area(chain), la2 = leaf_area(direct);
+        double bc = bounds_change(&b0, &b1);
+        printf("%-13s 0.5 -> 0.15: %9.0f triangles (%.3f; from the plant %.0f, %.3f), bounds moved %.2f %% (%.2f %%), "
+               "leaf area %.2f %% (%.2f %%)\n",
+               name, got, got / tris, direct->index_count / 3.0, direct->index_count / 3.0 / tris, 100 * bc,
+               100 * bounds_change(&b0, &b2), la0 > 0 ? 100 * la1 / la0 : 100.0, la0 > 0 ? 100 * la2 / la0 : 100.0);
+        CHECK(fabs(got - want) <= 0.10 * want, "%s 0.5 -> 0.15: %.0f triangles, want %.0f within 10 %%", name, got,
+              want);
+        CHECK(bc <= 0.05, "%s 0.5 -> 0.15: the bounding box moved %.1f %% of its size", name, 100 * bc);
+        if (la0 > 0)
+            CHECK(fabs(la1 - la0) <= 0.10 * la0, "%s 0.5 -> 0.15: leaf area %g, was %g", name, la1, la0);
+        char why[200];
+        CHECK(well_formed(chain, why, sizeof why), "%s 0.5 -> 0.15: %s", name, why);
+        CHECK(chain->part_count == m->part_count && chain->attribute_count == m->attribute_count,
+              "%s 0.5 -> 0.15: parts %u/%u, attributes %u/%u", name, chain->part_count, m->part_count,
+              chain->attribute_count, m->attribute_count);
+    }
+    banyan_mesh_free(half);
+    banyan_mesh_free(chain);
+    banyan_mesh_free(direct);
 }
 
 /* One reduced level of m: its figures printed, its invariants checked. */
@@ -296,6 +341,7 @@ int main(int argc, char **argv) {
         if (!m) continue;
         check_level(plants[i], m, 0.5);
         check_level(plants[i], m, 0.15);
+        check_chain(plants[i], m);
         if (!strncmp(plants[i], "keyaki", 6) || !strncmp(plants[i], "avenue", 6)) {
             check_billboard(plants[i], m, 2);
             check_billboard(plants[i], m, 4);
