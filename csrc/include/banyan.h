@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 15
+#define BANYAN_ABI_VERSION 16
 
 /* ---------------------------------------------------------------- status */
 
@@ -532,6 +532,11 @@ typedef struct banyan_gltf_options {
                                 part), named <image>-<texture_size>-s<texture_seed>.png and referenced by that
                                 relative URI. The folder is created; a file already there is kept, not drawn
                                 again (each is written whole by rename, so one that exists is complete) */
+    int32_t texture_cache;   /* 0/1: keep the drawn textures' PNGs in an on-disk cache and read them from it
+                                (docs/gltf.md "Texture cache"; the same bytes either way). Default 1. The
+                                environment's BANYAN_TEXTURE_CACHE=off turns it off too */
+    const char *texture_cache_dir; /* NULL or "" (default): BANYAN_TEXTURE_CACHE when it names a folder, else
+                                      $XDG_CACHE_HOME/banyan/textures, else ~/.cache/banyan/textures */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
