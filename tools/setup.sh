@@ -8,15 +8,15 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 
-# Debian packages: compiler and build tools, the C libraries (Embree for
-# mesh hosts; OpenVDB with the Boost headers it includes, TBB and Imath for
+# Debian packages: compiler and build tools, the C libraries (libdeflate
+# for the PNG textures; Embree for mesh hosts; OpenVDB with the Boost headers it includes, TBB and Imath for
 # the fused roots surface), node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc), Slurm and
 # munge for the batch runner's farm tests (a one-node cluster).
-packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libembree-dev
+packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libdeflate-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev libsleef-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth slurm-wlm munge)

@@ -255,7 +255,8 @@ class Job:
             _fields_ = [("textures", C.c_int32), ("texture_size", C.c_int32), ("texture_seed", C.c_uint64),
                         ("engine_uvs", C.c_int32), ("sync", C.c_int32),  # sync 0: no fsync, as the CLI
                         ("image_dir", C.c_char_p),  # NULL: textures embedded, as the CLI
-                        ("compact", C.c_int32)]  # 0: plain meshes, as the CLI
+                        ("compact", C.c_int32),  # 0: plain meshes, as the CLI
+                        ("texture_cache", C.c_int32), ("texture_cache_dir", C.c_char_p)]
 
         size = lib.banyan_sizeof_gltf_options
         size.restype, size.argtypes = C.c_size_t, []
@@ -264,6 +265,7 @@ class Job:
                              "the same source" % (size(), C.sizeof(GltfOptions)))
         opt = {k: v for k, v in self.gltf.items() if k != "shared_textures"}
         self._image_dir = self.image_dir.encode() if self.image_dir else None
+        opt.setdefault("texture_cache", 1)  # the library's default: BANYAN_TEXTURE_CACHE=off still turns it off
         self._opt = GltfOptions(image_dir=self._image_dir, **opt)
         w = lib.banyan_gltf_write_ex
         w.restype = C.c_int

@@ -53,13 +53,16 @@ void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, k
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
-               "                        [--textures on|off] [--texture-size N] [--lod LIST] [--engine-uvs] [--fsync]\n"
-               "                        [--compact]\n"
+               "                        [--textures on|off] [--texture-size N] [--texture-cache on|off|DIR]\n"
+               "                        [--lod LIST] [--engine-uvs] [--fsync] [--compact]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
                "--textures on (default) embeds the leaf and bark textures in the glTF file, drawn at\n"
                "--texture-size pixels (a power of two, 64 .. 8192; default 1024); off writes flat colours.\n"
+               "--texture-cache on (default), off or DIR: keep the drawn textures' PNGs in DIR (default\n"
+               "$XDG_CACHE_HOME/banyan/textures, else ~/.cache/banyan/textures; BANYAN_TEXTURE_CACHE=off\n"
+               "or =DIR in the environment) and reuse them: the same file, written sooner.\n"
                "--lod 0.5,0.15,billboard adds coarser levels of detail to each mesh (MSFT_lod): falling\n"
                "shares of its triangles, optionally ending in billboard cards (3 vertical, 1 on top).\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
@@ -298,6 +301,14 @@ int main(int argc, char **argv) {
                 goto bad_flag;
             }
             gltf_opt.textures = !strcmp(v, "on");
+        } else if (!strcmp(a, "--texture-cache") && has_val) {
+            const char *v = argv[++i]; /* on, off or a folder */
+            if (!v[0]) {
+                fprintf(stderr, "banyan %s: --texture-cache '' must be on, off or a folder\n", cmd->name);
+                goto bad_flag;
+            }
+            gltf_opt.texture_cache = strcmp(v, "off") != 0;
+            gltf_opt.texture_cache_dir = strcmp(v, "on") && strcmp(v, "off") ? v : NULL;
         } else if (!strcmp(a, "--texture-size") && has_val) {
             const char *v = argv[++i];
             long long n;

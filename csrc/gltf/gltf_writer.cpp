@@ -51,6 +51,7 @@
 #include "core/progress.h"
 #include "gltf/gltf_compact.h"
 #include "textures/tex_budget.h"
+#include "textures/tex_cache.h"
 
 #include <tiny_gltf.h>
 
@@ -1286,17 +1287,6 @@ struct ImageGuard {
     }
 };
 
-banyan_status to_png(ImageGuard &g, const banyan_image *image, const prog_deadline &stop, double seconds,
-                     std::vector<unsigned char> &out, banyan_error *err) {
-    size_t size = 0;
-    banyan_status s = tex_png(image, &stop, seconds, &g.png, &size, err);
-    if (s != BANYAN_OK) return s;
-    out.assign(g.png, g.png + size);
-    banyan_png_free(g.png);
-    g.png = nullptr;
-    return BANYAN_OK;
-}
-
 banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, const prog_deadline &stop,
                            double seconds, TexturePngs &t, banyan_error *err) {
     banyan_texture_params tp;
@@ -1305,12 +1295,22 @@ banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_optio
     tp.season = season;
     tp.size = o.texture_size;
     tp.seed = o.texture_seed;
-    ImageGuard g;
-    banyan_status s = tex_generate(&tp, &stop, seconds, &g.base, &g.normal, err);
-    if (s != BANYAN_OK) return s;
+    char dir[4096];
+    const bool cached = tex_cache_dir(o.texture_cache, o.texture_cache_dir, dir, sizeof dir) != 0;
+    uint8_t *png[2] = {nullptr, nullptr};
+    size_t len[2] = {0, 0};
+    banyan_status s = tex_cached_pngs(&tp, cached ? dir : nullptr, &stop, seconds, &png[0], &len[0], &png[1], &len[1], err);
     /* t.kind and t.season were set by plan_textures: the caller reads them meanwhile */
-    if ((s = to_png(g, g.base, stop, seconds, t.base, err)) != BANYAN_OK) return s;
-    return to_png(g, g.normal, stop, seconds, t.normal, err);
+    try {
+        if (s == BANYAN_OK) t.base.assign(png[0], png[0] + len[0]), t.normal.assign(png[1], png[1] + len[1]);
+    } catch (...) {
+        banyan_png_free(png[0]);
+        banyan_png_free(png[1]);
+        throw;
+    }
+    banyan_png_free(png[0]);
+    banyan_png_free(png[1]);
+    return s;
 }
 
 /* The slot key of a material's texture, or -1 when it is drawn flat:
@@ -1416,6 +1416,8 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
                            "opt->texture_size = %d must be a power of two in [64, 8192]", n);
     if (o.engine_uvs != 0 && o.engine_uvs != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = %d must be 0 (off) or 1 (on)", o.engine_uvs);
+    if (o.texture_cache != 0 && o.texture_cache != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->texture_cache = %d must be 0 (off) or 1 (on)", o.texture_cache);
     if (o.sync != 0 && o.sync != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->sync = %d must be 0 (no fsync) or 1 (fsync before the rename)",
                            o.sync);
@@ -2167,6 +2169,8 @@ extern "C" BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt) {
     opt->sync = 0;
     opt->image_dir = nullptr;
     opt->compact = 0;
+    opt->texture_cache = 1;
+    opt->texture_cache_dir = nullptr;
 }
 
 extern "C" BANYAN_API size_t banyan_sizeof_gltf_options(void) { return sizeof(banyan_gltf_options); }

@@ -535,6 +535,11 @@ typedef struct banyan_gltf_options {
     int32_t compact;         /* 0/1: quantized (KHR_mesh_quantization) and meshopt-compressed
                                 (EXT_meshopt_compression) meshes, both required: a fraction of the size, read
                                 by fewer importers (docs/gltf.md "Compact files"). Default 0 */
+    int32_t texture_cache;   /* 0/1: keep the drawn textures' PNGs in an on-disk cache and read them from it
+                                (docs/gltf.md "Texture cache"; the same bytes either way). Default 1. The
+                                environment's BANYAN_TEXTURE_CACHE=off turns it off too */
+    const char *texture_cache_dir; /* NULL or "" (default): BANYAN_TEXTURE_CACHE when it names a folder, else
+                                      $XDG_CACHE_HOME/banyan/textures, else ~/.cache/banyan/textures */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);

@@ -1,9 +1,8 @@
 /* textures.c - the public texture calls of banyan/textures.h (issue #17):
  * input checks, the atlas layout, the canvas each painter draws into, the
  * normal map (Sobel on the painter's height field, glTF's tangent-space
- * convention) and PNG bytes through stb_image_write's pieces and zlib,
- * under the caller's deadline (tex_budget.h). Painters:
- * leaves.c (keyaki and Boston ivy atlases), bark.c (tileable bark). */
+ * convention) and PNG bytes (png_write.c), under the caller's deadline
+ * (tex_budget.h). Painters: leaves.c (keyaki and Boston ivy atlases), bark.c (tileable bark). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,33 +11,8 @@
 #include "core/big_alloc.h"
 #include "core/error.h"
 #include "textures/tex_budget.h"
+#include "textures/png_write.h"
 #include "textures/tex_internal.h"
-
-/* zlib level: 6 (its default) costs twice level 3 for 3 % smaller files. */
-#define TEX_PNG_LEVEL 1
-
-/* stb_image_write, private to this file (static functions, its two
- * tuning globals are static and never written: no shared state): its
- * PNG filter and chunk helpers, with zlib's deflate instead of its own
- * (ten times faster at 1024 x 1024 and smaller files), driven by
- * png_encode below so a budget can stop it. */
-#include <zlib.h>
-#if defined(__GNUC__)
-#  pragma GCC diagnostic push
-#  pragma GCC diagnostic ignored "-Wunused-function"
-#  pragma GCC diagnostic ignored "-Wpedantic"
-#  pragma GCC diagnostic ignored "-Wsign-compare"
-#  pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_WRITE_NO_STDIO
-#include <stb/stb_image_write.h>
-#if defined(__GNUC__)
-#  pragma GCC diagnostic pop
-/* Its unused static declarations are reported at the end of the file. */
-#  pragma GCC diagnostic ignored "-Wunused-function"
-#endif
 
 #define TEX_MIN_SIZE 64
 #define TEX_MAX_SIZE 8192
@@ -301,106 +275,6 @@ banyan_status banyan_texture_generate_budget(const banyan_texture_params *p, con
     return tex_generate(p, &d, g.max_seconds, base_color, normal, err);
 }
 
-/* stbi_write_png_to_mem with the deadline checked every 64 rows of
- * filtering and every 1 MB deflated: the same filter choice (each row's
- * least sum of absolute bytes over the five), the same zlib stream
- * (deflate fed in pieces gives compress2's bytes) and the same chunks. */
-static unsigned char *png_encode(const unsigned char *pixels, int x, int y, int n, const prog_deadline *stop,
-                                 int *out_len, int *stopped) {
-    static const int ctype[5] = {-1, 0, 4, 2, 6};
-    static const unsigned char sig[8] = {137, 80, 78, 71, 13, 10, 26, 10};
-    const size_t row = (size_t)x * n + 1, raw = row * (size_t)y;
-    *stopped = 0;
-    unsigned char *filt = malloc(raw);
-    signed char *line = malloc((size_t)x * n);
-    if (!filt || !line) {
-        free(filt);
-        free(line);
-        return NULL;
-    }
-    for (int j = 0; j < y; ++j) {
-        if ((j & 63) == 0 && prog_deadline_passed(stop)) {
-            free(filt);
-            free(line);
-            *stopped = 1;
-            return NULL;
-        }
-        int best = 0, best_val = 0x7fffffff, ft;
-        for (ft = 0; ft < 5; ft++) {
-            stbiw__encode_png_line((unsigned char *)pixels, x * n, x, y, j, n, ft, line);
-            int est = 0;
-            for (int i = 0; i < x * n; ++i) est += abs((signed char)line[i]);
-            if (est < best_val) best_val = est, best = ft;
-        }
-        if (ft != best) stbiw__encode_png_line((unsigned char *)pixels, x * n, x, y, j, n, best, line);
-        filt[(size_t)j * row] = (unsigned char)best;
-        memcpy(filt + (size_t)j * row + 1, line, (size_t)x * n);
-    }
-    free(line);
-    z_stream z;
-    memset(&z, 0, sizeof z);
-    uLong cap = compressBound((uLong)raw);
-    unsigned char *zb = malloc(cap);
-    if (!zb || deflateInit(&z, TEX_PNG_LEVEL) != Z_OK) {
-        free(zb);
-        free(filt);
-        return NULL;
-    }
-    z.next_out = zb;
-    z.avail_out = (uInt)cap;
-    const size_t piece = (size_t)1 << 20;
-    size_t at = 0;
-    int zr = Z_OK;
-    while (zr == Z_OK) {
-        if (prog_deadline_passed(stop)) {
-            *stopped = 1;
-            break;
-        }
-        size_t take = raw - at < piece ? raw - at : piece;
-        z.next_in = filt + at;
-        z.avail_in = (uInt)take;
-        at += take;
-        zr = deflate(&z, at == raw ? Z_FINISH : Z_NO_FLUSH);
-        if (zr == Z_OK && z.avail_in != 0) zr = Z_BUF_ERROR; /* the output bound was too small: cannot happen */
-    }
-    uLong zlen = z.total_out;
-    deflateEnd(&z);
-    free(filt);
-    if (zr != Z_STREAM_END) {
-        free(zb);
-        return NULL;
-    }
-    const size_t total = 8 + 12 + 13 + 12 + (size_t)zlen + 12;
-    unsigned char *out = malloc(total), *o = out;
-    if (!out) {
-        free(zb);
-        return NULL;
-    }
-    memcpy(o, sig, 8);
-    o += 8;
-    stbiw__wp32(o, 13);
-    stbiw__wptag(o, "IHDR");
-    stbiw__wp32(o, x);
-    stbiw__wp32(o, y);
-    *o++ = 8;
-    *o++ = (unsigned char)ctype[n];
-    *o++ = 0;
-    *o++ = 0;
-    *o++ = 0;
-    stbiw__wpcrc(&o, 13);
-    stbiw__wp32(o, (int)zlen);
-    stbiw__wptag(o, "IDAT");
-    memcpy(o, zb, zlen);
-    o += zlen;
-    free(zb);
-    stbiw__wpcrc(&o, (int)zlen);
-    stbiw__wp32(o, 0);
-    stbiw__wptag(o, "IEND");
-    stbiw__wpcrc(&o, 0);
-    *out_len = (int)total;
-    return out;
-}
-
 banyan_status tex_png(const banyan_image *image, const prog_deadline *stop, double seconds, uint8_t **png,
                       size_t *size, banyan_error *err) {
     banyan_error_clear(err);
@@ -415,20 +289,12 @@ banyan_status tex_png(const banyan_image *image, const prog_deadline *stop, doub
     if (image->width < 1 || image->width > TEX_MAX_SIZE || image->height < 1 || image->height > TEX_MAX_SIZE)
         return banyan_fail(err, BANYAN_E_RANGE, "image->width x height = %u x %u must be within [1, %d] each",
                            image->width, image->height, TEX_MAX_SIZE);
-    int len = 0, stopped = 0;
-    unsigned char *bytes = png_encode(image->pixels, (int)image->width, (int)image->height, (int)image->channels,
-                                      stop, &len, &stopped);
-    if (stopped) {
-        free(bytes);
+    int rc = png_write(image->pixels, (int)image->width, (int)image->height, (int)image->channels, PNG_WRITE_FILTER,
+                       PNG_WRITE_LEVEL, stop, png, size);
+    if (rc > 0)
         return over_time(err, "encoding (PNG)", (int32_t)(image->width > image->height ? image->width : image->height),
                          seconds);
-    }
-    if (!bytes || len <= 0) {
-        free(bytes);
-        return banyan_fail(err, BANYAN_E_NOMEM, "PNG of %u x %u: out of memory", image->width, image->height);
-    }
-    *png = bytes;
-    *size = (size_t)len;
+    if (rc < 0) return banyan_fail(err, BANYAN_E_NOMEM, "PNG of %u x %u: out of memory", image->width, image->height);
     return BANYAN_OK;
 }
 
