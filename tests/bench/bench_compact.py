@@ -69,7 +69,7 @@ def main():
                          % (name, tc, tp, a.runs),
                          "%.2fx" % (tc / tp), "(information)", "-"))
     model, cores = machine()
-    print("| figure | value | target | met/not met |")
+    print("| figure | value | target | verdict |")
     print("|---|---|---|---|")
     for r in rows:
         print("| %s | %s | %s | %s |" % r)

@@ -93,6 +93,8 @@ def main():
             for cli, sm in zip(clis, sums):
                 measure(cli, preset, out, sm)
     load1 = os.getloadavg()
+    print("| figure | value | target | verdict |")
+    print("|---|---|---|---|")
     for b, sm in zip(builds, sums):
         g, added, added_cpu = figures(sm)
         ratio = added / g
@@ -102,7 +104,7 @@ def main():
         row(f"keyaki_mature `--lod {LOD}`{tag}: LOD's added CPU time (user + system, {added_cpu:.0f} ms) / "
             f"generation (wall)", f"{added_cpu / g:.2f}x", "—", None)
     model, cores = machine()
-    print(f"Machine: {model}, {cores} logical cores; load average {load0[0]:.2f} before, {load1[0]:.2f} after "
+    print(f"\nMachine: {model}, {cores} logical cores; load average {load0[0]:.2f} before, {load1[0]:.2f} after "
           f"({a.runs} alternating runs of each, medians, textures off).")
 
 

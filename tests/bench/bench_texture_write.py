@@ -94,7 +94,7 @@ def main():
         shutil.rmtree(tmp, ignore_errors=True)
     load1 = os.getloadavg()[0]
     model, cores = machine()
-    print("| figure | value | target | met |")
+    print("| figure | value | target | verdict |")
     print("|---|---|---|---|")
     for r in rows:
         print(r)

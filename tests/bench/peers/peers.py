@@ -1,4 +1,4 @@
-"""Issue 9: banyan against the peers a Blender user would pick instead,
+"""banyan against the peers a Blender user would pick instead,
 in one Blender process, on one machine, ratios from the same run:
 
   1. ivy      banyan's ivy_wall preset vs IvyGen (add_curve_ivygen) on the
@@ -10,17 +10,18 @@ in one Blender process, on one machine, ratios from the same run:
               arrays (tests/bench/blender_handoff.py's bare())
   4. memory   build/tests/bench_tube: the tube sweeper against a store loop
   5. hosts    build/tests/bench_hosts, bench_roots_hosts, bench_ivy, and
-              ivy_suzanne.py: ivy on Suzanne against IvyGen (issue 15)
-  6. textures build/tests/bench_textures: the library's textures at 1024 (issue 17)
-  7. roots C  build/tests/bench_roots: the fused surface and the tubes (issue 18)
-  8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md (issue 22)
+              ivy_suzanne.py: ivy on Suzanne against IvyGen
+  6. textures build/tests/bench_textures: the library's textures at 1024
+  7. roots C  build/tests/bench_roots: the fused surface and the tubes
+  8. instancing  build/tests/bench_instancing, run by hand: copied from instancing.md
      batch / flamenco  tests/bench/bench_batch.py --write, flamenco_overhead.py: batch.md,
-              flamenco.md (issue 24), copied in the same way
-  9. ivy large   build/tests/bench_ivy --large: per-bud tables of the 12 m and 24 m walls (issue 23)
+              flamenco.md, copied in the same way
+  9. ivy large   build/tests/bench_ivy --large: per-bud tables of the 12 m and 24 m walls
  10. avenue      build/banyan avenue (1,000 trees) under /usr/bin/time -v: generate,
-                 write, peak RSS (issue 23)
+                 write, peak RSS
+ 11. waits       tests/bench/bench_*.py (WAITS): what a CLI user waits for
 Sections 9 and 10 say "not built" and are skipped when their program or
-flag is missing. Issue 23's targets come first, as verdict lines; end to
+flag is missing. The speed targets come first, as verdict lines; end to
 end there includes Blender's first evaluation of the new objects on both
 sides, and the hand-off is judged against a floor given the same edges
 (blender_handoff.bare_edges); the old columns stay beside the new ones.
@@ -297,7 +298,7 @@ class BanyanRun:
         return (self.e2e.med - self.lib.med) / (self.bare_full if full else self.bare).med
 
     def handoff_edges(self):
-        """Issue 23's hand-off: (end to end with first evaluation - library)
+        """The hand-off: (end to end with first evaluation - library)
         over the same-edges floor with its first evaluation."""
         return (self.e2e_ev.med - self.lib.med) / self.bare_edges.med
 
@@ -377,7 +378,7 @@ def section_tree():
     ban.stem = skeleton_length(ban.d, KEYAKI_SKEL_TWIG)  # the branches, as before twigs joined the skeleton
     ban.leaves = part_tris(ban.d, 1) // LEAF_CARD_TRIS["keyaki"]
     leaf_verts = sum(p["vertex_count"] for p in ban.d.parts if p["material"] == 1)
-    if leaf_verts != 4 * ban.leaves:  # the count above assumes one quad a leaf (issue #20: ~30,000 of them)
+    if leaf_verts != 4 * ban.leaves:  # the count above assumes one quad a leaf (~30,000 of them)
         print("peers.py: WARNING keyaki leaves are not one quad each (%d leaf vertices for %d leaves); "
               "the leaves column is wrong: update LEAF_CARD_TRIS" % (leaf_verts, ban.leaves), flush=True)
     return ban, [r for r, _ in configs]
@@ -436,7 +437,7 @@ def first_plant(runs):
 
 
 def section_textures():
-    """Issue 17: bench_textures' output (the library's textures at 1024, one
+    """bench_textures' output (the library's textures at 1024, one
     thread), and what the first plant of a kind pays in Blender."""
     exe = os.path.join(BUILD, "tests", "bench_textures")
     res = subprocess.run([exe, "1024", str(RUNS)], capture_output=True, text=True, check=True)
@@ -444,7 +445,7 @@ def section_textures():
 
 
 def section_roots_c():
-    """Issue 18: bench_roots' output (fused surface and tubes, one thread)."""
+    """bench_roots' output (fused surface and tubes, one thread)."""
     exe = os.path.join(BUILD, "tests", "bench_roots")
     out = subprocess.run([exe], capture_output=True, text=True, check=True).stdout
     print(out, flush=True)
@@ -463,7 +464,7 @@ def roots_c_figures(out):
 
 
 def section_hosts():
-    """Issue 15: the C host benchmarks' output, and ivy on Suzanne against
+    """The C host benchmarks' output, and ivy on Suzanne against
     IvyGen (ivy_suzanne.py)."""
     outs = {}
     for name, args in (("bench_hosts", ["3"]), ("bench_roots_hosts", []), ("bench_ivy", ["3"])):
@@ -486,12 +487,10 @@ def hosts_figures(outs):
             find(outs["bench_ivy"], r"mesh / box: [0-9.]+x wall, ([0-9.]+)x CPU"))
 
 
-# ------------------------------------------- issue 23: C figures from other programs
+# ------------------------------------------- C figures from other programs
 IVY_LARGE_ROW = re.compile(r"^\s*(\d+)\s+(\d+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s*$")
-# Issue 23's command, with tree.levels=8: the issue measured 12 M triangles
-# for 1,000 trees, but the default tree has grown since (wind attributes,
-# ~180k triangles each: 1,000 of them are 27 GB); at 8 levels a tree has
-# ~9.4k triangles, the issue's scale. BANYAN_BENCH_AVENUE_SET adds --set
+# The 1,000-tree avenue at tree.levels=8: ~9.4k triangles a tree, 12 M in
+# all (the default tree has ~180k: 1,000 of them would be 27 GB). BANYAN_BENCH_AVENUE_SET adds --set
 # KEY=VALUE pairs (space-separated) when a workload must be changed by hand.
 AVENUE_1000 = ["avenue", "--set", "placement=count", "--set", "count=500", "--set", "max_vertices=100000000",
                "--set", "tree.levels=8", "--threads", "2", "--stats"]
@@ -500,7 +499,7 @@ for _kv in os.environ.get("BANYAN_BENCH_AVENUE_SET", "").split():
 
 
 def section_ivy_large(wall="ivy_wall_large"):
-    """Issue 23 (s23-ivy's figure): `build/tests/bench_ivy --large 0 WALL`,
+    """`build/tests/bench_ivy --large 0 WALL`,
     the per-bud table of the 12 m x 12 m wall (presets/ivy_wall_large),
     or of the 24 m one that reaches 600,000 buds (tests/bench/ivy_wall_24m).
     Returns {"text", "rows"} or
@@ -539,7 +538,7 @@ def _clock(text):
 
 
 def section_avenue_write(runs=3):
-    """Issue 23 (s23-glb and s23-mem's figure): the 1,000-tree avenue
+    """The 1,000-tree avenue
     (`banyan avenue --set placement=count --set count=500 --set
     max_vertices=100000000 --set tree.levels=8 --threads 2 --stats -o X.glb`) under
     `/usr/bin/time -v`, `runs` times. Returns {"runs": [...]} or
@@ -659,8 +658,8 @@ def mtris(n, s):
 
 
 def e2e_ratio(ban, peer, first_eval=True):
-    """banyan / peer triangles per second end to end, with (issue 23) or
-    without (the old column) the first evaluation on both sides."""
+    """banyan / peer triangles per second end to end, with or
+    without the first evaluation on both sides."""
     if first_eval:
         return (ban.tris / ban.e2e_ev.med) / (peer.tris / peer.e2e_ev.med)
     return (ban.tris / ban.e2e.med) / (peer.tris / peer.e2e.med)
@@ -712,7 +711,7 @@ def kept_section(name, run_model):
 
 
 def targets23(ban_i, peers_i, ban_t, peers_t, mem, ivy_large, avenue):
-    """Issue 23's targets, one verdict line each."""
+    """The speed targets, one verdict line each."""
     L = []
     w = L.append
     ig_stem, ig_tris = peers_i[1], peers_i[2]
