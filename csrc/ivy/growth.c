@@ -50,7 +50,6 @@ static v3 rotate_xyz(v3 v, double ax, double ay, double az) {
  * there, and the lanes would no longer match it. */
 #if defined(__SSE2__) && !defined(__FMA__)
 #define IVY_LANES 1
-#define WRAP_RUN 2
 
 #include <emmintrin.h>
 /* Two candidates' directions at once, each lane by exactly the operations
@@ -254,6 +253,24 @@ static void walk(banyan_ivy *iv, int32_t i, v3 base, double tm, int sucker, int 
     }
 }
 
+/* Free buds after the last held one that may still wrap over the
+ * surface (wrap_angle): a suckerless bud and the one after it. */
+#define WRAP_RUN 2
+
+/* Aims the internode from P at `target` (a point `clearance` off a
+ * surface) and takes it unless it meets a host, or, with `grip`, ends
+ * farther than D from a surface: the sucker's pull and the wrap over a
+ * curve. */
+static void aim_onto(const banyan_ivy *iv, v3 P, v3 target, double D, int grip, v3 *q, v3 *d, double *dist) {
+    v3 nd = v3_norm_or(v3_sub(target, P), *d);
+    v3 nq = v3_madd(P, nd, iv->p.internode);
+    double g;
+    if (ivy_blocked(iv, P, nq, D, &g) || (grip && !(g <= D))) return;
+    *q = nq;
+    *d = nd;
+    *dist = g;
+}
+
 /* The directed random walk from bud i along `base` (spec "Placement",
  * with the additions of docs/ivy.md "Stem architecture"). Appends the new
  * bud (state `st`, nourishment `N`) as child `slot` of bud i and returns
@@ -323,31 +340,14 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         ivy_near nr = ivy_nearest_within(iv, best_q, cap);
         if (!(nr.dist <= cap)) nr = at;
         const int on_mesh = at.dist <= cap && nr.dist <= cap && at.host >= (int32_t)iv->mesh0 && nr.host >= (int32_t)iv->mesh0;
-        if (on_mesh && v3_dot(at.normal, nr.normal) >= dm_cos(deg2rad(p->wrap_angle))) {
-            v3 target = v3_madd(nr.point, nr.normal, p->clearance);
-            v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
-            v3 q = v3_madd(b->P, d, p->internode);
-            double dist;
-            if (!ivy_blocked(iv, b->P, q, D, &dist) && dist <= D) {
-                best_q = q;
-                best_d = d;
-                best_dist = dist;
-            }
-        }
+        if (on_mesh && v3_dot(at.normal, nr.normal) >= dm_cos(deg2rad(p->wrap_angle)))
+            aim_onto(iv, b->P, v3_madd(nr.point, nr.normal, p->clearance), D, 1, &best_q, &best_d, &best_dist);
     }
     if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
         /* The sucker draws the stem onto the surface: aim the internode at
          * the point `clearance` off the surface below the candidate. */
         ivy_near nr = ivy_nearest_within(iv, best_q, D + p->clearance);
-        v3 target = v3_madd(best_q, nr.normal, p->clearance - nr.dist);
-        v3 d = v3_norm_or(v3_sub(target, b->P), best_d);
-        v3 q = v3_madd(b->P, d, p->internode);
-        double dist;
-        if (!ivy_blocked(iv, b->P, q, D, &dist)) {
-            best_q = q;
-            best_d = d;
-            best_dist = dist;
-        }
+        aim_onto(iv, b->P, v3_madd(best_q, nr.normal, p->clearance - nr.dist), D, 0, &best_q, &best_d, &best_dist);
     }
 
     int32_t j = iv->n++;
