@@ -19,10 +19,13 @@ import resource
 import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+from machine_info import machine  # noqa: E402
 
 
 def cpu_ms(cmd, env=None):
@@ -84,7 +87,8 @@ def main():
               % (run, ms, loader / 1e6, total / 1e6, "met" if ms < 3 else "not met"))
     else:
         print("| keyaki_mature run: time in the dynamic loader | valgrind missing | < 3 ms | not measured |")
-    print("\nload average at the end: %.2f %.2f %.2f, %d cores" % (os.getloadavg() + (os.cpu_count(),)))
+    model, cores = machine()
+    print("\nMachine: %s, %d logical cores; load average at the end %.2f %.2f %.2f." % ((model, cores) + os.getloadavg()))
 
 
 main()
