@@ -9,7 +9,8 @@ writes docs/img/ivy/look_<tag>_front.png (the whole wall front-on from
 height, 30 degrees off its normal: leaves standing off the wall and their
 tilt), _stems.png (the front view with leaves = 0: the stem architecture)
 _foot.png (the lower half of the wall from 3 m, 15 degrees off its
-normal, leaves = 0: the trunks at the foot) and _pillar.png (ivy_pillar from 5 m: the cap, the wall top and the stems
+normal, leaves = 0: the trunks at the foot), _base.png (the same view in
+leaf: do the trunks show between the leaves) and _pillar.png (ivy_pillar from 5 m: the cap, the wall top and the stems
 hanging past them). --preset grows that preset instead of ivy_wall for the
 wall views (the pillar view keeps ivy_pillar), --values merges params into
 every view, --views picks some views, --size, --samples, --out.
@@ -41,6 +42,7 @@ VIEWS = {
     "close": (None, {}, (0.0, -0.03, 1.2), (math.sin(_A), -math.cos(_A), 0.08), 0.7, 35.0),
     "stems": (None, {"leaves": 0}, (0.0, 0.0, 1.45), (0.0, -1.0, 0.12), 10.0, 60.0),
     "foot": (None, {"leaves": 0}, (0.0, 0.0, 0.75), (math.sin(_A / 2), -math.cos(_A / 2), 0.25), 3.0, 35.0),
+    "base": (None, {}, (0.0, 0.0, 0.75), (math.sin(_A / 2), -math.cos(_A / 2), 0.25), 3.0, 35.0),
     "pillar": ("ivy_pillar", {}, (0.6, -0.3, 1.2), (0.55, -1.0, 0.32), 5.0, 32.0),
 }
 

@@ -296,9 +296,9 @@ double ivy_relief_radius(const banyan_ivy *iv, ivy_near at, double h);
  * carries the face on, or across a face narrower than 4 cap do not count. HUGE_VAL (out_dir untouched) on
  * meshes, the ground and farther from every edge. */
 double ivy_edge_distance(const banyan_ivy *iv, ivy_near at, double cap, v3 *out_dir);
-/* Share of the leaves a stem of radius r keeps: 1 up to three times
- * stem_radius_max, falling smoothly to 0 at six times it (old wood). */
-double ivy_wood_leaf_share(const banyan_ivy_params *p, double r);
+/* Per bud, the share of its leaf that old wood keeps (1: young wood, 0:
+ * shed), from the buds' wood radii r (ivy_wood). */
+void ivy_wood_leaf_shares(const banyan_ivy *iv, const double *r, double *share);
 
 /* Sag correction of every dangling stem (sag.c). */
 void ivy_sag(banyan_ivy *iv);

@@ -287,7 +287,7 @@ static double leaf_edge_lean(const banyan_ivy *iv, int32_t i, ivy_near nr, v3 *o
 
 /* Places bud i's leaf (module comment); returns 0 when it has no size
  * or finds no room clear of the hosts. */
-static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, double wood_r, leaf_geo *g) {
+static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, double wood, leaf_geo *g) {
     const banyan_ivy_params *p = &iv->p;
     const ivy_bud *b = &iv->buds[i];
     pcg32 r; /* the leaf's own stream: draws here move no stem */
@@ -299,7 +299,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
      * (plants.md: long-shoot leaves are smaller than spur leaves). */
     double age = (double)(iv->step - b->step_c) / p->leaf_size_steps;
     age = age < 0 ? 0 : (age > 1 ? 1 : age);
-    if (!leaf_kept(iv, i, age, ivy_wood_leaf_share(p, wood_r))) return 0;
+    if (!leaf_kept(iv, i, age, wood)) return 0;
     g->size = (p->leaf_size_min + (p->leaf_size_max - p->leaf_size_min) * age * sqrt(age)) * p->leaf_scale *
               (0.8 + 0.45 * u_size);
     if (!(g->size > 0)) return 0;
@@ -456,6 +456,7 @@ typedef struct mesh_job {
     const double *bst;
     const int32_t *blv;
     const double *wood_r;       /* per bud: the stem's radius and tube centre (ivy_wood) */
+    const double *leaf_wood;    /* per bud: the share of its leaf its wood keeps (ivy_wood_leaf_shares) */
     const v3 *wood_P;
     double birth_scale;
     leaf_geo *lg;
@@ -565,7 +566,7 @@ static void mesh_stems(mesh_job *J, int32_t k, v3 *P, double *R, float *birth, d
 static void mesh_place(mesh_job *J, int32_t k) {
     const int32_t i0 = k * MESH_LEAF_BLOCK, i1 = i0 + MESH_LEAF_BLOCK < J->iv->n ? i0 + MESH_LEAF_BLOCK : J->iv->n;
     uint32_t ok = 0;
-    for (int32_t i = i0; i < i1; i++) ok += (uint32_t)(J->lg[i].ok = leaf_place(J->iv, i, J->sh, J->wood_r[i], &J->lg[i]));
+    for (int32_t i = i0; i < i1; i++) ok += (uint32_t)(J->lg[i].ok = leaf_place(J->iv, i, J->sh, J->leaf_wood[i], &J->lg[i]));
     J->lok[k] = ok;
     if (atomic_fetch_add(&J->placed, 1) + 1 < J->n_lblk) return;
     uint32_t sum = 0;
@@ -784,12 +785,13 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     /* wind: per bud stiffness and level */
     double *bst = malloc(sizeof(double) * ((size_t)iv->n + 1));
     int32_t *blv = malloc(sizeof(int32_t) * ((size_t)iv->n + 1));
-    double *wood_r = malloc(sizeof(double) * ((size_t)iv->n + 1));
+    double *wood_r = malloc(sizeof(double) * 2 * ((size_t)iv->n + 1)), *leaf_wood = wood_r ? wood_r + iv->n + 1 : NULL;
     v3 *wood_P = malloc(sizeof(v3) * ((size_t)iv->n + 1));
     if (!bst || !blv || !wood_r || !wood_P || ivy_wood(iv, wood_r, wood_P)) {
         free(pts); free(bst); free(blv); free(wood_r); free(wood_P);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
+    ivy_wood_leaf_shares(iv, wood_r, leaf_wood);
     int32_t last_step = 0;
     {
         /* Buds come in creation order: a parent before its children. bst
@@ -872,7 +874,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     memset(&J, 0, sizeof J);
     J.iv = iv, J.sh = &sh, J.out = &mb, J.pts = pts, J.chn = chn, J.cv = cv, J.ci = ci, J.sblk = sblk;
     J.n_sblk = n_sblk, J.n_lblk = n_lblk, J.max_pts = max_pts, J.bst = bst, J.blv = blv, J.birth_scale = birth_scale;
-    J.lg = lg, J.lok = lok, J.wood_r = wood_r, J.wood_P = wood_P;
+    J.lg = lg, J.lok = lok, J.wood_r = wood_r, J.leaf_wood = leaf_wood, J.wood_P = wood_P;
     leaf_atlas_grid(BANYAN_TEX_IVY_LEAF, &J.cols, &J.rows, NULL);
     atomic_init(&J.next, 0);
     atomic_init(&J.placed, 0);

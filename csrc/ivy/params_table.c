@@ -36,7 +36,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_ENUM(S, season, "Season", "Leaves", "summer|autumn", "leaf material: summer green or autumn crimson; the geometry stays"),
     BP_DOUBLE(S, stem_radius, "Stem thickness", "Stems", "m", 1e-5, 1, "r0, stem radius at birth"),
     BP_DOUBLE(S, stem_radius_growth, "Thickening per step", "Stems", "m", 0, 1, "k, stem radius added per step of age"),
-    BP_DOUBLE(S, stem_radius_max, "Maximum thickening by age", "Stems", "m", 1e-5, 1, "largest stem radius by age; at least stem_radius (wood past three times it is old and sheds its leaves)"),
+    BP_DOUBLE(S, stem_radius_max, "Maximum thickening by age", "Stems", "m", 1e-5, 1, "largest stem radius by age; at least stem_radius (old wood at the foot, past 1.5 times it, sheds its leaves)"),
     BP_DOUBLE(S, stem_pipe, "Trunk thickening", "Stems", "m", 0, 0.1, "pipe model: a stem is at least this x sqrt(buds it carries) thick, so leading stems become trunks (0: age rule only)"),
     BP_INT(S, stem_sides, "Stem sides", "Stems", 3, 64, "sides of a stem tube"),
     BP_COLOR(S, stem_color, "Stem color", "Stems", "base colour of material ivy_stem (linear RGBA)"),
@@ -161,8 +161,8 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_petiole = 0.7;
     p->leaf_tilt = 16.0;
     p->leaf_spread = 10.0;
-    p->leaf_share = 0.58;
-    p->leaf_clump = 0.5;
+    p->leaf_share = 0.65;
+    p->leaf_clump = 0.25;
     p->clump_size = 0.7;
     p->leaf_relief = 0.3;
     p->edge_fray = 0.12;

@@ -14,6 +14,36 @@
 
 #define WOOD_PUSHES 3 /* pushes out of the surfaces: a corner takes two */
 
+/* Old wood sheds its leaves (docs/ivy.md "Stems and trunks"): wood is old
+ * when it is both thick, from OLD_R to OLD_R + OLD_R_RAMP times
+ * stem_radius_max, and among the plant's first wood, its bud born in the
+ * first (1 - OLD_LIFE) of the plant's steps, ramping over OLD_LIFE_RAMP. A
+ * leaf within SPUR_REACH internodes of old wood grows on a spur of it and
+ * sheds as it does: the trunks at the foot of an old wall show, while
+ * the thick leading stems higher up, younger, keep their leaves. */
+#define OLD_R 1.5
+#define OLD_R_RAMP 1.5
+#define OLD_LIFE 0.85
+#define OLD_LIFE_RAMP 0.1
+#define SPUR_REACH 4
+
+static double smooth01(double x) { return x <= 0 ? 0 : x >= 1 ? 1 : x * x * (3 - 2 * x); }
+
+void ivy_wood_leaf_shares(const banyan_ivy *iv, const double *r, double *share) {
+    const banyan_ivy_params *p = &iv->p;
+    const double cap = p->stem_radius_max, steps = iv->step > 0 ? iv->step : 1;
+    for (int32_t i = 0; i < iv->n; i++) {
+        double shed = 0;
+        int32_t j = i;
+        for (int k = 0; k <= SPUR_REACH && j >= 0; k++, j = iv->buds[j].parent) {
+            double life = (double)(iv->step - iv->buds[j].step_c) / steps;
+            double s = smooth01((r[j] - OLD_R * cap) / (OLD_R_RAMP * cap)) * smooth01((life - OLD_LIFE) / OLD_LIFE_RAMP);
+            shed = s > shed ? s : shed;
+        }
+        share[i] = 1 - shed;
+    }
+}
+
 banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P) {
     const banyan_ivy_params *p = &iv->p;
     const int32_t n = iv->n;
@@ -44,12 +74,4 @@ banyan_status ivy_wood(const banyan_ivy *iv, double *r, v3 *P) {
     }
     free(carried);
     return BANYAN_OK;
-}
-
-double ivy_wood_leaf_share(const banyan_ivy_params *p, double r) {
-    /* Old wood, more than three times the age rule's cap, sheds its
-     * leaves: all of them by six times it (the bare trunks at the foot of
-     * an old wall). */
-    double x = (r - 3 * p->stem_radius_max) / (3 * p->stem_radius_max);
-    return x <= 0 ? 1.0 : x >= 1 ? 0.0 : 1.0 - x * x * (3 - 2 * x);
 }

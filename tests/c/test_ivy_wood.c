@@ -39,19 +39,33 @@ static void wood_shape(const banyan_ivy *iv, const double *r, const v3 *P) {
     CHECK(inside == 0, "%d stems reach into a surface (by up to %.4f m)", inside, worst);
 }
 
-/* Old wood sheds its leaves: among buds whose wood is past 4.5 times
- * the age rule's cap (half way through the shedding) the leafed share is
- * under half of that among buds of young wood (under 3 times it), and no
- * blade grows on wood past 6 times it. */
+/* Is (x, z) inside the triangle's xz projection? */
+static int inside_xz(v3 a, v3 b, v3 c, double x, double z) {
+    double d1 = (x - b.x) * (a.z - b.z) - (a.x - b.x) * (z - b.z);
+    double d2 = (x - c.x) * (b.z - c.z) - (b.x - c.x) * (z - c.z);
+    double d3 = (x - a.x) * (c.z - a.z) - (c.x - a.x) * (z - a.z);
+    int neg = d1 < 0 || d2 < 0 || d3 < 0, pos = d1 > 0 || d2 > 0 || d3 > 0;
+    return !(neg && pos);
+}
+
+/* Old wood sheds its leaves (ivy_wood_leaf_shares): no blade grows on a
+ * bud whose wood keeps none; buds of old wood (share under a half) are
+ * leafed less than half as often as the rest; and the trunks at the foot
+ * show: of the buds of shed wood on the wall's front face in its lowest
+ * FOOT_Z, at least FOOT_SEEN are seen from the front (a ray along +y
+ * crosses no blade in front of them). */
+#define FOOT_Z 0.5
+#define FOOT_SEEN 0.5
 static void wood_leaves(const banyan_ivy *iv, const double *r) {
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
     CHECK(banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK && m, "mesh: %s", err.message);
     if (!m) return;
-    uint32_t nb = 0, n_old = 0, n_young = 0, leaf_old = 0, leaf_young = 0, dead = 0;
+    uint32_t nb = 0, n_old = 0, n_young = 0, leaf_old = 0, leaf_young = 0, dead = 0, n_foot = 0, seen = 0;
     ivy_blade *bl = ivy_look_blades(m, &nb);
     char *leafed = calloc((size_t)iv->n, 1);
-    const double cap = iv->p.stem_radius_max;
+    double *share = malloc(sizeof(double) * ((size_t)iv->n + 1));
+    if (share) ivy_wood_leaf_shares(iv, r, share);
     /* A blade's bud is the one at its petiole's base; of buds at one
      * point (the leading stems' first buds) the thinnest. */
     for (uint32_t k = 0; k < nb && leafed; k++) {
@@ -63,17 +77,31 @@ static void wood_leaves(const banyan_ivy *iv, const double *r) {
         }
         if (best >= 0) leafed[best] = 1;
     }
-    for (int32_t i = 0; i < iv->n && leafed; i++) {
-        if (r[i] >= 4.5 * cap) n_old++, leaf_old += leafed[i];
-        if (r[i] < 3 * cap) n_young++, leaf_young += leafed[i];
-        dead += r[i] >= 6 * cap && leafed[i];
+    const banyan_part *lp = &m->parts[1];
+    for (int32_t i = 0; i < iv->n && leafed && share; i++) {
+        if (share[i] < 0.5) n_old++, leaf_old += leafed[i];
+        else n_young++, leaf_young += leafed[i];
+        dead += share[i] <= 0 && leafed[i];
+        const v3 P = iv->buds[i].P;
+        if (share[i] > 0 || P.z > FOOT_Z || P.y > 0.05 || fabs(P.x) > 1.5) continue;
+        n_foot++;
+        int hidden = 0;
+        for (uint32_t t = lp->index_offset; !hidden && t + 2 < lp->index_offset + lp->index_count; t += 3) {
+            v3 a = ivy_look_vert(m, m->indices[t]), b = ivy_look_vert(m, m->indices[t + 1]), c = ivy_look_vert(m, m->indices[t + 2]);
+            if (a.y < P.y && inside_xz(a, b, c, P.x, P.z)) hidden = 1;
+        }
+        seen += !hidden;
     }
-    CHECK(nb > 1000 && n_old > 20 && n_young > 1000, "%u blades, %u buds of old wood, %u of young", nb, n_old, n_young);
+    CHECK(nb > 1000 && n_old > 20 && n_young > 1000, "%u blades, %u buds of old wood, %u of the rest", nb, n_old, n_young);
     if (n_old && n_young)
         CHECK(2.0 * leaf_old / n_old < (double)leaf_young / n_young && dead == 0,
-              "leafed: %u of %u buds of old wood, %u of %u of young; %u past 6 x the cap", leaf_old, n_old, leaf_young,
+              "leafed: %u of %u buds of old wood, %u of %u of the rest; %u on shed wood", leaf_old, n_old, leaf_young,
               n_young, dead);
-    printf("  leafed: %u of %u buds of old wood, %u of %u of young\n", leaf_old, n_old, leaf_young, n_young);
+    CHECK(n_foot >= 10 && seen >= FOOT_SEEN * n_foot, "the foot's trunks: %u of %u buds of shed wood seen from the front",
+          seen, n_foot);
+    printf("  leafed: %u of %u buds of old wood, %u of %u of the rest; the foot's trunks: %u of %u buds seen\n", leaf_old,
+           n_old, leaf_young, n_young, seen, n_foot);
+    free(share);
     free(leafed);
     free(bl);
     banyan_mesh_free(m);
