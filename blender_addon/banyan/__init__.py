@@ -5,7 +5,7 @@ draws panels; see docs/addon.md."""
 
 # Blender 3.4 and up (the legacy add-on zip); tested in 3.4, 4.2, 4.5, 5.0,
 # 5.1 and 5.2. The extension (4.2+) stops before 5.3: blender_version_max in
-# blender_addon/blender_manifest.toml.in.
+# blender_manifest.toml.
 bl_info = {
     "name": "Banyan",
     "author": "banyan contributors",
