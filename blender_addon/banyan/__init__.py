@@ -44,7 +44,7 @@ def register():
     from . import scripting, state, ui
     other = other_copy()
     if other is not None:
-        state.MISSING, state.ERRORS, state.OPERATORS = set(), [], []
+        state.ERRORS, state.OPERATORS = [], []
         # Two copies would load two libraries and register the same classes,
         # each unregistering the other's: this one registers only a panel
         # that says what to remove.
@@ -56,12 +56,10 @@ def register():
         return
     scripting.register(__name__)  # `import banyan` in scripts, also under the 4.2+ extension's package name
     from .core import lib
-    from .core import generators as G
     from .core.errors import BanyanError
     from .operators import FACTORIES, tube
 
     state.LOAD_ERROR = ""
-    state.MISSING = set()
     state.ERRORS = []
     state.OPERATORS = []
     try:
@@ -78,13 +76,9 @@ def register():
     from .materials import BanyanPreferences
     bpy.utils.register_class(BanyanPreferences)
     _registered.append(BanyanPreferences)
-    avail = G.available()
     from .operators.base import BANYAN_OT_preset_save
     classes = [tube.MESH_OT_banyan_tube, BANYAN_OT_preset_save]
-    for gens, module, factory in FACTORIES:
-        if not all(avail[g] for g in gens):
-            state.MISSING.update(g for g in gens if not avail[g])
-            continue
+    for module, factory in FACTORIES:
         try:
             classes.append(getattr(module, factory)())
         except BanyanError as e:
@@ -103,7 +97,7 @@ def register():
     panels.register()
     _registered.append("panels")
     from . import plant, plant_ui
-    plant.register([g for g, ok in avail.items() if ok])
+    plant.register()
     _registered.append("plant")
     from . import production_ui
     for cls in plant_ui.CLASSES + production_ui.CLASSES:

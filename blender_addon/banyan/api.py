@@ -163,14 +163,7 @@ def _single(name, d, collection, uv, created, origin=None):
 
 
 # ----------------------------------------------------------- jobs, progress
-try:
-    from .core.errors import Cancelled
-except ImportError:  # until the library's progress callback is in core (part LIB)
-    class Cancelled(BanyanError):
-        """The run was cancelled through its progress callback (BANYAN_E_CANCELLED)."""
-
-        def __init__(self, message="cancelled"):
-            super().__init__(15, message, "BANYAN_E_CANCELLED")
+from .core.errors import Cancelled  # noqa: E402
 
 CANCELLED = 15  # BANYAN_E_CANCELLED
 

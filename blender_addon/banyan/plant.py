@@ -524,8 +524,9 @@ def regenerate(obj, params=None):
 
 # -------------------------------------------------------------- register
 
-def register(gens):
-    """Registers the record's types on Object for the generators built."""
+def register():
+    """Registers the record's types on Object, one view per generator."""
+    gens = list(S.GENERATORS)
     _VIEWS.clear()
     del _classes[:]
     _classes.append(BanyanPlantHost)

@@ -8,6 +8,8 @@ from bpy.props import StringProperty
 from . import plant as PL
 from . import props as PP
 from .core.errors import BanyanError, report_error
+from .core.params import specs
+from .panels import draw_prop, idle, section
 
 GENERATOR_LABELS = {"roots": "Strangler roots", "keyaki": "Keyaki tree", "avenue": "Keyaki avenue",
                     "ivy": "Ivy", "segments": "Segment twigs"}
@@ -111,17 +113,6 @@ def _groups(specs):
     return list(out.items())
 
 
-def _section(layout, context, gen, index, title):
-    """A section's body: collapsible on Blender 4.1+, a box before."""
-    if hasattr(layout, "panel"):
-        header, body = layout.panel("banyan_plant_%s_%d" % (gen, index), default_closed=index > 0)
-        header.label(text=title)
-        return body
-    box = layout.box()
-    box.label(text=title)
-    return box.column()
-
-
 def _label(s):
     return getattr(s, "label", "") or ""
 
@@ -138,7 +129,6 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         return _active_plant(context) is not None
 
     def draw(self, context):
-        from .core.params import specs
         obj = _active_plant(context)
         pl = obj.banyan_plant
         layout = self.layout
@@ -178,15 +168,8 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         if view is None:
             layout.label(text="This add-on has no '%s' generator" % pl.generator, icon='ERROR')
             return
-        try:  # the redo panel's collapsible sections (part PANELS), when the add-on has them
-            from .panels import section
-        except ImportError:
-            section = _section
-        try:  # fields that do nothing with these values, greyed out as in the redo panel
-            from .panels import draw_prop, idle
-            off = idle(pl.generator, view)  # Regenerate takes every value as it is: no operator option
-        except ImportError:
-            off, draw_prop = set(), None
+        # Fields that do nothing with these values, greyed out as in the redo panel.
+        off = idle(pl.generator, view)  # Regenerate takes every value as it is: no operator option
         for i, (title, rows) in enumerate(_groups(specs(pl.generator))):
             body = section(layout, context, pl.generator, i, title or "Parameters")
             if body is None:
@@ -196,10 +179,7 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
                 if hasattr(view, name):
                     lab = _label(s)
                     kw = {"text": lab} if lab else {}
-                    if draw_prop is not None:
-                        draw_prop(body, view, name, off, **kw)
-                    else:
-                        body.prop(view, name, **kw)
+                    draw_prop(body, view, name, off, **kw)
 
 
 CLASSES = (BANYAN_OT_regenerate, BANYAN_OT_randomize_seed, BANYAN_OT_copy_preset, VIEW3D_PT_banyan_plant)

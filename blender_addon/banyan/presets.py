@@ -103,12 +103,12 @@ def _guess_generator(path):
 
 def _library_error(generator, data, path):
     """The library's message refusing preset `data` ("<file>:<line>: ..."), or
-    "" when it applies; "" too when the library or the generator is missing."""
-    from .core.errors import BanyanError, GeneratorMissing, LoadError
+    "" when it applies; "" too when there is no library to ask (plain Python)."""
+    from .core.errors import BanyanError, LoadError
     try:
         from .core.params import Params
         Params(generator).apply_preset(data, _printable(os.path.basename(path)))
-    except (GeneratorMissing, LoadError):
+    except LoadError:
         return ""  # nothing to check it with; the JSON checks below still run
     except BanyanError as e:
         return e.message

@@ -12,7 +12,6 @@ import json
 import math
 import threading
 import time
-import traceback
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
@@ -21,6 +20,7 @@ from .. import api
 from .. import hosts as H
 from .. import live
 from .. import panels
+from .. import plant
 from .. import presets as PR
 from .. import props as PP
 from ..core import lib as LIB
@@ -236,7 +236,7 @@ class BanyanOperatorMixin:
         except BaseException as e:
             return self._fail(context, e)
         LAST_PARAMS[self.banyan_idname] = params
-        record_plant(self, context, objs, params)  # first: it reads the selection (hosts, the active curve)
+        plant.record_operator(self, context, objs, params)  # never raises; first: it reads the selection (hosts, the active curve)
         select_only(context, objs)
         warning = self.grew_message(context, job)
         if warning:
@@ -440,14 +440,10 @@ class Runner:
 
 def _note_built(op):
     """A run that ended in modal() (not through execute) tells the redo
-    panel's "Update while dragging" (live.py, part PANELS) which values the
-    plant on screen was built from."""
-    try:
-        from .. import live
-    except ImportError:
-        return
+    panel's "Update while dragging" (live.py) which values the plant on
+    screen was built from."""
     key = getattr(op, "banyan_idname", None)
-    if hasattr(live, "BUILT") and hasattr(live, "signature") and key and getattr(op, "properties", None) is not None:
+    if key and getattr(op, "properties", None) is not None:
         live.BUILT[key] = live.signature(op.properties)
 
 
@@ -490,30 +486,6 @@ def restore_mode(context, state):
     ob.select_set(True)
     with contextlib.suppress(RuntimeError):
         bpy.ops.object.mode_set(mode=mode)
-
-
-def record_plant(op, context, objs, params):
-    """plant.record_operator / plant.record (part PLANT: the generator,
-    parameters, hosts and options kept on the plant) when that module is
-    there."""
-    try:
-        from .. import plant
-    except ImportError:
-        return
-    if hasattr(plant, "record_operator"):
-        plant.record_operator(op, context, objs, params)  # never raises
-        return
-    hosts = []
-    if isinstance(op, HostsOperatorMixin):
-        with contextlib.suppress(BanyanError):
-            hosts = op.selected_hosts(context)
-    options = {n: getattr(op, n) for n in tuple(getattr(op, "placement_props", ())) + tuple(op.extra_props)}
-    options["banyan_preset"] = op.banyan_preset
-    try:
-        plant.record(objs, op.generator, params, hosts, options)
-    except Exception as e:  # the plant is built; only its record failed
-        traceback.print_exc()
-        op.report({'WARNING'}, "Banyan: the plant's parameters were not kept on it: %s" % e)
 
 
 class HostsOperatorMixin(BanyanOperatorMixin):
