@@ -17,7 +17,7 @@ bl_info = {
 }
 
 # Blender's glTF importer calls the hooks of this class on every enabled add-on's module.
-from .gltf_import import glTF2ImportUserExtension  # noqa: E402,F401
+from .engine.gltf_import import glTF2ImportUserExtension  # noqa: E402,F401
 
 _registered = []
 OTHER_COPY = "other copy"  # in _registered: this copy refused to register (another one is enabled)
@@ -73,7 +73,7 @@ def register():
         _registered.append(ui.VIEW3D_PT_banyan_error)
         return
 
-    from .materials import BanyanPreferences
+    from .engine.materials import BanyanPreferences
     bpy.utils.register_class(BanyanPreferences)
     _registered.append(BanyanPreferences)
     from .operators.base import BANYAN_OT_preset_save
@@ -96,7 +96,8 @@ def register():
     from . import panels
     panels.register()
     _registered.append("panels")
-    from . import plant, plant_ui
+    from .engine import plant
+    from . import plant_ui
     plant.register()
     _registered.append("plant")
     from . import production_ui
@@ -120,7 +121,7 @@ def unregister():
             from . import panels
             panels.unregister()
         elif cls == "plant":
-            from . import plant
+            from .engine import plant
             plant.unregister()
         elif cls == OTHER_COPY:
             pass

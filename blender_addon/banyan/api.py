@@ -75,12 +75,12 @@ import math
 
 import bpy
 
-from . import build_mesh as BM
-from . import growth_anim as GA
-from . import hosts as H
+from .engine import build_mesh as BM
+from .engine import growth_anim as GA
+from .engine import hosts as H
 from . import presets as PR
 from . import props as PP
-from . import wind as W
+from .engine import wind as W
 from .core import generators as G
 from .core.errors import BanyanError
 from .core.hostset import HostSet
@@ -257,7 +257,7 @@ class Job:
             fn(objs, created)
         if self.plant is not None:
             # Kept on the plant as an operator keeps it: Regenerate, Make LODs and the Plant panel work on it.
-            from . import plant as PL
+            from .engine import plant as PL
             gen, hosts, options = self.plant
             PL.record(objs, gen, self.params, hosts, options)
         return objs
@@ -364,7 +364,7 @@ def add_wind(objs, **values):
     regrown with it, as Regenerate does, once per plant (an avenue: all
     its trees). BanyanError, naming the object, for one that has no wind
     attributes and is not a plant."""
-    from . import plant as PL
+    from .engine import plant as PL
     objs = [objs] if isinstance(objs, bpy.types.bpy_struct) else list(objs)
     for o in objs:
         if not isinstance(o, bpy.types.Object) or o.type != 'MESH' \
@@ -855,7 +855,7 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
     def build(d, created):
         parent = _collection(collection)
         if getattr(d, "instances", None):
-            from .instances import build_instanced
+            from .engine.instances import build_instanced
             return build_instanced(name, d, parent, created, uv=uv, progress=build_progress)
         if merged:
             return _single(name, d, parent, uv, created, _origin(origin, start))
@@ -930,7 +930,7 @@ def ivy_job(hosts=(), *, preset=None, params=None, start=None, steps=None, colle
         def build(d, created):
             objs = _single(name, d, collection, uv, created, o)
             if animate:
-                from .growth_anim import add_growth_modifier
+                from .engine.growth_anim import add_growth_modifier
                 add_growth_modifier(objs[0], created, max(1, G.ivy_steps(p)), f0, f1)
             return objs
         job = Job(compute, build, unit_scale=scale)
@@ -1005,5 +1005,5 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=True, billboard_size=256, colle
     <name>_LOD0 (obj's mesh), one level per ratio (share of the
     triangles), then crossed billboard cards when billboard. Returns the
     objects; raises BanyanError with nothing left behind."""
-    from .lod import make_lods as _make_lods
+    from .engine.lod import make_lods as _make_lods
     return _make_lods(obj, ratios, billboard=billboard, billboard_size=billboard_size, collection=collection)

@@ -5,7 +5,7 @@ Preset. The data and the rebuilding are plant.py's."""
 import bpy
 from bpy.props import StringProperty
 
-from . import plant as PL
+from .engine import plant as PL
 from . import props as PP
 from .core.errors import BanyanError, report_error
 from .core.params import specs

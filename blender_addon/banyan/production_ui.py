@@ -4,7 +4,7 @@ on the selected plants), Add Growth Animation (by `birth`) and Make LODs
 import bpy
 from bpy.props import BoolProperty, FloatProperty, FloatVectorProperty
 
-from . import wind as W
+from .engine import wind as W
 from .core.errors import report_error
 
 
@@ -13,7 +13,7 @@ def _meshes(context):
 
 
 def _windable(o):
-    from . import plant as PL
+    from .engine import plant as PL
     return W.has_wind(o.data) or PL.is_plant(o)
 
 
@@ -94,14 +94,14 @@ class BANYAN_OT_make_lods(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        from . import plant as PL
+        from .engine import plant as PL
         if not PL.is_plant(getattr(context, "active_object", None)):
             cls.poll_message_set("The active object is not a Banyan plant")
             return False
         return True
 
     def execute(self, context):
-        from . import lod
+        from .engine import lod
         obj = context.active_object
         try:
             objs = lod.make_lods(obj, tuple(self.ratios),

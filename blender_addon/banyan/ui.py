@@ -3,7 +3,7 @@ import textwrap
 
 import bpy
 
-from . import hosts as H
+from .engine import hosts as H
 from . import presets as PR
 from . import state
 

@@ -50,7 +50,7 @@ from array import array
 
 import bpy
 
-from banyan import hosts as H
+from banyan.engine import hosts as H
 from banyan.core import generators as G
 from banyan.core.params import Params
 

@@ -41,13 +41,13 @@ def test_api(gen):
     bt.check(all(o.name in bpy.context.scene.objects for o in objs), "%s: objects are in the scene" % gen)
     bt.check({o.name for o in bpy.data.objects} - before == {o.name for o in objs}, "%s: only those objects added" % gen)
     bt.check(all(len(o.data.vertices) > 0 for o in objs), "%s: non-empty meshes" % gen)
-    from banyan import plant as PL
+    from banyan.engine import plant as PL
     bt.check(all(PL.is_plant(o) and o.banyan_plant.generator == gen for o in objs),
              "%s: recorded as a plant, as an operator's (Regenerate, Make LODs; test_plant.py)" % gen)
     # Where the colour lives in the vertex colours (a white material), the
     # material shows them; elsewhere the material carries the colour.
     # A shared textured material (materials.py) takes it from its image.
-    from banyan.materials import is_shared
+    from banyan.engine.materials import is_shared
     for o in objs:
         for m in o.data.materials:
             bsdf = m.node_tree.nodes["Principled BSDF"]

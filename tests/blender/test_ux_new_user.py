@@ -399,7 +399,7 @@ def test_api_ground():
     """banyan.api puts the ground at its hosts' foot as the operators do,
     unless told not to (ground_at_hosts=False) or given a ground_z."""
     import banyan.api as B
-    from banyan import plant as PL
+    from banyan.engine import plant as PL
     if bt.generator("roots"):
         bt.reset_scene()  # the default cube, z from -1 to 1
         cube = bpy.data.objects["Cube"]

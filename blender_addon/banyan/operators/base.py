@@ -17,10 +17,10 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 
 from .. import api
-from .. import hosts as H
+from ..engine import hosts as H
 from .. import live
 from .. import panels
-from .. import plant
+from ..engine import plant
 from .. import presets as PR
 from .. import props as PP
 from ..core import lib as LIB

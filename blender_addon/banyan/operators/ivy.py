@@ -9,7 +9,7 @@ import math
 from bpy.props import BoolProperty
 
 from .. import api
-from .. import hosts as H
+from ..engine import hosts as H
 from .base import (NO_PRESET, HostsOperatorMixin, cursor_location, ground_at_hosts_property, host_shape_property,
                    make_operator, scene_point, set_ground_at_hosts)
 

@@ -38,8 +38,8 @@ surface_render_method DITHERED, which with a 0/1 alpha is a clip.
 """
 import bpy
 
-from .core import structs as S
-from .core import textures as T
+from ..core import structs as S
+from ..core import textures as T
 
 PROP = "banyan_texture"  # "kind/season" on materials and images this module made
 UV_MAP = "UVMap"         # build_mesh.fill_mesh's layer

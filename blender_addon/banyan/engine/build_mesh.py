@@ -15,7 +15,7 @@ from array import array
 import bpy
 
 from . import wind as W
-from .core.mesh import localize_group, triangle_edges
+from ..core.mesh import localize_group, triangle_edges
 
 COLOR_ATTRIBUTE = "Color"
 

@@ -37,11 +37,11 @@ from bpy.props import CollectionProperty, FloatProperty, IntProperty, PointerPro
 from mathutils import Matrix
 
 from . import hosts as H
-from . import props as PP
-from .core import generators as G
-from .core import structs as S
-from .core.errors import BanyanError
-from .core.params import Params
+from .. import props as PP
+from ..core import generators as G
+from ..core import structs as S
+from ..core.errors import BanyanError
+from ..core.params import Params
 
 SCHEMA = 1
 HOSTED = ("roots", "ivy")  # generators whose plant grows on host objects
@@ -343,7 +343,7 @@ def build_job(obj, params, coll):
     """The api Job that builds obj's plant anew into coll (linked to no
     scene): what Regenerate runs, and what make_lods computes to get the
     library's mesh (core.mesh.capture)."""
-    from . import api
+    from .. import api
     pl = obj.banyan_plant
     gen = pl.generator
     opt = options(obj)

@@ -12,8 +12,8 @@ import bpy
 from . import nodes as N
 from . import plant as PL
 from . import wind as W
-from .core import mesh as M
-from .core.errors import BanyanError
+from ..core import mesh as M
+from ..core.errors import BanyanError
 
 TREES = ("keyaki", "avenue")  # plants that get billboard cards by default
 
@@ -112,5 +112,5 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
         lod0["banyan_lod"] = 0
         return out
 
-    from .api import _guard
+    from ..api import _guard
     return _guard(build)

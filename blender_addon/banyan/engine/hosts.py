@@ -28,11 +28,11 @@ import math
 import re
 from array import array
 
-from .core import lib as L
-from .core import structs as S
-from .core.errors import BanyanError
-from .core.hostset import HostSet, MeshInput
-from .core.structs import Box, Error
+from ..core import lib as L
+from ..core import structs as S
+from ..core.errors import BanyanError
+from ..core.hostset import HostSet, MeshInput
+from ..core.structs import Box, Error
 
 SURFACE, BOX = 'SURFACE', 'BOX'
 HOST_SHAPES = (
@@ -387,8 +387,8 @@ def objects_from_preset(gen, preset, collection=None, material=None):
     BanyanError and nothing is added to the scene."""
     import bpy
     from mathutils import Matrix
-    from . import presets as PR
-    from .core.hostset import preset_hosts_split, read_glb
+    from .. import presets as PR
+    from ..core.hostset import preset_hosts_split, read_glb
     path = PR.find(gen, preset)
     boxes, entries = preset_hosts_split(PR.read(path), path)
     inputs = [read_glb(e["path"], e["transform"], e["closed"], e["name"]) for e in entries]
