@@ -41,7 +41,8 @@ def other_copy():
 
 def register():
     import bpy
-    from . import scripting, state, ui
+    from . import scripting
+    from .ui import state, sidebar as ui
     other = other_copy()
     if other is not None:
         state.ERRORS, state.OPERATORS = [], []
@@ -93,14 +94,14 @@ def register():
     for cls in (ui.VIEW3D_MT_banyan_add, ui.VIEW3D_PT_banyan):
         bpy.utils.register_class(cls)
         _registered.append(cls)
-    from . import panels
+    from .ui import panels
     panels.register()
     _registered.append("panels")
     from .engine import plant
-    from . import plant_ui
+    from .ui import plant_ui
     plant.register()
     _registered.append("plant")
-    from . import production_ui
+    from .ui import production_ui
     for cls in plant_ui.CLASSES + production_ui.CLASSES:
         bpy.utils.register_class(cls)
         _registered.append(cls)
@@ -111,14 +112,14 @@ def register():
 def unregister():
     """Undoes what this copy's register() did, and only that."""
     import bpy
-    from . import ui
+    from .ui import sidebar as ui
     refused = OTHER_COPY in _registered
     while _registered:
         cls = _registered.pop()
         if cls == "menu":
             bpy.types.VIEW3D_MT_mesh_add.remove(ui.menu_func)
         elif cls == "panels":
-            from . import panels
+            from .ui import panels
             panels.unregister()
         elif cls == "plant":
             from .engine import plant

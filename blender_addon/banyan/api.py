@@ -79,7 +79,7 @@ from .engine import build_mesh as BM
 from .engine import growth_anim as GA
 from .engine import hosts as H
 from . import presets as PR
-from . import props as PP
+from .engine import props as PP
 from .engine import wind as W
 from .core import generators as G
 from .core.errors import BanyanError

@@ -140,7 +140,7 @@ def test_user_preset(gen):
     op = gens.op(gen)
     kw = dict(gens.KWARGS[gen])
     from banyan.core.params import specs
-    from banyan import props as PP
+    from banyan.engine import props as PP
     # Change one int parameter to a value different from the default.
     p0 = Params(gen)
     tweak = None

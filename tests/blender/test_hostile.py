@@ -43,7 +43,7 @@ import banyan  # noqa: E402
 import banyan.api as B  # noqa: E402
 from banyan.engine import hosts as H  # noqa: E402
 from banyan import presets as PR  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core import lib as L  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402

@@ -111,7 +111,7 @@ def test_lods_keep_wind():
     if not bt.generator("roots"):
         return
     from banyan import api
-    from banyan import props as P
+    from banyan.engine import props as P
     from banyan.engine import wind as W
     bt.reset_scene()
     gens.prepare("roots")

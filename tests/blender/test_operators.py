@@ -10,7 +10,7 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.engine import wind as W  # noqa: E402
 
 

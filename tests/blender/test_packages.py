@@ -41,7 +41,7 @@ else:
 out["enabled"] = name in bpy.context.preferences.addons
 pkg = sys.modules[name]
 out["package"] = pkg.__file__
-out["load_error"] = sys.modules[name + ".state"].LOAD_ERROR
+out["load_error"] = sys.modules[name + ".ui.state"].LOAD_ERROR
 out["library"] = sys.modules[name + ".core.lib"].load().banyan_path
 def maps():
     return sorted({ln.split()[-1] for ln in open("/proc/self/maps") if ".so" in ln.rsplit("/", 1)[-1]})

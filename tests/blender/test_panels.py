@@ -15,10 +15,10 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import live  # noqa: E402
-from banyan import panels  # noqa: E402
+from banyan.ui import live  # noqa: E402
+from banyan.ui import panels  # noqa: E402
 from banyan import presets as PR  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core import params as P  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 

@@ -15,7 +15,7 @@ import gens  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan.engine import plant as PL  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core.params import Params  # noqa: E402
 
 
@@ -547,7 +547,7 @@ class _Layout:
 
 
 def draw_panel(obj):
-    from banyan.plant_ui import VIEW3D_PT_banyan_plant as P
+    from banyan.ui.plant_ui import VIEW3D_PT_banyan_plant as P
     log = []
 
     class Ctx:

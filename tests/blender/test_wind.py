@@ -19,7 +19,7 @@ import prod_util as U  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api  # noqa: E402
-from banyan import props as P  # noqa: E402
+from banyan.engine import props as P  # noqa: E402
 from banyan.engine import build_mesh as BM  # noqa: E402
 from banyan.engine import wind as W  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402

@@ -37,7 +37,7 @@ from bpy.props import CollectionProperty, FloatProperty, IntProperty, PointerPro
 from mathutils import Matrix
 
 from . import hosts as H
-from .. import props as PP
+from . import props as PP
 from ..core import generators as G
 from ..core import structs as S
 from ..core.errors import BanyanError

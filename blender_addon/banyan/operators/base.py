@@ -18,11 +18,11 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 
 from .. import api
 from ..engine import hosts as H
-from .. import live
-from .. import panels
+from ..ui import live
+from ..ui import panels
 from ..engine import plant
 from .. import presets as PR
-from .. import props as PP
+from ..engine import props as PP
 from ..core import lib as LIB
 from ..core.errors import BanyanError, report_error
 

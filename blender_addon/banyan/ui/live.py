@@ -19,7 +19,7 @@ on except for the slow generators (SLOW).
 """
 from bpy.props import BoolProperty
 
-from .core.errors import EXPECTED, report_error
+from ..core.errors import EXPECTED, report_error
 
 SLOW = frozenset(("ivy", "avenue"))  # seconds per run on ordinary hosts
 LIVE = "live_update"

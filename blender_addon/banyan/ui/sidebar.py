@@ -3,8 +3,8 @@ import textwrap
 
 import bpy
 
-from .engine import hosts as H
-from . import presets as PR
+from ..engine import hosts as H
+from .. import presets as PR
 from . import state
 
 

@@ -5,10 +5,10 @@ Preset. The data and the rebuilding are plant.py's."""
 import bpy
 from bpy.props import StringProperty
 
-from .engine import plant as PL
-from . import props as PP
-from .core.errors import BanyanError, report_error
-from .core.params import specs
+from ..engine import plant as PL
+from ..engine import props as PP
+from ..core.errors import BanyanError, report_error
+from ..core.params import specs
 from .panels import draw_prop, idle, section
 
 GENERATOR_LABELS = {"roots": "Strangler roots", "keyaki": "Keyaki tree", "avenue": "Keyaki avenue",
