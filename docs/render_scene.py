@@ -72,7 +72,7 @@ def reset():
 
 
 def preset_path(gen, preset):
-    from banyan import presets
+    from banyan.core import presets
     return presets.find(gen, preset)
 
 
@@ -82,7 +82,7 @@ def preset_hosts(gen, preset):
     banyan.engine.hosts.objects_from_preset (placed as the library places them)."""
     import json
     from banyan.engine import hosts as H
-    from banyan import presets
+    from banyan.core import presets
     from banyan.core.params import preset_hosts as hosts_of
     path = presets.find(gen, preset)
     text = presets.read(path)

@@ -41,7 +41,7 @@ def other_copy():
 
 def register():
     import bpy
-    from . import scripting
+    from .core import scripting
     from .ui import state, sidebar as ui
     other = other_copy()
     if other is not None:
@@ -58,7 +58,7 @@ def register():
     scripting.register(__name__)  # `import banyan` in scripts, also under the 4.2+ extension's package name
     from .core import lib
     from .core.errors import BanyanError
-    from .operators import FACTORIES, tube
+    from .ops import FACTORIES, tube
 
     state.LOAD_ERROR = ""
     state.ERRORS = []
@@ -77,7 +77,7 @@ def register():
     from .engine.materials import BanyanPreferences
     bpy.utils.register_class(BanyanPreferences)
     _registered.append(BanyanPreferences)
-    from .operators.base import BANYAN_OT_preset_save
+    from .ops.base import BANYAN_OT_preset_save
     classes = [tube.MESH_OT_banyan_tube, BANYAN_OT_preset_save]
     for module, factory in FACTORIES:
         try:
@@ -130,5 +130,5 @@ def unregister():
             bpy.utils.unregister_class(cls)
     if refused:
         return  # the `banyan` alias for scripts is the other copy's
-    from . import scripting
+    from .core import scripting
     scripting.unregister()

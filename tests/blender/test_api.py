@@ -152,7 +152,7 @@ def test_user_preset(gen):
     bt.check(op(**kw) == {'FINISHED'}, "%s: ran with %s=%s" % (gen, tweak[0], tweak[1]))
     res = bpy.ops.banyan.preset_save(operator=gens.OPS[gen], name="bt_roundtrip")
     bt.check(res == {'FINISHED'}, "%s: preset saved" % gen)
-    from banyan import presets as PR
+    from banyan.core import presets as PR
     keys = [k for k, _, _ in PR.list_presets(gen)]
     key = "%s_bt_roundtrip" % gen
     bt.check(key in keys, "%s: saved preset listed: %s" % (gen, keys))
@@ -170,14 +170,14 @@ def test_user_preset(gen):
     bt.check(op(**kw2) == {'FINISHED'}, "%s: ran with the saved preset" % gen)
     nv = sum(len(o.data.vertices) for o in bpy.context.selected_objects)
     bt.check(nv == nv_first, "%s: preset run gives the same mesh (%d, %d)" % (gen, nv, nv_first))
-    from banyan.operators.base import LAST_PARAMS
+    from banyan.ops.base import LAST_PARAMS
     bt.check(LAST_PARAMS[gens.OPS[gen]].get(tweak[0]) == tweak[1], "%s: the run used the preset's %s" % (gen, tweak[0]))
     os.remove(path)
 
 
 def test_shipped_presets(gen):
     """Every presets/<gen>*.json applies through the API."""
-    from banyan import presets as PR
+    from banyan.core import presets as PR
     for key, path, _ in PR.list_presets(gen):
         p = Params(gen)
         try:

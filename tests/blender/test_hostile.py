@@ -42,7 +42,7 @@ import bpy  # noqa: E402
 import banyan  # noqa: E402
 import banyan.api as B  # noqa: E402
 from banyan.engine import hosts as H  # noqa: E402
-from banyan import presets as PR  # noqa: E402
+from banyan.core import presets as PR  # noqa: E402
 from banyan.engine import props as PP  # noqa: E402
 from banyan.core import lib as L  # noqa: E402
 from banyan.core import structs as S  # noqa: E402

@@ -15,8 +15,8 @@ import bt  # noqa: E402
 import bpy  # noqa: E402
 from banyan import api as B  # noqa: E402
 from banyan.core import lib as L  # noqa: E402
-from banyan.operators import base  # noqa: E402
-from banyan.operators import ivy as ivy_op  # noqa: E402
+from banyan.ops import base  # noqa: E402
+from banyan.ops import ivy as ivy_op  # noqa: E402
 
 
 def lifted_cube():

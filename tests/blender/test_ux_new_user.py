@@ -21,7 +21,7 @@ from banyan.engine import props as PP  # noqa: E402
 from banyan.ui import state  # noqa: E402
 from banyan.core import params as P  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
-from banyan.operators import base  # noqa: E402
+from banyan.ops import base  # noqa: E402
 
 print("Blender %s" % bpy.app.version_string)
 

@@ -387,7 +387,7 @@ def objects_from_preset(gen, preset, collection=None, material=None):
     BanyanError and nothing is added to the scene."""
     import bpy
     from mathutils import Matrix
-    from .. import presets as PR
+    from ..core import presets as PR
     from ..core.hostset import preset_hosts_split, read_glb
     path = PR.find(gen, preset)
     boxes, entries = preset_hosts_split(PR.read(path), path)

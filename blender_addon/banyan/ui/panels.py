@@ -14,7 +14,7 @@ import bpy
 from bpy.props import BoolVectorProperty, PointerProperty
 
 from . import live
-from .. import presets as PR
+from ..core import presets as PR
 from ..core import params as P
 from ..core import structs as S
 

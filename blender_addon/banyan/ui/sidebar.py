@@ -4,7 +4,7 @@ import textwrap
 import bpy
 
 from ..engine import hosts as H
-from .. import presets as PR
+from ..core import presets as PR
 from . import state
 
 

@@ -21,7 +21,7 @@ from ..engine import hosts as H
 from ..ui import live
 from ..ui import panels
 from ..engine import plant
-from .. import presets as PR
+from ..core import presets as PR
 from ..engine import props as PP
 from ..core import lib as LIB
 from ..core.errors import BanyanError, report_error
