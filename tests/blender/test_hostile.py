@@ -152,7 +152,7 @@ def spy_operator(cls):
     cls.execute = execute
 
 
-OPERATOR_CLASSES = [c for c in banyan._registered if isinstance(c, type) and issubclass(c, bpy.types.Operator)]
+OPERATOR_CLASSES = [c for c in banyan.ops.GENERATORS + banyan.ops.OTHERS if c.is_registered]
 for _cls in OPERATOR_CLASSES:
     spy_operator(_cls)
 

@@ -547,7 +547,7 @@ class _Layout:
 
 
 def draw_panel(obj):
-    from banyan.ui.plant_ui import VIEW3D_PT_banyan_plant as P
+    from banyan.ui.plant import VIEW3D_PT_banyan_plant as P
     log = []
 
     class Ctx:

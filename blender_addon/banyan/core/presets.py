@@ -19,7 +19,9 @@ import stat
 
 from . import lib
 from .atomic_file import write_atomic
-from .errors import BanyanError, PresetNotFound
+from .errors import BanyanError, LoadError, PresetNotFound
+from .params import Params
+from .structs import GENERATORS
 
 
 def user_dir(create=False):
@@ -96,7 +98,6 @@ def _checked(path, st):
 
 def _guess_generator(path):
     """The generator a preset file is named after ("ivy_wall.json" -> "ivy"), or None."""
-    from .structs import GENERATORS
     head = os.path.basename(path).split("_", 1)[0].split(".", 1)[0]
     return head if head in GENERATORS else None
 
@@ -104,9 +105,7 @@ def _guess_generator(path):
 def _library_error(generator, data, path):
     """The library's message refusing preset `data` ("<file>:<line>: ..."), or
     "" when it applies; "" too when there is no library to ask (plain Python)."""
-    from .errors import BanyanError, LoadError
     try:
-        from .params import Params
         Params(generator).apply_preset(data, _printable(os.path.basename(path)))
     except LoadError:
         return ""  # nothing to check it with; the JSON checks below still run
@@ -164,7 +163,6 @@ def _preset_info(path):
 
 
 def _known():
-    from .structs import GENERATORS
     return GENERATORS
 
 

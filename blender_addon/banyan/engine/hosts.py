@@ -28,11 +28,16 @@ import math
 import re
 from array import array
 
+import bpy
+from mathutils import Matrix
+
 from ..core import lib as L
+from ..core import presets as PR
 from ..core import structs as S
 from ..core.errors import BanyanError
-from ..core.hostset import HostSet, MeshInput
+from ..core.hostset import HostSet, MeshInput, preset_hosts_split, read_glb
 from ..core.structs import Box, Error
+from .build_mesh import fill_mesh
 
 SURFACE, BOX = 'SURFACE', 'BOX'
 HOST_SHAPES = (
@@ -221,7 +226,6 @@ def to_metres(matrix, scale):
     """A world matrix of a scene of `scale` metres per unit, in metres."""
     if scale == 1.0:
         return matrix
-    from mathutils import Matrix
     return Matrix.Scale(scale, 4) @ matrix
 
 
@@ -368,8 +372,6 @@ def mesh_from_input(name, mi):
     shaded (a glTF mesh without normals is drawn flat): build_mesh.fill_mesh,
     from its typed buffers through the fastest stock path of the running
     Blender, the edges from the library."""
-    import bpy
-    from .build_mesh import fill_mesh
     return fill_mesh(bpy.data.meshes.new(name), mi.positions, mi.indices, smooth=False)
 
 
@@ -385,10 +387,6 @@ def objects_from_preset(gen, preset, collection=None, material=None):
     in preset order and the preset's box hosts (structs.Box). The whole
     preset is checked by the library first: a bad entry or file raises
     BanyanError and nothing is added to the scene."""
-    import bpy
-    from mathutils import Matrix
-    from ..core import presets as PR
-    from ..core.hostset import preset_hosts_split, read_glb
     path = PR.find(gen, preset)
     boxes, entries = preset_hosts_split(PR.read(path), path)
     inputs = [read_glb(e["path"], e["transform"], e["closed"], e["name"]) for e in entries]
@@ -415,7 +413,6 @@ def objects_from_preset(gen, preset, collection=None, material=None):
 
 
 def _mesh_type():
-    import bpy
     return bpy.types.Mesh
 
 
@@ -424,7 +421,6 @@ def surface_host_set(hosts, depsgraph=None, scale=1.0):
     surfaces (in metres for a scene of `scale` metres per Blender unit),
     boxes as boxes (host numbering: the boxes first, then the objects in
     order). The caller closes it (with-block)."""
-    import bpy
     depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
     boxes, meshes = [], []
     for h in hosts:
