@@ -47,6 +47,7 @@ from banyan.engine import props as PP  # noqa: E402
 from banyan.core import lib as L  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
+from banyan.core.hostset import HostSet  # noqa: E402
 from banyan.core.params import Params, specs  # noqa: E402
 
 NAN, INF = float("nan"), float("inf")
@@ -453,7 +454,8 @@ def sheared(c):
 def box_encloses_host():
     c = cube()
     box = H.box_from_object(c)
-    worst = max(H.signed_distance(box, c.matrix_world @ v.co) for v in c.data.vertices)
+    with HostSet(boxes=[box]) as hs:  # the library's signed distance (< 0 inside)
+        worst = max(hs.closest(tuple(c.matrix_world @ v.co))["distance"] for v in c.data.vertices)
     bt.check(worst <= 1e-6, "sheared host: its box encloses every vertex (worst %.3g m outside)" % worst)
 
 

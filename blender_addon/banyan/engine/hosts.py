@@ -261,36 +261,15 @@ def box_corners(box):
     return out
 
 
-def signed_distance(box, p):
-    """Signed distance from p to the box (negative inside)."""
-    d = _sub(p, tuple(box.center))
-    q = []
-    for k in range(3):
-        axis = (box.rotation[k], box.rotation[3 + k], box.rotation[6 + k])
-        q.append(abs(_dot(d, axis)) - box.half[k])
-    outside = _norm(tuple(max(x, 0.0) for x in q))
-    inside = min(max(q[0], q[1], q[2]), 0.0)
-    return outside + inside
-
-
 def closest_point(boxes, p):
-    """The point on the surface of the nearest box to p, and that box."""
-    best = None
-    for b in boxes:
-        d = _sub(p, tuple(b.center))
-        loc = []
-        axes = [(b.rotation[k], b.rotation[3 + k], b.rotation[6 + k]) for k in range(3)]
-        for k in range(3):
-            loc.append(max(-b.half[k], min(b.half[k], _dot(d, axes[k]))))
-        if all(abs(loc[k]) < b.half[k] for k in range(3)):
-            # Inside: push to the nearest face.
-            k = min(range(3), key=lambda i: b.half[i] - abs(loc[i]))
-            loc[k] = b.half[k] if loc[k] >= 0 else -b.half[k]
-        q = tuple(b.center[r] + sum(loc[k] * axes[k][r] for k in range(3)) for r in range(3))
-        dist = _norm(_sub(q, p))
-        if best is None or dist < best[0]:
-            best = (dist, q, b)
-    return (best[1], best[2]) if best else (None, None)
+    """The point on the surface of the nearest box to p, and that box: the
+    library's answer (banyan_hosts_closest on a host set of the boxes)."""
+    boxes = list(boxes)
+    if not boxes:
+        return None, None
+    with HostSet(boxes=boxes) as hs:
+        hit = hs.closest(p)
+    return (hit["point"], boxes[hit["host"]]) if hit else (None, None)
 
 
 # ------------------------------------------------------------- surfaces

@@ -188,7 +188,7 @@ def from_metres(objs, scale):
 
 def recorded(job, gen, options, hosts=()):
     """job, set to record what it builds (plant.record: the generator, its
-    params, the host objects among `hosts`, options as plant.build_job
+    params, the host objects among `hosts`, options as regenerate.build_job
     reads them) so that the plant can be regenerated and edited."""
     if isinstance(hosts, HostSet):
         hosts = getattr(hosts, "objects", ())  # a set made by hosts.surface_host_set

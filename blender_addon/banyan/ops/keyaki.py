@@ -39,7 +39,7 @@ class TreeMixin(BanyanOperatorMixin):
 class AvenueMixin(BanyanOperatorMixin):
     def prepare(self, context, params):
         path = None
-        self.built_path = None  # the straight line, for the plant's record (part PLANT)
+        self.built_path = None  # the straight line, for the plant's record
         act = context.active_object
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':

@@ -1,7 +1,7 @@
 """Operators on plants already built: Add Wind (the Banyan Wind modifier
 on the selected plants), Add Growth Animation (by `birth`) and Make LODs
-(the active plant's LOD collection). The work is api.py's and
-engine/lod.py's."""
+(the active plant's LOD collection). The work is engine/production.py's
+and engine/lod.py's."""
 import bpy
 from bpy.props import BoolProperty, FloatProperty, FloatVectorProperty
 

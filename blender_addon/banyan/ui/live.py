@@ -31,7 +31,7 @@ RUNS = {}   # "mesh.banyan_ivy" -> generator runs (execute calls that were not s
 
 
 def properties(generator):
-    """The two operator properties (added by make_operator)."""
+    """The two operator properties (ops/base.complete adds them)."""
     return {
         LIVE: BoolProperty(
             name="Update while dragging", default=generator not in SLOW,

@@ -69,7 +69,7 @@ class VIEW3D_PT_banyan_plant(bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("banyan.randomize_seed", text="New Seed")
         row.operator("banyan.copy_preset", text="Copy Preset")
-        row = layout.row(align=True)  # production setups (production_ui.py)
+        row = layout.row(align=True)  # production setups (ops/production.py)
         row.operator("banyan.add_wind", text="Add Wind")
         row.operator("banyan.add_growth", text="Add Growth")
         layout.operator("banyan.make_lods", icon='MOD_DECIM')
