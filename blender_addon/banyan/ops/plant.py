@@ -7,6 +7,7 @@ from bpy.props import StringProperty
 from ..core.errors import BanyanError, report_error
 from ..engine import plant as PL
 from ..engine.plant import active_plant
+from ..engine.regenerate import regenerate
 
 
 def _poll(cls, context):
@@ -33,7 +34,7 @@ class BANYAN_OT_regenerate(bpy.types.Operator):
     def execute(self, context):
         obj = active_plant(context)
         try:
-            objs = PL.regenerate(obj)
+            objs = regenerate(obj)
         except Exception as e:  # the object is left as it was
             return report_error(self.report, e)
         nv = sum(len(o.data.vertices) for o in objs if o.type == 'MESH')
@@ -56,7 +57,7 @@ class BANYAN_OT_randomize_seed(bpy.types.Operator):
         view = getattr(obj.banyan_plant, obj.banyan_plant.generator)
         before = PL.randomize_seed(obj)
         try:
-            PL.regenerate(obj)
+            regenerate(obj)
         except BanyanError as e:
             for k, v in before.items():  # nothing changes when it fails
                 setattr(view, k, v)
