@@ -40,7 +40,7 @@ def set_engine(engine, samples):
 
 def leaf_coverage(plant, engine, samples, path):
     """The film's mean alpha with everything but the leaves held out."""
-    from banyan import materials as MAT
+    from banyan.engine import materials as MAT
     from banyan.core import textures as T
     sc = bpy.context.scene
     hold = bpy.data.materials.new("Holdout")

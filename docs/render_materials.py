@@ -129,7 +129,7 @@ def main():
         sys.path.insert(0, os.path.abspath(a.addon))
     api = RS.import_banyan()
     try:  # this add-on's texture size (an add-on preference when registered)
-        from banyan import materials
+        from banyan.engine import materials
         materials.FALLBACK_SIZE = a.texture_size
     except ImportError:
         pass  # the "before" add-on (flat colours)

@@ -72,16 +72,17 @@ def reset():
 
 
 def preset_path(gen, preset):
-    from banyan import presets
+    from banyan.core import presets
     return presets.find(gen, preset)
 
 
 def preset_hosts(gen, preset):
     """The hosts of a preset (may be none): its boxes (banyan Box), then,
     for its .glb mesh hosts, new Blender objects made by
-    banyan.hosts.objects_from_preset (placed as the library places them)."""
+    banyan.engine.hosts.objects_from_preset (placed as the library places them)."""
     import json
-    from banyan import hosts as H, presets
+    from banyan.engine import hosts as H
+    from banyan.core import presets
     from banyan.core.params import preset_hosts as hosts_of
     path = presets.find(gen, preset)
     text = presets.read(path)

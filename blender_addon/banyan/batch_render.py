@@ -12,7 +12,7 @@ import math
 import bpy
 from mathutils import Vector
 
-from .build_mesh import fill_mesh
+from .engine.build_mesh import fill_mesh
 
 _NAME = "banyan_batch"
 VIEW = Vector((1.0, -1.6, 0.9)).normalized()  # from the plant's centre towards the camera

@@ -50,7 +50,7 @@ from array import array
 
 import bpy
 
-from banyan import hosts as H
+from banyan.engine import hosts as H
 from banyan.core import generators as G
 from banyan.core.params import Params
 
@@ -348,16 +348,12 @@ CASES = [("roots default", "roots", setup_roots), ("wall ivy", "ivy", setup_ivy)
 
 
 def main():
-    avail = G.available()
     print("banyan Blender hand-off benchmark, median of %d runs, Blender %s" % (RUNS, bpy.app.version_string))
     print("op: the operator through bpy.ops, whose closing view-layer update is the new objects' first evaluation")
     print("%-20s %9s %9s %9s %8s %8s %8s %8s %8s %11s %12s %13s %12s %9s" % (
         "case", "vertices", "tris", "library", "bare", "bare+", "bare+ev", "edges+ev", "op", "(op-l)/bare",
         "(op-l)/bare+", "(op-l)/bare+ev", "(op-l)/edges", "op no-uv"))
     for label, gen, setup in CASES:
-        if not avail[gen]:
-            print("%-20s not built into this library" % label)
-            continue
         bpy.ops.wm.read_homefile(use_factory_startup=True)
         keep = {o.name for o in bpy.data.objects}
         hosts, lib_call, op_call = setup()
@@ -465,11 +461,8 @@ def handoff_rows(runs):
     `runs` rounds of the same-edges floor (bare_edges) and banyan.api's
     call with its first evaluation, its generate calls timed within it
     (LibraryTimer), interleaved; medians."""
-    avail = G.available()
     rows, notes = [], []
     for gen, setup in _handoff_cases():
-        if not avail[gen]:
-            continue
         bpy.ops.wm.read_homefile(use_factory_startup=True)
         keep = {o.name for o in bpy.data.objects}
         label, job_call, api_call = setup()

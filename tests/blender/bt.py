@@ -2,8 +2,8 @@
 
     import bt
     bt.check(cond, "what")      # records pass / fail, prints failures
-    if bt.generator("roots"): ... # True when built; fails loudly when missing
-                                  # unless config.EXPECTED_MISSING lists it
+    if bt.generator("roots"): ... # True when the library loads (it has every
+                                  # generator); a library that does not is a failure
     bt.done()                   # prints "name: N passed, N failed", exits 1 on failure
                                   # (under suite.py: records the exit code and ends
                                   # the file, raising Done, so the next file runs)
@@ -13,7 +13,6 @@ import sys
 import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import config  # noqa: E402
 
 NAME = os.path.splitext(os.path.basename(sys.argv[-1]))[0] if sys.argv else "test"
 _passed = 0
@@ -50,21 +49,16 @@ def run(fn):
 
 
 def generator(gen):
-    from banyan.core import generators as G
-    from banyan.core import lib
+    from banyan.core import lib, params, structs
+    if not check(gen in structs.GENERATORS, "'%s' is a generator" % gen):
+        return False
     try:
         lib.load()  # a library that does not load is a failure, never a skip
-        ok = G.available()[gen]
-    except Exception as e:  # the library did not load: that is a failure
-        check(False, "library did not load: %s" % e)
+        params.specs(gen)
+    except Exception as e:
+        check(False, "library did not load or has no table for '%s': %s" % (gen, e))
         return False
-    if ok:
-        return True
-    if gen in config.EXPECTED_MISSING:
-        print("SKIP: generator '%s' is missing (expected: %s)" % (gen, config.EXPECTED_MISSING[gen]), flush=True)
-        return False
-    check(False, "generator '%s' is missing from the library and not listed in tests/blender/config.py" % gen)
-    return False
+    return True
 
 
 class Done(BaseException):

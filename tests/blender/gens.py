@@ -36,9 +36,9 @@ def prepare(gen):
 
 def library_mesh(gen, hosts_objs, kwargs):
     """The MeshData the library makes for what the operator was asked."""
-    from banyan import hosts as H
+    from banyan.engine import hosts as H
     from banyan.core import generators as G
-    from banyan import props as PP
+    from banyan.engine import props as PP
     p = PP.addon_params(gen)  # the operators' defaults (wind data off)
     for k, v in kwargs.items():
         if k in p.by_name:

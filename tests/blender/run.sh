@@ -52,9 +52,6 @@ export BANYAN_TEST_OUT="$out"
 export PYTHONDONTWRITEBYTECODE=1
 
 echo "blender tests: library $BANYAN_EXPECT_LIB"
-python3 -c "import sys; sys.path.insert(0, '$here'); import config
-m = config.EXPECTED_MISSING
-print('expected missing generators (tests/blender/config.py):', ', '.join('%s (%s)' % kv for kv in m.items()) if m else 'none')"
 
 if [ $# -gt 0 ]; then tests=("$@"); else tests=("$here"/test_*.py); fi
 failed=0

@@ -66,11 +66,11 @@ def _own(name, source_dir):
     """True for a module a test file or the add-on brought in: the add-on
     (from the repository or an unpacked zip) and anything else from the
     repository's tests/, docs/ and blender_addon/ (gens, prod_util,
-    tests/bench/blender_handoff, docs/render_scene, ...) but this driver, bt
-    and config."""
+    tests/bench/blender_handoff, docs/render_scene, ...) but this driver and
+    bt."""
     if name == "banyan" or name.startswith("banyan."):
         return True
-    if name in ("__main__", "bt", "config", "suite"):
+    if name in ("__main__", "bt", "suite"):
         return False
     f = getattr(sys.modules.get(name), "__file__", None)
     if not f:

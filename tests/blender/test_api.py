@@ -41,13 +41,13 @@ def test_api(gen):
     bt.check(all(o.name in bpy.context.scene.objects for o in objs), "%s: objects are in the scene" % gen)
     bt.check({o.name for o in bpy.data.objects} - before == {o.name for o in objs}, "%s: only those objects added" % gen)
     bt.check(all(len(o.data.vertices) > 0 for o in objs), "%s: non-empty meshes" % gen)
-    from banyan import plant as PL
+    from banyan.engine import plant as PL
     bt.check(all(PL.is_plant(o) and o.banyan_plant.generator == gen for o in objs),
              "%s: recorded as a plant, as an operator's (Regenerate, Make LODs; test_plant.py)" % gen)
     # Where the colour lives in the vertex colours (a white material), the
     # material shows them; elsewhere the material carries the colour.
     # A shared textured material (materials.py) takes it from its image.
-    from banyan.materials import is_shared
+    from banyan.engine.materials import is_shared
     for o in objs:
         for m in o.data.materials:
             bsdf = m.node_tree.nodes["Principled BSDF"]
@@ -140,7 +140,7 @@ def test_user_preset(gen):
     op = gens.op(gen)
     kw = dict(gens.KWARGS[gen])
     from banyan.core.params import specs
-    from banyan import props as PP
+    from banyan.engine import props as PP
     # Change one int parameter to a value different from the default.
     p0 = Params(gen)
     tweak = None
@@ -152,7 +152,7 @@ def test_user_preset(gen):
     bt.check(op(**kw) == {'FINISHED'}, "%s: ran with %s=%s" % (gen, tweak[0], tweak[1]))
     res = bpy.ops.banyan.preset_save(operator=gens.OPS[gen], name="bt_roundtrip")
     bt.check(res == {'FINISHED'}, "%s: preset saved" % gen)
-    from banyan import presets as PR
+    from banyan.core import presets as PR
     keys = [k for k, _, _ in PR.list_presets(gen)]
     key = "%s_bt_roundtrip" % gen
     bt.check(key in keys, "%s: saved preset listed: %s" % (gen, keys))
@@ -170,14 +170,14 @@ def test_user_preset(gen):
     bt.check(op(**kw2) == {'FINISHED'}, "%s: ran with the saved preset" % gen)
     nv = sum(len(o.data.vertices) for o in bpy.context.selected_objects)
     bt.check(nv == nv_first, "%s: preset run gives the same mesh (%d, %d)" % (gen, nv, nv_first))
-    from banyan.operators.base import LAST_PARAMS
+    from banyan.ops.base import LAST_PARAMS
     bt.check(LAST_PARAMS[gens.OPS[gen]].get(tweak[0]) == tweak[1], "%s: the run used the preset's %s" % (gen, tweak[0]))
     os.remove(path)
 
 
 def test_shipped_presets(gen):
     """Every presets/<gen>*.json applies through the API."""
-    from banyan import presets as PR
+    from banyan.core import presets as PR
     for key, path, _ in PR.list_presets(gen):
         p = Params(gen)
         try:

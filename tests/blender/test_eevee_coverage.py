@@ -1,5 +1,5 @@
 """A keyaki's leaves cover as much of the picture in EEVEE as in Cycles
-(blender_addon/banyan/materials.py, docs/materials.md "EEVEE and Cycles").
+(blender_addon/banyan/engine/materials.py, docs/materials.md "EEVEE and Cycles").
 
 keyaki_young (shared materials, textures at the default 1024 px) seen
 from 10 m, 96 x 96 px, transparent film, the bark a Holdout: the film's
@@ -47,7 +47,7 @@ def scene():
     for o in list(bpy.data.objects):
         bpy.data.objects.remove(o)
     from banyan import api
-    from banyan import materials as MAT
+    from banyan.engine import materials as MAT
     from banyan.core import textures as T
     objs = api.keyaki_tree(preset="keyaki_young", name="Keyaki")
     holdout = bpy.data.materials.new("Holdout")

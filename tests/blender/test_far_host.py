@@ -18,7 +18,7 @@ import bt  # noqa: E402
 
 import bpy  # noqa: E402
 
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core.hostset import HostSet, read_glb  # noqa: E402
 
 BUILD = os.environ.get("BANYAN_BUILD_DIR") or os.path.join(bt.SOURCE_DIR, "build")

@@ -28,7 +28,7 @@ out["install"] = sorted(bpy.ops.preferences.addon_install(filepath=ZIP))
 out["enable"] = sorted(bpy.ops.preferences.addon_enable(module="banyan"))
 out["enabled"] = "banyan" in bpy.context.preferences.addons
 import banyan
-from banyan import state
+from banyan.ui import state
 from banyan.core import lib
 out["package"] = os.path.realpath(os.path.dirname(banyan.__file__))
 out["library"] = os.path.realpath(lib.load()._name)

@@ -7,7 +7,7 @@ the order of a Python set, which depends on the hash seed, so each import
 runs in child Blenders started with different PYTHONHASHSEEDs (20 in the
 full tier, BANYAN_TEST_TIER=full; 2 otherwise; BANYAN_GLTF_SEEDS overrides),
 one child per seed importing every file. With the add-on's importer hook
-(blender_addon/banyan/gltf_import.py) each import must: raise nothing;
+(blender_addon/banyan/engine/gltf_import.py) each import must: raise nothing;
 make an object for every node of the scene and none for the coarser
 MSFT_lod levels; leave the wind and growth data under the add-on's names
 (wind_pivot, a vector, wind_level, ..., birth; no `_NAME` left); put

@@ -15,8 +15,8 @@ import prod_util as U  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api  # noqa: E402
-from banyan import build_mesh as BM  # noqa: E402
-from banyan import growth_anim as GA  # noqa: E402
+from banyan.engine import build_mesh as BM  # noqa: E402
+from banyan.engine import growth_anim as GA  # noqa: E402
 
 F0, F1 = 5, 45
 

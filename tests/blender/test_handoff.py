@@ -16,8 +16,8 @@ import prod_util as U  # noqa: E402
 import bpy  # noqa: E402
 from mathutils import Vector  # noqa: E402
 from banyan import api  # noqa: E402
-from banyan import build_mesh as BM  # noqa: E402
-from banyan import wind as W  # noqa: E402
+from banyan.engine import build_mesh as BM  # noqa: E402
+from banyan.engine import wind as W  # noqa: E402
 
 
 def flat_materials():

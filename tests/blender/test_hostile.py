@@ -41,12 +41,13 @@ import gens  # noqa: E402
 import bpy  # noqa: E402
 import banyan  # noqa: E402
 import banyan.api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
-from banyan import presets as PR  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
+from banyan.core import presets as PR  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core import lib as L  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
+from banyan.core.hostset import HostSet  # noqa: E402
 from banyan.core.params import Params, specs  # noqa: E402
 
 NAN, INF = float("nan"), float("inf")
@@ -152,7 +153,7 @@ def spy_operator(cls):
     cls.execute = execute
 
 
-OPERATOR_CLASSES = [c for c in banyan._registered if isinstance(c, type) and issubclass(c, bpy.types.Operator)]
+OPERATOR_CLASSES = [c for c in banyan.ops.GENERATORS + banyan.ops.OTHERS if c.is_registered]
 for _cls in OPERATOR_CLASSES:
     spy_operator(_cls)
 
@@ -453,7 +454,8 @@ def sheared(c):
 def box_encloses_host():
     c = cube()
     box = H.box_from_object(c)
-    worst = max(H.signed_distance(box, c.matrix_world @ v.co) for v in c.data.vertices)
+    with HostSet(boxes=[box]) as hs:  # the library's signed distance (< 0 inside)
+        worst = max(hs.closest(tuple(c.matrix_world @ v.co))["distance"] for v in c.data.vertices)
     bt.check(worst <= 1e-6, "sheared host: its box encloses every vertex (worst %.3g m outside)" % worst)
 
 

@@ -31,7 +31,7 @@ from mathutils import Vector  # noqa: E402
 from mathutils.bvhtree import BVHTree  # noqa: E402
 
 import banyan.api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core import BanyanError  # noqa: E402
 from banyan.core import generators as G  # noqa: E402
 from banyan.core import structs as S  # noqa: E402

@@ -16,9 +16,9 @@ import prod_util as U  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api  # noqa: E402
-from banyan import build_mesh as BM  # noqa: E402
-from banyan import instances as I  # noqa: E402
-from banyan import wind as W  # noqa: E402
+from banyan.engine import build_mesh as BM  # noqa: E402
+from banyan.engine import instances as I  # noqa: E402
+from banyan.engine import wind as W  # noqa: E402
 
 VARIANTS = 3
 PATH = [(0.0, 0.0, 0.0), (60.0, 0.0, 0.0)]

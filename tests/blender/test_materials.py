@@ -1,4 +1,4 @@
-"""Shared textured materials (blender_addon/banyan/materials.py):
+"""Shared textured materials (blender_addon/banyan/engine/materials.py):
 operators run twice leave exactly one material per kind and season and one
 image per texture, packed, of the preference's size, the leaves' with
 alpha; node trees wire image -> Principled base colour (and alpha through a
@@ -18,7 +18,7 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import materials as MAT  # noqa: E402
+from banyan.engine import materials as MAT  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 from banyan.core import textures as T  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
@@ -291,7 +291,8 @@ def test_season():
                  "%s: autumn swaps the leaf material (%s -> %s)" % (gen, sorted(ms), sorted(ma)))
         bt.check(len(ms & ma) == 1, "%s: the bark/stem material is shared by both seasons" % gen)
         # Regenerate with the other season: the library's slot follows, an artist's slot stays.
-        from banyan import plant
+        from banyan import api
+        from banyan.engine import plant
         obj = summer[0]
         me = obj.data
         own = bpy.data.materials.new("Artist Bark")
@@ -299,7 +300,7 @@ def test_season():
         me.materials[slot] = own
         p = plant.current_params(obj)
         p.set("season", 1)
-        new = plant.regenerate(obj, p)
+        new = api.regenerate(obj, p)
         got = [m.name for m in new[0].data.materials]
         bt.check(leaf + " (autumn)" in got and "Artist Bark" in got,
                  "%s: regenerate in autumn: %s" % (gen, got))

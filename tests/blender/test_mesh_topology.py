@@ -24,7 +24,7 @@ from blender_handoff import stock_mesh, stock_set  # noqa: E402  Blender's own e
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import build_mesh as BM  # noqa: E402
+from banyan.engine import build_mesh as BM  # noqa: E402
 
 
 def get(coll, prop, n, typecode="i"):

@@ -1,4 +1,4 @@
-"""Geometry Nodes modifier inputs through banyan.nodes (set_inputs,
+"""Geometry Nodes modifier inputs through banyan.engine.nodes (set_inputs,
 get_input, copy_inputs), which the wind and growth modifiers and Make LODs
 use: Blender 5.2 keeps the values in mod.properties.inputs, older ones as
 ID properties of the modifier. Checked on the evaluated mesh, so a value
@@ -15,7 +15,7 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import nodes as N  # noqa: E402
+from banyan.engine import nodes as N  # noqa: E402
 
 
 def group():
@@ -111,8 +111,8 @@ def test_lods_keep_wind():
     if not bt.generator("roots"):
         return
     from banyan import api
-    from banyan import props as P
-    from banyan import wind as W
+    from banyan.engine import props as P
+    from banyan.engine import wind as W
     bt.reset_scene()
     gens.prepare("roots")
     before = {o.name for o in bpy.data.objects}

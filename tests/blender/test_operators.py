@@ -10,8 +10,8 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import props as PP  # noqa: E402
-from banyan import wind as W  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
+from banyan.engine import wind as W  # noqa: E402
 
 
 def new_objects(before):

@@ -41,7 +41,7 @@ else:
 out["enabled"] = name in bpy.context.preferences.addons
 pkg = sys.modules[name]
 out["package"] = pkg.__file__
-out["load_error"] = sys.modules[name + ".state"].LOAD_ERROR
+out["load_error"] = sys.modules[name + ".ui.state"].LOAD_ERROR
 out["library"] = sys.modules[name + ".core.lib"].load().banyan_path
 def maps():
     return sorted({ln.split()[-1] for ln in open("/proc/self/maps") if ".so" in ln.rsplit("/", 1)[-1]})
@@ -53,8 +53,8 @@ out["maps"] = maps()
 # A script's `import banyan`, whatever the package is called: the same modules, a recorded plant.
 import banyan
 import banyan.api
-import banyan.lod  # not loaded yet by the add-on itself
-out["alias"] = [banyan is pkg, banyan.api is sys.modules[name + ".api"], banyan.lod is sys.modules[name + ".lod"]]
+import banyan.engine.lod  # not loaded yet by the add-on itself
+out["alias"] = [banyan is pkg, banyan.api is sys.modules[name + ".api"], banyan.engine.lod is sys.modules[name + ".engine.lod"]]
 tree = banyan.api.keyaki_tree(levels=6)[0]
 out["api_plant"] = tree.banyan_plant.generator
 out["api_lods"] = len(banyan.api.make_lods(tree, ratios=(0.5,), billboard=False))
@@ -144,7 +144,7 @@ def check_install(kind, zip_path, bundled):
                 bt.check(not bad, "%s: nothing loaded from %s: %s" % (kind, tree, bad))
         bt.check(out["roots"] == ["FINISHED"] and out["objects"] == 1, "%s: roots around the cube: %s, %d object(s)"
                  % (kind, out["roots"], out["objects"]))
-        bt.check(out["alias"] == [True, True, True], "%s: a script's import banyan, banyan.api, banyan.lod are the "
+        bt.check(out["alias"] == [True, True, True], "%s: a script's import banyan, banyan.api, banyan.engine.lod are the "
                  "add-on's own modules: %s" % (kind, out["alias"]))
         bt.check(out["api_plant"] == "keyaki" and out["api_lods"] == 2, "%s: banyan.api.keyaki_tree from a script: a "
                  "recorded plant (%r), make_lods on it: %d object(s)" % (kind, out["api_plant"], out["api_lods"]))

@@ -15,10 +15,10 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import live  # noqa: E402
-from banyan import panels  # noqa: E402
-from banyan import presets as PR  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.ui import live  # noqa: E402
+from banyan.ui import panels  # noqa: E402
+from banyan.core import presets as PR  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core import params as P  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
 
@@ -238,7 +238,7 @@ def test_broken_preset():
                  "broken preset listed with the library's line and message: %r" % err)
         bt.check("ivy_zz_panels_broken" not in [k for k, _, _ in PR.list_presets("ivy")],
                  "not offered as a good preset")
-        from banyan.operators.base import preset_items
+        from banyan.ops.base import preset_items
         items = {i[0]: i for i in preset_items("ivy")}
         it = items.get("ivy_zz_panels_broken")
         bt.check(it is not None and "(broken: " in it[1] and err in it[1] and it[3] == 'ERROR',

@@ -14,8 +14,8 @@ import bt  # noqa: E402
 import gens  # noqa: E402
 
 import bpy  # noqa: E402
-from banyan import plant as PL  # noqa: E402
-from banyan import props as PP  # noqa: E402
+from banyan.engine import plant as PL  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
 from banyan.core.params import Params  # noqa: E402
 
 
@@ -389,7 +389,7 @@ def test_api_plants():
     Plant panel shows them, Regenerate rebuilds them (the same mesh for
     unchanged params, another for an edit), make_lods works on them."""
     import banyan.api as B
-    from banyan import hosts as H
+    from banyan.engine import hosts as H
     bt.reset_scene()
     cube = bpy.data.objects["Cube"]
 
@@ -547,7 +547,7 @@ class _Layout:
 
 
 def draw_panel(obj):
-    from banyan.plant_ui import VIEW3D_PT_banyan_plant as P
+    from banyan.ui.plant import VIEW3D_PT_banyan_plant as P
     log = []
 
     class Ctx:

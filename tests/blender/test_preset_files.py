@@ -19,7 +19,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bt  # noqa: E402
 import gens  # noqa: E402
 
-from banyan import presets as PR  # noqa: E402
+from banyan.core import presets as PR  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
 
 DEADLINE = 1.0  # s: the menu must be listed within this
@@ -56,7 +56,7 @@ def timed(fn, *args):
 
 def listing(what):
     """The roots preset menu, checked: in time, the good preset offered."""
-    from banyan.operators.base import preset_items
+    from banyan.ops.base import preset_items
     PR._parsed.clear()  # as on a fresh start: nothing cached
     (items, broken), s = timed(lambda: (preset_items("roots"), PR.broken_presets("roots")))
     bt.check(s < DEADLINE, "%s: the preset menu listed in %.3f s (< %.1f s)" % (what, s, DEADLINE))

@@ -1,4 +1,4 @@
-"""Presets with .glb mesh hosts applied in Blender (banyan.hosts.objects_from_preset):
+"""Presets with .glb mesh hosts applied in Blender (banyan.engine.hosts.objects_from_preset):
   - each host object holds the library's reading of the file (banyan_glb_read_host)
     under the transform the library composes from the entry: its world bounds are
     the bounds of the library's own preset host set (banyan_preset_host_set), for the
@@ -20,7 +20,7 @@ import bpy  # noqa: E402
 from mathutils import Vector  # noqa: E402
 
 import banyan.api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core import BanyanError  # noqa: E402
 from banyan.core.hostset import HostSet, read_glb  # noqa: E402
 

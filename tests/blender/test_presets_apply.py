@@ -16,7 +16,7 @@ import bt  # noqa: E402
 import bpy  # noqa: E402
 from mathutils import Matrix, Vector  # noqa: E402
 from banyan import api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core.params import preset_hosts  # noqa: E402
 
 OPS = {"roots": bpy.ops.mesh.banyan_roots, "ivy": bpy.ops.mesh.banyan_ivy, "keyaki": bpy.ops.mesh.banyan_keyaki_tree,

@@ -14,9 +14,11 @@ import bt  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api as B  # noqa: E402
-from banyan.core import lib as L  # noqa: E402
-from banyan.operators import base  # noqa: E402
-from banyan.operators import ivy as ivy_op  # noqa: E402
+from banyan.core import generators as G  # noqa: E402
+from banyan.core.params import Params  # noqa: E402
+from banyan.core.structs import Box  # noqa: E402
+from banyan.ops import base  # noqa: E402
+from banyan.ops import ivy as ivy_op  # noqa: E402
 
 
 def lifted_cube():
@@ -228,15 +230,13 @@ def test_ivy_cannot_grow():
     if not grew:
         bt.check(any("could not grow" in m and "3D cursor" in m for _, m in op.reports),
                  "lifted cube: the warning says what to do (%s)" % op.reports)
-    if L.symbol("banyan_ivy_growth_text") is not None:  # the library that places the start (part LIB)
-        bt.check(grew, "lifted cube: the ivy grows from a side (%d vertices)" % nv)
-    # The rule on the data: one internode of 450 steps did not grow.
-    fake = SimpleNamespace(skel_edges=[0, 1], skel_points=[0.0] * 6)
-    bt.check(B.ivy_grew(fake, 450) is False and B.ivy_grew(fake, 1) is True, "ivy_grew: min(steps, 5) internodes")
-    bt.check(B.ivy_grew(SimpleNamespace(skel_edges=None, skel_points=[0.0] * 3), 450) is False,
-             "ivy_grew: a lone bud did not grow")
-    bt.check(B.ivy_grew(SimpleNamespace(cannot_grow=2, skel_edges=None), 450) is False,
-             "ivy_grew: the library's cannot_grow wins")
+    bt.check(grew, "lifted cube: the ivy grows from a side (%d vertices)" % nv)
+    # The verdict is the library's (banyan_ivy_stats' cannot_grow), read from the mesh's stats.
+    bt.check(B.ivy_grew(SimpleNamespace(stats={"cannot_grow": 2})) is False
+             and B.ivy_grew(SimpleNamespace(stats={"cannot_grow": 0})) is True,
+             "ivy_grew: the library's cannot_grow decides")
+    d = G.ivy(Params("ivy"), [Box.make((0, 0, 1), (1, 1, 1))])
+    bt.check("cannot_grow" in (d.stats or {}), "the ivy mesh carries the library's verdict (%s)" % sorted(d.stats or {}))
 
 
 for t in (test_progress_and_cancel, test_runner, test_modal, test_execute_progress, test_ivy_cannot_grow):

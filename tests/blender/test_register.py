@@ -16,7 +16,7 @@ def has_op(idname):
 
 
 def ops_present():
-    import banyan.state as st
+    import banyan.ui.state as st
     return [i for i, _ in st.operator_entries()]
 
 
@@ -64,7 +64,7 @@ def reload_with(env_lib=None, abi=None):
         structs.ABI_VERSION = abi
     try:
         banyan.register()
-        import banyan.state as st
+        import banyan.ui.state as st
         return st.LOAD_ERROR, ops_present(), hasattr(bpy.types, "VIEW3D_PT_banyan_error")
     finally:
         banyan.unregister()

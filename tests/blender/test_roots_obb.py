@@ -99,7 +99,7 @@ def test_germination_cursor():
     bpy.context.scene.cursor.location = (0.2, 0.1, 1.4)
     res = bpy.ops.mesh.banyan_roots(germinate_at='CURSOR')
     bt.check(res == {'FINISHED'}, "germination at the cursor works")
-    from banyan.operators.base import LAST_PARAMS
+    from banyan.ops.base import LAST_PARAMS
     p = LAST_PARAMS["mesh.banyan_roots"]
     bt.check(not p.get("germination_auto") and all(abs(a - b) < 1e-6 for a, b in
                                                    zip(p.get("germination"), (0.2, 0.1, 1.4))),

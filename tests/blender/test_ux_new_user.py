@@ -16,12 +16,12 @@ import gens  # noqa: E402
 import addon_utils  # noqa: E402
 import bpy  # noqa: E402
 import banyan  # noqa: E402
-from banyan import panels  # noqa: E402
-from banyan import props as PP  # noqa: E402
-from banyan import state  # noqa: E402
+from banyan.ui import panels  # noqa: E402
+from banyan.engine import props as PP  # noqa: E402
+from banyan.ui import state  # noqa: E402
 from banyan.core import params as P  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
-from banyan.operators import base  # noqa: E402
+from banyan.ops import base  # noqa: E402
 
 print("Blender %s" % bpy.app.version_string)
 
@@ -51,7 +51,7 @@ def test_second_copy():
             import banyan_copy
             ops_before = [i for i, _ in state.operator_entries()]
             banyan_copy.register()
-            from banyan_copy import state as st2
+            from banyan_copy.ui import state as st2
             from banyan_copy.core import lib as lib2
             bt.check(lib2._lib is None, "the second copy loads no library")
             bt.check(st2.operator_entries() == [], "the second copy registers no operator: %s"
@@ -61,7 +61,7 @@ def test_second_copy():
             bt.check("'banyan'" in msg and "'banyan_copy'" in msg and "Preferences" in msg,
                      "its message names both copies and where to remove one: %r" % msg)
             panel = bpy.types.VIEW3D_PT_banyan
-            bt.check(panel.__module__ == "banyan.ui", "the sidebar panel is still the first copy's")
+            bt.check(panel.__module__ == "banyan.ui.sidebar", "the sidebar panel is still the first copy's")
             banyan_copy.unregister()
             bt.check(not hasattr(bpy.types, "VIEW3D_PT_banyan_other_copy"), "its panel goes with it")
             bt.check(hasattr(bpy.types, "VIEW3D_PT_banyan") and [i for i, _ in state.operator_entries()] ==
@@ -72,14 +72,14 @@ def test_second_copy():
             # The other way round: the first one disabled, the copy enabled, then the first again.
             addon_utils.disable("banyan", default_set=True)
             banyan_copy.register()
-            bt.check(st2.LOAD_ERROR == "" and bpy.types.VIEW3D_PT_banyan.__module__ == "banyan_copy.ui",
+            bt.check(st2.LOAD_ERROR == "" and bpy.types.VIEW3D_PT_banyan.__module__ == "banyan_copy.ui.sidebar",
                      "alone, the copy registers: %r" % st2.LOAD_ERROR)
             try:
                 addon_utils.enable("banyan", default_set=True)
                 bt.check("'banyan_copy'" in state.LOAD_ERROR and not state.operator_entries(),
                          "then `banyan` refuses: %r" % state.LOAD_ERROR)
                 addon_utils.disable("banyan", default_set=True)  # no RuntimeError, the copy untouched
-                bt.check(bpy.types.VIEW3D_PT_banyan.__module__ == "banyan_copy.ui" and
+                bt.check(bpy.types.VIEW3D_PT_banyan.__module__ == "banyan_copy.ui.sidebar" and
                          hasattr(bpy.types, "MESH_OT_banyan_roots"), "disabling `banyan` leaves the copy whole")
             finally:
                 banyan_copy.unregister()
@@ -399,7 +399,7 @@ def test_api_ground():
     """banyan.api puts the ground at its hosts' foot as the operators do,
     unless told not to (ground_at_hosts=False) or given a ground_z."""
     import banyan.api as B
-    from banyan import plant as PL
+    from banyan.engine import plant as PL
     if bt.generator("roots"):
         bt.reset_scene()  # the default cube, z from -1 to 1
         cube = bpy.data.objects["Cube"]

@@ -19,9 +19,9 @@ import prod_util as U  # noqa: E402
 
 import bpy  # noqa: E402
 from banyan import api  # noqa: E402
-from banyan import props as P  # noqa: E402
-from banyan import build_mesh as BM  # noqa: E402
-from banyan import wind as W  # noqa: E402
+from banyan.engine import props as P  # noqa: E402
+from banyan.engine import build_mesh as BM  # noqa: E402
+from banyan.engine import wind as W  # noqa: E402
 from banyan.core.errors import BanyanError  # noqa: E402
 
 FRAMES = (1, 37)
@@ -307,7 +307,7 @@ def test_operator_option():
                  "Add Wind regrew the plant with wind data, the same mesh (%d, %d vertices)"
                  % (n0, len(objs[0].data.vertices)))
         if W.MODIFIER in objs[0].modifiers:
-            from banyan import nodes as N
+            from banyan.engine import nodes as N
             bt.check(math.isclose(N.get_input(objs[0].modifiers[W.MODIFIER], "Strength"), 0.2, rel_tol=1e-6),
                      "Add Wind sets Strength")
 

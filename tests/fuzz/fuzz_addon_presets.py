@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fuzzes the add-on's preset reader (blender_addon/banyan/presets.py, which
+"""Fuzzes the add-on's preset reader (blender_addon/banyan/core/presets.py, which
 imports without bpy) against the library for a bounded time.
 
 Each round fills a fresh folder with a few files named like presets
@@ -266,7 +266,7 @@ def main():
     a = ap.parse_args()
     os.environ["BANYAN_LIB"] = os.path.abspath(a.lib)
     sys.path.insert(0, os.path.join(SRC, "blender_addon"))
-    from banyan import presets as PR
+    from banyan.core import presets as PR
     from banyan.core import lib
     from banyan.core.errors import BanyanError
     lib.load()  # a library that does not load is a failure

@@ -19,17 +19,6 @@ class LoadError(BanyanError):
         super().__init__(-1, message, "LOAD")
 
 
-class GeneratorMissing(BanyanError):
-    """The library has no parameter table / symbols for a generator."""
-
-    def __init__(self, generator, detail=""):
-        msg = "generator '%s' is not built into this libbanyan" % generator
-        if detail:
-            msg += " (%s)" % detail
-        super().__init__(13, msg, "BANYAN_E_UNSUPPORTED")
-        self.generator = generator
-
-
 class PresetNotFound(BanyanError, FileNotFoundError):
     """No preset of that name or path (BANYAN_E_IO); also a FileNotFoundError."""
 

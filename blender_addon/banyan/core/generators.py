@@ -1,14 +1,14 @@
 """Per-generator calls: the one place that knows each generate()
-signature (csrc/include/banyan/<gen>.h). Symbols are looked up lazily, so
-a library without a generator still loads; calling it raises
-GeneratorMissing.
+signature (csrc/include/banyan/<gen>.h). Symbols are looked up on first
+use; lib.load() has checked the ABI version, so a missing one is a
+LoadError.
 """
 import ctypes as C
 
 from . import args as A
 from . import lib as L
 from . import structs as S
-from .errors import BanyanError, Cancelled, GeneratorMissing
+from .errors import BanyanError, Cancelled, LoadError
 from .hostset import HostSet
 from .mesh import MeshData, call_generate
 from .params import Params
@@ -31,7 +31,7 @@ class SegmentsStats(C.Structure):
 def _fn(name, restype, argtypes, gen):
     f = L.symbol(name)
     if f is None:
-        raise GeneratorMissing(gen, "%s() is not in the library" % name)
+        raise LoadError("%s() is not in the library (%s)" % (name, gen))
     f.restype = restype
     f.argtypes = argtypes
     return f
@@ -289,11 +289,3 @@ def segments(params=None, inputs=None, count=0, trunk=None):
     info["lines_per_level"] = list(stats.lines_per_level)
     return d, info
 
-
-def available():
-    """{generator: True/False}: table, sizeof, params_init and generate present."""
-    from . import params as PP
-    calls = {"roots": "banyan_roots_generate", "keyaki": "banyan_keyaki_generate",
-             "avenue": "banyan_avenue_generate", "ivy": "banyan_ivy_generate",
-             "segments": "banyan_segments_generate"}
-    return {g: PP.available(g) and L.symbol(calls[g]) is not None for g in S.GENERATORS}

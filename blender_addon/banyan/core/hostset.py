@@ -23,6 +23,7 @@ from array import array
 from . import lib as L
 from . import structs as S
 from .errors import BanyanError
+from .params import preset_hosts
 
 BAD_HOST = 4  # BANYAN_E_BAD_HOST
 
@@ -184,7 +185,6 @@ def preset_hosts_split(text, source="<preset>", base_dir=None):
     boxes = []
     box_entries = [e for e in entries if "mesh" not in e]
     if box_entries:
-        from .params import preset_hosts
         boxes = preset_hosts(json.dumps(dict(doc, hosts=box_entries)), source)
     meshes = []
     for i, e in enumerate(entries):

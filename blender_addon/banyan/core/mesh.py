@@ -9,6 +9,7 @@ import ctypes as C
 import threading
 from array import array
 
+from . import args as A
 from . import lib as L
 from . import structs as S
 
@@ -224,7 +225,6 @@ def call_generate(func, *args):
 
 def tube(points, radii, sides=12, caps=True):
     """banyan_tube_generate: the smallest thing the library makes."""
-    from . import args as A
     pts, n = A.points("points", points)
     rad, nr = A.numbers_of("radii", radii)
     if nr != n:

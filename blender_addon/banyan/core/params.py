@@ -10,7 +10,7 @@ import json
 
 from . import lib as L
 from . import structs as S
-from .errors import BanyanError, GeneratorMissing
+from .errors import BanyanError, LoadError
 
 
 class ParamSpec:
@@ -52,8 +52,7 @@ _spec_cache = {}
 
 
 def specs(gen):
-    """The parameter table of `gen` as a list of ParamSpec. Raises
-    GeneratorMissing when the library has no table for it."""
+    """The parameter table of `gen` as a list of ParamSpec."""
     g = generator_id(gen)
     if g in _spec_cache:
         return _spec_cache[g]
@@ -61,20 +60,10 @@ def specs(gen):
     n = lib.banyan_param_count(g)
     name = S.GENERATORS[g]
     if n <= 0:
-        raise GeneratorMissing(name, "banyan_param_count is 0")
+        raise LoadError("the library has no parameter table for '%s'" % name)
     out = [ParamSpec(lib.banyan_param_get(g, i).contents) for i in range(n)]
     _spec_cache[g] = out
     return out
-
-
-def available(gen):
-    """True when the library has gen's table, sizeof and params_init."""
-    try:
-        specs(gen)
-    except BanyanError:
-        return False
-    name = S.GENERATORS[generator_id(gen)]
-    return bool(L.symbol("banyan_sizeof_%s_params" % name) and L.symbol("banyan_%s_params_init" % name))
 
 
 def _struct_name(g):
@@ -92,8 +81,8 @@ class Params:
         sizeof = L.symbol("banyan_sizeof_%s_params" % self.name)
         init = L.symbol("banyan_%s_params_init" % self.name)
         if not sizeof or not init:
-            raise GeneratorMissing(self.name, "banyan_sizeof_%s_params or banyan_%s_params_init missing"
-                                   % (self.name, self.name))
+            raise LoadError("banyan_sizeof_%s_params or banyan_%s_params_init is not in the library"
+                            % (self.name, self.name))
         sizeof.restype = C.c_size_t
         sizeof.argtypes = []
         self.size = sizeof()

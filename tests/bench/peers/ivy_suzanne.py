@@ -34,7 +34,7 @@ from mathutils import Vector  # noqa: E402
 from mathutils.bvhtree import BVHTree  # noqa: E402
 
 from banyan import api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core import generators as G  # noqa: E402
 from banyan.core.hostset import HostSet  # noqa: E402
 

@@ -7,7 +7,7 @@ import time
 
 import bpy
 from banyan import api
-from banyan.operators import base
+from banyan.ops import base
 
 S = {"phase": 0, "t": 0.0, "passed": 0, "failed": 0}
 

@@ -9,8 +9,8 @@ import bt  # noqa: E402
 
 import addon_utils  # noqa: E402
 import bpy  # noqa: E402
-from banyan import materials  # noqa: E402
-from banyan.operators import base  # noqa: E402
+from banyan.engine import materials  # noqa: E402
+from banyan.ops import base  # noqa: E402
 
 bt.check(bpy.ops.mesh.banyan_tube() == {'FINISHED'}, "tube")
 bpy.data.objects.new("Leftover", None)

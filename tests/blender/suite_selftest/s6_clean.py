@@ -11,9 +11,9 @@ import bpy  # noqa: E402
 bt.check(sorted(o.name for o in bpy.data.objects) == ["Camera", "Cube", "Light"],
          "the factory scene: %s" % sorted(o.name for o in bpy.data.objects))
 bt.check(addon_utils.check("banyan")[1] and hasattr(bpy.types, "VIEW3D_PT_banyan"), "the add-on enabled again")
-from banyan import materials  # noqa: E402
+from banyan.engine import materials  # noqa: E402
 from banyan.core import textures  # noqa: E402
-from banyan.operators import base  # noqa: E402
+from banyan.ops import base  # noqa: E402
 bt.check(materials.FALLBACK_SIZE == textures.DEFAULT_SIZE, "the add-on's modules loaded afresh")
 bt.check(not base.LAST_PARAMS, "no operator run yet in this add-on")
 bt.check(bpy.ops.mesh.banyan_tube() == {'FINISHED'}, "its operators work")

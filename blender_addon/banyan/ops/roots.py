@@ -6,13 +6,13 @@ carried onto the selected objects' bounds). The object's origin is the
 bottom centre of the active host's world bounds."""
 import contextlib
 
+import bpy
 from bpy.props import EnumProperty
 
 from .. import api
+from ..ui import live
 from .base import (NO_PRESET, HostsOperatorMixin, cursor_location, ground_at_hosts_property, host_shape_property,
-                   make_operator, scene_point, set_ground_at_hosts)
-
-IDNAME = "mesh.banyan_roots"
+                   scene_point, set_ground_at_hosts)
 
 
 class RootsMixin(HostsOperatorMixin):
@@ -50,15 +50,18 @@ class RootsMixin(HostsOperatorMixin):
             self.germinate_at = 'ACTIVE_TOP'
 
 
-def make_class():
-    extra = {
-        "host_shape": host_shape_property(),
-        "ground_at_hosts": ground_at_hosts_property(),
-        "germinate_at": EnumProperty(
-            name="Germinate at", default='ACTIVE_TOP',
-            items=[('ACTIVE_TOP', "Active top", "Above the top of the active (first) host"),
-                   ('CURSOR', "3D cursor", "At the 3D cursor"),
-                   ('PARAMS', "Parameters", "Where the germination parameters say (a preset's point is "
-                                            "relative to its hosts)")])}
-    return make_operator(RootsMixin, IDNAME, "Add Strangler Roots",
-                         "Grow strangler-fig roots around the selected objects", "roots", extra)
+class MESH_OT_banyan_roots(RootsMixin, bpy.types.Operator):
+    """Grow strangler-fig roots around the selected objects"""
+    bl_idname = "mesh.banyan_roots"
+    bl_label = "Add Strangler Roots"
+    generator = "roots"
+    execute = live.wrap(RootsMixin.execute)
+
+    host_shape: host_shape_property()
+    ground_at_hosts: ground_at_hosts_property()
+    germinate_at: EnumProperty(
+        name="Germinate at", default='ACTIVE_TOP',
+        items=[('ACTIVE_TOP', "Active top", "Above the top of the active (first) host"),
+               ('CURSOR', "3D cursor", "At the 3D cursor"),
+               ('PARAMS', "Parameters", "Where the germination parameters say (a preset's point is "
+                                        "relative to its hosts)")])

@@ -38,8 +38,8 @@ surface_render_method DITHERED, which with a 0/1 alpha is a clip.
 """
 import bpy
 
-from .core import structs as S
-from .core import textures as T
+from ..core import structs as S
+from ..core import textures as T
 
 PROP = "banyan_texture"  # "kind/season" on materials and images this module made
 UV_MAP = "UVMap"         # build_mesh.fill_mesh's layer
@@ -74,11 +74,12 @@ def is_shared(mat):
 # The size when the add-on has no preferences entry (imported as a module
 # by a script, or after factory preferences were loaded).
 FALLBACK_SIZE = T.DEFAULT_SIZE
+ADDON = __package__.rpartition(".")[0]  # the add-on's package: "banyan" or "bl_ext.<repository>.banyan"
 
 
 def texture_size():
-    """The add-on preference's texture size, else FALLBACK_SIZE."""
-    a = bpy.context.preferences.addons.get(__package__)
+    """The add-on preference's texture size (ui/preferences.py), else FALLBACK_SIZE."""
+    a = bpy.context.preferences.addons.get(ADDON)
     try:
         return int(a.preferences.texture_size)
     except (AttributeError, ValueError, TypeError):
@@ -351,15 +352,3 @@ def image_material(spec, image, created, prefix="banyan"):
     _eevee_clip(mat, cutoff)
     return mat
 
-
-class BanyanPreferences(bpy.types.AddonPreferences):
-    bl_idname = __package__
-
-    texture_size: bpy.props.EnumProperty(
-        name="Texture Size",
-        description="Pixels per side of the leaf and bark textures the library draws for new materials "
-                    "(materials already in the file are reused as they are)",
-        items=[(str(s), "%d px" % s, "") for s in T.SIZES], default=str(T.DEFAULT_SIZE))
-
-    def draw(self, context):
-        self.layout.prop(self, "texture_size")

@@ -19,7 +19,7 @@ on except for the slow generators (SLOW).
 """
 from bpy.props import BoolProperty
 
-from .core.errors import EXPECTED, report_error
+from ..core.errors import EXPECTED, report_error
 
 SLOW = frozenset(("ivy", "avenue"))  # seconds per run on ordinary hosts
 LIVE = "live_update"
@@ -31,7 +31,7 @@ RUNS = {}   # "mesh.banyan_ivy" -> generator runs (execute calls that were not s
 
 
 def properties(generator):
-    """The two operator properties (added by make_operator)."""
+    """The two operator properties (ops/base.complete adds them)."""
     return {
         LIVE: BoolProperty(
             name="Update while dragging", default=generator not in SLOW,

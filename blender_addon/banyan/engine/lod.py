@@ -12,8 +12,10 @@ import bpy
 from . import nodes as N
 from . import plant as PL
 from . import wind as W
-from .core import mesh as M
-from .core.errors import BanyanError
+from ..core import mesh as M
+from ..core.errors import BanyanError
+from .jobs import guard
+from .regenerate import build_job
 
 TREES = ("keyaki", "avenue")  # plants that get billboard cards by default
 
@@ -93,7 +95,7 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
         out = [lod0]
         with M.capture():
             tmp = created.add(bpy.data.collections.new("banyan_lod_build"))
-            with PL.build_job(obj, params, tmp) as job:
+            with build_job(obj, params, tmp) as job:
                 job.compute()
                 full = job.data
                 levels = [M.lod(full, r) for r in ratios]
@@ -112,5 +114,4 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
         lod0["banyan_lod"] = 0
         return out
 
-    from .api import _guard
-    return _guard(build)
+    return guard(build)

@@ -4,15 +4,15 @@ and Add Keyaki Avenue (along the active curve, a straight line from the
 cursor, or the parameters' start-end line)."""
 import math
 
+import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty
+from bpy_extras.object_utils import AddObjectHelper
+from mathutils import Matrix
 
 from .. import api
 from ..core.errors import BanyanError
-from .base import (BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, make_operator, place_matrix,
-                   scene_point)
-
-TREE_IDNAME = "mesh.banyan_keyaki_tree"
-AVENUE_IDNAME = "mesh.banyan_keyaki_avenue"
+from ..ui import live
+from .base import BanyanOperatorMixin, at_cursor_note, cursor_axis, cursor_location, place_matrix, scene_point
 
 
 class TreeMixin(BanyanOperatorMixin):
@@ -30,7 +30,6 @@ class TreeMixin(BanyanOperatorMixin):
         """The foot at Location, turned by Rotation about the foot (the mesh
         is local to it); without At 3D cursor, at `position`, turned too.
         The mesh in metres, scaled to the scene's units (from_metres)."""
-        from mathutils import Matrix
         m = self._matrix
         if m is None:
             m = Matrix.Translation(objs[0].location) @ place_matrix(context, self).to_3x3().to_4x4()
@@ -40,7 +39,7 @@ class TreeMixin(BanyanOperatorMixin):
 class AvenueMixin(BanyanOperatorMixin):
     def prepare(self, context, params):
         path = None
-        self.built_path = None  # the straight line, for the plant's record (part PLANT)
+        self.built_path = None  # the straight line, for the plant's record
         act = context.active_object
         if self.path_from == 'CURVE':
             if act is None or act.type != 'CURVE':
@@ -74,26 +73,31 @@ class AvenueMixin(BanyanOperatorMixin):
         return BanyanOperatorMixin.invoke(self, context, event)
 
 
-def make_tree_class():
-    extra = {"at_cursor": BoolProperty(name="At 3D cursor", default=True,
-                                       description="Put the trunk foot at Location (the 3D cursor unless set), "
-                                                   "else at `position`")}
-    return make_operator(TreeMixin, TREE_IDNAME, "Add Keyaki Tree", "Grow one keyaki (Zelkova) tree",
-                         "keyaki", extra, placement=True)
+class MESH_OT_banyan_keyaki_tree(TreeMixin, AddObjectHelper, bpy.types.Operator):
+    """Grow one keyaki (Zelkova) tree"""
+    bl_idname = "mesh.banyan_keyaki_tree"
+    bl_label = "Add Keyaki Tree"
+    generator = "keyaki"
+    execute = live.wrap(TreeMixin.execute)
+
+    at_cursor: BoolProperty(name="At 3D cursor", default=True,
+                            description="Put the trunk foot at Location (the 3D cursor unless set), else at `position`")
 
 
-def make_avenue_class():
-    extra = {
-        "path_from": EnumProperty(name="Path", default='CURSOR', items=[
-            ('CURVE', "Active curve", "Along the active curve object (its first spline)"),
-            ('CURSOR', "Straight line", "From the 3D cursor along its X axis, `line length` metres (a preset's "
-                                        "start-end length when it draws a line)"),
-            ('PARAMS', "Parameters", "From `start` to `end`")]),
-        "line_length": FloatProperty(name="Line length", default=60.0, min=0.1, soft_max=1000.0,
-                                     subtype='DISTANCE', unit='LENGTH'),
-        "merged": BoolProperty(name="Merge trees", default=False,
-                               description="One merged object (origin at the path's start) instead of one object "
-                                           "per tree (origin at its foot) in a new collection"),
-    }
-    return make_operator(AvenueMixin, AVENUE_IDNAME, "Add Keyaki Avenue",
-                         "Plant rows of keyaki trees along a curve or a line", "avenue", extra)
+class MESH_OT_banyan_keyaki_avenue(AvenueMixin, bpy.types.Operator):
+    """Plant rows of keyaki trees along a curve or a line"""
+    bl_idname = "mesh.banyan_keyaki_avenue"
+    bl_label = "Add Keyaki Avenue"
+    generator = "avenue"
+    execute = live.wrap(AvenueMixin.execute)
+
+    path_from: EnumProperty(name="Path", default='CURSOR', items=[
+        ('CURVE', "Active curve", "Along the active curve object (its first spline)"),
+        ('CURSOR', "Straight line", "From the 3D cursor along its X axis, `line length` metres (a preset's "
+                                    "start-end length when it draws a line)"),
+        ('PARAMS', "Parameters", "From `start` to `end`")])
+    line_length: FloatProperty(name="Line length", default=60.0, min=0.1, soft_max=1000.0,
+                               subtype='DISTANCE', unit='LENGTH')
+    merged: BoolProperty(name="Merge trees", default=False,
+                         description="One merged object (origin at the path's start) instead of one object "
+                                     "per tree (origin at its foot) in a new collection")

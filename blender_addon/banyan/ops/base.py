@@ -12,17 +12,18 @@ import json
 import math
 import threading
 import time
-import traceback
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
+from bpy_extras.object_utils import AddObjectHelper, add_object_align_init
 
 from .. import api
-from .. import hosts as H
-from .. import live
-from .. import panels
-from .. import presets as PR
-from .. import props as PP
+from ..engine import hosts as H
+from ..ui import live
+from ..ui import panels
+from ..engine import plant
+from ..core import presets as PR
+from ..engine import props as PP
 from ..core import lib as LIB
 from ..core.errors import BanyanError, report_error
 
@@ -65,13 +66,9 @@ def library_ready(cls):
     return True
 
 
-def _dynamic_items(gen):
-    return lambda self, context: preset_items(gen)
-
-
 class BanyanOperatorMixin:
-    """Subclasses set `generator` and implement build(context, params) ->
-    objects (through banyan.api). Properties come from make_operator().
+    """Subclasses set `generator` and implement prepare(context, params) ->
+    api.Job. Properties come from complete(), at registration.
     No 'PRESET' option: Blender's own preset menu would be a second one
     beside the JSON presets (banyan_preset)."""
     bl_options = {'REGISTER', 'UNDO'}
@@ -236,7 +233,7 @@ class BanyanOperatorMixin:
         except BaseException as e:
             return self._fail(context, e)
         LAST_PARAMS[self.banyan_idname] = params
-        record_plant(self, context, objs, params)  # first: it reads the selection (hosts, the active curve)
+        plant.record_operator(self, context, objs, params)  # never raises; first: it reads the selection (hosts, the active curve)
         select_only(context, objs)
         warning = self.grew_message(context, job)
         if warning:
@@ -440,14 +437,10 @@ class Runner:
 
 def _note_built(op):
     """A run that ended in modal() (not through execute) tells the redo
-    panel's "Update while dragging" (live.py, part PANELS) which values the
-    plant on screen was built from."""
-    try:
-        from .. import live
-    except ImportError:
-        return
+    panel's "Update while dragging" (live.py) which values the plant on
+    screen was built from."""
     key = getattr(op, "banyan_idname", None)
-    if hasattr(live, "BUILT") and hasattr(live, "signature") and key and getattr(op, "properties", None) is not None:
+    if key and getattr(op, "properties", None) is not None:
         live.BUILT[key] = live.signature(op.properties)
 
 
@@ -490,30 +483,6 @@ def restore_mode(context, state):
     ob.select_set(True)
     with contextlib.suppress(RuntimeError):
         bpy.ops.object.mode_set(mode=mode)
-
-
-def record_plant(op, context, objs, params):
-    """plant.record_operator / plant.record (part PLANT: the generator,
-    parameters, hosts and options kept on the plant) when that module is
-    there."""
-    try:
-        from .. import plant
-    except ImportError:
-        return
-    if hasattr(plant, "record_operator"):
-        plant.record_operator(op, context, objs, params)  # never raises
-        return
-    hosts = []
-    if isinstance(op, HostsOperatorMixin):
-        with contextlib.suppress(BanyanError):
-            hosts = op.selected_hosts(context)
-    options = {n: getattr(op, n) for n in tuple(getattr(op, "placement_props", ())) + tuple(op.extra_props)}
-    options["banyan_preset"] = op.banyan_preset
-    try:
-        plant.record(objs, op.generator, params, hosts, options)
-    except Exception as e:  # the plant is built; only its record failed
-        traceback.print_exc()
-        op.report({'WARNING'}, "Banyan: the plant's parameters were not kept on it: %s" % e)
 
 
 class HostsOperatorMixin(BanyanOperatorMixin):
@@ -594,23 +563,35 @@ def _is_length(prop):
     return kw.get("unit") == 'LENGTH'
 
 
-def make_operator(mixin, idname, label, description, gen, extra, placement=False):
-    """Builds an Operator class for gen: the table's properties plus
-    `extra` (dict of non-table properties) plus the preset menu; with
-    placement, Blender's own Align / Location / Rotation options
-    (bpy_extras.object_utils.AddObjectHelper, see place_object)."""
+def preset_property(gen):
+    return EnumProperty(name="Preset", items=lambda self, context: preset_items(gen),
+                        description="A JSON preset from presets/; applied once when chosen")
+
+
+def complete(cls):
+    """Gives a generator's operator class, before registration, the
+    properties that come from the library: the table's rows (PP.annotations)
+    after the preset menu, the class's own options, the shared options
+    (wind, growth animation, UV map) and "Update while dragging"; with
+    AddObjectHelper among its bases, Blender's Align / Location / Rotation
+    (place_matrix). Done again at every registration, from the annotations
+    written in the class."""
+    own = cls.__dict__.get("own_annotations")
+    if own is None:
+        own = dict(cls.__dict__.get("__annotations__", {}))
+        cls.own_annotations = own
+    gen = cls.generator
     table = PP.annotations(gen)
-    clash = set(table) & (set(extra) | {"banyan_preset", "banyan_preset_loaded", "banyan_unit_scale"}
+    clash = set(table) & (set(own) | {"banyan_preset", "banyan_preset_loaded", "banyan_unit_scale"}
                           | set(live.properties(gen)))
     if clash:
         raise BanyanError(14, "%s: operator property names clash with the table: %s" % (gen, sorted(clash)))
     ann = {}
-    ann["banyan_preset"] = EnumProperty(name="Preset", items=_dynamic_items(gen),
-                                        description="A JSON preset from presets/; applied once when chosen")
+    ann["banyan_preset"] = preset_property(gen)
     ann["banyan_preset_loaded"] = StringProperty(default=NO_PRESET, options={'HIDDEN'})
     # Metres per Blender unit the length properties hold (0: the defaults, metres).
     ann["banyan_unit_scale"] = FloatProperty(default=0.0, min=0.0, max=1e5, options={'HIDDEN'})
-    extra = dict(extra)
+    extra = dict(own)
     extra["wind_setup"] = BoolProperty(name="Wind setup", default=False,
                                        description="Add the Banyan Wind modifier (Geometry Nodes: strength, gusts, "
                                                    "direction, flutter), driven by the plant's wind data")
@@ -624,21 +605,18 @@ def make_operator(mixin, idname, label, description, gen, extra, placement=False
     ann.update(extra)
     ann.update(live.properties(gen))
     ann.update(table)
-    cls_name = "MESH_OT_" + idname.split(".", 1)[1]
-    bases = (mixin, bpy.types.Operator)
+    placement = issubclass(cls, AddObjectHelper)
     if placement:
-        from bpy_extras.object_utils import AddObjectHelper
-        bases = (mixin, AddObjectHelper, bpy.types.Operator)
         clash = set(table) & set(PLACEMENT_PROPS)
         if clash:
             raise BanyanError(14, "%s: table names clash with Align/Location/Rotation: %s" % (gen, sorted(clash)))
-    return type(cls_name, bases, {
-        "bl_idname": idname, "banyan_idname": idname, "bl_label": label, "bl_description": description, "generator": gen,
-        "extra_props": tuple(extra), "table_props": tuple(table), "__annotations__": ann,
-        "length_props": PP.length_props(gen) + tuple(n for n, p in extra.items() if _is_length(p)),
-        "placement_props": PLACEMENT_PROPS if placement else (),
-        "execute": live.wrap(mixin.execute),
-    })
+    cls.__annotations__ = ann
+    cls.banyan_idname = cls.bl_idname
+    cls.extra_props = tuple(extra)
+    cls.table_props = tuple(table)
+    cls.length_props = PP.length_props(gen) + tuple(n for n, p in extra.items() if _is_length(p))
+    cls.placement_props = PLACEMENT_PROPS if placement else ()
+    return cls
 
 
 def place_matrix(context, op):
@@ -646,7 +624,6 @@ def place_matrix(context, op):
     Blender's Add operators compute it (object_utils.add_object_align_init:
     Location defaults to the 3D cursor and is then written back; Align
     View takes the 3D view's rotation, World when there is no view)."""
-    from bpy_extras.object_utils import add_object_align_init
     sd = getattr(context, "space_data", None)
     if op.align == 'VIEW' and (sd is None or sd.type != 'VIEW_3D'):
         op.align = 'WORLD'

@@ -3,7 +3,7 @@ a check that the library and the mesh hand-off work."""
 import bpy
 from bpy.props import FloatProperty, IntProperty, BoolProperty
 
-from .. import build_mesh as BM
+from ..engine import build_mesh as BM
 from ..core import mesh as M
 from ..core.errors import BanyanError
 from .base import cursor_location, select_only

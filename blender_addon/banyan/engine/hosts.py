@@ -28,11 +28,16 @@ import math
 import re
 from array import array
 
-from .core import lib as L
-from .core import structs as S
-from .core.errors import BanyanError
-from .core.hostset import HostSet, MeshInput
-from .core.structs import Box, Error
+import bpy
+from mathutils import Matrix
+
+from ..core import lib as L
+from ..core import presets as PR
+from ..core import structs as S
+from ..core.errors import BanyanError
+from ..core.hostset import HostSet, MeshInput, preset_hosts_split, read_glb
+from ..core.structs import Box, Error
+from .build_mesh import fill_mesh
 
 SURFACE, BOX = 'SURFACE', 'BOX'
 HOST_SHAPES = (
@@ -221,7 +226,6 @@ def to_metres(matrix, scale):
     """A world matrix of a scene of `scale` metres per unit, in metres."""
     if scale == 1.0:
         return matrix
-    from mathutils import Matrix
     return Matrix.Scale(scale, 4) @ matrix
 
 
@@ -257,36 +261,15 @@ def box_corners(box):
     return out
 
 
-def signed_distance(box, p):
-    """Signed distance from p to the box (negative inside)."""
-    d = _sub(p, tuple(box.center))
-    q = []
-    for k in range(3):
-        axis = (box.rotation[k], box.rotation[3 + k], box.rotation[6 + k])
-        q.append(abs(_dot(d, axis)) - box.half[k])
-    outside = _norm(tuple(max(x, 0.0) for x in q))
-    inside = min(max(q[0], q[1], q[2]), 0.0)
-    return outside + inside
-
-
 def closest_point(boxes, p):
-    """The point on the surface of the nearest box to p, and that box."""
-    best = None
-    for b in boxes:
-        d = _sub(p, tuple(b.center))
-        loc = []
-        axes = [(b.rotation[k], b.rotation[3 + k], b.rotation[6 + k]) for k in range(3)]
-        for k in range(3):
-            loc.append(max(-b.half[k], min(b.half[k], _dot(d, axes[k]))))
-        if all(abs(loc[k]) < b.half[k] for k in range(3)):
-            # Inside: push to the nearest face.
-            k = min(range(3), key=lambda i: b.half[i] - abs(loc[i]))
-            loc[k] = b.half[k] if loc[k] >= 0 else -b.half[k]
-        q = tuple(b.center[r] + sum(loc[k] * axes[k][r] for k in range(3)) for r in range(3))
-        dist = _norm(_sub(q, p))
-        if best is None or dist < best[0]:
-            best = (dist, q, b)
-    return (best[1], best[2]) if best else (None, None)
+    """The point on the surface of the nearest box to p, and that box: the
+    library's answer (banyan_hosts_closest on a host set of the boxes)."""
+    boxes = list(boxes)
+    if not boxes:
+        return None, None
+    with HostSet(boxes=boxes) as hs:
+        hit = hs.closest(p)
+    return (hit["point"], boxes[hit["host"]]) if hit else (None, None)
 
 
 # ------------------------------------------------------------- surfaces
@@ -368,8 +351,6 @@ def mesh_from_input(name, mi):
     shaded (a glTF mesh without normals is drawn flat): build_mesh.fill_mesh,
     from its typed buffers through the fastest stock path of the running
     Blender, the edges from the library."""
-    import bpy
-    from .build_mesh import fill_mesh
     return fill_mesh(bpy.data.meshes.new(name), mi.positions, mi.indices, smooth=False)
 
 
@@ -385,10 +366,6 @@ def objects_from_preset(gen, preset, collection=None, material=None):
     in preset order and the preset's box hosts (structs.Box). The whole
     preset is checked by the library first: a bad entry or file raises
     BanyanError and nothing is added to the scene."""
-    import bpy
-    from mathutils import Matrix
-    from . import presets as PR
-    from .core.hostset import preset_hosts_split, read_glb
     path = PR.find(gen, preset)
     boxes, entries = preset_hosts_split(PR.read(path), path)
     inputs = [read_glb(e["path"], e["transform"], e["closed"], e["name"]) for e in entries]
@@ -415,7 +392,6 @@ def objects_from_preset(gen, preset, collection=None, material=None):
 
 
 def _mesh_type():
-    import bpy
     return bpy.types.Mesh
 
 
@@ -424,7 +400,6 @@ def surface_host_set(hosts, depsgraph=None, scale=1.0):
     surfaces (in metres for a scene of `scale` metres per Blender unit),
     boxes as boxes (host numbering: the boxes first, then the objects in
     order). The caller closes it (with-block)."""
-    import bpy
     depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
     boxes, meshes = [], []
     for h in hosts:

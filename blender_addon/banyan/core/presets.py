@@ -17,9 +17,11 @@ import json
 import os
 import stat
 
-from .core import lib
-from .core.atomic_file import write_atomic
-from .core.errors import BanyanError, PresetNotFound
+from . import lib
+from .atomic_file import write_atomic
+from .errors import BanyanError, LoadError, PresetNotFound
+from .params import Params
+from .structs import GENERATORS
 
 
 def user_dir(create=False):
@@ -96,19 +98,16 @@ def _checked(path, st):
 
 def _guess_generator(path):
     """The generator a preset file is named after ("ivy_wall.json" -> "ivy"), or None."""
-    from .core.structs import GENERATORS
     head = os.path.basename(path).split("_", 1)[0].split(".", 1)[0]
     return head if head in GENERATORS else None
 
 
 def _library_error(generator, data, path):
     """The library's message refusing preset `data` ("<file>:<line>: ..."), or
-    "" when it applies; "" too when the library or the generator is missing."""
-    from .core.errors import BanyanError, GeneratorMissing, LoadError
+    "" when it applies; "" too when there is no library to ask (plain Python)."""
     try:
-        from .core.params import Params
         Params(generator).apply_preset(data, _printable(os.path.basename(path)))
-    except (GeneratorMissing, LoadError):
+    except LoadError:
         return ""  # nothing to check it with; the JSON checks below still run
     except BanyanError as e:
         return e.message
@@ -164,7 +163,6 @@ def _preset_info(path):
 
 
 def _known():
-    from .core.structs import GENERATORS
     return GENERATORS
 
 

@@ -1,10 +1,13 @@
 """Add Segment Twigs: a tree of geometry-shader segments from a segments
 preset (its segment list), or the random demo tree; its root at the 3D
 cursor or Location, with Blender's Align / Location / Rotation."""
-from .. import api
-from .base import NO_PRESET, BanyanOperatorMixin, cursor_location, make_operator, place_matrix
+import bpy
+from bpy_extras.object_utils import AddObjectHelper
+from mathutils import Matrix
 
-IDNAME = "mesh.banyan_segment_twigs"
+from .. import api
+from ..ui import live
+from .base import NO_PRESET, BanyanOperatorMixin, cursor_location, place_matrix
 
 
 class SegmentsMixin(BanyanOperatorMixin):
@@ -15,7 +18,6 @@ class SegmentsMixin(BanyanOperatorMixin):
         return api.segment_twigs_job(preset=key, params=params, collection=context.collection, uv=self.uv_map)
 
     def place(self, context, objs):
-        from mathutils import Matrix
         m = self._matrix @ Matrix.Scale(1.0 / self.unit_scale, 4)  # the mesh in metres (from_metres)
         for o in objs:
             o.matrix_world = m
@@ -25,7 +27,9 @@ class SegmentsMixin(BanyanOperatorMixin):
         BanyanOperatorMixin.load_preset_if_changed(self, scale)
 
 
-def make_class():
-    return make_operator(SegmentsMixin, IDNAME, "Add Segment Twigs",
-                         "Branch segments sized for one geometry-shader call, from a segments preset",
-                         "segments", {}, placement=True)
+class MESH_OT_banyan_segment_twigs(SegmentsMixin, AddObjectHelper, bpy.types.Operator):
+    """Branch segments sized for one geometry-shader call, from a segments preset"""
+    bl_idname = "mesh.banyan_segment_twigs"
+    bl_label = "Add Segment Twigs"
+    generator = "segments"
+    execute = live.wrap(SegmentsMixin.execute)

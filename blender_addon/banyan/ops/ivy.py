@@ -4,21 +4,21 @@ places it on the nearest host side where a stem can grow), or the
 `start` parameter, which for a preset with hosts is read relative to
 them and carried onto the selected objects' bounds. The object's origin
 is the bottom centre of the active host's world bounds."""
+import contextlib
 import math
 
+import bpy
 from bpy.props import BoolProperty
 
 from .. import api
-from .. import hosts as H
+from ..engine import hosts as H
+from ..ui import live
 from .base import (NO_PRESET, HostsOperatorMixin, cursor_location, ground_at_hosts_property, host_shape_property,
-                   make_operator, scene_point, set_ground_at_hosts)
-
-IDNAME = "mesh.banyan_ivy"
+                   scene_point, set_ground_at_hosts)
 
 
 class IvyMixin(HostsOperatorMixin):
     def prepare(self, context, params):
-        import contextlib
         stack = contextlib.ExitStack()
         try:
             hosts = stack.enter_context(self.host_arg(context))
@@ -69,17 +69,20 @@ class IvyMixin(HostsOperatorMixin):
                 % (where, p[0], p[1], p[2]))
 
 
-def make_class():
-    extra = {
-        "host_shape": host_shape_property(),
-        "ground_at_hosts": ground_at_hosts_property(),
-        "start_at_cursor": BoolProperty(name="Start at 3D cursor", default=True,
-                                        description="Start at the 3D cursor, placed by the library on the nearest "
-                                                    "host side where a stem can grow (else the `start` parameter; "
-                                                    "a preset's start is relative to its hosts). Off when a "
-                                                    "preset with a start is chosen"),
-        "animate": BoolProperty(name="Growth animation", default=False,
-                                description="Add a Geometry Nodes modifier revealing the ivy by birth_step "
-                                            "over the scene's frame range"),
-    }
-    return make_operator(IvyMixin, IDNAME, "Add Ivy", "Grow climbing ivy over the selected objects", "ivy", extra)
+class MESH_OT_banyan_ivy(IvyMixin, bpy.types.Operator):
+    """Grow climbing ivy over the selected objects"""
+    bl_idname = "mesh.banyan_ivy"
+    bl_label = "Add Ivy"
+    generator = "ivy"
+    execute = live.wrap(IvyMixin.execute)
+
+    host_shape: host_shape_property()
+    ground_at_hosts: ground_at_hosts_property()
+    start_at_cursor: BoolProperty(name="Start at 3D cursor", default=True,
+                                  description="Start at the 3D cursor, placed by the library on the nearest "
+                                              "host side where a stem can grow (else the `start` parameter; "
+                                              "a preset's start is relative to its hosts). Off when a "
+                                              "preset with a start is chosen")
+    animate: BoolProperty(name="Growth animation", default=False,
+                          description="Add a Geometry Nodes modifier revealing the ivy by birth_step "
+                                      "over the scene's frame range")

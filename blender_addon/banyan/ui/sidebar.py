@@ -3,8 +3,8 @@ import textwrap
 
 import bpy
 
-from . import hosts as H
-from . import presets as PR
+from ..engine import hosts as H
+from ..core import presets as PR
 from . import state
 
 
@@ -17,9 +17,6 @@ class VIEW3D_MT_banyan_add(bpy.types.Menu):
         layout.operator_context = 'INVOKE_REGION_WIN'
         for idname, label in state.operator_entries():
             layout.operator(idname, text=label)
-        if state.MISSING:
-            layout.separator()
-            layout.label(text="Not built: " + ", ".join(sorted(state.MISSING)))
 
 
 class VIEW3D_PT_banyan(bpy.types.Panel):
@@ -48,8 +45,6 @@ class VIEW3D_PT_banyan(bpy.types.Panel):
                     col.label(text=line)
         box = layout.box()
         box.label(text="libbanyan %s" % state.VERSION)
-        if state.MISSING:
-            box.label(text="Not built: " + ", ".join(sorted(state.MISSING)))
         if state.ERRORS:
             for e in state.ERRORS:
                 box.label(text=e, icon='ERROR')

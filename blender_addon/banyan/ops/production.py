@@ -1,11 +1,15 @@
 """Operators on plants already built: Add Wind (the Banyan Wind modifier
 on the selected plants), Add Growth Animation (by `birth`) and Make LODs
-(the active plant's LOD collection). The work is api.py's and lod.py's."""
+(the active plant's LOD collection). The work is engine/production.py's
+and engine/lod.py's."""
 import bpy
 from bpy.props import BoolProperty, FloatProperty, FloatVectorProperty
 
-from . import wind as W
-from .core.errors import report_error
+from .. import api
+from ..core.errors import report_error
+from ..engine import lod
+from ..engine import plant as PL
+from ..engine import wind as W
 
 
 def _meshes(context):
@@ -13,7 +17,6 @@ def _meshes(context):
 
 
 def _windable(o):
-    from . import plant as PL
     return W.has_wind(o.data) or PL.is_plant(o)
 
 
@@ -43,7 +46,6 @@ class BANYAN_OT_add_wind(bpy.types.Operator):
         return True
 
     def execute(self, context):
-        from . import api
         objs = [o for o in _meshes(context) if _windable(o)]
         try:
             api.add_wind(objs, strength=self.strength, gust_strength=self.gust_strength,
@@ -71,7 +73,6 @@ class BANYAN_OT_add_growth(bpy.types.Operator):
         return True
 
     def execute(self, context):
-        from . import api
         objs = [o for o in _meshes(context) if "birth" in o.data.attributes]
         try:
             api.add_growth(objs)
@@ -94,14 +95,12 @@ class BANYAN_OT_make_lods(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        from . import plant as PL
         if not PL.is_plant(getattr(context, "active_object", None)):
             cls.poll_message_set("The active object is not a Banyan plant")
             return False
         return True
 
     def execute(self, context):
-        from . import lod
         obj = context.active_object
         try:
             objs = lod.make_lods(obj, tuple(self.ratios),
@@ -113,4 +112,3 @@ class BANYAN_OT_make_lods(bpy.types.Operator):
         return {'FINISHED'}
 
 
-CLASSES = (BANYAN_OT_add_wind, BANYAN_OT_add_growth, BANYAN_OT_make_lods)

@@ -10,7 +10,7 @@ group per object, "Banyan Ivy Growth")."""
 import bpy
 
 from . import nodes as N
-from .core.errors import BanyanError
+from ..core.errors import BanyanError
 
 BIRTH = "birth"
 MODIFIER = "Banyan Growth"

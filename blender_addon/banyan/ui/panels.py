@@ -14,16 +14,16 @@ import bpy
 from bpy.props import BoolVectorProperty, PointerProperty
 
 from . import live
-from . import presets as PR
-from .core import params as P
-from .core import structs as S
+from ..core import presets as PR
+from ..core import params as P
+from ..core import structs as S
+from ..engine.props import prop_name
 
 MAX_SECTIONS = 32  # BoolVectorProperty's largest size
 
 
 def sections(gen):
     """[(group, [property name, ...])] of gen's table, in the table's order."""
-    from .props import prop_name
     out = []
     for s in P.specs(gen):
         if not out or out[-1][0] != s.group:
@@ -117,7 +117,6 @@ def idle(gen, holder, options=None):
     """Property names of gen's table that do nothing with holder's values
     (an operator's properties or a plant's) and the operator options
     (`options`: the operator's properties, or a plant's recorded options)."""
-    from .props import prop_name
 
     def value(key):
         return getattr(holder, prop_name(key), None)

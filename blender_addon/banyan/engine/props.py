@@ -20,8 +20,8 @@ import math
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty
 
-from .core import params as P
-from .core import structs as S
+from ..core import params as P
+from ..core import structs as S
 
 INT_MAX = 2 ** 31 - 1
 RESERVED = {"name", "bl_idname", "bl_label", "bl_description", "bl_options", "layout", "options", "properties",

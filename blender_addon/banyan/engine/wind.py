@@ -22,7 +22,7 @@ from array import array
 import bpy
 
 from . import nodes as N
-from .core.errors import BanyanError
+from ..core.errors import BanyanError
 
 PIVOT = "wind_pivot"
 SCALARS = ("wind_pivot_x", "wind_pivot_y", "wind_pivot_z")

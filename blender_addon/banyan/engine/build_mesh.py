@@ -9,13 +9,16 @@ gathered by the library (banyan_mesh_corner_uvs), and splitting a mesh
 into one object per group runs in C too (banyan_group_localize), and so
 does the edge list Blender would otherwise derive (banyan_triangle_edges).
 """
+import hashlib
 import struct
 from array import array
 
 import bpy
+from mathutils import Matrix
 
+from ..core.mesh import localize_group, triangle_edges
 from . import wind as W
-from .core.mesh import localize_group, triangle_edges
+from .materials import image_material, shared_material
 
 COLOR_ATTRIBUTE = "Color"
 
@@ -71,7 +74,6 @@ def _fingerprint(mat):
     """A hash of what an artist may change on a flat material: its viewport
     colour, roughness, culling and every node, input value and link of its
     node tree. Equal to the stored one: untouched since make_material."""
-    import hashlib
     h = hashlib.sha1()
     h.update(repr((tuple(round(c, 6) for c in mat.diffuse_color), round(mat.roughness, 6),
                    mat.use_backface_culling)).encode())
@@ -124,10 +126,8 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False, images=No
     longer matches): an artist's material is never changed, and a new
     one is made beside it."""
     if spec.get("image", -1) >= 0 and images and spec["image"] < len(images):
-        from .materials import image_material
         return image_material(spec, images[spec["image"]], created, prefix)
     if spec.get("texture", -1) >= 0:
-        from .materials import shared_material
         return shared_material(spec, created, vertex_colors)
     name = "%s_%s" % (prefix, spec["name"])
     mat = find_flat_material(spec, name, vertex_colors)
@@ -320,13 +320,11 @@ def fill_mesh(me, positions, indices, *, corner_uvs=None, colors=None, attribute
     put = _Writer(me)
     pivots = W.pivot_vectors(attributes or {})
     if pivots is not None and any(piv_shift) and len(pivots) == len(positions):
-        from mathutils import Matrix
         put.positions(pivots)
         me.transform(Matrix.Translation(piv_shift))
         put.positions(pivots, get=True)
     put.positions(positions)
     if moved:
-        from mathutils import Matrix
         me.transform(Matrix.Translation(shift))
     me.edges.add(len(edges) // 2)
     put.edges(edges)
@@ -390,7 +388,6 @@ def place(me, obj, at, mesh_origin):
     loc = as_location(at)
     shift = tuple(mesh_origin[k] - loc[k] for k in range(3))
     if any(shift):
-        from mathutils import Matrix
         W.transform_mesh(me, Matrix.Translation(shift))
     if any(loc):
         obj.location = loc
