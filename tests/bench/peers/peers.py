@@ -67,7 +67,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 import blender_handoff as HO  # noqa: E402  bare() and clear_generated()
 from machine_info import machine  # noqa: E402
 from banyan import api as B  # noqa: E402
-from banyan import hosts as H  # noqa: E402
+from banyan.engine import hosts as H  # noqa: E402
 from banyan.core import generators as G  # noqa: E402
 from banyan.core import lib as LIB  # noqa: E402
 from banyan.core import structs as S  # noqa: E402
@@ -390,7 +390,7 @@ def section_roots():
         bpy.ops.wm.read_homefile(use_factory_startup=True)
         cube = bpy.data.objects["Cube"]
         if preset:
-            from banyan import presets as PR
+            from banyan.core import presets as PR
             from banyan.core.params import preset_hosts
             path = PR.find("roots", preset)
             boxes = preset_hosts(PR.read(path), path)
