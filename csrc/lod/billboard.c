@@ -331,6 +331,12 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                 continue;
             }
             double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
+            /* Only the samples whose centre lies in the triangle's box can
+             * be inside it: the rows and columns of the box's pixels whose
+             * centres fall outside it are skipped. */
+            long xc0 = -floor_l(0.5 - bx0), xc1 = floor_l(bx1 - 0.5), yc0 = -floor_l(0.5 - by0), yc1 = floor_l(by1 - 0.5);
+            x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
+            y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
             for (long y = y0; y <= y1; y++) {
                 double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
                 for (long x = x0; x <= x1; x++) {
