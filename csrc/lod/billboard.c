@@ -315,7 +315,8 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             double bx0 = dmin3(X[0], X[1], X[2]), bx1 = dmax3(X[0], X[1], X[2]);
             double by0 = dmin3(Y[0], Y[1], Y[2]), by1 = dmax3(Y[0], Y[1], Y[2]);
             if (!(bx1 >= 0 && by1 >= 0 && bx0 < t->sw && by0 < t->sh)) continue; /* off the tile (as x0 > x1) */
-            long x0 = floor_l(bx0), x1 = floor_l(bx1), y0 = floor_l(by0), y1 = floor_l(by1);
+            long fx0 = floor_l(bx0), fx1 = floor_l(bx1), fy0 = floor_l(by0), fy1 = floor_l(by1);
+            long x0 = fx0, x1 = fx1, y0 = fy0, y1 = fy1;
             x0 = x0 < 0 ? 0 : x0;
             x1 = x1 > (long)t->sw - 1 ? (long)t->sw - 1 : x1;
             y0 = y0 < 0 ? 0 : y0;
@@ -334,7 +335,8 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             /* Only the samples whose centre lies in the triangle's box can
              * be inside it: the rows and columns of the box's pixels whose
              * centres fall outside it are skipped. */
-            long xc0 = -floor_l(0.5 - bx0), xc1 = floor_l(bx1 - 0.5), yc0 = -floor_l(0.5 - by0), yc1 = floor_l(by1 - 0.5);
+            long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5); /* ceil(bx0 - 0.5), floor(bx1 - 0.5) */
+            long yc0 = fy0 + (by0 - (double)fy0 > 0.5), yc1 = fy1 - (by1 - (double)fy1 < 0.5);
             x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
             y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
             for (long y = y0; y <= y1; y++) {
