@@ -690,11 +690,12 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
          * cards, double sided, and the top card, single sided facing up
          * (an engine that culls back faces does not show its unlit
          * underside from the ground). */
+        float rough = mean_roughness(m, g);
         for (uint32_t h = 0; h < 2; h++) {
             banyan_material *mt = &o->materials[2 * cd + h];
             snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
             mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-            mt->roughness = mean_roughness(m, g);
+            mt->roughness = rough;
             mt->double_sided = !h;
             mt->texture = BANYAN_TEX_NONE;
             mt->alpha_cutoff = 0.5f;
