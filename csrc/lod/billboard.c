@@ -303,12 +303,7 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             for (int j = 0; j < 3; j++) {
                 const double *o = proj + 3 * (size_t)(I[j] - pt->vertex_offset);
                 X[j] = o[0], Y[j] = o[1], Z[j] = o[2];
-                if (tex) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
             }
-            double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
-            double flat[3] = {0, 0, 0};
-            if (!tex)
-                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
             /* Finite here (positions are checked, views are finite): plain
              * compares give fmin's and fmax's values. */
@@ -325,20 +320,33 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             /* Thin triangles seen edge-on still cover what they pass: a
              * sliver smaller than a sample lights the sample at its centre. */
             int sliver = fabs(area) < 1e-12 || (x0 == x1 && y0 == y1);
+            long cx = 0, cy = 0;
             if (sliver) {
-                long cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
-                if (cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)
-                    put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
+                cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
+                if (!(cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)) continue;
+            } else {
+                /* Only the samples whose centre lies in the triangle's box
+                 * can be inside it: the rows and columns of the box's
+                 * pixels whose centres fall outside it are skipped, and a
+                 * triangle with no such sample is left before its colour
+                 * is looked up. */
+                long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5); /* ceil(bx0 - 0.5), floor(bx1 - 0.5) */
+                long yc0 = fy0 + (by0 - (double)fy0 > 0.5), yc1 = fy1 - (by1 - (double)fy1 < 0.5);
+                x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
+                y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
+                if (x0 > x1 || y0 > y1) continue;
+            }
+            if (tex)
+                for (int j = 0; j < 3; j++) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
+            double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
+            double flat[3] = {0, 0, 0};
+            if (!tex)
+                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
+            if (sliver) {
+                put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
                 continue;
             }
             double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
-            /* Only the samples whose centre lies in the triangle's box can
-             * be inside it: the rows and columns of the box's pixels whose
-             * centres fall outside it are skipped. */
-            long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5); /* ceil(bx0 - 0.5), floor(bx1 - 0.5) */
-            long yc0 = fy0 + (by0 - (double)fy0 > 0.5), yc1 = fy1 - (by1 - (double)fy1 < 0.5);
-            x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
-            y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
             for (long y = y0; y <= y1; y++) {
                 double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
                 for (long x = x0; x <= x1; x++) {
