@@ -330,7 +330,8 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                  * pixels whose centres fall outside it are skipped, and a
                  * triangle with no such sample is left without its colour
                  * and light looked up. */
-                long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5); /* ceil(bx0 - 0.5), floor(bx1 - 0.5) */
+                /* ceil(bx0 - 0.5) and floor(bx1 - 0.5), from the floors: */
+                long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5);
                 long yc0 = fy0 + (by0 - (double)fy0 > 0.5), yc1 = fy1 - (by1 - (double)fy1 < 0.5);
                 x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
                 y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
