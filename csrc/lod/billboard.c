@@ -303,19 +303,15 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             for (int j = 0; j < 3; j++) {
                 const double *o = proj + 3 * (size_t)(I[j] - pt->vertex_offset);
                 X[j] = o[0], Y[j] = o[1], Z[j] = o[2];
-                if (tex) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
             }
-            double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
-            double flat[3] = {0, 0, 0};
-            if (!tex)
-                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
             /* Finite here (positions are checked, views are finite): plain
              * compares give fmin's and fmax's values. */
             double bx0 = dmin3(X[0], X[1], X[2]), bx1 = dmax3(X[0], X[1], X[2]);
             double by0 = dmin3(Y[0], Y[1], Y[2]), by1 = dmax3(Y[0], Y[1], Y[2]);
             if (!(bx1 >= 0 && by1 >= 0 && bx0 < t->sw && by0 < t->sh)) continue; /* off the tile (as x0 > x1) */
-            long x0 = floor_l(bx0), x1 = floor_l(bx1), y0 = floor_l(by0), y1 = floor_l(by1);
+            long fx0 = floor_l(bx0), fx1 = floor_l(bx1), fy0 = floor_l(by0), fy1 = floor_l(by1);
+            long x0 = fx0, x1 = fx1, y0 = fy0, y1 = fy1;
             x0 = x0 < 0 ? 0 : x0;
             x1 = x1 > (long)t->sw - 1 ? (long)t->sw - 1 : x1;
             y0 = y0 < 0 ? 0 : y0;
@@ -324,10 +320,31 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
             /* Thin triangles seen edge-on still cover what they pass: a
              * sliver smaller than a sample lights the sample at its centre. */
             int sliver = fabs(area) < 1e-12 || (x0 == x1 && y0 == y1);
+            long cx = 0, cy = 0;
             if (sliver) {
-                long cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
-                if (cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)
-                    put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
+                cx = floor_l((X[0] + X[1] + X[2]) / 3), cy = floor_l((Y[0] + Y[1] + Y[2]) / 3);
+                if (!(cx >= x0 && cx <= x1 && cy >= y0 && cy <= y1)) continue;
+            } else {
+                /* Only the samples whose centre lies in the triangle's box
+                 * can be inside it: the rows and columns of the box's
+                 * pixels whose centres fall outside it are skipped, and a
+                 * triangle with no such sample is left without its colour
+                 * and light looked up. */
+                /* ceil(bx0 - 0.5) and floor(bx1 - 0.5), from the floors: */
+                long xc0 = fx0 + (bx0 - (double)fx0 > 0.5), xc1 = fx1 - (bx1 - (double)fx1 < 0.5);
+                long yc0 = fy0 + (by0 - (double)fy0 > 0.5), yc1 = fy1 - (by1 - (double)fy1 < 0.5);
+                x0 = xc0 > x0 ? xc0 : x0, x1 = xc1 < x1 ? xc1 : x1;
+                y0 = yc0 > y0 ? yc0 : y0, y1 = yc1 < y1 ? yc1 : y1;
+                if (x0 > x1 || y0 > y1) continue;
+            }
+            if (tex)
+                for (int j = 0; j < 3; j++) U[j] = m->uvs[2 * (size_t)I[j]], V[j] = m->uvs[2 * (size_t)I[j] + 1];
+            double light = (b->has_n ? bb_light(b->n, vw->v, bm->translucency) : 1.0) / gain;
+            double flat[3] = {0, 0, 0};
+            if (!tex)
+                for (int e = 0; e < 3; e++) flat[e] = bm->flat[e] * tint[e] * light;
+            if (sliver) {
+                put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
                 continue;
             }
             double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
@@ -682,11 +699,12 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
          * cards, double sided, and the top card, single sided facing up
          * (an engine that culls back faces does not show its unlit
          * underside from the ground). */
+        float rough = mean_roughness(m, g);
         for (uint32_t h = 0; h < 2; h++) {
             banyan_material *mt = &o->materials[2 * cd + h];
             snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
             mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-            mt->roughness = mean_roughness(m, g);
+            mt->roughness = rough;
             mt->double_sided = !h;
             mt->texture = BANYAN_TEX_NONE;
             mt->alpha_cutoff = 0.5f;
