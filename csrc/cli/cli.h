@@ -42,7 +42,7 @@ typedef struct cli_stats {
 
 /* --lod: falling ratios of triangles kept, the last may be a billboard
  * (ratio 0, billboard 1). */
-#define CLI_MAX_LODS 7
+#define CLI_MAX_LODS BANYAN_LOD_MAX_LEVELS
 typedef struct cli_lod {
     int count;
     int billboard;

@@ -2,7 +2,6 @@
  * (banyan_mesh_lod) written with it as MSFT_lod (banyan_gltf_write_nodes).
  *   --lod 0.5,0.15,billboard   ratios of the triangles kept, falling, and
  *                              optionally a last level of cross billboards. */
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,63 +37,19 @@ int cli_lod_parse(const char *spec, cli_lod *out) {
     return out->count > 0;
 }
 
-/* The billboard level of one mesh, on its own thread beside the others. */
-typedef struct bb_job {
-    const banyan_mesh *mesh;
-    banyan_lod_params p;
-    banyan_budget left;
-    banyan_mesh *out;
-    banyan_status s;
-    banyan_error err;
-} bb_job;
-
-static void *bb_run(void *arg) {
-    bb_job *j = arg;
-    j->s = banyan_mesh_lod_budget(j->mesh, &j->p, &j->left, &j->out, &j->err);
-    return NULL;
-}
-
-/* Levels of one mesh into lv[0 .. lod->count): each ratio's level is
- * simplified from the level before it, asked for the share of that
- * level's triangles that leaves ratio[k] of the mesh's (the simplifier
- * may stop a little short of a ratio: the next level makes up for it), so
- * each pass starts from fewer triangles; the billboard pictures the mesh itself, drawn on a
- * second thread while the ratios' chain runs (threads != 1). The same
- * levels on any thread count. */
+/* Levels of one mesh into lv[0 .. lod->count) (banyan_mesh_lods: the
+ * ratios chained, the billboard beside them), under what is left of the
+ * run's budget. */
 static banyan_status levels_of(const banyan_mesh *mesh, const cli_lod *lod, int threads, const cli_budget *budget,
                                banyan_mesh **lv, banyan_error *err) {
-    banyan_status s = BANYAN_OK;
-    int n_ratio = lod->count - (lod->billboard ? 1 : 0);
-    bb_job bj;
-    pthread_t th;
-    int running = 0;
-    if (lod->billboard) {
-        memset(&bj, 0, sizeof bj);
-        bj.mesh = mesh;
-        banyan_lod_params_init(&bj.p);
-        bj.p.billboard = 1;
-        if ((s = cli_budget_left(budget, "the levels of detail", &bj.left, err))) return s;
-        running = threads != 1 && n_ratio > 0 && pthread_create(&th, NULL, bb_run, &bj) == 0;
-    }
-    for (int k = 0; !s && k < n_ratio; k++) {
-        banyan_lod_params p;
-        banyan_lod_params_init(&p);
-        p.ratio = lod->ratio[0];
-        if (k) { /* of the level before's triangles, the share that leaves ratio[k] of the mesh's */
-            double r = lod->ratio[k] * ((double)mesh->index_count / (double)(lv[k - 1]->index_count ? lv[k - 1]->index_count : 1));
-            p.ratio = r > 1 ? 1 : r < 0.001 ? 0.001 : r;
-        }
-        banyan_budget left;
-        s = cli_budget_left(budget, "the levels of detail", &left, err);
-        if (!s) s = banyan_mesh_lod_budget(k ? lv[k - 1] : mesh, &p, &left, &lv[k], err);
-    }
-    if (lod->billboard) {
-        if (running) pthread_join(th, NULL);
-        else if (!s) bb_run(&bj);
-        if (!s && bj.s && err) *err = bj.err;
-        if (!s) s = bj.s;
-        lv[lod->count - 1] = bj.out;
-    }
+    banyan_lod_params bb;
+    banyan_lod_params_init(&bb);
+    bb.billboard = 1;
+    banyan_budget left;
+    banyan_status s = cli_budget_left(budget, "the levels of detail", &left, err);
+    if (!s)
+        s = banyan_mesh_lods(mesh, lod->ratio, (uint32_t)(lod->count - (lod->billboard ? 1 : 0)),
+                             lod->billboard ? &bb : NULL, threads, &left, lv, err);
     return s;
 }
 

@@ -140,6 +140,62 @@ static void check_chain(const char *name, const banyan_mesh *m) {
     banyan_mesh_free(direct);
 }
 
+/* banyan_mesh_lods: its levels are the chain made level by level (the
+ * 0.5 level, then the 0.15 level from it with the CLI's corrected ratio)
+ * and the billboard of the plant itself, the same bytes on 1 and 2
+ * threads; bad requests are refused with every out NULL. */
+static void check_lods_call(const char *name, const banyan_mesh *m) {
+    banyan_error err = {0, ""};
+    banyan_lod_params p, bb;
+    banyan_lod_params_init(&p);
+    banyan_lod_params_init(&bb);
+    bb.billboard = 1;
+    banyan_mesh *half = NULL, *chain = NULL, *card = NULL;
+    p.ratio = 0.5;
+    CHECK(banyan_mesh_lod(m, &p, &half, &err) == BANYAN_OK, "%s 0.5: %s", name, err.message);
+    if (half) {
+        p.ratio = 0.15 * ((double)m->index_count / half->index_count);
+        CHECK(banyan_mesh_lod(half, &p, &chain, &err) == BANYAN_OK, "%s 0.5 -> 0.15: %s", name, err.message);
+    }
+    CHECK(banyan_mesh_lod(m, &bb, &card, &err) == BANYAN_OK, "%s billboard: %s", name, err.message);
+    const double ratios[2] = {0.5, 0.15};
+    for (int32_t threads = 1; threads <= 2 && half && chain && card; threads++) {
+        banyan_mesh *out[3] = {NULL, NULL, NULL};
+        CHECK(banyan_mesh_lods(m, ratios, 2, &bb, threads, NULL, out, &err) == BANYAN_OK, "%s lods, %d threads: %s",
+              name, threads, err.message);
+        if (out[0] && out[1] && out[2])
+            CHECK(banyan_mesh_hash(out[0]) == banyan_mesh_hash(half) && banyan_mesh_hash(out[1]) == banyan_mesh_hash(chain) &&
+                      banyan_mesh_hash(out[2]) == banyan_mesh_hash(card),
+                  "%s lods, %d threads: levels differ from the chain made level by level", name, threads);
+        for (int k = 0; k < 3; k++) banyan_mesh_free(out[k]);
+    }
+    /* Refusals: out NULL, the parameter named. */
+    struct {
+        double r[2];
+        uint32_t n;
+        int bb;
+        const char *names;
+    } bad[] = {{{0.15, 0.5}, 2, 0, "ratios[1]"}, {{0.5, 0.0 / 0.0}, 2, 0, "ratios[1]"}, {{1.0, 0.5}, 2, 0, "ratios[0]"},
+               {{0.5, 0.15}, 0, 0, "billboard"}, {{0.5, 0.15}, 9, 1, "ratio_count"}};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        banyan_mesh *out[3] = {(banyan_mesh *)1, (banyan_mesh *)1, (banyan_mesh *)1};
+        banyan_status st = banyan_mesh_lods(m, bad[k].r, bad[k].n, bad[k].bb ? &bb : NULL, 2, NULL, out, &err);
+        CHECK(st != BANYAN_OK && strstr(err.message, bad[k].names), "%s lods refusal %zu: status %d, '%s'", name, k,
+              (int)st, err.message);
+        if (bad[k].n >= 1 && bad[k].n <= 2) CHECK(out[0] == NULL, "%s lods refusal %zu: out[0] not NULL", name, k);
+    }
+    banyan_lod_params off = bb;
+    off.billboard = 0;
+    banyan_mesh *out1[2] = {NULL, NULL};
+    CHECK(banyan_mesh_lods(m, ratios, 1, &off, 2, NULL, out1, &err) == BANYAN_E_INVALID_ARG && !out1[0] && !out1[1],
+          "%s lods: a billboard without billboard = 1 accepted", name);
+    CHECK(banyan_mesh_lods(NULL, ratios, 2, NULL, 2, NULL, out1, &err) == BANYAN_E_INVALID_ARG, "%s lods: NULL mesh", name);
+    CHECK(banyan_mesh_lods(m, ratios, 2, NULL, 2, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "%s lods: NULL out", name);
+    banyan_mesh_free(half);
+    banyan_mesh_free(chain);
+    banyan_mesh_free(card);
+}
+
 /* One reduced level of m: its figures printed, its invariants checked. */
 static void check_level(const char *name, const banyan_mesh *m, double ratio) {
     banyan_lod_params p;
@@ -347,6 +403,7 @@ int main(int argc, char **argv) {
             check_billboard(plants[i], m, 4);
         }
         if (i == 0) check_refusals(m);
+        if (i == 1) check_lods_call(plants[i], m);
         if (i == 1) {
             /* The tree as the one variant of three instances: every level
              * keeps the instances as they are. */

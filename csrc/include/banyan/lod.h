@@ -42,6 +42,25 @@ BANYAN_API banyan_status banyan_mesh_lod(const banyan_mesh *mesh, const banyan_l
 BANYAN_API banyan_status banyan_mesh_lod_budget(const banyan_mesh *mesh, const banyan_lod_params *p,
                                                 const banyan_budget *budget, banyan_mesh **out, banyan_error *err);
 
+/* The most levels banyan_mesh_lods makes in one call (ratios and the
+ * billboard together). */
+#define BANYAN_LOD_MAX_LEVELS 7
+
+/* A plant's levels of detail in one call: out[k] for each of the falling
+ * ratios[0 .. ratio_count) (each within [0.001, 1), below the one
+ * before), each simplified from the level before it so it keeps about
+ * ratios[k] of mesh's triangles, then, when billboard is not NULL (its
+ * `billboard` 1), the billboard level of mesh in out[ratio_count]. out
+ * holds ratio_count + (billboard ? 1 : 0) pointers, each the caller's to
+ * free with banyan_mesh_free; on failure every one is NULL (none is
+ * written when ratio_count is out of range). threads: 1
+ * draws the billboard after the chain, any other value beside it (0 =
+ * the same as 2); the levels are the same bytes either way. budget
+ * (NULL: the defaults) covers the whole call. */
+BANYAN_API banyan_status banyan_mesh_lods(const banyan_mesh *mesh, const double *ratios, uint32_t ratio_count,
+                                          const banyan_lod_params *billboard, int32_t threads,
+                                          const banyan_budget *budget, banyan_mesh **out, banyan_error *err);
+
 #ifdef __cplusplus
 }
 #endif
