@@ -19,8 +19,8 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "core/atomic_file.h"
-#include "core/numparse.h"
+#include "base/atomic_file.h"
+#include "base/numparse.h"
 
 static double now_ms(void) {
     struct timespec t;

@@ -8,7 +8,7 @@
 
 #include "banyan.h"
 #include "obb.h"
-#include "vec.h"
+#include "base/vec.h"
 
 /* One mesh host, in world space relative to `origin` (kept in double, so
  * a mesh far from the world origin keeps float precision near itself). */

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "error.h"
+#include "base/error.h"
 #include "obb.h"
 
 void banyan_mesh_free(banyan_mesh *m) {

@@ -2,7 +2,7 @@
  * frame, where the box is [-h, h]^3. */
 #include "obb.h"
 
-#include "error.h"
+#include "base/error.h"
 
 banyan_status obb_from_box(const banyan_box *b, uint32_t index, obb *out, banyan_error *err) {
     if (!b) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts[%u] is NULL", index);

@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "error.h"
-#include "frame.h"
+#include "base/error.h"
+#include "base/frame.h"
 #include "tube.h"
 #include "wind.h"
 

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "ivy_internal.h"
 
 static double now_seconds(void) {
@@ -703,7 +703,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     } else if (nb) {
         memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
     }
-    /* The frame: the set's, or one picked from the boxes (core/frame.h). */
+    /* The frame: the set's, or one picked from the boxes (base/frame.h). */
     v3 O = set ? set->origin : v3_make(0, 0, 0);
     if (!set) {
         v3 lo, hi, a, b;

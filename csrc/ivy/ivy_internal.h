@@ -8,12 +8,12 @@
 #define BANYAN_IVY_INTERNAL_H
 
 #include "banyan.h"
-#include "core/frame.h"
+#include "base/frame.h"
 #include "core/hosts.h"
 #include "core/obb.h"
-#include "core/progress.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "base/progress.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 /* Spatial hash cell edge, in units of leaf_max (the light look-up radius);
  * at least 1: a look-up reads at most 4 cells per axis (grid.c). */
@@ -84,7 +84,7 @@ typedef struct ivy_cell {
 
 struct banyan_ivy {
     banyan_ivy_params p;   /* start and ground_z moved into the frame below */
-    v3 origin;             /* world position of the frame the plant grows in (core/frame.h) */
+    v3 origin;             /* world position of the frame the plant grows in (base/frame.h) */
     obb *hosts;
     uint32_t n_hosts;      /* the given boxes, then the ground when params.ground: stems keep out of all */
     uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */

@@ -33,12 +33,12 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/leaf_look.h"
 #include "core/mesh_builder.h"
-#include "core/noise.h"
+#include "base/noise.h"
 #include "core/obb.h"
-#include "core/pool.h"
+#include "base/pool.h"
 #include "core/tube.h"
 #include "core/wind.h"
 #include "ivy_internal.h"
@@ -432,7 +432,7 @@ static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *
     wind_birth(mb, ws, birth_scale > 0 ? birth : 0.0);
 }
 
-/* The mesh on up to p->threads threads (core/pool.h), the same bytes on
+/* The mesh on up to p->threads threads (base/pool.h), the same bytes on
  * any count: every stem, petiole and blade has its place in the output
  * planned before it is written, so items write disjoint ranges. Items,
  * in queue order: leaf placement by blocks of buds (the costly part:

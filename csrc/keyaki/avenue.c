@@ -25,11 +25,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/big_alloc.h"
-#include "core/error.h"
-#include "core/frame.h"
-#include "core/pool.h"
-#include "core/progress.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
+#include "base/frame.h"
+#include "base/pool.h"
+#include "base/progress.h"
 #include "keyaki_internal.h"
 
 #define AVENUE_MAX_PATH_POINTS 1000000u
@@ -308,7 +308,7 @@ static void work(avenue_job *J, int caller) {
 
 static void work_any(void *job, int caller) { work(job, caller); }
 
-/* Runs one pass on `threads` threads (core/pool.h). */
+/* Runs one pass on `threads` threads (base/pool.h). */
 static void run_job(avenue_job *J, int threads) {
     atomic_store(&J->next, 0u);
     atomic_store(&J->finished, 0u);
@@ -392,7 +392,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     J.poff = J.soff + n;
     J.eoff = J.poff + n;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
-    /* The trees grow in a frame picked from their feet (core/frame.h). */
+    /* The trees grow in a frame picked from their feet (base/frame.h). */
     v3 lo, hi, O;
     frame_empty(&lo, &hi);
     for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));

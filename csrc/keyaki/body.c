@@ -46,9 +46,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/leaf_look.h"
-#include "core/pool.h"
+#include "base/pool.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"
 

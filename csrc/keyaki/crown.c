@@ -39,7 +39,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/leaf_look.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"

@@ -6,15 +6,15 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/frame.h"
+#include "base/error.h"
+#include "base/frame.h"
 #include "keyaki_internal.h"
 
 banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = keyaki_params_validate(p, err);
     if (s) return s;
-    /* Grown in a frame at its position (core/frame.h), which the mesh keeps. */
+    /* Grown in a frame at its position (base/frame.h), which the mesh keeps. */
     banyan_keyaki_params q = *p;
     v3 at = v3_load(p->position), O = frame_pick(at, at);
     for (int k = 0; k < 3; k++) q.position[k] -= (&O.x)[k];

@@ -12,8 +12,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "keyaki_internal.h"
 #include "params/params.h"
 

@@ -30,7 +30,7 @@
  * the line they leave, then the line itself). */
 #include <math.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/tube.h"
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"

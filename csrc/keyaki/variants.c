@@ -29,11 +29,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "core/big_alloc.h"
-#include "core/error.h"
-#include "core/frame.h"
-#include "core/pool.h"
-#include "core/progress.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
+#include "base/frame.h"
+#include "base/pool.h"
+#include "base/progress.h"
 #include "keyaki_internal.h"
 
 #define VARIANT_STREAM 0x76617269616e74ull /* "variant" */

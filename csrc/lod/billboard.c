@@ -34,7 +34,7 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/error.h"
+#include "base/error.h"
 #include "core/wind.h"
 #include "lod_internal.h"
 #include "srgb8.h"

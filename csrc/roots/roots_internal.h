@@ -7,13 +7,13 @@
 #ifndef BANYAN_ROOTS_INTERNAL_H
 #define BANYAN_ROOTS_INTERNAL_H
 
-#include "core/progress.h"
+#include "base/progress.h"
 #include "banyan.h"
 #include "core/hosts.h"
 #include "core/mesh_builder.h"
 #include "core/obb.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 /* Kinds, also the skeleton tag and the `root_kind` attribute. Foot roots
  * (foot.c: drop roots, buttresses, surface roots) are held by the host and

@@ -14,9 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/error.h"
-#include "../core/frame.h"
-#include "../core/progress.h"
+#include "../base/error.h"
+#include "../base/frame.h"
+#include "../base/progress.h"
 #include "../core/tube.h"
 #include "../core/wind.h"
 #include "segment_core.h"
@@ -400,7 +400,7 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
     if (s) return s;
-    /* The frame (core/frame.h) from the axes' ends and the trunk. */
+    /* The frame (base/frame.h) from the axes' ends and the trunk. */
     v3 lo, hi;
     frame_empty(&lo, &hi);
     for (uint32_t i = 0; i < count; i++) {

@@ -5,7 +5,7 @@
 
 #include "banyan.h"
 #include "../core/mesh_builder.h"
-#include "../core/vec.h"
+#include "../base/vec.h"
 
 /* The float constants one segment is generated with: exactly the shader's
  * uniforms (banyan_segment_uniforms). */

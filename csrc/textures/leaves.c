@@ -22,7 +22,7 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/dmath.h"
+#include "base/dmath.h"
 #include "core/leaf_look.h"
 #include "textures/tex_internal.h"
 

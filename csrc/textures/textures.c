@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/big_alloc.h"
-#include "core/error.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
 #include "textures/tex_budget.h"
 #include "textures/png_write.h"
 #include "textures/tex_internal.h"

@@ -10,7 +10,7 @@
 
 #include "banyan.h"
 #include "core/hosts.h"
-#include "core/rng.h"
+#include "base/rng.h"
 #include "host_meshes.h"
 
 static void queries(const char *name, const banyan_hosts *H) {

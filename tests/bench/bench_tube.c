@@ -37,7 +37,7 @@
 #include <sys/resource.h>
 
 #include "banyan.h"
-#include "core/big_alloc.h"
+#include "base/big_alloc.h"
 #include "core/tube.h"
 
 #define SIDES 8

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/rng.h"
+#include "base/rng.h"
 #include "core/tube.h"
 #include "mesh_checks.h"
 

@@ -15,6 +15,6 @@ n=$(nm -A --undefined-only "$archive" | grep -c -E ' U Sleef_')
 fail=0
 if [ -n "$bad" ]; then echo "library objects calling glibc's CPU-dispatched libm:"; echo "$bad" | head -40; fail=1; fi
 if [ -n "$bad_cli" ]; then echo "the CLI calls glibc's CPU-dispatched libm:"; echo "$bad_cli"; fail=1; fi
-if [ "$n" -eq 0 ]; then echo "no object calls SLEEF: is csrc/core/dmath.h in use?"; fail=1; fi
+if [ "$n" -eq 0 ]; then echo "no object calls SLEEF: is csrc/base/dmath.h in use?"; fail=1; fi
 if [ $fail = 0 ]; then echo "deterministic_math: 1 passed, 0 failed ($n calls to SLEEF)"; else echo "deterministic_math: 0 passed, 1 failed"; fi
 exit $fail
