@@ -6,8 +6,8 @@
 
 #include "base/error.h"
 #include "base/frame.h"
-#include "tube.h"
-#include "wind.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 
 banyan_status banyan_tube_generate(const double *points, const double *radii, uint32_t point_count, int32_t sides,
                                    int32_t caps, banyan_mesh **out, banyan_error *err) {

@@ -15,7 +15,7 @@
  * from a PCG32 stream of the leaf's own, so the growth is not disturbed.
  * Every vertex carries `birth_step` (the step its bud was created) and
  * `part` (0 stem and petiole, 1 leaf blade), and the wind and birth
- * attributes (core/wind.h; docs/ivy.md "Wind and growth attributes"):
+ * attributes (mesh/wind.h; docs/ivy.md "Wind and growth attributes"):
  * birth = birth_step / the last bud's (a leaf half a step later); a
  * chain's pivot is its first point (a lateral's parent bud), its level the
  * number of laterals from a first bud; a stem held by its suckers or lying
@@ -35,12 +35,12 @@
 
 #include "base/error.h"
 #include "core/leaf_look.h"
-#include "core/mesh_builder.h"
+#include "mesh/mesh_builder.h"
 #include "base/noise.h"
 #include "core/obb.h"
 #include "base/pool.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 #include "ivy_internal.h"
 
 #define LEAF_OUTLINE 12 /* outline points; the card has LEAF_OUTLINE + 1 vertices */

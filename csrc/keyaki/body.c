@@ -49,7 +49,7 @@
 #include "base/error.h"
 #include "core/leaf_look.h"
 #include "base/pool.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "keyaki_internal.h"
 
 /* A leaf appears this much (of the tree's growth) after its wood. */

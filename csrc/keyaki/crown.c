@@ -41,7 +41,7 @@
 
 #include "base/error.h"
 #include "core/leaf_look.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"
 

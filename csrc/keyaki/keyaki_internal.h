@@ -9,9 +9,9 @@
 #include <stdint.h>
 
 #include "banyan.h"
-#include "core/mesh_builder.h"
+#include "mesh/mesh_builder.h"
 #include "base/progress.h"
-#include "core/wind.h"
+#include "mesh/wind.h"
 #include "base/rng.h"
 #include "base/vec.h"
 

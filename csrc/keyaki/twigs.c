@@ -31,7 +31,7 @@
 #include <math.h>
 
 #include "base/error.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"
 

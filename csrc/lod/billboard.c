@@ -35,7 +35,7 @@
 
 #include "banyan.h"
 #include "base/error.h"
-#include "core/wind.h"
+#include "mesh/wind.h"
 #include "lod_internal.h"
 #include "srgb8.h"
 

@@ -28,8 +28,8 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 #include "capsule.h"
 #include "fused_vdb.h"
 #include "roots_internal.h"

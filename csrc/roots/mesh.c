@@ -17,8 +17,8 @@
 
 #include "base/error.h"
 #include "core/leaf_look.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 #include "roots_internal.h"
 
 static const v3 UP = {0, 0, 1};

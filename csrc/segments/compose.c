@@ -17,8 +17,8 @@
 #include "../base/error.h"
 #include "../base/frame.h"
 #include "../base/progress.h"
-#include "../core/tube.h"
-#include "../core/wind.h"
+#include "../mesh/tube.h"
+#include "../mesh/wind.h"
 #include "segment_core.h"
 
 #define MIN_TUBE_LENGTH 1e-9

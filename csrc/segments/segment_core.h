@@ -4,7 +4,7 @@
 #define BANYAN_SEGMENT_CORE_H
 
 #include "banyan.h"
-#include "../core/mesh_builder.h"
+#include "../mesh/mesh_builder.h"
 #include "../base/vec.h"
 
 /* The float constants one segment is generated with: exactly the shader's

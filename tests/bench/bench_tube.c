@@ -38,7 +38,7 @@
 
 #include "banyan.h"
 #include "base/big_alloc.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 
 #define SIDES 8
 

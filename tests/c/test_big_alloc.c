@@ -10,7 +10,7 @@
 
 #include "check.h"
 #include "base/big_alloc.h"
-#include "core/mesh_builder.h"
+#include "mesh/mesh_builder.h"
 
 #define MIB ((size_t)1 << 20)
 

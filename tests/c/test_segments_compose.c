@@ -15,7 +15,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "base/rng.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "base/vec.h"
 #include "segments/segment_core.h"
 #include "test_files.h"

@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "base/rng.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "mesh_checks.h"
 
 typedef struct { float p[3]; } key3;

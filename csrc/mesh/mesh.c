@@ -4,7 +4,7 @@
 
 #include "banyan.h"
 #include "base/error.h"
-#include "obb.h"
+#include "core/obb.h"
 
 void banyan_mesh_free(banyan_mesh *m) {
     if (!m) return;
