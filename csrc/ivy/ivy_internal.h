@@ -2,15 +2,15 @@
  * a binary tree of buds in creation order, a spatial hash over bud
  * positions for the light look-up, and the hosts: oriented boxes (the
  * given ones, then the ground) with their exact obb queries, and the
- * triangle meshes of a host set (core/hosts.h). Shared by the ivy source
+ * triangle meshes of a host set (hosts/hosts.h). Shared by the ivy source
  * files only. */
 #ifndef BANYAN_IVY_INTERNAL_H
 #define BANYAN_IVY_INTERNAL_H
 
 #include "banyan.h"
 #include "base/frame.h"
-#include "core/hosts.h"
-#include "core/obb.h"
+#include "hosts/hosts.h"
+#include "hosts/obb.h"
 #include "base/progress.h"
 #include "base/rng.h"
 #include "base/vec.h"

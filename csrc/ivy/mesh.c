@@ -37,7 +37,7 @@
 #include "core/leaf_look.h"
 #include "mesh/mesh_builder.h"
 #include "base/noise.h"
-#include "core/obb.h"
+#include "hosts/obb.h"
 #include "base/pool.h"
 #include "mesh/tube.h"
 #include "mesh/wind.h"

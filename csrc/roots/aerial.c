@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "capsule.h"
-#include "core/closest.h"
+#include "hosts/closest.h"
 #include "mesh/tube.h"
 #include "mesh/wind.h"
 

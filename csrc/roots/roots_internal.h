@@ -9,9 +9,9 @@
 
 #include "base/progress.h"
 #include "banyan.h"
-#include "core/hosts.h"
+#include "hosts/hosts.h"
 #include "mesh/mesh_builder.h"
-#include "core/obb.h"
+#include "hosts/obb.h"
 #include "base/rng.h"
 #include "base/vec.h"
 

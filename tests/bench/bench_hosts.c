@@ -9,7 +9,7 @@
 #include <math.h>
 
 #include "banyan.h"
-#include "core/hosts.h"
+#include "hosts/hosts.h"
 #include "base/rng.h"
 #include "host_meshes.h"
 

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/hosts.h"
+#include "hosts/hosts.h"
 #include "base/rng.h"
 #include "host_meshes.h"
 

@@ -3,8 +3,8 @@
  * queried here (hosts.c). Generators loop over the boxes as before (so a
  * box-only set gives the bytes it always gave) and ask the mesh queries
  * below for the meshes. */
-#ifndef BANYAN_CORE_HOSTS_H
-#define BANYAN_CORE_HOSTS_H
+#ifndef BANYAN_HOSTS_HOSTS_H
+#define BANYAN_HOSTS_HOSTS_H
 
 #include "banyan.h"
 #include "obb.h"
