@@ -34,7 +34,7 @@
 #include <unistd.h>
 
 #include "base/error.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "mesh/mesh_builder.h"
 #include "base/noise.h"
 #include "hosts/obb.h"

@@ -47,7 +47,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "base/pool.h"
 #include "mesh/tube.h"
 #include "keyaki_internal.h"

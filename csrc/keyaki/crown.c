@@ -40,7 +40,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "mesh/tube.h"
 #include "keyaki_internal.h"
 #include "segments/segment_core.h"

@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "mesh/tube.h"
 #include "mesh/wind.h"
 #include "roots_internal.h"

@@ -10,7 +10,7 @@
  * distance in pixels. Both atlases are 4 x 4 cells of one leaf each,
  * except keyaki's bottom row: two sprays of leaves on a twig, each two
  * cells wide (leaf_look.h, LEAF_KEYAKI_SPRAY_*), for leaf-cluster cards; a
- * keyaki leaf fills the box core/leaf_look.h gives its mesh quad (issue
+ * keyaki leaf fills the box textures/leaf_look.h gives its mesh quad (issue
  * #20: midrib up the cell's centre, petiole below, blade and teeth within
  * LEAF_KEYAKI_HALF_U of it), so the drawn leaf and the quad have the same
  * length. Colour is straight alpha; pixels outside leaves get the cell's
@@ -23,7 +23,7 @@
 
 #include "banyan.h"
 #include "base/dmath.h"
-#include "core/leaf_look.h"
+#include "leaf_look.h"
 #include "textures/tex_internal.h"
 
 #define PI_F 3.14159265f
