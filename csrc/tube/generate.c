@@ -1,5 +1,6 @@
-/* banyan_tube_generate: the public face of the shared sweeper (tube.h),
- * used by the CLI's `tube` demo and the tests. */
+/* banyan_tube_generate: the public face of the shared sweeper (mesh/tube.h),
+ * used by the CLI's `tube` demo and the tests. A generator of its own
+ * (one folder per generator, above csrc/mesh), not part of the sweeper. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
