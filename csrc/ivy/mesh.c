@@ -31,7 +31,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "base/error.h"
 #include "textures/leaf_look.h"
@@ -880,11 +879,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     atomic_init(&J.done, 0);
     atomic_init(&J.cancel, 0);
     atomic_init(&J.status, 0);
-    int threads = p->threads;
-    if (threads == 0) {
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = c < 1 ? 1 : c > BANYAN_IVY_MAX_THREADS ? BANYAN_IVY_MAX_THREADS : (int)c;
-    }
+    int threads = pool_threads(p->threads, BANYAN_IVY_MAX_THREADS);
     if (iv->n < MESH_MIN_BUDS) threads = 1;
     if (!mb.status) pool_run(threads, mesh_work, &J, iv->prog, &J.cancel);
     int cancelled = atomic_load(&J.cancel);

@@ -23,7 +23,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "base/big_alloc.h"
 #include "base/error.h"
@@ -402,11 +401,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
     J.trees = trees;
     J.n = n;
-    int t = threads;
-    if (t == 0) {
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        t = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
-    }
+    int t = pool_threads(threads, BANYAN_AVENUE_MAX_THREADS);
     if ((uint32_t)t > n) t = (int)n;
 
     /* Pass 1: exact sizes of every tree, before any mesh memory. */

@@ -2,12 +2,11 @@
  * (banyan_keyaki_generate) or measured only (banyan_keyaki_stats), per
  * spec/keyaki.md. Growth is in growth.c, Strahler in strahler.c, the body
  * in body.c. The tree takes no hosts: it stands at `position`, up +Z. */
-#define _POSIX_C_SOURCE 200809L /* sysconf */
 #include <string.h>
-#include <unistd.h>
 
 #include "base/error.h"
 #include "base/frame.h"
+#include "base/pool.h"
 #include "keyaki_internal.h"
 
 banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out, banyan_error *err) {
@@ -23,11 +22,7 @@ banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh 
     prog g;
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    int threads = p->threads;
-    if (threads == 0) { /* all cores */
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
-    }
+    int threads = pool_threads(p->threads, BANYAN_AVENUE_MAX_THREADS);
     keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0, threads};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_build(&q, 0.0, 0, &sk, out, err);
