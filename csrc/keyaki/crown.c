@@ -17,7 +17,7 @@
  * crown its leaf mass: on from every twig's end, beside the nodes and
  * along long finest twigs. Branches deeper than leaf_levels carry shoots
  * of spray cards where they lie on the crown's outer shell, from
- * SHELL_FROM of the height up (shell_clusters).
+ * SHELL_FROM of the height up (crown_shell.c).
  *
  * Light and crowding: a cluster is approximated by its plan-view
  * rectangle (what it shades under a zenith sun). Clusters grow from the
