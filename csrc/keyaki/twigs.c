@@ -33,7 +33,7 @@
 #include "base/error.h"
 #include "mesh/tube.h"
 #include "keyaki_internal.h"
-#include "segments/segment_core.h"
+#include "segments/segment_ref.h"
 
 void keyaki_truncate(keyaki_skeleton *sk, int max_level) {
     int32_t count = 0;
