@@ -1,6 +1,6 @@
 #!/bin/sh
 # No object of the library (its static archive) and not the CLI calls a libm
-# function that glibc picks per CPU: those go through csrc/core/dmath.h.
+# function that glibc picks per CPU: those go through csrc/base/dmath.h.
 # Allowed: OpenVDB's header code compiled into the fused-surface shim
 # (AffineMap::hasUniformScale's pow, Mat4's rotations' sincos), which
 # checks transforms and does not make geometry.
