@@ -244,6 +244,89 @@ static int out_path_ok(const cli_command *cmd, const char *path) {
     return 1;
 }
 
+/* The flags of a generator command. */
+typedef struct cli_args {
+    const char *out_path, *seed;
+    int stats, list;
+    cli_lod lod;
+    banyan_gltf_options gltf_opt;
+    const char **sets, **host_args; /* argc entries each */
+    int n_sets, n_host_args;
+    const char *threads_text; /* --threads as given: also the ivy's and the tree's own threads */
+} cli_args;
+
+/* The command line after the command: every flag into A and job. 0, or 1
+ * on an unexpected argument, 2 on a bad flag's value (both reported). */
+static int parse_args(int argc, char **argv, const cli_command *cmd, cli_job *job, cli_args *A) {
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        int has_val = i + 1 < argc;
+        if (!strcmp(a, "--preset") && has_val) job->preset_path = argv[++i];
+        else if (!strcmp(a, "--seed") && has_val) A->seed = argv[++i];
+        else if (!strcmp(a, "--set") && has_val) A->sets[A->n_sets++] = argv[++i];
+        else if (!strcmp(a, "--host") && has_val) A->host_args[A->n_host_args++] = argv[++i];
+        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) A->out_path = argv[++i];
+        else if (!strcmp(a, "--threads") && has_val) {
+            const char *v = argv[++i];
+            long long t;
+            if (!num_parse_int(v, 0, CLI_MAX_THREADS, &t)) {
+                fprintf(stderr, "banyan %s: --threads '%s' must be a whole number in [0, %d] (0: all cores)\n",
+                        cmd->name, v, CLI_MAX_THREADS);
+                goto bad_flag;
+            }
+            job->threads = (int)t;
+            A->threads_text = v;
+        }
+        else if (!strcmp(a, "--stats")) A->stats = 1;
+        else if (!strcmp(a, "--textures") && has_val) {
+            const char *v = argv[++i];
+            if (strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
+                goto bad_flag;
+            }
+            A->gltf_opt.textures = !strcmp(v, "on");
+        } else if (!strcmp(a, "--texture-cache") && has_val) {
+            const char *v = argv[++i]; /* on, off or a folder */
+            if (!v[0]) {
+                fprintf(stderr, "banyan %s: --texture-cache '' must be on, off or a folder\n", cmd->name);
+                goto bad_flag;
+            }
+            A->gltf_opt.texture_cache = strcmp(v, "off") != 0;
+            A->gltf_opt.texture_cache_dir = strcmp(v, "on") && strcmp(v, "off") ? v : NULL;
+        } else if (!strcmp(a, "--texture-size") && has_val) {
+            const char *v = argv[++i];
+            long long n;
+            if (!num_parse_int(v, 64, 8192, &n) || (n & (n - 1))) {
+                fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
+                        v);
+                goto bad_flag;
+            }
+            A->gltf_opt.texture_size = (int32_t)n;
+        }
+        else if (!strcmp(a, "--lod") && has_val) {
+            const char *v = argv[++i];
+            if (!cli_lod_parse(v, &A->lod)) {
+                fprintf(stderr,
+                        "banyan %s: --lod '%s' must be up to %d falling ratios in [0.001, 1), comma-separated, "
+                        "optionally ending in billboard (e.g. 0.5,0.15,billboard)\n",
+                        cmd->name, v, CLI_MAX_LODS);
+                goto bad_flag;
+            }
+        }
+        else if (!strcmp(a, "--engine-uvs")) A->gltf_opt.engine_uvs = 1;
+        else if (!strcmp(a, "--fsync")) A->gltf_opt.sync = 1;
+        else if (!strcmp(a, "--compact")) A->gltf_opt.compact = 1;
+        else if (!strcmp(a, "--list")) A->list = 1;
+        else {
+            fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
+            return 1;
+        }
+    }
+    return 0;
+bad_flag:
+    return 2;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -261,90 +344,28 @@ int main(int argc, char **argv) {
     }
 
     static cli_job job; /* large (hosts); one per process */
-    const char *out_path = NULL, *seed = NULL;
-    int stats = 0, list = 0;
-    cli_lod lod = {0, 0, {0}};
-    banyan_gltf_options gltf_opt;
-    banyan_gltf_options_init(&gltf_opt);
-    const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
-    int n_sets = 0, n_host_args = 0;
-    const char *threads_text = NULL; /* --threads as given: also the ivy's and the tree's own threads */
-    if (!sets || !host_args) {
-        free(sets);
-        free(host_args);
+    cli_args A = {NULL, NULL, 0, 0, {0, 0, {0}}, {0}, NULL, NULL, 0, 0, NULL};
+    banyan_gltf_options_init(&A.gltf_opt);
+    A.sets = calloc((size_t)argc, sizeof *A.sets);
+    A.host_args = calloc((size_t)argc, sizeof *A.host_args);
+    if (!A.sets || !A.host_args) {
+        free(A.sets);
+        free(A.host_args);
         return 1;
     }
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        int has_val = i + 1 < argc;
-        if (!strcmp(a, "--preset") && has_val) job.preset_path = argv[++i];
-        else if (!strcmp(a, "--seed") && has_val) seed = argv[++i];
-        else if (!strcmp(a, "--set") && has_val) sets[n_sets++] = argv[++i];
-        else if (!strcmp(a, "--host") && has_val) host_args[n_host_args++] = argv[++i];
-        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) out_path = argv[++i];
-        else if (!strcmp(a, "--threads") && has_val) {
-            const char *v = argv[++i];
-            long long t;
-            if (!num_parse_int(v, 0, CLI_MAX_THREADS, &t)) {
-                fprintf(stderr, "banyan %s: --threads '%s' must be a whole number in [0, %d] (0: all cores)\n",
-                        cmd->name, v, CLI_MAX_THREADS);
-                goto bad_flag;
-            }
-            job.threads = (int)t;
-            threads_text = v;
-        }
-        else if (!strcmp(a, "--stats")) stats = 1;
-        else if (!strcmp(a, "--textures") && has_val) {
-            const char *v = argv[++i];
-            if (strcmp(v, "on") && strcmp(v, "off")) {
-                fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
-                goto bad_flag;
-            }
-            gltf_opt.textures = !strcmp(v, "on");
-        } else if (!strcmp(a, "--texture-cache") && has_val) {
-            const char *v = argv[++i]; /* on, off or a folder */
-            if (!v[0]) {
-                fprintf(stderr, "banyan %s: --texture-cache '' must be on, off or a folder\n", cmd->name);
-                goto bad_flag;
-            }
-            gltf_opt.texture_cache = strcmp(v, "off") != 0;
-            gltf_opt.texture_cache_dir = strcmp(v, "on") && strcmp(v, "off") ? v : NULL;
-        } else if (!strcmp(a, "--texture-size") && has_val) {
-            const char *v = argv[++i];
-            long long n;
-            if (!num_parse_int(v, 64, 8192, &n) || (n & (n - 1))) {
-                fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
-                        v);
-                goto bad_flag;
-            }
-            gltf_opt.texture_size = (int32_t)n;
-        }
-        else if (!strcmp(a, "--lod") && has_val) {
-            const char *v = argv[++i];
-            if (!cli_lod_parse(v, &lod)) {
-                fprintf(stderr,
-                        "banyan %s: --lod '%s' must be up to %d falling ratios in [0.001, 1), comma-separated, "
-                        "optionally ending in billboard (e.g. 0.5,0.15,billboard)\n",
-                        cmd->name, v, CLI_MAX_LODS);
-                goto bad_flag;
-            }
-        }
-        else if (!strcmp(a, "--engine-uvs")) gltf_opt.engine_uvs = 1;
-        else if (!strcmp(a, "--fsync")) gltf_opt.sync = 1;
-        else if (!strcmp(a, "--compact")) gltf_opt.compact = 1;
-        else if (!strcmp(a, "--list")) list = 1;
-        else {
-            fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
-            free(sets);
-            free(host_args);
-            return usage(stderr);
-        }
-        continue;
-    bad_flag:
-        free(sets);
-        free(host_args);
-        return 2;
+    int bad = parse_args(argc, argv, cmd, &job, &A);
+    if (bad) {
+        free(A.sets);
+        free(A.host_args);
+        return bad == 1 ? usage(stderr) : 2;
     }
+    const char *out_path = A.out_path, *seed = A.seed;
+    int stats = A.stats, list = A.list;
+    cli_lod lod = A.lod;
+    banyan_gltf_options gltf_opt = A.gltf_opt;
+    const char **sets = A.sets, **host_args = A.host_args;
+    int n_sets = A.n_sets, n_host_args = A.n_host_args;
+    const char *threads_text = A.threads_text;
     if (list) {
         list_params(cmd);
         free(sets);
