@@ -488,6 +488,80 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
     return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
 }
 
+/* No twigs of ours: leaves on the segment lines (twigs_from_segments), or
+ * on the skeleton branches within leaf_levels of a tip. */
+static void leaves_without_twigs(ctx *x, const keyaki_node *n, int32_t count, const int32_t *depth,
+                                 const double *npath, banyan_error *err) {
+    const banyan_keyaki_params *p = x->p;
+    for (int32_t i = 0; i < count && !x->oom; i++) {
+        if ((i & 255) == 0 && keep_budget(x, err)) break;
+        int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
+        x->node = i;
+        cluster_stream(&x->lf, p, i, KEYAKI_STREAM_LEAVES);
+        if (p->twigs_from_segments) {
+            if (tip) segment_leaves(x, n, i);
+        } else if (depth[i] < p->leaf_levels) {
+            v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
+            v3 up = v3_norm_or_perp(v3_cross(crown_horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
+            if (up.z < 0) up = v3_neg(up);
+            double rr[2] = {crown_branch_radius(p, n, &n[i], 0), crown_branch_radius(p, n, &n[i], n[i].length)};
+            leaves_along(x, ab, rr, 2, 0.0, up, -1, n[i].level, npath[i]);
+        }
+    }
+}
+
+/* Plans the clusters of skeleton branch i (within leaf_levels of a tip):
+ * first-order twigs every twig_spacing, alternating sides, and a skeleton
+ * tip's continuation; appended to *pcs. 0, or 1 when out of memory, 2 past
+ * the budget. */
+static int plan_branch(const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan, double path,
+                       cand **pcs, int32_t *pnc, int32_t *cap, int count_only) {
+    int32_t nc = *pnc;
+    const keyaki_node *b = &n[i];
+    int tip = b->child[0] < 0 && b->child[1] < 0;
+    v3 h = crown_horizontal_perp(b->dir);
+    int side = rng_uniform(plan) < 0.5 ? 1 : -1;
+    double s = p->twig_spacing * rng_uniform(plan);
+    int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
+    if (k < 0) k = 0;
+    /* Every cluster, even one the light drops, would be a tube of 8
+     * vertices or more: refuse absurd counts before storing them. */
+    if (8.0 * ((double)nc + k) > (double)crown_budget(p, count_only)) return 2;
+    if (crown_grow_array((void **)pcs, cap, nc + k, sizeof(cand))) return 1;
+    cand *cs = *pcs;
+    for (; s < b->length; s += p->twig_spacing, side = -side) {
+        cand *q = &cs[nc];
+        double a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
+        q->at = v3_madd(b->start, b->dir, s);
+        q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(h, side * dm_sin(a))));
+        q->h = h;
+        q->len = p->twig_length * rng_range(plan, 0.75, 1.25);
+        q->r_host = crown_branch_radius(p, n, b, s);
+        q->path = path + s;
+        q->node = i;
+        q->index = nc;
+        q->tip = 0;
+        q->shell = 0;
+        nc++;
+    }
+    if (tip) {
+        cand *q = &cs[nc];
+        q->at = v3_madd(b->start, b->dir, b->length);
+        q->d = b->dir;
+        q->h = h;
+        q->len = p->twig_length * rng_range(plan, 0.75, 1.25);
+        q->r_host = crown_branch_radius(p, n, b, b->length);
+        q->path = path + b->length;
+        q->node = i;
+        q->index = nc;
+        q->tip = 1;
+        q->shell = 0;
+        nc++;
+    }
+    *pnc = nc;
+    return 0;
+}
+
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                 keyaki_run *run, keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
@@ -511,22 +585,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath, NULL, 0, 0, 0, 0,
              0, 0, 0, CARD_BAND};
     if (p->twigs_from_segments || p->twig_levels == 0) {
-        /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
-        for (int32_t i = 0; i < count && !x.oom; i++) {
-            if ((i & 255) == 0 && keep_budget(&x, err)) break;
-            int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
-            x.node = i;
-            cluster_stream(&x.lf, p, i, KEYAKI_STREAM_LEAVES);
-            if (p->twigs_from_segments) {
-                if (tip) segment_leaves(&x, n, i);
-            } else if (depth[i] < p->leaf_levels) {
-                v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
-                v3 up = v3_norm_or_perp(v3_cross(crown_horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
-                if (up.z < 0) up = v3_neg(up);
-                double rr[2] = {crown_branch_radius(p, n, &n[i], 0), crown_branch_radius(p, n, &n[i], n[i].length)};
-                leaves_along(&x, ab, rr, 2, 0.0, up, -1, n[i].level, npath[i]);
-            }
-        }
+        leaves_without_twigs(&x, n, count, depth, npath, err);
         free(depth);
         free(npath);
         if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
@@ -543,7 +602,6 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         free(npath);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
     }
-    double tw = p->twig_angle;
     for (int32_t i = 0; i < count; i++) {
         if ((i & 4095) == 0 && keyaki_stopped(run)) {
             free(depth);
@@ -564,57 +622,14 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             }
             continue;
         }
-        const keyaki_node *b = &n[i];
-        int tip = b->child[0] < 0 && b->child[1] < 0;
-        v3 h = crown_horizontal_perp(b->dir);
-        int side = rng_uniform(&plan) < 0.5 ? 1 : -1;
-        double s = p->twig_spacing * rng_uniform(&plan);
-        int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
-        if (k < 0) k = 0;
-        /* Every cluster, even one the light drops, would be a tube of 8
-         * vertices or more: refuse absurd counts before storing them. */
-        if (8.0 * ((double)nc + k) > (double)crown_budget(p, count_only)) {
+        int why = plan_branch(p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only);
+        if (why) {
             free(depth);
             free(npath);
             free(cs);
             free(sh.env);
-            return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
-        }
-        if (crown_grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
-            free(depth);
-            free(npath);
-            free(cs);
-            free(sh.env);
-            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
-        }
-        for (; s < b->length; s += p->twig_spacing, side = -side) {
-            cand *q = &cs[nc];
-            double a = deg2rad(tw * rng_range(&plan, 0.85, 1.15));
-            q->at = v3_madd(b->start, b->dir, s);
-            q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(h, side * dm_sin(a))));
-            q->h = h;
-            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
-            q->r_host = crown_branch_radius(p, n, b, s);
-            q->path = npath[i] + s;
-            q->node = i;
-            q->index = nc;
-            q->tip = 0;
-            q->shell = 0;
-            nc++;
-        }
-        if (tip) {
-            cand *q = &cs[nc];
-            q->at = v3_madd(b->start, b->dir, b->length);
-            q->d = b->dir;
-            q->h = h;
-            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
-            q->r_host = crown_branch_radius(p, n, b, b->length);
-            q->path = npath[i] + b->length;
-            q->node = i;
-            q->index = nc;
-            q->tip = 1;
-            q->shell = 0;
-            nc++;
+            return why == 2 ? crown_fail(c, 2, BANYAN_E_LIMIT, p, err)
+                            : banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
     }
     free(depth);
