@@ -312,8 +312,13 @@ uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);
 /* Starts the handle's own budget for a step or mesh call: its clock as if
  * it had run through every step call so far (step_seconds), memory from
  * banyan_ivy_create. A stopped handle stays stopped (a stop can fall in
- * the middle of a step). No-op for a one-shot generation's prog. */
-void ivy_budget_start(const banyan_ivy *iv);
+ * the middle of a step). No-op for a one-shot generation's prog. Inline:
+ * growth (growth.c) and meshing (mesh.c) both start it. */
+static inline void ivy_budget_start(const banyan_ivy *iv) {
+    prog *g = iv->prog;
+    if (g != &iv->own || g->cancelled) return;
+    prog_budget_resume(g, iv->p.max_seconds, iv->p.max_memory_mb, iv->step_seconds, iv->rss0_mb);
+}
 
 /* Grows n steps; stops with BANYAN_E_LIMIT as soon as the plant could no
  * longer be meshed within max_vertices when vertex_stop is set. */
