@@ -35,21 +35,6 @@ static int32_t show_progress(void *user, double done) {
     return 0;
 }
 
-static void append(cli_stats *s, const char *key, const char *val) {
-    if (s->len >= sizeof s->buf) return;
-    int n = snprintf(s->buf + s->len, sizeof s->buf - s->len, "%s\"%s\": %s", s->len ? ", " : "", key, val);
-    if (n > 0) s->len += (size_t)n;
-    if (s->len > sizeof s->buf) s->len = sizeof s->buf;
-}
-
-void cli_stat_num(cli_stats *s, const char *key, double v) {
-    char b[64];
-    snprintf(b, sizeof b, "%.17g", v);
-    append(s, key, b);
-}
-
-void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, key, json); }
-
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
