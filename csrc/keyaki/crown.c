@@ -66,19 +66,6 @@ void keyaki_crown_free(keyaki_crown *c) {
     memset(c, 0, sizeof *c);
 }
 
-/* Room for `more` items in a doubling array. */
-int crown_grow_array(void **a, int32_t *cap, int32_t need, size_t size) {
-    if (need <= *cap) return 0;
-    int64_t nc = *cap ? *cap : 256;
-    while (nc < need) nc *= 2;
-    if (nc > INT32_MAX / 2) return 1;
-    void *p = realloc(*a, (size_t)nc * size);
-    if (!p) return 1;
-    *a = p;
-    *cap = (int32_t)nc;
-    return 0;
-}
-
 static int add_points(keyaki_crown *c, int32_t k) {
     int32_t cap = c->cap_pts;
     if (crown_grow_array((void **)&c->pts, &cap, c->n_pts + k, sizeof(v3))) return 1;
@@ -107,15 +94,6 @@ typedef struct ctx {
     double z0, half_z;     /* m: the trunk's foot and half the skeleton's height */
     double band;           /* m: the bands' height (CARD_BAND, more on a giant tree) */
 } ctx;
-
-/* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
- * most 6 a twig point): huge settings are refused before they fill
- * memory, as the body's plan refuses them before meshing. */
-int64_t crown_budget(const banyan_keyaki_params *p, int count_only) {
-    /* Sizing stores no leaves and must give the exact count (an avenue
-     * sums its trees' before refusing): only the mesh ceiling bounds it. */
-    return count_only ? (int64_t)MB_VERTEX_CEILING : (int64_t)p->max_vertices;
-}
 
 static int over_budget(ctx *x, int64_t more_leaves, int64_t more_points) {
     int64_t v = 4 * ((int64_t)x->c->n_leaves + more_leaves) + 6 * ((int64_t)x->c->n_pts + more_points);
@@ -417,20 +395,6 @@ static int cand_cmp(const void *a, const void *b) {
     const cand *A = a, *B = b;
     if (A->z != B->z) return A->z > B->z ? -1 : 1;
     return A->index < B->index ? -1 : A->index > B->index;
-}
-
-/* Radius of branch x at arc length s (as body.c tapers it). */
-double crown_branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x, double s) {
-    double r0 = x->parent >= 0 ? n[x->parent].radius : x->radius;
-    int tip = x->child[0] < 0 && x->child[1] < 0;
-    double r1 = tip ? x->radius * p->tip_taper : x->radius;
-    double t = x->length > 0 ? clampd(s / x->length, 0, 1) : 1;
-    return r0 + (r1 - r0) * t;
-}
-
-v3 crown_horizontal_perp(v3 d) {
-    v3 h = v3_cross(d, v3_make(0, 0, 1));
-    return v3_len2(h) > 1e-12 ? v3_norm(h) : v3_make(1, 0, 0);
 }
 
 /* Leaves along the segment lines of skeleton tip x (twigs_from_segments). */

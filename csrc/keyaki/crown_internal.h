@@ -5,6 +5,8 @@
 #ifndef BANYAN_KEYAKI_CROWN_INTERNAL_H
 #define BANYAN_KEYAKI_CROWN_INTERNAL_H
 
+#include <stdlib.h>
+
 #include "keyaki_internal.h"
 
 #define CELL 0.2            /* m, the light grid's cell */
@@ -73,14 +75,45 @@ typedef struct shell {
     int why;     /* a failure: 1 out of memory, 2 past the budget */
 } shell;
 
-/* Stops the crown once its mesh would pass max_vertices (crown.c). */
-int64_t crown_budget(const banyan_keyaki_params *p, int count_only);
-/* Room for `more` items in a doubling array; nonzero when out of memory. */
-int crown_grow_array(void **a, int32_t *cap, int32_t need, size_t size);
+/* Helpers of every stage, inline so that no stage calls back into
+ * another's file. */
+/* Room for `more` items in a doubling array. */
+static inline int crown_grow_array(void **a, int32_t *cap, int32_t need, size_t size) {
+    if (need <= *cap) return 0;
+    int64_t nc = *cap ? *cap : 256;
+    while (nc < need) nc *= 2;
+    if (nc > INT32_MAX / 2) return 1;
+    void *p = realloc(*a, (size_t)nc * size);
+    if (!p) return 1;
+    *a = p;
+    *cap = (int32_t)nc;
+    return 0;
+}
+
+/* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
+ * most 6 a twig point): huge settings are refused before they fill
+ * memory, as the body's plan refuses them before meshing. */
+static inline int64_t crown_budget(const banyan_keyaki_params *p, int count_only) {
+    /* Sizing stores no leaves and must give the exact count (an avenue
+     * sums its trees' before refusing): only the mesh ceiling bounds it. */
+    return count_only ? (int64_t)MB_VERTEX_CEILING : (int64_t)p->max_vertices;
+}
+
 /* Radius of branch x at arc length s (as body.c tapers it). */
-double crown_branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x, double s);
+static inline double crown_branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x,
+                                         double s) {
+    double r0 = x->parent >= 0 ? n[x->parent].radius : x->radius;
+    int tip = x->child[0] < 0 && x->child[1] < 0;
+    double r1 = tip ? x->radius * p->tip_taper : x->radius;
+    double t = x->length > 0 ? clampd(s / x->length, 0, 1) : 1;
+    return r0 + (r1 - r0) * t;
+}
+
 /* A unit vector level and square to d. */
-v3 crown_horizontal_perp(v3 d);
+static inline v3 crown_horizontal_perp(v3 d) {
+    v3 h = v3_cross(d, v3_make(0, 0, 1));
+    return v3_len2(h) > 1e-12 ? v3_norm(h) : v3_make(1, 0, 0);
+}
 
 /* The light model (crown_light.c). */
 rect crown_cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len, double wlen);
