@@ -312,6 +312,59 @@ bad_flag:
     return 2;
 }
 
+/* The command's params: its defaults, the preset (*text keeps the file's
+ * text for its hosts), --seed, --threads and the --set pairs. 0, or 1 on
+ * an error (reported). */
+static int load_params(const cli_command *cmd, cli_job *job, const cli_args *A, void *params, char **text,
+                       banyan_error *err) {
+    cmd->init(params);
+    banyan_generator g = (banyan_generator)cmd->generator;
+    if (job->preset_path) {
+        char why[4200];
+        *text = read_preset(job->preset_path, &job->preset_len, why, sizeof why);
+        if (!*text) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, why);
+            return 1;
+        }
+        job->preset_text = *text;
+        if (cmd->generator < 0) {
+            fprintf(stderr, "banyan %s: this command takes no preset\n", cmd->name);
+            return 1;
+        }
+        if (banyan_preset_apply(g, params, *text, job->preset_len, job->preset_path, err)) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, err->message);
+            return 1;
+        }
+    }
+    if (A->seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", A->seed, err)) {
+        fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err->message);
+        return 1;
+    }
+    /* Before the --set pairs, so that --set threads=N still wins. */
+    if (A->threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
+        banyan_param_set_text(g, params, "threads", A->threads_text, err)) {
+        fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err->message);
+        return 1;
+    }
+    for (int i = 0; i < A->n_sets; i++) {
+        char key[128];
+        const char *eq = strchr(A->sets[i], '=');
+        if (!eq || eq == A->sets[i] || (size_t)(eq - A->sets[i]) >= sizeof key) {
+            fprintf(stderr, "banyan %s: --set '%s' must look like key=value\n", cmd->name, A->sets[i]);
+            return 1;
+        }
+        memcpy(key, A->sets[i], (size_t)(eq - A->sets[i]));
+        key[eq - A->sets[i]] = '\0';
+        banyan_status s = cmd->generator >= 0 ? banyan_param_set_text(g, params, key, eq + 1, err)
+                                              : cmd->set(params, key, eq + 1, err);
+        if (s) {
+            fprintf(stderr, "banyan %s: --set %s: %s\n", cmd->name, A->sets[i], err->message);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -344,13 +397,12 @@ int main(int argc, char **argv) {
         free(A.host_args);
         return bad == 1 ? usage(stderr) : 2;
     }
-    const char *out_path = A.out_path, *seed = A.seed;
+    const char *out_path = A.out_path;
     int stats = A.stats, list = A.list;
     cli_lod lod = A.lod;
     banyan_gltf_options gltf_opt = A.gltf_opt;
     const char **sets = A.sets, **host_args = A.host_args;
-    int n_sets = A.n_sets, n_host_args = A.n_host_args;
-    const char *threads_text = A.threads_text;
+    int n_host_args = A.n_host_args;
     if (list) {
         list_params(cmd);
         free(sets);
@@ -380,51 +432,8 @@ int main(int argc, char **argv) {
         fprintf(stderr, "banyan %s: --host: this command takes no hosts (roots and ivy do)\n", cmd->name);
         goto out;
     }
-    cmd->init(params);
+    if (load_params(cmd, &job, &A, params, &text, &err)) goto out;
     banyan_generator g = (banyan_generator)cmd->generator;
-    if (job.preset_path) {
-        char why[4200];
-        text = read_preset(job.preset_path, &job.preset_len, why, sizeof why);
-        if (!text) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, why);
-            goto out;
-        }
-        job.preset_text = text;
-        if (cmd->generator < 0) {
-            fprintf(stderr, "banyan %s: this command takes no preset\n", cmd->name);
-            goto out;
-        }
-        if (banyan_preset_apply(g, params, text, job.preset_len, job.preset_path, &err)) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
-            goto out;
-        }
-    }
-    if (seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", seed, &err)) {
-        fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err.message);
-        goto out;
-    }
-    /* Before the --set pairs, so that --set threads=N still wins. */
-    if (threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
-        banyan_param_set_text(g, params, "threads", threads_text, &err)) {
-        fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err.message);
-        goto out;
-    }
-    for (int i = 0; i < n_sets; i++) {
-        char key[128];
-        const char *eq = strchr(sets[i], '=');
-        if (!eq || eq == sets[i] || (size_t)(eq - sets[i]) >= sizeof key) {
-            fprintf(stderr, "banyan %s: --set '%s' must look like key=value\n", cmd->name, sets[i]);
-            goto out;
-        }
-        memcpy(key, sets[i], (size_t)(eq - sets[i]));
-        key[eq - sets[i]] = '\0';
-        banyan_status s = cmd->generator >= 0 ? banyan_param_set_text(g, params, key, eq + 1, &err)
-                                              : cmd->set(params, key, eq + 1, &err);
-        if (s) {
-            fprintf(stderr, "banyan %s: --set %s: %s\n", cmd->name, sets[i], err.message);
-            goto out;
-        }
-    }
     /* The command's budget, from here to the written file: the hosts'
      * reading, generation, --lod, the textures and the write. */
     cli_budget budget;
