@@ -375,6 +375,54 @@ static uint32_t seam_uvs(fvert **pfv, uint32_t *cap, uint32_t nv, uint32_t *tri,
     return n;
 }
 
+/* The capsules of every polyline but the aerial roots' (threads:
+ * aerial.c), their tube frames T and N (T + n_pts) and the v coordinate
+ * along each; returns the tubes' side area. */
+static double capsules_of(const roots_net *net, const banyan_roots_params *p, capsule *caps, v3 *T, double *vcum,
+                          double r) {
+    v3 *N = T + net->n_pts;
+    double area = 0;
+    uint32_t n_caps = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
+        tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
+        vcum[pl->off] = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++) {
+            uint32_t at = pl->off + i;
+            capsule *c = &caps[n_caps++];
+            roots_capsule_set(c, net, p, t, at);
+            double l = v3_dist(c->a, c->b);
+            vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
+            area += BANYAN_PI * (c->ra + c->rb) * l;
+        }
+    }
+    return area;
+}
+
+/* The field: per polyline the minimum of its capsules, then the smooth
+ * union (smin over k) of the polylines in order. 0, or 1 when out of
+ * memory, 2 when the run stopped. */
+static int field_union(fgrid *g, const roots_net *net, const capsule *caps, float k) {
+    for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
+        if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) return 2;
+        g->n_touched = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++, ci++) raster_capsule(g, &caps[ci], ci, t + 1);
+        if (g->nomem) return 1;
+        for (uint32_t j = 0; j < g->n_touched; j++) {
+            size_t b = (size_t)g->touched[j] * BLK;
+            float *acc = g->acc + b, *tmp = g->tmp + b;
+            if (k > 0)
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < BIG ? smin(acc[v], tmp[v], k) : acc[v];
+            else
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < acc[v] ? tmp[v] : acc[v];
+        }
+    }
+    return 0;
+}
+
 /* Host difference and the soil's floor, then the band's clamp, on every
  * block; each block's stamp becomes 1 when a voxel of it is inside. 1 when
  * the run stopped. */
@@ -585,22 +633,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     roots_wind rw;
     if (!caps || !T || !vcum) goto nomem;
     v3 *N = T + net->n_pts;
-    double area = 0;
-    n_caps = 0;
-    for (uint32_t t = 0; t < net->n_poly; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
-        tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
-        vcum[pl->off] = 0;
-        for (uint32_t i = 0; i + 1 < pl->n; i++) {
-            uint32_t at = pl->off + i;
-            capsule *c = &caps[n_caps++];
-            roots_capsule_set(c, net, p, t, at);
-            double l = v3_dist(c->a, c->b);
-            vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
-            area += BANYAN_PI * (c->ra + c->rb) * l;
-        }
-    }
+    double area = capsules_of(net, p, caps, T, vcum, r);
     double est = area / (h * h);
     if (est > 2.0 * p->max_vertices) {
         st = banyan_fail(err, BANYAN_E_LIMIT,
@@ -628,24 +661,11 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
      * the voxel whose block it looks in. */
     g.list_cut = 0.25 * k + 1.25 * h;
     if (grid_rehash(&g, 4096)) goto nomem;
-    for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
-        if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
-            st = prog_fail(net->prog, err, "fused roots surface");
-            goto done;
-        }
-        g.n_touched = 0;
-        for (uint32_t i = 0; i + 1 < pl->n; i++, ci++) raster_capsule(&g, &caps[ci], ci, t + 1);
-        if (g.nomem) goto nomem;
-        for (uint32_t j = 0; j < g.n_touched; j++) {
-            size_t b = (size_t)g.touched[j] * BLK;
-            float *acc = g.acc + b, *tmp = g.tmp + b;
-            if (k > 0)
-                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < BIG ? smin(acc[v], tmp[v], k) : acc[v];
-            else
-                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < acc[v] ? tmp[v] : acc[v];
-        }
+    int fu = field_union(&g, net, caps, k);
+    if (fu == 1) goto nomem;
+    if (fu == 2) {
+        st = prog_fail(net->prog, err, "fused roots surface");
+        goto done;
     }
 
     STAGE(1);
