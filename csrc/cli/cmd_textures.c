@@ -8,8 +8,8 @@
 
 #include "banyan.h"
 #include "cli.h"
-#include "core/atomic_file.h"
-#include "core/numparse.h"
+#include "base/atomic_file.h"
+#include "base/numparse.h"
 
 static const char *const kind_names[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
                                                          "ivy_stem"};

@@ -6,8 +6,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "core/dmath.h"
-#include "core/numparse.h"
+#include "base/dmath.h"
+#include "base/numparse.h"
 
 typedef struct tube_demo_params {
     int32_t sides;

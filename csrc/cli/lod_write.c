@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "core/numparse.h"
+#include "base/numparse.h"
 
 int cli_lod_parse(const char *spec, cli_lod *out) {
     memset(out, 0, sizeof *out);

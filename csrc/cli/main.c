@@ -19,8 +19,8 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "core/atomic_file.h"
-#include "core/numparse.h"
+#include "base/atomic_file.h"
+#include "base/numparse.h"
 
 static double now_ms(void) {
     struct timespec t;
@@ -34,21 +34,6 @@ static int32_t show_progress(void *user, double done) {
     fflush(stderr);
     return 0;
 }
-
-static void append(cli_stats *s, const char *key, const char *val) {
-    if (s->len >= sizeof s->buf) return;
-    int n = snprintf(s->buf + s->len, sizeof s->buf - s->len, "%s\"%s\": %s", s->len ? ", " : "", key, val);
-    if (n > 0) s->len += (size_t)n;
-    if (s->len > sizeof s->buf) s->len = sizeof s->buf;
-}
-
-void cli_stat_num(cli_stats *s, const char *key, double v) {
-    char b[64];
-    snprintf(b, sizeof b, "%.17g", v);
-    append(s, key, b);
-}
-
-void cli_stat_raw(cli_stats *s, const char *key, const char *json) { append(s, key, json); }
 
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
@@ -244,6 +229,142 @@ static int out_path_ok(const cli_command *cmd, const char *path) {
     return 1;
 }
 
+/* The flags of a generator command. */
+typedef struct cli_args {
+    const char *out_path, *seed;
+    int stats, list;
+    cli_lod lod;
+    banyan_gltf_options gltf_opt;
+    const char **sets, **host_args; /* argc entries each */
+    int n_sets, n_host_args;
+    const char *threads_text; /* --threads as given: also the ivy's and the tree's own threads */
+} cli_args;
+
+/* The command line after the command: every flag into A and job. 0, or 1
+ * on an unexpected argument, 2 on a bad flag's value (both reported). */
+static int parse_args(int argc, char **argv, const cli_command *cmd, cli_job *job, cli_args *A) {
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        int has_val = i + 1 < argc;
+        if (!strcmp(a, "--preset") && has_val) job->preset_path = argv[++i];
+        else if (!strcmp(a, "--seed") && has_val) A->seed = argv[++i];
+        else if (!strcmp(a, "--set") && has_val) A->sets[A->n_sets++] = argv[++i];
+        else if (!strcmp(a, "--host") && has_val) A->host_args[A->n_host_args++] = argv[++i];
+        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) A->out_path = argv[++i];
+        else if (!strcmp(a, "--threads") && has_val) {
+            const char *v = argv[++i];
+            long long t;
+            if (!num_parse_int(v, 0, CLI_MAX_THREADS, &t)) {
+                fprintf(stderr, "banyan %s: --threads '%s' must be a whole number in [0, %d] (0: all cores)\n",
+                        cmd->name, v, CLI_MAX_THREADS);
+                goto bad_flag;
+            }
+            job->threads = (int)t;
+            A->threads_text = v;
+        }
+        else if (!strcmp(a, "--stats")) A->stats = 1;
+        else if (!strcmp(a, "--textures") && has_val) {
+            const char *v = argv[++i];
+            if (strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
+                goto bad_flag;
+            }
+            A->gltf_opt.textures = !strcmp(v, "on");
+        } else if (!strcmp(a, "--texture-cache") && has_val) {
+            const char *v = argv[++i]; /* on, off or a folder */
+            if (!v[0]) {
+                fprintf(stderr, "banyan %s: --texture-cache '' must be on, off or a folder\n", cmd->name);
+                goto bad_flag;
+            }
+            A->gltf_opt.texture_cache = strcmp(v, "off") != 0;
+            A->gltf_opt.texture_cache_dir = strcmp(v, "on") && strcmp(v, "off") ? v : NULL;
+        } else if (!strcmp(a, "--texture-size") && has_val) {
+            const char *v = argv[++i];
+            long long n;
+            if (!num_parse_int(v, 64, 8192, &n) || (n & (n - 1))) {
+                fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
+                        v);
+                goto bad_flag;
+            }
+            A->gltf_opt.texture_size = (int32_t)n;
+        }
+        else if (!strcmp(a, "--lod") && has_val) {
+            const char *v = argv[++i];
+            if (!cli_lod_parse(v, &A->lod)) {
+                fprintf(stderr,
+                        "banyan %s: --lod '%s' must be up to %d falling ratios in [0.001, 1), comma-separated, "
+                        "optionally ending in billboard (e.g. 0.5,0.15,billboard)\n",
+                        cmd->name, v, CLI_MAX_LODS);
+                goto bad_flag;
+            }
+        }
+        else if (!strcmp(a, "--engine-uvs")) A->gltf_opt.engine_uvs = 1;
+        else if (!strcmp(a, "--fsync")) A->gltf_opt.sync = 1;
+        else if (!strcmp(a, "--compact")) A->gltf_opt.compact = 1;
+        else if (!strcmp(a, "--list")) A->list = 1;
+        else {
+            fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
+            return 1;
+        }
+    }
+    return 0;
+bad_flag:
+    return 2;
+}
+
+/* The command's params: its defaults, the preset (*text keeps the file's
+ * text for its hosts), --seed, --threads and the --set pairs. 0, or 1 on
+ * an error (reported). */
+static int load_params(const cli_command *cmd, cli_job *job, const cli_args *A, void *params, char **text,
+                       banyan_error *err) {
+    cmd->init(params);
+    banyan_generator g = (banyan_generator)cmd->generator;
+    if (job->preset_path) {
+        char why[4200];
+        *text = read_preset(job->preset_path, &job->preset_len, why, sizeof why);
+        if (!*text) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, why);
+            return 1;
+        }
+        job->preset_text = *text;
+        if (cmd->generator < 0) {
+            fprintf(stderr, "banyan %s: this command takes no preset\n", cmd->name);
+            return 1;
+        }
+        if (banyan_preset_apply(g, params, *text, job->preset_len, job->preset_path, err)) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, err->message);
+            return 1;
+        }
+    }
+    if (A->seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", A->seed, err)) {
+        fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err->message);
+        return 1;
+    }
+    /* Before the --set pairs, so that --set threads=N still wins. */
+    if (A->threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
+        banyan_param_set_text(g, params, "threads", A->threads_text, err)) {
+        fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err->message);
+        return 1;
+    }
+    for (int i = 0; i < A->n_sets; i++) {
+        char key[128];
+        const char *eq = strchr(A->sets[i], '=');
+        if (!eq || eq == A->sets[i] || (size_t)(eq - A->sets[i]) >= sizeof key) {
+            fprintf(stderr, "banyan %s: --set '%s' must look like key=value\n", cmd->name, A->sets[i]);
+            return 1;
+        }
+        memcpy(key, A->sets[i], (size_t)(eq - A->sets[i]));
+        key[eq - A->sets[i]] = '\0';
+        banyan_status s = cmd->generator >= 0 ? banyan_param_set_text(g, params, key, eq + 1, err)
+                                              : cmd->set(params, key, eq + 1, err);
+        if (s) {
+            fprintf(stderr, "banyan %s: --set %s: %s\n", cmd->name, A->sets[i], err->message);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -261,90 +382,27 @@ int main(int argc, char **argv) {
     }
 
     static cli_job job; /* large (hosts); one per process */
-    const char *out_path = NULL, *seed = NULL;
-    int stats = 0, list = 0;
-    cli_lod lod = {0, 0, {0}};
-    banyan_gltf_options gltf_opt;
-    banyan_gltf_options_init(&gltf_opt);
-    const char **sets = calloc((size_t)argc, sizeof *sets), **host_args = calloc((size_t)argc, sizeof *host_args);
-    int n_sets = 0, n_host_args = 0;
-    const char *threads_text = NULL; /* --threads as given: also the ivy's and the tree's own threads */
-    if (!sets || !host_args) {
-        free(sets);
-        free(host_args);
+    cli_args A = {NULL, NULL, 0, 0, {0, 0, {0}}, {0}, NULL, NULL, 0, 0, NULL};
+    banyan_gltf_options_init(&A.gltf_opt);
+    A.sets = calloc((size_t)argc, sizeof *A.sets);
+    A.host_args = calloc((size_t)argc, sizeof *A.host_args);
+    if (!A.sets || !A.host_args) {
+        free(A.sets);
+        free(A.host_args);
         return 1;
     }
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        int has_val = i + 1 < argc;
-        if (!strcmp(a, "--preset") && has_val) job.preset_path = argv[++i];
-        else if (!strcmp(a, "--seed") && has_val) seed = argv[++i];
-        else if (!strcmp(a, "--set") && has_val) sets[n_sets++] = argv[++i];
-        else if (!strcmp(a, "--host") && has_val) host_args[n_host_args++] = argv[++i];
-        else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && has_val) out_path = argv[++i];
-        else if (!strcmp(a, "--threads") && has_val) {
-            const char *v = argv[++i];
-            long long t;
-            if (!num_parse_int(v, 0, CLI_MAX_THREADS, &t)) {
-                fprintf(stderr, "banyan %s: --threads '%s' must be a whole number in [0, %d] (0: all cores)\n",
-                        cmd->name, v, CLI_MAX_THREADS);
-                goto bad_flag;
-            }
-            job.threads = (int)t;
-            threads_text = v;
-        }
-        else if (!strcmp(a, "--stats")) stats = 1;
-        else if (!strcmp(a, "--textures") && has_val) {
-            const char *v = argv[++i];
-            if (strcmp(v, "on") && strcmp(v, "off")) {
-                fprintf(stderr, "banyan %s: --textures '%s' must be on or off\n", cmd->name, v);
-                goto bad_flag;
-            }
-            gltf_opt.textures = !strcmp(v, "on");
-        } else if (!strcmp(a, "--texture-cache") && has_val) {
-            const char *v = argv[++i]; /* on, off or a folder */
-            if (!v[0]) {
-                fprintf(stderr, "banyan %s: --texture-cache '' must be on, off or a folder\n", cmd->name);
-                goto bad_flag;
-            }
-            gltf_opt.texture_cache = strcmp(v, "off") != 0;
-            gltf_opt.texture_cache_dir = strcmp(v, "on") && strcmp(v, "off") ? v : NULL;
-        } else if (!strcmp(a, "--texture-size") && has_val) {
-            const char *v = argv[++i];
-            long long n;
-            if (!num_parse_int(v, 64, 8192, &n) || (n & (n - 1))) {
-                fprintf(stderr, "banyan %s: --texture-size '%s' must be a power of two in [64, 8192]\n", cmd->name,
-                        v);
-                goto bad_flag;
-            }
-            gltf_opt.texture_size = (int32_t)n;
-        }
-        else if (!strcmp(a, "--lod") && has_val) {
-            const char *v = argv[++i];
-            if (!cli_lod_parse(v, &lod)) {
-                fprintf(stderr,
-                        "banyan %s: --lod '%s' must be up to %d falling ratios in [0.001, 1), comma-separated, "
-                        "optionally ending in billboard (e.g. 0.5,0.15,billboard)\n",
-                        cmd->name, v, CLI_MAX_LODS);
-                goto bad_flag;
-            }
-        }
-        else if (!strcmp(a, "--engine-uvs")) gltf_opt.engine_uvs = 1;
-        else if (!strcmp(a, "--fsync")) gltf_opt.sync = 1;
-        else if (!strcmp(a, "--compact")) gltf_opt.compact = 1;
-        else if (!strcmp(a, "--list")) list = 1;
-        else {
-            fprintf(stderr, "banyan %s: unexpected argument '%s'\n", cmd->name, a);
-            free(sets);
-            free(host_args);
-            return usage(stderr);
-        }
-        continue;
-    bad_flag:
-        free(sets);
-        free(host_args);
-        return 2;
+    int bad = parse_args(argc, argv, cmd, &job, &A);
+    if (bad) {
+        free(A.sets);
+        free(A.host_args);
+        return bad == 1 ? usage(stderr) : 2;
     }
+    const char *out_path = A.out_path;
+    int stats = A.stats, list = A.list;
+    cli_lod lod = A.lod;
+    banyan_gltf_options gltf_opt = A.gltf_opt;
+    const char **sets = A.sets, **host_args = A.host_args;
+    int n_host_args = A.n_host_args;
     if (list) {
         list_params(cmd);
         free(sets);
@@ -374,51 +432,8 @@ int main(int argc, char **argv) {
         fprintf(stderr, "banyan %s: --host: this command takes no hosts (roots and ivy do)\n", cmd->name);
         goto out;
     }
-    cmd->init(params);
+    if (load_params(cmd, &job, &A, params, &text, &err)) goto out;
     banyan_generator g = (banyan_generator)cmd->generator;
-    if (job.preset_path) {
-        char why[4200];
-        text = read_preset(job.preset_path, &job.preset_len, why, sizeof why);
-        if (!text) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, why);
-            goto out;
-        }
-        job.preset_text = text;
-        if (cmd->generator < 0) {
-            fprintf(stderr, "banyan %s: this command takes no preset\n", cmd->name);
-            goto out;
-        }
-        if (banyan_preset_apply(g, params, text, job.preset_len, job.preset_path, &err)) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
-            goto out;
-        }
-    }
-    if (seed && cmd->generator >= 0 && banyan_param_set_text(g, params, "seed", seed, &err)) {
-        fprintf(stderr, "banyan %s: --seed: %s\n", cmd->name, err.message);
-        goto out;
-    }
-    /* Before the --set pairs, so that --set threads=N still wins. */
-    if (threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
-        banyan_param_set_text(g, params, "threads", threads_text, &err)) {
-        fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err.message);
-        goto out;
-    }
-    for (int i = 0; i < n_sets; i++) {
-        char key[128];
-        const char *eq = strchr(sets[i], '=');
-        if (!eq || eq == sets[i] || (size_t)(eq - sets[i]) >= sizeof key) {
-            fprintf(stderr, "banyan %s: --set '%s' must look like key=value\n", cmd->name, sets[i]);
-            goto out;
-        }
-        memcpy(key, sets[i], (size_t)(eq - sets[i]));
-        key[eq - sets[i]] = '\0';
-        banyan_status s = cmd->generator >= 0 ? banyan_param_set_text(g, params, key, eq + 1, &err)
-                                              : cmd->set(params, key, eq + 1, &err);
-        if (s) {
-            fprintf(stderr, "banyan %s: --set %s: %s\n", cmd->name, sets[i], err.message);
-            goto out;
-        }
-    }
     /* The command's budget, from here to the written file: the hosts'
      * reading, generation, --lod, the textures and the write. */
     cli_budget budget;

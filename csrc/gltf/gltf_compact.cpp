@@ -22,8 +22,8 @@
  * positions and pivots (compressed all the same). */
 #include "gltf/gltf_compact.h"
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 #include <cjson/cJSON.h>
 #include <meshoptimizer.h>

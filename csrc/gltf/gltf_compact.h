@@ -12,7 +12,7 @@
  * buffer as a data URI). `write_plain` writes the uncompressed .glb to the
  * path it is given (a temporary file beside `path`, removed afterwards);
  * its result is read back, quantized and compressed. The target is
- * replaced only when all of it is written (core/atomic_file.h); `sync`
+ * replaced only when all of it is written (base/atomic_file.h); `sync`
  * fsyncs it first. `engine_uvs`: TEXCOORD_1 and _2 hold pivots
  * (banyan_gltf_options.engine_uvs), which follow the positions' frame. */
 banyan_status gltf_compact_write(const char *path, bool binary, bool sync, bool engine_uvs,

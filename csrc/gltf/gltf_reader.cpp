@@ -22,7 +22,7 @@
 #include "gltf/gltf_reader.h"
 
 #include "banyan.h"
-#include "core/error.h"
+#include "base/error.h"
 
 #include <cjson/cJSON.h>
 
@@ -151,7 +151,7 @@ struct reader {
     std::vector<uint32_t> tri;    /* 3 per triangle */
     std::unordered_map<vkey, uint32_t, vkey_hash> weld;
     /* pos is relative to off (Z up, whole metres): 0 unless the first mesh
-     * node stands farther than 4096 m out (core/frame.h's FRAME_NEAR), so a
+     * node stands farther than 4096 m out (base/frame.h's FRAME_NEAR), so a
      * far mesh keeps its float precision; read_host folds off into the
      * transform, in double. */
     double off[3] = {0, 0, 0};

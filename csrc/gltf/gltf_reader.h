@@ -12,7 +12,7 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
-#include "core/progress.h"
+#include "base/progress.h"
 
 /* The work of reading a .glb, counted from its header and JSON chunk
  * before its binary chunk is read: every node instance of every primitive

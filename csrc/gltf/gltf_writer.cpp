@@ -41,14 +41,14 @@
  * buffer, whatever the threads do.
  *
  * Nothing is created on disk until every input has been checked. The file
- * is written through core/atomic_file.h: a write that fails part-way
+ * is written through base/atomic_file.h: a write that fails part-way
  * leaves the old file as it was; fsync only with opt->sync. No exception leaves this file.
  */
 #include "banyan.h"
-#include "core/atomic_file.h"
-#include "core/dmath.h"
-#include "core/error.h"
-#include "core/progress.h"
+#include "base/atomic_file.h"
+#include "base/dmath.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "gltf/gltf_compact.h"
 #include "textures/tex_budget.h"
 #include "textures/tex_cache.h"
@@ -772,7 +772,7 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
     return attrs;
 }
 
-/* The temporary output file (core/atomic_file.h), removed unless
+/* The temporary output file (base/atomic_file.h), removed unless
  * commit() succeeded. */
 class OutFile {
   public:

@@ -34,7 +34,7 @@
 
 /* Boxes keep their exact obb queries, in the order they always had (so a
  * box-only plant is the same to the byte); the meshes of a host set come
- * after them in every query, through core/hosts.h. A mesh query is asked
+ * after them in every query, through hosts/hosts.h. A mesh query is asked
  * with a cap (exact below it, +-cap beyond): the farthest that matters to
  * the caller. */
 

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "ivy_internal.h"
 
 static double now_seconds(void) {
@@ -589,12 +589,6 @@ banyan_status ivy_grow(banyan_ivy *iv, int32_t n, int vertex_stop, banyan_error 
     return BANYAN_OK;
 }
 
-void ivy_budget_start(const banyan_ivy *iv) {
-    prog *g = iv->prog;
-    if (g != &iv->own || g->cancelled) return;
-    prog_budget_resume(g, iv->p.max_seconds, iv->p.max_memory_mb, iv->step_seconds, iv->rss0_mb);
-}
-
 /* The step API keeps max_vertices as it grows, like the one shot (#21). */
 banyan_status banyan_ivy_step(banyan_ivy *iv, int32_t n, banyan_error *err) { return ivy_grow(iv, n, 1, err); }
 
@@ -703,7 +697,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     } else if (nb) {
         memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
     }
-    /* The frame: the set's, or one picked from the boxes (core/frame.h). */
+    /* The frame: the set's, or one picked from the boxes (base/frame.h). */
     v3 O = set ? set->origin : v3_make(0, 0, 0);
     if (!set) {
         v3 lo, hi, a, b;

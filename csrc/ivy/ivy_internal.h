@@ -2,18 +2,18 @@
  * a binary tree of buds in creation order, a spatial hash over bud
  * positions for the light look-up, and the hosts: oriented boxes (the
  * given ones, then the ground) with their exact obb queries, and the
- * triangle meshes of a host set (core/hosts.h). Shared by the ivy source
+ * triangle meshes of a host set (hosts/hosts.h). Shared by the ivy source
  * files only. */
 #ifndef BANYAN_IVY_INTERNAL_H
 #define BANYAN_IVY_INTERNAL_H
 
 #include "banyan.h"
-#include "core/frame.h"
-#include "core/hosts.h"
-#include "core/obb.h"
-#include "core/progress.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "base/frame.h"
+#include "hosts/hosts.h"
+#include "hosts/obb.h"
+#include "base/progress.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 /* Spatial hash cell edge, in units of leaf_max (the light look-up radius);
  * at least 1: a look-up reads at most 4 cells per axis (grid.c). */
@@ -84,7 +84,7 @@ typedef struct ivy_cell {
 
 struct banyan_ivy {
     banyan_ivy_params p;   /* start and ground_z moved into the frame below */
-    v3 origin;             /* world position of the frame the plant grows in (core/frame.h) */
+    v3 origin;             /* world position of the frame the plant grows in (base/frame.h) */
     obb *hosts;
     uint32_t n_hosts;      /* the given boxes, then the ground when params.ground: stems keep out of all */
     uint32_t n_grip;       /* the first n_grip are the ones suckers grip (the ground only as a host) */
@@ -312,8 +312,13 @@ uint64_t ivy_mesh_vertex_floor(const banyan_ivy_params *p, int64_t n);
 /* Starts the handle's own budget for a step or mesh call: its clock as if
  * it had run through every step call so far (step_seconds), memory from
  * banyan_ivy_create. A stopped handle stays stopped (a stop can fall in
- * the middle of a step). No-op for a one-shot generation's prog. */
-void ivy_budget_start(const banyan_ivy *iv);
+ * the middle of a step). No-op for a one-shot generation's prog. Inline:
+ * growth (growth.c) and meshing (mesh.c) both start it. */
+static inline void ivy_budget_start(const banyan_ivy *iv) {
+    prog *g = iv->prog;
+    if (g != &iv->own || g->cancelled) return;
+    prog_budget_resume(g, iv->p.max_seconds, iv->p.max_memory_mb, iv->step_seconds, iv->rss0_mb);
+}
 
 /* Grows n steps; stops with BANYAN_E_LIMIT as soon as the plant could no
  * longer be meshed within max_vertices when vertex_stop is set. */

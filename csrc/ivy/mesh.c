@@ -15,7 +15,7 @@
  * from a PCG32 stream of the leaf's own, so the growth is not disturbed.
  * Every vertex carries `birth_step` (the step its bud was created) and
  * `part` (0 stem and petiole, 1 leaf blade), and the wind and birth
- * attributes (core/wind.h; docs/ivy.md "Wind and growth attributes"):
+ * attributes (mesh/wind.h; docs/ivy.md "Wind and growth attributes"):
  * birth = birth_step / the last bud's (a leaf half a step later); a
  * chain's pivot is its first point (a lateral's parent bud), its level the
  * number of laterals from a first bud; a stem held by its suckers or lying
@@ -31,16 +31,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
-#include "core/error.h"
-#include "core/leaf_look.h"
-#include "core/mesh_builder.h"
-#include "core/noise.h"
-#include "core/obb.h"
-#include "core/pool.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "base/error.h"
+#include "textures/leaf_look.h"
+#include "mesh/mesh_builder.h"
+#include "base/noise.h"
+#include "hosts/obb.h"
+#include "base/pool.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 #include "ivy_internal.h"
 
 #define LEAF_OUTLINE 12 /* outline points; the card has LEAF_OUTLINE + 1 vertices */
@@ -432,7 +431,7 @@ static void leaf_wind(mesh_builder *mb, const wind_slots *ws, const banyan_ivy *
     wind_birth(mb, ws, birth_scale > 0 ? birth : 0.0);
 }
 
-/* The mesh on up to p->threads threads (core/pool.h), the same bytes on
+/* The mesh on up to p->threads threads (base/pool.h), the same bytes on
  * any count: every stem, petiole and blade has its place in the output
  * planned before it is written, so items write disjoint ranges. Items,
  * in queue order: leaf placement by blocks of buds (the costly part:
@@ -882,11 +881,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
     atomic_init(&J.done, 0);
     atomic_init(&J.cancel, 0);
     atomic_init(&J.status, 0);
-    int threads = p->threads;
-    if (threads == 0) {
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = c < 1 ? 1 : c > BANYAN_IVY_MAX_THREADS ? BANYAN_IVY_MAX_THREADS : (int)c;
-    }
+    int threads = pool_threads(p->threads, BANYAN_IVY_MAX_THREADS);
     if (iv->n < MESH_MIN_BUDS) threads = 1;
     if (!mb.status) pool_run(threads, mesh_work, &J, iv->prog, &J.cancel);
     int cancelled = atomic_load(&J.cancel);

@@ -3,7 +3,7 @@
  * --set and the add-on use, and the checks that tie fields together. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "ivy_internal.h"
 #include "params/params.h"
 

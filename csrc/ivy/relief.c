@@ -6,7 +6,7 @@
  * edge of its face, where the cover frays. */
 #include <math.h>
 
-#include "core/dmath.h"
+#include "base/dmath.h"
 #include "ivy_internal.h"
 
 #define EDGE_PAST 0.05 /* m past an edge where another host would carry the face on */

@@ -46,10 +46,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/leaf_look.h"
-#include "core/pool.h"
-#include "core/tube.h"
+#include "base/error.h"
+#include "textures/leaf_look.h"
+#include "base/pool.h"
+#include "mesh/tube.h"
 #include "keyaki_internal.h"
 
 /* A leaf appears this much (of the tree's growth) after its wood. */

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "keyaki_internal.h"
 
 int keyaki_stopped(keyaki_run *r) {

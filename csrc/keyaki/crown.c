@@ -17,7 +17,7 @@
  * crown its leaf mass: on from every twig's end, beside the nodes and
  * along long finest twigs. Branches deeper than leaf_levels carry shoots
  * of spray cards where they lie on the crown's outer shell, from
- * SHELL_FROM of the height up (shell_clusters).
+ * SHELL_FROM of the height up (crown_shell.c).
  *
  * Light and crowding: a cluster is approximated by its plan-view
  * rectangle (what it shades under a zenith sun). Clusters grow from the
@@ -39,17 +39,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/leaf_look.h"
-#include "core/tube.h"
-#include "keyaki_internal.h"
-#include "segments/segment_core.h"
+#include "base/error.h"
+#include "textures/leaf_look.h"
+#include "mesh/tube.h"
+#include "crown_internal.h"
 
 #define EXTEND 6.0         /* a cluster grows at most this x its length on into empty cells */
 #define HOLE_SHARE 0.6     /* a cluster grows on while this share of the cells ahead are holes */
 #define ZIGZAG_DEG 12.0     /* a twig's turn at each node, alternately */
-#define CELL 0.2            /* m, the light grid's cell */
-#define MAX_TWIG_PTS 64     /* points of one twig's polyline */
 #define TWIG_SETBACK_CAP 0.8 /* a twig's base radius: at most this x its parent's there */
 #define CARD_LENGTH 5.5     /* a spray card's length / leaf_size: its painted leaves come out leaf-sized */
 #define CARD_ROLL_DEG 35.0  /* a spray card's largest roll about its twig */
@@ -69,24 +66,11 @@ void keyaki_crown_free(keyaki_crown *c) {
     memset(c, 0, sizeof *c);
 }
 
-/* Room for `more` items in a doubling array. */
-static int grow_array(void **a, int32_t *cap, int32_t need, size_t size) {
-    if (need <= *cap) return 0;
-    int64_t nc = *cap ? *cap : 256;
-    while (nc < need) nc *= 2;
-    if (nc > INT32_MAX / 2) return 1;
-    void *p = realloc(*a, (size_t)nc * size);
-    if (!p) return 1;
-    *a = p;
-    *cap = (int32_t)nc;
-    return 0;
-}
-
 static int add_points(keyaki_crown *c, int32_t k) {
     int32_t cap = c->cap_pts;
-    if (grow_array((void **)&c->pts, &cap, c->n_pts + k, sizeof(v3))) return 1;
+    if (crown_grow_array((void **)&c->pts, &cap, c->n_pts + k, sizeof(v3))) return 1;
     cap = c->cap_pts;
-    if (grow_array((void **)&c->rad, &cap, c->n_pts + k, sizeof(double))) return 1;
+    if (crown_grow_array((void **)&c->rad, &cap, c->n_pts + k, sizeof(double))) return 1;
     c->cap_pts = cap;
     return 0;
 }
@@ -111,18 +95,9 @@ typedef struct ctx {
     double band;           /* m: the bands' height (CARD_BAND, more on a giant tree) */
 } ctx;
 
-/* Stops the crown once its mesh would pass max_vertices (4 a leaf, at
- * most 6 a twig point): huge settings are refused before they fill
- * memory, as the body's plan refuses them before meshing. */
-static int64_t budget(const banyan_keyaki_params *p, int count_only) {
-    /* Sizing stores no leaves and must give the exact count (an avenue
-     * sums its trees' before refusing): only the mesh ceiling bounds it. */
-    return count_only ? (int64_t)MB_VERTEX_CEILING : (int64_t)p->max_vertices;
-}
-
 static int over_budget(ctx *x, int64_t more_leaves, int64_t more_points) {
     int64_t v = 4 * ((int64_t)x->c->n_leaves + more_leaves) + 6 * ((int64_t)x->c->n_pts + more_points);
-    if (v > budget(x->p, x->c->count_only)) x->oom = 2;
+    if (v > crown_budget(x->p, x->c->count_only)) x->oom = 2;
     return x->oom != 0;
 }
 
@@ -138,8 +113,6 @@ static int keep_budget(ctx *x, banyan_error *err) {
         x->oom = 4;
     return x->oom != 0;
 }
-
-static inline double clampd(double x, double a, double b) { return x < a ? a : x > b ? b : x; }
 
 /* Point and unit tangent at arc length s along polyline pts[0..n-1];
  * *r (may be NULL) the radius there, rad linear between points. */
@@ -193,7 +166,7 @@ static void leaves_along(ctx *x, const v3 *pts, const double *rad, int32_t n, do
         c->n_leaves += k;
         return;
     }
-    if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + k, sizeof(keyaki_leaf))) {
+    if (crown_grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + k, sizeof(keyaki_leaf))) {
         x->oom = 1;
         return;
     }
@@ -260,7 +233,7 @@ static void card_at(ctx *x, v3 at, v3 t, v3 up, int32_t twig, int32_t level, dou
         c->n_leaves++;
         return;
     }
-    if (grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + 1, sizeof(keyaki_leaf))) {
+    if (crown_grow_array((void **)&c->leaves, &c->cap_leaves, c->n_leaves + 1, sizeof(keyaki_leaf))) {
         x->oom = 1;
         return;
     }
@@ -311,7 +284,7 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     int surface = parent < 0;
     int32_t np = segs + 1 + surface;
     if (over_budget(x, 0, np)) return 0;
-    if (grow_array((void **)&c->twigs, &c->cap_twigs, c->n_twigs + 1, sizeof(keyaki_twig)) || add_points(c, np)) {
+    if (crown_grow_array((void **)&c->twigs, &c->cap_twigs, c->n_twigs + 1, sizeof(keyaki_twig)) || add_points(c, np)) {
         x->oom = 1;
         return 0;
     }
@@ -418,222 +391,10 @@ static int32_t grow_twig(ctx *x, int32_t order, int32_t parent, v3 at, v3 d, v3 
     return tips;
 }
 
-/* A cluster waiting to grow: a first-order twig planned on the skeleton. */
-typedef struct cand {
-    v3 at, d, h;     /* start (on the branch's axis), direction, horizontal side vector */
-    double len, r_host, z;
-    double path;     /* m: path length from the trunk base to `at` */
-    int32_t node, index;
-    int tip;         /* a skeleton tip's continuation: never dropped */
-    int shell;       /* on a branch below leaf_levels, on the crown's outer shell: a spur at worst */
-} cand;
-
 static int cand_cmp(const void *a, const void *b) {
     const cand *A = a, *B = b;
     if (A->z != B->z) return A->z > B->z ? -1 : 1;
     return A->index < B->index ? -1 : A->index > B->index;
-}
-
-/* The plan-view shade grid. */
-typedef struct grid {
-    double x0, y0;
-    int32_t nx, ny;
-    int32_t *n;
-    uint8_t *in; /* 1: the cell's centre lies inside the crown's planned outline */
-    int32_t *sky; /* SKY_OBLIQUE more count layers, one per oblique sky direction (NULL: zenith only) */
-    double zref;  /* m: the height whose plan the oblique layers share */
-} grid;
-
-/* The sky: light from the zenith (weight SKY_ZENITH_WEIGHT) and from
- * SKY_OBLIQUE directions SKY_ELEVATION_DEG above the horizon, evenly round
- * (the rest of the weight shared). A cluster seen along an oblique
- * direction is its plan rectangle shifted by (z - zref) cot(elevation)
- * away from that direction's light; a layer counts those shifted
- * rectangles. So a cluster on the crown's flank, under others but open
- * to the side, keeps the side's light, as on a real tree whose crown is
- * a leafy shell lit by the whole sky, not a cap lit from above. */
-#define SKY_OBLIQUE 4
-#define SKY_ELEVATION_DEG 45.0
-#define SKY_ZENITH_WEIGHT 0.4
-
-/* A cluster's plan rectangle: from o along unit a (2D) for `len`, half
- * width w either side. */
-typedef struct rect {
-    double ox, oy, ax, ay, len, w;
-} rect;
-
-static rect cluster_rect(const banyan_keyaki_params *p, v3 at, v3 d, v3 h, double len, double wlen) {
-    rect r;
-    double hx = sqrt(d.x * d.x + d.y * d.y);
-    r.ox = at.x;
-    r.oy = at.y;
-    if (hx > 0.2) {
-        r.ax = d.x / hx;
-        r.ay = d.y / hx;
-    } else { /* a steep cluster: its spray spreads along h */
-        double hh = sqrt(h.x * h.x + h.y * h.y);
-        r.ax = hh > 1e-9 ? h.x / hh : 1.0;
-        r.ay = hh > 1e-9 ? h.y / hh : 0.0;
-    }
-    double reach = p->leaf_size * 1.2;
-    double sub = p->twig_levels >= 2 ? fmin(len, wlen) * p->twig_ratio * dm_sin(deg2rad(p->twig_angle)) : 0.0;
-    r.w = sub + reach;
-    r.len = len * (hx > 0.2 ? hx : 0.2) + reach;
-    if (r.len < r.w) r.len = r.w;
-    return r;
-}
-
-/* Visits the cells whose centres lie in r: side -1 left half, +1 right. */
-#define FOR_RECT_CELLS(g, r, BODY)                                                                                 \
-    do {                                                                                                           \
-        /* the rectangle's bounding box: half extents about its centre */                                        \
-        double ex_ = 0.5 * fabs((r).ax) * (r).len + fabs((r).ay) * (r).w, ey_ = 0.5 * fabs((r).ay) * (r).len + fabs((r).ax) * (r).w; \
-        double cx_ = (r).ox + 0.5 * (r).ax * (r).len, cy_ = (r).oy + 0.5 * (r).ay * (r).len;                       \
-        int32_t i0_ = (int32_t)floor((cx_ - ex_ - (g)->x0) / CELL), i1_ = (int32_t)floor((cx_ + ex_ - (g)->x0) / CELL); \
-        int32_t j0_ = (int32_t)floor((cy_ - ey_ - (g)->y0) / CELL), j1_ = (int32_t)floor((cy_ + ey_ - (g)->y0) / CELL); \
-        if (i0_ < 0) i0_ = 0;                                                                                      \
-        if (j0_ < 0) j0_ = 0;                                                                                      \
-        if (i1_ > (g)->nx - 1) i1_ = (g)->nx - 1;                                                                  \
-        if (j1_ > (g)->ny - 1) j1_ = (g)->ny - 1;                                                                  \
-        for (int32_t j_ = j0_; j_ <= j1_; j_++)                                                                    \
-            for (int32_t i_ = i0_; i_ <= i1_; i_++) {                                                              \
-                double qx_ = (g)->x0 + (i_ + 0.5) * CELL - (r).ox, qy_ = (g)->y0 + (j_ + 0.5) * CELL - (r).oy;     \
-                double along_ = qx_ * (r).ax + qy_ * (r).ay, across_ = -qx_ * (r).ay + qy_ * (r).ax;               \
-                if (along_ < 0 || along_ > (r).len || fabs(across_) > (r).w) continue;                             \
-                int side = across_ > 0 ? -1 : 1;                                                                   \
-                int32_t *cell = &(g)->n[(size_t)j_ * (size_t)(g)->nx + (size_t)i_];                                \
-                (void)side;                                                                                        \
-                BODY;                                                                                              \
-            }                                                                                                      \
-    } while (0)
-
-/* Shaded fractions of r's left and right halves. */
-static void shade_of(const grid *g, rect r, double layers, double *fl, double *fr) {
-    int32_t nl = 0, nr = 0, sl = 0, sr = 0;
-    FOR_RECT_CELLS(g, r, {
-        int sh = *cell >= layers;
-        if (side < 0) { nl++; sl += sh; } else { nr++; sr += sh; }
-    });
-    *fl = nl ? (double)sl / nl : 0.0;
-    *fr = nr ? (double)sr / nr : 0.0;
-}
-
-static void stamp(grid *g, rect r) { FOR_RECT_CELLS(g, r, { (*cell)++; }); }
-
-/* Oblique layer k of g as a grid of its own, and r as that layer sees a
- * cluster at height z. */
-static grid sky_layer(const grid *g, int k, rect r, double z, rect *rk) {
-    grid gk = *g;
-    gk.n = g->sky + (size_t)k * (size_t)g->nx * (size_t)g->ny;
-    double a = 2.0 * BANYAN_PI * k / SKY_OBLIQUE, t = (z - g->zref) / dm_tan(deg2rad(SKY_ELEVATION_DEG));
-    *rk = r;
-    rk->ox -= t * dm_cos(a);
-    rk->oy -= t * dm_sin(a);
-    return gk;
-}
-
-/* Shaded fractions of r's halves under the whole sky: the weighted mean
- * of the zenith's and every oblique direction's. */
-static void sky_shade(const grid *g, rect r, double z, double layers, double *fl, double *fr) {
-    shade_of(g, r, layers, fl, fr);
-    if (!g->sky) return;
-    double wo = (1.0 - SKY_ZENITH_WEIGHT) / SKY_OBLIQUE;
-    *fl *= SKY_ZENITH_WEIGHT;
-    *fr *= SKY_ZENITH_WEIGHT;
-    for (int k = 0; k < SKY_OBLIQUE; k++) {
-        rect rk;
-        grid gk = sky_layer(g, k, r, z, &rk);
-        double l, q;
-        shade_of(&gk, rk, layers, &l, &q);
-        *fl += wo * l;
-        *fr += wo * q;
-    }
-}
-
-static void sky_stamp(grid *g, rect r, double z) {
-    stamp(g, r);
-    for (int k = 0; g->sky && k < SKY_OBLIQUE; k++) {
-        rect rk;
-        grid gk = sky_layer(g, k, r, z, &rk);
-        stamp(&gk, rk);
-    }
-}
-
-/* Is the cell at (x, y) a hole: inside the outline, no cluster above it? */
-static int hole_at(const grid *g, double x, double y) {
-    int32_t i = (int32_t)floor((x - g->x0) / CELL), j = (int32_t)floor((y - g->y0) / CELL);
-    if (i < 0 || j < 0 || i >= g->nx || j >= g->ny) return 0;
-    size_t k = (size_t)j * (size_t)g->nx + (size_t)i;
-    return g->in[k] && g->n[k] == 0;
-}
-
-/* The plan outline the crown is planned to fill: the convex hull
- * (monotone chain, counter-clockwise) of the clusters' planned starts and
- * ends. Extension into empty cells stays inside it, so growth fills holes
- * without pushing the crown's outline out. */
-typedef struct hull {
-    double *xy;
-    int32_t n;
-} hull;
-
-static int xy_cmp(const void *a, const void *b) {
-    const double *A = a, *B = b;
-    if (A[0] != B[0]) return A[0] < B[0] ? -1 : 1;
-    return A[1] < B[1] ? -1 : A[1] > B[1];
-}
-
-static double turn2(const double *o, const double *a, const double *b) {
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-/* pts: m points (x, y), sorted in place; h->xy needs room for 2 m + 2. */
-static int hull_of(double *pts, int32_t m, hull *h, keyaki_run *run) {
-    if (keyaki_sort(pts, (size_t)m, 2 * sizeof(double), xy_cmp, run)) return 1;
-    double *H = h->xy;
-    int32_t k = 0;
-    for (int32_t i = 0; i < m; i++) {
-        while (k >= 2 && turn2(H + 2 * (k - 2), H + 2 * (k - 1), pts + 2 * i) <= 0) k--;
-        H[2 * k] = pts[2 * i], H[2 * k + 1] = pts[2 * i + 1], k++;
-    }
-    for (int32_t i = m - 2, t = k + 1; i >= 0; i--) {
-        while (k >= t && turn2(H + 2 * (k - 2), H + 2 * (k - 1), pts + 2 * i) <= 0) k--;
-        H[2 * k] = pts[2 * i], H[2 * k + 1] = pts[2 * i + 1], k++;
-    }
-    h->n = k > 1 ? k - 1 : k;
-    return 0;
-}
-
-/* Marks the grid cells whose centres lie inside the convex hull h: one
- * interval a row (the hull is convex). */
-static void hull_mask(const hull *h, grid *g) {
-    for (int32_t j = 0; j < g->ny; j++) {
-        double y = g->y0 + (j + 0.5) * CELL, xl = 1e300, xr = -1e300;
-        for (int32_t e = 0; e < h->n && h->n >= 3; e++) {
-            const double *A = h->xy + 2 * e, *B = h->xy + 2 * ((e + 1) % h->n);
-            if ((A[1] > y && B[1] > y) || (A[1] < y && B[1] < y)) continue;
-            double x = A[1] == B[1] ? A[0] : A[0] + (y - A[1]) * (B[0] - A[0]) / (B[1] - A[1]);
-            double x2 = A[1] == B[1] ? B[0] : x;
-            xl = fmin(xl, fmin(x, x2)), xr = fmax(xr, fmax(x, x2));
-        }
-        for (int32_t i = 0; i < g->nx; i++) {
-            double x = g->x0 + (i + 0.5) * CELL;
-            g->in[(size_t)j * (size_t)g->nx + (size_t)i] = x >= xl && x <= xr;
-        }
-    }
-}
-
-/* Radius of branch x at arc length s (as body.c tapers it). */
-static double branch_radius(const banyan_keyaki_params *p, const keyaki_node *n, const keyaki_node *x, double s) {
-    double r0 = x->parent >= 0 ? n[x->parent].radius : x->radius;
-    int tip = x->child[0] < 0 && x->child[1] < 0;
-    double r1 = tip ? x->radius * p->tip_taper : x->radius;
-    double t = x->length > 0 ? clampd(s / x->length, 0, 1) : 1;
-    return r0 + (r1 - r0) * t;
-}
-
-static v3 horizontal_perp(v3 d) {
-    v3 h = v3_cross(d, v3_make(0, 0, 1));
-    return v3_len2(h) > 1e-12 ? v3_norm(h) : v3_make(1, 0, 0);
 }
 
 /* Leaves along the segment lines of skeleton tip x (twigs_from_segments). */
@@ -648,7 +409,7 @@ static void segment_leaves(ctx *x, const keyaki_node *n, int32_t i) {
         double l = v3_dist(ab[0], ab[1]);
         if (l < 1e-6) continue;
         v3 t = v3_scale(v3_sub(ab[1], ab[0]), 1.0 / l);
-        v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(t), t), t);
+        v3 up = v3_norm_or_perp(v3_cross(crown_horizontal_perp(t), t), t);
         if (up.z < 0) up = v3_neg(up);
         double r = keyaki_twig_radius(x->p, &n[i], lev[j]), rr[2] = {r, r};
         leaves_along(x, ab, rr, 2, 0.1 * l, up, -1, n[i].level + lev[j], path[j / 2]);
@@ -687,113 +448,81 @@ static banyan_status crown_fail(keyaki_crown *c, int why, banyan_status st, cons
         return banyan_fail(err, BANYAN_E_LIMIT,
                            "the tree's twigs and leaves need more than max_vertices = %lld vertices; raise "
                            "max_vertices or lower leaf_density, leaf_levels, twig_levels or raise twig_spacing",
-                           (long long)budget(p, count_only));
+                           (long long)crown_budget(p, count_only));
     return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
 }
 
-/* The crown's outer shell: foliage also grows on branches deeper than
- * leaf_levels from a tip, from SHELL_FROM of the tree's height up, where
- * the branch lies in the outer part of the crown at its height (at least
- * SHELL_OUTER of the widest reach of the skeleton within a metre of that
- * height): clusters every twig_spacing, heading outward, fanned alternately
- * either side of the outward direction. So the crown is leafy from about a
- * third of its height, a dome from below rather than the limbs' star. */
-#define SHELL_FROM 0.25
-#define SHELL_OUTER 0.3
-#define SHELL_BAND 1.0 /* m: height bands of the skeleton's reach */
-#define SHELL_FAN_DEG 150.0 /* a shell cluster heads 15 deg .. this far round its branch from the outward direction */
-#define SHELL_SPACING 0.25 /* x twig_spacing: a shell cluster's spacing along its branch */
-#define SHELL_LENGTH 1.4  /* x twig_length: a shell cluster's (a leafy shoot's) length */
-#define SHELL_LOW_LENGTH 2.2 /* x twig_length: in the crown's lower half (its skirt) */
-
-typedef struct shell {
-    double x0, y0, z0, height;
-    double *env; /* per band: the widest reach round the trunk's foot within a band either side */
-    int32_t bands;
-    int why;     /* a failure: 1 out of memory, 2 past the budget */
-} shell;
-
-static double reach_of(const shell *sh, v3 q) { return sqrt((q.x - sh->x0) * (q.x - sh->x0) + (q.y - sh->y0) * (q.y - sh->y0)); }
-
-static int32_t band_of(const shell *sh, double z) {
-    int32_t b = (int32_t)floor((z - sh->z0) / SHELL_BAND);
-    return b < 0 ? 0 : b >= sh->bands ? sh->bands - 1 : b;
-}
-
-static int shell_of(shell *sh, const keyaki_node *n, int32_t count) {
-    memset(sh, 0, sizeof *sh);
-    if (count <= 0) return 0;
-    sh->x0 = n[0].start.x, sh->y0 = n[0].start.y, sh->z0 = n[0].start.z;
-    double top = sh->z0;
-    for (int32_t i = 0; i < count; i++) top = fmax(top, n[i].start.z + n[i].dir.z * n[i].length);
-    sh->height = top - sh->z0;
-    sh->bands = (int32_t)clampd(ceil(sh->height / SHELL_BAND), 0, 100000) + 1;
-    double *raw = calloc(2 * (size_t)sh->bands, sizeof(double));
-    if (!raw) return 1;
-    for (int32_t i = 0; i < count; i++) {
-        v3 e = v3_madd(n[i].start, n[i].dir, n[i].length);
-        int32_t b = band_of(sh, e.z);
-        raw[b] = fmax(raw[b], reach_of(sh, e));
+/* No twigs of ours: leaves on the segment lines (twigs_from_segments), or
+ * on the skeleton branches within leaf_levels of a tip. */
+static void leaves_without_twigs(ctx *x, const keyaki_node *n, int32_t count, const int32_t *depth,
+                                 const double *npath, banyan_error *err) {
+    const banyan_keyaki_params *p = x->p;
+    for (int32_t i = 0; i < count && !x->oom; i++) {
+        if ((i & 255) == 0 && keep_budget(x, err)) break;
+        int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
+        x->node = i;
+        cluster_stream(&x->lf, p, i, KEYAKI_STREAM_LEAVES);
+        if (p->twigs_from_segments) {
+            if (tip) segment_leaves(x, n, i);
+        } else if (depth[i] < p->leaf_levels) {
+            v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
+            v3 up = v3_norm_or_perp(v3_cross(crown_horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
+            if (up.z < 0) up = v3_neg(up);
+            double rr[2] = {crown_branch_radius(p, n, &n[i], 0), crown_branch_radius(p, n, &n[i], n[i].length)};
+            leaves_along(x, ab, rr, 2, 0.0, up, -1, n[i].level, npath[i]);
+        }
     }
-    double *env = raw + sh->bands;
-    for (int32_t b = 0; b < sh->bands; b++)
-        env[b] = fmax(raw[b], fmax(b > 0 ? raw[b - 1] : 0.0, b + 1 < sh->bands ? raw[b + 1] : 0.0));
-    memmove(raw, env, sizeof(double) * (size_t)sh->bands);
-    sh->env = raw;
-    return 0;
 }
 
-/* Appends the shell clusters of deep branch i (see shell) to *cs; 1 on a
- * failure (sh->why). */
-static int shell_clusters(shell *sh, const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan,
-                          double path, cand **cs, int32_t *nc, int32_t *cap, int count_only) {
+/* Plans the clusters of skeleton branch i (within leaf_levels of a tip):
+ * first-order twigs every twig_spacing, alternating sides, and a skeleton
+ * tip's continuation; appended to *pcs. 0, or 1 when out of memory, 2 past
+ * the budget. */
+static int plan_branch(const banyan_keyaki_params *p, const keyaki_node *n, int32_t i, pcg32 *plan, double path,
+                       cand **pcs, int32_t *pnc, int32_t *cap, int count_only) {
+    int32_t nc = *pnc;
     const keyaki_node *b = &n[i];
-    /* Shoots of spray cards: nothing to carry without leaves (winter keeps
-     * its twigs as they were). */
-    if (!sh->env || sh->height <= 0 || !p->leaves || p->leaf_density <= 0) return 0;
-    double zlo = sh->z0 + SHELL_FROM * sh->height;
-    v3 e = v3_madd(b->start, b->dir, b->length);
-    if (fmax(b->start.z, e.z) < zlo) return 0;
+    int tip = b->child[0] < 0 && b->child[1] < 0;
+    v3 h = crown_horizontal_perp(b->dir);
     int side = rng_uniform(plan) < 0.5 ? 1 : -1;
-    const double step = SHELL_SPACING * p->twig_spacing;
-    double s = step * rng_uniform(plan);
-    int32_t k = (int32_t)((b->length - s) / step) + 1;
-    if (k <= 0) return 0;
-    if (8.0 * ((double)*nc + k) > (double)budget(p, count_only)) {
-        sh->why = 2;
-        return 1;
-    }
-    if (grow_array((void **)cs, cap, *nc + k, sizeof(cand))) {
-        sh->why = 1;
-        return 1;
-    }
-    for (; s < b->length; s += step, side = -side) {
-        v3 at = v3_madd(b->start, b->dir, s);
-        double fan = rng_range(plan, 15.0, SHELL_FAN_DEG), a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
-        double len = p->twig_length * rng_range(plan, 0.75, 1.25);
-        if (at.z < zlo) continue;
-        len *= at.z < sh->z0 + 0.5 * sh->height ? SHELL_LOW_LENGTH : SHELL_LENGTH;
-        double rho = reach_of(sh, at);
-        if (rho < SHELL_OUTER * sh->env[band_of(sh, at.z)] || rho < 1e-6) continue;
-        /* Outward: the radial direction square to the branch, fanned about it. */
-        v3 rad = v3_make((at.x - sh->x0) / rho, (at.y - sh->y0) / rho, 0);
-        v3 o = v3_sub(rad, v3_scale(b->dir, v3_dot(rad, b->dir)));
-        if (v3_len2(o) < 1e-8) o = horizontal_perp(b->dir);
-        o = v3_rotate(v3_norm(o), b->dir, deg2rad(side * fan));
-        cand *q = &(*cs)[*nc];
-        double r = branch_radius(p, n, b, s);
-        q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(o, dm_sin(a))));
-        q->h = horizontal_perp(q->d);
-        q->at = at;
-        q->len = len;
-        q->r_host = r;
+    double s = p->twig_spacing * rng_uniform(plan);
+    int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
+    if (k < 0) k = 0;
+    /* Every cluster, even one the light drops, would be a tube of 8
+     * vertices or more: refuse absurd counts before storing them. */
+    if (8.0 * ((double)nc + k) > (double)crown_budget(p, count_only)) return 2;
+    if (crown_grow_array((void **)pcs, cap, nc + k, sizeof(cand))) return 1;
+    cand *cs = *pcs;
+    for (; s < b->length; s += p->twig_spacing, side = -side) {
+        cand *q = &cs[nc];
+        double a = deg2rad(p->twig_angle * rng_range(plan, 0.85, 1.15));
+        q->at = v3_madd(b->start, b->dir, s);
+        q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(h, side * dm_sin(a))));
+        q->h = h;
+        q->len = p->twig_length * rng_range(plan, 0.75, 1.25);
+        q->r_host = crown_branch_radius(p, n, b, s);
         q->path = path + s;
         q->node = i;
-        q->index = *nc;
+        q->index = nc;
         q->tip = 0;
-        q->shell = 1;
-        (*nc)++;
+        q->shell = 0;
+        nc++;
     }
+    if (tip) {
+        cand *q = &cs[nc];
+        q->at = v3_madd(b->start, b->dir, b->length);
+        q->d = b->dir;
+        q->h = h;
+        q->len = p->twig_length * rng_range(plan, 0.75, 1.25);
+        q->r_host = crown_branch_radius(p, n, b, b->length);
+        q->path = path + b->length;
+        q->node = i;
+        q->index = nc;
+        q->tip = 1;
+        q->shell = 0;
+        nc++;
+    }
+    *pnc = nc;
     return 0;
 }
 
@@ -820,22 +549,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath, NULL, 0, 0, 0, 0,
              0, 0, 0, CARD_BAND};
     if (p->twigs_from_segments || p->twig_levels == 0) {
-        /* No twigs of ours: leaves on the segment lines, or on the skeleton. */
-        for (int32_t i = 0; i < count && !x.oom; i++) {
-            if ((i & 255) == 0 && keep_budget(&x, err)) break;
-            int tip = n[i].child[0] < 0 && n[i].child[1] < 0;
-            x.node = i;
-            cluster_stream(&x.lf, p, i, KEYAKI_STREAM_LEAVES);
-            if (p->twigs_from_segments) {
-                if (tip) segment_leaves(&x, n, i);
-            } else if (depth[i] < p->leaf_levels) {
-                v3 ab[2] = {n[i].start, v3_madd(n[i].start, n[i].dir, n[i].length)};
-                v3 up = v3_norm_or_perp(v3_cross(horizontal_perp(n[i].dir), n[i].dir), n[i].dir);
-                if (up.z < 0) up = v3_neg(up);
-                double rr[2] = {branch_radius(p, n, &n[i], 0), branch_radius(p, n, &n[i], n[i].length)};
-                leaves_along(&x, ab, rr, 2, 0.0, up, -1, n[i].level, npath[i]);
-            }
-        }
+        leaves_without_twigs(&x, n, count, depth, npath, err);
         free(depth);
         free(npath);
         if (x.oom) return crown_fail(c, x.oom, x.st, p, err);
@@ -847,12 +561,11 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
     cand *cs = NULL;
     int32_t nc = 0, cap = 0;
     shell sh;
-    if (shell_of(&sh, n, count)) {
+    if (crown_shell_of(&sh, n, count)) {
         free(depth);
         free(npath);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
     }
-    double tw = p->twig_angle;
     for (int32_t i = 0; i < count; i++) {
         if ((i & 4095) == 0 && keyaki_stopped(run)) {
             free(depth);
@@ -862,7 +575,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             return crown_fail(c, 3, BANYAN_OK, p, err);
         }
         if (depth[i] >= p->leaf_levels) {
-            if (shell_clusters(&sh, p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only)) {
+            if (crown_shell_clusters(&sh, p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only)) {
                 int why = sh.why;
                 free(depth);
                 free(npath);
@@ -873,57 +586,14 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             }
             continue;
         }
-        const keyaki_node *b = &n[i];
-        int tip = b->child[0] < 0 && b->child[1] < 0;
-        v3 h = horizontal_perp(b->dir);
-        int side = rng_uniform(&plan) < 0.5 ? 1 : -1;
-        double s = p->twig_spacing * rng_uniform(&plan);
-        int32_t k = (int32_t)((b->length - s) / p->twig_spacing) + 1 + tip;
-        if (k < 0) k = 0;
-        /* Every cluster, even one the light drops, would be a tube of 8
-         * vertices or more: refuse absurd counts before storing them. */
-        if (8.0 * ((double)nc + k) > (double)budget(p, count_only)) {
+        int why = plan_branch(p, n, i, &plan, npath[i], &cs, &nc, &cap, count_only);
+        if (why) {
             free(depth);
             free(npath);
             free(cs);
             free(sh.env);
-            return crown_fail(c, 2, BANYAN_E_LIMIT, p, err);
-        }
-        if (grow_array((void **)&cs, &cap, nc + k, sizeof(cand))) {
-            free(depth);
-            free(npath);
-            free(cs);
-            free(sh.env);
-            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
-        }
-        for (; s < b->length; s += p->twig_spacing, side = -side) {
-            cand *q = &cs[nc];
-            double a = deg2rad(tw * rng_range(&plan, 0.85, 1.15));
-            q->at = v3_madd(b->start, b->dir, s);
-            q->d = v3_norm(v3_add(v3_scale(b->dir, dm_cos(a)), v3_scale(h, side * dm_sin(a))));
-            q->h = h;
-            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
-            q->r_host = branch_radius(p, n, b, s);
-            q->path = npath[i] + s;
-            q->node = i;
-            q->index = nc;
-            q->tip = 0;
-            q->shell = 0;
-            nc++;
-        }
-        if (tip) {
-            cand *q = &cs[nc];
-            q->at = v3_madd(b->start, b->dir, b->length);
-            q->d = b->dir;
-            q->h = h;
-            q->len = p->twig_length * rng_range(&plan, 0.75, 1.25);
-            q->r_host = branch_radius(p, n, b, b->length);
-            q->path = npath[i] + b->length;
-            q->node = i;
-            q->index = nc;
-            q->tip = 1;
-            q->shell = 0;
-            nc++;
+            return why == 2 ? crown_fail(c, 2, BANYAN_E_LIMIT, p, err)
+                            : banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
     }
     free(depth);
@@ -954,7 +624,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             v3 e = v3_madd(cs[k].at, cs[k].d, cs[k].len);
             xy[4 * k] = cs[k].at.x, xy[4 * k + 1] = cs[k].at.y, xy[4 * k + 2] = e.x, xy[4 * k + 3] = e.y;
         }
-        int stopped = hull_of(xy, 2 * nc, &hl, run);
+        int stopped = crown_hull_of(xy, 2 * nc, &hl, run);
         free(xy);
         if (stopped) {
             free(hl.xy);
@@ -998,7 +668,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             free(hl.xy);
             return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
         }
-        if (g.nx) hull_mask(&hl, &g);
+        if (g.nx) crown_hull_mask(&hl, &g);
     }
     c->clusters = nc;
     for (int32_t k = 0; k < nc && !x.oom; k++) {
@@ -1014,9 +684,9 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         double len = q.len;
         int spur = 0;
         if (g.n) {
-            rect r = cluster_rect(p, q.at, q.d, q.h, len, len);
+            rect r = crown_cluster_rect(p, q.at, q.d, q.h, len, len);
             double fl, fr;
-            sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
+            crown_sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
             double lo = fmin(fl, fr), hi = fmax(fl, fr);
             if (lo >= 0.9 && !q.tip && !q.shell) { /* all shaded: the cluster breaks */
                 c->dropped++;
@@ -1042,14 +712,14 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 double best = 0, best_a = 0;
                 for (int h = 0; h < 5 && hypot(q.d.x, q.d.y) >= 0.05; h++) {
                     double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
-                    rect r2 = cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len, len);
+                    rect r2 = crown_cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len, len);
                     /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
                     double ext = 0;
                     int32_t seen = 0, holes = 0;
                     for (double t = 0; t < EXTEND * q.len; t += p->twig_spacing) {
                         double ex = r2.ox + r2.ax * (r2.len + t + 0.5 * CELL);
                         double ey = r2.oy + r2.ay * (r2.len + t + 0.5 * CELL);
-                        int hole = hole_at(&g, ex, ey);
+                        int hole = crown_hole_at(&g, ex, ey);
                         seen++, holes += hole;
                         if (hole && holes >= HOLE_SHARE * seen) ext = t + p->twig_spacing;
                         if (holes < HOLE_SHARE * seen - 2) break;
@@ -1064,7 +734,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
                 }
                 len += best;
             }
-            sky_stamp(&g, cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len, q.len), q.z);
+            crown_sky_stamp(&g, crown_cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len, q.len), q.z);
         }
         x.sub_base = q.len;
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur, q.path);
@@ -1083,142 +753,4 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         c->indices += i;
     }
     return BANYAN_OK;
-}
-
-void keyaki_crown_skel_counts(const keyaki_crown *c, uint64_t *points, uint64_t *edges) {
-    /* A first-order twig: its points, its edges and one joining it along
-     * its branch; a sub-twig starts on a point of its parent's. */
-    uint64_t p = 0, e = 0;
-    for (int32_t t = 0; t < c->n_twigs; t++) {
-        int32_t k = c->twigs[t].count, first = c->twigs[t].parent < 0;
-        p += (uint64_t)(k - 1 + first);
-        e += (uint64_t)(k - 1 + first);
-    }
-    *points = p;
-    *edges = e;
-}
-
-void keyaki_crown_mesh_twigs(const keyaki_crown *c, mesh_builder *mb, const int attr[3], const keyaki_wind *w) {
-    mb_set_attr(mb, attr[2], 0); /* order 0: finer than any skeleton branch */
-    /* Skeleton: point k >= 1 of twig t is skel[t] + k; point 0 is skel0[t]. */
-    uint32_t *skel = w ? malloc(sizeof(uint32_t) * 2 * ((size_t)c->n_twigs + 1)) : NULL;
-    if (w && !skel) {
-        mb->status = BANYAN_E_NOMEM;
-        return;
-    }
-    uint32_t *skel0 = skel ? skel + c->n_twigs + 1 : NULL;
-    for (int32_t t = 0; t < c->n_twigs && !mb->status; t++) {
-        if ((t & 1023) == 0 && keyaki_stopped(c->run)) {
-            mb->status = BANYAN_E_CANCELLED;
-            break;
-        }
-        const keyaki_twig *T = &c->twigs[t];
-        const v3 *P = c->pts + T->first;
-        const double *R = c->rad + T->first;
-        mb_set_attr(mb, attr[1], T->level);
-        uint32_t first = mb->nv;
-        double ph = 0;
-        int32_t level = 0;
-        if (w) {
-            /* A branch of its own: pivot its base on the parent, level its
-             * branch's wind level + its order. */
-            level = w->level[T->node] + (T->level - w->n[T->node].level);
-            ph = wind_phase_of(w->seed, KEYAKI_PHASE_TWIG + (uint64_t)t);
-            wind_set(mb, w->ws, P[0], level, 1, ph, 0); /* stiffness: from the birth, later */
-        }
-        /* A twig tip's end is hidden in its last leaves: no cap. */
-        tube_opts o = {T->sides, 0, T->children > 0, {0, 0, 0}, 0.0, NULL, 0, 1}; /* a twig: one bark tile round */
-        tube_sweep(mb, P, R, (uint32_t)T->count, &o);
-        keyaki_bark_smooth(mb, first, 1); /* a twig's own smooth bark */
-        if (!w || mb->status) continue;
-        /* Per ring: birth by path length (stiffness follows from it). */
-        double bt[MAX_TWIG_PTS];
-        for (int32_t k = 0; k < T->count; k++) bt[k] = k ? bt[k - 1] + v3_dist(P[k - 1], P[k]) : T->path0;
-        wind_tube_rings(mb, first, (uint32_t)T->count, T->sides, 0, T->children > 0, w->ws->birth, bt);
-        /* Skeleton: a first-order twig joined along its branch from the
-         * branch's start; a sub-twig from its parent's point it leaves. */
-        int32_t tag = T->level | KEYAKI_SKEL_TWIG;
-        uint32_t from;
-        if (T->parent < 0) {
-            from = keyaki_skel_start(w, T->node);
-            skel0[t] = mb_skel_point(mb, P[0], R[0], tag);
-            mb_skel_edge(mb, from, skel0[t]);
-        } else {
-            const keyaki_twig *U = &c->twigs[T->parent];
-            const v3 *Q = c->pts + U->first;
-            int32_t best = 0;
-            double bd = HUGE_VAL;
-            for (int32_t k = 0; k < U->count; k++) {
-                double d = v3_dist(Q[k], P[0]);
-                if (d < bd) bd = d, best = k;
-            }
-            skel0[t] = best == 0 ? skel0[T->parent] : skel[T->parent] + (uint32_t)best;
-        }
-        skel[t] = mb->n_skel - 1;
-        for (int32_t k = 1; k < T->count; k++) {
-            uint32_t a = k == 1 ? skel0[t] : mb->n_skel - 1;
-            uint32_t b = mb_skel_point(mb, P[k], R[k], tag);
-            mb_skel_edge(mb, a, b);
-        }
-    }
-    free(skel);
-}
-
-void keyaki_crown_mesh_leaves(const banyan_keyaki_params *p, const keyaki_crown *c, mesh_builder *mb,
-                              const int attr[3], const keyaki_wind *w, int32_t k0, int32_t k1, keyaki_run *run) {
-    int32_t cols = 1, rows = 1;
-    leaf_atlas_grid(BANYAN_TEX_KEYAKI_LEAF, &cols, &rows, NULL);
-    const int keyaki_atlas = cols == 4 && rows == 4; /* the spray row's layout (leaf_look.h) */
-    mb_set_attr(mb, attr[2], 0);
-    const double hu = LEAF_KEYAKI_HALF_U;
-    if (k1 > c->n_leaves) k1 = c->n_leaves;
-    for (int32_t k = k0; k < k1 && !mb->status; k++) {
-        if ((k & 4095) == 0 && keyaki_stopped(run)) {
-            mb->status = BANYAN_E_CANCELLED;
-            return;
-        }
-        const keyaki_leaf *q = &c->leaves[k];
-        mb_set_attr(mb, attr[1], q->level);
-        if (w) {
-            /* Pivot the petiole base, on its wood; level that wood's + 1;
-             * birth its path, delayed when the tree is done; stiffness the
-             * wood's there (from the undelayed birth, when the tree is done). */
-            double ph = wind_phase_of(w->seed, KEYAKI_PHASE_LEAF + (uint64_t)k);
-            if ((float)ph >= 1.0f) ph = 0.0; /* stored as a float: one turn is none */
-            wind_set(mb, w->ws, q->base, w->level[q->node] + (q->level - w->n[q->node].level) + 1, 1, ph, 1);
-            if (w->ws->birth >= 0) mb_set_attr(mb, w->ws->birth, q->path);
-        }
-        uint32_t v0 = mb_vertices(mb, 4);
-        uint32_t *I = mb_indices(mb, 6);
-        if (v0 == UINT32_MAX || !I) return;
-        leaf_look lk;
-        if (keyaki_atlas) leaf_look_keyaki(p->seed, (uint64_t)k, q->card, p->season, &lk);
-        else leaf_look_of(p->seed, (uint64_t)k, cols, rows, p->season, &lk);
-        v3 nrm = v3_cross(q->width, q->axis);
-        if (q->card) {
-            /* A spray cell: u along the twig (the card's axis), v across. */
-            double hw = 0.5 * q->length / LEAF_KEYAKI_SPRAY_ASPECT;
-            v3 o = v3_madd(q->base, q->axis, -LEAF_KEYAKI_SPRAY_U0 * q->length);
-            v3 p0 = v3_madd(o, q->width, -hw), p1 = v3_madd(o, q->width, hw);
-            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
-            double u1 = lk.u0 + lk.du, v1 = lk.v0 + lk.dv;
-            mb_put(mb, v0, p0, nrm, lk.u0, lk.v0);
-            mb_put(mb, v0 + 1, p1, nrm, lk.u0, v1);
-            mb_put(mb, v0 + 2, p2, nrm, u1, v1);
-            mb_put(mb, v0 + 3, p3, nrm, u1, lk.v0);
-        } else {
-            double hw = hu * q->length; /* the quad's width: 2 HALF_U x its length */
-            v3 p0 = v3_madd(q->base, q->width, -hw), p1 = v3_madd(q->base, q->width, hw);
-            v3 p2 = v3_madd(p1, q->axis, q->length), p3 = v3_madd(p0, q->axis, q->length);
-            double ua = lk.u0 + lk.du * (0.5 - hu), ub = lk.u0 + lk.du * (0.5 + hu), v1 = lk.v0 + lk.dv;
-            mb_put(mb, v0, p0, nrm, ua, lk.v0);
-            mb_put(mb, v0 + 1, p1, nrm, ub, lk.v0);
-            mb_put(mb, v0 + 2, p2, nrm, ub, v1);
-            mb_put(mb, v0 + 3, p3, nrm, ua, v1);
-        }
-        for (uint32_t j = 0; j < 4 && mb->with_color; j++)
-            for (int m = 0; m < 4; m++) mb->col[4 * ((size_t)v0 + j) + m] = (float)lk.tint[m];
-        I[0] = v0; I[1] = v0 + 1; I[2] = v0 + 2;
-        I[3] = v0; I[4] = v0 + 2; I[5] = v0 + 3;
-    }
 }

@@ -27,7 +27,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "keyaki_internal.h"
 
 void keyaki_skeleton_free(keyaki_skeleton *sk) {

@@ -2,19 +2,18 @@
  * (banyan_keyaki_generate) or measured only (banyan_keyaki_stats), per
  * spec/keyaki.md. Growth is in growth.c, Strahler in strahler.c, the body
  * in body.c. The tree takes no hosts: it stands at `position`, up +Z. */
-#define _POSIX_C_SOURCE 200809L /* sysconf */
 #include <string.h>
-#include <unistd.h>
 
-#include "core/error.h"
-#include "core/frame.h"
+#include "base/error.h"
+#include "base/frame.h"
+#include "base/pool.h"
 #include "keyaki_internal.h"
 
 banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = keyaki_params_validate(p, err);
     if (s) return s;
-    /* Grown in a frame at its position (core/frame.h), which the mesh keeps. */
+    /* Grown in a frame at its position (base/frame.h), which the mesh keeps. */
     banyan_keyaki_params q = *p;
     v3 at = v3_load(p->position), O = frame_pick(at, at);
     for (int k = 0; k < 3; k++) q.position[k] -= (&O.x)[k];
@@ -23,11 +22,7 @@ banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh 
     prog g;
     prog_init(&g, NULL);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    int threads = p->threads;
-    if (threads == 0) { /* all cores */
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
-    }
+    int threads = pool_threads(p->threads, BANYAN_AVENUE_MAX_THREADS);
     keyaki_run run = {&g, NULL, NULL, (uint64_t)p->max_vertices, 0, threads};
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     s = keyaki_build(&q, 0.0, 0, &sk, out, err);

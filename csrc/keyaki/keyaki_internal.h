@@ -9,11 +9,11 @@
 #include <stdint.h>
 
 #include "banyan.h"
-#include "core/mesh_builder.h"
-#include "core/progress.h"
-#include "core/wind.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "mesh/mesh_builder.h"
+#include "base/progress.h"
+#include "mesh/wind.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 /* Node flags. */
 #define KN_BROKEN 1u  /* this branch's fork broke: its weak child was removed (rule 8) */

@@ -12,10 +12,11 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "keyaki_internal.h"
 #include "params/params.h"
+#include "textures/leaf_look.h"
 
 #define KEYAKI_MODELS "simple|strong_weak|twisted|edaore"
 
@@ -214,7 +215,7 @@ void banyan_keyaki_params_init(banyan_keyaki_params *p) {
     p->leaf_density = 24.0;
     p->leaf_size = 0.055;
     p->leaf_size_spread = 0.3;
-    static const double bark[4] = {0.16, 0.13, 0.10, 1.0}, leaf[4] = {0.06, 0.20, 0.035, 1.0};
+    static const double bark[4] = LEAF_KEYAKI_BARK_RGBA, leaf[4] = {0.06, 0.20, 0.035, 1.0};
     memcpy(p->bark_color, bark, sizeof bark);
     memcpy(p->leaf_color, leaf, sizeof leaf);
     p->twigs_from_segments = 0;

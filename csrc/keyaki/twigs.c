@@ -30,10 +30,10 @@
  * the line they leave, then the line itself). */
 #include <math.h>
 
-#include "core/error.h"
-#include "core/tube.h"
+#include "base/error.h"
+#include "mesh/tube.h"
 #include "keyaki_internal.h"
-#include "segments/segment_core.h"
+#include "segments/segment_ref.h"
 
 void keyaki_truncate(keyaki_skeleton *sk, int max_level) {
     int32_t count = 0;

@@ -27,13 +27,12 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
-#include "core/big_alloc.h"
-#include "core/error.h"
-#include "core/frame.h"
-#include "core/pool.h"
-#include "core/progress.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
+#include "base/frame.h"
+#include "base/pool.h"
+#include "base/progress.h"
 #include "keyaki_internal.h"
 
 #define VARIANT_STREAM 0x76617269616e74ull /* "variant" */
@@ -227,11 +226,7 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
         inst[i].scale = (float)(trees[i].unit / trees[k].unit);
     }
 
-    int t = threads;
-    if (t == 0) {
-        long c = sysconf(_SC_NPROCESSORS_ONLN);
-        t = c < 1 ? 1 : c > BANYAN_AVENUE_MAX_THREADS ? BANYAN_AVENUE_MAX_THREADS : (int)c;
-    }
+    int t = pool_threads(threads, BANYAN_AVENUE_MAX_THREADS);
     if ((uint32_t)t > nv) t = (int)nv;
     J.vars = vars;
     J.n = nv;

@@ -34,8 +34,8 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/error.h"
-#include "core/wind.h"
+#include "base/error.h"
+#include "mesh/wind.h"
 #include "lod_internal.h"
 #include "srgb8.h"
 

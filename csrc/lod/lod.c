@@ -21,8 +21,8 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/error.h"
-#include "core/rng.h"
+#include "base/error.h"
+#include "base/rng.h"
 #include "lod_internal.h"
 
 /* Groups are trees or variants (an avenue has at most a few ten thousand). */

@@ -7,7 +7,7 @@
 #include <stdint.h>
 
 #include "banyan.h"
-#include "core/progress.h"
+#include "base/progress.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/dmath.h"
+#include "base/dmath.h"
 
 uint8_t srgb8_direct(float c) {
     c = !(c > 0) ? 0 : c > 1 ? 1 : c; /* NaN (a hostile colour) reads as black */

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/error.h"
-#include "../core/numparse.h"
+#include "../base/error.h"
+#include "../base/numparse.h"
 
 static const char *const generator_names[BANYAN_GEN_COUNT] = {"roots", "keyaki", "avenue", "ivy", "segments"};
 

@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "banyan.h"
-#include "core/progress.h"
+#include "base/progress.h"
 
 typedef struct param_table {
     const banyan_param_info *rows;
@@ -52,7 +52,7 @@ int preset_line_at(const char *text, size_t len, size_t offset);
 #define BP_COLOR(S, field, label, group, desc) BP_ROW(S, field, label, group, BANYAN_PT_COLOR, "", 0, 1, NULL, desc)
 #define BP_SEED(S, field, label, group, desc) \
     BP_ROW(S, field, label, group, BANYAN_PT_SEED, "", 0, 18446744073709551615.0, NULL, desc)
-/* The run's budget (core/progress.h), the same two rows in every table:
+/* The run's budget (base/progress.h), the same two rows in every table:
  * max_seconds and max_memory_mb, ranges from the PROG_MAX_* constants. */
 #define BP_BUDGET(S, group)                                                                                      \
     BP_DOUBLE(S, max_seconds, "Time limit", group, "s", PROG_MAX_SECONDS_MIN, PROG_MAX_SECONDS_MAX,             \

@@ -11,9 +11,9 @@
 
 #include <cjson/cJSON.h>
 
-#include "../core/error.h"
-#include "../core/progress.h"
-#include "../core/vec.h"
+#include "../base/error.h"
+#include "../base/progress.h"
+#include "../base/vec.h"
 #include "../gltf/gltf_reader.h"
 #include "params.h"
 

@@ -25,9 +25,9 @@
 #include <string.h>
 
 #include "capsule.h"
-#include "core/closest.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "hosts/closest.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 
 /* m between a thread's points, and the most it slides out over a root. */
 #define AERIAL_STEP 0.08

@@ -12,7 +12,7 @@
  * in between instead). */
 #include "roots_internal.h"
 
-#include "core/bezier.h"
+#include "base/bezier.h"
 
 static const v3 UP = {0, 0, 1};
 

@@ -8,7 +8,7 @@
  * closer than r to any host.
  * Boxes come first, each query exactly as before mesh hosts existed: the
  * distance to a convex box is convex along a line, which makes the traces
- * exact up to bisection. A mesh (core/hosts.h) is not convex, but each of
+ * exact up to bisection. A mesh (hosts/hosts.h) is not convex, but each of
  * its triangles is: moves and segments are taken exactly per triangle
  * (hmesh_sweep, hmesh_segment_distance), so a sphere pressed against
  * a mesh slides along it as along a box, which sphere tracing on the

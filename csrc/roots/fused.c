@@ -27,9 +27,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/tube.h"
-#include "core/wind.h"
+#include "base/error.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 #include "capsule.h"
 #include "fused_vdb.h"
 #include "roots_internal.h"
@@ -375,6 +375,230 @@ static uint32_t seam_uvs(fvert **pfv, uint32_t *cap, uint32_t nv, uint32_t *tri,
     return n;
 }
 
+/* The capsules of every polyline but the aerial roots' (threads:
+ * aerial.c), their tube frames T and N (T + n_pts) and the v coordinate
+ * along each; returns the tubes' side area. */
+static double capsules_of(const roots_net *net, const banyan_roots_params *p, capsule *caps, v3 *T, double *vcum,
+                          double r) {
+    v3 *N = T + net->n_pts;
+    double area = 0;
+    uint32_t n_caps = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
+        tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
+        vcum[pl->off] = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++) {
+            uint32_t at = pl->off + i;
+            capsule *c = &caps[n_caps++];
+            roots_capsule_set(c, net, p, t, at);
+            double l = v3_dist(c->a, c->b);
+            vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
+            area += BANYAN_PI * (c->ra + c->rb) * l;
+        }
+    }
+    return area;
+}
+
+/* The field: per polyline the minimum of its capsules, then the smooth
+ * union (smin over k) of the polylines in order. 0, or 1 when out of
+ * memory, 2 when the run stopped. */
+static int field_union(fgrid *g, const roots_net *net, const capsule *caps, float k) {
+    for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
+        if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) return 2;
+        g->n_touched = 0;
+        for (uint32_t i = 0; i + 1 < pl->n; i++, ci++) raster_capsule(g, &caps[ci], ci, t + 1);
+        if (g->nomem) return 1;
+        for (uint32_t j = 0; j < g->n_touched; j++) {
+            size_t b = (size_t)g->touched[j] * BLK;
+            float *acc = g->acc + b, *tmp = g->tmp + b;
+            if (k > 0)
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < BIG ? smin(acc[v], tmp[v], k) : acc[v];
+            else
+                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < acc[v] ? tmp[v] : acc[v];
+        }
+    }
+    return 0;
+}
+
+/* Host difference and the soil's floor, then the band's clamp, on every
+ * block; each block's stamp becomes 1 when a voxel of it is inside. 1 when
+ * the run stopped. */
+static int host_and_floor(fgrid *g, const roots_net *net, double band, double h, double r) {
+    const roots_world *w = &net->w;
+    double gap = HOST_GAP * r, floor_z = w->ground_z - SOIL_DEPTH * r;
+    double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
+    for (uint32_t b = 0; b < g->n; b++) {
+        if ((b & 63) == 0 && roots_stop(net)) return 1; /* a voxel's host query each: slow among many hosts */
+        blk_meta *m = &g->meta[b];
+        float *acc = g->acc + (size_t)b * BLK;
+        v3 centre = v3_make((m->bx * 8 + 3.5) * h, (m->by * 8 + 3.5) * h, (m->bz * 8 + 3.5) * h);
+        int near_host = world_clearance_in(w, centre, 0, half_diag + range, NULL, NULL) < half_diag + range;
+        for (int v = 0; v < BLK; v++) {
+            float d = acc[v];
+            if (d >= band) {
+                acc[v] = (float)band;
+                continue;
+            }
+            v3 q = v3_make((m->bx * 8 + (v >> 6)) * h, (m->by * 8 + ((v >> 3) & 7)) * h, (m->bz * 8 + (v & 7)) * h);
+            if (w->ground && floor_z - q.z > d) d = (float)(floor_z - q.z);
+            if (near_host) {
+                double c = world_clearance_in(w, q, 0, range, NULL, NULL);
+                if (gap - c > d) d = (float)(gap - c);
+            }
+            /* A value at or near zero puts the vertices of the cells
+             * round that voxel on or near one point: faces of zero or
+             * sliver area, sheets that nearly touch. Such a value moves
+             * out to SNAP h on its side (0 counts as outside): the
+             * surface crosses no edge nearer than about SNAP h to a
+             * voxel. */
+            if (d < SNAP * h && d > -SNAP * h) d = (float)(d < 0 ? -SNAP * h : SNAP * h);
+            acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
+        }
+        int inside = 0;
+        for (int v = 0; v < BLK; v++) inside |= acc[v] < 0;
+        m->stamp = (uint32_t)inside; /* the stamps are done with */
+    }
+    return 0;
+}
+
+/* Which blocks go to OpenVDB, packed to the front of acc, their origins
+ * in tmp (3 ints a block, in 512 floats per block; tmp is free by now);
+ * returns how many. A block with no voxel inside only meets the surface on
+ * an edge to an inside voxel of a face neighbour, its voxel there within
+ * the band; without such an edge OpenVDB's background (outside, +band)
+ * stands in for the block: the same signs, the same values on every edge
+ * the surface crosses, so the same mesh from fewer leaves to scan (about a
+ * third of the blocks stay). */
+static uint32_t pack_surface_blocks(fgrid *g, double band) {
+    for (uint32_t b = 0; b < g->n; b++) {
+        blk_meta *m = &g->meta[b];
+        const float *acc = g->acc + (size_t)b * BLK;
+        int keep = m->stamp & 1;
+        for (int f = 0; f < 6 && !keep; f++) {
+            int ax = f >> 1, shift = 6 - 3 * ax, theirs = f & 1 ? 0 : 7;
+            int32_t nb[3] = {m->bx, m->by, m->bz};
+            nb[ax] += f & 1 ? 1 : -1;
+            uint32_t o = grid_find(g, nb[0], nb[1], nb[2]);
+            if (o == UINT32_MAX || !(g->meta[o].stamp & 1)) continue;
+            const float *nacc = g->acc + (size_t)o * BLK;
+            for (int v = 0; v < BLK && !keep; v++)
+                keep = ((v >> shift) & 7) == theirs && nacc[v] < 0 && acc[v ^ (7 << shift)] < band;
+        }
+        m->stamp |= (uint32_t)keep << 1;
+    }
+    int32_t *origin = (int32_t *)g->tmp;
+    uint32_t n_surf = 0;
+    for (uint32_t b = 0; b < g->n; b++) {
+        const blk_meta *m = &g->meta[b];
+        float *acc = g->acc + (size_t)b * BLK;
+        if (!(m->stamp & 2)) continue;
+        origin[3 * n_surf] = m->bx * 8, origin[3 * n_surf + 1] = m->by * 8, origin[3 * n_surf + 2] = m->bz * 8;
+        if (n_surf != b) memmove(g->acc + (size_t)n_surf * BLK, acc, sizeof(float) * BLK);
+        n_surf++;
+    }
+    return n_surf;
+}
+
+/* OpenVDB may put two vertices of one face on the same point (a face of
+ * zero area, seen where a cell is split into two sheets): those vertices
+ * become one, the faces that collapse go, and the vertices are renumbered
+ * densely (*nv, *nt the counts). 1 when out of memory. */
+static int weld_coincident(fused_vdb_out *vo, uint32_t *nv, uint32_t *nt) {
+    uint32_t nv0 = *nv, nt0 = *nt;
+    uint32_t *map = malloc(sizeof *map * nv0);
+    if (!map) return 1;
+    for (uint32_t i = 0; i < nv0; i++) map[i] = i;
+    int any = 0;
+    for (uint32_t f = 0; f < nt0; f++)
+        for (int j = 0; j < 3; j++) {
+            uint32_t a = vo->tri[3 * f + j], b = vo->tri[3 * f + (j + 1) % 3];
+            if (!memcmp(vo->pos + 3 * (size_t)a, vo->pos + 3 * (size_t)b, 3 * sizeof(float))) {
+                while (map[a] != a) a = map[a];
+                while (map[b] != b) b = map[b];
+                if (a != b) map[a > b ? a : b] = a < b ? a : b;
+                any = 1;
+            }
+        }
+    if (any) {
+        uint32_t mt = 0, mv = 0;
+        for (uint32_t i = 0; i < nv0; i++) {
+            uint32_t a = i;
+            while (map[a] != a) a = map[a];
+            map[i] = a;
+        }
+        for (uint32_t f = 0; f < nt0; f++) {
+            uint32_t a = map[vo->tri[3 * f]], b = map[vo->tri[3 * f + 1]], c = map[vo->tri[3 * f + 2]];
+            if (a == b || b == c || a == c) continue;
+            vo->tri[3 * mt] = a, vo->tri[3 * mt + 1] = b, vo->tri[3 * mt + 2] = c;
+            mt++;
+        }
+        /* dense numbering: a root (map[i] == i) keeps its order */
+        uint32_t *nid = malloc(sizeof *nid * nv0);
+        if (!nid) {
+            free(map);
+            return 1;
+        }
+        for (uint32_t i = 0; i < nv0; i++)
+            if (map[i] == i) {
+                nid[i] = mv;
+                memmove(vo->pos + 3 * (size_t)mv, vo->pos + 3 * (size_t)i, 3 * sizeof(float));
+                mv++;
+            }
+        for (uint32_t t = 0; t < 3 * mt; t++) vo->tri[t] = nid[vo->tri[t]];
+        free(nid);
+        *nv = mv, *nt = mt;
+    }
+    free(map);
+    return 0;
+}
+
+/* Orientation: OpenVDB's winding, made outward by the signed volume. */
+static void orient_outward(fused_vdb_out *vo, uint32_t nt) {
+    double vol = 0;
+    for (uint32_t f = 0; f < nt; f++) {
+        const float *A = vo->pos + 3 * (size_t)vo->tri[3 * f], *B = vo->pos + 3 * (size_t)vo->tri[3 * f + 1],
+                    *C = vo->pos + 3 * (size_t)vo->tri[3 * f + 2];
+        vol += A[0] * ((double)B[1] * C[2] - (double)B[2] * C[1]) - A[1] * ((double)B[0] * C[2] - (double)B[2] * C[0]) +
+               A[2] * ((double)B[0] * C[1] - (double)B[1] * C[0]);
+    }
+    if (vol < 0)
+        for (uint32_t f = 0; f < nt; f++) {
+            uint32_t x = vo->tri[3 * f + 1];
+            vo->tri[3 * f + 1] = vo->tri[3 * f + 2];
+            vo->tri[3 * f + 2] = x;
+        }
+}
+
+/* Marching cuts the crease where the roots meet a host's edge: a
+ * vertex there may sit a little inside (up to about h / 3). It goes
+ * back out along the distance field's normal, to half the gap. 1 when the
+ * run stopped. */
+static int push_off_hosts(const roots_net *net, float *pos, uint32_t nv, double h, double r) {
+    for (uint32_t i = 0; i < nv; i++) {
+        if ((i & 1023) == 0 && roots_stop(net)) return 1; /* a host query per vertex */
+        float *f = pos + 3 * (size_t)i;
+        v3 q = v3_make(f[0] * h, f[1] * h, f[2] * h), n;
+        int which;
+        double c = world_clearance_in(&net->w, q, 0, HOST_GAP * r, &n, &which);
+        if (c >= 0.5 * HOST_GAP * r || which < 0) continue;
+        q = v3_madd(q, n, 0.5 * HOST_GAP * r - c);
+        f[0] = (float)(q.x / h), f[1] = (float)(q.y / h), f[2] = (float)(q.z / h);
+    }
+    return 0;
+}
+
+static void stretch_birth(mesh_builder *mb, const wind_slots *ws) {
+    /* The surface starts off G and ends short of the last tip: its
+     * birth is stretched to 0..1 so growth starts and ends on time. */
+    float *bv = mb->attr[ws->birth], lo = bv[0], hi = bv[0];
+    for (uint32_t i = 1; i < mb->nv; i++) lo = bv[i] < lo ? bv[i] : lo, hi = bv[i] > hi ? bv[i] : hi;
+    double span = (double)hi - lo; /* in double: the last vertex's is exactly 1 */
+    for (uint32_t i = 0; i < mb->nv; i++) bv[i] = span > 0 ? (float)(((double)bv[i] - lo) / span) : 0.0f;
+}
+
 /* OpenVDB's stop between its meshing stages (fused_vdb_in.stop): the
  * budget and the cancel, on the generator's thread. */
 static int vdb_stop(void *user) { return roots_stop((const roots_net *)user); }
@@ -409,22 +633,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     roots_wind rw;
     if (!caps || !T || !vcum) goto nomem;
     v3 *N = T + net->n_pts;
-    double area = 0;
-    n_caps = 0;
-    for (uint32_t t = 0; t < net->n_poly; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
-        tube_frames(net->pts + pl->off, pl->n, v3_make(0, 0, 0), T + pl->off, N + pl->off);
-        vcum[pl->off] = 0;
-        for (uint32_t i = 0; i + 1 < pl->n; i++) {
-            uint32_t at = pl->off + i;
-            capsule *c = &caps[n_caps++];
-            roots_capsule_set(c, net, p, t, at);
-            double l = v3_dist(c->a, c->b);
-            vcum[at + 1] = vcum[at] + tube_dv(l, c->ra, c->rb, r);
-            area += BANYAN_PI * (c->ra + c->rb) * l;
-        }
-    }
+    double area = capsules_of(net, p, caps, T, vcum, r);
     double est = area / (h * h);
     if (est > 2.0 * p->max_vertices) {
         st = banyan_fail(err, BANYAN_E_LIMIT,
@@ -452,100 +661,22 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
      * the voxel whose block it looks in. */
     g.list_cut = 0.25 * k + 1.25 * h;
     if (grid_rehash(&g, 4096)) goto nomem;
-    for (uint32_t t = 0, ci = 0; t < net->n_poly; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->n < 2 || pl->kind == ROOT_AERIAL) continue; /* threads: aerial.c */
-        if (prog_at(net->prog, ROOTS_AT_MESH + 0.5 * (1.0 - ROOTS_AT_MESH) * t / net->n_poly)) {
-            st = prog_fail(net->prog, err, "fused roots surface");
-            goto done;
-        }
-        g.n_touched = 0;
-        for (uint32_t i = 0; i + 1 < pl->n; i++, ci++) raster_capsule(&g, &caps[ci], ci, t + 1);
-        if (g.nomem) goto nomem;
-        for (uint32_t j = 0; j < g.n_touched; j++) {
-            size_t b = (size_t)g.touched[j] * BLK;
-            float *acc = g.acc + b, *tmp = g.tmp + b;
-            if (k > 0)
-                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < BIG ? smin(acc[v], tmp[v], k) : acc[v];
-            else
-                for (int v = 0; v < BLK; v++) acc[v] = tmp[v] < acc[v] ? tmp[v] : acc[v];
-        }
+    int fu = field_union(&g, net, caps, k);
+    if (fu == 1) goto nomem;
+    if (fu == 2) {
+        st = prog_fail(net->prog, err, "fused roots surface");
+        goto done;
     }
 
     STAGE(1);
     /* Host difference and the soil's floor; then the band's clamp. */
     {
-        const roots_world *w = &net->w;
-        double gap = HOST_GAP * r, floor_z = net->w.ground_z - SOIL_DEPTH * r;
-        double half_diag = 8 * h * 0.8660254037844386, range = band + gap;
-        for (uint32_t b = 0; b < g.n; b++) {
-            if ((b & 63) == 0 && roots_stop(net)) { /* a voxel's host query each: slow among many hosts */
-                st = prog_fail(net->prog, err, "fused roots surface");
-                goto done;
-            }
-            blk_meta *m = &g.meta[b];
-            float *acc = g.acc + (size_t)b * BLK;
-            v3 centre = v3_make((m->bx * 8 + 3.5) * h, (m->by * 8 + 3.5) * h, (m->bz * 8 + 3.5) * h);
-            int near_host = world_clearance_in(w, centre, 0, half_diag + range, NULL, NULL) < half_diag + range;
-            for (int v = 0; v < BLK; v++) {
-                float d = acc[v];
-                if (d >= band) {
-                    acc[v] = (float)band;
-                    continue;
-                }
-                v3 q = v3_make((m->bx * 8 + (v >> 6)) * h, (m->by * 8 + ((v >> 3) & 7)) * h, (m->bz * 8 + (v & 7)) * h);
-                if (net->w.ground && floor_z - q.z > d) d = (float)(floor_z - q.z);
-                if (near_host) {
-                    double c = world_clearance_in(w, q, 0, range, NULL, NULL);
-                    if (gap - c > d) d = (float)(gap - c);
-                }
-                /* A value at or near zero puts the vertices of the cells
-                 * round that voxel on or near one point: faces of zero or
-                 * sliver area, sheets that nearly touch. Such a value moves
-                 * out to SNAP h on its side (0 counts as outside): the
-                 * surface crosses no edge nearer than about SNAP h to a
-                 * voxel. */
-                if (d < SNAP * h && d > -SNAP * h) d = (float)(d < 0 ? -SNAP * h : SNAP * h);
-                acc[v] = d > band ? (float)band : (d < -band ? (float)-band : d);
-            }
-            int inside = 0;
-            for (int v = 0; v < BLK; v++) inside |= acc[v] < 0;
-            m->stamp = (uint32_t)inside; /* the stamps are done with */
+        if (host_and_floor(&g, net, band, h, r)) {
+            st = prog_fail(net->prog, err, "fused roots surface");
+            goto done;
         }
-        /* A block with no voxel inside only meets the surface on an edge
-         * to an inside voxel of a face neighbour, its voxel there within
-         * the band; without such an edge OpenVDB's background (outside,
-         * +band) stands in for the block: the same signs, the same values
-         * on every edge the surface crosses, so the same mesh from fewer
-         * leaves to scan (about a third of the blocks stay). The others
-         * go to OpenVDB, packed to the front of acc; tmp is free now: it
-         * takes their origins (3 ints per block, in 512 floats per block). */
-        for (uint32_t b = 0; b < g.n; b++) {
-            blk_meta *m = &g.meta[b];
-            const float *acc = g.acc + (size_t)b * BLK;
-            int keep = m->stamp & 1;
-            for (int f = 0; f < 6 && !keep; f++) {
-                int ax = f >> 1, shift = 6 - 3 * ax, theirs = f & 1 ? 0 : 7;
-                int32_t nb[3] = {m->bx, m->by, m->bz};
-                nb[ax] += f & 1 ? 1 : -1;
-                uint32_t o = grid_find(&g, nb[0], nb[1], nb[2]);
-                if (o == UINT32_MAX || !(g.meta[o].stamp & 1)) continue;
-                const float *nacc = g.acc + (size_t)o * BLK;
-                for (int v = 0; v < BLK && !keep; v++)
-                    keep = ((v >> shift) & 7) == theirs && nacc[v] < 0 && acc[v ^ (7 << shift)] < band;
-            }
-            m->stamp |= (uint32_t)keep << 1;
-        }
+        uint32_t n_surf = pack_surface_blocks(&g, band);
         int32_t *origin = (int32_t *)g.tmp;
-        uint32_t n_surf = 0;
-        for (uint32_t b = 0; b < g.n; b++) {
-            const blk_meta *m = &g.meta[b];
-            float *acc = g.acc + (size_t)b * BLK;
-            if (!(m->stamp & 2)) continue;
-            origin[3 * n_surf] = m->bx * 8, origin[3 * n_surf + 1] = m->by * 8, origin[3 * n_surf + 2] = m->bz * 8;
-            if (n_surf != b) memmove(g.acc + (size_t)n_surf * BLK, acc, sizeof(float) * BLK);
-            n_surf++;
-        }
         if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) {
             st = prog_fail(net->prog, err, "fused roots surface");
             goto done;
@@ -583,86 +714,12 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         goto done;
     }
 
-    /* OpenVDB may put two vertices of one face on the same point (a face
-     * of zero area, seen where a cell is split into two sheets): those
-     * vertices become one, the faces that collapse go, and the vertices
-     * are renumbered densely. */
     uint32_t nv = vo.n_pos, nt = vo.n_tri;
-    {
-        uint32_t *map = malloc(sizeof *map * nv);
-        if (!map) goto nomem;
-        for (uint32_t i = 0; i < nv; i++) map[i] = i;
-        int any = 0;
-        for (uint32_t f = 0; f < nt; f++)
-            for (int j = 0; j < 3; j++) {
-                uint32_t a = vo.tri[3 * f + j], b = vo.tri[3 * f + (j + 1) % 3];
-                if (!memcmp(vo.pos + 3 * (size_t)a, vo.pos + 3 * (size_t)b, 3 * sizeof(float))) {
-                    while (map[a] != a) a = map[a];
-                    while (map[b] != b) b = map[b];
-                    if (a != b) map[a > b ? a : b] = a < b ? a : b;
-                    any = 1;
-                }
-            }
-        if (any) {
-            uint32_t mt = 0, mv = 0;
-            for (uint32_t i = 0; i < nv; i++) {
-                uint32_t a = i;
-                while (map[a] != a) a = map[a];
-                map[i] = a;
-            }
-            for (uint32_t f = 0; f < nt; f++) {
-                uint32_t a = map[vo.tri[3 * f]], b = map[vo.tri[3 * f + 1]], c = map[vo.tri[3 * f + 2]];
-                if (a == b || b == c || a == c) continue;
-                vo.tri[3 * mt] = a, vo.tri[3 * mt + 1] = b, vo.tri[3 * mt + 2] = c;
-                mt++;
-            }
-            /* dense numbering: a root (map[i] == i) keeps its order */
-            uint32_t *nid = malloc(sizeof *nid * nv);
-            if (!nid) {
-                free(map);
-                goto nomem;
-            }
-            for (uint32_t i = 0; i < nv; i++)
-                if (map[i] == i) {
-                    nid[i] = mv;
-                    memmove(vo.pos + 3 * (size_t)mv, vo.pos + 3 * (size_t)i, 3 * sizeof(float));
-                    mv++;
-                }
-            for (uint32_t t = 0; t < 3 * mt; t++) vo.tri[t] = nid[vo.tri[t]];
-            free(nid);
-            nv = mv, nt = mt;
-        }
-        free(map);
-    }
+    if (weld_coincident(&vo, &nv, &nt)) goto nomem;
 
-    /* Orientation: OpenVDB's winding, made outward by the signed volume. */
-    double vol = 0;
-    for (uint32_t f = 0; f < nt; f++) {
-        const float *A = vo.pos + 3 * (size_t)vo.tri[3 * f], *B = vo.pos + 3 * (size_t)vo.tri[3 * f + 1],
-                    *C = vo.pos + 3 * (size_t)vo.tri[3 * f + 2];
-        vol += A[0] * ((double)B[1] * C[2] - (double)B[2] * C[1]) - A[1] * ((double)B[0] * C[2] - (double)B[2] * C[0]) +
-               A[2] * ((double)B[0] * C[1] - (double)B[1] * C[0]);
-    }
-    if (vol < 0)
-        for (uint32_t f = 0; f < nt; f++) {
-            uint32_t x = vo.tri[3 * f + 1];
-            vo.tri[3 * f + 1] = vo.tri[3 * f + 2];
-            vo.tri[3 * f + 2] = x;
-        }
+    orient_outward(&vo, nt);
 
-    /* Marching cuts the crease where the roots meet a host's edge: a
-     * vertex there may sit a little inside (up to about h / 3). It goes
-     * back out along the distance field's normal, to half the gap. */
-    for (uint32_t i = 0; i < nv; i++) {
-        if ((i & 1023) == 0 && roots_stop(net)) goto stopped; /* a host query per vertex */
-        float *f = vo.pos + 3 * (size_t)i;
-        v3 q = v3_make(f[0] * h, f[1] * h, f[2] * h), n;
-        int which;
-        double c = world_clearance_in(&net->w, q, 0, HOST_GAP * r, &n, &which);
-        if (c >= 0.5 * HOST_GAP * r || which < 0) continue;
-        q = v3_madd(q, n, 0.5 * HOST_GAP * r - c);
-        f[0] = (float)(q.x / h), f[1] = (float)(q.y / h), f[2] = (float)(q.z / h);
-    }
+    if (push_off_hosts(net, vo.pos, nv, h, r)) goto stopped;
 
     /* Smooth normals (area-weighted face normals), uvs and attributes. */
     nacc = calloc((size_t)3 * nv, sizeof(double));
@@ -749,14 +806,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         }
     for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
     if (thread_v) roots_aerial_sweep_all(&mb, net, nt, a_kind, a_id, &ws, &rw);
-    if (!mb.status && mb.nv) {
-        /* The surface starts off G and ends short of the last tip: its
-         * birth is stretched to 0..1 so growth starts and ends on time. */
-        float *bv = mb.attr[ws.birth], lo = bv[0], hi = bv[0];
-        for (uint32_t i = 1; i < mb.nv; i++) lo = bv[i] < lo ? bv[i] : lo, hi = bv[i] > hi ? bv[i] : hi;
-        double span = (double)hi - lo; /* in double: the last vertex's is exactly 1 */
-        for (uint32_t i = 0; i < mb.nv; i++) bv[i] = span > 0 ? (float)(((double)bv[i] - lo) / span) : 0.0f;
-    }
+    if (!mb.status && mb.nv) stretch_birth(&mb, &ws);
     if (roots_mesh_skeleton(&mb, net, p)) goto nomem;
     {
         uint32_t mv = mb.nv, mi = mb.ni;

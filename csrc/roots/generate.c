@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
-#include "core/frame.h"
+#include "base/error.h"
+#include "base/frame.h"
 #include "roots_internal.h"
 
 void roots_net_free(roots_net *net) {

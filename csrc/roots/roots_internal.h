@@ -7,13 +7,13 @@
 #ifndef BANYAN_ROOTS_INTERNAL_H
 #define BANYAN_ROOTS_INTERNAL_H
 
-#include "core/progress.h"
+#include "base/progress.h"
 #include "banyan.h"
-#include "core/hosts.h"
-#include "core/mesh_builder.h"
-#include "core/obb.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "hosts/hosts.h"
+#include "mesh/mesh_builder.h"
+#include "hosts/obb.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 /* Kinds, also the skeleton tag and the `root_kind` attribute. Foot roots
  * (foot.c: drop roots, buttresses, surface roots) are held by the host and
@@ -200,7 +200,7 @@ banyan_status roots_net_mesh(const roots_net *net, const banyan_roots_params *p,
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                                    banyan_roots_stats *stats, banyan_error *err);
 /* Shared by both surfaces (mesh.c): the builder with the roots' attributes
- * (`root_kind`, `root_id`, the wind and birth slots: core/wind.h), colour and fig-bark material; the skeleton
+ * (`root_kind`, `root_id`, the wind and birth slots: mesh/wind.h), colour and fig-bark material; the skeleton
  * (returns -1 when out of memory). */
 struct wind_slots;
 void roots_mesh_init(mesh_builder *mb, const banyan_roots_params *p, int *a_kind, int *a_id, struct wind_slots *ws);

@@ -21,7 +21,7 @@
  * stain, as it keeps its roots. */
 #include "roots_internal.h"
 
-#include "core/noise.h"
+#include "base/noise.h"
 
 /* The multiplier at full stain: darker and warmer (linear RGB). */
 static const double SOIL_TINT[3] = {0.42, 0.35, 0.27};

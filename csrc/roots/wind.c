@@ -25,7 +25,7 @@
  * roots 0: roots_wind_level); phase: per root id. */
 #include <stdlib.h>
 
-#include "core/wind.h"
+#include "mesh/wind.h"
 #include "roots_internal.h"
 
 /* A free root softens over this many r of arc from its last anchor. */

@@ -15,8 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/progress.h"
-#include "../core/vec.h"
+#include "../base/progress.h"
+#include "../base/vec.h"
 #include "segment_core.h"
 
 #define GRID_MAX_DIM 128

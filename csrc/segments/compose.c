@@ -14,11 +14,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/error.h"
-#include "../core/frame.h"
-#include "../core/progress.h"
-#include "../core/tube.h"
-#include "../core/wind.h"
+#include "../base/error.h"
+#include "../base/frame.h"
+#include "../base/progress.h"
+#include "../mesh/tube.h"
+#include "../mesh/wind.h"
+#include "../textures/leaf_look.h"
 #include "segment_core.h"
 
 #define MIN_TUBE_LENGTH 1e-9
@@ -137,8 +138,8 @@ void seg_line_tube(mesh_builder *mb, v3 a, v3 b, double r, int sides) {
     tube_sweep_rings(mb, pts, rings, 2, &o);
 }
 
-/* Linear RGB by level code: the keyaki's bark (its default bark_color,
- * so both trees show the same bark) on the trunk and axes, fading to a
+/* Linear RGB by level code: the keyaki's bark (LEAF_KEYAKI_BARK_RGBA,
+ * its default bark_color) on the trunk and axes, fading to a
  * young twig's olive brown at code 4 and above (red over green over blue:
  * never green). */
 static void level_color(const double bark[4], int level, double rgba[4]) {
@@ -309,8 +310,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         seg_wind_free(&sw);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
     }
-    banyan_keyaki_params kp;
-    banyan_keyaki_params_init(&kp);
+    static const double bark[4] = LEAF_KEYAKI_BARK_RGBA;
 
     /* Pass 2: the mesh. */
     mesh_builder mb;
@@ -326,7 +326,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         v3 a = v3_load(trunk), b = v3_load(trunk + 3);
         mb_set_attr(&mb, a_level, -1);
         mb_set_attr(&mb, a_seg, -1);
-        level_color(kp.bark_color, -1, rgba);
+        level_color(bark, -1, rgba);
         mb_set_color(&mb, rgba);
         wind_set(&mb, &sw.ws, a, 0, seg_stiffness(&sw, 0), wind_phase_of(p->seed, 0), 0);
         seg_shaper_trunk(&sh, &tubes[0]);
@@ -353,7 +353,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
             seg_tube *tb = &tubes[j / 2];
             seg_shaper_line(&sh, i, buf, lev, par, tubes, j / 2, tb);
             mb_set_attr(&mb, a_level, lev[j]);
-            level_color(kp.bark_color, lev[j], rgba);
+            level_color(bark, lev[j], rgba);
             mb_set_color(&mb, rgba);
             /* Birth: the path from the root to the line's start, along its
              * parent line (the axis: from S; a fork: from its line's start). */
@@ -400,7 +400,7 @@ banyan_status banyan_segments_generate(const banyan_segments_params *params, con
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
     if (s) return s;
-    /* The frame (core/frame.h) from the axes' ends and the trunk. */
+    /* The frame (base/frame.h) from the axes' ends and the trunk. */
     v3 lo, hi;
     frame_empty(&lo, &hi);
     for (uint32_t i = 0; i < count; i++) {

@@ -7,9 +7,9 @@
  * and 45..70% as long. One PCG32 stream from params->seed. */
 #include <math.h>
 
-#include "../core/error.h"
-#include "../core/rng.h"
-#include "../core/vec.h"
+#include "../base/error.h"
+#include "../base/rng.h"
+#include "../base/vec.h"
 #include "segment_core.h"
 
 static void store(banyan_segment_input *o, v3 S, v3 A, double l, pcg32 *r) {

@@ -2,7 +2,7 @@
  * composer of spec segments.md, "Composing a tree") and its defaults: the
  * paper's angles and branch length, plus the choices banyan makes where
  * the spec is silent (unit, radii, sides, attachment tolerance). */
-#include "../core/error.h"
+#include "../base/error.h"
 #include "../params/params.h"
 #include "segment_core.h"
 

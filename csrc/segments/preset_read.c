@@ -10,7 +10,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "../core/error.h"
+#include "../base/error.h"
 #include "../params/params.h"
 #include "segment_core.h"
 

@@ -21,8 +21,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../core/error.h"
-#include "../core/vec.h"
+#include "../base/error.h"
+#include "../base/vec.h"
 #include "segment_core.h"
 
 #define SEG_MAX_LINES (BANYAN_SEGMENT_MAX_VERTICES / 2)

@@ -31,7 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/vec.h"
+#include "../base/vec.h"
 #include "segment_core.h"
 
 #define SEG_TAPER 0.5   /* tip radius / base radius of every line */

@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "core/progress.h"
+#include "base/progress.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -9,7 +9,7 @@
  * its flags, so a build never reads images another build drew. A file is
  * used only when its size, head and CRC all agree; anything else is a
  * miss, and the fresh images are stored over it. Files are written whole
- * through core/atomic_file.h (a private temporary file renamed over the
+ * through base/atomic_file.h (a private temporary file renamed over the
  * name), so runs that share the folder read either a whole old file or a
  * whole new one. A hit touches the file's time; past TEX_CACHE_MAX_BYTES
  * the files used longest ago are removed (with temporary files a killed
@@ -28,8 +28,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 #include "tex_code_hash.h"
 #include "textures/tex_budget.h"
 

@@ -10,8 +10,8 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "core/progress.h"
-#include "core/rng.h"
+#include "base/progress.h"
+#include "base/rng.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #  error "tex_pack_rgba assumes a little-endian machine"

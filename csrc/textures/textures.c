@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/big_alloc.h"
-#include "core/error.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
 #include "textures/tex_budget.h"
 #include "textures/png_write.h"
 #include "textures/tex_internal.h"
@@ -19,7 +19,7 @@
 
 void tex_leaf_grid(int kind, int *cols, int *rows, float *aspect) {
     /* Keyaki and ivy: 4 x 4 square cells of one leaf each (keyaki's placed
-     * as core/leaf_look.h says; docs/materials.md). */
+     * as textures/leaf_look.h says; docs/materials.md). */
     if (kind == BANYAN_TEX_KEYAKI_LEAF || kind == BANYAN_TEX_IVY_LEAF) *cols = 4, *rows = 4, *aspect = 1.0f;
     else *cols = 1, *rows = 1, *aspect = 1.0f;
 }

@@ -9,8 +9,8 @@
 #include <math.h>
 
 #include "banyan.h"
-#include "core/hosts.h"
-#include "core/rng.h"
+#include "hosts/hosts.h"
+#include "base/rng.h"
 #include "host_meshes.h"
 
 static void queries(const char *name, const banyan_hosts *H) {

@@ -10,7 +10,7 @@
 #include <math.h>
 
 #include "banyan.h"
-#include "core/rng.h"
+#include "base/rng.h"
 
 enum { N = 1000000, RUNS = 5, BATCH = 4096 };
 

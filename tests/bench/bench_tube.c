@@ -37,8 +37,8 @@
 #include <sys/resource.h>
 
 #include "banyan.h"
-#include "core/big_alloc.h"
-#include "core/tube.h"
+#include "base/big_alloc.h"
+#include "mesh/tube.h"
 
 #define SIDES 8
 

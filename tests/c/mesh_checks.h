@@ -5,7 +5,7 @@
 #include <stdlib.h>
 
 #include "banyan.h"
-#include "core/vec.h"
+#include "base/vec.h"
 
 static inline v3 mc_pos(const banyan_mesh *m, uint32_t v) {
     return v3_make(m->positions[3 * (size_t)v], m->positions[3 * (size_t)v + 1], m->positions[3 * (size_t)v + 2]);

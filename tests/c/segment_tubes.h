@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "banyan.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "segments/segment_core.h"
 
 typedef struct plan_tube {

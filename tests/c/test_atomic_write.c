@@ -1,5 +1,5 @@
 /* test_atomic_write.c - a write never destroys the file it replaces
- * (core/atomic_file.h): a full disk, a killed run and an
+ * (base/atomic_file.h): a full disk, a killed run and an
  * unwritable folder leave the old .glb byte for byte, a symlink stays a
  * link with its target replaced whole, no temporary file is left behind
  * by a failed write. The full disk and the kill are RLIMIT_FSIZE in a
@@ -22,7 +22,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/atomic_file.h"
+#include "base/atomic_file.h"
 #include "test_files.h"
 
 enum { LIMIT = 64 * 1024 }; /* the "disk" of the children, in bytes */

@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/big_alloc.h"
-#include "core/mesh_builder.h"
+#include "base/big_alloc.h"
+#include "mesh/mesh_builder.h"
 
 #define MIB ((size_t)1 << 20)
 

@@ -14,7 +14,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/progress.h"
+#include "base/progress.h"
 
 #define BUDGET 2.0
 #define WITHIN 2.5

@@ -17,7 +17,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/atomic_file.h"
+#include "base/atomic_file.h"
 #include "lod_plants.h"
 #include "roots/fused_vdb.h"
 #include "test_files.h"

@@ -286,7 +286,7 @@ static void check_cards(const banyan_mesh *m, int32_t kind, const char *what) {
         if (cu >= L.cols) cu = L.cols - 1;
         if (cv >= L.rows) cv = L.rows - 1;
         /* Keyaki's bottom row (v < 0.25): spray cells two cells wide
-         * (core/leaf_look.h). */
+         * (textures/leaf_look.h). */
         int span = kind == BANYAN_TEX_KEYAKI_LEAF && cv == 0 ? 2 : 1;
         cu -= cu % span;
         for (uint32_t k = 0; k < per; k++) {

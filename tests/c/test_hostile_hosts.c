@@ -17,7 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../../csrc/core/error.h"
+#include "../../csrc/base/error.h"
 #include "banyan.h"
 #include "check.h"
 

@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/hosts.h"
-#include "core/rng.h"
+#include "hosts/hosts.h"
+#include "base/rng.h"
 #include "host_meshes.h"
 
 static double hd(const banyan_hosts *H, v3 p, banyan_host_hit *hit) {

@@ -23,7 +23,7 @@
 
 #include "check.h"
 #include "ivy_checks.h"
-#include "core/obb.h"
+#include "hosts/obb.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
 

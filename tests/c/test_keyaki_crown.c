@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "keyaki_crown_checks.h"
 #include "test_files.h"
 

@@ -17,7 +17,7 @@
 
 #include "check.h"
 #include "keyaki/keyaki_internal.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 #include "keyaki_crown_checks.h"
 #include "test_files.h"
 

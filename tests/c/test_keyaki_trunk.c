@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "keyaki/keyaki_internal.h"
 
 typedef struct trunk_mesh {

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/tube.h"
+#include "mesh/tube.h"
 #include "keyaki/keyaki_internal.h"
 #include "segments/segment_core.h"
 #include "test_files.h"

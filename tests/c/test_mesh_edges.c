@@ -15,7 +15,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/rng.h"
+#include "base/rng.h"
 
 static int cmp_u64(const void *a, const void *b) {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;

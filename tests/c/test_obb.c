@@ -5,8 +5,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/obb.h"
-#include "core/rng.h"
+#include "hosts/obb.h"
+#include "base/rng.h"
 
 static v3 rand_v3(pcg32 *r, double s) { return v3_make(rng_range(r, -s, s), rng_range(r, -s, s), rng_range(r, -s, s)); }
 

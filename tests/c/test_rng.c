@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "check.h"
-#include "core/rng.h"
+#include "base/rng.h"
 
 int main(void) {
     /* pcg32-demo: pcg32_srandom_r(&rng, 42u, 54u), first six outputs. */

@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/closest.h"
+#include "hosts/closest.h"
 #include "roots/roots_internal.h"
 #include "test_files.h"
 

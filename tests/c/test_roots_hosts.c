@@ -435,7 +435,7 @@ static void test_refusals(void) {
     tm_free(&t);
 }
 
-/* The exact mesh queries the roots use (core/hosts.c), against dense
+/* The exact mesh queries the roots use (hosts/hosts.c), against dense
  * sampling with the nearest-point query: a segment's distance is the least
  * over its points; a swept sphere is free before its contact t and touches
  * at t; pressed against a face and moved along it, it slides. */

@@ -13,8 +13,8 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 #define MAXV BANYAN_SEGMENT_MAX_VERTICES
 #define GUARD 64

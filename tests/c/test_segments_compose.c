@@ -14,9 +14,9 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/rng.h"
-#include "core/tube.h"
-#include "core/vec.h"
+#include "base/rng.h"
+#include "mesh/tube.h"
+#include "base/vec.h"
 #include "segments/segment_core.h"
 #include "test_files.h"
 #include "mesh_checks.h"

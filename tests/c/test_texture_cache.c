@@ -25,7 +25,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/atomic_file.h"
+#include "base/atomic_file.h"
 #include "test_files.h"
 #include "textures/tex_budget.h"
 #include "textures/tex_cache.h"

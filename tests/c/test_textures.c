@@ -2,7 +2,7 @@
  * by invariants, at 64, 256 and 1024 pixels: image sizes and channels; leaf atlases have alpha where
  * each cell's leaf is (its centre, or for keyaki some pixel of the cell's
  * middle third) and alpha 0 at every cell corner and along its border;
- * keyaki's 4 x 4 leaves lie in the box core/leaf_look.h gives the mesh
+ * keyaki's 4 x 4 leaves lie in the box textures/leaf_look.h gives the mesh
  * (issue #20) and are 1.8-3.2 times longer than wide; bark is opaque and tiles (the wrap-around column and row steps
  * are like the steps inside); normal maps are unit vectors pointing out;
  * the PNG decodes (stb_image) to the same pixels; the same params give the
@@ -16,7 +16,7 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "core/leaf_look.h"
+#include "textures/leaf_look.h"
 
 #if defined(__GNUC__)
 #  pragma GCC diagnostic push

@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "core/rng.h"
-#include "core/tube.h"
+#include "base/rng.h"
+#include "mesh/tube.h"
 #include "mesh_checks.h"
 
 typedef struct { float p[3]; } key3;

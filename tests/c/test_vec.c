@@ -1,8 +1,8 @@
 /* vec3/mat3 and cubic Bezier: identities on random inputs. */
 #include "check.h"
-#include "core/bezier.h"
-#include "core/rng.h"
-#include "core/vec.h"
+#include "base/bezier.h"
+#include "base/rng.h"
+#include "base/vec.h"
 
 static v3 rand_v3(pcg32 *r, double s) { return v3_make(rng_range(r, -s, s), rng_range(r, -s, s), rng_range(r, -s, s)); }
 

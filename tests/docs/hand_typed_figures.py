@@ -45,13 +45,13 @@ ALLOW = [
     ("docs/api.md", "ivy growth needs 55 MB, past"),
     ("docs/keyaki.md", "(0.01 .. 604800 s, default"),
     ("docs/keyaki.md", "(16 .. 1,048,576 MB, default 16,384)"),
-    # how often the budget is read (csrc/core/progress.c)
+    # how often the budget is read (csrc/base/progress.c)
     ("docs/api.md", "the resident size every 20 ms"),
     ("docs/keyaki.md", "read every 20 ms"),
     ("docs/api.md", "at most once every 0.1 s while it moves slower"),
     # a test's bound (tests/c/test_budget_keyaki.c)
     ("docs/keyaki.md", "`max_seconds` = 2 stop within 2.5 s"),
-    # the thread pool's join sleeps (csrc/core/pool.c)
+    # the thread pool's join sleeps (csrc/base/pool.c)
     ("docs/keyaki.md", "in sleeps of 50 us growing to 2 ms"),
     # limits and block sizes stated by the code
     ("docs/gltf.md", "a few 512 KiB blocks ahead"),

@@ -1,6 +1,6 @@
 #!/bin/sh
 # No object of the library (its static archive) and not the CLI calls a libm
-# function that glibc picks per CPU: those go through csrc/core/dmath.h.
+# function that glibc picks per CPU: those go through csrc/base/dmath.h.
 # Allowed: OpenVDB's header code compiled into the fused-surface shim
 # (AffineMap::hasUniformScale's pow, Mat4's rotations' sincos), which
 # checks transforms and does not make geometry.
@@ -15,6 +15,6 @@ n=$(nm -A --undefined-only "$archive" | grep -c -E ' U Sleef_')
 fail=0
 if [ -n "$bad" ]; then echo "library objects calling glibc's CPU-dispatched libm:"; echo "$bad" | head -40; fail=1; fi
 if [ -n "$bad_cli" ]; then echo "the CLI calls glibc's CPU-dispatched libm:"; echo "$bad_cli"; fail=1; fi
-if [ "$n" -eq 0 ]; then echo "no object calls SLEEF: is csrc/core/dmath.h in use?"; fail=1; fi
+if [ "$n" -eq 0 ]; then echo "no object calls SLEEF: is csrc/base/dmath.h in use?"; fail=1; fi
 if [ $fail = 0 ]; then echo "deterministic_math: 1 passed, 0 failed ($n calls to SLEEF)"; else echo "deterministic_math: 0 passed, 1 failed"; fi
 exit $fail

@@ -1,5 +1,5 @@
 """Writing a file without ever destroying the old one (as the library's
-csrc/core/atomic_file.c does for glTF and PNG): the bytes go to a
+csrc/base/atomic_file.c does for glTF and PNG): the bytes go to a
 temporary ".<name>.XXXXXX.tmp" in the same folder, flushed, synced and
 renamed over the target (os.replace) only when all of them are written.
 A failure removes the temporary file and leaves the old file as it was; a

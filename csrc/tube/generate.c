@@ -1,13 +1,14 @@
-/* banyan_tube_generate: the public face of the shared sweeper (tube.h),
- * used by the CLI's `tube` demo and the tests. */
+/* banyan_tube_generate: the public face of the shared sweeper (mesh/tube.h),
+ * used by the CLI's `tube` demo and the tests. A generator of its own
+ * (one folder per generator, above csrc/mesh), not part of the sweeper. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "error.h"
-#include "frame.h"
-#include "tube.h"
-#include "wind.h"
+#include "base/error.h"
+#include "base/frame.h"
+#include "mesh/tube.h"
+#include "mesh/wind.h"
 
 banyan_status banyan_tube_generate(const double *points, const double *radii, uint32_t point_count, int32_t sides,
                                    int32_t caps, banyan_mesh **out, banyan_error *err) {

@@ -3,8 +3,7 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "error.h"
-#include "obb.h"
+#include "base/error.h"
 
 void banyan_mesh_free(banyan_mesh *m) {
     if (!m) return;
@@ -113,18 +112,6 @@ uint64_t banyan_mesh_hash(const banyan_mesh *m) {
     }
     if (m->instances) h = fnv(h, m->instances, m->instance_count * sizeof(banyan_instance));
     return h;
-}
-
-banyan_box banyan_box_make(double cx, double cy, double cz, double hx, double hy, double hz) {
-    banyan_box b = {{cx, cy, cz}, {hx, hy, hz}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
-    return b;
-}
-
-banyan_status banyan_box_validate(const banyan_box *box, uint32_t index, banyan_error *err) {
-    obb o;
-    banyan_status s = obb_from_box(box, index, &o, err);
-    if (!s) banyan_error_clear(err);
-    return s;
 }
 
 int32_t banyan_abi_version(void) { return BANYAN_ABI_VERSION; }

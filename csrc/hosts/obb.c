@@ -1,8 +1,9 @@
 /* Oriented-box queries; see obb.h. Everything works in the box's local
- * frame, where the box is [-h, h]^3. */
+ * frame, where the box is [-h, h]^3. Also the public box calls
+ * (banyan_box_make, banyan_box_validate). */
 #include "obb.h"
 
-#include "error.h"
+#include "base/error.h"
 
 banyan_status obb_from_box(const banyan_box *b, uint32_t index, obb *out, banyan_error *err) {
     if (!b) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts[%u] is NULL", index);
@@ -165,3 +166,14 @@ void obb_bounds(const obb *o, v3 *lo, v3 *hi) {
     *hi = v3_add(o->c, e);
 }
 
+banyan_box banyan_box_make(double cx, double cy, double cz, double hx, double hy, double hz) {
+    banyan_box b = {{cx, cy, cz}, {hx, hy, hz}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    return b;
+}
+
+banyan_status banyan_box_validate(const banyan_box *box, uint32_t index, banyan_error *err) {
+    obb o;
+    banyan_status s = obb_from_box(box, index, &o, err);
+    if (!s) banyan_error_clear(err);
+    return s;
+}

@@ -4,6 +4,7 @@
 
 #include <pthread.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "banyan.h"
 
@@ -39,4 +40,10 @@ void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog 
         if (pause.tv_nsec < 2000000) pause.tv_nsec = pause.tv_nsec * 2 < 2000000 ? pause.tv_nsec * 2 : 2000000;
     }
     for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
+}
+
+int pool_threads(int threads, int max) {
+    if (threads != 0) return threads;
+    long c = sysconf(_SC_NPROCESSORS_ONLN);
+    return c < 1 ? 1 : c > max ? max : (int)c;
 }

@@ -4,7 +4,7 @@
 #ifndef BANYAN_CLOSEST_H
 #define BANYAN_CLOSEST_H
 
-#include "vec.h"
+#include "base/vec.h"
 
 /* Closest point of triangle abc to p (Ericson, Real-Time Collision
  * Detection 5.1.5). *region: 0 face, 1..3 vertex a, b, c, 4..6 edge ab,

@@ -78,6 +78,10 @@ void leaf_look_keyaki(uint64_t seed, uint64_t index, int spray, int32_t season, 
  * leaf colour; autumn: the kind's autumn colour). */
 void leaf_material_set(banyan_material *m, int32_t kind, int32_t season, const double summer_rgba[4]);
 
+/* The keyaki's default bark colour (linear RGBA), also the segments
+ * trees' trunk and axes colour, so both trees show the same bark. */
+#define LEAF_KEYAKI_BARK_RGBA {0.16, 0.13, 0.10, 1.0}
+
 /* Sets a bark or stem material's texture (opaque, no translucency). */
 void bark_material_set(banyan_material *m, int32_t kind);
 

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "error.h"
+#include "base/error.h"
 
 /* One corner's edge, filed under its lower vertex. */
 typedef struct edge_ref {

@@ -3,12 +3,12 @@
  * queried here (hosts.c). Generators loop over the boxes as before (so a
  * box-only set gives the bytes it always gave) and ask the mesh queries
  * below for the meshes. */
-#ifndef BANYAN_CORE_HOSTS_H
-#define BANYAN_CORE_HOSTS_H
+#ifndef BANYAN_HOSTS_HOSTS_H
+#define BANYAN_HOSTS_HOSTS_H
 
 #include "banyan.h"
 #include "obb.h"
-#include "vec.h"
+#include "base/vec.h"
 
 /* One mesh host, in world space relative to `origin` (kept in double, so
  * a mesh far from the world origin keeps float precision near itself). */

@@ -3,8 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "big_alloc.h"
-#include "error.h"
+#include "base/big_alloc.h"
+#include "base/error.h"
 
 void mb_init(mesh_builder *mb, uint32_t max_vertices, int with_color) {
     memset(mb, 0, sizeof *mb);

@@ -2,8 +2,8 @@
  * no state. A lattice of hashed values (splitmix64's finaliser) blended
  * with smoothsteps, so the same key and point give the same value on every
  * machine (no libm). */
-#ifndef BANYAN_CORE_NOISE_H
-#define BANYAN_CORE_NOISE_H
+#ifndef BANYAN_BASE_NOISE_H
+#define BANYAN_BASE_NOISE_H
 
 #include <stdint.h>
 

@@ -15,4 +15,8 @@
 
 void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog *g, atomic_int *cancel);
 
+/* The library's one "threads 0 = all cores" rule: `threads` when it is
+ * not 0, else the online cores, at least 1 and at most `max`. */
+int pool_threads(int threads, int max);
+
 #endif

@@ -9,7 +9,7 @@
 #define BANYAN_MESH_BUILDER_H
 
 #include "banyan.h"
-#include "vec.h"
+#include "base/vec.h"
 
 #define MB_MAX_ATTRS 16
 /* Hard ceiling on vertices in one mesh, whatever max_vertices asks. */

@@ -22,8 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "frame.h"
+#include "base/error.h"
+#include "base/frame.h"
 
 #define MAX_VERTICES 33554432u /* 2^25 over the whole set */
 

@@ -5,7 +5,7 @@
 #define BANYAN_OBB_H
 
 #include "banyan.h"
-#include "vec.h"
+#include "base/vec.h"
 
 typedef struct obb {
     v3 c;        /* centre */

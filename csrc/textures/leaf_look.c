@@ -2,8 +2,8 @@
  * (leaf_look.h). */
 #include "leaf_look.h"
 
-#include "noise.h"
-#include "rng.h"
+#include "base/noise.h"
+#include "base/rng.h"
 
 /* Streams of the per-leaf generators: the index spread over the stream
  * space (an odd multiplier) so neighbouring leaves' streams differ in

@@ -3,8 +3,8 @@
  * about 0.5 mm within FRAME_KEEP metres of zero, so a generator shifts its
  * world inputs by an origin near them, runs unchanged, and refuses what
  * would lie farther than FRAME_KEEP from that origin. */
-#ifndef BANYAN_CORE_FRAME_H
-#define BANYAN_CORE_FRAME_H
+#ifndef BANYAN_BASE_FRAME_H
+#define BANYAN_BASE_FRAME_H
 
 #include "banyan.h"
 #include "vec.h"
