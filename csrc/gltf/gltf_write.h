@@ -21,11 +21,13 @@
 #include <tiny_gltf.h>
 
 #include <cerrno>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -222,6 +224,7 @@ bool colors_repeat_material(const banyan_mesh *m);
 Layout layout_of(const banyan_mesh *m, bool engine_uvs);
 std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, const Layout &L, uint32_t base,
                                             uint32_t count, bool with_colors, const Segment *tangent);
+void plan_prims(const banyan_mesh *m, int material_base, std::vector<Prim> &prims, bool &local);
 uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, bool tangents, std::vector<Prim> &prims,
                    bool &local);
 bool tangent_ranges_exact(const banyan_mesh *m, const std::vector<Prim> &prims, bool local);
@@ -231,7 +234,58 @@ inline uint64_t instance_bytes(const banyan_mesh *m) { return (3 + 4 + 3) * 4ull
 /* ------------------------------------------------------------ tangents (gltf_write_tangents.cpp) */
 
 std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_t vcount, uint32_t ioff,
-                                   uint32_t icount);
+                                   uint32_t icount, std::vector<double> &acc);
+
+/* The range a kTangent segment's tangents come from: the whole mesh's
+ * triangles, or vertices [base, +count) from indices [ioff, +icount). */
+struct TangentKey {
+    const banyan_mesh *m = nullptr;
+    bool whole = false;
+    uint32_t base = 0, count = 0, ioff = 0, icount = 0;
+    bool operator==(const TangentKey &k) const;
+};
+TangentKey tangent_key(const Segment &s);
+/* scratch: the sums' memory, kept by the caller for the next range. */
+std::vector<float> tangents_of(const TangentKey &k, std::vector<double> &scratch);
+void tangent_keys(const banyan_mesh *m, std::vector<TangentKey> &out);
+
+/* The tangents of every textured mesh of nodes, computed on a thread of
+ * their own from before the meshes are checked (it reads only meshes whose
+ * fields it can trust), in the order the stream takes them, at most
+ * kAheadBytes held ahead. take() hands over a range's tangents, computing
+ * them itself (in scratch) when the thread has not reached them: the same
+ * bits either way. The destructor stops the thread and waits for it. */
+class TangentAhead {
+  public:
+    static constexpr size_t kAheadBytes = size_t(64) << 20;
+
+    TangentAhead(const banyan_gltf_node *nodes, uint32_t count, const banyan_gltf_options &o);
+    ~TangentAhead();
+    TangentAhead(const TangentAhead &) = delete;
+    TangentAhead &operator=(const TangentAhead &) = delete;
+    std::shared_ptr<const std::vector<float>> take(const TangentKey &key, std::vector<double> &scratch);
+
+  private:
+    enum State { kComputing, kDone, kTaken };
+    struct Entry {
+        TangentKey key;
+        State state;
+        std::shared_ptr<const std::vector<float>> data;
+    };
+    void run();
+    bool compute(const TangentKey &key);
+
+    const banyan_gltf_node *nodes_;
+    uint32_t count_;
+    const banyan_gltf_options o_;
+    std::mutex mu_;
+    std::condition_variable cv_;
+    std::vector<Entry> entries_;
+    std::vector<double> scratch_; /* the worker's sums, reused from range to range */
+    size_t held_ = 0;
+    bool stop_ = false;
+    std::thread th_;
+};
 
 /* ------------------------------------------------------------ textures (gltf_write_textures.cpp) */
 
@@ -372,7 +426,7 @@ class Sink {
 /* Streams segs[from ..] into bin, converted on a second thread while the
  * caller writes; late is set when the deadline passed first. */
 void stream_segments(Sink &bin, OutFile &out, const std::vector<Segment> &segs, size_t from,
-                     const prog_deadline &deadline, bool &late);
+                     const prog_deadline &deadline, bool &late, TangentAhead *ahead);
 bool split_document(const std::string &doc, bool binary, uint64_t total, std::string &head, std::string &tail,
                     size_t json_chunk = 0);
 

@@ -175,10 +175,9 @@ uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t coun
     return floats * 4 * count;
 }
 
-/* Plans a mesh's primitives; `local` tells whether each part keeps to its
- * own vertices. Returns the bytes the mesh adds to the buffer. */
-uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, bool tangents, std::vector<Prim> &prims,
-                   bool &local) {
+/* A mesh's primitives; `local` tells whether each part keeps to its own
+ * vertices. */
+void plan_prims(const banyan_mesh *m, int material_base, std::vector<Prim> &prims, bool &local) {
     prims.clear();
     local = m->part_count > 0;
     for (uint32_t p = 0; p < m->part_count && local; ++p) {
@@ -191,7 +190,6 @@ uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, boo
             }
         }
     }
-    uint64_t bytes = 0;
     if (m->part_count == 0) {
         prims.push_back(Prim{0, m->index_count, 0, m->vertex_count,
                              m->material_count > 0 ? material_base : -1, 0});
@@ -208,6 +206,14 @@ uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, boo
         pr.group = pt->group;
         prims.push_back(pr);
     }
+}
+
+/* Plans a mesh's primitives (plan_prims). Returns the bytes the mesh adds
+ * to the buffer. */
+uint64_t plan_mesh(const banyan_mesh *m, const Layout &L, int material_base, bool tangents, std::vector<Prim> &prims,
+                   bool &local) {
+    plan_prims(m, material_base, prims, local);
+    uint64_t bytes = 0;
     bool colors = !colors_repeat_material(m);
     for (const Prim &pr : prims) {
         bytes += 4ull * pr.icount;

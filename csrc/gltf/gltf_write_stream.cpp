@@ -244,7 +244,7 @@ class Pipe {
  * blocks. */
 class BinWriter {
   public:
-    explicit BinWriter(Pipe &out) : out_(out) {}
+    BinWriter(Pipe &out, TangentAhead *ahead) : out_(out), ahead_(ahead) {}
 
     void write(const Segment &s) {
         switch (s.kind) {
@@ -315,7 +315,7 @@ class BinWriter {
             }
             break;
         case kTangent: { /* converted like the normals (a rotation: w keeps its sign) */
-            const float *t = tan_.data() + 4 * (b - tan_base_);
+            const float *t = tan_->data() + 4 * (b - tan_base_);
             for (uint32_t i = 0; i < n; ++i, o += 4, t += 4) {
                 o[0] = t[0];
                 o[1] = t[2];
@@ -372,23 +372,18 @@ class BinWriter {
     /* The tangents a kTangent segment reads: its own range's, or the whole
      * mesh's, kept while the same mesh's ranges follow. */
     void tangents_for(const Segment &s) {
-        if (s.whole) {
-            if (tan_mesh_ != s.m || !tan_whole_) {
-                tan_ = vertex_tangents(s.m, 0, s.m->vertex_count, 0, s.m->index_count);
-                tan_mesh_ = s.m;
-                tan_whole_ = true;
-                tan_base_ = 0;
-            }
-            return;
-        }
-        tan_ = vertex_tangents(s.m, s.base, s.count, s.ioff, s.icount);
+        if (s.whole && tan_mesh_ == s.m && tan_whole_) return;
+        const TangentKey key = tangent_key(s);
+        tan_ = ahead_ ? ahead_->take(key, scratch_) : std::make_shared<const std::vector<float>>(tangents_of(key, scratch_));
         tan_mesh_ = s.m;
-        tan_whole_ = false;
-        tan_base_ = s.base;
+        tan_whole_ = s.whole;
+        tan_base_ = key.base;
     }
 
     Pipe &out_;
-    std::vector<float> tan_;
+    TangentAhead *ahead_; /* NULL: every range computed here */
+    std::shared_ptr<const std::vector<float>> tan_;
+    std::vector<double> scratch_; /* the tangents' sums, reused from range to range */
     const banyan_mesh *tan_mesh_ = nullptr;
     bool tan_whole_ = false;
     size_t tan_base_ = 0;
@@ -397,10 +392,10 @@ class BinWriter {
 } // namespace
 
 void stream_segments(Sink &bin, OutFile &out, const std::vector<Segment> &segs, size_t from,
-                     const prog_deadline &deadline, bool &late) {
+                     const prog_deadline &deadline, bool &late, TangentAhead *ahead) {
     Pipe pipe(bin, out);
-    pipe.run([&segs, from, &deadline, &late](Pipe &p) {
-        BinWriter bw(p);
+    pipe.run([&segs, from, &deadline, &late, ahead](Pipe &p) {
+        BinWriter bw(p, ahead);
         for (size_t k = from, n = segs.size(); k < n; ++k) {
             if (p.failed()) break;
             if (prog_deadline_passed(&deadline)) {

@@ -1,10 +1,16 @@
 /*
  * gltf_write_tangents.cpp - per-vertex tangents for the normal maps
- * (gltf_write.h).
+ * (gltf_write.h), and their computation ahead of the stream: a thread
+ * started before the meshes are checked computes each range's tangents in
+ * the order the stream asks for them, so the work overlaps the checks,
+ * the planning and the streaming instead of adding to them. Each range's
+ * tangents are the same bits whichever thread computes them.
  */
 #include "gltf/gltf_write.h"
 
+#include <algorithm>
 #include <cmath>
+#include <system_error>
 
 namespace gltfw {
 
@@ -20,9 +26,9 @@ namespace gltfw {
  * other triangle touches the range, this is the whole mesh's result, bit
  * for bit: each vertex sums the same terms in the same order. */
 std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_t vcount, uint32_t ioff,
-                                   uint32_t icount) {
+                                   uint32_t icount, std::vector<double> &acc) {
     const size_t vc = vcount;
-    std::vector<double> acc(6 * vc, 0.0); /* t then b, per vertex */
+    acc.assign(6 * vc, 0.0); /* t then b, per vertex; the caller's memory, reused */
     for (uint32_t k = ioff; k + 2 < ioff + icount; k += 3) {
         const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
         const uint32_t rel[3] = {i[0] - vbase, i[1] - vbase, i[2] - vbase};
@@ -85,6 +91,189 @@ std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_
         out[4 * v + 3] = static_cast<float>(w);
     }
     return out;
+}
+
+namespace {
+
+/* Whether the worker may read mesh m: what check_mesh guarantees of the
+ * fields tangents and plan_prims read (a mesh that fails here fails the
+ * check, and the worker leaves it alone). */
+bool tangents_safe(const banyan_mesh *m) {
+    if (m == nullptr || m->vertex_count == 0 || m->index_count == 0 || m->index_count % 3 != 0) return false;
+    if (!m->positions || !m->indices) return false;
+    if ((m->material_count > 0 && !m->materials) || (m->part_count > 0 && !m->parts) ||
+        (m->instance_count > 0 && !m->instances))
+        return false;
+    for (uint32_t p = 0; p < m->part_count; ++p) {
+        const banyan_part *pt = &m->parts[p];
+        if (static_cast<uint64_t>(pt->vertex_offset) + pt->vertex_count > m->vertex_count ||
+            static_cast<uint64_t>(pt->index_offset) + pt->index_count > m->index_count || pt->index_count % 3 != 0)
+            return false;
+    }
+    uint32_t top = 0;
+    for (uint32_t i = 0; i < m->index_count; ++i) top = std::max(top, m->indices[i]);
+    return top < m->vertex_count;
+}
+
+/* Whether the writer gives mesh m tangents (Write::plan_buffer's rule). */
+bool wants_tangents(const banyan_mesh *m, const banyan_gltf_options &o) {
+    if (!o.textures) return false;
+    for (uint32_t k = 0; k < m->material_count; ++k) {
+        const banyan_material *bm = &m->materials[k];
+        if (m->image_count > 0 && bm->image >= 0) continue;
+        if (texture_key(m, bm) >= 0) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+bool TangentKey::operator==(const TangentKey &k) const {
+    return m == k.m && whole == k.whole && (whole || (base == k.base && count == k.count && ioff == k.ioff &&
+                                                      icount == k.icount));
+}
+
+TangentKey tangent_key(const Segment &s) {
+    TangentKey k;
+    k.m = s.m;
+    k.whole = s.whole;
+    k.base = s.whole ? 0 : s.base;
+    k.count = s.whole ? s.m->vertex_count : s.count;
+    k.ioff = s.whole ? 0 : s.ioff;
+    k.icount = s.whole ? s.m->index_count : s.icount;
+    return k;
+}
+
+std::vector<float> tangents_of(const TangentKey &k, std::vector<double> &scratch) {
+    return vertex_tangents(k.m, k.base, k.count, k.ioff, k.icount, scratch);
+}
+
+/* The ranges mesh m's tangents are streamed in, in emit_job's order: the
+ * whole mesh once, or each primitive's own (tangent_ranges_exact), the
+ * variants of an instanced mesh in turn. */
+void tangent_keys(const banyan_mesh *m, std::vector<TangentKey> &out) {
+    std::vector<Prim> prims;
+    bool local = false;
+    plan_prims(m, 0, prims, local);
+    if (!tangent_ranges_exact(m, prims, local)) {
+        TangentKey k;
+        k.m = m;
+        k.whole = true;
+        k.count = m->vertex_count;
+        k.icount = m->index_count;
+        out.push_back(k);
+        return;
+    }
+    auto add = [&](const Prim &pr) {
+        TangentKey k;
+        k.m = m;
+        k.base = pr.vbase;
+        k.count = pr.vcount;
+        k.ioff = pr.ioff;
+        k.icount = pr.icount;
+        out.push_back(k);
+    };
+    if (m->instance_count == 0) {
+        for (const Prim &pr : prims) add(pr);
+        return;
+    }
+    for (uint32_t g : drawn_groups(m)) {
+        bool shown = false;
+        for (uint32_t k = 0; k < m->instance_count && !shown; ++k) shown = m->instances[k].variant == g;
+        if (!shown) continue;
+        for (const Prim &pr : prims)
+            if (pr.group == g) add(pr);
+    }
+}
+
+TangentAhead::TangentAhead(const banyan_gltf_node *nodes, uint32_t count, const banyan_gltf_options &o)
+    : nodes_(nodes), count_(count), o_(o) {
+    try {
+        th_ = std::thread([this] { run(); });
+    } catch (const std::system_error &) {
+        /* no thread: the stream computes every range itself */
+    }
+}
+
+TangentAhead::~TangentAhead() {
+    {
+        std::lock_guard<std::mutex> lk(mu_);
+        stop_ = true;
+    }
+    cv_.notify_all();
+    if (th_.joinable()) th_.join();
+}
+
+void TangentAhead::run() {
+    try {
+        for (uint32_t i = 0; i < count_; ++i) {
+            const banyan_gltf_node &n = nodes_[i];
+            if (n.lod_count > kMaxLods || (n.lod_count > 0 && n.lods == nullptr)) break;
+            for (uint32_t k = 0; k <= n.lod_count; ++k) {
+                const banyan_mesh *m = k == 0 ? n.mesh : n.lods[k - 1];
+                if (!tangents_safe(m)) return; /* the check refuses it: nothing more will be streamed */
+                if (!wants_tangents(m, o_)) continue;
+                std::vector<TangentKey> keys;
+                tangent_keys(m, keys);
+                size_t most = 0; /* the sums' memory once, for the mesh's largest range */
+                for (const TangentKey &key : keys) most = std::max<size_t>(most, key.count);
+                if (scratch_.capacity() < 6 * most) {
+                    scratch_ = std::vector<double>();
+                    scratch_.reserve(6 * most);
+                }
+                for (const TangentKey &key : keys)
+                    if (!compute(key)) return;
+            }
+        }
+    } catch (...) {
+        /* out of memory here: the stream computes what is missing */
+    }
+}
+
+bool TangentAhead::compute(const TangentKey &key) {
+    size_t at;
+    {
+        std::unique_lock<std::mutex> lk(mu_);
+        cv_.wait(lk, [this] { return stop_ || held_ < kAheadBytes; });
+        if (stop_) return false;
+        for (const Entry &e : entries_)
+            if (e.key == key) return true; /* claimed already (the stream, or a repeated range) */
+        entries_.push_back(Entry{key, kComputing, nullptr});
+        at = entries_.size() - 1;
+    }
+    auto t = std::make_shared<const std::vector<float>>(tangents_of(key, scratch_));
+    std::lock_guard<std::mutex> lk(mu_);
+    entries_[at].state = kDone;
+    entries_[at].data = t;
+    held_ += t->size() * sizeof(float);
+    cv_.notify_all();
+    return true;
+}
+
+std::shared_ptr<const std::vector<float>> TangentAhead::take(const TangentKey &key, std::vector<double> &scratch) {
+    {
+        std::unique_lock<std::mutex> lk(mu_);
+        for (;;) {
+            Entry *found = nullptr;
+            for (Entry &e : entries_)
+                if (e.key == key) found = &e;
+            if (found == nullptr) { /* not reached yet: claimed and computed here */
+                entries_.push_back(Entry{key, kTaken, nullptr});
+                break;
+            }
+            if (found->state == kDone) {
+                std::shared_ptr<const std::vector<float>> t = std::move(found->data);
+                found->data.reset();
+                found->state = kTaken;
+                held_ -= t->size() * sizeof(float);
+                cv_.notify_all();
+                return t;
+            }
+            if (found->state == kTaken) break; /* taken before (a range asked for twice): computed again */
+            cv_.wait(lk); /* kComputing: the worker finishes it */
+        }
+    }
+    return std::make_shared<const std::vector<float>>(tangents_of(key, scratch));
 }
 
 } // namespace gltfw

@@ -88,6 +88,7 @@ struct Write {
     uint64_t total = 0;                            /* the buffer's planned bytes */
 
     Builder b;
+    std::unique_ptr<TangentAhead> ahead; /* the textured meshes' tangents, computed beside the checks */
 
     banyan_status over() {
         if (g.cancelled == PROG_RUNNING) { /* the streaming thread saw the deadline first */
@@ -104,6 +105,7 @@ struct Write {
     }
 
     banyan_status check_call();
+    banyan_status check_nodes();
     void plan_jobs();
     banyan_status plan_images();
     banyan_status plan_buffer();
@@ -111,7 +113,7 @@ struct Write {
     banyan_status write_file(TextureDrawer &drawer);
 };
 
-/* The path, the options and every node, before anything else. */
+/* The path, the options and the node array, before anything else. */
 banyan_status Write::check_call() {
     if (path == nullptr) return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is NULL");
     if (path[0] == '\0') return banyan_fail(err, BANYAN_E_INVALID_ARG, "path is empty");
@@ -131,6 +133,11 @@ banyan_status Write::check_call() {
     if (nodes == nullptr)
         return banyan_fail(err, BANYAN_E_INVALID_ARG, ex ? "meshes is NULL but count = %u" : "nodes is NULL but count = %u",
                            count);
+    return BANYAN_OK;
+}
+
+/* Every node and its levels. */
+banyan_status Write::check_nodes() {
     for (uint32_t i = 0; i < count; ++i) {
         banyan_status s = check_node(nodes[i], i, ex, err);
         if (s != BANYAN_OK) return s;
@@ -365,7 +372,7 @@ banyan_status Write::write_file(TextureDrawer &drawer) {
     Sink raw(defer ? out.get() : nullptr, false);
     Sink bin(defer ? out.get() : nullptr, !binary);
     bool late = false; /* the producer passed the deadline (one thread writes it, read after its join) */
-    auto stream = [&](size_t from) { stream_segments(bin, out, b.segs, from, deadline, late); };
+    auto stream = [&](size_t from) { stream_segments(bin, out, b.segs, from, deadline, late, ahead.get()); };
     if (defer) {
         raw.put(head.data(), head.size()); /* for now: rewritten at the end */
         stream(0);
@@ -440,6 +447,12 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     banyan_gltf_options_init(&W.o);
     if (opt) W.o = *opt;
     if (banyan_status s = W.check_call()) return s;
+    /* The tangents start before the nodes are checked (the check is most of
+     * the time before the first byte); the compact write's inner call starts
+     * its own. The budget's clock starts after the check, as before. */
+    if (W.o.textures && !W.o.compact)
+        W.ahead.reset(new TangentAhead(nodes, count, W.o));
+    if (banyan_status s = W.check_nodes()) return s;
     if (W.o.compact) { /* the plain .glb, rewritten compact (gltf_compact.cpp) */
         banyan_gltf_options plain = W.o;
         plain.compact = 0;
