@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <system_error>
 
 namespace gltfw {
@@ -28,7 +31,7 @@ namespace gltfw {
 std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_t vcount, uint32_t ioff,
                                    uint32_t icount, std::vector<double> &acc) {
     const size_t vc = vcount;
-    acc.assign(6 * vc, 0.0); /* t then b, per vertex; the caller's memory, reused */
+    acc.assign(6 * vc, 0.0); /* per vertex and axis (t, b); the caller's memory, reused */
     for (uint32_t k = ioff; k + 2 < ioff + icount; k += 3) {
         const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
         const uint32_t rel[3] = {i[0] - vbase, i[1] - vbase, i[2] - vbase};
@@ -47,16 +50,31 @@ std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_
         double du2 = static_cast<double>(t2[0]) - t0[0], dv2 = static_cast<double>(t2[1]) - t0[1];
         double det = du1 * dv2 - du2 * dv1;
         if (!(std::fabs(det) > 1e-20)) continue;
-        double r = 1.0 / det, sd[3], td[3];
+        const double r = 1.0 / det;
+#if defined(__SSE2__)
+        /* (sd[c], td[c]) in one register: the same products, differences
+         * and scaling as the scalar lines below, two lanes at a time. */
+        const __m128d a = _mm_set_pd(du1, dv2), bq = _mm_set_pd(du2, dv1), rr = _mm_set1_pd(r);
+        double *acc0 = &acc[6 * static_cast<size_t>(rel[0])], *acc1 = &acc[6 * static_cast<size_t>(rel[1])],
+               *acc2 = &acc[6 * static_cast<size_t>(rel[2])];
         for (int c = 0; c < 3; ++c) {
-            sd[c] = (e1[c] * dv2 - e2[c] * dv1) * r;
-            td[c] = (e2[c] * du1 - e1[c] * du2) * r;
+            const __m128d e = _mm_set_pd(e2[c], e1[c]);                  /* (e1, e2) */
+            const __m128d es = _mm_shuffle_pd(e, e, 1);                  /* (e2, e1) */
+            const __m128d st = _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(e, a), _mm_mul_pd(es, bq)), rr);
+            _mm_storeu_pd(acc0 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc0 + 2 * c), st));
+            _mm_storeu_pd(acc1 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc1 + 2 * c), st));
+            _mm_storeu_pd(acc2 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc2 + 2 * c), st));
         }
-        for (int j = 0; j < 3; ++j)
-            for (int c = 0; c < 3; ++c) {
-                acc[6 * static_cast<size_t>(rel[j]) + c] += sd[c];
-                acc[6 * static_cast<size_t>(rel[j]) + 3 + c] += td[c];
+#else
+        for (int c = 0; c < 3; ++c) {
+            const double sd = (e1[c] * dv2 - e2[c] * dv1) * r;
+            const double td = (e2[c] * du1 - e1[c] * du2) * r;
+            for (int j = 0; j < 3; ++j) {
+                acc[6 * static_cast<size_t>(rel[j]) + 2 * c] += sd;
+                acc[6 * static_cast<size_t>(rel[j]) + 2 * c + 1] += td;
             }
+        }
+#endif
     }
     std::vector<float> out(4 * vc);
     for (size_t v = 0; v < vc; ++v) {
@@ -69,7 +87,8 @@ std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_
             n[0] = n[1] = 0.0;
             n[2] = 1.0;
         }
-        const double *t = &acc[6 * v], *bt = &acc[6 * v + 3];
+        const double *s2 = &acc[6 * v]; /* (t, b) per axis */
+        const double t[3] = {s2[0], s2[2], s2[4]}, bt[3] = {s2[1], s2[3], s2[5]};
         double d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
         double q[3] = {t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]};
         double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
