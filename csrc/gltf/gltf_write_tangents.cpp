@@ -288,7 +288,7 @@ std::shared_ptr<const std::vector<float>> TangentAhead::take(const TangentKey &k
                 cv_.notify_all();
                 return t;
             }
-            if (found->state == kTaken) break; /* taken before (a range asked for twice): computed again */
+            if (found->state == kTaken) break; /* taken already (a range asked for twice): computed again */
             cv_.wait(lk); /* kComputing: the worker finishes it */
         }
     }

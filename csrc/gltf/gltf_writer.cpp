@@ -449,7 +449,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     if (banyan_status s = W.check_call()) return s;
     /* The tangents start before the nodes are checked (the check is most of
      * the time before the first byte); the compact write's inner call starts
-     * its own. The budget's clock starts after the check, as before. */
+     * its own. The budget's clock starts after the check. */
     if (W.o.textures && !W.o.compact)
         W.ahead.reset(new TangentAhead(nodes, count, W.o));
     if (banyan_status s = W.check_nodes()) return s;
