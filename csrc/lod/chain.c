@@ -11,8 +11,8 @@
 #include <string.h>
 
 #include "banyan.h"
-#include "core/error.h"
-#include "core/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "lod_internal.h"
 
 typedef struct bb_job {
