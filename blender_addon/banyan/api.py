@@ -152,6 +152,7 @@ def segment_twigs(*, progress=None, **kw):
 def make_lods(obj, ratios=(0.5, 0.15), billboard=True, billboard_size=256, collection=None):
     """obj's levels of detail in a collection "<name> LODs" (lod.py):
     <name>_LOD0 (obj's mesh), one level per ratio (share of the
-    triangles), then crossed billboard cards when billboard. Returns the
+    triangles; falling, each level made from the one before:
+    banyan_mesh_lods), then crossed billboard cards when billboard. Returns the
     objects; raises BanyanError with nothing left behind."""
     return lod.make_lods(obj, ratios, billboard=billboard, billboard_size=billboard_size, collection=collection)

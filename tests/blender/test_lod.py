@@ -29,7 +29,7 @@ def bounds(o):
 def check_lods(obj, gen, billboard):
     name = obj.name
     before = bt.scene_state()
-    for bad in ((0.0,), (1.5,), ("x",)):
+    for bad in ((0.0,), (1.5,), ("x",), (0.15, 0.5), (1.0,)):
         try:
             api.make_lods(obj, ratios=bad)
             bt.check(False, "%s: ratios %r refused" % (gen, bad))

@@ -116,6 +116,8 @@ def _bind(lib):
         # Levels of detail (banyan/lod.h).
         "banyan_lod_params_init": (None, [P(S.LodParams)]),
         "banyan_mesh_lod": (C.c_int, [P(S.Mesh), P(S.LodParams), P(P(S.Mesh)), err]),
+        "banyan_mesh_lods": (C.c_int, [P(S.Mesh), P(C.c_double), C.c_uint32, P(S.LodParams), C.c_int32, C.c_void_p,
+                                       P(P(S.Mesh)), err]),
     }
     for key in S.SIZED:
         sigs["banyan_sizeof_" + key] = (C.c_size_t, [])

@@ -232,6 +232,33 @@ def tube(points, radii, sides=12, caps=True):
     return call_generate(L.load().banyan_tube_generate, pts, rad, n, A.int32("sides", sides), int(bool(caps)))
 
 
+def lods(d, ratios, billboard=False, size=None, threads=0):
+    """banyan_mesh_lods of MeshData d taken under capture(): the levels of
+    the falling ratios (each made from the one before), then with
+    billboard the crossed cards (size: the picture's pixels), as a list of
+    MeshData. The library checks ratios and names the bad one."""
+    if d.c_mesh is None:
+        raise L.BanyanError(1, "the mesh was not kept (take it under core.mesh.capture())", "BANYAN_E_INVALID_ARG")
+    lib = L.load()
+    n = len(ratios)
+    arr = (C.c_double * max(n, 1))(*[float(r) for r in ratios])
+    bb = None
+    if billboard:
+        bb = S.LodParams()
+        lib.banyan_lod_params_init(C.byref(bb))
+        bb.billboard = 1
+        if size is not None:
+            bb.billboard_size = int(size)
+    count = n + (1 if billboard else 0)
+    out = (C.POINTER(S.Mesh) * max(count, 1))()
+    err = S.Error()
+    st = lib.banyan_mesh_lods(d.c_mesh, arr, n, C.byref(bb) if bb is not None else None, int(threads), None, out,
+                              C.byref(err))
+    if st:
+        L.raise_for(st, err)
+    return [MeshData.take(out[k]) for k in range(count)]
+
+
 def lod(d, ratio=0.5, billboard=False, planes=None, size=None, seed=None):
     """banyan_mesh_lod of MeshData d taken under capture() (d.c_mesh):
     a coarser MeshData, about ratio of the triangles, or the crossed

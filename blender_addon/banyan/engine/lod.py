@@ -62,7 +62,8 @@ def _level_object(name, d, coll, created, job, obj, index):
 
 def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, collection=None):
     """The LOD collection of obj (a Banyan plant): returns the objects,
-    LOD0 first. ratios: shares of the triangles kept, each in (0, 1];
+    LOD0 first. ratios: shares of the triangles kept, falling, each within
+    [0.001, 1) (each level is made from the one before, as the CLI's --lod);
     billboard: crossed cards as the last level (default: for trees).
     Raises BanyanError (nothing left behind) for a non-plant, bad ratios
     or a library error."""
@@ -72,10 +73,12 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
     try:
         ratios = [float(r) for r in ratios]
     except (TypeError, ValueError):
-        raise BanyanError(12, "ratios must be numbers in (0, 1], not %r" % (ratios,), "BANYAN_E_TYPE")
+        raise BanyanError(12, "ratios must be falling numbers within [0.001, 1), not %r" % (ratios,), "BANYAN_E_TYPE")
+    # Checked before the plant is grown again; banyan_mesh_lods checks the same.
     for i, r in enumerate(ratios):
-        if not 0.0 < r <= 1.0:
-            raise BanyanError(2, "ratios[%d] = %r must be in (0, 1]" % (i, r), "BANYAN_E_RANGE")
+        if not 0.001 <= r < (ratios[i - 1] if i else 1.0):
+            raise BanyanError(2, "ratios[%d] = %r must be within [0.001, 1) and below the ratio before it" % (i, r),
+                              "BANYAN_E_RANGE")
     pl = obj.banyan_plant
     if billboard is None:
         billboard = pl.generator in TREES
@@ -98,9 +101,7 @@ def make_lods(obj, ratios=(0.5, 0.15), billboard=None, billboard_size=256, colle
             with build_job(obj, params, tmp) as job:
                 job.compute()
                 full = job.data
-                levels = [M.lod(full, r) for r in ratios]
-                if billboard:
-                    levels.append(M.lod(full, 1.0, billboard=True, size=billboard_size))
+                levels = M.lods(full, ratios, billboard=billboard, size=billboard_size)
                 index = pl.index if pl.group else 0
                 for k, d in enumerate(levels, start=1):
                     o = _level_object("%s_LOD%d" % (base, k), d, coll, created, job, obj, index)

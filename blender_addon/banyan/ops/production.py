@@ -90,7 +90,7 @@ class BANYAN_OT_make_lods(bpy.types.Operator):
     bl_options = {'REGISTER', 'UNDO'}
 
     ratios: FloatVectorProperty(name="Ratios", size=2, default=(0.5, 0.15), min=0.001, max=1.0,
-                                description="Share of the triangles each level keeps")
+                                description="Share of the triangles each level keeps, falling (each level is made from the one before)")
     billboard: BoolProperty(name="Billboard", default=True, description="Crossed cards as the last level (trees)")
 
     @classmethod
