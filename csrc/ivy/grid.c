@@ -10,7 +10,7 @@
  * index) in one run of a pool, so a query reads 27 table slots and a few
  * short runs. A chain of buds linked by index, as before, jumped over the
  * whole plant at every link: past ~50k buds each was a cache miss and the
- * cost per bud doubled by 250k (issue 23). The runs are read in the order
+ * cost per bud doubled by 250k. The runs are read in the order
  * the chains were, so the light sums are the same to the bit. A query
  * asks for all its slots, then all its runs, before reading any: misses
  * overlap instead of coming one after another (docs/ivy.md, "At scale").
@@ -306,7 +306,7 @@ static inline ivy_cell *cell_slot(const banyan_ivy *iv, int32_t x, int32_t y, in
  * and then the runs are asked for in one batch each before any is read:
  * neighbouring cells lie anywhere in the table and the pool, and waiting
  * for each miss in turn was most of a look-up's time once the plant
- * outgrew the caches (issue 23). An empty home slot settles most cells
+ * outgrew the caches. An empty home slot settles most cells
  * by a bit test (the bitmap stays in cache; the slots do not). */
 static int cells_around(const banyan_ivy *iv, int32_t x0, int32_t x1, int32_t y0, int32_t y1, int32_t z0, int32_t z1,
                         const ivy_cell **out) {

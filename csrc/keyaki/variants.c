@@ -1,4 +1,4 @@
-/* variants.c - instanced avenues (issue #22; docs/keyaki.md "Variants"):
+/* variants.c - instanced avenues (docs/keyaki.md "Variants"):
  * an avenue whose trees are drawn from `variants` distinct keyaki trees
  * placed as instances (banyan_instance), instead of every tree grown and
  * merged (avenue.c).

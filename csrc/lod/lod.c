@@ -1,4 +1,4 @@
-/* lod.c - levels of detail (banyan/lod.h; issue #22; docs/lod.md).
+/* lod.c - levels of detail (banyan/lod.h; docs/lod.md).
  *
  * A coarser copy of any generator's mesh, part by part (so an avenue or
  * an instanced avenue is reduced tree by tree, variant by variant):

@@ -1,4 +1,4 @@
-/* noise.c - periodic value noise for the tileable textures (issue #17):
+/* noise.c - periodic value noise for the tileable textures:
  * lattice values drawn from the painter's PCG32 stream, interpolated with
  * a smoothstep; the lattice wraps, so a sum of octaves whose cell counts
  * divide the image size tiles without a seam. Fields are made a band of

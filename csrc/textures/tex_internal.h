@@ -1,4 +1,4 @@
-/* tex_internal.h - shared pieces of the texture painters (issue #17):
+/* tex_internal.h - shared pieces of the texture painters:
  * the canvas they draw into, the periodic value noise, small colour
  * helpers. Every painter draws its base colour into `rgba` (sRGB,
  * straight alpha) and a height field into `height`; textures.c turns

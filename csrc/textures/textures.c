@@ -1,4 +1,4 @@
-/* textures.c - the public texture calls of banyan/textures.h (issue #17):
+/* textures.c - the public texture calls of banyan/textures.h:
  * input checks, the atlas layout, the canvas each painter draws into, the
  * normal map (Sobel on the painter's height field, glTF's tangent-space
  * convention) and PNG bytes (png_write.c), under the caller's deadline

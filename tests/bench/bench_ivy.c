@@ -8,13 +8,13 @@
  *   - the light look-up alone at 100 to 100,000 buds;
  *   - the same preset with its wall given as a closed 12-triangle mesh
  *     (a host set, Embree queries) against the box: both times and the
- *     ratio (issue 15's target: within 1.5x).
+ *     ratio (the target: within 1.5x).
  * Usage: bench_ivy [runs]
  *        bench_ivy --large [max_buds [preset]]: growth alone of
  *     presets/ivy_wall_large.json (or presets/<preset>.json) (12 m x 12 m wall, 1,800 steps), stepped
  *     one step at a time, with a table at 50k, 100k, 150k, ... 600k buds: time so far, and microseconds per bud over all buds so far
  *     (cumulative) and over the buds since the row before (marginal);
- *     issue 23's target: flat within 1.5x from 50k to 600k. */
+ *     the target: flat within 1.5x from 50k to 600k. */
 #include "bench.h"
 
 #include "host_meshes.h"

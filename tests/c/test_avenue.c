@@ -156,7 +156,7 @@ static void refusals(void) {
     REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
     small(&p);
     /* The jitter keeps each trunk within trunk_length's own range, so the
-     * range's ends are valid for an avenue too (issue 21). */
+     * range's ends are valid for an avenue too. */
     p.tree.trunk_length = 90;
     p.height_jitter = 0.5;
     {

@@ -1,6 +1,6 @@
 /*
  * test_gltf_textures.c - textures and materials in the glTF the library
- * writes (issue #17): leaf materials are alpha-masked, double sided and
+ * writes: leaf materials are alpha-masked, double sided and
  * textured; the embedded PNGs decode (stb_image) with alpha where the
  * leaves are and opaque bark; images are shared per kind and season; the
  * same seed gives the same bytes; textures off writes no image; the season

@@ -1,4 +1,4 @@
-/* test_lod.c - levels of detail (banyan_mesh_lod, banyan/lod.h; issue #22):
+/* test_lod.c - levels of detail (banyan_mesh_lod, banyan/lod.h):
  * on every generator's mesh, ratios 0.5 and 0.15 keep that share of the
  * triangles (within 10 %), the bounding box (within 5 % of its size on
  * every axis), the leaf area (within 10 %), every part, material and

@@ -1,9 +1,9 @@
-/* test_textures.c - the texture calls of banyan/textures.h (issue #17),
+/* test_textures.c - the texture calls of banyan/textures.h,
  * by invariants, at 64, 256 and 1024 pixels: image sizes and channels; leaf atlases have alpha where
  * each cell's leaf is (its centre, or for keyaki some pixel of the cell's
  * middle third) and alpha 0 at every cell corner and along its border;
  * keyaki's 4 x 4 leaves lie in the box textures/leaf_look.h gives the mesh
- * (issue #20) and are 1.8-3.2 times longer than wide; bark is opaque and tiles (the wrap-around column and row steps
+ * and are 1.8-3.2 times longer than wide; bark is opaque and tiles (the wrap-around column and row steps
  * are like the steps inside); normal maps are unit vectors pointing out;
  * the PNG decodes (stb_image) to the same pixels; the same params give the
  * same bytes (twice, and from two threads at once), another seed other
@@ -102,7 +102,7 @@ static void check_atlas(int kind, int season, const banyan_image *im) {
         }
 }
 
-/* Keyaki (issue #20): 4 x 4 cells of one leaf each, where leaf_look.h says
+/* Keyaki: 4 x 4 cells of one leaf each, where leaf_look.h says
  * the mesh expects it. Per cell (u right, v up, pixel centres): every
  * pixel with any alpha lies within LEAF_KEYAKI_HALF_U of u = 0.5 and below
  * LEAF_KEYAKI_BLADE_V1, a 1.5 pixel allowance for the antialiased edge;
