@@ -77,7 +77,8 @@ banyan_status banyan_mesh_lods(const banyan_mesh *mesh, const double *ratios, ui
     if (!out) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL");
     const uint64_t n = (uint64_t)ratio_count + (billboard ? 1 : 0);
     banyan_status s;
-    for (uint64_t k = 0; k < n && k < BANYAN_LOD_MAX_LEVELS; k++) out[k] = NULL;
+    if (n <= BANYAN_LOD_MAX_LEVELS) /* out holds n entries only when n is in range */
+        for (uint64_t k = 0; k < n; k++) out[k] = NULL;
     if ((s = check_ratios(ratios, ratio_count, billboard, err))) return s;
     if ((s = banyan_check_int(err, "threads", threads, 0, 1024))) return s;
     if (!mesh) return banyan_fail(err, BANYAN_E_INVALID_ARG, "mesh is NULL");
