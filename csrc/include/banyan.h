@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 16
+#define BANYAN_ABI_VERSION 17
 
 /* ---------------------------------------------------------------- status */
 
@@ -504,6 +504,25 @@ BANYAN_API void banyan_host_mesh_free(struct banyan_host_mesh *mesh);
 BANYAN_API banyan_status banyan_preset_host_set(const char *text, size_t length, const char *source,
                                                 const char *base_dir, const struct banyan_host_mesh *extra,
                                                 uint32_t n_extra, struct banyan_hosts **out, banyan_error *err);
+/* One mesh host entry of a preset as banyan_preset_host_set reads it
+ * (the file itself is not read). */
+typedef struct banyan_preset_mesh {
+    uint32_t index;        /* its place in the preset's "hosts" */
+    int32_t closed;        /* banyan_host_closed: -1 auto, 0 open, 1 closed */
+    double transform[12];  /* object -> world, row-major 3x4: translation + rotation * (scale * p) */
+    char path[4096];       /* the file, a relative one joined to base_dir */
+    char name[256];        /* its "name", or the file's base name without the extension */
+} banyan_preset_mesh;
+BANYAN_API size_t banyan_sizeof_preset_mesh(void);
+/* The mesh host entries of a preset, in order, into out[0 .. cap - 1];
+ * *count gets how many there are (0: only boxes, or no "hosts"). Checks
+ * each entry as banyan_preset_host_set does (naming hosts[i]) and refuses
+ * more than cap (BANYAN_E_RANGE) or a joined path of 4096 bytes or more.
+ * Reads no mesh file: what a caller that places the meshes itself (the
+ * add-on's objects) needs, composed once, here. */
+BANYAN_API banyan_status banyan_preset_meshes(const char *text, size_t length, const char *source,
+                                              const char *base_dir, banyan_preset_mesh *out, uint32_t cap,
+                                              uint32_t *count, banyan_error *err);
 /* banyan_preset_host_set inside one budget for the whole call
  * (banyan_budget; NULL: the defaults, which banyan_preset_host_set uses):
  * every mesh file's sizes are read from its header first, and the set-wide

@@ -444,6 +444,76 @@ banyan_status banyan_preset_hosts(const char *text, size_t length, const char *s
     return s;
 }
 
+size_t banyan_sizeof_preset_mesh(void) { return sizeof(banyan_preset_mesh); }
+
+/* The name of mesh entry h: its "name", or the file's base name without
+ * its extension. */
+static void entry_name(const cJSON *h, const char *path, char *out, size_t cap) {
+    const cJSON *nm = cJSON_GetObjectItemCaseSensitive(h, "name");
+    if (cJSON_IsString(nm) && nm->valuestring[0]) {
+        snprintf(out, cap, "%s", nm->valuestring);
+        return;
+    }
+    const char *b = path;
+    for (const char *c = path; *c; c++)
+        if (*c == '/' || *c == '\\') b = c + 1;
+    const char *dot = strrchr(b, '.');
+    size_t n = dot && dot != b ? (size_t)(dot - b) : strlen(b);
+    snprintf(out, cap, "%.*s", (int)n, b);
+}
+
+banyan_status banyan_preset_meshes(const char *text, size_t length, const char *source, const char *base_dir,
+                                   banyan_preset_mesh *out, uint32_t cap, uint32_t *count, banyan_error *err) {
+    if (!count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is NULL");
+    *count = 0;
+    if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL but cap = %u", cap);
+    if (!source) source = "<preset>";
+    cJSON *j;
+    banyan_status s = preset_parse(text, length, source, &j, err);
+    if (s) return s;
+    const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
+    char w[300];
+    where(w, sizeof w, source, text, length, "hosts");
+    if (hosts && !cJSON_IsArray(hosts)) s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array", w);
+    else s = not_empty(hosts, w, err);
+    uint32_t i = 0, n = 0;
+    for (const cJSON *h = hosts ? hosts->child : NULL; h && !s; h = h->next, i++) {
+        if (!mesh_member(h)) continue;
+        char wm[300], *path = NULL;
+        where_nth(wm, sizeof wm, source, text, length, "mesh", (int)n);
+        double transform[12];
+        int32_t closed;
+        if ((s = read_mesh_entry(h, i, base_dir, &path, transform, &closed, err))) {
+            banyan_error_prefix(err, wm);
+            break;
+        }
+        if (n < cap) {
+            banyan_preset_mesh *m = &out[n];
+            memset(m, 0, sizeof *m);
+            if (strlen(path) >= sizeof m->path) {
+                s = banyan_fail(err, BANYAN_E_RANGE, "%shosts[%u].mesh: the path joined to base_dir is %zu bytes, "
+                                "more than the %zu allowed", wm, i, strlen(path), sizeof m->path - 1);
+                free(path);
+                break;
+            }
+            m->index = i;
+            m->closed = closed;
+            memcpy(m->transform, transform, sizeof m->transform);
+            memcpy(m->path, path, strlen(path) + 1);
+            entry_name(h, path, m->name, sizeof m->name);
+        }
+        free(path);
+        n++;
+    }
+    if (!s && n > cap) s = banyan_fail(err, BANYAN_E_RANGE, "%s%u mesh hosts is more than cap = %u", w, n, cap);
+    if (!s) {
+        *count = n;
+        banyan_error_clear(err);
+    }
+    cJSON_Delete(j);
+    return s;
+}
+
 /* How the set numbers host k of banyan_hosts_create's messages ("hosts[K]
  * (mesh M) ...") in the preset's terms: its message is rewritten to start
  * "hosts[i]" (the preset's entry) or "--host / extra mesh j", keeping the

@@ -548,6 +548,47 @@ static void shipped_presets(void) {
     CHECK(nb >= 20 && nb == boxes, "%d box presets walked", nb);
 }
 
+/* banyan_preset_meshes: the mixed preset's one mesh entry, its transform
+ * (x = 10 + Rz(90) * 2p: (1, 0, 0) -> (10, 2, 0)), name, path and closed
+ * mode; a nameless entry is named for its file; a box-only preset has
+ * none; refusals name hosts[i], count and cap. */
+static void preset_meshes(void) {
+    banyan_preset_mesh m[2];
+    uint32_t n = 99;
+    banyan_error e;
+    const char *mixed = "{\"generator\": \"roots\", \"hosts\": [{\"center\": [0, 0, 1], \"half\": [1, 1, 1]},\n"
+                        " {\"mesh\": \"hosts/column.glb\", \"translation\": [10, 0, 0], \"scale\": 2,\n"
+                        "  \"rotation_euler_deg\": [0, 0, 90], \"closed\": \"closed\", \"name\": \"col\"},\n"
+                        " {\"mesh\": \"/abs/rock.v2.glb\"}]}";
+    CHECK(banyan_sizeof_preset_mesh() == sizeof(banyan_preset_mesh), "sizeof");
+    CHECK(banyan_preset_meshes(mixed, strlen(mixed), "mixed", "base", m, 2, &n, &e) == BANYAN_OK && n == 2,
+          "mixed: %u entries, %s", n, e.message);
+    if (n == 2) {
+        const double *t = m[0].transform, p[3] = {1, 0, 0};
+        double x[3];
+        for (int r = 0; r < 3; r++) x[r] = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
+        CHECK(fabs(x[0] - 10) < 1e-12 && fabs(x[1] - 2) < 1e-12 && fabs(x[2]) < 1e-12, "(1, 0, 0) -> (%g, %g, %g)",
+              x[0], x[1], x[2]);
+        CHECK(m[0].index == 1 && m[0].closed == 1 && !strcmp(m[0].name, "col") && !strcmp(m[0].path, "base/hosts/column.glb"),
+              "entry 0: index %u, closed %d, name '%s', path '%s'", m[0].index, m[0].closed, m[0].name, m[0].path);
+        CHECK(m[1].index == 2 && m[1].closed == -1 && !strcmp(m[1].name, "rock.v2") && !strcmp(m[1].path, "/abs/rock.v2.glb"),
+              "entry 1: index %u, closed %d, name '%s', path '%s'", m[1].index, m[1].closed, m[1].name, m[1].path);
+    }
+    CHECK(banyan_preset_meshes(mixed, strlen(mixed), "mixed", NULL, m, 1, &n, &e) == BANYAN_E_RANGE && n == 0 &&
+              strstr(e.message, "cap = 1"),
+          "cap 1: %s", e.message);
+    CHECK(banyan_preset_meshes(mixed, strlen(mixed), "mixed", NULL, NULL, 0, NULL, &e) == BANYAN_E_INVALID_ARG &&
+              strstr(e.message, "count"),
+          "count NULL: %s", e.message);
+    const char *boxes = "{\"hosts\": [{\"center\": [0, 0, 1], \"half\": [1, 1, 1]}]}";
+    CHECK(banyan_preset_meshes(boxes, strlen(boxes), "boxes", NULL, NULL, 0, &n, &e) == BANYAN_OK && n == 0,
+          "boxes: %u, %s", n, e.message);
+    const char *bad = "{\"hosts\": [{\"center\": [0, 0, 1], \"half\": [1, 1, 1]}, {\"mesh\": \"a.glb\", \"scale\": 0}]}";
+    CHECK(banyan_preset_meshes(bad, strlen(bad), "bad", NULL, m, 2, &n, &e) == BANYAN_E_BAD_HOST &&
+              strstr(e.message, "hosts[1].scale"),
+          "scale 0: %s", e.message);
+}
+
 int main(int argc, char **argv) {
     /* A folder of its own: the validator checks every .glb directly in argv[1]. */
     snprintf(outdir, sizeof outdir, "%s/host_files", argc > 1 ? argv[1] : ".");
@@ -557,6 +598,7 @@ int main(int argc, char **argv) {
     bad_files();
     shipped();
     presets();
+    preset_meshes();
     shipped_presets();
     return check_done("test_host_files");
 }

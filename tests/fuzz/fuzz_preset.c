@@ -1,6 +1,6 @@
 /* fuzz_preset.c - libFuzzer harness for the preset reader: the bytes are a
  * preset file. Every reader runs on them - banyan_preset_apply for each
- * generator, banyan_preset_hosts, banyan_segments_preset_read (counting,
+ * generator, banyan_preset_hosts, banyan_preset_meshes, banyan_segments_preset_read (counting,
  * then filling) - and, when the text has a '=', banyan_param_set_text with
  * the text before it as key and after it as value. What a reader accepts
  * must pass the checks the generators run (banyan_params_check,
@@ -39,6 +39,26 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         for (uint32_t i = 0; i < n; i++)
             FZ_ASSERT(banyan_box_validate(&hosts[i], i, &e) == BANYAN_OK, "host %u accepted but invalid: %s", i,
                       e.message);
+    }
+    /* Mesh host entries: composed transforms finite, paths and names
+     * terminated, indices inside the hosts list. */
+    static banyan_preset_mesh meshes[BANYAN_MAX_HOSTS];
+    n = 77;
+    memset(&e, 0, sizeof e);
+    s = banyan_preset_meshes(text, size, "fuzz.json", "base", meshes, BANYAN_MAX_HOSTS, &n, &e);
+    if (s) {
+        fz_check_failure(s, &e, NULL);
+        FZ_ASSERT(n == 0, "mesh count %u on failure", n);
+    } else {
+        FZ_ASSERT(n <= BANYAN_MAX_HOSTS, "%u mesh hosts", n);
+        for (uint32_t i = 0; i < n; i++) {
+            for (int k = 0; k < 12; k++)
+                FZ_ASSERT(isfinite(meshes[i].transform[k]), "mesh %u transform[%d] not finite", i, k);
+            FZ_ASSERT(memchr(meshes[i].path, 0, sizeof meshes[i].path) && memchr(meshes[i].name, 0, sizeof meshes[i].name),
+                      "mesh %u path or name unterminated", i);
+            FZ_ASSERT(i == 0 || meshes[i].index > meshes[i - 1].index, "mesh %u index %u out of order", i,
+                      meshes[i].index);
+        }
     }
     uint32_t count = 0;
     s = banyan_segments_preset_read(text, size, "fuzz.json", NULL, 0, &count, NULL, NULL, &e);

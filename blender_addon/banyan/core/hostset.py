@@ -119,54 +119,6 @@ def read_glb(path, transform=None, closed=S.HOST_CLOSED_AUTO, name=None):
     return MeshInput(pos, tri, transform=rows, closed=closed, name=name or os.path.basename(path))
 
 
-def _rotate(v, k, angle):
-    """vec.h v3_rotate (Rodrigues), term by term as the C computes it."""
-    c, s = math.cos(angle), math.sin(angle)
-    r = [v[i] * c for i in range(3)]
-    kxv = (k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0])
-    r = [r[i] + kxv[i] * s for i in range(3)]
-    d = (k[0] * v[0] + k[1] * v[1] + k[2] * v[2]) * (1.0 - c)
-    return [r[i] + k[i] * d for i in range(3)]
-
-
-def _axis_rotation(k, angle):
-    """vec.h m3_rotation: row-major 3x3, columns the rotated unit axes."""
-    cols = [_rotate(e, k, angle) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
-    return [cols[c][r] for r in range(3) for c in range(3)]
-
-
-def _m3_mul(a, b):
-    return [sum(a[3 * r + k] * b[3 * k + c] for k in range(3)) for r in range(3) for c in range(3)]
-
-
-def euler_deg_rotation(deg):
-    """preset.c euler_deg: R = Rz * Ry * Rx (XYZ, degrees), row-major 9."""
-    rad = [d * (3.14159265358979323846 / 180.0) for d in deg]
-    rx = _axis_rotation((1.0, 0.0, 0.0), rad[0])
-    ry = _axis_rotation((0.0, 1.0, 0.0), rad[1])
-    rz = _axis_rotation((0.0, 0.0, 1.0), rad[2])
-    return _m3_mul(_m3_mul(rz, ry), rx)
-
-
-CLOSED_NAMES = {"auto": S.HOST_CLOSED_AUTO, "open": S.HOST_OPEN, "closed": S.HOST_CLOSED}
-
-
-def preset_mesh_transform(entry):
-    """The 3x4 object -> world rows of a preset's mesh host entry, composed
-    as preset.c read_mesh_entry does: translation (or center) + rotation
-    (9 numbers or rotation_euler_deg) * (scale * p)."""
-    t = [float(x) for x in entry.get("translation", entry.get("center", (0.0, 0.0, 0.0)))]
-    if "rotation" in entry:
-        rot = [float(x) for x in entry["rotation"]]
-    elif "rotation_euler_deg" in entry:
-        rot = euler_deg_rotation([float(x) for x in entry["rotation_euler_deg"]])
-    else:
-        rot = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
-    sc = entry.get("scale", 1.0)
-    sc = [float(sc)] * 3 if isinstance(sc, (int, float)) else [float(x) for x in sc]
-    return tuple(rot[3 * r + c] * sc[c] if c < 3 else t[r] for r in range(3) for c in range(4))
-
-
 def preset_hosts_split(text, source="<preset>", base_dir=None):
     """(boxes, meshes) of a preset's "hosts" that may name .glb meshes.
     The whole preset is first checked by the library
@@ -186,15 +138,27 @@ def preset_hosts_split(text, source="<preset>", base_dir=None):
     box_entries = [e for e in entries if "mesh" not in e]
     if box_entries:
         boxes = preset_hosts(json.dumps(dict(doc, hosts=box_entries)), source)
-    meshes = []
-    for i, e in enumerate(entries):
-        if "mesh" not in e:
-            continue
-        path = e["mesh"] if os.path.isabs(e["mesh"]) or not base else os.path.join(base, e["mesh"])
-        meshes.append({"index": i, "name": str(e.get("name") or os.path.splitext(os.path.basename(path))[0]),
-                       "path": path, "transform": preset_mesh_transform(e),
-                       "closed": CLOSED_NAMES[e.get("closed", "auto")]})
-    return boxes, meshes
+    return boxes, preset_meshes(data, source, base)
+
+
+def preset_meshes(text, source="<preset>", base_dir=None):
+    """The preset's mesh host entries as the library composes them
+    (banyan_preset_meshes, no file read): one dict each, in order:
+    {"index" (in the preset's hosts), "name", "path" (joined to base_dir),
+    "transform" (12 rows), "closed"}."""
+    data = text.encode() if isinstance(text, str) else bytes(text)
+    lib = L.load()
+    out = (S.PresetMesh * S.MAX_HOSTS)()
+    count = C.c_uint32(0)
+    err = S.Error()
+    base = os.fsencode(base_dir) if base_dir is not None else None
+    st = lib.banyan_preset_meshes(data, len(data), L.source_name(source), base, out, S.MAX_HOSTS, C.byref(count),
+                                  C.byref(err))
+    if st:
+        L.raise_for(st, err)
+    return [{"index": int(m.index), "name": m.name.decode("utf-8", "replace"),
+             "path": os.fsdecode(m.path), "transform": tuple(m.transform),
+             "closed": int(m.closed)} for m in out[:count.value]]
 
 
 def name_hosts(message, names, n_boxes=0):

@@ -104,6 +104,8 @@ def _bind(lib):
         # Mesh hosts from .glb files and presets (banyan.h).
         "banyan_glb_read_host": (C.c_int, [C.c_char_p, P(C.c_double), C.c_int32, P(P(S.HostMesh)), err]),
         "banyan_host_mesh_free": (None, [P(S.HostMesh)]),
+        "banyan_preset_meshes": (C.c_int, [C.c_char_p, C.c_size_t, C.c_char_p, C.c_char_p, P(S.PresetMesh), C.c_uint32,
+                                           P(C.c_uint32), err]),
         "banyan_preset_host_set": (C.c_int, [C.c_char_p, C.c_size_t, C.c_char_p, C.c_char_p, P(S.HostMesh),
                                              C.c_uint32, P(vp), err]),
         # Textures (banyan/textures.h).

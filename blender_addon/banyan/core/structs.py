@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 16     # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 17     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -184,8 +184,14 @@ class LodParams(C.Structure):
                 ("billboard_size", C.c_int32), ("reserved", C.c_int32), ("seed", C.c_uint64)]
 
 
+class PresetMesh(C.Structure):
+    """banyan_preset_mesh (banyan.h): one mesh host entry of a preset."""
+    _fields_ = [("index", C.c_uint32), ("closed", C.c_int32), ("transform", C.c_double * 12),
+                ("path", C.c_char * 4096), ("name", C.c_char * 256)]
+
+
 # Checked against banyan_sizeof_<key>() at load.
 SIZED = {"error": Error, "box": Box, "attribute": Attribute, "material": Material,
          "part": Part, "mesh": Mesh, "param_info": ParamInfo, "host_mesh": HostMesh, "host_hit": HostHit,
          "host_info": HostInfo, "image": Image, "texture_params": TextureParams, "instance": Instance,
-         "lod_params": LodParams}
+         "lod_params": LodParams, "preset_mesh": PresetMesh}
