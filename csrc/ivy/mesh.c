@@ -250,23 +250,52 @@ static int leaf_overlaps(const banyan_ivy *iv, const leaf_geo *g, const leaf_sha
     return hit;
 }
 
+/* The clumps' field at R, a position relative to the first bud (so a
+ * plant moved, far from the origin too, keeps its leaves): a 3-D value
+ * noise over cells of clump_size, -1 thin .. 1 dense. */
+static double clump_field(const banyan_ivy *iv, v3 R) {
+    const banyan_ivy_params *p = &iv->p;
+    return 2 * noise_value3(noise_mix(p->seed ^ CLUMP_SALT), R.x, R.y, R.z, p->clump_size) - 1;
+}
+
 /* Does bud i carry a leaf? Of the buds, leaf_share do where the cover is
- * average; the share varies over clumps of clump_size (1 +- leaf_clump
- * times a 3-D value noise of the bud's position relative to the first
- * bud, so a plant moved, far from the origin too, keeps its leaves) and
- * halves towards the growing tips (age 0: a new bud; 1: leaf_size_steps
- * old), so the cover has dense and thin patches and a thinner growth
- * front. Drawn from a hash of the seed and the bud, apart from every
- * stream. */
+ * average; the share varies over the clumps (1 +- leaf_clump times the
+ * clump field) and halves towards the growing tips (age 0: a new bud; 1:
+ * leaf_size_steps old), so the cover has dense and thin patches and a
+ * thinner growth front. Drawn from a hash of the seed and the bud, apart
+ * from every stream. */
 static int leaf_kept(const banyan_ivy *iv, int32_t i, double age, double wood) {
     const banyan_ivy_params *p = &iv->p;
     if (wood <= 0) return 0;
     if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1) return 1;
-    const uint64_t key = noise_mix(p->seed ^ CLUMP_SALT);
-    v3 P = v3_sub(iv->buds[i].P, iv->buds[0].P);
-    double share = p->leaf_share * (1 + p->leaf_clump * (2 * noise_value3(key, P.x, P.y, P.z, p->clump_size) - 1)) *
+    double share = p->leaf_share * (1 + p->leaf_clump * clump_field(iv, v3_sub(iv->buds[i].P, iv->buds[0].P))) *
                    (0.5 + 0.5 * age) * wood;
-    return noise_unit(noise_mix(noise_mix(key + 1) ^ (uint64_t)i)) < share;
+    return noise_unit(noise_mix(noise_mix(noise_mix(p->seed ^ CLUMP_SALT) + 1) ^ (uint64_t)i)) < share;
+}
+
+/* The envelope's height over the clumps per unit of clump_relief: the
+ * clump field steepened (slope 2 about its mean, flat at +-1), so a
+ * clump is a mound with flanks rather than a gentle wave. */
+static double clump_height(const banyan_ivy *iv, v3 R) {
+    const double c = clump_field(iv, R);
+    return c * (2 - fabs(c));
+}
+
+/* The foliage's envelope over the clumps: dense clumps stand up to
+ * clump_relief further out than the average, thin zones as much nearer
+ * the surface. Returns that height at bud P and, in *env, the envelope's
+ * normal over a surface of normal n (n tilted against the height's slope
+ * along the surface), so the blades of a clump's flanks face along them
+ * and a clump reads by its light and shade from afar. */
+static double clump_envelope(const banyan_ivy *iv, v3 P, v3 n, v3 *env) {
+    const double relief = iv->p.clump_relief, e = 0.05 * iv->p.clump_size;
+    P = v3_sub(P, iv->buds[0].P); /* the steps below are exact beside small numbers */
+    v3 g = v3_make((clump_height(iv, v3_add(P, v3_make(e, 0, 0))) - clump_height(iv, v3_sub(P, v3_make(e, 0, 0)))) / (2 * e),
+                   (clump_height(iv, v3_add(P, v3_make(0, e, 0))) - clump_height(iv, v3_sub(P, v3_make(0, e, 0)))) / (2 * e),
+                   (clump_height(iv, v3_add(P, v3_make(0, 0, e))) - clump_height(iv, v3_sub(P, v3_make(0, 0, e)))) / (2 * e));
+    g = v3_scale(v3_sub(g, v3_scale(n, v3_dot(n, g))), relief);
+    *env = v3_norm_or(v3_sub(n, g), n);
+    return relief * clump_height(iv, P);
 }
 
 /* The cover frays at a box's edges: within a band of edge_fray, its width
@@ -319,7 +348,12 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
     double w = (nr.dist - p->sucker_length) / (4.0 * reach);
     w = w < 0 ? 0 : (w > 1 ? 1 : w);
     v3 free_n = v3_norm(v3_add(v3_scale(nr.normal, 0.5), up));
-    v3 n = v3_norm_or(v3_lerp(nr.normal, free_n, w), nr.normal);
+    v3 n = v3_norm_or(v3_lerp(nr.normal, free_n, w), nr.normal), env;
+    double lift = 0;
+    if (p->clump_relief > 0 && w < 1) {
+        lift = clump_envelope(iv, b->P, n, &env) * (1 - w);
+        n = v3_norm_or(v3_lerp(n, env, 1 - w), n);
+    }
     v3 t = b->parent >= 0 ? v3_norm_or(v3_sub(b->P, iv->buds[b->parent].P), b->V) : b->V;
     v3 side = v3_norm_or(v3_cross(n, t), v3_any_perp(n));
     if (!b->L) side = v3_neg(side);
@@ -337,9 +371,13 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
     g->nb = v3_norm_or(v3_add(v3_scale(n, dm_cos(th)), v3_scale(toward, dm_sin(th))), n);
     /* Tip: down the blade (it hangs on its petiole), leaning to the leaf's side. */
     v3 down = v3_sub(v3_neg(up), v3_scale(g->nb, -v3_dot(g->nb, up)));
-    if (v3_len2(down) < 0.04) down = v3_sub(side, v3_scale(g->nb, v3_dot(g->nb, side)));
+    const int flat = v3_len2(down) < 0.04;
+    if (flat) down = v3_sub(side, v3_scale(g->nb, v3_dot(g->nb, side)));
     down = v3_norm_or_perp(down, g->nb);
-    double lean = v3_dot(side, v3_cross(g->nb, down)) >= 0 ? 0.3 : -0.3;
+    /* Lean to the leaf's side; a blade lying flat points to its side
+     * already (there the test below is 0 but for rounding), so it leans
+     * by the bud's side, the same in any frame. */
+    double lean = flat ? (b->L ? 0.3 : -0.3) : v3_dot(side, v3_cross(g->nb, down)) >= 0 ? 0.3 : -0.3;
     g->a = v3_norm_or_perp(v3_rotate(down, g->nb, lean + spread * (2 * u_head - 1)), g->nb);
     g->a = v3_norm_or_perp(v3_sub(g->a, v3_scale(g->nb, v3_dot(g->nb, g->a))), g->nb);
     g->bb = v3_cross(g->nb, g->a);
@@ -351,6 +389,14 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
     double out_lean = p->edge_fray > 0 && nr.dist <= reach ? leaf_edge_lean(iv, i, nr, &out) : 0;
     if (out_lean > 0) pd = v3_norm(v3_madd(pd, out, EDGE_LEAN * out_lean));
     double lp = p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet);
+    if (lift != 0 && lp > 0) {
+        /* The petiole carries the blade to the envelope's height: its
+         * reach along n changes by lift, keeping at least a quarter. */
+        const double h = lp * v3_dot(pd, n);
+        v3 reach_v = v3_madd(v3_scale(pd, lp), n, fmax(lift, -0.75 * h));
+        lp = v3_len(reach_v);
+        pd = v3_scale(reach_v, 1 / lp);
+    }
     g->base = v3_madd(b->P, pd, lp);
     g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);
     /* Keep clear of every surface (the ground too): push the blade out
@@ -365,7 +411,7 @@ static int leaf_place(const banyan_ivy *iv, int32_t i, const leaf_shape *sh, dou
             g->a = v3_neg(g->a);
             g->bb = v3_neg(g->bb);
             if (attempt == 2) g->size *= 0.5;
-            g->base = v3_madd(b->P, pd, p->leaf_petiole * g->size * (0.8 + 0.4 * u_pet));
+            g->base = v3_madd(b->P, pd, lp * (attempt == 2 ? 0.5 : 1));
             g->c = v3_madd(g->base, g->a, sh->rnotch * g->size);
         }
         for (int it = 0; it < 5; it++) {

@@ -30,6 +30,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, leaf_share, "Leaf share", "Leaves", "", 0, 1, "share of the buds that carry a leaf where the cover is average (young tips half of it)"),
     BP_DOUBLE(S, leaf_clump, "Leaf clumping", "Leaves", "", 0, 1, "how far that share varies over clumps (0: even; 1: from none to twice)"),
     BP_DOUBLE(S, clump_size, "Clump size", "Leaves", "m", 0.01, 100, "size of the clumps of denser and thinner leaves"),
+    BP_DOUBLE(S, clump_relief, "Clump relief", "Leaves", "m", 0, 1, "dense clumps stand this much further out than the average, thin zones as much nearer, their flanks' blades facing along them (0: one even layer)"),
     BP_DOUBLE(S, edge_fray, "Frayed edges", "Leaves", "m", 0, 10, "width of the band along a host box's edges where leaves lean out past the edge, raggedly (0: none)"),
     BP_DOUBLE(S, leaf_relief, "Fit to relief", "Leaves", "", 0, 10, "on mesh hosts a blade is at most this x the radius of curvature of the surface under it, so a statue's nose and eyes still read (0: off)"),
     BP_COLOR(S, leaf_color, "Leaf color", "Leaves", "summer flat colour of material ivy_leaf, without textures (linear RGBA)"),
@@ -164,6 +165,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_share = 0.65;
     p->leaf_clump = 0.25;
     p->clump_size = 0.7;
+    p->clump_relief = 0.06;
     p->leaf_relief = 0.3;
     p->edge_fray = 0.12;
     const double stem[4] = {0.20, 0.12, 0.07, 1.0}, leaf[4] = {0.10, 0.30, 0.05, 1.0};

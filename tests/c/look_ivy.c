@@ -9,6 +9,9 @@
  *   - facing: the area-weighted median angle between the blades' triangle
  *     normals and the wall's normal (0: flat on the wall, 90: edge-on);
  *   - density: the library's branch points + crossings per m^2;
+ *   - depth: how far the blades' centres stand off the wall (p10 and p90;
+ *     the real leaf plane 5-15 cm) and the relief of the clumps, the
+ *     standard deviation of that height averaged per 0.5 m cell;
  *   - blade size p90 (printed; the real leaves reach 17 cm).
  * Blades are those whose centre lies in front of the face (ivy_look.h).
  *
@@ -33,9 +36,10 @@
 #define ANGLE_MAX 25.0
 #define DENSITY_MIN 70.0
 #define DENSITY_MAX 110.0
+#define RELIEF_MIN 0.02
 
 typedef struct figures {
-    double cover, layers, layers_p90, cv, angle, density, size_p90;
+    double cover, layers, layers_p90, cv, angle, density, size_p90, depth_p10, depth_p90, relief;
     int blades;
 } figures;
 
@@ -143,6 +147,30 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
         if (i >= 0 && i < px && j >= 0 && j < pz) patch[(size_t)i * pz + j] += B->area;
         f->blades++;
     }
+    /* Depth: each blade's centre off the face (yf is 5 cm in front of it). */
+    double *hc = calloc((size_t)px * pz * 2, sizeof(double)), *dp = malloc(sizeof(double) * (nb ? nb : 1));
+    size_t nd = 0;
+    if (!hc || !dp) return 1;
+    for (uint32_t k = 0; k < nb; k++) {
+        const ivy_blade *B = &bl[k];
+        if (!(B->centre.y < yf)) continue;
+        double d = yf - 0.05 - B->centre.y;
+        dp[nd++] = d;
+        int i = (int)floor((B->centre.x - x0) / PATCH), j = (int)floor((B->centre.z - z0) / PATCH);
+        if (i >= 0 && i < px && j >= 0 && j < pz) hc[2 * ((size_t)i * pz + j)] += d, hc[2 * ((size_t)i * pz + j) + 1] += 1;
+    }
+    if (nd) qsort(dp, nd, sizeof(double), cmp_d);
+    f->depth_p10 = nd ? dp[(size_t)(0.1 * (double)(nd - 1) + 0.5)] : 0;
+    f->depth_p90 = nd ? dp[(size_t)(0.9 * (double)(nd - 1) + 0.5)] : 0;
+    double hm = 0, hv = 0;
+    int hn = 0;
+    for (int c = 0; c < px * pz; c++)
+        if (hc[2 * c + 1] > 0) hm += hc[2 * c] / hc[2 * c + 1], hn++;
+    hm = hn ? hm / hn : 0;
+    for (int c = 0; c < px * pz; c++)
+        if (hc[2 * c + 1] > 0) hv += (hc[2 * c] / hc[2 * c + 1] - hm) * (hc[2 * c] / hc[2 * c + 1] - hm);
+    f->relief = hn ? sqrt(hv / hn) : 0;
+    free(hc), free(dp);
     double *sz = malloc(sizeof(double) * (nb ? nb : 1));
     size_t ns = 0;
     for (uint32_t k = 0; k < nb && sz; k++)
@@ -190,8 +218,8 @@ int main(int argc, char **argv) {
     const double x0 = W->center[0] - W->half[0], x1 = W->center[0] + W->half[0];
     const double z0 = W->center[2] - W->half[2], z1 = W->center[2] + W->half[2], yf = W->center[1] - W->half[1] + 0.05;
     printf("| seed | blades | cover | mean layers | layers p90 | CV per %.1f m cell | median angle to the wall, deg | "
-           "density /m^2 | blade size p90, m |\n|---|---|---|---|---|---|---|---|---|\n", PATCH);
-    figures all = {0, 0, 0, 0, 0, 0, 0, 0};
+           "density /m^2 | blade size p90, m | depth p10-p90, m | relief, m |\n|---|---|---|---|---|---|---|---|---|---|---|\n", PATCH);
+    figures all = {0};
     int fails = 0;
     for (int s = 1; s <= seeds; s++) {
         banyan_ivy_params p = base;
@@ -202,27 +230,28 @@ int main(int argc, char **argv) {
         if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err) ||
             banyan_ivy_get_stats(iv, &st, &err) || banyan_ivy_mesh(iv, &m, &err))
             return fprintf(stderr, "seed %d: %s\n", s, err.message), 1;
-        figures f = {0, 0, 0, 0, 0, 0, 0, 0};
+        figures f = {0};
         if (measure(m, x0, x1, z0, z1, yf, &f)) return fprintf(stderr, "seed %d: out of memory\n", s), 1;
         f.density = st.density;
-        printf("| %d | %d | %.3f | %.2f | %.0f | %.2f | %.1f | %.1f | %.3f |\n", s, f.blades, f.cover, f.layers,
-               f.layers_p90, f.cv, f.angle, f.density, f.size_p90);
+        printf("| %d | %d | %.3f | %.2f | %.0f | %.2f | %.1f | %.1f | %.3f | %.3f-%.3f | %.3f |\n", s, f.blades, f.cover,
+               f.layers, f.layers_p90, f.cv, f.angle, f.density, f.size_p90, f.depth_p10, f.depth_p90, f.relief);
         all.cover += f.cover / seeds, all.layers += f.layers / seeds, all.cv += f.cv / seeds;
-        all.angle += f.angle / seeds, all.density += f.density / seeds;
+        all.angle += f.angle / seeds, all.density += f.density / seeds, all.relief += f.relief / seeds;
         if (accept) {
             int bad = f.cover < COVER_MIN || f.layers > LAYERS_MAX || f.cv < CV_MIN || !(f.angle >= ANGLE_MIN) ||
-                      !(f.angle <= ANGLE_MAX) || f.density < DENSITY_MIN || f.density > DENSITY_MAX;
+                      !(f.angle <= ANGLE_MAX) || f.density < DENSITY_MIN || f.density > DENSITY_MAX || f.relief < RELIEF_MIN;
             if (bad) printf("seed %d outside the bounds\n", s);
             fails += bad;
         }
         banyan_mesh_free(m);
         banyan_ivy_free(iv);
     }
-    printf("mean over %d seeds: cover %.3f, layers %.2f, CV %.2f, median angle %.1f deg, density %.1f /m^2\n", seeds,
-           all.cover, all.layers, all.cv, all.angle, all.density);
+    printf("mean over %d seeds: cover %.3f, layers %.2f, CV %.2f, median angle %.1f deg, density %.1f /m^2, relief %.3f m\n",
+           seeds, all.cover, all.layers, all.cv, all.angle, all.density, all.relief);
     if (accept) {
-        printf("bounds: cover >= %.2f, mean layers <= %.1f, CV >= %.2f, median angle %.0f-%.0f deg, density %.0f-%.0f\n",
-               COVER_MIN, LAYERS_MAX, CV_MIN, ANGLE_MIN, ANGLE_MAX, DENSITY_MIN, DENSITY_MAX);
+        printf("bounds: cover >= %.2f, mean layers <= %.1f, CV >= %.2f, median angle %.0f-%.0f deg, density %.0f-%.0f, "
+               "relief >= %.2f m\n",
+               COVER_MIN, LAYERS_MAX, CV_MIN, ANGLE_MIN, ANGLE_MAX, DENSITY_MIN, DENSITY_MAX, RELIEF_MIN);
         printf("%s: %d seeds outside the bounds\n", fails ? "NOT ACCEPTED" : "ACCEPTED", fails);
     }
     return fails ? 1 : 0;

@@ -182,6 +182,7 @@ static report grow_and_check(const char *what, const banyan_ivy_params *p, const
     all.leaf_clump = 0;
     all.stem_pipe = 0;   /* no old wood to shed leaves */
     all.leaf_relief = 0; /* nor relief to leave them out */
+    all.clump_relief = 0; /* nor clumps to turn them off the tilt rule */
     banyan_status s = banyan_ivy_create_hosts(&all, H, &iv, &err);
     CHECK(s == BANYAN_OK, "%s: create: %s", what, err.message);
     if (s) return r;
@@ -711,6 +712,7 @@ static void relief_scene(void) {
     banyan_host_mesh hh = tm_host(&hm, 0, 0, 0, BANYAN_HOST_CLOSED_AUTO);
     banyan_hosts *H = make_set(NULL, 0, &hh, 1);
     p.steps = 300;
+    p.clump_relief = 0; /* blades counted within 5 cm of an eye: the clumps would lift some past it */
     p.start[0] = 0, p.start[1] = -r - 0.05, p.start[2] = 0.3;
     a = b = NULL;
     if (H) {

@@ -114,6 +114,7 @@ typedef struct banyan_ivy_params {
     double leaf_share;          /* share of the buds that carry a leaf where the cover is average, 0 .. 1 */
     double leaf_clump;          /* how far that share varies over clumps: 0 even, 1 from none to twice, 0 .. 1 */
     double clump_size;          /* size of those clumps, m, 0.01 .. 100 */
+    double clump_relief;        /* dense clumps stand this much further out than the average, thin zones as much nearer, m, 0 .. 1 */
     double edge_fray;           /* width of the band along a box face's edges where leaves lean out past the edge, m, 0 .. 10 (0: none) */
     double leaf_relief;         /* on mesh hosts a blade is at most this x the surface's radius of curvature under it (0: off), 0 .. 10 */
     int32_t leaf_size_steps;    /* steps of age a drawn blade takes to reach leaf_size_max, 1 .. 100000 */
