@@ -378,13 +378,11 @@ static int load_hosts(const cli_command *cmd, cli_job *job, const char *text, co
          * takes the host set. */
         banyan_status hs = BANYAN_E_UNSUPPORTED;
         if (!n_host_args)
-            hs = banyan_preset_hosts(text, job->preset_len, job->preset_path, job->hosts, BANYAN_MAX_HOSTS, &job->n_hosts,
-                                     err);
+            hs = banyan_preset_hosts(text, job->preset_len, job->preset_path, job->hosts, BANYAN_MAX_HOSTS,
+                                     &job->n_hosts, err);
         if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
             *hosts_read = 1;
-            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) {
-                return CLI_EXIT_BAD_INPUT;
-            }
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) return CLI_EXIT_BAD_INPUT;
             const char *slash = strrchr(job->preset_path, '/');
             char dir[4096] = ".";
             if (slash && (size_t)(slash - job->preset_path) < sizeof dir)
@@ -402,9 +400,7 @@ static int load_hosts(const cli_command *cmd, cli_job *job, const char *text, co
         }
     } else if (n_host_args) {
         *hosts_read = 1;
-        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) {
-            return CLI_EXIT_BAD_INPUT;
-        }
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) return CLI_EXIT_BAD_INPUT;
         if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, host_set, err)) {
             fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err->message);
             return CLI_EXIT_BAD_INPUT;
@@ -447,8 +443,9 @@ static int write_output(const cli_command *cmd, const char *out_path, banyan_mes
                         uint32_t count, const cli_lod *lod, int threads, const banyan_gltf_options *gltf_opt,
                         const cli_budget *budget, cli_stats *st, banyan_error *err) {
     banyan_budget left;
-    banyan_status ws = lod->count ? cli_write_lods(out_path, meshes, names, count, lod, threads, gltf_opt, budget, st, err)
-                                 : cli_budget_left(budget, "writing", &left, err);
+    banyan_status ws = lod->count
+                           ? cli_write_lods(out_path, meshes, names, count, lod, threads, gltf_opt, budget, st, err)
+                           : cli_budget_left(budget, "writing", &left, err);
     if (!lod->count && !ws)
         ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
                                          count, gltf_opt, &left, err);

@@ -297,7 +297,8 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     float buf[3 * BANYAN_SEGMENT_MAX_VERTICES];
     uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
     uint64_t verts = 0, indices = 0, lines = 0;
-    if (count_lines(&k, p, segs, count, trunk, &g, &st, &verts, &indices, &lines)) return prog_fail(&g, err, "segments");
+    if (count_lines(&k, p, segs, count, trunk, &g, &st, &verts, &indices, &lines))
+        return prog_fail(&g, err, "segments");
     st.lines = (uint32_t)lines;
     if (verts > (uint64_t)p->max_vertices)
         return banyan_fail(err, BANYAN_E_LIMIT,
