@@ -365,6 +365,101 @@ static int load_params(const cli_command *cmd, cli_job *job, const cli_args *A, 
     return 0;
 }
 
+/* Reads the hosts: a preset's boxes through banyan_preset_hosts into
+ * job->hosts; a mesh preset or any --host into a host set (*host_set),
+ * the --host files read within the budget first (*hosts_read set). A
+ * refusal is reported here. Returns 0, or CLI_EXIT_BAD_INPUT. */
+static int load_hosts(const cli_command *cmd, cli_job *job, const char *text, const char **host_args, int n_host_args,
+                      banyan_host_mesh **host_read, banyan_host_mesh *host_extra, const cli_budget *budget,
+                      banyan_hosts **host_set, int *hosts_read, banyan_error *err) {
+    if (job->preset_path) {
+        /* Boxes only, no --host: the box calls, as always. A mesh preset
+         * (refused by banyan_preset_hosts as UNSUPPORTED) or any --host
+         * takes the host set. */
+        banyan_status hs = BANYAN_E_UNSUPPORTED;
+        if (!n_host_args)
+            hs = banyan_preset_hosts(text, job->preset_len, job->preset_path, job->hosts, BANYAN_MAX_HOSTS,
+                                     &job->n_hosts, err);
+        if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
+            *hosts_read = 1;
+            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) return CLI_EXIT_BAD_INPUT;
+            const char *slash = strrchr(job->preset_path, '/');
+            char dir[4096] = ".";
+            if (slash && (size_t)(slash - job->preset_path) < sizeof dir)
+                snprintf(dir, sizeof dir, "%.*s", slash == job->preset_path ? 1 : (int)(slash - job->preset_path),
+                         job->preset_path);
+            banyan_budget left;
+            hs = cli_budget_left(budget, "reading the hosts", &left, err);
+            if (!hs)
+                hs = banyan_preset_host_set_budget(text, job->preset_len, job->preset_path, dir, host_extra,
+                                                   (uint32_t)n_host_args, &left, host_set, err);
+        }
+        if (hs) {
+            fprintf(stderr, "banyan %s: %s\n", cmd->name, err->message);
+            return CLI_EXIT_BAD_INPUT;
+        }
+    } else if (n_host_args) {
+        *hosts_read = 1;
+        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, budget)) return CLI_EXIT_BAD_INPUT;
+        if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, host_set, err)) {
+            fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err->message);
+            return CLI_EXIT_BAD_INPUT;
+        }
+    }
+    return 0;
+}
+
+/* Adds the host set's box, mesh and triangle counts and, when the first
+ * mesh's zero is away from the world's origin, that origin to the stats. */
+static void stat_hosts_origin(const banyan_hosts *host_set, banyan_mesh *const *meshes, uint32_t count, cli_stats *st) {
+    if (host_set) {
+        uint32_t nb = 0, nm = 0;
+        uint64_t tris = 0;
+        for (uint32_t i = 0; i < banyan_hosts_count(host_set); i++) {
+            banyan_host_info info;
+            if (banyan_hosts_info(host_set, i, &info, NULL)) continue;
+            nb += info.kind == 0;
+            nm += info.kind == 1;
+            tris += info.triangle_count;
+        }
+        char buf[128];
+        snprintf(buf, sizeof buf, "{\"boxes\": %u, \"meshes\": %u, \"triangles\": %" PRIu64 "}", nb, nm, tris);
+        cli_stat_raw(st, "host_set", buf);
+    }
+    for (uint32_t i = 0; i < count && i < 1; i++) {
+        const double *o = meshes[i]->origin;
+        if (o[0] != 0 || o[1] != 0 || o[2] != 0) { /* far from the world's origin: where the mesh's zero is */
+            char buf[128];
+            snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", o[0], o[1], o[2]);
+            cli_stat_raw(st, "origin", buf);
+        }
+    }
+}
+
+/* Writes the meshes to out_path: with --lod through cli_write_lods, else
+ * one glTF write within what the budget has left. A failure is reported
+ * here (with the budget's meaning when it ran out). Returns 0, or 1. */
+static int write_output(const cli_command *cmd, const char *out_path, banyan_mesh **meshes, char **names,
+                        uint32_t count, const cli_lod *lod, int threads, const banyan_gltf_options *gltf_opt,
+                        const cli_budget *budget, cli_stats *st, banyan_error *err) {
+    banyan_budget left;
+    banyan_status ws = lod->count
+                           ? cli_write_lods(out_path, meshes, names, count, lod, threads, gltf_opt, budget, st, err)
+                           : cli_budget_left(budget, "writing", &left, err);
+    if (!lod->count && !ws)
+        ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
+                                         count, gltf_opt, &left, err);
+    if (ws) {
+        fprintf(stderr, "banyan %s: writing %s: %s: %s%s\n", cmd->name, out_path, banyan_status_name(ws),
+                err->message,
+                ws == BANYAN_E_LIMIT ? " (what generation left of the command's max_seconds and max_memory_mb "
+                                       "is the budget of --lod, the textures and the write)"
+                                     : "");
+        return 1;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -439,48 +534,10 @@ int main(int argc, char **argv) {
     cli_budget budget;
     cli_budget_start(&budget, cmd, params);
     int hosts_read = 0;
-    if (job.preset_path) {
-        /* Boxes only, no --host: the box calls, as always. A mesh preset
-         * (refused by banyan_preset_hosts as UNSUPPORTED) or any --host
-         * takes the host set. */
-        banyan_status hs = BANYAN_E_UNSUPPORTED;
-        if (!n_host_args)
-            hs = banyan_preset_hosts(text, job.preset_len, job.preset_path, job.hosts, BANYAN_MAX_HOSTS, &job.n_hosts,
-                                     &err);
-        if (hs == BANYAN_E_UNSUPPORTED && cmd->default_hosts) {
-            hosts_read = 1;
-            if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &budget)) {
-                rc = CLI_EXIT_BAD_INPUT;
-                goto out;
-            }
-            const char *slash = strrchr(job.preset_path, '/');
-            char dir[4096] = ".";
-            if (slash && (size_t)(slash - job.preset_path) < sizeof dir)
-                snprintf(dir, sizeof dir, "%.*s", slash == job.preset_path ? 1 : (int)(slash - job.preset_path),
-                         job.preset_path);
-            banyan_budget left;
-            hs = cli_budget_left(&budget, "reading the hosts", &left, &err);
-            if (!hs)
-                hs = banyan_preset_host_set_budget(text, job.preset_len, job.preset_path, dir, host_extra,
-                                                   (uint32_t)n_host_args, &left, &host_set, &err);
-        }
-        if (hs) {
-            fprintf(stderr, "banyan %s: %s\n", cmd->name, err.message);
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
-    } else if (n_host_args) {
-        hosts_read = 1;
-        if (!read_host_args(cmd, host_args, n_host_args, host_read, host_extra, &budget)) {
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
-        if (banyan_hosts_create(NULL, 0, host_extra, (uint32_t)n_host_args, &host_set, &err)) {
-            fprintf(stderr, "banyan %s: --host: %s\n", cmd->name, err.message);
-            rc = CLI_EXIT_BAD_INPUT;
-            goto out;
-        }
-    }
+    rc = load_hosts(cmd, &job, text, host_args, n_host_args, host_read, host_extra, &budget, &host_set, &hosts_read,
+                    &err);
+    if (rc) goto out;
+    rc = 1;
     /* The set holds its own copy of the meshes. */
     for (int i = 0; i < n_host_args; i++) {
         banyan_host_mesh_free(host_read[i]);
@@ -510,44 +567,11 @@ int main(int argc, char **argv) {
         fprintf(stderr, "banyan %s: %s: %s\n", cmd->name, banyan_status_name(s), err.message);
         goto out;
     }
-    if (host_set) {
-        uint32_t nb = 0, nm = 0;
-        uint64_t tris = 0;
-        for (uint32_t i = 0; i < banyan_hosts_count(host_set); i++) {
-            banyan_host_info info;
-            if (banyan_hosts_info(host_set, i, &info, NULL)) continue;
-            nb += info.kind == 0;
-            nm += info.kind == 1;
-            tris += info.triangle_count;
-        }
-        char buf[128];
-        snprintf(buf, sizeof buf, "{\"boxes\": %u, \"meshes\": %u, \"triangles\": %" PRIu64 "}", nb, nm, tris);
-        cli_stat_raw(&st, "host_set", buf);
-    }
-    for (uint32_t i = 0; i < count && i < 1; i++) {
-        const double *o = meshes[i]->origin;
-        if (o[0] != 0 || o[1] != 0 || o[2] != 0) { /* far from the world's origin: where the mesh's zero is */
-            char buf[128];
-            snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", o[0], o[1], o[2]);
-            cli_stat_raw(&st, "origin", buf);
-        }
-    }
+    stat_hosts_origin(host_set, meshes, count, &st);
     double t2 = t1;
     if (out_path) {
-        banyan_budget left;
-        banyan_status ws = lod.count ? cli_write_lods(out_path, meshes, names, count, &lod, job.threads, &gltf_opt, &budget, &st, &err)
-                                     : cli_budget_left(&budget, "writing", &left, &err);
-        if (!lod.count && !ws)
-            ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
-                                             count, &gltf_opt, &left, &err);
-        if (ws) {
-            fprintf(stderr, "banyan %s: writing %s: %s: %s%s\n", cmd->name, out_path, banyan_status_name(ws),
-                    err.message,
-                    ws == BANYAN_E_LIMIT ? " (what generation left of the command's max_seconds and max_memory_mb "
-                                           "is the budget of --lod, the textures and the write)"
-                                         : "");
+        if (write_output(cmd, out_path, meshes, names, count, &lod, job.threads, &gltf_opt, &budget, &st, &err))
             goto out;
-        }
         t2 = now_ms();
     }
     if (stats) {

@@ -212,48 +212,65 @@ static int match_edges(const host_mesh *m, uint32_t *twin, uint32_t *up, edge_st
         return banyan_fail(err, code, __VA_ARGS__);                                \
     } while (0)
 
-/* Builds host `hi` (mesh number `mi`) into m. */
-static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint32_t hi, uint32_t mi, host_mesh *m,
+/* Checks host `hi` (mesh number `mi`): not empty, its arrays given, closed
+ * in range and its transform finite and not singular (*det_out: the
+ * transform's determinant). */
+static banyan_status mesh_check(const banyan_host_mesh *in, uint32_t hi, uint32_t mi, double *det_out,
                                 banyan_error *err) {
-    uint32_t *remap = NULL, *up = NULL, *twin = NULL;
-    double *vol = NULL;
     const uint32_t nv = in->vertex_count, nt_in = in->triangle_count;
     if (nv < 3 || nt_in < 1)
-        MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u) is empty: vertex_count = %u, triangle_count = %u (a mesh "
-                  "host needs at least 3 vertices and 1 triangle)", hi, mi, nv, nt_in);
+        return banyan_fail(err, BANYAN_E_BAD_HOST,
+                           "hosts[%u] (mesh %u) is empty: vertex_count = %u, triangle_count = %u (a mesh "
+                           "host needs at least 3 vertices and 1 triangle)",
+                           hi, mi, nv, nt_in);
     if (!in->positions || !in->indices)
-        MESH_FAIL(BANYAN_E_INVALID_ARG, "hosts[%u] (mesh %u): positions or indices is NULL", hi, mi);
+        return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts[%u] (mesh %u): positions or indices is NULL", hi, mi);
     if (in->closed < -1 || in->closed > 1)
-        MESH_FAIL(BANYAN_E_RANGE, "hosts[%u] (mesh %u): closed = %d must be -1 (auto), 0 (open) or 1 (closed)", hi,
-                  mi, in->closed);
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "hosts[%u] (mesh %u): closed = %d must be -1 (auto), 0 (open) or 1 (closed)", hi, mi,
+                           in->closed);
     const double *T = in->transform;
     for (int i = 0; i < 12; i++)
         if (!isfinite(T[i]))
-            MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): transform[%d] = %g must be finite", hi, mi, i, T[i]);
-    double det = T[0] * (T[5] * T[10] - T[6] * T[9]) - T[1] * (T[4] * T[10] - T[6] * T[8]) +
-                 T[2] * (T[4] * T[9] - T[5] * T[8]);
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): transform[%d] = %g must be finite", hi,
+                               mi, i, T[i]);
+    const double det = T[0] * (T[5] * T[10] - T[6] * T[9]) - T[1] * (T[4] * T[10] - T[6] * T[8]) +
+                       T[2] * (T[4] * T[9] - T[5] * T[8]);
     double mx = 0;
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) mx = fmax(mx, fabs(T[4 * r + c]));
     if (!(fabs(det) > 1e-12 * mx * mx * mx) || mx == 0)
-        MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): transform is singular (determinant %g); a host needs "
-                  "extent on every axis (scale != 0)", hi, mi, det);
+        return banyan_fail(err, BANYAN_E_BAD_HOST,
+                           "hosts[%u] (mesh %u): transform is singular (determinant %g); a host needs "
+                           "extent on every axis (scale != 0)",
+                           hi, mi, det);
+    *det_out = det;
+    return BANYAN_OK;
+}
 
-    /* World positions checked and bounded, then stored relative to the
-     * centre of the bounds. */
+/* World positions checked and bounded, then stored relative to the
+ * centre of the bounds (m->origin) with the bounds; refused when a vertex
+ * is not finite or beyond 1e6 m, or the mesh spans under 1e-6 m
+ * (*diag_out: the bounds' diagonal). */
+static banyan_status mesh_positions(const banyan_host_mesh *in, uint32_t hi, uint32_t mi, host_mesh *m,
+                                    double *diag_out, banyan_error *err) {
+    const uint32_t nv = in->vertex_count;
+    const double *T = in->transform;
     m->pos = malloc(sizeof(float) * 4 * (size_t)nv);
-    if (!m->pos) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] (%u vertices)", hi, nv);
+    if (!m->pos) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for hosts[%u] (%u vertices)", hi, nv);
     v3 lo = v3_make(HUGE_VAL, HUGE_VAL, HUGE_VAL), hiw = v3_neg(lo);
     for (uint32_t i = 0; i < nv; i++) {
         const float *p = in->positions + 3 * (size_t)i;
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-            MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): vertex %u = (%g, %g, %g) is not finite", hi, mi, i,
-                      p[0], p[1], p[2]);
+            return banyan_fail(err, BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): vertex %u = (%g, %g, %g) is not finite",
+                               hi, mi, i, p[0], p[1], p[2]);
         v3 w = v3_make(T[0] * p[0] + T[1] * p[1] + T[2] * p[2] + T[3], T[4] * p[0] + T[5] * p[1] + T[6] * p[2] + T[7],
                        T[8] * p[0] + T[9] * p[1] + T[10] * p[2] + T[11]);
         if (!(fabs(w.x) <= 1e6 && fabs(w.y) <= 1e6 && fabs(w.z) <= 1e6))
-            MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u): vertex %u lies at (%g, %g, %g) m in the world; "
-                      "coordinates must be within [-1e6, 1e6] m", hi, mi, i, w.x, w.y, w.z);
+            return banyan_fail(err, BANYAN_E_BAD_HOST,
+                               "hosts[%u] (mesh %u): vertex %u lies at (%g, %g, %g) m in the world; "
+                               "coordinates must be within [-1e6, 1e6] m",
+                               hi, mi, i, w.x, w.y, w.z);
         lo = v3_make(fmin(lo.x, w.x), fmin(lo.y, w.y), fmin(lo.z, w.z));
         hiw = v3_make(fmax(hiw.x, w.x), fmax(hiw.y, w.y), fmax(hiw.z, w.z));
     }
@@ -271,10 +288,80 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     m->nv = nv;
     m->lo = lo;
     m->hi = hiw;
-    double diag = v3_dist(lo, hiw);
+    const double diag = v3_dist(lo, hiw);
     if (!(diag >= 1e-6)) /* as a box's half extent: nothing grows on a speck */
-        MESH_FAIL(BANYAN_E_BAD_HOST, "hosts[%u] (mesh %u) spans %g m in the world; a host must span at least 1e-6 m "
-                  "(is the object scaled to nearly 0?)", hi, mi, diag);
+        return banyan_fail(err, BANYAN_E_BAD_HOST,
+                           "hosts[%u] (mesh %u) spans %g m in the world; a host must span at least 1e-6 m "
+                           "(is the object scaled to nearly 0?)",
+                           hi, mi, diag);
+    *diag_out = diag;
+    return BANYAN_OK;
+}
+
+/* Pseudonormals of the vertices: the normals of the triangles around each,
+ * weighted by their angles there, summed in m->vnrm (zeroed) and
+ * normalised; +z for a vertex no triangle uses. */
+static void vertex_normals(host_mesh *m, uint32_t nv, uint32_t nt) {
+    for (uint32_t t = 0; t < nt; t++) { /* sums in vnrm itself, normalised after */
+        const uint32_t *ix = m->tri + 3 * (size_t)t;
+        const float *n = m->fnrm + 3 * (size_t)t;
+        v3 a = vtx(m, ix[0]), b = vtx(m, ix[1]), c = vtx(m, ix[2]);
+        float w[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+        for (int k = 0; k < 3; k++) {
+            float *s = m->vnrm + 3 * (size_t)ix[k];
+            s[0] += w[k] * n[0], s[1] += w[k] * n[1], s[2] += w[k] * n[2];
+        }
+    }
+    for (uint32_t i = 0; i < nv; i++) {
+        float *s = m->vnrm + 3 * (size_t)i;
+        float l = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        if (l > 0) s[0] /= l, s[1] /= l, s[2] /= l;
+        else s[2] = 1; /* a vertex no triangle uses */
+    }
+}
+
+/* The BVH of host `hi`: an Embree scene over a user geometry whose
+ * triangle tests are banyan's own (hmesh_user_geometry), padded by 1e-6 of
+ * the diagonal. */
+static banyan_status mesh_bvh(RTCDevice dev, host_mesh *m, uint32_t hi, double diag, banyan_error *err) {
+    const uint32_t nt = m->nt;
+    RTCScene sc = rtcNewScene(dev);
+    if (!sc) return banyan_fail(err, BANYAN_E_NOMEM, "Embree could not make a scene for hosts[%u]", hi);
+    m->scene = sc;
+    rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
+    /* Embree's Morton builder (LOW) for big sculpts, twice as fast to build;
+     * the SAH tree (MEDIUM), a little faster to query, below 200k. */
+    rtcSetSceneBuildQuality(sc, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    /* A user geometry, not Embree's triangles: its triangle kernels round
+     * differently on each CPU (SSE, AVX2 with FMA, AVX-512, approximate
+     * reciprocals), so only its traversal is used (hmesh_user_geometry). */
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+    if (!g) return banyan_fail(err, BANYAN_E_NOMEM, "Embree could not make a geometry for hosts[%u]", hi);
+    rtcSetGeometryBuildQuality(g, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM); /* both are read */
+    m->bpad = (float)(1e-6 * diag);
+    m->slack = 1e-12 * diag;
+    hmesh_user_geometry(g, m);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(sc);
+    enum RTCError e = rtcGetDeviceError(dev);
+    if (e != RTC_ERROR_NONE)
+        return banyan_fail(err, e == RTC_ERROR_OUT_OF_MEMORY ? BANYAN_E_NOMEM : BANYAN_E_INTERNAL,
+                           "Embree failed to build hosts[%u] (error %d)", hi, (int)e);
+    return BANYAN_OK;
+}
+
+/* Builds host `hi` (mesh number `mi`) into m. */
+static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint32_t hi, uint32_t mi, host_mesh *m,
+                                banyan_error *err) {
+    uint32_t *remap = NULL, *up = NULL, *twin = NULL;
+    double *vol = NULL;
+    const uint32_t nv = in->vertex_count, nt_in = in->triangle_count;
+    double det = 0, diag = 0;
+    banyan_status s = mesh_check(in, hi, mi, &det, err);
+    if (s) return s;
+    if ((s = mesh_positions(in, hi, mi, m, &diag, err))) return s;
 
     /* Triangles by the input's indices first: a mesh watertight by index
      * (Blender's) needs no weld. Holes then may be seams (glTF splits
@@ -354,52 +441,12 @@ static banyan_status mesh_build(RTCDevice dev, const banyan_host_mesh *in, uint3
     /* Pseudonormals: vertices by angle (edges from their two faces). */
     m->vnrm = calloc(3 * (size_t)nv, sizeof(float));
     if (!m->vnrm) MESH_FAIL(BANYAN_E_NOMEM, "out of memory for hosts[%u] normals", hi);
-    for (uint32_t t = 0; t < nt; t++) { /* sums in vnrm itself, normalised after */
-        const uint32_t *ix = m->tri + 3 * (size_t)t;
-        const float *n = m->fnrm + 3 * (size_t)t;
-        v3 a = vtx(m, ix[0]), b = vtx(m, ix[1]), c = vtx(m, ix[2]);
-        float w[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
-        for (int k = 0; k < 3; k++) {
-            float *s = m->vnrm + 3 * (size_t)ix[k];
-            s[0] += w[k] * n[0], s[1] += w[k] * n[1], s[2] += w[k] * n[2];
-        }
-    }
-    for (uint32_t i = 0; i < nv; i++) {
-        float *s = m->vnrm + 3 * (size_t)i;
-        float l = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-        if (l > 0) s[0] /= l, s[1] /= l, s[2] /= l;
-        else s[2] = 1; /* a vertex no triangle uses */
-    }
+    vertex_normals(m, nv, nt);
     free(up), up = NULL;
     free(twin), twin = NULL;
     free(vol), vol = NULL;
 
-    /* The BVH. */
-    RTCScene sc = rtcNewScene(dev);
-    if (!sc) MESH_FAIL(BANYAN_E_NOMEM, "Embree could not make a scene for hosts[%u]", hi);
-    m->scene = sc;
-    rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
-    /* Embree's Morton builder (LOW) for big sculpts, twice as fast to build;
-     * the SAH tree (MEDIUM), a little faster to query, below 200k. */
-    rtcSetSceneBuildQuality(sc, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    /* A user geometry, not Embree's triangles: its triangle kernels round
-     * differently on each CPU (SSE, AVX2 with FMA, AVX-512, approximate
-     * reciprocals), so only its traversal is used (hmesh_user_geometry). */
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
-    if (!g) MESH_FAIL(BANYAN_E_NOMEM, "Embree could not make a geometry for hosts[%u]", hi);
-    rtcSetGeometryBuildQuality(g, nt > 200000 ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM); /* both are read */
-    m->bpad = (float)(1e-6 * diag);
-    m->slack = 1e-12 * diag;
-    hmesh_user_geometry(g, m);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(sc);
-    enum RTCError e = rtcGetDeviceError(dev);
-    if (e != RTC_ERROR_NONE)
-        MESH_FAIL(e == RTC_ERROR_OUT_OF_MEMORY ? BANYAN_E_NOMEM : BANYAN_E_INTERNAL,
-                  "Embree failed to build hosts[%u] (error %d)", hi, (int)e);
-    return BANYAN_OK;
+    return mesh_bvh(dev, m, hi, diag, err);
 }
 
 /* Moves the set into its frame (frame.h), picked from all the hosts'

@@ -663,6 +663,110 @@ static v3 growable_start(const banyan_ivy *iv, v3 start, v3 fallback) {
     return out;
 }
 
+/* The frame's origin: the set's, or one picked from the nb boxes, which
+ * are then moved into it (base/frame.h). */
+static v3 pick_frame(banyan_ivy *iv, const banyan_hosts *set, uint32_t nb) {
+    v3 O = set ? set->origin : v3_make(0, 0, 0);
+    if (!set) {
+        v3 lo, hi, a, b;
+        frame_empty(&lo, &hi);
+        for (uint32_t h = 0; h < nb; h++) obb_bounds(&iv->hosts[h], &a, &b), frame_add(&lo, &hi, a), frame_add(&lo, &hi, b);
+        O = frame_pick(lo, hi);
+        for (uint32_t h = 0; h < nb; h++) iv->hosts[h].c = v3_sub(iv->hosts[h].c, O);
+    }
+    return O;
+}
+
+/* A start far from the world's origin: the status of frame_check on the
+ * box around the start, the boxes and the meshes (in world coordinates). */
+static banyan_status far_start(const banyan_ivy *iv, const banyan_ivy_params *params, uint32_t nb, v3 O,
+                               banyan_error *err) {
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    frame_add(&lo, &hi, v3_load(params->start));
+    for (uint32_t h = 0; h < nb; h++) {
+        v3 a, b;
+        obb_bounds(&iv->hosts[h], &a, &b);
+        frame_add(&lo, &hi, v3_add(a, O)), frame_add(&lo, &hi, v3_add(b, O));
+    }
+    for (uint32_t m = 0; m < iv->n_mesh; m++)
+        frame_add(&lo, &hi, v3_add(iv->meshes[m].lo, O)), frame_add(&lo, &hi, v3_add(iv->meshes[m].hi, O));
+    return frame_check(lo, hi, O, "the hosts and start", err);
+}
+
+/* The ground: the top face of a box far larger than the hosts, at
+ * ground_z under the first box or mesh, added after the given hosts (a
+ * host that grips when ground is 2). */
+static void add_ground(banyan_ivy *iv, const banyan_ivy_params *params, uint32_t nb) {
+    obb *g = &iv->hosts[iv->n_hosts++];
+    const double G = 1e5, depth = 1e3;
+    v3 mid = nb ? iv->hosts[0].c : v3_scale(v3_add(iv->meshes[0].lo, iv->meshes[0].hi), 0.5);
+    g->c = v3_make(mid.x, mid.y, iv->p.ground_z - depth);
+    g->ax[0] = v3_make(1, 0, 0);
+    g->ax[1] = v3_make(0, 1, 0);
+    g->ax[2] = v3_make(0, 0, 1);
+    g->h[0] = g->h[1] = G;
+    g->h[2] = depth;
+    if (params->ground == 2) iv->n_grip++;
+}
+
+/* The first bud's place and direction: the start snapped to its nearest
+ * host surface (nr), `clearance` off it, moved where it can grow and out
+ * of the hosts; its direction up along the surface there (sideways on a
+ * ceiling). nr becomes the nearest surface to that place. */
+static void first_place(const banyan_ivy *iv, const banyan_ivy_params *params, uint32_t nb, v3 start, ivy_near *nr,
+                        v3 *P_out, v3 *V_out) {
+    v3 nrm, surf;
+    if (nr->host < (int32_t)nb) {
+        surf = obb_closest_surface(&iv->hosts[nr->host], start, &nrm);
+    } else {
+        surf = nr->point;
+        nrm = nr->normal;
+    }
+    v3 P = v3_madd(surf, nrm, params->clearance);
+    if (!start_growable(iv, P, nrm)) P = growable_start(iv, start, P);
+    P = ivy_push_out(iv, P);
+    *nr = ivy_nearest(iv, P);
+    /* First growth direction: up along the surface (sideways on a ceiling). */
+    v3 up = v3_make(0, 0, 1);
+    v3 V = v3_sub(up, v3_scale(nr->normal, v3_dot(up, nr->normal)));
+    V = v3_len(V) > 1e-6 ? v3_norm(V) : v3_any_perp(nr->normal);
+    *P_out = P, *V_out = V;
+}
+
+/* The leading stems: start_stems first buds at the start, their
+ * directions fanned over +-start_fan about up along the surface, each
+ * jittered within its share of the fan. One stem keeps the paper's
+ * single first bud (and draws no random number). Returns their count. */
+static int32_t plant_stems(banyan_ivy *iv, const banyan_ivy_params *params, v3 P, v3 V, const ivy_near *nr) {
+    const int32_t ns = params->start_stems < params->max_buds ? params->start_stems : params->max_buds;
+    const double fan = deg2rad(params->start_fan);
+    for (int32_t k = 0; k < ns; k++) {
+        v3 Vk = V;
+        if (ns > 1) {
+            double share = 2.0 * fan / ns, a = -fan + share * (k + 0.5) + rng_range(&iv->rng, -0.35, 0.35) * share;
+            Vk = v3_norm_or(v3_rotate(V, nr->normal, a), V);
+        }
+        ivy_bud *b = &iv->buds[k];
+        memset(b, 0, sizeof *b);
+        b->P = P;
+        b->V = Vk;
+        b->N = params->n_start;
+        b->state = BANYAN_IVY_A0;
+        b->L = k & 1;
+        b->leader = 1;
+        b->sucker = 1;
+        b->attached = nr->dist <= params->sucker_length;
+        b->run = b->attached ? 0 : 1;
+        b->step_d = -1;
+        b->parent = b->child[0] = b->child[1] = -1;
+        iv->n = k + 1;
+        iv->act[k] = k;
+        ivy_grid_insert(iv, k);
+    }
+    return ns;
+}
+
 /* The handle on nb boxes (from `boxes`, checked here, or already checked
  * in `set`) and the meshes of `set` (NULL: none). */
 static banyan_status create(const banyan_ivy_params *params, const banyan_box *boxes, const banyan_hosts *set,
@@ -698,14 +802,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
     }
     /* The frame: the set's, or one picked from the boxes (base/frame.h). */
-    v3 O = set ? set->origin : v3_make(0, 0, 0);
-    if (!set) {
-        v3 lo, hi, a, b;
-        frame_empty(&lo, &hi);
-        for (uint32_t h = 0; h < nb; h++) obb_bounds(&iv->hosts[h], &a, &b), frame_add(&lo, &hi, a), frame_add(&lo, &hi, b);
-        O = frame_pick(lo, hi);
-        for (uint32_t h = 0; h < nb; h++) iv->hosts[h].c = v3_sub(iv->hosts[h].c, O);
-    }
+    v3 O = pick_frame(iv, set, nb);
     iv->origin = O;
     for (int k = 0; k < 3; k++) iv->p.start[k] -= (&O.x)[k];
     iv->p.ground_z -= O.z;
@@ -726,49 +823,14 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
                            params->start_snap_max);
     }
     if (fmax(fmax(fabs(start.x), fabs(start.y)), fabs(start.z)) > FRAME_KEEP) { /* the plant grows near its start */
-        v3 lo, hi;
-        frame_empty(&lo, &hi);
-        frame_add(&lo, &hi, v3_load(params->start));
-        for (uint32_t h = 0; h < nb; h++) {
-            v3 a, b;
-            obb_bounds(&iv->hosts[h], &a, &b);
-            frame_add(&lo, &hi, v3_add(a, O)), frame_add(&lo, &hi, v3_add(b, O));
-        }
-        for (uint32_t m = 0; m < iv->n_mesh; m++)
-            frame_add(&lo, &hi, v3_add(iv->meshes[m].lo, O)), frame_add(&lo, &hi, v3_add(iv->meshes[m].hi, O));
-        s = frame_check(lo, hi, O, "the hosts and start", err);
+        s = far_start(iv, params, nb, O, err);
         banyan_ivy_free(iv);
         return s;
     }
-    if (params->ground) {
-        /* The ground: the top face of a box far larger than the hosts. */
-        obb *g = &iv->hosts[iv->n_hosts++];
-        const double G = 1e5, depth = 1e3;
-        v3 mid = nb ? iv->hosts[0].c : v3_scale(v3_add(iv->meshes[0].lo, iv->meshes[0].hi), 0.5);
-        g->c = v3_make(mid.x, mid.y, iv->p.ground_z - depth);
-        g->ax[0] = v3_make(1, 0, 0);
-        g->ax[1] = v3_make(0, 1, 0);
-        g->ax[2] = v3_make(0, 0, 1);
-        g->h[0] = g->h[1] = G;
-        g->h[2] = depth;
-        if (params->ground == 2) iv->n_grip++;
-    }
+    if (params->ground) add_ground(iv, params, nb);
     ivy_host_boxes(iv);
-    v3 nrm, surf;
-    if (nr.host < (int32_t)nb) {
-        surf = obb_closest_surface(&iv->hosts[nr.host], start, &nrm);
-    } else {
-        surf = nr.point;
-        nrm = nr.normal;
-    }
-    v3 P = v3_madd(surf, nrm, params->clearance);
-    if (!start_growable(iv, P, nrm)) P = growable_start(iv, start, P);
-    P = ivy_push_out(iv, P);
-    nr = ivy_nearest(iv, P);
-    /* First growth direction: up along the surface (sideways on a ceiling). */
-    v3 up = v3_make(0, 0, 1);
-    v3 V = v3_sub(up, v3_scale(nr.normal, v3_dot(up, nr.normal)));
-    V = v3_len(V) > 1e-6 ? v3_norm(V) : v3_any_perp(nr.normal);
+    v3 P, V;
+    first_place(iv, params, nb, start, &nr, &P, &V);
 
     /* 1024 buds hold the leading stems (start_stems <= 64). */
     if ((s = reserve(iv, params->max_buds < 1024 ? params->max_buds : 1024, err)) != BANYAN_OK) {
@@ -790,35 +852,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     }
     pcg32_seed(&iv->rng, params->seed, 0x1517);
 
-    /* The leading stems: start_stems first buds at the start, their
-     * directions fanned over +-start_fan about up along the surface, each
-     * jittered within its share of the fan. One stem keeps the paper's
-     * single first bud (and draws no random number). */
-    const int32_t ns = params->start_stems < params->max_buds ? params->start_stems : params->max_buds;
-    const double fan = deg2rad(params->start_fan);
-    for (int32_t k = 0; k < ns; k++) {
-        v3 Vk = V;
-        if (ns > 1) {
-            double share = 2.0 * fan / ns, a = -fan + share * (k + 0.5) + rng_range(&iv->rng, -0.35, 0.35) * share;
-            Vk = v3_norm_or(v3_rotate(V, nr.normal, a), V);
-        }
-        ivy_bud *b = &iv->buds[k];
-        memset(b, 0, sizeof *b);
-        b->P = P;
-        b->V = Vk;
-        b->N = params->n_start;
-        b->state = BANYAN_IVY_A0;
-        b->L = k & 1;
-        b->leader = 1;
-        b->sucker = 1;
-        b->attached = nr.dist <= params->sucker_length;
-        b->run = b->attached ? 0 : 1;
-        b->step_d = -1;
-        b->parent = b->child[0] = b->child[1] = -1;
-        iv->n = k + 1;
-        iv->act[k] = k;
-        ivy_grid_insert(iv, k);
-    }
+    const int32_t ns = plant_stems(iv, params, P, V, &nr);
     if (iv->grid_oom) {
         banyan_ivy_free(iv);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");

@@ -776,23 +776,16 @@ static void mesh_work(void *job, int caller) {
     free(P); free(R); free(birth); free(wr);
 }
 
-banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_error *err) {
-    BANYAN_CHECK_OUT(out, err);
-    if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
-    const banyan_ivy_params *p = &iv->p;
-    const int sides = p->stem_sides;
-
-    /* Size first: refuse before allocating the mesh. */
-    /* Every chain's points, walked once here and read again by the
-     * sweep (a chain's buds lie far apart in creation order): at most 2n
-     * (each chain adds its parent), then per chain its first bud and
-     * where its points start, and an end. */
-    int32_t *pts = malloc(sizeof(int32_t) * (4 * (size_t)iv->n + 3));
-    if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
-    int32_t *chn = pts + 2 * (size_t)iv->n + 1;
+/* Walks every chain once: its points into pts, its first bud and where
+ * its points start into chn (an end after the last), and counts the
+ * vertices and indices of its tube and of the leaves, so the mesh can be
+ * refused before it is allocated. */
+static void mesh_count(const banyan_ivy *iv, int32_t *pts, int32_t *chn, int32_t *n_chains_out, uint32_t *max_pts_out,
+                       uint64_t *need_v_out, uint64_t *need_i_out) {
     uint64_t need_v = 0, need_i = 0;
     uint32_t max_pts = 2;
     int32_t n_chains = 0, n_pts = 0;
+    const int sides = iv->p.stem_sides;
     for (int32_t i = 0; i < iv->n; i++) {
         if (!chain_start(iv, i)) continue;
         uint32_t n = chain_points(iv, i, pts + n_pts), v, ix;
@@ -806,10 +799,92 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         need_i += ix;
     }
     chn[2 * n_chains + 1] = n_pts;
-    if (p->leaves) {
+    if (iv->p.leaves) {
         need_v += (uint64_t)iv->n * (LEAF_OUTLINE + 1 + PETIOLE_VERTS);
         need_i += (uint64_t)iv->n * (LEAF_OUTLINE + 2 * PETIOLE_SIDES) * 3;
     }
+    *n_chains_out = n_chains, *max_pts_out = max_pts, *need_v_out = need_v, *need_i_out = need_i;
+}
+
+/* Each bud's wind stiffness into bst: 1 where it is held (attached, or on
+ * the ground), else falling with the free arc length since the last held
+ * bud, yet never under 0.9 sqrt of its wood radius share of the thickest;
+ * its branching level into blv (at most 63, wind_level's range). Returns
+ * the last growth step. */
+static int32_t wind_stiffness(const banyan_ivy *iv, const double *wood_r, double *bst, int32_t *blv) {
+    const banyan_ivy_params *p = &iv->p;
+    int32_t last_step = 0;
+    /* Buds come in creation order: a parent before its children. bst
+     * holds the arc length from the last held bud until it becomes the
+     * stiffness. */
+    const double fall = 1.0 / (IVY_WIND_REACH * p->internode);
+    for (int32_t i = 0; i < iv->n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        int held = b->attached || (p->ground && b->P.z <= p->ground_z + p->clearance + 1e-9);
+        last_step = b->step_c > last_step ? b->step_c : last_step;
+        if (b->parent < 0) {
+            bst[i] = 0, blv[i] = 0;
+            continue;
+        }
+        bst[i] = held ? 0 : bst[b->parent] + v3_dist(b->P, iv->buds[b->parent].P);
+        blv[i] = blv[b->parent] + (chain_start(iv, i) ? 1 : 0);
+        if (blv[i] > 63) blv[i] = 63; /* wind_level's range; the tips past it share it */
+    }
+    double r_max = 0;
+    for (int32_t i = 0; i < iv->n; i++) r_max = wood_r[i] > r_max ? wood_r[i] : r_max;
+    for (int32_t i = 0; i < iv->n; i++) {
+        if (bst[i] == 0) { /* held */
+            bst[i] = 1;
+            continue;
+        }
+        double s = dm_exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(wood_r[i] / r_max) : 0;
+        bst[i] = s > t ? s : t;
+    }
+    return last_step;
+}
+
+/* The stem plan: each chain's first vertex and index into cv and ci (their
+ * totals after the last), and the stem items, chains of about equal vertex
+ * counts (a chain is never split), as their first chains in sblk with an
+ * end. Returns the item count. */
+static int32_t plan_items(const banyan_ivy *iv, const int32_t *chn, int32_t n_chains, uint32_t *cv, uint32_t *ci,
+                          int32_t *sblk) {
+    int32_t n_sblk = 0;
+    const int sides = iv->p.stem_sides;
+    uint32_t v = 0, x = 0;
+    for (int32_t c = 0; c < n_chains; c++) {
+        uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]), tv, ti;
+        tube_counts(n < 2 ? 2 : n, sides, iv->buds[chn[2 * c]].parent < 0, 1, &tv, &ti);
+        cv[c] = v, ci[c] = x;
+        v += tv, x += ti;
+    }
+    cv[n_chains] = v, ci[n_chains] = x;
+    /* Items of about equal vertex counts (a chain is never split). */
+    const uint32_t per = v / MESH_STEM_ITEMS + 1;
+    sblk[0] = 0;
+    for (int32_t c = 1; c < n_chains; c++)
+        if (cv[c] >= per * (uint32_t)(n_sblk + 1)) sblk[++n_sblk] = c;
+    sblk[++n_sblk] = n_chains;
+    return n_sblk;
+}
+
+banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (!iv) return banyan_fail(err, BANYAN_E_INVALID_ARG, "ivy is NULL");
+    const banyan_ivy_params *p = &iv->p;
+
+    /* Size first: refuse before allocating the mesh. */
+    /* Every chain's points, walked once here and read again by the
+     * sweep (a chain's buds lie far apart in creation order): at most 2n
+     * (each chain adds its parent), then per chain its first bud and
+     * where its points start, and an end. */
+    int32_t *pts = malloc(sizeof(int32_t) * (4 * (size_t)iv->n + 3));
+    if (!pts) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
+    int32_t *chn = pts + 2 * (size_t)iv->n + 1;
+    uint64_t need_v, need_i;
+    uint32_t max_pts;
+    int32_t n_chains;
+    mesh_count(iv, pts, chn, &n_chains, &max_pts, &need_v, &need_i);
     /* need_v >= ivy_mesh_vertex_floor(p, iv->n): the floor must stay a floor. */
     if (need_v > (uint64_t)p->max_vertices) {
         free(pts);
@@ -837,35 +912,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
     ivy_wood_leaf_shares(iv, wood_r, leaf_wood);
-    int32_t last_step = 0;
-    {
-        /* Buds come in creation order: a parent before its children. bst
-         * holds the arc length from the last held bud until it becomes the
-         * stiffness. */
-        const double fall = 1.0 / (IVY_WIND_REACH * p->internode);
-        for (int32_t i = 0; i < iv->n; i++) {
-            const ivy_bud *b = &iv->buds[i];
-            int held = b->attached || (p->ground && b->P.z <= p->ground_z + p->clearance + 1e-9);
-            last_step = b->step_c > last_step ? b->step_c : last_step;
-            if (b->parent < 0) {
-                bst[i] = 0, blv[i] = 0;
-                continue;
-            }
-            bst[i] = held ? 0 : bst[b->parent] + v3_dist(b->P, iv->buds[b->parent].P);
-            blv[i] = blv[b->parent] + (chain_start(iv, i) ? 1 : 0);
-            if (blv[i] > 63) blv[i] = 63; /* wind_level's range; the tips past it share it */
-        }
-        double r_max = 0;
-        for (int32_t i = 0; i < iv->n; i++) r_max = wood_r[i] > r_max ? wood_r[i] : r_max;
-        for (int32_t i = 0; i < iv->n; i++) {
-            if (bst[i] == 0) { /* held */
-                bst[i] = 1;
-                continue;
-            }
-            double s = dm_exp(-bst[i] * fall), t = r_max > 0 ? 0.9 * sqrt(wood_r[i] / r_max) : 0;
-            bst[i] = s > t ? s : t;
-        }
-    }
+    const int32_t last_step = wind_stiffness(iv, wood_r, bst, blv);
     const double birth_scale = last_step > 0 ? 1.0 / last_step : 0.0;
 
     mesh_builder mb;
@@ -896,23 +943,7 @@ banyan_status banyan_ivy_mesh(const banyan_ivy *iv, banyan_mesh **out, banyan_er
         mb_free(&mb);
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
-    int32_t n_sblk = 0;
-    if (!mb.status) {
-        uint32_t v = 0, x = 0;
-        for (int32_t c = 0; c < n_chains; c++) {
-            uint32_t n = (uint32_t)(chn[2 * c + 3] - chn[2 * c + 1]), tv, ti;
-            tube_counts(n < 2 ? 2 : n, sides, iv->buds[chn[2 * c]].parent < 0, 1, &tv, &ti);
-            cv[c] = v, ci[c] = x;
-            v += tv, x += ti;
-        }
-        cv[n_chains] = v, ci[n_chains] = x;
-        /* Items of about equal vertex counts (a chain is never split). */
-        const uint32_t per = v / MESH_STEM_ITEMS + 1;
-        sblk[0] = 0;
-        for (int32_t c = 1; c < n_chains; c++)
-            if (cv[c] >= per * (uint32_t)(n_sblk + 1)) sblk[++n_sblk] = c;
-        sblk[++n_sblk] = n_chains;
-    }
+    const int32_t n_sblk = mb.status ? 0 : plan_items(iv, chn, n_chains, cv, ci, sblk);
     leaf_shape sh;
     leaf_shape_init(&sh);
     mesh_job J;

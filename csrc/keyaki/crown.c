@@ -526,6 +526,112 @@ static int plan_branch(const banyan_keyaki_params *p, const keyaki_node *n, int3
     return 0;
 }
 
+/* One cluster in the light model (grid g): shaded on both sides under 0.9
+ * of the sky it breaks (returns 1) unless a tip or shell cluster; half
+ * shaded it stays a short leafy spur (*spur, *len); else it turns towards
+ * the lit side and grows on into the gaps ahead, up to EXTEND x its
+ * length. Its reach is then stamped into the sky. Counts in c. */
+static int light_cluster(const banyan_keyaki_params *p, grid *g, keyaki_crown *c, cand *q, v3 *up, double *len,
+                         int *spur) {
+    rect r = crown_cluster_rect(p, q->at, q->d, q->h, *len, *len);
+    double fl, fr;
+    crown_sky_shade(g, r, q->z, p->shade_layers, &fl, &fr);
+    double lo = fmin(fl, fr), hi = fmax(fl, fr);
+    if (lo >= 0.9 && !q->tip && !q->shell) { /* all shaded: the cluster breaks */
+        c->dropped++;
+        return 1;
+    }
+    if (lo >= 0.5 && !q->shell) { /* both sides shaded: a short leafy spur */
+        *spur = 1;
+        *len = fmin(*len, fmax(0.3 * *len, 3.0 / fmax(p->leaf_density, 1e-9)));
+        c->stopped++;
+    } else {
+        if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
+            /* left is +90 deg about z from the plan axis: turning left is a positive angle */
+            double a = deg2rad(p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0));
+            turn_cluster(q, up, a);
+            c->steered++;
+        } else {
+            c->grown++;
+        }
+        /* Lit ahead: grow on into empty cells inside the outline, up
+         * to EXTEND x the length, heading straight on or up to
+         * light_steer aside, whichever reaches furthest into the
+         * hole (straight on a tie). */
+        double best = 0, best_a = 0;
+        for (int h = 0; h < 5 && hypot(q->d.x, q->d.y) >= 0.05; h++) {
+            double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
+            rect r2 = crown_cluster_rect(p, q->at, flat_dir(v3_rotate_z(q->d, a)), v3_rotate_z(q->h, a), *len, *len);
+            /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
+            double ext = 0;
+            int32_t seen = 0, holes = 0;
+            for (double t = 0; t < EXTEND * q->len; t += p->twig_spacing) {
+                double ex = r2.ox + r2.ax * (r2.len + t + 0.5 * CELL);
+                double ey = r2.oy + r2.ay * (r2.len + t + 0.5 * CELL);
+                int hole = crown_hole_at(g, ex, ey);
+                seen++, holes += hole;
+                if (hole && holes >= HOLE_SHARE * seen) ext = t + p->twig_spacing;
+                if (holes < HOLE_SHARE * seen - 2) break;
+            }
+            if (ext > best) best = ext, best_a = a;
+        }
+        if (best_a != 0) turn_cluster(q, up, best_a);
+        if (best > 0) { /* a shoot into a gap grows out sideways, toward the light */
+            q->d = flat_dir(q->d);
+            *up = v3_norm_or_perp(v3_cross(q->d, q->h), q->d);
+            if (up->z < 0) *up = v3_neg(*up);
+        }
+        *len += best;
+    }
+    crown_sky_stamp(g, crown_cluster_rect(p, q->at, q->d, q->h, *spur ? *len * 0.5 : *len, q->len), q->z);
+    return 0;
+}
+
+/* The plan grid over every cluster's reach, with room for the oblique
+ * layers' shifts, and its arrays (none over ~400 m across: no light
+ * model, g->nx 0); the card cap's height bands into x. The caller checks
+ * the allocations. */
+static void plan_grid(const banyan_keyaki_params *p, const cand *cs, int32_t nc, const shell *sh, grid *g, ctx *x) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (int32_t k = 0; k < nc; k++) {
+        x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
+        y0 = fmin(y0, cs[k].at.y), y1 = fmax(y1, cs[k].at.y);
+    }
+    double z0 = 1e300, z1 = -1e300;
+    for (int32_t k = 0; k < nc; k++) z0 = fmin(z0, cs[k].z), z1 = fmax(z1, cs[k].z);
+    g->zref = 0.5 * (z0 + z1);
+    /* Room for the oblique layers' shifts, at most half the crown's depth. */
+    double m = 3.0 * p->twig_length + 1.0 + 0.5 * (z1 - z0) / dm_tan(deg2rad(SKY_ELEVATION_DEG));
+    g->x0 = x0 - m;
+    g->y0 = y0 - m;
+    g->nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
+    g->ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
+    if ((double)g->nx * g->ny > 4e6) g->nx = g->ny = 0; /* a crown over ~400 m across: no light model */
+    else {
+        /* The card cap's height bands: CARD_BAND, fewer and taller on a
+         * giant tree, so its grid stays within CARD_CELLS_MAX cells. */
+        double reach = sh->height + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g->nx * g->ny);
+        double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
+        x->z0 = sh->z0, x->half_z = sh->z0 + 0.5 * sh->height;
+        x->gnb = (int32_t)nb, x->band = fmax(CARD_BAND, reach / nb);
+        x->gx0 = g->x0, x->gy0 = g->y0, x->gnx = g->nx, x->gny = g->ny;
+        g->n = calloc((size_t)g->nx * (size_t)g->ny, sizeof(int32_t));
+        g->in = malloc((size_t)g->nx * (size_t)g->ny);
+        g->sky = calloc((size_t)SKY_OBLIQUE * (size_t)g->nx * (size_t)g->ny, sizeof(int32_t));
+        x->cards = calloc((size_t)g->nx * (size_t)g->ny * (size_t)x->gnb, sizeof(int32_t));
+    }
+}
+
+/* Each node's depth: the fewest forks from it down to a tip (0 at a tip). */
+static void branch_depths(const keyaki_node *n, int32_t count, int32_t *depth) {
+    for (int32_t i = count - 1; i >= 0; i--) {
+        int32_t a = n[i].child[0], b = n[i].child[1];
+        if (a < 0 && b < 0) depth[i] = 0;
+        else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
+        else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
+    }
+}
+
 banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, int count_only,
                                 keyaki_run *run, keyaki_crown *c, banyan_error *err) {
     memset(c, 0, sizeof *c);
@@ -540,12 +646,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory growing the crown");
     }
     keyaki_node_paths(n, count, npath);
-    for (int32_t i = count - 1; i >= 0; i--) {
-        int32_t a = n[i].child[0], b = n[i].child[1];
-        if (a < 0 && b < 0) depth[i] = 0;
-        else if (a < 0 || b < 0) depth[i] = depth[a >= 0 ? a : b] + 1;
-        else depth[i] = 1 + (depth[a] < depth[b] ? depth[a] : depth[b]);
-    }
+    branch_depths(n, count, depth);
     ctx x = {p, c, {0, 0}, {0, 0}, 0, 0, 0, 0, 0.0, run, run ? run->promised : 0, BANYAN_OK, npath, NULL, 0, 0, 0, 0,
              0, 0, 0, CARD_BAND};
     if (p->twigs_from_segments || p->twig_levels == 0) {
@@ -631,34 +732,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
             free(cs);
             return crown_fail(c, 3, BANYAN_OK, p, err);
         }
-        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-        for (int32_t k = 0; k < nc; k++) {
-            x0 = fmin(x0, cs[k].at.x), x1 = fmax(x1, cs[k].at.x);
-            y0 = fmin(y0, cs[k].at.y), y1 = fmax(y1, cs[k].at.y);
-        }
-        double z0 = 1e300, z1 = -1e300;
-        for (int32_t k = 0; k < nc; k++) z0 = fmin(z0, cs[k].z), z1 = fmax(z1, cs[k].z);
-        g.zref = 0.5 * (z0 + z1);
-        /* Room for the oblique layers' shifts, at most half the crown's depth. */
-        double m = 3.0 * p->twig_length + 1.0 + 0.5 * (z1 - z0) / dm_tan(deg2rad(SKY_ELEVATION_DEG));
-        g.x0 = x0 - m;
-        g.y0 = y0 - m;
-        g.nx = (int32_t)ceil((x1 - x0 + 2 * m) / CELL) + 1;
-        g.ny = (int32_t)ceil((y1 - y0 + 2 * m) / CELL) + 1;
-        if ((double)g.nx * g.ny > 4e6) g.nx = g.ny = 0; /* a crown over ~400 m across: no light model */
-        else {
-            /* The card cap's height bands: CARD_BAND, fewer and taller on a
-             * giant tree, so its grid stays within CARD_CELLS_MAX cells. */
-            double reach = sh.height + 2.0 * p->twig_length, most = CARD_CELLS_MAX / ((double)g.nx * g.ny);
-            double nb = fmin(ceil(reach / CARD_BAND) + 1.0, fmax(1.0, floor(most)));
-            x.z0 = sh.z0, x.half_z = sh.z0 + 0.5 * sh.height;
-            x.gnb = (int32_t)nb, x.band = fmax(CARD_BAND, reach / nb);
-            x.gx0 = g.x0, x.gy0 = g.y0, x.gnx = g.nx, x.gny = g.ny;
-            g.n = calloc((size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
-            g.in = malloc((size_t)g.nx * (size_t)g.ny);
-            g.sky = calloc((size_t)SKY_OBLIQUE * (size_t)g.nx * (size_t)g.ny, sizeof(int32_t));
-            x.cards = calloc((size_t)g.nx * (size_t)g.ny * (size_t)x.gnb, sizeof(int32_t));
-        }
+        plan_grid(p, cs, nc, &sh, &g, &x);
         if (g.nx && (!g.n || !g.in || !g.sky || !x.cards)) {
             free(g.n);
             free(g.in);
@@ -683,59 +757,7 @@ banyan_status keyaki_crown_grow(const banyan_keyaki_params *p, const keyaki_node
         if (up.z < 0) up = v3_neg(up);
         double len = q.len;
         int spur = 0;
-        if (g.n) {
-            rect r = crown_cluster_rect(p, q.at, q.d, q.h, len, len);
-            double fl, fr;
-            crown_sky_shade(&g, r, q.z, p->shade_layers, &fl, &fr);
-            double lo = fmin(fl, fr), hi = fmax(fl, fr);
-            if (lo >= 0.9 && !q.tip && !q.shell) { /* all shaded: the cluster breaks */
-                c->dropped++;
-                continue;
-            }
-            if (lo >= 0.5 && !q.shell) { /* both sides shaded: a short leafy spur */
-                spur = 1;
-                len = fmin(len, fmax(0.3 * len, 3.0 / fmax(p->leaf_density, 1e-9)));
-                c->stopped++;
-            } else {
-                if (hi >= 0.25) { /* one side shaded: turn towards the lit one */
-                    /* left is +90 deg about z from the plan axis: turning left is a positive angle */
-                    double a = deg2rad(p->light_steer * fmin(1.0, 2.0 * (hi - lo)) * (fl > fr ? -1.0 : 1.0));
-                    turn_cluster(&q, &up, a);
-                    c->steered++;
-                } else {
-                    c->grown++;
-                }
-                /* Lit ahead: grow on into empty cells inside the outline, up
-                 * to EXTEND x the length, heading straight on or up to
-                 * light_steer aside, whichever reaches furthest into the
-                 * hole (straight on a tie). */
-                double best = 0, best_a = 0;
-                for (int h = 0; h < 5 && hypot(q.d.x, q.d.y) >= 0.05; h++) {
-                    double a = deg2rad(p->light_steer * (h == 0 ? 0 : h == 1 ? 1 : h == 2 ? -1 : h == 3 ? 2 : -2));
-                    rect r2 = crown_cluster_rect(p, q.at, flat_dir(v3_rotate_z(q.d, a)), v3_rotate_z(q.h, a), len, len);
-                    /* As far as the cells ahead stay mostly (HOLE_SHARE) holes. */
-                    double ext = 0;
-                    int32_t seen = 0, holes = 0;
-                    for (double t = 0; t < EXTEND * q.len; t += p->twig_spacing) {
-                        double ex = r2.ox + r2.ax * (r2.len + t + 0.5 * CELL);
-                        double ey = r2.oy + r2.ay * (r2.len + t + 0.5 * CELL);
-                        int hole = crown_hole_at(&g, ex, ey);
-                        seen++, holes += hole;
-                        if (hole && holes >= HOLE_SHARE * seen) ext = t + p->twig_spacing;
-                        if (holes < HOLE_SHARE * seen - 2) break;
-                    }
-                    if (ext > best) best = ext, best_a = a;
-                }
-                if (best_a != 0) turn_cluster(&q, &up, best_a);
-                if (best > 0) { /* a shoot into a gap grows out sideways, toward the light */
-                    q.d = flat_dir(q.d);
-                    up = v3_norm_or_perp(v3_cross(q.d, q.h), q.d);
-                    if (up.z < 0) up = v3_neg(up);
-                }
-                len += best;
-            }
-            crown_sky_stamp(&g, crown_cluster_rect(p, q.at, q.d, q.h, spur ? len * 0.5 : len, q.len), q.z);
-        }
+        if (g.n && light_cluster(p, &g, c, &q, &up, &len, &spur)) continue;
         x.sub_base = q.len;
         grow_twig(&x, 1, -1, q.at, q.d, up, len, q.r_host, spur, q.path);
     }

@@ -86,6 +86,8 @@ typedef struct level_table {
     double sprung[BANYAN_KEYAKI_MAX_LEVELS + 1];  /* deg after a break */
     double cs[BANYAN_KEYAKI_MAX_LEVELS + 1], ss[BANYAN_KEYAKI_MAX_LEVELS + 1];
     double threshold[BANYAN_KEYAKI_MAX_LEVELS + 1];
+    double ct_lo, st_lo, ct_mid, st_mid, ct_hi, st_hi; /* the twists' cosines and sines: low, mid, high */
+    double z_mid, z_high;                              /* the tilts' cosines: where mid and high begin */
 } level_table;
 
 static void add_child(keyaki_node *nodes, int32_t *count, int32_t parent, v3 dir, v3 plane, double length,
@@ -188,25 +190,140 @@ static void lean_tree(const banyan_keyaki_params *p, keyaki_skeleton *sk) {
 #undef LEAN_TURN
 }
 
-banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err) {
-    const int L = p->levels, model = p->model;
-    const double unit = p->unit, seg = p->segment_length * unit;
-    level_table t;
+/* The per level fork table: each child level's fork angle and its angle
+ * sprung back after a break (with their cosines and sines) and the energy
+ * threshold under which a fork breaks; the three twists and the tilts
+ * where the mid and high twists begin. */
+static void level_table_init(const banyan_keyaki_params *p, level_table *t) {
+    const int L = p->levels;
     for (int l = 1; l <= L; l++) {
         double a = p->fork_angle + p->fork_angle_step * (l - 1);
         double sp = a * (1.0 - p->springback * (1.0 - (double)l / L));
-        t.angle[l] = a;
-        t.c[l] = dm_cos(deg2rad(a));
-        t.s[l] = dm_sin(deg2rad(a));
-        t.sprung[l] = sp;
-        t.cs[l] = dm_cos(deg2rad(sp));
-        t.ss[l] = dm_sin(deg2rad(sp));
-        t.threshold[l] = dm_pow(p->alpha, -l);
+        t->angle[l] = a;
+        t->c[l] = dm_cos(deg2rad(a));
+        t->s[l] = dm_sin(deg2rad(a));
+        t->sprung[l] = sp;
+        t->cs[l] = dm_cos(deg2rad(sp));
+        t->ss[l] = dm_sin(deg2rad(sp));
+        t->threshold[l] = dm_pow(p->alpha, -l);
     }
-    const double ct_lo = dm_cos(deg2rad(p->twist)), st_lo = dm_sin(deg2rad(p->twist));
-    const double ct_mid = dm_cos(deg2rad(p->twist_mid)), st_mid = dm_sin(deg2rad(p->twist_mid));
-    const double ct_hi = dm_cos(deg2rad(p->twist_high)), st_hi = dm_sin(deg2rad(p->twist_high));
-    const double z_mid = dm_cos(deg2rad(p->tilt_mid)), z_high = dm_cos(deg2rad(p->tilt_high));
+    t->ct_lo = dm_cos(deg2rad(p->twist));
+    t->st_lo = dm_sin(deg2rad(p->twist));
+    t->ct_mid = dm_cos(deg2rad(p->twist_mid));
+    t->st_mid = dm_sin(deg2rad(p->twist_mid));
+    t->ct_hi = dm_cos(deg2rad(p->twist_high));
+    t->st_hi = dm_sin(deg2rad(p->twist_high));
+    t->z_mid = dm_cos(deg2rad(p->tilt_mid));
+    t->z_high = dm_cos(deg2rad(p->tilt_high));
+}
+
+/* Forks node i (room for two children reserved): draws the strong
+ * child's side, picks the fork plane and the energy split by the model,
+ * and adds the two children, or one sprung-back child where the weak one
+ * breaks. The draws from r are those of the model, in this order. */
+static void fork_node(const banyan_keyaki_params *p, const level_table *t, keyaki_skeleton *sk, int32_t i, pcg32 *r) {
+    const int model = p->model;
+    const double seg = p->segment_length * p->unit;
+    keyaki_node *P = &sk->nodes[i];
+    const int l = sk->nodes[i].level + 1;
+    const v3 d = P->dir;
+    const v3 n0 = perp_to(P->plane, d, v3_any_perp(d));
+    const double E = P->energy, Er = E / P->share; /* Er: the limb's own scale (rule 8) */
+    v3 n;
+    double fs = 0.5, ls = seg, lw = seg, c = t->c[l], sn = t->s[l], angle = t->angle[l];
+    int strong = 0, broken = 0, strong_upper = 1;
+    /* Side of the strong child: 0 = the upper one, else +-1 drawn. */
+    int side = 0;
+    if (p->strong_side == BANYAN_KEYAKI_SIDE_RANDOM &&
+        (model == BANYAN_KEYAKI_TWISTED || model == BANYAN_KEYAKI_EDAORE)) {
+        int bit = (int)rng_below(r, 2); /* drawn always: the stream does not depend on the tilt */
+        if (d.z > t->z_mid) side = bit ? 1 : -1;
+    }
+
+    switch (model) {
+    case BANYAN_KEYAKI_SIMPLE:
+        n = rule2_plane(d, n0, p->fork_plane == BANYAN_KEYAKI_PLANE_VERTICAL);
+        break;
+    case BANYAN_KEYAKI_STRONG_WEAK:
+        n = rule2_plane(d, n0, p->fork_plane == BANYAN_KEYAKI_PLANE_VERTICAL);
+        if (rng_uniform(r) < p->strong_probability) {
+            strong = 1;
+            fs = p->strong_ratio;
+            strong_upper = (int)rng_below(r, 2); /* 7:3 and 3:7 share p */
+        }
+        break;
+    case BANYAN_KEYAKI_TWISTED:
+        if (rng_uniform(r) < p->strong_probability) {
+            strong = 1;
+            fs = p->strong_ratio;
+            n = twist_plane(n0, d, t->ct_lo, t->st_lo, side);
+        } else {
+            n = n0;
+        }
+        break;
+    default: { /* edaore */
+        uint32_t k;
+        if (p->distribution == BANYAN_KEYAKI_NORMAL) {
+            double u = rng_uniform(r) + rng_uniform(r) + rng_uniform(r);
+            k = (uint32_t)floor(10.0 * u / 3.0);
+            if (k > 9) k = 9;
+        } else {
+            k = rng_below(r, 10);
+        }
+        double ratio = 0.05 + 0.1 * k;
+        fs = ratio > 0.5 ? ratio : 1.0 - ratio;
+        strong = 1;
+        if (Er * (1.0 - fs) < t->threshold[l]) {
+            broken = 1;
+            n = n0; /* a fork that breaks never twists */
+            c = t->cs[l];
+            sn = t->ss[l];
+            angle = t->sprung[l];
+        } else if (d.z > t->z_mid) {
+            n = twist_plane(n0, d, t->ct_lo, t->st_lo, side);
+        } else if (d.z > t->z_high) {
+            n = twist_plane(n0, d, t->ct_mid, t->st_mid, side);
+        } else {
+            n = twist_plane(n0, d, t->ct_hi, t->st_hi, side);
+        }
+        break;
+    }
+    }
+
+    v3 e = v3_cross(n, d);
+    v3 up = v3_add(v3_scale(d, c), v3_scale(e, sn)), down = v3_sub(v3_scale(d, c), v3_scale(e, sn));
+    /* Equal heights (e.z ~ 0, e.g. rule 2's steepest plane): break the
+     * tie by the parent's own in-plane perpendicular, which turns with
+     * the tree, so `heading` turns the skeleton exactly. */
+    double ez = fabs(e.z) > 1e-12 ? e.z : v3_dot(e, v3_cross(n0, d));
+    if (side ? side < 0 : ez < 0) {
+        v3 tmp = up;
+        up = down;
+        down = tmp;
+    }
+    if (model == BANYAN_KEYAKI_STRONG_WEAK && strong && !strong_upper) {
+        v3 tmp = up;
+        up = down;
+        down = tmp;
+    }
+    /* `up` is now the strong (or first) child. */
+    if (strong && !broken && model != BANYAN_KEYAKI_EDAORE && p->length_rule == BANYAN_KEYAKI_LENGTH_ENERGY &&
+        model != BANYAN_KEYAKI_SIMPLE)
+        energy_lengths(seg, fs, p->max_length_ratio, &ls, &lw);
+    if (broken) {
+        sk->nodes[i].flags |= KN_BROKEN;
+        add_child(sk->nodes, &sk->count, i, up, n, seg, E, angle, KN_SPRUNG);
+    } else {
+        add_child(sk->nodes, &sk->count, i, up, n, ls, E * fs, angle, strong ? KN_STRONG : 0);
+        add_child(sk->nodes, &sk->count, i, down, n, lw, E - E * fs, angle, 0);
+    }
+}
+
+banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, banyan_error *err) {
+    const int L = p->levels, model = p->model;
+    const double unit = p->unit;
+    level_table t;
+    level_table_init(p, &t);
 
     pcg32 r;
     pcg32_seed(&r, p->seed, KEYAKI_STREAM_GROWTH);
@@ -257,99 +374,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
             continue;
         }
         if ((s = reserve(sk, sk->count + 2, p->max_nodes, err))) return s;
-        keyaki_node *P = &sk->nodes[i];
-        const int l = level + 1;
-        const v3 d = P->dir;
-        const v3 n0 = perp_to(P->plane, d, v3_any_perp(d));
-        const double E = P->energy, Er = E / P->share; /* Er: the limb's own scale (rule 8) */
-        v3 n;
-        double fs = 0.5, ls = seg, lw = seg, c = t.c[l], sn = t.s[l], angle = t.angle[l];
-        int strong = 0, broken = 0, strong_upper = 1;
-        /* Side of the strong child: 0 = the upper one, else +-1 drawn. */
-        int side = 0;
-        if (p->strong_side == BANYAN_KEYAKI_SIDE_RANDOM &&
-            (model == BANYAN_KEYAKI_TWISTED || model == BANYAN_KEYAKI_EDAORE)) {
-            int bit = (int)rng_below(&r, 2); /* drawn always: the stream does not depend on the tilt */
-            if (d.z > z_mid) side = bit ? 1 : -1;
-        }
-
-        switch (model) {
-        case BANYAN_KEYAKI_SIMPLE:
-            n = rule2_plane(d, n0, p->fork_plane == BANYAN_KEYAKI_PLANE_VERTICAL);
-            break;
-        case BANYAN_KEYAKI_STRONG_WEAK:
-            n = rule2_plane(d, n0, p->fork_plane == BANYAN_KEYAKI_PLANE_VERTICAL);
-            if (rng_uniform(&r) < p->strong_probability) {
-                strong = 1;
-                fs = p->strong_ratio;
-                strong_upper = (int)rng_below(&r, 2); /* 7:3 and 3:7 share p */
-            }
-            break;
-        case BANYAN_KEYAKI_TWISTED:
-            if (rng_uniform(&r) < p->strong_probability) {
-                strong = 1;
-                fs = p->strong_ratio;
-                n = twist_plane(n0, d, ct_lo, st_lo, side);
-            } else {
-                n = n0;
-            }
-            break;
-        default: { /* edaore */
-            uint32_t k;
-            if (p->distribution == BANYAN_KEYAKI_NORMAL) {
-                double u = rng_uniform(&r) + rng_uniform(&r) + rng_uniform(&r);
-                k = (uint32_t)floor(10.0 * u / 3.0);
-                if (k > 9) k = 9;
-            } else {
-                k = rng_below(&r, 10);
-            }
-            double ratio = 0.05 + 0.1 * k;
-            fs = ratio > 0.5 ? ratio : 1.0 - ratio;
-            strong = 1;
-            if (Er * (1.0 - fs) < t.threshold[l]) {
-                broken = 1;
-                n = n0; /* a fork that breaks never twists */
-                c = t.cs[l];
-                sn = t.ss[l];
-                angle = t.sprung[l];
-            } else if (d.z > z_mid) {
-                n = twist_plane(n0, d, ct_lo, st_lo, side);
-            } else if (d.z > z_high) {
-                n = twist_plane(n0, d, ct_mid, st_mid, side);
-            } else {
-                n = twist_plane(n0, d, ct_hi, st_hi, side);
-            }
-            break;
-        }
-        }
-
-        v3 e = v3_cross(n, d);
-        v3 up = v3_add(v3_scale(d, c), v3_scale(e, sn)), down = v3_sub(v3_scale(d, c), v3_scale(e, sn));
-        /* Equal heights (e.z ~ 0, e.g. rule 2's steepest plane): break the
-         * tie by the parent's own in-plane perpendicular, which turns with
-         * the tree, so `heading` turns the skeleton exactly. */
-        double ez = fabs(e.z) > 1e-12 ? e.z : v3_dot(e, v3_cross(n0, d));
-        if (side ? side < 0 : ez < 0) {
-            v3 tmp = up;
-            up = down;
-            down = tmp;
-        }
-        if (model == BANYAN_KEYAKI_STRONG_WEAK && strong && !strong_upper) {
-            v3 tmp = up;
-            up = down;
-            down = tmp;
-        }
-        /* `up` is now the strong (or first) child. */
-        if (strong && !broken && model != BANYAN_KEYAKI_EDAORE && p->length_rule == BANYAN_KEYAKI_LENGTH_ENERGY &&
-            model != BANYAN_KEYAKI_SIMPLE)
-            energy_lengths(seg, fs, p->max_length_ratio, &ls, &lw);
-        if (broken) {
-            sk->nodes[i].flags |= KN_BROKEN;
-            add_child(sk->nodes, &sk->count, i, up, n, seg, E, angle, KN_SPRUNG);
-        } else {
-            add_child(sk->nodes, &sk->count, i, up, n, ls, E * fs, angle, strong ? KN_STRONG : 0);
-            add_child(sk->nodes, &sk->count, i, down, n, lw, E - E * fs, angle, 0);
-        }
+        fork_node(p, &t, sk, i, &r);
     }
     keyaki_radii(sk->nodes, sk->count, p->tip_radius * unit, p->pipe_exponent);
     /* Twigs from segments: the finest levels go, after the radii, so the

@@ -528,6 +528,150 @@ static void layout(bb_view *vw, uint32_t n, uint32_t size, uint32_t *W, uint32_t
     grid_at(vw, n, best_c, 0, W, H);
 }
 
+/* Each group's bounds over the vertices its parts' triangles use (lo and
+ * hi start empty: a group without triangles keeps lo above hi). */
+static void group_bounds(const banyan_mesh *m, double (*lo)[3], double (*hi)[3]) {
+    for (uint32_t q = 0; q < m->part_count; q++) {
+        const banyan_part *pt = &m->parts[q];
+        for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
+            const float *P = m->positions + 3 * (size_t)m->indices[k];
+            for (int j = 0; j < 3; j++) {
+                lo[pt->group][j] = P[j] < lo[pt->group][j] ? P[j] : lo[pt->group][j]; /* finite: fmin's value */
+                hi[pt->group][j] = P[j] > hi[pt->group][j] ? P[j] : hi[pt->group][j];
+            }
+        }
+    }
+}
+
+/* Group g's views: `planes` vertical ones about its centre c (seen from
+ * +n, picture x along -d, not mirrored), each spanning the group's extent
+ * across it and zmin .. zmax up, then the top view (from +z, x to the
+ * right, y up the picture); a flat extent is widened to 1e-6 m. */
+static void group_views(const banyan_mesh *m, uint32_t g, uint32_t planes, const double lo[3], const double hi[3],
+                        double c[2], double *zmin_out, double *zmax_out, bb_view *vw) {
+    c[0] = 0.5 * (lo[0] + hi[0]), c[1] = 0.5 * (lo[1] + hi[1]);
+    double zmin = lo[2], zmax = hi[2];
+    if (zmax - zmin < 1e-6) zmax = zmin + 1e-6;
+    double dk[BB_MAX_PLANES][2], smin[BB_MAX_PLANES], smax[BB_MAX_PLANES];
+    for (uint32_t k = 0; k < planes; k++) {
+        double a = BB_PI * k / planes;
+        dk[k][0] = dm_cos(a), dk[k][1] = dm_sin(a);
+        smin[k] = INFINITY, smax[k] = -INFINITY;
+    }
+    for (uint32_t q = 0; q < m->part_count; q++) {
+        const banyan_part *pt = &m->parts[q];
+        if (pt->group != g) continue;
+        for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
+            const float *P = m->positions + 3 * (size_t)m->indices[k];
+            for (uint32_t v = 0; v < planes; v++) {
+                double s = (P[0] - c[0]) * dk[v][0] + (P[1] - c[1]) * dk[v][1];
+                smin[v] = s < smin[v] ? s : smin[v]; /* finite: fmin's value */
+                smax[v] = s > smax[v] ? s : smax[v];
+            }
+        }
+    }
+    /* Vertical views: seen from +n, picture x along -d (not mirrored). */
+    for (uint32_t k = 0; k < planes; k++) {
+        if (smax[k] - smin[k] < 1e-6) smin[k] -= 5e-7, smax[k] += 5e-7;
+        bb_view *w = &vw[k];
+        double n2[2] = {-dk[k][1], dk[k][0]};
+        w->r[0] = -dk[k][0], w->r[1] = -dk[k][1], w->r[2] = 0;
+        w->up[0] = 0, w->up[1] = 0, w->up[2] = 1;
+        w->v[0] = n2[0], w->v[1] = n2[1], w->v[2] = 0;
+        double rc = c[0] * w->r[0] + c[1] * w->r[1];
+        w->rmin = rc - smax[k], w->rmax = rc - smin[k];
+        w->umin = zmin, w->umax = zmax;
+    }
+    /* The top view: from +z, x to the right, y up the picture. */
+    {
+        bb_view *w = &vw[planes];
+        double x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1];
+        if (x1 - x0 < 1e-6) x0 -= 5e-7, x1 += 5e-7;
+        if (y1 - y0 < 1e-6) y0 -= 5e-7, y1 += 5e-7;
+        w->r[0] = 1, w->r[1] = 0, w->r[2] = 0;
+        w->up[0] = 0, w->up[1] = 1, w->up[2] = 0;
+        w->v[0] = 0, w->v[1] = 0, w->v[2] = 1;
+        w->rmin = x0, w->rmax = x1, w->umin = y0, w->umax = y1;
+    }
+    *zmin_out = zmin, *zmax_out = zmax;
+}
+
+/* Two parts and materials per group, one picture: the vertical
+ * cards, double sided, and the top card, single sided facing up
+ * (an engine that culls back faces does not show its unlit
+ * underside from the ground). */
+static void card_parts(const banyan_mesh *m, banyan_mesh *o, uint32_t g, uint32_t cd, uint32_t planes) {
+    const uint32_t nvc = planes * 8 + 4, nic = planes * 12 + 6; /* per card set */
+    float rough = mean_roughness(m, g);
+    for (uint32_t h = 0; h < 2; h++) {
+        banyan_material *mt = &o->materials[2 * cd + h];
+        snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
+        mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
+        mt->roughness = rough;
+        mt->double_sided = !h;
+        mt->texture = BANYAN_TEX_NONE;
+        mt->alpha_cutoff = 0.5f;
+        mt->translucency = 0.3f;
+        mt->image = (int32_t)cd;
+        banyan_part *pp = &o->parts[2 * cd + h];
+        pp->vertex_offset = cd * nvc + (h ? planes * 8 : 0);
+        pp->vertex_count = h ? 4 : planes * 8;
+        pp->index_offset = cd * nic + (h ? planes * 12 : 0);
+        pp->index_count = h ? 6 : planes * 12;
+        pp->material = 2 * cd + h;
+        pp->group = g;
+    }
+}
+
+/* Card set cd's quads: two half planes per vertical view (split at the
+ * axis), then the top card; corners counter-clockwise seen from +v, their
+ * UVs in the W x H picture, and birth 1 with (when wind) the group's pivot
+ * at its centre's foot, its level 0, a stiffness falling to 0.5 at the top
+ * and its phase. */
+static void card_quads(banyan_mesh *o, uint32_t cd, const bb_view *vw, uint32_t planes, const double c[2], double zmin,
+                       double zmax, uint32_t W, uint32_t H, int wind, float phase) {
+    const uint32_t tiles = planes + 1;
+    const banyan_part *op = &o->parts[2 * cd];
+    for (uint32_t k = 0; k < tiles; k++) {
+        const bb_view *w = &vw[k];
+        uint32_t halves = k < planes ? 2 : 1;
+        double rc = c[0] * w->r[0] + c[1] * w->r[1];
+        double r_mid = k < planes ? fmin(fmax(rc, w->rmin), w->rmax) : w->rmax;
+        double rv[3] = {w->rmin, r_mid, w->rmax};
+        double depth = k < planes ? c[0] * w->v[0] + c[1] * w->v[1] : zmin + BB_TOP_AT * (zmax - zmin);
+        for (uint32_t h = 0; h < halves; h++) {
+            uint32_t base = op->vertex_offset + (k * 2 + h) * 4;
+            double ra = rv[h], rb = k < planes ? rv[h + 1] : w->rmax;
+            double corner[4][2] = {{ra, w->umin}, {rb, w->umin}, {rb, w->umax}, {ra, w->umax}};
+            for (int e = 0; e < 4; e++) {
+                uint32_t v = base + (uint32_t)e;
+                double rr = corner[e][0], uu = corner[e][1];
+                float *P = o->positions + 3 * (size_t)v, *N = o->normals + 3 * (size_t)v, *T = o->uvs + 2 * (size_t)v;
+                for (int j = 0; j < 3; j++) {
+                    P[j] = (float)(rr * w->r[j] + uu * w->up[j] + depth * w->v[j]);
+                    N[j] = (float)w->v[j];
+                }
+                T[0] = (float)((w->x0 + (rr - w->rmin) / (w->rmax - w->rmin) * w->w) / W);
+                T[1] = (float)(1.0 - (w->y0 + (w->umax - uu) / (w->umax - w->umin) * w->h) / H);
+                float t = (float)((P[2] - zmin) / (zmax - zmin));
+                o->attributes[0].data[v] = 1.0f;
+                if (wind) {
+                    o->attributes[1].data[v] = (float)c[0];
+                    o->attributes[2].data[v] = (float)c[1];
+                    o->attributes[3].data[v] = (float)zmin;
+                    o->attributes[4].data[v] = 0.0f;
+                    o->attributes[5].data[v] = 1.0f - 0.5f * t;
+                    o->attributes[6].data[v] = phase;
+                    o->attributes[7].data[v] = 0.0f;
+                }
+            }
+            uint32_t *I = o->indices + op->index_offset + (k * 2 + h) * 6;
+            I[0] = base, I[1] = base + 1, I[2] = base + 2;
+            I[3] = base, I[4] = base + 2, I[5] = base + 3;
+        }
+    }
+}
+
 banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, prog *pg, banyan_mesh **out,
                             banyan_error *err) {
     uint32_t planes = (uint32_t)p->billboard_planes, size = (uint32_t)p->billboard_size, ss = bb_ss(size);
@@ -552,16 +696,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         slot[g] = UINT32_MAX;
         for (int j = 0; j < 3; j++) lo[g][j] = INFINITY, hi[g][j] = -INFINITY;
     }
-    for (uint32_t q = 0; q < m->part_count; q++) {
-        const banyan_part *pt = &m->parts[q];
-        for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
-            const float *P = m->positions + 3 * (size_t)m->indices[k];
-            for (int j = 0; j < 3; j++) {
-                lo[pt->group][j] = P[j] < lo[pt->group][j] ? P[j] : lo[pt->group][j]; /* finite: fmin's value */
-                hi[pt->group][j] = P[j] > hi[pt->group][j] ? P[j] : hi[pt->group][j];
-            }
-        }
-    }
+    group_bounds(m, lo, hi);
     uint32_t n_cards = 0;
     for (uint32_t g = 0; g < n_groups; g++)
         if (lo[g][0] <= hi[g][0]) slot[g] = n_cards++;
@@ -604,51 +739,9 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
             st = BANYAN_E_LIMIT;
             goto fail;
         }
-        double c[2] = {0.5 * (lo[g][0] + hi[g][0]), 0.5 * (lo[g][1] + hi[g][1])};
-        double zmin = lo[g][2], zmax = hi[g][2];
-        if (zmax - zmin < 1e-6) zmax = zmin + 1e-6;
+        double c[2], zmin, zmax;
         bb_view vw[BB_MAX_TILES];
-        double dk[BB_MAX_PLANES][2], smin[BB_MAX_PLANES], smax[BB_MAX_PLANES];
-        for (uint32_t k = 0; k < planes; k++) {
-            double a = BB_PI * k / planes;
-            dk[k][0] = dm_cos(a), dk[k][1] = dm_sin(a);
-            smin[k] = INFINITY, smax[k] = -INFINITY;
-        }
-        for (uint32_t q = 0; q < m->part_count; q++) {
-            const banyan_part *pt = &m->parts[q];
-            if (pt->group != g) continue;
-            for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
-                const float *P = m->positions + 3 * (size_t)m->indices[k];
-                for (uint32_t v = 0; v < planes; v++) {
-                    double s = (P[0] - c[0]) * dk[v][0] + (P[1] - c[1]) * dk[v][1];
-                    smin[v] = s < smin[v] ? s : smin[v]; /* finite: fmin's value */
-                    smax[v] = s > smax[v] ? s : smax[v];
-                }
-            }
-        }
-        /* Vertical views: seen from +n, picture x along -d (not mirrored). */
-        for (uint32_t k = 0; k < planes; k++) {
-            if (smax[k] - smin[k] < 1e-6) smin[k] -= 5e-7, smax[k] += 5e-7;
-            bb_view *w = &vw[k];
-            double n2[2] = {-dk[k][1], dk[k][0]};
-            w->r[0] = -dk[k][0], w->r[1] = -dk[k][1], w->r[2] = 0;
-            w->up[0] = 0, w->up[1] = 0, w->up[2] = 1;
-            w->v[0] = n2[0], w->v[1] = n2[1], w->v[2] = 0;
-            double rc = c[0] * w->r[0] + c[1] * w->r[1];
-            w->rmin = rc - smax[k], w->rmax = rc - smin[k];
-            w->umin = zmin, w->umax = zmax;
-        }
-        /* The top view: from +z, x to the right, y up the picture. */
-        {
-            bb_view *w = &vw[planes];
-            double x0 = lo[g][0], x1 = hi[g][0], y0 = lo[g][1], y1 = hi[g][1];
-            if (x1 - x0 < 1e-6) x0 -= 5e-7, x1 += 5e-7;
-            if (y1 - y0 < 1e-6) y0 -= 5e-7, y1 += 5e-7;
-            w->r[0] = 1, w->r[1] = 0, w->r[2] = 0;
-            w->up[0] = 0, w->up[1] = 1, w->up[2] = 0;
-            w->v[0] = 0, w->v[1] = 0, w->v[2] = 1;
-            w->rmin = x0, w->rmax = x1, w->umin = y0, w->umax = y1;
-        }
+        group_views(m, g, planes, lo[g], hi[g], c, &zmin, &zmax, vw);
         uint32_t W, H;
         layout(vw, tiles, size, &W, &H);
         banyan_image *im = &o->images[cd];
@@ -695,71 +788,8 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         }
         if (dilate(im->pixels, W, H)) goto fail;
 
-        /* Two parts and materials per group, one picture: the vertical
-         * cards, double sided, and the top card, single sided facing up
-         * (an engine that culls back faces does not show its unlit
-         * underside from the ground). */
-        float rough = mean_roughness(m, g);
-        for (uint32_t h = 0; h < 2; h++) {
-            banyan_material *mt = &o->materials[2 * cd + h];
-            snprintf(mt->name, sizeof mt->name, h ? "billboard_top_%u" : "billboard_%u", g);
-            mt->base_color[0] = mt->base_color[1] = mt->base_color[2] = mt->base_color[3] = 1.0f;
-            mt->roughness = rough;
-            mt->double_sided = !h;
-            mt->texture = BANYAN_TEX_NONE;
-            mt->alpha_cutoff = 0.5f;
-            mt->translucency = 0.3f;
-            mt->image = (int32_t)cd;
-            banyan_part *pp = &o->parts[2 * cd + h];
-            pp->vertex_offset = cd * nvc + (h ? planes * 8 : 0);
-            pp->vertex_count = h ? 4 : planes * 8;
-            pp->index_offset = cd * nic + (h ? planes * 12 : 0);
-            pp->index_count = h ? 6 : planes * 12;
-            pp->material = 2 * cd + h;
-            pp->group = g;
-        }
-        const banyan_part *op = &o->parts[2 * cd];
-        float phase = (float)wind_phase_of(p->seed, g);
-        /* Quads: two half planes per vertical view (split at the axis),
-         * then the top card; corners counter-clockwise seen from +v. */
-        for (uint32_t k = 0; k < tiles; k++) {
-            const bb_view *w = &vw[k];
-            uint32_t halves = k < planes ? 2 : 1;
-            double rc = c[0] * w->r[0] + c[1] * w->r[1];
-            double r_mid = k < planes ? fmin(fmax(rc, w->rmin), w->rmax) : w->rmax;
-            double rv[3] = {w->rmin, r_mid, w->rmax};
-            double depth = k < planes ? c[0] * w->v[0] + c[1] * w->v[1] : zmin + BB_TOP_AT * (zmax - zmin);
-            for (uint32_t h = 0; h < halves; h++) {
-                uint32_t base = op->vertex_offset + (k * 2 + h) * 4;
-                double ra = rv[h], rb = k < planes ? rv[h + 1] : w->rmax;
-                double corner[4][2] = {{ra, w->umin}, {rb, w->umin}, {rb, w->umax}, {ra, w->umax}};
-                for (int e = 0; e < 4; e++) {
-                    uint32_t v = base + (uint32_t)e;
-                    double rr = corner[e][0], uu = corner[e][1];
-                    float *P = o->positions + 3 * (size_t)v, *N = o->normals + 3 * (size_t)v, *T = o->uvs + 2 * (size_t)v;
-                    for (int j = 0; j < 3; j++) {
-                        P[j] = (float)(rr * w->r[j] + uu * w->up[j] + depth * w->v[j]);
-                        N[j] = (float)w->v[j];
-                    }
-                    T[0] = (float)((w->x0 + (rr - w->rmin) / (w->rmax - w->rmin) * w->w) / W);
-                    T[1] = (float)(1.0 - (w->y0 + (w->umax - uu) / (w->umax - w->umin) * w->h) / H);
-                    float t = (float)((P[2] - zmin) / (zmax - zmin));
-                    o->attributes[0].data[v] = 1.0f;
-                    if (wind) {
-                        o->attributes[1].data[v] = (float)c[0];
-                        o->attributes[2].data[v] = (float)c[1];
-                        o->attributes[3].data[v] = (float)zmin;
-                        o->attributes[4].data[v] = 0.0f;
-                        o->attributes[5].data[v] = 1.0f - 0.5f * t;
-                        o->attributes[6].data[v] = phase;
-                        o->attributes[7].data[v] = 0.0f;
-                    }
-                }
-                uint32_t *I = o->indices + op->index_offset + (k * 2 + h) * 6;
-                I[0] = base, I[1] = base + 1, I[2] = base + 2;
-                I[3] = base, I[4] = base + 2, I[5] = base + 3;
-            }
-        }
+        card_parts(m, o, g, cd, planes);
+        card_quads(o, cd, vw, planes, c, zmin, zmax, W, H, wind, (float)wind_phase_of(p->seed, g));
     }
     free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);

@@ -603,6 +603,148 @@ static void stretch_birth(mesh_builder *mb, const wind_slots *ws) {
  * budget and the cancel, on the generator's thread. */
 static int vdb_stop(void *user) { return roots_stop((const roots_net *)user); }
 
+/* Smooth normals' sums: each triangle's normal, weighted by its area (the
+ * cross product's length), added to its three vertices' sums in nacc. */
+static void face_normal_sums(const fused_vdb_out *vo, uint32_t nt, double *nacc) {
+    for (uint32_t f = 0; f < nt; f++) {
+        const uint32_t *I = vo->tri + 3 * (size_t)f;
+        v3 A = v3_make(vo->pos[3 * I[0]], vo->pos[3 * I[0] + 1], vo->pos[3 * I[0] + 2]);
+        v3 B = v3_make(vo->pos[3 * I[1]], vo->pos[3 * I[1] + 1], vo->pos[3 * I[1] + 2]);
+        v3 C = v3_make(vo->pos[3 * I[2]], vo->pos[3 * I[2] + 1], vo->pos[3 * I[2] + 2]);
+        v3 n = v3_cross(v3_sub(B, A), v3_sub(C, A));
+        for (int j = 0; j < 3; j++) {
+            nacc[3 * I[j]] += n.x, nacc[3 * I[j] + 1] += n.y, nacc[3 * I[j] + 2] += n.z;
+        }
+    }
+}
+
+/* Each vertex's nearest capsule: its polyline's kind and id, where along
+ * the capsule it lies (t) and its uv on it. Returns 1 when stopped
+ * (cancel or budget), else 0. */
+static int vertex_uvs(const roots_net *net, const fgrid *g, const capsule *caps, uint32_t n_caps, const v3 *T,
+                      const v3 *N, const double *vcum, double r, double h, const fused_vdb_out *vo, uint32_t nv,
+                      fvert *fv) {
+    for (uint32_t i = 0; i < nv; i++) {
+        if ((i & 1023) == 0 && roots_stop(net)) return 1;
+        v3 q = v3_make(vo->pos[3 * i] * h, vo->pos[3 * i + 1] * h, vo->pos[3 * i + 2] * h);
+        double t = 0;
+        uint32_t c = nearest_capsule(g, caps, n_caps, q, &t);
+        const capsule *cp = &caps[c];
+        uv_on(cp, T, N, vcum, r, q, t, &fv[i].u, &fv[i].v);
+        fv[i].kind = net->poly[cp->poly].kind;
+        fv[i].id = net->poly[cp->poly].id;
+        fv[i].cap = c, fv[i].t = t, fv[i].src = i;
+    }
+    return 0;
+}
+
+/* A triangle across u's wrap takes copies of its low-u vertices at u + 1:
+ * copy j of vertex dsrc[j] is vertex n_fv + j (dup: each vertex's copy,
+ * UINT32_MAX for none), the triangle's indices moved to it. Returns the
+ * number of copies. */
+static uint32_t wrap_copies(fused_vdb_out *vo, uint32_t nt, const fvert *fv, uint32_t n_fv, uint32_t *dup,
+                            uint32_t *dsrc) {
+    uint32_t extra = 0;
+    for (uint32_t f = 0; f < nt; f++) {
+        uint32_t *I = vo->tri + 3 * (size_t)f;
+        double u0 = fv[I[0]].u, u1 = fv[I[1]].u, u2 = fv[I[2]].u;
+        double lo = fmin(u0, fmin(u1, u2)), hi = fmax(u0, fmax(u1, u2));
+        if (hi - lo <= 0.5) continue;
+        for (int j = 0; j < 3; j++)
+            if (fv[I[j]].u < 0.5) {
+                if (dup[I[j]] == UINT32_MAX) dsrc[extra] = I[j], dup[I[j]] = n_fv + extra++;
+                I[j] = dup[I[j]];
+            }
+    }
+    return extra;
+}
+
+static banyan_status fused_nomem(banyan_error *err) {
+    return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the fused roots surface");
+}
+
+/* The fused surface's mesh: its n_fv vertices (then the wrap's `extra`
+ * copies at u + 1) with their smooth normals, uvs, kind and id, and the
+ * wind and birth of their nearest capsule, between its two points; its
+ * triangles; the aerial roots swept as threads; birth stretched to 0..1;
+ * the skeleton. Counts go to stats when given. */
+static banyan_status fused_mesh(const roots_net *net, const banyan_roots_params *p, const capsule *caps,
+                                const fused_vdb_out *vo, uint32_t nt, const fvert *fv, uint32_t n_fv, uint32_t extra,
+                                const uint32_t *dsrc, const double *nacc, double h, banyan_mesh **out,
+                                banyan_roots_stats *stats, banyan_error *err) {
+    roots_wind rw;
+    if (roots_wind_build(net, p, &rw)) return fused_nomem(err);
+    mesh_builder mb;
+    int a_kind, a_id;
+    wind_slots ws;
+    roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
+    uint32_t thread_v = 0, thread_i = 0;
+    for (uint32_t t = 0; t < net->n_poly; t++)
+        if (net->poly[t].kind == ROOT_AERIAL) {
+            uint32_t v, i;
+            roots_aerial_counts(&net->poly[t], &v, &i);
+            thread_v += v, thread_i += i;
+        }
+    mb_reserve(&mb, n_fv + extra + thread_v, 3 * nt + thread_i);
+    for (int pass = 0; pass < 2; pass++)
+        for (uint32_t j = 0; j < (pass ? extra : n_fv); j++) {
+            uint32_t i = pass ? dsrc[j] : j, s = fv[i].src;
+            v3 q = v3_make(vo->pos[3 * s] * h, vo->pos[3 * s + 1] * h, vo->pos[3 * s + 2] * h);
+            v3 n = v3_norm(v3_make(nacc[3 * s], nacc[3 * s + 1], nacc[3 * s + 2]));
+            mb_set_attr(&mb, a_kind, fv[i].kind);
+            mb_set_attr(&mb, a_id, fv[i].id);
+            /* the nearest capsule's values, between its two points */
+            const capsule *cp = &caps[fv[i].cap];
+            double t = fv[i].t, s0 = rw.stiff[cp->at], b0 = rw.birth[cp->at];
+            wind_set(&mb, &ws, rw.pivot[cp->poly], roots_wind_level(fv[i].kind), s0 + (rw.stiff[cp->at + 1] - s0) * t,
+                     rw.phase[cp->poly], 0.0);
+            wind_birth(&mb, &ws, b0 + (rw.birth[cp->at + 1] - b0) * t);
+            mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
+        }
+    for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo->tri[3 * f], vo->tri[3 * f + 1], vo->tri[3 * f + 2]);
+    if (thread_v) roots_aerial_sweep_all(&mb, net, nt, a_kind, a_id, &ws, &rw);
+    if (!mb.status && mb.nv) stretch_birth(&mb, &ws);
+    if (roots_mesh_skeleton(&mb, net, p)) {
+        mb_free(&mb);
+        roots_wind_free(&rw);
+        return fused_nomem(err);
+    }
+    uint32_t mv = mb.nv, mi = mb.ni;
+    banyan_status st = mb_finish(&mb, out, err);
+    if (st == BANYAN_OK && stats) {
+        stats->vertices = mv;
+        stats->triangles = mi / 3;
+    }
+    roots_wind_free(&rw);
+    return st;
+}
+
+/* The field's grid (voxel h, capsules reaching band + k) and the smooth
+ * union of the capsules in it (field_union). Returns 0, 1 when out of
+ * memory, 2 when stopped. */
+static int field_build(fgrid *g, const roots_net *net, const capsule *caps, float k, double h, double band) {
+    g->h = h;
+    g->cut = band + k;
+    /* A vertex's field is 0, so some capsule is within k / 4 of it (smin
+     * goes at most k / 4 below the minimum), and it lies within 0.87 h of
+     * the voxel whose block it looks in. */
+    g->list_cut = 0.25 * k + 1.25 * h;
+    if (grid_rehash(g, 4096)) return 1;
+    return field_union(g, net, caps, k);
+}
+
+/* The failure of OpenVDB's meshing other than out of memory or stopped:
+ * its module missing, too many vertices, or volumeToMesh failing. */
+static banyan_status vdb_fail(int vs, banyan_error *err) {
+    if (vs == FUSED_VDB_NO_MODULE)
+        return banyan_fail(err, BANYAN_E_INTERNAL,
+                           "the fused roots surface needs libbanyan_vdb.so (OpenVDB) beside libbanyan.so; it is "
+                           "missing or does not load: reinstall banyan, or set surface to tubes");
+    return banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
+                       "OpenVDB could not mesh the fused roots surface (%s)",
+                       vs == FUSED_VDB_TOO_BIG ? "too many vertices" : "volumeToMesh failed");
+}
+
 banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_params *p, banyan_mesh **out,
                                    banyan_roots_stats *stats, banyan_error *err) {
     const double r = net->r, h = p->voxel_size * r;
@@ -628,9 +770,6 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     fvert *fv = NULL;
     uint32_t *dup = NULL, *dsrc = NULL;
     double *nacc = NULL;
-    mesh_builder mb;
-    int mb_live = 0, rw_live = 0;
-    roots_wind rw;
     if (!caps || !T || !vcum) goto nomem;
     v3 *N = T + net->n_pts;
     double area = capsules_of(net, p, caps, T, vcum, r);
@@ -645,42 +784,23 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     /* Known before the work: at least the band's voxels about the surface
      * (two floats each) and the mesh's vertices (about 64 bytes each; 4
      * more for birth, 32 with the wind attributes too). */
-    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + (p->wind ? 96.0 : 68.0)))) {
-        st = prog_fail(net->prog, err, "fused roots surface");
-        goto done;
-    }
+    if (prog_reserve(net->prog, est * (2.0 * BAND_VOXELS * 8.0 + (p->wind ? 96.0 : 68.0)))) goto stopped;
 
     STAGE(0);
     /* The field: per polyline the minimum of its capsules, then the smooth
      * union of the polylines in order. Capsules only reach voxels where
      * they are nearer than band + k: farther, smin leaves the band alone. */
-    g.h = h;
-    g.cut = band + k;
-    /* A vertex's field is 0, so some capsule is within k / 4 of it (smin
-     * goes at most k / 4 below the minimum), and it lies within 0.87 h of
-     * the voxel whose block it looks in. */
-    g.list_cut = 0.25 * k + 1.25 * h;
-    if (grid_rehash(&g, 4096)) goto nomem;
-    int fu = field_union(&g, net, caps, k);
+    int fu = field_build(&g, net, caps, k, h, band);
     if (fu == 1) goto nomem;
-    if (fu == 2) {
-        st = prog_fail(net->prog, err, "fused roots surface");
-        goto done;
-    }
+    if (fu == 2) goto stopped;
 
     STAGE(1);
     /* Host difference and the soil's floor; then the band's clamp. */
     {
-        if (host_and_floor(&g, net, band, h, r)) {
-            st = prog_fail(net->prog, err, "fused roots surface");
-            goto done;
-        }
+        if (host_and_floor(&g, net, band, h, r)) goto stopped;
         uint32_t n_surf = pack_surface_blocks(&g, band);
         int32_t *origin = (int32_t *)g.tmp;
-        if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) {
-            st = prog_fail(net->prog, err, "fused roots surface");
-            goto done;
-        }
+        if (prog_at(net->prog, ROOTS_AT_MESH + 0.55 * (1.0 - ROOTS_AT_MESH))) goto stopped;
         STAGE(2);
 #ifdef FUSED_TIMING
         fprintf(stderr, "fused: %u of %u blocks to OpenVDB\n", n_surf, g.n);
@@ -694,16 +814,8 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
         g.acc = g.tmp = NULL;
         if (vs == FUSED_VDB_NOMEM) goto nomem;
         if (vs == FUSED_VDB_STOPPED) goto stopped;
-        if (vs == FUSED_VDB_NO_MODULE) {
-            st = banyan_fail(err, BANYAN_E_INTERNAL,
-                             "the fused roots surface needs libbanyan_vdb.so (OpenVDB) beside libbanyan.so; it is "
-                             "missing or does not load: reinstall banyan, or set surface to tubes");
-            goto done;
-        }
         if (vs != FUSED_VDB_OK) {
-            st = banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
-                             "OpenVDB could not mesh the fused roots surface (%s)",
-                             vs == FUSED_VDB_TOO_BIG ? "too many vertices" : "volumeToMesh failed");
+            st = vdb_fail(vs, err);
             goto done;
         }
     }
@@ -726,45 +838,14 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     uint32_t n_fv = nv, fv_cap = nv;
     fv = malloc(sizeof *fv * nv);
     if (!nacc || !fv) goto nomem;
-    for (uint32_t f = 0; f < nt; f++) {
-        const uint32_t *I = vo.tri + 3 * (size_t)f;
-        v3 A = v3_make(vo.pos[3 * I[0]], vo.pos[3 * I[0] + 1], vo.pos[3 * I[0] + 2]);
-        v3 B = v3_make(vo.pos[3 * I[1]], vo.pos[3 * I[1] + 1], vo.pos[3 * I[1] + 2]);
-        v3 C = v3_make(vo.pos[3 * I[2]], vo.pos[3 * I[2] + 1], vo.pos[3 * I[2] + 2]);
-        v3 n = v3_cross(v3_sub(B, A), v3_sub(C, A));
-        for (int j = 0; j < 3; j++) {
-            nacc[3 * I[j]] += n.x, nacc[3 * I[j] + 1] += n.y, nacc[3 * I[j] + 2] += n.z;
-        }
-    }
-    uint32_t extra = 0;
-    for (uint32_t i = 0; i < nv; i++) {
-        if ((i & 1023) == 0 && roots_stop(net)) goto stopped;
-        v3 q = v3_make(vo.pos[3 * i] * h, vo.pos[3 * i + 1] * h, vo.pos[3 * i + 2] * h);
-        double t = 0;
-        uint32_t c = nearest_capsule(&g, caps, n_caps, q, &t);
-        const capsule *cp = &caps[c];
-        uv_on(cp, T, N, vcum, r, q, t, &fv[i].u, &fv[i].v);
-        fv[i].kind = net->poly[cp->poly].kind;
-        fv[i].id = net->poly[cp->poly].id;
-        fv[i].cap = c, fv[i].t = t, fv[i].src = i;
-    }
+    face_normal_sums(&vo, nt, nacc);
+    if (vertex_uvs(net, &g, caps, n_caps, T, N, vcum, r, h, &vo, nv, fv)) goto stopped;
     n_fv = seam_uvs(&fv, &fv_cap, nv, vo.tri, nt, vo.pos, h, caps, T, N, vcum, r);
     dup = malloc(sizeof *dup * (n_fv ? n_fv : 1));
     dsrc = malloc(sizeof *dsrc * (n_fv ? n_fv : 1));
     if (!n_fv || !dup || !dsrc) goto nomem;
     for (uint32_t i = 0; i < n_fv; i++) dup[i] = UINT32_MAX;
-    /* A triangle across u's wrap takes copies of its low-u vertices at u + 1. */
-    for (uint32_t f = 0; f < nt; f++) {
-        uint32_t *I = vo.tri + 3 * (size_t)f;
-        double u0 = fv[I[0]].u, u1 = fv[I[1]].u, u2 = fv[I[2]].u;
-        double lo = fmin(u0, fmin(u1, u2)), hi = fmax(u0, fmax(u1, u2));
-        if (hi - lo <= 0.5) continue;
-        for (int j = 0; j < 3; j++)
-            if (fv[I[j]].u < 0.5) {
-                if (dup[I[j]] == UINT32_MAX) dsrc[extra] = I[j], dup[I[j]] = n_fv + extra++;
-                I[j] = dup[I[j]];
-            }
-    }
+    const uint32_t extra = wrap_copies(&vo, nt, fv, n_fv, dup, dsrc);
     if ((uint64_t)n_fv + extra > (uint64_t)p->max_vertices) {
         st = banyan_fail(err, BANYAN_E_LIMIT,
                          "the fused roots surface has %llu vertices, more than max_vertices = %d; raise "
@@ -775,48 +856,7 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
 
     STAGE(4);
     if (roots_stop(net)) goto stopped;
-    if (roots_wind_build(net, p, &rw)) goto nomem;
-    rw_live = 1;
-    int a_kind, a_id;
-    wind_slots ws;
-    roots_mesh_init(&mb, p, &a_kind, &a_id, &ws);
-    mb_live = 1;
-    uint32_t thread_v = 0, thread_i = 0;
-    for (uint32_t t = 0; t < net->n_poly; t++)
-        if (net->poly[t].kind == ROOT_AERIAL) {
-            uint32_t v, i;
-            roots_aerial_counts(&net->poly[t], &v, &i);
-            thread_v += v, thread_i += i;
-        }
-    mb_reserve(&mb, n_fv + extra + thread_v, 3 * nt + thread_i);
-    for (int pass = 0; pass < 2; pass++)
-        for (uint32_t j = 0; j < (pass ? extra : n_fv); j++) {
-            uint32_t i = pass ? dsrc[j] : j, s = fv[i].src;
-            v3 q = v3_make(vo.pos[3 * s] * h, vo.pos[3 * s + 1] * h, vo.pos[3 * s + 2] * h);
-            v3 n = v3_norm(v3_make(nacc[3 * s], nacc[3 * s + 1], nacc[3 * s + 2]));
-            mb_set_attr(&mb, a_kind, fv[i].kind);
-            mb_set_attr(&mb, a_id, fv[i].id);
-            /* the nearest capsule's values, between its two points */
-            const capsule *cp = &caps[fv[i].cap];
-            double t = fv[i].t, s0 = rw.stiff[cp->at], b0 = rw.birth[cp->at];
-            wind_set(&mb, &ws, rw.pivot[cp->poly], roots_wind_level(fv[i].kind), s0 + (rw.stiff[cp->at + 1] - s0) * t,
-                     rw.phase[cp->poly], 0.0);
-            wind_birth(&mb, &ws, b0 + (rw.birth[cp->at + 1] - b0) * t);
-            mb_vertex(&mb, q, n, fv[i].u + pass, fv[i].v);
-        }
-    for (uint32_t f = 0; f < nt; f++) mb_tri(&mb, vo.tri[3 * f], vo.tri[3 * f + 1], vo.tri[3 * f + 2]);
-    if (thread_v) roots_aerial_sweep_all(&mb, net, nt, a_kind, a_id, &ws, &rw);
-    if (!mb.status && mb.nv) stretch_birth(&mb, &ws);
-    if (roots_mesh_skeleton(&mb, net, p)) goto nomem;
-    {
-        uint32_t mv = mb.nv, mi = mb.ni;
-        mb_live = 0;
-        st = mb_finish(&mb, out, err);
-        if (st == BANYAN_OK && stats) {
-            stats->vertices = mv;
-            stats->triangles = mi / 3;
-        }
-    }
+    st = fused_mesh(net, p, caps, &vo, nt, fv, n_fv, extra, dsrc, nacc, h, out, stats, err);
 #ifdef FUSED_TIMING
     STAGE(5);
     fprintf(stderr, "fused: field %.1f, host and soil %.1f, OpenVDB %.1f, uvs and attributes %.1f, builder %.1f ms; "
@@ -826,13 +866,11 @@ banyan_status roots_net_mesh_fused(const roots_net *net, const banyan_roots_para
     goto done;
 
 nomem:
-    st = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the fused roots surface");
+    st = fused_nomem(err);
     goto done;
 stopped:
     st = prog_fail(net->prog, err, "fused roots surface");
 done:
-    if (mb_live) mb_free(&mb);
-    if (rw_live) roots_wind_free(&rw);
     free(caps);
     free(T);
     free(vcum);

@@ -130,6 +130,134 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
 #define ROOTS_AT_SECOND 0.1
 #define ROOTS_AT_PATHS 0.12
 
+/* The germination point G in the set's frame: the given one, or the top
+ * of the first box or mesh. Refused when it lies inside a host or below
+ * the ground, or farther from every host than a main root can reach. */
+static banyan_status germination(const banyan_roots_params *p, const banyan_hosts *hosts, const roots_net *net,
+                                 v3 *G_out, banyan_error *err) {
+    const v3 O = hosts->origin;
+    const uint32_t n_hosts = hosts->n_boxes + hosts->n_meshes;
+    v3 G = !p->germination_auto  ? v3_sub(v3_load(p->germination), O)
+           : hosts->n_boxes      ? top_centre(&hosts->boxes[0], net->r)
+                                 : mesh_top(hosts, 0, net->r);
+    for (uint32_t i = 0; i < n_hosts; i++) {
+        if (host_distance(&net->w, i, G, net->r) <= 0) { /* inside or on its surface */
+            return banyan_fail(err, BANYAN_E_START_INSIDE,
+                               "germination point G = (%g, %g, %g) m is inside hosts[%u]; G must lie outside every "
+                               "host%s",
+                               G.x + O.x, G.y + O.y, G.z + O.z, i,
+                               p->germination_auto ? " (G is the top of hosts[0]: list the topmost host first, or "
+                                                     "set germination_auto = false and germination)"
+                                                   : "");
+        }
+    }
+    if (p->ground && G.z < net->w.ground_z) {
+        return banyan_fail(err, BANYAN_E_START_INSIDE,
+                           "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x + O.x, G.y + O.y,
+                           G.z + O.z, p->ground_z);
+    }
+    /* A main root moves at most `moves` steps of length sqrt(forward_max^2
+     * + lateral^2) per growth point from its start circle (pushes out of a
+     * host and the pull back to a face each move it by at most r): a G
+     * farther than that from every host grows roots that touch none. */
+    double step = dm_hypot(p->forward_max, p->lateral) * net->u;
+    double reach = p->start_radius * net->u + (double)(p->growth_points - 1) * p->moves * step + 4.0 * net->r;
+    double nearest = 1e300;
+    uint32_t nearest_i = 0;
+    for (uint32_t i = 0; i < n_hosts; i++) {
+        double d = host_distance(&net->w, i, G, HUGE_VAL);
+        if (d < nearest) nearest = d, nearest_i = i;
+    }
+    if (nearest > reach) {
+        return banyan_fail(err, BANYAN_E_START_FAR,
+                           "germination point G = (%g, %g, %g) m is %g m from the nearest host (hosts[%u]); the roots "
+                           "reach at most %g m (start_radius + (growth_points - 1) x moves x step), so none would "
+                           "touch a host: move G within %g m of a host",
+                           G.x + O.x, G.y + O.y, G.z + O.z, nearest, nearest_i, reach, reach);
+    }
+    *G_out = G;
+    return BANYAN_OK;
+}
+
+/* The net's sizes from the parameters and its arrays, refused when the
+ * vertex estimate is over max_vertices before anything big is allocated.
+ * The caller frees the net on a refusal. */
+static banyan_status size_net(const banyan_roots_params *p, roots_net *net, banyan_error *err) {
+    net->N = p->main_roots;
+    net->B = p->growth_points;
+    net->S1 = p->branch_samples;
+    net->S2 = p->second_samples;
+    net->nb = p->branch_start > p->growth_points ? 0 : (p->growth_points - p->branch_start) / p->branch_spacing + 1;
+    size_t N = (size_t)net->N, B = (size_t)net->B, nb = (size_t)net->nb;
+    size_t firsts = p->first_branches && net->N >= 2 ? N * nb : 0;
+    size_t seconds = firsts && p->second_branches && nb > 1 ? N * (nb - 1) : 0;
+    size_t est = N * tube_vertices(B + 1, p->sides) + firsts * tube_vertices((size_t)net->S1, p->sides) +
+                 seconds * tube_vertices((size_t)net->S2, p->sides);
+    if (est > (size_t)p->max_vertices) {
+        return banyan_fail(err, BANYAN_E_LIMIT,
+                           "the roots mesh would need about %zu vertices, more than max_vertices = %d; raise "
+                           "max_vertices or lower sides, growth_points, main_roots or branch_samples",
+                           est, p->max_vertices);
+    }
+    size_t slots = N * (nb ? nb : 1);
+    net->M = malloc(sizeof(v3) * N * B);
+    net->M_grown = malloc(sizeof(v3) * N * B);
+    net->K = malloc(sizeof(v3) * slots * (size_t)net->S1);
+    net->K_valid = calloc(slots, sizeof(int32_t));
+    net->K_end = calloc(slots, sizeof(int32_t));
+    net->K_ok = calloc(slots * (size_t)net->S1, 1);
+    net->Q = malloc(sizeof(v3) * slots * (size_t)net->S2);
+    net->Q_valid = calloc(slots, sizeof(int32_t));
+    net->ground_hit = calloc(N, sizeof(int32_t));
+    net->soil_b = malloc(sizeof(int32_t) * N);
+    net->soil_pts = malloc(sizeof(v3) * N * ROOTS_SOIL_PTS);
+    net->M_at = malloc(sizeof(uint32_t) * N * B);
+    net->K_mid_at = calloc(slots, sizeof(uint32_t));
+    if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_end || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
+        !net->soil_b || !net->soil_pts || !net->M_at || !net->K_mid_at) {
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots net");
+    }
+    return BANYAN_OK;
+}
+
+/* Stats over the finished net: the main points, the radius, the least
+ * clearance of any skeleton point from the hosts, the mains that reach
+ * the ground and the first branches that reach both their ends. Returns
+ * 1 when stopped (cancel or budget), else 0. */
+static int net_stats(roots_net *net, const banyan_roots_params *p) {
+    const size_t N = (size_t)net->N, B = (size_t)net->B;
+    banyan_roots_stats *st = &net->stats;
+    st->main_points = (uint32_t)(N * B);
+    st->radius = net->r;
+    st->min_clearance = 1e300;
+    roots_world soil_w = roots_soil_world(&net->w);
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        if (roots_stop(net)) return 1;
+        const roots_poly *pl = &net->poly[t];
+        for (uint32_t i = 0; i < pl->n; i++) {
+            /* Only values below the least so far count (keeps mesh queries
+             * short). Every skeleton point passed a free test or a push-out,
+             * so it is outside every mesh: unsigned mesh distances (an inside
+             * test costs rays). The underground ends of soil-entering roots
+             * keep clear of the hosts only. */
+            double c = world_clearance_outside(i >= pl->soil_from ? &soil_w : &net->w, net->pts[pl->off + i],
+                                               st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
+            if (c < st->min_clearance) st->min_clearance = c;
+        }
+    }
+    for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;
+    for (uint32_t t = 0; t < net->n_poly; t++) {
+        const roots_poly *pl = &net->poly[t];
+        if (pl->kind != ROOT_FIRST) continue;
+        int b = roots_branch_b(p, pl->k), be = roots_branch_end_b(net, p, pl->a * net->nb + pl->k);
+        v3 start = net->M[(size_t)pl->a * B + b], end = net->M[(size_t)((pl->a + 1) % net->N) * B + be];
+        const v3 *P = net->pts + pl->off;
+        if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
+            st->first_reached++;
+    }
+    return 0;
+}
+
 static banyan_status build_hosts(const banyan_roots_params *p, const banyan_hosts *hosts, roots_net *net, prog *g,
                                  banyan_error *err) {
     memset(net, 0, sizeof *net);
@@ -162,47 +290,10 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     net->w.r = net->r;
     net->w.eps = 1e-9 * net->r;
 
-    /* Germination point. */
-    v3 G = !p->germination_auto  ? v3_sub(v3_load(p->germination), O)
-           : hosts->n_boxes      ? top_centre(&hosts->boxes[0], net->r)
-                                 : mesh_top(hosts, 0, net->r);
-    for (uint32_t i = 0; i < n_hosts; i++) {
-        if (host_distance(&net->w, i, G, net->r) <= 0) { /* inside or on its surface */
-            roots_net_free(net);
-            return banyan_fail(err, BANYAN_E_START_INSIDE,
-                               "germination point G = (%g, %g, %g) m is inside hosts[%u]; G must lie outside every "
-                               "host%s",
-                               G.x + O.x, G.y + O.y, G.z + O.z, i,
-                               p->germination_auto ? " (G is the top of hosts[0]: list the topmost host first, or "
-                                                     "set germination_auto = false and germination)"
-                                                   : "");
-        }
-    }
-    if (p->ground && G.z < net->w.ground_z) {
+    v3 G;
+    if ((s = germination(p, hosts, net, &G, err))) {
         roots_net_free(net);
-        return banyan_fail(err, BANYAN_E_START_INSIDE,
-                           "germination point G = (%g, %g, %g) m is below the ground plane z = %g m", G.x + O.x, G.y + O.y,
-                           G.z + O.z, p->ground_z);
-    }
-    /* A main root moves at most `moves` steps of length sqrt(forward_max^2
-     * + lateral^2) per growth point from its start circle (pushes out of a
-     * host and the pull back to a face each move it by at most r): a G
-     * farther than that from every host grows roots that touch none. */
-    double step = dm_hypot(p->forward_max, p->lateral) * net->u;
-    double reach = p->start_radius * net->u + (double)(p->growth_points - 1) * p->moves * step + 4.0 * net->r;
-    double nearest = 1e300;
-    uint32_t nearest_i = 0;
-    for (uint32_t i = 0; i < n_hosts; i++) {
-        double d = host_distance(&net->w, i, G, HUGE_VAL);
-        if (d < nearest) nearest = d, nearest_i = i;
-    }
-    if (nearest > reach) {
-        roots_net_free(net);
-        return banyan_fail(err, BANYAN_E_START_FAR,
-                           "germination point G = (%g, %g, %g) m is %g m from the nearest host (hosts[%u]); the roots "
-                           "reach at most %g m (start_radius + (growth_points - 1) x moves x step), so none would "
-                           "touch a host: move G within %g m of a host",
-                           G.x + O.x, G.y + O.y, G.z + O.z, nearest, nearest_i, reach, reach);
+        return s;
     }
     /* Roots grow near G: G beyond the frame would lose millimetres. */
     if (fmax(fmax(fabs(G.x), fabs(G.y)), fabs(G.z)) > FRAME_KEEP) {
@@ -218,43 +309,12 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     world_push_out(&net->w, &G); /* closer than r to a host: out to r */
     net->G = G;
 
-    /* Sizes, and the vertex estimate before anything big is allocated. */
-    net->N = p->main_roots;
-    net->B = p->growth_points;
-    net->S1 = p->branch_samples;
-    net->S2 = p->second_samples;
-    net->nb = p->branch_start > p->growth_points ? 0 : (p->growth_points - p->branch_start) / p->branch_spacing + 1;
+    if ((s = size_net(p, net, err))) {
+        roots_net_free(net);
+        return s;
+    }
     size_t N = (size_t)net->N, B = (size_t)net->B, nb = (size_t)net->nb;
-    size_t firsts = p->first_branches && net->N >= 2 ? N * nb : 0;
-    size_t seconds = firsts && p->second_branches && nb > 1 ? N * (nb - 1) : 0;
-    size_t est = N * tube_vertices(B + 1, p->sides) + firsts * tube_vertices((size_t)net->S1, p->sides) +
-                 seconds * tube_vertices((size_t)net->S2, p->sides);
-    if (est > (size_t)p->max_vertices) {
-        roots_net_free(net);
-        return banyan_fail(err, BANYAN_E_LIMIT,
-                           "the roots mesh would need about %zu vertices, more than max_vertices = %d; raise "
-                           "max_vertices or lower sides, growth_points, main_roots or branch_samples",
-                           est, p->max_vertices);
-    }
     size_t slots = N * (nb ? nb : 1);
-    net->M = malloc(sizeof(v3) * N * B);
-    net->M_grown = malloc(sizeof(v3) * N * B);
-    net->K = malloc(sizeof(v3) * slots * (size_t)net->S1);
-    net->K_valid = calloc(slots, sizeof(int32_t));
-    net->K_end = calloc(slots, sizeof(int32_t));
-    net->K_ok = calloc(slots * (size_t)net->S1, 1);
-    net->Q = malloc(sizeof(v3) * slots * (size_t)net->S2);
-    net->Q_valid = calloc(slots, sizeof(int32_t));
-    net->ground_hit = calloc(N, sizeof(int32_t));
-    net->soil_b = malloc(sizeof(int32_t) * N);
-    net->soil_pts = malloc(sizeof(v3) * N * ROOTS_SOIL_PTS);
-    net->M_at = malloc(sizeof(uint32_t) * N * B);
-    net->K_mid_at = calloc(slots, sizeof(uint32_t));
-    if (!net->M || !net->M_grown || !net->K || !net->K_valid || !net->K_end || !net->K_ok || !net->Q || !net->Q_valid || !net->ground_hit ||
-        !net->soil_b || !net->soil_pts || !net->M_at || !net->K_mid_at) {
-        roots_net_free(net);
-        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the roots net");
-    }
 
     for (size_t t = 0; t < slots; t++) net->K_end[t] = (int32_t)(t % (nb ? nb : 1)); /* level */
     roots_grow_mains(net, p);
@@ -275,36 +335,7 @@ static banyan_status build_hosts(const banyan_roots_params *p, const banyan_host
     }
     if (prog_at(g, ROOTS_AT_PATHS)) goto cancelled;
 
-    /* Stats over the finished net. */
-    banyan_roots_stats *st = &net->stats;
-    st->main_points = (uint32_t)(N * B);
-    st->radius = net->r;
-    st->min_clearance = 1e300;
-    roots_world soil_w = roots_soil_world(&net->w);
-    for (uint32_t t = 0; t < net->n_poly; t++) {
-        if (roots_stop(net)) goto cancelled;
-        const roots_poly *pl = &net->poly[t];
-        for (uint32_t i = 0; i < pl->n; i++) {
-            /* Only values below the least so far count (keeps mesh queries
-             * short). Every skeleton point passed a free test or a push-out,
-             * so it is outside every mesh: unsigned mesh distances (an inside
-             * test costs rays). The underground ends of soil-entering roots
-             * keep clear of the hosts only. */
-            double c = world_clearance_outside(i >= pl->soil_from ? &soil_w : &net->w, net->pts[pl->off + i],
-                                               st->min_clearance < 1e300 ? st->min_clearance : HUGE_VAL);
-            if (c < st->min_clearance) st->min_clearance = c;
-        }
-    }
-    for (int a = 0; a < net->N; a++) st->mains_on_ground += net->ground_hit[a] ? 1u : 0u;
-    for (uint32_t t = 0; t < net->n_poly; t++) {
-        const roots_poly *pl = &net->poly[t];
-        if (pl->kind != ROOT_FIRST) continue;
-        int b = roots_branch_b(p, pl->k), be = roots_branch_end_b(net, p, pl->a * net->nb + pl->k);
-        v3 start = net->M[(size_t)pl->a * B + b], end = net->M[(size_t)((pl->a + 1) % net->N) * B + be];
-        const v3 *P = net->pts + pl->off;
-        if (pl->n >= 2 && memcmp(&P[0], &start, sizeof(v3)) == 0 && memcmp(&P[pl->n - 1], &end, sizeof(v3)) == 0)
-            st->first_reached++;
-    }
+    if (net_stats(net, p)) goto cancelled;
     if (prog_at(g, ROOTS_AT_MESH)) goto cancelled;
     return BANYAN_OK;
 cancelled:

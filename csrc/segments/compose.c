@@ -237,6 +237,45 @@ static double seg_stiffness(const seg_wind *w, int level) {
     return sqrt(r < w->r_ref ? r / w->r_ref : 1.0);
 }
 
+/* Pass 1 over the segments: each line counted (by level, with the
+ * deepest level and the segments over the per segment vertex budget into
+ * st) and the vertices and indices of the tubes of lines long enough to
+ * mesh added to *verts_out and *indices_out, the trunk's first. Returns 1
+ * when the run's budget stops it, else 0. */
+static int count_lines(const seg_consts *k, const banyan_segments_params *p, const banyan_segment_input *segs,
+                       uint32_t count, const double *trunk, prog *g, banyan_segments_stats *st, uint64_t *verts_out,
+                       uint64_t *indices_out, uint64_t *lines_out) {
+    float buf[3 * BANYAN_SEGMENT_MAX_VERTICES];
+    uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
+    uint32_t tv, ti;
+    uint64_t verts = *verts_out, indices = *indices_out, lines = *lines_out;
+    if (trunk) {
+        tube_counts((uint32_t)seg_tube_points(-1, 0), p->sides, 0, 1, &tv, &ti);
+        verts += tv;
+        indices += ti;
+        lines++;
+    }
+    for (uint32_t i = 0; i < count; i++) {
+        if ((i & 63) == 0 && prog_at(g, 0.0)) return 1;
+        int nv = seg_run(k, &segs[i], buf, lev);
+        if (2 + 2 * (int64_t)segs[i].n + 4 * forks_wanted(segs[i].n, segs[i].s) > BANYAN_SEGMENT_MAX_VERTICES)
+            st->budget_hits++;
+        for (int j = 0; j < nv; j += 2) {
+            lines++;
+            st->lines_per_level[lev[j] < 7 ? lev[j] : 7]++;
+            if (lev[j] > st->max_level) st->max_level = lev[j];
+            const float *a = buf + 3 * j, *b = a + 3;
+            double dx = (double)b[0] - a[0], dy = (double)b[1] - a[1], dz = (double)b[2] - a[2];
+            if (!(sqrt(dx * dx + dy * dy + dz * dz) >= MIN_TUBE_LENGTH)) continue;
+            tube_counts((uint32_t)seg_tube_points(j / 2, segs[i].n), p->sides, 0, 1, &tv, &ti);
+            verts += tv;
+            indices += ti;
+        }
+    }
+    *verts_out = verts, *indices_out = indices, *lines_out = lines;
+    return 0;
+}
+
 /* banyan_segments_generate in the segments' own frame. */
 static banyan_status compose(const banyan_segments_params *params, const banyan_segment_input *segs, uint32_t count,
                              const double *trunk, banyan_mesh **out, banyan_segments_stats *stats,
@@ -257,31 +296,9 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     st.segments = count;
     float buf[3 * BANYAN_SEGMENT_MAX_VERTICES];
     uint8_t lev[BANYAN_SEGMENT_MAX_VERTICES];
-    uint32_t tv, ti;
     uint64_t verts = 0, indices = 0, lines = 0;
-    if (trunk) {
-        tube_counts((uint32_t)seg_tube_points(-1, 0), p->sides, 0, 1, &tv, &ti);
-        verts += tv;
-        indices += ti;
-        lines++;
-    }
-    for (uint32_t i = 0; i < count; i++) {
-        if ((i & 63) == 0 && prog_at(&g, 0.0)) return prog_fail(&g, err, "segments");
-        int nv = seg_run(&k, &segs[i], buf, lev);
-        if (2 + 2 * (int64_t)segs[i].n + 4 * forks_wanted(segs[i].n, segs[i].s) > BANYAN_SEGMENT_MAX_VERTICES)
-            st.budget_hits++;
-        for (int j = 0; j < nv; j += 2) {
-            lines++;
-            st.lines_per_level[lev[j] < 7 ? lev[j] : 7]++;
-            if (lev[j] > st.max_level) st.max_level = lev[j];
-            const float *a = buf + 3 * j, *b = a + 3;
-            double dx = (double)b[0] - a[0], dy = (double)b[1] - a[1], dz = (double)b[2] - a[2];
-            if (!(sqrt(dx * dx + dy * dy + dz * dz) >= MIN_TUBE_LENGTH)) continue;
-            tube_counts((uint32_t)seg_tube_points(j / 2, segs[i].n), p->sides, 0, 1, &tv, &ti);
-            verts += tv;
-            indices += ti;
-        }
-    }
+    if (count_lines(&k, p, segs, count, trunk, &g, &st, &verts, &indices, &lines))
+        return prog_fail(&g, err, "segments");
     st.lines = (uint32_t)lines;
     if (verts > (uint64_t)p->max_vertices)
         return banyan_fail(err, BANYAN_E_LIMIT,
