@@ -7,9 +7,10 @@
 csrc/shaders/segment.{vert,geom,frag} are the sources; the generated C file
 holds them byte for byte as NUL-terminated char arrays (byte lists, since
 ISO C caps string literals at 4095 characters), returned by
-banyan_segment_shader_source(stage). tests/c/test_segments_shaders.c checks
-that the embedded text equals the files, so the two never drift: run this
-script after every edit of a shader.
+banyan_segment_shader_source(stage).
+tests/c/segments/test_segments_shaders.c checks that the embedded text
+equals the files, so the two never drift: run this script after every edit
+of a shader.
 """
 import pathlib
 import sys

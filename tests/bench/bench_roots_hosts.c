@@ -6,9 +6,9 @@
  * 1..20 in turn; prints the median time per net of each (whole call and
  * the net alone, without the tube mesh), their ratio (target: the mesh
  * within 5x of the box) and the host set's build time. The same for
- * Suzanne's stand-in (tests/c/host_meshes.h: three shells that cut each
- * other, 1,408 triangles, inside decided by rays) against its bounding
- * box.
+ * Suzanne's stand-in (tests/c/common/host_meshes.h: three shells that cut
+ * each other, 1,408 triangles, inside decided by rays) against its
+ * bounding box.
  *   bench_roots_hosts [runs]   (default 40) */
 #include "bench.h"
 

@@ -3,8 +3,8 @@
 # the plain file), ivy_wall, the default roots, a keyaki with levels of
 # detail and a billboard, and avenue variants (instances, engine uv sets),
 # the compact file decodes (meshoptimizer) to the plain one within the
-# quantization (tests/c/compact_compare.c) and passes the Khronos validator;
-# the compact bytes are the same on a second run on one thread.
+# quantization (tests/c/io/compact_compare.c) and passes the Khronos
+# validator; the compact bytes are the same on a second run on one thread.
 #   test_compact.sh BANYAN_CLI COMPACT_COMPARE NODE SOURCE_DIR OUT_DIR
 set -u
 cli=$1 cmp=$2 node=$3 src=$4 out=$5/compact

@@ -49,7 +49,7 @@ ALLOW = [
     ("docs/api.md", "the resident size every 20 ms"),
     ("docs/keyaki.md", "read every 20 ms"),
     ("docs/api.md", "at most once every 0.1 s while it moves slower"),
-    # a test's bound (tests/c/test_budget_keyaki.c)
+    # a test's bound (tests/c/robustness/test_budget_keyaki.c)
     ("docs/keyaki.md", "`max_seconds` = 2 stop within 2.5 s"),
     # the thread pool's join sleeps (csrc/base/pool.c)
     ("docs/keyaki.md", "in sleeps of 50 us growing to 2 ms"),

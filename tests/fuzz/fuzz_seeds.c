@@ -11,7 +11,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 
-#include "../c/test_files.h"
+#include "../c/common/test_files.h"
 #include "fuzz_common.h"
 
 typedef struct seed {

@@ -1,5 +1,5 @@
 /* lod_plants.h - the plants the level-of-detail test and benchmark reduce
- * (tests/c/test_lod.c, tests/bench/bench_lod.c): shipped presets grown
+ * (tests/c/io/test_lod.c, tests/bench/bench_lod.c): shipped presets grown
  * as the CLI grows them. */
 #ifndef BANYAN_LOD_PLANTS_H
 #define BANYAN_LOD_PLANTS_H

@@ -1,6 +1,6 @@
 /* Roots on host sets with meshes (spec README "Hosts", roots.md
- * 1): invariants over seeds on meshes built in code (tests/c/host_meshes.h),
- * not snapshots.
+ * 1): invariants over seeds on meshes built in code
+ * (tests/c/common/host_meshes.h), not snapshots.
  *   - A UV sphere resting on the ground, a 32-sided closed cylinder column
  *     (0.4 m radius, 3 m tall, standing on the ground), an open quad wall
  *     and Suzanne's stand-in (one closed mesh of three shells that cut each

@@ -1,7 +1,7 @@
 /* The look of a composed segment tree's mesh (docs/segments.md, "Mesh and
  * line set"), on presets/segments_paper.json, segments_bushy.json and
- * demo trees, measured on the mesh's rings (tests/c/segment_tubes.h gives
- * where each tube's rings are):
+ * demo trees, measured on the mesh's rings (segment_tubes.h, beside this
+ * file, gives where each tube's rings are):
  * - taper: every tube above radius_min narrows to its tip; ring radii never grow from a tube's exit ring (where it
  *   leaves its parent's surface) to its tip, and a child's base and exit
  *   rings are no wider than its parent's ring radius where it leaves it;
