@@ -139,15 +139,9 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
             layers[cell] = n;
             if (n) covered++, layer_sum += n;
         }
-    /* Patchiness: leaf area by the cell of the blade's centre. */
-    for (uint32_t k = 0; k < nb; k++) {
-        const ivy_blade *B = &bl[k];
-        if (!(B->centre.y < yf)) continue;
-        int i = (int)floor((B->centre.x - x0) / PATCH), j = (int)floor((B->centre.z - z0) / PATCH);
-        if (i >= 0 && i < px && j >= 0 && j < pz) patch[(size_t)i * pz + j] += B->area;
-        f->blades++;
-    }
-    /* Depth: each blade's centre off the face (yf is 5 cm in front of it). */
+    /* Patchiness: leaf area by the cell of the blade's centre. Depth: each
+     * blade's centre off the face (yf is 5 cm in front of it), all of them
+     * and summed per cell with the cell's count. */
     double *hc = calloc((size_t)px * pz * 2, sizeof(double)), *dp = malloc(sizeof(double) * (nb ? nb : 1));
     size_t nd = 0;
     if (!hc || !dp) return 1;
@@ -157,7 +151,12 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
         double d = yf - 0.05 - B->centre.y;
         dp[nd++] = d;
         int i = (int)floor((B->centre.x - x0) / PATCH), j = (int)floor((B->centre.z - z0) / PATCH);
-        if (i >= 0 && i < px && j >= 0 && j < pz) hc[2 * ((size_t)i * pz + j)] += d, hc[2 * ((size_t)i * pz + j) + 1] += 1;
+        if (i >= 0 && i < px && j >= 0 && j < pz) {
+            size_t c = (size_t)i * pz + j;
+            patch[c] += B->area;
+            hc[2 * c] += d, hc[2 * c + 1] += 1;
+        }
+        f->blades++;
     }
     if (nd) qsort(dp, nd, sizeof(double), cmp_d);
     f->depth_p10 = nd ? dp[(size_t)(0.1 * (double)(nd - 1) + 0.5)] : 0;
