@@ -725,6 +725,10 @@ double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) 
  * a-b grows from). An internode of length l that crosses a-b ends within
  * 1.5 l of its midpoint, so the cells around that ball are read. */
 int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+    return ivy_crossed_stem(iv, a, b, n, self, layer) >= 0;
+}
+
+int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
     const double l = iv->p.internode, r = 1.5 * l, r2 = r * r, ic = iv->inv_cell;
     const v3 m = v3_scale(v3_add(a, b), 0.5);
     /* 2D frame of the surface: u, w across n. */
@@ -752,10 +756,10 @@ int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double lay
             double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
             if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
             double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
-            if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return 1;
+            if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return j;
         }
     }
-    return 0;
+    return -1;
 }
 
 /* The cells ivy_crosses reads for internode a-b: x0..x1, y0..y1, z0..z1,

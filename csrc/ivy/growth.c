@@ -271,6 +271,50 @@ static void aim_onto(const banyan_ivy *iv, v3 P, v3 target, double D, int grip, 
     *dist = g;
 }
 
+/* The spacing a stem that runs alongside another keeps from it. */
+#define FOLLOW_GAP 0.015
+/* A stem is followed towards the light: cos of the largest angle between the two. */
+#define FOLLOW_LIGHT_COS 0.26
+
+/* A tip whose every way on crosses a stem turns alongside that stem
+ * (follow_length): the winner w is replaced by an internode along the
+ * crossed stem, in its sense towards `up` (the light), edging off it up
+ * to FOLLOW_GAP. Returns 0 (w untouched) when the run is long enough, the
+ * stem is old or seen end on or leads away from the light, or the turned
+ * internode meets a host or crosses a stem. */
+static int follow_stem(banyan_ivy *iv, int32_t i, v3 n, v3 up, double D, walk_best *w) {
+    const banyan_ivy_params *p = &iv->p;
+    const ivy_bud *b = &iv->buds[i];
+    const double l = p->internode;
+    if (!((b->follow + 1) * l <= p->follow_length)) return 0;
+    const int32_t j = ivy_crossed_stem(iv, b->P, w->q, n, i, D);
+    /* Only young wood: a tip meeting the plant's first stems, at its foot,
+     * ends there, and the old trunks stay bare (wood.c). */
+    if (j < 0 || 2 * (iv->step - iv->buds[j].step_c) > iv->step) return 0;
+    const v3 c = iv->buds[iv->buds[j].parent].P, e = iv->buds[j].P;
+    v3 t = v3_sub(e, c);
+    t = v3_sub(t, v3_scale(n, v3_dot(t, n)));
+    const double tl = v3_len(t);
+    if (!(tl > 1e-12)) return 0;
+    t = v3_scale(t, (v3_dot(t, up) >= 0 ? 1.0 : -1.0) / tl);
+    if (v3_dot(t, up) < FOLLOW_LIGHT_COS) return 0;
+    /* Off the stem's line, across it on the surface. */
+    v3 off = v3_sub(b->P, c);
+    off = v3_sub(off, v3_scale(t, v3_dot(off, t)));
+    off = v3_sub(off, v3_scale(n, v3_dot(off, n)));
+    const double gap = v3_len(off);
+    const double edge = gap < FOLLOW_GAP && gap > 1e-12 ? fmin(FOLLOW_GAP - gap, 0.5 * l) / gap : 0.0;
+    const v3 d = v3_norm_or(v3_madd(v3_scale(t, l), off, edge), t);
+    const v3 q = v3_madd(b->P, d, l);
+    double dist;
+    if (ivy_blocked(iv, b->P, q, D, &dist) || ivy_crosses_near(iv, b->P, q, n, i, D)) return 0;
+    w->q = q;
+    w->d = d;
+    w->dist = dist;
+    w->crosses = 0;
+    return 1;
+}
+
 /* The directed random walk from bud i along `base` (spec "Placement",
  * with the additions of docs/ivy.md "Stem architecture"). Appends the new
  * bud (state `st`, nourishment `N`) as child `slot` of bud i and returns
@@ -324,7 +368,11 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     if (w.k < 0) return -1;
     /* Stems meet side by side: a bud whose every way on crosses a stem
      * ends (the caller makes it Z). */
-    if (w.crosses && p->crossing_ends && !(b->leader && slot == 0)) return -2;
+    int follow = 0;
+    if (w.crosses && p->crossing_ends && !(b->leader && slot == 0)) {
+        if (!follow_stem(iv, i, surf_n, helio_on ? vlh : v3_make(0, 0, 1), D, &w)) return -2;
+        follow = 1;
+    }
     v3 best_q = w.q, best_d = w.d;
     double best_dist = w.dist;
 
@@ -366,6 +414,7 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     c->step_d = -1;
     c->parent = i;
     c->leader = slot == 0 && b->leader;
+    c->follow = follow ? b->follow + 1 : 0;
     c->child[0] = c->child[1] = -1;
     b->child[slot] = j;
     ivy_grid_insert(iv, j);

@@ -48,6 +48,7 @@ typedef struct ivy_bud {
     int32_t shaded;
     int32_t mark;     /* scratch of the sag correction */
     int32_t leader;   /* on a leading stem (a first bud's continuation line): it crosses rather than ends */
+    int32_t follow;   /* internodes grown in a row alongside a stem it met (follow_length) */
 } ivy_bud;
 
 /* One sleeper that counted a bud: valid while that sleeper's `shaded`
@@ -272,6 +273,8 @@ void ivy_sleep(banyan_ivy *iv, int32_t i);
  * whose end bud lies within `layer` of a across n and that does not share
  * bud `self`? (grid.c; f_cross of the random walk) */
 int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
+/* The end bud of the first stem ivy_crosses finds crossed, or -1. */
+int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
 /* The same answer, for the random walk's many internodes from one point a
  * (same n, self, layer): the stems near a are gathered once (until the
  * hash changes), then each query reads that short list. */

@@ -52,6 +52,7 @@ const banyan_param_info ivy_table_rows[] = {
     BP_DOUBLE(S, w_helio, "Seek light", "Climbing", "", 0, 100, "weight of f_helio, growing towards light, curbing crossings (w_helio in the paper)"),
     BP_DOUBLE(S, w_cross, "Avoid crossing stems", "Climbing", "", 0, 100, "weight of f_cross: a new internode that crosses no stem, seen along the surface, scores it (stems run side by side instead of crossing)"),
     BP_BOOL(S, crossing_ends, "Stems stop at stems", "Climbing", "a bud whose every way on would cross a stem ends instead (stems meet side by side rather than crossing)"),
+    BP_DOUBLE(S, follow_length, "Run alongside stems", "Climbing", "m", 0, 100, "with crossing_ends, a tip that meets a stem turns and runs alongside it, a little apart, for up to this before it ends (0: it ends where it meets the stem)"),
     BP_DOUBLE(S, w_tendril, "Reach for surfaces", "Climbing", "", 0, 100, "weight of f_tendril: a free bud with a sucker within surface_reach of a surface turns towards it (tendrils grow away from light, into the wall)"),
     BP_DOUBLE(S, surface_reach, "Surface reach", "Climbing", "m", 0, 10, "within this of a surface a bud takes light along it, avoids crossing stems on it, and its tendrils reach for it"),
     BP_BOOL(S, helio_in_plane, "Light along the surface", "Climbing", "for a bud within surface_reach of a surface, the light vector is taken along it"),
@@ -139,6 +140,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->start_fan = 60.0;
     p->w_tendril = 2.0;
     p->crossing_ends = 1;
+    p->follow_length = 0.0;
     p->surface_reach = 0.15;
     p->ground_branching = 0;
     p->free_length = 0.1;

@@ -85,6 +85,7 @@ typedef struct banyan_ivy_params {
     double w_cross;             /* weight of f_cross (a new internode crosses no stem, seen along the surface), 0 .. 100 */
     int32_t start_stems;        /* leading stems from the start, 1 .. 64 (docs/ivy.md, "Stem architecture") */
     int32_t crossing_ends;      /* 0/1: a bud whose every candidate crosses a stem ends instead of crossing */
+    double follow_length;       /* with crossing_ends, a tip meeting a stem turns and runs alongside it for up to this, m, 0 .. 100 (0: it ends) */
     int32_t ground_branching;   /* 0/1: dormant buds lying on an obstacle ground may sprout laterals */
     double w_tendril;           /* weight of f_tendril (a free bud near a surface turns towards it), 0 .. 100 */
     double surface_reach;       /* a bud within this of a surface: light along it, f_cross and f_tendril act, m, 0 .. 10 */
