@@ -2,33 +2,9 @@
  * (progress.h). */
 #include "progress.h"
 
-#include <stdio.h>
-#include <time.h>
-
 #include "error.h"
 
 #define PROG_MEM_EVERY 0.02 /* seconds between reads of the resident size */
-
-static double now_seconds(void) {
-    struct timespec t;
-    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-double prog_rss_mb(void) {
-#if defined(__linux__)
-    /* statm's second field: resident pages. Counts every thread's memory,
-     * which is what a budget for threads must see. */
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (!f) return 0.0;
-    unsigned long long size = 0, res = 0;
-    int n = fscanf(f, "%llu %llu", &size, &res);
-    fclose(f);
-    return n == 2 ? (double)res * 4096.0 / (1024.0 * 1024.0) : 0.0;
-#else
-    return 0.0;
-#endif
-}
 
 banyan_status prog_check(const banyan_progress *p, banyan_error *err) {
     if (p && !p->fn)
@@ -41,7 +17,7 @@ void prog_init(prog *g, const banyan_progress *p) {
     g->fn = p ? p->fn : NULL;
     g->user = p ? p->user : NULL;
     g->last = 0.0;
-    g->t_last = g->fn ? now_seconds() : 0.0;
+    g->t_last = g->fn ? process_now() : 0.0;
     g->cancelled = PROG_RUNNING;
     g->t_start = g->max_seconds = g->max_mb = 0.0;
     g->rss0_mb = g->t_mem = g->over_value = 0.0;
@@ -50,19 +26,19 @@ void prog_init(prog *g, const banyan_progress *p) {
 void prog_budget_resume(prog *g, double max_seconds, double max_memory_mb, double spent, double rss0_mb) {
     g->max_seconds = max_seconds;
     g->max_mb = max_memory_mb;
-    g->t_mem = now_seconds();
+    g->t_mem = process_now();
     g->t_start = g->t_mem - spent;
     g->rss0_mb = rss0_mb;
 }
 
 void prog_budget(prog *g, double max_seconds, double max_memory_mb) {
-    prog_budget_resume(g, max_seconds, max_memory_mb, 0.0, prog_rss_mb());
+    prog_budget_resume(g, max_seconds, max_memory_mb, 0.0, process_rss_mb());
 }
 
 int prog_reserve(prog *g, double bytes) {
     if (!g || g->max_mb <= 0.0) return 0;
     if (g->cancelled) return 1;
-    double mb = prog_rss_mb() - g->rss0_mb + bytes / (1024.0 * 1024.0);
+    double mb = process_rss_mb() - g->rss0_mb + bytes / (1024.0 * 1024.0);
     if (mb > g->max_mb) {
         g->cancelled = PROG_OVER_MEMORY;
         g->over_value = mb;
@@ -80,7 +56,7 @@ static int over_budget(prog *g, double t) {
     }
     if (g->max_mb > 0.0 && t - g->t_mem >= PROG_MEM_EVERY) {
         g->t_mem = t;
-        double mb = prog_rss_mb() - g->rss0_mb;
+        double mb = process_rss_mb() - g->rss0_mb;
         if (mb > g->max_mb) {
             g->cancelled = PROG_OVER_MEMORY;
             g->over_value = mb;
@@ -95,7 +71,7 @@ int prog_at(prog *g, double done) {
     if (g->cancelled) return 1;
     int budget = g->max_seconds > 0.0 || g->max_mb > 0.0;
     if (!g->fn && !budget) return 0;
-    double t = now_seconds();
+    double t = process_now();
     if (budget && over_budget(g, t)) return 1;
     if (!g->fn) return 0;
     if (!(done >= g->last)) done = g->last; /* NaN too */
@@ -129,7 +105,6 @@ banyan_status prog_fail(const prog *g, banyan_error *err, const char *what) {
     return banyan_fail(err, BANYAN_E_CANCELLED, "%s cancelled by the progress callback", what);
 }
 
-double prog_now(void) { return now_seconds(); }
 
 prog_deadline prog_deadline_of(const prog *g) {
     prog_deadline d = {0.0};

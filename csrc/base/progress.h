@@ -15,6 +15,7 @@
 #define BANYAN_PROGRESS_H
 
 #include "banyan.h"
+#include "process.h"
 
 #ifdef __cplusplus
 extern "C" { /* the glTF writer and the OpenVDB shim are C++ */
@@ -68,8 +69,6 @@ static inline int prog_stopped(const prog *g) { return g && g->cancelled; }
  * BANYAN_E_CANCELLED for the callback, BANYAN_E_LIMIT naming max_seconds
  * or max_memory_mb for the budget. `what` names the run ("roots"). */
 banyan_status prog_fail(const prog *g, banyan_error *err, const char *what);
-/* Resident memory of the process in MB; 0 where it cannot be read. */
-double prog_rss_mb(void);
 
 /* The public banyan_budget of the calls whose params carry none (LOD,
  * textures, the glTF writer): NULL is the defaults; a bad field is refused
@@ -85,8 +84,7 @@ typedef struct prog_deadline {
 } prog_deadline;
 /* The deadline of g's budget (0 when g has no max_seconds). */
 prog_deadline prog_deadline_of(const prog *g);
-double prog_now(void);
-static inline int prog_deadline_passed(const prog_deadline *d) { return d && d->t_end > 0.0 && prog_now() > d->t_end; }
+static inline int prog_deadline_passed(const prog_deadline *d) { return d && d->t_end > 0.0 && process_now() > d->t_end; }
 
 #ifdef __cplusplus
 }

@@ -6,29 +6,9 @@
  * the command with BANYAN_E_LIMIT. */
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
+#include "base/process.h"
 #include "cli.h"
-
-static double now_s(void) {
-    struct timespec t;
-    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-/* Resident MB of this process (the library's own reader is internal). */
-static double rss_mb(void) {
-#if defined(__linux__)
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (!f) return 0.0;
-    unsigned long long size = 0, res = 0;
-    int n = fscanf(f, "%llu %llu", &size, &res);
-    fclose(f);
-    return n == 2 ? (double)res * 4096.0 / (1024.0 * 1024.0) : 0.0;
-#else
-    return 0.0;
-#endif
-}
 
 static double param_double(const cli_command *cmd, const void *params, const char *key, double dflt) {
     if (cmd->generator < 0) return dflt;
@@ -44,13 +24,13 @@ void cli_budget_start(cli_budget *b, const cli_command *cmd, const void *params)
     banyan_budget_init(&d);
     b->max_seconds = param_double(cmd, params, "max_seconds", d.max_seconds);
     b->max_memory_mb = param_double(cmd, params, "max_memory_mb", d.max_memory_mb);
-    b->t0 = now_s();
-    b->rss0_mb = rss_mb();
+    b->t0 = process_now();
+    b->rss0_mb = process_rss_mb();
 }
 
 banyan_status cli_budget_left(const cli_budget *b, const char *stage, banyan_budget *out, banyan_error *err) {
     banyan_budget_init(out);
-    double spent = now_s() - b->t0, used = rss_mb() - b->rss0_mb;
+    double spent = process_now() - b->t0, used = process_rss_mb() - b->rss0_mb;
     out->max_seconds = b->max_seconds - spent;
     out->max_memory_mb = b->max_memory_mb - (used > 0.0 ? used : 0.0);
     if (out->max_seconds < 0.01) {

@@ -93,7 +93,7 @@ struct Write {
     banyan_status over() {
         if (g.cancelled == PROG_RUNNING) { /* the streaming thread saw the deadline first */
             g.cancelled = PROG_OVER_TIME;
-            g.over_value = prog_now() - g.t_start;
+            g.over_value = process_now() - g.t_start;
         }
         return prog_fail(&g, err, "writing glTF");
     }

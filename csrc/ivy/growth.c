@@ -824,7 +824,7 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     banyan_ivy *iv = calloc(1, sizeof *iv);
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     iv->p = *params;
-    iv->rss0_mb = prog_rss_mb();
+    iv->rss0_mb = process_rss_mb();
     prog_init(&iv->own, NULL);
     iv->prog = &iv->own;
     iv->set = set;

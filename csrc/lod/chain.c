@@ -34,7 +34,7 @@ static void *bb_run(void *arg) {
  * nothing is). */
 static banyan_status left_of(const prog *g, banyan_budget *out, banyan_error *err) {
     banyan_budget_init(out);
-    double spent = prog_now() - g->t_start, used = prog_rss_mb() - g->rss0_mb;
+    double spent = process_now() - g->t_start, used = process_rss_mb() - g->rss0_mb;
     out->max_seconds = g->max_seconds - spent;
     out->max_memory_mb = g->max_mb - (used > 0 ? used : 0);
     if (out->max_seconds < PROG_MAX_SECONDS_MIN)

@@ -61,14 +61,14 @@ static void ivy_memory(void) {
     banyan_box w = wall_1km();
     banyan_ivy *iv = NULL;
     banyan_error e;
-    double rss0 = prog_rss_mb(), peak = 0;
+    double rss0 = process_rss_mb(), peak = 0;
     banyan_status s = banyan_ivy_create(&p, &w, 1, &iv, &e);
     CHECK(s == BANYAN_OK, "ivy create: %s", e.message);
     double t = now();
     /* Steps in parts, reading the resident size between them. */
     for (int k = 0; !s && k < 10000; k++) {
         s = banyan_ivy_step(iv, 10, &e);
-        double mb = prog_rss_mb() - rss0;
+        double mb = process_rss_mb() - rss0;
         if (mb > peak) peak = mb;
     }
     stopped("ivy memory", s, NULL, &e, now() - t, "max_memory_mb", 60);
@@ -187,10 +187,10 @@ static void segments(void) {
     p.max_memory_mb = 64;
     banyan_error e;
     banyan_mesh *m = NULL;
-    double rss0 = prog_rss_mb(), t = now();
+    double rss0 = process_rss_mb(), t = now();
     banyan_status s = banyan_segments_generate(&p, segs, n, NULL, &m, NULL, NULL, &e);
     stopped("segments 2^14 x 64 lines x 64 sides, 64 MB", s, m, &e, now() - t, "max_memory_mb", WITHIN);
-    CHECK(prog_rss_mb() - rss0 < 64, "segments: refused after taking %.0f MB", prog_rss_mb() - rss0);
+    CHECK(process_rss_mb() - rss0 < 64, "segments: refused after taking %.0f MB", process_rss_mb() - rss0);
 
     p.sides = 3;
     p.max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
