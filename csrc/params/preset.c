@@ -408,18 +408,30 @@ static banyan_status not_empty(const cJSON *hosts, const char *w, banyan_error *
                        "for the default hosts", w);
 }
 
-banyan_status banyan_preset_hosts(const char *text, size_t length, const char *source, banyan_box *out, uint32_t cap,
-                                  uint32_t *count, banyan_error *err) {
+/* The start of the preset readers that fill a caller's array of cap
+ * entries: checks count and out, parses the preset (*j, for the caller to
+ * delete) and finds its "hosts" (NULL when absent), w the place to name in
+ * messages. */
+static banyan_status open_hosts(const char *text, size_t length, const char *source, const void *out, uint32_t cap,
+                                uint32_t *count, cJSON **j, const cJSON **hosts, char w[300], banyan_error *err) {
     if (!count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is NULL");
     *count = 0;
     if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL but cap = %u", cap);
     if (!source) source = "<preset>";
-    cJSON *j;
-    banyan_status s = preset_parse(text, length, source, &j, err);
+    banyan_status s = preset_parse(text, length, source, j, err);
     if (s) return s;
-    const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
+    *hosts = cJSON_GetObjectItemCaseSensitive(*j, "hosts");
+    where(w, 300, source, text, length, "hosts");
+    return BANYAN_OK;
+}
+
+banyan_status banyan_preset_hosts(const char *text, size_t length, const char *source, banyan_box *out, uint32_t cap,
+                                  uint32_t *count, banyan_error *err) {
+    cJSON *j;
+    const cJSON *hosts;
     char w[300];
-    where(w, sizeof w, source, text, length, "hosts");
+    banyan_status s = open_hosts(text, length, source, out, cap, count, &j, &hosts, w, err);
+    if (s) return s;
     if (hosts && !cJSON_IsArray(hosts)) {
         s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array of boxes", w);
     } else if ((s = not_empty(hosts, w, err))) {
@@ -464,16 +476,12 @@ static void entry_name(const cJSON *h, const char *path, char *out, size_t cap) 
 
 banyan_status banyan_preset_meshes(const char *text, size_t length, const char *source, const char *base_dir,
                                    banyan_preset_mesh *out, uint32_t cap, uint32_t *count, banyan_error *err) {
-    if (!count) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is NULL");
-    *count = 0;
-    if (!out && cap) return banyan_fail(err, BANYAN_E_INVALID_ARG, "out is NULL but cap = %u", cap);
-    if (!source) source = "<preset>";
     cJSON *j;
-    banyan_status s = preset_parse(text, length, source, &j, err);
-    if (s) return s;
-    const cJSON *hosts = cJSON_GetObjectItemCaseSensitive(j, "hosts");
+    const cJSON *hosts;
     char w[300];
-    where(w, sizeof w, source, text, length, "hosts");
+    banyan_status s = open_hosts(text, length, source, out, cap, count, &j, &hosts, w, err);
+    if (s) return s;
+    if (!source) source = "<preset>";
     if (hosts && !cJSON_IsArray(hosts)) s = banyan_fail(err, BANYAN_E_TYPE, "%shosts must be an array", w);
     else s = not_empty(hosts, w, err);
     uint32_t i = 0, n = 0;
