@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 19     # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 20     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -163,7 +163,7 @@ PT_DOUBLE, PT_INT, PT_BOOL, PT_ENUM, PT_VEC3, PT_COLOR, PT_SEED = range(7)
 GENERATORS = ("roots", "keyaki", "avenue", "ivy", "segments")
 
 # Textures (banyan/textures.h).
-TEX_NONE, TEX_KEYAKI_LEAF, TEX_IVY_LEAF, TEX_KEYAKI_BARK, TEX_FIG_BARK, TEX_IVY_STEM = range(-1, 5)
+TEX_NONE, TEX_KEYAKI_LEAF, TEX_IVY_LEAF, TEX_KEYAKI_BARK, TEX_FIG_BARK, TEX_IVY_STEM = range(6)  # NONE: no texture
 SEASON_SUMMER, SEASON_AUTUMN = 0, 1
 
 

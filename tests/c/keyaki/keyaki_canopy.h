@@ -34,7 +34,7 @@ static inline void keyaki_canopy_cache_free(keyaki_canopy_cache *c) {
  * (err then says why and *failed is set). */
 static const canopy_alpha *keyaki_canopy_plane(const banyan_material *mat, keyaki_canopy_cache *c, int *failed,
                                                banyan_error *err) {
-    if (mat->texture < 0 || mat->alpha_cutoff <= 0) return NULL;
+    if (mat->texture == BANYAN_TEX_NONE || mat->alpha_cutoff <= 0) return NULL;
     for (int i = 0; i < c->n; i++)
         if (c->plane[i].kind == mat->texture && c->plane[i].season == mat->season) return &c->plane[i].a;
     banyan_texture_params tp;

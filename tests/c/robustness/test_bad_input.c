@@ -706,7 +706,7 @@ static void null_cases(void) {
         banyan_gltf_options_init(&go);
         int32_t keep_t = tube->materials[0].texture;
         tube->materials[0].texture = BANYAN_TEX_COUNT;
-        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].texture = 5", BANYAN_E_RANGE,
+        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].texture = 6", BANYAN_E_RANGE,
             "materials[0].texture", banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
         tube->materials[0].texture = keep_t;
         tube->materials[0].season = 2;
@@ -1206,7 +1206,8 @@ static void texture_cases(void) {
         {"above range", "size = 16384", BANYAN_TEX_KEYAKI_BARK, 0, 16384, "[64, 8192]"},
         {"negative", "size = -1024", BANYAN_TEX_FIG_BARK, 0, -1024, "size"},
         {"above range", "kind = 7", 7, 0, 1024, "kind"},
-        {"below range", "kind = -1 (BANYAN_TEX_NONE)", BANYAN_TEX_NONE, 0, 1024, "kind"},
+        {"zero", "kind = 0 (BANYAN_TEX_NONE)", BANYAN_TEX_NONE, 0, 1024, "kind"},
+        {"negative", "kind = -1", -1, 0, 1024, "kind"},
         {"above range", "season = 3", BANYAN_TEX_KEYAKI_LEAF, 3, 1024, "season"},
         {"negative", "season = -1", BANYAN_TEX_IVY_STEM, -1, 1024, "season"},
     };
@@ -1224,10 +1225,10 @@ static void texture_cases(void) {
     RUN("textures", "banyan_texture_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
         banyan_texture_generate(NULL, &bc, &nm, &e), images_null(bc, nm));
     banyan_atlas_layout layout;
-    RUN("textures", "banyan_texture_layout", "above range", "kind = 5", BANYAN_E_RANGE, "kind",
-        banyan_texture_layout(5, &layout, &e), 1);
+    RUN("textures", "banyan_texture_layout", "above range", "kind = 6", BANYAN_E_RANGE, "kind",
+        banyan_texture_layout(BANYAN_TEX_COUNT, &layout, &e), 1);
     RUN("textures", "banyan_texture_layout", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_texture_layout(0, NULL, &e), 1);
+        banyan_texture_layout(BANYAN_TEX_KEYAKI_LEAF, NULL, &e), 1);
     uint8_t *png = SENTINEL;
     size_t len = 1;
     RUN("textures", "banyan_image_png", "NULL", "image = NULL", BANYAN_E_INVALID_ARG, "image",
