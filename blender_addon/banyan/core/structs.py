@@ -146,6 +146,19 @@ class IvyStats(C.Structure):
                 ("stem_length", C.c_double), ("step_seconds", C.c_double)]
 
 
+KEYAKI_MAX_ORDER = 32  # BANYAN_KEYAKI_MAX_ORDER
+
+
+class KeyakiStats(C.Structure):
+    """banyan_keyaki_stats; checked against banyan_sizeof_keyaki_stats when
+    keyaki is first used (generators.py)."""
+    _fields_ = [("node_count", C.c_int32), ("tip_count", C.c_int32), ("fork_count", C.c_int32),
+                ("break_count", C.c_int32), ("max_level", C.c_int32), ("max_order", C.c_int32),
+                ("stream_count", C.c_int32 * KEYAKI_MAX_ORDER), ("bifurcation_ratio", C.c_double * KEYAKI_MAX_ORDER),
+                ("mean_bifurcation_ratio", C.c_double), ("height", C.c_double), ("crown_width", C.c_double),
+                ("mean_run_length", C.c_double)]
+
+
 class HostInfo(C.Structure):
     _fields_ = [("kind", C.c_int32), ("closed", C.c_int32), ("triangle_count", C.c_uint32),
                 ("dropped_triangles", C.c_uint32), ("boundary_edges", C.c_uint32), ("shells", C.c_uint32),

@@ -290,7 +290,7 @@ static void test_glb(const char *dir) {
     kp.levels = 7;
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_keyaki_generate(&kp, &m, &e) == BANYAN_OK, "keyaki: %s", e.message);
+    CHECK(banyan_keyaki_generate(&kp, &m, NULL, NULL, &e) == BANYAN_OK, "keyaki: %s", e.message);
     if (!m) return;
     char gcache[1200];
     snprintf(gcache, sizeof gcache, "%s/glb_cache", g_cache);
