@@ -284,12 +284,10 @@ class Job:
     def grow(self, params):
         """MeshData with its C mesh (call within core.mesh.capture())."""
         gen, G = self.generator, self.G
-        if gen == "avenue":
-            return G.avenue(params, threads=self.threads)
-        if gen == "keyaki":
+        if gen in ("avenue", "keyaki"):
             params = params.copy()
-            params.set("threads", self.threads)  # one tree's own threads
-            return G.keyaki(params)
+            params.set("threads", self.threads)  # the avenue's trees, or one tree's meshing; the bytes do not depend on them
+            return G.avenue(params) if gen == "avenue" else G.keyaki(params)
         hosts = self.hostset if self.hostset is not None else self.boxes
         if gen == "roots":
             return G.roots(params, hosts)

@@ -36,8 +36,8 @@ typedef struct cli_stats {
     char warning[512];
 } cli_stats;
 
-/* --threads range: the avenue's (banyan_avenue_generate), which checks
- * it again. */
+/* --threads range: the avenue's threads field (banyan_avenue_params),
+ * which the library checks again. */
 #define CLI_MAX_THREADS BANYAN_AVENUE_MAX_THREADS
 
 /* --lod: falling ratios of triangles kept, the last may be a billboard

@@ -1,5 +1,6 @@
 /* `banyan avenue`: keyaki trees along the straight path start..end, one
- * or two rows, grown on --threads N threads (0 = all cores). --stats adds
+ * or two rows, grown on --threads N threads (0 = all cores; the params'
+ * threads field, as --set threads=N). --stats adds
  * the tree count and, over the trees, the mean, min and max of tips (the
  * skeleton's) and of crown widths (the mesh's: twice the farthest vertex
  * of the tree from its trunk's axis, twigs and leaves included) and the
@@ -27,7 +28,7 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         s = BANYAN_E_NOMEM;
         goto fail;
     }
-    if ((s = banyan_avenue_generate(p, NULL, 0, job->threads, &m[0], job->progress, err))) goto fail;
+    if ((s = banyan_avenue_generate(p, NULL, 0, &m[0], job->progress, err))) goto fail;
     if ((s = banyan_avenue_layout(p, NULL, 0, trees, n, &n, err))) {
         banyan_mesh_free(m[0]);
         goto fail;
@@ -40,9 +41,9 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     const int instanced = a->instance_count == n;
     double tips = 0, width = 0, ratio = 0, tmin = 1e300, tmax = 0, wmin = 1e300, wmax = 0;
     for (uint32_t i = 0; i < n; i++) {
-        banyan_keyaki_statistics st;
+        banyan_keyaki_stats st;
         uint32_t k = instanced ? a->instances[i].variant : i;
-        if ((s = banyan_keyaki_stats(&trees[k], &st, err))) {
+        if ((s = banyan_keyaki_skeleton_stats(&trees[k], &st, err))) {
             banyan_mesh_free(m[0]);
             goto fail;
         }

@@ -1,8 +1,9 @@
 /* `banyan keyaki`: one keyaki tree (spec/keyaki.md). Takes no hosts.
  * --stats adds the tree's own measures: Strahler stream counts N_k, the
  * bifurcation ratios N_k / N_{k+1} and their mean, tips, forks, breaks
- * and the skeleton's height and crown width (banyan_keyaki_stats, on the
- * same skeleton), then the height and crown width of the mesh written:
+ * and the skeleton's height and crown width (banyan_keyaki_generate's
+ * stats, of the skeleton the mesh was built from), then the height and
+ * crown width of the mesh written:
  * the crown's twigs and leaves reach past the skeleton's branch ends. */
 #include <math.h>
 #include <stdio.h>
@@ -14,7 +15,7 @@
 static void init(void *p) { banyan_keyaki_params_init((banyan_keyaki_params *)p); }
 
 /* Appends the measures of one skeleton as stats members. */
-static void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_statistics *st) {
+static void cli_keyaki_stats_json(cli_stats *stats, const banyan_keyaki_stats *st) {
     char buf[2048];
     size_t n = 0;
     n += (size_t)snprintf(buf + n, sizeof buf - n, "[");
@@ -59,9 +60,8 @@ void cli_tree_reach(const banyan_mesh *m, int64_t group, const double base[3], d
 
 static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
                          uint32_t *count, cli_stats *stats, banyan_error *err) {
-    (void)job;
     const banyan_keyaki_params *p = params;
-    banyan_keyaki_statistics st;
+    banyan_keyaki_stats st;
     banyan_mesh **m = calloc(1, sizeof *m);
     char **nm = calloc(1, sizeof *nm);
     if (!m || !nm) {
@@ -69,10 +69,7 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         free(nm);
         return BANYAN_E_NOMEM;
     }
-    /* The mesh first: it refuses a tree too large while growing it, where
-     * the statistics would grow the whole skeleton first. */
-    banyan_status s = banyan_keyaki_generate(p, &m[0], err);
-    if (!s && (s = banyan_keyaki_stats(p, &st, err))) banyan_mesh_free(m[0]);
+    banyan_status s = banyan_keyaki_generate(p, &m[0], &st, job->progress, err);
     if (s) {
         free(m);
         free(nm);

@@ -11,8 +11,9 @@
 #include "base/atomic_file.h"
 #include "base/numparse.h"
 
-static const char *const kind_names[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
-                                                         "ivy_stem"};
+static const char *const kind_names[BANYAN_TEX_COUNT] = {
+    [BANYAN_TEX_KEYAKI_LEAF] = "keyaki_leaf", [BANYAN_TEX_IVY_LEAF] = "ivy_leaf",
+    [BANYAN_TEX_KEYAKI_BARK] = "keyaki_bark", [BANYAN_TEX_FIG_BARK] = "fig_bark", [BANYAN_TEX_IVY_STEM] = "ivy_stem"};
 
 static int write_png(const char *dir, const char *name, const banyan_image *im) {
     uint8_t *png = NULL;
@@ -67,12 +68,12 @@ int cli_textures_main(int argc, char **argv) {
     if (!dir) return usage_textures();
     /* The folder is checked before any texture is drawn. */
     char first[4096], why[4400];
-    snprintf(first, sizeof first, "%s/%s_summer_color.png", dir, kind_names[0]);
+    snprintf(first, sizeof first, "%s/%s_summer_color.png", dir, kind_names[BANYAN_TEX_KEYAKI_LEAF]);
     if (atomic_check(first, why, sizeof why)) {
         fprintf(stderr, "banyan textures: -o %s: %s\n", dir, why);
         return 2; /* a bad command line, as for the mesh commands */
     }
-    for (int k = 0; k < BANYAN_TEX_COUNT; k++) {
+    for (int k = BANYAN_TEX_NONE + 1; k < BANYAN_TEX_COUNT; k++) {
         int leaf = k == BANYAN_TEX_KEYAKI_LEAF || k == BANYAN_TEX_IVY_LEAF;
         for (int s = 0; s < (leaf ? 2 : 1); s++) {
             p.kind = k;

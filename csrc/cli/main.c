@@ -237,7 +237,7 @@ typedef struct cli_args {
     banyan_gltf_options gltf_opt;
     const char **sets, **host_args; /* argc entries each */
     int n_sets, n_host_args;
-    const char *threads_text; /* --threads as given: also the ivy's and the tree's own threads */
+    const char *threads_text; /* --threads as given: also the threads field of the ivy, keyaki and avenue params */
 } cli_args;
 
 /* The command line after the command: every flag into A and job. 0, or 1
@@ -341,7 +341,8 @@ static int load_params(const cli_command *cmd, cli_job *job, const cli_args *A, 
         return 1;
     }
     /* Before the --set pairs, so that --set threads=N still wins. */
-    if (A->threads_text && (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki")) &&
+    if (A->threads_text &&
+        (!strcmp(cmd->name, "ivy") || !strcmp(cmd->name, "keyaki") || !strcmp(cmd->name, "avenue")) &&
         banyan_param_set_text(g, params, "threads", A->threads_text, err)) {
         fprintf(stderr, "banyan %s: --threads: %s\n", cmd->name, err->message);
         return 1;

@@ -16,8 +16,11 @@
 
 namespace gltfw {
 
-const char *const kKindNames[BANYAN_TEX_COUNT] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
+/* Indexed by banyan_texture_kind (NONE is never drawn). */
+const char *const kKindNames[BANYAN_TEX_COUNT] = {"none", "keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
                                                   "ivy_stem"};
+static_assert(BANYAN_TEX_NONE == 0 && BANYAN_TEX_KEYAKI_LEAF == 1 && BANYAN_TEX_IVY_STEM == 5 && BANYAN_TEX_COUNT == 6,
+              "kKindNames follows banyan_texture_kind");
 
 banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, const prog_deadline &stop,
                            double seconds, TexturePngs &t, banyan_error *err) {

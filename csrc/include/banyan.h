@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 19
+#define BANYAN_ABI_VERSION 20
 
 /* ---------------------------------------------------------------- status */
 
@@ -197,7 +197,7 @@ typedef struct banyan_material {
                                    baseColorFactor is then (1, 1, 1, base_color[3]) */
     float roughness;            /* 0..1 */
     int32_t double_sided;       /* 0 or 1; leaf cards are double sided */
-    int32_t texture;            /* banyan_texture_kind, BANYAN_TEX_NONE (-1) for none */
+    int32_t texture;            /* banyan_texture_kind; BANYAN_TEX_NONE (0): no texture */
     int32_t season;             /* banyan_season of a leaf texture; 0 otherwise */
     float alpha_cutoff;         /* > 0: alpha-tested (glTF MASK) at this cutoff, leaves 0.5; 0: opaque */
     float translucency;         /* 0..1: light through a back-lit leaf (Blender's material; glTF ignores it) */

@@ -119,7 +119,7 @@ static void work(avenue_job *J, int caller) {
      * need while it grows, so the refusal comes at the same total on any
      * number of threads, each tree stopped part way. */
     keyaki_run run = {caller ? J->prog : NULL, &J->cancel, J->phase == 0 ? &J->counted : NULL,
-                      J->phase == 0 ? J->max_vertices : UINT64_MAX, 0, 1}; /* one thread a tree */
+                      J->phase == 0 ? J->max_vertices : UINT64_MAX, 0, 1, 0}; /* one thread a tree */
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     for (;;) {
         if (atomic_load(&J->cancel)) break;
@@ -197,14 +197,13 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
 }
 
 banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
-                                     int32_t threads, banyan_mesh **out, const banyan_progress *progress,
-                                     banyan_error *err) {
+                                     banyan_mesh **out, const banyan_progress *progress, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     if (p->variants > 0) /* instanced: variants.c */
-        return avenue_variants_generate(p, path_xyz, path_point_count, threads, out, progress, err);
+        return avenue_variants_generate(p, path_xyz, path_point_count, out, progress, err);
     banyan_status s;
-    if ((s = banyan_check_int(err, "threads", threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
+    if ((s = banyan_check_int(err, "threads", p->threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
     if ((s = prog_check(progress, err))) return s;
     uint32_t n = 0;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
@@ -240,7 +239,7 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
     J.trees = trees;
     J.n = n;
-    int t = pool_threads(threads, BANYAN_AVENUE_MAX_THREADS);
+    int t = pool_threads(p->threads, BANYAN_AVENUE_MAX_THREADS);
     if ((uint32_t)t > n) t = (int)n;
 
     /* Pass 1: exact sizes of every tree, before any mesh memory. */

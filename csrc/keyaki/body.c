@@ -686,7 +686,13 @@ static banyan_status grow_and_plan(const banyan_keyaki_params *p, keyaki_skeleto
     if (s) return s;
     if (keyaki_strahler(sk->nodes, sk->count))
         return banyan_fail(err, BANYAN_E_INTERNAL, "skeleton children out of order");
-    return keyaki_body_plan(p, sk->nodes, sk->count, count_only, sk->run, body, err);
+    if (keyaki_stage(sk->run, KEYAKI_AT_GROWN)) return keyaki_stop_status(err);
+    s = keyaki_body_plan(p, sk->nodes, sk->count, count_only, sk->run, body, err);
+    if (!s && keyaki_stage(sk->run, KEYAKI_AT_PLANNED)) {
+        keyaki_body_free(body);
+        return keyaki_stop_status(err);
+    }
+    return s;
 }
 
 banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, keyaki_counts *c, banyan_error *err) {
@@ -737,6 +743,7 @@ banyan_status keyaki_build_into(const banyan_keyaki_params *p, double tree_id, u
     uint32_t planned = body.vertices;
     keyaki_body_free(&body);
     if (!mb->status && mb->nv != planned) mb->status = BANYAN_E_INTERNAL; /* the plan must be exact */
+    if (!mb->status && keyaki_stage(sk->run, KEYAKI_AT_MESHED)) return keyaki_stop_status(err);
     return BANYAN_OK;
 }
 

@@ -20,6 +20,11 @@ int keyaki_stopped(keyaki_run *r) {
     return 0;
 }
 
+int keyaki_stage(keyaki_run *r, double done) {
+    if (!r || !r->stages || !r->g) return 0;
+    return prog_at(r->g, done);
+}
+
 banyan_status keyaki_stop_status(banyan_error *err) {
     return banyan_fail(err, BANYAN_E_CANCELLED, "stopped: the run's budget is spent or it was cancelled");
 }

@@ -56,7 +56,18 @@ typedef struct keyaki_run {
     uint64_t promised;     /* this tree's part of the tally so far */
     int threads;           /* threads that may mesh this one tree (0, 1: the caller alone; an avenue's trees
                               keep 1: no pools inside its pool) */
+    int stages;            /* 1: the run is one tree's whole call, and g's fraction moves as its stages end
+                              (KEYAKI_AT_*); 0 in an avenue, whose own loop moves it */
 } keyaki_run;
+
+/* The fraction of a tree's call done when each stage ends (keyaki_run.stages). */
+#define KEYAKI_AT_GROWN 0.25
+#define KEYAKI_AT_PLANNED 0.6
+#define KEYAKI_AT_MESHED 0.95
+
+/* Reports that a stage of a one-tree run ended (keyaki_run.stages; nothing
+ * otherwise): 1 once the run must stop, as keyaki_stopped. */
+int keyaki_stage(keyaki_run *r, double done);
 
 /* 1 once the run must stop (budget spent, cancelled, or another thread
  * stopped); cheap: a clock read. Loops call it every few hundred items. */
@@ -118,7 +129,7 @@ banyan_status keyaki_grow(const banyan_keyaki_params *p, keyaki_skeleton *sk, ba
 banyan_status keyaki_strahler(keyaki_node *nodes, int32_t count);
 
 /* Fills st from a skeleton whose orders are set. base: the trunk base. */
-void keyaki_measure(const keyaki_node *nodes, int32_t count, v3 base, banyan_keyaki_statistics *st);
+void keyaki_measure(const keyaki_node *nodes, int32_t count, v3 base, banyan_keyaki_stats *st);
 
 /* Pipe-model radii, children first. */
 void keyaki_radii(keyaki_node *nodes, int32_t count, double tip_radius, double exponent);
@@ -334,8 +345,7 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
 /* banyan_avenue_generate with p->variants > 0 (variants.c): the layout's
  * first trees grown once each at the origin, shown as instances. */
 banyan_status avenue_variants_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
-                                       int32_t threads, banyan_mesh **out, const banyan_progress *progress,
-                                       banyan_error *err);
+                                       banyan_mesh **out, const banyan_progress *progress, banyan_error *err);
 
 /* PCG32 stream numbers of one tree. */
 #define KEYAKI_STREAM_GROWTH 0x6b6579616b69ull /* "keyaki" */

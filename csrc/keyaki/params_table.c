@@ -8,7 +8,7 @@
  * seed, max_vertices, position, heading, lean and lean_direction are not
  * in the avenue table: the avenue sets them per tree; nor are its max_seconds and max_memory_mb:
  * the avenue's own budget covers the whole avenue; nor is its threads:
- * the avenue's threads argument spreads its trees, one thread each. */
+ * the avenue's own threads field spreads its trees, one thread each. */
 #include <math.h>
 #include <string.h>
 
@@ -154,6 +154,8 @@ const banyan_param_info avenue_table_rows[] = {
     BP_INT(A, max_vertices, "Vertex limit", "Limits", 1, 1073741824, "refuse (BANYAN_E_LIMIT) beyond this many vertices"),
     KEYAKI_LIMITS_ROWS(A, AVENUE_F),
     KEYAKI_BUDGET_ROWS(A),
+    BP_INT(A, threads, "Threads", "Limits", 0, BANYAN_AVENUE_MAX_THREADS,
+           "threads growing the trees, one tree each (0: all cores); the mesh is the same on any"),
 };
 #undef A
 const int32_t avenue_table_row_count = (int32_t)(sizeof avenue_table_rows / sizeof avenue_table_rows[0]);

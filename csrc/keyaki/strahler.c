@@ -28,8 +28,8 @@ banyan_status keyaki_strahler(keyaki_node *n, int32_t count) {
     return BANYAN_OK;
 }
 
-void keyaki_measure(const keyaki_node *n, int32_t count, v3 base, banyan_keyaki_statistics *st) {
-    banyan_keyaki_statistics z = {0};
+void keyaki_measure(const keyaki_node *n, int32_t count, v3 base, banyan_keyaki_stats *st) {
+    banyan_keyaki_stats z = {0};
     *st = z;
     st->node_count = count;
     double max_h2 = 0, max_z = 0;

@@ -53,7 +53,7 @@ typedef struct variant_job {
 } variant_job;
 
 static void work(variant_job *J, int caller) {
-    keyaki_run run = {caller ? J->prog : NULL, &J->cancel, NULL, J->max_vertices, 0, 1}; /* one thread a tree */
+    keyaki_run run = {caller ? J->prog : NULL, &J->cancel, NULL, J->max_vertices, 0, 1, 0}; /* one thread a tree */
     keyaki_skeleton sk = {NULL, 0, 0, &run};
     for (;;) {
         if (atomic_load(&J->cancel)) break;
@@ -170,12 +170,11 @@ static banyan_status merge(banyan_mesh *const *v, uint32_t n, prog *g, banyan_me
 }
 
 banyan_status avenue_variants_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
-                                       int32_t threads, banyan_mesh **out, const banyan_progress *progress,
-                                       banyan_error *err) {
+                                       banyan_mesh **out, const banyan_progress *progress, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
     banyan_status s;
-    if ((s = banyan_check_int(err, "threads", threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
+    if ((s = banyan_check_int(err, "threads", p->threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
     if ((s = prog_check(progress, err))) return s;
     uint32_t n = 0;
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
@@ -226,7 +225,7 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
         inst[i].scale = (float)(trees[i].unit / trees[k].unit);
     }
 
-    int t = pool_threads(threads, BANYAN_AVENUE_MAX_THREADS);
+    int t = pool_threads(p->threads, BANYAN_AVENUE_MAX_THREADS);
     if ((uint32_t)t > nv) t = (int)nv;
     J.vars = vars;
     J.n = nv;

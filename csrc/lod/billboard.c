@@ -98,7 +98,7 @@ static banyan_status paint_init(const banyan_mesh *m, bb_paint *pa) {
             b->tex = &m->images[mt->image];
             continue;
         }
-        if (mt->texture < 0 || mt->texture >= BANYAN_TEX_COUNT) continue;
+        if (mt->texture <= BANYAN_TEX_NONE || mt->texture >= BANYAN_TEX_COUNT) continue;
         for (uint32_t j = 0; j < pa->n_owned; j++)
             if (kinds[2 * j] == mt->texture && kinds[2 * j + 1] == mt->season) b->tex = pa->owned[j];
         if (b->tex) continue;

@@ -34,11 +34,11 @@ void banyan_texture_params_init(banyan_texture_params *p) {
 }
 
 static banyan_status check_kind(int32_t kind, banyan_error *err) {
-    if (kind >= 0 && kind < BANYAN_TEX_COUNT) return BANYAN_OK;
+    if (kind > BANYAN_TEX_NONE && kind < BANYAN_TEX_COUNT) return BANYAN_OK;
     return banyan_fail(err, BANYAN_E_RANGE,
-                       "kind = %d must be within [0, %d] (keyaki_leaf 0, ivy_leaf 1, keyaki_bark 2, fig_bark 3, "
-                       "ivy_stem 4)",
-                       (int)kind, BANYAN_TEX_COUNT - 1);
+                       "kind = %d must be within [%d, %d] (keyaki_leaf 1, ivy_leaf 2, keyaki_bark 3, fig_bark 4, "
+                       "ivy_stem 5)",
+                       (int)kind, BANYAN_TEX_NONE + 1, BANYAN_TEX_COUNT - 1);
 }
 
 banyan_status banyan_texture_layout(int32_t kind, banyan_atlas_layout *out, banyan_error *err) {
@@ -187,8 +187,11 @@ static int normal_map(const tex_canvas *c, uint8_t *out) {
     return 0;
 }
 
-/* Streams per kind and season, so the five textures of one seed differ. */
-static uint64_t stream_of(int kind, int season) { return 0x7e47u + (uint64_t)kind * 2u + (uint64_t)season; }
+/* Streams per kind and season, so the five textures of one seed differ:
+ * numbered from the first kind (BANYAN_TEX_KEYAKI_LEAF). */
+static uint64_t stream_of(int kind, int season) {
+    return 0x7e47u + (uint64_t)(kind - BANYAN_TEX_KEYAKI_LEAF) * 2u + (uint64_t)season;
+}
 
 static banyan_status over_time(banyan_error *err, const char *what, int32_t size, double seconds) {
     return banyan_fail(err, BANYAN_E_LIMIT,

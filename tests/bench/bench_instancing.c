@@ -30,6 +30,7 @@ typedef struct result {
 
 static void avenue(banyan_avenue_params *p, int32_t per_row, int32_t variants) {
     banyan_avenue_params_init(p);
+    p->threads = 2;
     p->placement = BANYAN_AVENUE_COUNT;
     p->count = per_row;
     p->rows = 2;
@@ -50,7 +51,7 @@ static int run(const banyan_avenue_params *p, const char *path, result *out, dou
         banyan_error err;
         banyan_mesh *m = NULL;
         double t0 = bench_now();
-        r.status = banyan_avenue_generate(p, NULL, 0, 2, &m, NULL, &err);
+        r.status = banyan_avenue_generate(p, NULL, 0, &m, NULL, &err);
         r.gen_s = bench_now() - t0;
         if (r.status) snprintf(r.message, sizeof r.message, "%s", err.message);
         if (m) {

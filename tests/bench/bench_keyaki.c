@@ -49,13 +49,15 @@ static int boulevard(const banyan_avenue_params *ap, int threads, boulevard_resu
     if (pid < 0) return perror("fork"), 1;
     if (pid == 0) {
         boulevard_result b = {0};
+        banyan_avenue_params q = *ap;
+        q.threads = threads;
         double t[7];
         b.ok = 1;
         for (int r = 0; r < 7 && b.ok; r++) {
             banyan_mesh *m = NULL;
             banyan_error err;
             double t0 = bench_now();
-            if (banyan_avenue_generate(ap, NULL, 0, threads, &m, NULL, &err)) {
+            if (banyan_avenue_generate(&q, NULL, 0, &m, NULL, &err)) {
                 b.ok = 0;
                 snprintf(b.message, sizeof b.message, "%s", err.message);
                 break;
@@ -100,7 +102,7 @@ int main(void) {
     for (int r = 0; r < 62; r++) {
         kp.threads = r & 1;
         double t0 = bench_now();
-        banyan_keyaki_generate(&kp, &m, NULL);
+        banyan_keyaki_generate(&kp, &m, NULL, NULL, NULL);
         tm[r & 1][r / 2] = bench_now() - t0;
         nv = m ? m->vertex_count : 0;
         nt = m ? m->index_count / 3 : 0;
@@ -137,9 +139,9 @@ int main(void) {
         double t0 = bench_now();
         tips = nodes = 0;
         for (int s = 0; s < 10000; s++) {
-            banyan_keyaki_statistics st;
+            banyan_keyaki_stats st;
             sp.seed = (uint64_t)s;
-            banyan_keyaki_stats(&sp, &st, NULL);
+            banyan_keyaki_skeleton_stats(&sp, &st, NULL);
             tips += st.tip_count;
             nodes += st.node_count;
             if (st.tip_count < tmin) tmin = st.tip_count;
@@ -159,9 +161,9 @@ int main(void) {
         double mean = 0, sum_r[BANYAN_KEYAKI_MAX_ORDER] = {0}, run = 0, tip = 0, brk = 0, K = 0;
         int cnt_r[BANYAN_KEYAKI_MAX_ORDER] = {0};
         for (int s = 0; s < 1000; s++) {
-            banyan_keyaki_statistics st;
+            banyan_keyaki_stats st;
             q.seed = (uint64_t)s;
-            banyan_keyaki_stats(&q, &st, NULL);
+            banyan_keyaki_skeleton_stats(&q, &st, NULL);
             mean += st.mean_bifurcation_ratio;
             run += st.mean_run_length;
             tip += st.tip_count;

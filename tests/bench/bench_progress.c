@@ -83,7 +83,7 @@ static banyan_status run_ivy(const void *ctx, const banyan_progress *pr, banyan_
 }
 
 static banyan_status run_avenue(const void *ctx, const banyan_progress *pr, banyan_mesh **out, banyan_error *e) {
-    return banyan_avenue_generate(ctx, NULL, 0, 0, out, pr, e);
+    return banyan_avenue_generate(ctx, NULL, 0, out, pr, e);
 }
 
 typedef struct roots_ctx {

@@ -1,5 +1,6 @@
 """Progress and cancel through the binding (core.generators roots / ivy /
-avenue, progress=), and ivy's "cannot grow" flag (docs/api.md, docs/ivy.md):
+keyaki / avenue, progress=), and ivy's "cannot grow" flag (docs/api.md,
+docs/ivy.md):
   - progress(done) sees a fraction that never decreases and ends at 1.0,
     and the mesh is the one grown without a callback;
   - returning True raises core.errors.Cancelled (a BanyanError, status 15)
@@ -46,10 +47,15 @@ def make(gen, progress=None):
         p = Params("ivy")
         p.set("steps", 150)
         return G.ivy(p, [S.Box.make((0, 0.1, 1.5), (1.5, 0.1, 1.5))], progress=progress)
+    if gen == "keyaki":
+        p = Params("keyaki")
+        p.set("levels", 12)
+        return G.keyaki(p, progress=progress)
     p = Params("avenue")
     p.set("count", 6)
     p.set("placement", "count")
-    return G.avenue(p, None, 2, progress=progress)
+    p.set("threads", 2)
+    return G.avenue(p, None, progress=progress)
 
 
 class Boom(Exception):
@@ -135,7 +141,7 @@ def test_ivy_start():
              "boxed-in start flagged: %s %s" % (d.stats["cannot_grow"], d.stats["warning"]))
 
 
-for g in ("roots", "ivy", "avenue"):
+for g in ("roots", "ivy", "keyaki", "avenue"):
     if bt.generator(g):
         bt.run(lambda: test_generator(g))
 if bt.generator("ivy"):

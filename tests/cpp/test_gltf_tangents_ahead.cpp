@@ -85,7 +85,7 @@ int main(int argc, char **argv) {
     p.seed = 11;
     banyan_mesh *m = nullptr;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
     if (!m) return check_done("test_gltf_tangents_ahead");
     CHECK(m->part_count >= 2 && m->uvs && m->normals && m->material_count > 0 &&
               m->materials[0].texture != BANYAN_TEX_NONE,

@@ -19,16 +19,16 @@ static void tree(const uint8_t *data, size_t size) {
     p.max_vertices = fz_clamp_i32(p.max_vertices, in.real ? FZ_REAL_MAX_VERTICES : 50000);
     if (!in.real) p.max_nodes = fz_clamp_i32(p.max_nodes, 4000);
     fz_budget(BANYAN_GEN_KEYAKI, &p);
-    banyan_keyaki_statistics st;
+    banyan_keyaki_stats st;
     banyan_error e;
     memset(&e, 0, sizeof e);
-    banyan_status s = banyan_keyaki_stats(&p, &st, &e);
+    banyan_status s = banyan_keyaki_skeleton_stats(&p, &st, &e);
     if (s) fz_check_failure(s, &e, NULL);
     else FZ_ASSERT(st.node_count >= 1 && st.node_count <= p.max_nodes, "node_count %d", st.node_count);
     int stopped = fz_budget_stop(s, &e);
     banyan_mesh *m = (banyan_mesh *)&p;
     memset(&e, 0, sizeof e);
-    banyan_status s2 = banyan_keyaki_generate(&p, &m, &e);
+    banyan_status s2 = banyan_keyaki_generate(&p, &m, NULL, NULL, &e);
     /* The mesh adds only the vertex limit to what the skeleton can refuse
      * (and a budget that stopped either call says nothing of the other). */
     FZ_ASSERT(s == BANYAN_OK || stopped ? s2 == BANYAN_OK || s2 == BANYAN_E_LIMIT : s2 == s || fz_budget_stop(s2, &e),
@@ -65,14 +65,16 @@ static void avenue(const uint8_t *data, size_t size) {
     int threads = in.n_control ? in.control[0] % 5 : 2; /* 0 = all cores */
     banyan_mesh *m = (banyan_mesh *)&p;
     memset(&e, 0, sizeof e);
-    s = banyan_avenue_generate(&p, NULL, 0, threads, &m, NULL, &e);
+    p.threads = threads;
+    s = banyan_avenue_generate(&p, NULL, 0, &m, NULL, &e);
     /* The output does not depend on the thread count (banyan/keyaki.h). */
     uint64_t h = s == BANYAN_OK ? banyan_mesh_hash(m) : 0;
     fz_check(s, &e, m, (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0));
     int stopped = fz_budget_stop(s, &e);
     banyan_mesh *one = NULL;
     memset(&e, 0, sizeof e);
-    banyan_status s1 = banyan_avenue_generate(&p, NULL, 0, 1, &one, NULL, &e);
+    p.threads = 1;
+    banyan_status s1 = banyan_avenue_generate(&p, NULL, 0, &one, NULL, &e);
     if (stopped || fz_budget_stop(s1, &e)) { /* the budget, not the input, decided one of them */
         fz_check(s1, &e, one, (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0));
         return;

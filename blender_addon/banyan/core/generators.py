@@ -128,24 +128,55 @@ def roots(params=None, hosts=(), progress=None):
     return call_generate(f, params.ptr, arr, n)
 
 
-def keyaki(params=None):
+def keyaki_stats_dict(st):
+    """banyan_keyaki_stats as a dict; the per-order lists hold the orders
+    1 .. max_order (stream counts) and 1 .. max_order - 1 (ratios)."""
+    d = {k: getattr(st, k) for k, _ in S.KeyakiStats._fields_ if k not in ("stream_count", "bifurcation_ratio")}
+    d["stream_count"] = list(st.stream_count[:st.max_order])
+    d["bifurcation_ratio"] = list(st.bifurcation_ratio[:max(st.max_order - 1, 0)])
+    return d
+
+
+def keyaki(params=None, progress=None):
+    """One keyaki tree. Returns MeshData with .stats, the measures of the
+    skeleton it was built from (keyaki_stats_dict). progress: None or
+    progress(done) -> bool, done 0..1, True cancels (raises
+    errors.Cancelled); called on the calling thread."""
     params = _as_params("keyaki", params)
-    f = _fn("banyan_keyaki_generate", C.c_int, [C.c_void_p, _mesh_out, _err], "keyaki")
-    return call_generate(f, params.ptr)
+    pr = _Progress(progress)
+    _check_size("keyaki_stats", S.KeyakiStats, "keyaki")
+    f = _fn("banyan_keyaki_generate", C.c_int, [C.c_void_p, _mesh_out, P(S.KeyakiStats), _progress_arg, _err],
+            "keyaki")
+    st = S.KeyakiStats()
+    d = pr.run(lambda arg: call_generate(lambda out, err: f(params.ptr, out, C.byref(st), arg, err)))
+    d.stats = keyaki_stats_dict(st)
+    return d
 
 
-def avenue(params=None, path=None, threads=0, progress=None):
+def keyaki_skeleton_stats(params=None):
+    """banyan_keyaki_skeleton_stats: the skeleton grown and measured, no
+    mesh (keyaki_stats_dict)."""
+    params = _as_params("keyaki", params)
+    _check_size("keyaki_stats", S.KeyakiStats, "keyaki")
+    f = _fn("banyan_keyaki_skeleton_stats", C.c_int, [C.c_void_p, P(S.KeyakiStats), _err], "keyaki")
+    st = S.KeyakiStats()
+    err = S.Error()
+    L.raise_for(f(params.ptr, C.byref(st), C.byref(err)), err)
+    return keyaki_stats_dict(st)
+
+
+def avenue(params=None, path=None, progress=None):
     """path: None (the params' start-end line) or a list of (x, y, z)
     (the library wants 2 or more, finite, consecutive ones distinct).
-    progress: None or progress(done) -> bool, done 0..1, True cancels
-    (raises errors.Cancelled); called on the calling thread."""
+    The params' `threads` spreads the trees. progress: None or
+    progress(done) -> bool, done 0..1, True cancels (raises
+    errors.Cancelled); called on the calling thread."""
     params = _as_params("avenue", params)
     pr = _Progress(progress)
     f = _fn("banyan_avenue_generate", C.c_int,
-            [C.c_void_p, P(C.c_double), C.c_uint32, C.c_int32, _mesh_out, _progress_arg, _err], "avenue")
-    threads = A.int32("threads", threads)
+            [C.c_void_p, P(C.c_double), C.c_uint32, _mesh_out, _progress_arg, _err], "avenue")
     pts, n = A.points("path", path) if path is not None else (None, 0)
-    return pr.run(lambda arg: call_generate(lambda out, err: f(params.ptr, pts, n, threads, out, arg, err)))
+    return pr.run(lambda arg: call_generate(lambda out, err: f(params.ptr, pts, n, out, arg, err)))
 
 
 def avenue_tree_count(params, path=None):

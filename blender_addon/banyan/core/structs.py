@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 19     # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 20     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):
@@ -146,6 +146,19 @@ class IvyStats(C.Structure):
                 ("stem_length", C.c_double), ("step_seconds", C.c_double)]
 
 
+KEYAKI_MAX_ORDER = 32  # BANYAN_KEYAKI_MAX_ORDER
+
+
+class KeyakiStats(C.Structure):
+    """banyan_keyaki_stats; checked against banyan_sizeof_keyaki_stats when
+    keyaki is first used (generators.py)."""
+    _fields_ = [("node_count", C.c_int32), ("tip_count", C.c_int32), ("fork_count", C.c_int32),
+                ("break_count", C.c_int32), ("max_level", C.c_int32), ("max_order", C.c_int32),
+                ("stream_count", C.c_int32 * KEYAKI_MAX_ORDER), ("bifurcation_ratio", C.c_double * KEYAKI_MAX_ORDER),
+                ("mean_bifurcation_ratio", C.c_double), ("height", C.c_double), ("crown_width", C.c_double),
+                ("mean_run_length", C.c_double)]
+
+
 class HostInfo(C.Structure):
     _fields_ = [("kind", C.c_int32), ("closed", C.c_int32), ("triangle_count", C.c_uint32),
                 ("dropped_triangles", C.c_uint32), ("boundary_edges", C.c_uint32), ("shells", C.c_uint32),
@@ -163,7 +176,7 @@ PT_DOUBLE, PT_INT, PT_BOOL, PT_ENUM, PT_VEC3, PT_COLOR, PT_SEED = range(7)
 GENERATORS = ("roots", "keyaki", "avenue", "ivy", "segments")
 
 # Textures (banyan/textures.h).
-TEX_NONE, TEX_KEYAKI_LEAF, TEX_IVY_LEAF, TEX_KEYAKI_BARK, TEX_FIG_BARK, TEX_IVY_STEM = range(-1, 5)
+TEX_NONE, TEX_KEYAKI_LEAF, TEX_IVY_LEAF, TEX_KEYAKI_BARK, TEX_FIG_BARK, TEX_IVY_STEM = range(6)  # NONE: no texture
 SEASON_SUMMER, SEASON_AUTUMN = 0, 1
 
 

@@ -16,6 +16,7 @@ from array import array
 import bpy
 from mathutils import Matrix
 
+from ..core import structs as S
 from ..core.mesh import localize_group, triangle_edges
 from . import wind as W
 from .materials import image_material, shared_material
@@ -127,7 +128,7 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False, images=No
     one is made beside it."""
     if spec.get("image", -1) >= 0 and images and spec["image"] < len(images):
         return image_material(spec, images[spec["image"]], created, prefix)
-    if spec.get("texture", -1) >= 0:
+    if spec.get("texture", S.TEX_NONE) != S.TEX_NONE:
         return shared_material(spec, created, vertex_colors)
     name = "%s_%s" % (prefix, spec["name"])
     mat = find_flat_material(spec, name, vertex_colors)

@@ -118,7 +118,7 @@ def avenue_progress(progress):
 
 
 def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, collection=None,
-                      name="Keyaki Avenue", uv=True, threads=0, origin='BASE', build_progress=None, values=None,
+                      name="Keyaki Avenue", uv=True, origin='BASE', build_progress=None, values=None,
                       wind=None, animate=False, frame_start=None, frame_end=None, **kw):
     target_collection(collection)
     check_name(name)
@@ -136,7 +136,7 @@ def keyaki_avenue_job(*, path=None, preset=None, params=None, merged=False, coll
 
     def compute(prog):
         try:
-            return call_with_progress(G.avenue, p, path, threads, progress=prog)
+            return call_with_progress(G.avenue, p, path, progress=prog)
         except BanyanError as e:
             if curve is not None and e.message.startswith("path"):
                 raise BanyanError(e.status, "curve '%s': %s" % (curve.name, e.message), e.name) from None

@@ -81,7 +81,7 @@ typedef enum banyan_keyaki_strong_side {
 #define BANYAN_KEYAKI_MAX_LEVELS 30  /* levels 1 .. 30 */
 #define BANYAN_KEYAKI_MAX_ORDER 32   /* Strahler orders never exceed levels + 1 */
 #define BANYAN_AVENUE_MAX_TREES 10000
-#define BANYAN_AVENUE_MAX_THREADS 64 /* threads of banyan_avenue_generate: 0 (all cores) .. 64 */
+#define BANYAN_AVENUE_MAX_THREADS 64 /* threads of a tree or an avenue: 0 (all cores) .. 64 */
 
 typedef struct banyan_keyaki_params {
     uint64_t seed;           /* any value; the tree's PCG32 streams derive from it */
@@ -190,32 +190,15 @@ typedef struct banyan_keyaki_params {
     int32_t wind;                 /* bool: the wind attributes (banyan.h, BANYAN_ATTR_WIND_*). Default 1 */
     int32_t threads;         /* 0 (all cores) .. BANYAN_AVENUE_MAX_THREADS: threads that mesh this one tree
                                 (banyan_keyaki_generate; the mesh does not depend on it). An avenue's trees each
-                                run on one thread: the avenue's own threads argument spreads them. Default 0 */
+                                run on one thread: the avenue's own threads field spreads them. Default 0 */
 } banyan_keyaki_params;
 
 /* Fills the paper's defaults (edaore, 21 levels, alpha 1.3, ...). */
 BANYAN_API void banyan_keyaki_params_init(banyan_keyaki_params *p);
 BANYAN_API size_t banyan_sizeof_keyaki_params(void);
 
-/* Grows and meshes one tree. Refuses bad params (BANYAN_E_RANGE naming the
- * field), more than max_nodes branches or max_vertices vertices
- * (BANYAN_E_LIMIT, before the mesh is allocated).
- * The mesh: part 0 bark (material 0, "keyaki_bark"), part 1 leaves
- * (material 1, "keyaki_leaf", double sided; absent without leaves); every
- * part has group 0. Attributes: tree_id (0), level (the branch's level,
- * 0 = trunk), order (its Strahler order). Skeleton: point 0 is the trunk
- * base, point i+1 the end of branch i; one edge per branch; skel_tag =
- * level | order << 8 | broken << 16 (broken: the branch's fork broke).
- * With twigs_from_segments, every tip of the (shorter) skeleton is the
- * axis of one segment; its twig and fork lines (not the axis, which is the
- * branch itself) are thin tubes appended to the bark part, with level =
- * the branch's level + the segment level code (twig = +1, fork depth d =
- * +1 + d) and order 0; they are not in the skeleton. */
-BANYAN_API banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out,
-                                                banyan_error *err);
-
 /* Topology of the final skeleton (after breaks). */
-typedef struct banyan_keyaki_statistics {
+typedef struct banyan_keyaki_stats {
     int32_t node_count;       /* branches (straight segments), trunk included */
     int32_t tip_count;        /* branches without children */
     int32_t fork_count;       /* branches with two children */
@@ -230,14 +213,37 @@ typedef struct banyan_keyaki_statistics {
     double crown_width;       /* m: twice the largest horizontal distance of a branch end from the trunk base
                                  (the skeleton's, as height) */
     double mean_run_length;   /* levels: mean length of a run of single branches between real forks */
-} banyan_keyaki_statistics;
+} banyan_keyaki_stats;
 
-BANYAN_API size_t banyan_sizeof_keyaki_statistics(void);
+BANYAN_API size_t banyan_sizeof_keyaki_stats(void);
+
+/* Grows and meshes one tree. Refuses bad params (BANYAN_E_RANGE naming the
+ * field), more than max_nodes branches or max_vertices vertices
+ * (BANYAN_E_LIMIT, before the mesh is allocated).
+ * stats: NULL, or the measures of the skeleton the mesh was built from
+ * (the values banyan_keyaki_skeleton_stats gives for the same params);
+ * zeroed on failure. progress: NULL, or called on the calling thread (docs/api.md
+ * "Progress and cancel"); a cancel returns BANYAN_E_CANCELLED with *out NULL.
+ * The mesh: part 0 bark (material 0, "keyaki_bark"), part 1 leaves
+ * (material 1, "keyaki_leaf", double sided; absent without leaves); every
+ * part has group 0. Attributes: tree_id (0), level (the branch's level,
+ * 0 = trunk), order (its Strahler order). Skeleton: point 0 is the trunk
+ * base, point i+1 the end of branch i; one edge per branch; skel_tag =
+ * level | order << 8 | broken << 16 (broken: the branch's fork broke).
+ * With twigs_from_segments, every tip of the (shorter) skeleton is the
+ * axis of one segment; its twig and fork lines (not the axis, which is the
+ * branch itself) are thin tubes appended to the bark part, with level =
+ * the branch's level + the segment level code (twig = +1, fork depth d =
+ * +1 + d) and order 0; they are not in the skeleton. */
+BANYAN_API banyan_status banyan_keyaki_generate(const banyan_keyaki_params *p, banyan_mesh **out,
+                                                banyan_keyaki_stats *stats, const banyan_progress *progress,
+                                                banyan_error *err);
 
 /* Grows the skeleton only (no mesh) and measures it: fast enough for
- * thousands of trees. max_vertices and the body fields are not used. */
-BANYAN_API banyan_status banyan_keyaki_stats(const banyan_keyaki_params *p, banyan_keyaki_statistics *out,
-                                             banyan_error *err);
+ * thousands of trees. max_vertices, threads and the body fields are not
+ * used. out is zeroed on failure. */
+BANYAN_API banyan_status banyan_keyaki_skeleton_stats(const banyan_keyaki_params *p, banyan_keyaki_stats *out,
+                                                      banyan_error *err);
 
 /* ------------------------------------------------------------- avenues */
 
@@ -277,6 +283,9 @@ typedef struct banyan_avenue_params {
     int32_t variants;        /* 0: every tree unique, merged into one mesh. 1 .. 4096: that many distinct
                                 trees (variant k grown with seed + k), placed as instances (banyan_instance):
                                 the same positions and headings as the unique avenue. Default 0 */
+    int32_t threads;         /* 0 (all cores) .. BANYAN_AVENUE_MAX_THREADS: threads that grow the trees, one tree
+                                each (fewer when the trees are few or large); the output does not depend on
+                                it. Default 0 */
 } banyan_avenue_params;
 
 BANYAN_API void banyan_avenue_params_init(banyan_avenue_params *p);
@@ -291,14 +300,16 @@ BANYAN_API banyan_status banyan_avenue_layout(const banyan_avenue_params *p, con
                                               uint32_t path_point_count, banyan_keyaki_params *trees,
                                               uint32_t capacity, uint32_t *tree_count, banyan_error *err);
 
-/* Grows every tree of the avenue on `threads` threads (0 = all cores,
- * 1 .. BANYAN_AVENUE_MAX_THREADS otherwise; fewer are used when the trees
- * are few or large, so scratch memory does not multiply with them) and merges them into one mesh. The output does not
- * depend on the thread count. Tree i's vertices are contiguous; its parts
+/* Grows every tree of the avenue on p->threads threads (0 = all cores;
+ * fewer are used when the trees are few or large, so scratch memory does
+ * not multiply with them) and merges them into one mesh. The output does
+ * not depend on the thread count. path_xyz and path_point_count as for
+ * banyan_avenue_layout. Tree i's vertices are contiguous; its parts
  * (bark, material 0; leaves, material 1) have group = i; attribute
- * tree_id = i. The skeletons are merged the same way. */
+ * tree_id = i. The skeletons are merged the same way. progress: NULL, or
+ * called on the calling thread; a cancel returns BANYAN_E_CANCELLED. */
 BANYAN_API banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz,
-                                                uint32_t path_point_count, int32_t threads, banyan_mesh **out,
+                                                uint32_t path_point_count, banyan_mesh **out,
                                                 const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus

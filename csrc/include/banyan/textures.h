@@ -14,16 +14,17 @@
 extern "C" {
 #endif
 
-/* What a texture depicts. NONE: a material with no texture (flat colour). */
+/* What a texture depicts. NONE (0): a material with no texture (flat
+ * colour), so a zeroed banyan_material names none. */
 typedef enum banyan_texture_kind {
-    BANYAN_TEX_NONE = -1,
-    BANYAN_TEX_KEYAKI_LEAF = 0, /* atlas of keyaki (Zelkova serrata) leaves: ovate, pointed, serrated, 3-7 cm */
-    BANYAN_TEX_IVY_LEAF = 1,    /* atlas of Boston ivy (Parthenocissus tricuspidata) leaves: three-lobed, toothed */
-    BANYAN_TEX_KEYAKI_BARK = 2, /* tileable: smooth grey, flaking in small muted orange-brown patches; a smooth
+    BANYAN_TEX_NONE = 0,
+    BANYAN_TEX_KEYAKI_LEAF = 1, /* atlas of keyaki (Zelkova serrata) leaves: ovate, pointed, serrated, 3-7 cm */
+    BANYAN_TEX_IVY_LEAF = 2,    /* atlas of Boston ivy (Parthenocissus tricuspidata) leaves: three-lobed, toothed */
+    BANYAN_TEX_KEYAKI_BARK = 3, /* tileable: smooth grey, flaking in small muted orange-brown patches; a smooth
                                    grey-brown lane (BANYAN_KEYAKI_BARK_SMOOTH_U0 .. _U1) for thin branches */
-    BANYAN_TEX_FIG_BARK = 3,    /* tileable: smooth pale grey-brown (strangler fig roots) */
-    BANYAN_TEX_IVY_STEM = 4,    /* tileable: woody brown */
-    BANYAN_TEX_COUNT = 5
+    BANYAN_TEX_FIG_BARK = 4,    /* tileable: smooth pale grey-brown (strangler fig roots) */
+    BANYAN_TEX_IVY_STEM = 5,    /* tileable: woody brown */
+    BANYAN_TEX_COUNT = 6        /* one past the last kind */
 } banyan_texture_kind;
 
 typedef enum banyan_season {

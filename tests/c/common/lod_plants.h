@@ -24,7 +24,7 @@ static inline banyan_mesh *lod_plant(const char *name, int32_t variants, banyan_
         banyan_keyaki_params_init(&p);
         snprintf(path, sizeof path, "%s/presets/%s.json", BANYAN_SOURCE_DIR, name);
         if (!(s = test_load_preset(BANYAN_GEN_KEYAKI, &p, path, NULL, 0, NULL, err)))
-            s = banyan_keyaki_generate(&p, &m, err);
+            s = banyan_keyaki_generate(&p, &m, NULL, NULL, err);
     } else if (!strncmp(name, "roots_", 6)) {
         banyan_roots_params p;
         banyan_box hosts[8];
@@ -61,7 +61,8 @@ static inline banyan_mesh *lod_plant(const char *name, int32_t variants, banyan_
             p.end[0] = 16;
         }
         p.variants = variants;
-        s = banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, err);
+        p.threads = 2;
+        s = banyan_avenue_generate(&p, NULL, 0, &m, NULL, err);
     }
     if (s) {
         banyan_mesh_free(m);

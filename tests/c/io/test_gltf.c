@@ -155,7 +155,7 @@ static void set_material(banyan_material *m, const char *name, float r, float g,
     m->base_color[3] = a;
     m->roughness = rough;
     m->double_sided = ds;
-    m->texture = BANYAN_TEX_NONE; /* 0 would be the keyaki leaf atlas */
+    /* texture is left as calloc made it: 0, BANYAN_TEX_NONE */
 }
 
 /* Mesh A: part 0 = a tetrahedron of bark (4 vertices, 4 triangles, some
@@ -377,6 +377,13 @@ int main(int argc, char **argv) {
     if (s == BANYAN_OK) check_written("test_gltf_two.glb", 1, two_must);
     if (s == BANYAN_OK)
         CHECK(check_color_bytes(out_path("test_gltf_two.glb"), a) == 2, "two.glb: mesh A's primitives lack COLOR_0");
+    if (s == BANYAN_OK) { /* zeroed materials name no texture: none is embedded, textures on or not */
+        char *json = json_of(out_path("test_gltf_two.glb"), 1);
+        CHECK(a->materials[0].texture == BANYAN_TEX_NONE && json && !strstr(json, "baseColorTexture") &&
+                  !strstr(json, "\"images\""),
+              "two.glb: a zeroed material got a texture");
+        free(json);
+    }
 
     s = banyan_gltf_write(out_path("test_gltf_two.gltf"), both, names, 2, &err);
     CHECK(s == BANYAN_OK, "two.gltf: %d %s", (int)s, err.message);

@@ -142,7 +142,7 @@ static banyan_mesh *keyaki(int levels) {
     p.unit = 0.5;
     banyan_error err;
     banyan_mesh *m = NULL;
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "keyaki: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "keyaki: %s", err.message);
     return m;
 }
 
@@ -444,7 +444,8 @@ static void instanced(void) {
     p.variants = 2;
     banyan_error err;
     banyan_mesh *m = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
     if (!m) return;
     CHECK(m->instance_count == 6, "%u instances", m->instance_count);
     banyan_mesh *lod = NULL;

@@ -148,7 +148,7 @@ static banyan_mesh *keyaki(void) {
     p.seed = 11;
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
     return m;
 }
 

@@ -146,7 +146,7 @@ static banyan_mesh *keyaki(int32_t season, uint64_t seed) {
     p.season = season;
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK && m, "keyaki: %s", err.message);
     return m;
 }
 

@@ -45,7 +45,7 @@ typedef struct tex_cache {
 
 static const banyan_image *tex_of(const banyan_mesh *m, const banyan_material *mt, tex_cache *tc) {
     if (mt->image >= 0) return &m->images[mt->image];
-    if (mt->texture < 0) return NULL;
+    if (mt->texture == BANYAN_TEX_NONE) return NULL;
     for (int i = 0; i < tc->n; i++)
         if (tc->kind[i] == mt->texture && tc->season[i] == mt->season) return tc->im[i];
     if (tc->n == 16) return NULL;

@@ -117,7 +117,7 @@ static void test_hits_and_damage(void) {
     pngs ref = get(&p, NULL), cold = get(&p, g_cache);
     CHECK(pngs_same(&ref, &cold), "cold: the drawn bytes");
     char path[4200];
-    CHECK(entry_path("2-0-128-7-", path, sizeof path), "one cache file for the key");
+    CHECK(entry_path("3-0-128-7-", path, sizeof path), "one cache file for the key");
     const long whole = file_size(path);
     CHECK(whole == 64 + (long)(ref.bl + ref.nl), "file of %ld bytes, head and PNGs %zu", whole, 64 + ref.bl + ref.nl);
     pngs warm = get(&p, g_cache);
@@ -130,7 +130,7 @@ static void test_hits_and_damage(void) {
     const banyan_texture_params q = params(BANYAN_TEX_KEYAKI_BARK, 128, 8);
     pngs other = get(&q, g_cache);
     char qpath[4200];
-    CHECK(entry_path("2-0-128-8-", qpath, sizeof qpath), "second key's file");
+    CHECK(entry_path("3-0-128-8-", qpath, sizeof qpath), "second key's file");
     size_t qlen = 0, plen = 0;
     char *qbytes = test_read_file(qpath, &qlen), *pbytes = test_read_file(path, &plen);
     CHECK(qbytes && pbytes, "read the files");
@@ -233,7 +233,7 @@ static void test_race(void) {
         pngs_free(&r[i].got);
     }
     char path[4200];
-    CHECK(entry_path("1-0-256-3-", path, sizeof path) && file_size(path) == (long)(64 + ref.bl + ref.nl),
+    CHECK(entry_path("2-0-256-3-", path, sizeof path) && file_size(path) == (long)(64 + ref.bl + ref.nl),
           "one whole file after the race");
     pngs warm = get(&p, g_cache);
     CHECK(pngs_same(&warm, &ref), "warm after the race");
@@ -252,11 +252,11 @@ static void set_age(const char *path, long seconds_ago) {
 /* Sparse files of 200 MB stand for big entries (no disk used). */
 static void test_bound(void) {
     char a[1200], b[1200], c[1200], t_old[1200], t_new[1200];
-    snprintf(a, sizeof a, "%s/0-0-8192-1-aaaaaaaaaaaaaaaa.btc", g_cache);
-    snprintf(b, sizeof b, "%s/0-0-8192-2-aaaaaaaaaaaaaaaa.btc", g_cache);
-    snprintf(c, sizeof c, "%s/0-0-8192-3-aaaaaaaaaaaaaaaa.btc", g_cache);
-    snprintf(t_old, sizeof t_old, "%s/.0-0-64-1-aaaaaaaaaaaaaaaa.btc.abcdef.tmp", g_cache);
-    snprintf(t_new, sizeof t_new, "%s/.0-0-64-2-aaaaaaaaaaaaaaaa.btc.abcdef.tmp", g_cache);
+    snprintf(a, sizeof a, "%s/1-0-8192-1-aaaaaaaaaaaaaaaa.btc", g_cache);
+    snprintf(b, sizeof b, "%s/1-0-8192-2-aaaaaaaaaaaaaaaa.btc", g_cache);
+    snprintf(c, sizeof c, "%s/1-0-8192-3-aaaaaaaaaaaaaaaa.btc", g_cache);
+    snprintf(t_old, sizeof t_old, "%s/.1-0-64-1-aaaaaaaaaaaaaaaa.btc.abcdef.tmp", g_cache);
+    snprintf(t_new, sizeof t_new, "%s/.1-0-64-2-aaaaaaaaaaaaaaaa.btc.abcdef.tmp", g_cache);
     const char *big[3] = {a, b, c};
     for (int i = 0; i < 3; i++) {
         int fd = open(big[i], O_WRONLY | O_CREAT | O_TRUNC, 0600);
@@ -273,7 +273,7 @@ static void test_bound(void) {
     pngs r = get(&p, g_cache); /* a miss: written, then the folder trimmed */
     pngs_free(&r);
     char path[4200];
-    CHECK(entry_path("3-0-64-5-", path, sizeof path), "the new file stays");
+    CHECK(entry_path("4-0-64-5-", path, sizeof path), "the new file stays");
     CHECK(file_size(a) < 0, "the least recently used file went");
     CHECK(file_size(b) > 0 && file_size(c) > 0, "the others stay (600 MB less 200 under 512 MB)");
     CHECK(file_size(t_old) < 0, "a temporary file over an hour old went");
@@ -290,7 +290,7 @@ static void test_glb(const char *dir) {
     kp.levels = 7;
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_keyaki_generate(&kp, &m, &e) == BANYAN_OK, "keyaki: %s", e.message);
+    CHECK(banyan_keyaki_generate(&kp, &m, NULL, NULL, &e) == BANYAN_OK, "keyaki: %s", e.message);
     if (!m) return;
     char gcache[1200];
     snprintf(gcache, sizeof gcache, "%s/glb_cache", g_cache);

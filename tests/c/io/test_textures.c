@@ -34,7 +34,8 @@
 #  pragma GCC diagnostic ignored "-Wunused-function"
 #endif
 
-static const char *const names[] = {"keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark", "ivy_stem"};
+static const char *const names[BANYAN_TEX_COUNT] = {"none", "keyaki_leaf", "ivy_leaf", "keyaki_bark", "fig_bark",
+                                                    "ivy_stem"};
 
 static uint64_t fnv(const uint8_t *p, size_t n) {
     uint64_t h = 1469598103934665603ULL;
@@ -333,7 +334,7 @@ int main(void) {
     /* Every kind and season at two sizes. */
     const int sizes[] = {64, 256, 1024};
     for (int si = 0; si < 3; si++)
-        for (int kind = 0; kind < BANYAN_TEX_COUNT; kind++)
+        for (int kind = BANYAN_TEX_NONE + 1; kind < BANYAN_TEX_COUNT; kind++)
             for (int season = 0; season < (is_leaf(kind) ? 2 : 1); season++) {
                 banyan_image *bc = NULL, *nm = NULL;
                 gen(kind, season, sizes[si], 1, &bc, &nm);
@@ -374,7 +375,7 @@ int main(void) {
 
     /* Summer and autumn atlases differ in colour, not only in noise: the
      * mean red/green ratio of the leaves rises in autumn. */
-    for (int kind = 0; kind < 2; kind++) {
+    for (int kind = BANYAN_TEX_KEYAKI_LEAF; kind <= BANYAN_TEX_IVY_LEAF; kind++) {
         double ratio[2];
         for (int season = 0; season < 2; season++) {
             banyan_image *bc = NULL;
@@ -430,13 +431,13 @@ int main(void) {
     {
         job a[BANYAN_TEX_COUNT], b[BANYAN_TEX_COUNT];
         pthread_t ta[BANYAN_TEX_COUNT];
-        for (int k = 0; k < BANYAN_TEX_COUNT; k++) {
+        for (int k = BANYAN_TEX_NONE + 1; k < BANYAN_TEX_COUNT; k++) {
             a[k] = (job){k, 1, 0, 0};
             b[k] = a[k];
             pthread_create(&ta[k], NULL, run_job, &a[k]);
         }
-        for (int k = 0; k < BANYAN_TEX_COUNT; k++) run_job(&b[k]);
-        for (int k = 0; k < BANYAN_TEX_COUNT; k++) {
+        for (int k = BANYAN_TEX_NONE + 1; k < BANYAN_TEX_COUNT; k++) run_job(&b[k]);
+        for (int k = BANYAN_TEX_NONE + 1; k < BANYAN_TEX_COUNT; k++) {
             pthread_join(ta[k], NULL);
             CHECK(a[k].hash_bc && a[k].hash_bc == b[k].hash_bc && a[k].hash_nm == b[k].hash_nm,
                   "%s: threads give other bytes", names[k]);
@@ -444,16 +445,18 @@ int main(void) {
     }
 
     /* Bad input. */
-    bad("size 0", 0, 0, 0, 0, "size");
-    bad("size 1000", 0, 0, 1000, 0, "power of two");
-    bad("size 32", 1, 0, 32, 0, "[64, 8192]");
-    bad("size 16384", 2, 0, 16384, 0, "[64, 8192]");
-    bad("size -1024", 2, 0, -1024, 0, "size");
+    bad("size 0", BANYAN_TEX_KEYAKI_LEAF, 0, 0, 0, "size");
+    bad("size 1000", BANYAN_TEX_KEYAKI_LEAF, 0, 1000, 0, "power of two");
+    bad("size 32", BANYAN_TEX_IVY_LEAF, 0, 32, 0, "[64, 8192]");
+    bad("size 16384", BANYAN_TEX_KEYAKI_BARK, 0, 16384, 0, "[64, 8192]");
+    bad("size -1024", BANYAN_TEX_KEYAKI_BARK, 0, -1024, 0, "size");
     bad("kind 7", 7, 0, 1024, 0, "kind");
-    bad("kind -1 (NONE)", BANYAN_TEX_NONE, 0, 1024, 0, "kind");
-    bad("season 3", 0, 3, 1024, 0, "season");
-    bad("season -1", 3, -1, 1024, 0, "season");
-    bad("reserved", 0, 0, 1024, 9, "reserved");
+    bad("kind 6 (COUNT)", BANYAN_TEX_COUNT, 0, 1024, 0, "kind = 6 must be within [1, 5]");
+    bad("kind 0 (NONE)", BANYAN_TEX_NONE, 0, 1024, 0, "kind = 0 must be within [1, 5]");
+    bad("kind -1", -1, 0, 1024, 0, "kind");
+    bad("season 3", BANYAN_TEX_KEYAKI_LEAF, 3, 1024, 0, "season");
+    bad("season -1", BANYAN_TEX_FIG_BARK, -1, 1024, 0, "season");
+    bad("reserved", BANYAN_TEX_KEYAKI_LEAF, 0, 1024, 9, "reserved");
     {
         banyan_error e;
         banyan_image *bc = (banyan_image *)&e;
@@ -461,9 +464,11 @@ int main(void) {
                   strstr(e.message, "params"),
               "NULL params: %s", e.message);
         banyan_atlas_layout L;
-        CHECK(banyan_texture_layout(5, &L, &e) == BANYAN_E_RANGE && strstr(e.message, "kind"), "layout kind 5: %s",
-              e.message);
-        CHECK(banyan_texture_layout(0, NULL, &e) == BANYAN_E_INVALID_ARG, "layout NULL out");
+        CHECK(banyan_texture_layout(BANYAN_TEX_COUNT, &L, &e) == BANYAN_E_RANGE && strstr(e.message, "kind"),
+              "layout kind 6: %s", e.message);
+        CHECK(banyan_texture_layout(BANYAN_TEX_NONE, &L, &e) == BANYAN_E_RANGE && strstr(e.message, "kind"),
+              "layout kind 0 (NONE): %s", e.message);
+        CHECK(banyan_texture_layout(BANYAN_TEX_KEYAKI_LEAF, NULL, &e) == BANYAN_E_INVALID_ARG, "layout NULL out");
         uint8_t *png = (uint8_t *)&e;
         size_t len = 7;
         CHECK(banyan_image_png(NULL, &png, &len, &e) == BANYAN_E_INVALID_ARG && png == NULL && len == 0 &&

@@ -34,7 +34,7 @@ static inline void keyaki_canopy_cache_free(keyaki_canopy_cache *c) {
  * (err then says why and *failed is set). */
 static const canopy_alpha *keyaki_canopy_plane(const banyan_material *mat, keyaki_canopy_cache *c, int *failed,
                                                banyan_error *err) {
-    if (mat->texture < 0 || mat->alpha_cutoff <= 0) return NULL;
+    if (mat->texture == BANYAN_TEX_NONE || mat->alpha_cutoff <= 0) return NULL;
     for (int i = 0; i < c->n; i++)
         if (c->plane[i].kind == mat->texture && c->plane[i].season == mat->season) return &c->plane[i].a;
     banyan_texture_params tp;
@@ -66,7 +66,7 @@ static const canopy_alpha *keyaki_canopy_plane(const banyan_material *mat, keyak
 static int keyaki_canopy_of(const banyan_keyaki_params *p, keyaki_canopy_cache *c, canopy_figures *f,
                             banyan_error *err) {
     banyan_mesh *m = NULL;
-    if (banyan_keyaki_generate(p, &m, err) != BANYAN_OK) return -1;
+    if (banyan_keyaki_generate(p, &m, NULL, NULL, err) != BANYAN_OK) return -1;
     const canopy_alpha *alpha[64] = {0};
     int failed = 0;
     for (uint32_t k = 0; k < m->material_count && k < 64; k++)

@@ -134,26 +134,32 @@ static void refusals(void) {
               err.message);                                                                                     \
     } while (0)
     small(&p);
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, -1, &m, NULL, &err), BANYAN_E_RANGE, "threads = -1", "threads -1");
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 65, &m, NULL, &err), BANYAN_E_RANGE, "threads = 65", "threads 65");
+    p.threads = -1;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_RANGE, "threads = -1", "threads -1");
+    p.threads = 65;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_RANGE, "threads = 65", "threads 65");
     p.end[0] = 0;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err), BANYAN_E_RANGE, "start and end must differ", "no length");
+    p.threads = 1;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_RANGE, "start and end must differ", "no length");
     small(&p);
     double bad_path[] = {0, 0, 0, 1, NAN, 0};
-    REFUSE(banyan_avenue_generate(&p, bad_path, 2, 1, &m, NULL, &err), BANYAN_E_RANGE, "path point 1", "NaN path");
+    p.threads = 1;
+    REFUSE(banyan_avenue_generate(&p, bad_path, 2, &m, NULL, &err), BANYAN_E_RANGE, "path point 1", "NaN path");
     double rep_path[] = {0, 0, 0, 5, 0, 0, 5, 0, 0};
-    REFUSE(banyan_avenue_generate(&p, rep_path, 3, 1, &m, NULL, &err), BANYAN_E_RANGE, "repeats", "repeated path point");
-    REFUSE(banyan_avenue_generate(&p, rep_path, 1, 1, &m, NULL, &err), BANYAN_E_RANGE, "path_point_count", "one point");
+    REFUSE(banyan_avenue_generate(&p, rep_path, 3, &m, NULL, &err), BANYAN_E_RANGE, "repeats", "repeated path point");
+    REFUSE(banyan_avenue_generate(&p, rep_path, 1, &m, NULL, &err), BANYAN_E_RANGE, "path_point_count", "one point");
     p.spacing = 0.1;
     p.end[0] = 1e5;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err), BANYAN_E_LIMIT, "more than 10000", "too many trees");
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_LIMIT, "more than 10000", "too many trees");
     small(&p);
     p.max_vertices = 5000;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_LIMIT, "more than max_vertices = 5000",
+    p.threads = 2;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_LIMIT, "more than max_vertices = 5000",
            "vertex limit");
     small(&p);
     p.tree.alpha = 1.0;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
+    p.threads = 2;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_RANGE, "tree.alpha = 1", "tree alpha 1");
     small(&p);
     /* The jitter keeps each trunk within trunk_length's own range, so the
      * range's ends are valid for an avenue too. */
@@ -172,8 +178,9 @@ static void refusals(void) {
     }
     small(&p);
     p.rows = 3;
-    REFUSE(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err), BANYAN_E_RANGE, "rows = 3", "three rows");
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
+    p.threads = 2;
+    REFUSE(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err), BANYAN_E_RANGE, "rows = 3", "three rows");
+    CHECK(banyan_avenue_generate(&p, NULL, 0, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
     CHECK(banyan_avenue_layout(NULL, NULL, 0, NULL, 0, &n, &err) == BANYAN_E_INVALID_ARG, "NULL params");
     /* The table takes tree.* keys. */
     small(&p);
@@ -221,10 +228,14 @@ static void merged(const char *outdir) {
     p.end[0] = 40;
     banyan_mesh *m1 = NULL, *m2 = NULL, *m0 = NULL, *again = NULL;
     banyan_error err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m1, NULL, &err) == BANYAN_OK, "1 thread: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m2, NULL, &err) == BANYAN_OK, "2 threads: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 0, &m0, NULL, &err) == BANYAN_OK, "all cores: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 7, &again, NULL, &err) == BANYAN_OK, "7 threads: %s", err.message);
+    p.threads = 1;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m1, NULL, &err) == BANYAN_OK, "1 thread: %s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m2, NULL, &err) == BANYAN_OK, "2 threads: %s", err.message);
+    p.threads = 0;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m0, NULL, &err) == BANYAN_OK, "all cores: %s", err.message);
+    p.threads = 7;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &again, NULL, &err) == BANYAN_OK, "7 threads: %s", err.message);
     if (!m1 || !m2 || !m0 || !again) return;
     uint64_t h = banyan_mesh_hash(m1);
     CHECK(h == banyan_mesh_hash(m2) && h == banyan_mesh_hash(m0) && h == banyan_mesh_hash(again),
@@ -244,7 +255,7 @@ static void merged(const char *outdir) {
     int bad_group = 0, bad_same = 0, bad_tid = 0, bad_local = 0;
     for (uint32_t i = 0; i < n && tid; i++) {
         banyan_mesh *k = NULL;
-        CHECK(banyan_keyaki_generate(&t[i], &k, &err) == BANYAN_OK, "tree %u: %s", i, err.message);
+        CHECK(banyan_keyaki_generate(&t[i], &k, NULL, NULL, &err) == BANYAN_OK, "tree %u: %s", i, err.message);
         if (!k) continue;
         for (uint32_t q = 0; q < k->part_count; q++, part++) {
             const banyan_part *a = &m1->parts[part], *b = &k->parts[q];
@@ -268,9 +279,9 @@ static void merged(const char *outdir) {
     /* Trees differ: tip counts and crown widths vary across the avenue. */
     int distinct = 0;
     for (uint32_t i = 1; i < n; i++) {
-        banyan_keyaki_statistics a, b;
-        banyan_keyaki_stats(&t[i - 1], &a, NULL);
-        banyan_keyaki_stats(&t[i], &b, NULL);
+        banyan_keyaki_stats a, b;
+        banyan_keyaki_skeleton_stats(&t[i - 1], &a, NULL);
+        banyan_keyaki_skeleton_stats(&t[i], &b, NULL);
         distinct += a.crown_width != b.crown_width || a.tip_count != b.tip_count;
     }
     CHECK(distinct == (int)n - 1, "only %d of %u neighbours differ", distinct, n - 1);
@@ -278,7 +289,8 @@ static void merged(const char *outdir) {
     /* Another base seed, another avenue. */
     p.seed++;
     banyan_mesh *other = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &other, NULL, &err) == BANYAN_OK, "seed+1");
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &other, NULL, &err) == BANYAN_OK, "seed+1");
     CHECK(other && banyan_mesh_hash(other) != h, "base seed does not change the avenue");
     banyan_mesh_free(other);
 
@@ -375,8 +387,10 @@ static void size_and_lean(void) {
     CHECK(dirs > 2 && dirs < (int)n - 2, "lean directions one-sided: %d of %u positive", dirs, n);
     /* Heights spread: more than without the jitters, and by at least 5 %. */
     banyan_mesh *m = NULL, *m0 = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
-    CHECK(banyan_avenue_generate(&q, NULL, 0, 2, &m0, NULL, &err) == BANYAN_OK, "avenue without: %s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    q.threads = 2;
+    CHECK(banyan_avenue_generate(&q, NULL, 0, &m0, NULL, &err) == BANYAN_OK, "avenue without: %s", err.message);
     if (m && m0) {
         double cv = height_cv(m, n), cv0 = height_cv(m0, n);
         CHECK(cv >= 0.05 && cv > cv0, "tree heights vary by %.3f (sd / mean), %.3f without scale_jitter", cv, cv0);
@@ -405,7 +419,8 @@ static void preset(const char *path, const char *name, void *ctx) {
     CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n > 0 && (!want || n == want),
           "%s: %u trees", name, n);
     banyan_mesh *m = NULL;
-    if (!s) s = banyan_avenue_generate(&p, NULL, 0, 0, &m, NULL, &err);
+    p.threads = 0;
+    if (!s) s = banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err);
     /* Bark and leaves per tree (per variant when instanced, each variant
      * shown by at least one tree); bark only in winter. */
     uint32_t shown = p.variants > 0 && (uint32_t)p.variants < n ? (uint32_t)p.variants : n;

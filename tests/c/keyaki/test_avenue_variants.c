@@ -71,9 +71,10 @@ static void placements(void) {
     small(&p);
     banyan_error err;
     banyan_mesh *uni = NULL, *ins = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &uni, NULL, &err) == BANYAN_OK, "unique: %s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &uni, NULL, &err) == BANYAN_OK, "unique: %s", err.message);
     p.variants = 3;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &ins, NULL, &err) == BANYAN_OK, "variants: %s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &ins, NULL, &err) == BANYAN_OK, "variants: %s", err.message);
     banyan_keyaki_params trees[8];
     uint32_t n = 0;
     CHECK(banyan_avenue_layout(&p, NULL, 0, trees, 8, &n, &err) == BANYAN_OK && n == 8, "layout: %u trees", n);
@@ -154,7 +155,8 @@ static void placements(void) {
 
     /* The same bytes on 1 thread. */
     banyan_mesh *one = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &one, NULL, &err) == BANYAN_OK, "1 thread: %s", err.message);
+    p.threads = 1;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &one, NULL, &err) == BANYAN_OK, "1 thread: %s", err.message);
     CHECK(one && banyan_mesh_hash(one) == banyan_mesh_hash(ins), "1 and 2 threads differ");
     banyan_mesh_free(one);
 
@@ -179,7 +181,8 @@ static void counts(void) {
     p.variants = 50;
     banyan_error err;
     banyan_mesh *m = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_OK, "%s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_OK, "%s", err.message);
     if (m) {
         uint32_t top = 0, own = 0;
         for (uint32_t q = 0; q < m->part_count; q++)
@@ -199,7 +202,7 @@ static void counts(void) {
     CHECK(banyan_avenue_layout(&p, NULL, 0, NULL, 0, &n, &err) == BANYAN_OK && n == 200, "layout: %u", n);
     p.tree.levels = 4; /* the draws, not the trees, are tested */
     m = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_OK, "%s", err.message);
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_OK, "%s", err.message);
     if (m) {
         uint32_t used[4] = {0, 0, 0, 0}, cycle = 0;
         for (uint32_t i = 0; i < m->instance_count; i++) {
@@ -234,30 +237,33 @@ static void refusals(void) {
     banyan_error err;
     banyan_mesh *m = (banyan_mesh *)&err; /* must come back NULL */
     p.variants = -1;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
+    p.threads = 1;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
               strstr(err.message, "variants"),
           "variants -1: %s", err.message);
     p.variants = BANYAN_AVENUE_MAX_VARIANTS + 1;
     m = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
               strstr(err.message, "variants"),
           "variants 4097: %s", err.message);
     p.variants = 4;
     m = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, BANYAN_AVENUE_MAX_THREADS + 1, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
+    p.threads = BANYAN_AVENUE_MAX_THREADS + 1;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_E_RANGE && !m &&
               strstr(err.message, "threads"),
           "threads: %s", err.message);
     /* The vertices of the variants, not of the instances, meet max_vertices. */
     p.max_vertices = 20000;
     m = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_E_LIMIT && !m &&
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_E_LIMIT && !m &&
               strstr(err.message, "max_vertices"),
           "max_vertices: %s", err.message);
     p.max_vertices = 32000000;
     p.max_seconds = 0.01;
     p.tree.levels = 16;
     m = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err) == BANYAN_E_LIMIT && !m &&
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err) == BANYAN_E_LIMIT && !m &&
               strstr(err.message, "max_seconds"),
           "max_seconds: %s", err.message);
     p.max_seconds = 600;
@@ -265,7 +271,7 @@ static void refusals(void) {
     p.max_memory_mb = 16;
     p.variants = 8;
     m = (banyan_mesh *)&err;
-    banyan_status s = banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &err);
+    banyan_status s = banyan_avenue_generate(&p, NULL, 0, &m, NULL, &err);
     CHECK(s == BANYAN_E_LIMIT && !m && strstr(err.message, "max_memory_mb"), "max_memory_mb 16: %d %s", s, err.message);
     p.max_memory_mb = 8192;
     p.tree.levels = 10;
@@ -273,13 +279,13 @@ static void refusals(void) {
     double last = 0;
     banyan_progress pr = {note, &last};
     m = NULL;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, &pr, &err) == BANYAN_OK && last == 1.0, "progress ended at %g: %s",
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, &pr, &err) == BANYAN_OK && last == 1.0, "progress ended at %g: %s",
           last, err.message);
     banyan_mesh_free(m);
     last = 0;
     pr.fn = cancel_at_half;
     m = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, &pr, &err) == BANYAN_E_CANCELLED && !m && last <= 1,
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, &pr, &err) == BANYAN_E_CANCELLED && !m && last <= 1,
           "cancel: %s", err.message);
 }
 

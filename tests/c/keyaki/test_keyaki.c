@@ -5,8 +5,9 @@
  * tilt and none at a break, the strong child upper, rule 2 planes, energy
  * lengths and the stop threshold); Strahler ordering on hand-built
  * skeletons with known answers; determinism and variety; crack-free fork
- * starts; bad input refused with a clear message; presets load; glb files
- * for the validator. */
+ * starts; bad input refused with a clear message; the stats of
+ * banyan_keyaki_generate are banyan_keyaki_skeleton_stats' for the same
+ * params (zeroed on failure); presets load; glb files for the validator. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -194,7 +195,7 @@ static int32_t hnode(hand *h, int32_t parent) {
 }
 
 static void check_strahler(hand *h, const char *name, int K, const int *N, int trunk_order) {
-    banyan_keyaki_statistics st;
+    banyan_keyaki_stats st;
     CHECK(keyaki_strahler(h->n, h->count) == BANYAN_OK, "%s: strahler refused", name);
     keyaki_measure(h->n, h->count, v3_make(0, 0, 0), &st);
     CHECK(st.max_order == K && h->n[0].order == trunk_order, "%s: K %d (want %d), trunk %d", name, st.max_order, K,
@@ -311,12 +312,12 @@ static void strahler_grown(void) {
             continue;
         }
         for (int32_t i = 0; i < sk.count; i += 7) bad += rec_order(sk.nodes, i) != sk.nodes[i].order;
-        banyan_keyaki_statistics st, st2;
+        banyan_keyaki_stats st, st2;
         keyaki_measure(sk.nodes, sk.count, v3_load(p.position), &st);
         /* Stream counts from scratch: every tip starts an order-1 stream... */
         bad += st.stream_count[0] != st.tip_count;
         /* ...and the public call agrees with the internal pipeline. */
-        bad += banyan_keyaki_stats(&p, &st2, NULL) != BANYAN_OK || memcmp(&st, &st2, sizeof st) != 0;
+        bad += banyan_keyaki_skeleton_stats(&p, &st2, NULL) != BANYAN_OK || memcmp(&st, &st2, sizeof st) != 0;
     }
     keyaki_skeleton_free(&sk);
     CHECK(bad == 0, "%d Strahler disagreements on grown trees", bad);
@@ -449,7 +450,7 @@ static void preset(const char *path, const char *name, void *ctx) {
     banyan_status s = test_load_preset(BANYAN_GEN_KEYAKI, &p, path, NULL, 0, NULL, &err);
     CHECK(s == BANYAN_OK, "%s: %s", path, err.message);
     banyan_mesh *m = NULL;
-    if (!s) s = banyan_keyaki_generate(&p, &m, &err);
+    if (!s) s = banyan_keyaki_generate(&p, &m, NULL, NULL, &err);
     CHECK(s == BANYAN_OK && m, "%s: generate: %s", name, err.message);
     if (m) {
         /* Segment twigs carry their own levels; test_keyaki_twigs checks them. */
@@ -469,11 +470,13 @@ static void presets(const char *outdir) {
 static void refuse(banyan_keyaki_params *p, banyan_status want, const char *needle, const char *what) {
     banyan_error err = {0, ""};
     banyan_mesh *m = (banyan_mesh *)&err; /* must come back NULL */
-    banyan_status s = banyan_keyaki_generate(p, &m, &err);
+    banyan_keyaki_stats st;
+    memset(&st, 0xff, sizeof st);
+    banyan_status s = banyan_keyaki_generate(p, &m, &st, NULL, &err);
     CHECK(s == want && m == NULL && strstr(err.message, needle), "%s: status %d (want %d), message '%s'", what, s, want,
           err.message);
-    banyan_keyaki_statistics st;
-    s = banyan_keyaki_stats(p, &st, &err);
+    CHECK(st.node_count == 0 && st.height == 0 && st.stream_count[0] == 0, "%s: stats not zeroed on failure", what);
+    s = banyan_keyaki_skeleton_stats(p, &st, &err);
     if (want != BANYAN_E_LIMIT || strstr(needle, "max_vertices") == NULL)
         CHECK(s == want && strstr(err.message, needle), "%s (stats): status %d, '%s'", what, s, err.message);
     banyan_keyaki_params_init(p);
@@ -513,15 +516,47 @@ static void bad_input(void) {
     p.max_nodes = 50;
     refuse(&p, BANYAN_E_LIMIT, "max_nodes = 50", "node limit");
     banyan_error err;
-    CHECK(banyan_keyaki_generate(NULL, &(banyan_mesh *){NULL}, &err) == BANYAN_E_INVALID_ARG, "NULL params");
-    CHECK(banyan_keyaki_generate(&p, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
-    CHECK(banyan_keyaki_stats(&p, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL stats out");
+    CHECK(banyan_keyaki_generate(NULL, &(banyan_mesh *){NULL}, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL params");
+    CHECK(banyan_keyaki_generate(&p, NULL, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out");
+    CHECK(banyan_keyaki_skeleton_stats(&p, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL stats out");
     /* The table refuses the same through --set. */
     CHECK(banyan_param_set_text(BANYAN_GEN_KEYAKI, &p, "alpha", "1", &err) == BANYAN_E_RANGE, "set alpha=1");
     CHECK(banyan_param_set_text(BANYAN_GEN_KEYAKI, &p, "model", "edaore", &err) == BANYAN_OK &&
               banyan_param_set_text(BANYAN_GEN_KEYAKI, &p, "distribution", "normal", &err) == BANYAN_OK &&
               p.distribution == BANYAN_KEYAKI_NORMAL,
           "set enums");
+}
+
+/* The stats of banyan_keyaki_generate, byte for byte those of
+ * banyan_keyaki_skeleton_stats for the same params: every model, first
+ * branching, lean, twigs from segments, a tree far from the origin (its
+ * own frame) and small trees. */
+static void generate_stats_match(void) {
+    for (int v = 0; v < 8; v++) {
+        banyan_keyaki_params p;
+        banyan_keyaki_params_init(&p);
+        p.seed = 31 + (uint64_t)v;
+        p.model = v % 4;
+        p.levels = p.model == BANYAN_KEYAKI_SIMPLE ? 7 : 13;
+        p.leaf_density = 4;
+        if (v == 4) p.limbs = 4, p.lean = 12, p.lean_direction = 40, p.heading = 70;
+        if (v == 5) p.twigs_from_segments = 1, p.segment_levels = 3;
+        if (v == 6) p.position[0] = 123456.75, p.position[1] = -50000.5, p.position[2] = 9000.25, p.unit = 0.7;
+        if (v == 7) p.levels = 1, p.leaves = 0;
+        banyan_keyaki_stats a, b;
+        memset(&a, 0xff, sizeof a);
+        banyan_mesh *m = NULL;
+        banyan_error err = {0, ""};
+        CHECK(banyan_keyaki_generate(&p, &m, &a, NULL, &err) == BANYAN_OK && m, "variant %d: %s", v, err.message);
+        CHECK(banyan_keyaki_skeleton_stats(&p, &b, &err) == BANYAN_OK, "variant %d stats: %s", v, err.message);
+        CHECK(!memcmp(&a, &b, sizeof a), "variant %d: generate's stats differ from the skeleton's (%d / %d branches, "
+              "height %.17g / %.17g)", v, a.node_count, b.node_count, a.height, b.height);
+        CHECK(a.node_count >= 1 && a.max_order >= 1, "variant %d: %d branches, order %d", v, a.node_count, a.max_order);
+        /* The mesh's skeleton has one edge per branch of the measured skeleton. */
+        if (m) CHECK(m->skel_edge_count >= (uint32_t)a.node_count, "variant %d: %u skeleton edges, %d branches", v,
+                     m->skel_edge_count, a.node_count);
+        banyan_mesh_free(m);
+    }
 }
 
 /* ------------------------------------------------ determinism, variety */
@@ -549,7 +584,7 @@ static void threads_same_mesh(void) {
             banyan_mesh *m = NULL;
             banyan_error err = {0, ""};
             p.threads = threads[t];
-            CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "threads %d: %s", threads[t], err.message);
+            CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "threads %d: %s", threads[t], err.message);
             if (m) h[t] = banyan_mesh_hash(m);
             if (m && t == 0 && v == 0) CHECK(m->part_count == 2 && m->parts[1].vertex_count > 4 * 8192 * 2,
                                            "variant %d: too few leaves to split (%u parts)", v, m->part_count);
@@ -565,10 +600,10 @@ static void determinism_variety(void) {
     banyan_keyaki_params_init(&p);
     p.seed = 42;
     banyan_mesh *a = NULL, *b = NULL, *c = NULL;
-    CHECK(banyan_keyaki_generate(&p, &a, NULL) == BANYAN_OK, "gen a");
-    CHECK(banyan_keyaki_generate(&p, &b, NULL) == BANYAN_OK, "gen b");
+    CHECK(banyan_keyaki_generate(&p, &a, NULL, NULL, NULL) == BANYAN_OK, "gen a");
+    CHECK(banyan_keyaki_generate(&p, &b, NULL, NULL, NULL) == BANYAN_OK, "gen b");
     p.seed = 43;
-    CHECK(banyan_keyaki_generate(&p, &c, NULL) == BANYAN_OK, "gen c");
+    CHECK(banyan_keyaki_generate(&p, &c, NULL, NULL, NULL) == BANYAN_OK, "gen c");
     if (a && b && c) {
         CHECK(banyan_mesh_hash(a) == banyan_mesh_hash(b), "same seed, different bytes");
         CHECK(banyan_mesh_hash(a) != banyan_mesh_hash(c), "different seeds, same bytes");
@@ -589,8 +624,8 @@ static void determinism_variety(void) {
             q.model = model;
             if (model == BANYAN_KEYAKI_SIMPLE) q.levels = 6;
             q.seed = 5000 + (uint64_t)s;
-            banyan_keyaki_statistics st;
-            CHECK(banyan_keyaki_stats(&q, &st, NULL) == BANYAN_OK, "stats");
+            banyan_keyaki_stats st;
+            CHECK(banyan_keyaki_skeleton_stats(&q, &st, NULL) == BANYAN_OK, "stats");
             tips[s] = st.tip_count;
             width[s] = st.crown_width;
             /* Consecutive seeds give different skeletons. */
@@ -667,9 +702,9 @@ static void unit_scales(void) {
     p.leaf_levels = 0;
     p.bark_flake_radius = 0;
     banyan_mesh *a = NULL, *b = NULL;
-    banyan_keyaki_generate(&p, &a, NULL);
+    banyan_keyaki_generate(&p, &a, NULL, NULL, NULL);
     p.unit = 2.5;
-    banyan_keyaki_generate(&p, &b, NULL);
+    banyan_keyaki_generate(&p, &b, NULL, NULL, NULL);
     CHECK(a && b && a->vertex_count == b->vertex_count && a->index_count == b->index_count, "unit changes the counts");
     int bad = 0;
     for (uint32_t i = 0; a && b && a->vertex_count == b->vertex_count && i < 3 * a->vertex_count; i++)
@@ -699,6 +734,7 @@ int main(int argc, char **argv) {
     for (int m = 0; m < 4; m++)
         for (uint64_t s = 1; s <= 6; s++) crack_free(s * 101, m);
     bad_input();
+    generate_stats_match();
     determinism_variety();
     threads_same_mesh();
     presets(outdir);

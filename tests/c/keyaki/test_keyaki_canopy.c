@@ -58,9 +58,9 @@ static void strahler_unchanged(void) {
     for (size_t k = 0; k < sizeof STRAHLER / sizeof STRAHLER[0]; k++) {
         const strahler_row *w = &STRAHLER[k];
         banyan_keyaki_params p;
-        banyan_keyaki_statistics s;
+        banyan_keyaki_stats s;
         banyan_error err = {0, ""};
-        int ok = keyaki_canopy_preset(w->preset, &p, &err) && banyan_keyaki_stats(&p, &s, &err) == BANYAN_OK;
+        int ok = keyaki_canopy_preset(w->preset, &p, &err) && banyan_keyaki_skeleton_stats(&p, &s, &err) == BANYAN_OK;
         CHECK(ok, "%s: %s", w->preset, err.message);
         if (!ok) continue;
         int same = s.node_count == w->nodes && s.tip_count == w->tips && s.fork_count == w->forks &&

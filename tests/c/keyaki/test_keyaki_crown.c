@@ -196,9 +196,9 @@ static void preset_seeds(const char *name) {
         CHECK(keyaki_count(&p, &sk, &cn, NULL) == BANYAN_OK, "%s seed %d: counts", name, (int)seed);
         banyan_mesh *m1 = NULL, *m2 = NULL;
         banyan_error err = {0};
-        CHECK(banyan_keyaki_generate(&p, &m1, &err) == BANYAN_OK, "%s seed %d: generate: %s", name, (int)seed,
+        CHECK(banyan_keyaki_generate(&p, &m1, NULL, NULL, &err) == BANYAN_OK, "%s seed %d: generate: %s", name, (int)seed,
               err.message);
-        CHECK(banyan_keyaki_generate(&p, &m2, &err) == BANYAN_OK, "%s seed %d: generate again", name, (int)seed);
+        CHECK(banyan_keyaki_generate(&p, &m2, NULL, NULL, &err) == BANYAN_OK, "%s seed %d: generate again", name, (int)seed);
         if (m1 && m2) {
             CHECK(m1->vertex_count == cn.vertices && m1->index_count == cn.indices, "%s seed %d: plan %u/%u mesh %u/%u",
                   name, (int)seed, cn.vertices, cn.indices, m1->vertex_count, m1->index_count);
@@ -226,11 +226,11 @@ static void preset_seeds(const char *name) {
 static void skeleton_untouched(void) {
     banyan_keyaki_params p;
     if (!load("keyaki_mature", &p)) return;
-    banyan_keyaki_statistics a, b;
+    banyan_keyaki_stats a, b;
     p.light = 1;
-    CHECK(banyan_keyaki_stats(&p, &a, NULL) == BANYAN_OK, "stats");
+    CHECK(banyan_keyaki_skeleton_stats(&p, &a, NULL) == BANYAN_OK, "stats");
     p.light = 0;
-    CHECK(banyan_keyaki_stats(&p, &b, NULL) == BANYAN_OK, "stats");
+    CHECK(banyan_keyaki_skeleton_stats(&p, &b, NULL) == BANYAN_OK, "stats");
     CHECK(!memcmp(&a, &b, sizeof a), "skeleton statistics the same with light on and off");
 }
 
@@ -263,7 +263,7 @@ static void refused(void) {
     p.twig_spacing = 0.005, p.twig_levels = 3, p.twig_length = 5, p.leaf_density = 1000;
     banyan_mesh *m = NULL;
     banyan_error err = {0};
-    banyan_status s = banyan_keyaki_generate(&p, &m, &err);
+    banyan_status s = banyan_keyaki_generate(&p, &m, NULL, NULL, &err);
     CHECK(s == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"), "absurd twigs refused: %d %s", s,
           err.message);
 }
@@ -292,7 +292,7 @@ static void tiny_density(void) {
             if (path == 2) p.twigs_from_segments = 1;
             banyan_mesh *m = NULL;
             banyan_error err = {0};
-            banyan_status s = banyan_keyaki_generate(&p, &m, &err);
+            banyan_status s = banyan_keyaki_generate(&p, &m, NULL, NULL, &err);
             CHECK(s == BANYAN_OK, "path %d, leaf_density %g: %s", path, densities[k], err.message);
             if (s) continue;
             CHECK(mesh_finite(m), "path %d, leaf_density %g: every position, normal and uv finite", path,
@@ -310,7 +310,8 @@ static void tiny_density(void) {
     a.count = 2;
     banyan_mesh *m = NULL;
     banyan_error err = {0};
-    banyan_status s = banyan_avenue_generate(&a, NULL, 0, 1, &m, NULL, &err);
+    a.threads = 1;
+    banyan_status s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &err);
     CHECK(s == BANYAN_OK && mesh_finite(m), "avenue, tree.leaf_density 1e-317: %s", err.message);
     banyan_mesh_free(m);
 }

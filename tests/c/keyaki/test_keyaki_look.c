@@ -111,8 +111,8 @@ static void body_keeps_skeleton(const char *name) {
         q.leaves = 0;
         q.flare = 0;
         q.leaf_levels = 0;
-        banyan_keyaki_statistics a, b;
-        CHECK(banyan_keyaki_stats(&p, &a, NULL) == BANYAN_OK && banyan_keyaki_stats(&q, &b, NULL) == BANYAN_OK,
+        banyan_keyaki_stats a, b;
+        CHECK(banyan_keyaki_skeleton_stats(&p, &a, NULL) == BANYAN_OK && banyan_keyaki_skeleton_stats(&q, &b, NULL) == BANYAN_OK,
               "%s: stats", name);
         CHECK(memcmp(&a, &b, sizeof a) == 0, "%s seed %d: the body changed the skeleton's statistics", name,
               (int)seed);
@@ -157,7 +157,7 @@ static void limb_statistics(void) {
         for (int32_t i = 1; i < sk.count && sub && map; i++) {
             if ((sk.nodes[i].flags & KN_TRUNK) || sk.nodes[i].level != 0) continue;
             int32_t m = subtree(sk.nodes, sk.count, i, sub, map);
-            banyan_keyaki_statistics st;
+            banyan_keyaki_stats st;
             CHECK(keyaki_strahler(sub, m) == BANYAN_OK, "strahler");
             keyaki_measure(sub, m, sub[0].start, &st);
             limb_r += st.mean_bifurcation_ratio;
@@ -173,8 +173,8 @@ static void limb_statistics(void) {
             banyan_keyaki_params q = p;
             q.limbs = 1;
             q.seed = seed * 100 + s2;
-            banyan_keyaki_statistics st;
-            CHECK(banyan_keyaki_stats(&q, &st, NULL) == BANYAN_OK, "stats");
+            banyan_keyaki_stats st;
+            CHECK(banyan_keyaki_skeleton_stats(&q, &st, NULL) == BANYAN_OK, "stats");
             tree_r += st.mean_bifurcation_ratio;
             tree_tips += st.tip_count;
             nt++;

@@ -284,10 +284,10 @@ static void same_bytes(void) {
     banyan_keyaki_params_init(&p);
     p.seed = 5;
     banyan_mesh *a = NULL, *b = NULL, *c = NULL;
-    CHECK(banyan_keyaki_generate(&p, &a, NULL) == BANYAN_OK, "gen a");
-    CHECK(banyan_keyaki_generate(&p, &b, NULL) == BANYAN_OK, "gen b");
+    CHECK(banyan_keyaki_generate(&p, &a, NULL, NULL, NULL) == BANYAN_OK, "gen a");
+    CHECK(banyan_keyaki_generate(&p, &b, NULL, NULL, NULL) == BANYAN_OK, "gen b");
     p.flare_lobes = 6;
-    CHECK(banyan_keyaki_generate(&p, &c, NULL) == BANYAN_OK, "gen c");
+    CHECK(banyan_keyaki_generate(&p, &c, NULL, NULL, NULL) == BANYAN_OK, "gen c");
     if (a && b && c) {
         CHECK(banyan_mesh_hash(a) == banyan_mesh_hash(b), "same seed, different bytes");
         CHECK(banyan_mesh_hash(a) != banyan_mesh_hash(c), "flare_lobes changes nothing");

@@ -130,7 +130,7 @@ static void budget(void) {
     p.segment_depth = 6;
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "budget tree: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "budget tree: %s", err.message);
     banyan_mesh_free(m);
     /* 2 + 40 vertices, then forks until the budget: (128 - 42) / 4 = 21 of them. */
     CHECK(banyan_segment_vertex_count(20, 6) == 42 + 4 * 21, "20 twigs, depth 6: %d vertices",
@@ -143,7 +143,7 @@ static void mesh_checks(uint64_t seed, int model) {
     banyan_keyaki_params p = twig_params(seed, model);
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    if (banyan_keyaki_generate(&p, &m, &err)) {
+    if (banyan_keyaki_generate(&p, &m, NULL, NULL, &err)) {
         CHECK(0, "generate seed %llu: %s", (unsigned long long)seed, err.message);
         return;
     }
@@ -246,9 +246,9 @@ static void determinism(void) {
     banyan_keyaki_params p = twig_params(77, BANYAN_KEYAKI_EDAORE), q = p;
     q.twigs_from_segments = 0;
     banyan_mesh *a = NULL, *b = NULL, *c = NULL;
-    banyan_keyaki_generate(&p, &a, NULL);
-    banyan_keyaki_generate(&p, &b, NULL);
-    banyan_keyaki_generate(&q, &c, NULL);
+    banyan_keyaki_generate(&p, &a, NULL, NULL, NULL);
+    banyan_keyaki_generate(&p, &b, NULL, NULL, NULL);
+    banyan_keyaki_generate(&q, &c, NULL, NULL, NULL);
     CHECK(same_mesh(a, b), "same seed, different bytes");
     CHECK(a && c && !same_mesh(a, c), "the flag changes nothing");
     banyan_mesh_free(a);
@@ -277,8 +277,10 @@ static void avenue(const char *outdir) {
     a.count = 3;
     a.tree.levels = 15;
     banyan_mesh *m1 = NULL, *m2 = NULL;
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 2, &m2, NULL, &err) == BANYAN_OK, "avenue 2 threads: %s", err.message);
+    a.threads = 1;
+    CHECK(banyan_avenue_generate(&a, NULL, 0, &m1, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    a.threads = 2;
+    CHECK(banyan_avenue_generate(&a, NULL, 0, &m2, NULL, &err) == BANYAN_OK, "avenue 2 threads: %s", err.message);
     CHECK(same_mesh(m1, m2), "avenue differs between 1 and 2 threads");
     const float *ord = m1 ? banyan_mesh_attribute(m1, "order") : NULL;
     uint32_t zero = 0;
@@ -289,7 +291,8 @@ static void avenue(const char *outdir) {
     banyan_mesh_free(m2);
     a.tree.segment_levels = a.tree.levels;
     m1 = (banyan_mesh *)&err;
-    CHECK(banyan_avenue_generate(&a, NULL, 0, 1, &m1, NULL, &err) == BANYAN_E_RANGE && !m1 && strstr(err.message, "segment_levels"),
+    a.threads = 1;
+    CHECK(banyan_avenue_generate(&a, NULL, 0, &m1, NULL, &err) == BANYAN_E_RANGE && !m1 && strstr(err.message, "segment_levels"),
           "avenue segment_levels = levels: '%s'", err.message);
 }
 
@@ -322,7 +325,7 @@ static void bad_input(void) {
         }
         banyan_error err = {0, ""};
         banyan_mesh *m = (banyan_mesh *)&err;
-        banyan_status s = banyan_keyaki_generate(&p, &m, &err);
+        banyan_status s = banyan_keyaki_generate(&p, &m, NULL, NULL, &err);
         CHECK(s == BANYAN_E_RANGE && m == NULL && strstr(err.message, cases[c].needle), "case %zu: %d '%s'", c, s,
               err.message);
     }
@@ -331,13 +334,13 @@ static void bad_input(void) {
     p.max_vertices = 20000;
     banyan_error err = {0, ""};
     banyan_mesh *m = (banyan_mesh *)&err;
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_E_LIMIT && m == NULL, "max_vertices: '%s'", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_E_LIMIT && m == NULL, "max_vertices: '%s'", err.message);
     /* segment_levels must be < levels only with the flag on. */
     p = twig_params(1, BANYAN_KEYAKI_EDAORE);
     p.twigs_from_segments = 0;
     p.levels = 3;
     m = NULL;
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "flag off, segment_levels 4 > levels 3: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "flag off, segment_levels 4 > levels 3: %s", err.message);
     banyan_mesh_free(m);
 }
 
@@ -350,7 +353,7 @@ static void preset(const char *outdir) {
     banyan_status s = test_load_preset(BANYAN_GEN_KEYAKI, &p, path, NULL, 0, NULL, &err);
     CHECK(s == BANYAN_OK && p.twigs_from_segments, "%s: %s", path, err.message);
     banyan_mesh *m = NULL;
-    if (!s) s = banyan_keyaki_generate(&p, &m, &err);
+    if (!s) s = banyan_keyaki_generate(&p, &m, NULL, NULL, &err);
     CHECK(s == BANYAN_OK && m, "preset generate: %s", err.message);
     write_glb(outdir, "keyaki_segment_twigs", m);
     banyan_mesh_free(m);

@@ -109,20 +109,20 @@ static banyan_status call_roots_stats(const void *p, int *out_ok, banyan_error *
 }
 static banyan_status call_keyaki(const void *p, int *out_ok, banyan_error *e) {
     banyan_mesh *m = SENTINEL;
-    banyan_status s = banyan_keyaki_generate(p, &m, e);
+    banyan_status s = banyan_keyaki_generate(p, &m, NULL, NULL, e);
     *out_ok = mesh_out_ok(m, s);
     return s;
 }
 static banyan_status call_keyaki_stats(const void *p, int *out_ok, banyan_error *e) {
-    banyan_keyaki_statistics st;
+    banyan_keyaki_stats st;
     memset(&st, 0xff, sizeof st);
-    banyan_status s = banyan_keyaki_stats(p, &st, e);
+    banyan_status s = banyan_keyaki_skeleton_stats(p, &st, e);
     *out_ok = s == BANYAN_OK || st.node_count == 0;
     return s;
 }
 static banyan_status call_avenue(const void *p, int *out_ok, banyan_error *e) {
     banyan_mesh *m = SENTINEL;
-    banyan_status s = banyan_avenue_generate(p, NULL, 0, 2, &m, NULL, e);
+    banyan_status s = banyan_avenue_generate(p, NULL, 0, &m, NULL, e);
     *out_ok = mesh_out_ok(m, s);
     return s;
 }
@@ -193,7 +193,7 @@ static const gen_entries generators[] = {
     {BANYAN_GEN_ROOTS, init_roots, sizeof(banyan_roots_params),
      {{"banyan_roots_generate", call_roots}, {"banyan_roots_generate_stats", call_roots_stats}}},
     {BANYAN_GEN_KEYAKI, init_keyaki, sizeof(banyan_keyaki_params),
-     {{"banyan_keyaki_generate", call_keyaki}, {"banyan_keyaki_stats", call_keyaki_stats}}},
+     {{"banyan_keyaki_generate", call_keyaki}, {"banyan_keyaki_skeleton_stats", call_keyaki_stats}}},
     {BANYAN_GEN_AVENUE, init_avenue, sizeof(banyan_avenue_params),
      {{"banyan_avenue_generate", call_avenue}, {"banyan_avenue_layout", call_avenue_layout}}},
     {BANYAN_GEN_IVY, init_ivy, sizeof(banyan_ivy_params),
@@ -458,25 +458,25 @@ static void limit_cases(void) {
     banyan_keyaki_params_init(&kp);
     kp.max_vertices = 1;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "limit", "max_vertices = 1", BANYAN_E_LIMIT, "max_vertices",
-             banyan_keyaki_generate(&kp, &m, &e));
+             banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
     banyan_keyaki_params_init(&kp);
     kp.max_nodes = 10;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "limit", "max_nodes = 10", BANYAN_E_LIMIT, "max_nodes",
-             banyan_keyaki_generate(&kp, &m, &e));
+             banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
     banyan_keyaki_params_init(&kp);
     kp.model = BANYAN_KEYAKI_SIMPLE, kp.levels = 30;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "limit", "model simple, levels 30 (2^31 branches)", BANYAN_E_LIMIT,
-             "max_nodes", banyan_keyaki_generate(&kp, &m, &e));
+             "max_nodes", banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
 
     banyan_avenue_params ap;
     banyan_avenue_params_init(&ap);
     ap.placement = BANYAN_AVENUE_COUNT, ap.count = 5000, ap.max_vertices = 1000;
     RUN_MESH("avenue", "banyan_avenue_generate", "limit", "10000 trees, max_vertices = 1000", BANYAN_E_LIMIT,
-             "max_vertices", banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e));
+             "max_vertices", banyan_avenue_generate(&ap, NULL, 0, &m, NULL, &e));
     banyan_avenue_params_init(&ap);
     ap.spacing = 0.1, ap.end[0] = 1000;
     RUN_MESH("avenue", "banyan_avenue_generate", "above cap", "spacing 0.1 m on 1 km (20002 trees)", BANYAN_E_LIMIT,
-             "trees", banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e));
+             "trees", banyan_avenue_generate(&ap, NULL, 0, &m, NULL, &e));
 
     banyan_ivy_params ip;
     banyan_ivy_params_init(&ip);
@@ -524,18 +524,18 @@ static void null_cases(void) {
     RUN("roots", "banyan_roots_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
         banyan_roots_generate(&rp, &h, 1, NULL, &e), 1);
     RUN_MESH("keyaki", "banyan_keyaki_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_keyaki_generate(NULL, &m, &e));
+             banyan_keyaki_generate(NULL, &m, NULL, NULL, &e));
     RUN("keyaki", "banyan_keyaki_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_keyaki_generate(&kp, NULL, &e), 1);
-    RUN("keyaki", "banyan_keyaki_stats", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_keyaki_stats(&kp, NULL, &e), 1);
-    banyan_keyaki_statistics kst;
-    RUN("keyaki", "banyan_keyaki_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-        banyan_keyaki_stats(NULL, &kst, &e), 1);
+        banyan_keyaki_generate(&kp, NULL, NULL, NULL, &e), 1);
+    RUN("keyaki", "banyan_keyaki_skeleton_stats", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
+        banyan_keyaki_skeleton_stats(&kp, NULL, &e), 1);
+    banyan_keyaki_stats kst;
+    RUN("keyaki", "banyan_keyaki_skeleton_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
+        banyan_keyaki_skeleton_stats(NULL, &kst, &e), 1);
     RUN_MESH("avenue", "banyan_avenue_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_avenue_generate(NULL, NULL, 0, 1, &m, NULL, &e));
+             banyan_avenue_generate(NULL, NULL, 0, &m, NULL, &e));
     RUN("avenue", "banyan_avenue_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_avenue_generate(&ap, NULL, 0, 1, NULL, NULL, &e), 1);
+        banyan_avenue_generate(&ap, NULL, 0, NULL, NULL, &e), 1);
     uint32_t n = 0;
     RUN("avenue", "banyan_avenue_layout", "NULL", "tree_count = NULL", BANYAN_E_INVALID_ARG, "tree_count",
         banyan_avenue_layout(&ap, NULL, 0, NULL, 0, NULL, &e), 1);
@@ -568,7 +568,7 @@ static void null_cases(void) {
     RUN_MESH("ivy", "banyan_ivy_generate_hosts_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
              banyan_ivy_generate_hosts_stats(NULL, hs, &m, &ist, NULL, &e));
     RUN_MESH("avenue", "banyan_avenue_generate", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
-             banyan_avenue_generate(&ap, NULL, 0, 1, &m, &no_fn, &e));
+             banyan_avenue_generate(&ap, NULL, 0, &m, &no_fn, &e));
     banyan_hosts_free(hs);
     RUN_MESH("segments", "banyan_segments_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
              banyan_segments_generate(NULL, demo_segs, 2, NULL, &m, NULL, NULL, &e));
@@ -706,7 +706,7 @@ static void null_cases(void) {
         banyan_gltf_options_init(&go);
         int32_t keep_t = tube->materials[0].texture;
         tube->materials[0].texture = BANYAN_TEX_COUNT;
-        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].texture = 5", BANYAN_E_RANGE,
+        RUN("common", "banyan_gltf_write_ex", "above range", "materials[0].texture = 6", BANYAN_E_RANGE,
             "materials[0].texture", banyan_gltf_write_ex("x.glb", &one, NULL, 1, &go, &e), 1);
         tube->materials[0].texture = keep_t;
         tube->materials[0].season = 2;
@@ -756,7 +756,7 @@ static void input_cases(void) {
     memcpy(bad, path, sizeof bad);                                                                   \
     expr;                                                                                            \
     RUN_MESH("avenue", "banyan_avenue_generate", klass, text, want, needle,                          \
-             banyan_avenue_generate(&ap, bad, count, 1, &m, NULL, &e))
+             banyan_avenue_generate(&ap, bad, count, &m, NULL, &e))
     AV("NaN", "path point 1 = (NaN, 0, 0)", bad[3] = NAN, 3, BANYAN_E_RANGE, "path point 1");
     AV("inf", "path point 2 z = inf", bad[8] = INFINITY, 3, BANYAN_E_RANGE, "path point 2");
     AV("above range", "path point 0 x = 1e7", bad[0] = 1e7, 3, BANYAN_E_RANGE, "path point 0");
@@ -768,15 +768,18 @@ static void input_cases(void) {
     banyan_avenue_params z = ap;
     memcpy(z.end, z.start, sizeof z.end);
     RUN_MESH("avenue", "banyan_avenue_generate", "zero", "start = end (no path)", BANYAN_E_RANGE, "start and end",
-             banyan_avenue_generate(&z, NULL, 0, 1, &m, NULL, &e));
+             banyan_avenue_generate(&z, NULL, 0, &m, NULL, &e));
+    banyan_avenue_params th = ap;
+    th.threads = -1;
     RUN_MESH("avenue", "banyan_avenue_generate", "negative", "threads = -1", BANYAN_E_RANGE, "threads",
-             banyan_avenue_generate(&ap, NULL, 0, -1, &m, NULL, &e));
+             banyan_avenue_generate(&th, NULL, 0, &m, NULL, &e));
+    th.threads = 65;
     RUN_MESH("avenue", "banyan_avenue_generate", "above cap", "threads = 65", BANYAN_E_RANGE, "threads",
-             banyan_avenue_generate(&ap, NULL, 0, 65, &m, NULL, &e));
+             banyan_avenue_generate(&th, NULL, 0, &m, NULL, &e));
     banyan_avenue_params cross = ap;
     cross.tree.sides_min = 20, cross.tree.sides_max = 10;
     RUN_MESH("avenue", "banyan_avenue_generate", "inconsistent", "tree.sides_min 20 > tree.sides_max 10",
-             BANYAN_E_RANGE, "sides_min", banyan_avenue_generate(&cross, NULL, 0, 1, &m, NULL, &e));
+             BANYAN_E_RANGE, "sides_min", banyan_avenue_generate(&cross, NULL, 0, &m, NULL, &e));
 
     /* Cross-field rules. */
     banyan_roots_params rp;
@@ -793,15 +796,15 @@ static void input_cases(void) {
     banyan_keyaki_params_init(&kp);
     kp.fork_angle = 80, kp.fork_angle_step = 5;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "inconsistent", "fork_angle 80 + 5 per level leaves [0, 90]",
-             BANYAN_E_RANGE, "fork_angle", banyan_keyaki_generate(&kp, &m, &e));
+             BANYAN_E_RANGE, "fork_angle", banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
     banyan_keyaki_params_init(&kp);
     kp.tilt_mid = 90, kp.tilt_high = 45;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "inconsistent", "tilt_mid 90 > tilt_high 45", BANYAN_E_RANGE,
-             "tilt_mid", banyan_keyaki_generate(&kp, &m, &e));
+             "tilt_mid", banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
     banyan_keyaki_params_init(&kp);
     kp.twigs_from_segments = 1, kp.levels = 4, kp.segment_levels = 4;
     RUN_MESH("keyaki", "banyan_keyaki_generate", "inconsistent", "segment_levels 4 >= levels 4", BANYAN_E_RANGE,
-             "segment_levels", banyan_keyaki_generate(&kp, &m, &e));
+             "segment_levels", banyan_keyaki_generate(&kp, &m, NULL, NULL, &e));
     banyan_ivy_params ip;
     banyan_ivy_params_init(&ip);
     ip.t1 = 3, ip.t2 = 1;
@@ -1206,7 +1209,8 @@ static void texture_cases(void) {
         {"above range", "size = 16384", BANYAN_TEX_KEYAKI_BARK, 0, 16384, "[64, 8192]"},
         {"negative", "size = -1024", BANYAN_TEX_FIG_BARK, 0, -1024, "size"},
         {"above range", "kind = 7", 7, 0, 1024, "kind"},
-        {"below range", "kind = -1 (BANYAN_TEX_NONE)", BANYAN_TEX_NONE, 0, 1024, "kind"},
+        {"zero", "kind = 0 (BANYAN_TEX_NONE)", BANYAN_TEX_NONE, 0, 1024, "kind"},
+        {"negative", "kind = -1", -1, 0, 1024, "kind"},
         {"above range", "season = 3", BANYAN_TEX_KEYAKI_LEAF, 3, 1024, "season"},
         {"negative", "season = -1", BANYAN_TEX_IVY_STEM, -1, 1024, "season"},
     };
@@ -1224,10 +1228,10 @@ static void texture_cases(void) {
     RUN("textures", "banyan_texture_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
         banyan_texture_generate(NULL, &bc, &nm, &e), images_null(bc, nm));
     banyan_atlas_layout layout;
-    RUN("textures", "banyan_texture_layout", "above range", "kind = 5", BANYAN_E_RANGE, "kind",
-        banyan_texture_layout(5, &layout, &e), 1);
+    RUN("textures", "banyan_texture_layout", "above range", "kind = 6", BANYAN_E_RANGE, "kind",
+        banyan_texture_layout(BANYAN_TEX_COUNT, &layout, &e), 1);
     RUN("textures", "banyan_texture_layout", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_texture_layout(0, NULL, &e), 1);
+        banyan_texture_layout(BANYAN_TEX_KEYAKI_LEAF, NULL, &e), 1);
     uint8_t *png = SENTINEL;
     size_t len = 1;
     RUN("textures", "banyan_image_png", "NULL", "image = NULL", BANYAN_E_INVALID_ARG, "image",

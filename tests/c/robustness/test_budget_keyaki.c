@@ -92,7 +92,8 @@ static int run_child(const char *name, int threads, int fd) {
     banyan_mesh *m = NULL;
     banyan_error e = {0, ""};
     int tree = !strcmp(name, "refused_tree");
-    r.status = tree ? banyan_keyaki_generate(&k, &m, &e) : banyan_avenue_generate(&a, NULL, 0, threads, &m, NULL, &e);
+    a.threads = threads;
+    r.status = tree ? banyan_keyaki_generate(&k, &m, NULL, NULL, &e) : banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
     if (m) {
         r.vertices = m->vertex_count;
         r.hash = hash_mesh(m);
@@ -192,21 +193,21 @@ static void time_and_memory_budgets(void) {
     big_tree(&k);
     k.max_seconds = 2;
     double t = now();
-    banyan_status s = banyan_keyaki_generate(&k, &m, &e);
+    banyan_status s = banyan_keyaki_generate(&k, &m, NULL, NULL, &e);
     check_stop("tree, max_seconds 2", s, m, &e, "max_seconds", now() - t, 2 + 0.5 * CHECK_SLACK);
     banyan_mesh_free(m);
 
     big_tree(&k);
     k.max_memory_mb = 64;
     m = NULL;
-    s = banyan_keyaki_generate(&k, &m, &e);
+    s = banyan_keyaki_generate(&k, &m, NULL, NULL, &e);
     check_stop("tree, max_memory_mb 64", s, m, &e, "max_memory_mb", 0, 1);
     banyan_mesh_free(m);
 
     /* The statistics keep the same budget. */
-    banyan_keyaki_statistics st;
+    banyan_keyaki_stats st;
     k.levels = 30, k.alpha = 10, k.max_nodes = 1 << 24, k.max_memory_mb = 64;
-    s = banyan_keyaki_stats(&k, &st, &e);
+    s = banyan_keyaki_skeleton_stats(&k, &st, &e);
     check_stop("statistics, max_memory_mb 64", s, NULL, &e, "max_memory_mb", 0, 1);
 
     /* An avenue of 16 trees of 30 levels, on 2 and 8 threads: every
@@ -220,7 +221,8 @@ static void time_and_memory_budgets(void) {
         a.max_seconds = 2;
         m = NULL;
         t = now();
-        s = banyan_avenue_generate(&a, NULL, 0, threads, &m, NULL, &e);
+        a.threads = threads;
+        s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
         check_stop(threads == 2 ? "avenue, max_seconds 2, 2 threads" : "avenue, max_seconds 2, 8 threads", s, m, &e,
                    "max_seconds", now() - t, 2 + 0.5 * CHECK_SLACK);
         banyan_mesh_free(m);
@@ -228,7 +230,8 @@ static void time_and_memory_budgets(void) {
     banyan_avenue_params_init(&a);
     a.max_memory_mb = 32;
     m = NULL;
-    s = banyan_avenue_generate(&a, NULL, 0, 2, &m, NULL, &e);
+    a.threads = 2;
+    s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
     check_stop("avenue, max_memory_mb 32", s, m, &e, "max_memory_mb", 0, 1);
     banyan_mesh_free(m);
 }
@@ -239,21 +242,24 @@ static void thread_cap(void) {
     a.count = 1, a.rows = 1, a.placement = BANYAN_AVENUE_COUNT, a.tree.levels = 6;
     banyan_mesh *m = NULL;
     banyan_error e;
-    banyan_status s = banyan_avenue_generate(&a, NULL, 0, BANYAN_AVENUE_MAX_THREADS + 1, &m, NULL, &e);
+    a.threads = BANYAN_AVENUE_MAX_THREADS + 1;
+    banyan_status s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
     CHECK(s == BANYAN_E_RANGE && strstr(e.message, "threads") && strstr(e.message, "64"), "threads 65: %d %s", s,
           e.message);
-    s = banyan_avenue_generate(&a, NULL, 0, BANYAN_AVENUE_MAX_THREADS, &m, NULL, &e);
+    a.threads = BANYAN_AVENUE_MAX_THREADS;
+    s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
     CHECK(s == BANYAN_OK && m, "threads 64: %d %s", s, e.message);
     banyan_mesh_free(m);
     /* The budget's own ranges. */
     a.max_seconds = 0;
     m = NULL;
-    s = banyan_avenue_generate(&a, NULL, 0, 1, &m, NULL, &e);
+    a.threads = 1;
+    s = banyan_avenue_generate(&a, NULL, 0, &m, NULL, &e);
     CHECK(s == BANYAN_E_RANGE && strstr(e.message, "max_seconds"), "avenue max_seconds 0: %d %s", s, e.message);
     banyan_keyaki_params k;
     banyan_keyaki_params_init(&k);
     k.max_memory_mb = 1;
-    s = banyan_keyaki_generate(&k, &m, &e);
+    s = banyan_keyaki_generate(&k, &m, NULL, NULL, &e);
     CHECK(s == BANYAN_E_RANGE && strstr(e.message, "max_memory_mb"), "keyaki max_memory_mb 1: %d %s", s, e.message);
 }
 

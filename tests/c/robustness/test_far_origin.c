@@ -180,7 +180,7 @@ static banyan_mesh *keyaki_at(const double at[3]) {
     for (int k = 0; k < 3; k++) p.position[k] = at[k] + 0.25; /* not whole metres */
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_keyaki_generate(&p, &m, &e) == BANYAN_OK, "keyaki: %s", e.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &e) == BANYAN_OK, "keyaki: %s", e.message);
     return m;
 }
 
@@ -200,7 +200,8 @@ static banyan_mesh *avenue_at(const double at[3]) {
     avenue_params(&p, at);
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m, NULL, &e) == BANYAN_OK, "avenue: %s", e.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &e) == BANYAN_OK, "avenue: %s", e.message);
     return m;
 }
 
@@ -257,7 +258,8 @@ static void refusals(void) {
     avenue_params(&ap, FAR);
     ap.start[0] -= 19990;
     m = NULL;
-    refused("avenue 20 km long", banyan_avenue_generate(&ap, NULL, 0, 1, &m, NULL, &e), m, &e, "trees");
+    ap.threads = 1;
+    refused("avenue 20 km long", banyan_avenue_generate(&ap, NULL, 0, &m, NULL, &e), m, &e, "trees");
 
     banyan_segments_params sp;
     banyan_segments_params_init(&sp);

@@ -144,14 +144,15 @@ static banyan_status gen_keyaki(const void *ctx, banyan_mesh **out, banyan_error
     (void)ctx;
     banyan_keyaki_params p;
     banyan_keyaki_params_init(&p);
-    return banyan_keyaki_generate(&p, out, e);
+    return banyan_keyaki_generate(&p, out, NULL, NULL, e);
 }
 static banyan_status gen_avenue(const void *ctx, banyan_mesh **out, banyan_error *e) {
     (void)ctx;
     banyan_avenue_params p;
     banyan_avenue_params_init(&p);
     p.placement = BANYAN_AVENUE_COUNT, p.count = 2;
-    return banyan_avenue_generate(&p, NULL, 0, 1, out, NULL, e); /* one thread: the counters are not atomic */
+    p.threads = 1;
+    return banyan_avenue_generate(&p, NULL, 0, out, NULL, e); /* one thread: the counters are not atomic */
 }
 static banyan_status gen_ivy(const void *ctx, banyan_mesh **out, banyan_error *e) {
     banyan_ivy_params p;
@@ -185,7 +186,7 @@ int main(void) {
     kp.leaf_density = 60; /* a mesh far larger than the skeleton */
     reset();
     m = NULL;
-    banyan_status s = banyan_keyaki_generate(&kp, &m, &e);
+    banyan_status s = banyan_keyaki_generate(&kp, &m, NULL, NULL, &e);
     CHECK(s == BANYAN_OK && m, "keyaki: %s", e.message);
     size_t positions = m ? sizeof(float) * 3 * (size_t)m->vertex_count : 0;
     CHECK(m && alloc_largest >= positions, "the counters see the mesh: largest %zu < positions %zu", alloc_largest,
@@ -214,13 +215,13 @@ int main(void) {
     kp.max_vertices = 1000;
     reset();
     m = NULL;
-    s = banyan_keyaki_generate(&kp, &m, &e);
+    s = banyan_keyaki_generate(&kp, &m, NULL, NULL, &e);
     refused("keyaki default tree, max_vertices 1000", s, m, &e);
     banyan_keyaki_params_init(&kp);
     kp.model = BANYAN_KEYAKI_SIMPLE, kp.levels = 30, kp.max_nodes = 1 << 24;
     reset();
     m = NULL;
-    s = banyan_keyaki_generate(&kp, &m, &e);
+    s = banyan_keyaki_generate(&kp, &m, NULL, NULL, &e);
     refused("keyaki simple, 30 levels (2^31 branches)", s, m, &e);
 
     /* Avenue: 10,000 trees, stops counting once max_vertices is passed. */
@@ -229,14 +230,15 @@ int main(void) {
     ap.placement = BANYAN_AVENUE_COUNT, ap.count = 5000, ap.max_vertices = 1000;
     reset();
     m = NULL;
-    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e);
+    ap.threads = 2;
+    s = banyan_avenue_generate(&ap, NULL, 0, &m, NULL, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1000", s, m, &e);
     CHECK(strstr(e.message, "counted before stopping") != NULL || strstr(e.message, "with the other trees") != NULL,
           "the avenue stopped counting early: %s", e.message);
     ap.max_vertices = 1000000;
     reset();
     m = NULL;
-    s = banyan_avenue_generate(&ap, NULL, 0, 2, &m, NULL, &e);
+    s = banyan_avenue_generate(&ap, NULL, 0, &m, NULL, &e);
     refused("avenue 2 x 5000 trees, max_vertices 1e6", s, m, &e);
 
     /* Ivy: 100,000 steps with a small cap stops growing early. */

@@ -58,7 +58,7 @@ static uint64_t run_keyaki(int v) {
     p.model = v % 4;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_keyaki_generate(&p, &m, &e), &m, &e, "keyaki");
+    return finish(banyan_keyaki_generate(&p, &m, NULL, NULL, &e), &m, &e, "keyaki");
 }
 
 static uint64_t run_avenue(int v) {
@@ -70,7 +70,8 @@ static uint64_t run_avenue(int v) {
     p.tree.levels = 9;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_avenue_generate(&p, NULL, 0, 1 + v, &m, NULL, &e), &m, &e, "avenue");
+    p.threads = 1 + v;
+    return finish(banyan_avenue_generate(&p, NULL, 0, &m, NULL, &e), &m, &e, "avenue");
 }
 
 static uint64_t run_ivy(int v) {

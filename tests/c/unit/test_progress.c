@@ -1,9 +1,11 @@
 /* Progress and cancel of the long calls (banyan_progress, docs/api.md) and
  * the ivy start placement and its "cannot grow" flag (docs/ivy.md):
- *   - roots, ivy and avenue report a fraction that never decreases, end
- *     with exactly one 1.0, and call back a bounded number of times;
+ *   - roots, ivy, keyaki and avenue report a fraction that never
+ *     decreases, end with exactly one 1.0, and call back a bounded number
+ *     of times;
  *   - a callback that never cancels leaves the output's hash unchanged
- *     (avenue on 1 and 2 threads too);
+ *     (avenue on 1 and 2 threads too), and the keyaki's stats are
+ *     banyan_keyaki_skeleton_stats' for the same params;
  *   - a cancel at 30 % returns BANYAN_E_CANCELLED, *out NULL, stats
  *     zeroed, and no call after the one that cancelled (leaks: this test
  *     also runs under valgrind, `test_progress DIR valgrind`);
@@ -170,6 +172,47 @@ static void test_roots(void) {
     banyan_hosts_free(H);
 }
 
+static void test_keyaki(void) {
+    banyan_keyaki_params p;
+    banyan_keyaki_params_init(&p);
+    p.levels = lean ? 8 : 14;
+    p.threads = max_threads;
+    banyan_error e;
+    rec r;
+    banyan_progress pr = {on_progress, &r};
+    banyan_keyaki_stats st;
+    if (!lean) {
+        banyan_mesh *a = NULL, *b = NULL;
+        banyan_keyaki_stats sk;
+        CHECK(banyan_keyaki_generate(&p, &a, NULL, NULL, &e) == BANYAN_OK, "keyaki: %s", e.message);
+        rec_init(&r, 2.0);
+        CHECK(banyan_keyaki_generate(&p, &b, &st, &pr, &e) == BANYAN_OK, "keyaki + progress: %s", e.message);
+        check_full(&r, "keyaki");
+        CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "keyaki: the hash changed with a progress callback");
+        CHECK(banyan_keyaki_skeleton_stats(&p, &sk, &e) == BANYAN_OK, "keyaki skeleton stats: %s", e.message);
+        CHECK(!memcmp(&st, &sk, sizeof st) && st.node_count > 20, "keyaki: stats differ from the skeleton's (%d / %d)",
+              st.node_count, sk.node_count);
+        banyan_mesh_free(a);
+        banyan_mesh_free(b);
+    }
+    rec_init(&r, 0.3);
+    banyan_mesh *m = NULL;
+    st.node_count = 7;
+    banyan_status s = banyan_keyaki_generate(&p, &m, &st, &pr, &e);
+    check_cancelled(&r, s, &e, m, "keyaki at 30 %");
+    CHECK(st.node_count == 0 && st.max_order == 0, "keyaki: stats not zeroed on cancel (%d branches)", st.node_count);
+    rec_init(&r, 1.0);
+    st.node_count = 7;
+    s = banyan_keyaki_generate(&p, &m, &st, &pr, &e);
+    check_cancelled(&r, s, &e, m, "keyaki at 1.0");
+    CHECK(st.node_count == 0, "keyaki: stats not zeroed on a cancel at 1.0");
+    /* A callback struct without fn is refused, as elsewhere. */
+    banyan_progress no_fn = {NULL, NULL};
+    m = (banyan_mesh *)&e;
+    s = banyan_keyaki_generate(&p, &m, NULL, &no_fn, &e);
+    CHECK(s == BANYAN_E_INVALID_ARG && m == NULL && strstr(e.message, "progress->fn"), "keyaki, progress->fn NULL: %s",
+          e.message);
+}
 
 static void test_avenue(void) {
     banyan_avenue_params p;
@@ -178,14 +221,16 @@ static void test_avenue(void) {
     p.placement = BANYAN_AVENUE_COUNT;
     banyan_error e;
     banyan_mesh *a = NULL;
-    if (!lean) CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &a, NULL, &e) == BANYAN_OK, "avenue: %s", e.message);
+    p.threads = 1;
+    if (!lean) CHECK(banyan_avenue_generate(&p, NULL, 0, &a, NULL, &e) == BANYAN_OK, "avenue: %s", e.message);
     for (int threads = 1; threads <= max_threads; threads++) {
         rec r;
         banyan_progress pr = {on_progress, &r};
+        p.threads = threads;
         if (!lean) {
             rec_init(&r, 2.0);
             banyan_mesh *b = NULL;
-            CHECK(banyan_avenue_generate(&p, NULL, 0, threads, &b, &pr, &e) == BANYAN_OK, "avenue + progress: %s",
+            CHECK(banyan_avenue_generate(&p, NULL, 0, &b, &pr, &e) == BANYAN_OK, "avenue + progress: %s",
                   e.message);
             check_full(&r, "avenue");
             CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "avenue on %d threads: the hash changed",
@@ -194,10 +239,10 @@ static void test_avenue(void) {
         }
         rec_init(&r, 0.3);
         banyan_mesh *m = NULL;
-        banyan_status s = banyan_avenue_generate(&p, NULL, 0, threads, &m, &pr, &e);
+        banyan_status s = banyan_avenue_generate(&p, NULL, 0, &m, &pr, &e);
         check_cancelled(&r, s, &e, m, "avenue at 30 %");
         rec_init(&r, 1.0);
-        s = banyan_avenue_generate(&p, NULL, 0, threads, &m, &pr, &e);
+        s = banyan_avenue_generate(&p, NULL, 0, &m, &pr, &e);
         check_cancelled(&r, s, &e, m, "avenue at 1.0");
     }
     banyan_mesh_free(a);
@@ -302,6 +347,7 @@ int main(int argc, char **argv) {
     if (argc > 2 && !strcmp(argv[2], "valgrind")) max_threads = 1, with_meshes = 0, lean = 1;
     test_ivy();
     test_roots();
+    test_keyaki();
     test_avenue();
     if (!lean) test_start();
     return check_done("test_progress");

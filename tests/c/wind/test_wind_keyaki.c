@@ -349,12 +349,12 @@ static void keyaki_preset(const char *name) {
     CHECK(p.wind == 1, "%s: wind is on by default", name);
     banyan_mesh *m = NULL, *m2 = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "%s: %s", name, err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "%s: %s", name, err.message);
     if (!m) return;
     double base[3];
     for (int k = 0; k < 3; k++) base[k] = p.position[k] - m->origin[k];
     check_wind(m, name, base, 1);
-    CHECK(banyan_keyaki_generate(&p, &m2, &err) == BANYAN_OK && mesh_hash(m) == mesh_hash(m2),
+    CHECK(banyan_keyaki_generate(&p, &m2, NULL, NULL, &err) == BANYAN_OK && mesh_hash(m) == mesh_hash(m2),
           "%s: the same seed gives other bytes", name);
     printf("%s: %u vertices, %u skeleton points\n", name, m->vertex_count, m->skel_point_count);
     banyan_mesh_free(m);
@@ -367,7 +367,7 @@ static void no_wind(void) {
     p.wind = 0;
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_keyaki_generate(&p, &m, &err) == BANYAN_OK, "wind 0: %s", err.message);
+    CHECK(banyan_keyaki_generate(&p, &m, NULL, NULL, &err) == BANYAN_OK, "wind 0: %s", err.message);
     if (!m) return;
     int wind = 0;
     for (int k = 0; k < 7; k++) wind += banyan_mesh_attribute(m, wind_attr_names[k]) != NULL;
@@ -412,8 +412,10 @@ static void avenue(void) {
     p.rows = 2;
     banyan_mesh *m1 = NULL, *m2 = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 1, &m1, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
-    CHECK(banyan_avenue_generate(&p, NULL, 0, 2, &m2, NULL, &err) == BANYAN_OK, "avenue (2 threads): %s",
+    p.threads = 1;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m1, NULL, &err) == BANYAN_OK, "avenue: %s", err.message);
+    p.threads = 2;
+    CHECK(banyan_avenue_generate(&p, NULL, 0, &m2, NULL, &err) == BANYAN_OK, "avenue (2 threads): %s",
           err.message);
     if (m1 && m2) CHECK(same_bytes(m1, m2), "the avenue's bytes differ on 1 and 2 threads");
     if (m1) {
