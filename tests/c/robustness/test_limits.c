@@ -112,12 +112,17 @@ static void fail_each(const char *what, generate_fn gen, const void *ctx) {
     printf("%-58s %ld allocations failed one at a time: %d reported, %d did without\n", what, total, nomem, ok);
 }
 
+/* The host set is built inside, so its failure paths count. */
 static banyan_status gen_roots(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create((const banyan_box *)ctx, 1, NULL, 0, &H, e);
+    if (s) return s;
     banyan_roots_params p;
     banyan_roots_params_init(&p);
-    return test_roots_boxes(&p, (const banyan_box *)ctx, 1, out, e);
+    s = banyan_roots_generate(&p, H, out, NULL, NULL, e);
+    banyan_hosts_free(H);
+    return s;
 }
-/* Mesh hosts: the host set is built inside, so its failure paths count. */
 static banyan_status gen_roots_mesh(const void *ctx, banyan_mesh **out, banyan_error *e) {
     banyan_hosts *H = NULL;
     banyan_status s = banyan_hosts_create(NULL, 0, (const banyan_host_mesh *)ctx, 1, &H, e);
@@ -155,10 +160,15 @@ static banyan_status gen_avenue(const void *ctx, banyan_mesh **out, banyan_error
     return banyan_avenue_generate(&p, NULL, 0, 1, out, NULL, e); /* one thread: the counters are not atomic */
 }
 static banyan_status gen_ivy(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create((const banyan_box *)ctx, 1, NULL, 0, &H, e);
+    if (s) return s;
     banyan_ivy_params p;
     banyan_ivy_params_init(&p);
     p.steps = 160;
-    return test_ivy_boxes(&p, (const banyan_box *)ctx, 1, out, e);
+    s = banyan_ivy_generate(&p, H, out, NULL, NULL, e);
+    banyan_hosts_free(H);
+    return s;
 }
 static banyan_status gen_segments(const void *ctx, banyan_mesh **out, banyan_error *e) {
     (void)ctx;
