@@ -700,8 +700,8 @@ int main(int argc, char **argv) {
             refused(&p, &host, 1, BANYAN_E_RANGE, "radius", "bad radius");
         }
         banyan_roots_params_init(&p);
-        refused(&p, &host, 0, BANYAN_E_NO_HOSTS, "n_hosts = 0", "no hosts");
-        refused(&p, NULL, 1, BANYAN_E_INVALID_ARG, "hosts is NULL", "NULL hosts");
+        refused(&p, &host, 0, BANYAN_E_NO_HOSTS, "n_boxes + n_meshes = 0", "no hosts");
+        refused(&p, NULL, 1, BANYAN_E_INVALID_ARG, "boxes is NULL", "NULL hosts");
         p.germination_auto = 0;
         p.germination[0] = 0.1;
         p.germination[2] = 3.0;
