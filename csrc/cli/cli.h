@@ -16,14 +16,18 @@ typedef struct cli_job {
     banyan_box hosts[BANYAN_MAX_HOSTS];
     uint32_t n_hosts;            /* from the preset; 0 when it has none */
     /* Set when any host is a mesh (a preset "mesh" or --host): the command
-     * grows on it instead of `hosts`. With boxes only it stays NULL, so
-     * box scenes take the box calls and keep their bytes. */
+     * grows on it instead of `hosts`. With boxes only it stays NULL and
+     * the command grows on a set of `hosts` (cli_job_hosts). */
     const banyan_hosts *host_set;
     int threads;                 /* --threads N, 0 = all cores, at most CLI_MAX_THREADS */
     /* A "\r<command> 42 %" line on stderr when it is a terminal, else
      * NULL; run() hands it to the library call (or calls it itself). */
     const banyan_progress *progress;
 } cli_job;
+
+/* The host set a command grows on: job->host_set, or a set of the job's
+ * boxes made into *own, which the caller frees (banyan_hosts_free). */
+banyan_status cli_job_hosts(const cli_job *job, const banyan_hosts **hosts, banyan_hosts **own, banyan_error *err);
 
 /* Generator-specific JSON written by --stats: run() appends
  * `"key": value` members with cli_stat_*; main wraps them in one object. */

@@ -20,9 +20,14 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
                          uint32_t *count, cli_stats *stats, banyan_error *err) {
     const banyan_ivy_params *p = params;
     banyan_ivy *iv = NULL;
-    banyan_status s = job->host_set ? banyan_ivy_create_hosts(p, job->host_set, &iv, err)
-                                    : banyan_ivy_create(p, job->hosts, job->n_hosts, &iv, err);
-    if (s) return s;
+    const banyan_hosts *hs;
+    banyan_hosts *own;
+    banyan_status s = cli_job_hosts(job, &hs, &own, err);
+    if (!s) s = banyan_ivy_create(p, hs, &iv, err);
+    if (s) {
+        banyan_hosts_free(own);
+        return s;
+    }
     banyan_ivy_stats st;
     banyan_mesh **m = calloc(1, sizeof *m);
     char **nm = calloc(1, sizeof *nm);
@@ -47,6 +52,7 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     if (!s) s = banyan_ivy_get_stats(iv, &st, err);
     if (!s) s = banyan_ivy_mesh(iv, &m[0], err);
     banyan_ivy_free(iv);
+    banyan_hosts_free(own);
     if (!s) {
         nm[0] = malloc(4);
         if (nm[0]) snprintf(nm[0], 4, "ivy");

@@ -23,8 +23,11 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     if (!m) return BANYAN_E_NOMEM;
     banyan_roots_stats st;
     const banyan_roots_params *p = params;
-    banyan_status s = job->host_set ? banyan_roots_generate_hosts(p, job->host_set, &m[0], &st, job->progress, err)
-                                    : banyan_roots_generate_stats(p, job->hosts, job->n_hosts, &m[0], &st, err);
+    const banyan_hosts *hs;
+    banyan_hosts *own;
+    banyan_status s = cli_job_hosts(job, &hs, &own, err);
+    if (!s) s = banyan_roots_generate(p, hs, &m[0], &st, job->progress, err);
+    banyan_hosts_free(own);
     if (s) {
         free(m);
         return s;

@@ -410,6 +410,15 @@ static int load_hosts(const cli_command *cmd, cli_job *job, const char *text, co
     return 0;
 }
 
+banyan_status cli_job_hosts(const cli_job *job, const banyan_hosts **hosts, banyan_hosts **own, banyan_error *err) {
+    *own = NULL;
+    *hosts = job->host_set;
+    if (job->host_set) return BANYAN_OK;
+    banyan_status s = banyan_hosts_create(job->hosts, job->n_hosts, NULL, 0, own, err);
+    *hosts = *own;
+    return s;
+}
+
 /* Adds the host set's box, mesh and triangle counts and, when the first
  * mesh's zero is away from the world's origin, that origin to the stats. */
 static void stat_hosts_origin(const banyan_hosts *host_set, banyan_mesh *const *meshes, uint32_t count, cli_stats *st) {

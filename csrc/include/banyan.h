@@ -80,8 +80,8 @@ BANYAN_API const char *banyan_status_name(banyan_status s);
 
 /* ------------------------------------------------------------- progress */
 
-/* Progress and cancel for the long calls (banyan_roots_generate_hosts,
- * banyan_ivy_generate_hosts, banyan_avenue_generate), passed as a pointer
+/* Progress and cancel for the long calls (banyan_roots_generate,
+ * banyan_ivy_generate, banyan_avenue_generate), passed as a pointer
  * just before `err`; NULL = no progress. `done` is the fraction of the
  * call's work done, 0 .. 1, never decreasing; fn runs on the calling
  * thread, about 100 times for the fraction plus at most one every 0.1 s

@@ -712,20 +712,6 @@ static v3 growable_start(const banyan_ivy *iv, v3 start, v3 fallback) {
     return out;
 }
 
-/* The frame's origin: the set's, or one picked from the nb boxes, which
- * are then moved into it (base/frame.h). */
-static v3 pick_frame(banyan_ivy *iv, const banyan_hosts *set, uint32_t nb) {
-    v3 O = set ? set->origin : v3_make(0, 0, 0);
-    if (!set) {
-        v3 lo, hi, a, b;
-        frame_empty(&lo, &hi);
-        for (uint32_t h = 0; h < nb; h++) obb_bounds(&iv->hosts[h], &a, &b), frame_add(&lo, &hi, a), frame_add(&lo, &hi, b);
-        O = frame_pick(lo, hi);
-        for (uint32_t h = 0; h < nb; h++) iv->hosts[h].c = v3_sub(iv->hosts[h].c, O);
-    }
-    return O;
-}
-
 /* A start far from the world's origin: the status of frame_check on the
  * box around the start, the boxes and the meshes (in world coordinates). */
 static banyan_status far_start(const banyan_ivy *iv, const banyan_ivy_params *params, uint32_t nb, v3 O,
@@ -816,10 +802,10 @@ static int32_t plant_stems(banyan_ivy *iv, const banyan_ivy_params *params, v3 P
     return ns;
 }
 
-/* The handle on nb boxes (from `boxes`, checked here, or already checked
- * in `set`) and the meshes of `set` (NULL: none). */
-static banyan_status create(const banyan_ivy_params *params, const banyan_box *boxes, const banyan_hosts *set,
-                            uint32_t nb, banyan_ivy **out, banyan_error *err) {
+/* The handle on the boxes and meshes of `set`, checked when it was made. */
+static banyan_status create(const banyan_ivy_params *params, const banyan_hosts *set, banyan_ivy **out,
+                            banyan_error *err) {
+    const uint32_t nb = set->n_boxes;
     banyan_status s;
     banyan_ivy *iv = calloc(1, sizeof *iv);
     if (!iv) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
@@ -828,8 +814,8 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     prog_init(&iv->own, NULL);
     iv->prog = &iv->own;
     iv->set = set;
-    iv->meshes = set ? set->meshes : NULL;
-    iv->n_mesh = set ? set->n_meshes : 0;
+    iv->meshes = set->meshes;
+    iv->n_mesh = set->n_meshes;
     iv->mesh0 = nb + 1; /* after the ground's slot */
     const size_t nbound = (size_t)nb + 1 + iv->n_mesh;
     iv->hosts = malloc(sizeof(obb) * (nb + 1));
@@ -842,16 +828,9 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
         return banyan_fail(err, BANYAN_E_NOMEM, "out of memory");
     }
     iv->n_hosts = iv->n_given = iv->n_grip = nb;
-    if (boxes) {
-        if ((s = obb_from_boxes(boxes, nb, iv->hosts, err))) {
-            banyan_ivy_free(iv);
-            return s;
-        }
-    } else if (nb) {
-        memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
-    }
-    /* The frame: the set's, or one picked from the boxes (base/frame.h). */
-    v3 O = pick_frame(iv, set, nb);
+    if (nb) memcpy(iv->hosts, set->boxes, sizeof(obb) * nb);
+    /* The set's frame (base/frame.h): its boxes are already in it. */
+    const v3 O = set->origin;
     iv->origin = O;
     for (int k = 0; k < 3; k++) iv->p.start[k] -= (&O.x)[k];
     iv->p.ground_z -= O.z;
@@ -912,41 +891,15 @@ static banyan_status create(const banyan_ivy_params *params, const banyan_box *b
     return BANYAN_OK;
 }
 
-banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
-                                banyan_ivy **out, banyan_error *err) {
-    BANYAN_CHECK_OUT(out, err);
-    banyan_status s = ivy_params_check(params, err);
-    if (s) return s;
-    if (n_hosts == 0)
-        return banyan_fail(err, BANYAN_E_NO_HOSTS, "n_hosts = 0: ivy needs at least one host box to climb");
-    if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
-    if (n_hosts > BANYAN_MAX_HOSTS)
-        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
-    return create(params, hosts, NULL, n_hosts, out, err);
-}
-
-banyan_status banyan_ivy_create_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_ivy **out,
-                                      banyan_error *err) {
+banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_ivy **out,
+                                banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = ivy_params_check(params, err);
     if (s) return s;
     if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL: ivy needs a host set (banyan_hosts_create)");
     if (hosts->n_boxes + hosts->n_meshes == 0)
         return banyan_fail(err, BANYAN_E_NO_HOSTS, "the host set is empty: ivy needs at least one host to climb");
-    return create(params, NULL, hosts, hosts->n_boxes, out, err);
-}
-
-banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts, uint32_t n_hosts,
-                                  banyan_mesh **out, banyan_error *err) {
-    BANYAN_CHECK_OUT(out, err);
-    banyan_ivy *iv = NULL;
-    banyan_status s = banyan_ivy_create(params, hosts, n_hosts, &iv, err);
-    if (s) return s;
-    /* One shot: stop as soon as the mesh could no longer fit. */
-    s = ivy_grow(iv, banyan_ivy_steps(params), 1, err);
-    if (!s) s = banyan_ivy_mesh(iv, out, err);
-    banyan_ivy_free(iv);
-    return s;
+    return create(params, hosts, out, err);
 }
 
 /* The parts of a one-shot generation's time (bench_progress, the wall
@@ -954,9 +907,8 @@ banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_
 #define IVY_GROW_SHARE 0.8
 #define IVY_STATS_SHARE 0.05
 
-banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, const banyan_hosts *hosts,
-                                              banyan_mesh **out, banyan_ivy_stats *stats,
-                                              const banyan_progress *progress, banyan_error *err) {
+banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_mesh **out,
+                                  banyan_ivy_stats *stats, const banyan_progress *progress, banyan_error *err) {
     if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = prog_check(progress, err);
@@ -965,7 +917,7 @@ banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, c
     prog_init(&g, progress);
     if (params) prog_budget(&g, params->max_seconds, params->max_memory_mb);
     banyan_ivy *iv = NULL;
-    if ((s = banyan_ivy_create_hosts(params, hosts, &iv, err))) return s;
+    if ((s = banyan_ivy_create(params, hosts, &iv, err))) return s;
     iv->prog = &g;
     iv->goal = banyan_ivy_steps(params);
     iv->grow_share = IVY_GROW_SHARE;
@@ -983,9 +935,4 @@ banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, c
     banyan_ivy_free(iv);
     if (s && stats) memset(stats, 0, sizeof *stats);
     return s;
-}
-
-banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts, banyan_mesh **out,
-                                        const banyan_progress *progress, banyan_error *err) {
-    return banyan_ivy_generate_hosts_stats(params, hosts, out, NULL, progress, err);
 }

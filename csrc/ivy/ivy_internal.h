@@ -94,7 +94,7 @@ struct banyan_ivy {
      * host mesh0 + m in ivy_near.host and in the bounds below: mesh0 =
      * n_given + 1, after the ground's slot whether there is a ground or
      * not, so the numbers do not change when the ground is added. */
-    const banyan_hosts *set; /* NULL from the box entry points */
+    const banyan_hosts *set; /* the host set grown on (banyan_ivy_create) */
     const host_mesh *meshes;
     uint32_t n_mesh, mesh0;
     v3 *box_lo, *box_hi;   /* world bounding boxes of the hosts (quick rejection) */

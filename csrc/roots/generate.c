@@ -88,7 +88,7 @@ static double host_distance(const roots_world *w, uint32_t h, v3 p, double cap) 
     return d;
 }
 
-/* The box entry points' checks, then their box-only host set. */
+/* roots_net_build's checks of a box array, then its box-only host set. */
 static banyan_status box_hosts(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,
                                banyan_hosts **H, banyan_error *err) {
     banyan_status s = roots_params_check(p, err);
@@ -124,7 +124,7 @@ banyan_status roots_net_build_hosts(const banyan_roots_params *p, const banyan_h
     return build_hosts(p, hosts, net, NULL, err);
 }
 
-/* Progress of banyan_roots_generate_hosts at the end of each stage (the
+/* Progress of banyan_roots_generate at the end of each stage (the
  * mains by root: ROOTS_AT_MAINS). */
 #define ROOTS_AT_FIRST 0.08
 #define ROOTS_AT_SECOND 0.1
@@ -357,9 +357,8 @@ static banyan_status finish(roots_net *net, banyan_status s, const banyan_roots_
     return s;
 }
 
-banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
-                                          banyan_mesh **out, banyan_roots_stats *stats,
-                                          const banyan_progress *progress, banyan_error *err) {
+banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_hosts *hosts, banyan_mesh **out,
+                                    banyan_roots_stats *stats, const banyan_progress *progress, banyan_error *err) {
     if (stats) memset(stats, 0, sizeof *stats);
     BANYAN_CHECK_OUT(out, err);
     banyan_status s = prog_check(progress, err);
@@ -375,22 +374,4 @@ banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, con
         s = prog_fail(&g, err, "roots");
     }
     return s;
-}
-
-banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,
-                                          uint32_t n_hosts, banyan_mesh **out, banyan_roots_stats *stats,
-                                          banyan_error *err) {
-    if (stats) memset(stats, 0, sizeof *stats);
-    BANYAN_CHECK_OUT(out, err);
-    banyan_hosts *H = NULL;
-    banyan_status s = box_hosts(params, hosts, n_hosts, &H, err);
-    if (s) return s;
-    s = banyan_roots_generate_hosts(params, H, out, stats, NULL, err);
-    banyan_hosts_free(H);
-    return s;
-}
-
-banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts, uint32_t n_hosts,
-                                    banyan_mesh **out, banyan_error *err) {
-    return banyan_roots_generate_stats(params, hosts, n_hosts, out, NULL, err);
 }

@@ -21,6 +21,7 @@
 
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 
 /* CPU seconds of this process: on a shared machine a less noisy figure
@@ -74,8 +75,9 @@ static int large(int32_t stop_at, const char *preset) {
     uint32_t nh = 0;
     banyan_error err = {0, ""};
     if (!load_preset(preset, &p, hosts, 4, &nh)) return 1;
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
     banyan_ivy *iv = NULL;
-    if (banyan_ivy_create(&p, hosts, nh, &iv, &err)) {
+    if (banyan_ivy_create(&p, H, &iv, &err)) {
         fprintf(stderr, "bench_ivy: %s\n", err.message);
         return 1;
     }
@@ -108,6 +110,7 @@ static int large(int32_t stop_at, const char *preset) {
     printf("  end: %d buds at step %d, %.3f s wall, %.3f s CPU, %.2f us per bud\n", iv->n, iv->step, t, c,
            t / iv->n * 1e6);
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     return 0;
 }
 
@@ -130,6 +133,7 @@ int main(int argc, char **argv) {
         return 1;
     }
     free(text);
+    banyan_hosts *B = TEST_HOSTS(hosts, nh); /* the wall as a box */
 
     double *t = malloc(sizeof(double) * (size_t)runs), *tg = malloc(sizeof(double) * (size_t)runs);
     uint32_t verts = 0;
@@ -138,7 +142,7 @@ int main(int argc, char **argv) {
         banyan_ivy *iv = NULL;
         banyan_mesh *m = NULL;
         double a = bench_now();
-        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) {
+        if (banyan_ivy_create(&p, B, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) {
             fprintf(stderr, "bench_ivy: %s\n", err.message);
             return 1;
         }
@@ -180,7 +184,7 @@ int main(int argc, char **argv) {
                 banyan_ivy *iv = NULL;
                 banyan_mesh *m = NULL;
                 double a = bench_now(), ca = cpu_now();
-                banyan_status s = k ? banyan_ivy_create_hosts(&p, H, &iv, &err) : banyan_ivy_create(&p, hosts, nh, &iv, &err);
+                banyan_status s = banyan_ivy_create(&p, k ? H : B, &iv, &err);
                 if (!s) s = banyan_ivy_step(iv, p.steps, &err);
                 if (!s) s = banyan_ivy_mesh(iv, &m, &err);
                 if (s) {
@@ -208,7 +212,7 @@ int main(int argc, char **argv) {
 
     /* Time per step at the start and at the end. */
     banyan_ivy *iv = NULL;
-    banyan_ivy_create(&p, hosts, nh, &iv, &err);
+    banyan_ivy_create(&p, B, &iv, &err);
     double first = 0, last = 0;
     int64_t grow_first = 0, grow_last = 0;
     int32_t n_first = 0, n_last0 = 0;
@@ -237,8 +241,9 @@ int main(int argc, char **argv) {
     /* The light look-up alone, up to 100,000 buds: the same ivy (t0 = 20)
      * on a wall 12 m wide and 6 m high, grown longer. */
     banyan_box wide = banyan_box_make(0, 0.1, 3, 6, 0.1, 3);
+    banyan_hosts *W = TEST_HOSTS(&wide, 1);
     iv = NULL;
-    banyan_ivy_create(&p, &wide, 1, &iv, &err);
+    banyan_ivy_create(&p, W, &iv, &err);
     double tb = bench_now();
     int64_t grow_big = 0;
     double last_big = 0;
@@ -256,6 +261,8 @@ int main(int argc, char **argv) {
     double hb, tbig = lookup_us(iv, &hb);
     printf(" %.2f us at %d buds (mean H0 %.1f)\n", tbig, iv->n, hb);
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
+    banyan_hosts_free(B);
     free(t);
     free(tg);
     return 0;

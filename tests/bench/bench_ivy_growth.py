@@ -82,13 +82,15 @@ def worker(lib_path, preset, n):
     nb = ctypes.c_uint32(0)
     check(lib.banyan_preset_hosts(text, ctypes.c_size_t(len(text)), preset.encode(), boxes, 64, ctypes.byref(nb),
                                   ctypes.byref(err)), "preset hosts")
+    hosts = ctypes.c_void_p()
+    check(lib.banyan_hosts_create(boxes, nb, None, 0, ctypes.byref(hosts), ctypes.byref(err)), "host set")
     lib.banyan_ivy_steps.restype = ctypes.c_int32
     steps = lib.banyan_ivy_steps(params)
     times, stem = [], 0.0
     for _ in range(n):
         iv = ctypes.c_void_p()
         w0, c0 = time.perf_counter(), time.process_time()
-        check(lib.banyan_ivy_create(params, boxes, nb, ctypes.byref(iv), ctypes.byref(err)), "create")
+        check(lib.banyan_ivy_create(params, hosts, ctypes.byref(iv), ctypes.byref(err)), "create")
         check(lib.banyan_ivy_step(iv, steps, ctypes.byref(err)), "step")
         w1, c1 = time.perf_counter(), time.process_time()
         st = Stats()
@@ -98,6 +100,7 @@ def worker(lib_path, preset, n):
         w3 = time.perf_counter()
         times.append((w1 - w0 + (w3 - w2), c1 - c0))
         stem = st.stem_length
+    lib.banyan_hosts_free(hosts)
     return times, stem, steps
 
 

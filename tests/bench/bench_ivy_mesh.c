@@ -16,6 +16,7 @@
 #include "banyan.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 static double cpu_now(void) {
     struct timespec t;
@@ -85,10 +86,11 @@ int main(int argc, char **argv) {
         return 1;
     }
     free(text);
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
 
     if (argc > 3) {
         banyan_ivy *iv = NULL;
-        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) return 1;
+        if (banyan_ivy_create(&p, H, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) return 1;
         double t0 = cpu_now();
         for (int r = 0; r < atoi(argv[3]); r++) {
             banyan_mesh *m = NULL;
@@ -97,6 +99,7 @@ int main(int argc, char **argv) {
         }
         printf("mesh only: %.1f ms CPU each\n", (cpu_now() - t0) / atoi(argv[3]) * 1e3);
         banyan_ivy_free(iv);
+        banyan_hosts_free(H);
         return 0;
     }
     double *tw = malloc(sizeof(double) * (size_t)runs * 6), *tc = tw + runs, *gw = tw + 2 * runs, *gc = tw + 3 * runs,
@@ -115,7 +118,7 @@ int main(int argc, char **argv) {
         banyan_ivy_free(iv);
         iv = NULL;
         double a = bench_now(), ca = cpu_now();
-        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) {
+        if (banyan_ivy_create(&p, H, &iv, &err) || banyan_ivy_step(iv, p.steps, &err)) {
             fprintf(stderr, "bench_ivy_mesh: %s\n", err.message);
             return 1;
         }
@@ -153,6 +156,7 @@ int main(int argc, char **argv) {
     banyan_mesh_free(keep[0]);
     banyan_mesh_free(keep[1]);
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     free(tw);
     return 0;
 }

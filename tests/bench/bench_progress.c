@@ -79,7 +79,7 @@ typedef struct ivy_ctx {
 
 static banyan_status run_ivy(const void *ctx, const banyan_progress *pr, banyan_mesh **out, banyan_error *e) {
     const ivy_ctx *c = ctx;
-    return banyan_ivy_generate_hosts(&c->p, c->H, out, pr, e);
+    return banyan_ivy_generate(&c->p, c->H, out, NULL, pr, e);
 }
 
 static banyan_status run_avenue(const void *ctx, const banyan_progress *pr, banyan_mesh **out, banyan_error *e) {
@@ -93,7 +93,7 @@ typedef struct roots_ctx {
 
 static banyan_status run_roots(const void *ctx, const banyan_progress *pr, banyan_mesh **out, banyan_error *e) {
     const roots_ctx *c = ctx;
-    return banyan_roots_generate_hosts(&c->p, c->H, out, NULL, pr, e);
+    return banyan_roots_generate(&c->p, c->H, out, NULL, pr, e);
 }
 
 int main(int argc, char **argv) {

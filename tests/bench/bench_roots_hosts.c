@@ -15,6 +15,7 @@
 #include "banyan.h"
 #include "roots/roots_internal.h"
 #include "host_meshes.h"
+#include "test_hosts.h"
 
 typedef struct figures {
     double call, net;
@@ -33,8 +34,8 @@ static figures measure(const banyan_hosts *H, const banyan_box *box, int runs) {
         banyan_mesh *m = NULL;
         banyan_error err;
         double t0 = bench_now();
-        banyan_status s = H ? banyan_roots_generate_hosts(&p, H, &m, NULL, NULL, &err)
-                            : banyan_roots_generate(&p, box, 1, &m, &err);
+        banyan_status s = H ? banyan_roots_generate(&p, H, &m, NULL, NULL, &err)
+                            : test_roots_boxes(&p, box, 1, &m, &err);
         double t1 = bench_now();
         roots_net net;
         banyan_status sn = H ? roots_net_build_hosts(&p, H, &net, &err) : roots_net_build(&p, box, 1, &net, &err);

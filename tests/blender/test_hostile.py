@@ -86,8 +86,7 @@ class Spy:
     texts that reached banyan_param_set_text. Every call site looks the C
     functions up on the loaded CDLL, so wrapping them there sees all."""
     MAKERS = ("banyan_roots_generate", "banyan_keyaki_generate", "banyan_avenue_generate",
-              "banyan_ivy_generate", "banyan_ivy_mesh", "banyan_segments_generate", "banyan_tube_generate",
-              "banyan_roots_generate_hosts", "banyan_ivy_generate_hosts", "banyan_ivy_generate_hosts_stats")
+              "banyan_ivy_generate", "banyan_ivy_mesh", "banyan_segments_generate", "banyan_tube_generate")
     ARG = type(C.byref(C.c_int()))
 
     def __init__(self):

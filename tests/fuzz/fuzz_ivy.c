@@ -1,4 +1,5 @@
 /* fuzz_ivy.c - libFuzzer harness for ivy: bytes -> ivy params and hosts.
+ * The hosts go into a host set (a refusal is checked like any other).
  * Without control records: banyan_ivy_generate. With them: the stepping
  * calls - create, then for each control byte c step c % 64 steps and, when
  * c >= 128, mesh in between - then the mesh must equal a one-shot
@@ -30,16 +31,24 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     uint32_t max_v = (uint32_t)(p.max_vertices > 0 ? p.max_vertices : 0);
     banyan_error e;
     memset(&e, 0, sizeof e);
+    banyan_hosts *H = (banyan_hosts *)&p; /* non-NULL: a refusal must clear it */
+    banyan_status s = banyan_hosts_create(in.hosts, in.n_hosts, NULL, 0, &H, &e);
+    if (s) {
+        fz_check_failure(s, &e, H);
+        return 0;
+    }
     if (in.n_control == 0) {
         banyan_mesh *m = (banyan_mesh *)&p;
-        banyan_status s = banyan_ivy_generate(&p, in.hosts, in.n_hosts, &m, &e);
+        s = banyan_ivy_generate(&p, H, &m, NULL, NULL, &e);
         fz_check(s, &e, m, max_v);
+        banyan_hosts_free(H);
         return 0;
     }
     banyan_ivy *iv = (banyan_ivy *)&p;
-    banyan_status s = banyan_ivy_create(&p, in.hosts, in.n_hosts, &iv, &e);
+    s = banyan_ivy_create(&p, H, &iv, &e);
     if (s) {
         fz_check_failure(s, &e, iv);
+        banyan_hosts_free(H);
         return 0;
     }
     int32_t grown = 0;
@@ -74,7 +83,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         banyan_ivy_params once = p;
         once.steps = grown;
         once.years = 0; /* `steps`, not the age, decides the one shot */
-        banyan_status sb = banyan_ivy_generate(&once, in.hosts, in.n_hosts, &b, &eb);
+        banyan_status sb = banyan_ivy_generate(&once, H, &b, NULL, NULL, &eb);
         FZ_ASSERT(sa == sb || fz_budget_stop(sa, &e) || fz_budget_stop(sb, &eb), "stepped mesh %s, one shot %s", banyan_status_name(sa), banyan_status_name(sb));
         if (sa == BANYAN_OK)
             FZ_ASSERT(banyan_mesh_hash(a) == banyan_mesh_hash(b), "%d steps in pieces differ from one shot", grown);
@@ -82,5 +91,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         banyan_mesh_free(b);
     }
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     return 0;
 }

@@ -1,5 +1,6 @@
 /* fuzz_roots.c - libFuzzer harness: bytes -> roots params (through the
- * parameter table) and hosts -> banyan_roots_generate_stats -> free.
+ * parameter table) and hosts -> a host set of them -> banyan_roots_generate
+ * with stats -> free.
  * Generation is kept small - max_vertices at most 50,000, moves at most
  * 5, growth_points at most 200 - since time, not memory, is the fuzzer's
  * budget; the code paths are the same as for large nets. An input with an
@@ -28,7 +29,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     banyan_roots_stats st;
     banyan_error e;
     memset(&e, 0, sizeof e);
-    banyan_status s = banyan_roots_generate_stats(&p, in.hosts, in.n_hosts, &m, &st, &e);
+    banyan_hosts *H = (banyan_hosts *)&p; /* non-NULL: a refusal must clear it */
+    banyan_status s = banyan_hosts_create(in.hosts, in.n_hosts, NULL, 0, &H, &e);
+    if (s) {
+        fz_check_failure(s, &e, H);
+        return 0;
+    }
+    s = banyan_roots_generate(&p, H, &m, &st, NULL, &e);
+    banyan_hosts_free(H);
     if (s == BANYAN_OK) {
         FZ_ASSERT(st.vertices == m->vertex_count, "stats %u vertices, mesh %u", st.vertices, m->vertex_count);
     } else {

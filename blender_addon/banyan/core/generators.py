@@ -108,24 +108,19 @@ def _as_params(gen, params):
 
 
 def roots(params=None, hosts=(), progress=None):
-    """Strangler-fig roots around hosts: a list of structs.Box
-    (banyan_roots_generate) or a hostset.HostSet (banyan_roots_generate_hosts,
-    the real surface of its meshes). progress: None or progress(done) ->
-    bool, done 0..1, True cancels (raises errors.Cancelled); boxes then
-    go through a host set of them (the same bytes)."""
+    """Strangler-fig roots around hosts (banyan_roots_generate): a list
+    of structs.Box (grown on a host set of them) or a hostset.HostSet (the
+    real surface of its meshes). progress: None or progress(done) -> bool,
+    done 0..1, True cancels (raises errors.Cancelled)."""
     params = _as_params("roots", params)
-    pr = _Progress(progress)
-    if progress is not None and not isinstance(hosts, HostSet):
+    if not isinstance(hosts, HostSet):
         with HostSet(boxes=list(hosts or [])) as hs:
             return roots(params, hs, progress)
-    if isinstance(hosts, HostSet):
-        f = _fn("banyan_roots_generate_hosts", C.c_int,
-                [C.c_void_p, C.c_void_p, _mesh_out, C.c_void_p, _progress_arg, _err], "roots")
-        return hosts.named(lambda: pr.run(lambda arg: call_generate(
-            lambda out, err: f(params.ptr, hosts._live(), out, None, arg, err))))
-    f = _fn("banyan_roots_generate", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, _mesh_out, _err], "roots")
-    arr, n = _boxes(hosts)
-    return call_generate(f, params.ptr, arr, n)
+    pr = _Progress(progress)
+    f = _fn("banyan_roots_generate", C.c_int,
+            [C.c_void_p, C.c_void_p, _mesh_out, C.c_void_p, _progress_arg, _err], "roots")
+    return hosts.named(lambda: pr.run(lambda arg: call_generate(
+        lambda out, err: f(params.ptr, hosts._live(), out, None, arg, err))))
 
 
 def keyaki_stats_dict(st):
@@ -208,8 +203,8 @@ def ivy_stats_dict(st):
 
 
 def ivy(params=None, hosts=(), progress=None):
-    """Ivy over hosts: a list of structs.Box (grown on a host set of them,
-    the same bytes as banyan_ivy_generate) or a hostset.HostSet. Returns
+    """Ivy over hosts (banyan_ivy_generate): a list of structs.Box (grown
+    on a host set of them) or a hostset.HostSet. Returns
     MeshData with .stats, the plant's measures (ivy_stats_dict): when
     stats["cannot_grow"] is not 0 the plant could not grow and
     stats["warning"] says why. progress: None or progress(done) -> bool,
@@ -220,7 +215,7 @@ def ivy(params=None, hosts=(), progress=None):
         with HostSet(boxes=list(hosts or [])) as hs:
             return ivy(params, hs, progress)
     _check_size("ivy_stats", S.IvyStats, "ivy")
-    f = _fn("banyan_ivy_generate_hosts_stats", C.c_int,
+    f = _fn("banyan_ivy_generate", C.c_int,
             [C.c_void_p, C.c_void_p, _mesh_out, P(S.IvyStats), _progress_arg, _err], "ivy")
     st = S.IvyStats()
     d = hosts.named(lambda: pr.run(lambda arg: call_generate(
@@ -231,8 +226,9 @@ def ivy(params=None, hosts=(), progress=None):
 
 class IvyPlant(L.Handle):
     """The stepping API: create, step(n) as often as wanted, mesh(). hosts:
-    a list of structs.Box, or a hostset.HostSet, which the plant keeps
-    using: close the plant before the set."""
+    a list of structs.Box (the plant grows on a host set of them that it
+    frees on close) or a hostset.HostSet, which the plant keeps using:
+    close the plant before the set."""
 
     def __init__(self, params, hosts):
         self._free = _fn("banyan_ivy_free", None, [C.c_void_p], "ivy")
@@ -240,18 +236,16 @@ class IvyPlant(L.Handle):
         self._mesh = _fn("banyan_ivy_mesh", C.c_int, [C.c_void_p, _mesh_out, _err], "ivy")
         self.handle = C.c_void_p()
         self.hosts = None
+        self._own = None
+        if not isinstance(hosts, HostSet):
+            hosts = self._own = HostSet(boxes=list(hosts or []))
+        create = _fn("banyan_ivy_create", C.c_int, [C.c_void_p, C.c_void_p, P(C.c_void_p), _err], "ivy")
+        self.hosts = hosts  # kept alive at least as long as the plant
         err = S.Error()
-        if isinstance(hosts, HostSet):
-            create = _fn("banyan_ivy_create_hosts", C.c_int, [C.c_void_p, C.c_void_p, P(C.c_void_p), _err], "ivy")
-            self.hosts = hosts  # kept alive at least as long as the plant
-            st = create(params.ptr, hosts._live(), C.byref(self.handle), C.byref(err))
-            if st:
-                hosts.named(lambda: L.raise_for(st, err))
-            return
-        create = _fn("banyan_ivy_create", C.c_int, [C.c_void_p, P(S.Box), C.c_uint32, P(C.c_void_p), _err],
-                     "ivy")
-        arr, n = _boxes(hosts)
-        L.raise_for(create(params.ptr, arr, n, C.byref(self.handle), C.byref(err)), err)
+        st = create(params.ptr, hosts._live(), C.byref(self.handle), C.byref(err))
+        if st:
+            self.close()
+            hosts.named(lambda: L.raise_for(st, err))
 
     def step(self, n):
         err = S.Error()
@@ -265,6 +259,9 @@ class IvyPlant(L.Handle):
             self._free(self.handle)
             self.handle = C.c_void_p()
         self.hosts = None
+        if self._own is not None:
+            self._own.close()
+            self._own = None
 
 
 def segments_read(text, source="<preset>"):

@@ -5,8 +5,8 @@
  * (spec/ivy.md). Included by banyan.h.
  *
  * Two ways to use it:
- *   - one shot: banyan_ivy_generate(params, hosts, n, &mesh, &err) grows
- *     params->steps steps and meshes the result;
+ *   - one shot: banyan_ivy_generate(params, hosts, &mesh, &stats,
+ *     &progress, &err) grows params->steps steps and meshes the result;
  *   - stepping: banyan_ivy_create, then banyan_ivy_step(n) as often as
  *     wanted, banyan_ivy_mesh / banyan_ivy_stats at any point, and
  *     banyan_ivy_free. Growing 100 steps then 50 more gives the same plant
@@ -182,12 +182,15 @@ BANYAN_API size_t banyan_sizeof_ivy_params(void);
 BANYAN_API size_t banyan_sizeof_ivy_stats(void);
 
 /* Checks params and hosts, places the start on a host side where a stem
- * can grow (docs/ivy.md, "Hosts and start") and plants the first bud. Errors: BANYAN_E_RANGE (a field, or t2 < t1),
- * BANYAN_E_NO_HOSTS, BANYAN_E_BAD_HOST, BANYAN_E_START_FAR (start farther
- * than start_snap_max from every host). On failure *out == NULL. The
- * params and hosts are copied. */
-BANYAN_API banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_box *hosts,
-                                           uint32_t n_hosts, banyan_ivy **out, banyan_error *err);
+ * can grow (docs/ivy.md, "Hosts and start") and plants the first bud.
+ * `hosts` is a host set (banyan/hosts.h): suckers grip, and leaves face,
+ * the real surface of its boxes and triangle meshes. Errors:
+ * BANYAN_E_RANGE (a field, or t2 < t1), BANYAN_E_INVALID_ARG (a NULL host
+ * set), BANYAN_E_START_FAR (start farther than start_snap_max from every
+ * host). On failure *out == NULL. The params are copied; the handle keeps
+ * a pointer to `hosts`, which must outlive it (banyan_ivy_free first). */
+BANYAN_API banyan_status banyan_ivy_create(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                           banyan_ivy **out, banyan_error *err);
 
 /* Grows n more steps (0 .. BANYAN_IVY_MAX_STEPS). Refuses with
  * BANYAN_E_LIMIT, before a step that could pass max_buds; the steps done
@@ -209,23 +212,12 @@ BANYAN_API banyan_status banyan_ivy_get_stats(const banyan_ivy *ivy, banyan_ivy_
 /* Frees the handle; accepts NULL. */
 BANYAN_API void banyan_ivy_free(banyan_ivy *ivy);
 
-/* create + step(params->steps) + mesh + free. */
-BANYAN_API banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_box *hosts,
-                                             uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
-
-/* The same on a host set (banyan/hosts.h): suckers grip, and leaves face,
- * the real surface of boxes and triangle meshes. The handle keeps a
- * pointer to `hosts`, which must outlive it (banyan_ivy_free first). */
-BANYAN_API banyan_status banyan_ivy_create_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
-                                                 banyan_ivy **out, banyan_error *err);
-BANYAN_API banyan_status banyan_ivy_generate_hosts(const banyan_ivy_params *params, const banyan_hosts *hosts,
-                                                   banyan_mesh **out, const banyan_progress *progress,
-                                                   banyan_error *err);
-/* The same, also filling *stats (when not NULL; zeroed on failure) with
- * the plant's measures after its steps, cannot_grow included. */
-BANYAN_API banyan_status banyan_ivy_generate_hosts_stats(const banyan_ivy_params *params, const banyan_hosts *hosts,
-                                                         banyan_mesh **out, banyan_ivy_stats *stats,
-                                                         const banyan_progress *progress, banyan_error *err);
+/* create + step(params->steps) + mesh + free. stats (NULL for none) gets
+ * the plant's measures after its steps, cannot_grow included, zeroed on
+ * failure; progress (NULL for none): banyan.h, "progress". */
+BANYAN_API banyan_status banyan_ivy_generate(const banyan_ivy_params *params, const banyan_hosts *hosts,
+                                             banyan_mesh **out, banyan_ivy_stats *stats,
+                                             const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus
 }

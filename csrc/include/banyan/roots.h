@@ -129,31 +129,24 @@ BANYAN_API void banyan_roots_params_init(banyan_roots_params *p);
 BANYAN_API size_t banyan_sizeof_roots_params(void);
 BANYAN_API size_t banyan_sizeof_roots_stats(void);
 
-/* Grows the net around hosts[0..n_hosts-1] (n_hosts 1 .. BANYAN_MAX_HOSTS)
- * and sweeps it into one mesh with attributes `root_kind` (0 main, 1 first
- * branch, 2 second branch, 3 foot, 4 aerial) and `root_id`, vertex colour, one material, and
- * the skeleton (skel_tag = root kind). Refuses bad parameters
- * (BANYAN_E_RANGE), no hosts (BANYAN_E_NO_HOSTS), bad boxes
- * (BANYAN_E_BAD_HOST), G inside a host or below the ground
+/* Grows the net around the hosts of a host set (banyan/hosts.h: boxes and
+ * triangle meshes, distances and contact taken on the real surface) and
+ * sweeps it into one mesh with attributes `root_kind` (0 main, 1 first
+ * branch, 2 second branch, 3 foot, 4 aerial) and `root_id`, vertex colour,
+ * one material, and the skeleton (skel_tag = root kind). With
+ * germination_auto, G is the highest surface point of host 0 on the
+ * vertical line through the centre of its world bounds, lifted by r.
+ * Refuses bad parameters (BANYAN_E_RANGE), a NULL host set
+ * (BANYAN_E_NO_HOSTS), G inside a host or below the ground
  * (BANYAN_E_START_INSIDE), G so far from every host that no root could
  * reach one (BANYAN_E_START_FAR: farther than start_radius + (growth_points
  * - 1) * moves * hypot(forward_max, lateral) units + 4 r) and meshes beyond
- * max_vertices (BANYAN_E_LIMIT). */
-BANYAN_API banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_box *hosts,
-                                               uint32_t n_hosts, banyan_mesh **out, banyan_error *err);
-/* The same, also filling *stats when stats != NULL (zeroed on failure). */
-BANYAN_API banyan_status banyan_roots_generate_stats(const banyan_roots_params *params, const banyan_box *hosts,
-                                                     uint32_t n_hosts, banyan_mesh **out,
-                                                     banyan_roots_stats *stats, banyan_error *err);
-
-/* The same on a host set (banyan/hosts.h): boxes and triangle meshes,
- * distances and contact taken on the real surface. With germination_auto,
- * G is the highest surface point of host 0 on the vertical line through
- * the centre of its world bounds, lifted by r. `hosts` is only read; stats
- * may be NULL. */
-BANYAN_API banyan_status banyan_roots_generate_hosts(const banyan_roots_params *params, const banyan_hosts *hosts,
-                                                     banyan_mesh **out, banyan_roots_stats *stats,
-                                                     const banyan_progress *progress, banyan_error *err);
+ * max_vertices (BANYAN_E_LIMIT). `hosts` is only read. stats (NULL for
+ * none) gets the net's measures, zeroed on failure; progress (NULL for
+ * none): banyan.h, "progress". */
+BANYAN_API banyan_status banyan_roots_generate(const banyan_roots_params *params, const banyan_hosts *hosts,
+                                               banyan_mesh **out, banyan_roots_stats *stats,
+                                               const banyan_progress *progress, banyan_error *err);
 
 #ifdef __cplusplus
 }

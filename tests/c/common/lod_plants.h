@@ -9,6 +9,7 @@
 
 #include "banyan.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 /* name: keyaki_mature, keyaki_young, roots_tubes, roots_fused (the
  * roots_trunk preset as tubes / one fused surface), ivy_wall, segments
@@ -33,7 +34,7 @@ static inline banyan_mesh *lod_plant(const char *name, int32_t variants, banyan_
         snprintf(path, sizeof path, "%s/presets/roots_trunk.json", BANYAN_SOURCE_DIR);
         if (!(s = test_load_preset(BANYAN_GEN_ROOTS, &p, path, hosts, 8, &nh, err))) {
             p.surface = strcmp(name, "roots_fused") ? BANYAN_ROOTS_TUBES : BANYAN_ROOTS_FUSED;
-            s = banyan_roots_generate(&p, hosts, nh, &m, err);
+            s = test_roots_boxes(&p, hosts, nh, &m, err);
         }
     } else if (!strcmp(name, "ivy_wall")) {
         banyan_ivy_params p;
@@ -42,7 +43,7 @@ static inline banyan_mesh *lod_plant(const char *name, int32_t variants, banyan_
         banyan_ivy_params_init(&p);
         snprintf(path, sizeof path, "%s/presets/ivy_wall.json", BANYAN_SOURCE_DIR);
         if (!(s = test_load_preset(BANYAN_GEN_IVY, &p, path, hosts, 8, &nh, err)))
-            s = banyan_ivy_generate(&p, hosts, nh, &m, err);
+            s = test_ivy_boxes(&p, hosts, nh, &m, err);
     } else if (!strcmp(name, "segments")) {
         banyan_segments_params p;
         banyan_segments_params_init(&p);

@@ -18,6 +18,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
@@ -158,7 +159,7 @@ static banyan_mesh *ivy(int32_t season) {
     banyan_box w = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
     banyan_mesh *m = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err) == BANYAN_OK && m, "ivy: %s", err.message);
+    CHECK(test_ivy_boxes(&p, &w, 1, &m, &err) == BANYAN_OK && m, "ivy: %s", err.message);
     return m;
 }
 

@@ -24,6 +24,7 @@
 
 #include "ivy_look.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 #define CELL 0.02   /* ray grid, m */
 #define PATCH 0.5   /* patchiness cells, m */
@@ -220,13 +221,14 @@ int main(int argc, char **argv) {
            "density /m^2 | blade size p90, m | depth p10-p90, m | relief, m |\n|---|---|---|---|---|---|---|---|---|---|---|\n", PATCH);
     figures all = {0};
     int fails = 0;
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
     for (int s = 1; s <= seeds; s++) {
         banyan_ivy_params p = base;
         p.seed = (uint64_t)s;
         banyan_ivy *iv = NULL;
         banyan_mesh *m = NULL;
         banyan_ivy_stats st;
-        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) || banyan_ivy_step(iv, p.steps, &err) ||
+        if (banyan_ivy_create(&p, H, &iv, &err) || banyan_ivy_step(iv, p.steps, &err) ||
             banyan_ivy_get_stats(iv, &st, &err) || banyan_ivy_mesh(iv, &m, &err))
             return fprintf(stderr, "seed %d: %s\n", s, err.message), 1;
         figures f = {0};
@@ -245,6 +247,7 @@ int main(int argc, char **argv) {
         banyan_mesh_free(m);
         banyan_ivy_free(iv);
     }
+    banyan_hosts_free(H);
     printf("mean over %d seeds: cover %.3f, layers %.2f, CV %.2f, median angle %.1f deg, density %.1f /m^2, relief %.3f m\n",
            seeds, all.cover, all.layers, all.cv, all.angle, all.density, all.relief);
     if (accept) {

@@ -26,6 +26,7 @@
 #include "hosts/obb.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 static banyan_box wall_box(void) { return banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5); }
 
@@ -41,10 +42,10 @@ static int load_preset(const char *name, banyan_ivy_params *p, banyan_box *hosts
     return s == BANYAN_OK;
 }
 
-static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_box *hosts, uint32_t n, int32_t steps) {
+static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_hosts *hosts, int32_t steps) {
     banyan_ivy *iv = NULL;
     banyan_error err = {0, ""};
-    banyan_status s = banyan_ivy_create(p, hosts, n, &iv, &err);
+    banyan_status s = banyan_ivy_create(p, hosts, &iv, &err);
     CHECK(s == BANYAN_OK, "create: %s", err.message);
     if (s) return NULL;
     s = banyan_ivy_step(iv, steps, &err);
@@ -225,9 +226,10 @@ static void test_light_and_stats(void) {
     banyan_ivy_params p;
     banyan_ivy_params_init(&p);
     banyan_box w = wall_box();
+    banyan_hosts *W = TEST_HOSTS(&w, 1);
     for (uint64_t seed = 1; seed <= 3; seed++) {
         p.seed = seed;
-        banyan_ivy *iv = grow(&p, &w, 1, 170);
+        banyan_ivy *iv = grow(&p, W, 170);
         if (!iv) continue;
         pcg32 r;
         pcg32_seed(&r, seed, 77);
@@ -255,16 +257,18 @@ static void test_light_and_stats(void) {
         CHECK(want > 0, "seed %llu: no crossings at all: the count is not exercised", (unsigned long long)seed);
         banyan_ivy_free(iv);
     }
+    banyan_hosts_free(W);
 }
 
 static void test_nourishment(void) {
     banyan_ivy_params p;
     banyan_ivy_params_init(&p);
     banyan_box w = wall_box();
+    banyan_hosts *W = TEST_HOSTS(&w, 1);
     p.start_stems = 1; /* the paper's single first bud */
     /* From N = 0 the first bud waits while N accumulates by beta to t1. */
     p.n_start = 0.0;
-    banyan_ivy *iv = grow(&p, &w, 1, 3);
+    banyan_ivy *iv = grow(&p, W, 3);
     CHECK(iv && iv->n == 1, "grew before nourishment reached t1: %d buds", iv ? iv->n : -1);
     banyan_error err;
     if (iv) banyan_ivy_step(iv, 2, &err);
@@ -272,17 +276,18 @@ static void test_nourishment(void) {
     banyan_ivy_free(iv);
     /* Without nourishment nothing grows. */
     p.beta = 0.0;
-    iv = grow(&p, &w, 1, 40);
+    iv = grow(&p, W, 40);
     CHECK(iv && iv->n == 1, "beta = 0 grew %d buds", iv ? iv->n : -1);
     banyan_ivy_free(iv);
     /* Apical growth: three internodes, then the split of p2. */
     banyan_ivy_params_init(&p);
     p.start_stems = 1;
-    iv = grow(&p, &w, 1, 3);
+    iv = grow(&p, W, 3);
     CHECK(iv && iv->n == 4 && iv->buds[3].state == BANYAN_IVY_A0 && iv->buds[2].state == BANYAN_IVY_D &&
               fabs(iv->buds[3].N - p.alpha * p.n_start) < 1e-12 && fabs(iv->buds[2].N - (1 - p.alpha) * p.n_start) < 1e-12,
           "A0 A1 A2 -> Z Z D A0 with alpha split");
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
 }
 
 static void test_scenes(void) {
@@ -291,9 +296,10 @@ static void test_scenes(void) {
     banyan_box hosts[8];
     uint32_t nh = 0;
     if (load_preset("ivy_wall", &p, hosts, &nh)) {
+        banyan_hosts *H = TEST_HOSTS(hosts, nh);
         for (uint64_t seed = 1; seed <= 3; seed++) {
             p.seed = seed;
-            banyan_ivy *iv = grow(&p, hosts, nh, 300);
+            banyan_ivy *iv = grow(&p, H, 300);
             if (!iv) continue;
             char what[64];
             snprintf(what, sizeof what, "wall seed %llu", (unsigned long long)seed);
@@ -301,13 +307,15 @@ static void test_scenes(void) {
             sag_check(iv, &tally);
             banyan_ivy_free(iv);
         }
+        banyan_hosts_free(H);
     }
     /* Seeds until at least 8 long free stems have been checked (about 3 to 5
      * seeds; at most 8): each plant's hanging stems are chance. */
     if (load_preset("ivy_pillar", &p, hosts, &nh)) {
+        banyan_hosts *H = TEST_HOSTS(hosts, nh);
         for (uint64_t seed = 1; seed <= 8 && (seed <= 3 || tally.chains < 8); seed++) {
             p.seed = seed;
-            banyan_ivy *iv = grow(&p, hosts, nh, 380);
+            banyan_ivy *iv = grow(&p, H, 380);
             if (!iv) continue;
             char what[64];
             snprintf(what, sizeof what, "pillar seed %llu", (unsigned long long)seed);
@@ -315,6 +323,7 @@ static void test_scenes(void) {
             sag_check(iv, &tally);
             banyan_ivy_free(iv);
         }
+        banyan_hosts_free(H);
     }
     /* An oriented host: a wall turned 30 deg about Z and leaning 10 deg,
      * and a tilted slab across its foot. */
@@ -331,9 +340,10 @@ static void test_scenes(void) {
         p.start[0] = 0;
         p.start[1] = -0.2;
         p.start[2] = 0.8;
+        banyan_hosts *H = TEST_HOSTS(hb, 2);
         for (uint64_t seed = 1; seed <= 2; seed++) {
             p.seed = seed;
-            banyan_ivy *iv = grow(&p, hb, 2, 220);
+            banyan_ivy *iv = grow(&p, H, 220);
             if (!iv) continue;
             char what[64];
             snprintf(what, sizeof what, "oriented hosts seed %llu", (unsigned long long)seed);
@@ -341,6 +351,7 @@ static void test_scenes(void) {
             invariants(iv, what);
             banyan_ivy_free(iv);
         }
+        banyan_hosts_free(H);
     }
     printf("free hanging stems: %d, drooping %d, tips up %d, moment held %d\n", tally.chains, tally.droop,
            tally.tip_up, tally.moment_ok);
@@ -366,22 +377,23 @@ static void test_mesh(const char *outdir) {
     banyan_error err0;
     /* Zero steps: the leading stems' first buds alone still make a mesh. */
     p.steps = 0;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err0) == BANYAN_OK && m && m->vertex_count > 0 &&
+    CHECK(test_ivy_boxes(&p, &w, 1, &m, &err0) == BANYAN_OK && m && m->vertex_count > 0 &&
               m->skel_point_count == (uint32_t)p.start_stems,
           "zero steps: %s", err0.message);
     banyan_mesh_free(m);
     m = NULL;
     p.steps = 200;
     banyan_error err;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err) == BANYAN_OK, "generate: %s", err.message);
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m2, &err) == BANYAN_OK, "generate again: %s", err.message);
+    CHECK(test_ivy_boxes(&p, &w, 1, &m, &err) == BANYAN_OK, "generate: %s", err.message);
+    CHECK(test_ivy_boxes(&p, &w, 1, &m2, &err) == BANYAN_OK, "generate again: %s", err.message);
     if (!m || !m2) return;
     CHECK(banyan_mesh_hash(m) == banyan_mesh_hash(m2), "same seed, different bytes");
     banyan_mesh_free(m2);
 
     /* Stepping in pieces is the same plant. */
     banyan_ivy *iv = NULL;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    banyan_hosts *W = TEST_HOSTS(&w, 1);
+    CHECK(banyan_ivy_create(&p, W, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     int32_t pieces[4] = {1, 49, 0, 150};
     for (int k = 0; k < 4 && iv; k++) banyan_ivy_step(iv, pieces[k], &err);
     m2 = NULL;
@@ -418,8 +430,9 @@ static void test_mesh(const char *outdir) {
     free(wood_P);
     banyan_mesh_free(m2);
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
     p.seed = 2;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m2, &err) == BANYAN_OK && banyan_mesh_hash(m2) != banyan_mesh_hash(m),
+    CHECK(test_ivy_boxes(&p, &w, 1, &m2, &err) == BANYAN_OK && banyan_mesh_hash(m2) != banyan_mesh_hash(m),
           "seed 2 gave the same mesh as seed 1");
     banyan_mesh_free(m2);
     p.seed = 1;
@@ -480,7 +493,7 @@ static void test_mesh(const char *outdir) {
 
     /* Without leaves: one part. */
     p.leaves = 0;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &m, &err) == BANYAN_OK && m->part_count == 1, "leaves off");
+    CHECK(test_ivy_boxes(&p, &w, 1, &m, &err) == BANYAN_OK && m->part_count == 1, "leaves off");
     banyan_mesh_free(m);
 }
 
@@ -503,8 +516,8 @@ static void test_years(void) {
     banyan_ivy_params q = p;
     p.years = 1.2; /* 60 steps */
     q.years = 0, q.steps = 60;
-    CHECK(banyan_ivy_generate(&p, &w, 1, &a, &err) == BANYAN_OK, "years 1.2: %s", err.message);
-    CHECK(banyan_ivy_generate(&q, &w, 1, &b, &err) == BANYAN_OK, "steps 60: %s", err.message);
+    CHECK(test_ivy_boxes(&p, &w, 1, &a, &err) == BANYAN_OK, "years 1.2: %s", err.message);
+    CHECK(test_ivy_boxes(&q, &w, 1, &b, &err) == BANYAN_OK, "steps 60: %s", err.message);
     CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "1.2 years and 60 steps differ");
     banyan_mesh_free(a);
     banyan_mesh_free(b);
@@ -520,7 +533,8 @@ static void test_edges(void) {
     banyan_box two[2] = {banyan_box_make(-0.75, 0.1, 1.5, 0.75, 0.1, 1.5), banyan_box_make(0.75, 0.1, 1.5, 0.75, 0.1, 1.5)};
     banyan_ivy *iv = NULL;
     banyan_error err;
-    CHECK(banyan_ivy_create(&p, two, 2, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    banyan_hosts *H = TEST_HOSTS(two, 2);
+    CHECK(banyan_ivy_create(&p, H, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     if (iv) {
         v3 out = v3_make(0, 0, 0);
         double e = ivy_edge_distance(iv, ivy_nearest_any(iv, v3_make(1.4, -0.01, 1.5)), 0.3, &out);
@@ -535,6 +549,7 @@ static void test_edges(void) {
         CHECK(p.ground && e == HUGE_VAL, "the edge on the ground is no edge: %g", e);
         banyan_ivy_free(iv);
     }
+    banyan_hosts_free(H);
     banyan_box w = banyan_box_make(0.0, 0.1, 1.5, 1.5, 0.1, 1.5);
     int past[2] = {0, 0};
     for (int k = 0; k < 2; k++) {
@@ -542,7 +557,7 @@ static void test_edges(void) {
         banyan_ivy_params_init(&q);
         q.edge_fray = k ? 0.2 : 0;
         banyan_mesh *m = NULL;
-        CHECK(banyan_ivy_generate(&q, &w, 1, &m, &err) == BANYAN_OK, "edge_fray %g: %s", q.edge_fray, err.message);
+        CHECK(test_ivy_boxes(&q, &w, 1, &m, &err) == BANYAN_OK, "edge_fray %g: %s", q.edge_fray, err.message);
         if (!m || m->part_count < 2) continue;
         const banyan_part *lp = &m->parts[1];
         for (uint32_t v = lp->vertex_offset; v < lp->vertex_offset + lp->vertex_count; v += 13) /* blade centres */
@@ -560,8 +575,12 @@ static void test_mesh_threads(void) {
     uint32_t nh = 0;
     if (!load_preset("ivy_wall", &p, hosts, &nh)) return;
     p.steps = 320;
-    banyan_ivy *iv = grow(&p, hosts, nh, p.steps);
-    if (!iv) return;
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
+    banyan_ivy *iv = grow(&p, H, p.steps);
+    if (!iv) {
+        banyan_hosts_free(H);
+        return;
+    }
     CHECK(iv->n > 8000, "only %d buds: too few for the threads to share the mesh", iv->n);
     const int32_t counts[] = {2, 3, 0, 16};
     for (int variant = 0; variant < 3; variant++) {
@@ -583,18 +602,20 @@ static void test_mesh_threads(void) {
         banyan_mesh_free(one);
     }
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
 }
 
 static void test_bad_input(void) {
     banyan_ivy_params p;
     banyan_box w = wall_box();
+    banyan_hosts *W = TEST_HOSTS(&w, 1);
     banyan_error err;
     banyan_mesh *m;
     banyan_ivy *iv;
-#define REFUSED(code, needle, ...)                                                                        \
+#define REFUSED(code, needle, hosts_)                                                                    \
     do {                                                                                                  \
         m = (banyan_mesh *)&err;                                                                         \
-        banyan_status s_ = banyan_ivy_generate(&p, __VA_ARGS__, &m, &err);                               \
+        banyan_status s_ = banyan_ivy_generate(&p, hosts_, &m, NULL, NULL, &err);                         \
         CHECK(s_ == (code) && m == NULL && strstr(err.message, needle), "want %s with '%s', got %s: %s", \
               banyan_status_name(code), needle, banyan_status_name(s_), err.message);                    \
         banyan_ivy_params_init(&p);                                                                       \
@@ -602,19 +623,19 @@ static void test_bad_input(void) {
     banyan_ivy_params_init(&p);
     p.t1 = 0.5;
     p.t2 = 0.3;
-    REFUSED(BANYAN_E_RANGE, "t2 = 0.3 must be >= t1 = 0.5", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "t2 = 0.3 must be >= t1 = 0.5", W);
     p.alpha = 0.4;
-    REFUSED(BANYAN_E_RANGE, "alpha = 0.4 must be within [0.5, 1]", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "alpha = 0.4 must be within [0.5, 1]", W);
     p.alpha = 1.2;
-    REFUSED(BANYAN_E_RANGE, "alpha = 1.2 must be within [0.5, 1]", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "alpha = 1.2 must be within [0.5, 1]", W);
     p.steps = BANYAN_IVY_MAX_STEPS + 1;
-    REFUSED(BANYAN_E_RANGE, "steps = 100001 must be within [0, 100000]", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "steps = 100001 must be within [0, 100000]", W);
     p.years = 1000, p.shoot_growth = 10, p.internode = 0.01;
-    REFUSED(BANYAN_E_RANGE, "years = 1000 gives 1000000 steps", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "years = 1000 gives 1000000 steps", W);
     p.years = -1;
-    REFUSED(BANYAN_E_RANGE, "years", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "years", W);
     p.years = NAN;
-    REFUSED(BANYAN_E_RANGE, "years", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "years", W);
     CHECK(banyan_ivy_steps(NULL) == -1, "banyan_ivy_steps(NULL)");
     {   /* Before any check: a negative rate or internode is -1, no overflow. */
         banyan_ivy_params q = p;
@@ -624,34 +645,32 @@ static void test_bad_input(void) {
         CHECK(banyan_ivy_steps(&q) == -1, "banyan_ivy_steps with internode -1e-300: %d", banyan_ivy_steps(&q));
     }
     p.threads = -1;
-    REFUSED(BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "threads = -1 must be within [0, 64]", W);
     p.threads = BANYAN_IVY_MAX_THREADS + 1;
-    REFUSED(BANYAN_E_RANGE, "threads = 65 must be within [0, 64]", &w, 1);
-    REFUSED(BANYAN_E_NO_HOSTS, "n_hosts = 0", &w, 0);
+    REFUSED(BANYAN_E_RANGE, "threads = 65 must be within [0, 64]", W);
     p.start[0] = 10;
-    REFUSED(BANYAN_E_START_FAR, "start_snap_max", &w, 1);
+    REFUSED(BANYAN_E_START_FAR, "start_snap_max", W);
     p.t0 = NAN;
-    REFUSED(BANYAN_E_RANGE, "t0", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "t0", W);
     p.internode = -1;
-    REFUSED(BANYAN_E_RANGE, "internode", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "internode", W);
     p.stem_radius_max = 0.0001;
-    REFUSED(BANYAN_E_RANGE, "stem_radius_max", &w, 1);
+    REFUSED(BANYAN_E_RANGE, "stem_radius_max", W);
     p.max_vertices = 1000;
-    REFUSED(BANYAN_E_LIMIT, "max_vertices", &w, 1);
+    REFUSED(BANYAN_E_LIMIT, "max_vertices", W);
     p.max_buds = 20;
-    REFUSED(BANYAN_E_LIMIT, "max_buds", &w, 1);
-    banyan_box flat = banyan_box_make(0, 0, 0, 1, 0, 1);
-    REFUSED(BANYAN_E_BAD_HOST, "hosts[0].half[1]", &flat, 1);
-    REFUSED(BANYAN_E_INVALID_ARG, "hosts is NULL", NULL, 1);
-    CHECK(banyan_ivy_generate(&p, &w, 1, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out accepted");
-    CHECK(banyan_ivy_generate(NULL, &w, 1, &m, &err) == BANYAN_E_INVALID_ARG && m == NULL, "NULL params accepted");
+    REFUSED(BANYAN_E_LIMIT, "max_buds", W);
+    REFUSED(BANYAN_E_INVALID_ARG, "hosts is NULL", NULL);
+    CHECK(banyan_ivy_generate(&p, W, NULL, NULL, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL out accepted");
+    CHECK(banyan_ivy_generate(NULL, W, &m, NULL, NULL, &err) == BANYAN_E_INVALID_ARG && m == NULL,
+          "NULL params accepted");
 #undef REFUSED
     /* The stepping calls. */
     iv = (banyan_ivy *)&err;
     p.t2 = 0.1;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &err) == BANYAN_E_RANGE && iv == NULL, "create with t2 < t1");
+    CHECK(banyan_ivy_create(&p, W, &iv, &err) == BANYAN_E_RANGE && iv == NULL, "create with t2 < t1");
     banyan_ivy_params_init(&p);
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    CHECK(banyan_ivy_create(&p, W, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     CHECK(banyan_ivy_step(iv, BANYAN_IVY_MAX_STEPS + 1, &err) == BANYAN_E_RANGE && strstr(err.message, "100000"),
           "step above the cap: %s", err.message);
     CHECK(banyan_ivy_step(iv, -1, &err) == BANYAN_E_RANGE, "negative step");
@@ -662,7 +681,7 @@ static void test_bad_input(void) {
     banyan_ivy_free(NULL);
     /* max_buds stops stepping before the limit; the plant stays usable. */
     p.max_buds = 200;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    CHECK(banyan_ivy_create(&p, W, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     banyan_status s = banyan_ivy_step(iv, 450, &err);
     CHECK(s == BANYAN_E_LIMIT && iv->n <= 200 && strstr(err.message, "max_buds = 200"), "max_buds: %s", err.message);
     m = NULL;
@@ -673,9 +692,10 @@ static void test_bad_input(void) {
     banyan_ivy_params_init(&p);
     p.start[1] = 0.03; /* inside, nearer the front face y = 0 */
     p.start[2] = 1.0;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &err) == BANYAN_OK && fabs(iv->buds[0].P.y + p.clearance) < 1e-9,
+    CHECK(banyan_ivy_create(&p, W, &iv, &err) == BANYAN_OK && fabs(iv->buds[0].P.y + p.clearance) < 1e-9,
           "start inside the wall: %s", err.message);
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
 }
 
 /* One presets/ivy_*.json: it loads, has hosts and generates; the pillar
@@ -693,7 +713,7 @@ static void ivy_preset(const char *path, const char *name, void *ctx) {
     if (len > 6 && !strcmp(name + len - 6, "_large") && p.steps > 300) p.steps = 300;
     banyan_mesh *m = NULL;
     banyan_error err;
-    banyan_status s = banyan_ivy_generate(&p, hosts, nh, &m, &err);
+    banyan_status s = test_ivy_boxes(&p, hosts, nh, &m, &err);
     CHECK(s == BANYAN_OK && m && m->vertex_count > 0, "%s: %s", name, err.message);
     if (m && !strcmp(name, "ivy_pillar")) {
         char out[1024];

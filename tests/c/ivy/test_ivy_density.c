@@ -15,6 +15,7 @@
 #include "ivy_look.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 
 int main(void) {
@@ -26,6 +27,7 @@ int main(void) {
         CHECK(0, "preset: %s", err.message);
         return check_done("test_ivy_density");
     }
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
 
     const double t0s[4] = {10, 15, 20, 25};
     double mean[4];
@@ -38,7 +40,7 @@ int main(void) {
             banyan_ivy *iv = NULL;
             banyan_ivy_stats st;
             memset(&st, 0, sizeof st);
-            if (banyan_ivy_create(&p, hosts, nh, &iv, &err) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &err) == BANYAN_OK)
+            if (banyan_ivy_create(&p, H, &iv, &err) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &err) == BANYAN_OK)
                 banyan_ivy_get_stats(iv, &st, &err);
             else
                 CHECK(0, "t0 %g seed %llu: %s", t0s[k], (unsigned long long)seed, err.message);
@@ -62,7 +64,7 @@ int main(void) {
             p.seed = seed;
             p.w_helio = w ? 0.0 : 1.0;
             banyan_ivy *iv = NULL;
-            if (banyan_ivy_create(&p, hosts, nh, &iv, &err) != BANYAN_OK) {
+            if (banyan_ivy_create(&p, H, &iv, &err) != BANYAN_OK) {
                 CHECK(0, "create: %s", err.message);
                 continue;
             }
@@ -78,5 +80,6 @@ int main(void) {
            100.0 * cross[1]);
     CHECK(cross[1] > 1.1 * cross[0], "without the light term crossings per bud are %.4f, with it %.4f: not visibly more",
           cross[1] / 10, cross[0] / 10);
+    banyan_hosts_free(H);
     return check_done("test_ivy_density");
 }

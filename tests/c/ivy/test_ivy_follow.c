@@ -9,11 +9,12 @@
 #include "check.h"
 #include "ivy/ivy_internal.h"
 #include "ivy_look.h"
+#include "test_hosts.h"
 
-static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_box *hosts, uint32_t nh) {
+static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {
     banyan_ivy *iv = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_ivy_create(p, hosts, nh, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    CHECK(banyan_ivy_create(p, hosts, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     if (iv) CHECK(banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK, "step: %s", err.message);
     return iv;
 }
@@ -35,17 +36,18 @@ int main(void) {
     uint32_t nh = 0;
     banyan_error err = {0, ""};
     if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
     p.steps = 300;
 
     p.follow_length = 0;
-    banyan_ivy *iv = grow(&p, hosts, nh);
+    banyan_ivy *iv = grow(&p, H);
     int32_t followers = 0;
     for (int32_t i = 0; iv && i < iv->n; i++) followers += iv->buds[i].follow > 0;
     CHECK(iv && followers == 0, "follow_length 0: %d buds grew alongside a stem", followers);
     banyan_ivy_free(iv);
 
     p.follow_length = 4 * p.internode;
-    iv = grow(&p, hosts, nh);
+    iv = grow(&p, H);
     int32_t longest = 0, lone = 0;
     followers = 0;
     for (int32_t i = 0; iv && i < iv->n; i++) {
@@ -63,11 +65,12 @@ int main(void) {
     banyan_mesh *m1 = NULL, *m2 = NULL;
     CHECK(iv && banyan_ivy_mesh(iv, &m1, &err) == BANYAN_OK, "mesh: %s", err.message);
     banyan_ivy_free(iv);
-    iv = grow(&p, hosts, nh);
+    iv = grow(&p, H);
     CHECK(iv && banyan_ivy_mesh(iv, &m2, &err) == BANYAN_OK, "mesh again: %s", err.message);
     CHECK(m1 && m2 && banyan_mesh_hash(m1) == banyan_mesh_hash(m2), "a second run differs");
     banyan_mesh_free(m1);
     banyan_mesh_free(m2);
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     return check_done("test_ivy_follow");
 }

@@ -13,6 +13,7 @@
 #include "ivy/ivy_internal.h"
 #include "ivy_checks.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 static int32_t coord(double v, double inv) { return (int32_t)floor(v * inv); }
 
@@ -248,8 +249,12 @@ int main(void) {
             continue;
         }
         banyan_ivy *iv = NULL;
-        CHECK(banyan_ivy_create(&p, hosts, nh, &iv, &err) == BANYAN_OK, "%s: %s", names[k], err.message);
-        if (!iv) continue;
+        banyan_hosts *H = TEST_HOSTS(hosts, nh);
+        CHECK(banyan_ivy_create(&p, H, &iv, &err) == BANYAN_OK, "%s: %s", names[k], err.message);
+        if (!iv) {
+            banyan_hosts_free(H);
+            continue;
+        }
         /* Checked along the way: past the reorderings at 2,049 and 8,193
          * buds, with the sag's moves in between. */
         for (int s = 0; s < 3; s++) {
@@ -263,6 +268,7 @@ int main(void) {
         CHECK(iv->n > 8193 || k == 1, "%s: %d buds, past the last reordering checked", names[k], iv->n);
         check_moves(iv, (uint64_t)k + 40);
         banyan_ivy_free(iv);
+        banyan_hosts_free(H);
     }
     return check_done("test_ivy_grid");
 }

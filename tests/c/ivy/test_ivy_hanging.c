@@ -27,6 +27,7 @@
 #include "ivy_look.h"
 #include "ivy/ivy_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 static int held(const banyan_ivy *iv, const ivy_bud *b) {
     return b->attached || (iv->p.ground && b->P.z <= iv->p.ground_z + iv->p.clearance + 1e-9);
@@ -135,11 +136,12 @@ static figures measure(const char *name, int n_over, char *const *over) {
     double *straight = malloc(sizeof(double) * CAP), *tip = malloc(sizeof(double) * CAP);
     double *ang = malloc(sizeof(double) * CAP * 16), *hang = malloc(sizeof(double) * CAP * 16);
     int n_ang = 0, n_hang = 0;
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
     for (uint64_t seed = 1; seed <= 5; seed++) {
         banyan_ivy_params p = base;
         p.seed = seed;
         banyan_ivy *iv = NULL;
-        if (banyan_ivy_create(&p, hosts, nh, &iv, &err) != BANYAN_OK || banyan_ivy_step(iv, p.steps, &err) != BANYAN_OK) {
+        if (banyan_ivy_create(&p, H, &iv, &err) != BANYAN_OK || banyan_ivy_step(iv, p.steps, &err) != BANYAN_OK) {
             CHECK(0, "%s seed %llu: %s", name, (unsigned long long)seed, err.message);
             banyan_ivy_free(iv);
             continue;
@@ -156,6 +158,7 @@ static figures measure(const char *name, int n_over, char *const *over) {
                 }
         banyan_ivy_free(iv);
     }
+    banyan_hosts_free(H);
     for (int k = 0; k < f.runs; k++) {
         straight[k] = r[k].straight;
         tip[k] = r[k].tip_angle;

@@ -25,6 +25,7 @@
 #include "banyan/textures.h"
 #include "check.h"
 #include "ivy_look.h"
+#include "test_hosts.h"
 
 #define YOUNG 10     /* steps: the growth front's leaves */
 #define GROWING 200  /* steps: ivy_wall still spreading (at its 450 the wall is covered and the front still) */
@@ -187,6 +188,7 @@ int main(int argc, char **argv) {
     double *cell = malloc(sizeof(double) * 3 * (size_t)cols * rows);
     if (!cell || !cell_means(cols, rows, cell)) return check_done("test_ivy_leaf_colour");
     printf("ivy_wall, summer: blade colour = COLOR_0 x atlas cell mean (linear), area-weighted\n");
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
     for (uint64_t seed = 1; seed <= 2; seed++) {
         const unsigned long long sd = (unsigned long long)seed;
         banyan_ivy_params p = base;
@@ -195,7 +197,7 @@ int main(int argc, char **argv) {
         banyan_mesh *m = NULL;
         group young = {{0}, 0, 0, 0, 0}, old = young, all = young;
         /* Growing: the front's young leaves flush bronze, the plant stays green. */
-        int ok = banyan_ivy_create(&p, hosts, nh, &iv, &err) == BANYAN_OK &&
+        int ok = banyan_ivy_create(&p, H, &iv, &err) == BANYAN_OK &&
                  banyan_ivy_step(iv, GROWING, &err) == BANYAN_OK && banyan_ivy_mesh(iv, &m, &err) == BANYAN_OK;
         CHECK(ok && measure(iv, m, cols, rows, cell, &young, &old, &all), "seed %llu, %d steps: %s", sd, GROWING,
               err.message);
@@ -233,6 +235,7 @@ int main(int argc, char **argv) {
         banyan_mesh_free(m);
         banyan_ivy_free(iv);
     }
+    banyan_hosts_free(H);
     free(cell);
     return check_done("test_ivy_leaf_colour");
 }

@@ -30,6 +30,7 @@
 #include "check.h"
 #include "ivy_look.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 static int cmp_d(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -142,6 +143,7 @@ int main(void) {
         base.leaf_clump = 0;
         figures f;
         memset(&f, 0, sizeof f);
+        banyan_hosts *H = TEST_HOSTS(hosts, nh);
         for (uint64_t seed = 1; seed <= 5; seed++) {
             banyan_ivy_params p = base;
             p.seed = seed;
@@ -149,7 +151,7 @@ int main(void) {
             banyan_mesh *m = NULL;
             banyan_ivy_stats st;
             memset(&st, 0, sizeof st);
-            if (banyan_ivy_create(&p, hosts, nh, &iv, &err) != BANYAN_OK || banyan_ivy_step(iv, p.steps, &err) != BANYAN_OK ||
+            if (banyan_ivy_create(&p, H, &iv, &err) != BANYAN_OK || banyan_ivy_step(iv, p.steps, &err) != BANYAN_OK ||
                 banyan_ivy_get_stats(iv, &st, &err) != BANYAN_OK || banyan_ivy_mesh(iv, &m, &err) != BANYAN_OK) {
                 CHECK(0, "%s seed %llu: %s", names[pi], (unsigned long long)seed, err.message);
                 banyan_mesh_free(m);
@@ -173,6 +175,7 @@ int main(void) {
             banyan_mesh_free(m);
             banyan_ivy_free(iv);
         }
+        banyan_hosts_free(H);
         const double L = f.stem.length, ground = f.leaf_area > 0 ? f.ground_area / f.leaf_area : 1;
         /* |cos| falls as the angle grows: its median is the angle's, its
          * 10th percentile the angle's 90th. */

@@ -8,11 +8,12 @@
 
 #include "check.h"
 #include "ivy_look.h"
+#include "test_hosts.h"
 
-static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_box *hosts, uint32_t nh) {
+static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {
     banyan_ivy *iv = NULL;
     banyan_error err = {0, ""};
-    CHECK(banyan_ivy_create(p, hosts, nh, &iv, &err) == BANYAN_OK, "create: %s", err.message);
+    CHECK(banyan_ivy_create(p, hosts, &iv, &err) == BANYAN_OK, "create: %s", err.message);
     if (iv) CHECK(banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK, "step: %s", err.message);
     return iv;
 }
@@ -113,7 +114,8 @@ int main(void) {
     uint32_t nh = 0;
     banyan_error err = {0, ""};
     if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
-    banyan_ivy *iv = grow(&p, hosts, nh);
+    banyan_hosts *H = TEST_HOSTS(hosts, nh);
+    banyan_ivy *iv = grow(&p, H);
     if (!iv) return check_done("test_ivy_wood");
     double *r = malloc(sizeof(double) * (size_t)iv->n);
     v3 *P = malloc(sizeof(v3) * (size_t)iv->n);
@@ -133,5 +135,6 @@ int main(void) {
     free(r);
     free(P);
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     return check_done("test_ivy_wood");
 }

@@ -23,6 +23,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 /* ------------------------------------------------------------ reporting */
 
@@ -93,18 +94,13 @@ typedef struct entry_call {
 
 static banyan_status call_roots(const void *p, int *out_ok, banyan_error *e) {
     banyan_box h = trunk_host();
-    banyan_mesh *m = SENTINEL;
-    banyan_status s = banyan_roots_generate(p, &h, 1, &m, e);
-    *out_ok = mesh_out_ok(m, s);
-    return s;
-}
-static banyan_status call_roots_stats(const void *p, int *out_ok, banyan_error *e) {
-    banyan_box h = trunk_host();
+    banyan_hosts *H = TEST_HOSTS(&h, 1);
     banyan_mesh *m = SENTINEL;
     banyan_roots_stats st;
     memset(&st, 0xff, sizeof st);
-    banyan_status s = banyan_roots_generate_stats(p, &h, 1, &m, &st, e);
+    banyan_status s = banyan_roots_generate(p, H, &m, &st, NULL, e);
     *out_ok = mesh_out_ok(m, s) && (s == BANYAN_OK || st.vertices == 0); /* stats zeroed on failure */
+    banyan_hosts_free(H);
     return s;
 }
 static banyan_status call_keyaki(const void *p, int *out_ok, banyan_error *e) {
@@ -135,17 +131,23 @@ static banyan_status call_avenue_layout(const void *p, int *out_ok, banyan_error
 }
 static banyan_status call_ivy(const void *p, int *out_ok, banyan_error *e) {
     banyan_box h = wall_host();
+    banyan_hosts *H = TEST_HOSTS(&h, 1);
     banyan_mesh *m = SENTINEL;
-    banyan_status s = banyan_ivy_generate(p, &h, 1, &m, e);
-    *out_ok = mesh_out_ok(m, s);
+    banyan_ivy_stats st;
+    memset(&st, 0xff, sizeof st);
+    banyan_status s = banyan_ivy_generate(p, H, &m, &st, NULL, e);
+    *out_ok = mesh_out_ok(m, s) && (s == BANYAN_OK || st.buds == 0); /* stats zeroed on failure */
+    banyan_hosts_free(H);
     return s;
 }
 static banyan_status call_ivy_create(const void *p, int *out_ok, banyan_error *e) {
     banyan_box h = wall_host();
+    banyan_hosts *H = TEST_HOSTS(&h, 1);
     banyan_ivy *iv = SENTINEL;
-    banyan_status s = banyan_ivy_create(p, &h, 1, &iv, e);
+    banyan_status s = banyan_ivy_create(p, H, &iv, e);
     *out_ok = s == BANYAN_OK ? iv && iv != SENTINEL : iv == NULL;
     if (s == BANYAN_OK && iv != SENTINEL) banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     return s;
 }
 static const banyan_segment_input demo_segs[2] = {{{0, 0, 0}, {0, 0, 1}, 2.0, 3, 1}, {{0, 0, 1}, {1, 0, 1}, 1.0, 2, 0}};
@@ -191,7 +193,7 @@ static void init_segments(void *p) { banyan_segments_params_init(p); }
 
 static const gen_entries generators[] = {
     {BANYAN_GEN_ROOTS, init_roots, sizeof(banyan_roots_params),
-     {{"banyan_roots_generate", call_roots}, {"banyan_roots_generate_stats", call_roots_stats}}},
+     {{"banyan_roots_generate", call_roots}}},
     {BANYAN_GEN_KEYAKI, init_keyaki, sizeof(banyan_keyaki_params),
      {{"banyan_keyaki_generate", call_keyaki}, {"banyan_keyaki_skeleton_stats", call_keyaki_stats}}},
     {BANYAN_GEN_AVENUE, init_avenue, sizeof(banyan_avenue_params),
@@ -323,6 +325,19 @@ static void field_sweep(void) {
         report(gen, entry, klass, input, want, needle, s_, &e, mesh_out_ok(m, s_)); \
     } while (0)
 
+/* banyan_hosts_create on boxes[0 .. n - 1]: the out pointer preset to the
+ * sentinel must come back NULL on a refusal. */
+#define RUN_SET(klass, input, want, needle, boxes, n)                           \
+    do {                                                                       \
+        banyan_hosts *H_ = SENTINEL;                                           \
+        banyan_error e;                                                        \
+        memset(&e, 0, sizeof e);                                               \
+        banyan_status s_ = banyan_hosts_create((boxes), (n), NULL, 0, &H_, &e); \
+        report("hosts", "banyan_hosts_create", klass, input, want, needle, s_, &e, \
+               s_ == BANYAN_OK ? H_ && H_ != SENTINEL : H_ == NULL);           \
+        if (s_ == BANYAN_OK && H_ != SENTINEL) banyan_hosts_free(H_);          \
+    } while (0)
+
 /* A case without an out pointer (or with one checked by `ok`). */
 #define RUN(gen, entry, klass, input, want, needle, expr, ok)                  \
     do {                                                                       \
@@ -379,11 +394,7 @@ static void host_cases(void) {
     ip.steps = 5;
     for (int i = 0; i < nb; i++) {
         banyan_box two[2] = {trunk_host(), bb[i].box};
-        RUN_MESH("roots", "banyan_roots_generate", "bad host", bb[i].input, BANYAN_E_BAD_HOST, bb[i].needle,
-                 banyan_roots_generate(&rp, two, 2, &m, &e));
-        banyan_box wall[2] = {wall_host(), bb[i].box};
-        RUN_MESH("ivy", "banyan_ivy_generate", "bad host", bb[i].input, BANYAN_E_BAD_HOST, bb[i].needle,
-                 banyan_ivy_generate(&ip, wall, 2, &m, &e));
+        RUN_SET("bad host", bb[i].input, BANYAN_E_BAD_HOST, bb[i].needle, two, 2);
         RUN("common", "banyan_box_validate", "bad host", bb[i].input, BANYAN_E_BAD_HOST, bb[i].needle,
             banyan_box_validate(&bb[i].box, 1, &e), 1);
     }
@@ -394,51 +405,47 @@ static void host_cases(void) {
     banyan_box h = trunk_host(), w = wall_host();
     banyan_box *many = malloc(sizeof(banyan_box) * (BANYAN_MAX_HOSTS + 1));
     for (int i = 0; i <= BANYAN_MAX_HOSTS; i++) many[i] = banyan_box_make(3.0 * i, 0, 1, 0.5, 0.5, 1);
-    RUN_MESH("roots", "banyan_roots_generate", "no hosts", "n_hosts = 0", BANYAN_E_NO_HOSTS, "n_hosts = 0",
-             banyan_roots_generate(&rp, &h, 0, &m, &e));
-    RUN_MESH("roots", "banyan_roots_generate", "no hosts", "hosts = NULL, n_hosts = 0", BANYAN_E_NO_HOSTS,
-             "n_hosts = 0", banyan_roots_generate(&rp, NULL, 0, &m, &e));
-    RUN_MESH("roots", "banyan_roots_generate", "NULL", "hosts = NULL, n_hosts = 1", BANYAN_E_INVALID_ARG, "hosts",
-             banyan_roots_generate(&rp, NULL, 1, &m, &e));
-    RUN_MESH("roots", "banyan_roots_generate", "above cap", "n_hosts = 257", BANYAN_E_RANGE, "n_hosts",
-             banyan_roots_generate(&rp, many, BANYAN_MAX_HOSTS + 1, &m, &e));
-    RUN_MESH("roots", "banyan_roots_generate", "above cap", "n_hosts = UINT32_MAX", BANYAN_E_RANGE, "n_hosts",
-             banyan_roots_generate(&rp, many, UINT32_MAX, &m, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate", "no hosts", "n_hosts = 0", BANYAN_E_NO_HOSTS, "n_hosts = 0",
-             banyan_ivy_generate(&ip, &w, 0, &m, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate", "NULL", "hosts = NULL, n_hosts = 1", BANYAN_E_INVALID_ARG, "hosts",
-             banyan_ivy_generate(&ip, NULL, 1, &m, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate", "above cap", "n_hosts = 257", BANYAN_E_RANGE, "n_hosts",
-             banyan_ivy_generate(&ip, many, BANYAN_MAX_HOSTS + 1, &m, &e));
+    RUN_SET("no hosts", "n_boxes = 0", BANYAN_E_NO_HOSTS, "n_boxes + n_meshes = 0", &h, 0);
+    RUN_SET("no hosts", "boxes = NULL, n_boxes = 0", BANYAN_E_NO_HOSTS, "n_boxes + n_meshes = 0", NULL, 0);
+    RUN_SET("NULL", "boxes = NULL, n_boxes = 1", BANYAN_E_INVALID_ARG, "boxes is NULL", NULL, 1);
+    RUN_SET("above cap", "n_boxes = 257", BANYAN_E_RANGE, "n_boxes + n_meshes", many, BANYAN_MAX_HOSTS + 1);
+    RUN_SET("above cap", "n_boxes = UINT32_MAX", BANYAN_E_RANGE, "n_boxes + n_meshes", many, UINT32_MAX);
     free(many);
+    RUN_MESH("roots", "banyan_roots_generate", "no hosts", "hosts = NULL", BANYAN_E_NO_HOSTS, "hosts is NULL",
+             banyan_roots_generate(&rp, NULL, &m, NULL, NULL, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate", "NULL", "hosts = NULL", BANYAN_E_INVALID_ARG, "hosts is NULL",
+             banyan_ivy_generate(&ip, NULL, &m, NULL, NULL, &e));
+    banyan_ivy *iv_ = SENTINEL;
+    RUN("ivy", "banyan_ivy_create", "NULL", "hosts = NULL", BANYAN_E_INVALID_ARG, "hosts is NULL",
+        banyan_ivy_create(&ip, NULL, &iv_, &e), iv_ == NULL);
 
     /* Start points. */
     banyan_roots_params g = rp;
     g.germination_auto = 0;
     g.germination[0] = 0, g.germination[1] = 0, g.germination[2] = 1;
     RUN_MESH("roots", "banyan_roots_generate", "start inside", "germination at the host's centre",
-             BANYAN_E_START_INSIDE, "inside hosts[0]", banyan_roots_generate(&g, &h, 1, &m, &e));
+             BANYAN_E_START_INSIDE, "inside hosts[0]", test_roots_boxes(&g, &h, 1, &m, &e));
     g.germination[0] = 0.3; /* on the face */
     RUN_MESH("roots", "banyan_roots_generate", "start inside", "germination on the host's face", BANYAN_E_START_INSIDE,
-             "inside hosts[0]", banyan_roots_generate(&g, &h, 1, &m, &e));
+             "inside hosts[0]", test_roots_boxes(&g, &h, 1, &m, &e));
     g.germination[0] = 1, g.germination[2] = -0.5;
     RUN_MESH("roots", "banyan_roots_generate", "start inside", "germination below the ground", BANYAN_E_START_INSIDE,
-             "below the ground", banyan_roots_generate(&g, &h, 1, &m, &e));
+             "below the ground", test_roots_boxes(&g, &h, 1, &m, &e));
     g.germination[0] = 5000, g.germination[2] = 3;
     RUN_MESH("roots", "banyan_roots_generate", "start far", "germination 5 km from the host", BANYAN_E_START_FAR,
-             "germination", banyan_roots_generate(&g, &h, 1, &m, &e));
+             "germination", test_roots_boxes(&g, &h, 1, &m, &e));
     banyan_box below = banyan_box_make(0, 0, 1, 0.3, 0.3, 1), above = banyan_box_make(0, 0, 2.5, 1, 1, 0.5);
     banyan_box stack[2] = {below, above};
     RUN_MESH("roots", "banyan_roots_generate", "start inside", "auto germination under another host",
-             BANYAN_E_START_INSIDE, "inside hosts[1]", banyan_roots_generate(&rp, stack, 2, &m, &e));
+             BANYAN_E_START_INSIDE, "inside hosts[1]", test_roots_boxes(&rp, stack, 2, &m, &e));
 
     banyan_ivy_params is = ip;
     is.start[0] = 0, is.start[1] = 40, is.start[2] = 1;
     RUN_MESH("ivy", "banyan_ivy_generate", "start far", "start 40 m from the wall", BANYAN_E_START_FAR, "start",
-             banyan_ivy_generate(&is, &w, 1, &m, &e));
+             test_ivy_boxes(&is, &w, 1, &m, &e));
     is.start[1] = 0.1; /* the wall's centre */
     RUN_MESH("ivy", "banyan_ivy_generate", "start inside", "start inside the wall (repaired: snapped to its surface)",
-             BANYAN_OK, NULL, banyan_ivy_generate(&is, &w, 1, &m, &e));
+             BANYAN_OK, NULL, test_ivy_boxes(&is, &w, 1, &m, &e));
 }
 
 /* Vertex and count limits: refused with BANYAN_E_LIMIT, nothing returned. */
@@ -448,11 +455,11 @@ static void limit_cases(void) {
     banyan_roots_params_init(&rp);
     rp.max_vertices = 1;
     RUN_MESH("roots", "banyan_roots_generate", "limit", "max_vertices = 1", BANYAN_E_LIMIT, "max_vertices",
-             banyan_roots_generate(&rp, &h, 1, &m, &e));
+             test_roots_boxes(&rp, &h, 1, &m, &e));
     banyan_roots_params_init(&rp);
     rp.growth_points = 10000, rp.main_roots = 64, rp.sides = 256;
     RUN_MESH("roots", "banyan_roots_generate", "limit", "growth_points 10000 x main_roots 64 x sides 256 (default cap)",
-             BANYAN_E_LIMIT, "max_vertices", banyan_roots_generate(&rp, &h, 1, &m, &e));
+             BANYAN_E_LIMIT, "max_vertices", test_roots_boxes(&rp, &h, 1, &m, &e));
 
     banyan_keyaki_params kp;
     banyan_keyaki_params_init(&kp);
@@ -482,15 +489,15 @@ static void limit_cases(void) {
     banyan_ivy_params_init(&ip);
     ip.max_vertices = 1;
     RUN_MESH("ivy", "banyan_ivy_generate", "limit", "max_vertices = 1", BANYAN_E_LIMIT, "max_vertices",
-             banyan_ivy_generate(&ip, &w, 1, &m, &e));
+             test_ivy_boxes(&ip, &w, 1, &m, &e));
     banyan_ivy_params_init(&ip);
     ip.steps = BANYAN_IVY_MAX_STEPS, ip.max_vertices = 20000, ip.t0 = 1e6;
     RUN_MESH("ivy", "banyan_ivy_generate", "limit", "steps = 100000, max_vertices = 20000", BANYAN_E_LIMIT,
-             "max_vertices", banyan_ivy_generate(&ip, &w, 1, &m, &e));
+             "max_vertices", test_ivy_boxes(&ip, &w, 1, &m, &e));
     banyan_ivy_params_init(&ip);
     ip.max_buds = 5;
     RUN_MESH("ivy", "banyan_ivy_generate", "limit", "max_buds = 5", BANYAN_E_LIMIT, "max_buds",
-             banyan_ivy_generate(&ip, &w, 1, &m, &e));
+             test_ivy_boxes(&ip, &w, 1, &m, &e));
 
     banyan_segments_params sp;
     banyan_segments_params_init(&sp);
@@ -520,9 +527,9 @@ static void null_cases(void) {
     banyan_segments_params_init(&sp);
 
     RUN_MESH("roots", "banyan_roots_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_roots_generate(NULL, &h, 1, &m, &e));
+             test_roots_boxes(NULL, &h, 1, &m, &e));
     RUN("roots", "banyan_roots_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_roots_generate(&rp, &h, 1, NULL, &e), 1);
+        test_roots_boxes(&rp, &h, 1, NULL, &e), 1);
     RUN_MESH("keyaki", "banyan_keyaki_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
              banyan_keyaki_generate(NULL, &m, NULL, NULL, &e));
     RUN("keyaki", "banyan_keyaki_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
@@ -545,11 +552,12 @@ static void null_cases(void) {
     RUN("avenue", "banyan_avenue_layout", "above cap", "capacity = 2 for 16 trees", BANYAN_E_INVALID_ARG, "capacity",
         banyan_avenue_layout(&ap, NULL, 0, few, 2, &n, &e), n == 16);
     RUN_MESH("ivy", "banyan_ivy_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_ivy_generate(NULL, &w, 1, &m, &e));
+             test_ivy_boxes(NULL, &w, 1, &m, &e));
     RUN("ivy", "banyan_ivy_generate", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_ivy_generate(&ip, &w, 1, NULL, &e), 1);
+        test_ivy_boxes(&ip, &w, 1, NULL, &e), 1);
+    banyan_hosts *hs = TEST_HOSTS(&w, 1);
     RUN("ivy", "banyan_ivy_create", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
-        banyan_ivy_create(&ip, &w, 1, NULL, &e), 1);
+        banyan_ivy_create(&ip, hs, NULL, &e), 1);
     RUN("ivy", "banyan_ivy_step", "NULL", "ivy = NULL", BANYAN_E_INVALID_ARG, "ivy", banyan_ivy_step(NULL, 1, &e), 1);
     RUN_MESH("ivy", "banyan_ivy_mesh", "NULL", "ivy = NULL", BANYAN_E_INVALID_ARG, "ivy", banyan_ivy_mesh(NULL, &m, &e));
     banyan_ivy_stats ist;
@@ -557,16 +565,12 @@ static void null_cases(void) {
         banyan_ivy_get_stats(NULL, &ist, &e), 1);
     /* A progress struct without its callback. */
     banyan_progress no_fn = {NULL, NULL};
-    banyan_hosts *hs = NULL;
-    banyan_hosts_create(&w, 1, NULL, 0, &hs, NULL);
-    RUN_MESH("roots", "banyan_roots_generate_hosts", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG,
-             "progress->fn", banyan_roots_generate_hosts(&rp, hs, &m, NULL, &no_fn, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate_hosts", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
-             banyan_ivy_generate_hosts(&ip, hs, &m, &no_fn, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate_hosts_stats", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG,
-             "progress->fn", banyan_ivy_generate_hosts_stats(&ip, hs, &m, &ist, &no_fn, &e));
-    RUN_MESH("ivy", "banyan_ivy_generate_hosts_stats", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-             banyan_ivy_generate_hosts_stats(NULL, hs, &m, &ist, NULL, &e));
+    RUN_MESH("roots", "banyan_roots_generate", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG,
+             "progress->fn", banyan_roots_generate(&rp, hs, &m, NULL, &no_fn, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
+             banyan_ivy_generate(&ip, hs, &m, &ist, &no_fn, &e));
+    RUN_MESH("ivy", "banyan_ivy_generate", "NULL", "params = NULL, stats", BANYAN_E_INVALID_ARG, "params",
+             banyan_ivy_generate(NULL, hs, &m, &ist, NULL, &e));
     RUN_MESH("avenue", "banyan_avenue_generate", "NULL", "progress->fn = NULL", BANYAN_E_INVALID_ARG, "progress->fn",
              banyan_avenue_generate(&ap, NULL, 0, &m, &no_fn, &e));
     banyan_hosts_free(hs);
@@ -742,8 +746,8 @@ static void null_cases(void) {
     banyan_roots_params_init(NULL);
     banyan_keyaki_params_init(NULL);
     /* A NULL err is allowed everywhere. */
-    CHECK(banyan_roots_generate(NULL, &h, 1, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL err");
-    CHECK(banyan_ivy_generate(&ip, NULL, 0, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL err, NULL out");
+    CHECK(test_roots_boxes(NULL, &h, 1, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL err");
+    CHECK(banyan_ivy_generate(&ip, NULL, NULL, NULL, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL err, NULL out");
 }
 
 /* Inputs beyond the params tables: paths, segment inputs, tubes, steps. */
@@ -787,11 +791,11 @@ static void input_cases(void) {
     banyan_box h = trunk_host(), w = wall_host();
     rp.forward_min = 5, rp.forward_max = 1;
     RUN_MESH("roots", "banyan_roots_generate", "inconsistent", "forward_min 5 > forward_max 1", BANYAN_E_RANGE,
-             "forward_min", banyan_roots_generate(&rp, &h, 1, &m, &e));
+             "forward_min", test_roots_boxes(&rp, &h, 1, &m, &e));
     banyan_roots_params_init(&rp);
     rp.sides = 7;
     RUN_MESH("roots", "banyan_roots_generate", "inconsistent", "sides = 7 (odd)", BANYAN_E_RANGE, "sides",
-             banyan_roots_generate(&rp, &h, 1, &m, &e));
+             test_roots_boxes(&rp, &h, 1, &m, &e));
     banyan_keyaki_params kp;
     banyan_keyaki_params_init(&kp);
     kp.fork_angle = 80, kp.fork_angle_step = 5;
@@ -809,17 +813,18 @@ static void input_cases(void) {
     banyan_ivy_params_init(&ip);
     ip.t1 = 3, ip.t2 = 1;
     RUN_MESH("ivy", "banyan_ivy_generate", "inconsistent", "t2 1 < t1 3", BANYAN_E_RANGE, "t2",
-             banyan_ivy_generate(&ip, &w, 1, &m, &e));
+             test_ivy_boxes(&ip, &w, 1, &m, &e));
     banyan_ivy_params_init(&ip);
     ip.stem_radius = 0.01, ip.stem_radius_max = 0.005;
     RUN_MESH("ivy", "banyan_ivy_generate", "inconsistent", "stem_radius_max < stem_radius", BANYAN_E_RANGE,
-             "stem_radius_max", banyan_ivy_generate(&ip, &w, 1, &m, &e));
+             "stem_radius_max", test_ivy_boxes(&ip, &w, 1, &m, &e));
 
     /* The ivy's stepping calls. */
     banyan_ivy_params_init(&ip);
     banyan_ivy *iv = NULL;
     banyan_error e0;
-    if (banyan_ivy_create(&ip, &w, 1, &iv, &e0) == BANYAN_OK) {
+    banyan_hosts *wall_set = TEST_HOSTS(&w, 1);
+    if (banyan_ivy_create(&ip, wall_set, &iv, &e0) == BANYAN_OK) {
         RUN("ivy", "banyan_ivy_step", "negative", "n = -1", BANYAN_E_RANGE, "n (steps)", banyan_ivy_step(iv, -1, &e), 1);
         RUN("ivy", "banyan_ivy_step", "above cap", "n = 100001", BANYAN_E_RANGE, "n (steps)",
             banyan_ivy_step(iv, BANYAN_IVY_MAX_STEPS + 1, &e), 1);
@@ -832,6 +837,7 @@ static void input_cases(void) {
     } else {
         CHECK(0, "ivy create: %s", e0.message);
     }
+    banyan_hosts_free(wall_set);
 
     /* Segment inputs. */
     banyan_segment_params sgp;

@@ -15,6 +15,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "base/progress.h"
+#include "test_hosts.h"
 
 #define BUDGET 2.0
 #define WITHIN 2.5
@@ -61,8 +62,9 @@ static void ivy_memory(void) {
     banyan_box w = wall_1km();
     banyan_ivy *iv = NULL;
     banyan_error e;
+    banyan_hosts *W = TEST_HOSTS(&w, 1);
     double rss0 = process_rss_mb(), peak = 0;
-    banyan_status s = banyan_ivy_create(&p, &w, 1, &iv, &e);
+    banyan_status s = banyan_ivy_create(&p, W, &iv, &e);
     CHECK(s == BANYAN_OK, "ivy create: %s", e.message);
     double t = now();
     /* Steps in parts, reading the resident size between them. */
@@ -77,17 +79,19 @@ static void ivy_memory(void) {
     banyan_mesh *m = NULL;
     CHECK(banyan_ivy_mesh(iv, &m, &e) == BANYAN_E_LIMIT && m == NULL, "a stopped plant still meshes");
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
 }
 
 /* `banyan ivy --set t0=1000000` through the step API as the
- * CLI calls it, and through the one-shot host-set call. */
+ * CLI calls it, and through the one-shot call. */
 static void ivy_time(void) {
     banyan_ivy_params p;
     ivy_unbounded(&p);
     banyan_box w = wall_3m();
+    banyan_hosts *H = TEST_HOSTS(&w, 1);
     banyan_error e;
     banyan_ivy *iv = NULL;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
+    CHECK(banyan_ivy_create(&p, H, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
     double t = now();
     banyan_status s = banyan_ivy_step(iv, p.steps, &e);
     stopped("ivy t0=1e6, step API", s, NULL, &e, now() - t, "max_seconds", WITHIN);
@@ -100,21 +104,19 @@ static void ivy_time(void) {
     CHECK(now() - t < 0.5, "a stopped handle took %.2f s to refuse", now() - t);
     banyan_ivy_free(iv);
 
-    banyan_hosts *H = NULL;
-    CHECK(banyan_hosts_create(&w, 1, NULL, 0, &H, &e) == BANYAN_OK, "hosts: %s", e.message);
     m = NULL;
     t = now();
-    s = banyan_ivy_generate_hosts(&p, H, &m, NULL, &e);
-    stopped("ivy t0=1e6, generate_hosts", s, m, &e, now() - t, "max_seconds", WITHIN);
-    banyan_hosts_free(H);
+    s = banyan_ivy_generate(&p, H, &m, NULL, NULL, &e);
+    stopped("ivy t0=1e6, generate", s, m, &e, now() - t, "max_seconds", WITHIN);
 
     /* The step budget adds up over the calls (step_seconds). */
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
+    CHECK(banyan_ivy_create(&p, H, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
     t = now();
     s = BANYAN_OK;
     for (int k = 0; !s && k < 100000; k++) s = banyan_ivy_step(iv, 1, &e);
     stopped("ivy t0=1e6, one step a call", s, NULL, &e, now() - t, "max_seconds", WITHIN);
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
 }
 
 /* A 1 km wall. With the default max_vertices the step API
@@ -124,9 +126,10 @@ static void ivy_wall(void) {
     banyan_ivy_params p;
     ivy_unbounded(&p);
     banyan_box w = wall_1km(), small = wall_3m();
+    banyan_hosts *W = TEST_HOSTS(&w, 1), *S = TEST_HOSTS(&small, 1);
     banyan_error e;
     banyan_ivy *iv = NULL;
-    CHECK(banyan_ivy_create(&p, &w, 1, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
+    CHECK(banyan_ivy_create(&p, W, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
     double t = now();
     banyan_status s = banyan_ivy_step(iv, p.steps, &e);
     stopped("ivy t0=1e6, 1 km wall", s, NULL, &e, now() - t, "max_seconds", WITHIN);
@@ -136,13 +139,15 @@ static void ivy_wall(void) {
      * stays usable (its mesh within the cap). */
     p.max_vertices = 200000;
     p.max_seconds = PROG_MAX_SECONDS_DEFAULT;
-    CHECK(banyan_ivy_create(&p, &small, 1, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
+    CHECK(banyan_ivy_create(&p, S, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
     t = now();
     s = banyan_ivy_step(iv, p.steps, &e);
     stopped("ivy t0=1e6, step API, max_vertices 200000", s, NULL, &e, now() - t, "max_vertices", 30);
     banyan_ivy_stats st;
     CHECK(banyan_ivy_get_stats(iv, &st, &e) == BANYAN_OK && st.steps > 0 && st.steps < 1000, "steps %d", st.steps);
     banyan_ivy_free(iv);
+    banyan_hosts_free(W);
+    banyan_hosts_free(S);
 }
 
 /* 256 hosts, 64 roots, 10,000 growth points, 100 moves. A
@@ -166,7 +171,7 @@ static void roots_time(banyan_roots_surface surface) {
     banyan_error e;
     banyan_mesh *m = NULL;
     double t = now();
-    banyan_status s = banyan_roots_generate(&p, boxes, 256, &m, &e);
+    banyan_status s = test_roots_boxes(&p, boxes, 256, &m, &e);
     stopped(surface == BANYAN_ROOTS_FUSED ? "roots 256 hosts, fused" : "roots 256 hosts, tubes", s, m, &e,
             now() - t, "max_seconds", WITHIN);
     banyan_mesh_free(m);

@@ -17,6 +17,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "host_meshes.h"
+#include "test_hosts.h"
 
 static const double FAR[3] = {999999.0, -500000.0, 5000.0};
 /* A trunk standing on the ground moved to x = 999,999
@@ -94,7 +95,7 @@ static banyan_mesh *roots_boxes(const double at[3], int surface) {
     banyan_box trunk = box_at(at, 0, 0, 0, 0.4, 0.4, 1.5); /* centred: the frame's origin is `at` itself */
     banyan_mesh *m = NULL;
     banyan_error e;
-    banyan_status s = banyan_roots_generate(&p, &trunk, 1, &m, &e);
+    banyan_status s = test_roots_boxes(&p, &trunk, 1, &m, &e);
     CHECK(s == BANYAN_OK, "roots at (%g, %g, %g): %s", at[0], at[1], at[2], e.message);
     return m;
 }
@@ -107,7 +108,7 @@ static banyan_mesh *roots_standing(const double at[3]) {
     banyan_box trunk = box_at(at, 0, 0, 1.5, 0.4, 0.4, 1.5);
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_roots_generate(&p, &trunk, 1, &m, &e) == BANYAN_OK, "standing roots: %s", e.message);
+    CHECK(test_roots_boxes(&p, &trunk, 1, &m, &e) == BANYAN_OK, "standing roots: %s", e.message);
     return m;
 }
 
@@ -124,7 +125,7 @@ static banyan_mesh *roots_mesh(const double at[3]) {
         small_roots(&p);
         p.ground_z = at[2];
         p.surface = BANYAN_ROOTS_TUBES;
-        CHECK(banyan_roots_generate_hosts(&p, H, &m, NULL, NULL, &e) == BANYAN_OK, "roots on a mesh: %s", e.message);
+        CHECK(banyan_roots_generate(&p, H, &m, NULL, NULL, &e) == BANYAN_OK, "roots on a mesh: %s", e.message);
         /* The public queries stay in world coordinates. */
         banyan_host_info info;
         double q[3] = {at[0] - 2, at[1], at[2] + 1};
@@ -162,7 +163,7 @@ static banyan_mesh *ivy_at(const double at[3]) {
     banyan_box wall = box_at(at, 0, 0.125, 2, 3, 0.125, 2);
     banyan_mesh *m = NULL;
     banyan_error e;
-    CHECK(banyan_ivy_generate(&p, &wall, 1, &m, &e) == BANYAN_OK, "ivy at (%g, %g, %g): %s", at[0], at[1], at[2],
+    CHECK(test_ivy_boxes(&p, &wall, 1, &m, &e) == BANYAN_OK, "ivy at (%g, %g, %g): %s", at[0], at[1], at[2],
           e.message);
     return m;
 }
@@ -245,14 +246,14 @@ static void refusals(void) {
     rp.ground = 0;
     banyan_box two[2] = {box_at(FAR, 0, 0, 1.5, 0.4, 0.4, 1.5), box_at(FAR, -20000, 0, 1.5, 0.4, 0.4, 1.5)};
     m = NULL;
-    refused("roots on hosts 20 km apart", banyan_roots_generate(&rp, two, 2, &m, &e), m, &e, "germination");
+    refused("roots on hosts 20 km apart", test_roots_boxes(&rp, two, 2, &m, &e), m, &e, "germination");
 
     banyan_ivy_params ip;
     banyan_ivy_params_init(&ip);
     ip.ground = 0;
     ip.start[0] = FAR[0], ip.start[1] = FAR[1] - 0.5, ip.start[2] = FAR[2] + 1;
     m = NULL;
-    refused("ivy on hosts 20 km apart", banyan_ivy_generate(&ip, two, 2, &m, &e), m, &e, "start");
+    refused("ivy on hosts 20 km apart", test_ivy_boxes(&ip, two, 2, &m, &e), m, &e, "start");
 
     banyan_avenue_params ap;
     avenue_params(&ap, FAR);

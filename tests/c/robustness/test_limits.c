@@ -18,6 +18,7 @@
 #include "banyan.h"
 #include "check.h"
 #include "host_meshes.h"
+#include "test_hosts.h"
 
 /* The counters: the largest single request and the sum of requests;
  * the calls since reset(), and which of them fails (0: none). */
@@ -111,12 +112,17 @@ static void fail_each(const char *what, generate_fn gen, const void *ctx) {
     printf("%-58s %ld allocations failed one at a time: %d reported, %d did without\n", what, total, nomem, ok);
 }
 
+/* The host set is built inside, so its failure paths count. */
 static banyan_status gen_roots(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create((const banyan_box *)ctx, 1, NULL, 0, &H, e);
+    if (s) return s;
     banyan_roots_params p;
     banyan_roots_params_init(&p);
-    return banyan_roots_generate(&p, (const banyan_box *)ctx, 1, out, e);
+    s = banyan_roots_generate(&p, H, out, NULL, NULL, e);
+    banyan_hosts_free(H);
+    return s;
 }
-/* Mesh hosts: the host set is built inside, so its failure paths count. */
 static banyan_status gen_roots_mesh(const void *ctx, banyan_mesh **out, banyan_error *e) {
     banyan_hosts *H = NULL;
     banyan_status s = banyan_hosts_create(NULL, 0, (const banyan_host_mesh *)ctx, 1, &H, e);
@@ -124,7 +130,7 @@ static banyan_status gen_roots_mesh(const void *ctx, banyan_mesh **out, banyan_e
     banyan_roots_params p;
     banyan_roots_params_init(&p);
     p.growth_points = 12;
-    s = banyan_roots_generate_hosts(&p, H, out, NULL, NULL, e);
+    s = banyan_roots_generate(&p, H, out, NULL, NULL, e);
     banyan_hosts_free(H);
     return s;
 }
@@ -136,7 +142,7 @@ static banyan_status gen_ivy_mesh(const void *ctx, banyan_mesh **out, banyan_err
     banyan_ivy_params_init(&p);
     p.steps = 60;
     p.start[0] = 0, p.start[1] = -0.6, p.start[2] = 0.1;
-    s = banyan_ivy_generate_hosts(&p, H, out, NULL, e);
+    s = banyan_ivy_generate(&p, H, out, NULL, NULL, e);
     banyan_hosts_free(H);
     return s;
 }
@@ -155,10 +161,15 @@ static banyan_status gen_avenue(const void *ctx, banyan_mesh **out, banyan_error
     return banyan_avenue_generate(&p, NULL, 0, out, NULL, e); /* one thread: the counters are not atomic */
 }
 static banyan_status gen_ivy(const void *ctx, banyan_mesh **out, banyan_error *e) {
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create((const banyan_box *)ctx, 1, NULL, 0, &H, e);
+    if (s) return s;
     banyan_ivy_params p;
     banyan_ivy_params_init(&p);
     p.steps = 160;
-    return banyan_ivy_generate(&p, (const banyan_box *)ctx, 1, out, e);
+    s = banyan_ivy_generate(&p, H, out, NULL, NULL, e);
+    banyan_hosts_free(H);
+    return s;
 }
 static banyan_status gen_segments(const void *ctx, banyan_mesh **out, banyan_error *e) {
     (void)ctx;
@@ -205,7 +216,7 @@ int main(void) {
         rp.max_vertices = caps[k];
         reset();
         m = NULL;
-        s = banyan_roots_generate(&rp, &trunk, 1, &m, &e);
+        s = test_roots_boxes(&rp, &trunk, 1, &m, &e);
         refused(k ? "roots 64 x 10000 points x 256 sides, max 2^30" : "roots 64 x 10000 points x 256 sides, max 4e6",
                 s, m, &e);
     }
@@ -247,7 +258,7 @@ int main(void) {
     ip.steps = BANYAN_IVY_MAX_STEPS, ip.max_vertices = 50000, ip.t0 = 1e6;
     reset();
     m = NULL;
-    s = banyan_ivy_generate(&ip, &wall, 1, &m, &e);
+    s = test_ivy_boxes(&ip, &wall, 1, &m, &e);
     refused("ivy 100000 steps, max_vertices 50000", s, m, &e);
 
     /* Segments: 131,072 segments of 64 lines, each a 64-sided tube. */

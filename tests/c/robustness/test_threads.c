@@ -16,6 +16,7 @@
 #include "check.h"
 #include "host_meshes.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 #define THREADS 4
 #define ROUNDS 2
@@ -47,7 +48,7 @@ static uint64_t run_roots(int v) {
     banyan_box h = banyan_box_make(0, 0, 1, 0.3 + 0.1 * v, 0.3, 1);
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_roots_generate(&p, &h, 1, &m, &e), &m, &e, "roots");
+    return finish(test_roots_boxes(&p, &h, 1, &m, &e), &m, &e, "roots");
 }
 
 static uint64_t run_keyaki(int v) {
@@ -86,7 +87,7 @@ static uint64_t run_ivy(int v) {
     banyan_box h = banyan_box_make(0, 0.1, 1.5, 1.5, 0.1, 1.5);
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_ivy_generate(&p, &h, 1, &m, &e), &m, &e, "ivy");
+    return finish(test_ivy_boxes(&p, &h, 1, &m, &e), &m, &e, "ivy");
 }
 
 /* One host set (a sphere and a column) shared by every thread. */
@@ -99,7 +100,7 @@ static uint64_t run_roots_mesh(int v) {
     p.growth_points = 14;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_roots_generate_hosts(&p, shared_hosts, &m, NULL, NULL, &e), &m, &e, "roots on meshes");
+    return finish(banyan_roots_generate(&p, shared_hosts, &m, NULL, NULL, &e), &m, &e, "roots on meshes");
 }
 
 static uint64_t run_ivy_mesh(int v) {
@@ -110,7 +111,7 @@ static uint64_t run_ivy_mesh(int v) {
     p.start[0] = 0, p.start[1] = -0.45, p.start[2] = 0.1;
     banyan_mesh *m = NULL;
     banyan_error e;
-    return finish(banyan_ivy_generate_hosts(&p, shared_hosts, &m, NULL, &e), &m, &e, "ivy on meshes");
+    return finish(banyan_ivy_generate(&p, shared_hosts, &m, NULL, NULL, &e), &m, &e, "ivy on meshes");
 }
 
 static uint64_t run_segments(int v) {

@@ -48,7 +48,7 @@ static int measure(const char *label, const banyan_roots_params *p, const banyan
     banyan_mesh *m = NULL;
     memset(f, 0, sizeof *f);
     clock_t t0 = clock();
-    if (banyan_roots_generate_hosts(p, H, &m, NULL, NULL, &err)) {
+    if (banyan_roots_generate(p, H, &m, NULL, NULL, &err)) {
         fprintf(stderr, "%s seed %llu: %s\n", label, (unsigned long long)p->seed, err.message);
         return 1;
     }

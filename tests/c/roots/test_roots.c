@@ -26,6 +26,7 @@
 #include "mesh_checks.h"
 #include "roots/roots_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 #define TOL 1e-3 /* times r */
 
@@ -323,7 +324,7 @@ static void write_glb(const char *dir, const char *name, const banyan_roots_para
                       uint32_t n) {
     banyan_mesh *m = NULL;
     banyan_error err;
-    CHECK(banyan_roots_generate(p, hosts, n, &m, &err) == BANYAN_OK, "%s: %s", name, err.message);
+    CHECK(test_roots_boxes(p, hosts, n, &m, &err) == BANYAN_OK, "%s: %s", name, err.message);
     if (!m || !dir) {
         banyan_mesh_free(m);
         return;
@@ -335,13 +336,20 @@ static void write_glb(const char *dir, const char *name, const banyan_roots_para
     banyan_mesh_free(m);
 }
 
-/* A refusal: the status, *out left NULL and the message naming `needle`. */
+/* A refusal: the status, *out left NULL and the message naming `needle`.
+ * Bad boxes are refused by the host set, the rest by the generator. */
 static void refused(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n, banyan_status want,
                     const char *needle, const char *what) {
     banyan_error err;
     memset(&err, 0, sizeof err);
-    banyan_mesh *m = (banyan_mesh *)&err;
-    banyan_status s = banyan_roots_generate(p, hosts, n, &m, &err);
+    banyan_mesh *m = NULL;
+    banyan_hosts *H = NULL;
+    banyan_status s = banyan_hosts_create(hosts, n, NULL, 0, &H, &err);
+    if (!s) {
+        m = (banyan_mesh *)&err;
+        s = banyan_roots_generate(p, H, &m, NULL, NULL, &err);
+    }
+    banyan_hosts_free(H);
     CHECK(s == want && m == NULL && strstr(err.message, needle) != NULL, "%s: status %d (want %d), message '%s'", what,
           s, want, err.message);
 }
@@ -368,7 +376,9 @@ static void roots_preset(const char *path, const char *name, void *ctx) {
     banyan_mesh *m = NULL;
     banyan_roots_stats st;
     banyan_error err;
-    CHECK(banyan_roots_generate_stats(&p, hosts, n, &m, &st, &err) == BANYAN_OK, "%s: %s", name, err.message);
+    banyan_hosts *H = TEST_HOSTS(hosts, n);
+    CHECK(banyan_roots_generate(&p, H, &m, &st, NULL, &err) == BANYAN_OK, "%s: %s", name, err.message);
+    banyan_hosts_free(H);
     if (!strcmp(name, "roots_paper")) CHECK(p.hugging == 0, "the paper preset must turn hugging off");
     /* Every shipped preset touches the ground (the young fig's
      * cords have just reached it). */
@@ -518,10 +528,10 @@ int main(int argc, char **argv) {
         banyan_box host = banyan_box_make(0, 0, 4, 0.4, 0.4, 4);
         banyan_mesh *a = NULL, *b = NULL, *c = NULL;
         p.seed = 42;
-        banyan_roots_generate(&p, &host, 1, &a, NULL);
-        banyan_roots_generate(&p, &host, 1, &b, NULL);
+        test_roots_boxes(&p, &host, 1, &a, NULL);
+        test_roots_boxes(&p, &host, 1, &b, NULL);
         p.seed = 43;
-        banyan_roots_generate(&p, &host, 1, &c, NULL);
+        test_roots_boxes(&p, &host, 1, &c, NULL);
         CHECK(a && b && c, "generate failed");
         if (a && b && c) {
             CHECK(banyan_mesh_hash(a) == banyan_mesh_hash(b), "same seed, different meshes");
@@ -662,9 +672,9 @@ int main(int argc, char **argv) {
         banyan_roots_params_init(&p);
         p.surface = BANYAN_ROOTS_TUBES;
         banyan_mesh *a = NULL, *b = NULL;
-        banyan_roots_generate(&p, &host, 1, &a, NULL);
+        test_roots_boxes(&p, &host, 1, &a, NULL);
         p.smoothing = 0;
-        banyan_roots_generate(&p, &host, 1, &b, NULL);
+        test_roots_boxes(&p, &host, 1, &b, NULL);
         CHECK(a && b && a->vertex_count == b->vertex_count && banyan_mesh_hash(a) != banyan_mesh_hash(b),
               "smoothing off changed nothing");
         banyan_mesh_free(a);
@@ -690,8 +700,8 @@ int main(int argc, char **argv) {
             refused(&p, &host, 1, BANYAN_E_RANGE, "radius", "bad radius");
         }
         banyan_roots_params_init(&p);
-        refused(&p, &host, 0, BANYAN_E_NO_HOSTS, "n_hosts = 0", "no hosts");
-        refused(&p, NULL, 1, BANYAN_E_INVALID_ARG, "hosts is NULL", "NULL hosts");
+        refused(&p, &host, 0, BANYAN_E_NO_HOSTS, "n_boxes + n_meshes = 0", "no hosts");
+        refused(&p, NULL, 1, BANYAN_E_INVALID_ARG, "boxes is NULL", "NULL hosts");
         p.germination_auto = 0;
         p.germination[0] = 0.1;
         p.germination[2] = 3.0;
@@ -716,13 +726,15 @@ int main(int argc, char **argv) {
         banyan_box flat = banyan_box_make(0, 0, 1, 0.5, 0, 1);
         refused(&p, &flat, 1, BANYAN_E_BAD_HOST, "hosts[0].half[1]", "flat host");
         refused(NULL, &host, 1, BANYAN_E_INVALID_ARG, "params", "NULL params");
-        CHECK(banyan_roots_generate(&p, &host, 1, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL out accepted");
+        CHECK(test_roots_boxes(&p, &host, 1, NULL, NULL) == BANYAN_E_INVALID_ARG, "NULL out accepted");
         banyan_roots_stats st;
         st.vertices = 77;
         banyan_mesh *m = NULL;
         p.sides = 9;
-        CHECK(banyan_roots_generate_stats(&p, &host, 1, &m, &st, NULL) == BANYAN_E_RANGE && st.vertices == 0,
+        banyan_hosts *H = TEST_HOSTS(&host, 1);
+        CHECK(banyan_roots_generate(&p, H, &m, &st, NULL, NULL) == BANYAN_E_RANGE && st.vertices == 0,
               "stats not cleared on failure");
+        banyan_hosts_free(H);
     }
 
     /* 9. Layout meshes for the validator. */

@@ -124,7 +124,7 @@ static void run(const char *name, const banyan_roots_params *p, const banyan_hos
     CHECK(n >= min_threads, "%s: %d threads, want at least %d", name, n, min_threads);
     roots_net_free(&net);
     banyan_mesh *m = NULL;
-    if (banyan_roots_generate_hosts(p, H, &m, NULL, NULL, &err) != BANYAN_OK) {
+    if (banyan_roots_generate(p, H, &m, NULL, NULL, &err) != BANYAN_OK) {
         CHECK(0, "%s: %s", name, err.message);
         return;
     }
@@ -172,8 +172,8 @@ int main(void) {
         p.aerial_roots = 200;
         p.maturity = 1;
         banyan_mesh *a = NULL, *b = NULL;
-        CHECK(banyan_roots_generate_hosts(&p, H, &a, NULL, NULL, &err) == BANYAN_OK, "200 threads: %s", err.message);
-        CHECK(banyan_roots_generate_hosts(&p, H, &b, NULL, NULL, &err) == BANYAN_OK, "200 threads: %s", err.message);
+        CHECK(banyan_roots_generate(&p, H, &a, NULL, NULL, &err) == BANYAN_OK, "200 threads: %s", err.message);
+        CHECK(banyan_roots_generate(&p, H, &b, NULL, NULL, &err) == BANYAN_OK, "200 threads: %s", err.message);
         if (a && b) {
             CHECK(a->vertex_count == b->vertex_count &&
                       !memcmp(a->positions, b->positions, sizeof(float) * 3 * (size_t)a->vertex_count),

@@ -17,6 +17,7 @@
 #include "check.h"
 #include "roots/roots_internal.h"
 #include "test_files.h"
+#include "test_hosts.h"
 
 #define SEEDS 5
 
@@ -304,8 +305,8 @@ static void check_net(const char *what, const banyan_roots_params *p0, const ban
               "%s: attributes, colours, material and skeleton", what);
         if (s == 0) {
             banyan_mesh *b = NULL;
-            st = hs ? banyan_roots_generate_hosts(&p, hs, &b, NULL, NULL, &err)
-                    : banyan_roots_generate(&p, boxes, n_boxes, &b, &err);
+            st = hs ? banyan_roots_generate(&p, hs, &b, NULL, NULL, &err)
+                    : test_roots_boxes(&p, boxes, n_boxes, &b, &err);
             CHECK(st == BANYAN_OK && b && same_bytes(m, b), "%s seed %llu: not the same bytes twice", what,
                   (unsigned long long)p.seed);
             banyan_mesh_free(b);
@@ -426,23 +427,23 @@ int main(int argc, char **argv) {
         banyan_mesh *m = NULL;
         banyan_error err;
         p.max_vertices = 20000;
-        banyan_status s = banyan_roots_generate(&p, &host, 1, &m, &err);
+        banyan_status s = test_roots_boxes(&p, &host, 1, &m, &err);
         CHECK(s == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"), "limit: status %d, '%s'", s,
               err.message);
         /* One vertex short of the mesh: refused on the final count. */
         banyan_roots_params_init(&p);
         p.main_roots = 3;
         p.growth_points = 12;
-        s = banyan_roots_generate(&p, &host, 1, &m, &err);
+        s = test_roots_boxes(&p, &host, 1, &m, &err);
         uint32_t n = m ? m->vertex_count : 0;
         banyan_mesh_free(m);
         m = NULL;
         p.max_vertices = (int32_t)n - 1;
-        banyan_status s2 = banyan_roots_generate(&p, &host, 1, &m, &err);
+        banyan_status s2 = test_roots_boxes(&p, &host, 1, &m, &err);
         CHECK(s == BANYAN_OK && n > 1 && s2 == BANYAN_E_LIMIT && m == NULL && strstr(err.message, "max_vertices"),
               "limit n - 1 = %u: status %d, '%s'", n - 1, s2, err.message);
         p.max_vertices = (int32_t)n;
-        s2 = banyan_roots_generate(&p, &host, 1, &m, &err);
+        s2 = test_roots_boxes(&p, &host, 1, &m, &err);
         CHECK(s2 == BANYAN_OK && m && m->vertex_count == n, "limit n = %u: status %d", n, s2);
         banyan_mesh_free(m);
     }

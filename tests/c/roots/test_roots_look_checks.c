@@ -17,6 +17,7 @@
 
 #include "check.h"
 #include "roots_look_checks.h"
+#include "test_hosts.h"
 
 static banyan_mesh bare(float *pos, uint32_t nv, uint32_t *idx, uint32_t ni) {
     banyan_mesh m;
@@ -173,7 +174,7 @@ static void glb_size(const char *dir) {
     banyan_box trunk = banyan_box_make(0, 0, 1, 0.4, 0.4, 1);
     banyan_mesh *m = NULL;
     banyan_error err;
-    banyan_status s = banyan_roots_generate(&p, &trunk, 1, &m, &err);
+    banyan_status s = test_roots_boxes(&p, &trunk, 1, &m, &err);
     CHECK(s == BANYAN_OK, "roots: %s", err.message);
     if (s) return;
     long long size = rl_glb_size(m, dir, NULL, &err);

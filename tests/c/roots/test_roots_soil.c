@@ -26,7 +26,7 @@ static int all_white(const banyan_mesh *m) {
 static banyan_mesh *grow(const char *name, const banyan_roots_params *p, const banyan_hosts *H) {
     banyan_mesh *m = NULL;
     banyan_error err;
-    if (banyan_roots_generate_hosts(p, H, &m, NULL, NULL, &err) != BANYAN_OK) {
+    if (banyan_roots_generate(p, H, &m, NULL, NULL, &err) != BANYAN_OK) {
         CHECK(0, "%s: %s", name, err.message);
         return NULL;
     }
@@ -88,7 +88,7 @@ static void check_refused(const banyan_hosts *H, double value) {
     banyan_mesh *m = NULL;
     banyan_error err;
     memset(&err, 0, sizeof err);
-    banyan_status s = banyan_roots_generate_hosts(&p, H, &m, NULL, NULL, &err);
+    banyan_status s = banyan_roots_generate(&p, H, &m, NULL, NULL, &err);
     CHECK(s == BANYAN_E_RANGE && m == NULL, "soil_line = %g: status %d, want BANYAN_E_RANGE", value, (int)s);
     CHECK(strstr(err.message, "soil_line") && strstr(err.message, "[0, 2]"), "soil_line = %g: message \"%s\"", value,
           err.message);

@@ -17,7 +17,7 @@ static const char *out_dir = "/tmp";
 static void clean(const char *name, const banyan_roots_params *p, const banyan_hosts *H) {
     banyan_mesh *m = NULL;
     banyan_error err;
-    banyan_status s = banyan_roots_generate_hosts(p, H, &m, NULL, NULL, &err);
+    banyan_status s = banyan_roots_generate(p, H, &m, NULL, NULL, &err);
     CHECK(s == BANYAN_OK, "%s: %s", name, err.message);
     if (s) return;
     int64_t crossing = rl_self_intersections(m, NULL, 0), close = rl_close_pairs(m, 5e-4, NULL, 0);
@@ -57,7 +57,7 @@ int main(int argc, char **argv) {
     for (uint64_t seed = 1; seed <= 5; seed++) {
         p.seed = seed;
         banyan_mesh *m = NULL;
-        banyan_status s = banyan_roots_generate_hosts(&p, H, &m, NULL, NULL, &err);
+        banyan_status s = banyan_roots_generate(&p, H, &m, NULL, NULL, &err);
         CHECK(s == BANYAN_OK, "default seed %llu: %s", (unsigned long long)seed, err.message);
         if (s) continue;
         long long size = rl_glb_size(m, out_dir, NULL, &err);

@@ -102,9 +102,9 @@ static void test_ivy(void) {
     banyan_ivy_stats st;
     if (!lean) {
         banyan_mesh *a = NULL, *b = NULL;
-        CHECK(banyan_ivy_generate_hosts(&p, H, &a, NULL, &e) == BANYAN_OK, "ivy: %s", e.message);
+        CHECK(banyan_ivy_generate(&p, H, &a, NULL, NULL, &e) == BANYAN_OK, "ivy: %s", e.message);
         rec_init(&r, 2.0);
-        CHECK(banyan_ivy_generate_hosts_stats(&p, H, &b, &st, &pr, &e) == BANYAN_OK, "ivy + progress: %s", e.message);
+        CHECK(banyan_ivy_generate(&p, H, &b, &st, &pr, &e) == BANYAN_OK, "ivy + progress: %s", e.message);
         check_full(&r, "ivy");
         CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "ivy: the hash changed with a progress callback");
         CHECK(st.steps == p.steps && st.buds > 100 && st.cannot_grow == BANYAN_IVY_GREW, "ivy stats: %d steps, %d buds, %d",
@@ -112,7 +112,7 @@ static void test_ivy(void) {
         /* The stats of the one shot are the stepping API's. */
         banyan_ivy *iv = NULL;
         banyan_ivy_stats st2;
-        if (banyan_ivy_create_hosts(&p, H, &iv, &e) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &e) == BANYAN_OK &&
+        if (banyan_ivy_create(&p, H, &iv, &e) == BANYAN_OK && banyan_ivy_step(iv, p.steps, &e) == BANYAN_OK &&
             banyan_ivy_get_stats(iv, &st2, &e) == BANYAN_OK)
             CHECK(st2.buds == st.buds && st2.crossings == st.crossings && st2.cannot_grow == st.cannot_grow,
                   "stepped stats differ: %d / %d buds", st2.buds, st.buds);
@@ -127,13 +127,13 @@ static void test_ivy(void) {
     rec_init(&r, 0.3);
     banyan_mesh *m = NULL;
     st.buds = 7;
-    banyan_status s = banyan_ivy_generate_hosts_stats(&p, H, &m, &st, &pr, &e);
+    banyan_status s = banyan_ivy_generate(&p, H, &m, &st, &pr, &e);
     check_cancelled(&r, s, &e, m, "ivy at 30 %");
     CHECK(st.buds == 0 && st.steps == 0, "ivy: stats not zeroed on cancel (%d buds)", st.buds);
     CHECK(r.last >= 0.3 && r.last < 0.5, "ivy: cancelled at %g", r.last);
     /* At the very end. */
     rec_init(&r, 1.0);
-    s = banyan_ivy_generate_hosts(&p, H, &m, &pr, &e);
+    s = banyan_ivy_generate(&p, H, &m, NULL, &pr, &e);
     check_cancelled(&r, s, &e, m, "ivy at 1.0");
     banyan_hosts_free(H);
 }
@@ -152,9 +152,9 @@ static void test_roots(void) {
     if (!lean) {
         banyan_mesh *a = NULL, *b = NULL;
         banyan_roots_stats sa;
-        CHECK(banyan_roots_generate_hosts(&p, H, &a, &sa, NULL, &e) == BANYAN_OK, "roots: %s", e.message);
+        CHECK(banyan_roots_generate(&p, H, &a, &sa, NULL, &e) == BANYAN_OK, "roots: %s", e.message);
         rec_init(&r, 2.0);
-        CHECK(banyan_roots_generate_hosts(&p, H, &b, &sb, &pr, &e) == BANYAN_OK, "roots + progress: %s", e.message);
+        CHECK(banyan_roots_generate(&p, H, &b, &sb, &pr, &e) == BANYAN_OK, "roots + progress: %s", e.message);
         check_full(&r, "roots");
         CHECK(a && b && banyan_mesh_hash(a) == banyan_mesh_hash(b), "roots: the hash changed with a progress callback");
         banyan_mesh_free(a);
@@ -163,11 +163,11 @@ static void test_roots(void) {
     rec_init(&r, 0.3);
     banyan_mesh *m = NULL;
     sb.main_points = 7;
-    banyan_status s = banyan_roots_generate_hosts(&p, H, &m, &sb, &pr, &e);
+    banyan_status s = banyan_roots_generate(&p, H, &m, &sb, &pr, &e);
     check_cancelled(&r, s, &e, m, "roots at 30 %");
     CHECK(sb.main_points == 0, "roots: stats not zeroed on cancel");
     rec_init(&r, 1.0);
-    s = banyan_roots_generate_hosts(&p, H, &m, NULL, &pr, &e);
+    s = banyan_roots_generate(&p, H, &m, NULL, &pr, &e);
     check_cancelled(&r, s, &e, m, "roots at 1.0");
     banyan_hosts_free(H);
 }
@@ -258,7 +258,7 @@ static banyan_ivy_stats grow(banyan_hosts *H, double x, double y, double z, int 
     memset(&st, 0, sizeof st);
     banyan_mesh *m = NULL;
     banyan_error e;
-    if (banyan_ivy_generate_hosts_stats(&p, H, &m, &st, NULL, &e)) {
+    if (banyan_ivy_generate(&p, H, &m, &st, NULL, &e)) {
         fprintf(stderr, "ivy: %s\n", e.message);
         st.buds = -1;
     }

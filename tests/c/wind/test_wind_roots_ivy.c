@@ -31,6 +31,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "wind_checks.h"
+#include "test_hosts.h"
 #pragma GCC diagnostic pop
 
 #define ATTR(m, name) banyan_mesh_attribute(m, name)
@@ -149,10 +150,10 @@ static void roots_one(const char *name, banyan_roots_params p, const banyan_box 
         /* Same seed, same hash; wind 0 keeps birth and its values. */
         banyan_mesh *b = NULL, *c = NULL;
         banyan_roots_params q = p;
-        st = hs ? banyan_roots_generate_hosts(&p, hs, &b, NULL, NULL, &err) : banyan_roots_generate(&p, boxes, n_boxes, &b, &err);
+        st = hs ? banyan_roots_generate(&p, hs, &b, NULL, NULL, &err) : test_roots_boxes(&p, boxes, n_boxes, &b, &err);
         CHECK(st == BANYAN_OK && m && banyan_mesh_hash(b) == banyan_mesh_hash(m), "%s: not the same hash twice", what);
         q.wind = 0;
-        st = hs ? banyan_roots_generate_hosts(&q, hs, &c, NULL, NULL, &err) : banyan_roots_generate(&q, boxes, n_boxes, &c, &err);
+        st = hs ? banyan_roots_generate(&q, hs, &c, NULL, NULL, &err) : test_roots_boxes(&q, boxes, n_boxes, &c, &err);
         CHECK(st == BANYAN_OK && c, "%s wind 0: %s", what, err.message);
         if (c && m) {
             no_wind_checks(what, c);
@@ -293,25 +294,26 @@ static void ivy_preset(const char *name, int32_t steps_cap) {
     CHECK(s == BANYAN_OK, "%s: %s", name, err.message);
     if (s) return;
     if (steps_cap && p.steps > steps_cap) p.steps = steps_cap;
+    banyan_hosts *H = TEST_HOSTS(hosts, n);
     /* The step API, in two calls, then the one-shot generation. */
     banyan_ivy *iv = NULL;
     banyan_mesh *m = NULL, *g = NULL, *c = NULL;
-    s = banyan_ivy_create(&p, hosts, n, &iv, &err);
+    s = banyan_ivy_create(&p, H, &iv, &err);
     if (!s) s = banyan_ivy_step(iv, p.steps / 3, &err);
     if (!s) s = banyan_ivy_step(iv, p.steps - p.steps / 3, &err);
     if (!s) s = banyan_ivy_mesh(iv, &m, &err);
     CHECK(s == BANYAN_OK && m, "%s: %s", name, err.message);
     if (m) ivy_checks(name, iv, m);
-    s = banyan_ivy_generate(&p, hosts, n, &g, &err);
+    s = banyan_ivy_generate(&p, H, &g, NULL, NULL, &err);
     CHECK(s == BANYAN_OK && g && m && banyan_mesh_hash(g) == banyan_mesh_hash(m),
           "%s: the step API's mesh is not the one-shot one (%s)", name, s ? err.message : "");
     banyan_mesh_free(g);
     g = NULL;
-    s = banyan_ivy_generate(&p, hosts, n, &g, &err);
+    s = banyan_ivy_generate(&p, H, &g, NULL, NULL, &err);
     CHECK(s == BANYAN_OK && g && m && banyan_mesh_hash(g) == banyan_mesh_hash(m), "%s: not the same hash twice",
           name);
     p.wind = 0;
-    s = banyan_ivy_generate(&p, hosts, n, &c, &err);
+    s = banyan_ivy_generate(&p, H, &c, NULL, NULL, &err);
     CHECK(s == BANYAN_OK && c, "%s wind 0: %s", name, err.message);
     if (c && m) {
         no_wind_checks(name, c);
@@ -323,7 +325,7 @@ static void ivy_preset(const char *name, int32_t steps_cap) {
     banyan_ivy_free(iv);
     iv = NULL;
     p.wind = 1;
-    s = banyan_ivy_create(&p, hosts, n, &iv, &err);
+    s = banyan_ivy_create(&p, H, &iv, &err);
     for (int k = 0; k < 3 && !s; k++) {
         banyan_mesh *y = NULL;
         s = banyan_ivy_step(iv, 10, &err);
@@ -335,6 +337,7 @@ static void ivy_preset(const char *name, int32_t steps_cap) {
         banyan_mesh_free(y);
     }
     banyan_ivy_free(iv);
+    banyan_hosts_free(H);
     banyan_mesh_free(m);
     banyan_mesh_free(g);
     banyan_mesh_free(c);
