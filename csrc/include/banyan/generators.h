@@ -8,4 +8,5 @@
 #include "ivy.h"
 #include "roots.h"
 #include "lod.h"
+#include "compat.h"
 #endif
