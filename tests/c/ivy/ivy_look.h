@@ -22,6 +22,18 @@ static inline banyan_status ivy_look_preset(const char *name, banyan_ivy_params 
     return test_load_preset(BANYAN_GEN_IVY, p, path, hosts, cap, n_hosts, err);
 }
 
+/* The plant of p grown p->steps steps on hosts (banyan_ivy_create, then
+ * banyan_ivy_step); NULL, the library's message printed, on failure. */
+static inline banyan_ivy *ivy_look_grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {
+    banyan_ivy *iv = NULL;
+    banyan_error err = {0, ""};
+    if (banyan_ivy_create(p, hosts, &iv, &err) == BANYAN_OK && banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK)
+        return iv;
+    fprintf(stderr, "ivy_look_grow: %s\n", err.message);
+    banyan_ivy_free(iv);
+    return NULL;
+}
+
 #define IVY_LOOK_PETIOLE_VERTS 6 /* 3 sides x 2 rings, the last part-0 vertices, one per blade (mesh.c) */
 
 /* Stem length of the attached internodes on the faces whose outward normal

@@ -11,14 +11,6 @@
 #include "ivy_look.h"
 #include "test_hosts.h"
 
-static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {
-    banyan_ivy *iv = NULL;
-    banyan_error err = {0, ""};
-    CHECK(banyan_ivy_create(p, hosts, &iv, &err) == BANYAN_OK, "create: %s", err.message);
-    if (iv) CHECK(banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK, "step: %s", err.message);
-    return iv;
-}
-
 /* Is a stem not sharing bud i (nor its parent) within `reach` of bud i? */
 static int beside_a_stem(const banyan_ivy *iv, int32_t i, double reach) {
     const ivy_bud *b = &iv->buds[i];
@@ -40,14 +32,17 @@ int main(void) {
     p.steps = 300;
 
     p.follow_length = 0;
-    banyan_ivy *iv = grow(&p, H);
+    banyan_ivy *iv = ivy_look_grow(&p, H);
+    CHECK(iv, "ivy_wall did not grow");
     int32_t followers = 0;
     for (int32_t i = 0; iv && i < iv->n; i++) followers += iv->buds[i].follow > 0;
     CHECK(iv && followers == 0, "follow_length 0: %d buds grew alongside a stem", followers);
     banyan_ivy_free(iv);
 
     p.follow_length = 4 * p.internode;
-    iv = grow(&p, H);
+    iv = ivy_look_grow(&p, H);
+    CHECK(iv, "ivy_wall did not grow");
+    CHECK(iv, "ivy_wall did not grow");
     int32_t longest = 0, lone = 0;
     followers = 0;
     for (int32_t i = 0; iv && i < iv->n; i++) {
@@ -65,7 +60,9 @@ int main(void) {
     banyan_mesh *m1 = NULL, *m2 = NULL;
     CHECK(iv && banyan_ivy_mesh(iv, &m1, &err) == BANYAN_OK, "mesh: %s", err.message);
     banyan_ivy_free(iv);
-    iv = grow(&p, H);
+    iv = ivy_look_grow(&p, H);
+    CHECK(iv, "ivy_wall did not grow");
+    CHECK(iv, "ivy_wall did not grow");
     CHECK(iv && banyan_ivy_mesh(iv, &m2, &err) == BANYAN_OK, "mesh again: %s", err.message);
     CHECK(m1 && m2 && banyan_mesh_hash(m1) == banyan_mesh_hash(m2), "a second run differs");
     banyan_mesh_free(m1);

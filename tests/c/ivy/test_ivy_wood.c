@@ -10,14 +10,6 @@
 #include "ivy_look.h"
 #include "test_hosts.h"
 
-static banyan_ivy *grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {
-    banyan_ivy *iv = NULL;
-    banyan_error err = {0, ""};
-    CHECK(banyan_ivy_create(p, hosts, &iv, &err) == BANYAN_OK, "create: %s", err.message);
-    if (iv) CHECK(banyan_ivy_step(iv, p->steps, &err) == BANYAN_OK, "step: %s", err.message);
-    return iv;
-}
-
 /* Radii, trunks and the gap to the wall. */
 static void wood_shape(const banyan_ivy *iv, const double *r, const v3 *P) {
     const banyan_ivy_params *p = &iv->p;
@@ -115,7 +107,8 @@ int main(void) {
     banyan_error err = {0, ""};
     if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
     banyan_hosts *H = TEST_HOSTS(hosts, nh);
-    banyan_ivy *iv = grow(&p, H);
+    banyan_ivy *iv = ivy_look_grow(&p, H);
+    CHECK(iv, "ivy_wall did not grow");
     if (!iv) return check_done("test_ivy_wood");
     double *r = malloc(sizeof(double) * (size_t)iv->n);
     v3 *P = malloc(sizeof(v3) * (size_t)iv->n);
