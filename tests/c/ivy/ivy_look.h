@@ -22,6 +22,20 @@ static inline banyan_status ivy_look_preset(const char *name, banyan_ivy_params 
     return test_load_preset(BANYAN_GEN_IVY, p, path, hosts, cap, n_hosts, err);
 }
 
+/* ivy_wall's params into p and its boxes as a host set (NULL, the
+ * library's message printed, when the preset cannot be read). */
+static inline banyan_hosts *ivy_look_wall(banyan_ivy_params *p) {
+    banyan_box boxes[8];
+    uint32_t n = 0;
+    banyan_error err = {0, ""};
+    banyan_hosts *h = NULL;
+    if (ivy_look_preset("ivy_wall", p, boxes, 8, &n, &err) == BANYAN_OK &&
+        banyan_hosts_create(boxes, n, NULL, 0, &h, &err) == BANYAN_OK)
+        return h;
+    fprintf(stderr, "ivy_look_wall: %s\n", err.message);
+    return NULL;
+}
+
 /* The plant of p grown p->steps steps on hosts (banyan_ivy_create, then
  * banyan_ivy_step); NULL, the library's message printed, on failure. */
 static inline banyan_ivy *ivy_look_grow(const banyan_ivy_params *p, const banyan_hosts *hosts) {

@@ -9,7 +9,6 @@
 #include "check.h"
 #include "ivy/ivy_internal.h"
 #include "ivy_look.h"
-#include "test_hosts.h"
 
 /* Is a stem not sharing bud i (nor its parent) within `reach` of bud i? */
 static int beside_a_stem(const banyan_ivy *iv, int32_t i, double reach) {
@@ -24,11 +23,9 @@ static int beside_a_stem(const banyan_ivy *iv, int32_t i, double reach) {
 
 int main(void) {
     banyan_ivy_params p;
-    banyan_box hosts[8];
-    uint32_t nh = 0;
     banyan_error err = {0, ""};
-    if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
-    banyan_hosts *H = TEST_HOSTS(hosts, nh);
+    banyan_hosts *H = ivy_look_wall(&p);
+    if (!H) return 1;
     p.steps = 300;
 
     p.follow_length = 0;

@@ -8,7 +8,6 @@
 
 #include "check.h"
 #include "ivy_look.h"
-#include "test_hosts.h"
 
 /* Radii, trunks and the gap to the wall. */
 static void wood_shape(const banyan_ivy *iv, const double *r, const v3 *P) {
@@ -102,11 +101,8 @@ static void wood_leaves(const banyan_ivy *iv, const double *r) {
 
 int main(void) {
     banyan_ivy_params p;
-    banyan_box hosts[8];
-    uint32_t nh = 0;
-    banyan_error err = {0, ""};
-    if (ivy_look_preset("ivy_wall", &p, hosts, 8, &nh, &err) != BANYAN_OK) return fprintf(stderr, "%s\n", err.message), 1;
-    banyan_hosts *H = TEST_HOSTS(hosts, nh);
+    banyan_hosts *H = ivy_look_wall(&p);
+    if (!H) return 1;
     banyan_ivy *iv = ivy_look_grow(&p, H);
     CHECK(iv, "ivy_wall did not grow");
     if (!iv) return check_done("test_ivy_wood");
