@@ -534,10 +534,6 @@ fail:
     return s;
 }
 
-banyan_status hosts_from_boxes(const banyan_box *boxes, uint32_t n, banyan_hosts **out, banyan_error *err) {
-    return banyan_hosts_create(boxes, n, NULL, 0, out, err);
-}
-
 /* ------------------------------------------------------- public queries */
 
 uint32_t banyan_hosts_count(const banyan_hosts *H) { return H ? H->n_boxes + H->n_meshes : 0; }

@@ -126,8 +126,4 @@ static inline int hosts_far_from(const banyan_hosts *H, uint32_t h, v3 p, double
            p.z < lo.z - margin || p.z > hi.z + margin;
 }
 
-/* A box-only host set on boxes[0 .. n - 1] (checked as banyan_box_validate),
- * for roots_net_build's box form (the tests' way in to the roots net). */
-banyan_status hosts_from_boxes(const banyan_box *boxes, uint32_t n, banyan_hosts **out, banyan_error *err);
-
 #endif

@@ -43,17 +43,6 @@ banyan_status obb_from_box(const banyan_box *b, uint32_t index, obb *out, banyan
     return BANYAN_OK;
 }
 
-banyan_status obb_from_boxes(const banyan_box *hosts, uint32_t n, obb *out, banyan_error *err) {
-    if (n > 0 && !hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n);
-    if (n > BANYAN_MAX_HOSTS)
-        return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [0, %d]", n, BANYAN_MAX_HOSTS);
-    for (uint32_t i = 0; i < n; i++) {
-        banyan_status s = obb_from_box(&hosts[i], i, &out[i], err);
-        if (s) return s;
-    }
-    return BANYAN_OK;
-}
-
 int obb_contains(const obb *o, v3 p, double margin) {
     v3 l = obb_to_local(o, p);
     return fabs(l.x) <= o->h[0] + margin && fabs(l.y) <= o->h[1] + margin && fabs(l.z) <= o->h[2] + margin;

@@ -15,8 +15,6 @@ typedef struct obb {
 
 /* Validates a public box (see banyan_box) and converts it. */
 banyan_status obb_from_box(const banyan_box *b, uint32_t index, obb *out, banyan_error *err);
-/* Validates and converts hosts[0..n-1] into out (caller-allocated). */
-banyan_status obb_from_boxes(const banyan_box *hosts, uint32_t n, obb *out, banyan_error *err);
 
 static inline v3 obb_to_local(const obb *o, v3 p) {
     v3 d = v3_sub(p, o->c);

@@ -99,7 +99,7 @@ static banyan_status box_hosts(const banyan_roots_params *p, const banyan_box *h
     if (!hosts) return banyan_fail(err, BANYAN_E_INVALID_ARG, "hosts is NULL but n_hosts = %u", n_hosts);
     if (n_hosts > BANYAN_MAX_HOSTS)
         return banyan_fail(err, BANYAN_E_RANGE, "n_hosts = %u must be within [1, %d]", n_hosts, BANYAN_MAX_HOSTS);
-    return hosts_from_boxes(hosts, n_hosts, H, err);
+    return banyan_hosts_create(hosts, n_hosts, NULL, 0, H, err);
 }
 
 banyan_status roots_net_build(const banyan_roots_params *p, const banyan_box *hosts, uint32_t n_hosts,

@@ -196,7 +196,7 @@ static void box_checks(void) {
     banyan_hosts *H = NULL;
     CHECK(banyan_hosts_create(boxes, 2, &hm, 1, &H, NULL) == BANYAN_OK && banyan_hosts_count(H) == 3, "mixed set");
     obb o[2];
-    obb_from_boxes(boxes, 2, o, NULL);
+    for (uint32_t i = 0; i < 2; i++) obb_from_box(&boxes[i], i, &o[i], NULL);
     int bad = 0;
     for (int i = 0; i < 1000; i++) {
         v3 p = v3_make(rng_range(&r, -1, 5), rng_range(&r, -2, 2), rng_range(&r, -1, 3));
