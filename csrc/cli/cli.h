@@ -76,6 +76,13 @@ banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char 
                              const cli_lod *lod, int threads, const banyan_gltf_options *opt,
                              const cli_budget *budget, cli_stats *st, banyan_error *err);
 
+/* -o's format: 1 when path names USD text (.usda, .usd), else glTF. */
+int cli_is_usd(const char *path);
+/* The nodes written to path in the format its extension names
+ * (banyan_usd_write_nodes_budget or banyan_gltf_write_nodes_budget). */
+banyan_status cli_write_nodes(const char *path, const banyan_gltf_node *nodes, uint32_t count,
+                              const banyan_gltf_options *opt, const banyan_budget *budget, banyan_error *err);
+
 /* Exit codes: 0 done, 1 refused or failed, 2 bad command line or hosts
  * refused before any work (a --host file, a preset's hosts: the same
  * input gives the same refusal), 3 written with a warning (docs/ivy.md,

@@ -82,7 +82,7 @@ banyan_status cli_write_lods(const char *path, banyan_mesh *const *meshes, char 
         cli_stat_raw(st, "lod_triangles", buf);
         banyan_budget left;
         s = cli_budget_left(budget, "writing", &left, err);
-        if (!s) s = banyan_gltf_write_nodes_budget(path, nodes, count, opt, &left, err);
+        if (!s) s = cli_write_nodes(path, nodes, count, opt, &left, err);
     }
     for (size_t k = 0; levels && k < (size_t)count * CLI_MAX_LODS; k++) banyan_mesh_free(levels[k]);
     free(levels);

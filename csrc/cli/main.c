@@ -1,7 +1,7 @@
 /* `banyan` command line tool:
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
- *                      [-o out.glb|out.gltf] [--textures on|off] [--texture-size N] [--stats]
+ *                      [-o out.glb|out.gltf|out.usda|out.usd] [--textures on|off] [--texture-size N] [--stats]
  *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--fsync] [--compact]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
@@ -37,7 +37,7 @@ static int32_t show_progress(void *user, double done) {
 
 static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
-               "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf] [--stats]\n"
+               "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf|out.usda] [--stats]\n"
                "                        [--textures on|off] [--texture-size N] [--texture-cache on|off|DIR]\n"
                "                        [--lod LIST] [--engine-uvs] [--fsync] [--compact]\n"
                "       banyan <command> --list\n\n"
@@ -217,8 +217,15 @@ static int read_host_args(const cli_command *cmd, const char **specs, int n, ban
  * written: its folder exists and is writable, it is not a folder. */
 static int out_path_ok(const cli_command *cmd, const char *path) {
     size_t n = strlen(path);
-    if (!((n >= 4 && !strcasecmp(path + n - 4, ".glb")) || (n >= 5 && !strcasecmp(path + n - 5, ".gltf")))) {
-        fprintf(stderr, "banyan %s: -o %s: must end in .glb (binary) or .gltf (JSON)\n", cmd->name, path);
+    if ((n >= 5 && !strcasecmp(path + n - 5, ".usdc")) || (n >= 5 && !strcasecmp(path + n - 5, ".usdz"))) {
+        fprintf(stderr, "banyan %s: -o %s: banyan writes USD text (.usda or .usd); convert it to a crate file with "
+                        "OpenUSD's usdcat\n", cmd->name, path);
+        return 0;
+    }
+    if (!((n >= 4 && !strcasecmp(path + n - 4, ".glb")) || (n >= 5 && !strcasecmp(path + n - 5, ".gltf")) ||
+          cli_is_usd(path))) {
+        fprintf(stderr, "banyan %s: -o %s: must end in .glb (binary glTF), .gltf (JSON glTF), .usda or .usd (USD text)\n",
+                cmd->name, path);
         return 0;
     }
     char why[8400];
@@ -456,9 +463,16 @@ static int write_output(const cli_command *cmd, const char *out_path, banyan_mes
     banyan_status ws = lod->count
                            ? cli_write_lods(out_path, meshes, names, count, lod, threads, gltf_opt, budget, st, err)
                            : cli_budget_left(budget, "writing", &left, err);
-    if (!lod->count && !ws)
+    if (!lod->count && !ws && cli_is_usd(out_path)) {
+        banyan_gltf_node *nodes = calloc(count, sizeof *nodes);
+        for (uint32_t i = 0; nodes && i < count; i++) nodes[i].mesh = meshes[i], nodes[i].name = names ? names[i] : NULL;
+        ws = nodes ? cli_write_nodes(out_path, nodes, count, gltf_opt, &left, err) : BANYAN_E_NOMEM;
+        if (!nodes) snprintf(err->message, sizeof err->message, "out of memory for the nodes");
+        free(nodes);
+    } else if (!lod->count && !ws) {
         ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
                                          count, gltf_opt, &left, err);
+    }
     if (ws) {
         fprintf(stderr, "banyan %s: writing %s: %s: %s%s\n", cmd->name, out_path, banyan_status_name(ws),
                 err->message,

@@ -316,6 +316,9 @@ struct ImageGuard {
 int texture_key(const banyan_mesh *m, const banyan_material *bm);
 void plan_textures(const banyan_mesh *const *meshes, uint32_t count, const banyan_gltf_options &o,
                    std::vector<TexturePngs> &out, int slot[2 * BANYAN_TEX_COUNT]);
+/* One library texture's two PNGs into t (through the texture cache). */
+banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, const prog_deadline &stop,
+                           double seconds, TexturePngs &t, banyan_error *err);
 std::string folder_of(const char *path);
 bool is_regular_file(const std::string &p);
 int make_folders(const std::string &base, const std::string &rel);

@@ -664,5 +664,7 @@ BANYAN_API banyan_status banyan_tube_generate(const double *points, const double
 /* Generators. Each header declares its params struct, params_init,
  * generate and sizeof calls. */
 #include "banyan/generators.h"
+/* USD export of the same nodes the glTF writer takes. */
+#include "banyan/usd.h"
 
 #endif /* BANYAN_H */

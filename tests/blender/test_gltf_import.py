@@ -30,6 +30,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bt  # noqa: E402
 
+sys.path.insert(0, os.path.join(bt.SOURCE_DIR, "tests", "pycommon"))
+from presets_small import shrink  # noqa: E402
+
 import bpy  # noqa: E402
 
 BUILD = os.environ.get("BANYAN_BUILD_DIR") or os.path.join(bt.SOURCE_DIR, "build")
@@ -127,22 +130,6 @@ for path in files:
     res["files"][path] = r
 print("GLTFRESULT " + json.dumps(res), flush=True)
 '''
-
-
-def shrink(gen, params):
-    """--set arguments that make a preset's file small (same attributes)."""
-    if gen == "keyaki":
-        return ["levels=%d" % min(params.get("levels", 21), 6)]
-    if gen == "avenue":
-        return ["placement=count", "count=1", "tree.levels=%d" % min(params.get("tree.levels", 21), 6)]
-    if gen == "ivy":
-        return ["steps=%d" % min(params.get("steps", 450), 50)]
-    if gen == "roots":
-        return ["growth_points=%d" % min(params.get("growth_points", 40), 6),
-                "main_roots=%d" % min(params.get("main_roots", 6), 3)]
-    if gen == "segments" and "demo_segments" in params:
-        return ["demo_segments=%d" % min(params["demo_segments"], 30)]
-    return []
 
 
 def write_files(d):
