@@ -28,36 +28,47 @@ using gltfw::kKindNames;
 
 /* ------------------------------------------------------------ output */
 
-/* Text into the temporary file in blocks of kFlush bytes. */
+/* Text into the temporary file through one fixed block: small pieces and
+ * numbers go straight into it (no allocation a value), a full block is
+ * written out. */
 class Out {
   public:
-    explicit Out(atomic_file *af) : af_(af) { buf_.reserve(kFlush + 4096); }
+    explicit Out(atomic_file *af) : af_(af), buf_(kBlock) {}
     Out &operator<<(const char *s) { return put(s, std::strlen(s)); }
     Out &operator<<(const std::string &s) { return put(s.data(), s.size()); }
     Out &put(const char *s, size_t n) {
-        buf_.append(s, n);
-        if (buf_.size() >= kFlush) flush();
+        if (n > kBlock - used_) {
+            flush();
+            if (n > kBlock) return write(s, n);
+        }
+        std::memcpy(buf_.data() + used_, s, n);
+        used_ += n;
         return *this;
     }
     void num(double v) { put_chars(v); }
     void num(float v) { put_chars(v); }
     void num(uint64_t v) { put_chars(v); }
     void flush() {
-        if (!err_ && !buf_.empty() && std::fwrite(buf_.data(), 1, buf_.size(), af_->f) != buf_.size())
-            err_ = errno ? errno : EIO;
-        buf_.clear();
+        write(buf_.data(), used_);
+        used_ = 0;
     }
     int error() const { return err_; }
 
   private:
-    static const size_t kFlush = 1 << 20;
+    static const size_t kBlock = 1 << 20;
+    static const size_t kNumber = 48; /* the longest number to_chars writes here, with room */
+    Out &write(const char *s, size_t n) {
+        if (!err_ && n && std::fwrite(s, 1, n, af_->f) != n) err_ = errno ? errno : EIO;
+        return *this;
+    }
     template <class T> void put_chars(T v) {
-        char b[40];
-        auto r = std::to_chars(b, b + sizeof b, v);
-        put(b, static_cast<size_t>(r.ptr - b));
+        if (kBlock - used_ < kNumber) flush();
+        auto r = std::to_chars(buf_.data() + used_, buf_.data() + used_ + kNumber, v);
+        used_ = static_cast<size_t>(r.ptr - buf_.data());
     }
     atomic_file *af_;
-    std::string buf_;
+    std::vector<char> buf_;
+    size_t used_ = 0;
     int err_ = 0;
 };
 
