@@ -155,10 +155,11 @@ class SeedLock:
 def stale_pattern(name):
     """Names in a folder that are leftovers of seed `name`'s writers and of
     nothing else: the private folders (".<name>.<host>.<pid>.<random>.tmp"),
-    the glTF writer's and records' temporaries (".<name>.glb.XXXXXX.tmp",
+    the glTF and USD writers' and records' temporaries (".<name>.glb.XXXXXX.tmp",
+    ".<name>.usda.XXXXXX.tmp",
     ".<name>.json.XXXXXX.tmp") and a render's (".<name>.png.<pid>.tmp.png")."""
     n = re.escape(name)
-    return re.compile(r"^\.%s\.(?:(?:glb|png|json)\.[A-Za-z0-9]{6}\.tmp|png\.[0-9]+\.tmp\.png"
+    return re.compile(r"^\.%s\.(?:(?:glb|usda|png|json)\.[A-Za-z0-9]{6}\.tmp|png\.[0-9]+\.tmp\.png"
                       r"|[A-Za-z0-9_-]+\.[0-9]+\.[a-z0-9_]+\.tmp)$" % n)
 
 

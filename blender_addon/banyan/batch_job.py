@@ -167,9 +167,16 @@ class Job:
             except self.errors.BanyanError as e:
                 raise UsageError("--preset %s: %s" % (self.preset_path, e.message))
             self.segments_input = inputs if inputs[1] else None  # none: the demo tree of each seed
-        shared = bool(getattr(args, "shared_textures", False))
+        self.format = getattr(args, "format", None) or "glb"
+        if self.format not in ("glb", "usda"):
+            raise UsageError("--format %s must be glb or usda" % self.format)
+        self.ext = "." + self.format
+        # USD's images are always files: shared, as --shared-textures shares the glTF's.
+        shared = bool(getattr(args, "shared_textures", False)) or self.format == "usda"
         self.gltf = {"textures": 0 if args.no_textures else 1, "texture_size": ts, "texture_seed": 1,
                      "engine_uvs": 0, "shared_textures": 1 if shared and not args.no_textures else 0}
+        if self.format != "glb":
+            self.gltf["format"] = self.format  # in the hash (a .glb's hash stays as it was)
         self.version = self.L.version()
         resolved = self.params.as_dict()
         resolved.pop("seed", None)
@@ -263,7 +270,7 @@ class Job:
         if size() != C.sizeof(GltfOptions):
             raise UsageError("libbanyan's banyan_gltf_options is %d bytes, the runner's %d: rebuild both from "
                              "the same source" % (size(), C.sizeof(GltfOptions)))
-        opt = {k: v for k, v in self.gltf.items() if k != "shared_textures"}
+        opt = {k: v for k, v in self.gltf.items() if k not in ("shared_textures", "format")}
         self._image_dir = self.image_dir.encode() if self.image_dir else None
         opt.setdefault("texture_cache", 1)  # the library's default: BANYAN_TEXTURE_CACHE=off still turns it off
         self._opt = GltfOptions(image_dir=self._image_dir, **opt)
@@ -272,6 +279,20 @@ class Job:
         w.argtypes = [C.c_char_p, C.POINTER(C.POINTER(self.S.Mesh)), C.POINTER(C.c_char_p), C.c_uint32,
                       C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
         self._write = w
+
+        class Node(C.Structure):  # banyan_gltf_node
+            _fields_ = [("mesh", C.POINTER(self.S.Mesh)), ("name", C.c_char_p), ("lod_count", C.c_uint32),
+                        ("lods", C.c_void_p), ("lod_coverage", C.c_void_p)]
+
+        size = lib.banyan_sizeof_gltf_node
+        size.restype, size.argtypes = C.c_size_t, []
+        if size() != C.sizeof(Node):
+            raise UsageError("libbanyan's banyan_gltf_node is %d bytes, the runner's %d: rebuild both from "
+                             "the same source" % (size(), C.sizeof(Node)))
+        u = lib.banyan_usd_write_nodes
+        u.restype = C.c_int
+        u.argtypes = [C.c_char_p, C.POINTER(Node), C.c_uint32, C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
+        self._Node, self._write_usd = Node, u
 
     def seed_params(self, seed):
         p = self.params.copy()
@@ -304,13 +325,19 @@ class Job:
             return G.segments(params, *self.segments_input)[0]
         return G.segments(params)[0]  # the demo tree of this seed
 
-    def write_glb(self, d, path):
-        """The CLI's bytes: one mesh named as the CLI names it, the same options."""
-        arr = (C.POINTER(self.S.Mesh) * 1)(d.c_mesh)
+    def write(self, d, path):
+        """The CLI's bytes: one mesh named as the CLI names it, the same
+        options; as .glb, or as USD text (--format usda; the CLI's with its
+        image folder)."""
         node = NODE_NAME[self.generator]
-        names = (C.c_char_p * 1)(node.encode()) if node else None
         err = self.S.Error()
-        st = self._write(os.fsencode(path), arr, names, 1, C.byref(self._opt), C.byref(err))
+        if self.format == "usda":
+            n = self._Node(d.c_mesh, node.encode() if node else None, 0, None, None)
+            st = self._write_usd(os.fsencode(path), C.byref(n), 1, C.byref(self._opt), C.byref(err))
+        else:
+            arr = (C.POINTER(self.S.Mesh) * 1)(d.c_mesh)
+            names = (C.c_char_p * 1)(node.encode()) if node else None
+            st = self._write(os.fsencode(path), arr, names, 1, C.byref(self._opt), C.byref(err))
         self.L.raise_for(st, err)
 
     def close(self):

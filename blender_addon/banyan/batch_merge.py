@@ -149,8 +149,9 @@ def record_problem(rec, stem):
     for i, f in enumerate(files):
         if not isinstance(f, dict):
             return "field 'files[%d]': %s is not an object" % (i, json.dumps(f)[:40])
-        if f.get("name") not in (expect + ".glb", expect + ".png"):
-            return "field 'files[%d].name': %s is not %s.glb or .png" % (i, json.dumps(f.get("name"))[:80], expect)
+        if f.get("name") not in (expect + ".glb", expect + ".usda", expect + ".png"):
+            return "field 'files[%d].name': %s is not %s.glb, .usda or .png" % (i, json.dumps(f.get("name"))[:80],
+                                                                                expect)
         if not isinstance(f.get("sha256"), str) or not _HEX64.match(f["sha256"]):
             return "field 'files[%d].sha256': not 64 hex digits" % i
         if not _is_int(f.get("bytes")) or f["bytes"] < 0:
@@ -232,7 +233,7 @@ def missing_ranges(have, a, b):
     return out
 
 
-_TEMP = re.compile(r"^\.(?P<name>.+-[0-9a-f]{12}-s[0-9]+)\.(?:(?:glb|png|json)\.[A-Za-z0-9]{6}\.tmp"
+_TEMP = re.compile(r"^\.(?P<name>.+-[0-9a-f]{12}-s[0-9]+)\.(?:(?:glb|usda|png|json)\.[A-Za-z0-9]{6}\.tmp"
                    r"|png\.[0-9]+\.tmp\.png|[A-Za-z0-9_-]+\.[0-9]+\.[a-z0-9_]+\.tmp)$")
 
 

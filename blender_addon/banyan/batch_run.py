@@ -3,7 +3,7 @@
     blender -b --factory-startup --python <addon>/banyan/batch_run.py -- \\
         --preset NAME_OR_PATH --seeds A:B --out DIR [--host FILE.glb[@x,y,z] ...]
         [--render-seeds C:D] [--size 64] [--engine WORKBENCH|EEVEE] [--threads N]
-        [--texture-size 1024] [--no-textures] [--shared-textures] [--no-parent-watch]
+        [--texture-size 1024] [--no-textures] [--shared-textures] [--format glb|usda] [--no-parent-watch]
     python3 <addon>/banyan/batch_run.py -- ...       (glTF only: no bpy; refuses a --render-seeds
                                                       range that meets --seeds)
     python3 <addon>/banyan/batch_run.py -- --merge-manifest DIR [--seeds A:B] [--verify]
@@ -16,7 +16,10 @@ generator the CLI grows; hosts and the hash: batch_job.py), with its
 of `banyan <gen> --preset P --set seed=S [--host ...] -o X.glb`) as
 DIR/<preset>-<hash12>-s<seed>.glb, <hash12> the preset hash (the resolved
 parameters but the seed, the preset's host and segment lists, the host
-files' bytes, the glTF options, libbanyan's version); seeds in --render-seeds
+files' bytes, the glTF options, libbanyan's version); with --format usda the
+same nodes are written as a USD text layer by libbanyan's USD writer
+(DIR/...-s<seed>.usda; docs/usd.md), its textures shared as with
+--shared-textures; seeds in --render-seeds
 are also rendered (DIR/...-s<seed>.png). A record of each seed goes to
 DIR/manifest/<name>.json. A seed is made only under its lock
 (DIR/manifest/.<name>.lock, an fcntl record lock), its files are written
@@ -111,7 +114,7 @@ def _argv(argv):
     return out
 
 
-_VALUE_OPTIONS = ("--seeds", "--render-seeds", "--size", "--threads", "--texture-size", "--host")
+_VALUE_OPTIONS = ("--seeds", "--render-seeds", "--size", "--threads", "--texture-size", "--host", "--format")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -135,6 +138,9 @@ def make_parser():
     p.add_argument("--no-textures", action="store_true", help="glTF without textures (as the CLI's --textures off)")
     p.add_argument("--shared-textures", action="store_true",
                    help="textures once per preset hash in DIR/<preset>-<hash12>-textures/, referenced by the .glb files")
+    p.add_argument("--format", default="glb", choices=("glb", "usda"),
+                   help="glb (default: the CLI's -o X.glb) or usda (a USD text layer, docs/usd.md; its textures "
+                        "shared as with --shared-textures)")
     p.add_argument("--check", action="store_true",
                    help="load the preset, hosts and options, then exit 0 (ready) or 2 (the reason); writes nothing")
     p.add_argument("--merge-manifest", metavar="DIR", help="merge DIR/manifest/*.json into DIR/manifest.json")
@@ -231,7 +237,7 @@ def _run_seed_locked(job, args, seed, render, log, name):
     params = job.seed_params(seed)
     params_hash = _sha256(_canonical({"generator": job.generator, "params": params.as_dict(), "gltf": job.gltf}))
     old = read_record(rec_path, log)
-    glb_name, png_name = name + ".glb", name + ".png"
+    glb_name, png_name = name + job.ext, name + ".png"
     if old is not None and old.get("params_hash") != params_hash:
         old = None
     files = {f["name"]: f for f in (old or {}).get("files", [])}
@@ -254,9 +260,9 @@ def _run_seed_locked(job, args, seed, render, log, name):
             d = job.grow(params)
             if not glb_ok:
                 glb_src = os.path.join(tmpdir, glb_name)
-                job.write_glb(d, glb_src)
+                job.write(d, glb_src)
                 _place_textures(job, tmpdir, out, bf)
-                made.append("glb")
+                made.append(job.format)
             png_src = None
             if render and not png_ok:
                 png_src = os.path.join(tmpdir, png_name)

@@ -213,6 +213,32 @@ try:
         f.write(b"x")
     rc, log = runner("--merge-manifest", out, "--verify")
     check(rc == 1 and os.path.basename(glb4) in log, "merge --verify names a changed file")
+
+    # --- USD text layers (--format usda): the library's USD writer, the
+    # textures shared in the preset hash's folder; without textures the
+    # bytes of the CLI's -o X.usda; a name of their own; idempotent.
+    out_u = os.path.join(tmp, "usd")
+    rc, log = runner("--preset", PRESET, "--seeds", "4:6", "--out", out_u, "--texture-size", 64, "--format", "usda")
+    layers = sorted(glob.glob(os.path.join(out_u, "*.usda")))
+    check(rc == 0 and len(layers) == 2 and not glob.glob(os.path.join(out_u, "*.glb")),
+          "--format usda: two layers (exit %d: %s)" % (rc, log[-300:]))
+    shared = glob.glob(os.path.join(out_u, "*-textures", "keyaki_bark-64-s1.png"))
+    text = open(layers[0]).read() if layers else ""
+    check(len(shared) == 1 and "@%s/keyaki_bark-64-s1.png@" % os.path.basename(os.path.dirname(shared[0])) in text,
+          "the layers' textures in the shared folder, referenced by it")
+    check(layers and os.path.basename(layers[0]).split("-")[-2] != base, "USD: a preset hash of its own")
+    before_u = snapshot(out_u)
+    rc, log = runner("--preset", PRESET, "--seeds", "4:6", "--out", out_u, "--texture-size", 64, "--format", "usda")
+    check(rc == 0 and log.count("skipped") >= 2 and snapshot(out_u) == before_u, "--format usda: a re-run skips")
+    rc, log = runner("--merge-manifest", out_u, "--seeds", "4:6", "--verify")
+    check(rc == 0, "--format usda: the merge verifies the layers (exit %d: %s)" % (rc, log[-300:]))
+    out_n = os.path.join(tmp, "usd_flat")
+    rc, log = runner("--preset", PRESET, "--seeds", "4:5", "--out", out_n, "--no-textures", "--format", "usda")
+    r = subprocess.run([CLI, "avenue", "--preset", PRESET, "--set", "seed=4", "--textures", "off", "-o",
+                        os.path.join(tmp, "cli4.usda")], capture_output=True)
+    flat = glob.glob(os.path.join(out_n, "*.usda"))
+    check(rc == 0 and r.returncode == 0 and len(flat) == 1 and sha(flat[0]) == sha(os.path.join(tmp, "cli4.usda")),
+          "--format usda --no-textures: the CLI's -o X.usda bytes")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
