@@ -8,6 +8,7 @@
 #include "banyan/usd.h"
 
 #include "base/atomic_file.h"
+#include "base/dmath.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "gltf/gltf_write.h"
@@ -291,6 +292,16 @@ void primvar(Out &out, const std::string &ind, const char *type, const char *nam
     out << "] (\n" << ind << "    interpolation = \"vertex\"\n" << ind << ")\n";
 }
 
+/* A custom attribute's primvar name: its own, made an identifier, or
+ * banyan_<name> where it would meet a primvar the writer sets itself. */
+std::string attribute_primvar(const char *name) {
+    std::map<std::string, int> none;
+    std::string s = prim_name(name, none);
+    if (s == "st" || s == "displayColor" || s == "displayOpacity" || s == "wind_pivot" || s == "normals")
+        s = "banyan_" + s;
+    return s;
+}
+
 /* One part as a Mesh: its triangles (indices from its first vertex). */
 void Writer::mesh_part(const banyan_mesh *m, const banyan_part &pt, const std::string &name, const std::string &mat,
                        const std::string &ind) {
@@ -348,7 +359,7 @@ void Writer::mesh_part(const banyan_mesh *m, const banyan_part &pt, const std::s
     for (uint32_t a = 0; a < m->attribute_count; ++a) {
         const banyan_attribute &at = m->attributes[a];
         if (px && py && pz && std::strncmp(at.name, "wind_pivot_", 11) == 0) continue;
-        primvar(out, in, "float[]", at.name, at.data + v0, nv, 1);
+        primvar(out, in, "float[]", attribute_primvar(at.name).c_str(), at.data + v0, nv, 1);
     }
     out << in << "uniform token subdivisionScheme = \"none\"\n" << ind << "}\n";
 }
@@ -403,7 +414,8 @@ void Writer::instancer(const banyan_mesh *m, const std::string &proto_root, cons
     out << "]\n" << in << "quath[] orientations = [";
     for (uint32_t i = 0; i < m->instance_count; ++i) {
         const double h = 0.5 * static_cast<double>(m->instances[i].rotation_z);
-        const float q[3] = {static_cast<float>(std::cos(h)), 0.0f, static_cast<float>(std::sin(h))};
+        /* dm_*: the same bytes on every CPU (glibc's libm dispatches by CPU) */
+        const float q[3] = {static_cast<float>(dm_cos(h)), 0.0f, static_cast<float>(dm_sin(h))};
         out << (i ? ", (" : "(");
         out.num(q[0]);
         out << ", 0, 0, ";
@@ -464,7 +476,9 @@ banyan_status Writer::geom(const banyan_mesh *m, const std::string &root, const 
         if (own) out << gind << "}\n";
     }
     if (inst) out << in << "    }\n" << in << "}\n";
-    if (m->skel_edge_count > 0 && m->skel_points && m->skel_radius && m->skel_tag) skeleton(m, in);
+    /* An instanced mesh's skeleton stands in its variants' frames: not
+     * written (the variants' meshes carry the wind pivots). */
+    if (!inst && m->skel_edge_count > 0 && m->skel_points && m->skel_radius && m->skel_tag) skeleton(m, in);
     out << ind << "}\n";
     return BANYAN_OK;
 }

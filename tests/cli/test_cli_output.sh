@@ -73,7 +73,8 @@ check_o "folder '/nonexistent/dir' does not exist" /nonexistent/dir/x.glb
 mkdir -p "$out/ro.glb"
 check_o "'$out/ro.glb' is a folder" "$out/ro.glb"
 check_o "'$out/old.bin' is not a folder" "$out/old.bin/x.glb"
-check_o "must end in .glb (binary) or .gltf (JSON)" "$out/x.obj"
+check_o "must end in .glb (binary glTF), .gltf (JSON glTF), .usda or .usd (USD text)" "$out/x.obj"
+check_o "convert it to a crate file with OpenUSD's usdcat" "$out/x.usdc"
 check_o "the file name is 256 bytes" "$out/$(printf '%0252d' 0).glb"
 if command -v script >/dev/null; then
   msg=$(script -qec "'$bin' avenue --preset '$src/presets/avenue_boulevard.json' -o /nonexistent/dir/x.glb" /dev/null 2>&1)

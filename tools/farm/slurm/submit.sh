@@ -2,7 +2,7 @@
 # Queues banyan_array.sbatch over --seeds A:B in tasks of --per-task K
 # (array 0 .. ceil((B-A)/K)-1, at most --workers W running at once) and,
 # after it, the manifest merge (batch_run.py --merge-manifest OUT --seeds
-# A:B --verify, plus --preset and the glTF options so that it checks the
+# A:B --verify, plus --preset, the glTF options and --format so that it checks the
 # preset's hash; it exits non-zero if a seed has no record). Arguments
 # reach sbatch and the jobs as argv, never through a shell string; whole
 # numbers are decimal (010 is ten). Slurm's logs go to
@@ -21,7 +21,7 @@ export BANYAN_ADDON=$addon
 # preset, hosts and options as a task would (exit 2 with the reason).
 "${BANYAN_PYTHON:-python3}" "$addon/batch_run.py" -- --check "$@" >&2 ||
   { echo "submit: the runner refused the job (above): nothing queued" >&2; exit 2; }
-per_task= workers= seeds= out= logs= preset= tsize= notex= shared=
+per_task= workers= seeds= out= logs= preset= tsize= notex= shared= format=
 hosts_n=0  # --host values in host_1 .. host_N (eval assigns a variable's name only: the value stays data)
 die() { echo "submit: $*" >&2; exit 2; }
 # Options of this script are taken out; the others stay in "$@" (as data,
@@ -35,10 +35,11 @@ while [ $n -gt 0 ]; do
         --per-task) per_task=$2 ;; --workers) workers=$2 ;; --seeds) seeds=$2 ;; --out) out=$2 ;; --logs) logs=$2 ;;
       esac
       shift 2; n=$((n - 2)) ;;
-    --preset|--texture-size)  # also given to the merge, which checks the preset's hash
+    --preset|--texture-size|--format)  # also given to the merge, which checks the preset's hash
       [ $n -ge 2 ] || die "$1 needs a value"
-      if [ "$1" = --preset ]; then preset=$2; else tsize=$2; fi
+      case "$1" in --preset) preset=$2 ;; --texture-size) tsize=$2 ;; --format) format=$2 ;; esac
       set -- "$@" "$1" "$2"; shift 2; n=$((n - 2)) ;;
+    --format=*) format=${1#--format=}; set -- "$@" "$1"; shift; n=$((n - 1)) ;;
     --no-textures) notex=1; set -- "$@" "$1"; shift; n=$((n - 1)) ;;
     --shared-textures) shared=1; set -- "$@" "$1"; shift; n=$((n - 1)) ;;
     --host)  # hosts are in the preset's hash: the merge is given them too
@@ -93,6 +94,7 @@ set -- --merge-manifest "$out" --seeds "$seeds" --verify
 [ -n "$tsize" ] && set -- "$@" --texture-size "$tsize"
 [ -n "$notex" ] && set -- "$@" --no-textures
 [ -n "$shared" ] && set -- "$@" --shared-textures
+[ -n "$format" ] && set -- "$@" --format "$format"
 i=1
 while [ $i -le $hosts_n ]; do
   eval "set -- \"\$@\" --host \"\$host_$i\""
