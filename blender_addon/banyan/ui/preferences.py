@@ -16,3 +16,4 @@ class BanyanPreferences(bpy.types.AddonPreferences):
 
     def draw(self, context):
         self.layout.prop(self, "texture_size")
+        self.layout.operator("banyan.presets_to_assets", icon='ASSET_MANAGER')
