@@ -391,9 +391,8 @@ class Compactor {
                     for (int a = 0; a < static_cast<int>(role_.size()); ++a) {
                         if (mesh_of_[a] != mi) continue;
                         const Role r = role_[a];
-                        if (r != kPosition && r != kPivotX && r != kPivotY && r != kPivotZ && r != kEngineUvXY &&
-                            r != kEngineUvZ)
-                            continue;
+                        if (r != kPosition && r != kPivotX && r != kPivotY && r != kPivotZ)
+                            continue; /* the engine UVs' arms are differences: they scale, the box holds points */
                         Acc c;
                         if (!read_acc(a, c)) return false;
                         if (c.ct != kFloat) return fail("a position or pivot that is not float");
@@ -404,12 +403,9 @@ class Compactor {
                                     hi[k] = std::max(hi[k], static_cast<double>(c.f(i, k)));
                                 }
                             } else {
-                                const int n = r == kEngineUvXY ? 2 : 1;
-                                for (int k = 0; k < n; ++k) {
-                                    const int axis = r == kPivotX ? 0 : r == kPivotY ? 1 : r == kPivotZ || r == kEngineUvZ ? 2 : k;
-                                    lo[axis] = std::min(lo[axis], static_cast<double>(c.f(i, k)));
-                                    hi[axis] = std::max(hi[axis], static_cast<double>(c.f(i, k)));
-                                }
+                                const int axis = r == kPivotX ? 0 : r == kPivotY ? 1 : 2;
+                                lo[axis] = std::min(lo[axis], static_cast<double>(c.f(i, 0)));
+                                hi[axis] = std::max(hi[axis], static_cast<double>(c.f(i, 0)));
                             }
                         }
                     }
@@ -522,7 +518,7 @@ class Compactor {
                 for (uint32_t k = 0; k < c.width; ++k) {
                     float x = c.f(i, k);
                     if (r == kUv0) x = meshopt_quantizeFloat(x, kUvMantissa);
-                    else if (f && (r == kEngineUvXY || k == 0)) x = static_cast<float>(f->q(x, r == kEngineUvZ ? 2 : static_cast<int>(k)));
+                    else if (f && (r == kEngineUvXY || k == 0)) x = static_cast<float>(x / f->s); /* an arm: scaled only */
                     std::memcpy(&d[(static_cast<size_t>(i) * c.width + k) * 4], &x, 4);
                 }
             v = encode_vertices(d, c.count, c.elem, nullptr);

@@ -332,15 +332,20 @@ class BinWriter {
             break;
         }
         case kEngineUv: {
-            /* TEXCOORD_1 pivot (x, y), 2 (pivot z, level), 3 (stiffness,
-             * phase), 4 (flutter, birth); the pivot Y up as in _WIND_PIVOT_*. */
+            /* TEXCOORD_1 arm (x, y), 2 (arm z, level), 3 (stiffness,
+             * phase), 4 (flutter, birth). The arm is pivot - position, Y up
+             * as POSITION: bounded by the plant's size, so an engine that
+             * keeps a UV set at half precision still has it to 2^-11 of its
+             * length (a leaf's pivot to micrometres, where the pivot itself
+             * would lose millimetres). */
             const Layout &L = *s.L;
+            const float *P = s.m->positions;
             for (uint32_t i = 0; i < n; ++i, o += 2) {
                 size_t j = b + i;
                 float a = 0.0f, c = 0.0f;
                 switch (s.aux) {
-                case 1: a = L.wind[0][j]; c = L.wind[2][j]; break;
-                case 2: a = -L.wind[1][j]; c = L.wind[3][j]; break;
+                case 1: a = L.wind[0][j] - P[3 * j]; c = L.wind[2][j] - P[3 * j + 2]; break;
+                case 2: a = -(L.wind[1][j] - P[3 * j + 1]); c = L.wind[3][j]; break;
                 case 3: a = L.wind[4][j]; c = L.wind[5][j]; break;
                 default: a = L.wind[6][j]; c = L.birth ? L.birth[j] : 0.0f; break;
                 }

@@ -165,8 +165,9 @@ static int has_required(const cJSON *root, const char *name) {
 }
 
 /* The axis of a pivot value: component k of attribute `key` (-1: not a pivot).
- * With --engine-uvs, TEXCOORD_1 holds pivot x and y, TEXCOORD_2 pivot z
- * and the level (docs/game-engines.md). */
+ * With --engine-uvs, TEXCOORD_1 holds the arm's (pivot - position) x and
+ * y, TEXCOORD_2 its z and the level (docs/game-engines.md); an arm is a
+ * difference, scaled by the node but not moved. */
 static int engine_uvs;
 static int pivot_axis(const char *key, int k) {
     if (!strcmp(key, "_WIND_PIVOT_X")) return 0;
@@ -208,7 +209,8 @@ static void compare_attribute(Glb *p, Glb *c, const cJSON *pn, const cJSON *cn, 
                     if (x[k] != y[k]) bad++;
                     continue;
                 }
-                const double want = pt[ax] + x[k], got = ct[ax] + cs[ax] * y[k];
+                const int arm = !is_pos && key[0] == 'T'; /* TEXCOORD_1, _2 */
+                const double want = (arm ? 0.0 : pt[ax]) + x[k], got = (arm ? 0.0 : ct[ax]) + cs[ax] * y[k];
                 const double step = cs[ax], err = fabs(got - want) / step;
                 if (framed && is_pos && err > worst_position) worst_position = err;
                 if (framed && !is_pos && err > worst_pivot) worst_pivot = err;

@@ -124,6 +124,16 @@ static const char *const WIND_NAMES[8] = {BANYAN_ATTR_WIND_PIVOT_X, BANYAN_ATTR_
 
 /* 1 when the generator wrote all eight; a failure naming each missing one
  * otherwise (nothing is made up in their place). */
+/* x rounded to the nearest IEEE half (10-bit mantissa; subnormal below
+ * 2^-14), as an engine that stores a UV set at half precision keeps it. */
+static double to_half(double x) {
+    if (x == 0 || !isfinite(x)) return x;
+    int e;
+    frexp(fabs(x), &e); /* |x| in [2^(e-1), 2^e) */
+    double step = ldexp(1.0, (e - 1 < -14 ? -14 : e - 1) - 10);
+    return nearbyint(x / step) * step;
+}
+
 static int has_wind(const banyan_mesh *m, const char *what) {
     int ok = 1;
     for (int k = 0; k < 8; k++) {
@@ -303,14 +313,24 @@ static void wind(void) {
             CHECK(tc[s] && c == 2 && n == (int)vc, "prim %d: %s is not a float VEC2 of %u", p, key, vc);
         }
         bad = 0;
+        const float *P = m->positions;
+        double worst_half = 0; /* the pivot from arms rounded to half precision, off by this share of the arm */
         for (uint32_t i = 0; tc[1] && tc[2] && tc[3] && tc[4] && i < vc; i++) {
             uint32_t j = base + i;
-            bad += tc[1][2 * i] != W[0][j] || tc[1][2 * i + 1] != W[2][j];
-            bad += tc[2][2 * i] != -W[1][j] || tc[2][2 * i + 1] != W[3][j];
+            bad += tc[1][2 * i] != W[0][j] - P[3 * j] || tc[1][2 * i + 1] != W[2][j] - P[3 * j + 2];
+            bad += tc[2][2 * i] != -(W[1][j] - P[3 * j + 1]) || tc[2][2 * i + 1] != W[3][j];
+            const double arm[3] = {tc[1][2 * i], tc[1][2 * i + 1], tc[2][2 * i]};
+            double len = sqrt(arm[0] * arm[0] + arm[1] * arm[1] + arm[2] * arm[2]), off = 0;
+            for (int k = 0; k < 3; k++) off = fmax(off, fabs(to_half(arm[k]) - arm[k]));
+            if (len > 1e-4 && off / len > worst_half) worst_half = off / len;
             bad += tc[3][2 * i] != W[4][j] || tc[3][2 * i + 1] != W[5][j];
             bad += tc[4][2 * i] != W[6][j] || tc[4][2 * i + 1] != B[j];
         }
         CHECK(bad == 0, "prim %d: %d engine UV values off the documented packing", p, bad);
+        /* Half precision (an engine's compressed UV set) keeps the pivot
+         * within 2^-11 of the arm's length, whatever the plant's size. */
+        CHECK(worst_half <= ldexp(1.0, -11) + 1e-9, "prim %d: half precision moves a pivot by %.3g of its arm", p,
+              worst_half);
     }
     glb_free(&g);
 
