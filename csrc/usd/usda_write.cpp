@@ -10,6 +10,7 @@
 #include "base/atomic_file.h"
 #include "base/dmath.h"
 #include "base/error.h"
+#include "base/process.h"
 #include "base/progress.h"
 #include "gltf/gltf_write.h"
 #include "textures/png_write.h"
@@ -117,6 +118,14 @@ struct Writer {
     void instancer(const banyan_mesh *m, const std::string &proto_root, const std::vector<uint32_t> &groups,
                    const std::string &ind);
     banyan_status draw_textures();
+    /* The budget ran out where only the deadline saw it (an encoder). */
+    banyan_status over() {
+        if (g->cancelled == PROG_RUNNING) {
+            g->cancelled = PROG_OVER_TIME;
+            g->over_value = process_now() - g->t_start;
+        }
+        return prog_fail(g, err, "writing USD");
+    }
     banyan_status io_fail(int e, const std::string &what) {
         return banyan_fail(err, BANYAN_E_IO, "cannot write '%.300s': %s", what.c_str(), std::strerror(e));
     }
@@ -252,7 +261,7 @@ banyan_status Writer::materials(const banyan_mesh *m, const std::string &scope, 
                 int r = png_write(I.pixels, static_cast<int>(I.width), static_cast<int>(I.height),
                                   static_cast<int>(I.channels), PNG_WRITE_FILTER, PNG_WRITE_LEVEL, &stop, &png, &len);
                 if (r < 0) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory encoding image %u", im);
-                if (r > 0) return prog_fail(g, err, "writing USD");
+                if (r > 0) return over();
                 std::vector<unsigned char> bytes(png, png + len);
                 banyan_png_free(png);
                 if (int e = gltfw::write_png_file(folder + image_uri[im], bytes, o.sync != 0))
@@ -471,7 +480,7 @@ banyan_status Writer::geom(const banyan_mesh *m, const std::string &root, const 
             if (pt.group != grp || pt.index_count == 0) continue;
             mesh_part(m, pt, names[q], mat[pt.material], pind);
             if (out.error()) return io_fail(out.error(), path);
-            if (prog_at(g, 0.0)) return prog_fail(g, err, "writing USD");
+            if (prog_at(g, 0.0)) return over();
         }
         if (own) out << gind << "}\n";
     }

@@ -3,7 +3,8 @@
  * API: refusals name the argument and leave no file; a tube and a small
  * keyaki write a USD text layer in the library's frame with one Mesh a
  * part, the counts of the mesh, the textures as files under image_dir,
- * a LOD variant set for levels; the same bytes on every run. OpenUSD's
+ * a LOD variant set for levels; the same bytes on every run; a spent
+ * budget stops the write and keeps the old file. OpenUSD's
  * own checks of the files are tests/usd/test_usd_presets.py.
  *
  *   test_usd OUTDIR
@@ -139,6 +140,36 @@ static void keyaki(void) {
     banyan_mesh_free(m);
 }
 
+/* Past the budget's max_seconds the write stops: BANYAN_E_LIMIT naming
+ * it, the old file as it was. */
+static void budget(void) {
+    banyan_keyaki_params kp;
+    banyan_keyaki_params_init(&kp);
+    kp.levels = 12;
+    banyan_mesh *m = NULL;
+    banyan_error err;
+    CHECK(banyan_keyaki_generate(&kp, &m, NULL, NULL, &err) == BANYAN_OK, "keyaki 12: %s", err.message);
+    if (!m) return;
+    banyan_gltf_node node = {m, "keyaki", 0, NULL, NULL};
+    banyan_gltf_options o;
+    banyan_gltf_options_init(&o);
+    o.textures = 0;
+    const char *p = test_join(g_dir, "usd_budget.usda");
+    FILE *f = fopen(p, "wb");
+    if (f) fputs("old", f), fclose(f);
+    banyan_budget b;
+    banyan_budget_init(&b);
+    b.max_seconds = 0.01;
+    banyan_status s = banyan_usd_write_nodes_budget(p, &node, 1, &o, &b, &err);
+    size_t len = 0;
+    char *text = test_read_file(p, &len);
+    CHECK(s == BANYAN_E_LIMIT && strstr(err.message, "max_seconds") && text && !strcmp(text, "old"),
+          "a 10 ms budget on %u vertices: %s %s, the old file %s", m->vertex_count, banyan_status_name(s), err.message,
+          text && !strcmp(text, "old") ? "kept" : "changed");
+    free(text);
+    banyan_mesh_free(m);
+}
+
 int main(int argc, char **argv) {
     g_dir = argc > 1 ? argv[1] : ".";
     const double pts[9] = {0, 0, 0, 0, 0, 1, 0.2, 0, 2};
@@ -152,5 +183,6 @@ int main(int argc, char **argv) {
     }
     banyan_mesh_free(m);
     keyaki();
+    budget();
     return check_done("test_usd");
 }
