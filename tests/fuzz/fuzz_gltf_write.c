@@ -4,9 +4,12 @@
  * the mesh, a flags byte: bit 0 textures on (64 pixels), bit 1 engine
  * uvs, bit 2 through banyan_gltf_write_nodes with a coarser level
  * (banyan_mesh_lod at half) as MSFT_lod, bit 3 a 0.01 s budget (else 5 s),
- * bit 4 a NULL name. A refusal must be clean and leave the file that was
+ * bit 4 a NULL name, bit 5 also the USD writer (textures off: no image
+ * files). A refusal must be clean and leave the file that was
  * there; a written file must read back with the mesh's triangles, its
- * positions finite and within the mesh's bounds (Y up back to Z up). */
+ * positions finite and within the mesh's bounds (Y up back to Z up); a
+ * USD layer must start as one, name no NaN or infinity and hold at most
+ * one Mesh a part. */
 #define _POSIX_C_SOURCE 200809L
 #include <unistd.h>
 
@@ -22,6 +25,42 @@ static void bounds(const banyan_mesh *m, double lo[3], double hi[3]) {
             lo[j] = v < lo[j] ? v : lo[j];
             hi[j] = v > hi[j] ? v : hi[j];
         }
+}
+
+/* The USD writer on the same mesh and options (its textures off). */
+static void usd(const banyan_mesh *m, const char *name, const banyan_gltf_options *opt, const banyan_budget *b) {
+    static char path[64];
+    if (!path[0]) snprintf(path, sizeof path, "/tmp/banyan_fuzz_usd_write_%ld.usda", (long)getpid());
+    unlink(path);
+    banyan_gltf_options o = *opt;
+    o.textures = 0;
+    banyan_gltf_node node = {m, name, 0, NULL, NULL};
+    banyan_error e;
+    memset(&e, 0, sizeof e);
+    banyan_status s = banyan_usd_write_nodes_budget(path, &node, 1, &o, b, &e);
+    if (s) {
+        fz_check_failure(s, &e, NULL);
+        FZ_ASSERT(access(path, F_OK) != 0, "a refused USD write left %s (%s)", path, e.message);
+        return;
+    }
+    FILE *f = fopen(path, "rb");
+    FZ_ASSERT(f != NULL, "the USD layer %s is not there", path);
+    static char buf[1 << 16];
+    size_t n, meshes = 0, at = 0;
+    int head = 1;
+    while ((n = fread(buf, 1, sizeof buf - 1, f)) > 0) {
+        buf[n] = '\0';
+        if (head) FZ_ASSERT(!strncmp(buf, "#usda 1.0\n", 10), "the layer does not start with #usda 1.0");
+        head = 0;
+        static const char *const bad[] = {"nan,", "nan)", "nan]", "inf,", "inf)", "inf]"};
+        for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
+            FZ_ASSERT(!strstr(buf, bad[k]), "a NaN or infinity (%s) near byte %zu", bad[k], at);
+        for (const char *q = strstr(buf, "def Mesh "); q; q = strstr(q + 1, "def Mesh ")) meshes++;
+        at += n;
+    }
+    fclose(f);
+    FZ_ASSERT(meshes <= m->part_count, "%zu meshes for %u parts", meshes, m->part_count);
+    unlink(path);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -85,6 +124,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
         banyan_host_mesh_free(h);
     }
+    if (flags & 32) usd(&fm.m, name, &o, &b);
     banyan_mesh_free(lod);
     fz_mesh_free(&fm);
     unlink(path);
