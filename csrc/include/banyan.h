@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 20
+#define BANYAN_ABI_VERSION 21
 
 /* ---------------------------------------------------------------- status */
 
