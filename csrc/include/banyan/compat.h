@@ -12,7 +12,9 @@
  *           (ABI 19's call is banyan_keyaki_skeleton_stats);
  *   ABI 21: banyan_segments_generate lost its `unattached` argument (the
  *           list is banyan_segments_find_unattached's; the count stays in
- *           stats->unattached) and takes a progress callback before err.
+ *           stats->unattached) and takes a progress callback before err;
+ *           banyan_material.image counts from 1 (0 = no image, k = the
+ *           mesh's images[k - 1]; ABI 20: -1 = none, k = images[k]).
  * docs/api.md, "ABI checks", lists them too.
  */
 #ifndef BANYAN_COMPAT_H
