@@ -92,11 +92,14 @@ banyan_status banyan_segments_find_unattached(const banyan_segments_params *para
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 0, &k, err);
     if (s) return s;
-    /* In banyan_segments_generate's frame, so that both find the same. */
+    /* In banyan_segments_generate's frame, so that both find the same;
+     * inputs spread wider than a frame keeps (which it refuses) are
+     * checked where they are. */
     v3 O;
     banyan_segment_input *local = NULL;
     double tl[6];
-    if (count && (s = segments_frame(segs, count, trunk, &O, &local, tl, err))) return s;
+    if (count && segments_frame(segs, count, trunk, &O, &local, tl, NULL) == BANYAN_E_NOMEM)
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
     uint32_t n = seg_find_unattached(local ? local : segs, count, local && trunk ? tl : trunk,
                                      params->attach_tolerance, 0, unattached, &s, NULL);
     free(local);
@@ -292,7 +295,7 @@ static int count_lines(const seg_consts *k, const banyan_segments_params *p, con
         lines++;
     }
     for (uint32_t i = 0; i < count; i++) {
-        if ((i & 63) == 0 && prog_at(g, 0.1 * i / count)) return 1;
+        if ((i & 63) == 0 && prog_at(g, 0.01 * i / count)) return 1;
         int nv = seg_run(k, &segs[i], buf, lev);
         if (2 + 2 * (int64_t)segs[i].n + 4 * forks_wanted(segs[i].n, segs[i].s) > BANYAN_SEGMENT_MAX_VERTICES)
             st->budget_hits++;
@@ -389,7 +392,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         mb_skel_edge(&mb, q, q + 1);
     }
     for (uint32_t i = 0; i < count && !mb.status; i++) {
-        if ((i & 63) == 0 && prog_at(&g, 0.1 + 0.9 * i / count)) {
+        if ((i & 63) == 0 && prog_at(&g, 0.03 + 0.97 * i / count)) {
             mb_free(&mb);
             seg_wind_free(&sw);
             seg_shaper_free(&sh);
