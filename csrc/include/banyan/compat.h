@@ -1,15 +1,15 @@
 /*
  * banyan/compat.h - entry points whose names the public API no longer
  * uses, kept as thin wrappers: each calls the function named beside it.
- * ABI 19's names (before the generators' one entry shape, docs/api.md
- * "Params") and ABI 20's names of the segment reference (before
- * banyan_segment_lines) are removed with ABI 22.
+ * ABI 19's names (of the calls that took the generators' one entry
+ * shape, docs/api.md "Params") and ABI 20's names of the segment
+ * reference (banyan_segment_lines) are removed with ABI 22.
  *
  * A call that kept its name with new arguments cannot be kept beside it:
  *   ABI 20: banyan_roots_generate, banyan_ivy_generate, banyan_ivy_create,
  *           banyan_keyaki_generate and banyan_avenue_generate took the one
- *           entry shape, and banyan_keyaki_stats became the stats struct
- *           (ABI 19's call is banyan_keyaki_skeleton_stats);
+ *           entry shape, and banyan_keyaki_stats names the stats struct
+ *           (ABI 19's call of that name is banyan_keyaki_skeleton_stats);
  *   ABI 21: banyan_segments_generate lost its `unattached` argument (the
  *           list is banyan_segments_find_unattached's; the count stays in
  *           stats->unattached) and takes a progress callback before err;
