@@ -80,7 +80,8 @@ Choices made:
   start lies inside the default wall). A start farther than
   `start_snap_max` from every host is refused with `BANYAN_E_START_FAR`.
 - **Segments: a segment far from every axis is not an error**: it is built
-  and reported in `stats.unattached` and the `unattached` list.
+  and counted in `stats.unattached` (`banyan_segments_find_unattached`
+  lists them).
 - **Far from the origin.** Meshes keep float32 positions relative to
   `banyan_mesh.origin` (0 near the world origin, whole metres near the
   plant beyond 4096 m; docs/api.md). What one mesh cannot keep to 1 mm,

@@ -40,12 +40,18 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
     }
     banyan_mesh **m = NULL;
     banyan_segments_stats st;
+    const double *tr = has_trunk ? trunk : NULL;
     if (!s) {
         m = calloc(1, sizeof *m);
-        unattached = malloc(sizeof *unattached * n);
-        if (!m || !unattached) s = BANYAN_E_NOMEM;
+        if (!m) s = BANYAN_E_NOMEM;
     }
-    if (!s) s = banyan_segments_generate(p, segs, n, has_trunk ? trunk : NULL, &m[0], &st, unattached, err);
+    if (!s) s = banyan_segments_generate(p, segs, n, tr, &m[0], &st, job->progress, err);
+    if (!s && st.unattached) { /* which ones, for the warning */
+        unattached = malloc(sizeof *unattached * n);
+        s = unattached ? banyan_segments_find_unattached(p, segs, n, tr, unattached, &st.unattached, err)
+                       : BANYAN_E_NOMEM;
+        if (s) banyan_mesh_free(m[0]);
+    }
     if (s) {
         free(m);
         free(segs);

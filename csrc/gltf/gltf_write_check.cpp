@@ -209,12 +209,11 @@ banyan_status check_materials(const banyan_mesh *m, const char *mi, banyan_error
             return banyan_fail(err, BANYAN_E_RANGE,
                         "%s.materials[%u].translucency = %g is outside [0, 1]", mi, k,
                         static_cast<double>(mat->translucency));
-        /* A mesh without images names none: ABI 10 callers' zero-filled
-         * materials (image 0) still write as before. */
-        if (m->image_count > 0 && (mat->image < -1 || mat->image >= static_cast<int64_t>(m->image_count)))
-            return banyan_fail(err, BANYAN_E_RANGE, "%s.materials[%u].image = %d is outside [-1, %u] (image_count = %u)",
-                               mi, k, mat->image, m->image_count - 1, m->image_count);
-        if (m->image_count > 0 && mat->image >= 0 && m->uvs == nullptr)
+        /* image k is images[k - 1]; 0 (a zeroed material) names none. */
+        if (mat->image < 0 || mat->image > static_cast<int64_t>(m->image_count))
+            return banyan_fail(err, BANYAN_E_RANGE, "%s.materials[%u].image = %d is outside [0, %u] (image_count = %u)",
+                               mi, k, mat->image, m->image_count, m->image_count);
+        if (mat->image > 0 && m->uvs == nullptr)
             return banyan_fail(err, BANYAN_E_INVALID_ARG, "%s.materials[%u].image = %d needs uvs, and %s.uvs is NULL",
                                mi, k, mat->image, mi);
     }

@@ -24,8 +24,8 @@ void emit_materials(tinygltf::Model &model, const Job &J, const int slot[2 * BAN
         const banyan_material *bm = &m->materials[k];
         tinygltf::Material mat;
         mat.name.assign(bm->name, name_len(bm->name, BANYAN_NAME_MAX));
-        int image_tex = m->image_count > 0 && bm->image >= 0 ? J.image_texture[static_cast<size_t>(bm->image)] : -1;
-        int key = image_tex < 0 && !(m->image_count > 0 && bm->image >= 0) ? texture_key(m, bm) : -1;
+        int image_tex = bm->image > 0 ? J.image_texture[static_cast<size_t>(bm->image - 1)] : -1;
+        int key = image_tex < 0 && bm->image == 0 ? texture_key(m, bm) : -1;
         int tex = key >= 0 ? slot[key] : -1;
         if (image_tex >= 0) { /* the image carries the colour; it has no normal map */
             mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, short_double(bm->base_color[3])};

@@ -139,7 +139,7 @@ bool wants_tangents(const banyan_mesh *m, const banyan_gltf_options &o) {
     if (!o.textures) return false;
     for (uint32_t k = 0; k < m->material_count; ++k) {
         const banyan_material *bm = &m->materials[k];
-        if (m->image_count > 0 && bm->image >= 0) continue;
+        if (bm->image > 0) continue;
         if (texture_key(m, bm) >= 0) return true;
     }
     return false;

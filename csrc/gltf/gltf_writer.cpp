@@ -186,7 +186,7 @@ banyan_status Write::plan_images() {
     for (Job &J : jobs) {
         J.image_texture.assign(J.m->image_count, -1);
         for (uint32_t k = 0; o.textures && J.m->image_count > 0 && k < J.m->material_count; ++k) {
-            int32_t im = J.m->materials[k].image;
+            int32_t im = J.m->materials[k].image - 1; /* image k is images[k - 1] */
             if (im < 0 || J.image_texture[static_cast<size_t>(im)] >= 0) continue;
             ImageGuard ig;
             size_t size = 0;
@@ -206,7 +206,7 @@ banyan_status Write::plan_buffer() {
     for (Job &J : jobs)
         for (uint32_t k = 0; k < J.m->material_count; ++k) {
             const banyan_material *bm = &J.m->materials[k];
-            if (J.m->image_count > 0 && bm->image >= 0) continue;
+            if (bm->image > 0) continue;
             int key = texture_key(J.m, bm);
             if (key >= 0 && slot[key] >= 0) J.tangents = true;
         }

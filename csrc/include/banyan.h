@@ -45,7 +45,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 20
+#define BANYAN_ABI_VERSION 21
 
 /* ---------------------------------------------------------------- status */
 
@@ -201,8 +201,9 @@ typedef struct banyan_material {
     int32_t season;             /* banyan_season of a leaf texture; 0 otherwise */
     float alpha_cutoff;         /* > 0: alpha-tested (glTF MASK) at this cutoff, leaves 0.5; 0: opaque */
     float translucency;         /* 0..1: light through a back-lit leaf (Blender's material; glTF ignores it) */
-    int32_t image;              /* index into the mesh's images (its base colour, RGBA), e.g. a billboard's
-                                   picture; -1 for none. When >= 0 it replaces `texture` */
+    int32_t image;              /* which of the mesh's images is its base colour (RGBA), e.g. a billboard's
+                                   picture, counted from 1: k is images[k - 1]; 0 (a zeroed material): no
+                                   image. When > 0 it replaces `texture` */
 } banyan_material;
 
 /* One placed copy of a variant (instancing): the parts whose
@@ -264,8 +265,8 @@ typedef struct banyan_mesh {
      * object's location. */
     double origin[3];
 
-    /* Images the materials name (banyan_material.image), owned by the
-     * mesh; 0 / NULL for none. */
+    /* Images the materials name (banyan_material.image: material image k
+     * is images[k - 1]), owned by the mesh; 0 / NULL for none. */
     uint32_t image_count;
     banyan_image *images;
 

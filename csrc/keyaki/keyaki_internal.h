@@ -308,7 +308,7 @@ double keyaki_twig_radius(const banyan_keyaki_params *p, const keyaki_node *x, i
 void keyaki_twigs_plan(const banyan_keyaki_params *p, const keyaki_node *n, int32_t count, uint64_t *vertices,
                        uint64_t *indices, uint64_t *lines);
 /* The segment of tip branch x (line 0 its axis): xyz and level codes as
- * banyan_segment_generate gives them, parent[j] the line that line j
+ * banyan_segment_lines gives them, parent[j] the line that line j
  * leaves, and path[j] the path length from the trunk base to line j's
  * start (path_x: to x's start), m. Returns the vertex count (2 a line),
  * 0 on failure. */

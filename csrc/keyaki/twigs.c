@@ -8,7 +8,7 @@
  * of one segment: S = the branch start, A = its direction, l = its length,
  * n = segment_twigs, s = segment_depth, the paper's angles and
  * m = segment_twig_length * unit. The CPU reference
- * (banyan_segment_generate) gives the lines; the twig and fork lines are
+ * (banyan_segment_lines) gives the lines; the twig and fork lines are
  * meshed as thin closed tubes with the segment composer's tube code
  * (seg_line_tube, seg_level_radius) into the bark part. The axis line is
  * not meshed: it is the branch's own tube. Every S is the start of its

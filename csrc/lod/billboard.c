@@ -94,8 +94,8 @@ static banyan_status paint_init(const banyan_mesh *m, bb_paint *pa) {
         bb_mat *b = &pa->mat[i];
         for (int c = 0; c < 3; c++) b->flat[c] = mt->base_color[c];
         b->translucency = !(mt->translucency > 0) ? 0 : mt->translucency > 1 ? 1 : mt->translucency;
-        if (mt->image >= 0) {
-            b->tex = &m->images[mt->image];
+        if (mt->image > 0) {
+            b->tex = &m->images[mt->image - 1];
             continue;
         }
         if (mt->texture <= BANYAN_TEX_NONE || mt->texture >= BANYAN_TEX_COUNT) continue;
@@ -612,7 +612,7 @@ static void card_parts(const banyan_mesh *m, banyan_mesh *o, uint32_t g, uint32_
         mt->texture = BANYAN_TEX_NONE;
         mt->alpha_cutoff = 0.5f;
         mt->translucency = 0.3f;
-        mt->image = (int32_t)cd;
+        mt->image = (int32_t)cd + 1; /* images[cd] */
         banyan_part *pp = &o->parts[2 * cd + h];
         pp->vertex_offset = cd * nvc + (h ? planes * 8 : 0);
         pp->vertex_count = h ? 4 : planes * 8;

@@ -94,8 +94,8 @@ static banyan_status check_mesh(const banyan_mesh *m, banyan_error *err) {
                            m->instance_count);
     for (uint32_t i = 0; i < m->material_count; i++) {
         int32_t im = m->materials[i].image;
-        if (im >= 0 && (uint32_t)im >= m->image_count)
-            return banyan_fail(err, BANYAN_E_INVALID_ARG, "mesh materials[%u].image = %d is out of range [-1, %u)", i,
+        if (im < 0 || (uint32_t)im > m->image_count)
+            return banyan_fail(err, BANYAN_E_INVALID_ARG, "mesh materials[%u].image = %d is out of range [0, %u]", i,
                                im, m->image_count);
     }
     uint32_t v_at = 0, i_at = 0, max_group = 0;

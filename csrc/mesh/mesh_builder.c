@@ -101,8 +101,7 @@ uint32_t mb_add_material(mesh_builder *mb, const char *name, const double rgba[4
     for (int i = 0; i < 4; i++) m->base_color[i] = (float)rgba[i];
     m->roughness = (float)roughness;
     m->double_sided = double_sided ? 1 : 0;
-    m->texture = BANYAN_TEX_NONE; /* generators set their texture after adding the material */
-    m->image = -1;
+    m->texture = BANYAN_TEX_NONE; /* generators set their texture after adding the material; image 0: none */
     return mb->n_mat++;
 }
 

@@ -56,6 +56,35 @@ static banyan_status prepare(const banyan_segments_params *p, const banyan_segme
     return BANYAN_OK;
 }
 
+/* The frame (base/frame.h) of a segment list: its origin *O, from the
+ * axes' ends and the trunk, and, when O is not 0, the inputs moved into
+ * it (*local, freed by the caller; trunk into tl). With O = 0, *local is
+ * NULL and the inputs are used as they are. */
+static banyan_status segments_frame(const banyan_segment_input *segs, uint32_t count, const double *trunk, v3 *O,
+                                    banyan_segment_input **local, double tl[6], banyan_error *err) {
+    *local = NULL;
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < count; i++) {
+        v3 S = v3_load(segs[i].S);
+        frame_add(&lo, &hi, S);
+        frame_add(&lo, &hi, v3_madd(S, v3_load(segs[i].A), segs[i].l));
+    }
+    if (trunk) frame_add(&lo, &hi, v3_load(trunk)), frame_add(&lo, &hi, v3_load(trunk + 3));
+    *O = frame_pick(lo, hi);
+    banyan_status s = frame_check(lo, hi, *O, "the segments (S, S + l A and trunk)", err);
+    if (s || (O->x == 0 && O->y == 0 && O->z == 0)) return s;
+    banyan_segment_input *l = malloc(sizeof *l * count);
+    if (!l) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    for (uint32_t i = 0; i < count; i++) {
+        l[i] = segs[i];
+        for (int c = 0; c < 3; c++) l[i].S[c] -= (&O->x)[c];
+    }
+    for (int c = 0; trunk && c < 6; c++) tl[c] = trunk[c] - (&O->x)[c % 3];
+    *local = l;
+    return BANYAN_OK;
+}
+
 banyan_status banyan_segments_find_unattached(const banyan_segments_params *params, const banyan_segment_input *segs,
                                               uint32_t count, const double *trunk, uint32_t *unattached,
                                               uint32_t *n_unattached, banyan_error *err) {
@@ -63,7 +92,17 @@ banyan_status banyan_segments_find_unattached(const banyan_segments_params *para
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 0, &k, err);
     if (s) return s;
-    uint32_t n = seg_find_unattached(segs, count, trunk, params->attach_tolerance, 0, unattached, &s, NULL);
+    /* In banyan_segments_generate's frame, so that both find the same;
+     * inputs spread wider than a frame keeps (which it refuses) are
+     * checked where they are. */
+    v3 O;
+    banyan_segment_input *local = NULL;
+    double tl[6];
+    if (count && segments_frame(segs, count, trunk, &O, &local, tl, NULL) == BANYAN_E_NOMEM)
+        return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    uint32_t n = seg_find_unattached(local ? local : segs, count, local && trunk ? tl : trunk,
+                                     params->attach_tolerance, 0, unattached, &s, NULL);
+    free(local);
     if (s) return banyan_fail(err, s, "out of memory while checking %u segments", count);
     if (n_unattached) *n_unattached = n;
     banyan_error_clear(err);
@@ -256,7 +295,7 @@ static int count_lines(const seg_consts *k, const banyan_segments_params *p, con
         lines++;
     }
     for (uint32_t i = 0; i < count; i++) {
-        if ((i & 63) == 0 && prog_at(g, 0.0)) return 1;
+        if ((i & 63) == 0 && prog_at(g, 0.01 * i / count)) return 1;
         int nv = seg_run(k, &segs[i], buf, lev);
         if (2 + 2 * (int64_t)segs[i].n + 4 * forks_wanted(segs[i].n, segs[i].s) > BANYAN_SEGMENT_MAX_VERTICES)
             st->budget_hits++;
@@ -279,15 +318,15 @@ static int count_lines(const seg_consts *k, const banyan_segments_params *p, con
 /* banyan_segments_generate in the segments' own frame. */
 static banyan_status compose(const banyan_segments_params *params, const banyan_segment_input *segs, uint32_t count,
                              const double *trunk, banyan_mesh **out, banyan_segments_stats *stats,
-                             uint32_t *unattached, banyan_error *err) {
+                             const banyan_progress *progress, banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (stats) memset(stats, 0, sizeof *stats);
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
     if (s) return s;
     const banyan_segments_params *p = params;
-    prog g; /* no callback here, only the run's budget */
-    prog_init(&g, NULL);
+    prog g;
+    prog_init(&g, progress);
     prog_budget(&g, p->max_seconds, p->max_memory_mb);
 
     /* Pass 1: lines, levels, budget hits and the vertex estimate. */
@@ -310,7 +349,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         return prog_fail(&g, err, "segments");
     seg_wind sw;
     if (seg_wind_init(&sw, p, segs, count, trunk)) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
-    st.unattached = seg_attach_parents(segs, count, trunk, p->attach_tolerance, 0, sw.parent, unattached, &s, &g);
+    st.unattached = seg_attach_parents(segs, count, trunk, p->attach_tolerance, 0, sw.parent, NULL, &s, &g);
     if (prog_stopped(&g)) {
         seg_wind_free(&sw);
         return prog_fail(&g, err, "segments");
@@ -353,7 +392,7 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
         mb_skel_edge(&mb, q, q + 1);
     }
     for (uint32_t i = 0; i < count && !mb.status; i++) {
-        if ((i & 63) == 0 && prog_at(&g, 0.0)) {
+        if ((i & 63) == 0 && prog_at(&g, 0.03 + 0.97 * i / count)) {
             mb_free(&mb);
             seg_wind_free(&sw);
             seg_shaper_free(&sh);
@@ -405,40 +444,31 @@ static banyan_status compose(const banyan_segments_params *params, const banyan_
     }
     s = mb_finish(&mb, out, err);
     if (s) return s;
+    if (prog_finish(&g)) {
+        banyan_mesh_free(*out);
+        *out = NULL;
+        return prog_fail(&g, err, "segments");
+    }
     if (stats) *stats = st;
     return BANYAN_OK;
 }
 
 banyan_status banyan_segments_generate(const banyan_segments_params *params, const banyan_segment_input *segs,
                                        uint32_t count, const double *trunk, banyan_mesh **out,
-                                       banyan_segments_stats *stats, uint32_t *unattached, banyan_error *err) {
+                                       banyan_segments_stats *stats, const banyan_progress *progress,
+                                       banyan_error *err) {
     BANYAN_CHECK_OUT(out, err);
     if (stats) memset(stats, 0, sizeof *stats);
     seg_consts k;
     banyan_status s = prepare(params, segs, count, trunk, 1, &k, err);
     if (s) return s;
-    /* The frame (base/frame.h) from the axes' ends and the trunk. */
-    v3 lo, hi;
-    frame_empty(&lo, &hi);
-    for (uint32_t i = 0; i < count; i++) {
-        v3 S = v3_load(segs[i].S);
-        frame_add(&lo, &hi, S);
-        frame_add(&lo, &hi, v3_madd(S, v3_load(segs[i].A), segs[i].l));
-    }
-    if (trunk) frame_add(&lo, &hi, v3_load(trunk)), frame_add(&lo, &hi, v3_load(trunk + 3));
-    v3 O = frame_pick(lo, hi);
-    if ((s = frame_check(lo, hi, O, "the segments (S, S + l A and trunk)", err))) return s;
-    if (O.x == 0 && O.y == 0 && O.z == 0) return compose(params, segs, count, trunk, out, stats, unattached, err);
-    banyan_segment_input *local = malloc(sizeof *local * count);
-    if (!local) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u segments", count);
+    if ((s = prog_check(progress, err))) return s;
+    v3 O;
+    banyan_segment_input *local = NULL;
     double tl[6];
-    for (uint32_t i = 0; i < count; i++) {
-        local[i] = segs[i];
-        for (int c = 0; c < 3; c++) local[i].S[c] -= (&O.x)[c];
-    }
-    for (int c = 0; trunk && c < 6; c++) tl[c] = trunk[c] - (&O.x)[c % 3];
-    s = compose(params, local, count, trunk ? tl : NULL, out, stats, unattached, err);
+    if ((s = segments_frame(segs, count, trunk, &O, &local, tl, err))) return s;
+    s = compose(params, local ? local : segs, count, local && trunk ? tl : trunk, out, stats, progress, err);
+    if (!s && local) frame_set(*out, O);
     free(local);
-    if (!s) frame_set(*out, O);
     return s;
 }

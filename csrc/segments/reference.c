@@ -218,7 +218,7 @@ int seg_run_tree(const seg_consts *k, const banyan_segment_input *in, float *xyz
     return 2 * nl;
 }
 
-banyan_status banyan_segment_generate(const banyan_segment_input *in, const banyan_segment_params *params,
+banyan_status banyan_segment_lines(const banyan_segment_input *in, const banyan_segment_params *params,
                                       float out_xyz[BANYAN_SEGMENT_MAX_VERTICES * 3],
                                       uint8_t out_level[BANYAN_SEGMENT_MAX_VERTICES], int32_t *out_count,
                                       banyan_error *err) {
@@ -233,7 +233,7 @@ banyan_status banyan_segment_generate(const banyan_segment_input *in, const bany
     return BANYAN_OK;
 }
 
-banyan_status banyan_segment_generate_many(const banyan_segment_input *ins, uint32_t count,
+banyan_status banyan_segment_lines_many(const banyan_segment_input *ins, uint32_t count,
                                            const banyan_segment_params *params, float *out_xyz, uint8_t *out_level,
                                            int32_t *out_counts, banyan_error *err) {
     banyan_status s;

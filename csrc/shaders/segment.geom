@@ -1,6 +1,6 @@
 #version 330 core
 // banyan segment shader, geometry stage: the GLSL twin of the CPU reference
-// banyan_segment_generate (csrc/segments/reference.c; spec segments.md).
+// banyan_segment_lines (csrc/segments/reference.c; spec segments.md).
 // One point in, at most 128 vertices out: every line is one 2-vertex line
 // strip, in the reference's order (axis, twigs, forks breadth-first).
 // Each expression matches the reference's float operations one for one;

@@ -1,8 +1,9 @@
 /* bench_progress: how honest the progress fraction is and how soon a
  * cancel is heard (docs/api.md, "Progress and cancel").
- *   usage: bench_progress [ivy_steps (900)] [avenue_trees (100)] [ivy_preset.json]
+ *   usage: bench_progress [ivy_steps (900)] [avenue_trees (100)] [ivy_preset.json] [segments (2000)]
  * For ivy on the wall (one host set box; or the preset's params and hosts;
- * max_buds and max_vertices raised), an avenue and the default roots it prints: the run's time,
+ * max_buds and max_vertices raised), an avenue, the default roots and a
+ * demo segment tree it prints: the run's time,
  * the number of callbacks, the share of the run's time at which the
  * fraction passed 0.25, 0.5, 0.75 and 0.9 (honest: close to the fraction
  * itself), the longest gap between two callbacks, and for a cancel at
@@ -96,6 +97,18 @@ static banyan_status run_roots(const void *ctx, const banyan_progress *pr, banya
     return banyan_roots_generate(&c->p, c->H, out, NULL, pr, e);
 }
 
+typedef struct segments_ctx {
+    banyan_segments_params p;
+    banyan_segment_input *segs;
+    uint32_t n;
+    double trunk[6];
+} segments_ctx;
+
+static banyan_status run_segments(const void *ctx, const banyan_progress *pr, banyan_mesh **out, banyan_error *e) {
+    const segments_ctx *c = ctx;
+    return banyan_segments_generate(&c->p, c->segs, c->n, c->trunk, out, NULL, pr, e);
+}
+
 int main(int argc, char **argv) {
     int steps = argc > 1 ? atoi(argv[1]) : 900, trees = argc > 2 ? atoi(argv[2]) : 100;
     banyan_error e;
@@ -139,5 +152,15 @@ int main(int argc, char **argv) {
     if (banyan_hosts_create(&trunk, 1, NULL, 0, &rc.H, &e)) return printf("%s\n", e.message), 1;
     measure("roots", run_roots, &rc);
     banyan_hosts_free(rc.H);
+
+    segments_ctx sc;
+    banyan_segments_params_init(&sc.p);
+    sc.p.demo_segments = argc > 4 ? atoi(argv[4]) : 2000;
+    sc.p.max_vertices = 1 << 30;
+    sc.segs = malloc(sizeof *sc.segs * (size_t)(sc.p.demo_segments > 0 ? sc.p.demo_segments : 1));
+    if (!sc.segs || banyan_segments_demo(&sc.p, sc.segs, (uint32_t)sc.p.demo_segments, &sc.n, sc.trunk, &e))
+        return printf("segments demo: %s\n", sc.segs ? e.message : "out of memory"), 1;
+    measure("segments", run_segments, &sc);
+    free(sc.segs);
     return 0;
 }

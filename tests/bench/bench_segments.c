@@ -1,7 +1,7 @@
 /* Segments: CPU reference speed over 1e6 random segments (n uniform in
  * 0..63, s in 0..10, as in the segment tests; most of them reach the
- * 128-vertex budget), one banyan_segment_generate call per segment and in
- * batches of 4096 (banyan_segment_generate_many); then the composer on a
+ * 128-vertex budget), one banyan_segment_lines call per segment and in
+ * batches of 4096 (banyan_segment_lines_many); then the composer on a
  * random demo tree and the attachment check on a large list. Median of 5
  * runs. The llvmpipe shader's figure comes from
  * `test_segments_gl --bench` (tests/gl/). */
@@ -40,13 +40,13 @@ int main(void) {
         double t0 = bench_now();
         for (int i = 0; i < N; i++) {
             int32_t c;
-            banyan_segment_generate(&in[i], &p, xyz, lev, &c, NULL);
+            banyan_segment_lines(&in[i], &p, xyz, lev, &c, NULL);
             verts += c;
         }
         double t1 = bench_now();
         for (int i = 0; i < N; i += BATCH) {
             uint32_t b = (uint32_t)(N - i < BATCH ? N - i : BATCH);
-            banyan_segment_generate_many(in + i, b, &p, xyz, lev, counts, NULL);
+            banyan_segment_lines_many(in + i, b, &p, xyz, lev, counts, NULL);
         }
         double t2 = bench_now();
         sink += xyz[7];

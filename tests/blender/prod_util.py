@@ -77,7 +77,7 @@ def synthetic_plant(n=40, height=8.0):
                     "wind_stiffness": array("f", [1.0 - u for u in up]), "wind_phase": array("f", [0.25]) * nv,
                     "wind_flutter": zero, "birth": up}
     d.materials = [{"name": "wood", "base_color": (0.4, 0.3, 0.2, 1.0), "roughness": 0.8, "double_sided": False,
-                    "texture": 0, "season": 0, "alpha_cutoff": 0.0, "translucency": 0.0, "image": -1}]
+                    "texture": 0, "season": 0, "alpha_cutoff": 0.0, "translucency": 0.0, "image": 0}]
     d.parts = [{"vertex_offset": 0, "vertex_count": nv, "index_offset": 0, "index_count": len(idx), "material": 0,
                 "group": 0}]
     return d

@@ -65,7 +65,7 @@ static inline void fz_mesh_read(fz_reader *r, fz_mesh *fm) {
         mt->texture = (int32_t)(fz_u8(r) % 7) - 1;
         mt->season = fz_u8(r) & 1;
         mt->alpha_cutoff = fz_u8(r) / 255.0f;
-        mt->image = -1;
+        mt->image = 0;
     }
     m->material_count = nm;
     m->materials = fm->mats;
@@ -77,7 +77,7 @@ static inline void fz_mesh_read(fz_reader *r, fz_mesh *fm) {
         for (size_t i = 0; i < (size_t)fm->image.width * fm->image.height * 4; i += 7) fm->image.pixels[i] = fz_u8(r);
         m->image_count = 1;
         m->images = &fm->image;
-        fm->mats[0].image = 0;
+        fm->mats[0].image = 1; /* images[0] */
     }
     for (uint32_t v = 0; v < nv; v++) {
         for (int j = 0; j < 3; j++)

@@ -55,7 +55,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         const banyan_segment_input *g = &in.segs[i];
         banyan_status sc = banyan_segment_check(g, &sp, &e);
         int32_t c = -7;
-        banyan_status s = banyan_segment_generate(g, &sp, one_xyz[i], one_lev[i], &c, &e);
+        banyan_status s = banyan_segment_lines(g, &sp, one_xyz[i], one_lev[i], &c, &e);
         FZ_ASSERT(s == sc, "check %s, generate %s", banyan_status_name(sc), banyan_status_name(s));
         if (s) {
             fz_check_failure(s, &e, NULL);
@@ -72,7 +72,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (in.n_segs && all_ok && !su) {
         int32_t mc[FZ_MAX_SEGS];
         banyan_status s =
-            banyan_segment_generate_many(in.segs, in.n_segs, &sp, &many_xyz[0][0], &many_lev[0][0], mc, &e);
+            banyan_segment_lines_many(in.segs, in.n_segs, &sp, &many_xyz[0][0], &many_lev[0][0], mc, &e);
         FZ_ASSERT(s == BANYAN_OK, "batch: %s", e.message);
         for (uint32_t i = 0; i < in.n_segs; i++) {
             FZ_ASSERT(mc[i] == counts[i], "batch count %u", i);

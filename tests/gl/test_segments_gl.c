@@ -347,7 +347,7 @@ static int compare_run(gl_state *st, const banyan_segment_params *params, uint32
     }
     float u[9];
     CHECK(banyan_segment_uniforms(params, u, &err) == BANYAN_OK, "uniforms: %s", err.message);
-    banyan_status rs = banyan_segment_generate_many(ins, count, params, cpu, lev, counts, &err);
+    banyan_status rs = banyan_segment_lines_many(ins, count, params, cpu, lev, counts, &err);
     CHECK(rs == BANYAN_OK, "reference: %s", err.message);
     if (rs) count = 0; /* nothing to compare against */
     set_uniforms(st->prog, u);

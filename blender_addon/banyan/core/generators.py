@@ -294,26 +294,22 @@ def segments_demo(params):
     return arr, count.value, trunk
 
 
-def segments(params=None, inputs=None, count=0, trunk=None):
-    """A segment tree. inputs/count/trunk from segments_read or
-    segments_demo; None -> the demo tree of params. Returns (MeshData, stats dict)."""
+def segments(params=None, inputs=None, count=0, trunk=None, progress=None):
+    """A segment tree (banyan_segments_generate). inputs/count/trunk from
+    segments_read or segments_demo; None -> the demo tree of params.
+    progress: None or progress(done) -> bool, done 0..1, True cancels
+    (raises errors.Cancelled). Returns (MeshData, stats dict)."""
     params = _as_params("segments", params)
+    pr = _Progress(progress)
     _check_size("segments_stats", SegmentsStats, "segments")
     if inputs is None:
         inputs, count, trunk = segments_demo(params)
     f = _fn("banyan_segments_generate", C.c_int,
             [C.c_void_p, P(SegmentInput), C.c_uint32, P(C.c_double), _mesh_out, P(SegmentsStats),
-             P(C.c_uint32), _err], "segments")
-    out = P(S.Mesh)()
+             _progress_arg, _err], "segments")
     stats = SegmentsStats()
-    err = S.Error()
-    st = f(params.ptr, inputs, count, trunk, C.byref(out), C.byref(stats), None, C.byref(err))
-    if st:
-        if out:
-            L.load().banyan_mesh_free(out)
-        L.raise_for(st, err)
-    d = MeshData.take(out)
+    d = pr.run(lambda arg: call_generate(
+        lambda out, err: f(params.ptr, inputs, count, trunk, out, C.byref(stats), arg, err)))
     info = {k: getattr(stats, k) for k, _ in SegmentsStats._fields_ if k != "lines_per_level"}
     info["lines_per_level"] = list(stats.lines_per_level)
     return d, info
-

@@ -126,8 +126,8 @@ def make_material(spec, created, prefix="banyan", vertex_colors=False, images=No
     (key in LOOK) unless it was edited since (STATE, a fingerprint, no
     longer matches): an artist's material is never changed, and a new
     one is made beside it."""
-    if spec.get("image", -1) >= 0 and images and spec["image"] < len(images):
-        return image_material(spec, images[spec["image"]], created, prefix)
+    if 0 < spec.get("image", 0) <= len(images or ()):  # image k is images[k - 1]; 0: none
+        return image_material(spec, images[spec["image"] - 1], created, prefix)
     if spec.get("texture", S.TEX_NONE) != S.TEX_NONE:
         return shared_material(spec, created, vertex_colors)
     name = "%s_%s" % (prefix, spec["name"])

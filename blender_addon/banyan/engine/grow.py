@@ -236,7 +236,7 @@ def segment_twigs_job(*, preset=None, params=None, collection=None, name="Segmen
         text = PR.read(path)
         if _has_key(text, "segments"):
             inputs, count, trunk = G.segments_read(text, path)
-    job = Job(lambda prog: call_with_progress(lambda: G.segments(p, inputs, count, trunk)[0], progress=prog),
+    job = Job(lambda prog: G.segments(p, inputs, count, trunk, progress=prog)[0],
               lambda d, c: single_object(name, d, collection, uv, c))
     job.params = p
     recorded(job, "segments", {"api": "segment_twigs", "uv_map": bool(uv), "banyan_preset": preset})

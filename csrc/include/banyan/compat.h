@@ -1,12 +1,21 @@
 /*
- * banyan/compat.h - the entry points of ABI 19 whose names the generators'
- * one entry shape (docs/api.md, "Params and hosts") no longer uses, kept
- * as thin wrappers for one ABI version: each calls the function named
- * beside it and will be removed with ABI 21. ABI 19's
- * banyan_roots_generate, banyan_ivy_generate, banyan_ivy_create,
- * banyan_keyaki_generate and banyan_avenue_generate kept their names with
- * the new arguments, and banyan_keyaki_stats names the stats struct, so
- * those cannot be kept (docs/api.md lists the calls that replace them).
+ * banyan/compat.h - entry points whose names the public API no longer
+ * uses, kept as thin wrappers: each calls the function named beside it.
+ * ABI 19's names (of the calls that took the generators' one entry
+ * shape, docs/api.md "Params") and ABI 20's names of the segment
+ * reference (banyan_segment_lines) are removed with ABI 22.
+ *
+ * A call that kept its name with new arguments cannot be kept beside it:
+ *   ABI 20: banyan_roots_generate, banyan_ivy_generate, banyan_ivy_create,
+ *           banyan_keyaki_generate and banyan_avenue_generate took the one
+ *           entry shape, and banyan_keyaki_stats names the stats struct
+ *           (ABI 19's call of that name is banyan_keyaki_skeleton_stats);
+ *   ABI 21: banyan_segments_generate lost its `unattached` argument (the
+ *           list is banyan_segments_find_unattached's; the count stays in
+ *           stats->unattached) and takes a progress callback before err;
+ *           banyan_material.image counts from 1 (0 = no image, k = the
+ *           mesh's images[k - 1]; ABI 20: -1 = none, k = images[k]).
+ * docs/api.md, "ABI checks", lists them too.
  */
 #ifndef BANYAN_COMPAT_H
 #define BANYAN_COMPAT_H
@@ -54,6 +63,18 @@ BANYAN_API banyan_status banyan_ivy_create_hosts(const struct banyan_ivy_params 
 /* The keyaki's stats struct and its size. */
 typedef struct banyan_keyaki_stats banyan_keyaki_statistics;
 BANYAN_API size_t banyan_sizeof_keyaki_statistics(void);
+
+/* ABI 20's names of the segment reference. */
+struct banyan_segment_input;
+struct banyan_segment_params;
+/* banyan_segment_lines. */
+BANYAN_API banyan_status banyan_segment_generate(const struct banyan_segment_input *in,
+                                                 const struct banyan_segment_params *params, float *out_xyz,
+                                                 uint8_t *out_level, int32_t *out_count, banyan_error *err);
+/* banyan_segment_lines_many. */
+BANYAN_API banyan_status banyan_segment_generate_many(const struct banyan_segment_input *ins, uint32_t count,
+                                                      const struct banyan_segment_params *params, float *out_xyz,
+                                                      uint8_t *out_level, int32_t *out_counts, banyan_error *err);
 
 #ifdef __cplusplus
 }

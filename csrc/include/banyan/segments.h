@@ -5,10 +5,19 @@
  * A segment is one axis branch with n twigs and a forking hierarchy, sized
  * so that one geometry-shader invocation can emit it: at most 128 vertices
  * (64 lines). Banyan ships it twice: a CPU reference in C (the source of
- * truth, banyan_segment_generate) and a GLSL geometry shader
+ * truth, banyan_segment_lines) and a GLSL geometry shader
  * (banyan_segment_shader_source) that emits the same vertices in the same
  * order. A tree is a list of segments (banyan_segments_generate), each
  * attached to the axis of an earlier one or to a trunk line.
+ *
+ * Names. banyan_segment_* (singular) is the shader twin: calls and types
+ * about one segment input (banyan_segment_input, banyan_segment_params),
+ * each input on its own, also when many are passed at once
+ * (banyan_segment_lines_many, like one draw call). banyan_segments_*
+ * (plural) is the generator, a tree composed of a list of segments:
+ * banyan_segments_generate has the entry shape of every generator
+ * (docs/api.md, "Params"), and _lines, _find_unattached, _demo and
+ * _preset_read work on the same list.
  *
  * Levels. Every output vertex carries a level code:
  *   0 = the axis, 1 = a twig (the spec's hierarchy level 0),
@@ -29,9 +38,6 @@
 #include <stdint.h>
 
 #include "../banyan.h"
-
-#include <stddef.h>
-#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -104,7 +110,7 @@ BANYAN_API banyan_status banyan_segment_check(const banyan_segment_input *in, co
  *   out_xyz    room for 128 * 3 floats (x, y, z per vertex).
  *   out_level  room for 128 level codes, or NULL.
  *   out_count  gets the vertex count (even, 2 .. 128); 0 on failure. */
-BANYAN_API banyan_status banyan_segment_generate(const banyan_segment_input *in, const banyan_segment_params *params,
+BANYAN_API banyan_status banyan_segment_lines(const banyan_segment_input *in, const banyan_segment_params *params,
                                                  float out_xyz[BANYAN_SEGMENT_MAX_VERTICES * 3],
                                                  uint8_t out_level[BANYAN_SEGMENT_MAX_VERTICES],
                                                  int32_t *out_count, banyan_error *err);
@@ -114,7 +120,7 @@ BANYAN_API banyan_status banyan_segment_generate(const banyan_segment_input *in,
  * (unused slots are left untouched) and its count to out_counts[i].
  * out_level may be NULL. Every input is checked first; on failure nothing
  * is written and the message names ins[i]. count 0 .. 1<<24. */
-BANYAN_API banyan_status banyan_segment_generate_many(const banyan_segment_input *ins, uint32_t count,
+BANYAN_API banyan_status banyan_segment_lines_many(const banyan_segment_input *ins, uint32_t count,
                                                       const banyan_segment_params *params, float *out_xyz,
                                                       uint8_t *out_level, int32_t *out_counts, banyan_error *err);
 
@@ -234,14 +240,18 @@ BANYAN_API banyan_status banyan_segments_lines(const banyan_segments_params *par
  * two points per line and one edge, skel_tag = level code (-1 trunk),
  * skel_radius = the tube radius. Per-vertex attributes: "level" (level
  * code, -1 trunk) and "segment" (input index, -1 trunk); vertex colours
- * fade from bark to twig green with the level. Unattached segments are
- * still built; they are reported through stats->unattached and
- * `unattached` (NULL, or room for `count` indices). count 1 .. 1<<22.
+ * fade from bark to twig green with the level. The input geometry is
+ * segs[0 .. count) (count 1 .. 1<<22) and trunk (6 doubles, or NULL), as
+ * in banyan_segments_find_unattached. Unattached segments are still
+ * built; stats->unattached counts them and banyan_segments_find_unattached
+ * on the same inputs lists them. stats: NULL, or filled (zeroed on
+ * failure). progress: NULL, or called on the calling thread (docs/api.md
+ * "Progress and cancel"); the mesh does not depend on it.
  * BANYAN_E_LIMIT when the mesh would pass max_vertices. */
 BANYAN_API banyan_status banyan_segments_generate(const banyan_segments_params *params,
                                                   const banyan_segment_input *segs, uint32_t count,
                                                   const double *trunk, banyan_mesh **out,
-                                                  banyan_segments_stats *stats, uint32_t *unattached,
+                                                  banyan_segments_stats *stats, const banyan_progress *progress,
                                                   banyan_error *err);
 
 /* A random tree of params->demo_segments attached segments from

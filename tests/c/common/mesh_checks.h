@@ -2,14 +2,10 @@
 #ifndef BANYAN_MESH_CHECKS_H
 #define BANYAN_MESH_CHECKS_H
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "banyan.h"
-#include "base/vec.h"
-
-static inline v3 mc_pos(const banyan_mesh *m, uint32_t v) {
-    return v3_make(m->positions[3 * (size_t)v], m->positions[3 * (size_t)v + 1], m->positions[3 * (size_t)v + 2]);
-}
 
 /* Triangles (with area above min_cross) whose counter-clockwise face
  * normal points against their first vertex's normal. */
@@ -17,10 +13,13 @@ static inline int mc_wound_against_normals(const banyan_mesh *m, double min_cros
     int bad = 0;
     for (uint32_t t = 0; t < m->index_count / 3; t++) {
         const uint32_t *I = m->indices + 3 * (size_t)t;
-        v3 a = mc_pos(m, I[0]), b = mc_pos(m, I[1]), c = mc_pos(m, I[2]);
-        v3 fn = v3_cross(v3_sub(b, a), v3_sub(c, a));
-        v3 vn = v3_make(m->normals[3 * (size_t)I[0]], m->normals[3 * (size_t)I[0] + 1], m->normals[3 * (size_t)I[0] + 2]);
-        if (v3_len(fn) > min_cross && v3_dot(fn, vn) <= 0) bad++;
+        const float *a = m->positions + 3 * (size_t)I[0], *b = m->positions + 3 * (size_t)I[1],
+                    *c = m->positions + 3 * (size_t)I[2], *n = m->normals + 3 * (size_t)I[0];
+        double u[3], w[3];
+        for (int k = 0; k < 3; k++) u[k] = (double)b[k] - a[k], w[k] = (double)c[k] - a[k];
+        double fn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        double len = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+        if (len > min_cross && fn[0] * n[0] + fn[1] * n[1] + fn[2] * n[2] <= 0) bad++;
     }
     return bad;
 }

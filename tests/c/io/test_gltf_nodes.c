@@ -188,7 +188,7 @@ static banyan_mesh *billboard(void) {
     m->materials[0].double_sided = 1;
     m->materials[0].texture = BANYAN_TEX_NONE;
     m->materials[0].alpha_cutoff = 0.5f;
-    m->materials[0].image = 0;
+    m->materials[0].image = 1; /* images[0] */
     m->part_count = 1;
     m->parts = xcalloc(1, sizeof(banyan_part));
     m->parts[0] = (banyan_part){0, 8, 0, 12, 0, 0};
@@ -545,14 +545,18 @@ static void images(void) {
         CHECK(num(item(&g, "samplers", num(t, "sampler", -1)), "wrapS", 0) == 33071, "the picture does not clamp");
     }
     glb_free(&g);
-    /* Textures off: flat, no image. */
-    o.textures = 0;
-    path = out_path("test_gltf_nodes_image_flat.glb");
-    CHECK(banyan_gltf_write_nodes(path, &node, 1, &o, &err) == BANYAN_OK, "image flat: %s", err.message);
-    CHECK(glb_load(path, &g) && !arr(g.json, "images") &&
-              !arr(arr(item(&g, "materials", 0), "pbrMetallicRoughness"), "baseColorTexture"),
-          "textures off still embeds the picture");
-    glb_free(&g);
+    /* Textures off, and a zeroed material (image 0) on a mesh that has
+     * an image: flat, no image. */
+    for (int k = 0; k < 2; k++) {
+        o.textures = k;
+        m->materials[0].image = k ? 0 : 1;
+        path = out_path(k ? "test_gltf_nodes_image_none.glb" : "test_gltf_nodes_image_flat.glb");
+        CHECK(banyan_gltf_write_nodes(path, &node, 1, &o, &err) == BANYAN_OK, "image flat %d: %s", k, err.message);
+        CHECK(glb_load(path, &g) && !arr(g.json, "images") &&
+                  !arr(arr(item(&g, "materials", 0), "pbrMetallicRoughness"), "baseColorTexture"),
+              k ? "image 0 embeds the mesh's images[0]" : "textures off still embeds the picture");
+        glb_free(&g);
+    }
     banyan_mesh_free(m);
 }
 
@@ -653,9 +657,11 @@ static void refusals(void) {
     m->instances = NULL;
     m->instance_count = 0;
 
-    m->materials[0].image = 1;
+    m->materials[0].image = 2;
     refuse("image index", &node, 1, &o, BANYAN_E_RANGE, "materials[0].image");
-    m->materials[0].image = 0;
+    m->materials[0].image = -1;
+    refuse("image -1", &node, 1, &o, BANYAN_E_RANGE, "materials[0].image");
+    m->materials[0].image = 1;
     m->images[0].channels = 2;
     refuse("channels", &node, 1, &o, BANYAN_E_RANGE, "images[0].channels");
     m->images[0].channels = 4;

@@ -263,14 +263,14 @@ static void check_billboard(const char *name, const banyan_mesh *m, int32_t plan
         CHECK(pt->index_count == (top ? 6u : 12u * planes), "%s billboard: part %u has %u indices, want %d quads", name,
               q, pt->index_count, top ? 1 : 2 * planes);
         const banyan_material *mt = &o->materials[pt->material];
-        CHECK(mt->image >= 0 && (uint32_t)mt->image < o->image_count && mt->alpha_cutoff == 0.5f &&
-                  mt->double_sided == !top && (uint32_t)mt->image == q / 2,
+        CHECK(mt->image > 0 && (uint32_t)mt->image <= o->image_count && mt->alpha_cutoff == 0.5f &&
+                  mt->double_sided == !top && (uint32_t)mt->image == q / 2 + 1,
               "%s billboard: material %u", name, pt->material);
         for (uint32_t v = pt->vertex_offset; top && v < pt->vertex_offset + pt->vertex_count; v++)
             CHECK(o->normals[3 * (size_t)v + 2] == 1.0f, "%s billboard: the top card's vertex %u does not face up", name,
                   v);
-        if (mt->image < 0 || (uint32_t)mt->image >= o->image_count) continue;
-        const banyan_image *im = &o->images[mt->image];
+        if (mt->image <= 0 || (uint32_t)mt->image > o->image_count) continue;
+        const banyan_image *im = &o->images[mt->image - 1];
         uint32_t longer = im->width > im->height ? im->width : im->height;
         size_t cover = 0, n = (size_t)im->width * im->height;
         for (size_t i = 0; i < n; i++) cover += im->pixels[4 * i + 3] >= 128; /* the engine's cutoff 0.5 */

@@ -44,7 +44,7 @@ typedef struct tex_cache {
 } tex_cache;
 
 static const banyan_image *tex_of(const banyan_mesh *m, const banyan_material *mt, tex_cache *tc) {
-    if (mt->image >= 0) return &m->images[mt->image];
+    if (mt->image > 0) return &m->images[mt->image - 1];
     if (mt->texture == BANYAN_TEX_NONE) return NULL;
     for (int i = 0; i < tc->n; i++)
         if (tc->kind[i] == mt->texture && tc->season[i] == mt->season) return tc->im[i];
@@ -159,7 +159,7 @@ static void check_billboard_look(const char *name, const banyan_mesh *m, const c
               "%s billboard: %u parts, %u + %u indices, %u + %u vertices for %u planes and a top card", name,
               o->part_count, pt->index_count, tp->index_count, pt->vertex_count, tp->vertex_count, planes);
         if (o->part_count != 2 || tp->vertex_offset != pt->vertex_count) continue;
-        const banyan_image *im = &o->images[o->materials[pt->material].image];
+        const banyan_image *im = &o->images[o->materials[pt->material].image - 1];
         if (png_dir) {
             uint8_t *png = NULL;
             size_t sz = 0;

@@ -12,8 +12,6 @@
 #include <string.h>
 
 #include "check.h"
-#include "ivy_look.h"
-#include "ivy/ivy_internal.h"
 #include "test_files.h"
 #include "test_hosts.h"
 
@@ -23,7 +21,8 @@ int main(void) {
     banyan_box hosts[4];
     uint32_t nh = 0;
     banyan_error err = {0, ""};
-    if (ivy_look_preset("ivy_wall", &base, hosts, 4, &nh, &err) != BANYAN_OK) {
+    banyan_ivy_params_init(&base);
+    if (test_load_preset(BANYAN_GEN_IVY, &base, BANYAN_SOURCE_DIR "/presets/ivy_wall.json", hosts, 4, &nh, &err)) {
         CHECK(0, "preset: %s", err.message);
         return check_done("test_ivy_density");
     }
@@ -68,9 +67,9 @@ int main(void) {
                 CHECK(0, "create: %s", err.message);
                 continue;
             }
-            for (int s = 0; s < p.steps && iv->n < size; s++) banyan_ivy_step(iv, 1, &err);
-            banyan_ivy_stats st;
-            banyan_ivy_get_stats(iv, &st, &err);
+            banyan_ivy_stats st = {0};
+            for (int s = 0; s < p.steps && st.buds < size; s++)
+                if (banyan_ivy_step(iv, 1, &err) || banyan_ivy_get_stats(iv, &st, &err)) break;
             CHECK(st.buds >= size, "w_helio %d seed %llu reached only %d buds", w, (unsigned long long)seed, st.buds);
             cross[w] += (double)st.crossings / st.buds;
             grown[w] += st.buds;

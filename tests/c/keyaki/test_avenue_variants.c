@@ -8,11 +8,12 @@
  *
  *   test_avenue_variants OUTDIR */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "banyan.h"
 #include "check.h"
-#include "keyaki/keyaki_internal.h"
 
 static char g_dir[1024];
 
@@ -105,7 +106,7 @@ static void placements(void) {
         const banyan_instance *in = &ins->instances[i];
         const float *b = uni->skel_points + 3 * (size_t)base[i];
         for (int c = 0; c < 3; c++) off += fabsf(in->translation[c] - b[c]) > 1e-5f;
-        turned += fabs(in->rotation_z - deg2rad(trees[i].heading)) > 1e-6 || in->variant >= 8 ||
+        turned += fabs(in->rotation_z - trees[i].heading * (3.14159265358979323846 / 180.0)) > 1e-6 || in->variant >= 8 ||
                   fabs(in->scale - trees[i].unit / trees[in->variant < 8 ? in->variant : 0].unit) > 1e-6 ||
                   (i < 3 && in->scale != 1.0f);
         drawn += in->variant == (i < 3 ? i : in->variant) && in->variant < 3;

@@ -88,7 +88,7 @@ static void skeleton_and_segments(uint64_t seed, int model) {
         keyaki_twig_input(&p, x, &segs[ns]);
         float xyz[3 * BANYAN_SEGMENT_MAX_VERTICES];
         int32_t nv = 0;
-        CHECK(banyan_segment_generate(&segs[ns], &sp, xyz, NULL, &nv, NULL) == BANYAN_OK, "segment generate");
+        CHECK(banyan_segment_lines(&segs[ns], &sp, xyz, NULL, &nv, NULL) == BANYAN_OK, "segment generate");
         over += nv > BANYAN_SEGMENT_MAX_VERTICES;
         bad_count += nv != banyan_segment_vertex_count(p.segment_twigs, p.segment_depth);
         /* The axis line is the branch: from its start to its tip. */
@@ -180,7 +180,7 @@ static void mesh_checks(uint64_t seed, int model) {
         banyan_segment_input in;
         keyaki_twig_input(&p, x, &in);
         int32_t nv = 0;
-        banyan_segment_generate(&in, &sp, xyz, lc, &nv, NULL);
+        banyan_segment_lines(&in, &sp, xyz, lc, &nv, NULL);
         for (int32_t j = 2; j < nv; j += 2, v0 += tv) {
             v3 a = v3_make(xyz[3 * j], xyz[3 * j + 1], xyz[3 * j + 2]);
             v3 ab = v3_sub(v3_make(xyz[3 * j + 3], xyz[3 * j + 4], xyz[3 * j + 5]), a);

@@ -590,14 +590,14 @@ static void null_cases(void) {
     int32_t cnt = 7;
     banyan_segment_params sgp;
     banyan_segment_params_init(&sgp);
-    RUN("segments", "banyan_segment_generate", "NULL", "in = NULL", BANYAN_E_INVALID_ARG, "input",
-        banyan_segment_generate(NULL, &sgp, xyz, NULL, &cnt, &e), cnt == 0);
-    RUN("segments", "banyan_segment_generate", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
-        banyan_segment_generate(&demo_segs[0], NULL, xyz, NULL, &cnt, &e), 1);
-    RUN("segments", "banyan_segment_generate", "NULL", "out_xyz = NULL", BANYAN_E_INVALID_ARG, "out_xyz",
-        banyan_segment_generate(&demo_segs[0], &sgp, NULL, NULL, &cnt, &e), 1);
-    RUN("segments", "banyan_segment_generate_many", "NULL", "ins = NULL, count = 3", BANYAN_E_INVALID_ARG, "ins",
-        banyan_segment_generate_many(NULL, 3, &sgp, xyz, NULL, &cnt, &e), 1);
+    RUN("segments", "banyan_segment_lines", "NULL", "in = NULL", BANYAN_E_INVALID_ARG, "input",
+        banyan_segment_lines(NULL, &sgp, xyz, NULL, &cnt, &e), cnt == 0);
+    RUN("segments", "banyan_segment_lines", "NULL", "params = NULL", BANYAN_E_INVALID_ARG, "params",
+        banyan_segment_lines(&demo_segs[0], NULL, xyz, NULL, &cnt, &e), 1);
+    RUN("segments", "banyan_segment_lines", "NULL", "out_xyz = NULL", BANYAN_E_INVALID_ARG, "out_xyz",
+        banyan_segment_lines(&demo_segs[0], &sgp, NULL, NULL, &cnt, &e), 1);
+    RUN("segments", "banyan_segment_lines_many", "NULL", "ins = NULL, count = 3", BANYAN_E_INVALID_ARG, "ins",
+        banyan_segment_lines_many(NULL, 3, &sgp, xyz, NULL, &cnt, &e), 1);
     RUN("segments", "banyan_segment_uniforms", "NULL", "out = NULL", BANYAN_E_INVALID_ARG, "out",
         banyan_segment_uniforms(&sgp, NULL, &e), 1);
     RUN("segments", "banyan_segment_check", "NULL", "in = NULL", BANYAN_E_INVALID_ARG, "input",
@@ -867,8 +867,8 @@ static void input_cases(void) {
             banyan_segment_check(&seg[i].in, &sgp, &e), 1);
         float xyz[3 * BANYAN_SEGMENT_MAX_VERTICES];
         int32_t cnt = 7;
-        RUN("segments", "banyan_segment_generate", seg[i].klass, seg[i].text, BANYAN_E_RANGE, seg[i].needle,
-            banyan_segment_generate(&seg[i].in, &sgp, xyz, NULL, &cnt, &e), cnt == 0);
+        RUN("segments", "banyan_segment_lines", seg[i].klass, seg[i].text, BANYAN_E_RANGE, seg[i].needle,
+            banyan_segment_lines(&seg[i].in, &sgp, xyz, NULL, &cnt, &e), cnt == 0);
         banyan_segment_input two[2] = {demo_segs[0], seg[i].in};
         char needle[48];
         snprintf(needle, sizeof needle, "segs[1].%s", seg[i].needle);
@@ -877,8 +877,8 @@ static void input_cases(void) {
         snprintf(needle, sizeof needle, "ins[1]");
         float *many = malloc(sizeof(float) * 3 * BANYAN_SEGMENT_MAX_VERTICES * 2);
         int32_t counts[2] = {7, 7};
-        RUN("segments", "banyan_segment_generate_many", seg[i].klass, seg[i].text, BANYAN_E_RANGE, needle,
-            banyan_segment_generate_many(two, 2, &sgp, many, NULL, counts, &e), 1);
+        RUN("segments", "banyan_segment_lines_many", seg[i].klass, seg[i].text, BANYAN_E_RANGE, needle,
+            banyan_segment_lines_many(two, 2, &sgp, many, NULL, counts, &e), 1);
         free(many);
     }
     struct {
@@ -905,8 +905,8 @@ static void input_cases(void) {
              banyan_segments_generate(&sp, demo_segs, BANYAN_SEGMENTS_MAX_COUNT + 1, NULL, &m, NULL, NULL, &e));
     float many1[3 * BANYAN_SEGMENT_MAX_VERTICES];
     int32_t c1 = 0;
-    RUN("segments", "banyan_segment_generate_many", "above cap", "count = 2^24 + 1", BANYAN_E_RANGE, "count",
-        banyan_segment_generate_many(demo_segs, (1u << 24) + 1, &sgp, many1, NULL, &c1, &e), 1);
+    RUN("segments", "banyan_segment_lines_many", "above cap", "count = 2^24 + 1", BANYAN_E_RANGE, "count",
+        banyan_segment_lines_many(demo_segs, (1u << 24) + 1, &sgp, many1, NULL, &c1, &e), 1);
     double trunk_nan[6] = {0, 0, 0, 0, NAN, 1}, trunk_zero[6] = {1, 1, 1, 1, 1, 1};
     RUN_MESH("segments", "banyan_segments_generate", "NaN", "trunk[4] = NaN", BANYAN_E_RANGE, "trunk[4]",
              banyan_segments_generate(&sp, demo_segs, 2, trunk_nan, &m, NULL, NULL, &e));

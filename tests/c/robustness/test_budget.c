@@ -14,7 +14,6 @@
 
 #include "banyan.h"
 #include "check.h"
-#include "base/progress.h"
 #include "test_hosts.h"
 
 #define BUDGET 2.0
@@ -25,6 +24,23 @@ static double now(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+/* The generators' default budget (max_seconds, max_memory_mb). */
+static banyan_budget default_budget(void) {
+    banyan_budget b;
+    banyan_budget_init(&b);
+    return b;
+}
+
+/* The resident size in MB, every thread counted: what the budget reads
+ * (statm's second field), here read on its own. */
+static double rss_mb(void) {
+    unsigned long long pages[2] = {0, 0};
+    FILE *f = fopen("/proc/self/statm", "r");
+    int n = f ? fscanf(f, "%llu %llu", &pages[0], &pages[1]) : 0;
+    if (f) fclose(f);
+    return n == 2 ? (double)pages[1] * 4096.0 / (1024.0 * 1024.0) : 0.0;
 }
 
 /* One stopped run: BANYAN_E_LIMIT naming `what`, no mesh, in time. */
@@ -63,14 +79,14 @@ static void ivy_memory(void) {
     banyan_ivy *iv = NULL;
     banyan_error e;
     banyan_hosts *W = TEST_HOSTS(&w, 1);
-    double rss0 = process_rss_mb(), peak = 0;
+    double rss0 = rss_mb(), peak = 0;
     banyan_status s = banyan_ivy_create(&p, W, &iv, &e);
     CHECK(s == BANYAN_OK, "ivy create: %s", e.message);
     double t = now();
     /* Steps in parts, reading the resident size between them. */
     for (int k = 0; !s && k < 10000; k++) {
         s = banyan_ivy_step(iv, 10, &e);
-        double mb = process_rss_mb() - rss0;
+        double mb = rss_mb() - rss0;
         if (mb > peak) peak = mb;
     }
     stopped("ivy memory", s, NULL, &e, now() - t, "max_memory_mb", 60);
@@ -138,7 +154,7 @@ static void ivy_wall(void) {
     /* max_vertices while stepping: refused between steps, and the plant
      * stays usable (its mesh within the cap). */
     p.max_vertices = 200000;
-    p.max_seconds = PROG_MAX_SECONDS_DEFAULT;
+    p.max_seconds = default_budget().max_seconds;
     CHECK(banyan_ivy_create(&p, S, &iv, &e) == BANYAN_OK, "ivy create: %s", e.message);
     t = now();
     s = banyan_ivy_step(iv, p.steps, &e);
@@ -192,13 +208,13 @@ static void segments(void) {
     p.max_memory_mb = 64;
     banyan_error e;
     banyan_mesh *m = NULL;
-    double rss0 = process_rss_mb(), t = now();
+    double rss0 = rss_mb(), t = now();
     banyan_status s = banyan_segments_generate(&p, segs, n, NULL, &m, NULL, NULL, &e);
     stopped("segments 2^14 x 64 lines x 64 sides, 64 MB", s, m, &e, now() - t, "max_memory_mb", WITHIN);
-    CHECK(process_rss_mb() - rss0 < 64, "segments: refused after taking %.0f MB", process_rss_mb() - rss0);
+    CHECK(rss_mb() - rss0 < 64, "segments: refused after taking %.0f MB", rss_mb() - rss0);
 
     p.sides = 3;
-    p.max_memory_mb = PROG_MAX_MEMORY_DEFAULT;
+    p.max_memory_mb = default_budget().max_memory_mb;
     p.max_seconds = 0.05;
     t = now();
     s = banyan_segments_generate(&p, segs, n, NULL, &m, NULL, NULL, &e);

@@ -56,7 +56,7 @@ static banyan_status run_guarded(const banyan_segment_input *in, const banyan_se
     for (int i = 0; i < 3 * (MAXV + GUARD); i++) xyz[i] = SENTINEL;
     memset(lev, 0xAB, MAXV + GUARD);
     *count = -7;
-    banyan_status s = banyan_segment_generate(in, p, xyz, lev, count, NULL);
+    banyan_status s = banyan_segment_lines(in, p, xyz, lev, count, NULL);
     for (int i = 3 * MAXV; i < 3 * (MAXV + GUARD); i++)
         if (xyz[i] != SENTINEL) { bad_guard++; break; }
     for (int i = MAXV; i < MAXV + GUARD; i++)
@@ -225,7 +225,7 @@ int main(void) {
 
     /* --- Bad inputs are refused with the field named. */
     banyan_segment_input ok = {{1, 2, 3}, {0, 1, 0}, 5, 4, 2};
-    CHECK(banyan_segment_generate(&ok, &p, xyz, lev, &count, &err) == BANYAN_OK && count > 0, "valid input: %s",
+    CHECK(banyan_segment_lines(&ok, &p, xyz, lev, &count, &err) == BANYAN_OK && count > 0, "valid input: %s",
           err.message);
     struct { const char *field; banyan_segment_input in; } bad[] = {
         {"n = 64", {{0, 0, 0}, {1, 0, 0}, 1, 64, 0}},
@@ -245,35 +245,35 @@ int main(void) {
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         count = 99;
-        banyan_status s = banyan_segment_generate(&bad[i].in, &p, xyz, lev, &count, &err);
+        banyan_status s = banyan_segment_lines(&bad[i].in, &p, xyz, lev, &count, &err);
         CHECK(s == BANYAN_E_RANGE && count == 0 && strstr(err.message, bad[i].field), "%s: status %d, message '%s'",
               bad[i].field, s, err.message);
         CHECK(banyan_segment_check(&bad[i].in, &p, &err) == BANYAN_E_RANGE, "check accepts %s", bad[i].field);
     }
     banyan_segment_params bp = p;
     bp.alpha_deg = NAN;
-    CHECK(banyan_segment_generate(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "alpha_deg"),
+    CHECK(banyan_segment_lines(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "alpha_deg"),
           "alpha NaN: %s", err.message);
     bp = p;
     bp.m = 0;
-    CHECK(banyan_segment_generate(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "m = 0"),
+    CHECK(banyan_segment_lines(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "m = 0"),
           "m 0: %s", err.message);
     bp = p;
     bp.omega_deg = 400;
-    CHECK(banyan_segment_generate(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "omega_deg"),
+    CHECK(banyan_segment_lines(&ok, &bp, xyz, lev, &count, &err) == BANYAN_E_RANGE && strstr(err.message, "omega_deg"),
           "omega 400: %s", err.message);
-    CHECK(banyan_segment_generate(NULL, &p, xyz, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL input accepted");
-    CHECK(banyan_segment_generate(&ok, NULL, xyz, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL params accepted");
-    CHECK(banyan_segment_generate(&ok, &p, NULL, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL xyz accepted");
-    CHECK(banyan_segment_generate(&ok, &p, xyz, lev, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL count accepted");
-    CHECK(banyan_segment_generate(&ok, &p, xyz, NULL, &count, &err) == BANYAN_OK, "out_level may be NULL");
+    CHECK(banyan_segment_lines(NULL, &p, xyz, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL input accepted");
+    CHECK(banyan_segment_lines(&ok, NULL, xyz, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL params accepted");
+    CHECK(banyan_segment_lines(&ok, &p, NULL, lev, &count, &err) == BANYAN_E_INVALID_ARG, "NULL xyz accepted");
+    CHECK(banyan_segment_lines(&ok, &p, xyz, lev, NULL, &err) == BANYAN_E_INVALID_ARG, "NULL count accepted");
+    CHECK(banyan_segment_lines(&ok, &p, xyz, NULL, &count, &err) == BANYAN_OK, "out_level may be NULL");
 
     /* --- Closed form for every n and s, and vertex_count agrees. */
     int bad_closed = 0, bad_cut = 0, bad_vc = 0, cases_fit = 0;
     for (int n = 0; n <= 63; n++)
         for (int s = 0; s <= 64; s++) {
             banyan_segment_input in = {{0, 0, 0}, {1, 1, 0}, 3, n, s};
-            if (banyan_segment_generate(&in, &p, xyz, lev, &count, NULL)) { bad_closed++; continue; }
+            if (banyan_segment_lines(&in, &p, xyz, lev, &count, NULL)) { bad_closed++; continue; }
             double want = closed_form(n, s);
             if (want <= MAXV) {
                 cases_fit++;
@@ -308,7 +308,7 @@ int main(void) {
         }
         banyan_segment_input in;
         random_input(&r, &in);
-        if (banyan_segment_generate(&in, &q, xyz, lev, &count, &err)) { bad_struct++; continue; }
+        if (banyan_segment_lines(&in, &q, xyz, lev, &count, &err)) { bad_struct++; continue; }
         char why[200] = "";
         structs++;
         if (check_structure(&in, &q, xyz, lev, count, why, sizeof why)) {
@@ -325,19 +325,19 @@ int main(void) {
     float *mx = malloc(sizeof(float) * 3 * MAXV * MANY);
     uint8_t *ml = malloc((size_t)MAXV * MANY);
     int32_t mc[MANY];
-    CHECK(banyan_segment_generate_many(many, MANY, &p, mx, ml, mc, &err) == BANYAN_OK, "many: %s", err.message);
+    CHECK(banyan_segment_lines_many(many, MANY, &p, mx, ml, mc, &err) == BANYAN_OK, "many: %s", err.message);
     int bad_many = 0;
     for (int i = 0; i < MANY; i++) {
-        banyan_segment_generate(&many[i], &p, xyz, lev, &count, NULL);
+        banyan_segment_lines(&many[i], &p, xyz, lev, &count, NULL);
         if (count != mc[i] || memcmp(xyz, mx + (size_t)3 * MAXV * i, sizeof(float) * 3 * count) ||
             memcmp(lev, ml + (size_t)MAXV * i, (size_t)count))
             bad_many++;
     }
     CHECK(bad_many == 0, "%d of %d batch outputs differ from single calls", bad_many, MANY);
     many[17].n = 64;
-    CHECK(banyan_segment_generate_many(many, MANY, &p, mx, ml, mc, &err) == BANYAN_E_RANGE &&
+    CHECK(banyan_segment_lines_many(many, MANY, &p, mx, ml, mc, &err) == BANYAN_E_RANGE &&
               strstr(err.message, "ins[17].n = 64"), "batch error: %s", err.message);
-    CHECK(banyan_segment_generate_many(NULL, 0, &p, NULL, NULL, NULL, &err) == BANYAN_OK, "empty batch");
+    CHECK(banyan_segment_lines_many(NULL, 0, &p, NULL, NULL, NULL, &err) == BANYAN_OK, "empty batch");
     free(mx);
     free(ml);
 

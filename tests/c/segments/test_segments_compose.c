@@ -230,7 +230,7 @@ int main(int argc, char **argv) {
     CHECK(banyan_segments_demo(&p, segs, CAP, &n, trunk, &err) == BANYAN_OK, "demo");
     banyan_mesh *m = NULL, *m2 = NULL;
     banyan_segments_stats st;
-    CHECK(banyan_segments_generate(&p, segs, n, trunk, &m, &st, un, &err) == BANYAN_OK, "generate: %s", err.message);
+    CHECK(banyan_segments_generate(&p, segs, n, trunk, &m, &st, NULL, &err) == BANYAN_OK, "generate: %s", err.message);
     CHECK(banyan_segments_generate(&p, segs, n, trunk, &m2, NULL, NULL, &err) == BANYAN_OK, "generate again");
     CHECK(m && m2 && banyan_mesh_hash(m) == banyan_mesh_hash(m2), "same input, same bytes");
     if (m) {
@@ -263,7 +263,7 @@ int main(int argc, char **argv) {
     int bad_lines = ll[0] != -1 || ll[1] != -1 || lx[5] != (float)trunk[5];
     uint32_t v = 2;
     for (uint32_t i = 0; i < n; i++) {
-        banyan_segment_generate(&segs[i], &sp, xyz, lev, &cnt, NULL);
+        banyan_segment_lines(&segs[i], &sp, xyz, lev, &cnt, NULL);
         if (memcmp(lx + 3 * v, xyz, sizeof(float) * 3 * cnt)) bad_lines++;
         for (int32_t j = 0; j < cnt; j++) bad_lines += ll[v + j] != (int8_t)lev[j];
         v += (uint32_t)cnt;
@@ -278,8 +278,10 @@ int main(int argc, char **argv) {
     segs[leaf].S[1] += 500;
     segs[n - 1].S[1] -= 500;
     m = NULL;
-    CHECK(banyan_segments_generate(&p, segs, n, trunk, &m, &st, un, &err) == BANYAN_OK && st.unattached == 2 &&
-              un[0] == leaf && un[1] == n - 1, "two moved segments: %u unattached", st.unattached);
+    CHECK(banyan_segments_generate(&p, segs, n, trunk, &m, &st, NULL, &err) == BANYAN_OK && st.unattached == 2,
+          "two moved segments: %u unattached", st.unattached);
+    CHECK(banyan_segments_find_unattached(&p, segs, n, trunk, un, &nu, &err) == BANYAN_OK && nu == 2 &&
+              un[0] == leaf && un[1] == n - 1, "two moved segments: %u listed", nu);
     banyan_mesh_free(m);
 
     /* --- Limits and bad input. */
@@ -344,7 +346,7 @@ int main(int argc, char **argv) {
             has_trunk = 1;
         }
         m = NULL;
-        CHECK(banyan_segments_generate(&p, segs, n, has_trunk ? trunk : NULL, &m, &st, un, &err) == BANYAN_OK &&
+        CHECK(banyan_segments_generate(&p, segs, n, has_trunk ? trunk : NULL, &m, &st, NULL, &err) == BANYAN_OK &&
                   st.unattached == 0, "%s: %s (%u unattached)", path, err.message, st.unattached);
         if (m) {
             check_mesh(m, &p, segs, n, has_trunk ? trunk : NULL, e->d_name);

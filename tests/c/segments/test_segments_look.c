@@ -212,7 +212,7 @@ int main(int argc, char **argv) {
             sp.m = p.m * p.unit;
             float xyz[3 * BANYAN_SEGMENT_MAX_VERTICES];
             int32_t got[3] = {0};
-            for (uint32_t i = 0; i < n && i < 3; i++) banyan_segment_generate(&segs[i], &sp, xyz, NULL, &got[i], &err);
+            for (uint32_t i = 0; i < n && i < 3; i++) banyan_segment_lines(&segs[i], &sp, xyz, NULL, &got[i], &err);
             CHECK(got[0] == 116 && got[1] == 114 && got[2] == 128, "segments_paper: generated %d / %d / %d", got[0],
                   got[1], got[2]);
         }

@@ -1,5 +1,6 @@
-/* test_compat - ABI 19's entry point names (banyan/compat.h) give what the
- * calls they wrap give: the same mesh bytes, stats and sizes. */
+/* test_compat - the entry point names banyan/compat.h keeps (ABI 19's and
+ * ABI 20's) give what the calls they wrap give: the same mesh bytes,
+ * lines, stats, sizes and refusals. */
 #include <string.h>
 
 #include "banyan.h"
@@ -56,6 +57,30 @@ int main(void) {
     banyan_mesh_free(a), banyan_mesh_free(b);
 
     CHECK(banyan_sizeof_keyaki_statistics() == banyan_sizeof_keyaki_stats(), "keyaki stats sizes differ");
+
+    /* ABI 20's names of the segment reference. */
+    banyan_segment_params sgp;
+    banyan_segment_params_init(&sgp);
+    banyan_segment_input ins[2] = {{{0, 0, 0}, {0, 0, 1}, 2.0, 5, 2}, {{1, 0, 0}, {1, 0, 1}, 1.0, 3, 1}};
+    static float xa[2 * 3 * BANYAN_SEGMENT_MAX_VERTICES], xb[2 * 3 * BANYAN_SEGMENT_MAX_VERTICES];
+    static uint8_t la[2 * BANYAN_SEGMENT_MAX_VERTICES], lb[2 * BANYAN_SEGMENT_MAX_VERTICES];
+    int32_t ca[2] = {0, 0}, cb[2] = {0, 0};
+    CHECK(banyan_segment_lines(&ins[0], &sgp, xa, la, &ca[0], &err) == BANYAN_OK &&
+              banyan_segment_generate(&ins[0], &sgp, xb, lb, &cb[0], &err) == BANYAN_OK && ca[0] > 2 &&
+              ca[0] == cb[0] && !memcmp(xa, xb, sizeof(float) * 3 * (size_t)ca[0]) && !memcmp(la, lb, (size_t)ca[0]),
+          "banyan_segment_generate differs from banyan_segment_lines: %s", err.message);
+    memset(xa, 0, sizeof xa), memset(xb, 0, sizeof xb);
+    CHECK(banyan_segment_lines_many(ins, 2, &sgp, xa, la, ca, &err) == BANYAN_OK &&
+              banyan_segment_generate_many(ins, 2, &sgp, xb, lb, cb, &err) == BANYAN_OK && ca[1] > 2 &&
+              ca[0] == cb[0] && ca[1] == cb[1] && !memcmp(xa, xb, sizeof xa) && !memcmp(la, lb, sizeof la),
+          "banyan_segment_generate_many differs from banyan_segment_lines_many: %s", err.message);
+    ins[1].n = 64;
+    CHECK(banyan_segment_generate(&ins[1], &sgp, xb, NULL, &cb[0], &err) == BANYAN_E_RANGE && cb[0] == 0 &&
+              strstr(err.message, "n = 64"),
+          "banyan_segment_generate accepted n = 64: %s", err.message);
+    CHECK(banyan_segment_generate_many(ins, 2, &sgp, xb, NULL, cb, &err) == BANYAN_E_RANGE &&
+              strstr(err.message, "ins[1].n"),
+          "banyan_segment_generate_many accepted ins[1].n = 64: %s", err.message);
     banyan_hosts_free(h);
     return check_done("test_compat");
 }

@@ -1,11 +1,12 @@
 /* Progress and cancel of the long calls (banyan_progress, docs/api.md) and
  * the ivy start placement and its "cannot grow" flag (docs/ivy.md):
- *   - roots, ivy, keyaki and avenue report a fraction that never
+ *   - roots, ivy, keyaki, avenue and segments report a fraction that never
  *     decreases, end with exactly one 1.0, and call back a bounded number
  *     of times;
  *   - a callback that never cancels leaves the output's hash unchanged
  *     (avenue on 1 and 2 threads too), and the keyaki's stats are
- *     banyan_keyaki_skeleton_stats' for the same params;
+ *     banyan_keyaki_skeleton_stats' for the same params (the segment
+ *     tree's, those of a run without one);
  *   - a cancel at 30 % returns BANYAN_E_CANCELLED, *out NULL, stats
  *     zeroed, and no call after the one that cancelled (leaks: this test
  *     also runs under valgrind, `test_progress DIR valgrind`);
@@ -15,6 +16,7 @@
  *     bottom face; a start boxed in a closed cavity is flagged (blocked
  *     in a 2 cm one, stunted in a 6 cm one). */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -247,6 +249,56 @@ static void test_avenue(void) {
     }
     banyan_mesh_free(a);
 }
+static void test_segments(void) {
+    banyan_segments_params p;
+    banyan_segments_params_init(&p);
+    p.demo_segments = lean ? 300 : 1000;
+    p.seed = 5;
+    banyan_error e;
+    uint32_t n = 0;
+    double trunk[6];
+    banyan_segment_input *segs = malloc(sizeof *segs * (size_t)p.demo_segments);
+    CHECK(segs && banyan_segments_demo(&p, segs, (uint32_t)p.demo_segments, &n, trunk, &e) == BANYAN_OK && n > 256,
+          "segments demo: %s", e.message);
+    if (!segs || n <= 256) {
+        free(segs);
+        return;
+    }
+    rec r;
+    banyan_progress pr = {on_progress, &r};
+    banyan_segments_stats st;
+    if (!lean) { /* without and with a callback: the same mesh and stats */
+        banyan_mesh *m2[2] = {NULL, NULL};
+        banyan_segments_stats s2[2];
+        rec_init(&r, 2.0);
+        for (int k = 0; k < 2; k++)
+            CHECK(banyan_segments_generate(&p, segs, n, trunk, &m2[k], &s2[k], k ? &pr : NULL, &e) == BANYAN_OK,
+                  "segments, progress %d: %s", k, e.message);
+        check_full(&r, "segments");
+        CHECK(m2[0] && m2[1] && banyan_mesh_hash(m2[0]) == banyan_mesh_hash(m2[1]) &&
+                  !memcmp(&s2[0], &s2[1], sizeof st) && s2[1].segments == n,
+              "segments: the hash or the stats changed with a progress callback");
+        banyan_mesh_free(m2[0]);
+        banyan_mesh_free(m2[1]);
+    }
+    rec_init(&r, 0.3);
+    banyan_mesh *m = NULL;
+    st.segments = 7;
+    banyan_status s = banyan_segments_generate(&p, segs, n, trunk, &m, &st, &pr, &e);
+    check_cancelled(&r, s, &e, m, "segments at 30 %");
+    CHECK(st.segments == 0 && st.lines == 0, "segments: stats not zeroed on cancel (%u segments)", st.segments);
+    rec_init(&r, 1.0);
+    st.segments = 7;
+    s = banyan_segments_generate(&p, segs, n, trunk, &m, &st, &pr, &e);
+    check_cancelled(&r, s, &e, m, "segments at 1.0");
+    CHECK(st.segments == 0, "segments: stats not zeroed on a cancel at 1.0");
+    banyan_progress no_fn = {NULL, NULL};
+    m = (banyan_mesh *)&e;
+    s = banyan_segments_generate(&p, segs, n, trunk, &m, NULL, &no_fn, &e);
+    CHECK(s == BANYAN_E_INVALID_ARG && m == NULL && strstr(e.message, "progress->fn"),
+          "segments, progress->fn NULL: %s", e.message);
+    free(segs);
+}
 
 /* Grows ivy from `start` on H and returns its stats (buds < 0 on error). */
 static banyan_ivy_stats grow(banyan_hosts *H, double x, double y, double z, int steps) {
@@ -349,6 +401,7 @@ int main(int argc, char **argv) {
     test_roots();
     test_keyaki();
     test_avenue();
+    test_segments();
     if (!lean) test_start();
     return check_done("test_progress");
 }

@@ -1,4 +1,5 @@
-/* ivy_checks.h - ivy invariants shared by the ivy tests. */
+/* ivy_checks.h - ivy invariants shared by the ivy tests and the light
+ * grid's (unit/test_ivy_grid.c). */
 #ifndef BANYAN_IVY_CHECKS_H
 #define BANYAN_IVY_CHECKS_H
 
