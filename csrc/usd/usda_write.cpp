@@ -250,8 +250,8 @@ banyan_status Writer::materials(const banyan_mesh *m, const std::string &scope, 
         const banyan_material &bm = m->materials[k];
         mat_path.push_back(scope + "/Materials/" + prim_name(bm.name, used));
         std::string uri, normal_uri;
-        if (o.textures && m->image_count > 0 && bm.image >= 0 && m->uvs) {
-            const uint32_t im = static_cast<uint32_t>(bm.image);
+        if (o.textures && bm.image > 0 && m->uvs) { /* image k is images[k - 1] */
+            const uint32_t im = static_cast<uint32_t>(bm.image - 1);
             if (image_uri[im].empty()) {
                 image_uri[im] = image_dir + "/" + stem + "_image" + std::to_string(im) + ".png";
                 uint8_t *png = nullptr;
