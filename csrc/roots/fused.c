@@ -36,12 +36,8 @@
 /* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
 #ifdef FUSED_TIMING
 #include <stdio.h>
-#include <time.h>
-static double stage_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+#include "base/platform.h"
+static double stage_ms(void) { return plat_clock() * 1e3; }
 #define STAGE(i) stage_t[i] = stage_ms()
 #else
 #define STAGE(i) (void)0
