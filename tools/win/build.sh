@@ -25,5 +25,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$here/tools/win/mingw64.
       "-DCMAKE_CXX_FLAGS=-isystem $prefix/boost-include" ${BANYAN_CMAKE_ARGS:-}
 cmake --build "$build" -j "${JOBS:-2}"
 
-# The DLLs beside the programs.
+# The DLLs beside the programs (the tests' too: Windows looks for a
+# program's DLLs in its own folder first).
 cp -u "$prefix"/bin/*.dll "$build/"
+if [ -d "$build/tests" ]; then cp -u "$prefix"/bin/*.dll "$build/tests/"; fi

@@ -4,7 +4,8 @@
 #   compare_presets.sh LINUX_BUILD WIN_BUILD OUT_DIR
 # Prints one line per preset and thread count ("same" or "DIFFERS" with
 # the first differing byte), then "N passed, N failed"; exits 1 when any
-# file differs or a run fails.
+# file differs or a run fails. The files are removed after the comparison
+# unless KEEP is set. THREADS (default "1 2") gives the thread counts.
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 linux=$(cd "$1" && pwd)
@@ -35,6 +36,7 @@ for p in "$repo"/presets/*.json; do
       echo "DIFFERS $n t$t: $(cmp "$a" "$b" 2>&1 | head -1) (sizes $(stat -c %s "$a") $(stat -c %s "$b"))"
       fail=$((fail + 1))
     fi
+    [ -n "${KEEP:-}" ] || rm -f "$a" "$b" # an avenue's file is 0.5 GB
   done
 done
 echo "$pass passed, $fail failed"

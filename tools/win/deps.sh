@@ -106,6 +106,7 @@ unpack() {
     if [ "$name" = embree ]; then
       iconv -f UTF-16 -t UTF-8 "$dir.tmp/kernels/embree.rc" | sed '1s/^\xEF\xBB\xBF//' > "$dir.tmp/kernels/embree.rc.u8"
       mv "$dir.tmp/kernels/embree.rc.u8" "$dir.tmp/kernels/embree.rc"
+      touch "$dir.tmp/readme.pdf" # installed with the library, left out of Debian's tarball
     fi
     mv "$dir.tmp" "$dir"
   fi
@@ -140,7 +141,8 @@ tbb() {
 # Embree 3.13.5 with the SSE2 and SSE4.2 kernels: GCC cannot align stack
 # variables past 16 bytes on Win64 (GCC bug 54412), so its AVX kernels
 # would fault on aligned spills. The patch lets Embree's build take GCC
-# on Windows for what it is (it took it for MSVC).
+# on Windows for what it is (it took it for MSVC) and drops its ELF-only
+# linker flags (-z relro) there.
 embree() {
   cmake_dep embree "$(unpack embree)" -DEMBREE_TUTORIALS=OFF -DEMBREE_ISPC_SUPPORT=OFF -DEMBREE_TASKING_SYSTEM=TBB \
     -DTBB_DIR="$prefix/lib/cmake/TBB" -DEMBREE_MAX_ISA=NONE -DEMBREE_ISA_SSE2=ON -DEMBREE_ISA_SSE42=ON \
@@ -183,6 +185,12 @@ tinygltf() {
   cmake_dep tinygltf "$(unpack tinygltf)" -DBUILD_SHARED_LIBS=OFF -DBUILD_TESTING=OFF \
     -DTINYGLTF_BUILD_LOADER_EXAMPLE=OFF -DTINYGLTF_BUILD_GL_EXAMPLES=OFF -DTINYGLTF_BUILD_VALIDATOR_EXAMPLE=OFF \
     -Dstb_INCLUDE_DIRS="$prefix/include/stb" -Dstb_LIBRARY="$prefix/lib/libstb.a"
+  # Static: its users link nlohmann_json's target too (header-only).
+  local cfg=$prefix/lib/cmake/TinyGLTF/TinyGLTFConfig.cmake
+  grep -q find_dependency "$cfg" ||
+    { printf 'include(CMakeFindDependencyMacro)\nfind_dependency(nlohmann_json 3)\n'; cat "$cfg"; } > "$cfg.new"
+  [ -f "$cfg.new" ] && mv "$cfg.new" "$cfg"
+  return 0
 }
 
 # SLEEF: Debian's sleef source package (3.5.1, what the Linux build links)

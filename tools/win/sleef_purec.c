@@ -2,6 +2,7 @@
  * SLEEF 3.3's scalar functions, for the Windows build (tools/win/deps.sh
  * says why 3.3: it is the SLEEF source these machines can download).
  * Not bit-identical to 3.5.1: a stand-in until its source is reachable. */
+#define SLEEF_STATIC_LIBS /* libsleef.a, not a DLL */
 #include <sleef.h>
 
 double Sleef_sind1_u35purec(double x) { return Sleef_sin_u35(x); }
