@@ -33,6 +33,10 @@ pins=(
   tinygltf=2.7.0+dfsg-2
   nlohmann-json3=3.11.2-2
 )
+# Built with Debian's own patches (cJSON's security fixes change what it
+# parses; tinygltf's fix its build and includes). Embree's and OpenVDB's
+# Debian tarballs answer 404 here: their upstream source as it is.
+debian_patched=(onetbb cjson libdeflate meshoptimizer tinygltf)
 sleef_crate=sleef-sys
 sleef_crate_version=0.1.2
 
@@ -68,8 +72,8 @@ EOF
 
 # A pinned source package's file whose name matches pattern (the orig
 # tarball, or Debian's patches), checked against the .dsc; its path on
-# stdout. Some Debian tarballs answer 404 here (Embree's, OpenVDB's): only
-# tinygltf's Debian patches are used, banyan's own are in tools/win/patches.
+# stdout. Some Debian tarballs answer 404 here (Embree's, OpenVDB's); banyan's
+# own patches are in tools/win/patches.
 file_of() {
   local name=$1 ver=$2 pattern=$3 dsc=$src/${1}_${2}.dsc
   if [ ! -f "$dsc" ]; then
@@ -96,7 +100,7 @@ unpack() {
     tar=$(file_of "$name" "$(pin "$name")" '\.orig\.tar\.')
     mkdir -p "$dir.tmp"
     tar xf "$tar" -C "$dir.tmp" --strip-components=1
-    if [ "$name" = tinygltf ]; then # Debian's build system and include fixes, as the Linux build has them
+    if [[ " ${debian_patched[*]} " == *" $name "* ]]; then # Debian's patches, as the Linux build has them
       tar xf "$(file_of "$name" "$(pin "$name")" '\.debian\.tar\.')" -C "$dir.tmp"
       local p
       for p in $(cat "$dir.tmp/debian/patches/series"); do patch -s -d "$dir.tmp" -p1 < "$dir.tmp/debian/patches/$p"; done
@@ -232,6 +236,14 @@ sleef() {
   x86_64-w64-mingw32-gcc-posix -O2 -I"$prefix/include" -c "$here/sleef_purec.c" -o "$work/sleef_purec.o"
   x86_64-w64-mingw32-gcc-ar-posix rs "$prefix/lib/libsleef.a" "$work/sleef_purec.o"
   cat "$here/sleef_purec.h" >> "$prefix/include/sleef.h"
+  # The same for Linux, for a Linux build to compare the Windows one with
+  # (tools/win/compare_presets.sh): prefix/linux-sleef/{include,lib}.
+  mkdir -p "$prefix/linux-sleef/lib" "$prefix/linux-sleef/include"
+  cp "$work/b-sleef-native/lib/libsleef.a" "$prefix/linux-sleef/lib/"
+  cp "$work/b-sleef-native/include/sleef.h" "$prefix/linux-sleef/include/"
+  cc -O2 -fPIC -I"$prefix/linux-sleef/include" -c "$here/sleef_purec.c" -o "$work/sleef_purec_linux.o"
+  ar rs "$prefix/linux-sleef/lib/libsleef.a" "$work/sleef_purec_linux.o"
+  cat "$here/sleef_purec.h" >> "$prefix/linux-sleef/include/sleef.h"
 }
 
 # OpenVDB 10.0.1, the core library alone: no file I/O codecs (Blosc,
