@@ -11,13 +11,6 @@
 #include "base/platform.h"
 #include "roots/fused_vdb.h"
 
-/* CMake's module name on each system (CMakeLists.txt). */
-#ifdef _WIN32
-#define VDB_MODULE "banyan_vdb.dll"
-#else
-#define VDB_MODULE "libbanyan_vdb.so"
-#endif
-
 typedef int (*vdb_mesh_fn)(const fused_vdb_in *, fused_vdb_out *);
 
 /* An address inside the library, to find its folder. */
@@ -27,7 +20,7 @@ static const char here = 0;
  * finds the module loaded and costs a name comparison, so nothing is
  * kept here (no global state); the module stays loaded for the process. */
 static vdb_mesh_fn load_module(void) {
-    void *h = plat_module_open_beside(&here, VDB_MODULE);
+    void *h = plat_module_open_beside(&here, FUSED_VDB_MODULE);
     if (!h) return NULL;
     return (vdb_mesh_fn)plat_module_fn(h, "fused_vdb_mesh");
 }
