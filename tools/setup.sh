@@ -15,11 +15,12 @@ cd "$here"
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc), Slurm and
-# munge for the batch runner's farm tests (a one-node cluster).
+# munge for the batch runner's farm tests (a one-node cluster), mingw-w64
+# and wine64 for the Windows cross-build and its tests (tools/win/).
 packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libdeflate-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev libsleef-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
-          valgrind chromium patchelf xvfb xauth slurm-wlm munge)
+          valgrind chromium patchelf xvfb xauth slurm-wlm munge mingw-w64 wine64)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,7 +5,9 @@
 
 #include "banyan.h"
 
-#if defined(__GNUC__)
+#if defined(__MINGW32__) /* mingw's C99 printf (__USE_MINGW_ANSI_STDIO), not msvcrt's */
+#  define BANYAN_PRINTF(a, b) __attribute__((format(gnu_printf, a, b)))
+#elif defined(__GNUC__)
 #  define BANYAN_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #  define BANYAN_PRINTF(a, b)

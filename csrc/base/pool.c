@@ -1,12 +1,8 @@
 /* pool.c - see pool.h. */
-#define _POSIX_C_SOURCE 200809L
 #include "pool.h"
 
-#include <pthread.h>
-#include <time.h>
-#include <unistd.h>
-
 #include "banyan.h"
+#include "platform.h"
 
 typedef struct pool {
     void (*work)(void *job, int caller);
@@ -22,28 +18,28 @@ static void *worker(void *arg) {
 }
 
 void pool_run(int threads, void (*work)(void *job, int caller), void *job, prog *g, atomic_int *cancel) {
-    pthread_t tid[BANYAN_AVENUE_MAX_THREADS];
+    plat_thread tid[BANYAN_AVENUE_MAX_THREADS];
     pool P = {work, job, 0};
     int started = 0;
     if (threads > BANYAN_AVENUE_MAX_THREADS) threads = BANYAN_AVENUE_MAX_THREADS;
     atomic_store(&P.running, threads - 1);
     for (int t = 1; t < threads; t++)
-        if (pthread_create(&tid[started], NULL, worker, &P) == 0) started++;
+        if (plat_thread_start(&tid[started], worker, &P) == 0) started++;
     atomic_fetch_sub(&P.running, threads - 1 - started);
     work(job, 1);
     /* Sleeps from 50 us doubling to 2 ms: short jobs (an ivy's mesh items)
      * are joined soon after they end, long ones wake the caller rarely. */
-    struct timespec pause = {0, 50000};
+    long pause = 50;
     while (g && atomic_load(&P.running) > 0) { /* no prog to keep: just join */
         if (prog_at(g, g->last)) atomic_store(cancel, 1);
-        nanosleep(&pause, NULL);
-        if (pause.tv_nsec < 2000000) pause.tv_nsec = pause.tv_nsec * 2 < 2000000 ? pause.tv_nsec * 2 : 2000000;
+        plat_sleep_us(pause);
+        pause = pause * 2 < 2000 ? pause * 2 : 2000;
     }
-    for (int t = 0; t < started; t++) pthread_join(tid[t], NULL);
+    for (int t = 0; t < started; t++) plat_thread_join(&tid[t]);
 }
 
 int pool_threads(int threads, int max) {
     if (threads != 0) return threads;
-    long c = sysconf(_SC_NPROCESSORS_ONLN);
-    return c < 1 ? 1 : c > max ? max : (int)c;
+    int c = plat_cpus();
+    return c > max ? max : c;
 }

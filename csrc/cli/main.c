@@ -21,12 +21,9 @@
 #include "cli.h"
 #include "base/atomic_file.h"
 #include "base/numparse.h"
+#include "base/platform.h"
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+static double now_ms(void) { return plat_clock() * 1e3; }
 
 /* The progress line: "\r<command>  42 %" on stderr (a terminal). */
 static int32_t show_progress(void *user, double done) {

@@ -27,7 +27,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#if defined(_WIN32)
+#if defined(_WIN32) && defined(BANYAN_STATIC)
+#  define BANYAN_API
+#elif defined(_WIN32)
 #  if defined(BANYAN_BUILD)
 #    define BANYAN_API __declspec(dllexport)
 #  else

@@ -11,16 +11,12 @@
  * meshes the handle reads through its pointer; grid.c asks them). */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/error.h"
+#include "base/platform.h"
 #include "ivy_internal.h"
 
-static double now_seconds(void) {
-    struct timespec t;
-    if (timespec_get(&t, TIME_UTC) != TIME_UTC) return 0.0;
-    return (double)t.tv_sec + t.tv_nsec * 1e-9;
-}
+static double now_seconds(void) { return plat_wall(); }
 
 /* sin and cos; for the small angles of the random walk a short series
  * (error below 1e-11 for |x| <= 0.8) is several times cheaper than libm. */

@@ -26,13 +26,12 @@
  * sway less. A leaf
  * and its petiole sway about their bud with its stiffness, level + 1,
  * flutter 1, a phase of their own. */
-#define _POSIX_C_SOURCE 200809L
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/error.h"
+#include "base/platform.h"
 #include "textures/leaf_look.h"
 #include "mesh/mesh_builder.h"
 #include "base/noise.h"
@@ -729,8 +728,7 @@ static void mesh_leaves(mesh_job *J, int32_t k) {
  * busy machine the waiting thread does not take the time of the one it
  * waits for (a process's threads share one scheduler group). */
 static void mesh_pause(void) {
-    const struct timespec t = {0, 50000}; /* 50 us */
-    nanosleep(&t, NULL);
+    plat_sleep_us(50);
 }
 
 /* One thread's share: items from the shared counter until none are

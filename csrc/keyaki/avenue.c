@@ -2,7 +2,7 @@
  * along a line or polyline in one or two rows, each with its own seed
  * (base seed + index), a random heading and jitter of trunk height,
  * position, size (unit), lean and (for mixed ages) levels, grown in
- * parallel with pthreads.
+ * parallel on the library's thread pool (base/pool.c).
  *
  * Layout (banyan_avenue_layout, avenue_layout.c): where the trees stand.
  * Parallelism: workers take tree indices from an atomic counter; tree i

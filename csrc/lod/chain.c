@@ -6,12 +6,12 @@
  * billboard pictures the mesh itself, drawn on a second thread while the
  * ratios' chain runs (threads != 1). The same levels on any thread count.
  * One budget covers the whole call: each level gets what is left of it. */
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "banyan.h"
 #include "base/error.h"
+#include "base/platform.h"
 #include "base/progress.h"
 #include "lod_internal.h"
 
@@ -85,14 +85,14 @@ banyan_status banyan_mesh_lods(const banyan_mesh *mesh, const double *ratios, ui
     prog g;
     if ((s = prog_budget_from(&g, budget, err))) return s;
     bb_job bj;
-    pthread_t th;
+    plat_thread th;
     int running = 0;
     if (billboard) {
         memset(&bj, 0, sizeof bj);
         bj.mesh = mesh;
         bj.p = *billboard;
         if ((s = left_of(&g, &bj.left, err))) return s;
-        running = threads != 1 && ratio_count > 0 && pthread_create(&th, NULL, bb_run, &bj) == 0;
+        running = threads != 1 && ratio_count > 0 && plat_thread_start(&th, bb_run, &bj) == 0;
     }
     for (uint32_t k = 0; !s && k < ratio_count; k++) {
         banyan_lod_params p;
@@ -107,7 +107,7 @@ banyan_status banyan_mesh_lods(const banyan_mesh *mesh, const double *ratios, ui
         if (!s) s = banyan_mesh_lod_budget(k ? out[k - 1] : mesh, &p, &left, &out[k], err);
     }
     if (billboard) {
-        if (running) pthread_join(th, NULL);
+        if (running) plat_thread_join(&th);
         else if (!s) bb_run(&bj);
         if (!s && bj.s && err) *err = bj.err;
         if (!s) s = bj.s;

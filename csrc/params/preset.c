@@ -4,7 +4,6 @@
  * Every refusal names the source, the line where it can be found, the key
  * and the reason. Format: see banyan.h "presets" and docs/formats.md. */
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +11,7 @@
 #include <cjson/cJSON.h>
 
 #include "../base/error.h"
+#include "../base/platform.h"
 #include "../base/progress.h"
 #include "../base/vec.h"
 #include "../gltf/gltf_reader.h"
@@ -92,13 +92,13 @@ static int given_before(const cJSON *obj, const cJSON *c) {
 
 /* cJSON 1.7 writes a file-level error position on every parse: serialise
  * parses so that concurrent calls on distinct texts stay race-free. */
-static pthread_mutex_t json_lock = PTHREAD_MUTEX_INITIALIZER;
+static plat_lock json_lock = PLAT_LOCK_INIT;
 
 cJSON *preset_json_parse(const char *text, size_t len, const char **end) {
     const char *e = NULL;
-    pthread_mutex_lock(&json_lock);
+    plat_lock_take(&json_lock);
     cJSON *j = cJSON_ParseWithLengthOpts(text, len, &e, 0);
-    pthread_mutex_unlock(&json_lock);
+    plat_lock_give(&json_lock);
     if (end) *end = e;
     return j;
 }

@@ -36,12 +36,8 @@
 /* Build with -DFUSED_TIMING to print the stages' times (docs/roots.md). */
 #ifdef FUSED_TIMING
 #include <stdio.h>
-#include <time.h>
-static double stage_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
+#include "base/platform.h"
+static double stage_ms(void) { return plat_clock() * 1e3; }
 #define STAGE(i) stage_t[i] = stage_ms()
 #else
 #define STAGE(i) (void)0
@@ -738,8 +734,8 @@ static int field_build(fgrid *g, const roots_net *net, const capsule *caps, floa
 static banyan_status vdb_fail(int vs, banyan_error *err) {
     if (vs == FUSED_VDB_NO_MODULE)
         return banyan_fail(err, BANYAN_E_INTERNAL,
-                           "the fused roots surface needs libbanyan_vdb.so (OpenVDB) beside libbanyan.so; it is "
-                           "missing or does not load: reinstall banyan, or set surface to tubes");
+                           "the fused roots surface needs " FUSED_VDB_MODULE " (OpenVDB) beside " FUSED_VDB_LIBRARY
+                           "; it is missing or does not load: reinstall banyan, or set surface to tubes");
     return banyan_fail(err, vs == FUSED_VDB_TOO_BIG ? BANYAN_E_LIMIT : BANYAN_E_INTERNAL,
                        "OpenVDB could not mesh the fused roots surface (%s)",
                        vs == FUSED_VDB_TOO_BIG ? "too many vertices" : "volumeToMesh failed");

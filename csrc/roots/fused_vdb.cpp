@@ -170,7 +170,12 @@ static int mesh_blocks(const fused_vdb_in *in, std::thread::id caller, fused_vdb
 }
 
 /* The module's one export (csrc/banyan_vdb.map). */
-extern "C" __attribute__((visibility("default"))) int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out) {
+#ifdef _WIN32
+#define FUSED_VDB_EXPORT __declspec(dllexport)
+#else
+#define FUSED_VDB_EXPORT __attribute__((visibility("default")))
+#endif
+extern "C" FUSED_VDB_EXPORT int fused_vdb_mesh(const fused_vdb_in *in, fused_vdb_out *out) {
     std::memset(out, 0, sizeof *out);
     try {
         int rc = FUSED_VDB_FAILED;

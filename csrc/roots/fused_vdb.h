@@ -29,6 +29,15 @@ typedef struct fused_vdb_out {
     uint32_t n_pos, n_tri;
 } fused_vdb_out;
 
+/* The module's and the library's file names, as CMake names them. */
+#ifdef _WIN32
+#define FUSED_VDB_MODULE "banyan_vdb.dll"
+#define FUSED_VDB_LIBRARY "banyan.dll"
+#else
+#define FUSED_VDB_MODULE "libbanyan_vdb.so"
+#define FUSED_VDB_LIBRARY "libbanyan.so"
+#endif
+
 enum {
     FUSED_VDB_OK = 0,
     FUSED_VDB_NOMEM = 1,

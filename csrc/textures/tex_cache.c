@@ -14,22 +14,18 @@
  * whole new one. A hit touches the file's time; past TEX_CACHE_MAX_BYTES
  * the files used longest ago are removed (with temporary files a killed
  * run left over an hour ago). */
-#define _POSIX_C_SOURCE 200809L
 #include "textures/tex_cache.h"
 
-#include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <libdeflate.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/platform.h"
 #include "tex_code_hash.h"
 #include "textures/tex_budget.h"
 
@@ -48,12 +44,7 @@ int tex_cache_dir(int32_t enabled, const char *dir, char *out, size_t cap) {
     int n;
     if (dir && dir[0]) n = snprintf(out, cap, "%s", dir);
     else if (env && env[0]) n = snprintf(out, cap, "%s", env);
-    else {
-        const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-        if (xdg && xdg[0] == '/') n = snprintf(out, cap, "%s/banyan/textures", xdg); /* the spec: relative is ignored */
-        else if (home && home[0]) n = snprintf(out, cap, "%s/.cache/banyan/textures", home);
-        else return 0;
-    }
+    else return plat_user_cache(out, cap, "banyan/textures");
     return n > 0 && (size_t)n < cap;
 }
 
@@ -103,38 +94,38 @@ static uint64_t png_most(int32_t size) {
 /* 1 and the two PNGs when the file is whole and is this key's. */
 static int cache_read(const char *path, const banyan_texture_params *p, uint8_t **base, size_t *bl, uint8_t **normal,
                       size_t *nl) {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return 0;
+    plat_info st;
+    if (plat_stat(path, &st, 1) != 0 || st.kind != PLAT_FILE || st.size < HEAD) return 0;
+    FILE *f = plat_fopen(path, "rb");
+    if (!f) return 0;
     int ok = 0;
     uint8_t h[HEAD], want[HEAD];
     uint8_t *b = NULL, *n = NULL;
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size < HEAD) goto done;
-    if (pread(fd, h, HEAD, 0) != HEAD) goto done;
+    if (fread(h, 1, HEAD, f) != HEAD) goto done;
     const uint64_t L0 = get64(h + 40), L1 = get64(h + 48), most = png_most(p->size);
-    if (L0 == 0 || L1 == 0 || L0 > most || L1 > most || (uint64_t)st.st_size != HEAD + L0 + L1) goto done;
+    if (L0 == 0 || L1 == 0 || L0 > most || L1 > most || st.size != HEAD + L0 + L1) goto done;
     make_head(want, p, L0, L1, get32(h + 60));
     if (memcmp(h, want, HEAD) != 0) goto done; /* another key, build or format, or a damaged head */
     b = malloc(L0);
     n = malloc(L1);
     if (!b || !n) goto done;
-    if (pread(fd, b, L0, HEAD) != (ssize_t)L0 || pread(fd, n, L1, HEAD + (off_t)L0) != (ssize_t)L1) goto done;
+    if (fread(b, 1, L0, f) != L0 || fread(n, 1, L1, f) != L1) goto done;
     if (libdeflate_crc32(libdeflate_crc32(0, b, L0), n, L1) != get32(h + 60)) goto done;
-    futimens(fd, NULL); /* used now: the last to go */
+    plat_touch(path); /* used now: the last to go */
     *base = b, *bl = L0, *normal = n, *nl = L1;
     b = n = NULL;
     ok = 1;
 done:
     free(b);
     free(n);
-    close(fd);
+    fclose(f);
     return ok;
 }
 
 typedef struct entry {
     char *name;
-    off_t size;
-    time_t used;
+    uint64_t size;
+    int64_t used;
 } entry;
 
 static int by_use(const void *a, const void *b) {
@@ -151,23 +142,22 @@ static int ends_with(const char *s, const char *tail) {
  * removed first; leftover temporary files over an hour old removed. Other
  * runs may remove the same files: a failed unlink is passed over. */
 static void trim(const char *dir) {
-    DIR *d = opendir(dir);
+    plat_dir *d = plat_dir_open(dir);
     if (!d) return;
     entry *e = NULL;
     size_t count = 0, cap = 0;
     unsigned long long total = 0;
-    const time_t now = time(NULL);
+    const int64_t now = (int64_t)time(NULL);
     char path[4200];
-    struct dirent *de;
-    while ((de = readdir(d)) != NULL) {
-        const char *nm = de->d_name;
+    const char *nm;
+    while ((nm = plat_dir_next(d)) != NULL) {
         int temp = nm[0] == '.' && ends_with(nm, ".tmp") && strstr(nm, ".btc.");
         if (!temp && (nm[0] == '.' || !ends_with(nm, ".btc"))) continue;
         if (snprintf(path, sizeof path, "%s/%s", dir, nm) >= (int)sizeof path) continue;
-        struct stat st;
-        if (lstat(path, &st) != 0 || !S_ISREG(st.st_mode)) continue;
+        plat_info st;
+        if (plat_stat(path, &st, 0) != 0 || st.kind != PLAT_FILE) continue;
         if (temp) {
-            if (now - st.st_mtime > 3600) unlink(path);
+            if (now - st.mtime > 3600) plat_remove(path);
             continue;
         }
         if (count == cap) {
@@ -176,17 +166,19 @@ static void trim(const char *dir) {
             if (!ne) break;
             e = ne, cap = nc;
         }
-        if (!(e[count].name = strdup(nm))) break;
-        e[count].size = st.st_size;
-        e[count].used = st.st_mtime;
-        total += (unsigned long long)st.st_size;
+        size_t len = strlen(nm) + 1;
+        if (!(e[count].name = malloc(len))) break;
+        memcpy(e[count].name, nm, len);
+        e[count].size = st.size;
+        e[count].used = st.mtime;
+        total += (unsigned long long)st.size;
         count++;
     }
-    closedir(d);
+    plat_dir_close(d);
     if (total > TEX_CACHE_MAX_BYTES) {
         qsort(e, count, sizeof *e, by_use);
         for (size_t i = 0; i < count && total > TEX_CACHE_MAX_BYTES; i++) {
-            if (snprintf(path, sizeof path, "%s/%s", dir, e[i].name) < (int)sizeof path) unlink(path);
+            if (snprintf(path, sizeof path, "%s/%s", dir, e[i].name) < (int)sizeof path) plat_remove(path);
             total -= (unsigned long long)e[i].size;
         }
     }
@@ -201,14 +193,16 @@ static int make_dirs(const char *dir) {
     if (n == 0 || n >= sizeof buf) return -1;
     memcpy(buf, dir, n + 1);
     for (size_t i = 1; i <= n; i++) {
-        if (buf[i] != '/' && buf[i] != '\0') continue;
+        if (!plat_is_sep(buf[i]) && buf[i] != '\0') continue;
+        if (i == 2 && buf[1] == ':' && plat_is_absolute(dir)) continue; /* "C:" of "C:\\...": a drive */
         char c = buf[i];
         buf[i] = '\0';
-        if (mkdir(buf, 0700) != 0 && errno != EEXIST) return -1;
+        int e = plat_mkdir(buf);
+        if (e != 0 && e != EEXIST) return -1;
         buf[i] = c;
     }
-    struct stat st;
-    return stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? 0 : -1;
+    plat_info st;
+    return plat_stat(dir, &st, 1) == 0 && st.kind == PLAT_DIR ? 0 : -1;
 }
 
 static void cache_write(const char *dir, const char *path, const banyan_texture_params *p, const uint8_t *b, size_t bl,

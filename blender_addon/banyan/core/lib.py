@@ -6,7 +6,9 @@ Search order for the shared library:
   3. <repo>/build/<name>, for an add-on used straight from the repository
      (blender_addon/banyan -> ../../build), following symlinks.
 <name> is libbanyan.so on Linux, libbanyan.dylib on macOS, banyan.dll on
-Windows. At load the ABI version and every banyan_sizeof_* are compared
+Windows. On Windows the library's folder is added to the DLL search
+(os.add_dll_directory) so the DLLs packed beside it (Embree, TBB, the
+mingw runtime) are found. At load the ABI version and every banyan_sizeof_* are compared
 with the ctypes structures; a mismatch raises LoadError.
 """
 import ctypes as C
@@ -19,6 +21,7 @@ from .errors import BanyanError, Cancelled, LoadError
 
 _lock = threading.Lock()
 _lib = None
+_dll_dirs = []  # os.add_dll_directory handles, kept for the process
 
 
 class Handle:
@@ -158,6 +161,11 @@ def load(path=None):
         if not found:
             raise LoadError("libbanyan not found; looked at: %s. Build it (cmake --build build) or set "
                             "BANYAN_LIB to the library's path" % ", ".join(tried))
+        if hasattr(os, "add_dll_directory"):  # Windows, Python 3.8+
+            try:
+                _dll_dirs.append(os.add_dll_directory(os.path.dirname(os.path.abspath(found[0]))))
+            except OSError:
+                pass
         try:
             lib = C.CDLL(found[0])
         except OSError as e:
