@@ -7,7 +7,7 @@ killed worker: one task's process is killed with SIGKILL after it wrote its
 first seed, openjd reports the task failed, the task is run again as a
 retry would, the other tasks and the merge run, and the folder is again
 complete and byte-identical. A task count too small (LastTaskIndex) fails
-the merge step, naming the missing seeds.
+the merge step, naming the missing seeds. Format=usda makes USD layers.
 
     python3 tests/batch/test_openjd.py BUILD_DIR
 (ctest sets BANYAN_LIB to BUILD_DIR's library.)"""
@@ -127,6 +127,19 @@ try:
     check(not glob.glob(os.path.join(out, ".*")) and not glob.glob(os.path.join(out, "manifest", ".*")),
           "no temporary file is left")
     check(not entries_of(out), "no task process is left running")
+
+    # Format=usda: the runner's --format, two seeds in one task and the merge.
+    usd = os.path.join(tmp, "usd")
+    p_usd = params(usd, last=0)
+    p_usd = [("Seeds=0:2" if a.startswith("Seeds=") else "PerTask=2" if a.startswith("PerTask=") else a)
+             for a in p_usd] + ["-p", "Format=usda"]
+    r = openjd("run", TEMPLATE, "--step", "Merge", "--run-dependencies", *p_usd)
+    layers = glob.glob(os.path.join(usd, "*.usda"))
+    check(r.returncode == 0 and len(layers) == 2 and not glob.glob(os.path.join(usd, "*.glb"))
+          and "2 records, 2 files" in r.stdout,
+          "Format=usda: two USD layers and their merge (exit %d, %s: %s)" % (r.returncode, layers,
+                                                                          (r.stdout + r.stderr)[-400:]))
+    check(all(open(f).read(10) == "#usda 1.0\n" for f in layers), "Format=usda: the files are USD text layers")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 finish("test_openjd")

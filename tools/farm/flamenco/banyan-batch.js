@@ -45,6 +45,8 @@ const JOB_TYPE = {
           description: "Bark and leaf textures in the .glb (off: --no-textures)" },
         { key: "texture_size", type: "int32", default: 1024, propargs: { min: 64, max: 8192 },
           description: "glTF texture size, a power of two" },
+        { key: "format", type: "string", default: "glb", choices: ["glb", "usda"],
+          description: "glb (glTF binary) or usda (a USD text layer a seed, its textures shared)" },
         { key: "threads", type: "int32", default: 1, propargs: { min: 0, max: 1024 },
           description: "Generator threads per task (0: all cores); the bytes do not depend on it" },
         { key: "merge_manifest", type: "bool", default: true,
@@ -126,6 +128,10 @@ function compileJob(job) {
         throw `banyan-batch: setting python must be a string (empty: Blender for every task), got ${JSON.stringify(pythonSetting)}`;
     }
     const python = pythonSetting.trim();
+    const format = stringSetting(job, "format");
+    if (format !== "glb" && format !== "usda") {
+        throw `banyan-batch: setting format must be glb or usda, got ${JSON.stringify(format)}`;
+    }
     const engine = stringSetting(job, "engine").toUpperCase();
     if (engine !== "WORKBENCH" && engine !== "EEVEE") {
         throw `banyan-batch: setting engine must be WORKBENCH or EEVEE, got ${JSON.stringify(engine)}`;
@@ -161,7 +167,7 @@ function compileJob(job) {
                 renders = true;
             }
         }
-        args.push("--threads", String(threads), "--texture-size", String(textureSize));
+        args.push("--threads", String(threads), "--texture-size", String(textureSize), "--format", format);
         if (!textures) args.push("--no-textures");
 
         const task = runnerTask(`seeds-${a}-${b}`, renders ? "" : python, runner, args, b - a);
@@ -175,7 +181,7 @@ function compileJob(job) {
         // --preset and the glTF options give the merge the preset hash whose
         // seeds must all be there.
         const mergeArgs = ["--merge-manifest", outDir, "--seeds", `${first}:${end}`, "--verify",
-            "--preset", preset, "--texture-size", String(textureSize)];
+            "--preset", preset, "--texture-size", String(textureSize), "--format", format];
         if (!textures) mergeArgs.push("--no-textures");
         const task = runnerTask("merge-manifest", python, runner, mergeArgs, 0);
         for (const t of seedTasks) task.addDependency(t);
