@@ -265,34 +265,25 @@ class Job:
                         ("compact", C.c_int32),  # 0: plain meshes, as the CLI
                         ("texture_cache", C.c_int32), ("texture_cache_dir", C.c_char_p)]
 
-        size = lib.banyan_sizeof_gltf_options
-        size.restype, size.argtypes = C.c_size_t, []
-        if size() != C.sizeof(GltfOptions):
-            raise UsageError("libbanyan's banyan_gltf_options is %d bytes, the runner's %d: rebuild both from "
-                             "the same source" % (size(), C.sizeof(GltfOptions)))
-        opt = {k: v for k, v in self.gltf.items() if k not in ("shared_textures", "format")}
-        self._image_dir = self.image_dir.encode() if self.image_dir else None
-        opt.setdefault("texture_cache", 1)  # the library's default: BANYAN_TEXTURE_CACHE=off still turns it off
-        self._opt = GltfOptions(image_dir=self._image_dir, **opt)
-        w = lib.banyan_gltf_write_ex
-        w.restype = C.c_int
-        w.argtypes = [C.c_char_p, C.POINTER(C.POINTER(self.S.Mesh)), C.POINTER(C.c_char_p), C.c_uint32,
-                      C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
-        self._write = w
-
         class Node(C.Structure):  # banyan_gltf_node
             _fields_ = [("mesh", C.POINTER(self.S.Mesh)), ("name", C.c_char_p), ("lod_count", C.c_uint32),
                         ("lods", C.c_void_p), ("lod_coverage", C.c_void_p)]
 
-        size = lib.banyan_sizeof_gltf_node
-        size.restype, size.argtypes = C.c_size_t, []
-        if size() != C.sizeof(Node):
-            raise UsageError("libbanyan's banyan_gltf_node is %d bytes, the runner's %d: rebuild both from "
-                             "the same source" % (size(), C.sizeof(Node)))
-        u = lib.banyan_usd_write_nodes
-        u.restype = C.c_int
-        u.argtypes = [C.c_char_p, C.POINTER(Node), C.c_uint32, C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
-        self._Node, self._write_usd = Node, u
+        for name, cls in (("gltf_options", GltfOptions), ("gltf_node", Node)):
+            size = getattr(lib, "banyan_sizeof_" + name)
+            size.restype, size.argtypes = C.c_size_t, []
+            if size() != C.sizeof(cls):
+                raise UsageError("libbanyan's banyan_%s is %d bytes, the runner's %d: rebuild both from "
+                                 "the same source" % (name, size(), C.sizeof(cls)))
+        opt = {k: v for k, v in self.gltf.items() if k not in ("shared_textures", "format")}
+        self._image_dir = self.image_dir.encode() if self.image_dir else None
+        opt.setdefault("texture_cache", 1)  # the library's default: BANYAN_TEXTURE_CACHE=off still turns it off
+        self._opt = GltfOptions(image_dir=self._image_dir, **opt)
+        # One plain node: for glTF the bytes of banyan_gltf_write_ex, the CLI's call.
+        w = lib.banyan_usd_write_nodes if self.format == "usda" else lib.banyan_gltf_write_nodes
+        w.restype = C.c_int
+        w.argtypes = [C.c_char_p, C.POINTER(Node), C.c_uint32, C.POINTER(GltfOptions), C.POINTER(self.S.Error)]
+        self._Node, self._write = Node, w
 
     def seed_params(self, seed):
         p = self.params.copy()
@@ -331,13 +322,8 @@ class Job:
         image folder)."""
         node = NODE_NAME[self.generator]
         err = self.S.Error()
-        if self.format == "usda":
-            n = self._Node(d.c_mesh, node.encode() if node else None, 0, None, None)
-            st = self._write_usd(os.fsencode(path), C.byref(n), 1, C.byref(self._opt), C.byref(err))
-        else:
-            arr = (C.POINTER(self.S.Mesh) * 1)(d.c_mesh)
-            names = (C.c_char_p * 1)(node.encode()) if node else None
-            st = self._write(os.fsencode(path), arr, names, 1, C.byref(self._opt), C.byref(err))
+        n = self._Node(d.c_mesh, node.encode() if node else None, 0, None, None)
+        st = self._write(os.fsencode(path), C.byref(n), 1, C.byref(self._opt), C.byref(err))
         self.L.raise_for(st, err)
 
     def close(self):

@@ -451,7 +451,7 @@ static void stat_hosts_origin(const banyan_hosts *host_set, banyan_mesh *const *
 }
 
 /* Writes the meshes to out_path: with --lod through cli_write_lods, else
- * one glTF write within what the budget has left. A failure is reported
+ * one write (glTF or USD, cli_write_nodes) within what the budget has left. A failure is reported
  * here (with the budget's meaning when it ran out). Returns 0, or 1. */
 static int write_output(const cli_command *cmd, const char *out_path, banyan_mesh **meshes, char **names,
                         uint32_t count, const cli_lod *lod, int threads, const banyan_gltf_options *gltf_opt,
@@ -460,15 +460,12 @@ static int write_output(const cli_command *cmd, const char *out_path, banyan_mes
     banyan_status ws = lod->count
                            ? cli_write_lods(out_path, meshes, names, count, lod, threads, gltf_opt, budget, st, err)
                            : cli_budget_left(budget, "writing", &left, err);
-    if (!lod->count && !ws && cli_is_usd(out_path)) {
+    if (!lod->count && !ws) { /* plain nodes: the bytes of banyan_gltf_write_ex for glTF */
         banyan_gltf_node *nodes = calloc(count, sizeof *nodes);
         for (uint32_t i = 0; nodes && i < count; i++) nodes[i].mesh = meshes[i], nodes[i].name = names ? names[i] : NULL;
         ws = nodes ? cli_write_nodes(out_path, nodes, count, gltf_opt, &left, err) : BANYAN_E_NOMEM;
         if (!nodes) snprintf(err->message, sizeof err->message, "out of memory for the nodes");
         free(nodes);
-    } else if (!lod->count && !ws) {
-        ws = banyan_gltf_write_ex_budget(out_path, (const banyan_mesh *const *)meshes, (const char *const *)names,
-                                         count, gltf_opt, &left, err);
     }
     if (ws) {
         fprintf(stderr, "banyan %s: writing %s: %s: %s%s\n", cmd->name, out_path, banyan_status_name(ws),

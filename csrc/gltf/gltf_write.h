@@ -319,6 +319,11 @@ void plan_textures(const banyan_mesh *const *meshes, uint32_t count, const banya
 /* One library texture's two PNGs into t (through the texture cache). */
 banyan_status draw_texture(int32_t kind, int32_t season, const banyan_gltf_options &o, const prog_deadline &stop,
                            double seconds, TexturePngs &t, banyan_error *err);
+/* Texture t's two files under `dir` (relative, '/'-separated) as the
+ * writers name them: <image>-<size>-s<seed>.png and <image>_normal-....
+ * (opt->image_dir for glTF, the layer's image folder for USD). */
+void texture_uris(const TexturePngs &t, const banyan_gltf_options &o, const std::string &dir, std::string &base,
+                  std::string &normal);
 std::string folder_of(const char *path);
 bool is_regular_file(const std::string &p);
 int make_folders(const std::string &base, const std::string &rel);

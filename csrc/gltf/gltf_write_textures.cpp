@@ -114,6 +114,15 @@ void TextureDrawer::draw(size_t i) {
     }
 }
 
+void texture_uris(const TexturePngs &t, const banyan_gltf_options &o, const std::string &dir, std::string &base,
+                  std::string &normal) {
+    std::string name = kKindNames[t.kind];
+    if (is_leaf_kind(t.kind)) name += t.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
+    const std::string tail = "-" + std::to_string(o.texture_size) + "-s" + std::to_string(o.texture_seed) + ".png";
+    base = dir + "/" + name + tail;
+    normal = dir + "/" + name + "_normal" + tail;
+}
+
 /* The folder of path with its trailing separator ("" for the current one). */
 std::string folder_of(const char *path) {
     const char *s = std::strrchr(path, '/');

@@ -167,11 +167,10 @@ void Write::plan_jobs() {
     image_folder = external ? folder_of(path) : std::string();
     if (external) {
         for (TexturePngs &t : textures) {
-            std::string name = kKindNames[t.kind];
-            if (is_leaf_kind(t.kind)) name += t.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
-            const std::string tail = "-" + std::to_string(o.texture_size) + "-s" + std::to_string(o.texture_seed) + ".png";
-            image_uri.push_back(std::string(o.image_dir) + "/" + name + tail);
-            image_uri.push_back(std::string(o.image_dir) + "/" + name + "_normal" + tail);
+            std::string base, normal;
+            texture_uris(t, o, o.image_dir, base, normal);
+            image_uri.push_back(base);
+            image_uri.push_back(normal);
             t.have = is_regular_file(image_folder + image_uri[image_uri.size() - 2]) &&
                      is_regular_file(image_folder + image_uri.back());
         }

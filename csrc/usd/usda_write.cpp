@@ -17,7 +17,6 @@
 
 #include <cerrno>
 #include <charconv>
-#include <cmath>
 #include <cstring>
 #include <map>
 #include <string>
@@ -25,8 +24,6 @@
 
 namespace usdw {
 namespace {
-
-using gltfw::kKindNames;
 
 /* ------------------------------------------------------------ output */
 
@@ -141,7 +138,7 @@ void vec3(Out &out, const float *p) {
     out << ")";
 }
 
-/* `name` = [(x, y, z), ...] of `count` triples starting at p. */
+/* [(x, y, z), ...]: `count` triples starting at p. */
 void vec3_array(Out &out, const float *p, uint32_t count) {
     out << "[";
     for (uint32_t i = 0; i < count; ++i) {
@@ -155,20 +152,16 @@ void vec3_array(Out &out, const float *p, uint32_t count) {
  * image_dir, drawn (through the texture cache) where missing. */
 banyan_status Writer::draw_textures() {
     for (gltfw::TexturePngs &t : textures) {
-        std::string name = kKindNames[t.kind];
-        if (gltfw::is_leaf_kind(t.kind)) name += t.season == BANYAN_SEASON_AUTUMN ? "_autumn" : "_summer";
-        const std::string tail = "-" + std::to_string(o.texture_size) + "-s" + std::to_string(o.texture_seed) + ".png";
-        tex_uri.push_back(image_dir + "/" + name + tail);
-        tex_uri.push_back(image_dir + "/" + name + "_normal" + tail);
-        if (gltfw::is_regular_file(folder + tex_uri[tex_uri.size() - 2]) && gltfw::is_regular_file(folder + tex_uri.back()))
-            continue;
+        std::string base, normal;
+        gltfw::texture_uris(t, o, image_dir, base, normal);
+        tex_uri.push_back(base);
+        tex_uri.push_back(normal);
+        if (gltfw::is_regular_file(folder + base) && gltfw::is_regular_file(folder + normal)) continue;
         prog_deadline stop = prog_deadline_of(g);
         banyan_status s = gltfw::draw_texture(t.kind, t.season, o, stop, g->max_seconds, t, err);
         if (s != BANYAN_OK) return s;
-        if (int e = gltfw::write_png_file(folder + tex_uri[tex_uri.size() - 2], t.base, o.sync != 0))
-            return io_fail(e, folder + tex_uri[tex_uri.size() - 2]);
-        if (int e = gltfw::write_png_file(folder + tex_uri.back(), t.normal, o.sync != 0))
-            return io_fail(e, folder + tex_uri.back());
+        if (int e = gltfw::write_png_file(folder + base, t.base, o.sync != 0)) return io_fail(e, folder + base);
+        if (int e = gltfw::write_png_file(folder + normal, t.normal, o.sync != 0)) return io_fail(e, folder + normal);
         t.base.clear();
         t.normal.clear();
     }

@@ -16,23 +16,8 @@ RUNNER = os.path.join(ADDON, "batch_run.py")
 PRESET = os.path.join(HERE, "avenue_batch_tiny.json")
 BUILD = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(SRC, "build"))
 os.environ.setdefault("BANYAN_LIB", os.path.join(BUILD, "libbanyan.so"))
-
-_tally = {"passed": 0, "failed": 0}
-
-
-def check(ok, what):
-    """Counts one check; prints what failed. Returns ok."""
-    _tally["passed" if ok else "failed"] += 1
-    if not ok:
-        print("FAIL: " + what, flush=True)
-    return ok
-
-
-def finish(name):
-    """Prints the tally and exits 1 if a check failed."""
-    print("%s: %d passed, %d failed" % (name, _tally["passed"], _tally["failed"]))
-    sys.exit(1 if _tally["failed"] else 0)
-
+sys.path.insert(0, os.path.join(SRC, "tests", "pycommon"))
+from tally import check, finish  # noqa: E402,F401  (the batch tests take them from here)
 
 def sha(path):
     with open(path, "rb") as f:

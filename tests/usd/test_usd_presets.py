@@ -10,7 +10,7 @@ each layer checked by tests/usd/usd_check.py in OpenUSD's Python library
 validator, and its first node holds the .glb's vertices and wind pivots.
 Then a levels-of-detail variant set with a billboard, an instanced
 avenue, and the refusals (a crate extension, a glTF-only option). Prints
-`N passed, N failed`; exits 1 on a failure."""
+`usd_presets: N passed, N failed`; exits 1 on a failure."""
 import glob
 import json
 import os
@@ -21,18 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests", "pycommon"))
 from presets_small import shrink  # noqa: E402
-
-passed = failed = 0
-
-
-def check(ok, what):
-    global passed, failed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAIL: " + what)
-
+from tally import check, finish  # noqa: E402
 
 def venv_python():
     r = subprocess.run(["bash", os.path.join(ROOT, "tools", "usd", "usd_venv.sh")], stdout=subprocess.PIPE, text=True)
@@ -83,8 +72,7 @@ def main():
                 os.remove(f)
     if not names:
         extra(exe, out, py, common)
-    print("%d passed, %d failed" % (passed, failed))
-    sys.exit(1 if failed else 0)
+    finish("usd_presets")
 
 
 def extra(exe, out, py, common):

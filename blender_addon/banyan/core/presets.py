@@ -34,16 +34,18 @@ def user_dir(create=False):
     return bpy.utils.user_resource('SCRIPTS', path=os.path.join("presets", "banyan"), create=create) or None
 
 
+def shipped_dirs():
+    """The presets that ship: the package's presets/, then (an add-on run
+    from the repository) the repository's."""
+    real = os.path.dirname(os.path.realpath(os.path.join(lib.package_dir(), "__init__.py")))
+    out = [os.path.join(lib.package_dir(), "presets"), os.path.normpath(os.path.join(real, "..", "..", "presets"))]
+    return [d for d in out if os.path.isdir(d)]
+
+
 def preset_dirs():
     """User presets first (they may shadow shipped ones), then shipped."""
-    out = []
     u = user_dir()
-    if u:
-        out.append(u)
-    out.append(os.path.join(lib.package_dir(), "presets"))
-    real = os.path.dirname(os.path.realpath(os.path.join(lib.package_dir(), "__init__.py")))
-    out.append(os.path.normpath(os.path.join(real, "..", "..", "presets")))
-    return [d for d in out if os.path.isdir(d)]
+    return ([u] if u and os.path.isdir(u) else []) + shipped_dirs()
 
 
 NAME_MAX = 64  # characters of a user preset's name kept in its file name

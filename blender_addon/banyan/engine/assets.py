@@ -65,8 +65,7 @@ def library_dir(create=True):
 def shipped_presets():
     """[(key, path, generator, description)] of the presets that ship with
     the add-on (not a user's own), by generator then key."""
-    shipped = {os.path.realpath(d) for d in core_presets.preset_dirs()[-2:]
-               if os.path.realpath(d) != os.path.realpath(core_presets.user_dir() or "")}
+    shipped = {os.path.realpath(d) for d in core_presets.shipped_dirs()}
     out = []
     for gen in GENERATORS:
         for key, path, desc in core_presets.list_presets(gen):
@@ -77,13 +76,11 @@ def shipped_presets():
 
 def thumbnail(key):
     """The gallery picture of preset `key`, or None."""
-    pkg = lib.package_dir()
-    real = os.path.dirname(os.path.realpath(os.path.join(pkg, "__init__.py")))
-    for d in (os.path.join(pkg, "presets", "thumbnails"),
-              os.path.normpath(os.path.join(real, "..", "..", "docs", "img", "presets"))):
-        p = os.path.join(d, key + ".png")
-        if os.path.isfile(p):
-            return p
+    for d in core_presets.shipped_dirs():  # the zips' presets/thumbnails/, the repository's docs/img/presets/
+        for p in (os.path.join(d, "thumbnails", key + ".png"),
+                  os.path.join(d, "..", "docs", "img", "presets", key + ".png")):
+            if os.path.isfile(p):
+                return os.path.normpath(p)
     return None
 
 
