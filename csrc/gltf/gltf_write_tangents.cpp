@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -28,86 +29,142 @@ namespace gltfw {
  * which must reference only those vertices; out[4 (v - vbase) ..]. When no
  * other triangle touches the range, this is the whole mesh's result, bit
  * for bit: each vertex sums the same terms in the same order. */
+namespace {
+
+/* Vertices per chunk: a chunk's sums (48 bytes a vertex) stay in the
+ * cache while its triangles add to them. */
+constexpr uint32_t kChunkShift = 14;
+
+/* One triangle's uv gradients (s, t per axis, interleaved as the sums
+ * are): false when its uvs are degenerate (it adds nothing). */
+inline bool tri_gradient(const banyan_mesh *m, const uint32_t i[3], double st[6]) {
+    const float *p0 = m->positions + 3 * static_cast<size_t>(i[0]);
+    const float *p1 = m->positions + 3 * static_cast<size_t>(i[1]);
+    const float *p2 = m->positions + 3 * static_cast<size_t>(i[2]);
+    const float *t0 = m->uvs + 2 * static_cast<size_t>(i[0]);
+    const float *t1 = m->uvs + 2 * static_cast<size_t>(i[1]);
+    const float *t2 = m->uvs + 2 * static_cast<size_t>(i[2]);
+    double e1[3], e2[3];
+    for (int c = 0; c < 3; ++c) {
+        e1[c] = static_cast<double>(p1[c]) - p0[c];
+        e2[c] = static_cast<double>(p2[c]) - p0[c];
+    }
+    double du1 = static_cast<double>(t1[0]) - t0[0], dv1 = static_cast<double>(t1[1]) - t0[1];
+    double du2 = static_cast<double>(t2[0]) - t0[0], dv2 = static_cast<double>(t2[1]) - t0[1];
+    double det = du1 * dv2 - du2 * dv1;
+    if (!(std::fabs(det) > 1e-20)) return false;
+    const double r = 1.0 / det;
+#if defined(__SSE2__)
+    /* (sd[c], td[c]) in one register: the same products, differences and
+     * scaling as the scalar lines below, two lanes at a time. */
+    const __m128d a = _mm_set_pd(du1, dv2), bq = _mm_set_pd(du2, dv1), rr = _mm_set1_pd(r);
+    for (int c = 0; c < 3; ++c) {
+        const __m128d e = _mm_set_pd(e2[c], e1[c]); /* (e1, e2) */
+        const __m128d es = _mm_shuffle_pd(e, e, 1); /* (e2, e1) */
+        _mm_storeu_pd(st + 2 * c, _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(e, a), _mm_mul_pd(es, bq)), rr));
+    }
+#else
+    for (int c = 0; c < 3; ++c) {
+        st[2 * c] = (e1[c] * dv2 - e2[c] * dv1) * r;
+        st[2 * c + 1] = (e2[c] * du1 - e1[c] * du2) * r;
+    }
+#endif
+    return true;
+}
+
+/* A vertex's tangent from its normal nv and its sums s2 ((t, b) per axis). */
+inline void finish_tangent(const float *nv, const double *s2, float *out) {
+    double n[3] = {nv[0], nv[1], nv[2]};
+    double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (nl > 0.0) {
+        for (double &c : n) c /= nl;
+    } else { /* the writer's zero normal becomes +Y up, i.e. +Z here */
+        n[0] = n[1] = 0.0;
+        n[2] = 1.0;
+    }
+    const double t[3] = {s2[0], s2[2], s2[4]}, bt[3] = {s2[1], s2[3], s2[5]};
+    double d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+    double q[3] = {t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]};
+    double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    if (!(ql > 1e-12 * (1.0 + std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])))) {
+        /* any perpendicular: n x (the axis least along n) */
+        double a[3] = {0.0, 0.0, 0.0};
+        int least = std::fabs(n[0]) <= std::fabs(n[1]) ? (std::fabs(n[0]) <= std::fabs(n[2]) ? 0 : 2)
+                                                        : (std::fabs(n[1]) <= std::fabs(n[2]) ? 1 : 2);
+        a[least] = 1.0;
+        q[0] = n[1] * a[2] - n[2] * a[1];
+        q[1] = n[2] * a[0] - n[0] * a[2];
+        q[2] = n[0] * a[1] - n[1] * a[0];
+        ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    }
+    for (double &c : q) c /= ql;
+    double cx[3] = {n[1] * q[2] - n[2] * q[1], n[2] * q[0] - n[0] * q[2], n[0] * q[1] - n[1] * q[0]};
+    double w = cx[0] * bt[0] + cx[1] * bt[1] + cx[2] * bt[2] < 0.0 ? -1.0 : 1.0;
+    for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(q[c]);
+    out[3] = static_cast<float>(w);
+}
+
+} // namespace
+
+/* The vertices go in chunks of 2^kChunkShift: each chunk's triangles (any
+ * corner in it, in index order, listed once up front) add to its sums,
+ * which stay in the cache, then its tangents are finished. A vertex sums
+ * the same terms in the same order as one pass over every triangle would. */
 std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_t vcount, uint32_t ioff,
                                    uint32_t icount, std::vector<double> &acc) {
     const size_t vc = vcount;
-    acc.assign(6 * vc, 0.0); /* per vertex and axis (t, b); the caller's memory, reused */
+    const uint32_t chunk = 1u << kChunkShift;
+    const size_t nchunks = (vc + chunk - 1) >> kChunkShift;
+    /* rel[j] >> kChunkShift for a corner of the range, nchunks for one
+     * outside it (it adds to nothing). */
+    auto chunk_of = [&](uint32_t idx) -> size_t {
+        uint32_t rel = idx - vbase;
+        return rel < vc ? rel >> kChunkShift : nchunks;
+    };
+    std::vector<uint32_t> start(nchunks + 2, 0), list;
     for (uint32_t k = ioff; k + 2 < ioff + icount; k += 3) {
-        const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
-        const uint32_t rel[3] = {i[0] - vbase, i[1] - vbase, i[2] - vbase};
-        const float *p0 = m->positions + 3 * static_cast<size_t>(i[0]);
-        const float *p1 = m->positions + 3 * static_cast<size_t>(i[1]);
-        const float *p2 = m->positions + 3 * static_cast<size_t>(i[2]);
-        const float *t0 = m->uvs + 2 * static_cast<size_t>(i[0]);
-        const float *t1 = m->uvs + 2 * static_cast<size_t>(i[1]);
-        const float *t2 = m->uvs + 2 * static_cast<size_t>(i[2]);
-        double e1[3], e2[3];
-        for (int c = 0; c < 3; ++c) {
-            e1[c] = static_cast<double>(p1[c]) - p0[c];
-            e2[c] = static_cast<double>(p2[c]) - p0[c];
+        size_t c0 = chunk_of(m->indices[k]), c1 = chunk_of(m->indices[k + 1]), c2 = chunk_of(m->indices[k + 2]);
+        start[c0 + 1]++;
+        if (c1 != c0) start[c1 + 1]++;
+        if (c2 != c0 && c2 != c1) start[c2 + 1]++;
+    }
+    for (size_t c = 0; c <= nchunks; ++c) start[c + 1] += start[c];
+    list.resize(start[nchunks]);
+    {
+        std::vector<uint32_t> fill(start.begin(), start.begin() + static_cast<long>(nchunks));
+        for (uint32_t k = ioff; k + 2 < ioff + icount; k += 3) {
+            size_t c0 = chunk_of(m->indices[k]), c1 = chunk_of(m->indices[k + 1]), c2 = chunk_of(m->indices[k + 2]);
+            if (c0 < nchunks) list[fill[c0]++] = k;
+            if (c1 != c0 && c1 < nchunks) list[fill[c1]++] = k;
+            if (c2 != c0 && c2 != c1 && c2 < nchunks) list[fill[c2]++] = k;
         }
-        double du1 = static_cast<double>(t1[0]) - t0[0], dv1 = static_cast<double>(t1[1]) - t0[1];
-        double du2 = static_cast<double>(t2[0]) - t0[0], dv2 = static_cast<double>(t2[1]) - t0[1];
-        double det = du1 * dv2 - du2 * dv1;
-        if (!(std::fabs(det) > 1e-20)) continue;
-        const double r = 1.0 / det;
-#if defined(__SSE2__)
-        /* (sd[c], td[c]) in one register: the same products, differences
-         * and scaling as the scalar lines below, two lanes at a time. */
-        const __m128d a = _mm_set_pd(du1, dv2), bq = _mm_set_pd(du2, dv1), rr = _mm_set1_pd(r);
-        double *acc0 = &acc[6 * static_cast<size_t>(rel[0])], *acc1 = &acc[6 * static_cast<size_t>(rel[1])],
-               *acc2 = &acc[6 * static_cast<size_t>(rel[2])];
-        for (int c = 0; c < 3; ++c) {
-            const __m128d e = _mm_set_pd(e2[c], e1[c]);                  /* (e1, e2) */
-            const __m128d es = _mm_shuffle_pd(e, e, 1);                  /* (e2, e1) */
-            const __m128d st = _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(e, a), _mm_mul_pd(es, bq)), rr);
-            _mm_storeu_pd(acc0 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc0 + 2 * c), st));
-            _mm_storeu_pd(acc1 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc1 + 2 * c), st));
-            _mm_storeu_pd(acc2 + 2 * c, _mm_add_pd(_mm_loadu_pd(acc2 + 2 * c), st));
-        }
-#else
-        for (int c = 0; c < 3; ++c) {
-            const double sd = (e1[c] * dv2 - e2[c] * dv1) * r;
-            const double td = (e2[c] * du1 - e1[c] * du2) * r;
+    }
+    acc.resize(6 * std::min<size_t>(vc, chunk)); /* per vertex and axis (t, b); the caller's memory, reused */
+    std::vector<float> out(4 * vc);
+    for (size_t c = 0; c < nchunks; ++c) {
+        const uint32_t lo = static_cast<uint32_t>(c << kChunkShift);
+        const uint32_t n = static_cast<uint32_t>(std::min<size_t>(chunk, vc - lo));
+        std::memset(acc.data(), 0, sizeof(double) * 6 * n);
+        for (uint32_t e = start[c]; e < start[c + 1]; ++e) {
+            const uint32_t k = list[e];
+            const uint32_t i[3] = {m->indices[k], m->indices[k + 1], m->indices[k + 2]};
+            double st[6];
+            if (!tri_gradient(m, i, st)) continue;
             for (int j = 0; j < 3; ++j) {
-                acc[6 * static_cast<size_t>(rel[j]) + 2 * c] += sd;
-                acc[6 * static_cast<size_t>(rel[j]) + 2 * c + 1] += td;
+                const uint32_t rel = i[j] - vbase - lo;
+                if (rel >= n) continue; /* another chunk's corner */
+                double *a = &acc[6 * static_cast<size_t>(rel)];
+#if defined(__SSE2__)
+                for (int q = 0; q < 3; ++q)
+                    _mm_storeu_pd(a + 2 * q, _mm_add_pd(_mm_loadu_pd(a + 2 * q), _mm_loadu_pd(st + 2 * q)));
+#else
+                for (int q = 0; q < 6; ++q) a[q] += st[q];
+#endif
             }
         }
-#endif
-    }
-    std::vector<float> out(4 * vc);
-    for (size_t v = 0; v < vc; ++v) {
-        const float *nv = m->normals + 3 * (vbase + v);
-        double n[3] = {nv[0], nv[1], nv[2]};
-        double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (nl > 0.0) {
-            for (double &c : n) c /= nl;
-        } else { /* the writer's zero normal becomes +Y up, i.e. +Z here */
-            n[0] = n[1] = 0.0;
-            n[2] = 1.0;
-        }
-        const double *s2 = &acc[6 * v]; /* (t, b) per axis */
-        const double t[3] = {s2[0], s2[2], s2[4]}, bt[3] = {s2[1], s2[3], s2[5]};
-        double d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-        double q[3] = {t[0] - d * n[0], t[1] - d * n[1], t[2] - d * n[2]};
-        double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-        if (!(ql > 1e-12 * (1.0 + std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])))) {
-            /* any perpendicular: n x (the axis least along n) */
-            double a[3] = {0.0, 0.0, 0.0};
-            int least = std::fabs(n[0]) <= std::fabs(n[1]) ? (std::fabs(n[0]) <= std::fabs(n[2]) ? 0 : 2)
-                                                            : (std::fabs(n[1]) <= std::fabs(n[2]) ? 1 : 2);
-            a[least] = 1.0;
-            q[0] = n[1] * a[2] - n[2] * a[1];
-            q[1] = n[2] * a[0] - n[0] * a[2];
-            q[2] = n[0] * a[1] - n[1] * a[0];
-            ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-        }
-        for (double &c : q) c /= ql;
-        double cx[3] = {n[1] * q[2] - n[2] * q[1], n[2] * q[0] - n[0] * q[2], n[0] * q[1] - n[1] * q[0]};
-        double w = cx[0] * bt[0] + cx[1] * bt[1] + cx[2] * bt[2] < 0.0 ? -1.0 : 1.0;
-        for (int c = 0; c < 3; ++c) out[4 * v + c] = static_cast<float>(q[c]);
-        out[4 * v + 3] = static_cast<float>(w);
+        for (uint32_t v = 0; v < n; ++v)
+            finish_tangent(m->normals + 3 * (static_cast<size_t>(vbase) + lo + v), &acc[6 * static_cast<size_t>(v)],
+                           &out[4 * (static_cast<size_t>(lo) + v)]);
     }
     return out;
 }

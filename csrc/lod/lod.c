@@ -22,6 +22,7 @@
 
 #include "banyan.h"
 #include "base/error.h"
+#include "base/finite.h"
 #include "base/rng.h"
 #include "lod_internal.h"
 
@@ -128,10 +129,11 @@ static banyan_status check_mesh(const banyan_mesh *m, banyan_error *err) {
         return banyan_fail(err, BANYAN_E_INVALID_ARG,
                            "mesh parts cover %u vertices and %u indices, not all %u and %u", v_at, i_at,
                            m->vertex_count, m->index_count);
-    for (uint64_t i = 0; i < 3 * (uint64_t)m->vertex_count; i++)
-        if (!isfinite(m->positions[i]))
-            return banyan_fail(err, BANYAN_E_RANGE, "mesh positions[%llu] = %g is not finite", (unsigned long long)i,
-                               (double)m->positions[i]);
+    if (!floats_finite(m->positions, 3 * (size_t)m->vertex_count))
+        for (uint64_t i = 0; i < 3 * (uint64_t)m->vertex_count; i++)
+            if (!isfinite(m->positions[i]))
+                return banyan_fail(err, BANYAN_E_RANGE, "mesh positions[%llu] = %g is not finite",
+                                   (unsigned long long)i, (double)m->positions[i]);
     for (uint32_t i = 0; i < m->instance_count; i++) {
         const banyan_instance *in = &m->instances[i];
         if (in->variant > max_group)

@@ -608,7 +608,8 @@ def ivy_large_flatness(rows):
 # alternating runs of the CLI and prints markdown rows
 # `| figure | value | target | verdict |`, copied in as they are.
 WAITS = (("Levels of detail", "bench_lod_wait.py"), ("Textured writes", "bench_texture_write.py"),
-         ("Start-up", "bench_startup.py"), ("Compact glTF", "bench_compact.py"))
+         ("Start-up", "bench_startup.py"), ("Compact glTF", "bench_compact.py"),
+         ("Avenue on two threads", "bench_avenue_threads.py"))
 
 
 def section_waits():
