@@ -2,7 +2,8 @@
 on): the library written into a folder of its own holds one asset a
 shipped preset, in its generator's catalog (the catalog file lists the
 five), with the preset's description and the gallery's picture as its
-preview; installing adds it to the preferences once, and again is free;
+preview; installing adds it to the preferences once, and again is free; the
+remove operator takes it out again (its folder stays);
 a drop, done as Blender's drag does it (the asset's Empty appended and
 linked where it lands), grows the preset there through the depsgraph
 handler's callback: a keyaki at the drop point, twigs moved to it, roots
@@ -86,8 +87,13 @@ def main():
     with open(os.path.join(home, A.STAMP), "w") as f:
         f.write("an older add-on")
     bt.check(A.install(home)[1] == n and len(libs) == before + 1, "a stale library is written again")
-    A.uninstall(home)
-    bt.check(len(libs) == before, "uninstalled")
+    bt.check(A.installed(home) and bpy.ops.banyan.presets_from_assets.poll(), "the remove operator is offered")
+    bt.check(bpy.ops.banyan.presets_from_assets() == {'FINISHED'} and len(libs) == before and not A.installed(home),
+             "the remove operator takes the library out of the preferences")
+    bt.check(os.path.isfile(os.path.join(home, A.BLEND)), "its folder stays")
+    bt.check(not bpy.ops.banyan.presets_from_assets.poll(), "with nothing to remove the operator is unavailable")
+    A.install(home)
+    bt.check(A.uninstall(home) == 1 and len(libs) == before, "uninstalled")
 
     # drops
     bt.check(A._on_depsgraph in bpy.app.handlers.depsgraph_update_post, "the drop handler is registered")

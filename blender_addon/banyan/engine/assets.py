@@ -179,13 +179,27 @@ def install(directory=None):
     return d, built
 
 
-def uninstall(directory=None):
-    """Takes the library out of the preferences (its folder stays)."""
+def _entries(directory=None):
+    """The preferences' asset libraries that are this library: by name, or
+    by its folder (library_dir(), or `directory`)."""
     d = directory or library_dir(create=False)
+    return [x for x in bpy.context.preferences.filepaths.asset_libraries
+            if x.name == LIBRARY_NAME or (d and os.path.realpath(bpy.path.abspath(x.path)) == os.path.realpath(d))]
+
+
+def installed(directory=None):
+    """Whether the preferences list the library."""
+    return supported() and bool(_entries(directory))
+
+
+def uninstall(directory=None):
+    """Takes the library out of the preferences (its folder stays);
+    returns how many entries went."""
+    gone = _entries(directory)
     libs = bpy.context.preferences.filepaths.asset_libraries
-    for x in list(libs):
-        if x.name == LIBRARY_NAME or (d and os.path.realpath(bpy.path.abspath(x.path)) == os.path.realpath(d)):
-            libs.remove(x)
+    for x in gone:
+        libs.remove(x)
+    return len(gone)
 
 
 # ------------------------------------------------------------------ drops

@@ -6,7 +6,7 @@ import bpy
 
 from ..core.errors import BanyanError
 from ..ui import state
-from .assets import BANYAN_OT_presets_to_assets
+from .assets import BANYAN_OT_presets_from_assets, BANYAN_OT_presets_to_assets
 from .base import BANYAN_OT_preset_save, complete
 from .ivy import MESH_OT_banyan_ivy
 from .keyaki import MESH_OT_banyan_keyaki_avenue, MESH_OT_banyan_keyaki_tree
@@ -22,7 +22,7 @@ GENERATORS = (MESH_OT_banyan_roots, MESH_OT_banyan_keyaki_tree, MESH_OT_banyan_k
 # The tube is a self-test (scripts and tests call it): in no menu, as the preset save dialog.
 OTHERS = (MESH_OT_banyan_tube, BANYAN_OT_preset_save, BANYAN_OT_regenerate, BANYAN_OT_randomize_seed,
           BANYAN_OT_copy_preset, BANYAN_OT_add_wind, BANYAN_OT_add_growth, BANYAN_OT_make_lods,
-          BANYAN_OT_presets_to_assets)
+          BANYAN_OT_presets_to_assets, BANYAN_OT_presets_from_assets)
 
 
 def register():

@@ -1,5 +1,5 @@
 """Preferences > Add-ons > Banyan: the shipped presets in the Asset
-Browser (engine/assets.py does the work)."""
+Browser, added and taken out again (engine/assets.py does the work)."""
 import bpy
 
 from ..engine import assets
@@ -27,4 +27,28 @@ class BANYAN_OT_presets_to_assets(bpy.types.Operator):
             return {'CANCELLED'}
         self.report({'INFO'}, "Banyan: the asset library \"%s\" is %s (%s)" % (
             assets.LIBRARY_NAME, "written" if built else "up to date", d))
+        return {'FINISHED'}
+
+
+class BANYAN_OT_presets_from_assets(bpy.types.Operator):
+    """Take the library "Banyan Presets" out of the Asset Browser (the preferences' asset libraries); its folder
+    stays, so adding it again is quick. Do this before removing the add-on"""
+    bl_idname = "banyan.presets_from_assets"
+    bl_label = "Remove Presets from the Asset Browser"
+    bl_options = {'REGISTER'}
+
+    @classmethod
+    def poll(cls, context):
+        if not assets.supported():
+            cls.poll_message_set("The preset catalog needs Blender 4.2 or later")
+            return False
+        if not assets.installed():
+            cls.poll_message_set("The presets are not in the Asset Browser")
+            return False
+        return True
+
+    def execute(self, context):
+        n = assets.uninstall()
+        self.report({'INFO'}, "Banyan: the asset library \"%s\" is out of the Asset Browser (%d entr%s)" % (
+            assets.LIBRARY_NAME, n, "y" if n == 1 else "ies"))
         return {'FINISHED'}

@@ -16,4 +16,6 @@ class BanyanPreferences(bpy.types.AddonPreferences):
 
     def draw(self, context):
         self.layout.prop(self, "texture_size")
-        self.layout.operator("banyan.presets_to_assets", icon='ASSET_MANAGER')
+        row = self.layout.row()
+        row.operator("banyan.presets_to_assets", icon='ASSET_MANAGER')
+        row.operator("banyan.presets_from_assets", icon='REMOVE')
