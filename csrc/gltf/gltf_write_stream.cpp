@@ -10,6 +10,9 @@
 #include <condition_variable>
 #include <cstring>
 #include <deque>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <mutex>
 #include <system_error>
 
@@ -240,6 +243,73 @@ class Pipe {
     uint64_t written_ = 0, synced_ = 0;
 };
 
+/* n normals from nv, turned to Y up ((x, y, z) -> (x, z, -y)) and
+ * renormalised in double into o; a zero normal becomes +Y. Two at a time
+ * in SSE2 (the same correctly rounded operations, so the same bits). */
+inline void put_normals(const float *nv, uint32_t n, float *o) {
+    uint32_t i = 0;
+#if defined(__SSE2__)
+    for (; i + 2 <= n; i += 2, nv += 6, o += 6) {
+        const __m128d x = _mm_set_pd(nv[3], nv[0]), y = _mm_set_pd(nv[5], nv[2]);
+        const __m128d z = _mm_xor_pd(_mm_set_pd(nv[4], nv[1]), _mm_set1_pd(-0.0)); /* -y, signed zeros too */
+        const __m128d len = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z)));
+        double l[2], qx[2], qy[2], qz[2];
+        _mm_storeu_pd(l, len);
+        _mm_storeu_pd(qx, _mm_div_pd(x, len));
+        _mm_storeu_pd(qy, _mm_div_pd(y, len));
+        _mm_storeu_pd(qz, _mm_div_pd(z, len));
+        for (int k = 0; k < 2; ++k) {
+            float *ok = o + 3 * k;
+            if (l[k] > 0.0) {
+                ok[0] = static_cast<float>(qx[k]);
+                ok[1] = static_cast<float>(qy[k]);
+                ok[2] = static_cast<float>(qz[k]);
+            } else {
+                ok[0] = 0.0f;
+                ok[1] = 1.0f;
+                ok[2] = 0.0f;
+            }
+        }
+    }
+#endif
+    for (; i < n; ++i, nv += 3, o += 3) {
+        double q[3] = {nv[0], nv[2], -static_cast<double>(nv[1])};
+        double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        if (len > 0.0) {
+            for (int k = 0; k < 3; ++k) o[k] = static_cast<float>(q[k] / len);
+        } else {
+            o[0] = 0.0f;
+            o[1] = 1.0f;
+            o[2] = 0.0f;
+        }
+    }
+}
+
+/* n colour components from c, clamped to [0, 1] (NaN to 0) and rounded
+ * to the nearest of 0..255, into u; four at a time in SSE2 (max and min
+ * take their second operand on a NaN, as the scalar compares do). */
+inline void put_colors(const float *c, uint32_t n, uint8_t *u) {
+    uint32_t i = 0;
+#if defined(__SSE2__)
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), k255 = _mm_set1_ps(255.0f),
+                 half = _mm_set1_ps(0.5f);
+    for (; i + 4 <= n; i += 4) {
+        __m128 x = _mm_loadu_ps(c + i);
+        x = _mm_max_ps(x, zero); /* x > 0 ? x : 0 */
+        x = _mm_min_ps(x, one);  /* x < 1 ? x : 1 */
+        const __m128i v = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(x, k255), half));
+        const __m128i b8 = _mm_packus_epi16(_mm_packs_epi32(v, v), _mm_setzero_si128());
+        const int32_t w = _mm_cvtsi128_si32(b8);
+        std::memcpy(u + i, &w, 4);
+    }
+#endif
+    for (; i < n; ++i) {
+        float x = c[i];
+        x = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
+        u[i] = static_cast<uint8_t>(x * 255.0f + 0.5f);
+    }
+}
+
 /* Streams the planned segments into a Pipe, converting straight into its
  * blocks. */
 class BinWriter {
@@ -294,18 +364,7 @@ class BinWriter {
             }
             break;
         case kNormal: /* converted, renormalised in double; a zero normal becomes +Y */
-            for (uint32_t i = 0; i < n; ++i, o += 3) {
-                const float *nv = m->normals + 3 * (b + i);
-                double q[3] = {nv[0], nv[2], -static_cast<double>(nv[1])};
-                double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-                if (len > 0.0) {
-                    for (int k = 0; k < 3; ++k) o[k] = static_cast<float>(q[k] / len);
-                } else {
-                    o[0] = 0.0f;
-                    o[1] = 1.0f;
-                    o[2] = 0.0f;
-                }
-            }
+            put_normals(m->normals + 3 * b, n, o);
             break;
         case kUv: /* glTF's v runs down the image, banyan's (like Blender's) up */
             for (uint32_t i = 0; i < n; ++i, o += 2) {
@@ -354,16 +413,9 @@ class BinWriter {
             }
             break;
         }
-        case kColor: { /* clamped to [0, 1], rounded to the nearest of 0..255 */
-            uint8_t *u = reinterpret_cast<uint8_t *>(o);
-            const float *c = m->colors + 4 * b;
-            for (uint32_t i = 0; i < 4 * n; ++i) {
-                float x = c[i];
-                x = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
-                u[i] = static_cast<uint8_t>(x * 255.0f + 0.5f);
-            }
+        case kColor: /* clamped to [0, 1], rounded to the nearest of 0..255 */
+            put_colors(m->colors + 4 * b, 4 * n, reinterpret_cast<uint8_t *>(o));
             break;
-        }
         case kIndices: { /* rebased to the primitive's first vertex */
             uint32_t *u = reinterpret_cast<uint32_t *>(o);
             for (uint32_t i = 0; i < n; ++i) u[i] = m->indices[b + i] - s.aux;

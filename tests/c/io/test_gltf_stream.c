@@ -14,7 +14,11 @@
  *     those of the written positions;
  *   - tangents computed per primitive (parts that keep to their own
  *     vertices) equal the whole mesh's, bit for bit, and so do those of
- *     primitives that share vertices (computed from the whole mesh).
+ *     primitives that share vertices (computed from the whole mesh);
+ *   - NORMAL and COLOR_0 (converted several at a time) are, bit for bit,
+ *     the one-at-a-time rule: (x, z, -y) renormalised in double, a zero
+ *     normal +Y, signed zeros kept; colours clamped to [0, 1] and rounded
+ *     to 0..255, on an odd vertex count (the tail too).
  * Ends with "N passed, N failed"; exits 1 on any failure.
  */
 #include "banyan.h"
@@ -235,6 +239,68 @@ static void check_tangents(const char *label, const glb *g, const glb *whole, co
     CHECK(same, "%s: tangents differ from the whole mesh's", label);
 }
 
+/* NORMAL and COLOR_0 of a small mesh with the conversions' edge cases
+ * against the rule computed here one value at a time. */
+static void check_conversions(const banyan_mesh *like) {
+    enum { NV = 7 };
+    float pos[3 * NV], nrm[3 * NV] = {0, 0, 1,  0, 0, 0,  1e-30f, 0, 0,  3, 4, 12,  -0.0f, -0.0f, -1,
+                                      0, -1, 0,  0.6f, -0.8f, 0};
+    float col[4 * NV] = {-1, 0, 1, 2,  0.5f, 0.998f, 1.0f / 255, 0.5f / 255,  127.5f / 255, 0.25f, -0.0f, 1,
+                         1e-9f, 0.999999f, 3, 0.75f,  0.1f, 0.2f, 0.3f, 0.4f,  0.6f, 0.7f, 0.8f, 0.9f,
+                         0.0019607f, 0.00196079f, 0.5019608f, 0.9980392f};
+    uint32_t idx[3 * (NV - 2)];
+    for (int v = 0; v < NV; ++v) pos[3 * v] = (float)v, pos[3 * v + 1] = (float)(v % 2), pos[3 * v + 2] = 0;
+    for (int t = 0; t < NV - 2; ++t) idx[3 * t] = (uint32_t)t, idx[3 * t + 1] = (uint32_t)t + 1, idx[3 * t + 2] = (uint32_t)t + 2;
+    banyan_mesh c;
+    memset(&c, 0, sizeof c);
+    c.vertex_count = NV;
+    c.index_count = 3 * (NV - 2);
+    c.positions = pos, c.normals = nrm, c.colors = col, c.indices = idx;
+    c.material_count = 1, c.materials = like->materials;
+    banyan_gltf_options o;
+    banyan_gltf_options_init(&o);
+    o.textures = 0;
+    banyan_error err = {0, ""};
+    const banyan_mesh *cm = &c;
+    const char *path = out_path("test_gltf_stream_conversions.glb");
+    CHECK(banyan_gltf_write_ex(path, &cm, NULL, 1, &o, &err) == BANYAN_OK, "conversions: %s", err.message);
+    glb g = {NULL, 0, NULL, NULL, 0};
+    if (glb_read(path, &g) != 0) {
+        CHECK(0, "conversions: cannot read %s", path);
+        return;
+    }
+    const cJSON *prim = cJSON_GetArrayItem(primitives(&g, 0), 0);
+    size_t n = 0;
+    int w = 0;
+    const float *got = accessor_floats(&g, attribute(prim, "NORMAL"), &n, &w);
+    int same = got && n == NV && w == 3;
+    for (int v = 0; same && v < NV; ++v) {
+        double q[3] = {nrm[3 * v], nrm[3 * v + 2], -(double)nrm[3 * v + 1]};
+        double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        float want[3] = {0.0f, 1.0f, 0.0f};
+        if (len > 0.0)
+            for (int k = 0; k < 3; ++k) want[k] = (float)(q[k] / len);
+        same = memcmp(want, got + 3 * v, sizeof want) == 0;
+        CHECK(same, "conversions: NORMAL %d is (%g, %g, %g), not (%g, %g, %g)", v, got[3 * v], got[3 * v + 1],
+              got[3 * v + 2], want[0], want[1], want[2]);
+    }
+    CHECK(got && n == NV && w == 3, "conversions: NORMAL is %zu x %d floats", n, w);
+    const cJSON *a = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(g.json, "accessors"), attribute(prim, "COLOR_0"));
+    const cJSON *bv = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(g.json, "bufferViews"),
+                                         (int)num(a, "bufferView", -1));
+    size_t off = (size_t)num(bv, "byteOffset", 0) + (size_t)num(a, "byteOffset", 0);
+    int ok = a && bv && num(a, "componentType", 0) == 5121 && num(a, "count", 0) == NV && off + 4 * NV <= g.bin_len;
+    CHECK(ok, "conversions: COLOR_0 is not %d unsigned-byte RGBA values", NV);
+    for (int i = 0; ok && i < 4 * NV; ++i) {
+        float x = col[i];
+        x = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
+        unsigned want = (unsigned)(uint8_t)(x * 255.0f + 0.5f), have = g.bin[off + (size_t)i];
+        ok = want == have;
+        CHECK(ok, "conversions: COLOR_0 component %d of %g is %u, not %u", i, col[i], have, want);
+    }
+    glb_free(&g);
+}
+
 int main(int argc, char **argv) {
     if (argc != 2) {
         fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
@@ -247,6 +313,7 @@ int main(int argc, char **argv) {
     banyan_gltf_options_init(&o);
     o.texture_size = 64;
     check_containers(m, &o);
+    check_conversions(m);
 
     /* Parts that keep to their own vertices: tangents per primitive. */
     banyan_error err = {0, ""};
