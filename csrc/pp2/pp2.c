@@ -106,8 +106,9 @@ typedef struct grid {
     uint32_t *items;
 } grid;
 
+/* Cells are counted within +-2^40 (a query further out is scanned, not looked up). */
 static void cell_of(const grid *G, const float *p, int64_t c[3]) {
-    for (int k = 0; k < 3; ++k) c[k] = (int64_t)floor(((double)p[k] - G->lo[k]) / G->h);
+    for (int k = 0; k < 3; ++k) c[k] = (int64_t)fmin(fmax(floor(((double)p[k] - G->lo[k]) / G->h), -0x1p40), 0x1p40);
 }
 
 static uint32_t cell_hash(const grid *G, int64_t x, int64_t y, int64_t z) {
@@ -189,9 +190,22 @@ static uint32_t grid_nearest(const grid *G, const float *P, const float *qf) {
         double t = fabs(((double)qf[k] - G->lo[k]) / G->h);
         if (t > out) out = t;
     }
-    const int64_t reach = G->reach + (int64_t)ceil(out);
     double best = INFINITY;
     uint32_t bi = NONE;
+    if (out > (double)G->reach) { /* far outside the vertices' box: every one of them */
+        for (uint32_t j = 0; j < G->start[G->mask + 1]; ++j) {
+            uint32_t v = G->items[j];
+            const float *p = P + 3 * (size_t)v;
+            double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+            double d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 < best || (d2 == best && v < bi)) {
+                best = d2;
+                bi = v;
+            }
+        }
+        return bi;
+    }
+    const int64_t reach = 2 * (int64_t)G->reach + 2;
     for (int64_t r = 0; r <= reach; ++r) {
         for (int64_t dx = -r; dx <= r; ++dx)
             for (int64_t dy = -r; dy <= r; ++dy) {

@@ -17,6 +17,7 @@
  *     tree (part group);
  *   - each X axis is a unit vector (8-bit), and every vertex lies within
  *     its element's extent along it;
+ *   - the UVs are exact at half precision (an engine's 16-bit UVs);
  *   - the bytes are the same when written again, and a .glb written
  *     without the option has no extra UV set.
  * Then bad input: NaN and out-of-range options, a mesh without vertices,
@@ -222,6 +223,7 @@ static void check_plant(const char *name, banyan_mesh *m, int engine_uvs) {
     /* every vertex of the .glb to its texel */
     uint8_t *owned = calloc(E, 1);
     uint64_t vertices = 0, own = 0, merged = 0, off_centre = 0, outside = 0, unmerged_mismatch = 0, past_extent = 0;
+    uint64_t not_half = 0;
     char set[16];
     snprintf(set, sizeof set, "TEXCOORD_%d", engine_uvs ? 5 : 1);
     CHECK(glb_load(glb_path, &g), "%s: cannot read the .glb", glb_path);
@@ -252,6 +254,9 @@ static void check_plant(const char *name, banyan_mesh *m, int engine_uvs) {
                     continue;
                 }
                 off_centre += (float)u != (float)((col + 0.5) / t.w) || (float)v != (float)((row + 0.5) / t.h);
+                /* an engine's 16-bit UVs keep it exactly */
+                not_half += exr_half_to_float(exr_half_from_float(uv[2 * i])) != uv[2 * i] ||
+                            exr_half_to_float(exr_half_from_float(uv[2 * i + 1])) != uv[2 * i + 1];
                 /* glTF (x, z, -y) -> Unreal (x, -y, z) * 100: (gx, gz, gy) * 100 */
                 const double want[3] = {100.0 * pv[0][i], 100.0 * pv[2][i], 100.0 * pv[1][i]};
                 double got[3];
@@ -291,6 +296,7 @@ static void check_plant(const char *name, banyan_mesh *m, int engine_uvs) {
           (unsigned long long)vertices, m->vertex_count);
     CHECK(outside == 0, "%s: %llu vertices' UVs outside the elements", name, (unsigned long long)outside);
     CHECK(off_centre == 0, "%s: %llu UVs not at a texel's centre", name, (unsigned long long)off_centre);
+    CHECK(not_half == 0, "%s: %llu UVs change at half precision", name, (unsigned long long)not_half);
     CHECK(unmerged_mismatch == 0, "%s: %llu vertices whose texel is neither their pivot nor a merged branch", name,
           (unsigned long long)unmerged_mismatch);
     CHECK(own > 0 && unowned == 0, "%s: %u elements without vertices of their own pivot (%llu own vertices)", name,
