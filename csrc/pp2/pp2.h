@@ -17,7 +17,7 @@ typedef struct pp2_table {
     uint32_t elements;    /* texels in use */
     uint32_t merged;      /* elements merged into their ancestor on the last level kept */
     uint32_t width, height;
-    uint32_t depth;       /* the levels kept, 1 .. 4 */
+    uint32_t depth;       /* levels in use, root to deepest element, 1 .. 4 */
     float *pivot;         /* 3 per element, the mesh's frame (metres) */
     float *axis;          /* 3 per element, unit, the mesh's frame */
     float *extent;        /* per element, metres along axis */

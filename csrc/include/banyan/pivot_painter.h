@@ -64,7 +64,8 @@ typedef struct banyan_pivot_painter_info {
     uint32_t elements;  /* texels in use */
     uint32_t merged;    /* elements merged into their ancestor on the last level kept */
     uint32_t width, height;
-    uint32_t depth;     /* the levels kept: 1 (roots only) .. 4 */
+    uint32_t depth;     /* levels in use, root to deepest element: 1 (roots only) .. 4 (merged elements are on
+                           the deepest) */
 } banyan_pivot_painter_info;
 
 /* Writes <prefix>_PivotPos_Index.exr and <prefix>_XVector_Extent.png
