@@ -9,7 +9,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 
 # Debian packages: compiler and build tools, the C libraries (libdeflate
-# for the PNG textures; Embree for mesh hosts; OpenVDB with the Boost headers it includes, TBB and Imath for
+# for the PNG textures; tinyexr's header for the Pivot Painter 2 EXR; Embree for mesh hosts; OpenVDB with the Boost headers it includes, TBB and Imath for
 # the fused roots surface), node for
 # the glTF validator, Blender for the add-on tests, Mesa EGL for the
 # geometry-shader twin, clang for fuzzing, valgrind for the failure paths,
@@ -17,7 +17,7 @@ cd "$here"
 # for the add-on's tests in a real window (progress bar, Esc), Slurm and
 # munge for the batch runner's farm tests (a one-node cluster), mingw-w64
 # and wine64 for the Windows cross-build and its tests (tools/win/).
-packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libdeflate-dev libembree-dev
+packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libdeflate-dev libtinyexr-dev libembree-dev
           libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev libsleef-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth slurm-wlm munge mingw-w64 wine64)

@@ -263,7 +263,8 @@ class Job:
                         ("engine_uvs", C.c_int32), ("sync", C.c_int32),  # sync 0: no fsync, as the CLI
                         ("image_dir", C.c_char_p),  # NULL: textures embedded, as the CLI
                         ("compact", C.c_int32),  # 0: plain meshes, as the CLI
-                        ("texture_cache", C.c_int32), ("texture_cache_dir", C.c_char_p)]
+                        ("texture_cache", C.c_int32), ("texture_cache_dir", C.c_char_p),
+                        ("pivot_painter", C.c_int32)]  # 0: no Pivot Painter UV set, as the CLI
 
         class Node(C.Structure):  # banyan_gltf_node
             _fields_ = [("mesh", C.POINTER(self.S.Mesh)), ("name", C.c_char_p), ("lod_count", C.c_uint32),

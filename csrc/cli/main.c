@@ -2,7 +2,7 @@
  *   banyan <generator> [--preset FILE] [--seed N] [--set key=value ...]
  *                      [--host FILE.glb[@x,y,z] ...] [--threads N]
  *                      [-o out.glb|out.gltf|out.usda|out.usd] [--textures on|off] [--texture-size N] [--stats]
- *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--fsync] [--compact]
+ *                      [--lod 0.5,0.15,billboard] [--engine-uvs] [--pivot-painter] [--fsync] [--compact]
  *   banyan <generator> --list      parameters with units, ranges, defaults
  * Presets and --set go through the library's parameter tables, so the CLI,
  * presets and the Blender add-on accept exactly the same keys. Hosts are
@@ -36,7 +36,7 @@ static int usage(FILE *f) {
     fprintf(f, "usage: banyan <command> [--preset FILE] [--seed N] [--set key=value ...] [--threads N]\n"
                "                        [--host FILE.glb[@x,y,z] ...] [-o out.glb|out.gltf|out.usda] [--stats]\n"
                "                        [--textures on|off] [--texture-size N] [--texture-cache on|off|DIR]\n"
-               "                        [--lod LIST] [--engine-uvs] [--fsync] [--compact]\n"
+               "                        [--lod LIST] [--engine-uvs] [--pivot-painter] [--fsync] [--compact]\n"
                "       banyan <command> --list\n\n"
                "--host adds a glTF binary mesh as a host (roots, ivy; repeatable), moved by x,y,z metres\n"
                "when given; the preset's hosts stay, the default host is used only when there are none.\n"
@@ -49,6 +49,10 @@ static int usage(FILE *f) {
                "shares of its triangles, optionally ending in billboard cards (3 vertical, 1 on top).\n"
                "--engine-uvs also writes the wind data as TEXCOORD_1..4 for engines that read only UV sets\n"
                "(docs/game-engines.md).\n"
+               "--pivot-painter also writes Unreal's Pivot Painter 2 textures beside the glTF file,\n"
+               "<out>_PivotPos_Index.exr and <out>_XVector_Extent.png (<out>: -o without its extension;\n"
+               "<out>_<i>_... for each of several meshes), and the UV set that indexes them (TEXCOORD_1,\n"
+               "or TEXCOORD_5 with --engine-uvs); the meshes need their wind attributes (docs/game-engines.md).\n"
                "--compact writes quantized, meshopt-compressed meshes (KHR_mesh_quantization,\n"
                "EXT_meshopt_compression, both required): smaller files that fewer importers read\n"
                "(three.js with its MeshoptDecoder; not Blender's; docs/gltf.md).\n"
@@ -242,6 +246,7 @@ typedef struct cli_args {
     const char **sets, **host_args; /* argc entries each */
     int n_sets, n_host_args;
     const char *threads_text; /* --threads as given: also the threads field of the ivy, keyaki and avenue params */
+    int pivot_painter;        /* --pivot-painter: the textures beside -o (gltf_opt.pivot_painter writes the UV set) */
 } cli_args;
 
 /* The command line after the command: every flag into A and job. 0, or 1
@@ -303,6 +308,7 @@ static int parse_args(int argc, char **argv, const cli_command *cmd, cli_job *jo
             }
         }
         else if (!strcmp(a, "--engine-uvs")) A->gltf_opt.engine_uvs = 1;
+        else if (!strcmp(a, "--pivot-painter")) A->gltf_opt.pivot_painter = A->pivot_painter = 1;
         else if (!strcmp(a, "--fsync")) A->gltf_opt.sync = 1;
         else if (!strcmp(a, "--compact")) A->gltf_opt.compact = 1;
         else if (!strcmp(a, "--list")) A->list = 1;
@@ -478,6 +484,43 @@ static int write_output(const cli_command *cmd, const char *out_path, banyan_mes
     return 0;
 }
 
+/* --pivot-painter: each mesh's two textures beside out_path (its name
+ * without the extension, then _<i> when there are several meshes), with
+ * --stats' "pivot_painter" per mesh. Returns 0, or 1 (reported). */
+static int write_pivot_painter(const cli_command *cmd, const char *out_path, banyan_mesh **meshes, uint32_t count,
+                               int sync, cli_stats *st, banyan_error *err) {
+    const char *dot = strrchr(out_path, '.');
+    const size_t stem = dot ? (size_t)(dot - out_path) : strlen(out_path);
+    char *prefix = malloc(stem + 16);
+    if (!prefix) return 1;
+    char json[4096];
+    size_t used = 0;
+    json[used++] = '[';
+    for (uint32_t i = 0; i < count; i++) {
+        memcpy(prefix, out_path, stem);
+        if (count > 1) snprintf(prefix + stem, 16, "_%u", i);
+        else prefix[stem] = '\0';
+        banyan_pivot_painter_options o = {0.0, sync};
+        banyan_pivot_painter_info info;
+        banyan_status s = banyan_pivot_painter_write(prefix, meshes[i], &o, &info, err);
+        if (s) {
+            fprintf(stderr, "banyan %s: --pivot-painter %s: %s: %s\n", cmd->name, prefix, banyan_status_name(s),
+                    err->message);
+            free(prefix);
+            return 1;
+        }
+        if (used < sizeof json - 200)
+            used += (size_t)snprintf(json + used, sizeof json - used,
+                                     "%s{\"elements\": %u, \"merged\": %u, \"width\": %u, \"height\": %u, "
+                                     "\"depth\": %u}",
+                                     i ? ", " : "", info.elements, info.merged, info.width, info.height, info.depth);
+    }
+    snprintf(json + used, sizeof json - used, "]");
+    cli_stat_raw(st, "pivot_painter", json);
+    free(prefix);
+    return 0;
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) return usage(stderr);
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) return usage(stdout);
@@ -495,7 +538,7 @@ int main(int argc, char **argv) {
     }
 
     static cli_job job; /* large (hosts); one per process */
-    cli_args A = {NULL, NULL, 0, 0, {0, 0, {0}}, {0}, NULL, NULL, 0, 0, NULL};
+    cli_args A = {NULL, NULL, 0, 0, {0, 0, {0}}, {0}, NULL, NULL, 0, 0, NULL, 0};
     banyan_gltf_options_init(&A.gltf_opt);
     A.sets = calloc((size_t)argc, sizeof *A.sets);
     A.host_args = calloc((size_t)argc, sizeof *A.host_args);
@@ -524,6 +567,13 @@ int main(int argc, char **argv) {
     }
     /* A bad -o is reported now, not after a long generation: a bad
      * command line (exit 2). */
+    if (A.pivot_painter && (!out_path || cli_is_usd(out_path) || lod.count)) {
+        fprintf(stderr, "banyan %s: --pivot-painter needs -o out.glb or out.gltf and no --lod (the textures go "
+                        "beside the glTF file and index the finest mesh's vertices)\n", cmd->name);
+        free(sets);
+        free(host_args);
+        return 2;
+    }
     if (out_path && !out_path_ok(cmd, out_path)) {
         free(sets);
         free(host_args);
@@ -590,6 +640,7 @@ int main(int argc, char **argv) {
     if (out_path) {
         if (write_output(cmd, out_path, meshes, names, count, &lod, job.threads, &gltf_opt, &budget, &st, &err))
             goto out;
+        if (A.pivot_painter && write_pivot_painter(cmd, out_path, meshes, count, gltf_opt.sync, &st, &err)) goto out;
         t2 = now_ms();
     }
     if (stats) {

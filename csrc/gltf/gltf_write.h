@@ -67,7 +67,7 @@ banyan_status check_node(const banyan_gltf_node &n, uint32_t i, bool ex, banyan_
  * first (the JSON needs their offsets) and their bytes streamed to the file
  * afterwards, straight from the mesh arrays or converted through a fixed
  * scratch block, so no copy of the buffer is ever held in memory. */
-enum SegKind { kRaw, kZero, kPosition, kNormal, kUv, kTangent, kColor, kWindPivot, kEngineUv, kIndices };
+enum SegKind { kRaw, kZero, kPosition, kNormal, kUv, kTangent, kColor, kWindPivot, kEngineUv, kPivotPainterUv, kIndices };
 
 struct Layout;
 
@@ -190,6 +190,7 @@ struct Layout {
     const float *birth = nullptr;
     bool pivot = false;      /* the three pivot components present */
     bool engine_uvs = false; /* all seven present and the option on: TEXCOORD_1 .. 4 */
+    const float *pp2 = nullptr; /* opt->pivot_painter: each vertex's texel centre (u, v), the last TEXCOORD_n */
 };
 
 
@@ -213,6 +214,7 @@ struct Job {
     bool tangent_ranges = false; /* each primitive's tangents from its own triangles (tangent_ranges_exact) */
     int material_base = 0;
     std::vector<int> image_texture; /* per m->images: the glTF texture of its PNG, -1 unused */
+    std::vector<float> pp2_uv;      /* opt->pivot_painter: L.pp2's floats */
 };
 
 

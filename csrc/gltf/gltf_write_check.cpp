@@ -357,6 +357,8 @@ banyan_status check_options(const banyan_gltf_options &o, banyan_error *err) {
                            "opt->texture_size = %d must be a power of two in [64, 8192]", n);
     if (o.engine_uvs != 0 && o.engine_uvs != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = %d must be 0 (off) or 1 (on)", o.engine_uvs);
+    if (o.pivot_painter != 0 && o.pivot_painter != 1)
+        return banyan_fail(err, BANYAN_E_RANGE, "opt->pivot_painter = %d must be 0 (off) or 1 (on)", o.pivot_painter);
     if (o.texture_cache != 0 && o.texture_cache != 1)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->texture_cache = %d must be 0 (off) or 1 (on)", o.texture_cache);
     if (o.sync != 0 && o.sync != 1)

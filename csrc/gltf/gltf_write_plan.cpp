@@ -115,7 +115,7 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
     if (m->uvs) {
         v = b.add_view(seg(kUv, 2), AB);
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
-    } else if (L.engine_uvs) { /* TEXCOORD_n must count up from 0 */
+    } else if (L.engine_uvs || L.pp2) { /* TEXCOORD_n must count up from 0 */
         v = b.add_view(seg(kZero, 2), AB);
         attrs["TEXCOORD_0"] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
     }
@@ -164,14 +164,19 @@ std::map<std::string, int> add_vertex_range(Builder &b, const banyan_mesh *m, co
             attrs["TEXCOORD_" + std::to_string(set)] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
         }
     }
+
+    if (L.pp2) { /* Pivot Painter 2: the vertex's texel centre, after every other set */
+        v = b.add_view(seg(kPivotPainterUv, 2), AB);
+        attrs["TEXCOORD_" + std::to_string(L.engine_uvs ? 5 : 1)] = b.add_accessor(v, F, TINYGLTF_TYPE_VEC2, count);
+    }
     return attrs;
 }
 
 uint64_t vertex_range_bytes(const banyan_mesh *m, const Layout &L, uint64_t count, bool with_colors, bool tangents) {
     /* in 4-byte words: a colour is 4 bytes */
-    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs || L.engine_uvs ? 2 : 0) +
+    uint64_t floats = 3 + (m->normals ? 3 : 0) + (m->uvs || L.engine_uvs || L.pp2 ? 2 : 0) +
                       (m->colors && with_colors ? 1 : 0) + (tangents ? 4 : 0) + m->attribute_count +
-                      (L.engine_uvs ? 8 : 0);
+                      (L.engine_uvs ? 8 : 0) + (L.pp2 ? 2 : 0);
     return floats * 4 * count;
 }
 

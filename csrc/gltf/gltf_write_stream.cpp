@@ -413,6 +413,9 @@ class BinWriter {
             }
             break;
         }
+        case kPivotPainterUv: /* already in glTF's uv (v down), as Unreal reads it */
+            std::memcpy(o, s.L->pp2 + 2 * b, static_cast<size_t>(n) * 2 * sizeof(float));
+            break;
         case kColor: /* clamped to [0, 1], rounded to the nearest of 0..255 */
             put_colors(m->colors + 4 * b, 4 * n, reinterpret_cast<uint8_t *>(o));
             break;

@@ -48,6 +48,7 @@
 #include "base/error.h"
 #include "gltf/gltf_compact.h"
 #include "gltf/gltf_write.h"
+#include "pp2/pp2.h"
 #include "textures/tex_budget.h"
 #include "textures/tex_cache.h"
 
@@ -107,6 +108,7 @@ struct Write {
     banyan_status check_call();
     banyan_status check_nodes();
     void plan_jobs();
+    banyan_status plan_pivot_painter();
     banyan_status plan_images();
     banyan_status plan_buffer();
     banyan_status build_model();
@@ -176,6 +178,36 @@ void Write::plan_jobs() {
         }
     }
     tex_views = external ? 0 : 2 * textures.size();
+}
+
+/* opt->pivot_painter: each node's mesh gets its Pivot Painter 2 texel
+ * centres (pp2.h), the UV set the textures of banyan_pivot_painter_write
+ * are read through. Levels of detail are refused: their vertices are not
+ * the mesh's, and their elements would not match its textures. */
+banyan_status Write::plan_pivot_painter() {
+    if (!o.pivot_painter) return BANYAN_OK;
+    size_t j = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        std::string what = ex ? "meshes[" + std::to_string(i) + "]" : "nodes[" + std::to_string(i) + "].mesh";
+        if (nodes[i].lod_count > 0)
+            return banyan_fail(err, BANYAN_E_INVALID_ARG,
+                               "nodes[%u].lod_count = %u: opt->pivot_painter = 1 takes no levels of detail", i,
+                               nodes[i].lod_count);
+        Job &J = jobs[j];
+        j += 1 + nodes[i].lod_count;
+        pp2_table t;
+        if (banyan_status s = pp2_build(J.m, what.c_str(), &t, err)) return s;
+        try {
+            J.pp2_uv.resize(2 * static_cast<size_t>(t.vertex_count));
+        } catch (const std::bad_alloc &) {
+            pp2_free(&t);
+            return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the Pivot Painter UV set");
+        }
+        for (uint32_t v = 0; v < t.vertex_count; ++v) pp2_texel_uv(&t, t.texel[v], &J.pp2_uv[2 * static_cast<size_t>(v)]);
+        pp2_free(&t);
+        J.L.pp2 = J.pp2_uv.data();
+    }
+    return BANYAN_OK;
 }
 
 /* The meshes' own images (a billboard's picture), one PNG each that a
@@ -466,6 +498,7 @@ banyan_status write_nodes_impl(const char *path, const banyan_gltf_node *nodes, 
     if (banyan_status sb = prog_budget_from(&W.g, budget, err)) return sb;
     W.deadline = prog_deadline_of(&W.g);
     W.plan_jobs();
+    if (banyan_status s = W.plan_pivot_painter()) return s;
     if (banyan_status s = W.plan_images()) return s;
     if (banyan_status s = W.plan_buffer()) return s;
     if (prog_at(&W.g, 0.0)) return W.over();

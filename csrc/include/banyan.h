@@ -47,7 +47,7 @@ extern "C" {
 
 /* Bumped whenever a public struct's layout or a call's meaning changes.
  * The Blender add-on refuses to load a library with another version. */
-#define BANYAN_ABI_VERSION 21
+#define BANYAN_ABI_VERSION 22
 
 /* ---------------------------------------------------------------- status */
 
@@ -562,6 +562,10 @@ typedef struct banyan_gltf_options {
                                 environment's BANYAN_TEXTURE_CACHE=off turns it off too */
     const char *texture_cache_dir; /* NULL or "" (default): BANYAN_TEXTURE_CACHE when it names a folder, else
                                       $XDG_CACHE_HOME/banyan/textures, else ~/.cache/banyan/textures */
+    int32_t pivot_painter;   /* 0/1: also write each vertex's Pivot Painter 2 texel centre (banyan/pivot_painter.h)
+                                as one more UV set, TEXCOORD_1, or TEXCOORD_5 with engine_uvs; a mesh without the
+                                wind attributes is refused, and so are levels of detail (docs/gltf.md "Pivot
+                                Painter 2"). Default 0 */
 } banyan_gltf_options;
 
 BANYAN_API void banyan_gltf_options_init(banyan_gltf_options *opt);
@@ -669,5 +673,7 @@ BANYAN_API banyan_status banyan_tube_generate(const double *points, const double
 #include "banyan/generators.h"
 /* USD export of the same nodes the glTF writer takes. */
 #include "banyan/usd.h"
+/* Unreal's Pivot Painter 2 textures. */
+#include "banyan/pivot_painter.h"
 
 #endif /* BANYAN_H */

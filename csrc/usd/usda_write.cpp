@@ -552,6 +552,9 @@ banyan_status check_call(const char *path, const banyan_gltf_node *nodes, uint32
     if (banyan_status s = gltfw::check_options(o, err)) return s;
     if (o.engine_uvs)
         return banyan_fail(err, BANYAN_E_RANGE, "opt->engine_uvs = 1 is for glTF only; USD carries the wind as primvars");
+    if (o.pivot_painter)
+        return banyan_fail(err, BANYAN_E_RANGE,
+                           "opt->pivot_painter = 1 is for glTF only; USD carries the wind as primvars");
     if (o.compact) return banyan_fail(err, BANYAN_E_RANGE, "opt->compact = 1 is for glTF only");
     if (count == 0) return banyan_fail(err, BANYAN_E_INVALID_ARG, "count is 0; nothing to write");
     if (count > gltfw::kMaxNodes)

@@ -171,6 +171,24 @@ expect 0 '"lod_triangles": [' -- "$bin" keyaki --set levels=8 --texture-size 64 
 expect 0 '"lod_triangles": [' -- "$bin" avenue --set variants=2 --set tree.levels=4 --texture-size 64 --lod 0.3,billboard \
   --stats -o "$out/cli_avenue_variants_lod.glb"
 expect 0 '"command": "ivy"' -- "$bin" ivy --set steps=40 --texture-size 64 --engine-uvs --stats -o "$out/cli_ivy_engine_uvs.glb"
+# --pivot-painter: the two textures beside -o, counted by --stats; refused
+# without a glTF -o, with --lod, and for a mesh without wind attributes
+# (no texture left).
+rm -f "$out"/cli_keyaki_pp2_*
+expect 0 '"pivot_painter": [{"elements": ' -- "$bin" keyaki --set levels=8 --textures off --pivot-painter --stats \
+  -o "$out/cli_keyaki_pp2.glb"
+for f in PivotPos_Index.exr XVector_Extent.png; do
+  if [ -s "$out/cli_keyaki_pp2_$f" ]; then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: no cli_keyaki_pp2_$f"; fi
+done
+expect 2 "--pivot-painter needs -o out.glb or out.gltf and no --lod" -- "$bin" keyaki --pivot-painter
+expect 2 "--pivot-painter needs -o out.glb or out.gltf and no --lod" -- "$bin" keyaki --pivot-painter -o "$out/x.usda"
+expect 2 "--pivot-painter needs -o out.glb or out.gltf and no --lod" -- "$bin" keyaki --pivot-painter --lod 0.5 \
+  -o "$out/x.glb"
+rm -f "$out"/cli_keyaki_pp2_nowind*
+expect 1 "has no wind_pivot_x attribute" -- "$bin" keyaki --set levels=6 --set wind=0 --textures off --pivot-painter \
+  -o "$out/cli_keyaki_pp2_nowind.glb"
+if [ -e "$out/cli_keyaki_pp2_nowind_PivotPos_Index.exr" ]; then fail=$((fail+1)); echo "FAIL: a texture without wind"
+else pass=$((pass+1)); fi
 # --fsync only syncs before the rename: the same bytes as without.
 expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --fsync --stats -o "$out/cli_keyaki_fsync.glb"
 expect 0 '"command": "keyaki"' -- "$bin" keyaki --texture-size 64 --stats -o "$out/cli_keyaki_nofsync.glb"

@@ -12,8 +12,8 @@
 # Sources: Debian 12's source packages (apt-get source with a private
 # deb-src list; the machine's own apt lists are not touched), checked
 # against the .dsc's SHA-256; SLEEF from crates.io (see sleef() below);
-# header-only libraries (Boost, stb) from the Debian packages installed
-# for the Linux build.
+# header-only libraries (Boost, stb, tinyexr) from the Debian packages
+# installed for the Linux build.
 #   JOBS   parallel jobs (default 2)
 #   BANYAN_WIN_DEPS_PREFIX  build into this prefix instead (development)
 #   BANYAN_WIN_DEPS_STEPS   only these steps, e.g. "cjson sleef" (development)
@@ -260,6 +260,13 @@ openvdb() {
     "-DCMAKE_CXX_FLAGS=-isystem $prefix/boost-include -Wa,-mbig-obj"
 }
 
+# tinyexr: header-only (its implementation is compiled into banyan's
+# csrc/pp2/exr_half.cpp), from the installed libtinyexr-dev.
+tinyexr() {
+  mkdir -p "$prefix/include"
+  cp /usr/include/tinyexr.h "$prefix/include/"
+}
+
 # The mingw runtime DLLs the libraries import, beside them.
 runtime() {
   local d
@@ -275,6 +282,7 @@ step cjson cjson
 step libdeflate libdeflate
 step meshoptimizer meshoptimizer
 step tinygltf tinygltf
+step tinyexr tinyexr
 step sleef sleef
 step runtime runtime
 step openvdb openvdb

@@ -4,7 +4,7 @@ import ctypes as C
 
 NAME_MAX = 32        # BANYAN_NAME_MAX
 MAX_HOSTS = 256      # BANYAN_MAX_HOSTS
-ABI_VERSION = 21     # BANYAN_ABI_VERSION this binding was written for
+ABI_VERSION = 22     # BANYAN_ABI_VERSION this binding was written for
 
 
 class Error(C.Structure):

@@ -3,7 +3,7 @@
  * uses, kept as thin wrappers: each calls the function named beside it.
  * ABI 19's names (of the calls that took the generators' one entry
  * shape, docs/api.md "Params") and ABI 20's names of the segment
- * reference (banyan_segment_lines) are removed with ABI 22.
+ * reference (banyan_segment_lines) are removed with ABI 23.
  *
  * A call that kept its name with new arguments cannot be kept beside it:
  *   ABI 20: banyan_roots_generate, banyan_ivy_generate, banyan_ivy_create,
