@@ -16,9 +16,10 @@ cd "$here"
 # chromium for the viewer test, patchelf for the add-on zips' $ORIGIN, Xvfb
 # for the add-on's tests in a real window (progress bar, Esc), Slurm and
 # munge for the batch runner's farm tests (a one-node cluster), mingw-w64
-# and wine64 for the Windows cross-build and its tests (tools/win/).
+# and wine64 for the Windows cross-build and its tests (tools/win/). SLEEF
+# is not among them: its source is in third_party/sleef.
 packages=(build-essential cmake ninja-build pkg-config locales libtinygltf-dev libstb-dev libcjson-dev libdeflate-dev libtinyexr-dev libembree-dev
-          libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev libsleef-dev
+          libopenvdb-dev libboost-dev libtbb-dev libimath-dev libmeshoptimizer-dev
           blender python3-numpy libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 glslang-tools clang libclang-rt-dev
           valgrind chromium patchelf xvfb xauth slurm-wlm munge mingw-w64 wine64)
 missing=()

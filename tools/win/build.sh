@@ -20,8 +20,7 @@ vdb=ON
 [ -f "$prefix/.done-openvdb" ] || vdb=OFF
 # shellcheck disable=SC2086
 cmake -S . -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$here/tools/win/mingw64.cmake" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_PREFIX_PATH="$prefix" -DSLEEF_INCLUDE_DIR="$prefix/include" -DSLEEF_LIBRARY="$prefix/lib/libsleef.a" \
-      -DBANYAN_OPENVDB=$vdb -DOPENVDB_INCLUDE_DIR="$prefix/include" \
+      -DCMAKE_PREFIX_PATH="$prefix" -DBANYAN_OPENVDB=$vdb -DOPENVDB_INCLUDE_DIR="$prefix/include" \
       "-DCMAKE_CXX_FLAGS=-isystem $prefix/boost-include" ${BANYAN_CMAKE_ARGS:-}
 cmake --build "$build" -j "${JOBS:-2}"
 

@@ -11,12 +11,13 @@
 #
 # Sources: Debian 12's source packages (apt-get source with a private
 # deb-src list; the machine's own apt lists are not touched), checked
-# against the .dsc's SHA-256; SLEEF from crates.io (see sleef() below);
-# header-only libraries (Boost, stb, tinyexr) from the Debian packages
-# installed for the Linux build.
+# against the .dsc's SHA-256; header-only libraries (Boost, stb, tinyexr)
+# from the Debian packages installed for the Linux build. SLEEF is not
+# among them: its source is in the repository (third_party/sleef),
+# compiled by banyan's own CMake on Linux and Windows alike.
 #   JOBS   parallel jobs (default 2)
 #   BANYAN_WIN_DEPS_PREFIX  build into this prefix instead (development)
-#   BANYAN_WIN_DEPS_STEPS   only these steps, e.g. "cjson sleef" (development)
+#   BANYAN_WIN_DEPS_STEPS   only these steps, e.g. "cjson libdeflate" (development)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 cache=${BANYAN_WIN_CACHE:-$HOME/.cache/banyan/win}
@@ -37,10 +38,8 @@ pins=(
 # parses; tinygltf's fix its build and includes). Embree's and OpenVDB's
 # Debian tarballs answer 404 here: their upstream source as it is.
 debian_patched=(onetbb cjson libdeflate meshoptimizer tinygltf)
-sleef_crate=sleef-sys
-sleef_crate_version=0.1.2
 
-key=$( (cat "$0" "$here/mingw64.cmake" "$here"/sleef_purec.c; ls "$here"/patches/* 2>/dev/null | sort | xargs cat) |
+key=$( (cat "$0" "$here/mingw64.cmake"; ls "$here"/patches/* 2>/dev/null | sort | xargs cat) |
       sha256sum | cut -c1-12)
 prefix=${BANYAN_WIN_DEPS_PREFIX:-$cache/deps-$key}
 src=$cache/src
@@ -197,55 +196,6 @@ tinygltf() {
   return 0
 }
 
-# SLEEF: Debian's sleef source package (3.5.1, what the Linux build links)
-# cannot be downloaded here (its files answer 404), and the only SLEEF
-# source a registry serves is the crates.io crate sleef-sys 0.1.2, which
-# holds SLEEF 3.3. That version has no pure-C scalar functions, so
-# sleef_purec.c gives dmath.h's Sleef_*d1_*purec names over 3.3's scalar
-# ones. They are NOT bit-identical to 3.5.1's (about 1 % of sin inputs
-# differ in the last bit): the Windows build's meshes differ from Linux's
-# until a SLEEF 3.5.1 source is reachable (docs/addon.md).
-sleef() {
-  local crate_dir=$work/sleef-crate
-  if [ ! -d "$crate_dir/sleef" ]; then
-    local proj=$work/sleef-fetch
-    mkdir -p "$proj/src"
-    printf '[package]\nname = "fetch"\nversion = "0.0.0"\nedition = "2021"\n[dependencies]\n%s = "=%s"\n' \
-      "$sleef_crate" "$sleef_crate_version" > "$proj/Cargo.toml"
-    : > "$proj/src/lib.rs"
-    cargo fetch -q --manifest-path "$proj/Cargo.toml" >&2
-    local crate
-    crate=$(ls "${CARGO_HOME:-$HOME/.cargo}"/registry/cache/*/"$sleef_crate-$sleef_crate_version.crate" | head -1)
-    mkdir -p "$crate_dir"
-    tar xzf "$crate" -C "$crate_dir" --strip-components=1
-  fi
-  # Its generators run on the build machine: a native build first.
-  cmake -S "$crate_dir/sleef" -B "$work/b-sleef-native" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF \
-        -DBUILD_DFT=OFF -DBUILD_GNUABI_LIBS=OFF -DBUILD_TESTS=OFF >&2
-  cmake --build "$work/b-sleef-native" -j "$jobs" >&2
-  # The library alone (its helper arraymap.c includes <Windows.h>, which
-  # a case-sensitive file system does not find).
-  cmake -S "$crate_dir/sleef" -B "$work/b-sleef" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$here/mingw64.cmake" \
-        -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF -DBUILD_DFT=OFF -DBUILD_GNUABI_LIBS=OFF -DBUILD_TESTS=OFF \
-        -DNATIVE_BUILD_DIR="$work/b-sleef-native" >&2
-  cmake --build "$work/b-sleef" -j "$jobs" --target sleef >&2
-  mkdir -p "$prefix/lib" "$prefix/include"
-  cp "$work/b-sleef/lib/libsleef.a" "$prefix/lib/"
-  cp "$work/b-sleef/include/sleef.h" "$prefix/include/"
-  # The purec names over the scalar functions, added to libsleef.a.
-  x86_64-w64-mingw32-gcc-posix -O2 -I"$prefix/include" -c "$here/sleef_purec.c" -o "$work/sleef_purec.o"
-  x86_64-w64-mingw32-gcc-ar-posix rs "$prefix/lib/libsleef.a" "$work/sleef_purec.o"
-  cat "$here/sleef_purec.h" >> "$prefix/include/sleef.h"
-  # The same for Linux, for a Linux build to compare the Windows one with
-  # (tools/win/compare_presets.sh): prefix/linux-sleef/{include,lib}.
-  mkdir -p "$prefix/linux-sleef/lib" "$prefix/linux-sleef/include"
-  cp "$work/b-sleef-native/lib/libsleef.a" "$prefix/linux-sleef/lib/"
-  cp "$work/b-sleef-native/include/sleef.h" "$prefix/linux-sleef/include/"
-  cc -O2 -fPIC -I"$prefix/linux-sleef/include" -c "$here/sleef_purec.c" -o "$work/sleef_purec_linux.o"
-  ar rs "$prefix/linux-sleef/lib/libsleef.a" "$work/sleef_purec_linux.o"
-  cat "$here/sleef_purec.h" >> "$prefix/linux-sleef/include/sleef.h"
-}
-
 # OpenVDB 10.0.1, the core library alone: no file I/O codecs (Blosc,
 # zlib; the fused roots surface never reads or writes .vdb files), no
 # delayed loading (Boost.Iostreams), OpenVDB's own half type; Boost's
@@ -283,7 +233,6 @@ step libdeflate libdeflate
 step meshoptimizer meshoptimizer
 step tinygltf tinygltf
 step tinyexr tinyexr
-step sleef sleef
 step runtime runtime
 step openvdb openvdb
 echo "$prefix"
