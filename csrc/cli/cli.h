@@ -23,6 +23,9 @@ typedef struct cli_job {
     /* A "\r<command> 42 %" line on stderr when it is a terminal, else
      * NULL; run() hands it to the library call (or calls it itself). */
     const banyan_progress *progress;
+    /* --stats: run() adds the generator's statistics (cli_stat_*); without
+     * it, run() leaves out the ones that cost time of their own. */
+    int stats;
 } cli_job;
 
 /* The host set a command grows on: job->host_set, or a set of the job's
@@ -38,7 +41,13 @@ typedef struct cli_stats {
      * (an ivy that could not grow): main prints it and exits with
      * CLI_EXIT_WARNING. */
     char warning[512];
+    /* Milliseconds run() spent on statistics after the library call
+     * (timed apart from the generation: "time_ms"."stats"). */
+    double stats_ms;
 } cli_stats;
+
+/* Milliseconds on the process's clock (statistics timed apart). */
+double cli_now_ms(void);
 
 /* --threads range: the avenue's threads field (banyan_avenue_params),
  * which the library checks again. */

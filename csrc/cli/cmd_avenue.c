@@ -15,6 +15,49 @@
 
 static void init(void *p) { banyan_avenue_params_init((banyan_avenue_params *)p); }
 
+/* Over the trees shown, the figures --stats prints. */
+typedef struct tree_figures {
+    double tips, width, ratio, tmin, tmax, wmin, wmax;
+} tree_figures;
+
+/* The trees' figures: an instanced avenue's tree i is its instance's
+ * variant, grown from tree `variant`'s params (heading aside) at the
+ * mesh's origin and drawn at the instance's scale, its skeleton's
+ * statistics grown once per variant; an avenue's tree i is the parts of
+ * group i, standing at its position. */
+static banyan_status tree_stats(const banyan_mesh *a, const banyan_keyaki_params *trees, uint32_t n, tree_figures *f,
+                                banyan_error *err) {
+    const int instanced = a->instance_count == n;
+    banyan_keyaki_stats *by = calloc(n ? n : 1, sizeof *by);
+    double *reach = calloc(n ? n : 1, sizeof *reach);
+    unsigned char *have = calloc(n ? n : 1, 1);
+    banyan_status s = by && reach && have ? BANYAN_OK : BANYAN_E_NOMEM;
+    *f = (tree_figures){0, 0, 0, 1e300, 0, 1e300, 0};
+    for (uint32_t i = 0; !s && i < n; i++) {
+        uint32_t k = instanced ? a->instances[i].variant : i;
+        if (k >= n) k = 0; /* (a variant is one of the trees) */
+        if (!have[k]) {
+            if ((s = banyan_keyaki_skeleton_stats(&trees[k], &by[k], err))) break;
+            double h;
+            cli_tree_reach(a, k, instanced ? a->origin : trees[i].position, &h, &reach[k]);
+            have[k] = 1;
+        }
+        const banyan_keyaki_stats *st = &by[k];
+        double w = instanced ? reach[k] * a->instances[i].scale : reach[k];
+        f->tips += st->tip_count;
+        f->width += w;
+        f->ratio += st->mean_bifurcation_ratio;
+        if (st->tip_count < f->tmin) f->tmin = st->tip_count;
+        if (st->tip_count > f->tmax) f->tmax = st->tip_count;
+        if (w < f->wmin) f->wmin = w;
+        if (w > f->wmax) f->wmax = w;
+    }
+    free(by);
+    free(reach);
+    free(have);
+    return s;
+}
+
 static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***meshes, char ***names,
                          uint32_t *count, cli_stats *stats, banyan_error *err) {
     const banyan_avenue_params *p = params;
@@ -29,43 +72,23 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         goto fail;
     }
     if ((s = banyan_avenue_generate(p, NULL, 0, &m[0], job->progress, err))) goto fail;
-    if ((s = banyan_avenue_layout(p, NULL, 0, trees, n, &n, err))) {
+    const double t0 = cli_now_ms();
+    tree_figures f = {0, 0, 0, 0, 0, 0, 0};
+    if (job->stats && ((s = banyan_avenue_layout(p, NULL, 0, trees, n, &n, err)) ||
+                       (s = tree_stats(m[0], trees, n, &f, err)))) {
         banyan_mesh_free(m[0]);
         goto fail;
     }
-    /* Over the trees shown: an instanced avenue's tree i is its instance's
-     * variant, grown from tree `variant`'s params (heading aside) at the
-     * mesh's origin and drawn at the instance's scale; an avenue's tree i
-     * is the parts of group i, standing at its position. */
-    const banyan_mesh *a = m[0];
-    const int instanced = a->instance_count == n;
-    double tips = 0, width = 0, ratio = 0, tmin = 1e300, tmax = 0, wmin = 1e300, wmax = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        banyan_keyaki_stats st;
-        uint32_t k = instanced ? a->instances[i].variant : i;
-        if ((s = banyan_keyaki_skeleton_stats(&trees[k], &st, err))) {
-            banyan_mesh_free(m[0]);
-            goto fail;
-        }
-        double h, w;
-        cli_tree_reach(a, k, instanced ? a->origin : trees[i].position, &h, &w);
-        if (instanced) w *= a->instances[i].scale;
-        tips += st.tip_count;
-        width += w;
-        ratio += st.mean_bifurcation_ratio;
-        if (st.tip_count < tmin) tmin = st.tip_count;
-        if (st.tip_count > tmax) tmax = st.tip_count;
-        if (w < wmin) wmin = w;
-        if (w > wmax) wmax = w;
-    }
+    stats->stats_ms = cli_now_ms() - t0;
     free(trees);
     nm[0] = malloc(16);
     if (nm[0]) strcpy(nm[0], "avenue");
     *meshes = m;
     *names = nm;
     *count = 1;
+    const banyan_mesh *a = m[0];
     cli_stat_num(stats, "trees", n);
-    cli_stat_num(stats, "parts", m[0]->part_count);
+    cli_stat_num(stats, "parts", a->part_count);
     if (a->instance_count > 0) { /* variants: distinct trees, drawn instance_count times */
         uint32_t variants = 0;
         for (uint32_t q = 0; q < a->part_count; q++)
@@ -73,13 +96,15 @@ static banyan_status run(const cli_job *job, const void *params, banyan_mesh ***
         cli_stat_num(stats, "variants", variants);
         cli_stat_num(stats, "instances", a->instance_count);
     }
-    cli_stat_num(stats, "tips_mean", tips / n);
-    cli_stat_num(stats, "tips_min", tmin);
-    cli_stat_num(stats, "tips_max", tmax);
-    cli_stat_num(stats, "crown_width_mean_m", width / n);
-    cli_stat_num(stats, "crown_width_min_m", wmin);
-    cli_stat_num(stats, "crown_width_max_m", wmax);
-    cli_stat_num(stats, "mean_bifurcation_ratio", ratio / n);
+    if (job->stats) {
+        cli_stat_num(stats, "tips_mean", f.tips / n);
+        cli_stat_num(stats, "tips_min", f.tmin);
+        cli_stat_num(stats, "tips_max", f.tmax);
+        cli_stat_num(stats, "crown_width_mean_m", f.width / n);
+        cli_stat_num(stats, "crown_width_min_m", f.wmin);
+        cli_stat_num(stats, "crown_width_max_m", f.wmax);
+        cli_stat_num(stats, "mean_bifurcation_ratio", f.ratio / n);
+    }
     return BANYAN_OK;
 fail:
     free(m);

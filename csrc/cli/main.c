@@ -23,7 +23,7 @@
 #include "base/numparse.h"
 #include "base/platform.h"
 
-static double now_ms(void) { return plat_clock() * 1e3; }
+double cli_now_ms(void) { return plat_clock() * 1e3; }
 
 /* The progress line: "\r<command>  42 %" on stderr (a terminal). */
 static int32_t show_progress(void *user, double done) {
@@ -625,11 +625,13 @@ int main(int argc, char **argv) {
     cli_stats st;
     st.len = 0;
     st.warning[0] = '\0';
+    st.stats_ms = 0;
+    job.stats = stats;
     banyan_progress progress = {show_progress, (void *)cmd->name};
     if (isatty(STDERR_FILENO)) job.progress = &progress;
-    double t0 = now_ms();
+    double t0 = cli_now_ms();
     banyan_status s = cmd->run(&job, params, &meshes, &names, &count, &st, &err);
-    double t1 = now_ms();
+    double t1 = cli_now_ms();
     if (job.progress) fprintf(stderr, "\r%-14s\r", ""); /* the line cleared */
     if (s) {
         fprintf(stderr, "banyan %s: %s: %s\n", cmd->name, banyan_status_name(s), err.message);
@@ -641,7 +643,7 @@ int main(int argc, char **argv) {
         if (write_output(cmd, out_path, meshes, names, count, &lod, job.threads, &gltf_opt, &budget, &st, &err))
             goto out;
         if (A.pivot_painter && write_pivot_painter(cmd, out_path, meshes, count, gltf_opt.sync, &st, &err)) goto out;
-        t2 = now_ms();
+        t2 = cli_now_ms();
     }
     if (stats) {
         uint64_t verts = 0, tris = 0;
@@ -650,8 +652,9 @@ int main(int argc, char **argv) {
             tris += meshes[i]->index_count / 3;
         }
         printf("{\"command\": \"%s\", \"meshes\": %u, \"vertices\": %" PRIu64 ", \"triangles\": %" PRIu64
-               ", \"time_ms\": {\"generate\": %.3f, \"write\": %.3f}%s%.*s}\n",
-               cmd->name, count, verts, tris, t1 - t0, t2 - t1, st.len ? ", " : "", (int)st.len, st.buf);
+               ", \"time_ms\": {\"generate\": %.3f, \"stats\": %.3f, \"write\": %.3f}%s%.*s}\n",
+               cmd->name, count, verts, tris, t1 - t0 - st.stats_ms, st.stats_ms, t2 - t1, st.len ? ", " : "",
+               (int)st.len, st.buf);
     }
     rc = 0;
     if (st.warning[0]) {

@@ -196,55 +196,35 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     return o;
 }
 
-banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
-                                     banyan_mesh **out, const banyan_progress *progress, banyan_error *err) {
-    BANYAN_CHECK_OUT(out, err);
-    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
-    if (p->variants > 0) /* instanced: variants.c */
-        return avenue_variants_generate(p, path_xyz, path_point_count, out, progress, err);
-    banyan_status s;
-    if ((s = banyan_check_int(err, "threads", p->threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
-    if ((s = prog_check(progress, err))) return s;
-    uint32_t n = 0;
-    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
-    if (n == 0) return banyan_fail(err, BANYAN_E_RANGE, "the path is too short for any tree");
+banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int threads, int max_vertices, prog *g,
+                           const char *what, const char *lower, banyan_mesh **out, banyan_error *err) {
+    *out = NULL;
+    banyan_status s = BANYAN_OK;
     avenue_job J;
     memset(&J, 0, sizeof J);
-    prog g;
-    prog_init(&g, progress);
-    prog_budget(&g, p->max_seconds, p->max_memory_mb);
-    J.prog = &g;
+    J.prog = g;
     atomic_store(&J.cancel, 0);
-    banyan_keyaki_params *trees = malloc(sizeof *trees * n);
     J.counts = calloc(n, sizeof *J.counts);
     J.voff = calloc(5 * (size_t)n, sizeof *J.voff);
     J.status = calloc(n, sizeof *J.status);
     J.errs = calloc(n, sizeof *J.errs);
-    if (!trees || !J.counts || !J.voff || !J.status || !J.errs) {
-        s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u trees", n);
+    if (!J.counts || !J.voff || !J.status || !J.errs) {
+        s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u %s", n, what);
         goto done;
     }
     J.ioff = J.voff + n;
     J.soff = J.ioff + n;
     J.poff = J.soff + n;
     J.eoff = J.poff + n;
-    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
-    /* The trees grow in a frame picked from their feet (base/frame.h). */
-    v3 lo, hi, O;
-    frame_empty(&lo, &hi);
-    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
-    O = frame_pick(lo, hi);
-    if ((s = frame_check(lo, hi, O, path_xyz ? "the path's trees" : "the trees from start to end", err))) goto done;
-    for (uint32_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
     J.trees = trees;
     J.n = n;
-    int t = pool_threads(p->threads, BANYAN_AVENUE_MAX_THREADS);
+    const int wind = trees[0].wind;
+    int t = pool_threads(threads, BANYAN_AVENUE_MAX_THREADS);
     if ((uint32_t)t > n) t = (int)n;
 
     /* Pass 1: exact sizes of every tree, before any mesh memory. */
     J.phase = 0;
-    J.max_vertices = (uint64_t)p->max_vertices;
+    J.max_vertices = (uint64_t)max_vertices;
     atomic_store(&J.counted, 0ull);
     atomic_store(&J.stop, 0);
     J.base = 0.0;
@@ -264,10 +244,9 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
                 goto done;
             }
         s = banyan_fail(err, BANYAN_E_LIMIT,
-                        "the avenue's %u trees need more than max_vertices = %d vertices (at least %llu counted "
-                        "before stopping); raise max_vertices or lower tree.leaf_density, tree.sides_max, tree.levels or "
-                        "the tree count",
-                        n, p->max_vertices, (unsigned long long)atomic_load(&J.counted));
+                        "the avenue's %u %s need more than max_vertices = %d vertices (at least %llu counted "
+                        "before stopping); raise max_vertices or lower %s",
+                        n, what, max_vertices, (unsigned long long)atomic_load(&J.counted), lower);
         goto done;
     }
     uint64_t nv = 0, ni = 0, ns = 0, ne = 0, np = 0, vmax = 1;
@@ -288,24 +267,24 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
         ne += J.counts[i].skel_edges;
         np += J.counts[i].parts;
     }
-    if (nv > (uint64_t)p->max_vertices || ni > 0xFFFFFFF0u || ns > 0xFFFFFFF0u || ne > 0xFFFFFFF0u) {
+    if (nv > (uint64_t)max_vertices || ni > 0xFFFFFFF0u || ns > 0xFFFFFFF0u || ne > 0xFFFFFFF0u) {
         s = banyan_fail(err, BANYAN_E_LIMIT,
-                        "the avenue's %u trees need %llu vertices, more than max_vertices = %d; raise max_vertices or "
-                        "lower tree.leaf_density, tree.sides_max, tree.levels or the tree count",
-                        n, (unsigned long long)nv, p->max_vertices);
+                        "the avenue's %u %s need %llu vertices, more than max_vertices = %d; raise max_vertices or "
+                        "lower %s",
+                        n, what, (unsigned long long)nv, max_vertices, lower);
         goto done;
     }
-    /* Pass 2: every tree built, then copied into its slice in parallel. */
-    if (prog_reserve(&g, keyaki_mesh_bytes(nv, ni, p->tree.wind))) {
-        s = prog_fail(&g, err, "avenue");
+    /* Pass 2: every tree built straight into its slice, in parallel. */
+    if (prog_reserve(g, keyaki_mesh_bytes(nv, ni, wind))) {
+        s = prog_fail(g, err, "avenue");
         goto done;
     }
-    J.out = alloc_merged(nv, ni, ns, ne, np, p->tree.wind);
+    J.out = alloc_merged(nv, ni, ns, ne, np, wind);
     if (!J.out) {
         s = banyan_fail(err, BANYAN_E_NOMEM, "out of memory for the avenue's %llu vertices", (unsigned long long)nv);
         goto done;
     }
-    double extra = AVENUE_SCRATCH_SHARE * keyaki_mesh_bytes(nv, ni, p->tree.wind) / (AVENUE_SCRATCH_PER_VERTEX * (double)vmax);
+    double extra = AVENUE_SCRATCH_SHARE * keyaki_mesh_bytes(nv, ni, wind) / (AVENUE_SCRATCH_PER_VERTEX * (double)vmax);
     if (t - 1 > extra) t = 1 + (int)extra;
     J.phase = 1;
     J.base = AVENUE_COUNT_SHARE;
@@ -321,20 +300,57 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
             goto done;
         }
     }
-    if (prog_finish(J.prog)) {
-        s = prog_fail(J.prog, err, "avenue");
-        goto done;
-    }
-    frame_set(J.out, O);
     *out = J.out;
     J.out = NULL;
-    banyan_error_clear(err);
 done:
     banyan_mesh_free(J.out);
-    free(trees);
     free(J.counts);
     free(J.voff);
     free(J.status);
     free(J.errs);
+    return s;
+}
+
+banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
+                                     banyan_mesh **out, const banyan_progress *progress, banyan_error *err) {
+    BANYAN_CHECK_OUT(out, err);
+    if (!p) return banyan_fail(err, BANYAN_E_INVALID_ARG, "params is NULL");
+    if (p->variants > 0) /* instanced: variants.c */
+        return avenue_variants_generate(p, path_xyz, path_point_count, out, progress, err);
+    banyan_status s;
+    if ((s = banyan_check_int(err, "threads", p->threads, 0, BANYAN_AVENUE_MAX_THREADS))) return s;
+    if ((s = prog_check(progress, err))) return s;
+    uint32_t n = 0;
+    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, NULL, 0, &n, err))) return s;
+    if (n == 0) return banyan_fail(err, BANYAN_E_RANGE, "the path is too short for any tree");
+    prog g;
+    prog_init(&g, progress);
+    prog_budget(&g, p->max_seconds, p->max_memory_mb);
+    banyan_mesh *m = NULL;
+    banyan_keyaki_params *trees = malloc(sizeof *trees * n);
+    if (!trees) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u trees", n);
+    if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
+    /* The trees grow in a frame picked from their feet (base/frame.h). */
+    v3 lo, hi, O;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
+    O = frame_pick(lo, hi);
+    if ((s = frame_check(lo, hi, O, path_xyz ? "the path's trees" : "the trees from start to end", err))) goto done;
+    for (uint32_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
+    if ((s = avenue_build(trees, n, p->threads, p->max_vertices, &g, "trees",
+                          "tree.leaf_density, tree.sides_max, tree.levels or the tree count", &m, err)))
+        goto done;
+    if (prog_finish(&g)) {
+        s = prog_fail(&g, err, "avenue");
+        goto done;
+    }
+    frame_set(m, O);
+    *out = m;
+    m = NULL;
+    banyan_error_clear(err);
+done:
+    banyan_mesh_free(m);
+    free(trees);
     return s;
 }
