@@ -104,6 +104,48 @@ inline void finish_tangent(const float *nv, const double *s2, float *out) {
     out[3] = static_cast<float>(w);
 }
 
+#if defined(__SSE2__)
+/* finish_tangent for two vertices at once (normals nv, nv + 3; sums s2,
+ * s2 + 6; out, out + 4): the same correctly rounded operations lane by
+ * lane, so the same bits. False, with nothing written, when either takes
+ * a rare branch (a zero normal, no usable gradient): finish_tangent then
+ * does both. */
+inline bool finish_tangent2(const float *nv, const double *s2, float *out) {
+    const __m128d nx0 = _mm_set_pd(nv[3], nv[0]), ny0 = _mm_set_pd(nv[4], nv[1]), nz0 = _mm_set_pd(nv[5], nv[2]);
+    const __m128d nl = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(nx0, nx0), _mm_mul_pd(ny0, ny0)),
+                                              _mm_mul_pd(nz0, nz0)));
+    const __m128d zero = _mm_setzero_pd();
+    if (_mm_movemask_pd(_mm_cmpgt_pd(nl, zero)) != 3) return false;
+    const __m128d nx = _mm_div_pd(nx0, nl), ny = _mm_div_pd(ny0, nl), nz = _mm_div_pd(nz0, nl);
+    const __m128d tx = _mm_set_pd(s2[6], s2[0]), ty = _mm_set_pd(s2[8], s2[2]), tz = _mm_set_pd(s2[10], s2[4]);
+    const __m128d bx = _mm_set_pd(s2[7], s2[1]), by = _mm_set_pd(s2[9], s2[3]), bz = _mm_set_pd(s2[11], s2[5]);
+    const __m128d d = _mm_add_pd(_mm_add_pd(_mm_mul_pd(tx, nx), _mm_mul_pd(ty, ny)), _mm_mul_pd(tz, nz));
+    __m128d qx = _mm_sub_pd(tx, _mm_mul_pd(d, nx)), qy = _mm_sub_pd(ty, _mm_mul_pd(d, ny)),
+            qz = _mm_sub_pd(tz, _mm_mul_pd(d, nz));
+    const __m128d ql = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(qx, qx), _mm_mul_pd(qy, qy)), _mm_mul_pd(qz, qz)));
+    const __m128d tl = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(tx, tx), _mm_mul_pd(ty, ty)), _mm_mul_pd(tz, tz)));
+    const __m128d bound = _mm_mul_pd(_mm_set1_pd(1e-12), _mm_add_pd(_mm_set1_pd(1.0), tl));
+    if (_mm_movemask_pd(_mm_cmpgt_pd(ql, bound)) != 3) return false;
+    qx = _mm_div_pd(qx, ql), qy = _mm_div_pd(qy, ql), qz = _mm_div_pd(qz, ql);
+    const __m128d cx = _mm_sub_pd(_mm_mul_pd(ny, qz), _mm_mul_pd(nz, qy));
+    const __m128d cy = _mm_sub_pd(_mm_mul_pd(nz, qx), _mm_mul_pd(nx, qz));
+    const __m128d cz = _mm_sub_pd(_mm_mul_pd(nx, qy), _mm_mul_pd(ny, qx));
+    const __m128d dot = _mm_add_pd(_mm_add_pd(_mm_mul_pd(cx, bx), _mm_mul_pd(cy, by)), _mm_mul_pd(cz, bz));
+    const int neg = _mm_movemask_pd(_mm_cmplt_pd(dot, zero));
+    double X[2], Y[2], Z[2];
+    _mm_storeu_pd(X, qx);
+    _mm_storeu_pd(Y, qy);
+    _mm_storeu_pd(Z, qz);
+    for (int k = 0; k < 2; ++k) {
+        out[4 * k] = static_cast<float>(X[k]);
+        out[4 * k + 1] = static_cast<float>(Y[k]);
+        out[4 * k + 2] = static_cast<float>(Z[k]);
+        out[4 * k + 3] = (neg >> k) & 1 ? -1.0f : 1.0f;
+    }
+    return true;
+}
+#endif
+
 } // namespace
 
 /* The vertices go in chunks of 2^kChunkShift: each chunk's triangles (any
@@ -162,7 +204,19 @@ std::vector<float> vertex_tangents(const banyan_mesh *m, uint32_t vbase, uint32_
 #endif
             }
         }
-        for (uint32_t v = 0; v < n; ++v)
+        uint32_t v = 0;
+#if defined(__SSE2__)
+        for (; v + 2 <= n; v += 2) {
+            const float *nv = m->normals + 3 * (static_cast<size_t>(vbase) + lo + v);
+            const double *s2 = &acc[6 * static_cast<size_t>(v)];
+            float *o = &out[4 * (static_cast<size_t>(lo) + v)];
+            if (!finish_tangent2(nv, s2, o)) {
+                finish_tangent(nv, s2, o);
+                finish_tangent(nv + 3, s2 + 6, o + 4);
+            }
+        }
+#endif
+        for (; v < n; ++v)
             finish_tangent(m->normals + 3 * (static_cast<size_t>(vbase) + lo + v), &acc[6 * static_cast<size_t>(v)],
                            &out[4 * (static_cast<size_t>(lo) + v)]);
     }
