@@ -35,7 +35,6 @@ static banyan_status tree_stats(const banyan_mesh *a, const banyan_keyaki_params
     *f = (tree_figures){0, 0, 0, 1e300, 0, 1e300, 0};
     for (uint32_t i = 0; !s && i < n; i++) {
         uint32_t k = instanced ? a->instances[i].variant : i;
-        if (k >= n) k = 0; /* (a variant is one of the trees) */
         if (!have[k]) {
             if ((s = banyan_keyaki_skeleton_stats(&trees[k], &by[k], err))) break;
             double h;

@@ -196,8 +196,16 @@ static banyan_mesh *alloc_merged(uint64_t nv, uint64_t ni, uint64_t ns, uint64_t
     return o;
 }
 
-banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int threads, int max_vertices, prog *g,
-                           const char *what, const char *lower, banyan_mesh **out, banyan_error *err) {
+banyan_status avenue_frame(const banyan_keyaki_params *trees, uint32_t n, int on_path, v3 *O, banyan_error *err) {
+    v3 lo, hi;
+    frame_empty(&lo, &hi);
+    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
+    *O = frame_pick(lo, hi);
+    return frame_check(lo, hi, *O, on_path ? "the path's trees" : "the trees from start to end", err);
+}
+
+banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int threads, int max_vertices, v3 origin,
+                           prog *g, const char *what, const char *lower, banyan_mesh **out, banyan_error *err) {
     *out = NULL;
     banyan_status s = BANYAN_OK;
     avenue_job J;
@@ -300,6 +308,11 @@ banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int th
             goto done;
         }
     }
+    if (prog_finish(J.prog)) {
+        s = prog_fail(J.prog, err, "avenue");
+        goto done;
+    }
+    frame_set(J.out, origin);
     *out = J.out;
     J.out = NULL;
 done:
@@ -331,21 +344,13 @@ banyan_status banyan_avenue_generate(const banyan_avenue_params *p, const double
     if (!trees) return banyan_fail(err, BANYAN_E_NOMEM, "out of memory for %u trees", n);
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
     /* The trees grow in a frame picked from their feet (base/frame.h). */
-    v3 lo, hi, O;
-    frame_empty(&lo, &hi);
-    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
-    O = frame_pick(lo, hi);
-    if ((s = frame_check(lo, hi, O, path_xyz ? "the path's trees" : "the trees from start to end", err))) goto done;
+    v3 O;
+    if ((s = avenue_frame(trees, n, path_xyz != NULL, &O, err))) goto done;
     for (uint32_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) trees[i].position[k] -= (&O.x)[k];
-    if ((s = avenue_build(trees, n, p->threads, p->max_vertices, &g, "trees",
+    if ((s = avenue_build(trees, n, p->threads, p->max_vertices, O, &g, "trees",
                           "tree.leaf_density, tree.sides_max, tree.levels or the tree count", &m, err)))
         goto done;
-    if (prog_finish(&g)) {
-        s = prog_fail(&g, err, "avenue");
-        goto done;
-    }
-    frame_set(m, O);
     *out = m;
     m = NULL;
     banyan_error_clear(err);

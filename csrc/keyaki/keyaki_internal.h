@@ -344,14 +344,19 @@ banyan_status keyaki_count(const banyan_keyaki_params *p, keyaki_skeleton *sk, k
 
 /* banyan_avenue_generate with p->variants > 0 (variants.c): the layout's
  * first trees grown once each at the origin, shown as instances. */
-/* Builds trees[0..n) (positions in the avenue's frame; tree i is group i,
- * tree_id i) into one mesh: a pass sizes every tree exactly, then each is
- * built straight into its slice of the merged arrays, on `threads`
- * threads (0: all cores), the same bytes on any count. `what` names the
- * trees and `lower` what lowers their size in the max_vertices message.
- * Progress and budget through g (its finish left to the caller). */
-banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int threads, int max_vertices, prog *g,
-                           const char *what, const char *lower, banyan_mesh **out, banyan_error *err);
+/* The avenue's frame (base/frame.h) picked from the trees' feet into *O;
+ * on_path: the trees stand on a polyline (named so in the error). */
+banyan_status avenue_frame(const banyan_keyaki_params *trees, uint32_t n, int on_path, v3 *O, banyan_error *err);
+
+/* Builds trees[0..n) (positions in the avenue's frame, whose origin is
+ * `origin`; tree i is group i, tree_id i) into one mesh: a pass sizes
+ * every tree exactly, then each is built straight into its slice of the
+ * merged arrays, on `threads` threads (0: all cores), the same bytes on
+ * any count. `what` names the trees and `lower` what lowers their size
+ * in the max_vertices message. Progress and budget through g, finished
+ * here. */
+banyan_status avenue_build(const banyan_keyaki_params *trees, uint32_t n, int threads, int max_vertices, v3 origin,
+                           prog *g, const char *what, const char *lower, banyan_mesh **out, banyan_error *err);
 
 banyan_status avenue_variants_generate(const banyan_avenue_params *p, const double *path_xyz, uint32_t path_point_count,
                                        banyan_mesh **out, const banyan_progress *progress, banyan_error *err);

@@ -25,7 +25,6 @@
 #include <stdlib.h>
 
 #include "base/error.h"
-#include "base/frame.h"
 #include "base/progress.h"
 #include "keyaki_internal.h"
 
@@ -56,12 +55,8 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
         goto done;
     }
     if ((s = banyan_avenue_layout(p, path_xyz, path_point_count, trees, n, &n, err))) goto done;
-    /* The unique avenue's frame, from the trees' feet (avenue.c). */
-    v3 lo, hi, O;
-    frame_empty(&lo, &hi);
-    for (uint32_t i = 0; i < n; i++) frame_add(&lo, &hi, v3_load(trees[i].position));
-    O = frame_pick(lo, hi);
-    if ((s = frame_check(lo, hi, O, path_xyz ? "the path's trees" : "the trees from start to end", err))) goto done;
+    v3 O; /* the unique avenue's frame, from the trees' feet */
+    if ((s = avenue_frame(trees, n, path_xyz != NULL, &O, err))) goto done;
     for (uint32_t k = 0; k < nv; k++) {
         vars[k] = trees[k];
         vars[k].position[0] = vars[k].position[1] = vars[k].position[2] = 0.0;
@@ -80,17 +75,12 @@ banyan_status avenue_variants_generate(const banyan_avenue_params *p, const doub
         /* Tree i's size (scale_jitter) on whichever variant shows it. */
         inst[i].scale = (float)(trees[i].unit / trees[k].unit);
     }
-    if ((s = avenue_build(vars, nv, p->threads, p->max_vertices, &g, "variants",
+    if ((s = avenue_build(vars, nv, p->threads, p->max_vertices, O, &g, "variants",
                           "variants, tree.leaf_density, tree.sides_max or tree.levels", &merged, err)))
         goto done;
     merged->instances = inst;
     merged->instance_count = n;
     inst = NULL;
-    if (prog_finish(&g)) {
-        s = prog_fail(&g, err, "avenue");
-        goto done;
-    }
-    frame_set(merged, O);
     *out = merged;
     merged = NULL;
     banyan_error_clear(err);

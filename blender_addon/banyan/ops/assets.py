@@ -5,6 +5,14 @@ import bpy
 from ..engine import assets
 
 
+def _supported(cls):
+    """The operators' shared poll: the catalog needs Blender 4.2 or later."""
+    if not assets.supported():
+        cls.poll_message_set("The preset catalog needs Blender 4.2 or later")
+        return False
+    return True
+
+
 class BANYAN_OT_presets_to_assets(bpy.types.Operator):
     """Add the shipped presets to the Asset Browser as the library "Banyan Presets", one catalog per generator:
     drag one into the 3D view to grow it there (roots and ivy around the selected objects)"""
@@ -14,10 +22,7 @@ class BANYAN_OT_presets_to_assets(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if not assets.supported():
-            cls.poll_message_set("The preset catalog needs Blender 4.2 or later")
-            return False
-        return True
+        return _supported(cls)
 
     def execute(self, context):
         try:
@@ -39,8 +44,7 @@ class BANYAN_OT_presets_from_assets(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        if not assets.supported():
-            cls.poll_message_set("The preset catalog needs Blender 4.2 or later")
+        if not _supported(cls):
             return False
         if not assets.installed():
             cls.poll_message_set("The presets are not in the Asset Browser")
