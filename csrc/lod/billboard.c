@@ -286,6 +286,10 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
         if (pt->group != g) continue;
         const bb_mat *bm = &pa->mat[pt->material];
         const banyan_image *tex = m->uvs ? bm->tex : NULL;
+        /* A single-sided material shows its front faces only, as the
+         * engine draws it: counter-clockwise seen from the viewer is a
+         * negative area here (picture y runs down). */
+        const int cull = !m->materials[pt->material].double_sided;
         /* The part's vertices in picture space, once (a vertex has several
          * corners): proj holds x, y and depth of each. */
         for (uint32_t v = 0; v < pt->vertex_count; v++) {
@@ -305,6 +309,7 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                 X[j] = o[0], Y[j] = o[1], Z[j] = o[2];
             }
             double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+            if (cull && area > 0) continue;
             /* Finite here (positions are checked, views are finite): plain
              * compares give fmin's and fmax's values. */
             double bx0 = dmin3(X[0], X[1], X[2]), bx1 = dmax3(X[0], X[1], X[2]);
@@ -528,13 +533,20 @@ static void layout(bb_view *vw, uint32_t n, uint32_t size, uint32_t *W, uint32_t
     grid_at(vw, n, best_c, 0, W, H);
 }
 
+/* Which vertices the mesh's triangles use (1) into used[vertex_count]. */
+static void used_vertices(const banyan_mesh *m, unsigned char *used) {
+    memset(used, 0, m->vertex_count);
+    for (uint32_t k = 0; k < m->index_count; k++) used[m->indices[k]] = 1;
+}
+
 /* Each group's bounds over the vertices its parts' triangles use (lo and
  * hi start empty: a group without triangles keeps lo above hi). */
-static void group_bounds(const banyan_mesh *m, double (*lo)[3], double (*hi)[3]) {
+static void group_bounds(const banyan_mesh *m, const unsigned char *used, double (*lo)[3], double (*hi)[3]) {
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
-        for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
-            const float *P = m->positions + 3 * (size_t)m->indices[k];
+        for (uint32_t v = pt->vertex_offset; v < pt->vertex_offset + pt->vertex_count; v++) {
+            if (!used[v]) continue;
+            const float *P = m->positions + 3 * (size_t)v;
             for (int j = 0; j < 3; j++) {
                 lo[pt->group][j] = P[j] < lo[pt->group][j] ? P[j] : lo[pt->group][j]; /* finite: fmin's value */
                 hi[pt->group][j] = P[j] > hi[pt->group][j] ? P[j] : hi[pt->group][j];
@@ -547,8 +559,9 @@ static void group_bounds(const banyan_mesh *m, double (*lo)[3], double (*hi)[3])
  * +n, picture x along -d, not mirrored), each spanning the group's extent
  * across it and zmin .. zmax up, then the top view (from +z, x to the
  * right, y up the picture); a flat extent is widened to 1e-6 m. */
-static void group_views(const banyan_mesh *m, uint32_t g, uint32_t planes, const double lo[3], const double hi[3],
-                        double c[2], double *zmin_out, double *zmax_out, bb_view *vw) {
+static void group_views(const banyan_mesh *m, const unsigned char *used, uint32_t g, uint32_t planes,
+                        const double lo[3], const double hi[3], double c[2], double *zmin_out, double *zmax_out,
+                        bb_view *vw) {
     c[0] = 0.5 * (lo[0] + hi[0]), c[1] = 0.5 * (lo[1] + hi[1]);
     double zmin = lo[2], zmax = hi[2];
     if (zmax - zmin < 1e-6) zmax = zmin + 1e-6;
@@ -561,8 +574,9 @@ static void group_views(const banyan_mesh *m, uint32_t g, uint32_t planes, const
     for (uint32_t q = 0; q < m->part_count; q++) {
         const banyan_part *pt = &m->parts[q];
         if (pt->group != g) continue;
-        for (uint32_t k = pt->index_offset; k < pt->index_offset + pt->index_count; k++) {
-            const float *P = m->positions + 3 * (size_t)m->indices[k];
+        for (uint32_t i = pt->vertex_offset; i < pt->vertex_offset + pt->vertex_count; i++) {
+            if (!used[i]) continue;
+            const float *P = m->positions + 3 * (size_t)i;
             for (uint32_t v = 0; v < planes; v++) {
                 double s = (P[0] - c[0]) * dk[v][0] + (P[1] - c[1]) * dk[v][1];
                 smin[v] = s < smin[v] ? s : smin[v]; /* finite: fmin's value */
@@ -682,6 +696,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     /* Which groups have vertices, and their bounds. */
     double (*lo)[3] = malloc(sizeof(double[3]) * n_groups), (*hi)[3] = malloc(sizeof(double[3]) * n_groups);
     uint32_t *slot = malloc(sizeof(uint32_t) * n_groups);
+    unsigned char *used = malloc(m->vertex_count);
     banyan_mesh *o = calloc(1, sizeof *o);
     bb_paint pa;
     memset(&pa, 0, sizeof pa);
@@ -691,12 +706,13 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
     double *proj = NULL;
     float *share = NULL;
     banyan_status st = BANYAN_E_NOMEM;
-    if (!lo || !hi || !slot || !o) goto fail;
+    if (!lo || !hi || !slot || !used || !o) goto fail;
     for (uint32_t g = 0; g < n_groups; g++) {
         slot[g] = UINT32_MAX;
         for (int j = 0; j < 3; j++) lo[g][j] = INFINITY, hi[g][j] = -INFINITY;
     }
-    group_bounds(m, lo, hi);
+    used_vertices(m, used);
+    group_bounds(m, used, lo, hi);
     uint32_t n_cards = 0;
     for (uint32_t g = 0; g < n_groups; g++)
         if (lo[g][0] <= hi[g][0]) slot[g] = n_cards++;
@@ -741,7 +757,7 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         }
         double c[2], zmin, zmax;
         bb_view vw[BB_MAX_TILES];
-        group_views(m, g, planes, lo[g], hi[g], c, &zmin, &zmax, vw);
+        group_views(m, used, g, planes, lo[g], hi[g], c, &zmin, &zmax, vw);
         uint32_t W, H;
         layout(vw, tiles, size, &W, &H);
         banyan_image *im = &o->images[cd];
@@ -791,13 +807,13 @@ banyan_status lod_billboard(const banyan_mesh *m, const banyan_lod_params *p, pr
         card_parts(m, o, g, cd, planes);
         card_quads(o, cd, vw, planes, c, zmin, zmax, W, H, wind, (float)wind_phase_of(p->seed, g));
     }
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
+    free(lo); free(hi); free(slot); free(used); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     *out = o;
     banyan_error_clear(err);
     return BANYAN_OK;
 fail:
-    free(lo); free(hi); free(slot); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
+    free(lo); free(hi); free(slot); free(used); free(tl.depth); free(tl.rgb); free(share); free(tri); free(proj);
     paint_free(&pa);
     banyan_mesh_free(o);
     if (st == BANYAN_E_LIMIT) return prog_fail(pg, err, "the billboard level of detail");
