@@ -352,19 +352,21 @@ static void draw_view(const banyan_mesh *m, uint32_t g, const bb_paint *pa, cons
                 put_sample(pa, tex, t, cx, cy, 1.0 / 3, 1.0 / 3, 1.0 / 3, Z, U, V, tint, light, flat);
                 continue;
             }
-            double sg = area < 0 ? -1.0 : 1.0; /* e * sg < 0: e's sign is not area's */
+            /* The edge functions e0, e1 (w0 = e0 / area, w1 = e1 / area)
+             * at the row's first sample, then a step per sample to the
+             * right, signed so that inside is >= 0 whatever the winding. */
+            double sg = area < 0 ? -1.0 : 1.0, sa = sg * area;
+            double s0 = sg * (Y[1] - Y[2]), s1 = sg * (Y[2] - Y[0]);
             for (long y = y0; y <= y1; y++) {
-                double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_;
-                for (long x = x0; x <= x1; x++) {
-                    double px_ = x + 0.5;
-                    double e0 = (X[1] - px_) * dy2 - (X[2] - px_) * dy1;
-                    /* w0 = e0 / area < 0 exactly when their signs differ
-                     * (no quotient here is small enough to round to 0):
-                     * most samples outside are left without dividing. */
-                    if (e0 * sg < -1e-250) continue;
-                    double e1 = (X[2] - px_) * dy0 - (X[0] - px_) * dy2;
-                    if (e1 * sg < -1e-250) continue;
-                    double w0 = e0 / area, w1 = e1 / area, w2 = 1 - w0 - w1;
+                double py_ = y + 0.5, dy0 = Y[0] - py_, dy1 = Y[1] - py_, dy2 = Y[2] - py_, px_ = x0 + 0.5;
+                double e0 = sg * ((X[1] - px_) * dy2 - (X[2] - px_) * dy1);
+                double e1 = sg * ((X[2] - px_) * dy0 - (X[0] - px_) * dy2);
+                for (long x = x0; x <= x1; x++, e0 += s0, e1 += s1) {
+                    /* w0 < 0 exactly when e0 < 0 (no quotient here is
+                     * small enough to round to 0): most samples outside
+                     * are left without dividing. */
+                    if (e0 < -1e-250 || e1 < -1e-250) continue;
+                    double w0 = e0 / sa, w1 = e1 / sa, w2 = 1 - w0 - w1;
                     if (w0 < 0 || w1 < 0 || w2 < 0) continue;
                     put_sample(pa, tex, t, x, y, w0, w1, w2, Z, U, V, tint, light, flat);
                 }
