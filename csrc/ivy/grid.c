@@ -479,7 +479,7 @@ static void link_bud(banyan_ivy *iv, int32_t i) {
         bc[0] = INT32_MIN; /* in no cell */
         return;
     }
-    iv->pool[c->at + c->n++] = (ivy_gnode){b->P, b->step_c, i};
+    iv->pool[c->at + c->n++] = (ivy_gnode){b->P, b->step_c | (b->follow > 0 ? IVY_GNODE_FOLLOW : 0), i};
 }
 
 static void unlink_bud(banyan_ivy *iv, int32_t i) {
@@ -694,10 +694,11 @@ static inline double shade(const banyan_ivy *iv, v3 p, int32_t self, double stop
             double d2 = v3_len2(d);
             if (d2 >= dmax2 || j == self) continue;
             double dist = sqrt(d2);
-            double dl = grow * ((double)(iv->step - b->step_c) + 1.0);
+            double dl = grow * ((double)(iv->step - (b->step_c & ~IVY_GNODE_FOLLOW)) + 1.0);
             if (dl > dmax) dl = dmax;
             double h = dist < dl ? 1.0 : 1.0 - (dist - dl) * inv_dmax;
             if (h <= 0) continue;
+            if (b->step_c & IVY_GNODE_FOLLOW) h *= IVY_FOLLOW_LEAF;
             H += h;
             if (gather && gather->seen[j] != gather->test_id) {
                 gather->seen[j] = gather->test_id;
@@ -724,11 +725,11 @@ double ivy_shade_watch(banyan_ivy *iv, v3 p, int32_t self, double stop, v3 *vl) 
  * same surface's stems) count, and none that shares bud `self` (the bud
  * a-b grows from). An internode of length l that crosses a-b ends within
  * 1.5 l of its midpoint, so the cells around that ball are read. */
-int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
-    return ivy_crossed_stem(iv, a, b, n, self, layer) >= 0;
-}
-
-int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+/* The crossing test of ivy_crosses; with `all`, every stem is tested and
+ * the one crossed nearest a wins (ties within 1e-9 of a-b's length: the
+ * lower bud), so the answer hangs neither on the order cells are read in
+ * nor on rounding; else the first found. */
+static inline int32_t crossed(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer, int all) {
     const double l = iv->p.internode, r = 1.5 * l, r2 = r * r, ic = iv->inv_cell;
     const v3 m = v3_scale(v3_add(a, b), 0.5);
     /* 2D frame of the surface: u, w across n. */
@@ -739,6 +740,8 @@ int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, d
             y1 = cell_coord(m.y + r, ic), z0 = cell_coord(m.z - r, ic), z1 = cell_coord(m.z + r, ic);
     const ivy_cell *cells[64];
     const int ncl = cells_around(iv, x0, x1, y0, y1, z0, z1, cells);
+    int32_t best = -1;
+    double best_t = HUGE_VAL;
     for (int q = 0; q < ncl; q++) {
         const ivy_cell *cl = cells[q];
         for (int32_t k = 0; k < cl->n; k++) {
@@ -756,10 +759,23 @@ int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, d
             double s1 = ex * (cy - ay) - ey * (cx - ax), s2 = ex * (cy + dy - ay) - ey * (cx + dx - ax);
             if ((s1 > 0) == (s2 > 0) || s1 == 0 || s2 == 0) continue;
             double s3 = dx * (ay - cy) - dy * (ax - cx), s4 = dx * (by - cy) - dy * (bx - cx);
-            if ((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0) return j;
+            if (!((s3 > 0) != (s4 > 0) && s3 != 0 && s4 != 0)) continue;
+            if (!all) return j;
+            /* Where along a-b; two stems crossed at one point (a joint)
+             * within rounding count as a tie. */
+            const double t = s3 / (s3 - s4);
+            if (t < best_t - 1e-9 || (!(t > best_t + 1e-9) && j < best)) best_t = t < best_t ? t : best_t, best = j;
         }
     }
-    return -1;
+    return best;
+}
+
+int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+    return crossed(iv, a, b, n, self, layer, 0) >= 0;
+}
+
+int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer) {
+    return crossed(iv, a, b, n, self, layer, 1);
 }
 
 /* The cells ivy_crosses reads for internode a-b: x0..x1, y0..y1, z0..z1,

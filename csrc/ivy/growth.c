@@ -269,30 +269,31 @@ static void aim_onto(const banyan_ivy *iv, v3 P, v3 target, double D, int grip, 
 
 /* The spacing a stem that runs alongside another keeps from it. */
 #define FOLLOW_GAP 0.015
+/* No run alongside starts within this of the planting point (m). */
+#define FOLLOW_FOOT 1.0
 /* A stem is followed towards the light: cos of the largest angle between the two. */
 #define FOLLOW_LIGHT_COS 0.26
 
-/* A tip whose every way on crosses a stem turns alongside that stem
- * (follow_length): the winner w is replaced by an internode along the
- * crossed stem, in its sense towards `up` (the light), edging off it up
- * to FOLLOW_GAP. Returns 0 (w untouched) when the run is long enough, the
- * stem is old or seen end on or leads away from the light, or the turned
- * internode meets a host or crosses a stem. */
-static int follow_stem(banyan_ivy *iv, int32_t i, v3 n, v3 up, double D, walk_best *w) {
-    const banyan_ivy_params *p = &iv->p;
+/* The next bud along a followed stem from bud j in `sense`, -1 at its end. */
+static int32_t follow_next(const banyan_ivy *iv, int32_t j, int32_t sense) {
+    return sense > 0 ? iv->buds[j].child[0] : iv->buds[j].parent;
+}
+
+/* One internode from bud i alongside the followed stem's internode from
+ * bud j to k (on the surface of normal n), edging off the stem's line up
+ * to FOLLOW_GAP, into w. Returns 0 (w untouched) when that internode
+ * leads away from the light (`up`), or the new internode meets a host,
+ * leaves the surface (its end out of the sucker's reach D) or crosses a
+ * stem. */
+static int follow_along(banyan_ivy *iv, int32_t i, int32_t j, int32_t k, v3 n, v3 up, double D, walk_best *w) {
     const ivy_bud *b = &iv->buds[i];
-    const double l = p->internode;
-    if (!((b->follow + 1) * l <= p->follow_length)) return 0;
-    const int32_t j = ivy_crossed_stem(iv, b->P, w->q, n, i, D);
-    /* Only young wood: a tip meeting the plant's first stems, at its foot,
-     * ends there, and the old trunks stay bare (wood.c). */
-    if (j < 0 || 2 * (iv->step - iv->buds[j].step_c) > iv->step) return 0;
-    const v3 c = iv->buds[iv->buds[j].parent].P, e = iv->buds[j].P;
-    v3 t = v3_sub(e, c);
+    const double l = iv->p.internode;
+    const v3 c = iv->buds[j].P;
+    v3 t = v3_sub(iv->buds[k].P, c);
     t = v3_sub(t, v3_scale(n, v3_dot(t, n)));
     const double tl = v3_len(t);
     if (!(tl > 1e-12)) return 0;
-    t = v3_scale(t, (v3_dot(t, up) >= 0 ? 1.0 : -1.0) / tl);
+    t = v3_scale(t, 1.0 / tl);
     if (v3_dot(t, up) < FOLLOW_LIGHT_COS) return 0;
     /* Off the stem's line, across it on the surface. */
     v3 off = v3_sub(b->P, c);
@@ -303,11 +304,50 @@ static int follow_stem(banyan_ivy *iv, int32_t i, v3 n, v3 up, double D, walk_be
     const v3 d = v3_norm_or(v3_madd(v3_scale(t, l), off, edge), t);
     const v3 q = v3_madd(b->P, d, l);
     double dist;
-    if (ivy_blocked(iv, b->P, q, D, &dist) || ivy_crosses_near(iv, b->P, q, n, i, D)) return 0;
+    if (ivy_blocked(iv, b->P, q, D, &dist) || !(dist <= D) || ivy_crosses_near(iv, b->P, q, n, i, D)) return 0;
     w->q = q;
     w->d = d;
     w->dist = dist;
     w->crosses = 0;
+    return 1;
+}
+
+/* A tip whose every way on crosses a stem turns alongside that stem
+ * (follow_length): the winner w is replaced by an internode along the
+ * crossed stem, in its sense towards `up` (the light). *fj, *fs: the
+ * followed bud and sense for the new bud. Returns 0 (w untouched) when
+ * the run is long enough, the stem is old or seen end on or leads away
+ * from the light, or the turned internode meets a host or crosses a
+ * stem. */
+static int follow_stem(banyan_ivy *iv, int32_t i, v3 n, v3 up, double D, walk_best *w, int32_t *fj, int32_t *fs) {
+    const banyan_ivy_params *p = &iv->p;
+    const ivy_bud *b = &iv->buds[i];
+    if (!((b->follow + 1) * p->internode <= p->follow_length)) return 0;
+    /* No run starts at the foot, where every stem starts: the trunks there stay bare. */
+    if (v3_dist(b->P, iv->buds[0].P) < FOLLOW_FOOT) return 0;
+    const int32_t j = ivy_crossed_stem(iv, b->P, w->q, n, i, D);
+    /* Only young wood: a tip meeting the plant's first stems, at its foot,
+     * ends there, and the old trunks stay bare (wood.c). */
+    if (j < 0 || 2 * (iv->step - iv->buds[j].step_c) > iv->step) return 0;
+    const int32_t c = iv->buds[j].parent;
+    const int32_t sense = v3_dot(v3_sub(iv->buds[j].P, iv->buds[c].P), up) >= 0 ? 1 : -1;
+    if (!(sense > 0 ? follow_along(iv, i, c, j, n, up, D, w) : follow_along(iv, i, j, c, n, up, D, w))) return 0;
+    *fj = sense > 0 ? j : c;
+    *fs = sense;
+    return 1;
+}
+
+/* A tip that follows a stem keeps to it (follow_length): the next
+ * internode alongside the followed stem's next one. Returns 0 when the
+ * run is long enough, the followed stem ends, or follow_along refuses. */
+static int follow_on(banyan_ivy *iv, int32_t i, v3 n, v3 up, double D, walk_best *w, int32_t *fj, int32_t *fs) {
+    const ivy_bud *b = &iv->buds[i];
+    const int32_t j = b->followed - 1;
+    if (j < 0 || !((b->follow + 1) * iv->p.internode <= iv->p.follow_length)) return 0;
+    const int32_t k = follow_next(iv, j, b->follow_sense);
+    if (k < 0 || !follow_along(iv, i, j, k, n, up, D, w)) return 0;
+    *fj = k;
+    *fs = b->follow_sense;
     return 1;
 }
 
@@ -349,26 +389,30 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     const double w_tendril = sucker && near_surface && surf_dist > 0.5 * D ? p->w_tendril : 0.0;
 
     walk_best w = {-HUGE_VAL, 0, -1, 0, b->P, base};
-    const double tm = deg2rad(p->theta_max);
-    walk(iv, i, base, tm, sucker, grav_on, vlh, helio_on, surf_n, w_cross, w_tendril, &w);
-    if (w.crosses || w.k < 0) {
-        /* Every candidate crossed a stem, or met a host: look again with
-         * turns twice as wide, so a tip meeting a stem can turn alongside
-         * it, and one facing the ground or a corner can turn away (with the
-         * narrow cone alone such a tip waited and retried every step). */
-        walk_best w2 = {-HUGE_VAL, 0, -1, 0, b->P, base};
-        walk(iv, i, base, fmin(2.0 * tm, 0.5 * BANYAN_PI), sucker, grav_on, vlh, helio_on, surf_n, w_cross, w_tendril,
-             &w2);
-        if (w2.k >= 0 && (w.k < 0 || !w2.crosses)) w = w2;
+    const v3 up = helio_on ? vlh : v3_make(0, 0, 1);
+    int32_t fj = -1, fs = 0; /* the followed stem's bud and sense (follow_length) */
+    /* A continuation that runs alongside a stem keeps to it; else the walk. */
+    if (!(slot == 0 && p->crossing_ends && near_surface && follow_on(iv, i, surf_n, up, D, &w, &fj, &fs))) {
+        const double tm = deg2rad(p->theta_max);
+        walk(iv, i, base, tm, sucker, grav_on, vlh, helio_on, surf_n, w_cross, w_tendril, &w);
+        if (w.crosses || w.k < 0) {
+            /* Every candidate crossed a stem, or met a host: look again with
+             * turns twice as wide, so a tip meeting a stem can turn alongside
+             * it, and one facing the ground or a corner can turn away (with the
+             * narrow cone alone such a tip waited and retried every step). */
+            walk_best w2 = {-HUGE_VAL, 0, -1, 0, b->P, base};
+            walk(iv, i, base, fmin(2.0 * tm, 0.5 * BANYAN_PI), sucker, grav_on, vlh, helio_on, surf_n, w_cross,
+                 w_tendril, &w2);
+            if (w2.k >= 0 && (w.k < 0 || !w2.crosses)) w = w2;
+        }
+        if (w.k < 0) return -1;
+        /* Stems meet side by side: a bud whose every way on crosses a stem
+         * turns alongside it (follow_stem) or ends (the caller makes it Z). */
+        if (w.crosses && p->crossing_ends && !(b->leader && slot == 0) &&
+            !follow_stem(iv, i, surf_n, up, D, &w, &fj, &fs))
+            return -2;
     }
-    if (w.k < 0) return -1;
-    /* Stems meet side by side: a bud whose every way on crosses a stem
-     * ends (the caller makes it Z). */
-    int follow = 0;
-    if (w.crosses && p->crossing_ends && !(b->leader && slot == 0)) {
-        if (!follow_stem(iv, i, surf_n, helio_on ? vlh : v3_make(0, 0, 1), D, &w)) return -2;
-        follow = 1;
-    }
+    const int follow = fj >= 0;
     v3 best_q = w.q, best_d = w.d;
     double best_dist = w.dist;
 
@@ -411,6 +455,8 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
     c->parent = i;
     c->leader = slot == 0 && b->leader;
     c->follow = follow ? b->follow + 1 : 0;
+    c->followed = fj + 1;
+    c->follow_sense = fs;
     c->child[0] = c->child[1] = -1;
     b->child[slot] = j;
     ivy_grid_insert(iv, j);

@@ -49,6 +49,8 @@ typedef struct ivy_bud {
     int32_t mark;     /* scratch of the sag correction */
     int32_t leader;   /* on a leading stem (a first bud's continuation line): it crosses rather than ends */
     int32_t follow;   /* internodes grown in a row alongside a stem it met (follow_length) */
+    int32_t followed; /* while following: 1 + the bud of the followed stem it is beside; 0 otherwise */
+    int32_t follow_sense; /* +1: the run goes the followed stem's way (to its continuation), -1 back to its root */
 } ivy_bud;
 
 /* One sleeper that counted a bud: valid while that sleeper's `shaded`
@@ -62,9 +64,15 @@ typedef struct ivy_dep {
  * chain of buds scattered over the whole plant (grid.c). */
 typedef struct ivy_gnode {
     v3 P;
-    int32_t step_c;
+    int32_t step_c;   /* the bud's, with IVY_GNODE_FOLLOW set on a bud grown alongside a stem */
     int32_t id;       /* bud index */
 } ivy_gnode;
+#define IVY_GNODE_FOLLOW (1 << 30)
+
+/* A stem grown alongside another (follow_length) lies in that stem's
+ * shade: it carries this share of the leaves a stem carries elsewhere,
+ * and its leaves cast this share of the shade in the light model. */
+#define IVY_FOLLOW_LEAF 0.7
 
 /* A stem that an internode grown from one bud may cross (ivy_crosses_near):
  * its end bud's copy, that copy's cell, and the stem across the surface
@@ -273,7 +281,8 @@ void ivy_sleep(banyan_ivy *iv, int32_t i);
  * whose end bud lies within `layer` of a across n and that does not share
  * bud `self`? (grid.c; f_cross of the random walk) */
 int ivy_crosses(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
-/* The end bud of the first stem ivy_crosses finds crossed, or -1. */
+/* The end bud of the stem internode a-b crosses nearest a (of two at
+ * one point, the lower bud), or -1. */
 int32_t ivy_crossed_stem(const banyan_ivy *iv, v3 a, v3 b, v3 n, int32_t self, double layer);
 /* The same answer, for the random walk's many internodes from one point a
  * (same n, self, layer): the stems near a are gathered once (until the

@@ -266,9 +266,9 @@ static double clump_field(const banyan_ivy *iv, v3 R) {
 static int leaf_kept(const banyan_ivy *iv, int32_t i, double age, double wood) {
     const banyan_ivy_params *p = &iv->p;
     if (wood <= 0) return 0;
-    if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1) return 1;
+    if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1 && iv->buds[i].follow <= 0) return 1;
     double share = p->leaf_share * (1 + p->leaf_clump * clump_field(iv, v3_sub(iv->buds[i].P, iv->buds[0].P))) *
-                   (0.5 + 0.5 * age) * wood;
+                   (0.5 + 0.5 * age) * wood * (iv->buds[i].follow > 0 ? IVY_FOLLOW_LEAF : 1.0);
     return noise_unit(noise_mix(noise_mix(noise_mix(p->seed ^ CLUMP_SALT) + 1) ^ (uint64_t)i)) < share;
 }
 

@@ -20,6 +20,7 @@ static inline double brute_shade(const banyan_ivy *iv, v3 p, int32_t self, v3 *v
         double dl = ivy_leaf_diameter(iv, b);
         double h = d < dl ? 1.0 : 1.0 - (d - dl) / iv->p.leaf_max;
         if (h <= 0) continue;
+        if (b->follow > 0) h *= IVY_FOLLOW_LEAF; /* a stem grown alongside another */
         H += h;
         if (d > 1e-12) *vl = v3_madd(*vl, v3_sub(p, b->P), h / d);
     }

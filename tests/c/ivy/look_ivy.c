@@ -12,7 +12,11 @@
  *   - depth: how far the blades' centres stand off the wall (p10 and p90;
  *     the real leaf plane 5-15 cm) and the relief of the clumps, the
  *     standard deviation of that height averaged per 0.5 m cell;
- *   - blade size p90 (printed; the real leaves reach 17 cm).
+ *   - blade size p90 (printed; the real leaves reach 17 cm);
+ *   - stem ends against a stem (printed): tips that ended (Z, no
+ *     continuation) within 2 internodes of another stem's bud, per m^2 of
+ *     the face: the T-endings of a net; and the stem length grown
+ *     alongside another stem (follow_length), m per m^2.
  * Blades are those whose centre lies in front of the face (ivy_look.h).
  *
  *   look_ivy [SEEDS] [key=value ...]   (default 5; key=value: --set on every plant)
@@ -22,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ivy/ivy_internal.h"
 #include "ivy_look.h"
 #include "test_files.h"
 #include "test_hosts.h"
@@ -40,7 +45,7 @@
 #define RELIEF_MIN 0.02
 
 typedef struct figures {
-    double cover, layers, layers_p90, cv, angle, density, size_p90, depth_p10, depth_p90, relief;
+    double cover, layers, layers_p90, cv, angle, density, size_p90, depth_p10, depth_p90, relief, t_ends, alongside;
     int blades;
 } figures;
 
@@ -203,6 +208,65 @@ static int measure(const banyan_mesh *m, double x0, double x1, double z0, double
     return 0;
 }
 
+/* Stem ends against a stem and length grown alongside (see the top),
+ * per m^2 of `area`. Buds are bucketed in cells of 2 internodes, sorted
+ * by cell. */
+typedef struct cell_bud {
+    int64_t key;
+    int32_t i;
+} cell_bud;
+
+static int cmp_cb(const void *a, const void *b) {
+    const cell_bud *x = a, *y = b;
+    return (x->key > y->key) - (x->key < y->key);
+}
+
+static int64_t cell_key(int64_t x, int64_t y, int64_t z) { return ((x + 100000) * 200000 + (y + 100000)) * 200000 + z + 100000; }
+
+static int stem_ends(const banyan_ivy *iv, double area, figures *f) {
+    const double h = 2 * iv->p.internode;
+    cell_bud *cb = malloc(sizeof *cb * ((size_t)iv->n + 1));
+    if (!cb) return 1;
+    for (int32_t i = 0; i < iv->n; i++) {
+        v3 P = iv->buds[i].P;
+        cb[i].key = cell_key((int64_t)floor(P.x / h), (int64_t)floor(P.y / h), (int64_t)floor(P.z / h));
+        cb[i].i = i;
+    }
+    qsort(cb, (size_t)iv->n, sizeof *cb, cmp_cb);
+    int32_t ends = 0, along = 0;
+    for (int32_t i = 0; i < iv->n; i++) {
+        const ivy_bud *b = &iv->buds[i];
+        along += b->follow > 0;
+        if (b->state != BANYAN_IVY_Z || b->child[0] >= 0 || b->parent < 0) continue;
+        int64_t cx = (int64_t)floor(b->P.x / h), cy = (int64_t)floor(b->P.y / h), cz = (int64_t)floor(b->P.z / h);
+        int near = 0;
+        for (int d = 0; d < 27 && !near; d++) {
+            cell_bud k = {cell_key(cx + d % 3 - 1, cy + d / 3 % 3 - 1, cz + d / 9 - 1), 0};
+            size_t lo = 0, hi = (size_t)iv->n;
+            while (lo < hi) { /* the first entry of the cell */
+                size_t mid = (lo + hi) / 2;
+                if (cb[mid].key < k.key) lo = mid + 1;
+                else hi = mid;
+            }
+            for (size_t q = lo; q < (size_t)iv->n && cb[q].key == k.key && !near; q++) {
+                const int32_t j = cb[q].i;
+                const ivy_bud *c = &iv->buds[j];
+                if (j == i || j == b->parent || c->parent == b->parent || c->parent == i) continue;
+                /* Not its own stem: neither of the two buds is within 3 internodes up the other's line. */
+                int own = 0;
+                for (int32_t u = b->parent, s = 0; u >= 0 && s < 3 && !own; u = iv->buds[u].parent, s++) own = u == j;
+                for (int32_t u = c->parent, s = 0; u >= 0 && s < 3 && !own; u = iv->buds[u].parent, s++) own = u == i;
+                near = !own && v3_dist(c->P, b->P) < h;
+            }
+        }
+        ends += near;
+    }
+    free(cb);
+    f->t_ends = ends / area;
+    f->alongside = along * iv->p.internode / area;
+    return 0;
+}
+
 int main(int argc, char **argv) {
     int accept = argc > 1 && !strcmp(argv[1], "--accept");
     int seeds = accept ? 5 : argc > 1 ? atoi(argv[1]) : 5;
@@ -218,7 +282,8 @@ int main(int argc, char **argv) {
     const double x0 = W->center[0] - W->half[0], x1 = W->center[0] + W->half[0];
     const double z0 = W->center[2] - W->half[2], z1 = W->center[2] + W->half[2], yf = W->center[1] - W->half[1] + 0.05;
     printf("| seed | blades | cover | mean layers | layers p90 | CV per %.1f m cell | median angle to the wall, deg | "
-           "density /m^2 | blade size p90, m | depth p10-p90, m | relief, m |\n|---|---|---|---|---|---|---|---|---|---|---|\n", PATCH);
+           "density /m^2 | blade size p90, m | depth p10-p90, m | relief, m | stem ends at a stem /m^2 | grown alongside, "
+           "m/m^2 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", PATCH);
     figures all = {0};
     int fails = 0;
     banyan_hosts *H = TEST_HOSTS(hosts, nh);
@@ -234,8 +299,10 @@ int main(int argc, char **argv) {
         figures f = {0};
         if (measure(m, x0, x1, z0, z1, yf, &f)) return fprintf(stderr, "seed %d: out of memory\n", s), 1;
         f.density = st.density;
-        printf("| %d | %d | %.3f | %.2f | %.0f | %.2f | %.1f | %.1f | %.3f | %.3f-%.3f | %.3f |\n", s, f.blades, f.cover,
-               f.layers, f.layers_p90, f.cv, f.angle, f.density, f.size_p90, f.depth_p10, f.depth_p90, f.relief);
+        if (stem_ends(iv, (x1 - x0) * (z1 - z0), &f)) return fprintf(stderr, "seed %d: out of memory\n", s), 1;
+        printf("| %d | %d | %.3f | %.2f | %.0f | %.2f | %.1f | %.1f | %.3f | %.3f-%.3f | %.3f | %.1f | %.2f |\n", s, f.blades,
+               f.cover, f.layers, f.layers_p90, f.cv, f.angle, f.density, f.size_p90, f.depth_p10, f.depth_p90, f.relief,
+               f.t_ends, f.alongside);
         all.cover += f.cover / seeds, all.layers += f.layers / seeds, all.cv += f.cv / seeds;
         all.angle += f.angle / seeds, all.density += f.density / seeds, all.relief += f.relief / seeds;
         if (accept) {

@@ -45,7 +45,7 @@ static void check_grid(const banyan_ivy *iv, const char *what) {
             if (coord(b->P.x, iv->inv_cell) != c->x || coord(b->P.y, iv->inv_cell) != c->y ||
                 coord(b->P.z, iv->inv_cell) != c->z)
                 bad_cell++;
-            if (memcmp(&g->P, &b->P, sizeof(v3)) || g->step_c != b->step_c) bad_copy++;
+            if (memcmp(&g->P, &b->P, sizeof(v3)) || g->step_c != (b->step_c | (b->follow > 0 ? IVY_GNODE_FOLLOW : 0))) bad_copy++;
         }
     }
     int missing = 0, twice = 0;
