@@ -72,6 +72,17 @@ blender_summaries() {
   return 0
 }
 
+# prune DIR: once a build's stages have read their outputs, the full tier
+# deletes the large ones (meshes, images, packages; text such as summaries
+# and logs stays) so the sanitizer builds after it fit on a small CI disk.
+prune() {
+  local d
+  for d in "$1/test_out" "$1/batch_out"; do
+    [ -d "$d" ] && find "$d" -type f -size +256k ! -name '*.txt' ! -name '*.log' -delete
+  done
+  return 0
+}
+
 asan() {
   BUILD_DIR=build-asan BANYAN_CMAKE_ARGS="-DBANYAN_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo" \
     bash tools/setup.sh || return $?
@@ -101,13 +112,16 @@ fi
 stage "the add-on's tests, by Blender" blender_summaries
 if [ "$tier" = full ]; then
   stage "the add-on packages with the build folder moved away" bash tests/blender/packages.sh build
+  prune build
   stage "ASan + UBSan: ctest" asan
+  prune build-asan
   stage "TSan: the thread tests" tsan
+  prune build-tsan
   stage "fuzzing (FUZZ_SECONDS per harness, default 60)" bash tools/fuzz.sh
 fi
 
 echo
-echo "== times ($tier tier, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)) =="
+echo "== times ($tier tier, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(df -h --output=avail . | tail -1 | tr -d ' ') free on disk) =="
 failed=0
 for i in "${!names[@]}"; do
   mark=ok
