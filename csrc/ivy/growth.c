@@ -301,8 +301,17 @@ static int follow_along(banyan_ivy *iv, int32_t i, int32_t j, int32_t k, v3 n, v
     off = v3_sub(off, v3_scale(n, v3_dot(off, n)));
     const double gap = v3_len(off);
     const double edge = gap < FOLLOW_GAP && gap > 1e-12 ? fmin(FOLLOW_GAP - gap, 0.5 * l) / gap : 0.0;
-    const v3 d = v3_norm_or(v3_madd(v3_scale(t, l), off, edge), t);
-    const v3 q = v3_madd(b->P, d, l);
+    v3 d = v3_norm_or(v3_madd(v3_scale(t, l), off, edge), t);
+    v3 q = v3_madd(b->P, d, l);
+    /* A run lies a hair past `clearance` off the surface (as push_out_mesh
+     * leaves a point): at exactly clearance along a wall its buds would
+     * sit on ivy_blocked's d < c edge, where the rounding of coordinates
+     * far from the origin decides. */
+    const ivy_near nr = ivy_nearest_within(iv, q, D + iv->p.clearance);
+    if (nr.dist <= D + iv->p.clearance) {
+        q = v3_madd(q, nr.normal, iv->p.clearance * (1.0 + 1e-6) + 1e-7 - nr.dist);
+        d = v3_norm_or(v3_sub(q, b->P), d);
+    }
     double dist;
     if (ivy_blocked(iv, b->P, q, D, &dist) || !(dist <= D) || ivy_crosses_near(iv, b->P, q, n, i, D)) return 0;
     w->q = q;
@@ -431,9 +440,10 @@ static int32_t place(banyan_ivy *iv, int32_t i, v3 base, v3 vl, int32_t st, doub
         if (on_mesh && v3_dot(at.normal, nr.normal) >= dm_cos(deg2rad(p->wrap_angle)))
             aim_onto(iv, b->P, v3_madd(nr.point, nr.normal, p->clearance), D, 1, &best_q, &best_d, &best_dist);
     }
-    if (sucker && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
+    if (sucker && !follow && best_dist <= D && p->sucker_pull && best_dist > p->clearance) {
         /* The sucker draws the stem onto the surface: aim the internode at
-         * the point `clearance` off the surface below the candidate. */
+         * the point `clearance` off the surface below the candidate (a run
+         * alongside a stem lies there already: follow_along). */
         ivy_near nr = ivy_nearest_within(iv, best_q, D + p->clearance);
         aim_onto(iv, b->P, v3_madd(best_q, nr.normal, p->clearance - nr.dist), D, 0, &best_q, &best_d, &best_dist);
     }

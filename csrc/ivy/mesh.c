@@ -261,14 +261,22 @@ static double clump_field(const banyan_ivy *iv, v3 R) {
  * average; the share varies over the clumps (1 +- leaf_clump times the
  * clump field) and halves towards the growing tips (age 0: a new bud; 1:
  * leaf_size_steps old), so the cover has dense and thin patches and a
- * thinner growth front. Drawn from a hash of the seed and the bud, apart
+ * thinner growth front; a stem grown alongside another keeps
+ * IVY_FOLLOW_LEAF of that (leaf_share 1 with no clumps: every bud, and
+ * that share of those). Drawn from a hash of the seed and the bud, apart
  * from every stream. */
 static int leaf_kept(const banyan_ivy *iv, int32_t i, double age, double wood) {
     const banyan_ivy_params *p = &iv->p;
     if (wood <= 0) return 0;
-    if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1 && iv->buds[i].follow <= 0) return 1;
-    double share = p->leaf_share * (1 + p->leaf_clump * clump_field(iv, v3_sub(iv->buds[i].P, iv->buds[0].P))) *
-                   (0.5 + 0.5 * age) * wood * (iv->buds[i].follow > 0 ? IVY_FOLLOW_LEAF : 1.0);
+    const double along = iv->buds[i].follow > 0 ? IVY_FOLLOW_LEAF : 1.0; /* a stem grown alongside another */
+    double share;
+    if (p->leaf_share >= 1 && p->leaf_clump <= 0 && wood >= 1) { /* every bud, the tips too */
+        if (along >= 1) return 1;
+        share = along;
+    } else {
+        share = p->leaf_share * (1 + p->leaf_clump * clump_field(iv, v3_sub(iv->buds[i].P, iv->buds[0].P))) *
+                (0.5 + 0.5 * age) * wood * along;
+    }
     return noise_unit(noise_mix(noise_mix(noise_mix(p->seed ^ CLUMP_SALT) + 1) ^ (uint64_t)i)) < share;
 }
 

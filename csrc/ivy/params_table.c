@@ -140,7 +140,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->start_fan = 60.0;
     p->w_tendril = 2.0;
     p->crossing_ends = 1;
-    p->follow_length = 0.0;
+    p->follow_length = 0.6;
     p->surface_reach = 0.15;
     p->ground_branching = 0;
     p->free_length = 0.1;
@@ -164,7 +164,7 @@ void banyan_ivy_params_init(banyan_ivy_params *p) {
     p->leaf_petiole = 0.7;
     p->leaf_tilt = 16.0;
     p->leaf_spread = 10.0;
-    p->leaf_share = 0.65;
+    p->leaf_share = 0.55;
     p->leaf_clump = 0.25;
     p->clump_size = 0.7;
     p->clump_relief = 0.06;

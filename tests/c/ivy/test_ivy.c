@@ -416,7 +416,8 @@ static void test_mesh(const char *outdir) {
             int32_t b = (int32_t)m2->attributes[ab2].data[v];
             int ok = 0;
             for (int32_t i = 0; i < iv->n && !ok; i++) {
-                const double reach = 3 * (wood_r[i] > p.stem_radius_max ? wood_r[i] : p.stem_radius_max) + 1e-4;
+                /* A ring at a sharp bend reaches out up to 5 radii (tube.c's stretch cap). */
+                const double reach = 5 * (wood_r[i] > p.stem_radius_max ? wood_r[i] : p.stem_radius_max) + 1e-4;
                 ok = iv->buds[i].step_c == b &&
                      (v3_dist(wood_P[i], q) < reach || /* a branch's base ring: */
                       (iv->buds[i].parent >= 0 && v3_dist(wood_P[iv->buds[i].parent], q) < reach));

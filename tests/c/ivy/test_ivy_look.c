@@ -52,13 +52,14 @@ typedef struct figures {
 } figures;
 
 /* The leaves the plant's wood keeps (ivy_wood_leaf_shares: old wood
- * sheds its own): the blades expected with every bud leafed. */
+ * sheds its own; a stem grown alongside another keeps IVY_FOLLOW_LEAF of
+ * them): the blades expected with every bud leafed. */
 static double wood_keeps(const banyan_ivy *iv) {
     double *r = malloc(sizeof(double) * ((size_t)iv->n + 1)), *share = malloc(sizeof(double) * ((size_t)iv->n + 1)), sum = 0;
     v3 *P = malloc(sizeof(v3) * ((size_t)iv->n + 1));
     if (r && share && P && ivy_wood(iv, r, P) == BANYAN_OK) {
         ivy_wood_leaf_shares(iv, r, share);
-        for (int32_t i = 0; i < iv->n; i++) sum += share[i];
+        for (int32_t i = 0; i < iv->n; i++) sum += share[i] * (iv->buds[i].follow > 0 ? IVY_FOLLOW_LEAF : 1.0);
     }
     free(r);
     free(share);
