@@ -205,10 +205,31 @@ tinygltf() {
 # zlib; the fused roots surface never reads or writes .vdb files), no
 # delayed loading (Boost.Iostreams), OpenVDB's own half type; Boost's
 # headers from the installed libboost-dev.
+# Of its library sources, only those banyan_vdb.dll's imports need (the
+# grid, its metadata and transform, the stream code that FloatGrid's
+# virtual I/O methods reference) and what they in turn reference; the
+# patch (tools/win/patches/openvdb.patch) takes the list. Left out:
+# openvdb.cc and points/points.cc (initialize() and its registration of
+# every grid type, which the shim never calls; most of the full library's
+# build time), the point attributes, io::Stream, io::Queue, TempFile,
+# Proximity and Platform.cc. The headers are installed whole, and the
+# mesher and level set code is header templates compiled into the shim,
+# so its output is the full library's. A shim needing a left-out source
+# fails to link banyan_vdb.dll (an undefined reference).
+openvdb_sources=(Grid.cc MetaMap.cc Metadata.cc io/Archive.cc io/Compression.cc io/DelayedLoadMetadata.cc io/File.cc
+                 io/GridDescriptor.cc math/Half.cc math/Maps.cc math/QuantizedUnitVec.cc math/Transform.cc
+                 points/StreamCompression.cc util/Formats.cc util/Util.cc)
 openvdb() {
   mkdir -p "$prefix/boost-include"
   ln -sfn /usr/include/boost "$prefix/boost-include/boost"
-  cmake_dep openvdb "$(unpack openvdb)" -DOPENVDB_BUILD_BINARIES=OFF -DOPENVDB_CORE_STATIC=OFF \
+  local dir
+  dir=$(unpack openvdb)
+  # A source tree unpacked before the patch existed (the shared build-dev
+  # of BANYAN_WIN_DEPS_PREFIX) would build the whole library.
+  grep -q OPENVDB_LIBRARY_SOURCE_SUBSET "$dir/openvdb/openvdb/CMakeLists.txt" ||
+    { log "$dir lacks tools/win/patches/openvdb.patch: remove it to unpack again"; exit 1; }
+  cmake_dep openvdb "$dir" -DOPENVDB_BUILD_BINARIES=OFF -DOPENVDB_CORE_STATIC=OFF \
+    "-DOPENVDB_LIBRARY_SOURCE_SUBSET=$(IFS=';'; echo "${openvdb_sources[*]}")" \
     -DOPENVDB_USE_DELAYED_LOADING=OFF -DUSE_BLOSC=OFF -DUSE_ZLIB=OFF -DUSE_IMATH_HALF=OFF -DUSE_EXR=OFF -DUSE_PNG=OFF \
     -DUSE_EXPLICIT_INSTANTIATION=OFF -DUSE_CCACHE=OFF -DTBB_ROOT="$prefix" -DTbb_INCLUDE_DIR="$prefix/include" \
     -DOPENVDB_DISABLE_BOOST_IMPLICIT_LINKING=OFF -DDISABLE_DEPENDENCY_VERSION_CHECKS=ON -DOPENVDB_ENABLE_RPATH=OFF \
