@@ -8,15 +8,20 @@
 #                               kernel sets, the Khronos validator, the GLSL
 #                               twin, the add-on suite in Debian's Blender 3.4,
 #                               the browser viewer on one preset per generator.
-#   bash tools/test.sh --full   everything (what .ci/run runs; about 35
+#   bash tools/test.sh --full   everything (what .ci/run runs; about 70
 #                               minutes): the whole ctest (the ISA sweep on
 #                               every kernel set, the add-on in Blender 3.4,
 #                               4.2, 4.5, 5.0, 5.1 and 5.2, its zip and its window,
 #                               valgrind, the farm tests, the viewer on every
 #                               preset), the add-on packages with the build
 #                               folder moved away, the C suite under ASan +
-#                               UBSan, the thread tests under TSan, and a
-#                               short libFuzzer run of every harness.
+#                               UBSan, the thread tests under TSan, a
+#                               short libFuzzer run of every harness, and
+#                               the Windows x64 build (tools/win/test.sh:
+#                               cross-built with its dependencies cached
+#                               in ~/.cache/banyan/win, its C tests under
+#                               wine64, every preset byte for byte as the
+#                               Linux build, its packages).
 #
 # BANYAN_TEST_TIER (quick or full) is exported for the tests that scale
 # with the tier (the ISA sweep, the viewer). Every stage runs even when one
@@ -30,7 +35,7 @@ for a in "$@"; do
   case "$a" in
     --full) tier=full ;;
     --quick) tier=quick ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "test.sh: unknown argument $a (use --full, or nothing for the quick tier)"; exit 2 ;;
   esac
 done
@@ -118,6 +123,8 @@ if [ "$tier" = full ]; then
   stage "TSan: the thread tests" tsan
   prune build-tsan
   stage "fuzzing (FUZZ_SECONDS per harness, default 60)" bash tools/fuzz.sh
+  stage "Windows x64: cross-build, C tests under wine64, presets = Linux, packages" bash tools/win/test.sh
+  prune build-win
 fi
 
 echo
