@@ -199,9 +199,7 @@ static int push_out_mesh(const banyan_ivy *iv, uint32_t m, v3 *p) {
         hmesh_nearest(&iv->meshes[m], *p, HUGE_VAL, &r); /* deep inside: out by the nearest way */
     }
     if (r.dist >= c) return 0;
-    /* A hair past c: the mesh is float, and a point pushed to exactly c
-     * could read a little nearer and be refused by the next clearance test. */
-    *p = v3_madd(r.point, r.normal, c * (1.0 + 1e-6) + 1e-7);
+    *p = v3_madd(r.point, r.normal, ivy_clear_hair(iv)); /* the mesh is float */
     return 1;
 }
 
@@ -240,14 +238,13 @@ static inline int segment_off_box(v3 a, v3 b, v3 lo, v3 hi) {
 }
 
 v3 ivy_stop_at_meshes(const banyan_ivy *iv, v3 from, v3 to) {
-    const double c = iv->p.clearance;
     for (uint32_t m = 0; m < iv->n_mesh; m++) {
         const uint32_t h = iv->mesh0 + m;
         if (segment_off_box(from, to, iv->clear_lo[h], iv->clear_hi[h])) continue;
         double t;
         v3 nrm;
         if (hmesh_segment_hit(&iv->meshes[m], from, to, &t, &nrm))
-            to = v3_madd(v3_lerp(from, to, t), nrm, c * (1.0 + 1e-6) + 1e-7); /* on the side it came from */
+            to = v3_madd(v3_lerp(from, to, t), nrm, ivy_clear_hair(iv)); /* on the side it came from */
     }
     return to;
 }

@@ -303,13 +303,12 @@ static int follow_along(banyan_ivy *iv, int32_t i, int32_t j, int32_t k, v3 n, v
     const double edge = gap < FOLLOW_GAP && gap > 1e-12 ? fmin(FOLLOW_GAP - gap, 0.5 * l) / gap : 0.0;
     v3 d = v3_norm_or(v3_madd(v3_scale(t, l), off, edge), t);
     v3 q = v3_madd(b->P, d, l);
-    /* A run lies a hair past `clearance` off the surface (as push_out_mesh
-     * leaves a point): at exactly clearance along a wall its buds would
-     * sit on ivy_blocked's d < c edge, where the rounding of coordinates
-     * far from the origin decides. */
+    /* A run lies a hair past `clearance` off the surface: at exactly
+     * clearance along a wall its buds would sit on ivy_blocked's d < c
+     * edge, where the rounding of coordinates far from the origin decides. */
     const ivy_near nr = ivy_nearest_within(iv, q, D + iv->p.clearance);
     if (nr.dist <= D + iv->p.clearance) {
-        q = v3_madd(q, nr.normal, iv->p.clearance * (1.0 + 1e-6) + 1e-7 - nr.dist);
+        q = v3_madd(q, nr.normal, ivy_clear_hair(iv) - nr.dist);
         d = v3_norm_or(v3_sub(q, b->P), d);
     }
     double dist;

@@ -225,6 +225,10 @@ void ivy_host_boxes(banyan_ivy *iv);
  * `clearance` to one? When it does not and grip != NULL, *grip is
  * ivy_grip_distance(iv, b, cap), found in the same pass over the hosts. */
 int ivy_blocked(const banyan_ivy *iv, v3 a, v3 b, double cap, double *grip);
+/* A hair past `clearance`, where a point is put off a surface: one put at
+ * exactly clearance could read a little nearer (a float mesh, a run along
+ * a wall far from the origin) and fall on the next clearance test's edge. */
+static inline double ivy_clear_hair(const banyan_ivy *iv) { return iv->p.clearance * (1.0 + 1e-6) + 1e-7; }
 /* Is p farther than `margin` outside host h's world bounding box? Then it
  * is farther than that from the host: the exact query can be skipped. */
 static inline int ivy_far_from(const banyan_ivy *iv, uint32_t h, v3 p, double margin) {

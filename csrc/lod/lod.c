@@ -308,26 +308,27 @@ static int thin_leaves(const banyan_mesh *m, uint32_t q, const banyan_lod_params
     /* The leaves that hold the part's lowest and highest vertex on each
      * axis are kept first (a lone leaf far out sets the bounds an engine
      * culls by, and the levels keep them); then the rest at random. */
-    uint32_t fixed = 0;
-    for (int j = 0; j < 3 && n; j++)
-        for (int hi = 0; hi < 2; hi++) {
-            uint32_t best = UINT32_MAX;
-            for (uint32_t v = 0; v < nv; v++) {
-                if (comp[v] == UINT32_MAX) continue;
-                if (best == UINT32_MAX || (hi ? P[3 * (size_t)v + j] > P[3 * (size_t)best + j]
-                                              : P[3 * (size_t)v + j] < P[3 * (size_t)best + j]))
-                    best = v;
-            }
-            uint32_t c = comp[best];
-            if (keep[c] || fixed >= k_keep) continue;
-            for (uint32_t i = fixed; i < n; i++) /* c's place in order: swap it to the front */
-                if (order[i] == c) {
-                    order[i] = order[fixed];
-                    order[fixed++] = c;
-                    break;
-                }
-            keep[c] = 1;
+    uint32_t ext[6] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX}; /* lo x, hi x, lo y, ... */
+    for (uint32_t v = 0; v < nv; v++) {
+        if (comp[v] == UINT32_MAX) continue;
+        for (int j = 0; j < 3; j++) {
+            const float x = P[3 * (size_t)v + j];
+            if (ext[2 * j] == UINT32_MAX || x < P[3 * (size_t)ext[2 * j] + j]) ext[2 * j] = v;
+            if (ext[2 * j + 1] == UINT32_MAX || x > P[3 * (size_t)ext[2 * j + 1] + j]) ext[2 * j + 1] = v;
         }
+    }
+    uint32_t fixed = 0;
+    for (int e = 0; e < 6 && n; e++) {
+        uint32_t c = comp[ext[e]];
+        if (keep[c] || fixed >= k_keep) continue;
+        for (uint32_t i = fixed; i < n; i++) /* c's place in order: swap it to the front */
+            if (order[i] == c) {
+                order[i] = order[fixed];
+                order[fixed++] = c;
+                break;
+            }
+        keep[c] = 1;
+    }
     for (uint32_t i = fixed; i < k_keep && i < n; i++) { /* partial Fisher-Yates: the first k_keep are kept */
         uint32_t j = i + rng_below(&r, n - i), t = order[i];
         order[i] = order[j];
